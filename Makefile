@@ -1,0 +1,91 @@
+# worker: a batch render-farm worker around a sampler-study path tracer.
+# One non-recursive Makefile. `make` builds bin/worker; `make test`, `make run`, `make asan`.
+CC      ?= cc
+PREFIX  ?= /usr/local
+DESTDIR ?=
+BUILD   ?= build
+BIN     ?= bin
+OPT     ?= -O2 -g
+SAN     ?=
+VERSION := 0.1.0
+
+WARN    := -std=c11 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wno-unused-parameter
+DEFS    := -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -DWORKER_VERSION='"$(VERSION)"'
+PKGS    := yaml-0.1 zlib
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lz)
+CFLAGS_ALL  = $(WARN) $(OPT) $(SAN) $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -MMD -MP $(CFLAGS)
+LDLIBS_ALL  = $(SAN) $(PKG_LIBS) -lm $(LDFLAGS) $(LDLIBS)
+
+ifeq ($(V),1)
+Q :=
+else
+Q := @
+endif
+
+COMMON_SRC := $(wildcard common/*.c)
+WORKER_SRC := $(filter-out worker/main.c,$(wildcard worker/*.c))
+TEST_SRC   := $(wildcard tests/test_*.c)
+COMMON_OBJ := $(COMMON_SRC:%.c=$(BUILD)/%.o)
+WORKER_OBJ := $(WORKER_SRC:%.c=$(BUILD)/%.o)
+TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+LIBCOMMON  := $(BUILD)/libcommon.a
+LIBWORKER  := $(BUILD)/libworker.a
+WORKER_BIN := $(BIN)/worker
+
+.PHONY: all test unit run install uninstall clean asan deps golden bench lint
+all: deps $(WORKER_BIN)
+
+# One line naming the Debian packages when a header is missing.
+deps:
+	@printf '#include <yaml.h>\n#include <zlib.h>\n' | $(CC) $(PKG_CFLAGS) -E -x c - >/dev/null 2>&1 || \
+	  { echo "error: libyaml and zlib headers are missing: apt-get install libyaml-dev zlib1g-dev" >&2; exit 1; }
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	@$(if $(Q),echo "  CC      $<")
+	$(Q)$(CC) $(CFLAGS_ALL) -c $< -o $@
+
+$(LIBCOMMON): $(COMMON_OBJ)
+	$(Q)rm -f $@ && ar rcs $@ $^
+$(LIBWORKER): $(WORKER_OBJ)
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+$(WORKER_BIN): $(BUILD)/worker/main.o $(LIBWORKER) $(LIBCOMMON)
+	@mkdir -p $(dir $@)
+	@$(if $(Q),echo "  LD      $@")
+	$(Q)$(CC) $(OPT) -o $@ $^ $(LDLIBS_ALL)
+
+$(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIBWORKER) $(LIBCOMMON)
+	@$(if $(Q),echo "  LD      $@")
+	$(Q)$(CC) $(OPT) -o $@ $^ $(LDLIBS_ALL)
+
+# Unit binaries, then the end-to-end scripts; the runner prints "N passed, N failed".
+test: all $(TEST_BIN)
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) sh tests/run.sh
+
+unit: all $(TEST_BIN)
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) E2E=0 sh tests/run.sh
+
+# Same suite under AddressSanitizer + UndefinedBehaviorSanitizer, in its own build tree.
+asan:
+	$(Q)$(MAKE) --no-print-directory test BUILD=build/asan BIN=build/asan/bin OPT='-O1 -g' \
+	  SAN='-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all' ASAN_FAST=1
+
+run: all
+	$(WORKER_BIN) jobs/checker.yaml
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin
+	install -m 0755 $(WORKER_BIN) $(DESTDIR)$(PREFIX)/bin/worker
+uninstall:
+	rm -f $(DESTDIR)$(PREFIX)/bin/worker
+
+lint:
+	clang-format --dry-run --Werror common/*.[ch] worker/*.[ch] tests/*.[ch]
+	cppcheck --quiet --error-exitcode=1 --enable=warning,portability --std=c11 -Icommon -Iworker common worker
+
+clean:
+	rm -rf build bin
+
+-include $(COMMON_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/main.d $(TEST_BIN:=.d)

@@ -1,0 +1,24 @@
+/* err: the error a library call hands back to its caller (file, line, column, message). */
+#ifndef ERR_H
+#define ERR_H
+
+#include <stddef.h>
+
+struct err {
+    char file[512]; /* "" when the error is not about a file */
+    int line;       /* 1-based; 0 when unknown */
+    int col;        /* 1-based; 0 when unknown */
+    char msg[768];
+};
+
+/* Fill e (if not NULL) with a position and a printf-style message. Always returns -1. */
+int err_set(struct err *e, const char *file, int line, int col, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+/* Prefix e's message with "prefix: " (e.g. a key name). Always returns -1. */
+int err_prefix(struct err *e, const char *prefix);
+
+/* Write "file:line:col: msg" (parts present only when known) into buf. */
+void err_format(const struct err *e, char *buf, size_t n);
+
+#endif

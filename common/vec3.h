@@ -1,0 +1,69 @@
+/* vec3: small value-struct vector math, all static inline (the renderer's hot path). */
+#ifndef VEC3_H
+#define VEC3_H
+
+#include <math.h>
+
+#define PI 3.14159265358979323846
+
+typedef struct {
+    double x, y, z;
+} vec3;
+
+typedef struct {
+    vec3 orig, dir;
+    double time;
+} ray;
+
+static inline vec3 v3(double x, double y, double z) { return (vec3){x, y, z}; }
+static inline vec3 v3_add(vec3 a, vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline vec3 v3_sub(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline vec3 v3_mul(vec3 a, vec3 b) { return v3(a.x * b.x, a.y * b.y, a.z * b.z); }
+static inline vec3 v3_scale(vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
+static inline vec3 v3_neg(vec3 a) { return v3(-a.x, -a.y, -a.z); }
+static inline double v3_dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline vec3 v3_cross(vec3 a, vec3 b)
+{
+    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline double v3_len2(vec3 a) { return v3_dot(a, a); }
+static inline double v3_len(vec3 a) { return sqrt(v3_dot(a, a)); }
+static inline vec3 v3_unit(vec3 a) { return v3_scale(a, 1.0 / v3_len(a)); }
+static inline vec3 v3_fma(vec3 a, vec3 b, double s) { return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
+static inline double v3_get(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+static inline vec3 v3_min(vec3 a, vec3 b) { return v3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
+static inline vec3 v3_max(vec3 a, vec3 b) { return v3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
+static inline int v3_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+static inline vec3 ray_at(const ray *r, double t) { return v3_fma(r->orig, r->dir, t); }
+
+static inline vec3 v3_reflect(vec3 v, vec3 n) { return v3_sub(v, v3_scale(n, 2 * v3_dot(v, n))); }
+static inline vec3 v3_refract(vec3 uv, vec3 n, double etai_over_etat)
+{
+    double cos_theta = fmin(v3_dot(v3_neg(uv), n), 1.0);
+    vec3 perp = v3_scale(v3_fma(uv, n, cos_theta), etai_over_etat);
+    vec3 para = v3_scale(n, -sqrt(fabs(1.0 - v3_len2(perp))));
+    return v3_add(perp, para);
+}
+
+/* An orthonormal basis with w along the given normal (Duff et al. 2017, branchless ONB). */
+typedef struct {
+    vec3 u, v, w;
+} onb;
+
+static inline onb onb_from_w(vec3 n)
+{
+    double sign = copysign(1.0, n.z);
+    double a = -1.0 / (sign + n.z);
+    double b = n.x * n.y * a;
+    onb o;
+    o.u = v3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    o.v = v3(b, sign + n.y * n.y * a, -n.y);
+    o.w = n;
+    return o;
+}
+static inline vec3 onb_local(const onb *o, vec3 a)
+{
+    return v3_add(v3_add(v3_scale(o->u, a.x), v3_scale(o->v, a.y)), v3_scale(o->w, a.z));
+}
+
+#endif
