@@ -1,0 +1,25 @@
+/* fileio: whole-file reads with a size bound, and atomic writes (temporary file + rename). */
+#ifndef FILEIO_H
+#define FILEIO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "image.h"
+
+/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer, NUL-terminated
+   one byte past *len. 0, or -1 with e filled (missing, a directory, too large, read error). */
+int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e);
+
+/* Write data to path atomically: a temporary file in the same directory, fsync, rename().
+   On any failure (full disk, unwritable folder) no file is left behind and e is filled. */
+int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
+
+/* Read a PNG or PPM file (chosen by its magic bytes) into out. */
+int imgio_read(const char *path, struct rgb8 *out, struct err *e);
+
+/* Encode img in fmt and write it atomically to path. */
+int imgio_write(const char *path, const struct rgb8 *img, enum img_format fmt, struct err *e);
+
+#endif

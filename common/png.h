@@ -1,0 +1,15 @@
+/* png: encode and decode PNG in memory with zlib (PNG spec, ISO/IEC 15948). */
+#ifndef PNG_H
+#define PNG_H
+
+#include "image.h"
+
+/* Encode img as 8-bit RGB PNG into a malloc'd buffer (*out, caller frees). 0 or -1. */
+int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct err *e);
+
+/* Decode an 8-bit gray, gray+alpha, RGB or RGBA PNG (non-interlaced, all five row filters) into
+   out (RGB; alpha dropped). `name` is used in error messages. Never reads out of bounds; rejects
+   truncated or corrupt data and sides over IMAGE_MAX_SIDE with -1 and e filled. */
+int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
+
+#endif

@@ -1,0 +1,14 @@
+/* ppm: encode P6 and decode P3/P6 netpbm images in memory. */
+#ifndef PPM_H
+#define PPM_H
+
+#include "image.h"
+
+/* Encode img as binary P6 (maxval 255) into a malloc'd buffer (*out, caller frees). */
+int ppm_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct err *e);
+
+/* Decode P3 or P6 (maxval 1..65535, scaled to 8 bits, comments allowed). -1 and e filled on
+   malformed, truncated or oversized input. */
+int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
+
+#endif

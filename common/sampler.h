@@ -1,0 +1,49 @@
+/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk). */
+#ifndef SAMPLER_H
+#define SAMPLER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "rng.h"
+
+struct pt2 {
+    double x, y;
+};
+
+enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON };
+
+/* Largest set a job may ask for, per pixel or per light draw. */
+#define SAMPLER_MAX_POINTS 4000000
+
+/* Name <-> kind. parse returns 0, or -1 for an unknown name. */
+int sampler_kind_parse(const char *name, enum sampler_kind *out);
+const char *sampler_kind_name(enum sampler_kind kind);
+
+/* n = floor(100 / threshold): the grid side of uniform/jitter/random. */
+int sampler_grid_side(double threshold);
+
+/* Upper bound on the size of one set of (kind, threshold): n*n for the grid kinds, the
+   background-grid cell count for poisson. Fits in size_t for any threshold in (0, 100]. */
+size_t sampler_capacity(enum sampler_kind kind, double threshold);
+
+struct sampler;
+
+/* A sampler for (kind, threshold in (0,100]). pool_size > 0 with kind poisson draws that many
+   toroidal Poisson sets once from pool_seed (see sampler_draw). Returns NULL and fills e on a bad
+   threshold (e.g. a set over SAMPLER_MAX_POINTS) or out of memory. Free with sampler_free. */
+struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size,
+                            uint64_t pool_seed, struct err *e);
+void sampler_free(struct sampler *s);
+
+/* Capacity an `out` array passed to sampler_draw must have. */
+size_t sampler_set_capacity(const struct sampler *s);
+
+/* Draw one set into out, consuming rng; returns the count (>= 1). Allocates nothing: the
+   sampler's workspace is reused, so one sampler serves one thread at a time. With a pool,
+   the set is one of the pool's, picked by rng and shifted by an rng offset modulo 1
+   (Cranley-Patterson rotation). */
+size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out);
+
+#endif
