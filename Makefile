@@ -10,6 +10,8 @@ SAN     ?=
 VERSION := 0.1.0
 
 WARN    := -std=c11 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wno-unused-parameter
+# snprintf into fixed buffers truncates on purpose (paths and messages are bounded).
+WARN    += -Wno-format-truncation
 DEFS    := -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -DWORKER_VERSION='"$(VERSION)"'
 PKGS    := yaml-0.1 zlib
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)

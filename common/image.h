@@ -17,6 +17,8 @@ enum img_format { IMG_PNG, IMG_PPM };
 
 /* Largest side any image we read or write may have. */
 #define IMAGE_MAX_SIDE 32768
+/* Largest pixel count (w * h) a decoder accepts, so a tiny file cannot demand gigabytes. */
+#define IMAGE_MAX_PIXELS 100000000L
 
 /* Allocate a zeroed w x h raster; -1 and e filled on bad size or no memory. */
 int rgb8_alloc(struct rgb8 *img, int w, int h, struct err *e);

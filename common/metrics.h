@@ -1,0 +1,17 @@
+/* metrics: error of an image against a reference (MSE, RMSE, relMSE as pbrt, PSNR). */
+#ifndef METRICS_H
+#define METRICS_H
+
+#include "image.h"
+
+struct metrics {
+    double mse, rmse, relmse, psnr; /* on values in [0, 1]; psnr in dB (inf when equal) */
+};
+
+/* relMSE epsilon, as pbrt's imgtool: mean of (b - a)^2 / (a^2 + eps). */
+#define METRICS_REL_EPS 0.01
+
+/* Error of img against ref (same size, else -1 with e filled). */
+int metrics_compare(const struct rgb8 *ref, const struct rgb8 *img, struct metrics *m, struct err *e);
+
+#endif

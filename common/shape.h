@@ -1,0 +1,38 @@
+/* shape: ray-primitive intersection, bounds, and area sampling of the primitives lights use. */
+#ifndef SHAPE_H
+#define SHAPE_H
+
+#include "sampler.h"
+#include "scene.h"
+
+#define HIT_EPS 0.001
+
+struct hit {
+    double t;
+    vec3 p;      /* world-space point */
+    vec3 n;      /* unit normal facing against the ray */
+    double u, v; /* surface coordinates, filled by shape_uv when a texture needs them */
+    int front;   /* the ray hit the outward (front) side */
+    int prim;
+};
+
+/* Nearest hit of r with p in (t_min, t_max): 1 and h filled, else 0. */
+int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h);
+
+/* Fill h->u, h->v for the primitive h->prim (only called when a texture needs them). */
+void shape_uv(const struct prim *p, struct hit *h);
+
+/* World-space bounds of p. */
+void shape_bounds(const struct prim *p, vec3 *lo, vec3 *hi);
+
+/* Area of p's surface (disk and rect, which lights use). */
+double shape_area(const struct prim *p);
+
+/* The point on a disk or rect light for a sample point s in [0,1)^2 (area-uniform map). */
+vec3 shape_light_point(const struct prim *p, struct pt2 s);
+
+/* Density, per solid angle, of choosing direction dir from o by sampling p's area: 0 when the
+   ray misses p. */
+double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time);
+
+#endif

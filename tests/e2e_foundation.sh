@@ -1,0 +1,88 @@
+#!/bin/sh
+# End to end: a job renders to PNG + sidecar; any process split gives the same bytes;
+# bad jobs exit 2 with file:line:col and write nothing; a killed child fails the job.
+. tests/lib.sh
+root=$(pwd)
+
+job() { # job FILE extra-yaml-lines...
+    f=$1; shift
+    { echo "scene: $root/scenes/checker.yaml"; for l in "$@"; do echo "$l"; done; } >"$f"
+}
+
+# 1. a small render and its sidecar
+job "$T/small.yaml" "width: 48" "height: 32" "threshold: 25" "light_threshold: 20"
+"$WORKER" --quiet --out "$T/out" "$T/small.yaml" 2>"$T/err"; rc=$?
+check "small render exits 0" [ "$rc" -eq 0 ]
+check "image written" [ -s "$T/out/small/small.png" ]
+check "sidecar written" [ -s "$T/out/small/small.json" ]
+check "png signature" sh -c "head -c 8 '$T/out/small/small.png' | od -An -tx1 | tr -d ' \n' | grep -q 89504e470d0a1a0a"
+for key in '"job": "small"' '"sampler": "random"' '"per_pixel_mean": 16' '"total"' '"wall_s"' '"cpu_s"' '"nonfinite_dropped"' '"processes": 2' '"light_sample_sets"'; do
+    check "sidecar has $key" grep -q "$key" "$T/out/small/small.json"
+done
+check "summary line names the job" grep -q "small: 48x32" "$T/err"
+check "no temporary files left" sh -c "! ls -a '$T/out/small' | grep -q tmp"
+
+# 2. byte-identical across process counts
+for n in 1 2 3 8; do
+    "$WORKER" --quiet --processes $n --out "$T/p$n" "$T/small.yaml" 2>/dev/null
+done
+for n in 2 3 8; do
+    check "processes $n == processes 1" cmp -s "$T/p1/small/small.png" "$T/p$n/small/small.png"
+done
+check "sidecar records processes 8" grep -q '"processes": 8' "$T/p8/small/small.json"
+# a different seed changes the image
+job "$T/seed2.yaml" "name: small" "width: 48" "height: 32" "threshold: 25" "light_threshold: 20" "seed: 2"
+"$WORKER" --quiet --out "$T/s2" "$T/seed2.yaml" 2>/dev/null
+check "seed 2 differs from seed 1" sh -c "! cmp -s '$T/p1/small/small.png' '$T/s2/small/small.png'"
+
+# 3. bad jobs: exit 2, file:line:col, nothing under --out
+bad() { # bad NAME EXPECTED-REGEX  (file already written to $T/NAME.yaml)
+    rm -rf "$T/badout"
+    "$WORKER" --quiet --out "$T/badout" "$T/$1.yaml" 2>"$T/$1.err"; rc=$?
+    check "$1: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "$1: message matches '$2'" grep -Eq "$2" "$T/$1.err"
+    check "$1: nothing written" [ ! -e "$T/badout" ]
+}
+job "$T/unknown.yaml" "width: 10" "treshold: 5"
+bad unknown "unknown.yaml:3:1: treshold: unknown key.*did you mean \"threshold\""
+job "$T/abc.yaml" "width: 10" "threshold: abc"
+bad abc 'abc.yaml:3:12: threshold: must be a number in \(0, 100\], got "abc"'
+printf 'scene: nowhere/missing.yaml\nwidth: 10\n' >"$T/missing.yaml"
+bad missing 'missing.yaml:1:8: scene: no scene file'
+printf 'scene: checker\nwidth: [10\n' >"$T/syntax.yaml"
+bad syntax 'syntax.yaml:[0-9]+:[0-9]+: YAML syntax error'
+job "$T/zero.yaml" "threshold: 0"
+bad zero 'zero.yaml:2:12: threshold: must be a number in \(0, 100\]'
+job "$T/sampler.yaml" "sampler: sobol"
+bad sampler 'sampler.yaml:2:10: sampler: unknown sampler "sobol"'
+job "$T/type.yaml" "width: wide"
+bad type 'type.yaml:2:8: width: must be a whole number'
+: >"$T/empty.yaml"
+bad empty 'empty.yaml:1:1: empty file'
+printf 'scene: %s\nwidth: 10\nwidth: 12\n' "$root/scenes/checker.yaml" >"$T/dup.yaml"
+bad dup 'dup.yaml:3:1: width: duplicate key'
+"$WORKER" --bogus 2>"$T/usage.err"; rc=$?
+check "unknown option exits 2" [ "$rc" -eq 2 ]
+"$WORKER" --help >"$T/help.out"; rc=$?
+check "--help exits 0 and shows usage" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker JOB.yaml' '$T/help.out'"
+check "--version" sh -c "'$WORKER' --version | grep -Eq '^worker [0-9]'"
+
+# 4. a render child killed mid-render: exit 1, a message naming the signal, no image
+job "$T/slow.yaml" "width: 200" "height: 200" "threshold: 3" "light_threshold: 5"
+"$WORKER" --quiet --out "$T/killed" "$T/slow.yaml" 2>"$T/killed.err" &
+wpid=$!
+child=""
+for _ in $(seq 1 100); do
+    child=$(pgrep -P "$wpid" | head -n 1)
+    [ -n "$child" ] && break
+    sleep 0.05
+done
+sleep 0.3
+[ -n "$child" ] && kill -9 "$child"
+wait "$wpid"; rc=$?
+check "killed child: found a child to kill" [ -n "$child" ]
+check "killed child: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "killed child: message names signal 9" grep -q "killed by signal 9" "$T/killed.err"
+check "killed child: no image" [ ! -e "$T/killed/slow/slow.png" ]
+check "killed child: no sidecar" [ ! -e "$T/killed/slow/slow.json" ]
+finish

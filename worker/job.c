@@ -1,0 +1,261 @@
+/* job: reading a job file's keys into a struct job, with strict validation and defaults. */
+#include "job.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "fileio.h"
+
+const char *const job_keys[] = {"name",       "scene",        "width",   "height",
+                                "sampler",    "threshold",    "light_sampler",
+                                "light_threshold", "max_depth", "seed",   "processes",
+                                "format",     "output",       "reference", "poisson_pool",
+                                NULL};
+
+static void dir_of(const char *path, char *out, size_t n)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(out, n, ".");
+    else if (slash == path)
+        snprintf(out, n, "/");
+    else
+        snprintf(out, n, "%.*s", (int)(slash - path), path);
+}
+
+/* path relative to the directory of `base` (absolute paths are kept). */
+static void resolve(const char *base, const char *rel, char *out, size_t n)
+{
+    if (rel[0] == '/') {
+        snprintf(out, n, "%s", rel);
+        return;
+    }
+    char dir[JOB_PATH_MAX];
+    dir_of(base, dir, sizeof dir);
+    if (strcmp(dir, ".") == 0)
+        snprintf(out, n, "%s", rel);
+    else
+        snprintf(out, n, "%s/%s", dir, rel);
+}
+
+static int is_file(const char *p)
+{
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
+   then beside the job file, then in the job file's parent (jobs/ and scenes/ are siblings). */
+static int resolve_scene(struct job *j, const char *val)
+{
+    if (!strchr(val, '/') && !strchr(val, '.')) {
+        char cand[3][JOB_PATH_MAX], rel[JOB_PATH_MAX];
+        snprintf(cand[0], sizeof cand[0], "scenes/%s.yaml", val);
+        snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
+        resolve(j->path, rel, cand[1], sizeof cand[1]);
+        snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
+        resolve(j->path, rel, cand[2], sizeof cand[2]);
+        for (int i = 0; i < 3; i++)
+            if (is_file(cand[i])) {
+                snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[i]);
+                return 0;
+            }
+        snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
+        return -1;
+    }
+    resolve(j->path, val, j->scene_path, sizeof j->scene_path);
+    return is_file(j->scene_path) ? 0 : -1;
+}
+
+void job_defaults(struct job *j, const char *path)
+{
+    memset(j, 0, sizeof *j);
+    snprintf(j->path, sizeof j->path, "%s", path);
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    int len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
+    snprintf(j->name, sizeof j->name, "%.*s", len < JOB_NAME_MAX - 1 ? len : JOB_NAME_MAX - 1, base);
+    j->width = 300;
+    j->sampler = SAMPLER_RANDOM;
+    j->threshold = 5;
+    j->light_sampler = SAMPLER_RANDOM;
+    j->light_threshold = 5;
+    j->max_depth = 50;
+    j->seed = 1;
+    j->processes = 2;
+    j->format = IMG_PNG;
+}
+
+/* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
+static int safe_name(const char *s)
+{
+    if (!*s || !strcmp(s, ".") || !strcmp(s, ".."))
+        return 0;
+    for (; *s; s++)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') ||
+              *s == '-' || *s == '_' || *s == '.'))
+            return 0;
+    return 1;
+}
+
+static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sampler_kind *out,
+                       struct err *e)
+{
+    const char *s;
+    if (yget_string(d, v, key, &s, e) < 0)
+        return -1;
+    if (sampler_kind_parse(s, out) < 0)
+        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)",
+                         key, s);
+    return 0;
+}
+
+static void mark(int pos[2], const yaml_node_t *v)
+{
+    pos[0] = (int)v->start_mark.line + 1;
+    pos[1] = (int)v->start_mark.column + 1;
+}
+
+static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
+{
+    const char *s = yscalar(v);
+    double t;
+    if (yget_double(d, v, key, &t, e) < 0 || !(t > 0 && t <= 100))
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"", key, s ? s : "a non-scalar");
+    *out = t;
+    return 0;
+}
+
+int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, struct err *e)
+{
+    const char *k = yscalar(key);
+    const char *s;
+    long n;
+    if (!strcmp(k, "name")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
+            return ydoc_fail(d, v, e, "name: must be letters, digits, '-', '_' or '.' (at most %d), got \"%.40s\"",
+                             JOB_NAME_MAX - 1, s);
+        snprintf(j->name, sizeof j->name, "%s", s);
+    } else if (!strcmp(k, "scene")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        mark(j->pos_scene, v);
+        if (resolve_scene(j, s) < 0)
+            return ydoc_fail(d, v, e, "scene: no scene file at %s", j->scene_path);
+    } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
+        if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
+            return -1;
+        *(k[0] == 'w' ? &j->width : &j->height) = (int)n;
+    } else if (!strcmp(k, "sampler")) {
+        return get_sampler(d, v, k, &j->sampler, e);
+    } else if (!strcmp(k, "light_sampler")) {
+        j->has_light_sampler = 1;
+        return get_sampler(d, v, k, &j->light_sampler, e);
+    } else if (!strcmp(k, "threshold")) {
+        mark(j->pos_threshold, v);
+        return get_threshold(d, v, k, &j->threshold, e);
+    } else if (!strcmp(k, "light_threshold")) {
+        mark(j->pos_light_threshold, v);
+        return get_threshold(d, v, k, &j->light_threshold, e);
+    } else if (!strcmp(k, "max_depth")) {
+        if (yget_long(d, v, k, 1, 10000, &n, e) < 0)
+            return -1;
+        j->max_depth = (int)n;
+    } else if (!strcmp(k, "seed")) {
+        if (yget_long(d, v, k, 0, 2147483647L, &n, e) < 0)
+            return -1;
+        j->seed = (uint64_t)n;
+    } else if (!strcmp(k, "processes")) {
+        if (yget_long(d, v, k, 1, 256, &n, e) < 0)
+            return -1;
+        j->processes = (int)n;
+    } else if (!strcmp(k, "poisson_pool")) {
+        if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
+            return -1;
+        j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "format")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (strcmp(s, "png") && strcmp(s, "ppm"))
+            return ydoc_fail(d, v, e, "format: must be png or ppm, got \"%.40s\"", s);
+        j->format = s[1] == 'n' ? IMG_PNG : IMG_PPM;
+        j->has_format = 1;
+    } else if (!strcmp(k, "output")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
+            return ydoc_fail(d, v, e, "output: must be a plain file name (no '/'), got \"%.40s\"", s);
+        snprintf(j->output, sizeof j->output, "%s", s);
+        j->has_output = 1;
+    } else if (!strcmp(k, "reference")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        mark(j->pos_reference, v);
+        resolve(j->path, s, j->reference, sizeof j->reference);
+        if (!is_file(j->reference))
+            return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
+    }
+    return 0;
+}
+
+static int has_suffix(const char *s, const char *suf)
+{
+    size_t a = strlen(s), b = strlen(suf);
+    return a >= b && strcmp(s + a - b, suf) == 0;
+}
+
+/* Refuse a threshold whose sets would not fit the per-set limit, naming the count. */
+static int check_set_size(const struct job *j, enum sampler_kind k, double t, const int pos[2],
+                          const char *key, struct err *e)
+{
+    size_t n = sampler_capacity(k, t);
+    if (n <= SAMPLER_MAX_POINTS)
+        return 0;
+    return err_set(e, j->path, pos[0], pos[1],
+                   "%s: %g would make up to %zu %s points per set (limit %d)", key, t, n,
+                   sampler_kind_name(k), SAMPLER_MAX_POINTS);
+}
+
+int job_finish(struct job *j, struct ydoc *d, struct err *e)
+{
+    (void)d;
+    if (!j->has_light_sampler)
+        j->light_sampler = j->sampler;
+    if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
+        check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold,
+                       "light_threshold", e) < 0)
+        return -1;
+    if (j->has_output && !j->has_format)
+        j->format = has_suffix(j->output, ".ppm") ? IMG_PPM : IMG_PNG;
+    if (!j->has_output)
+        snprintf(j->output, sizeof j->output, "%s.%s", j->name, j->format == IMG_PPM ? "ppm" : "png");
+    return 0;
+}
+
+int job_load(const char *path, struct job *j, struct err *e)
+{
+    struct ydoc d;
+    int rc = -1;
+    job_defaults(j, path);
+    if (ydoc_load(&d, path, e) < 0)
+        goto done;
+    yaml_node_t *root = ydoc_root(&d);
+    if (ymap_check(&d, root, job_keys, "job", e) < 0)
+        goto done;
+    yaml_node_t *k, *v;
+    for (int i = 0; ymap_pair(&d, root, i, &k, &v); i++)
+        if (job_apply(j, &d, k, v, e) < 0)
+            goto done;
+    if (!ymap_get(&d, root, "scene")) {
+        ydoc_fail(&d, root, e, "scene: missing (name a scene file, e.g. scene: checker)");
+        goto done;
+    }
+    rc = job_finish(j, &d, e);
+done:
+    ydoc_free(&d);
+    return rc;
+}

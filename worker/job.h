@@ -1,0 +1,49 @@
+/* job: one render job as read from a YAML job file, validated strictly. */
+#ifndef JOB_H
+#define JOB_H
+
+#include <stdint.h>
+
+#include "err.h"
+#include "image.h"
+#include "sampler.h"
+#include "yamlx.h"
+
+#define JOB_PATH_MAX 1024
+#define JOB_NAME_MAX 128
+
+struct job {
+    char path[JOB_PATH_MAX];       /* the job file */
+    char name[JOB_NAME_MAX];
+    char scene_path[JOB_PATH_MAX]; /* resolved */
+    int width, height;             /* height 0: width / camera aspect */
+    enum sampler_kind sampler, light_sampler;
+    double threshold, light_threshold;
+    int max_depth;
+    uint64_t seed;
+    int processes;
+    enum img_format format;
+    char output[JOB_NAME_MAX];     /* file name under --out DIR/<name>/ */
+    char reference[JOB_PATH_MAX];  /* resolved; "" when none */
+    int poisson_pool;
+    /* which keys were given, and where (1-based line, col; 0 when absent) */
+    int has_light_sampler, has_format, has_output;
+    int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2];
+};
+
+/* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
+int job_load(const char *path, struct job *j, struct err *e);
+
+/* Set defaults (name from the file's stem). */
+void job_defaults(struct job *j, const char *path);
+
+/* Apply one key/value pair of a job mapping to j (used for job files and compare variants). */
+int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *val, struct err *e);
+
+/* Derive what depends on several keys (light sampler default, format, output name). */
+int job_finish(struct job *j, struct ydoc *d, struct err *e);
+
+/* The keys a job file may hold, NULL-terminated. */
+extern const char *const job_keys[];
+
+#endif

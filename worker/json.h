@@ -1,0 +1,26 @@
+/* json: a small streaming JSON writer into a growing buffer (for sidecars). */
+#ifndef JSON_H
+#define JSON_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct json {
+    char *buf;
+    size_t len, cap;
+    int depth;
+    int first[32]; /* no member written yet at this depth */
+    int oom;
+};
+
+void json_init(struct json *j);
+void json_free(struct json *j);
+void json_begin_object(struct json *j, const char *key); /* key NULL inside arrays / at top */
+void json_end_object(struct json *j);
+void json_begin_array(struct json *j, const char *key);
+void json_end_array(struct json *j);
+void json_string(struct json *j, const char *key, const char *val);
+void json_number(struct json *j, const char *key, double val); /* non-finite -> null */
+void json_uint(struct json *j, const char *key, uint64_t val);
+
+#endif

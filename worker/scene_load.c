@@ -1,0 +1,265 @@
+/* scene_load: validating a scene file and building the renderer's scene from it. */
+#include "scene_load.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "scene_loader.h"
+
+int loader_find_name(const struct names *nm, const char *s)
+{
+    for (int i = 0; i < nm->n; i++)
+        if (!strcmp(nm->name[i], s))
+            return i;
+    return -1;
+}
+
+int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out)
+{
+    if (yget_vec3(&L->d, v, key, out, L->e) < 0)
+        return -1;
+    if (out->x < 0 || out->y < 0 || out->z < 0)
+        return ydoc_fail(&L->d, v, L->e, "%s: colour components must be >= 0", key);
+    return 0;
+}
+
+static const char *const camera_keys[] = {"lookfrom", "lookat", "vup", "vfov", "aperture",
+                                          "focus_dist", "shutter", "aspect", NULL};
+
+static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
+{
+    struct camera_desc *c = &out->camera;
+    *c = (struct camera_desc){.vup = v3(0, 1, 0), .vfov_deg = 40, .focus_dist = 10};
+    out->aspect = 1;
+    if (ymap_check(&L->d, n, camera_keys, "camera", L->e) < 0)
+        return -1;
+    yaml_node_t *v;
+    const char *need[] = {"lookfrom", "lookat", "vfov"};
+    for (int i = 0; i < 3; i++)
+        if (!ymap_get(&L->d, n, need[i]))
+            return ydoc_fail(&L->d, n, L->e, "%s: missing in camera", need[i]);
+    if (yget_vec3(&L->d, ymap_get(&L->d, n, "lookfrom"), "lookfrom", &c->lookfrom, L->e) < 0 ||
+        yget_vec3(&L->d, ymap_get(&L->d, n, "lookat"), "lookat", &c->lookat, L->e) < 0)
+        return -1;
+    if ((v = ymap_get(&L->d, n, "vup")) && yget_vec3(&L->d, v, "vup", &c->vup, L->e) < 0)
+        return -1;
+    v = ymap_get(&L->d, n, "vfov");
+    if (yget_double(&L->d, v, "vfov", &c->vfov_deg, L->e) < 0)
+        return -1;
+    if (!(c->vfov_deg > 0 && c->vfov_deg < 180))
+        return ydoc_fail(&L->d, v, L->e, "vfov: must be in (0, 180) degrees, got %g", c->vfov_deg);
+    if ((v = ymap_get(&L->d, n, "aperture"))) {
+        if (yget_double(&L->d, v, "aperture", &c->aperture, L->e) < 0)
+            return -1;
+        if (c->aperture < 0)
+            return ydoc_fail(&L->d, v, L->e, "aperture: must be >= 0, got %g", c->aperture);
+    }
+    if ((v = ymap_get(&L->d, n, "focus_dist"))) {
+        if (yget_double(&L->d, v, "focus_dist", &c->focus_dist, L->e) < 0)
+            return -1;
+        if (!(c->focus_dist > 0))
+            return ydoc_fail(&L->d, v, L->e, "focus_dist: must be > 0, got %g", c->focus_dist);
+    }
+    double sh[2] = {0, 1};
+    if ((v = ymap_get(&L->d, n, "shutter"))) {
+        if (yget_vec2(&L->d, v, "shutter", sh, L->e) < 0)
+            return -1;
+        if (sh[1] < sh[0])
+            return ydoc_fail(&L->d, v, L->e, "shutter: must be [open, close] with open <= close");
+    }
+    c->shutter0 = sh[0];
+    c->shutter1 = sh[1];
+    if ((v = ymap_get(&L->d, n, "aspect"))) {
+        if (yget_double(&L->d, v, "aspect", &out->aspect, L->e) < 0)
+            return -1;
+        if (!(out->aspect >= 0.01 && out->aspect <= 100))
+            return ydoc_fail(&L->d, v, L->e, "aspect: must be in [0.01, 100], got %g", out->aspect);
+    }
+    struct camera probe;
+    if (camera_init(&probe, c, out->aspect, L->e) < 0)
+        return ydoc_fail(&L->d, n, L->e, "camera: %s", L->e->msg);
+    return 0;
+}
+
+static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL};
+
+static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
+{
+    const char *type;
+    yaml_node_t *tn = ymap_get(&L->d, n, "type");
+    if (!tn)
+        return ydoc_fail(&L->d, n, L->e, "type: missing in texture \"%s\"", yscalar(k));
+    if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
+        return -1;
+    struct texture t = {0};
+    if (!strcmp(type, "checker")) {
+        if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
+            return -1;
+        t.type = TEX_CHECKER;
+        t.scale = 10;
+        yaml_node_t *v;
+        const char *need[] = {"odd", "even"};
+        for (int i = 0; i < 2; i++)
+            if (!ymap_get(&L->d, n, need[i]))
+                return ydoc_fail(&L->d, n, L->e, "%s: missing in checker texture", need[i]);
+        if (loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t.odd) < 0 ||
+            loader_color(L, ymap_get(&L->d, n, "even"), "even", &t.even) < 0)
+            return -1;
+        if ((v = ymap_get(&L->d, n, "scale")) && yget_double(&L->d, v, "scale", &t.scale, L->e) < 0)
+            return -1;
+        if (!(t.scale > 0))
+            return ydoc_fail(&L->d, v, L->e, "scale: must be > 0");
+    } else {
+        return ydoc_fail(&L->d, tn, L->e, "type: unknown texture type \"%.40s\" (expected checker)", type);
+    }
+    if (scene_add_texture(L->sc, &t) < 0)
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    return 0;
+}
+
+static const char *const material_keys[] = {"type", "albedo", "texture", "fuzz", "ior", "emit", NULL};
+
+static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
+{
+    if (ymap_check(&L->d, n, material_keys, "material", L->e) < 0)
+        return -1;
+    const char *type, *s;
+    yaml_node_t *tn = ymap_get(&L->d, n, "type"), *v;
+    if (!tn)
+        return ydoc_fail(&L->d, n, L->e, "type: missing in material \"%s\"", yscalar(k));
+    if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
+        return -1;
+    struct material m = {.texture = -1, .albedo = v3(1, 1, 1), .ior = 1.5};
+    /* Which keys each type takes: albedo|texture for lambertian, etc. */
+    const char *allowed;
+    if (!strcmp(type, "lambertian")) {
+        m.type = MAT_LAMBERTIAN;
+        allowed = "albedo texture";
+    } else if (!strcmp(type, "metal")) {
+        m.type = MAT_METAL;
+        allowed = "albedo fuzz";
+    } else if (!strcmp(type, "dielectric")) {
+        m.type = MAT_DIELECTRIC;
+        allowed = "ior";
+    } else if (!strcmp(type, "light")) {
+        m.type = MAT_LIGHT;
+        allowed = "emit";
+    } else {
+        return ydoc_fail(&L->d, tn, L->e,
+                         "type: unknown material type \"%.40s\" (expected lambertian, metal, dielectric or light)", type);
+    }
+    yaml_node_t *kk;
+    for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
+        const char *name = yscalar(kk);
+        if (strcmp(name, "type") && !strstr(allowed, name))
+            return ydoc_fail(&L->d, kk, L->e, "%s: not a key of a %s material (it takes: %s)", name, type, allowed);
+    }
+    if ((v = ymap_get(&L->d, n, "albedo")) && loader_color(L, v, "albedo", &m.albedo) < 0)
+        return -1;
+    if ((v = ymap_get(&L->d, n, "texture"))) {
+        if (ymap_get(&L->d, n, "albedo"))
+            return ydoc_fail(&L->d, v, L->e, "texture: give albedo or texture, not both");
+        if (yget_string(&L->d, v, "texture", &s, L->e) < 0)
+            return -1;
+        if ((m.texture = loader_find_name(&L->tex, s)) < 0)
+            return ydoc_fail(&L->d, v, L->e, "texture: no texture named \"%.40s\" in textures", s);
+    } else if (m.type == MAT_LAMBERTIAN && !ymap_get(&L->d, n, "albedo")) {
+        return ydoc_fail(&L->d, n, L->e, "albedo: missing in lambertian material \"%s\"", yscalar(k));
+    }
+    if ((v = ymap_get(&L->d, n, "fuzz"))) {
+        if (yget_double(&L->d, v, "fuzz", &m.fuzz, L->e) < 0)
+            return -1;
+        if (m.fuzz < 0 || m.fuzz > 1)
+            return ydoc_fail(&L->d, v, L->e, "fuzz: must be in [0, 1], got %g", m.fuzz);
+    }
+    if ((v = ymap_get(&L->d, n, "ior"))) {
+        if (yget_double(&L->d, v, "ior", &m.ior, L->e) < 0)
+            return -1;
+        if (!(m.ior >= 1 && m.ior <= 10))
+            return ydoc_fail(&L->d, v, L->e, "ior: must be in [1, 10], got %g", m.ior);
+    }
+    if (m.type == MAT_LIGHT) {
+        if (!(v = ymap_get(&L->d, n, "emit")))
+            return ydoc_fail(&L->d, n, L->e, "emit: missing in light material \"%s\"", yscalar(k));
+        if (loader_color(L, v, "emit", &m.emit) < 0)
+            return -1;
+    }
+    if (scene_add_material(L->sc, &m) < 0)
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    return 0;
+}
+
+/* Load a named mapping section (textures or materials). */
+static int load_section(struct loader *L, yaml_node_t *sec, const char *what, struct names *nm,
+                        int (*one)(struct loader *, yaml_node_t *, yaml_node_t *))
+{
+    if (!sec)
+        return 0;
+    if (sec->type != YAML_MAPPING_NODE)
+        return ydoc_fail(&L->d, sec, L->e, "%s: must be a mapping of name: {...}", what);
+    yaml_node_t *k, *v;
+    for (int i = 0; ymap_pair(&L->d, sec, i, &k, &v); i++) {
+        const char *name = yscalar(k);
+        if (!name || !*name)
+            return ydoc_fail(&L->d, k, L->e, "%s: names must be plain strings", what);
+        if (loader_find_name(nm, name) >= 0)
+            return ydoc_fail(&L->d, k, L->e, "%s: duplicate name \"%.40s\"", what, name);
+        if (nm->n >= 256)
+            return ydoc_fail(&L->d, k, L->e, "%s: more than 256 entries", what);
+        if (v->type != YAML_MAPPING_NODE)
+            return ydoc_fail(&L->d, v, L->e, "%s: \"%.40s\" must be a mapping {type: ...}", what, name);
+        if (one(L, k, v) < 0)
+            return -1;
+        nm->name[nm->n++] = name;
+    }
+    return 0;
+}
+
+static const char *const scene_keys[] = {"camera", "background", "textures", "materials", "objects", NULL};
+
+int scene_load(const char *path, struct scene_file *out, struct err *e)
+{
+    struct loader L = {.e = e};
+    memset(out, 0, sizeof *out);
+    int rc = -1;
+    if (ydoc_load(&L.d, path, e) < 0)
+        goto done;
+    if (!(L.sc = scene_new())) {
+        err_set(e, path, 0, 0, "out of memory");
+        goto done;
+    }
+    yaml_node_t *root = ydoc_root(&L.d), *v;
+    if (ymap_check(&L.d, root, scene_keys, "scene", e) < 0)
+        goto done;
+    if (!(v = ymap_get(&L.d, root, "camera"))) {
+        ydoc_fail(&L.d, root, e, "camera: missing in scene");
+        goto done;
+    }
+    if (load_camera(&L, v, out) < 0)
+        goto done;
+    if ((v = ymap_get(&L.d, root, "background")) && loader_color(&L, v, "background", &L.sc->background) < 0)
+        goto done;
+    if (load_section(&L, ymap_get(&L.d, root, "textures"), "textures", &L.tex, load_texture) < 0 ||
+        load_section(&L, ymap_get(&L.d, root, "materials"), "materials", &L.mat, load_material) < 0)
+        goto done;
+    if (load_objects(&L, ymap_get(&L.d, root, "objects"), root) < 0)
+        goto done;
+    if (scene_finish(L.sc, e) < 0) {
+        e->line = 0;
+        snprintf(e->file, sizeof e->file, "%s", path);
+        goto done;
+    }
+    out->scene = L.sc;
+    L.sc = NULL;
+    rc = 0;
+done:
+    scene_free(L.sc);
+    ydoc_free(&L.d);
+    return rc;
+}
+
+void scene_file_free(struct scene_file *sf)
+{
+    scene_free(sf->scene);
+    sf->scene = NULL;
+}

@@ -1,0 +1,30 @@
+/* scene_loader: state shared by the scene loader's parts (sections, objects). Internal. */
+#ifndef SCENE_LOADER_H
+#define SCENE_LOADER_H
+
+#include "scene.h"
+#include "yamlx.h"
+
+/* Names given to textures and materials in the file, for lookups by name. */
+struct names {
+    const char *name[256];
+    int n;
+};
+
+struct loader {
+    struct ydoc d;
+    struct scene *sc;
+    struct names tex, mat;
+    struct err *e;
+};
+
+/* Index of s in nm, or -1. */
+int loader_find_name(const struct names *nm, const char *s);
+
+/* Read a colour (three numbers >= 0). */
+int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out);
+
+/* Load the `objects:` list (root is the scene mapping, for a missing-list message). */
+int load_objects(struct loader *L, yaml_node_t *list, yaml_node_t *root);
+
+#endif

@@ -1,0 +1,291 @@
+/* yamlx: loading YAML with libyaml's document API and reading it with file:line:col errors. */
+#include "yamlx.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fileio.h"
+
+int ydoc_load(struct ydoc *d, const char *path, struct err *e)
+{
+    memset(d, 0, sizeof *d);
+    snprintf(d->file, sizeof d->file, "%s", path);
+    uint8_t *data = NULL;
+    size_t len = 0;
+    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+        return -1;
+    yaml_parser_t p;
+    if (!yaml_parser_initialize(&p)) {
+        free(data);
+        return err_set(e, path, 0, 0, "out of memory starting the YAML parser");
+    }
+    yaml_parser_set_input_string(&p, data, len);
+    int rc = 0;
+    if (!yaml_parser_load(&p, &d->doc)) {
+        const yaml_mark_t *m = &p.problem_mark;
+        if (p.context)
+            err_set(e, path, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s %s",
+                    p.problem ? p.problem : "error", p.context);
+        else
+            err_set(e, path, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s",
+                    p.problem ? p.problem : "error");
+        rc = -1;
+    } else {
+        d->loaded = 1;
+        if (!yaml_document_get_root_node(&d->doc))
+            rc = err_set(e, path, 1, 1, "empty file: expected a mapping of keys");
+    }
+    yaml_parser_delete(&p);
+    free(data);
+    return rc;
+}
+
+void ydoc_free(struct ydoc *d)
+{
+    if (d->loaded)
+        yaml_document_delete(&d->doc);
+    d->loaded = 0;
+}
+
+yaml_node_t *ydoc_root(struct ydoc *d)
+{
+    return d->loaded ? yaml_document_get_root_node(&d->doc) : NULL;
+}
+
+int ydoc_fail(struct ydoc *d, const yaml_node_t *n, struct err *e, const char *fmt, ...)
+{
+    char msg[sizeof e->msg];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    int line = n ? (int)n->start_mark.line + 1 : 0, col = n ? (int)n->start_mark.column + 1 : 0;
+    return err_set(e, d->file, line, col, "%s", msg);
+}
+
+const char *yscalar(yaml_node_t *n)
+{
+    return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value : NULL;
+}
+
+int ystr_distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 63 || lb > 63)
+        return 99;
+    int row[64];
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = (int)j;
+    for (size_t i = 1; i <= la; i++) {
+        int prev = row[0];
+        row[0] = (int)i;
+        for (size_t j = 1; j <= lb; j++) {
+            int cur = row[j];
+            int best = prev + (a[i - 1] != b[j - 1]);
+            if (row[j] + 1 < best)
+                best = row[j] + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            row[j] = best;
+            prev = cur;
+        }
+    }
+    return row[lb];
+}
+
+static const char *node_kind(const yaml_node_t *n)
+{
+    switch (n->type) {
+    case YAML_MAPPING_NODE:
+        return "a mapping";
+    case YAML_SEQUENCE_NODE:
+        return "a list";
+    default:
+        return "a scalar";
+    }
+}
+
+int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_node_t **val)
+{
+    if (!n || n->type != YAML_MAPPING_NODE)
+        return 0;
+    yaml_node_pair_t *p = n->data.mapping.pairs.start + i;
+    if (i < 0 || p >= n->data.mapping.pairs.top)
+        return 0;
+    *key = yaml_document_get_node(&d->doc, p->key);
+    *val = yaml_document_get_node(&d->doc, p->value);
+    return *key && *val;
+}
+
+int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what,
+               struct err *e)
+{
+    if (!n || n->type != YAML_MAPPING_NODE)
+        return ydoc_fail(d, n, e, "%s: expected a mapping of keys, got %s", what,
+                         n ? node_kind(n) : "nothing");
+    yaml_node_t *k, *v;
+    for (int i = 0; ymap_pair(d, n, i, &k, &v); i++) {
+        const char *name = yscalar(k);
+        if (!name)
+            return ydoc_fail(d, k, e, "%s: keys must be plain names, got %s", what, node_kind(k));
+        int known = 0;
+        for (const char *const *a = allowed; *a; a++)
+            known |= strcmp(*a, name) == 0;
+        if (!known) {
+            const char *near = NULL;
+            int best = 3;
+            for (const char *const *a = allowed; *a; a++) {
+                int dist = ystr_distance(name, *a);
+                if (dist < best && dist <= (int)strlen(*a) / 2) {
+                    best = dist;
+                    near = *a;
+                }
+            }
+            if (near)
+                return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?)", name, what, near);
+            return ydoc_fail(d, k, e, "%s: unknown key in %s", name, what);
+        }
+        yaml_node_t *k2, *v2;
+        for (int j = 0; j < i && ymap_pair(d, n, j, &k2, &v2); j++)
+            if (yscalar(k2) && strcmp(yscalar(k2), name) == 0)
+                return ydoc_fail(d, k, e, "%s: duplicate key in %s (first at line %d)", name, what,
+                                 (int)k2->start_mark.line + 1);
+    }
+    return 0;
+}
+
+yaml_node_t *ymap_get(struct ydoc *d, yaml_node_t *n, const char *key)
+{
+    yaml_node_t *k, *v;
+    for (int i = 0; ymap_pair(d, n, i, &k, &v); i++)
+        if (yscalar(k) && strcmp(yscalar(k), key) == 0)
+            return v;
+    return NULL;
+}
+
+int yseq_len(yaml_node_t *n)
+{
+    if (!n || n->type != YAML_SEQUENCE_NODE)
+        return -1;
+    return (int)(n->data.sequence.items.top - n->data.sequence.items.start);
+}
+
+yaml_node_t *yseq_item(struct ydoc *d, yaml_node_t *n, int i)
+{
+    if (i < 0 || i >= yseq_len(n))
+        return NULL;
+    return yaml_document_get_node(&d->doc, n->data.sequence.items.start[i]);
+}
+
+/* Show a scalar in a message, shortened and quoted. */
+static void shown(yaml_node_t *n, char *buf, size_t len)
+{
+    const char *s = yscalar(n);
+    if (!s) {
+        snprintf(buf, len, "%s", node_kind(n));
+        return;
+    }
+    snprintf(buf, len, "\"%.40s%s\"", s, strlen(s) > 40 ? "..." : "");
+}
+
+static int parse_double(const char *s, double *out)
+{
+    if (!s || !*s)
+        return -1;
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (*end || errno == ERANGE || !isfinite(v) || end == s)
+        return -1;
+    /* strtod accepts "nan", "inf" and hex; a user writing those meant something else. */
+    for (const char *c = s; *c; c++)
+        if (!strchr("0123456789+-.eE", *c))
+            return -1;
+    *out = v;
+    return 0;
+}
+
+int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e)
+{
+    if (parse_double(yscalar(n), out) < 0) {
+        char buf[64];
+        shown(n, buf, sizeof buf);
+        return ydoc_fail(d, n, e, "%s: must be a finite number, got %s", key, buf);
+    }
+    return 0;
+}
+
+int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out,
+              struct err *e)
+{
+    const char *s = yscalar(n);
+    char buf[64];
+    shown(n, buf, sizeof buf);
+    char *end = NULL;
+    errno = 0;
+    long v = s && *s ? strtol(s, &end, 10) : 0;
+    if (!s || !*s || *end || errno == ERANGE)
+        return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s", key, lo, hi, buf);
+    if (v < lo || v > hi)
+        return ydoc_fail(d, n, e, "%s: must be in [%ld, %ld], got %s", key, lo, hi, buf);
+    *out = v;
+    return 0;
+}
+
+int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e)
+{
+    const char *s = yscalar(n);
+    if (s && (!strcmp(s, "true") || !strcmp(s, "false"))) {
+        *out = s[0] == 't';
+        return 0;
+    }
+    char buf[64];
+    shown(n, buf, sizeof buf);
+    return ydoc_fail(d, n, e, "%s: must be true or false, got %s", key, buf);
+}
+
+int yget_string(struct ydoc *d, yaml_node_t *n, const char *key, const char **out, struct err *e)
+{
+    const char *s = yscalar(n);
+    if (!s || !*s) {
+        char buf[64];
+        shown(n, buf, sizeof buf);
+        return ydoc_fail(d, n, e, "%s: must be a non-empty string, got %s", key, buf);
+    }
+    *out = s;
+    return 0;
+}
+
+static int get_numbers(struct ydoc *d, yaml_node_t *n, const char *key, double *out, int count,
+                       struct err *e)
+{
+    if (yseq_len(n) != count) {
+        char buf[64];
+        shown(n, buf, sizeof buf);
+        if (yseq_len(n) >= 0)
+            snprintf(buf, sizeof buf, "a list of %d", yseq_len(n));
+        return ydoc_fail(d, n, e, "%s: must be a list of %d numbers, got %s", key, count, buf);
+    }
+    for (int i = 0; i < count; i++)
+        if (yget_double(d, yseq_item(d, n, i), key, &out[i], e) < 0)
+            return -1;
+    return 0;
+}
+
+int yget_vec3(struct ydoc *d, yaml_node_t *n, const char *key, vec3 *out, struct err *e)
+{
+    double v[3];
+    if (get_numbers(d, n, key, v, 3, e) < 0)
+        return -1;
+    *out = v3(v[0], v[1], v[2]);
+    return 0;
+}
+
+int yget_vec2(struct ydoc *d, yaml_node_t *n, const char *key, double out[2], struct err *e)
+{
+    return get_numbers(d, n, key, out, 2, e);
+}

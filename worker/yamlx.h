@@ -1,0 +1,60 @@
+/* yamlx: libyaml documents with typed, position-reporting accessors for our strict loaders. */
+#ifndef YAMLX_H
+#define YAMLX_H
+
+#include <yaml.h>
+
+#include "err.h"
+#include "vec3.h"
+
+/* Largest YAML file we parse, and deepest nesting our loaders walk. */
+#define YDOC_MAX_BYTES (8u << 20)
+
+struct ydoc {
+    yaml_document_t doc;
+    int loaded;
+    char file[512];
+};
+
+/* Read and parse path into d (one document). 0, or -1 with e at the problem's line:col.
+   Free with ydoc_free, even after a failure. */
+int ydoc_load(struct ydoc *d, const char *path, struct err *e);
+void ydoc_free(struct ydoc *d);
+yaml_node_t *ydoc_root(struct ydoc *d);
+
+/* Fill e at node n's position. Always -1. */
+int ydoc_fail(struct ydoc *d, const yaml_node_t *n, struct err *e, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* Check that n is a mapping whose keys are scalars from `allowed` (NULL-terminated), with no
+   duplicates; an unknown key gets a "did you mean" when one is close. `what` names the mapping
+   in messages ("job", "camera"). */
+int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what,
+               struct err *e);
+
+/* The value node for key in mapping n (NULL when absent). */
+yaml_node_t *ymap_get(struct ydoc *d, yaml_node_t *n, const char *key);
+
+/* Iterate: the i-th pair of mapping n (0-based), or 0 when past the end. */
+int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_node_t **val);
+
+/* The i-th item of sequence n, NULL past the end; ysize gives the count (-1 if not a sequence). */
+yaml_node_t *yseq_item(struct ydoc *d, yaml_node_t *n, int i);
+int yseq_len(yaml_node_t *n);
+
+/* Scalar text of n, or NULL if n is not a scalar. */
+const char *yscalar(yaml_node_t *n);
+
+/* Typed reads; each fails with "key: must be ..., got ..." at the value's position. */
+int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e);
+int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out,
+              struct err *e);
+int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e);
+int yget_string(struct ydoc *d, yaml_node_t *n, const char *key, const char **out, struct err *e);
+int yget_vec3(struct ydoc *d, yaml_node_t *n, const char *key, vec3 *out, struct err *e);
+int yget_vec2(struct ydoc *d, yaml_node_t *n, const char *key, double out[2], struct err *e);
+
+/* Edit distance of two short strings (for "did you mean"). */
+int ystr_distance(const char *a, const char *b);
+
+#endif
