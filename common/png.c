@@ -1,0 +1,436 @@
+/* png: an 8-bit RGB PNG encoder with adaptive row filters, and a bounds-checked decoder. */
+#include "png.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define ZLIB_CONST
+#include <zlib.h>
+
+#define PNG_IDAT_MAX (1u << 20)       /* zlib bytes per IDAT chunk we write */
+#define PNG_CHUNK_MAX 0x7fffffffu     /* spec: a chunk's data is at most 2^31 - 1 bytes */
+#define PNG_ZLIB_LEVEL 6
+
+static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+static uint32_t get_be32(const uint8_t *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+static void put_be32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 24);
+    p[1] = (uint8_t)(v >> 16);
+    p[2] = (uint8_t)(v >> 8);
+    p[3] = (uint8_t)v;
+}
+
+/* The Paeth predictor (PNG spec 9.4): whichever of left, up, up-left is nearest a + b - c. */
+static int paeth(int a, int b, int c)
+{
+    int p = a + b - c;
+    int pa = abs(p - a), pb = abs(p - b), pc = abs(p - c);
+    if (pa <= pb && pa <= pc)
+        return a;
+    return pb <= pc ? b : c;
+}
+
+/* Prediction for filter f from left a, up b and up-left c (all unfiltered bytes). */
+static uint8_t predict(int f, int a, int b, int c)
+{
+    switch (f) {
+    case 1: return (uint8_t)a;
+    case 2: return (uint8_t)b;
+    case 3: return (uint8_t)((a + b) / 2);
+    case 4: return (uint8_t)paeth(a, b, c);
+    default: return 0;
+    }
+}
+
+/* Filter row cur (prev is the row above, zeros for the first) with filter f into out. */
+static void filter_row(int f, const uint8_t *cur, const uint8_t *prev, size_t n, size_t bpp,
+                       uint8_t *out)
+{
+    for (size_t i = 0; i < n; i++) {
+        int a = i >= bpp ? cur[i - bpp] : 0;
+        int c = i >= bpp ? prev[i - bpp] : 0;
+        out[i] = (uint8_t)(cur[i] - predict(f, a, prev[i], c));
+    }
+}
+
+/* Undo filter f on row in place; its left neighbours are already reconstructed. */
+static void unfilter_row(int f, uint8_t *row, const uint8_t *prev, size_t n, size_t bpp)
+{
+    if (f == 0)
+        return;
+    for (size_t i = 0; i < n; i++) {
+        int a = i >= bpp ? row[i - bpp] : 0;
+        int c = i >= bpp ? prev[i - bpp] : 0;
+        row[i] = (uint8_t)(row[i] + predict(f, a, prev[i], c));
+    }
+}
+
+/* Heuristic from the PNG spec (12.8): the smaller the sum of |signed byte|, the better. */
+static size_t filter_cost(const uint8_t *row, size_t n)
+{
+    size_t sum = 0;
+    for (size_t i = 0; i < n; i++)
+        sum += (size_t)abs((int8_t)row[i]);
+    return sum;
+}
+
+/* Fill raw with h rows of (filter byte, filtered pixels), choosing each row's filter. */
+static int filter_image(const struct rgb8 *img, uint8_t *raw, struct err *e)
+{
+    size_t stride = (size_t)img->w * 3;
+    uint8_t *scratch = malloc(2 * stride);
+    uint8_t *zero = calloc(stride, 1);
+    if (!scratch || !zero) {
+        free(scratch);
+        free(zero);
+        return err_set(e, NULL, 0, 0, "out of memory encoding PNG");
+    }
+    for (int y = 0; y < img->h; y++) {
+        const uint8_t *cur = img->px + (size_t)y * stride;
+        const uint8_t *prev = y ? cur - stride : zero;
+        uint8_t *best = scratch, *cand = scratch + stride;
+        size_t best_cost = SIZE_MAX;
+        int best_f = 0;
+        for (int f = 0; f <= 4; f++) {
+            filter_row(f, cur, prev, stride, 3, cand);
+            size_t cost = filter_cost(cand, stride);
+            if (cost < best_cost) {
+                uint8_t *t = best;
+                best = cand;
+                cand = t;
+                best_cost = cost;
+                best_f = f;
+            }
+        }
+        uint8_t *dst = raw + (size_t)y * (stride + 1);
+        dst[0] = (uint8_t)best_f;
+        memcpy(dst + 1, best, stride);
+    }
+    free(scratch);
+    free(zero);
+    return 0;
+}
+
+/* Write one chunk (length, type, data, CRC over type and data) at p; returns the end. */
+static uint8_t *put_chunk(uint8_t *p, const char *type, const uint8_t *data, uint32_t n)
+{
+    put_be32(p, n);
+    memcpy(p + 4, type, 4);
+    if (n)
+        memcpy(p + 8, data, n);
+    uLong crc = crc32(0L, p + 4, 4 + n);
+    put_be32(p + 8 + n, (uint32_t)crc);
+    return p + 12 + n;
+}
+
+/* Encode img as an 8-bit RGB PNG into a malloc'd buffer *out of *out_len bytes (caller frees).
+   The zlib stream is split over IDAT chunks of at most 1 MiB. 0, or -1 with e filled. */
+int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct err *e)
+{
+    *out = NULL;
+    *out_len = 0;
+    if (!img->px || img->w < 1 || img->h < 1 || img->w > IMAGE_MAX_SIDE || img->h > IMAGE_MAX_SIDE)
+        return err_set(e, NULL, 0, 0, "cannot encode PNG: bad image %dx%d", img->w, img->h);
+    size_t raw_len = (size_t)img->h * ((size_t)img->w * 3 + 1);
+    uLong z_len = compressBound((uLong)raw_len);
+    uint8_t *raw = malloc(raw_len);
+    uint8_t *z = malloc(z_len);
+    uint8_t *buf = NULL;
+    if (!raw || !z) {
+        err_set(e, NULL, 0, 0, "out of memory encoding PNG");
+        goto done;
+    }
+    if (filter_image(img, raw, e) < 0)
+        goto done;
+    int zr = compress2(z, &z_len, raw, (uLong)raw_len, PNG_ZLIB_LEVEL);
+    if (zr != Z_OK) {
+        err_set(e, NULL, 0, 0, "cannot encode PNG: zlib error %d", zr);
+        goto done;
+    }
+    size_t n_idat = (z_len + PNG_IDAT_MAX - 1) / PNG_IDAT_MAX;
+    size_t total = sizeof png_signature + (12 + 13) + 12 * n_idat + z_len + 12;
+    buf = malloc(total);
+    if (!buf) {
+        err_set(e, NULL, 0, 0, "out of memory encoding PNG");
+        goto done;
+    }
+    uint8_t ihdr[13] = {0, 0, 0, 0, 0, 0, 0, 0, 8, 2, 0, 0, 0}; /* depth 8, RGB, no interlace */
+    put_be32(ihdr, (uint32_t)img->w);
+    put_be32(ihdr + 4, (uint32_t)img->h);
+    uint8_t *p = buf;
+    memcpy(p, png_signature, sizeof png_signature);
+    p = put_chunk(p + sizeof png_signature, "IHDR", ihdr, sizeof ihdr);
+    for (size_t off = 0; off < z_len; off += PNG_IDAT_MAX) {
+        size_t n = z_len - off < PNG_IDAT_MAX ? z_len - off : PNG_IDAT_MAX;
+        p = put_chunk(p, "IDAT", z + off, (uint32_t)n);
+    }
+    put_chunk(p, "IEND", NULL, 0);
+    *out = buf;
+    *out_len = total;
+    buf = NULL;
+done:
+    free(buf);
+    free(raw);
+    free(z);
+    return *out ? 0 : -1;
+}
+
+/* Decoder state, from IHDR to IEND. */
+struct png_dec {
+    const char *name;
+    struct err *e;
+    uint32_t w, h;
+    int color_type, channels;
+    uint8_t *raw; /* h rows of (filter byte, w * channels bytes), inflated */
+    size_t raw_len;
+    z_stream zs;
+    int zs_open, z_done, seen_idat;
+};
+
+struct png_chunk {
+    char type[5];
+    const uint8_t *data;
+    uint32_t len;
+};
+
+static int is_type(const struct png_chunk *c, const char *t)
+{
+    return memcmp(c->type, t, 4) == 0;
+}
+
+/* Read the chunk at *pos into c and advance; every length is checked against len. */
+static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t *pos,
+                      struct png_chunk *c)
+{
+    size_t left = len - *pos;
+    if (left == 0)
+        return err_set(d->e, d->name, 0, 0, "truncated PNG: missing IEND chunk");
+    if (left < 12)
+        return err_set(d->e, d->name, 0, 0, "truncated PNG: incomplete chunk at offset %zu", *pos);
+    const uint8_t *p = data + *pos;
+    for (int i = 0; i < 4; i++) {
+        int ch = p[4 + i];
+        if (!((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')))
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad chunk type at offset %zu",
+                           *pos);
+        c->type[i] = (char)ch;
+    }
+    c->type[4] = '\0';
+    c->len = get_be32(p);
+    if (c->len > PNG_CHUNK_MAX)
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: chunk %s has length %lu", c->type,
+                       (unsigned long)c->len);
+    if (c->len > left - 12)
+        return err_set(d->e, d->name, 0, 0, "truncated PNG: chunk %s runs past end of file",
+                       c->type);
+    c->data = p + 8;
+    uLong crc = crc32(0L, p + 4, 4 + c->len);
+    if ((uint32_t)crc != get_be32(p + 8 + c->len))
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: CRC mismatch in chunk %s", c->type);
+    *pos += 12 + (size_t)c->len;
+    return 0;
+}
+
+/* Channels per pixel for an 8-bit colour type, or 0 when we do not decode it. */
+static int channels_of(int color_type)
+{
+    switch (color_type) {
+    case 0: return 1; /* gray */
+    case 2: return 3; /* RGB */
+    case 4: return 2; /* gray + alpha */
+    case 6: return 4; /* RGBA */
+    default: return 0;
+    }
+}
+
+/* Check IHDR, then allocate the inflate buffer for exactly the declared image. */
+static int parse_ihdr(struct png_dec *d, const struct png_chunk *c)
+{
+    if (c->len != 13)
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: IHDR has length %lu, expected 13",
+                       (unsigned long)c->len);
+    const uint8_t *p = c->data;
+    uint32_t w = get_be32(p), h = get_be32(p + 4);
+    int depth = p[8], ct = p[9];
+    if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
+        return err_set(d->e, d->name, 0, 0, "unsupported PNG: size %lux%lu (sides must be 1..%d)",
+                       (unsigned long)w, (unsigned long)h, IMAGE_MAX_SIDE);
+    if ((uint64_t)w * h > (uint64_t)IMAGE_MAX_PIXELS)
+        return err_set(d->e, d->name, 0, 0, "unsupported PNG: %lux%lu is over %ld pixels",
+                       (unsigned long)w, (unsigned long)h, IMAGE_MAX_PIXELS);
+    if (ct == 3)
+        return err_set(d->e, d->name, 0, 0, "unsupported PNG: palette images (color type 3)");
+    if (!channels_of(ct))
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad color type %d", ct);
+    if (depth != 8)
+        return err_set(d->e, d->name, 0, 0, "unsupported PNG: bit depth %d (only 8)", depth);
+    if (p[10] != 0 || p[11] != 0)
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: unknown compression or filter method");
+    if (p[12] == 1)
+        return err_set(d->e, d->name, 0, 0, "unsupported PNG: interlaced");
+    if (p[12] != 0)
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad interlace method %d", p[12]);
+    d->w = w;
+    d->h = h;
+    d->color_type = ct;
+    d->channels = channels_of(ct);
+    d->raw_len = (size_t)h * ((size_t)w * (size_t)d->channels + 1); /* < 2^32 by the limits */
+    d->raw = malloc(d->raw_len);
+    if (!d->raw)
+        return err_set(d->e, d->name, 0, 0, "out of memory for a %lux%lu PNG", (unsigned long)w,
+                       (unsigned long)h);
+    if (inflateInit(&d->zs) != Z_OK)
+        return err_set(d->e, d->name, 0, 0, "out of memory starting zlib");
+    d->zs_open = 1;
+    d->zs.next_out = d->raw;
+    d->zs.avail_out = (uInt)d->raw_len;
+    return 0;
+}
+
+/* Inflate one IDAT's bytes into raw; output beyond the declared image size is an error. */
+static int feed_idat(struct png_dec *d, const struct png_chunk *c)
+{
+    d->seen_idat = 1;
+    if (d->z_done)
+        return 0; /* bytes after the end of the zlib stream are ignored, as libpng does */
+    d->zs.next_in = c->data;
+    d->zs.avail_in = c->len;
+    while (d->zs.avail_in > 0) {
+        int zr = inflate(&d->zs, Z_NO_FLUSH);
+        if (zr == Z_STREAM_END) {
+            d->z_done = 1;
+            if (d->zs.total_out != d->raw_len)
+                return err_set(d->e, d->name, 0, 0,
+                               "corrupt PNG: image data is %lu bytes, expected %zu",
+                               (unsigned long)d->zs.total_out, d->raw_len);
+            return 0;
+        }
+        /* With input left, no progress means the output buffer is full. */
+        if (zr == Z_BUF_ERROR)
+            return err_set(d->e, d->name, 0, 0,
+                           "corrupt PNG: image data is larger than the expected %zu bytes",
+                           d->raw_len);
+        if (zr != Z_OK)
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad zlib data in IDAT (%s)",
+                           d->zs.msg ? d->zs.msg : "unexpected zlib state");
+    }
+    return 0;
+}
+
+/* Undo the row filters in place, checking each filter type. */
+static int unfilter_image(struct png_dec *d)
+{
+    size_t stride = (size_t)d->w * (size_t)d->channels;
+    uint8_t *zero = calloc(stride, 1);
+    if (!zero)
+        return err_set(d->e, d->name, 0, 0, "out of memory decoding PNG");
+    const uint8_t *prev = zero;
+    for (uint32_t y = 0; y < d->h; y++) {
+        uint8_t *row = d->raw + (size_t)y * (stride + 1);
+        if (row[0] > 4) {
+            free(zero);
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad filter type %d on row %lu",
+                           row[0], (unsigned long)y);
+        }
+        unfilter_row(row[0], row + 1, prev, stride, (size_t)d->channels);
+        prev = row + 1;
+    }
+    free(zero);
+    return 0;
+}
+
+/* Convert the unfiltered rows to RGB in out (gray is replicated, alpha dropped). */
+static int to_rgb(const struct png_dec *d, struct rgb8 *out)
+{
+    if (rgb8_alloc(out, (int)d->w, (int)d->h, d->e) < 0)
+        return err_set(d->e, d->name, 0, 0, "out of memory for a %lux%lu PNG",
+                       (unsigned long)d->w, (unsigned long)d->h);
+    size_t stride = (size_t)d->w * (size_t)d->channels;
+    uint8_t *dst = out->px;
+    for (uint32_t y = 0; y < d->h; y++) {
+        const uint8_t *src = d->raw + (size_t)y * (stride + 1) + 1;
+        for (uint32_t x = 0; x < d->w; x++, src += d->channels, dst += 3) {
+            int gray = d->color_type == 0 || d->color_type == 4;
+            dst[0] = src[0];
+            dst[1] = gray ? src[0] : src[1];
+            dst[2] = gray ? src[0] : src[2];
+        }
+    }
+    return 0;
+}
+
+/* Walk the chunks after the signature up to IEND, inflating IDAT data as it comes. */
+static int read_chunks(struct png_dec *d, const uint8_t *data, size_t len)
+{
+    size_t pos = sizeof png_signature;
+    struct png_chunk c;
+    for (;;) {
+        if (next_chunk(d, data, len, &pos, &c) < 0)
+            return -1;
+        if (!d->raw && !is_type(&c, "IHDR"))
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: first chunk is %s, expected IHDR",
+                           c.type);
+        if (is_type(&c, "IHDR")) {
+            if (d->raw)
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: second IHDR chunk");
+            if (parse_ihdr(d, &c) < 0)
+                return -1;
+        } else if (is_type(&c, "IDAT")) {
+            if (feed_idat(d, &c) < 0)
+                return -1;
+        } else if (is_type(&c, "IEND")) {
+            return 0;
+        } else if (is_type(&c, "PLTE")) {
+            /* a suggested palette is allowed for RGB and RGBA; gray images must not have one */
+            if (d->color_type == 0 || d->color_type == 4)
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: PLTE chunk in a gray image");
+        } else if (!(c.type[0] & 0x20)) {
+            return err_set(d->e, d->name, 0, 0, "unsupported PNG: unknown critical chunk %s",
+                           c.type);
+        }
+    }
+}
+
+/* Decode data (len bytes; `name` for messages) into out as RGB. Supports 8-bit gray, gray+alpha,
+   RGB and RGBA, non-interlaced, all five filters; ancillary chunks are ignored. 0, or -1 with e
+   filled and out zeroed. */
+int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
+{
+    struct png_dec d;
+    memset(&d, 0, sizeof d);
+    d.name = name;
+    d.e = e;
+    out->w = 0;
+    out->h = 0;
+    out->px = NULL;
+    int rc = -1;
+    if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0) {
+        err_set(e, name, 0, 0, "not a PNG file (bad signature)");
+        goto done;
+    }
+    if (read_chunks(&d, data, len) < 0)
+        goto done;
+    if (!d.seen_idat) {
+        err_set(e, name, 0, 0, "corrupt PNG: no IDAT chunk");
+        goto done;
+    }
+    if (!d.z_done) {
+        err_set(e, name, 0, 0, "truncated PNG: image data ends after %lu of %zu bytes",
+                (unsigned long)d.zs.total_out, d.raw_len);
+        goto done;
+    }
+    if (unfilter_image(&d) < 0 || to_rgb(&d, out) < 0)
+        goto done;
+    rc = 0;
+done:
+    if (d.zs_open)
+        inflateEnd(&d.zs);
+    free(d.raw);
+    return rc;
+}

@@ -1,0 +1,576 @@
+/* test_png: PNG and PPM codecs and the float-to-8-bit conversion, checked against PNGs built and
+   read here with zlib alone. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "check.h"
+#include "image.h"
+#include "png.h"
+#include "ppm.h"
+
+/* ---- a byte buffer and a hand-made PNG writer/reader, independent of png.c ---- */
+
+struct buf {
+    uint8_t *p;
+    size_t n, cap;
+};
+
+static void buf_add(struct buf *b, const void *data, size_t n)
+{
+    if (b->n + n > b->cap) {
+        b->cap = (b->n + n) * 2 + 64;
+        b->p = realloc(b->p, b->cap);
+        if (!b->p) {
+            fprintf(stderr, "test_png: out of memory\n");
+            exit(2);
+        }
+    }
+    if (n)
+        memcpy(b->p + b->n, data, n);
+    b->n += n;
+}
+
+static void put32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 24);
+    p[1] = (uint8_t)(v >> 16);
+    p[2] = (uint8_t)(v >> 8);
+    p[3] = (uint8_t)v;
+}
+
+static uint32_t get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+static void add_chunk(struct buf *b, const char *type, const uint8_t *data, size_t n)
+{
+    uint8_t len[4], crc[4];
+    put32(len, (uint32_t)n);
+    uLong c = crc32(0L, (const Bytef *)type, 4);
+    if (n) /* crc32(c, NULL, 0) returns 0, not c */
+        c = crc32(c, data, (uInt)n);
+    put32(crc, (uint32_t)c);
+    buf_add(b, len, 4);
+    buf_add(b, type, 4);
+    buf_add(b, data, n);
+    buf_add(b, crc, 4);
+}
+
+static const uint8_t signature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+
+static int ref_paeth(int a, int b, int c)
+{
+    int p = a + b - c, pa = abs(p - a), pb = abs(p - b), pc = abs(p - c);
+    return (pa <= pb && pa <= pc) ? a : (pb <= pc ? b : c);
+}
+
+/* Predictor for byte i of a row; left/up/upleft are zero outside the image. */
+static int ref_pred(int f, const uint8_t *row, const uint8_t *up, size_t i, int bpp)
+{
+    int a = i >= (size_t)bpp ? row[i - bpp] : 0;
+    int b = up ? up[i] : 0;
+    int c = (up && i >= (size_t)bpp) ? up[i - bpp] : 0;
+    if (f == 1)
+        return a;
+    if (f == 2)
+        return b;
+    if (f == 3)
+        return (a + b) >> 1;
+    if (f == 4)
+        return ref_paeth(a, b, c);
+    return 0;
+}
+
+/* Filter samples (w*h*ch) into rows of (filter byte, bytes); mode < 0 cycles filters 0..4. */
+static uint8_t *ref_filter(const uint8_t *s, int w, int h, int ch, int mode, size_t *raw_len)
+{
+    size_t stride = (size_t)w * ch;
+    *raw_len = (size_t)h * (stride + 1);
+    uint8_t *raw = malloc(*raw_len);
+    for (int y = 0; y < h; y++) {
+        int f = mode < 0 ? y % 5 : mode;
+        const uint8_t *row = s + y * stride, *up = y ? row - stride : NULL;
+        uint8_t *dst = raw + y * (stride + 1);
+        dst[0] = (uint8_t)f;
+        for (size_t i = 0; i < stride; i++)
+            dst[1 + i] = (uint8_t)(row[i] - ref_pred(f, row, up, i, ch));
+    }
+    return raw;
+}
+
+/* A PNG with the given IHDR fields around raw (filtered rows), IDAT split every `split` bytes of
+   zlib data (0: one IDAT), and an optional extra chunk before the first IDAT. */
+static struct buf ref_png(uint32_t w, uint32_t h, int depth, int ct, int interlace,
+                          const uint8_t *raw, size_t raw_len, size_t split, const char *extra)
+{
+    struct buf b = {0};
+    uint8_t ihdr[13] = {0};
+    put32(ihdr, w);
+    put32(ihdr + 4, h);
+    ihdr[8] = (uint8_t)depth;
+    ihdr[9] = (uint8_t)ct;
+    ihdr[12] = (uint8_t)interlace;
+    buf_add(&b, signature, 8);
+    add_chunk(&b, "IHDR", ihdr, 13);
+    if (extra)
+        add_chunk(&b, extra, (const uint8_t *)"hello", 5);
+    uLongf zn = compressBound(raw_len);
+    uint8_t *z = malloc(zn);
+    compress2(z, &zn, raw, raw_len, 9);
+    if (!split)
+        split = zn;
+    for (size_t off = 0; off < zn; off += split)
+        add_chunk(&b, "IDAT", z + off, zn - off < split ? zn - off : split);
+    add_chunk(&b, "IEND", NULL, 0);
+    free(z);
+    return b;
+}
+
+/* Independent reader for 8-bit RGB PNGs: chunks by hand, zlib uncompress, our own unfilter.
+   Returns malloc'd w*h*3 pixels or NULL on anything unexpected. */
+static uint8_t *ref_decode_rgb(const uint8_t *p, size_t n, int *w, int *h)
+{
+    if (n < 8 || memcmp(p, signature, 8) != 0)
+        return NULL;
+    struct buf z = {0};
+    size_t pos = 8;
+    int ok = 0;
+    *w = *h = 0;
+    while (pos + 12 <= n) {
+        uint32_t len = get32(p + pos);
+        if (len > n - pos - 12)
+            break;
+        const uint8_t *type = p + pos + 4, *data = p + pos + 8;
+        if (crc32(crc32(0L, type, 4), data, len) != get32(data + len))
+            break;
+        if (!memcmp(type, "IHDR", 4) && len == 13 && data[8] == 8 && data[9] == 2 && !data[12]) {
+            *w = (int)get32(data);
+            *h = (int)get32(data + 4);
+        } else if (!memcmp(type, "IDAT", 4)) {
+            buf_add(&z, data, len);
+        } else if (!memcmp(type, "IEND", 4)) {
+            ok = pos + 12 == n;
+            break;
+        }
+        pos += 12 + len;
+    }
+    if (!ok || *w < 1 || *h < 1) {
+        free(z.p);
+        return NULL;
+    }
+    size_t stride = (size_t)*w * 3;
+    uLongf raw_len = (uLongf)(*h * (stride + 1)) + 1; /* one spare byte detects excess data */
+    uint8_t *raw = malloc(raw_len), *px = malloc(stride * *h);
+    int zr = uncompress(raw, &raw_len, z.p, z.n);
+    free(z.p);
+    if (zr != Z_OK || raw_len != *h * (stride + 1)) {
+        free(raw);
+        free(px);
+        return NULL;
+    }
+    for (int y = 0; y < *h; y++) {
+        int f = raw[y * (stride + 1)];
+        const uint8_t *src = raw + y * (stride + 1) + 1;
+        uint8_t *row = px + y * stride, *up = y ? row - stride : NULL;
+        if (f > 4)
+            ok = 0;
+        for (size_t i = 0; i < stride; i++)
+            row[i] = (uint8_t)(src[i] + ref_pred(f, row, up, i, 3));
+    }
+    free(raw);
+    if (!ok) {
+        free(px);
+        return NULL;
+    }
+    return px;
+}
+
+/* A w x h test image with smooth ramps plus some noise, so every filter has work to do. */
+static struct rgb8 pattern(int w, int h)
+{
+    struct rgb8 img;
+    rgb8_alloc(&img, w, h, NULL);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint8_t *q = img.px + ((size_t)y * w + x) * 3;
+            q[0] = (uint8_t)(x * 255 / (w > 1 ? w - 1 : 1));
+            q[1] = (uint8_t)(y * 255 / (h > 1 ? h - 1 : 1));
+            q[2] = (uint8_t)((x * 73 + y * 151 + x * y * 7) & 0xff);
+        }
+    return img;
+}
+
+static int same_image(const struct rgb8 *a, const struct rgb8 *b)
+{
+    return a->w == b->w && a->h == b->h && a->px && b->px &&
+           memcmp(a->px, b->px, (size_t)a->w * a->h * 3) == 0;
+}
+
+static int has(const struct err *e, const char *s)
+{
+    return strstr(e->msg, s) != NULL;
+}
+
+/* ---- image ---- */
+
+static void test_float_to_rgb8(void)
+{
+    const float in[9] = {0.0f, 1.0f, 0.25f, NAN, -1.0f, 4.0f, INFINITY, 0.5f, 0.0f};
+    uint8_t out[9] = {0};
+    out[8] = 77;
+    image_float_to_rgb8(in, 1, 1, out);
+    CHECK(out[0] == 0 && out[1] == 255 && out[2] == 128);
+    image_float_to_rgb8(in + 3, 1, 1, out);
+    CHECK(out[0] == 0);  /* NaN */
+    CHECK(out[1] == 0);  /* negative */
+    CHECK(out[2] == 255); /* above 1 */
+    image_float_to_rgb8(in + 6, 1, 1, out + 6); /* writes out[6..8] only */
+    CHECK(out[6] == 255 && out[7] == 181 && out[8] == 0);
+    image_float_to_rgb8(in, 0, 5, out); /* empty image writes nothing */
+    CHECK(out[0] == 0 && out[1] == 0 && out[2] == 255);
+}
+
+static void test_rgb8_alloc(void)
+{
+    struct rgb8 img = {0};
+    struct err e = {0};
+    rgb8_free(&img); /* a zeroed struct is fine */
+    rgb8_free(NULL);
+    CHECK(rgb8_alloc(&img, 0, 4, &e) == -1 && img.px == NULL && has(&e, "out of range"));
+    CHECK(rgb8_alloc(&img, 4, -1, &e) == -1);
+    CHECK(rgb8_alloc(&img, IMAGE_MAX_SIDE + 1, 1, &e) == -1);
+    CHECK(rgb8_alloc(&img, 3, 2, &e) == 0 && img.w == 3 && img.h == 2 && img.px);
+    int zero = 1;
+    for (int i = 0; img.px && i < 18; i++)
+        zero &= img.px[i] == 0;
+    CHECK(zero);
+    rgb8_free(&img);
+    CHECK(img.px == NULL && img.w == 0);
+    rgb8_free(&img); /* twice is harmless */
+}
+
+/* ---- PNG ---- */
+
+static void test_encode_reference(void)
+{
+    struct rgb8 img = pattern(37, 23), back;
+    struct err e = {0};
+    uint8_t *png;
+    size_t n;
+    CHECK(png_encode(&img, &png, &n, &e) == 0);
+    int w, h;
+    uint8_t *px = ref_decode_rgb(png, n, &w, &h);
+    CHECK(px != NULL);
+    CHECK(w == 37 && h == 23);
+    CHECK(px && memcmp(px, img.px, 37 * 23 * 3) == 0);
+    CHECK(png_decode(png, n, "g.png", &back, &e) == 0);
+    CHECK(same_image(&img, &back));
+    free(px);
+    free(png);
+    rgb8_free(&back);
+    rgb8_free(&img);
+}
+
+static void test_odd_sizes(void)
+{
+    const int sizes[][2] = {{1, 1}, {3, 7}, {7, 3}, {1, 40}, {40, 1}, {255, 2}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        struct rgb8 img = pattern(sizes[i][0], sizes[i][1]), back;
+        struct err e = {0};
+        uint8_t *png;
+        size_t n;
+        int w, h;
+        CHECK(png_encode(&img, &png, &n, &e) == 0);
+        CHECK(png_decode(png, n, "odd.png", &back, &e) == 0);
+        CHECK(same_image(&img, &back));
+        uint8_t *px = ref_decode_rgb(png, n, &w, &h);
+        CHECK(px && w == img.w && h == img.h && !memcmp(px, img.px, (size_t)w * h * 3));
+        free(px);
+        free(png);
+        rgb8_free(&back);
+        rgb8_free(&img);
+    }
+    struct rgb8 empty = {0};
+    struct err e = {0};
+    uint8_t *png = (uint8_t *)&e;
+    size_t n = 1;
+    CHECK(png_encode(&empty, &png, &n, &e) == -1 && png == NULL && n == 0);
+}
+
+/* Every colour type with every filter (and all five mixed) decodes to the expected RGB. */
+static void test_filters_and_color_types(void)
+{
+    const int types[4] = {0, 2, 4, 6}, channels[4] = {1, 3, 2, 4};
+    const int w = 6, h = 5;
+    for (int t = 0; t < 4; t++) {
+        int ch = channels[t];
+        uint8_t s[6 * 5 * 4] = {0}, want[6 * 5 * 3];
+        for (int i = 0; i < w * h * ch; i++)
+            s[i] = (uint8_t)(i * 97 + t * 31 + (i % 7) * 40);
+        for (int i = 0; i < w * h; i++)
+            for (int k = 0; k < 3; k++)
+                want[i * 3 + k] = ch < 3 ? s[i * ch] : s[i * ch + k];
+        for (int mode = -1; mode <= 4; mode++) {
+            size_t raw_len;
+            uint8_t *raw = ref_filter(s, w, h, ch, mode, &raw_len);
+            struct buf b = ref_png(w, h, 8, types[t], 0, raw, raw_len, 0, NULL);
+            struct rgb8 out;
+            struct err e = {0};
+            int rc = png_decode(b.p, b.n, "f.png", &out, &e);
+            CHECK(rc == 0);
+            CHECK(rc == 0 && out.w == w && out.h == h && !memcmp(out.px, want, sizeof want));
+            if (rc)
+                fprintf(stderr, "  color type %d filter %d: %s\n", types[t], mode, e.msg);
+            rgb8_free(&out);
+            free(b.p);
+            free(raw);
+        }
+    }
+}
+
+/* Decode a PNG built around `raw`; returns png_decode's result, e holds the message. */
+static int try_png(uint32_t w, uint32_t h, int depth, int ct, int interlace, const uint8_t *raw,
+                   size_t raw_len, size_t split, const char *extra, struct err *e)
+{
+    struct buf b = ref_png(w, h, depth, ct, interlace, raw, raw_len, split, extra);
+    struct rgb8 out;
+    memset(e, 0, sizeof *e);
+    int rc = png_decode(b.p, b.n, "t.png", &out, e);
+    if (rc != 0)
+        rc = out.px == NULL && out.w == 0 ? -1 : -2; /* -2: a failure that left pixels behind */
+    rgb8_free(&out);
+    free(b.p);
+    return rc;
+}
+
+/* A PNG whose only IDAT holds the first half of a valid zlib stream must fail as truncated. */
+static int cut_stream_fails(const uint8_t *raw, size_t raw_len)
+{
+    uLongf zn = compressBound(raw_len);
+    uint8_t *z = malloc(zn), ihdr[13] = {0, 0, 0, 9, 0, 0, 0, 8, 8, 2, 0, 0, 0};
+    compress2(z, &zn, raw, raw_len, 9);
+    struct buf b = {0};
+    buf_add(&b, signature, 8);
+    add_chunk(&b, "IHDR", ihdr, 13);
+    add_chunk(&b, "IDAT", z, zn / 2);
+    add_chunk(&b, "IEND", NULL, 0);
+    struct rgb8 out;
+    struct err e = {0};
+    int ok = png_decode(b.p, b.n, "cut.png", &out, &e) == -1 && out.px == NULL &&
+             has(&e, "truncated PNG: image data ends");
+    free(z);
+    free(b.p);
+    return ok;
+}
+
+static void test_chunks(void)
+{
+    struct rgb8 img = pattern(9, 8);
+    size_t raw_len;
+    uint8_t *raw = ref_filter(img.px, 9, 8, 3, -1, &raw_len);
+    struct err e;
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 5, NULL, &e) == 0); /* many small IDATs */
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 1, "tEXt", &e) == 0);
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 0, "PLTE", &e) == 0); /* suggested palette */
+    CHECK(try_png(9, 8, 8, 0, 0, raw, 8 * 10, 0, "PLTE", &e) == -1 && has(&e, "PLTE"));
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 0, "ABCD", &e) == -1);
+    CHECK(has(&e, "unknown critical chunk ABCD"));
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 0, "IHDR", &e) == -1 && has(&e, "IHDR"));
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len - 1, 0, NULL, &e) == -1); /* one byte short */
+    CHECK(has(&e, "expected"));
+    CHECK(cut_stream_fails(raw, raw_len));
+    uint8_t *more = calloc(raw_len + 1, 1);
+    memcpy(more, raw, raw_len);
+    CHECK(try_png(9, 8, 8, 2, 0, more, raw_len + 1, 0, NULL, &e) == -1); /* one byte extra */
+    CHECK(has(&e, "larger"));
+    CHECK(try_png(9, 8, 8, 2, 0, more, raw_len + 1, 3, NULL, &e) == -1);
+    free(more);
+    raw[3 * (9 * 3 + 1)] = 7; /* row 3's filter byte */
+    CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 0, NULL, &e) == -1);
+    CHECK(has(&e, "bad filter type 7 on row 3"));
+    free(raw);
+    rgb8_free(&img);
+}
+
+static void test_unsupported_headers(void)
+{
+    uint8_t raw[64] = {0};
+    struct err e;
+    CHECK(try_png(2, 2, 8, 2, 1, raw, 14, 0, NULL, &e) == -1 && has(&e, "interlaced"));
+    CHECK(try_png(2, 2, 8, 2, 2, raw, 14, 0, NULL, &e) == -1 && has(&e, "interlace"));
+    CHECK(try_png(2, 2, 16, 2, 0, raw, 26, 0, NULL, &e) == -1 && has(&e, "bit depth 16"));
+    CHECK(try_png(2, 2, 4, 0, 0, raw, 4, 0, NULL, &e) == -1 && has(&e, "bit depth 4"));
+    CHECK(try_png(2, 2, 8, 3, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "palette"));
+    CHECK(try_png(2, 2, 8, 5, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "color type 5"));
+    CHECK(try_png(0, 2, 8, 2, 0, raw, 2, 0, NULL, &e) == -1);
+    CHECK(try_png(100000, 1, 8, 2, 0, raw, 64, 0, NULL, &e) == -1 && has(&e, "100000x1"));
+    CHECK(try_png(0xffffffffu, 0xffffffffu, 8, 6, 0, raw, 64, 0, NULL, &e) == -1);
+    CHECK(try_png(20000, 20000, 8, 2, 0, raw, 64, 0, NULL, &e) == -1 && has(&e, "pixels"));
+    CHECK(!strcmp(e.file, "t.png") && e.line == 0);
+}
+
+static void test_damaged_files(void)
+{
+    struct rgb8 img = pattern(3, 7), out;
+    struct err e = {0};
+    uint8_t *png;
+    size_t n;
+    CHECK(png_encode(&img, &png, &n, &e) == 0);
+    int prefix_fail = 0, flip_fail = 0;
+    for (size_t k = 0; k < n; k++) {
+        memset(&e, 0, sizeof e);
+        prefix_fail += png_decode(png, k, "p.png", &out, &e) == -1 && out.px == NULL && e.msg[0];
+        rgb8_free(&out);
+    }
+    CHECK(prefix_fail == (int)n);
+    uint8_t *bad = malloc(n);
+    for (size_t k = 0; k < n; k++) {
+        memcpy(bad, png, n);
+        bad[k] ^= 0x10;
+        flip_fail += png_decode(bad, n, "f.png", &out, &e) == -1 && out.px == NULL;
+        rgb8_free(&out);
+    }
+    CHECK(flip_fail == (int)n);
+    memcpy(bad, png, n);
+    bad[8 + 8 + 2] ^= 1; /* inside IHDR's width */
+    CHECK(png_decode(bad, n, "f.png", &out, &e) == -1 && has(&e, "CRC mismatch in chunk IHDR"));
+    memcpy(bad, png, n);
+    bad[1] = 'Q';
+    CHECK(png_decode(bad, n, "f.png", &out, &e) == -1 && has(&e, "bad signature"));
+    CHECK(png_decode(png, n - 1, "f.png", &out, &e) == -1 && has(&e, "truncated"));
+    CHECK(png_decode(png, n - 12, "f.png", &out, &e) == -1 && has(&e, "missing IEND"));
+    memcpy(bad, png, n);
+    put32(bad + 8, 0x7ffffff0u); /* IHDR claims a huge length */
+    CHECK(png_decode(bad, n, "f.png", &out, &e) == -1);
+    memcpy(bad, png, n);
+    put32(bad + 8, 0x90000000u);
+    CHECK(png_decode(bad, n, "f.png", &out, &e) == -1 && has(&e, "length"));
+    CHECK(png_decode(png, n, "ok.png", &out, &e) == 0 && same_image(&img, &out));
+    rgb8_free(&out);
+    free(bad);
+    free(png);
+    rgb8_free(&img);
+}
+
+/* ---- PPM ---- */
+
+static int ppm_str(const char *s, size_t n, struct rgb8 *out, struct err *e)
+{
+    memset(e, 0, sizeof *e);
+    int rc = ppm_decode((const uint8_t *)s, n, "t.ppm", out, e);
+    if (rc != 0 && (out->px || out->w))
+        rc = -2;
+    return rc;
+}
+
+static void test_ppm_round_trip(void)
+{
+    struct rgb8 img = pattern(5, 3), out;
+    struct err e = {0};
+    uint8_t *ppm;
+    size_t n;
+    CHECK(ppm_encode(&img, &ppm, &n, &e) == 0);
+    CHECK(n == 11 + 45 && !memcmp(ppm, "P6\n5 3\n255\n", 11));
+    CHECK(ppm_decode(ppm, n, "a.ppm", &out, &e) == 0 && same_image(&img, &out));
+    rgb8_free(&out);
+    int prefix_fail = 0;
+    for (size_t k = 0; k < n; k++)
+        prefix_fail += ppm_decode(ppm, k, "a.ppm", &out, &e) == -1 && out.px == NULL;
+    CHECK(prefix_fail == (int)n);
+    CHECK(has(&e, "truncated PPM"));
+    free(ppm);
+
+    /* the same pixels as P3, with comments and odd spacing */
+    struct buf b = {0};
+    buf_add(&b, "P3 # plain\n5\t3\n# max\n255", 24);
+    size_t last_start = 0;
+    for (int i = 0; i < 45; i++) {
+        char num[16];
+        last_start = b.n + 1; /* where the last sample's digits begin, after its newline */
+        int len = snprintf(num, sizeof num, i % 4 ? " %d" : "\n%d #c\n", img.px[i]);
+        buf_add(&b, num, (size_t)len);
+    }
+    CHECK(ppm_str((const char *)b.p, b.n, &out, &e) == 0 && same_image(&img, &out));
+    rgb8_free(&out);
+    prefix_fail = 0;
+    for (size_t k = 0; k <= last_start; k++) /* cutting inside the last number still parses */
+        prefix_fail += ppm_str((const char *)b.p, k, &out, &e) == -1;
+    CHECK(prefix_fail == (int)last_start + 1);
+    free(b.p);
+    rgb8_free(&img);
+}
+
+static void test_ppm_maxval(void)
+{
+    struct rgb8 out;
+    struct err e;
+    const char wide[] = "P6\n# sixteen bit\n2 1\n65535\n\xff\xff\x80\x00\x00\x00"
+                        "\x00\x01\x7f\xff\x80\x80";
+    CHECK(ppm_str(wide, sizeof wide - 1, &out, &e) == 0);
+    CHECK(out.px && out.px[0] == 255 && out.px[1] == 128 && out.px[2] == 0);
+    CHECK(out.px && out.px[3] == 0 && out.px[4] == 127 && out.px[5] == 128);
+    rgb8_free(&out);
+    const char p3[] = "P3 2 1 65535 65535 0 32768 1 257 65534";
+    CHECK(ppm_str(p3, sizeof p3 - 1, &out, &e) == 0);
+    CHECK(out.px && !memcmp(out.px, "\xff\x00\x80\x00\x01\xff", 6));
+    rgb8_free(&out);
+    const char one[] = "P3\n2 1\n1\n1 0 1\n0 1 0\n";
+    CHECK(ppm_str(one, sizeof one - 1, &out, &e) == 0);
+    CHECK(out.px && !memcmp(out.px, "\xff\x00\xff\x00\xff\x00", 6));
+    rgb8_free(&out);
+    const char thousand[] = "P3 1 1 1000 500 2 998";
+    CHECK(ppm_str(thousand, sizeof thousand - 1, &out, &e) == 0);
+    CHECK(out.px && out.px[0] == 128 && out.px[1] == 1 && out.px[2] == 254);
+    rgb8_free(&out);
+    const char small[] = "P6 1 1 100\n\x64\x00\x65";
+    CHECK(ppm_str(small, sizeof small - 1, &out, &e) == -1 && has(&e, "exceeds maxval 100"));
+}
+
+static void test_ppm_garbage(void)
+{
+    const char *bad[] = {
+        "", "P", "P3", "P6 ", "P5 1 1 255\n\x01", "P7 1 1 255\n", "Q6 1 1 255\n", "P61 1 255\n",
+        "P6 0 1 255\n", "P6 1 0 255\n", "P6 1 1 0\n", "P6 1 1 65536\n", "P6 -1 1 255\n",
+        "P6 99999999999999999999999999 1 255\n", "P6 1x 1 255\nabc", "P6 40000 1 255\n",
+        "P6 32768 32768 255\n", "P6 1 1 255#\nabc", "P6 1 1 255", "P3 1 1 255 1 2 256",
+        "P3 1 1 255 1 2 -3", "P3 1 1 255 1 2", "P3 1 1 255 1 2 3x", "P6 1 1 255\n\x01\x02",
+        "P3 1 1 255 1 2 99999999999999999999999999999",
+    };
+    int failed = 0;
+    struct rgb8 out;
+    struct err e;
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        int rc = ppm_str(bad[i], strlen(bad[i]), &out, &e);
+        failed += rc == -1 && e.msg[0] && !strcmp(e.file, "t.ppm");
+        if (rc != -1)
+            fprintf(stderr, "  accepted or leaked: \"%s\"\n", bad[i]);
+        rgb8_free(&out);
+    }
+    CHECK(failed == (int)(sizeof bad / sizeof bad[0]));
+    const char late[] = "P3\n1 1\n255\n0 0 300\n";
+    CHECK(ppm_str(late, sizeof late - 1, &out, &e) == -1 && e.line == 4 && e.col > 1);
+    const char p5[] = "P5 1 1 255\n\x01";
+    CHECK(ppm_str(p5, sizeof p5 - 1, &out, &e) == -1 && has(&e, "P5"));
+    const char trailing[] = "P6 1 1 255\n\x01\x02\x03P6 1 1 255\n";
+    CHECK(ppm_str(trailing, sizeof trailing - 1, &out, &e) == 0 && out.px[2] == 3);
+    rgb8_free(&out);
+}
+
+int main(void)
+{
+    test_float_to_rgb8();
+    test_rgb8_alloc();
+    test_encode_reference();
+    test_odd_sizes();
+    test_filters_and_color_types();
+    test_chunks();
+    test_unsupported_headers();
+    test_damaged_files();
+    test_ppm_round_trip();
+    test_ppm_maxval();
+    test_ppm_garbage();
+    return check_report("test_png");
+}
