@@ -26,6 +26,7 @@ struct job {
     char output[JOB_NAME_MAX];     /* file name under --out DIR/<name>/ */
     char reference[JOB_PATH_MAX];  /* resolved; "" when none */
     int poisson_pool;
+    int light_sampling;            /* 0: no importance sampling of lights (default 1) */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2];

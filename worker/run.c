@@ -118,7 +118,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (!(rgb = farm_framebuffer_new(w, h, e)))
         goto done;
     struct progress prog = {j->name, o->progress && !o->quiet, -1};
-    struct farm_job fj = {sf.scene, &cam, {w, h, j->max_depth, j->seed}, pix, light,
+    struct farm_job fj = {sf.scene, &cam, {w, h, j->max_depth, j->seed, !j->light_sampling}, pix, light,
                           o->processes > 0 ? o->processes : j->processes, 0, 1, show_progress, &prog};
     if (farm_render(&fj, rgb, &rr->farm, e) < 0) {
         if (prog.enabled)
