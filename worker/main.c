@@ -1,4 +1,5 @@
 /* main: the `worker` command line (SPEC "Command line"): parse, dispatch, print, exit. */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,6 +92,9 @@ static int diff_main(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
+       kill the process half-way through an output. */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc >= 2 && !strcmp(argv[1], "points"))
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))
@@ -157,8 +161,12 @@ int main(int argc, char **argv)
         }
         int rc = run_job(&j, &o, &rr, &e);
         if (rc != 0) {
+            if (rc == 1) { /* a render failure names the job; bad input names its file */
+                char why[sizeof e.msg];
+                snprintf(why, sizeof why, "%s", e.msg);
+                snprintf(e.msg, sizeof e.msg, "%s: %s; nothing written", j.name, why);
+            }
             print_err(&e);
-            fprintf(stderr, "%s: failed, nothing written\n", j.name);
             worst = rc > worst ? rc : worst;
             continue;
         }

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "fileio.h"
+#include "limits.h"
 #include "metrics.h"
 #include "scene_load.h"
 #include "sidecar.h"
@@ -93,7 +94,9 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     }
     if (j->reference[0]) {
         if (imgio_read(j->reference, &ref, e) < 0) {
-            err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s", e->msg);
+            char why[sizeof e->msg];
+            snprintf(why, sizeof why, "%s", e->msg);
+            err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s", j->reference, why);
             goto done;
         }
         if (ref.w != w || ref.h != h) {
@@ -103,18 +106,21 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         }
         has_ref = 1;
     }
+    if (limits_check_samples(j, w, h, e) < 0 ||
+        limits_check_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0)
+        goto done;
     uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL);
     if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
         !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
-    rc = 1;
     const char *out_dir = o->out_dir ? o->out_dir : "out";
     char dir[2048], stem[JOB_NAME_MAX];
     snprintf(dir, sizeof dir, "%s/%s", out_dir, j->name);
-    if (run_mkdirs(dir, e) < 0)
+    if (limits_check_out_dir(dir, e) < 0)
         goto done;
+    rc = 1;
     if (!(rgb = farm_framebuffer_new(w, h, e)))
         goto done;
     struct progress prog = {j->name, o->progress && !o->quiet, -1};

@@ -10,6 +10,57 @@
 
 #include "fileio.h"
 
+/* Number of children of a collection node (0 for scalars). */
+static long child_count(const yaml_node_t *n)
+{
+    if (n->type == YAML_SEQUENCE_NODE)
+        return n->data.sequence.items.top - n->data.sequence.items.start;
+    if (n->type == YAML_MAPPING_NODE)
+        return n->data.mapping.pairs.top - n->data.mapping.pairs.start;
+    return 0;
+}
+
+static yaml_node_t *child(struct ydoc *d, const yaml_node_t *n, long i)
+{
+    int id = n->type == YAML_SEQUENCE_NODE ? n->data.sequence.items.start[i]
+                                           : n->data.mapping.pairs.start[i].value;
+    return yaml_document_get_node(&d->doc, id);
+}
+
+/* Refuse documents that nest deeper than YDOC_MAX_DEPTH, hold more than YDOC_MAX_NODES nodes,
+   or whose aliases would expand past YDOC_MAX_VISITS node visits ("billion laughs"), so our
+   loaders never meet them. Depth-first with an explicit, bounded stack. */
+static int check_shape(struct ydoc *d, struct err *e)
+{
+    struct frame {
+        yaml_node_t *n;
+        long next;
+    } stack[YDOC_MAX_DEPTH];
+    long nodes = d->doc.nodes.top - d->doc.nodes.start, visits = 1;
+    if (nodes > YDOC_MAX_NODES)
+        return ydoc_fail(d, ydoc_root(d), e, "document has %ld nodes (limit %d)", nodes, YDOC_MAX_NODES);
+    int sp = 0;
+    stack[sp++] = (struct frame){ydoc_root(d), 0};
+    while (sp > 0) {
+        struct frame *f = &stack[sp - 1];
+        if (!f->n || f->next >= child_count(f->n)) {
+            sp--;
+            continue;
+        }
+        yaml_node_t *c = child(d, f->n, f->next++);
+        if (!c)
+            continue;
+        if (++visits > YDOC_MAX_VISITS)
+            return ydoc_fail(d, c, e, "document expands past %d nodes through aliases", YDOC_MAX_VISITS);
+        if (child_count(c) == 0)
+            continue;
+        if (sp >= YDOC_MAX_DEPTH)
+            return ydoc_fail(d, c, e, "nesting deeper than %d levels", YDOC_MAX_DEPTH);
+        stack[sp++] = (struct frame){c, 0};
+    }
+    return 0;
+}
+
 int ydoc_load(struct ydoc *d, const char *path, struct err *e)
 {
     memset(d, 0, sizeof *d);
@@ -38,6 +89,8 @@ int ydoc_load(struct ydoc *d, const char *path, struct err *e)
         d->loaded = 1;
         if (!yaml_document_get_root_node(&d->doc))
             rc = err_set(e, path, 1, 1, "empty file: expected a mapping of keys");
+        else
+            rc = check_shape(d, e);
     }
     yaml_parser_delete(&p);
     free(data);

@@ -9,6 +9,9 @@
 
 /* Largest YAML file we parse, and deepest nesting our loaders walk. */
 #define YDOC_MAX_BYTES (8u << 20)
+#define YDOC_MAX_DEPTH 32
+#define YDOC_MAX_NODES 2000000
+#define YDOC_MAX_VISITS 4000000
 
 struct ydoc {
     yaml_document_t doc;
