@@ -12,8 +12,8 @@ static ray to_object(const struct prim *p, const ray *r)
     vec3 o = v3_sub(r->orig, p->offset);
     ray out = *r;
     out.orig = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
-    out.dir = v3(p->cos_y * r->dir.x - p->sin_y * r->dir.z, r->dir.y,
-                 p->sin_y * r->dir.x + p->cos_y * r->dir.z);
+    out.dir =
+        v3(p->cos_y * r->dir.x - p->sin_y * r->dir.z, r->dir.y, p->sin_y * r->dir.x + p->cos_y * r->dir.z);
     return out;
 }
 
@@ -234,8 +234,9 @@ static int hit_triangle(const struct prim *p, const ray *r, double t_min, double
    the same free-flight distance, whatever order the BVH tests primitives in. */
 static double ray_hash_uniform(const ray *r, const struct prim *p)
 {
-    double in[9] = {r->orig.x, r->orig.y, r->orig.z, r->dir.x, r->dir.y, r->dir.z, r->time,
-                    p->g.medium.radius, p->g.medium.neg_inv_density};
+    double in[9] = {r->orig.x, r->orig.y,          r->orig.z,
+                    r->dir.x,  r->dir.y,           r->dir.z,
+                    r->time,   p->g.medium.radius, p->g.medium.neg_inv_density};
     uint64_t h = 0x6d656469756dULL;
     for (int i = 0; i < 9; i++) {
         uint64_t bits;
@@ -275,8 +276,8 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
         got = hit_sphere(p->g.sphere.center, p->g.sphere.radius, &local, t_min, t_max, h);
         break;
     case PRIM_MOVING_SPHERE:
-        got = hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, local.time),
-                         p->g.msphere.radius, &local, t_min, t_max, h);
+        got = hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, local.time), p->g.msphere.radius,
+                         &local, t_min, t_max, h);
         break;
     case PRIM_RECT:
         got = hit_rect(p, &local, t_min, t_max, h);

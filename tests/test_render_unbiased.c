@@ -8,10 +8,10 @@
 #include "render.h"
 #include "scene_load.h"
 
-#define SIDE 32   /* image side, pixels */
-#define REGION 8  /* regions of REGION x REGION pixels: a 4 x 4 grid */
+#define SIDE 32  /* image side, pixels */
+#define REGION 8 /* regions of REGION x REGION pixels: a 4 x 4 grid */
 #define NREG (SIDE / REGION)
-#define RUNS 16   /* independent renders per setting: their spread measures the noise */
+#define RUNS 16     /* independent renders per setting: their spread measures the noise */
 #define K_SIGMA 4.5 /* bound: |difference| <= K_SIGMA standard errors */
 
 struct region_stats {
@@ -76,7 +76,7 @@ done:
 }
 
 /* Regions (of NREG^2 x 3 channels) whose means differ by more than K_SIGMA combined errors;
-   *worst is the largest difference in units of that error. */
+ *worst is the largest difference in units of that error. */
 static int regions_apart(const struct region_stats *a, const struct region_stats *b, double *worst)
 {
     int apart = 0;

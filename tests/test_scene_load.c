@@ -80,7 +80,8 @@ static void test_book3_and_final(void)
     if (sf.scene) {
         const struct scene *sc = sf.scene;
         CHECK(count_type(sc, PRIM_BOX) == 400);
-        CHECK(count_type(sc, PRIM_SPHERE) == 1005); /* the cluster, glass, metal, blue glass, planet, marble */
+        CHECK(count_type(sc, PRIM_SPHERE) ==
+              1005); /* the cluster, glass, metal, blue glass, planet, marble */
         CHECK(count_type(sc, PRIM_MEDIUM) == 2 && count_type(sc, PRIM_MOVING_SPHERE) == 1);
         CHECK(sc->n_lights == 1 && sc->perlin != NULL && sc->n_images == 1);
         CHECK(sf.camera.shutter0 == 0 && sf.camera.shutter1 == 1);

@@ -233,7 +233,8 @@ static void test_light_pdfs(void)
 /* Hits of random rays land inside the primitive's bounds, transformed or not. */
 static void test_bounds(void)
 {
-    struct prim ps[4] = {{.type = PRIM_BOX}, {.type = PRIM_CYLINDER}, {.type = PRIM_TRIANGLE}, {.type = PRIM_SPHERE}};
+    struct prim ps[4] = {
+        {.type = PRIM_BOX}, {.type = PRIM_CYLINDER}, {.type = PRIM_TRIANGLE}, {.type = PRIM_SPHERE}};
     ps[0].g.box.lo = v3(-1, 0, -2), ps[0].g.box.hi = v3(1, 3, 2);
     ps[1].g.cyl.base = v3(0, 0, 0), ps[1].g.cyl.axis = v3_unit(v3(1, 2, -1)), ps[1].g.cyl.height = 3;
     ps[1].g.cyl.radius = 0.7;
@@ -251,8 +252,10 @@ static void test_bounds(void)
         shape_bounds(&p, &lo, &hi);
         vec3 c = v3_scale(v3_add(lo, hi), 0.5);
         for (int i = 0; i < 2000; i++) {
-            vec3 o = v3_add(c, v3(20 * rng_uniform(&g) - 10, 20 * rng_uniform(&g) - 10, 20 * rng_uniform(&g) - 10));
-            vec3 target = v3_add(c, v3(3 * rng_uniform(&g) - 1.5, 3 * rng_uniform(&g) - 1.5, 3 * rng_uniform(&g) - 1.5));
+            vec3 o = v3_add(
+                c, v3(20 * rng_uniform(&g) - 10, 20 * rng_uniform(&g) - 10, 20 * rng_uniform(&g) - 10));
+            vec3 target = v3_add(
+                c, v3(3 * rng_uniform(&g) - 1.5, 3 * rng_uniform(&g) - 1.5, 3 * rng_uniform(&g) - 1.5));
             ray r = {o, v3_sub(target, o), 0};
             struct hit h;
             if (!shape_hit(&p, &r, HIT_EPS, DBL_MAX, &h))

@@ -64,21 +64,25 @@ static void write_scene(struct out *o)
             put(o, "  - { type: box, min: [%d, 0, %d], max: [%d, %.2f, %d], material: ground }\n", x0, z0,
                 x0 + 100, y1, z0 + 100);
         }
-    put(o, "  - { type: rect, plane: xz, min: [123, 147], max: [423, 412], at: 554, flip: true, material: lamp }\n"
-           "  - { type: moving_sphere, center0: [400, 400, 200], center1: [430, 400, 200], radius: 50, material: brown }\n"
-           "  - { type: sphere, center: [260, 150, 45], radius: 50, material: glass }\n"
-           "  - { type: sphere, center: [0, 150, 145], radius: 50, material: fuzzy }\n"
-           "  - { type: sphere, center: [360, 150, 145], radius: 70, material: glass }\n"
-           "  - { type: medium, boundary: { type: sphere, center: [360, 150, 145], radius: 70 }, density: 0.2,\n"
-           "      material: blue_smoke }\n"
-           "  - { type: medium, boundary: { type: sphere, center: [0, 0, 0], radius: 5000 }, density: 0.0001,\n"
-           "      material: fog }\n"
-           "  - { type: sphere, center: [400, 200, 400], radius: 100, material: earth }\n"
-           "  - { type: sphere, center: [220, 280, 300], radius: 80, material: stone }\n");
+    put(o,
+        "  - { type: rect, plane: xz, min: [123, 147], max: [423, 412], at: 554, flip: true, material: lamp "
+        "}\n"
+        "  - { type: moving_sphere, center0: [400, 400, 200], center1: [430, 400, 200], radius: 50, "
+        "material: brown }\n"
+        "  - { type: sphere, center: [260, 150, 45], radius: 50, material: glass }\n"
+        "  - { type: sphere, center: [0, 150, 145], radius: 50, material: fuzzy }\n"
+        "  - { type: sphere, center: [360, 150, 145], radius: 70, material: glass }\n"
+        "  - { type: medium, boundary: { type: sphere, center: [360, 150, 145], radius: 70 }, density: 0.2,\n"
+        "      material: blue_smoke }\n"
+        "  - { type: medium, boundary: { type: sphere, center: [0, 0, 0], radius: 5000 }, density: 0.0001,\n"
+        "      material: fog }\n"
+        "  - { type: sphere, center: [400, 200, 400], radius: 100, material: earth }\n"
+        "  - { type: sphere, center: [220, 280, 300], radius: 80, material: stone }\n");
     for (int i = 0; i < 1000; i++) {
         double x = 165 * rng_uniform(&r), y = 165 * rng_uniform(&r), z = 165 * rng_uniform(&r);
-        put(o, "  - { type: sphere, center: [%.2f, %.2f, %.2f], radius: 10, material: white, rotate_y: 15,"
-               " translate: [-100, 270, 395] }\n",
+        put(o,
+            "  - { type: sphere, center: [%.2f, %.2f, %.2f], radius: 10, material: white, rotate_y: 15,"
+            " translate: [-100, 270, 395] }\n",
             x, y, z);
     }
 }

@@ -19,7 +19,8 @@ static const char *const box_keys[] = {COMMON_KEYS, "min", "max", NULL};
 static const char *const cylinder_keys[] = {COMMON_KEYS, "base", "top", "radius", NULL};
 static const char *const triangle_keys[] = {COMMON_KEYS, "vertices", NULL};
 static const char *const pyramid_keys[] = {COMMON_KEYS, "apex", "base", NULL};
-static const char *const medium_keys[] = {"type", "material", "rotate_y", "translate", "boundary", "density", NULL};
+static const char *const medium_keys[] = {"type",     "material", "rotate_y", "translate",
+                                          "boundary", "density",  NULL};
 static const char *const boundary_keys[] = {"type", "center", "radius", NULL};
 
 static int need(struct loader *L, yaml_node_t *n, const char *key, const char *type, yaml_node_t **out)
@@ -133,8 +134,7 @@ static int load_disk(struct loader *L, yaml_node_t *n, struct prim *p)
 {
     vec3 toward;
     p->type = PRIM_DISK;
-    if (point(L, n, "center", "disk", &p->g.disk.center) < 0 ||
-        point(L, n, "toward", "disk", &toward) < 0 ||
+    if (point(L, n, "center", "disk", &p->g.disk.center) < 0 || point(L, n, "toward", "disk", &toward) < 0 ||
         positive(L, n, "radius", "disk", &p->g.disk.radius) < 0)
         return -1;
     vec3 dir = v3_sub(toward, p->g.disk.center);
@@ -170,7 +170,8 @@ static int load_cylinder(struct loader *L, yaml_node_t *n, struct prim *p)
     vec3 axis = v3_sub(top, p->g.cyl.base);
     p->g.cyl.height = v3_len(axis);
     if (!(p->g.cyl.height > 1e-9 * p->g.cyl.radius))
-        return ydoc_fail(&L->d, ymap_get(&L->d, n, "top"), L->e, "top: must differ from base (a zero-length cylinder)");
+        return ydoc_fail(&L->d, ymap_get(&L->d, n, "top"), L->e,
+                         "top: must differ from base (a zero-length cylinder)");
     p->g.cyl.axis = v3_scale(axis, 1.0 / p->g.cyl.height);
     return 1;
 }
@@ -198,7 +199,8 @@ static int load_pyramid(struct loader *L, yaml_node_t *n, struct prim *p)
     double height = fabs(v3_dot(v3_sub(apex, b[0]), p[0].g.tri.normal));
     double size = sqrt(fmax(v3_len2(p[0].g.tri.e1), v3_len2(p[0].g.tri.e2)));
     if (!(height > 1e-9 * size))
-        return ydoc_fail(&L->d, ymap_get(&L->d, n, "apex"), L->e, "apex: lies in the base's plane (a flat pyramid)");
+        return ydoc_fail(&L->d, ymap_get(&L->d, n, "apex"), L->e,
+                         "apex: lies in the base's plane (a flat pyramid)");
     for (int i = 0; i < 3; i++)
         make_triangle(&p[1 + i], apex, b[i], b[(i + 1) % 3]);
     return 4;
@@ -214,7 +216,8 @@ static int load_medium(struct loader *L, yaml_node_t *n, struct prim *p)
     if (need(L, n, "boundary", "medium", &bn) < 0)
         return -1;
     if (bn->type != YAML_MAPPING_NODE)
-        return ydoc_fail(&L->d, bn, L->e, "boundary: must be a mapping {type: sphere, center: ..., radius: ...}");
+        return ydoc_fail(&L->d, bn, L->e,
+                         "boundary: must be a mapping {type: sphere, center: ..., radius: ...}");
     if (need(L, bn, "type", "boundary", &tn) < 0 || yget_string(&L->d, tn, "type", &type, L->e) < 0)
         return -1;
     if (strcmp(type, "sphere"))
@@ -225,7 +228,8 @@ static int load_medium(struct loader *L, yaml_node_t *n, struct prim *p)
         positive(L, n, "density", "medium", &density) < 0)
         return -1;
     if (!(density < 1e12))
-        return ydoc_fail(&L->d, (v = ymap_get(&L->d, n, "density")), L->e, "density: must be < 1e12, got %g", density);
+        return ydoc_fail(&L->d, (v = ymap_get(&L->d, n, "density")), L->e, "density: must be < 1e12, got %g",
+                         density);
     p->g.medium.neg_inv_density = -1.0 / density;
     return 1;
 }
@@ -280,25 +284,28 @@ static const struct object_type {
 /* Which materials an object may carry: media take isotropic only and only media do; image
    textures need surface coordinates, which spheres, rects and disks have; lights and sampled
    objects must be samplable and untransformed. */
-static int check_placement(struct loader *L, yaml_node_t *n, const struct object_type *ot, const struct prim *p,
-                           int sample)
+static int check_placement(struct loader *L, yaml_node_t *n, const struct object_type *ot,
+                           const struct prim *p, int sample)
 {
     const struct material *m = &L->sc->materials[p->material];
     yaml_node_t *mn = ymap_get(&L->d, n, "material");
     int medium = p->type == PRIM_MEDIUM;
     if (medium != (m->type == MAT_ISOTROPIC))
-        return ydoc_fail(&L->d, mn, L->e, medium ? "material: a medium needs an isotropic material"
-                                                 : "material: isotropic materials fill media only");
+        return ydoc_fail(&L->d, mn, L->e,
+                         medium ? "material: a medium needs an isotropic material"
+                                : "material: isotropic materials fill media only");
     if (m->texture >= 0 && texture_needs_uv(&L->sc->textures[m->texture]) &&
         !(p->type == PRIM_SPHERE || p->type == PRIM_RECT || p->type == PRIM_DISK))
-        return ydoc_fail(&L->d, mn, L->e, "material: an image texture needs a sphere, rect or disk (a %s has no uv)",
+        return ydoc_fail(&L->d, mn, L->e,
+                         "material: an image texture needs a sphere, rect or disk (a %s has no uv)",
                          ot->name);
     if (m->type != MAT_LIGHT && !sample)
         return 0;
     if (!ot->samplable)
-        return ydoc_fail(&L->d, sample ? ymap_get(&L->d, n, "sample") : mn, L->e,
-                         "%s: a %s cannot be importance-sampled (lights and sample: true take sphere, rect or disk)",
-                         sample ? "sample" : "material", ot->name);
+        return ydoc_fail(
+            &L->d, sample ? ymap_get(&L->d, n, "sample") : mn, L->e,
+            "%s: a %s cannot be importance-sampled (lights and sample: true take sphere, rect or disk)",
+            sample ? "sample" : "material", ot->name);
     if (p->has_xform) {
         yaml_node_t *xn = ymap_get(&L->d, n, "rotate_y");
         return ydoc_fail(&L->d, xn ? xn : ymap_get(&L->d, n, "translate"), L->e,
@@ -322,10 +329,11 @@ static int load_object(struct loader *L, yaml_node_t *n)
         if (!strcmp(type, object_types[i].name))
             ot = &object_types[i];
     if (!ot)
-        return ydoc_fail(&L->d, tn, L->e,
-                         "type: unknown object type \"%.40s\" (expected sphere, moving_sphere, rect, disk, box, "
-                         "cylinder, triangle, pyramid or medium)",
-                         type);
+        return ydoc_fail(
+            &L->d, tn, L->e,
+            "type: unknown object type \"%.40s\" (expected sphere, moving_sphere, rect, disk, box, "
+            "cylinder, triangle, pyramid or medium)",
+            type);
     int count, sample;
     if (ymap_check(&L->d, n, ot->keys, ot->name, L->e) < 0 || (count = ot->load(L, n, p)) < 0 ||
         load_common(L, n, &p[0], &sample) < 0 || check_placement(L, n, ot, &p[0], sample) < 0)
