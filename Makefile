@@ -112,6 +112,12 @@ valgrind: all
 	  $(WORKER_BIN) --quiet --out build/valgrind/out build/valgrind/job.yaml
 	@echo "valgrind: 0 errors, 0 bytes definitely lost"
 
+# Benchmarks with the release flags: a table on stdout and bench/results.json (see BENCH.md).
+build/bench_bridson: bench/bench_bridson.c $(LIBCOMMON)
+	$(Q)$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBCOMMON) $(LDLIBS_ALL)
+bench: all build/bench_bridson
+	$(Q)sh bench/bench.sh
+
 # Fuzzing (libFuzzer, clang): each target for SECONDS; new crashes land in tests/fuzz/regress/,
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.
 FUZZ_CC     ?= clang
