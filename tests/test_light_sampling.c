@@ -101,7 +101,7 @@ int main(void)
     if (scene_load("scenes/cornell-book3.yaml", &sf, &e) < 0) {
         fprintf(stderr, "%s:%d: %s\n", e.file, e.line, e.msg);
         CHECK(0);
-        return check_report("test_render_unbiased");
+        return check_report("test_light_sampling");
     }
     CHECK(sf.scene->n_lights == 2); /* the rect light and the glass sphere */
     CHECK(render_regions(&sf, 0, 1, &on) == 0);
@@ -121,5 +121,5 @@ int main(void)
            NREG * NREG * 3, K_SIGMA, worst);
     CHECK(dim_apart >= NREG * NREG * 3 / 4);
     scene_file_free(&sf);
-    return check_report("test_render_unbiased");
+    return check_report("test_light_sampling");
 }
