@@ -12,7 +12,8 @@ check "gen_final runs (exit $rc)" [ "$rc" -eq 0 ]
 check "scenes/final.yaml is what tools/gen_final.c writes" cmp -s "$T/final.yaml" scenes/final.yaml
 "$TOOLS_DIR/gen_planet" "$T/planet.png"; rc=$?
 check "gen_planet runs (exit $rc)" [ "$rc" -eq 0 ]
-"$WORKER" diff scenes/textures/planet.png "$T/planet.png" --max-rmse 0 >"$T/planet.diff" 2>&1; rc=$?
+# (0.001 forgives a last-bit libm difference flipping a few texels by one level, nothing more)
+"$WORKER" diff scenes/textures/planet.png "$T/planet.png" --max-rmse 0.001 >"$T/planet.diff" 2>&1; rc=$?
 check "scenes/textures/planet.png has the pixels tools/gen_planet.c bakes (exit $rc)" [ "$rc" -eq 0 ]
 check "final.yaml has 400 ground boxes" [ "$(grep -c 'type: box' scenes/final.yaml)" -eq 400 ]
 check "final.yaml has 1000 cluster spheres" [ "$(grep -c 'rotate_y: 15' scenes/final.yaml)" -eq 1000 ]
