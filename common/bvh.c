@@ -1,13 +1,18 @@
 /* bvh: binned surface-area-heuristic build (Wald 2007, "On fast construction of SAH-based
-   bounding volume hierarchies") into a flat node array; iterative slab-test traversal. */
+   bounding volume hierarchies") collapsed into a flat array of 4-wide nodes (Dammertz et al.
+   2008, "Shallow bounding volume hierarchies for fast SIMD ray tracing"); iterative traversal
+   that tests a node's four child boxes at once and visits hit children nearest first. */
 #include "bvh.h"
 
 #include <float.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define BVH_BINS 12
 #define BVH_LEAF_MAX 4
-#define BVH_STACK 64
+#define BVH_DEPTH 64
+/* A wide node is visited at most once per level and pushes at most 3 children. */
+#define BVH_STACK (3 * BVH_DEPTH + 1)
 
 struct box {
     vec3 lo, hi;
@@ -29,24 +34,23 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
+/* The binary SAH tree, built first and then collapsed into 4-wide nodes. */
+struct bnode {
+    struct box box;
+    int left, right; /* interior: children; leaf: -1 */
+    int start, count;
+};
+
 struct build {
     struct scene *sc;
     struct box *boxes;
     vec3 *centroids;
     int32_t *order;
+    struct bnode *bin;
+    int n_bin;
     struct bvh_node *nodes;
     int n_nodes;
 };
-
-static void set_node_box(struct bvh_node *n, struct box b)
-{
-    /* Round outward so float boxes still enclose the double-precision geometry. */
-    double lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
-    for (int i = 0; i < 3; i++) {
-        n->lo[i] = nextafterf((float)lo[i], -FLT_MAX);
-        n->hi[i] = nextafterf((float)hi[i], FLT_MAX);
-    }
-}
 
 /* Find the best binned split of order[start..start+count); returns axis or -1 for a leaf. */
 static int best_split(struct build *bd, int start, int count, struct box bounds, double *split_at)
@@ -100,23 +104,23 @@ static int best_split(struct build *bd, int start, int count, struct box bounds,
     return best_axis;
 }
 
-static int build_node(struct build *bd, int start, int count, int depth)
+/* Binary node over order[start..start+count); returns its index in bd->bin. */
+static int build_binary(struct build *bd, int start, int count, int depth)
 {
-    int idx = bd->n_nodes++;
-    struct box bounds = box_empty();
+    int idx = bd->n_bin++;
+    struct bnode *node = &bd->bin[idx];
+    node->box = box_empty();
     for (int i = start; i < start + count; i++)
-        bounds = box_join(bounds, bd->boxes[bd->order[i]]);
-    struct bvh_node *node = &bd->nodes[idx];
-    set_node_box(node, bounds);
+        node->box = box_join(node->box, bd->boxes[bd->order[i]]);
+    node->left = node->right = -1;
+    node->start = start;
+    node->count = count;
     double split = 0;
     int ax = -1;
-    if (count > 1 && depth < BVH_STACK - 2)
-        ax = best_split(bd, start, count, bounds, &split);
-    if (ax < 0 && count <= BVH_LEAF_MAX) {
-        node->start = start;
-        node->count = count;
+    if (count > 1 && depth < BVH_DEPTH - 1)
+        ax = best_split(bd, start, count, node->box, &split);
+    if ((ax < 0 && count <= BVH_LEAF_MAX) || depth >= BVH_DEPTH - 1)
         return idx;
-    }
     int mid = start;
     if (ax >= 0) {
         for (int i = start; i < start + count; i++) {
@@ -127,26 +131,71 @@ static int build_node(struct build *bd, int start, int count, int depth)
             }
         }
     }
-    if (mid == start || mid == start + count) { /* no useful split: halve the range */
-        if (depth >= BVH_STACK - 2) {
-            node->start = start;
-            node->count = count;
-            return idx;
-        }
+    if (mid == start || mid == start + count) /* no useful split: halve the range */
         mid = start + count / 2;
+    int left = build_binary(bd, start, mid - start, depth + 1);
+    int right = build_binary(bd, mid, start + count - mid, depth + 1);
+    bd->bin[idx].left = left;
+    bd->bin[idx].right = right;
+    return idx;
+}
+
+/* Lane c of node n holds box b, rounded outward so the float box encloses the double one. */
+static void set_lane(struct bvh_node *n, int c, struct box b)
+{
+    double lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+    for (int a = 0; a < 3; a++) {
+        n->lo[a][c] = nextafterf((float)lo[a], -INFINITY);
+        n->hi[a][c] = nextafterf((float)hi[a], INFINITY);
     }
-    node->count = 0;
-    build_node(bd, start, mid - start, depth + 1);
-    int right = build_node(bd, mid, start + count - mid, depth + 1);
-    bd->nodes[idx].start = right;
-    bd->nodes[idx].count = 0;
+}
+
+/* Wide node for binary interior node b: its children, with the interior child of largest area
+   replaced by its own two children until there are four (or only leaves). Returns its index. */
+static int collapse(struct build *bd, int b)
+{
+    int idx = bd->n_nodes++;
+    int kids[4] = {bd->bin[b].left, bd->bin[b].right}, n = 2;
+    while (n < 4) {
+        int pick = -1;
+        double best = -1;
+        for (int i = 0; i < n; i++) {
+            const struct bnode *k = &bd->bin[kids[i]];
+            double area = box_area(k->box);
+            if (k->left >= 0 && area > best)
+                best = area, pick = i;
+        }
+        if (pick < 0)
+            break;
+        int split = kids[pick];
+        kids[pick] = bd->bin[split].left;
+        kids[n++] = bd->bin[split].right;
+    }
+    struct bvh_node *node = &bd->nodes[idx];
+    memset(node, 0, sizeof *node);
+    for (int c = 0; c < 4; c++)
+        for (int a = 0; a < 3; a++)
+            node->lo[a][c] = INFINITY, node->hi[a][c] = -INFINITY; /* never hit */
+    for (int c = 0; c < n; c++) {
+        const struct bnode *k = &bd->bin[kids[c]];
+        set_lane(node, c, k->box);
+        if (k->left < 0) {
+            node->child[c] = k->start;
+            node->count[c] = k->count;
+        }
+    }
+    for (int c = 0; c < n; c++)
+        if (bd->bin[kids[c]].left >= 0) {
+            int child = collapse(bd, kids[c]); /* bd->nodes is allocated up front: idx stays valid */
+            bd->nodes[idx].child[c] = child;
+        }
     return idx;
 }
 
 int bvh_build(struct scene *sc, struct err *e)
 {
     int n = sc->n_prims;
-    struct build bd = {sc, NULL, NULL, NULL, NULL, 0};
+    struct build bd = {sc, NULL, NULL, NULL, NULL, 0, NULL, 0};
     free(sc->nodes);
     free(sc->prim_order);
     sc->nodes = NULL;
@@ -157,10 +206,12 @@ int bvh_build(struct scene *sc, struct err *e)
     bd.boxes = malloc((size_t)n * sizeof *bd.boxes);
     bd.centroids = malloc((size_t)n * sizeof *bd.centroids);
     bd.order = malloc((size_t)n * sizeof *bd.order);
-    bd.nodes = malloc((size_t)(2 * n) * sizeof *bd.nodes);
-    if (!bd.boxes || !bd.centroids || !bd.order || !bd.nodes) {
+    bd.bin = malloc((size_t)(2 * n) * sizeof *bd.bin);
+    bd.nodes = malloc((size_t)n * sizeof *bd.nodes); /* a wide node per binary interior node at most */
+    if (!bd.boxes || !bd.centroids || !bd.order || !bd.bin || !bd.nodes) {
         free(bd.order);
         free(bd.nodes);
+        free(bd.bin);
         free(bd.boxes);
         free(bd.centroids);
         return err_set(e, NULL, 0, 0, "out of memory building the BVH of %d primitives", n);
@@ -170,64 +221,158 @@ int bvh_build(struct scene *sc, struct err *e)
         bd.centroids[i] = v3_scale(v3_add(bd.boxes[i].lo, bd.boxes[i].hi), 0.5);
         bd.order[i] = i;
     }
-    build_node(&bd, 0, n, 0);
+    build_binary(&bd, 0, n, 0);
+    if (bd.bin[0].left < 0) { /* the whole scene is one leaf: a root with one child */
+        struct bvh_node *root = &bd.nodes[bd.n_nodes++];
+        memset(root, 0, sizeof *root);
+        for (int c = 0; c < 4; c++)
+            for (int a = 0; a < 3; a++)
+                root->lo[a][c] = INFINITY, root->hi[a][c] = -INFINITY;
+        set_lane(root, 0, bd.bin[0].box);
+        root->child[0] = 0;
+        root->count[0] = n;
+    } else {
+        collapse(&bd, 0);
+    }
     free(bd.boxes);
     free(bd.centroids);
+    free(bd.bin);
     sc->nodes = bd.nodes;
     sc->n_nodes = bd.n_nodes;
     sc->prim_order = bd.order;
     return 0;
 }
 
-/* Slab test against multiplications by the precomputed inverse direction. */
-static int box_hit(const struct bvh_node *n, const double o[3], const double inv[3], double t0, double t1)
+/* Four floats in one vector register (a GCC/Clang extension; scalar code without SIMD). */
+typedef float bvh_f4 __attribute__((vector_size(16)));
+typedef int32_t bvh_i4 __attribute__((vector_size(16)));
+
+static inline bvh_f4 f4_load(const void *p)
 {
-    for (int a = 0; a < 3; a++) {
-        double ta = (n->lo[a] - o[a]) * inv[a];
-        double tb = (n->hi[a] - o[a]) * inv[a];
-        if (ta > tb) {
-            double t = ta;
-            ta = tb;
-            tb = t;
-        }
-        t0 = ta > t0 ? ta : t0;
-        t1 = tb < t1 ? tb : t1;
-        if (t1 < t0)
-            return 0;
-    }
-    return 1;
+    bvh_f4 x;
+    memcpy(&x, p, sizeof x);
+    return x;
 }
+static inline bvh_f4 f4_splat(float x) { return (bvh_f4){x, x, x, x}; }
+
+/* max(a, b) and min(a, b) lane by lane, b where a is NaN: a NaN slab (a zero direction
+   component with the origin on the plane) then constrains nothing. SSE's maxps/minps have
+   exactly this rule; the generic form compiles to four instructions instead of one. */
+#if defined(__SSE__)
+#include <xmmintrin.h>
+static inline bvh_f4 f4_max(bvh_f4 a, bvh_f4 b) { return (bvh_f4)_mm_max_ps((__m128)a, (__m128)b); }
+static inline bvh_f4 f4_min(bvh_f4 a, bvh_f4 b) { return (bvh_f4)_mm_min_ps((__m128)a, (__m128)b); }
+static inline int f4_mask(bvh_i4 m) { return _mm_movemask_ps((__m128)m); }
+#else
+static inline bvh_f4 f4_max(bvh_f4 a, bvh_f4 b)
+{
+    bvh_i4 m = a > b;
+    return (bvh_f4)(((bvh_i4)a & m) | ((bvh_i4)b & ~m));
+}
+static inline bvh_f4 f4_min(bvh_f4 a, bvh_f4 b)
+{
+    bvh_i4 m = a < b;
+    return (bvh_f4)(((bvh_i4)a & m) | ((bvh_i4)b & ~m));
+}
+static inline int f4_mask(bvh_i4 m) { return (m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8); }
+#endif
+
+/* The ray in float for the slab tests. Rounding the origin to float moves it by at most
+   |o| 2^-24 per axis, which shifts that axis's slab distances by at most |o / d| 2^-24: each
+   slab is widened by `slack` (twice that) so the float test never misses a box the ray meets.
+   The slabs' own rounding is covered by scaling the far distance by 1 + 2^-20 (> 1 + 2 gamma_3,
+   Ize 2013, "Robust BVH ray traversal"). Near and far planes are chosen once per ray by the
+   direction's signs, as byte offsets into a node. */
+struct fray {
+    bvh_f4 o[3], inv[3], slack[3];
+    size_t near[3], far[3];
+};
+
+static inline void fray_axis(struct fray *fr, int a, double o, double d)
+{
+    double inv = 1.0 / d;
+    size_t lo = offsetof(struct bvh_node, lo) + (size_t)a * sizeof(bvh_f4);
+    size_t hi = offsetof(struct bvh_node, hi) + (size_t)a * sizeof(bvh_f4);
+    fr->o[a] = f4_splat((float)o);
+    fr->inv[a] = f4_splat((float)inv);
+    fr->slack[a] = f4_splat((float)(fabs(o * inv) * 0x1.0p-23));
+    fr->near[a] = d < 0 ? hi : lo;
+    fr->far[a] = d < 0 ? lo : hi;
+}
+
+static inline void fray_init(struct fray *fr, const ray *r)
+{
+    fray_axis(fr, 0, r->orig.x, r->dir.x);
+    fray_axis(fr, 1, r->orig.y, r->dir.y);
+    fray_axis(fr, 2, r->orig.z, r->dir.z);
+}
+
+/* Entry distances into node n's four child boxes; *hit gets one bit per child hit. */
+static inline bvh_f4 node_test(const struct fray *fr, const char *n, bvh_f4 t_lo, float t_hi, int *hit)
+{
+    const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
+    bvh_f4 tn0 = (f4_load(n + fr->near[0]) - fr->o[0]) * fr->inv[0] - fr->slack[0];
+    bvh_f4 tn1 = (f4_load(n + fr->near[1]) - fr->o[1]) * fr->inv[1] - fr->slack[1];
+    bvh_f4 tn2 = (f4_load(n + fr->near[2]) - fr->o[2]) * fr->inv[2] - fr->slack[2];
+    bvh_f4 tf0 = (f4_load(n + fr->far[0]) - fr->o[0]) * fr->inv[0] + fr->slack[0];
+    bvh_f4 tf1 = (f4_load(n + fr->far[1]) - fr->o[1]) * fr->inv[1] + fr->slack[1];
+    bvh_f4 tf2 = (f4_load(n + fr->far[2]) - fr->o[2]) * fr->inv[2] + fr->slack[2];
+    bvh_f4 tn = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
+    bvh_f4 tf = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
+    *hit = f4_mask(tn <= tf * grow);
+    return tn;
+}
+
+struct bvh_entry {
+    int32_t child, count;
+    float t; /* entry distance into the child's box */
+};
 
 int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
 {
     if (sc->n_nodes == 0)
         return 0;
-    double o[3] = {r->orig.x, r->orig.y, r->orig.z};
-    double inv[3] = {1.0 / r->dir.x, 1.0 / r->dir.y, 1.0 / r->dir.z};
-    int stack[BVH_STACK];
+    struct fray fr;
+    fray_init(&fr, r);
+    const float grow = 1.0f + 0x1.0p-20f;
+    const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
+    float t_hi = (float)t_max * grow; /* above t_max: rounding never cuts a hit off */
+    struct bvh_entry stack[BVH_STACK];
     int sp = 0, got = 0;
-    int node = 0;
-    for (;;) {
-        const struct bvh_node *n = &sc->nodes[node];
-        if (box_hit(n, o, inv, t_min, t_max)) {
-            if (n->count > 0) {
-                for (int i = n->start; i < n->start + n->count; i++) {
-                    int p = sc->prim_order[i];
-                    if (shape_hit(&sc->prims[p], r, t_min, t_max, h)) {
-                        t_max = h->t;
-                        h->prim = p;
-                        got = 1;
-                    }
+    stack[sp++] = (struct bvh_entry){0, 0, 0.0f};
+    while (sp > 0) {
+        struct bvh_entry e = stack[--sp];
+        if (e.t > t_hi)
+            continue; /* a nearer hit was found since it was pushed */
+        if (e.count > 0) {
+            for (int i = e.child; i < e.child + e.count; i++) {
+                int p = sc->prim_order[i];
+                if (shape_hit(&sc->prims[p], r, t_min, t_max, h)) {
+                    t_max = h->t;
+                    t_hi = (float)t_max * grow;
+                    h->prim = p;
+                    got = 1;
                 }
-            } else {
-                stack[sp++] = n->start;
-                node = node + 1;
-                continue;
             }
+            continue;
         }
-        if (sp == 0)
-            break;
-        node = stack[--sp];
+        const char *n = (const char *)&sc->nodes[e.child];
+        int hit;
+        bvh_f4 tn = node_test(&fr, n, t_lo, t_hi, &hit);
+        const struct bvh_node *node = (const struct bvh_node *)n;
+        /* Push the hit children farthest first, so the nearest is popped next. */
+        int base = sp;
+        while (hit) {
+            int c = __builtin_ctz((unsigned)hit);
+            hit &= hit - 1;
+            struct bvh_entry k = {node->child[c], node->count[c], tn[c]};
+            int j = sp++;
+            while (j > base && stack[j - 1].t < k.t) {
+                stack[j] = stack[j - 1];
+                j--;
+            }
+            stack[j] = k;
+        }
     }
     return got;
 }

@@ -88,10 +88,12 @@ struct prim {
     } g;
 };
 
+/* A 4-wide BVH node: the boxes of up to four children, stored axis by axis so one SIMD
+   operation tests all four (bvh.c). Boxes are floats rounded outward. */
 struct bvh_node {
-    float lo[3], hi[3];
-    int32_t start; /* leaf: first index into prim_order; interior: right child */
-    int32_t count; /* leaf: number of prims; interior: 0 (left child is the next node) */
+    float lo[3][4], hi[3][4]; /* child c spans lo[axis][c] .. hi[axis][c]; an unused slot is empty */
+    int32_t child[4];         /* count 0: index of an interior node; else the first prim_order index */
+    int32_t count[4];         /* prims in a leaf child; 0 for an interior child or an unused slot */
 };
 
 struct scene {

@@ -1,0 +1,121 @@
+/* Tests for the BVH: its nearest hit equals a linear scan's, also for rays that graze box
+   corners and edges, run along faces or start far away (the float slab test's hard cases). */
+#include <float.h>
+#include <stdlib.h>
+
+#include "bvh.h"
+#include "check.h"
+#include "rng.h"
+#include "scene_load.h"
+#include "shape.h"
+
+/* Nearest hit by testing every primitive. */
+static int linear_hit(const struct scene *sc, const ray *r, struct hit *h)
+{
+    double t_max = DBL_MAX;
+    int got = 0;
+    for (int i = 0; i < sc->n_prims; i++)
+        if (shape_hit(&sc->prims[i], r, HIT_EPS, t_max, h)) {
+            t_max = h->t;
+            h->prim = i;
+            got = 1;
+        }
+    return got;
+}
+
+/* 1 when bvh_hit and the linear scan agree on r (hit or not, and the distance). */
+static int agrees(const struct scene *sc, const ray *r, int *hits)
+{
+    struct hit a, b;
+    int ga = bvh_hit(sc, r, HIT_EPS, DBL_MAX, &a), gb = linear_hit(sc, r, &b);
+    *hits += ga;
+    if (ga != gb)
+        return 0;
+    return !ga || fabs(a.t - b.t) <= 1e-9 * (1 + fabs(b.t));
+}
+
+static vec3 box_point(vec3 lo, vec3 hi, int k)
+{
+    /* k in [0, 27): every corner, edge midpoint, face centre and the centre of the box */
+    int i = k % 3, j = k / 3 % 3, l = k / 9;
+    return v3(i == 0 ? lo.x : i == 1 ? hi.x : 0.5 * (lo.x + hi.x), j == 0 ? lo.y : j == 1 ? hi.y : 0.5 * (lo.y + hi.y),
+              l == 0 ? lo.z : l == 1 ? hi.z : 0.5 * (lo.z + hi.z));
+}
+
+/* Rays toward 27 points of every stride-th prim's box, from inside the scene and from far_origin. */
+static void test_scene(const char *path, vec3 far_origin, int stride)
+{
+    struct scene_file sf = {0};
+    struct err e;
+    CHECK(scene_load(path, &sf, &e) == 0);
+    if (!sf.scene)
+        return;
+    const struct scene *sc = sf.scene;
+    vec3 lo = v3(DBL_MAX, DBL_MAX, DBL_MAX), hi = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
+    for (int i = 0; i < sc->n_prims; i++) {
+        vec3 l, h;
+        shape_bounds(&sc->prims[i], &l, &h);
+        if (h.x - l.x > 2000) /* the final scene's fog: keep origins near the geometry */
+            continue;
+        lo = v3_min(lo, l), hi = v3_max(hi, h);
+    }
+    struct rng r;
+    rng_seed(&r, 3, 3);
+    int ok = 1, hits = 0, rays = 0;
+    for (int i = 0; i < sc->n_prims; i += stride) {
+        vec3 pl, ph;
+        shape_bounds(&sc->prims[i], &pl, &ph);
+        for (int k = 0; k < 27; k++) {
+            vec3 target = box_point(pl, ph, k);
+            vec3 inside = v3(lo.x + rng_uniform(&r) * (hi.x - lo.x), lo.y + rng_uniform(&r) * (hi.y - lo.y),
+                             lo.z + rng_uniform(&r) * (hi.z - lo.z));
+            vec3 origins[2] = {inside, far_origin};
+            for (int o = 0; o < 2; o++) {
+                ray q = {origins[o], v3_sub(target, origins[o]), rng_uniform(&r)};
+                ok &= agrees(sc, &q, &hits);
+                /* the same ray along an axis from the target's plane: zero direction components */
+                ray axis = {target, v3(k % 3 == 0 ? 1 : 0, k % 3 == 1 ? -1 : 0, k % 3 == 2 ? 1 : 0), 0.5};
+                ok &= agrees(sc, &axis, &hits);
+                rays += 2;
+            }
+        }
+    }
+    fprintf(stderr, "%s: %d rays, %d hits\n", path, rays, hits);
+    CHECK(ok);
+    CHECK(hits > rays / 4);
+    scene_file_free(&sf);
+}
+
+/* A scene of one prim (the root holds a single leaf) and an empty scene. */
+static void test_small(void)
+{
+    struct scene *sc = scene_new();
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    ray q = {v3(0, 0, -5), v3(0, 0, 1), 0};
+    struct hit h;
+    CHECK(!bvh_hit(sc, &q, HIT_EPS, DBL_MAX, &h));
+    struct material m = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+    scene_add_material(sc, &m);
+    struct prim p = {.type = PRIM_SPHERE, .material = 0};
+    p.g.sphere.center = v3(0, 0, 0);
+    p.g.sphere.radius = 1;
+    scene_add_prim(sc, &p);
+    CHECK(scene_finish(sc, &e) == 0);
+    CHECK(bvh_hit(sc, &q, HIT_EPS, DBL_MAX, &h) && h.prim == 0);
+    CHECK_NEAR(h.t, 4, 1e-12);
+    CHECK(!bvh_hit(sc, &q, HIT_EPS, 3.9, &h));
+    ray miss = {v3(0, 1.0001, -5), v3(0, 0, 1), 0};
+    CHECK(!bvh_hit(sc, &miss, HIT_EPS, DBL_MAX, &h));
+    scene_free(sc);
+}
+
+int main(void)
+{
+    test_small();
+    test_scene("scenes/cornell-book3.yaml", v3(278, 278, -800), 1);
+    test_scene("scenes/cornell.yaml", v3(278, 278, -800), 1);
+    test_scene("scenes/checker.yaml", v3(13, 2, 3), 1);
+    test_scene("scenes/final.yaml", v3(478, 278, -600), 17);
+    return check_report("test_bvh");
+}
