@@ -135,7 +135,7 @@ static double light_pdf(const struct scene *sc, vec3 o, vec3 dir, double time)
 static vec3 random_in_unit_sphere(struct rng *r)
 {
     for (;;) {
-        vec3 p = v3(2 * rng_uniform(r) - 1, 2 * rng_uniform(r) - 1, 2 * rng_uniform(r) - 1);
+        vec3 p = v3(2 * rng_uniform32(r) - 1, 2 * rng_uniform32(r) - 1, 2 * rng_uniform32(r) - 1);
         if (v3_len2(p) < 1)
             return p;
     }
@@ -144,15 +144,16 @@ static vec3 random_in_unit_sphere(struct rng *r)
 /* Cosine-weighted direction about n (Malley's method). */
 static vec3 cosine_direction(const onb *frame, struct rng *r)
 {
-    double u1 = rng_uniform(r), u2 = rng_uniform(r);
-    double phi = 2 * PI * u1, s = sqrt(u2);
-    return onb_local(frame, v3(cos(phi) * s, sin(phi) * s, sqrt(1 - u2)));
+    double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
+    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
+    return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
 }
 
 static vec3 uniform_sphere_direction(struct rng *r)
 {
-    double z = 1 - 2 * rng_uniform(r), phi = 2 * PI * rng_uniform(r), s = sqrt(fmax(0, 1 - z * z));
-    return v3(cos(phi) * s, sin(phi) * s, z);
+    double z = 1 - 2 * rng_uniform32(r), s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
+    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
+    return v3(cos_phi * s, sin_phi * s, z);
 }
 
 static vec3 surface_albedo(const struct scene *sc, const struct material *m, struct hit *h)
@@ -170,7 +171,8 @@ static double reflectance(double cosine, double ref_idx)
     /* Schlick's approximation. */
     double r0 = (1 - ref_idx) / (1 + ref_idx);
     r0 *= r0;
-    return r0 + (1 - r0) * pow(1 - cosine, 5);
+    double x = 1 - cosine, x2 = x * x;
+    return r0 + (1 - r0) * (x2 * x2 * x);
 }
 
 /* A direction toward one of the scene's lights, chosen uniformly; disk and rect lights take
@@ -184,8 +186,8 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng)
     if (shape_light_uses_points(lp)) {
         s = next_light_point(ctx, i);
     } else {
-        s.x = rng_uniform(rng);
-        s.y = rng_uniform(rng);
+        s.x = rng_uniform32(rng);
+        s.y = rng_uniform32(rng);
     }
     return shape_light_dir(lp, o, s);
 }
@@ -221,9 +223,9 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
             continue;
         case MAT_DIELECTRIC: {
             double ratio = h.front ? 1.0 / m->ior : m->ior;
-            double cos_t = fmin(v3_dot(v3_neg(unit_dir), h.n), 1.0);
+            double cos_t = d_min(v3_dot(v3_neg(unit_dir), h.n), 1.0);
             double sin_t = sqrt(1 - cos_t * cos_t);
-            dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform(rng))
+            dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
                       ? v3_reflect(unit_dir, h.n)
                       : v3_refract(unit_dir, h.n, ratio);
             r = (ray){h.p, dir, r.time};
@@ -234,7 +236,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
             const double phase = 1 / (4 * PI);
             double pdf = phase;
             if (mix) {
-                dir = rng_uniform(rng) < 0.5 ? light_direction(ctx, h.p, rng) : uniform_sphere_direction(rng);
+                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng) : uniform_sphere_direction(rng);
                 pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * phase;
             } else {
                 dir = uniform_sphere_direction(rng);
@@ -248,12 +250,12 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
             onb frame = onb_from_w(h.n);
             double pdf;
             if (mix) {
-                dir = rng_uniform(rng) < 0.5 ? light_direction(ctx, h.p, rng) : cosine_direction(&frame, rng);
+                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng) : cosine_direction(&frame, rng);
                 double c = v3_dot(v3_unit(dir), h.n);
                 pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * (c > 0 ? c / PI : 0);
             } else {
                 dir = cosine_direction(&frame, rng);
-                pdf = fmax(0, v3_dot(v3_unit(dir), h.n)) / PI;
+                pdf = d_max(0, v3_dot(v3_unit(dir), h.n)) / PI;
             }
             double cosine = v3_dot(v3_unit(dir), h.n);
             if (cosine <= 0 || !(pdf > 0))

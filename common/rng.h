@@ -43,6 +43,13 @@ static inline double rng_uniform(struct rng *r)
     return (double)(((hi << 32) | lo) >> 11) * 0x1.0p-53;
 }
 
+/* Uniform double in [0, 1) with 32 random bits: one PCG step instead of two, where a
+   direction or a coin needs no more resolution than 2^-32. */
+static inline double rng_uniform32(struct rng *r)
+{
+    return rng_u32(r) * 0x1.0p-32;
+}
+
 /* Uniform integer in [0, n), n > 0 (Lemire's multiply; bias below 2^-32 * n). */
 static inline uint32_t rng_below(struct rng *r, uint32_t n)
 {

@@ -144,8 +144,9 @@ vec3 shape_light_point(const struct prim *p, struct pt2 s)
 {
     if (p->type == PRIM_DISK) {
         /* r = R sqrt(u), theta = 2 pi v: uniform by area over the whole radius-R disk. */
-        double r = p->g.disk.radius * sqrt(s.x), th = 2 * PI * s.y;
-        vec3 q = v3_add(v3_scale(p->g.disk.e1, r * cos(th)), v3_scale(p->g.disk.e2, r * sin(th)));
+        double r = p->g.disk.radius * sqrt(s.x), sin_t, cos_t;
+        v3_sincos_turn(s.y, &sin_t, &cos_t);
+        vec3 q = v3_add(v3_scale(p->g.disk.e1, r * cos_t), v3_scale(p->g.disk.e2, r * sin_t));
         return v3_add(p->g.disk.center, q);
     }
     int ax = p->g.rect.axis, a, b;
@@ -173,12 +174,13 @@ vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
     if (p->type != PRIM_SPHERE)
         return v3_sub(shape_light_point(p, s), o);
     /* z uniform in [cos_max, 1] is uniform over the cone's solid angle. */
-    double z = 1 - s.y * sphere_one_minus_cos(p, o), phi = 2 * PI * s.x;
-    double sin_t = sqrt(fmax(0, 1 - z * z));
+    double z = 1 - s.y * sphere_one_minus_cos(p, o), sin_phi, cos_phi;
+    double sin_t = sqrt(d_max(0, 1 - z * z));
+    v3_sincos_turn(s.x, &sin_phi, &cos_phi);
     vec3 to_c = v3_sub(p->g.sphere.center, o);
     double len = v3_len(to_c);
     onb f = onb_from_w(len > 0 ? v3_scale(to_c, 1.0 / len) : v3(0, 0, 1));
-    return onb_local(&f, v3(cos(phi) * sin_t, sin(phi) * sin_t, z));
+    return onb_local(&f, v3(cos_phi * sin_t, sin_phi * sin_t, z));
 }
 
 double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)

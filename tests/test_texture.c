@@ -107,8 +107,35 @@ static void test_sphere_uv(void)
     CHECK_NEAR(h.u, 0.25, 1e-12);
 }
 
+/* The checker picks odd exactly where the product of libm's sines is negative (away from its
+   zeros, where a rounding of x / pi may differ). */
+static void test_checker_sign(void)
+{
+    struct scene *sc = scene_new();
+    struct texture ck = {.type = TEX_CHECKER, .odd = v3(0, 0, 0), .even = v3(1, 1, 1), .scale = 10};
+    struct rng g;
+    rng_seed(&g, 5, 5);
+    int same = 1, odd = 0;
+    for (int i = 0; i < 200000; i++) {
+        double r = i < 100000 ? 5 : 2000;
+        vec3 p = v3(r * (2 * rng_uniform(&g) - 1), r * (2 * rng_uniform(&g) - 1), r * (2 * rng_uniform(&g) - 1));
+        double s = sin(10 * p.x) * sin(10 * p.y) * sin(10 * p.z);
+        if (fabs(s) < 1e-9)
+            continue;
+        vec3 c = texture_value(sc, &ck, 0, 0, p);
+        same &= (c.x == 0) == (s < 0);
+        odd += c.x == 0;
+    }
+    CHECK(same);
+    CHECK(odd > 90000 && odd < 110000);
+    CHECK(texture_value(sc, &ck, 0, 0, v3(0, -1, -1)).x == 1); /* a zero factor: even */
+    CHECK(texture_value(sc, &ck, 0, 0, v3(1e300, 1, 1)).x == (sin(1e301) * sin(10) * sin(10) < 0 ? 0 : 1));
+    scene_free(sc);
+}
+
 int main(void)
 {
+    test_checker_sign();
     test_perlin();
     test_textures();
     test_sphere_uv();
