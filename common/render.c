@@ -9,9 +9,11 @@
 #include "bvh.h"
 #include "texture.h"
 
-/* A light's current point set within the pixel: points are used in order, then redrawn. */
+/* A light's current point set within the pixel, taken in a random order, then redrawn: the
+   points themselves (poisson), or the cells whose points are made when taken (the others). */
 struct light_points {
     struct pt2 *pts;
+    uint32_t *cells;
     size_t n, next;
 };
 
@@ -58,8 +60,10 @@ void render_ctx_free(struct render_ctx *ctx)
     if (!ctx)
         return;
     if (ctx->lp)
-        for (int i = 0; i < ctx->sc->n_lights; i++)
+        for (int i = 0; i < ctx->sc->n_lights; i++) {
             free(ctx->lp[i].pts);
+            free(ctx->lp[i].cells);
+        }
     free(ctx->lp);
     free(ctx->pixel_pts);
     free(ctx);
@@ -89,8 +93,11 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
             render_ctx_free(ctx);
             return NULL;
         }
-        ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
-        if (!ctx->lp[i].pts)
+        if (sampler_cells(light) > 0)
+            ctx->lp[i].cells = malloc(sampler_cells(light) * sizeof *ctx->lp[i].cells);
+        else
+            ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
+        if (!ctx->lp[i].pts && !ctx->lp[i].cells)
             goto fail;
     }
     return ctx;
@@ -105,19 +112,37 @@ fail:
    only part of the light (a grid's first rows, a Poisson blob around its first point) and
    bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle done lazily,
    one swap per point taken. Every point consumed is then uniform over the light, and the set
-   still stratifies what is consumed of it. */
+   still stratifies what is consumed of it. Uniform and jitter sets shuffle their cells and make
+   a cell's point when it is taken; a random set's points are independent, so any order of them
+   is just the next point. Only a Poisson set is drawn whole. */
 static struct pt2 next_light_point(struct render_ctx *ctx, int i)
 {
     struct light_points *lp = &ctx->lp[i];
+    const enum sampler_kind kind = sampler_kind_of(ctx->light);
     if (lp->next >= lp->n) {
         double t0 = now_s();
-        lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
+        if (lp->cells) {
+            lp->n = sampler_cells(ctx->light);
+            if (kind != SAMPLER_RANDOM)
+                for (uint32_t c = 0; c < lp->n; c++)
+                    lp->cells[c] = c;
+        } else {
+            lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
+        }
         lp->next = 0;
         ctx->st->sampler_s += now_s() - t0;
         ctx->st->light_sets++;
     }
     size_t k = lp->next++;
+    if (kind == SAMPLER_RANDOM)
+        return sampler_cell_point(ctx->light, 0, &ctx->light_rng);
     size_t j = k + rng_below(&ctx->light_rng, (uint32_t)(lp->n - k));
+    if (lp->cells) {
+        uint32_t cell = lp->cells[j];
+        lp->cells[j] = lp->cells[k];
+        lp->cells[k] = cell;
+        return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
+    }
     struct pt2 chosen = lp->pts[j];
     lp->pts[j] = lp->pts[k];
     lp->pts[k] = chosen;

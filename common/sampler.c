@@ -353,6 +353,34 @@ static inline double shift_unit(double p, double o)
     return v >= 1.0 ? 0.0 : v;
 }
 
+enum sampler_kind sampler_kind_of(const struct sampler *s)
+{
+    return s->kind;
+}
+
+uint32_t sampler_cells(const struct sampler *s)
+{
+    return s->kind == SAMPLER_POISSON ? 0 : (uint32_t)s->capacity;
+}
+
+struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng)
+{
+    const int n = s->grid_n;
+    const int i = (int)(cell % (uint32_t)n), j = (int)(cell / (uint32_t)n);
+    switch (s->kind) {
+    case SAMPLER_UNIFORM:
+        return (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
+    case SAMPLER_JITTER: {
+        double u = rng_uniform(rng), v = rng_uniform(rng);
+        return (struct pt2){cell_coord(i, u, n), cell_coord(j, v, n)};
+    }
+    default: {
+        double u = rng_uniform(rng), v = rng_uniform(rng);
+        return (struct pt2){u, v};
+    }
+    }
+}
+
 size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
 {
     const int n = s->grid_n;

@@ -40,6 +40,18 @@ void sampler_free(struct sampler *s);
 /* Capacity an `out` array passed to sampler_draw must have. */
 size_t sampler_set_capacity(const struct sampler *s);
 
+/* The kind s was made with. */
+enum sampler_kind sampler_kind_of(const struct sampler *s);
+
+/* Sets point by point, for a caller that consumes a set in random order and often only part
+   of it (a light's points within one pixel). A uniform, jitter or random set has one point per
+   cell of an n x n grid, and that point depends on its cell alone (random: on nothing), so it
+   can be made when taken instead of drawing the whole set: sampler_cells is n * n (0 for
+   poisson, whose sets must be drawn whole), and sampler_cell_point makes cell c's point,
+   distributed exactly as in sampler_draw's set. */
+uint32_t sampler_cells(const struct sampler *s);
+struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng);
+
 /* Draw one set into out, consuming rng; returns the count (>= 1). Allocates nothing: the
    sampler's workspace is reused, so one sampler serves one thread at a time. With a pool,
    the set is one of the pool's, picked by rng and shifted by an rng offset modulo 1

@@ -517,8 +517,46 @@ static void test_convergence(void)
     free(p);
 }
 
+/* Cell by cell: uniform cells are sampler_draw's points, jitter points stay inside their cell
+   (also at the last cell's far edge), random ones in the square; poisson has no cells. */
+static void test_cells(void)
+{
+    struct err e;
+    struct rng rng;
+    rng_seed(&rng, 11, 11);
+    struct sampler *u = sampler_new(SAMPLER_UNIFORM, 10, 0, 0, &e), *j = sampler_new(SAMPLER_JITTER, 3, 0, 0, &e);
+    struct sampler *r = sampler_new(SAMPLER_RANDOM, 5, 0, 0, &e), *p = sampler_new(SAMPLER_POISSON, 5, 0, 0, &e);
+    CHECK(u && j && r && p);
+    if (!u || !j || !r || !p)
+        return;
+    CHECK(sampler_cells(u) == 100 && sampler_cells(j) == 33 * 33 && sampler_cells(r) == 400 && sampler_cells(p) == 0);
+    CHECK(sampler_kind_of(j) == SAMPLER_JITTER && sampler_kind_of(p) == SAMPLER_POISSON);
+    struct pt2 grid[100];
+    CHECK(sampler_draw(u, &rng, grid) == 100);
+    int same = 1, inside = 1, in_square = 1;
+    for (uint32_t c = 0; c < 100; c++) {
+        struct pt2 q = sampler_cell_point(u, c, &rng);
+        same &= q.x == grid[c].x && q.y == grid[c].y;
+    }
+    for (int k = 0; k < 20000; k++) {
+        uint32_t c = k < 100 ? 33 * 33 - 1 : rng_below(&rng, 33 * 33);
+        struct pt2 q = sampler_cell_point(j, c, &rng);
+        inside &= (int)(q.x * 33) == (int)(c % 33) && (int)(q.y * 33) == (int)(c / 33) && q.x < 1 && q.y < 1;
+        q = sampler_cell_point(r, c, &rng);
+        in_square &= q.x >= 0 && q.x < 1 && q.y >= 0 && q.y < 1;
+    }
+    CHECK(same);
+    CHECK(inside);
+    CHECK(in_square);
+    sampler_free(u);
+    sampler_free(j);
+    sampler_free(r);
+    sampler_free(p);
+}
+
 int main(void)
 {
+    test_cells();
     test_names_and_sizes();
     test_grid_counts();
     test_poisson_counts();
