@@ -324,8 +324,8 @@ static inline bvh_f4 node_test(const struct fray *fr, const char *n, bvh_f4 t_lo
 }
 
 struct bvh_entry {
-    int32_t child, count;
-    float t; /* entry distance into the child's box */
+    int32_t node;
+    float t; /* entry distance into the node's box */
 };
 
 int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
@@ -338,14 +338,22 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
     const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
     float t_hi = (float)t_max * grow; /* above t_max: rounding never cuts a hit off */
     struct bvh_entry stack[BVH_STACK];
-    int sp = 0, got = 0;
-    stack[sp++] = (struct bvh_entry){0, 0, 0.0f};
-    while (sp > 0) {
-        struct bvh_entry e = stack[--sp];
-        if (e.t > t_hi)
-            continue; /* a nearer hit was found since it was pushed */
-        if (e.count > 0) {
-            for (int i = e.child; i < e.child + e.count; i++) {
+    int sp = 0, got = 0, node = 0;
+    for (;;) {
+        const struct bvh_node *n = &sc->nodes[node];
+        int hit;
+        bvh_f4 tn = node_test(&fr, (const char *)n, t_lo, t_hi, &hit);
+        /* Leaf children first, as met: their hits shorten the ray for the other children. */
+        int inner = 0;
+        for (int m = hit; m; m &= m - 1) {
+            int c = __builtin_ctz((unsigned)m);
+            if (n->count[c] == 0) {
+                inner |= 1 << c;
+                continue;
+            }
+            if (tn[c] > t_hi)
+                continue;
+            for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
                 int p = sc->prim_order[i];
                 if (shape_hit(&sc->prims[p], r, t_min, t_max, h)) {
                     t_max = h->t;
@@ -354,18 +362,25 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
                     got = 1;
                 }
             }
-            continue;
         }
-        const char *n = (const char *)&sc->nodes[e.child];
-        int hit;
-        bvh_f4 tn = node_test(&fr, n, t_lo, t_hi, &hit);
-        const struct bvh_node *node = (const struct bvh_node *)n;
-        /* Push the hit children farthest first, so the nearest is popped next. */
+        /* Then the nearest interior child next, the others pushed farthest first. */
+        int next = -1;
+        float next_t = 0;
         int base = sp;
-        while (hit) {
-            int c = __builtin_ctz((unsigned)hit);
-            hit &= hit - 1;
-            struct bvh_entry k = {node->child[c], node->count[c], tn[c]};
+        for (; inner; inner &= inner - 1) {
+            int c = __builtin_ctz((unsigned)inner);
+            if (tn[c] > t_hi)
+                continue;
+            struct bvh_entry k = {n->child[c], tn[c]};
+            if (next < 0) {
+                next = k.node, next_t = k.t;
+                continue;
+            }
+            if (k.t < next_t) { /* k is the new nearest: push the old one */
+                struct bvh_entry old = {next, next_t};
+                next = k.node, next_t = k.t;
+                k = old;
+            }
             int j = sp++;
             while (j > base && stack[j - 1].t < k.t) {
                 stack[j] = stack[j - 1];
@@ -373,6 +388,16 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
             }
             stack[j] = k;
         }
+        if (next >= 0) {
+            node = next;
+            continue;
+        }
+        /* Pop the nearest pushed node still in reach of the nearest hit so far. */
+        while (sp > 0 && stack[sp - 1].t > t_hi)
+            sp--;
+        if (sp == 0)
+            break;
+        node = stack[--sp].node;
     }
     return got;
 }
