@@ -277,27 +277,30 @@ static inline bvh_f4 f4_min(bvh_f4 a, bvh_f4 b)
 static inline int f4_mask(bvh_i4 m) { return (m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8); }
 #endif
 
-/* The ray in float for the slab tests. Rounding the origin to float moves it by at most
-   |o| 2^-24 per axis, which shifts that axis's slab distances by at most |o / d| 2^-24: each
-   slab is widened by `slack` (twice that) so the float test never misses a box the ray meets.
-   The slabs' own rounding is covered by scaling the far distance by 1 + 2^-20 (> 1 + 2 gamma_3,
-   Ize 2013, "Robust BVH ray traversal"). Near and far planes are chosen once per ray by the
-   direction's signs, as byte offsets into a node. */
+/* The ray in float for the slab tests. Rounding the origin o to float would move it by up to
+   |o| 2^-24 per axis and could make the test miss a box the ray meets, so each axis gets two
+   float origins instead, |o| 2^-23 to either side (still on their side after rounding): the
+   near plane's distance is measured from the one that makes it smallest, the far plane's from
+   the one that makes it largest. The slabs' own rounding is covered by scaling the far distance
+   by 1 + 2^-20 (> 1 + 2 gamma_3, Ize 2013, "Robust BVH ray traversal"). Near and far planes are
+   chosen once per ray by the direction's sign bits (-0 included), as byte offsets into a node. */
 struct fray {
-    bvh_f4 o[3], inv[3], slack[3];
+    bvh_f4 o_near[3], o_far[3], inv[3];
     size_t near[3], far[3];
 };
 
 static inline void fray_axis(struct fray *fr, int a, double o, double d)
 {
-    double inv = 1.0 / d;
-    size_t lo = offsetof(struct bvh_node, lo) + (size_t)a * sizeof(bvh_f4);
-    size_t hi = offsetof(struct bvh_node, hi) + (size_t)a * sizeof(bvh_f4);
-    fr->o[a] = f4_splat((float)o);
-    fr->inv[a] = f4_splat((float)inv);
-    fr->slack[a] = f4_splat((float)(fabs(o * inv) * 0x1.0p-23));
-    fr->near[a] = d < 0 ? hi : lo;
-    fr->far[a] = d < 0 ? lo : hi;
+    const size_t lo = offsetof(struct bvh_node, lo) + (size_t)a * sizeof(bvh_f4);
+    const size_t hi = offsetof(struct bvh_node, hi) + (size_t)a * sizeof(bvh_f4);
+    const int neg = signbit(d) != 0;
+    double shift = fabs(o) * 0x1.0p-23;
+    /* t = (plane - o) / d falls as o grows when d > 0: the near distance from o + shift */
+    fr->o_near[a] = f4_splat((float)(neg ? o - shift : o + shift));
+    fr->o_far[a] = f4_splat((float)(neg ? o + shift : o - shift));
+    fr->inv[a] = f4_splat((float)(1.0 / d));
+    fr->near[a] = neg ? hi : lo;
+    fr->far[a] = neg ? lo : hi;
 }
 
 static inline void fray_init(struct fray *fr, const ray *r)
@@ -311,12 +314,12 @@ static inline void fray_init(struct fray *fr, const ray *r)
 static inline bvh_f4 node_test(const struct fray *fr, const char *n, bvh_f4 t_lo, float t_hi, int *hit)
 {
     const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
-    bvh_f4 tn0 = (f4_load(n + fr->near[0]) - fr->o[0]) * fr->inv[0] - fr->slack[0];
-    bvh_f4 tn1 = (f4_load(n + fr->near[1]) - fr->o[1]) * fr->inv[1] - fr->slack[1];
-    bvh_f4 tn2 = (f4_load(n + fr->near[2]) - fr->o[2]) * fr->inv[2] - fr->slack[2];
-    bvh_f4 tf0 = (f4_load(n + fr->far[0]) - fr->o[0]) * fr->inv[0] + fr->slack[0];
-    bvh_f4 tf1 = (f4_load(n + fr->far[1]) - fr->o[1]) * fr->inv[1] + fr->slack[1];
-    bvh_f4 tf2 = (f4_load(n + fr->far[2]) - fr->o[2]) * fr->inv[2] + fr->slack[2];
+    bvh_f4 tn0 = (f4_load(n + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
+    bvh_f4 tn1 = (f4_load(n + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
+    bvh_f4 tn2 = (f4_load(n + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
+    bvh_f4 tf0 = (f4_load(n + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
+    bvh_f4 tf1 = (f4_load(n + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
+    bvh_f4 tf2 = (f4_load(n + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
     bvh_f4 tn = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
     bvh_f4 tf = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
     *hit = f4_mask(tn <= tf * grow);

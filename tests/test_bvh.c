@@ -76,7 +76,10 @@ static void test_scene(const char *path, vec3 far_origin, int stride)
                 /* the same ray along an axis from the target's plane: zero direction components */
                 ray axis = {target, v3(k % 3 == 0 ? 1 : 0, k % 3 == 1 ? -1 : 0, k % 3 == 2 ? 1 : 0), 0.5};
                 ok &= agrees(sc, &axis, &hits);
-                rays += 2;
+                /* and with negative zeros (as negating a direction makes them) */
+                ray neg = {v3_add(target, v3(0, 0.5, 0)), v3(-0.0, -1, -0.0), 0.5};
+                ok &= agrees(sc, &neg, &hits);
+                rays += 3;
             }
         }
     }
