@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "bvh.h"
+#include "shape.h"
 
 struct scene *scene_new(void)
 {
@@ -57,7 +58,10 @@ int scene_add_material(struct scene *sc, const struct material *m)
 
 int scene_add_prim(struct scene *sc, const struct prim *p)
 {
-    return push((void **)&sc->prims, &sc->n_prims, sizeof *p, p);
+    int i = push((void **)&sc->prims, &sc->n_prims, sizeof *p, p);
+    if (i >= 0)
+        shape_prepare(&sc->prims[i]);
+    return i;
 }
 
 int scene_add_light(struct scene *sc, int prim)
@@ -85,5 +89,7 @@ int scene_use_perlin(struct scene *sc)
 
 int scene_finish(struct scene *sc, struct err *e)
 {
+    for (int i = 0; i < sc->n_prims; i++)
+        shape_prepare(&sc->prims[i]);
     return bvh_build(sc, e);
 }

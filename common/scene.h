@@ -42,7 +42,8 @@ enum prim_type {
     PRIM_MEDIUM
 };
 
-/* One primitive. Geometry is in object space; rotate_y (degrees) then translate place it. */
+/* One primitive. Geometry is in object space; rotate_y (degrees) then translate place it.
+   Fields marked "derived" are filled from the others by shape_prepare (scene_add_prim calls it). */
 struct prim {
     int type;
     int material;
@@ -50,6 +51,7 @@ struct prim {
     int has_xform; /* cos_y/sin_y/offset valid */
     double cos_y, sin_y;
     vec3 offset;
+    double area; /* derived: the surface area of a sphere, rect or disk (light pdfs) */
     union {
         struct {
             vec3 center;
@@ -60,6 +62,7 @@ struct prim {
             double a0, a1;    /* extent along the first in-plane axis */
             double b0, b1;    /* extent along the second in-plane axis */
             double k;         /* the plane's coordinate on the normal axis */
+            vec3 n, ea, eb;   /* derived: unit vectors along the normal axis and the in-plane axes */
         } rect;
         struct {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */

@@ -61,34 +61,32 @@ static int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_m
     return 1;
 }
 
-/* The two in-plane axes of a rect whose normal is `axis`. */
-static void rect_axes(int axis, int *a, int *b)
+void shape_prepare(struct prim *p)
 {
-    *a = axis == 0 ? 1 : 0;
-    *b = axis == 2 ? 1 : 2;
+    if (p->type == PRIM_RECT) {
+        int ax = p->g.rect.axis, a = ax == 0 ? 1 : 0, b = ax == 2 ? 1 : 2;
+        p->g.rect.n = v3(ax == 0, ax == 1, ax == 2);
+        p->g.rect.ea = v3(a == 0, a == 1, a == 2);
+        p->g.rect.eb = v3(b == 0, b == 1, b == 2);
+    }
+    p->area = shape_area(p);
 }
 
+/* Dot products with the rect's unit axes pick coordinates without a branch on the axis; a
+   direction parallel to the plane gives t = +-inf or NaN, which the range test turns down. */
 static int hit_rect(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    int ax = p->g.rect.axis, a, b;
-    rect_axes(ax, &a, &b);
-    double dn = v3_get(r->dir, ax);
-    if (dn == 0)
-        return 0;
-    double t = (p->g.rect.k - v3_get(r->orig, ax)) / dn;
+    const vec3 n = p->g.rect.n;
+    double t = (p->g.rect.k - v3_dot(r->orig, n)) / v3_dot(r->dir, n);
     if (!(t > t_min && t < t_max))
         return 0;
-    double pa = v3_get(r->orig, a) + t * v3_get(r->dir, a);
-    double pb = v3_get(r->orig, b) + t * v3_get(r->dir, b);
+    vec3 q = ray_at(r, t);
+    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
     if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
         return 0;
     h->t = t;
-    h->p = ray_at(r, t);
-    h->u = (pa - p->g.rect.a0) / (p->g.rect.a1 - p->g.rect.a0);
-    h->v = (pb - p->g.rect.b0) / (p->g.rect.b1 - p->g.rect.b0);
-    double s = p->flip ? -1.0 : 1.0;
-    vec3 outward = v3(ax == 0 ? s : 0, ax == 1 ? s : 0, ax == 2 ? s : 0);
-    set_face(h, r, outward);
+    h->p = q;
+    set_face(h, r, p->flip ? v3_neg(n) : n);
     return 1;
 }
 
@@ -108,8 +106,6 @@ static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_m
         return 0;
     h->t = t;
     h->p = q;
-    h->u = 0.5 + 0.5 * v3_dot(d, p->g.disk.e1) / rad;
-    h->v = 0.5 + 0.5 * v3_dot(d, p->g.disk.e2) / rad;
     set_face(h, r, n);
     return 1;
 }
@@ -269,33 +265,38 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
 
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    ray local = p->has_xform ? to_object(p, r) : *r;
+    ray local;
+    const ray *q = r;
+    if (p->has_xform) {
+        local = to_object(p, r);
+        q = &local;
+    }
     int got = 0;
     switch (p->type) {
     case PRIM_SPHERE:
-        got = hit_sphere(p->g.sphere.center, p->g.sphere.radius, &local, t_min, t_max, h);
+        got = hit_sphere(p->g.sphere.center, p->g.sphere.radius, q, t_min, t_max, h);
         break;
     case PRIM_MOVING_SPHERE:
-        got = hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, local.time), p->g.msphere.radius,
-                         &local, t_min, t_max, h);
+        got = hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, q->time), p->g.msphere.radius, q,
+                         t_min, t_max, h);
         break;
     case PRIM_RECT:
-        got = hit_rect(p, &local, t_min, t_max, h);
+        got = hit_rect(p, q, t_min, t_max, h);
         break;
     case PRIM_DISK:
-        got = hit_disk(p, &local, t_min, t_max, h);
+        got = hit_disk(p, q, t_min, t_max, h);
         break;
     case PRIM_BOX:
-        got = hit_box(p, &local, t_min, t_max, h);
+        got = hit_box(p, q, t_min, t_max, h);
         break;
     case PRIM_CYLINDER:
-        got = hit_cylinder(p, &local, t_min, t_max, h);
+        got = hit_cylinder(p, q, t_min, t_max, h);
         break;
     case PRIM_TRIANGLE:
-        got = hit_triangle(p, &local, t_min, t_max, h);
+        got = hit_triangle(p, q, t_min, t_max, h);
         break;
     case PRIM_MEDIUM:
-        got = hit_medium(p, &local, t_min, t_max, h);
+        got = hit_medium(p, q, t_min, t_max, h);
         break;
     }
     if (!got)

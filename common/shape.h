@@ -16,6 +16,10 @@ struct hit {
     int prim;
 };
 
+/* Fill p's derived fields from its geometry. scene_add_prim does it; call it again after
+   editing a prim's geometry by hand. */
+void shape_prepare(struct prim *p);
+
 /* Nearest hit of r with p in (t_min, t_max): 1 and h filled, else 0. Pure: a medium draws its
    free-flight distance from a hash of the ray, so the same ray always gets the same answer. */
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h);

@@ -17,13 +17,24 @@ static void rect_axes(int axis, int *a, int *b)
 
 void shape_uv(const struct prim *p, struct hit *h)
 {
-    if (p->type != PRIM_SPHERE)
-        return; /* rect and disk fill u, v while hitting; other shapes carry no texture image */
     vec3 q = h->p;
     if (p->has_xform) {
         vec3 o = v3_sub(q, p->offset);
         q = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
     }
+    if (p->type == PRIM_RECT) {
+        h->u = (v3_dot(q, p->g.rect.ea) - p->g.rect.a0) / (p->g.rect.a1 - p->g.rect.a0);
+        h->v = (v3_dot(q, p->g.rect.eb) - p->g.rect.b0) / (p->g.rect.b1 - p->g.rect.b0);
+        return;
+    }
+    if (p->type == PRIM_DISK) {
+        vec3 d = v3_sub(q, p->g.disk.center);
+        h->u = 0.5 + 0.5 * v3_dot(d, p->g.disk.e1) / p->g.disk.radius;
+        h->v = 0.5 + 0.5 * v3_dot(d, p->g.disk.e2) / p->g.disk.radius;
+        return;
+    }
+    if (p->type != PRIM_SPHERE)
+        return; /* other shapes carry no texture image */
     vec3 d = v3_scale(v3_sub(q, p->g.sphere.center), 1.0 / p->g.sphere.radius);
     double theta = acos(fmax(-1.0, fmin(1.0, -d.y)));
     double phi = atan2(-d.z, d.x) + PI;
@@ -149,13 +160,10 @@ vec3 shape_light_point(const struct prim *p, struct pt2 s)
         vec3 q = v3_add(v3_scale(p->g.disk.e1, r * cos_t), v3_scale(p->g.disk.e2, r * sin_t));
         return v3_add(p->g.disk.center, q);
     }
-    int ax = p->g.rect.axis, a, b;
-    rect_axes(ax, &a, &b);
-    double c[3];
-    c[ax] = p->g.rect.k;
-    c[a] = p->g.rect.a0 + s.x * (p->g.rect.a1 - p->g.rect.a0);
-    c[b] = p->g.rect.b0 + s.y * (p->g.rect.b1 - p->g.rect.b0);
-    return v3(c[0], c[1], c[2]);
+    /* the unit axes have one non-zero component each: the sum is exact */
+    double pa = p->g.rect.a0 + s.x * (p->g.rect.a1 - p->g.rect.a0);
+    double pb = p->g.rect.b0 + s.y * (p->g.rect.b1 - p->g.rect.b0);
+    return v3_add(v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, pa)), v3_scale(p->g.rect.eb, pb));
 }
 
 /* 1 - cos of the half-angle of the cone a sphere subtends from o, computed without
@@ -183,21 +191,49 @@ vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
     return onb_local(&f, v3(cos_phi * sin_t, sin_phi * sin_t, z));
 }
 
+/* Solid-angle density of area-uniform sampling of a planar light seen at distance t along dir
+   with dn = dir . normal: dist^2 / (cos area) = t^2 |dir|^3 / (|dn| area). Lights are sampled
+   from both sides (the back is dark, and the estimate then just adds nothing). */
+static double planar_pdf(const struct prim *p, double t, double dn, vec3 dir)
+{
+    double d2 = v3_len2(dir), adn = fabs(dn);
+    if (!(adn > 1e-12 * sqrt(d2)))
+        return 0;
+    return t * t * d2 * sqrt(d2) / (adn * p->area);
+}
+
 double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
 {
-    if (p->type == PRIM_SPHERE) {
+    switch (p->type) {
+    case PRIM_SPHERE: {
         double omc = sphere_one_minus_cos(p, o);
         vec3 to_c = v3_sub(p->g.sphere.center, o);
         double c = v3_dot(dir, to_c) / (v3_len(dir) * v3_len(to_c));
         return omc >= 2 || 1 - c <= omc ? 1 / (2 * PI * omc) : 0;
     }
-    struct hit h;
-    ray r = {o, dir, time};
-    if (!shape_hit(p, &r, HIT_EPS, DBL_MAX, &h))
-        return 0;
-    double dist2 = h.t * h.t * v3_len2(dir);
-    double cosine = fabs(v3_dot(dir, h.n)) / v3_len(dir);
-    if (cosine < 1e-12)
-        return 0;
-    return dist2 / (cosine * shape_area(p));
+    case PRIM_RECT: {
+        /* shape_hit's rect test, minus the hit record */
+        const vec3 n = p->g.rect.n;
+        double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
+        if (!(t > HIT_EPS && t < DBL_MAX))
+            return 0;
+        vec3 q = v3_fma(o, dir, t);
+        double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
+        if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
+            return 0;
+        return planar_pdf(p, t, dn, dir);
+    }
+    case PRIM_DISK: {
+        const vec3 n = p->g.disk.normal;
+        double dn = v3_dot(dir, n), t = v3_dot(v3_sub(p->g.disk.center, o), n) / dn;
+        if (!(t > HIT_EPS && t < DBL_MAX))
+            return 0;
+        vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
+        if (v3_len2(d) > p->g.disk.radius * p->g.disk.radius)
+            return 0;
+        return planar_pdf(p, t, dn, dir);
+    }
+    }
+    (void)time;
+    return 0;
 }

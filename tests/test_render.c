@@ -151,6 +151,7 @@ static void test_shapes(void)
     struct prim q = {.type = PRIM_RECT};
     q.g.rect.axis = 1;
     q.g.rect.a0 = -1, q.g.rect.a1 = 1, q.g.rect.b0 = -1, q.g.rect.b1 = 1, q.g.rect.k = 2;
+    shape_prepare(&q);
     ray down = {v3(0.5, 5, 0.5), v3(0, -1, 0), 0};
     CHECK(shape_hit(&q, &down, HIT_EPS, DBL_MAX, &h));
     CHECK_NEAR(h.t, 3, 1e-12);
@@ -171,6 +172,7 @@ static void test_shapes(void)
     dk.g.disk.radius = 3;
     onb f = onb_from_w(v3(0, 0, 1));
     dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
+    shape_prepare(&dk);
     ray at = {v3(2.9, 0, 0), v3(0, 0, -1), 0};
     CHECK(shape_hit(&dk, &at, HIT_EPS, DBL_MAX, &h));
     CHECK(h.front);

@@ -220,12 +220,14 @@ static void test_light_pdfs(void)
     struct prim q = {.type = PRIM_RECT};
     q.g.rect.axis = 1;
     q.g.rect.a0 = -1, q.g.rect.a1 = 2, q.g.rect.b0 = -1, q.g.rect.b1 = 1, q.g.rect.k = 3;
+    shape_prepare(&q);
     check_light_pdf(&q, v3(0.3, 0, 0.2), v3(0.5, 3, 0), "rect");
     struct prim dk = {.type = PRIM_DISK};
     dk.g.disk.center = v3(1, 2, 0);
     dk.g.disk.radius = 1.2;
     onb f = onb_from_w(v3_unit(v3(-1, -2, 0.5)));
     dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
+    shape_prepare(&dk);
     check_light_pdf(&dk, v3(0, 0, 0), dk.g.disk.center, "disk");
     CHECK(shape_light_uses_points(&q) && shape_light_uses_points(&dk) && !shape_light_uses_points(&s));
 }
