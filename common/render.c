@@ -200,8 +200,8 @@ static double reflectance(double cosine, double ref_idx)
     return r0 + (1 - r0) * (x2 * x2 * x);
 }
 
-/* A direction toward one of the scene's lights, chosen uniformly; disk and rect lights take
-   their next point from the light sampler, a sphere its cone sample from rng. */
+/* A unit direction toward one of the scene's lights, chosen uniformly; disk and rect lights
+   take their next point from the light sampler, a sphere its cone sample from rng. */
 static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng)
 {
     const struct scene *sc = ctx->sc;
@@ -214,39 +214,60 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng)
         s.x = rng_uniform32(rng);
         s.y = rng_uniform32(rng);
     }
-    return shape_light_dir(lp, o, s);
+    return v3_unit(shape_light_dir(lp, o, s));
 }
 
-/* One camera path; returns its radiance estimate. Diffuse and isotropic scattering draw from
-   the mixture of the light pdf and their own (RTOW "The Rest of Your Life": half and half) and
-   weight by scattering pdf / mixture pdf; mirrors and glass follow their one direction. */
-static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
+/* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
+   isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
+   Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
+   follow their one direction. Scattered directions are unit vectors. */
+static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays)
 {
     const struct scene *sc = ctx->sc;
     const int mix = sc->n_lights > 0 && !ctx->rs.light_sampling_off;
     vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
     for (int depth = 0; depth < ctx->rs.max_depth; depth++) {
         struct hit h;
-        ctx->st->rays++;
+        ++*rays;
         if (!bvh_hit(sc, &r, HIT_EPS, DBL_MAX, &h)) {
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
         const struct material *m = &sc->materials[sc->prims[h.prim].material];
-        vec3 unit_dir = v3_unit(r.dir), dir;
+        vec3 dir;
+        if (m->type == MAT_LAMBERTIAN) {
+            vec3 albedo = surface_albedo(sc, m, &h);
+            if (mix && rng_u32(rng) >> 31) {
+                dir = light_direction(ctx, h.p, rng);
+            } else {
+                onb frame = onb_from_w(h.n);
+                dir = cosine_direction(&frame, rng);
+            }
+            /* below the surface: the scattering pdf is 0 and so is the estimate */
+            double cosine = v3_dot(dir, h.n);
+            if (!(cosine > 0))
+                return L;
+            double pdf = mix ? 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * (cosine / PI) : cosine / PI;
+            if (!(pdf > 0))
+                return L;
+            beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
+            r = (ray){h.p, dir, r.time};
+            continue;
+        }
         switch (m->type) {
         case MAT_LIGHT:
             if (h.front)
                 L = v3_add(L, v3_mul(beta, m->emit));
             return L;
         case MAT_METAL:
-            dir = v3_fma(v3_reflect(unit_dir, h.n), random_in_unit_sphere(rng), m->fuzz);
+            dir = v3_fma(v3_reflect(v3_unit(r.dir), h.n), random_in_unit_sphere(rng), m->fuzz);
             if (v3_dot(dir, h.n) <= 0)
                 return L;
             beta = v3_mul(beta, m->albedo);
             r = (ray){h.p, dir, r.time};
             continue;
         case MAT_DIELECTRIC: {
+            vec3 unit_dir = v3_unit(r.dir);
             double ratio = h.front ? 1.0 / m->ior : m->ior;
             double cos_t = d_min(v3_dot(v3_neg(unit_dir), h.n), 1.0);
             double sin_t = sqrt(1 - cos_t * cos_t);
@@ -256,7 +277,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
             r = (ray){h.p, dir, r.time};
             continue;
         }
-        case MAT_ISOTROPIC: {
+        default: { /* MAT_ISOTROPIC */
             vec3 albedo = surface_albedo(sc, m, &h);
             const double phase = 1 / (4 * PI);
             double pdf = phase;
@@ -269,24 +290,6 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
             beta = v3_mul(beta, v3_scale(albedo, phase / pdf));
             r = (ray){h.p, dir, r.time};
             continue;
-        }
-        default: {
-            vec3 albedo = surface_albedo(sc, m, &h);
-            onb frame = onb_from_w(h.n);
-            double pdf;
-            if (mix) {
-                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng) : cosine_direction(&frame, rng);
-                double c = v3_dot(v3_unit(dir), h.n);
-                pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * (c > 0 ? c / PI : 0);
-            } else {
-                dir = cosine_direction(&frame, rng);
-                pdf = d_max(0, v3_dot(v3_unit(dir), h.n)) / PI;
-            }
-            double cosine = v3_dot(v3_unit(dir), h.n);
-            if (cosine <= 0 || !(pdf > 0))
-                return L;
-            beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
-            r = (ray){h.p, dir, r.time};
         }
         }
     }
@@ -310,10 +313,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
 
     double sum[3] = {0, 0, 0};
     size_t kept = 0;
+    uint64_t rays = 0;
     for (size_t s = 0; s < n; s++) {
         struct pt2 p = ctx->pixel_pts[s];
         ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-        vec3 c = trace(ctx, r, &path_rng);
+        vec3 c = trace(ctx, r, &path_rng, &rays);
         if (!v3_finite(c)) {
             st->nonfinite++;
             continue;
@@ -326,6 +330,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
         rgb[k] = (float)(sum[k] * inv);
     st->pixels++;
     st->samples += n;
+    st->rays += rays;
     if (n < st->spp_min)
         st->spp_min = (uint32_t)n;
     if (n > st->spp_max)
