@@ -32,14 +32,22 @@ void perlin_init(struct perlin *p, uint64_t seed)
     permute(p->perm_z, &r);
 }
 
+static int perlin_cell(double f)
+{
+    if (fabs(f) < 0x1.0p62)
+        return (int)((int64_t)f & (PERLIN_N - 1));
+    return (int)fmod(f, PERLIN_N);
+}
+
 double perlin_noise(const struct perlin *p, vec3 q)
 {
     if (!v3_finite(q))
         return 0;
     double fx = floor(q.x), fy = floor(q.y), fz = floor(q.z);
     double u = q.x - fx, v = q.y - fy, w = q.z - fz;
-    /* fmod keeps the cell index in int range for any finite point; the table repeats at 256. */
-    int i = (int)fmod(fx, PERLIN_N), j = (int)fmod(fy, PERLIN_N), k = (int)fmod(fz, PERLIN_N);
+    /* The table repeats at 256, so only the cell index modulo 256 matters: the low bits of an
+       integer conversion where it is exact, fmod (slower) beyond. */
+    int i = perlin_cell(fx), j = perlin_cell(fy), k = perlin_cell(fz);
     double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
     double accum = 0;
     for (int di = 0; di < 2; di++)

@@ -38,23 +38,30 @@ static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1
     double disc = half_b * half_b - a * cc;
     if (disc < 0 || a == 0)
         return 0;
-    double sq = sqrt(disc);
-    *t0 = (-half_b - sq) / a;
-    *t1 = (-half_b + sq) / a;
+    double sq = sqrt(disc), inv_a = 1 / a;
+    *t0 = (-half_b - sq) * inv_a;
+    *t1 = (-half_b + sq) * inv_a;
     return 1;
 }
 
+/* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. */
 static int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    double t0, t1, t;
-    if (!sphere_roots(c, rad, r, &t0, &t1))
+    vec3 oc = v3_sub(r->orig, c);
+    double a = v3_len2(r->dir);
+    double half_b = v3_dot(oc, r->dir);
+    double cc = v3_len2(oc) - rad * rad;
+    double disc = half_b * half_b - a * cc;
+    if (disc < 0 || a == 0)
         return 0;
-    t = t0;
-    if (t <= t_min || t >= t_max) {
-        t = t1;
-        if (t <= t_min || t >= t_max)
+    double sq = sqrt(disc), lo = t_min * a, hi = t_max * a;
+    double at = -half_b - sq;
+    if (!(at > lo && at < hi)) {
+        at = -half_b + sq;
+        if (!(at > lo && at < hi))
             return 0;
     }
+    double t = at / a;
     h->t = t;
     h->p = ray_at(r, t);
     set_face(h, r, v3_scale(v3_sub(h->p, c), 1.0 / rad));
@@ -252,9 +259,14 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
     double enter = t0 > t_min ? t0 : t_min, leave = t1 < t_max ? t1 : t_max;
     if (!(enter < leave))
         return 0;
-    double len = v3_len(r->dir);
-    double dist = p->g.medium.neg_inv_density * log(ray_hash_uniform(r, p));
-    if (dist > (leave - enter) * len)
+    double len = v3_len(r->dir), span = (leave - enter) * len;
+    double u = ray_hash_uniform(r, p), neg_inv_density = p->g.medium.neg_inv_density;
+    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
+       rounding), the ray passes through without the log, as most do in thin fog */
+    if ((1 - u) * -neg_inv_density > span * (1 + 1e-9))
+        return 0;
+    double dist = neg_inv_density * log(u);
+    if (dist > span)
         return 0;
     h->t = enter + dist / len;
     h->p = ray_at(r, h->t);

@@ -206,10 +206,16 @@ double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
 {
     switch (p->type) {
     case PRIM_SPHERE: {
-        double omc = sphere_one_minus_cos(p, o);
         vec3 to_c = v3_sub(p->g.sphere.center, o);
-        double c = v3_dot(dir, to_c) / (v3_len(dir) * v3_len(to_c));
-        return omc >= 2 || 1 - c <= omc ? 1 / (2 * PI * omc) : 0;
+        double d2 = v3_len2(to_c), r2 = p->g.sphere.radius * p->g.sphere.radius;
+        if (d2 <= r2)
+            return 1 / (4 * PI); /* o inside: uniform over all directions */
+        /* in the cone iff cos(dir, to_c) >= cos_max = sqrt(1 - r2 / d2): squared and multiplied
+           out, no square root or division for the many directions that miss it */
+        double dc = v3_dot(dir, to_c);
+        if (!(dc > 0 && dc * dc >= (d2 - r2) * v3_len2(dir)))
+            return 0;
+        return 1 / (2 * PI * sphere_one_minus_cos(p, o));
     }
     case PRIM_RECT: {
         /* shape_hit's rect test, minus the hit record */
