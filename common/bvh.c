@@ -10,7 +10,10 @@
 
 #define BVH_BINS 12
 #define BVH_LEAF_MAX 4
-#define BVH_DEPTH 64
+/* SAH splits down to this depth; below it ranges are halved until they fit a leaf, which takes
+   fewer than 32 more levels for any int count: leaves never exceed BVH_LEAF_MAX prims. */
+#define BVH_SAH_DEPTH 64
+#define BVH_DEPTH (BVH_SAH_DEPTH + 32)
 /* A wide node is visited at most once per level and pushes at most 3 children. */
 #define BVH_STACK (3 * BVH_DEPTH + 1)
 
@@ -117,9 +120,9 @@ static int build_binary(struct build *bd, int start, int count, int depth)
     node->count = count;
     double split = 0;
     int ax = -1;
-    if (count > 1 && depth < BVH_DEPTH - 1)
+    if (count > 1 && depth < BVH_SAH_DEPTH)
         ax = best_split(bd, start, count, node->box, &split);
-    if ((ax < 0 && count <= BVH_LEAF_MAX) || depth >= BVH_DEPTH - 1)
+    if (ax < 0 && count <= BVH_LEAF_MAX)
         return idx;
     int mid = start;
     if (ax >= 0) {
@@ -181,7 +184,8 @@ static int collapse(struct build *bd, int b)
         set_lane(node, c, k->box);
         if (k->left < 0) {
             node->child[c] = k->start;
-            node->count[c] = k->count;
+            node->count[c] = (uint16_t)k->count;
+            node->leaves |= (uint8_t)(1u << c);
         }
     }
     for (int c = 0; c < n; c++)
@@ -230,7 +234,8 @@ int bvh_build(struct scene *sc, struct err *e)
                 root->lo[a][c] = INFINITY, root->hi[a][c] = -INFINITY;
         set_lane(root, 0, bd.bin[0].box);
         root->child[0] = 0;
-        root->count[0] = n;
+        root->count[0] = (uint16_t)n;
+        root->leaves = 1;
     } else {
         collapse(&bd, 0);
     }
@@ -347,13 +352,9 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
         int hit;
         bvh_f4 tn = node_test(&fr, (const char *)n, t_lo, t_hi, &hit);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
-        int inner = 0;
-        for (int m = hit; m; m &= m - 1) {
+        int inner = hit & ~n->leaves;
+        for (int m = hit & n->leaves; m; m &= m - 1) {
             int c = __builtin_ctz((unsigned)m);
-            if (n->count[c] == 0) {
-                inner |= 1 << c;
-                continue;
-            }
             if (tn[c] > t_hi)
                 continue;
             for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {

@@ -96,7 +96,9 @@ struct prim {
 struct bvh_node {
     float lo[3][4], hi[3][4]; /* child c spans lo[axis][c] .. hi[axis][c]; an unused slot is empty */
     int32_t child[4];         /* count 0: index of an interior node; else the first prim_order index */
-    int32_t count[4];         /* prims in a leaf child; 0 for an interior child or an unused slot */
+    uint16_t count[4];        /* prims in a leaf child; 0 for an interior child or an unused slot */
+    uint8_t leaves;           /* bit c set: child c is a leaf */
+    uint8_t pad[7];
 };
 
 struct scene {

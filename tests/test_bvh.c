@@ -113,9 +113,46 @@ static void test_small(void)
     scene_free(sc);
 }
 
+/* 3000 concentric spheres (no centroid split exists) and 3000 in a row of growing size (the
+   SAH may peel them off one by one): the tree stays within its depth, leaves stay small, and
+   hits agree with a linear scan. */
+static void test_degenerate(void)
+{
+    for (int kind = 0; kind < 2; kind++) {
+        struct scene *sc = scene_new();
+        struct material m = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+        scene_add_material(sc, &m);
+        for (int i = 0; i < 3000; i++) {
+            struct prim p = {.type = PRIM_SPHERE, .material = 0};
+            p.g.sphere.center = kind ? v3(pow(1.003, i), 0, 0) : v3(0, 0, 0);
+            p.g.sphere.radius = kind ? 0.001 * pow(1.003, i) : 1 + i;
+            scene_add_prim(sc, &p);
+        }
+        struct err e;
+        CHECK(scene_finish(sc, &e) == 0);
+        int small = 1;
+        for (int i = 0; i < sc->n_nodes; i++)
+            for (int c = 0; c < 4; c++)
+                small &= sc->nodes[i].count[c] <= 4;
+        CHECK(small);
+        struct rng r;
+        rng_seed(&r, 8, 8);
+        int ok = 1, hits = 0;
+        for (int k = 0; k < 500; k++) {
+            ray q = {v3(-5000 + 10000 * rng_uniform(&r), 2 + rng_uniform(&r), -5000),
+                     v3(rng_uniform(&r) - 0.5, -0.001 * rng_uniform(&r), 1), 0};
+            ok &= agrees(sc, &q, &hits);
+        }
+        CHECK(ok);
+        CHECK(hits > 10);
+        scene_free(sc);
+    }
+}
+
 int main(void)
 {
     test_small();
+    test_degenerate();
     test_scene("scenes/cornell-book3.yaml", v3(278, 278, -800), 1);
     test_scene("scenes/cornell.yaml", v3(278, 278, -800), 1);
     test_scene("scenes/checker.yaml", v3(13, 2, 3), 1);
