@@ -149,6 +149,15 @@ static int poisson_far_exact(const struct sampler *s, const struct pt2 *pts, dou
 typedef float poisson_f4 __attribute__((vector_size(16)));
 typedef int32_t poisson_i4 __attribute__((vector_size(16)));
 
+/* Whether any lane of a comparison result is set: SSE's movmskps is one instruction where
+   extracting and or-ing four lanes is eight. */
+#if defined(__SSE__)
+#include <xmmintrin.h>
+static inline int poisson_any(poisson_i4 m) { return _mm_movemask_ps((__m128)m) != 0; }
+#else
+static inline int poisson_any(poisson_i4 m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+#endif
+
 static inline poisson_f4 poisson_load4(const float *p)
 {
     poisson_f4 x;
@@ -177,7 +186,7 @@ static inline int poisson_near4(const float *u, const float *v, size_t stride, f
                      poisson_row_near(u + stride, v + stride, col, row[1], near2) |
                      poisson_row_near(u + 2 * stride, v + 2 * stride, col, row[2], near2) |
                      poisson_row_near(u + 3 * stride, v + 3 * stride, col, row[3], near2);
-    return (hit[0] | hit[1] | hit[2] | hit[3]) != 0;
+    return poisson_any(hit);
 }
 
 /* What poisson_far_enough needs, copied into locals once per draw so the compiler keeps them
