@@ -10,10 +10,13 @@
 #include "texture.h"
 
 /* A light's current point set within the pixel, taken in a random order, then redrawn: the
-   points themselves (poisson), or the cells whose points are made when taken (the others). */
+   points themselves (fresh poisson), the indices of a pool set's points, shifted when taken
+   (pooled poisson), or the cells whose points are made when taken (the others). */
 struct light_points {
     struct pt2 *pts;
     uint32_t *cells;
+    const struct pt2 *pool; /* pooled: the set and its shift */
+    double ox, oy;
     size_t n, next;
 };
 
@@ -95,6 +98,8 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
         }
         if (sampler_cells(light) > 0)
             ctx->lp[i].cells = malloc(sampler_cells(light) * sizeof *ctx->lp[i].cells);
+        else if (sampler_is_pooled(light))
+            ctx->lp[i].cells = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].cells);
         else
             ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
         if (!ctx->lp[i].pts && !ctx->lp[i].cells)
@@ -114,7 +119,8 @@ fail:
    one swap per point taken. Every point consumed is then uniform over the light, and the set
    still stratifies what is consumed of it. Uniform and jitter sets shuffle their cells and make
    a cell's point when it is taken; a random set's points are independent, so any order of them
-   is just the next point. Only a Poisson set is drawn whole. */
+   is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
+   point when it is taken. Only a fresh Poisson set is drawn whole. */
 static struct pt2 next_light_point(struct render_ctx *ctx, int i)
 {
     struct light_points *lp = &ctx->lp[i];
@@ -122,7 +128,9 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i)
     if (lp->next >= lp->n) {
         double t0 = now_s();
         if (lp->cells) {
-            lp->n = sampler_cells(ctx->light);
+            lp->n = kind == SAMPLER_POISSON
+                        ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
+                        : sampler_cells(ctx->light);
             if (kind != SAMPLER_RANDOM)
                 for (uint32_t c = 0; c < lp->n; c++)
                     lp->cells[c] = c;
@@ -141,6 +149,8 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i)
         uint32_t cell = lp->cells[j];
         lp->cells[j] = lp->cells[k];
         lp->cells[k] = cell;
+        if (kind == SAMPLER_POISSON)
+            return sampler_shift(lp->pool[cell], lp->ox, lp->oy);
         return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
     }
     struct pt2 chosen = lp->pts[j];

@@ -419,15 +419,36 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
     if (s->pool_size <= 0)
         return poisson_draw(s, rng, out, 0);
 
-    /* Cranley-Patterson rotation of a pool set: a toroidal set stays Poisson-disk (distances
-       modulo 1 are unchanged) under any shift modulo 1. */
-    uint32_t pick = rng_below(rng, (uint32_t)s->pool_size);
-    double ox = rng_uniform(rng), oy = rng_uniform(rng);
-    const struct pt2 *src = s->pool_pts + s->pool_start[pick];
-    count = s->pool_start[pick + 1] - s->pool_start[pick];
+    const struct pt2 *src;
+    double ox, oy;
+    count = sampler_pool_set(s, rng, &src, &ox, &oy);
     for (size_t k = 0; k < count; k++)
-        out[k] = (struct pt2){shift_unit(src[k].x, ox), shift_unit(src[k].y, oy)};
+        out[k] = sampler_shift(src[k], ox, oy);
     return count;
+}
+
+int sampler_is_pooled(const struct sampler *s)
+{
+    return s->kind == SAMPLER_POISSON && s->pool_size > 0;
+}
+
+/* Cranley-Patterson rotation of a pool set: a toroidal set stays Poisson-disk (distances modulo
+   1 are unchanged) under any shift modulo 1. */
+size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pt2 **pts, double *ox,
+                        double *oy)
+{
+    if (s->kind != SAMPLER_POISSON || s->pool_size <= 0)
+        return 0;
+    uint32_t pick = rng_below(rng, (uint32_t)s->pool_size);
+    *ox = rng_uniform(rng);
+    *oy = rng_uniform(rng);
+    *pts = s->pool_pts + s->pool_start[pick];
+    return s->pool_start[pick + 1] - s->pool_start[pick];
+}
+
+struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
+{
+    return (struct pt2){shift_unit(p.x, ox), shift_unit(p.y, oy)};
 }
 
 /* Draw the pool's toroidal sets from pool_seed into one packed array. */

@@ -548,6 +548,25 @@ static void test_cells(void)
     CHECK(same);
     CHECK(inside);
     CHECK(in_square);
+    /* a pooled set taken point by point is sampler_draw's set, from the same rng state */
+    struct sampler *pool = sampler_new(SAMPLER_POISSON, 5, 8, 3, &e);
+    CHECK(pool && sampler_is_pooled(pool) && !sampler_is_pooled(p) && !sampler_is_pooled(j));
+    if (pool) {
+        struct pt2 *set = malloc(sampler_set_capacity(pool) * sizeof *set);
+        struct rng a = rng, b = rng;
+        const struct pt2 *src;
+        double ox, oy;
+        size_t n = sampler_draw(pool, &a, set), m = sampler_pool_set(pool, &b, &src, &ox, &oy);
+        int equal = n == m && a.state == b.state;
+        for (size_t k = 0; equal && k < n; k++) {
+            struct pt2 q = sampler_shift(src[k], ox, oy);
+            equal &= q.x == set[k].x && q.y == set[k].y;
+        }
+        CHECK(equal);
+        CHECK(sampler_pool_set(p, &b, &src, &ox, &oy) == 0);
+        free(set);
+        sampler_free(pool);
+    }
     sampler_free(u);
     sampler_free(j);
     sampler_free(r);
