@@ -240,12 +240,16 @@ static double ray_hash_uniform(const ray *r, const struct prim *p)
     double in[9] = {r->orig.x, r->orig.y,          r->orig.z,
                     r->dir.x,  r->dir.y,           r->dir.z,
                     r->time,   p->g.medium.radius, p->g.medium.neg_inv_density};
+    /* each word folded in by a multiply and a shift (every input bit reaches the high half),
+       then one full SplitMix64 finaliser: a third of the cost of finalising every word */
     uint64_t h = 0x6d656469756dULL;
     for (int i = 0; i < 9; i++) {
         uint64_t bits;
         memcpy(&bits, &in[i], sizeof bits);
-        h = rng_mix64(h ^ bits);
+        h = (h ^ bits) * 0x9e3779b97f4a7c15ULL;
+        h ^= h >> 29;
     }
+    h = rng_mix64(h);
     return (double)((h >> 11) + 1) * 0x1.0p-53;
 }
 
