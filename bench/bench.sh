@@ -7,6 +7,9 @@ set -eu
 WORKER=${WORKER:-bin/worker}
 BRIDSON=${BRIDSON:-build/bench_bridson}
 RUNS=${RUNS:-5}
+# the seed's cornell (a fresh Bridson set per pixel and light) takes ~20 s a run: fewer runs
+SLOW_JOBS=${SLOW_JOBS:-cornell}
+RUNS_SLOW=${RUNS_SLOW:-3}
 JOBS=${JOBS:-"checker cornell-book3 cornell final cornell-pool pool-t1"}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -30,14 +33,15 @@ balance() {
 
 load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo unknown)
 machine="$(nproc) cores, $(uname -m), $(awk -F': ' '/model name/ {print $2; exit}' /proc/cpuinfo 2>/dev/null)"
-echo "make bench: medians of $RUNS runs (spread = min-max); $machine; load average $load at start"
-printf '%-14s %8s %11s %7s %8s %6s %7s %13s %7s %13s %6s %7s %7s\n' job ns/smp spread seg/smp Mrays/s \
+echo "make bench: medians of n runs each with 1 and 2 processes (spread = min-max); $machine;" \
+    "load average $load at start"
+printf '%-13s %2s %6s %11s %7s %7s %6s %7s %11s %7s %11s %5s %7s %7s\n' job n ns/smp spread seg/smp Mrays/s \
     rss_MB wall_1p spread wall_2p spread 2p/1p balance smp_shr
 {
     echo "{"
     echo "  \"machine\": \"$machine\","
     echo "  \"load_average_at_start\": \"$load\","
-    echo "  \"runs\": $RUNS,"
+    echo "  \"runs\": $RUNS, \"runs_slow_jobs\": $RUNS_SLOW,"
     echo "  \"spread\": \"min and max over the runs\","
     echo "  \"jobs\": {"
 } >"$json"
@@ -45,7 +49,9 @@ first=1
 for name in $JOBS; do
     job=bench/jobs/$name.yaml
     for f in ns w1 w2 share bal; do : >"$out/$f"; done
-    for r in $(seq 1 "$RUNS"); do
+    runs=$RUNS
+    case " $SLOW_JOBS " in *" $name "*) runs=$RUNS_SLOW ;; esac
+    for r in $(seq 1 "$runs"); do
         for p in 1 2; do
             rm -rf "$out/$p"
             "$WORKER" --quiet --processes $p --out "$out/$p" "$job" >/dev/null 2>&1
@@ -72,13 +78,13 @@ for name in $JOBS; do
     seg=$(awk -v t="$tot" -v c="$cam" 'BEGIN {printf "%.2f", t / c}')
     mrays=$(awk -v s="$seg" -v n="$ns" 'BEGIN {printf "%.2f", s / n * 1e3}')
     ratio=$(awk -v a="$w1" -v b="$w2" 'BEGIN {printf "%.2f", a / b}')
-    printf '%-14s %8.0f %5.0f-%-5.0f %7s %8s %6.1f %7.2f %6.2f-%-6.2f %7.2f %6.2f-%-6.2f %6s %7s %7.3f\n' \
-        "$name" "$ns" "$ns_lo" "$ns_hi" "$seg" "$mrays" "$(awk -v k="$rss" 'BEGIN {print k / 1024}')" \
+    printf '%-13s %2s %6.0f %5.0f-%-5.0f %7s %7s %6.1f %7.2f %5.2f-%-5.2f %7.2f %5.2f-%-5.2f %5s %7s %7.3f\n' \
+        "$name" "$runs" "$ns" "$ns_lo" "$ns_hi" "$seg" "$mrays" "$(awk -v k="$rss" 'BEGIN {print k / 1024}')" \
         "$w1" "$w1_lo" "$w1_hi" "$w2" "$w2_lo" "$w2_hi" "$ratio" "$bal" "$share"
     [ $first = 1 ] || echo "    ," >>"$json"
     first=0
     cat >>"$json" <<JSON
-    "$name": {"ns_per_camera_sample": $ns, "ns_min": $ns_lo, "ns_max": $ns_hi,
+    "$name": {"runs": $runs, "ns_per_camera_sample": $ns, "ns_min": $ns_lo, "ns_max": $ns_hi,
       "segments_per_sample": $seg, "mrays_per_cpu_s": $mrays, "peak_rss_kb": $rss,
       "wall_1p_s": $w1, "wall_1p_min": $w1_lo, "wall_1p_max": $w1_hi,
       "wall_2p_s": $w2, "wall_2p_min": $w2_lo, "wall_2p_max": $w2_hi,
