@@ -35,7 +35,8 @@ LIBCOMMON  := $(BUILD)/libcommon.a
 LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
-.PHONY: all test unit run install uninstall clean asan deps golden bench lint
+.SECONDARY:
+.PHONY: all test unit run install uninstall clean asan deps golden bench lint fuzz valgrind
 all: deps $(WORKER_BIN)
 
 # One line naming the Debian packages when a header is missing.
@@ -82,6 +83,41 @@ install: all
 	install -m 0755 $(WORKER_BIN) $(DESTDIR)$(PREFIX)/bin/worker
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/worker
+
+# One small render (two forked children) under valgrind memcheck: zero errors, nothing lost.
+valgrind: all
+	$(Q)mkdir -p build/valgrind && printf 'scene: %s/scenes/checker.yaml\nwidth: 24\nheight: 16\nthreshold: 34\nprocesses: 2\n' \
+	  "$(CURDIR)" >build/valgrind/job.yaml
+	$(Q)valgrind -q --error-exitcode=3 --leak-check=full --show-leak-kinds=definite \
+	  --errors-for-leak-kinds=definite --trace-children=yes --child-silent-after-fork=no \
+	  $(WORKER_BIN) --quiet --out build/valgrind/out build/valgrind/job.yaml
+	@echo "valgrind: 0 errors, 0 bytes definitely lost"
+
+# Benchmarks with the release flags: a table on stdout and bench/results.json (see BENCH.md).
+build/bench_bridson: bench/bench_bridson.c $(LIBCOMMON)
+	$(Q)$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBCOMMON) $(LDLIBS_ALL)
+bench: all build/bench_bridson
+	$(Q)sh bench/bench.sh
+
+# Fuzzing (libFuzzer, clang): each target for SECONDS; new crashes land in tests/fuzz/regress/,
+# which `make test` replays. `make fuzz SECONDS=600` is the long local run.
+FUZZ_CC     ?= clang
+SECONDS     ?= 30
+FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
+FUZZ_SRC    := $(COMMON_SRC) $(WORKER_SRC) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c
+fuzz: deps
+	@mkdir -p build/fuzz
+	$(Q)set -e; for t in job scene image; do \
+	  $(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -Itests/fuzz $(FUZZ_FLAGS) \
+	    -DFUZZ_TARGET=fuzz_$$t $(FUZZ_SRC) -o build/fuzz/fuzz_$$t $(PKG_LIBS) -lm; \
+	  mkdir -p build/fuzz/corpus-$$t; \
+	  echo "fuzz_$$t: $(SECONDS) s"; \
+	  build/fuzz/fuzz_$$t -max_total_time=$(SECONDS) -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+	    -print_final_stats=1 -artifact_prefix=tests/fuzz/regress/$$t- \
+	    build/fuzz/corpus-$$t tests/fuzz/$$t 2>build/fuzz/fuzz_$$t.log || \
+	    { tail -n 40 build/fuzz/fuzz_$$t.log; exit 1; }; \
+	  grep -E '^stat::number_of_executed_units|^#[0-9]+.*DONE' build/fuzz/fuzz_$$t.log | tail -n 2; \
+	done
 
 lint:
 	clang-format --dry-run --Werror common/*.[ch] worker/*.[ch] tests/*.[ch]

@@ -5,9 +5,8 @@ dir=$(cd "$(dirname "$0")" && pwd)
 passed=0; failed=0; broken=""
 tally() { # $1 = name, $2 = log file, $3 = exit code
     line=$(grep -E '[0-9]+ passed, [0-9]+ failed' "$2" | tail -n 1)
-    # the leading group may not end in a digit, so greedy matching keeps whole numbers
-    p=$(echo "$line" | sed -n 's/^\(.*[^0-9]\)\{0,1\}\([0-9][0-9]*\) passed, \([0-9][0-9]*\) failed.*/\2/p')
-    f=$(echo "$line" | sed -n 's/^\(.*[^0-9]\)\{0,1\}\([0-9][0-9]*\) passed, \([0-9][0-9]*\) failed.*/\3/p')
+    p=$(echo "$line" | awk '{for (i = 1; i < NF; i++) if ($(i + 1) == "passed,") print $i}')
+    f=$(echo "$line" | awk '{for (i = 1; i < NF; i++) if ($(i + 1) ~ /^failed/) print $i}')
     : "${p:=0}" "${f:=0}"
     if [ "$3" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi
     passed=$((passed + p)); failed=$((failed + f))

@@ -22,6 +22,7 @@ struct farm_result {
     int child_signal;  /* on failure: the signal that killed a render process, else 0 */
     int child_crashed; /* on failure: a render process died (signal or exit code), not a stop */
     int stopped;       /* on failure: *stop was set, the children were stopped */
+    long peak_rss_kb;  /* largest resident set of any render child so far (getrusage) */
 };
 
 /* What the caller sees while a render runs: rows done of rows, seconds elapsed. */

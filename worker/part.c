@@ -11,13 +11,14 @@
 #include "hash.h"
 
 #define PART_MAGIC "WPART\r\n\x1a" /* 8 bytes; the CR LF catch text-mode mangling, as PNG's do */
-#define PART_HEADER 112            /* bytes before the rows */
+#define PART_HEADER 120            /* bytes before the rows */
 
 struct part_header {
     uint32_t version, width, height, part, parts, processes;
     uint64_t hash;
     struct render_stats st;
     double wall_s, cpu_s;
+    uint64_t peak_rss_kb;
 };
 
 void part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n)
@@ -106,7 +107,8 @@ static void encode_header(uint8_t *b, const struct part_header *h)
     p = put_u32(p, h->st.spp_max);
     p = put_f64(p, h->st.sampler_s);
     p = put_f64(p, h->wall_s);
-    put_f64(p, h->cpu_s);
+    p = put_f64(p, h->cpu_s);
+    put_u64(p, h->peak_rss_kb);
 }
 
 /* Decode and check the header of a part file of len bytes: magic, version, a sane split and a
@@ -133,6 +135,7 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     h->st.sampler_s = get_f64(&p);
     h->wall_s = get_f64(&p);
     h->cpu_s = get_f64(&p);
+    h->peak_rss_kb = get_u64(&p);
     if (h->version != PART_VERSION)
         return err_set(e, path, 0, 0, "part file version %u, this worker reads version %d", h->version,
                        PART_VERSION);
@@ -155,7 +158,8 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
     if (!buf)
         return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
     struct part_header hd = {PART_VERSION, (uint32_t)w, (uint32_t)h, (uint32_t)part, (uint32_t)parts,
-                             (uint32_t)fr->processes, part_hash(j), fr->total, fr->wall_s, fr->cpu_s};
+                             (uint32_t)fr->processes, part_hash(j), fr->total, fr->wall_s, fr->cpu_s,
+                             (uint64_t)(fr->peak_rss_kb > 0 ? fr->peak_rss_kb : 0)};
     encode_header(buf, &hd);
     uint8_t *p = buf + PART_HEADER;
     for (int y = part; y < h; y += parts)
@@ -270,6 +274,8 @@ static int merge_one(const struct job *j, const char *path, int part, int parts,
     render_stats_add(&fr->total, &hd.st);
     fr->wall_s += hd.wall_s;
     fr->cpu_s += hd.cpu_s;
+    if ((long)hd.peak_rss_kb > fr->peak_rss_kb)
+        fr->peak_rss_kb = (long)hd.peak_rss_kb;
     rc = 0;
 done:
     free(data);

@@ -1,0 +1,60 @@
+/* fuzz_targets: the job parser, the scene parser and the PNG/PPM readers on arbitrary bytes. */
+#include "fuzz_targets.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "image.h"
+#include "job.h"
+#include "png.h"
+#include "ppm.h"
+#include "scene_load.h"
+
+/* The loaders read files: write the input to a private temporary file first. */
+static int with_file(const uint8_t *data, size_t size, char *path, size_t n)
+{
+    const char *dir = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+    snprintf(path, n, "%s/fuzz-%ld.yaml", dir, (long)getpid());
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    size_t w = fwrite(data, 1, size, f);
+    fclose(f);
+    return w == size ? 0 : -1;
+}
+
+int fuzz_job(const uint8_t *data, size_t size)
+{
+    char path[256];
+    struct job j;
+    struct err e;
+    if (with_file(data, size, path, sizeof path) == 0)
+        job_load(path, &j, &e);
+    unlink(path);
+    return 0;
+}
+
+int fuzz_scene(const uint8_t *data, size_t size)
+{
+    char path[256];
+    struct scene_file sf;
+    struct err e;
+    if (with_file(data, size, path, sizeof path) == 0 && scene_load(path, &sf, &e) == 0)
+        scene_file_free(&sf);
+    unlink(path);
+    return 0;
+}
+
+int fuzz_image(const uint8_t *data, size_t size)
+{
+    struct rgb8 img = {0};
+    struct err e;
+    if (png_decode(data, size, "fuzz", &img, &e) == 0)
+        rgb8_free(&img);
+    struct rgb8 img2 = {0};
+    if (ppm_decode(data, size, "fuzz", &img2, &e) == 0)
+        rgb8_free(&img2);
+    return 0;
+}
