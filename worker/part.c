@@ -174,21 +174,30 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
     return rc;
 }
 
+/* Read the part file at path whole and check it: header, length and checksum. The caller frees
+   *data. 0 or -1 with e filled. */
+static int read_part(const char *path, uint8_t **data, size_t *len, struct part_header *h, struct err *e)
+{
+    if (fileio_read_all(path, (size_t)IMAGE_MAX_PIXELS * 12 + PART_HEADER + 4, data, len, e) < 0)
+        return -1;
+    if (decode_header(*data, *len, path, h, e) < 0)
+        return -1;
+    const uint8_t *p = *data + *len - 4;
+    if (get_u32(&p) != (uint32_t)crc32(0L, *data, (uInt)(*len - 4)))
+        return err_set(e, path, 0, 0, "damaged part file: checksum mismatch");
+    return 0;
+}
+
 int part_matches(const char *path, const struct job *j, int part, int parts)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return 0;
-    uint8_t b[PART_HEADER];
-    size_t got = fread(b, 1, sizeof b, f);
-    long len = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-    fclose(f);
+    uint8_t *data = NULL;
+    size_t len;
     struct part_header h;
     struct err e;
-    if (got != sizeof b || len < 0)
-        return 0;
-    return decode_header(b, (size_t)len, path, &h, &e) == 0 && h.hash == part_hash(j) &&
-           (int)h.part == part && (int)h.parts == parts;
+    int ok = read_part(path, &data, &len, &h, &e) == 0 && h.hash == part_hash(j) && (int)h.part == part &&
+             (int)h.parts == parts;
+    free(data);
+    return ok;
 }
 
 /* The split N of the part files of j in dir: -1 with e filled when there are none or parts of
@@ -231,19 +240,12 @@ static int find_split(const struct job *j, const char *dir, struct err *e)
 static int merge_one(const struct job *j, const char *path, int part, int parts, float **rgb, int *w, int *h,
                      struct farm_result *fr, struct err *e)
 {
-    uint8_t *data;
+    uint8_t *data = NULL;
     size_t len;
     struct part_header hd;
-    if (fileio_read_all(path, (size_t)IMAGE_MAX_PIXELS * 12 + PART_HEADER + 4, &data, &len, e) < 0)
-        return -1;
     int rc = -1;
-    if (decode_header(data, len, path, &hd, e) < 0)
+    if (read_part(path, &data, &len, &hd, e) < 0)
         goto done;
-    const uint8_t *p = data + len - 4;
-    if (get_u32(&p) != (uint32_t)crc32(0L, data, (uInt)(len - 4))) {
-        err_set(e, path, 0, 0, "damaged part file: checksum mismatch");
-        goto done;
-    }
     if ((int)hd.part != part || (int)hd.parts != parts) {
         err_set(e, path, 0, 0, "holds part %u of %u, expected part %d of %d", hd.part, hd.parts, part, parts);
         goto done;
@@ -264,7 +266,7 @@ static int merge_one(const struct job *j, const char *path, int part, int parts,
         err_set(e, path, 0, 0, "is %ux%u but the other parts are %dx%d", hd.width, hd.height, *w, *h);
         goto done;
     }
-    p = data + PART_HEADER;
+    const uint8_t *p = data + PART_HEADER;
     for (int y = part; y < *h; y += parts)
         for (size_t i = 0; i < (size_t)*w * 3; i++) {
             uint32_t v = get_u32(&p);

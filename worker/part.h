@@ -27,7 +27,7 @@ uint64_t part_hash(const struct job *j);
 int part_write(const char *path, const struct job *j, int w, int h, int part, int parts, const float *rgb,
                const struct farm_result *fr, struct err *e);
 
-/* 1 when the part file at path is complete and was rendered as part I of N from j's inputs. */
+/* 1 when the part file at path is whole (length, checksum) and was rendered as part I of N from j's inputs. */
 int part_matches(const char *path, const struct job *j, int part, int parts);
 
 /* Merge every part of j found under o->out_dir into the image and a sidecar whose stats sum the
