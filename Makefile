@@ -36,7 +36,7 @@ LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
 .SECONDARY:
-.PHONY: all test unit run install uninstall clean asan deps golden bench lint fuzz valgrind
+.PHONY: all test unit run install uninstall clean asan deps golden bench lint fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
 # One line naming the Debian packages when a header is missing.
@@ -74,6 +74,11 @@ unit: all $(TEST_BIN)
 asan:
 	$(Q)$(MAKE) --no-print-directory test BUILD=build/asan BIN=build/asan/bin OPT='-O1 -g' \
 	  SAN='-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all' ASAN_FAST=1
+
+# The Slurm examples in ci/slurm/ through a one-node Slurm on localhost (daemons started and
+# stopped by the script; needs Debian's slurm-wlm and munge).
+test-slurm: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) bash ci/slurm/test-local.sh
 
 run: all
 	$(WORKER_BIN) jobs/checker.yaml
