@@ -42,7 +42,8 @@ void lease_init(struct lease *l)
     clock_gettime(CLOCK_REALTIME, &ts);
     l->pid = (long)getpid();
     l->start = (long long)ts.tv_sec;
-    snprintf(l->token, sizeof l->token, "%s:%ld:%lld%09ld", l->host, l->pid, (long long)ts.tv_sec, ts.tv_nsec);
+    snprintf(l->token, sizeof l->token, "%s:%ld:%lld%09ld", l->host, l->pid, (long long)ts.tv_sec,
+             ts.tv_nsec);
 }
 
 int lease_write(const char *claim, const struct lease *l, struct err *e)

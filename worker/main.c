@@ -140,8 +140,8 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
         *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
     } else if (!strcmp(a, "--part")) {
         int i, parts, used = 0;
-        if (sscanf(v, "%d/%d%n", &i, &parts, &used) != 2 || v[used] || parts < 1 || parts > PART_MAX || i < 0 ||
-            i >= parts) {
+        if (sscanf(v, "%d/%d%n", &i, &parts, &used) != 2 || v[used] || parts < 1 || parts > PART_MAX ||
+            i < 0 || i >= parts) {
             fprintf(stderr, "worker: --part must be I/N with 0 <= I < N <= %d, got \"%s\"\n", PART_MAX, v);
             return -1;
         }

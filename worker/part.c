@@ -143,7 +143,8 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
         h->parts < 1 || h->parts > PART_MAX || h->part >= h->parts ||
         (uint64_t)h->width * h->height > IMAGE_MAX_PIXELS)
         return err_set(e, path, 0, 0, "damaged part file (impossible size or split)");
-    size_t want = PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
+    size_t want =
+        PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
     if (len != want)
         return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", len, want);
     return 0;
@@ -157,8 +158,16 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
     uint8_t *buf = malloc(len);
     if (!buf)
         return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
-    struct part_header hd = {PART_VERSION, (uint32_t)w, (uint32_t)h, (uint32_t)part, (uint32_t)parts,
-                             (uint32_t)fr->processes, part_hash(j), fr->total, fr->wall_s, fr->cpu_s,
+    struct part_header hd = {PART_VERSION,
+                             (uint32_t)w,
+                             (uint32_t)h,
+                             (uint32_t)part,
+                             (uint32_t)parts,
+                             (uint32_t)fr->processes,
+                             part_hash(j),
+                             fr->total,
+                             fr->wall_s,
+                             fr->cpu_s,
                              (uint64_t)(fr->peak_rss_kb > 0 ? fr->peak_rss_kb : 0)};
     encode_header(buf, &hd);
     uint8_t *p = buf + PART_HEADER;
@@ -175,7 +184,7 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
 }
 
 /* Read the part file at path whole and check it: header, length and checksum. The caller frees
-   *data. 0 or -1 with e filled. */
+ *data. 0 or -1 with e filled. */
 static int read_part(const char *path, uint8_t **data, size_t *len, struct part_header *h, struct err *e)
 {
     if (fileio_read_all(path, (size_t)IMAGE_MAX_PIXELS * 12 + PART_HEADER + 4, data, len, e) < 0)
@@ -210,8 +219,10 @@ static int find_split(const struct job *j, const char *dir, struct err *e)
     snprintf(prefix, sizeof prefix, "%.*s.part-", stem, j->output);
     DIR *d = opendir(dir);
     if (!d)
-        return err_set(e, j->path, 0, 0, "no part files to merge: cannot open %s (render them first with "
-                                         "worker %s --part I/N)", dir, j->path);
+        return err_set(e, j->path, 0, 0,
+                       "no part files to merge: cannot open %s (render them first with "
+                       "worker %s --part I/N)",
+                       dir, j->path);
     int split = 0, other = 0;
     struct dirent *de;
     while ((de = readdir(d))) {
@@ -227,11 +238,13 @@ static int find_split(const struct job *j, const char *dir, struct err *e)
     }
     closedir(d);
     if (!split)
-        return err_set(e, j->path, 0, 0, "no part files to merge in %s (render them first with worker %s --part "
-                                         "I/N)", dir, j->path);
+        return err_set(e, j->path, 0, 0,
+                       "no part files to merge in %s (render them first with worker %s --part "
+                       "I/N)",
+                       dir, j->path);
     if (other)
-        return err_set(e, j->path, 0, 0, "parts of two splits in %s (of %d and of %d): remove the stale ones", dir,
-                       split < other ? split : other, split < other ? other : split);
+        return err_set(e, j->path, 0, 0, "parts of two splits in %s (of %d and of %d): remove the stale ones",
+                       dir, split < other ? split : other, split < other ? other : split);
     return split;
 }
 
@@ -251,8 +264,9 @@ static int merge_one(const struct job *j, const char *path, int part, int parts,
         goto done;
     }
     if (hd.hash != part_hash(j)) {
-        err_set(e, path, 0, 0, "rendered from other inputs (the job file, its scene or the worker version "
-                               "changed): render this part again");
+        err_set(e, path, 0, 0,
+                "rendered from other inputs (the job file, its scene or the worker version "
+                "changed): render this part again");
         goto done;
     }
     if (!*rgb) {
@@ -313,8 +327,8 @@ int part_merge(const struct job *j, const struct run_opts *o, struct run_result 
         nmissing++;
     }
     if (nmissing) {
-        err_set(e, j->path, 0, 0, "cannot merge: missing part%s %s of %d in %s", nmissing > 1 ? "s" : "", missing,
-                parts, dir);
+        err_set(e, j->path, 0, 0, "cannot merge: missing part%s %s of %d in %s", nmissing > 1 ? "s" : "",
+                missing, parts, dir);
         goto done;
     }
     render_stats_init(&fr->total);

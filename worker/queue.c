@@ -33,7 +33,7 @@ void queue_signals_install(void)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);  /* no SA_RESTART: a poll's sleep ends at once */
+    sigaction(SIGINT, &sa, NULL); /* no SA_RESTART: a poll's sleep ends at once */
     sigaction(SIGTERM, &sa, NULL);
 }
 
@@ -45,8 +45,8 @@ const volatile sig_atomic_t *queue_stop_flag(void)
 struct queue {
     const struct queue_opts *o;
     char dir[1024], running[1100], done[1100], failed[1100];
-    struct lease lease;  /* ours, for the claim in hand */
-    char claim[2048];    /* DIR/running/X.yaml while a job is held */
+    struct lease lease; /* ours, for the claim in hand */
+    char claim[2048];   /* DIR/running/X.yaml while a job is held */
     struct timespec last_touch;
     int worst;
 };
@@ -184,7 +184,8 @@ static void recover_stale(struct queue *q)
         if (lease_lock(claim, q->o->lease_timeout_s) < 0)
             continue;
         /* judged again under the lock: another recoverer may have moved it meanwhile */
-        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why) && return_claim(q, claim, de->d_name) == 0)
+        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why) &&
+            return_claim(q, claim, de->d_name) == 0)
             fprintf(stderr, "queue: %s: returned to the queue: %s\n", de->d_name, why);
         lease_unlock(claim);
     }
@@ -237,7 +238,7 @@ static void file_claim(struct queue *q, const char *name, const char *to_dir)
 static void write_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
                       int attempts)
 {
-    char path[2048], text[4096];
+    char path[2048], text[8192];
     int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
     if (sig)
         n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
@@ -307,13 +308,14 @@ static void process(struct queue *q, const char *name)
         return;
     }
     if (!still_ours(q)) {
-        fprintf(stderr, "%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+        fprintf(stderr, "%s: the claim was taken over (our lease was judged dead); leaving the job to it\n",
+                name);
         return;
     }
     if (rc == 0) {
         if (rr.skipped)
-            fprintf(stderr, "%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n", name,
-                    q->done, j.name);
+            fprintf(stderr, "%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n",
+                    name, q->done, j.name);
         else
             run_print_summary(&j, &rr);
         file_claim(q, name, q->done);

@@ -93,8 +93,8 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
     if (imgio_read(j->reference, ref, e) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg);
-        return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s", j->reference,
-                       why);
+        return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s",
+                       j->reference, why);
     }
     if (ref->w != w || ref->h != h) {
         err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
@@ -106,8 +106,8 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
 }
 
 int run_write_outputs(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                      const struct farm_result *fr, const struct rgb8 *ref, int parts,
-                      struct run_result *rr, struct err *e)
+                      const struct farm_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
+                      struct err *e)
 {
     char dir[2048];
     struct rgb8 img = {0};
@@ -200,9 +200,17 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (!(rgb = farm_framebuffer_new(w, h, e)))
         goto done;
     struct progress prog = {j->name, o->progress && !o->quiet, -1, o->tick, o->tick_arg};
-    struct farm_job fj = {sf.scene, &cam, {w, h, j->max_depth, j->seed}, pix, light,
-                          o->processes > 0 ? o->processes : j->processes,
-                          o->parts > 0 ? o->part : 0, o->parts > 0 ? o->parts : 1, show_progress, &prog, o->stop};
+    struct farm_job fj = {.scene = sf.scene,
+                          .camera = &cam,
+                          .rs = {w, h, j->max_depth, j->seed},
+                          .pixel = pix,
+                          .light = light,
+                          .processes = o->processes > 0 ? o->processes : j->processes,
+                          .row_part = o->parts > 0 ? o->part : 0,
+                          .row_parts = o->parts > 0 ? o->parts : 1,
+                          .progress = show_progress,
+                          .progress_arg = &prog,
+                          .stop = o->stop};
     if (farm_render(&fj, rgb, &rr->farm, e) < 0) {
         if (prog.enabled)
             fprintf(stderr, "\n");
