@@ -86,7 +86,15 @@ static int peek_priority(const char *path)
 {
     struct ydoc d;
     struct err e;
+    uint8_t *text;
+    size_t len;
     int p = 0;
+    if (fileio_read_all(path, YDOC_MAX_BYTES, &text, &len, &e) < 0)
+        return 0;
+    int mentioned = strstr((const char *)text, "priority") != NULL;
+    free(text);
+    if (!mentioned) /* most jobs: no YAML parse on every scan */
+        return 0;
     if (ydoc_load(&d, path, &e) == 0) {
         yaml_node_t *root = ydoc_root(&d);
         yaml_node_t *v = root && root->type == YAML_MAPPING_NODE ? ymap_get(&d, root, "priority") : NULL;
