@@ -127,7 +127,7 @@ check "bad job: nothing rendered for it" [ ! -e "$Q/done/bad" ]
 
 # 6. SIGTERM mid-render: children stopped, the job back in the queue, exit 0
 Q=$T/q6; mkdir -p "$Q"; slow "$Q/term.yaml"
-"$WORKER" --queue "$Q" --quiet --poll 0.1 2>"$T/t.log" & wpid=$!
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/t.log" & wpid=$!
 child=$(render_child "$wpid")
 kill -TERM "$wpid"; wait "$wpid"; rc=$?
 check "SIGTERM: exit 0 (got $rc)" [ "$rc" -eq 0 ]
@@ -137,8 +137,17 @@ check "SIGTERM: no job file in done/" [ ! -e "$Q/done/term.yaml" ]
 check "SIGTERM: no image in done/" [ "$(count "$Q/done/term/*")" -eq 0 ]
 check "SIGTERM: render process stopped" gone "$child"
 check "SIGTERM: says so" grep -q "term.yaml: stopped by signal 15, returned to the queue" "$T/t.log"
+# SIGTERM to the whole process group (a terminal's Ctrl-C, Slurm's scancel): the render processes
+# ignore it and the worker stops them; never mistaken for a crash, even with --retries 0
+setsid "$WORKER" --queue "$Q" --once --quiet --retries 0 2>"$T/tg.log" & wpid=$!
+child=$(render_child "$wpid")
+kill -TERM "-$wpid"; wait "$wpid"; rc=$?
+check "group SIGTERM: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "group SIGTERM: job back in the queue" [ -f "$Q/term.yaml" ]
+check "group SIGTERM: nothing in failed/" [ "$(count "$Q/failed/*")" -eq 0 ]
+check "group SIGTERM: render process stopped" gone "$child"
 # a second signal kills at once; the job is not lost (waiting or claimed for recovery)
-"$WORKER" --queue "$Q" --quiet 2>/dev/null & wpid=$!
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null & wpid=$!
 render_child "$wpid" >/dev/null
 kill -INT "$wpid"; kill -TERM "$wpid"; wait "$wpid"; rc=$?
 check "two signals: killed at once (got $rc)" [ "$rc" -gt 128 ]

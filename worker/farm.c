@@ -28,9 +28,11 @@ static double clock_s(clockid_t id)
 static void child_main(const struct farm_job *fj, int index, int nproc, float *rgb, struct shared *sh,
                        pid_t parent)
 {
-    /* the parent decides what a stop means; a render child only dies with it */
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
+    /* With a stop flag the parent owns SIGINT/SIGTERM (a terminal's Ctrl-C or Slurm's scancel
+       reach the whole process group): it stops the children itself, so a signal that reached a
+       child first can never pass for a crash. Without one, they die as usual. */
+    signal(SIGINT, fj->stop ? SIG_IGN : SIG_DFL);
+    signal(SIGTERM, fj->stop ? SIG_IGN : SIG_DFL);
     double wall0 = clock_s(CLOCK_MONOTONIC);
     struct err e;
     struct render_ctx *ctx = render_ctx_new(fj->scene, fj->camera, &fj->rs, fj->pixel, fj->light, &e);
