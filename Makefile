@@ -122,11 +122,12 @@ bench: all build/bench_bridson
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.
 FUZZ_CC     ?= clang
 SECONDS     ?= 30
+FUZZ_TARGETS ?= job scene image
 FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 FUZZ_SRC    := $(COMMON_SRC) $(WORKER_SRC) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c
 fuzz: deps
 	@mkdir -p build/fuzz
-	$(Q)set -e; for t in job scene image; do \
+	$(Q)set -e; for t in $(FUZZ_TARGETS); do \
 	  $(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -Itests/fuzz $(FUZZ_FLAGS) \
 	    -DFUZZ_TARGET=fuzz_$$t $(FUZZ_SRC) -o build/fuzz/fuzz_$$t $(PKG_LIBS) -lm; \
 	  mkdir -p build/fuzz/corpus-$$t; \
