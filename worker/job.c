@@ -13,7 +13,8 @@ const char *const job_keys[] = {"name",       "scene",        "width",   "height
                                 "sampler",    "threshold",    "light_sampler",
                                 "light_threshold", "max_depth", "seed",   "processes",
                                 "format",     "output",       "reference", "poisson_pool",
-                                "priority",   NULL};
+                                "light_sampling", "priority",
+                                NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
 {
@@ -88,6 +89,7 @@ void job_defaults(struct job *j, const char *path)
     j->seed = 1;
     j->processes = 2;
     j->format = IMG_PNG;
+    j->light_sampling = 1;
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
@@ -183,6 +185,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "light_sampling")) {
+        return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;

@@ -26,6 +26,7 @@ struct job {
     char output[JOB_NAME_MAX];     /* file name under --out DIR/<name>/ */
     char reference[JOB_PATH_MAX];  /* resolved; "" when none */
     int poisson_pool;
+    int light_sampling;            /* 0: no importance sampling of lights (default 1) */
     int priority;                  /* queue order: higher first (default 0) */
     uint64_t hash;                 /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */

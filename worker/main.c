@@ -1,5 +1,6 @@
 /* main: the `worker` command line (SPEC "Command line"): parse, dispatch, print, exit. */
 #include <signal.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +20,7 @@ static const char usage[] =
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain a queue directory (--once: exit when empty)\n"
-    "       worker diff A.png B.png [--max-rmse X]  error of B against reference A\n"
+    "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
     "       worker --help | --version\n"
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
@@ -53,9 +54,15 @@ static int diff_main(int argc, char **argv)
 {
     const char *files[2] = {0};
     int nfiles = 0;
-    double max_rmse = -1;
+    double max_rmse = -1, block = 1;
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--max-rmse")) {
+        if (!strcmp(argv[i], "--block")) {
+            if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) || block < 1 ||
+                block > 65536) {
+                fprintf(stderr, "worker diff: --block needs a whole number of pixels in [1, 65536]\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--max-rmse")) {
             if (i + 1 >= argc || parse_double_arg(argv[++i], &max_rmse) < 0 || max_rmse < 0) {
                 fprintf(stderr, "worker diff: --max-rmse needs a number >= 0\n");
                 return 2;
@@ -79,7 +86,7 @@ static int diff_main(int argc, char **argv)
     struct err e;
     int rc = 2;
     if (imgio_read(files[0], &a, &e) == 0 && imgio_read(files[1], &b, &e) == 0) {
-        if (metrics_compare(&a, &b, &m, &e) == 0) {
+        if (metrics_compare_blocks(&a, &b, (int)block, &m, &e) == 0) {
             printf("mse %.9g\nrmse %.9g\nrelmse %.9g\npsnr %.4f\n", m.mse, m.rmse, m.relmse, m.psnr);
             rc = 0;
             if (max_rmse >= 0 && m.rmse > max_rmse) {

@@ -31,6 +31,7 @@ char *sidecar_json(const struct sidecar *s)
     json_number(&js, "threshold", j->threshold);
     json_string(&js, "light_sampler", sampler_kind_name(j->light_sampler));
     json_number(&js, "light_threshold", j->light_threshold);
+    json_bool(&js, "light_sampling", j->light_sampling);
     json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);
     json_uint(&js, "max_depth", (uint64_t)j->max_depth);
     json_uint(&js, "seed", j->seed);
@@ -54,7 +55,12 @@ char *sidecar_json(const struct sidecar *s)
     json_number(&js, "wall_s", r->wall_s);
     json_number(&js, "cpu_s", r->cpu_s);
     json_number(&js, "sampler_s", t->sampler_s);
-    json_number(&js, "sampling_share", r->cpu_s > 0 ? t->sampler_s / r->cpu_s : 0);
+    /* Share of the render processes' wall time spent drawing point sets: both clocks are
+       monotonic wall clocks, so a loaded machine cannot push it past 1. */
+    double proc_wall = 0;
+    for (int i = 0; i < r->processes; i++)
+        proc_wall += r->proc[i].wall_s;
+    json_number(&js, "sampling_share", proc_wall > 0 ? t->sampler_s / proc_wall : 0);
     json_number(&js, "ns_per_sample", t->samples ? r->cpu_s * 1e9 / (double)t->samples : 0);
     json_begin_array(&js, "per_process");
     for (int i = 0; i < r->processes; i++) {
