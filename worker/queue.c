@@ -37,11 +37,6 @@ void queue_signals_install(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
-const volatile sig_atomic_t *queue_stop_flag(void)
-{
-    return &queue_stop;
-}
-
 struct queue {
     const struct queue_opts *o;
     char dir[1024], running[1100], done[1100], failed[1100];

@@ -27,9 +27,6 @@ struct queue_opts {
    the queue. A second signal terminates the process at once. */
 void queue_signals_install(void);
 
-/* The stop flag the handlers set (the signal number; 0 while running). */
-const volatile sig_atomic_t *queue_stop_flag(void);
-
 /* Claim, render and file jobs until the queue is empty (once) or a stop signal arrives, returning
    stale claims of dead workers to the queue on every scan. Prints one line per job on stderr.
    Returns the exit status: 0 every job taken was done (or skipped as current, or returned on a
