@@ -84,6 +84,21 @@ check "kill worker: sidecar written" [ -s "$Q/done/slow/slow.json" ]
 check "kill worker: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 check "kill worker: no temporary files in done/" [ -z "$(ls -A "$Q/done/slow" | grep tmp)" ]
 
+# 2b. the same while another worker is already polling the queue: that one takes the job over
+Q=$T/q2b; mkdir -p "$Q"; slow "$Q/slow.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null & apid=$!
+child=$(render_child "$apid")
+"$WORKER" --queue "$Q" --quiet --poll 0.2 2>"$T/b2.log" & bpid=$!
+sleep 0.3
+check "poller: idle while the claim is alive" [ -f "$Q/running/slow.yaml" ]
+kill -9 "$apid"; wait "$apid" 2>/dev/null
+for _ in $(seq 1 300); do [ -f "$Q/done/slow.yaml" ] && break; sleep 0.05; done
+kill -TERM "$bpid"; wait "$bpid"; rc=$?
+check "poller: took over the dead worker's job" [ -f "$Q/done/slow.yaml" ]
+check "poller: image equals a plain render" cmp -s "$T/plain/slow/slow.png" "$Q/done/slow/slow.png"
+check "poller: exits 0 on SIGTERM when idle (got $rc)" [ "$rc" -eq 0 ]
+check "poller: said it took the claim back" grep -q "slow.yaml: returned to the queue: its worker (pid $apid " "$T/b2.log"
+
 # 3. kill -9 a render process: the job is retried and succeeds
 Q=$T/q3; mkdir -p "$Q"; slow "$Q/crash.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/c.log" & wpid=$!
