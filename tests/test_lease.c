@@ -75,6 +75,11 @@ int main(void)
     CHECK(lease_stale(claim, 3600, why, sizeof why) == 1);
     CHECK(strstr(why, "is gone") != NULL);
 
+    /* a pid that names no single process (0, -1) is nobody's */
+    me.pid = -1;
+    CHECK(lease_write(claim, &me, &e) == 0);
+    CHECK(lease_stale(claim, 3600, why, sizeof why) == 1);
+
     /* another host: alive while the lease is fresh, dead once older than the timeout */
     snprintf(me.host, sizeof me.host, "elsewhere.example");
     me.pid = 1;

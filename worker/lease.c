@@ -108,7 +108,9 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
         return claimed > timeout_s;
     }
     lease_init(&me);
-    if (!strcmp(l.host, me.host) && (l.pid == me.pid || (kill((pid_t)l.pid, 0) < 0 && errno == ESRCH))) {
+    /* pid 0 or -1 would ask kill() about whole process groups: such a lease names nobody */
+    if (!strcmp(l.host, me.host) &&
+        (l.pid <= 0 || l.pid == me.pid || (kill((pid_t)l.pid, 0) < 0 && errno == ESRCH))) {
         snprintf(why, n, "its worker (pid %ld on %s) is gone", l.pid, l.host);
         return 1;
     }
