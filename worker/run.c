@@ -143,6 +143,8 @@ done:
 static int outputs_current(const struct job *j, const struct run_opts *o, struct run_result *rr)
 {
     char dir[2048];
+    if (j->hash == 0) /* a job not read from a file (no job_load): nothing to compare with */
+        return 0;
     if (o->parts > 0) {
         part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;

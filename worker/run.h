@@ -30,7 +30,8 @@ struct run_result {
 /* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing
    rendered), 1 when rendering or writing failed; e says why. No output file exists unless the
    render completed: image and sidecar are written atomically. Unless o->force, a job whose
-   image and sidecar (or part file) exist and record j->hash is not rendered: 0, rr->skipped. */
+   image and sidecar (or part file) exist and record j->hash (non-zero: the job was read by
+   job_load) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
 
 /* The directory OUT/<name>/ and the image and sidecar paths of j (sidecar: image stem + .json). */
