@@ -27,6 +27,10 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "image", s->image);
     json_uint(&js, "width", (uint64_t)s->width);
     json_uint(&js, "height", (uint64_t)s->height);
+    json_begin_array(&js, "size");
+    json_uint(&js, NULL, (uint64_t)s->width);
+    json_uint(&js, NULL, (uint64_t)s->height);
+    json_end_array(&js);
     json_string(&js, "sampler", sampler_kind_name(j->sampler));
     json_number(&js, "threshold", j->threshold);
     json_string(&js, "light_sampler", sampler_kind_name(j->light_sampler));
