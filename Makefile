@@ -38,7 +38,7 @@ LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
 .SECONDARY:
-.PHONY: all test unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind
+.PHONY: all test unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
 # One line naming the Debian packages when a header is missing.
@@ -94,6 +94,11 @@ asan:
 	$(Q)$(MAKE) --no-print-directory test BUILD=build/asan BIN=build/asan/bin OPT='-O1 -g' \
 	  SAN='-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all' ASAN_FAST=1
 
+# The Slurm examples in ci/slurm/ through a one-node Slurm on localhost (daemons started and
+# stopped by the script; needs Debian's slurm-wlm and munge).
+test-slurm: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) bash ci/slurm/test-local.sh
+
 run: all
 	$(WORKER_BIN) jobs/checker.yaml
 
@@ -122,11 +127,12 @@ bench: all build/bench_bridson
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.
 FUZZ_CC     ?= clang
 SECONDS     ?= 30
+FUZZ_TARGETS ?= job scene image
 FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 FUZZ_SRC    := $(COMMON_SRC) $(WORKER_SRC) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c
 fuzz: deps
 	@mkdir -p build/fuzz
-	$(Q)set -e; for t in job scene image; do \
+	$(Q)set -e; for t in $(FUZZ_TARGETS); do \
 	  $(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -Itests/fuzz $(FUZZ_FLAGS) \
 	    -DFUZZ_TARGET=fuzz_$$t $(FUZZ_SRC) -o build/fuzz/fuzz_$$t $(PKG_LIBS) -lm; \
 	  mkdir -p build/fuzz/corpus-$$t; \

@@ -54,7 +54,7 @@ for name in $JOBS; do
     for r in $(seq 1 "$runs"); do
         for p in 1 2; do
             rm -rf "$out/$p"
-            "$WORKER" --quiet --processes $p --out "$out/$p" "$job" >/dev/null 2>&1
+            "$WORKER" --quiet --force --processes $p --out "$out/$p" "$job" >/dev/null 2>&1 # every run renders
             sc="$out/$p/$name/$name.json"
             if [ $p = 1 ]; then
                 field "$sc" ns_per_sample >>"$out/ns"
@@ -97,10 +97,10 @@ done
 # framebuffer is what the render costs beyond framebuffer + scene.
 peak_kb() { # peak_kb JOB -> kB
     if [ -x /usr/bin/time ]; then
-        /usr/bin/time -f %M -o "$out/time" "$WORKER" --quiet --processes 1 --out "$out/hd" "$1" >/dev/null 2>&1
+        /usr/bin/time -f %M -o "$out/time" "$WORKER" --quiet --force --processes 1 --out "$out/hd" "$1" >/dev/null 2>&1
         cat "$out/time"
     else
-        "$WORKER" --quiet --processes 1 --out "$out/hd" "$1" >/dev/null 2>&1
+        "$WORKER" --quiet --force --processes 1 --out "$out/hd" "$1" >/dev/null 2>&1
         n=$(basename "$1" .yaml)
         field "$out/hd/$n/$n.json" peak_rss_kb
     fi
