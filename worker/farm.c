@@ -139,7 +139,9 @@ int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, 
             if (fj->progress)
                 fj->progress(fj->progress_arg, atomic_load(&sh->rows_done), rows,
                              clock_s(CLOCK_MONOTONIC) - wall0);
-            struct timespec nap = {0, 50 * 1000 * 1000};
+            /* 5 ms: a render's end is seen within 5 ms (at 50 ms a 0.3 s job lost a sixth of
+               its wall time to the wait), for about 200 cheap wake-ups a second */
+            struct timespec nap = {0, 5 * 1000 * 1000};
             nanosleep(&nap, NULL);
             continue;
         }
