@@ -258,16 +258,28 @@ static inline bvh_f4 f4_load(const void *p)
     memcpy(&x, p, sizeof x);
     return x;
 }
-static inline bvh_f4 f4_splat(float x) { return (bvh_f4){x, x, x, x}; }
+static inline bvh_f4 f4_splat(float x)
+{
+    return (bvh_f4){x, x, x, x};
+}
 
 /* max(a, b) and min(a, b) lane by lane, b where a is NaN: a NaN slab (a zero direction
    component with the origin on the plane) then constrains nothing. SSE's maxps/minps have
    exactly this rule; the generic form compiles to four instructions instead of one. */
 #if defined(__SSE__)
 #include <xmmintrin.h>
-static inline bvh_f4 f4_max(bvh_f4 a, bvh_f4 b) { return (bvh_f4)_mm_max_ps((__m128)a, (__m128)b); }
-static inline bvh_f4 f4_min(bvh_f4 a, bvh_f4 b) { return (bvh_f4)_mm_min_ps((__m128)a, (__m128)b); }
-static inline int f4_mask(bvh_i4 m) { return _mm_movemask_ps((__m128)m); }
+static inline bvh_f4 f4_max(bvh_f4 a, bvh_f4 b)
+{
+    return (bvh_f4)_mm_max_ps((__m128)a, (__m128)b);
+}
+static inline bvh_f4 f4_min(bvh_f4 a, bvh_f4 b)
+{
+    return (bvh_f4)_mm_min_ps((__m128)a, (__m128)b);
+}
+static inline int f4_mask(bvh_i4 m)
+{
+    return _mm_movemask_ps((__m128)m);
+}
 #else
 static inline bvh_f4 f4_max(bvh_f4 a, bvh_f4 b)
 {
@@ -279,7 +291,10 @@ static inline bvh_f4 f4_min(bvh_f4 a, bvh_f4 b)
     bvh_i4 m = a < b;
     return (bvh_f4)(((bvh_i4)a & m) | ((bvh_i4)b & ~m));
 }
-static inline int f4_mask(bvh_i4 m) { return (m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8); }
+static inline int f4_mask(bvh_i4 m)
+{
+    return (m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8);
+}
 #endif
 
 /* The ray in float for the slab tests. Rounding the origin o to float would move it by up to

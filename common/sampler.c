@@ -153,9 +153,15 @@ typedef int32_t poisson_i4 __attribute__((vector_size(16)));
    extracting and or-ing four lanes is eight. */
 #if defined(__SSE__)
 #include <xmmintrin.h>
-static inline int poisson_any(poisson_i4 m) { return _mm_movemask_ps((__m128)m) != 0; }
+static inline int poisson_any(poisson_i4 m)
+{
+    return _mm_movemask_ps((__m128)m) != 0;
+}
 #else
-static inline int poisson_any(poisson_i4 m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+static inline int poisson_any(poisson_i4 m)
+{
+    return (m[0] | m[1] | m[2] | m[3]) != 0;
+}
 #endif
 
 static inline poisson_f4 poisson_load4(const float *p)

@@ -163,7 +163,8 @@ vec3 shape_light_point(const struct prim *p, struct pt2 s)
     /* the unit axes have one non-zero component each: the sum is exact */
     double pa = p->g.rect.a0 + s.x * (p->g.rect.a1 - p->g.rect.a0);
     double pb = p->g.rect.b0 + s.y * (p->g.rect.b1 - p->g.rect.b0);
-    return v3_add(v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, pa)), v3_scale(p->g.rect.eb, pb));
+    return v3_add(v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, pa)),
+                  v3_scale(p->g.rect.eb, pb));
 }
 
 /* 1 - cos of the half-angle of the cone a sphere subtends from o, computed without

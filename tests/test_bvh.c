@@ -38,8 +38,15 @@ static vec3 box_point(vec3 lo, vec3 hi, int k)
 {
     /* k in [0, 27): every corner, edge midpoint, face centre and the centre of the box */
     int i = k % 3, j = k / 3 % 3, l = k / 9;
-    return v3(i == 0 ? lo.x : i == 1 ? hi.x : 0.5 * (lo.x + hi.x), j == 0 ? lo.y : j == 1 ? hi.y : 0.5 * (lo.y + hi.y),
-              l == 0 ? lo.z : l == 1 ? hi.z : 0.5 * (lo.z + hi.z));
+    return v3(i == 0   ? lo.x
+              : i == 1 ? hi.x
+                       : 0.5 * (lo.x + hi.x),
+              j == 0   ? lo.y
+              : j == 1 ? hi.y
+                       : 0.5 * (lo.y + hi.y),
+              l == 0   ? lo.z
+              : l == 1 ? hi.z
+                       : 0.5 * (lo.z + hi.z));
 }
 
 /* Rays toward 27 points of every stride-th prim's box, from inside the scene and from far_origin. */

@@ -524,12 +524,15 @@ static void test_cells(void)
     struct err e;
     struct rng rng;
     rng_seed(&rng, 11, 11);
-    struct sampler *u = sampler_new(SAMPLER_UNIFORM, 10, 0, 0, &e), *j = sampler_new(SAMPLER_JITTER, 3, 0, 0, &e);
-    struct sampler *r = sampler_new(SAMPLER_RANDOM, 5, 0, 0, &e), *p = sampler_new(SAMPLER_POISSON, 5, 0, 0, &e);
+    struct sampler *u = sampler_new(SAMPLER_UNIFORM, 10, 0, 0, &e),
+                   *j = sampler_new(SAMPLER_JITTER, 3, 0, 0, &e);
+    struct sampler *r = sampler_new(SAMPLER_RANDOM, 5, 0, 0, &e),
+                   *p = sampler_new(SAMPLER_POISSON, 5, 0, 0, &e);
     CHECK(u && j && r && p);
     if (!u || !j || !r || !p)
         return;
-    CHECK(sampler_cells(u) == 100 && sampler_cells(j) == 33 * 33 && sampler_cells(r) == 400 && sampler_cells(p) == 0);
+    CHECK(sampler_cells(u) == 100 && sampler_cells(j) == 33 * 33 && sampler_cells(r) == 400 &&
+          sampler_cells(p) == 0);
     CHECK(sampler_kind_of(j) == SAMPLER_JITTER && sampler_kind_of(p) == SAMPLER_POISSON);
     struct pt2 grid[100];
     CHECK(sampler_draw(u, &rng, grid) == 100);

@@ -118,7 +118,8 @@ static void test_checker_sign(void)
     int same = 1, odd = 0;
     for (int i = 0; i < 200000; i++) {
         double r = i < 100000 ? 5 : 2000;
-        vec3 p = v3(r * (2 * rng_uniform(&g) - 1), r * (2 * rng_uniform(&g) - 1), r * (2 * rng_uniform(&g) - 1));
+        vec3 p =
+            v3(r * (2 * rng_uniform(&g) - 1), r * (2 * rng_uniform(&g) - 1), r * (2 * rng_uniform(&g) - 1));
         double s = sin(10 * p.x) * sin(10 * p.y) * sin(10 * p.z);
         if (fabs(s) < 1e-9)
             continue;
