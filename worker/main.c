@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "compare.h"
 #include "fileio.h"
 #include "job.h"
 #include "metrics.h"
@@ -154,6 +155,11 @@ int main(int argc, char **argv)
         struct job j;
         struct err e;
         struct run_result rr;
+        if (compare_is_compare_job(jobs[i])) {
+            int rc = compare_main(jobs[i], &o);
+            worst = rc > worst ? rc : worst;
+            continue;
+        }
         if (job_load(jobs[i], &j, &e) < 0) {
             print_err(&e);
             worst = 2;
