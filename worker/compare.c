@@ -152,7 +152,10 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     it->spp_max = t->spp_max;
     it->wall_s = rr.farm.wall_s;
     it->cpu_s = rr.farm.cpu_s;
-    it->sampler_share = rr.farm.cpu_s > 0 ? t->sampler_s / rr.farm.cpu_s : 0;
+    double proc_wall_s = 0; /* the sidecar's sampling share: of the render processes' wall time */
+    for (int p = 0; p < rr.farm.processes; p++)
+        proc_wall_s += rr.farm.proc[p].wall_s;
+    it->sampler_share = proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0;
     if (ref) {
         struct rgb8 img = {0};
         rc = imgio_read(rr.image_path, &img, e) < 0 || metrics_compare(ref, &img, &it->error, e) < 0;

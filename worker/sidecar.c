@@ -45,7 +45,12 @@ char *sidecar_json(const struct sidecar *s)
     json_number(&js, "wall_s", r->wall_s);
     json_number(&js, "cpu_s", r->cpu_s);
     json_number(&js, "sampler_s", t->sampler_s);
-    json_number(&js, "sampling_share", r->cpu_s > 0 ? t->sampler_s / r->cpu_s : 0);
+    /* sampler_s is wall-clock time inside the render processes, so its share is of their wall
+       time (of their CPU time it passes 1 on a busy machine). */
+    double proc_wall_s = 0;
+    for (int i = 0; i < r->processes; i++)
+        proc_wall_s += r->proc[i].wall_s;
+    json_number(&js, "sampling_share", proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0);
     json_number(&js, "ns_per_sample", t->samples ? r->cpu_s * 1e9 / (double)t->samples : 0);
     json_begin_array(&js, "per_process");
     for (int i = 0; i < r->processes; i++) {
