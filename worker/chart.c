@@ -170,7 +170,10 @@ static void series(struct sbuf *b, const struct frame *f, const struct chart_ser
 /* The series of panel p, with their colours, and what the dotted lines and whiskers are. */
 static void legend(struct sbuf *b, double x, double y, const struct chart_panel *p)
 {
-    int rows = p->n_series + (p->n_slopes > 0) + 1;
+    int whiskers = 0;
+    for (int s = 0; s < p->n_series; s++)
+        whiskers |= p->series[s].lo && p->series[s].hi;
+    int rows = p->n_series + (p->n_slopes > 0) + whiskers;
     sbuf_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%d\" height=\"%d\" fill=\"#ffffff\" stroke=\"#cccccc\"/>\n", x, y,
                 LEGEND_W - 12, 10 + 18 * rows);
     for (int s = 0; s < p->n_series; s++) {
@@ -187,7 +190,8 @@ static void legend(struct sbuf *b, double x, double y, const struct chart_panel 
                        "<text x=\"%.1f\" y=\"%.1f\">guide slopes</text>\n", x + 8, ly - 4, x + 28, ly - 4, x + 34, ly);
         ly += 18;
     }
-    sbuf_printf(b, "<path d=\"M%.1f %.1fV%.1fM%.1f %.1fh8M%.1f %.1fh8\" stroke=\"#444444\"/>\n<text x=\"%.1f\" y=\"%.1f\">"
+    if (whiskers)
+        sbuf_printf(b, "<path d=\"M%.1f %.1fV%.1fM%.1f %.1fh8M%.1f %.1fh8\" stroke=\"#444444\"/>\n<text x=\"%.1f\" y=\"%.1f\">"
                    "whisker: seed min-max</text>\n", x + 18, ly - 12, ly + 2, x + 14, ly - 12, x + 14, ly + 2, x + 34, ly);
 }
 
