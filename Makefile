@@ -84,6 +84,21 @@ install: all
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/worker
 
+# One small render (two forked children) under valgrind memcheck: zero errors, nothing lost.
+valgrind: all
+	$(Q)mkdir -p build/valgrind && printf 'scene: %s/scenes/checker.yaml\nwidth: 24\nheight: 16\nthreshold: 34\nprocesses: 2\n' \
+	  "$(CURDIR)" >build/valgrind/job.yaml
+	$(Q)valgrind -q --error-exitcode=3 --leak-check=full --show-leak-kinds=definite \
+	  --errors-for-leak-kinds=definite --trace-children=yes --child-silent-after-fork=no \
+	  $(WORKER_BIN) --quiet --out build/valgrind/out build/valgrind/job.yaml
+	@echo "valgrind: 0 errors, 0 bytes definitely lost"
+
+# Benchmarks with the release flags: a table on stdout and bench/results.json (see BENCH.md).
+build/bench_bridson: bench/bench_bridson.c $(LIBCOMMON)
+	$(Q)$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBCOMMON) $(LDLIBS_ALL)
+bench: all build/bench_bridson
+	$(Q)sh bench/bench.sh
+
 # Fuzzing (libFuzzer, clang): each target for SECONDS; new crashes land in tests/fuzz/regress/,
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.
 FUZZ_CC     ?= clang

@@ -105,7 +105,12 @@ fail:
     return NULL;
 }
 
-/* Next point of light i's current set, drawing a fresh set when it runs out. */
+/* Next point of light i's current set, drawing a fresh set when it runs out. A pixel uses
+   only part of a set, in order; a grid or Poisson set in generation order would then cover
+   only part of the light (a grid's first rows, a Poisson blob around its first point) and
+   bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle done lazily,
+   one swap per point taken. Every point consumed is then uniform over the light, and the set
+   still stratifies what is consumed of it. */
 static struct pt2 next_light_point(struct render_ctx *ctx, int i)
 {
     struct light_points *lp = &ctx->lp[i];
@@ -116,7 +121,12 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i)
         ctx->st->sampler_s += now_s() - t0;
         ctx->st->light_sets++;
     }
-    return lp->pts[lp->next++];
+    size_t k = lp->next++;
+    size_t j = k + rng_below(&ctx->light_rng, (uint32_t)(lp->n - k));
+    struct pt2 chosen = lp->pts[j];
+    lp->pts[j] = lp->pts[k];
+    lp->pts[k] = chosen;
+    return chosen;
 }
 
 static double light_pdf(const struct scene *sc, vec3 o, vec3 dir, double time)

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -155,6 +156,9 @@ int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, 
             res->cpu_s += sh->proc[i].cpu_s;
         }
         res->wall_s = clock_s(CLOCK_MONOTONIC) - wall0;
+        struct rusage ru;
+        if (getrusage(RUSAGE_CHILDREN, &ru) == 0)
+            res->peak_rss_kb = ru.ru_maxrss;
         if (fj->progress)
             fj->progress(fj->progress_arg, rows, rows, res->wall_s);
     }

@@ -17,6 +17,7 @@ struct farm_result {
     struct farm_proc proc[FARM_MAX_PROCESSES];
     int processes;
     double wall_s, cpu_s;
+    long peak_rss_kb; /* largest resident set of any render child so far (getrusage) */
 };
 
 /* What the caller sees while a render runs: rows done of rows, seconds elapsed. */

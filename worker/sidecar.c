@@ -63,6 +63,7 @@ char *sidecar_json(const struct sidecar *s)
     }
     json_end_array(&js);
     json_end_object(&js);
+    json_uint(&js, "peak_rss_kb", (uint64_t)r->peak_rss_kb);
     json_uint(&js, "nonfinite_dropped", t->nonfinite);
     if (s->error) {
         json_begin_object(&js, "error");
