@@ -141,7 +141,7 @@ width: 64
 height: 48
 light_sampler: random
 reference: { sampler: jitter, threshold: 2 }
-seeds: [1, 2, 3]
+seeds: [1, 2, 3, 4, 5]
 variants:
   - { sampler: jitter, threshold: 5 }
   - { sampler: random, threshold: 5 }
@@ -150,9 +150,10 @@ EOF
 "$WORKER" --quiet --out "$T/out" "$T/order.yaml" 2>/dev/null
 ocsv=$T/out/order/summary.csv
 check "poisson t=4 has equal samples (400 +- 2%)" awk -F, '$2 == "poisson-t4" && ($6 < 392 || $6 > 408) { bad = 1 } END { exit bad }' "$ocsv"
-# Margin over the seeds: the mean difference in units of its standard error across seeds
-# (measured: jitter 1.26x below random at z = 4.1, poisson 1.19x at z = 3.0).
-order() { # order VARIANT: VARIANT's mean relMSE is below random's by more than 2 standard errors
+# The margin is measured over the seeds: the difference of the mean relMSEs in units of its
+# standard error across the 5 seeds must pass 2, and the ratio 1.05 (measured: jitter 1.22x
+# below random at z = 4.1, poisson 1.16x at z = 3.6).
+order() { # order VARIANT: VARIANT's mean relMSE is below random's by > 2 standard errors and 5%
     awk -F, -v a="$1" '
         $2 == a { na++; sa += $12; qa += $12 * $12 }
         $2 == "random-t5" { nr++; sr += $12; qr += $12 * $12 }
@@ -161,7 +162,7 @@ order() { # order VARIANT: VARIANT's mean relMSE is below random's by more than 
             va = (qa - na * ma * ma) / (na - 1); vr = (qr - nr * mr * mr) / (nr - 1)
             se = sqrt(va / na + vr / nr); z = (mr - ma) / se
             printf "%s: mean relMSE %.4g vs random %.4g: %.2fx lower, z = %.1f\n", a, ma, mr, mr / ma, z
-            exit !(na == 3 && nr == 3 && z > 2)
+            exit !(na == 5 && nr == 5 && z > 2 && mr / ma > 1.05)
         }' "$ocsv"
 }
 check "jitter below random at equal samples" order jitter-t5

@@ -32,20 +32,27 @@ static uint64_t fnv1a(uint64_t h, const void *data, size_t len)
     return h;
 }
 
-/* The cache key of a scene's reference: its scene file's bytes and every setting that changes
-   the reference's pixels (and the worker's version, which may change the renderer). */
+/* The cache key of a scene's reference: its scene file's bytes, every setting that changes the
+   reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
+   pixels, and its version string does not change with every commit. */
 static int reference_key(const struct compare_scene *cs, uint64_t *key, struct err *e)
 {
     const struct job *j = &cs->ref_job;
     uint8_t *data;
     size_t len;
+    struct err ignored;
+    uint64_t h = 0xcbf29ce484222325ULL;
+    if (fileio_read_all("/proc/self/exe", 1u << 30, &data, &len, &ignored) == 0) {
+        h = fnv1a(h, data, len);
+        free(data);
+    }
     if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
     char text[512];
     int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d worker %s", cs->width,
                      cs->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
                      j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
-    uint64_t h = fnv1a(0xcbf29ce484222325ULL, data, len);
+    h = fnv1a(h, data, len);
     *key = fnv1a(h, text, (size_t)n);
     free(data);
     return 0;
