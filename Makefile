@@ -75,8 +75,9 @@ asan:
 	$(Q)$(MAKE) --no-print-directory test BUILD=build/asan BIN=build/asan/bin OPT='-O1 -g' \
 	  SAN='-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all' ASAN_FAST=1
 
+# The headline study: every sampler on every scene, charted (out/compare/report.html).
 run: all
-	$(WORKER_BIN) jobs/checker.yaml
+	$(WORKER_BIN) jobs/compare.yaml
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin
