@@ -83,8 +83,8 @@ check "report: the table has every image" [ "$(grep -c '^<tr><td class="l">' "$h
 before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)
 "$WORKER" --out "$T/out" "$T/cmp.yaml" 2>"$T/run2.err"; rc=$?
 check "second run exits 0" [ "$rc" -eq 0 ]
-check "second run says the references were reused" [ "$(grep -c 'reference reused from cache' "$T/run2.err")" -eq 2 ]
-check "second run summary: 0 rendered, 2 reused" grep -q "references: 0 rendered, 2 reused from cache" "$T/run2.err"
+check "second run summary: 0 rendered, 2 reused" grep -q "references: 0 rendered, 2 reused from cache (saving [0-9.]* s)" "$T/run2.err"
+check "not a terminal: only the summary line" [ "$(wc -l <"$T/run2.err")" -eq 1 ]
 check "cached references not rewritten" [ "$before" = "$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)" ]
 # a changed scene file is a new cache key: only its reference renders again
 echo "# changed" >>"$T/board.yaml"
@@ -97,6 +97,7 @@ if command -v script >/dev/null 2>&1; then
     script -qec "'$WORKER' --out '$T/out' '$T/cmp.yaml'" /dev/null >"$T/tty.out" 2>&1
     check "progress: a line per combination" [ "$(grep -c '^\[[ 0-9]*/40\] .* spp, .* ETA' "$T/tty.out")" -eq 40 ]
     check "progress: names scene, variant, threshold, seed" grep -q '\[ 1/40\] checker poisson t=50 seed 1: ' "$T/tty.out"
+    check "progress: says each reference was reused" [ "$(grep -c 'reference reused from cache .*(it took' "$T/tty.out")" -eq 2 ]
 else
     echo "note: script(1) missing, progress lines not checked"
 fi

@@ -76,11 +76,11 @@ static double cached_wall_s(const char *png_path)
     return s;
 }
 
-/* A line on stderr: progress lines (always=0) only on a terminal, notes (always=1) unless --quiet. */
-static void say(const struct run_opts *o, int always, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static void say(const struct run_opts *o, int always, const char *fmt, ...)
+/* A progress line on stderr: only on a terminal and without --quiet (SPEC "Command line"). */
+static void say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void say(const struct run_opts *o, const char *fmt, ...)
 {
-    if (o->quiet || !(always || o->progress))
+    if (o->quiet || !o->progress)
         return;
     va_list ap;
     va_start(ap, fmt);
@@ -107,11 +107,11 @@ static int reference(struct compare *c, int s, const struct run_opts *o, struct 
         rgb8_free(&img);
         cs->ref_reused = 1;
         cs->ref_wall_s = cached_wall_s(cs->ref_path);
-        say(o, 1, "%s: reference reused from cache %s\n", cs->name, cs->ref_path);
+        say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path, cs->ref_wall_s);
         return 0;
     }
     rgb8_free(&img);
-    say(o, 1, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name, sampler_kind_name(j.sampler),
+    say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name, sampler_kind_name(j.sampler),
         j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold, cs->ref_path);
     struct run_result rr;
     int rc = run_job(&j, o, &rr, e);
@@ -148,7 +148,9 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     const struct compare_scene *cs = &c->scenes[it->scene];
     snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
     struct run_result rr;
-    int rc = run_job(&it->job, o, &rr, e);
+    struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
+    quiet_rows.progress = 0;
+    int rc = run_job(&it->job, &quiet_rows, &rr, e);
     if (rc != 0) {
         err_prefix(e, it->job.output);
         return rc;
@@ -213,8 +215,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     struct rgb8 *refs = calloc((size_t)c->n_scenes, sizeof *refs);
     int rc = 1;
     double t0 = now_s(), total = 0, done = 0;
-    if (!refs)
-        return err_set(e, NULL, 0, 0, "out of memory"), 1;
+    if (!refs) {
+        err_set(e, NULL, 0, 0, "out of memory");
+        return 1;
+    }
     snprintf(dir, sizeof dir, "%s/%s", out, c->name);
     if (limits_check_out_dir(dir, e) < 0) {
         rc = 2;
@@ -243,7 +247,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
-        say(o, 0, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s | %s elapsed, ETA %s\n", c->n_items >= 100 ? 3 : 2,
+        say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s | %s elapsed, ETA %s\n", c->n_items >= 100 ? 3 : 2,
             i + 1, c->n_items, cs->name, c->variants[it->variant], it->job.threshold,
             (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text, el, eta);
     }
@@ -265,13 +269,19 @@ fail:
 static void summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
 {
     int reused = 0, rendered = 0;
+    double saved_s = 0;
     for (int s = 0; s < c->n_scenes; s++) {
-        reused += c->scenes[s].ref_kind == COMPARE_REF_SETTINGS && c->scenes[s].ref_reused;
-        rendered += c->scenes[s].ref_kind == COMPARE_REF_SETTINGS && !c->scenes[s].ref_reused;
+        const struct compare_scene *cs = &c->scenes[s];
+        reused += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused;
+        rendered += cs->ref_kind == COMPARE_REF_SETTINGS && !cs->ref_reused;
+        saved_s += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused ? cs->ref_wall_s : 0;
     }
     char refs[128] = "no reference";
-    if (reused || rendered)
-        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache", rendered, reused);
+    if (reused)
+        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered, reused,
+                 saved_s);
+    else if (rendered)
+        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
     else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
         snprintf(refs, sizeof refs, "reference image given");
     snprintf(buf, n, "%s: %d images (%d scenes x %d variants x %d sweep points x %d seeds), %s, %.2f s -> %s/%s/",

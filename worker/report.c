@@ -179,7 +179,7 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", CROP_ZOOM);
     sbuf_escape(b, c->points[p]);
     sbuf_printf(b, ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
-                   "(relative error; in these scenes a soft shadow)</h3>\n<div class=\"row\">",
+                   "(by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n<div class=\"row\">",
                 x0, x0 + side - 1, y0, y0 + side - 1);
     for (int v = -1; v < c->n_variants; v++) {
         const struct rgb8 *src = v < 0 ? ref : &imgs[v];
@@ -323,9 +323,10 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         sbuf_printf(&b, ")");
     }
     sbuf_printf(&b, " x %d seeds. Error is relMSE (mean of (image - reference)^2 / (reference^2 + 0.01) over 8-bit "
-                    "values scaled to [0, 1]) against each scene's reference; lower is better. Wall time is one "
-                    "image's render on this machine, so it moves with the machine's load. Every image, its JSON "
-                    "sidecar and summary.csv are beside this page.</p>\n",
+                    "values scaled to [0, 1]) against each scene's reference; lower is better. The reference's own "
+                    "noise and 8-bit rounding set a floor under every curve. Wall time is one image's render on "
+                    "this machine, so it moves with the machine's load. Every image, its JSON sidecar and "
+                    "summary.csv are beside this page.</p>\n",
                 c->n_seeds);
     const char *body = strstr(svg, "<svg"); /* inline: drop the XML declaration */
     sbuf_printf(&b, "<h2>Speed against accuracy</h2>\n%s\n", body ? body : svg);
