@@ -27,7 +27,9 @@ int main(void)
     CHECK(svg != NULL);
     if (!svg)
         return check_report("test_chart");
-    CHECK(strncmp(svg, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"", 77) == 0);
+    CHECK(strncmp(svg,
+                  "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"",
+                  77) == 0);
     CHECK(strstr(svg, "</svg>\n") != NULL);
     CHECK(strstr(svg, "title &lt;1&gt;") != NULL);
     CHECK(strstr(svg, "first &amp; panel") != NULL);
@@ -36,7 +38,7 @@ int main(void)
     CHECK(count(svg, "<polyline") == 2);
     /* series 1: x = -1 skipped; series 2: y = 0 skipped too: 3 + 2 points */
     CHECK(count(svg, "<circle") == 5);
-    CHECK(count(svg, "<path d=\"M") == 3 + 1); /* three whiskers + the legend's sample whisker */
+    CHECK(count(svg, "<path d=\"M") == 3 + 1);      /* three whiskers + the legend's sample whisker */
     CHECK(count(svg, "stroke-dasharray") == 2 + 1); /* two guides + the legend's sample */
     CHECK(strstr(svg, ">slope -1.5<") != NULL);
     CHECK(strstr(svg, ">time (s)<") != NULL);

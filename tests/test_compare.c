@@ -77,10 +77,11 @@ static void test_expand(void)
 static void test_two_keys_no_sweep(void)
 {
     struct err e;
-    struct compare *c = compare_load(job_file("zip.yaml", "scene: SCENE\nwidth: 8\nheight: 6\n"
-                                                          "sweep: { threshold: [10, 5], light_threshold: [20, 10] }\n"
-                                                          "variants:\n  - { sampler: random }\n"),
-                                     &e);
+    struct compare *c =
+        compare_load(job_file("zip.yaml", "scene: SCENE\nwidth: 8\nheight: 6\n"
+                                          "sweep: { threshold: [10, 5], light_threshold: [20, 10] }\n"
+                                          "variants:\n  - { sampler: random }\n"),
+                     &e);
     CHECK(c && c->n_points == 2 && c->n_seeds == 1 && c->n_items == 2); /* swept keys step together */
     if (c) {
         CHECK(strcmp(c->items[1].job.output, "checker-random-t5-lt10-s1.png") == 0);
@@ -88,8 +89,9 @@ static void test_two_keys_no_sweep(void)
         CHECK(strcmp(c->points[1], "threshold 5, light_threshold 10") == 0);
     }
     compare_free(c);
-    c = compare_load(job_file("plain.yaml", "scene: SCENE\nseed: 9\nvariants:\n  - { sampler: jitter, threshold: 4 }\n"),
-                     &e);
+    c = compare_load(
+        job_file("plain.yaml", "scene: SCENE\nseed: 9\nvariants:\n  - { sampler: jitter, threshold: 4 }\n"),
+        &e);
     CHECK(c && c->n_points == 1 && strcmp(c->points[0], "as set") == 0);
     CHECK(c && strcmp(c->items[0].job.output, "checker-jitter-t4-t4-s9.png") == 0);
     compare_free(c);
@@ -100,15 +102,19 @@ static void test_two_keys_no_sweep(void)
 static void test_errors(void)
 {
     struct err e;
-    CHECK(!compare_load(job_file("e1.yaml", "scenes: [SCENE]\nvariants:\n  - { sampler: jitter, seed: 4 }\n"), &e));
+    CHECK(!compare_load(job_file("e1.yaml", "scenes: [SCENE]\nvariants:\n  - { sampler: jitter, seed: 4 }\n"),
+                        &e));
     CHECK(e.line == 3 && e.col == 24 && strstr(e.msg, "seed: not allowed in a variant: list the seeds once"));
-    CHECK(!compare_load(job_file("e2.yaml", "scenes: [SCENE]\nsweep: { threshold: 5 }\nvariants:\n  - {}\n"), &e));
+    CHECK(!compare_load(job_file("e2.yaml", "scenes: [SCENE]\nsweep: { threshold: 5 }\nvariants:\n  - {}\n"),
+                        &e));
     CHECK(e.line == 2 && e.col == 21 && strstr(e.msg, "threshold: the sweep needs a non-empty list"));
-    CHECK(!compare_load(job_file("e3.yaml", "scenes: [SCENE]\nvariants:\n  - { label: a }\n  - { label: a }\n"), &e));
+    CHECK(!compare_load(
+        job_file("e3.yaml", "scenes: [SCENE]\nvariants:\n  - { label: a }\n  - { label: a }\n"), &e));
     CHECK(e.line == 4 && strstr(e.msg, "two variants are labelled \"a\""));
     CHECK(!compare_load(job_file("e4.yaml", "scenes: []\nvariants:\n  - { sampler: jitter }\n"), &e));
     CHECK(e.line == 1 && e.col == 9 && strstr(e.msg, "scenes: must be a non-empty list"));
-    CHECK(!compare_load(job_file("e5.yaml", "scenes: [SCENE]\nreference: nowhere.png\nvariants:\n  - { label: a }\n"), &e));
+    CHECK(!compare_load(
+        job_file("e5.yaml", "scenes: [SCENE]\nreference: nowhere.png\nvariants:\n  - { label: a }\n"), &e));
     CHECK(e.line == 2 && e.col == 12 && strstr(e.msg, "reference: no image file at"));
 }
 

@@ -49,9 +49,10 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
     if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
     char text[512];
-    int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d worker %s", cs->width,
-                     cs->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
-                     j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
+    int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d worker %s",
+                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
+                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
+                     (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
     h = fnv1a(h, data, len);
     *key = fnv1a(h, text, (size_t)n);
     free(data);
@@ -107,12 +108,14 @@ static int reference(struct compare *c, int s, const struct run_opts *o, struct 
         rgb8_free(&img);
         cs->ref_reused = 1;
         cs->ref_wall_s = cached_wall_s(cs->ref_path);
-        say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path, cs->ref_wall_s);
+        say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
+            cs->ref_wall_s);
         return 0;
     }
     rgb8_free(&img);
-    say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name, sampler_kind_name(j.sampler),
-        j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold, cs->ref_path);
+    say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
+        sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
+        cs->ref_path);
     struct run_result rr;
     int rc = run_job(&j, o, &rr, e);
     if (rc != 0) {
@@ -127,7 +130,9 @@ static int reference(struct compare *c, int s, const struct run_opts *o, struct 
 static double cost(const struct compare *c, const struct compare_item *it)
 {
     double n = sampler_grid_side(it->job.threshold);
-    double spp = it->job.sampler == SAMPLER_POISSON ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold) : n * n;
+    double spp = it->job.sampler == SAMPLER_POISSON
+                     ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
+                     : n * n;
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
@@ -142,8 +147,8 @@ static void fmt_duration(double s, char *buf, size_t n)
 }
 
 /* Render one combination and measure it against its scene's reference (ref may be NULL). */
-static int render_item(struct compare *c, struct compare_item *it, const struct rgb8 *ref, const struct run_opts *o,
-                       struct err *e)
+static int render_item(struct compare *c, struct compare_item *it, const struct rgb8 *ref,
+                       const struct run_opts *o, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[it->scene];
     snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
@@ -184,11 +189,12 @@ static char *summary_csv(const struct compare *c)
                     "sampler_share,mse,rmse,relmse,psnr,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
-        sbuf_printf(&b, "%s,%s,%g,%g,%llu,%.2f,%.4f,%.4f,%.4f,", c->scenes[it->scene].name, c->variants[it->variant],
-                    it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
-                    it->wall_s, it->cpu_s, it->sampler_share);
+        sbuf_printf(&b, "%s,%s,%g,%g,%llu,%.2f,%.4f,%.4f,%.4f,", c->scenes[it->scene].name,
+                    c->variants[it->variant], it->job.threshold, it->job.light_threshold,
+                    (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
-            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.4f,", it->error.mse, it->error.rmse, it->error.relmse, it->error.psnr);
+            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.4f,", it->error.mse, it->error.rmse, it->error.relmse,
+                        it->error.psnr);
         else
             sbuf_printf(&b, ",,,,");
         sbuf_printf(&b, "%s\n", it->job.output);
@@ -247,9 +253,9 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
-        say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s | %s elapsed, ETA %s\n", c->n_items >= 100 ? 3 : 2,
-            i + 1, c->n_items, cs->name, c->variants[it->variant], it->job.threshold,
-            (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text, el, eta);
+        say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s | %s elapsed, ETA %s\n",
+            c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+            it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text, el, eta);
     }
     rc = 1;
     e->msg[0] = 0;
@@ -278,13 +284,14 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
     }
     char refs[128] = "no reference";
     if (reused)
-        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered, reused,
-                 saved_s);
+        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered,
+                 reused, saved_s);
     else if (rendered)
         snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
     else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
         snprintf(refs, sizeof refs, "reference image given");
-    snprintf(buf, n, "%s: %d images (%d scenes x %d variants x %d sweep points x %d seeds), %s, %.2f s -> %s/%s/",
+    snprintf(buf, n,
+             "%s: %d images (%d scenes x %d variants x %d sweep points x %d seeds), %s, %.2f s -> %s/%s/",
              c->name, c->n_items, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, refs, wall_s,
              out_dir ? out_dir : "out", c->name);
 }

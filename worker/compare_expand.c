@@ -12,9 +12,9 @@
 /* Short forms of keys in labels and file names. */
 static const char *short_key(const char *key)
 {
-    static const char *const map[][2] = {{"threshold", "t"},       {"light_threshold", "lt"}, {"poisson_pool", "pool"},
-                                         {"max_depth", "depth"},   {"processes", "p"},        {"sampler", ""},
-                                         {"light_sampler", "light"}};
+    static const char *const map[][2] = {
+        {"threshold", "t"}, {"light_threshold", "lt"}, {"poisson_pool", "pool"},  {"max_depth", "depth"},
+        {"processes", "p"}, {"sampler", ""},           {"light_sampler", "light"}};
     for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
         if (!strcmp(map[i][0], key))
             return map[i][1];
@@ -42,8 +42,10 @@ int compare_load_reference(struct loading *L)
         return 0;
     if (yscalar(r)) {
         if (c->n_scenes > 1)
-            return ydoc_fail(d, r, L->e, "reference: an image serves one scene; with %d scenes give settings, "
-                             "e.g. reference: { sampler: jitter, threshold: 0.5 }", c->n_scenes);
+            return ydoc_fail(d, r, L->e,
+                             "reference: an image serves one scene; with %d scenes give settings, "
+                             "e.g. reference: { sampler: jitter, threshold: 0.5 }",
+                             c->n_scenes);
         struct job tmp = L->scene_base[0];
         struct rgb8 img = {0};
         if (compare_apply(&tmp, d, "reference", r, L->e) < 0)
@@ -60,7 +62,9 @@ int compare_load_reference(struct loading *L)
         return 0;
     }
     if (r->type != YAML_MAPPING_NODE)
-        return ydoc_fail(d, r, L->e, "reference: must be an image file or job settings, e.g. { sampler: jitter, threshold: 0.5 }");
+        return ydoc_fail(
+            d, r, L->e,
+            "reference: must be an image file or job settings, e.g. { sampler: jitter, threshold: 0.5 }");
     if (compare_check_keys(L, r, "reference", NULL) < 0)
         return -1;
     for (int s = 0; s < c->n_scenes; s++) {
@@ -129,8 +133,8 @@ static int expand_one(struct loading *L, struct compare_item *it)
         return -1;
     const struct compare_scene *cs = &c->scenes[it->scene];
     if (file_name(L, it, j->output, sizeof j->output) < 0)
-        return ydoc_fail(d, var, L->e, "variant: the image name %s-%s-... is too long (shorten its label)", cs->name,
-                         c->variants[it->variant]);
+        return ydoc_fail(d, var, L->e, "variant: the image name %s-%s-... is too long (shorten its label)",
+                         cs->name, c->variants[it->variant]);
     j->has_output = 1;
     if (limits_check_samples(j, cs->width, cs->height, L->e) < 0)
         return -1;
@@ -139,7 +143,8 @@ static int expand_one(struct loading *L, struct compare_item *it)
         at = yseq_item(d, v, it->point);
     for (int i = 0; i < it - c->items; i++)
         if (!strcmp(c->items[i].job.output, j->output))
-            return ydoc_fail(d, at, L->e, "%s: two combinations would write this image (a repeated sweep value?)",
+            return ydoc_fail(d, at, L->e,
+                             "%s: two combinations would write this image (a repeated sweep value?)",
                              j->output);
     return 0;
 }
@@ -149,8 +154,10 @@ int compare_expand(struct loading *L, yaml_node_t *root)
     struct compare *c = L->c;
     double n = (double)c->n_scenes * c->n_variants * c->n_points * c->n_seeds;
     if (n > COMPARE_MAX_ITEMS)
-        return ydoc_fail(&L->d, root, L->e, "compare job: %d scenes x %d variants x %d sweep points x %d seeds is %.0f "
-                         "images (limit %d)", c->n_scenes, c->n_variants, c->n_points, c->n_seeds, n, COMPARE_MAX_ITEMS);
+        return ydoc_fail(&L->d, root, L->e,
+                         "compare job: %d scenes x %d variants x %d sweep points x %d seeds is %.0f "
+                         "images (limit %d)",
+                         c->n_scenes, c->n_variants, c->n_points, c->n_seeds, n, COMPARE_MAX_ITEMS);
     c->n_items = (int)n;
     c->items = calloc((size_t)c->n_items, sizeof *c->items);
     c->points = calloc((size_t)c->n_points, sizeof *c->points);
@@ -170,4 +177,3 @@ int compare_expand(struct loading *L, yaml_node_t *root)
                 }
     return 0;
 }
-

@@ -121,7 +121,8 @@ static int scene_size(struct loading *L, int s, yaml_node_t *at)
     scene_file_free(&sf);
     cs->height = h < 1 ? 1 : (int)h;
     if (h > IMAGE_MAX_SIDE)
-        return ydoc_fail(&L->d, at, L->e, "height: width / aspect gives %ld rows (limit %d)", h, IMAGE_MAX_SIDE);
+        return ydoc_fail(&L->d, at, L->e, "height: width / aspect gives %ld rows (limit %d)", h,
+                         IMAGE_MAX_SIDE);
     return 0;
 }
 
@@ -132,7 +133,8 @@ static int load_scenes(struct loading *L, yaml_node_t *root)
     if (list && one)
         return ydoc_fail(d, list, L->e, "scenes: give either scene or scenes, not both");
     if (!list && !one)
-        return ydoc_fail(d, root, L->e, "scenes: missing (list the scenes to compare, e.g. scenes: [checker])");
+        return ydoc_fail(d, root, L->e,
+                         "scenes: missing (list the scenes to compare, e.g. scenes: [checker])");
     int n = list ? yseq_len(list) : 1;
     if (n < 1)
         return ydoc_fail(d, list, L->e, "scenes: must be a non-empty list of scene names or files");
@@ -164,7 +166,8 @@ static int load_seeds(struct loading *L, yaml_node_t *root)
         return ydoc_fail(d, list, L->e, "seeds: give either seed or seeds, not both");
     int n = list ? yseq_len(list) : 1;
     if (n < 1)
-        return ydoc_fail(d, list, L->e, "seeds: must be a non-empty list of whole numbers, e.g. seeds: [1, 2, 3]");
+        return ydoc_fail(d, list, L->e,
+                         "seeds: must be a non-empty list of whole numbers, e.g. seeds: [1, 2, 3]");
     L->c->n_seeds = n;
     if (!(L->c->seeds = calloc((size_t)n, sizeof *L->c->seeds)))
         return err_set(L->e, d->file, 0, 0, "out of memory");
@@ -193,7 +196,9 @@ static int load_sweep(struct loading *L)
     if (!sw)
         return 0;
     if (sw->type != YAML_MAPPING_NODE || !ymap_pair(d, sw, 0, &k, &v))
-        return ydoc_fail(d, sw, L->e, "sweep: must map a job key to a list of values, e.g. sweep: { threshold: [20, 10, 5, 2] }");
+        return ydoc_fail(
+            d, sw, L->e,
+            "sweep: must map a job key to a list of values, e.g. sweep: { threshold: [20, 10, 5, 2] }");
     if (compare_check_keys(L, sw, "sweep", NULL) < 0)
         return -1;
     int n = -1;
@@ -201,10 +206,12 @@ static int load_sweep(struct loading *L)
         const char *key = yscalar(k);
         int len = yseq_len(v);
         if (len < 1)
-            return ydoc_fail(d, v, L->e, "%s: the sweep needs a non-empty list of values, e.g. [20, 10, 5, 2]", key);
+            return ydoc_fail(d, v, L->e,
+                             "%s: the sweep needs a non-empty list of values, e.g. [20, 10, 5, 2]", key);
         if (n >= 0 && len != n)
-            return ydoc_fail(d, v, L->e, "%s: swept keys step together, so their lists must be as long (%d, not %d)",
-                             key, n, len);
+            return ydoc_fail(d, v, L->e,
+                             "%s: swept keys step together, so their lists must be as long (%d, not %d)", key,
+                             n, len);
         n = len;
         size_t used = strlen(L->c->sweep_keys);
         snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "", key);
@@ -224,15 +231,17 @@ static int variant_label(struct loading *L, yaml_node_t *var, int index, char *o
         if (yget_string(d, lab, "label", &s, L->e) < 0)
             return -1;
         for (const char *p = s; *p; p++)
-            if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '-' ||
-                  *p == '_') ||
+            if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
+                  *p == '-' || *p == '_') ||
                 p - s >= (long)n - 1)
-                return ydoc_fail(d, lab, L->e, "label: must be letters, digits, '-' or '_' (at most %d), got \"%.40s\"",
+                return ydoc_fail(d, lab, L->e,
+                                 "label: must be letters, digits, '-' or '_' (at most %d), got \"%.40s\"",
                                  (int)n - 1, s);
         snprintf(out, n, "%s", s);
         return 0;
     }
-    const char *pix = yscalar(ymap_get(d, var, "sampler")), *light = yscalar(ymap_get(d, var, "light_sampler"));
+    const char *pix = yscalar(ymap_get(d, var, "sampler")),
+               *light = yscalar(ymap_get(d, var, "light_sampler"));
     if (pix)
         compare_add_part(out, n, "sampler", pix);
     if (light && (!pix || strcmp(pix, light)))
@@ -251,7 +260,8 @@ static int load_variants(struct loading *L)
     yaml_node_t *list = L->variants, *k, *v;
     int n = yseq_len(list);
     if (n < 1)
-        return ydoc_fail(d, list, L->e, "variants: must be a non-empty list of job settings, e.g. - { sampler: jitter }");
+        return ydoc_fail(d, list, L->e,
+                         "variants: must be a non-empty list of job settings, e.g. - { sampler: jitter }");
     L->c->n_variants = n;
     if (!(L->c->variants = calloc((size_t)n, sizeof *L->c->variants)))
         return err_set(L->e, d->file, 0, 0, "out of memory");
@@ -267,7 +277,8 @@ static int load_variants(struct loading *L)
             return -1;
         for (int j = 0; j < i; j++)
             if (!strcmp(L->c->variants[j], L->c->variants[i]))
-                return ydoc_fail(d, var, L->e, "variants: two variants are labelled \"%s\" (give one a label:)",
+                return ydoc_fail(d, var, L->e,
+                                 "variants: two variants are labelled \"%s\" (give one a label:)",
                                  L->c->variants[i]);
     }
     return 0;
@@ -312,8 +323,8 @@ struct compare *compare_load(const char *path, struct err *e)
             goto done;
     }
     snprintf(L.c->name, sizeof L.c->name, "%s", L.base.name);
-    if (load_scenes(&L, root) < 0 || load_seeds(&L, root) < 0 || load_sweep(&L) < 0 || load_variants(&L) < 0 ||
-        compare_load_reference(&L) < 0 || compare_expand(&L, root) < 0)
+    if (load_scenes(&L, root) < 0 || load_seeds(&L, root) < 0 || load_sweep(&L) < 0 ||
+        load_variants(&L) < 0 || compare_load_reference(&L) < 0 || compare_expand(&L, root) < 0)
         goto done;
     for (int i = 0; i < L.c->n_items; i++) /* every image is scored against its scene's reference */
         L.c->items[i].job.reference[0] = 0;

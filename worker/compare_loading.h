@@ -9,8 +9,8 @@
 struct loading {
     struct ydoc d;
     struct compare *c;
-    struct job base;          /* the top-level keys */
-    struct job *scene_base;   /* base + scene, per scene */
+    struct job base;        /* the top-level keys */
+    struct job *scene_base; /* base + scene, per scene */
     yaml_node_t *variants, *sweep, *reference;
     struct err *e;
 };

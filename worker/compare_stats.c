@@ -55,8 +55,8 @@ void compare_point_order(const struct compare *c, int s, int v, int *order)
         }
 }
 
-int compare_seed_average(const struct compare *c, int s, int v, int p, const char *dir, const struct rgb8 *ref,
-                         double *rel_of_mean, double *mean_rel, struct err *e)
+int compare_seed_average(const struct compare *c, int s, int v, int p, const char *dir,
+                         const struct rgb8 *ref, double *rel_of_mean, double *mean_rel, struct err *e)
 {
     size_t n = (size_t)ref->w * ref->h * 3;
     double *sum = calloc(n, sizeof *sum);
@@ -109,8 +109,8 @@ static double slope(const struct compare_agg *a, int n)
     return m >= 2 && den > 0 ? (m * sxy - sx * sy) / den : NAN;
 }
 
-void compare_stability(const struct compare *c, int s, int v, const char *dir, const struct rgb8 *ref, char *buf,
-                       size_t n)
+void compare_stability(const struct compare *c, int s, int v, const char *dir, const struct rgb8 *ref,
+                       char *buf, size_t n)
 {
     int *order = calloc((size_t)c->n_points, sizeof *order);
     struct compare_agg *a = calloc((size_t)c->n_points, sizeof *a);
@@ -133,8 +133,8 @@ void compare_stability(const struct compare *c, int s, int v, const char *dir, c
         if (a[i].rel > 0 && (a[i].rel_hi - a[i].rel_lo) / a[i].rel > spread)
             spread = (a[i].rel_hi - a[i].rel_lo) / a[i].rel, at = order[i];
     if (c->n_seeds > 1)
-        sbuf_printf(&b, "spread across %d seeds at most %.0f%% of the mean relMSE (%s)", c->n_seeds, 100 * spread,
-                    c->points[at]);
+        sbuf_printf(&b, "spread across %d seeds at most %.0f%% of the mean relMSE (%s)", c->n_seeds,
+                    100 * spread, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");
     if (c->n_points > 1) {
@@ -150,20 +150,24 @@ void compare_stability(const struct compare *c, int s, int v, const char *dir, c
                     stop = i;
             }
         if (stop > 0)
-            sbuf_printf(&b, "; error stops falling at %s: %.3g at %.0f spp, then %.3g at %.0f spp (local slope %.2f)",
-                        c->points[order[stop]], a[stop - 1].rel, a[stop - 1].spp, a[stop].rel, a[stop].spp, local);
+            sbuf_printf(
+                &b, "; error stops falling at %s: %.3g at %.0f spp, then %.3g at %.0f spp (local slope %.2f)",
+                c->points[order[stop]], a[stop - 1].rel, a[stop - 1].spp, a[stop].rel, a[stop].spp, local);
         else
-            sbuf_printf(&b, "; error keeps falling down to %s (%.3g at %.0f spp)", c->points[order[c->n_points - 1]],
-                        a[c->n_points - 1].rel, a[c->n_points - 1].spp);
+            sbuf_printf(&b, "; error keeps falling down to %s (%.3g at %.0f spp)",
+                        c->points[order[c->n_points - 1]], a[c->n_points - 1].rel, a[c->n_points - 1].spp);
     }
     double rom, mr;
     struct err e;
     int last = order[c->n_points - 1];
     if (c->n_seeds > 1 && compare_seed_average(c, s, v, last, dir, ref, &rom, &mr, &e) == 0 && rom > 0) {
         double gain = mr / rom, repeated = fmin(1, fmax(0, (c->n_seeds / gain - 1) / (c->n_seeds - 1)));
-        sbuf_printf(&b, "; at %s averaging the %d seeds divides relMSE by %.2f (pure noise: %d), so about %.0f%% of "
-                        "the error repeats in every seed%s", c->points[last], c->n_seeds, gain, c->n_seeds,
-                    100 * repeated, repeated > 0.5 ? ": structured error (aliasing, a pattern, or a bias)" : "");
+        sbuf_printf(
+            &b,
+            "; at %s averaging the %d seeds divides relMSE by %.2f (pure noise: %d), so about %.0f%% of "
+            "the error repeats in every seed%s",
+            c->points[last], c->n_seeds, gain, c->n_seeds, 100 * repeated,
+            repeated > 0.5 ? ": structured error (aliasing, a pattern, or a bias)" : "");
     }
     char *text = sbuf_take(&b);
     snprintf(buf, n, "%s", text ? text : "out of memory");
@@ -181,7 +185,7 @@ char *compare_chart_svg(const struct compare *c)
     int *order = calloc((size_t)np, sizeof *order);
     struct chart_series *ser = calloc((size_t)nsc * ns * 2, sizeof *ser);
     struct chart_panel *pan = calloc((size_t)nsc * 2, sizeof *pan);
-    char (*titles)[160] = calloc((size_t)nsc * 2, sizeof *titles);
+    char(*titles)[160] = calloc((size_t)nsc * 2, sizeof *titles);
     static const double slopes[] = {-1, -1.5};
     char *svg = NULL, title[256];
     if (!mem || !order || !ser || !pan || !titles)
@@ -203,14 +207,29 @@ char *compare_chart_svg(const struct compare *c)
         }
         snprintf(titles[2 * s], sizeof titles[0], "%s: error against time", c->scenes[s].name);
         snprintf(titles[2 * s + 1], sizeof titles[0], "%s: error against samples", c->scenes[s].name);
-        const char *note = c->scenes[s].ref_kind == COMPARE_REF_NONE ? "no reference given: no error to chart" : NULL;
-        pan[2 * s] = (struct chart_panel){titles[2 * s], "wall time per image (s, log)", "relMSE (eps 0.01, log)", note,
-                                          by_time, ns, slopes, 2};
-        pan[2 * s + 1] = (struct chart_panel){titles[2 * s + 1], "samples per pixel (mean, log)",
-                                              "relMSE (eps 0.01, log)", note, by_spp, ns, slopes, 2};
+        const char *note =
+            c->scenes[s].ref_kind == COMPARE_REF_NONE ? "no reference given: no error to chart" : NULL;
+        pan[2 * s] = (struct chart_panel){titles[2 * s],
+                                          "wall time per image (s, log)",
+                                          "relMSE (eps 0.01, log)",
+                                          note,
+                                          by_time,
+                                          ns,
+                                          slopes,
+                                          2};
+        pan[2 * s + 1] = (struct chart_panel){titles[2 * s + 1],
+                                              "samples per pixel (mean, log)",
+                                              "relMSE (eps 0.01, log)",
+                                              note,
+                                              by_spp,
+                                              ns,
+                                              slopes,
+                                              2};
     }
-    snprintf(title, sizeof title, "%s: relMSE against wall time and samples per pixel (mean of %d seeds; whiskers: "
-             "min to max)", c->name, c->n_seeds);
+    snprintf(title, sizeof title,
+             "%s: relMSE against wall time and samples per pixel (mean of %d seeds; whiskers: "
+             "min to max)",
+             c->name, c->n_seeds);
     svg = chart_svg(title, pan, 2 * nsc, 2);
 done:
     free(mem);

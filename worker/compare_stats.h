@@ -7,9 +7,9 @@
 
 /* One (scene, variant, sweep point) over its seeds. rel* are relMSE; 0 when not measured. */
 struct compare_agg {
-    int n;                          /* seeds with a result */
-    double spp, wall_s, cpu_s;      /* means */
-    double rel, rel_lo, rel_hi;     /* mean, min, max */
+    int n;                      /* seeds with a result */
+    double spp, wall_s, cpu_s;  /* means */
+    double rel, rel_lo, rel_hi; /* mean, min, max */
 };
 
 void compare_aggregate(const struct compare *c, int scene, int variant, int point, struct compare_agg *a);
@@ -27,8 +27,8 @@ int compare_seed_average(const struct compare *c, int scene, int variant, int po
 /* One line for people on (scene, variant): spread across seeds, the slope of error against
    samples, where error stops falling as the threshold drops, and structured error at the
    densest point (ref may be NULL: then only what needs no reference). */
-void compare_stability(const struct compare *c, int scene, int variant, const char *dir, const struct rgb8 *ref,
-                       char *buf, size_t n);
+void compare_stability(const struct compare *c, int scene, int variant, const char *dir,
+                       const struct rgb8 *ref, char *buf, size_t n);
 
 /* chart.svg: per scene, relMSE against wall time and against samples per pixel. */
 char *compare_chart_svg(const struct compare *c);

@@ -21,7 +21,8 @@ static const char style[] =
     ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}"
     "figure{margin:0;font-size:12px;width:min-content}figcaption{min-width:120px}"
     "img{display:block;border:1px solid #ccc}img.px{image-rendering:pixelated}"
-    "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}"
+    "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
+    "6px;text-align:right}"
     "td.l,th.l{text-align:left}.pt{font-weight:bold;font-size:13px;min-width:90px}"
     ".note{color:#555;font-size:13px}li{margin-bottom:4px}";
 
@@ -59,8 +60,8 @@ static int rgb_tag(struct sbuf *b, const struct rgb8 *img, int min_w, const char
     return 0;
 }
 
-static const char *image_path(const struct compare *c, const struct compare_item *it, const char *dir, char *buf,
-                              size_t n)
+static const char *image_path(const struct compare *c, const struct compare_item *it, const char *dir,
+                              char *buf, size_t n)
 {
     (void)c;
     snprintf(buf, n, "%s/%s", dir, it->job.output);
@@ -85,8 +86,9 @@ static void worst_window(const struct rgb8 *ref, const struct rgb8 *imgs, int n,
                     double a = ref->px[k] / 255.0, d = imgs[i].px[k] / 255.0 - a;
                     v += d * d / (a * a + METRICS_REL_EPS);
                 }
-            sat[(size_t)(y + 1) * (w + 1) + x + 1] =
-                v + sat[(size_t)y * (w + 1) + x + 1] + sat[(size_t)(y + 1) * (w + 1) + x] - sat[(size_t)y * (w + 1) + x];
+            sat[(size_t)(y + 1) * (w + 1) + x + 1] = v + sat[(size_t)y * (w + 1) + x + 1] +
+                                                     sat[(size_t)(y + 1) * (w + 1) + x] -
+                                                     sat[(size_t)y * (w + 1) + x];
         }
     double best = -1;
     int step = side / 4 > 1 ? side / 4 : 1;
@@ -156,8 +158,8 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
 }
 
 /* Crops and error maps at sweep point p (seed index 0), against the reference. */
-static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const char *dir, const struct rgb8 *ref,
-                    struct err *e)
+static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                    const struct rgb8 *ref, struct err *e)
 {
     struct rgb8 *imgs = calloc((size_t)c->n_variants, sizeof *imgs), tmp = {0};
     int rc = -1, w = ref->w, h = ref->h;
@@ -169,8 +171,8 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
         char path[4096];
         uint8_t *png;
         size_t len;
-        if (read_png(image_path(c, &c->items[compare_index(c, s, v, p, 0)], dir, path, sizeof path), &png, &len,
-                     &imgs[v], e) < 0)
+        if (read_png(image_path(c, &c->items[compare_index(c, s, v, p, 0)], dir, path, sizeof path), &png,
+                     &len, &imgs[v], e) < 0)
             goto done;
         free(png);
     }
@@ -178,13 +180,16 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
     sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", CROP_ZOOM);
     sbuf_escape(b, c->points[p]);
-    sbuf_printf(b, ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
-                   "(by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n<div class=\"row\">",
+    sbuf_printf(b,
+                ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
+                "(by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n<div "
+                "class=\"row\">",
                 x0, x0 + side - 1, y0, y0 + side - 1);
     for (int v = -1; v < c->n_variants; v++) {
         const struct rgb8 *src = v < 0 ? ref : &imgs[v];
         sbuf_printf(b, "<figure>");
-        if (crop_zoom(src, x0, y0, side, &tmp, e) < 0 || rgb_tag(b, &tmp, 128, v < 0 ? "reference crop" : c->variants[v], e) < 0)
+        if (crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
+            rgb_tag(b, &tmp, 128, v < 0 ? "reference crop" : c->variants[v], e) < 0)
             goto done;
         rgb8_free(&tmp);
         sbuf_printf(b, "<figcaption>");
@@ -196,8 +201,10 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     }
     sbuf_printf(b, "</div>\n<h3>Error maps at ");
     sbuf_escape(b, c->points[p]);
-    sbuf_printf(b, ": |image - reference| x %d. Noise looks like grain; structured error (aliasing, a repeated "
-                   "pattern, bright spots) looks like a pattern</h3>\n<div class=\"row\">", ERROR_GAIN);
+    sbuf_printf(b,
+                ": |image - reference| x %d. Noise looks like grain; structured error (aliasing, a repeated "
+                "pattern, bright spots) looks like a pattern</h3>\n<div class=\"row\">",
+                ERROR_GAIN);
     for (int v = 0; v < c->n_variants; v++) {
         sbuf_printf(b, "<figure>");
         if (error_map(ref, &imgs[v], &tmp, e) < 0 || rgb_tag(b, &tmp, 160, c->variants[v], e) < 0)
@@ -234,10 +241,11 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         img_tag(b, png, len, ref.w, 160, "reference");
         sbuf_printf(b, "<figcaption><b>reference</b>: ");
         if (cs->ref_kind == COMPARE_REF_SETTINGS)
-            sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
-                        cs->ref_job.threshold, sampler_kind_name(cs->ref_job.light_sampler), cs->ref_job.light_threshold,
-                        (unsigned long long)cs->ref_job.seed, cs->ref_reused ? "reused from cache, rendered in" :
-                        "rendered in", cs->ref_wall_s);
+            sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s",
+                        sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
+                        sampler_kind_name(cs->ref_job.light_sampler), cs->ref_job.light_threshold,
+                        (unsigned long long)cs->ref_job.seed,
+                        cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
         else
             sbuf_escape(b, cs->ref_path);
         sbuf_printf(b, "</figcaption></figure></div>\n");
@@ -254,7 +262,8 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         compare_point_order(c, s, 0, order);
         int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
         free(order);
-        if (closeups(b, c, s, mid, dir, &ref, e) < 0 || (densest != mid && closeups(b, c, s, densest, dir, &ref, e) < 0))
+        if (closeups(b, c, s, mid, dir, &ref, e) < 0 ||
+            (densest != mid && closeups(b, c, s, densest, dir, &ref, e) < 0))
             goto done;
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
@@ -277,8 +286,9 @@ done:
 
 static void table(struct sbuf *b, const struct compare *c)
 {
-    static const char *const head[] = {"scene", "variant", "threshold", "light threshold", "seed", "spp mean",
-                                       "wall s", "cpu s", "sampler share", "mse", "rmse", "relmse", "psnr dB"};
+    static const char *const head[] = {"scene",    "variant", "threshold", "light threshold", "seed",
+                                       "spp mean", "wall s",  "cpu s",     "sampler share",   "mse",
+                                       "rmse",     "relmse",  "psnr dB"};
     sbuf_printf(b, "<table>\n<tr>");
     for (size_t i = 0; i < sizeof head / sizeof head[0]; i++)
         sbuf_printf(b, "<th%s>%s</th>", i < 2 ? " class=\"l\"" : "", head[i]);
@@ -289,12 +299,13 @@ static void table(struct sbuf *b, const struct compare *c)
         sbuf_escape(b, c->scenes[it->scene].name);
         sbuf_printf(b, "</td><td class=\"l\">");
         sbuf_escape(b, c->variants[it->variant]);
-        sbuf_printf(b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
-                    it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
-                    it->wall_s, it->cpu_s, it->sampler_share);
+        sbuf_printf(
+            b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
+            it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
+            it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
-            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td></tr>\n", it->error.mse, it->error.rmse,
-                        it->error.relmse, it->error.psnr);
+            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td></tr>\n", it->error.mse,
+                        it->error.rmse, it->error.relmse, it->error.psnr);
         else
             sbuf_printf(b, "<td></td><td></td><td></td><td></td></tr>\n");
     }
@@ -313,21 +324,24 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     sbuf_escape(&b, c->name);
     sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", style);
     sbuf_escape(&b, c->name);
-    sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Job ");
+    sbuf_printf(&b,
+                ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Job ");
     sbuf_escape(&b, c->path);
-    sbuf_printf(&b, ": %d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes, c->n_variants,
-                c->n_points);
+    sbuf_printf(&b, ": %d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
+                c->n_variants, c->n_points);
     if (c->sweep_keys[0]) {
         sbuf_printf(&b, " (sweep: ");
         sbuf_escape(&b, c->sweep_keys);
         sbuf_printf(&b, ")");
     }
-    sbuf_printf(&b, " x %d seeds. Error is relMSE (mean of (image - reference)^2 / (reference^2 + 0.01) over 8-bit "
-                    "values scaled to [0, 1]) against each scene's reference; lower is better. The reference's own "
-                    "noise and 8-bit rounding set a floor under every curve. Wall time is one image's render on "
-                    "this machine, so it moves with the machine's load. Every image, its JSON sidecar and "
-                    "summary.csv are beside this page.</p>\n",
-                c->n_seeds);
+    sbuf_printf(
+        &b,
+        " x %d seeds. Error is relMSE (mean of (image - reference)^2 / (reference^2 + 0.01) over 8-bit "
+        "values scaled to [0, 1]) against each scene's reference; lower is better. The reference's own "
+        "noise and 8-bit rounding set a floor under every curve. Wall time is one image's render on "
+        "this machine, so it moves with the machine's load. Every image, its JSON sidecar and "
+        "summary.csv are beside this page.</p>\n",
+        c->n_seeds);
     const char *body = strstr(svg, "<svg"); /* inline: drop the XML declaration */
     sbuf_printf(&b, "<h2>Speed against accuracy</h2>\n%s\n", body ? body : svg);
     free(svg);

@@ -44,12 +44,23 @@ void sbuf_escape(struct sbuf *b, const char *s)
 {
     for (; *s; s++) {
         switch (*s) {
-        case '&': sbuf_printf(b, "&amp;"); break;
-        case '<': sbuf_printf(b, "&lt;"); break;
-        case '>': sbuf_printf(b, "&gt;"); break;
-        case '"': sbuf_printf(b, "&quot;"); break;
-        case '\'': sbuf_printf(b, "&#39;"); break;
-        default: sbuf_printf(b, "%c", *s);
+        case '&':
+            sbuf_printf(b, "&amp;");
+            break;
+        case '<':
+            sbuf_printf(b, "&lt;");
+            break;
+        case '>':
+            sbuf_printf(b, "&gt;");
+            break;
+        case '"':
+            sbuf_printf(b, "&quot;");
+            break;
+        case '\'':
+            sbuf_printf(b, "&#39;");
+            break;
+        default:
+            sbuf_printf(b, "%c", *s);
         }
     }
 }
