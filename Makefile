@@ -28,15 +28,17 @@ endif
 COMMON_SRC := $(wildcard common/*.c)
 WORKER_SRC := $(filter-out worker/main.c,$(wildcard worker/*.c))
 TEST_SRC   := $(wildcard tests/test_*.c)
+TOOL_SRC   := $(wildcard tools/*.c)
 COMMON_OBJ := $(COMMON_SRC:%.c=$(BUILD)/%.o)
 WORKER_OBJ := $(WORKER_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+TOOL_BIN   := $(TOOL_SRC:tools/%.c=$(BUILD)/tools/%)
 LIBCOMMON  := $(BUILD)/libcommon.a
 LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
 .SECONDARY:
-.PHONY: all test unit run install uninstall clean asan deps golden bench lint fuzz valgrind
+.PHONY: all test unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
 # One line naming the Debian packages when a header is missing.
@@ -63,9 +65,26 @@ $(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIBWORKER) $(LIBCOMMON)
 	@$(if $(Q),echo "  LD      $@")
 	$(Q)$(CC) $(OPT) -o $@ $^ $(LDLIBS_ALL)
 
+# Scene generators (tools/*.c): C programs linked with the renderer library.
+$(BUILD)/tools/%: $(BUILD)/tools/%.o $(LIBCOMMON)
+	@$(if $(Q),echo "  LD      $@")
+	$(Q)$(CC) $(OPT) -o $@ $^ $(LDLIBS_ALL)
+
+# Regenerate the generated scene data (a test checks the committed files match).
+scenes: $(TOOL_BIN)
+	$(Q)mkdir -p scenes/textures
+	$(BUILD)/tools/gen_planet scenes/textures/planet.png
+	$(BUILD)/tools/gen_final scenes/final.yaml
+
+# Re-render tests/golden/*.png on purpose: after a deliberate change to a scene or to what the
+# renderer computes (not after a speed-up, which must still pass the golden check as it is).
+golden: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) GOLDEN_UPDATE=1 sh tests/e2e_golden.sh
+
 # Unit binaries, then the end-to-end scripts; the runner prints "N passed, N failed".
-test: all $(TEST_BIN)
-	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) sh tests/run.sh
+test: all $(TEST_BIN) $(TOOL_BIN)
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) \
+	  TOOLS_DIR=$(abspath $(BUILD)/tools) sh tests/run.sh
 
 unit: all $(TEST_BIN)
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) E2E=0 sh tests/run.sh
@@ -74,6 +93,11 @@ unit: all $(TEST_BIN)
 asan:
 	$(Q)$(MAKE) --no-print-directory test BUILD=build/asan BIN=build/asan/bin OPT='-O1 -g' \
 	  SAN='-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all' ASAN_FAST=1
+
+# The Slurm examples in ci/slurm/ through a one-node Slurm on localhost (daemons started and
+# stopped by the script; needs Debian's slurm-wlm and munge).
+test-slurm: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) bash ci/slurm/test-local.sh
 
 # The headline study: every sampler on every scene, charted (out/compare/report.html).
 run: all
@@ -104,11 +128,12 @@ bench: all build/bench_bridson
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.
 FUZZ_CC     ?= clang
 SECONDS     ?= 30
+FUZZ_TARGETS ?= job scene image
 FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 FUZZ_SRC    := $(COMMON_SRC) $(WORKER_SRC) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c
 fuzz: deps
 	@mkdir -p build/fuzz
-	$(Q)set -e; for t in job scene image; do \
+	$(Q)set -e; for t in $(FUZZ_TARGETS); do \
 	  $(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -Itests/fuzz $(FUZZ_FLAGS) \
 	    -DFUZZ_TARGET=fuzz_$$t $(FUZZ_SRC) -o build/fuzz/fuzz_$$t $(PKG_LIBS) -lm; \
 	  mkdir -p build/fuzz/corpus-$$t; \
@@ -127,4 +152,4 @@ lint:
 clean:
 	rm -rf build bin
 
--include $(COMMON_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/main.d $(TEST_BIN:=.d)
+-include $(COMMON_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/main.d $(TEST_BIN:=.d) $(TOOL_BIN:=.d)

@@ -26,7 +26,7 @@ for job in bench/jobs/*.yaml; do
     : >"$out/ns"; : >"$out/w1"; : >"$out/w2"
     for r in $(seq 1 "$RUNS"); do
         for p in 1 2; do
-            "$WORKER" --quiet --processes $p --out "$out/$p" "$job" 2>/dev/null
+            "$WORKER" --quiet --force --processes $p --out "$out/$p" "$job" 2>/dev/null # every run renders
             sc="$out/$p/$name/$name.json"
             if [ $p = 1 ]; then
                 field "$sc" ns_per_sample >>"$out/ns"

@@ -14,4 +14,10 @@ struct metrics {
 /* Error of img against ref (same size, else -1 with e filled). */
 int metrics_compare(const struct rgb8 *ref, const struct rgb8 *img, struct metrics *m, struct err *e);
 
+/* The same error between the means of block x block tiles (edge tiles clipped); block 1 is
+   metrics_compare. Averaging k pixels divides independent noise's RMSE by about sqrt(k) while
+   a change over a large area keeps its size. -1 with e filled on different sizes or block < 1. */
+int metrics_compare_blocks(const struct rgb8 *ref, const struct rgb8 *img, int block, struct metrics *m,
+                           struct err *e);
+
 #endif

@@ -65,11 +65,6 @@ void render_ctx_free(struct render_ctx *ctx)
     free(ctx);
 }
 
-static int light_uses_points(const struct prim *p)
-{
-    return p->type == PRIM_DISK || p->type == PRIM_RECT;
-}
-
 struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *cam,
                                   const struct render_settings *rs, struct sampler *pixel,
                                   struct sampler *light, struct err *e)
@@ -87,7 +82,7 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     if (!ctx->pixel_pts || !ctx->lp)
         goto fail;
     for (int i = 0; i < sc->n_lights; i++) {
-        if (!light_uses_points(&sc->prims[sc->lights[i]]))
+        if (rs->light_sampling_off || !shape_light_uses_points(&sc->prims[sc->lights[i]]))
             continue;
         if (!light) {
             err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
@@ -154,6 +149,12 @@ static vec3 cosine_direction(const onb *frame, struct rng *r)
     return onb_local(frame, v3(cos(phi) * s, sin(phi) * s, sqrt(1 - u2)));
 }
 
+static vec3 uniform_sphere_direction(struct rng *r)
+{
+    double z = 1 - 2 * rng_uniform(r), phi = 2 * PI * rng_uniform(r), s = sqrt(fmax(0, 1 - z * z));
+    return v3(cos(phi) * s, sin(phi) * s, z);
+}
+
 static vec3 surface_albedo(const struct scene *sc, const struct material *m, struct hit *h)
 {
     if (m->texture < 0)
@@ -161,7 +162,7 @@ static vec3 surface_albedo(const struct scene *sc, const struct material *m, str
     const struct texture *t = &sc->textures[m->texture];
     if (texture_needs_uv(t))
         shape_uv(&sc->prims[h->prim], h);
-    return texture_value(t, h->u, h->v, h->p);
+    return texture_value(sc, t, h->u, h->v, h->p);
 }
 
 static double reflectance(double cosine, double ref_idx)
@@ -172,10 +173,30 @@ static double reflectance(double cosine, double ref_idx)
     return r0 + (1 - r0) * pow(1 - cosine, 5);
 }
 
-/* One camera path; returns its radiance estimate. */
+/* A direction toward one of the scene's lights, chosen uniformly; disk and rect lights take
+   their next point from the light sampler, a sphere its cone sample from rng. */
+static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng)
+{
+    const struct scene *sc = ctx->sc;
+    int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
+    const struct prim *lp = &sc->prims[sc->lights[i]];
+    struct pt2 s;
+    if (shape_light_uses_points(lp)) {
+        s = next_light_point(ctx, i);
+    } else {
+        s.x = rng_uniform(rng);
+        s.y = rng_uniform(rng);
+    }
+    return shape_light_dir(lp, o, s);
+}
+
+/* One camera path; returns its radiance estimate. Diffuse and isotropic scattering draw from
+   the mixture of the light pdf and their own (RTOW "The Rest of Your Life": half and half) and
+   weight by scattering pdf / mixture pdf; mirrors and glass follow their one direction. */
 static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
 {
     const struct scene *sc = ctx->sc;
+    const int mix = sc->n_lights > 0 && !ctx->rs.light_sampling_off;
     vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
     for (int depth = 0; depth < ctx->rs.max_depth; depth++) {
         struct hit h;
@@ -185,54 +206,62 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng)
             break;
         }
         const struct material *m = &sc->materials[sc->prims[h.prim].material];
-        vec3 unit_dir = v3_unit(r.dir);
-        if (m->type == MAT_LIGHT) {
+        vec3 unit_dir = v3_unit(r.dir), dir;
+        switch (m->type) {
+        case MAT_LIGHT:
             if (h.front)
                 L = v3_add(L, v3_mul(beta, m->emit));
-            break;
-        }
-        if (m->type == MAT_METAL) {
-            vec3 refl = v3_fma(v3_reflect(unit_dir, h.n), random_in_unit_sphere(rng), m->fuzz);
-            if (v3_dot(refl, h.n) <= 0)
-                break;
+            return L;
+        case MAT_METAL:
+            dir = v3_fma(v3_reflect(unit_dir, h.n), random_in_unit_sphere(rng), m->fuzz);
+            if (v3_dot(dir, h.n) <= 0)
+                return L;
             beta = v3_mul(beta, m->albedo);
-            r = (ray){h.p, refl, r.time};
+            r = (ray){h.p, dir, r.time};
             continue;
-        }
-        if (m->type == MAT_DIELECTRIC) {
+        case MAT_DIELECTRIC: {
             double ratio = h.front ? 1.0 / m->ior : m->ior;
             double cos_t = fmin(v3_dot(v3_neg(unit_dir), h.n), 1.0);
             double sin_t = sqrt(1 - cos_t * cos_t);
-            vec3 d = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform(rng))
-                         ? v3_reflect(unit_dir, h.n)
-                         : v3_refract(unit_dir, h.n, ratio);
-            r = (ray){h.p, d, r.time};
+            dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform(rng))
+                      ? v3_reflect(unit_dir, h.n)
+                      : v3_refract(unit_dir, h.n, ratio);
+            r = (ray){h.p, dir, r.time};
             continue;
         }
-        /* Lambertian: sample the light/cosine mixture, weight by the scattering pdf. */
-        vec3 albedo = surface_albedo(sc, m, &h);
-        onb frame = onb_from_w(h.n);
-        vec3 dir;
-        double pdf;
-        if (sc->n_lights > 0) {
-            if (rng_uniform(rng) < 0.5) {
-                int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
-                vec3 q = shape_light_point(&sc->prims[sc->lights[i]], next_light_point(ctx, i));
-                dir = v3_sub(q, h.p);
+        case MAT_ISOTROPIC: {
+            vec3 albedo = surface_albedo(sc, m, &h);
+            const double phase = 1 / (4 * PI);
+            double pdf = phase;
+            if (mix) {
+                dir = rng_uniform(rng) < 0.5 ? light_direction(ctx, h.p, rng) : uniform_sphere_direction(rng);
+                pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * phase;
+            } else {
+                dir = uniform_sphere_direction(rng);
+            }
+            beta = v3_mul(beta, v3_scale(albedo, phase / pdf));
+            r = (ray){h.p, dir, r.time};
+            continue;
+        }
+        default: {
+            vec3 albedo = surface_albedo(sc, m, &h);
+            onb frame = onb_from_w(h.n);
+            double pdf;
+            if (mix) {
+                dir = rng_uniform(rng) < 0.5 ? light_direction(ctx, h.p, rng) : cosine_direction(&frame, rng);
+                double c = v3_dot(v3_unit(dir), h.n);
+                pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * (c > 0 ? c / PI : 0);
             } else {
                 dir = cosine_direction(&frame, rng);
+                pdf = fmax(0, v3_dot(v3_unit(dir), h.n)) / PI;
             }
-            double c = v3_dot(v3_unit(dir), h.n);
-            pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * (c > 0 ? c / PI : 0);
-        } else {
-            dir = cosine_direction(&frame, rng);
-            pdf = fmax(0, v3_dot(v3_unit(dir), h.n)) / PI;
+            double cosine = v3_dot(v3_unit(dir), h.n);
+            if (cosine <= 0 || !(pdf > 0))
+                return L;
+            beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
+            r = (ray){h.p, dir, r.time};
         }
-        double cosine = v3_dot(v3_unit(dir), h.n);
-        if (cosine <= 0 || !(pdf > 0))
-            break;
-        beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
-        r = (ray){h.p, dir, r.time};
+        }
     }
     return L;
 }

@@ -12,6 +12,7 @@ struct render_settings {
     int width, height;
     int max_depth;
     uint64_t seed;
+    int light_sampling_off; /* 1: scatter by the material alone (cosine / phase); lights still emit */
 };
 
 /* Counters one process accumulates; summed by the parent. */
@@ -28,7 +29,8 @@ struct render_stats {
 struct render_ctx;
 
 /* A per-process render context over sc and cam (both must outlive it). pixel and light are the
-   job's samplers (light may be NULL when the scene has no disk or rect light); the context
+   job's samplers (light may be NULL when the scene has no disk or rect light or light
+   sampling is off); the context
    allocates every buffer a pixel needs now, so render_pixel allocates nothing. NULL + e on
    no memory. */
 struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *cam,

@@ -21,6 +21,10 @@ void scene_free(struct scene *sc)
     free(sc->lights);
     free(sc->nodes);
     free(sc->prim_order);
+    for (int i = 0; i < sc->n_images; i++)
+        rgb8_free(&sc->images[i]);
+    free(sc->images);
+    free(sc->perlin);
     free(sc);
 }
 
@@ -59,6 +63,24 @@ int scene_add_prim(struct scene *sc, const struct prim *p)
 int scene_add_light(struct scene *sc, int prim)
 {
     return push((void **)&sc->lights, &sc->n_lights, sizeof prim, &prim);
+}
+
+int scene_add_image(struct scene *sc, struct rgb8 *img)
+{
+    int i = push((void **)&sc->images, &sc->n_images, sizeof *img, img);
+    if (i >= 0)
+        *img = (struct rgb8){0};
+    return i;
+}
+
+int scene_use_perlin(struct scene *sc)
+{
+    if (sc->perlin)
+        return 0;
+    if (!(sc->perlin = malloc(sizeof *sc->perlin)))
+        return -1;
+    perlin_init(sc->perlin, PERLIN_SEED);
+    return 0;
 }
 
 int scene_finish(struct scene *sc, struct err *e)

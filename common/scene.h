@@ -6,17 +6,21 @@
 #include <stdint.h>
 
 #include "err.h"
+#include "image.h"
+#include "perlin.h"
 #include "vec3.h"
 
-enum tex_type { TEX_CHECKER };
+enum tex_type { TEX_CHECKER, TEX_NOISE, TEX_IMAGE };
 
 struct texture {
     int type;
     vec3 odd, even; /* checker */
-    double scale;   /* checker frequency */
+    double scale;   /* checker: frequency; noise: frequency of the marble bands */
+    int image;      /* image: index into the scene's images */
 };
 
-enum mat_type { MAT_LAMBERTIAN, MAT_METAL, MAT_DIELECTRIC, MAT_LIGHT };
+/* isotropic: the phase function of a constant medium (albedo or texture, like lambertian). */
+enum mat_type { MAT_LAMBERTIAN, MAT_METAL, MAT_DIELECTRIC, MAT_LIGHT, MAT_ISOTROPIC };
 
 struct material {
     int type;
@@ -27,7 +31,16 @@ struct material {
     vec3 emit;    /* light */
 };
 
-enum prim_type { PRIM_SPHERE, PRIM_RECT, PRIM_DISK };
+enum prim_type {
+    PRIM_SPHERE,
+    PRIM_RECT,
+    PRIM_DISK,
+    PRIM_MOVING_SPHERE,
+    PRIM_BOX,
+    PRIM_CYLINDER,
+    PRIM_TRIANGLE,
+    PRIM_MEDIUM
+};
 
 /* One primitive. Geometry is in object space; rotate_y (degrees) then translate place it. */
 struct prim {
@@ -52,6 +65,26 @@ struct prim {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */
             double radius;
         } disk;
+        struct {
+            vec3 center0, velocity; /* center at time t: center0 + t * velocity */
+            double radius;
+            double time_lo, time_hi; /* the shutter interval its bounds cover */
+        } msphere;
+        struct {
+            vec3 lo, hi;
+        } box;
+        struct {
+            vec3 base, axis; /* unit axis from base to top */
+            double height, radius;
+        } cyl;
+        struct {
+            vec3 v0, e1, e2, normal; /* vertices v0, v0 + e1, v0 + e2; unit normal e1 x e2 */
+        } tri;
+        struct {
+            vec3 center; /* boundary sphere */
+            double radius;
+            double neg_inv_density;
+        } medium;
     } g;
 };
 
@@ -71,6 +104,9 @@ struct scene {
     int *lights; /* prims importance-sampled by the light pdf */
     int n_lights;
     vec3 background;
+    struct rgb8 *images; /* decoded image textures */
+    int n_images;
+    struct perlin *perlin; /* the noise textures' table, NULL when none */
     /* built by scene_finish */
     struct bvh_node *nodes;
     int n_nodes;
@@ -86,6 +122,12 @@ int scene_add_texture(struct scene *sc, const struct texture *t);
 int scene_add_material(struct scene *sc, const struct material *m);
 int scene_add_prim(struct scene *sc, const struct prim *p);
 int scene_add_light(struct scene *sc, int prim);
+
+/* Append a decoded image, taking ownership of its pixels (img is zeroed); its index or -1. */
+int scene_add_image(struct scene *sc, struct rgb8 *img);
+
+/* Make sure sc->perlin exists (one fixed-seed table shared by all noise textures). 0 or -1. */
+int scene_use_perlin(struct scene *sc);
 
 /* Build the BVH once every prim is in. 0, or -1 with e filled. */
 int scene_finish(struct scene *sc, struct err *e);

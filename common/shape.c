@@ -1,7 +1,10 @@
-/* shape: intersection, bounds and light sampling for spheres, axis rects and disks. */
+/* shape: ray intersection for every primitive type, dispatched by one switch (no function
+   pointers per ray); rotate_y + translate move the ray into object space first. */
 #include "shape.h"
 
-#include <float.h>
+#include <string.h>
+
+#include "rng.h"
 
 /* World -> object space for a rotate_y + translate transform. */
 static ray to_object(const struct prim *p, const ray *r)
@@ -9,8 +12,8 @@ static ray to_object(const struct prim *p, const ray *r)
     vec3 o = v3_sub(r->orig, p->offset);
     ray out = *r;
     out.orig = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
-    out.dir = v3(p->cos_y * r->dir.x - p->sin_y * r->dir.z, r->dir.y,
-                 p->sin_y * r->dir.x + p->cos_y * r->dir.z);
+    out.dir =
+        v3(p->cos_y * r->dir.x - p->sin_y * r->dir.z, r->dir.y, p->sin_y * r->dir.x + p->cos_y * r->dir.z);
     return out;
 }
 
@@ -25,21 +28,30 @@ static void set_face(struct hit *h, const ray *r, vec3 outward)
     h->n = h->front ? outward : v3_neg(outward);
 }
 
-static int hit_sphere(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+/* Both roots t0 <= t1 of |o + t d - c| = rad; 0 when the line misses the sphere. */
+static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1)
 {
-    vec3 c = p->g.sphere.center;
-    double rad = p->g.sphere.radius;
     vec3 oc = v3_sub(r->orig, c);
     double a = v3_len2(r->dir);
     double half_b = v3_dot(oc, r->dir);
     double cc = v3_len2(oc) - rad * rad;
     double disc = half_b * half_b - a * cc;
-    if (disc < 0)
+    if (disc < 0 || a == 0)
         return 0;
     double sq = sqrt(disc);
-    double t = (-half_b - sq) / a;
+    *t0 = (-half_b - sq) / a;
+    *t1 = (-half_b + sq) / a;
+    return 1;
+}
+
+static int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    double t0, t1, t;
+    if (!sphere_roots(c, rad, r, &t0, &t1))
+        return 0;
+    t = t0;
     if (t <= t_min || t >= t_max) {
-        t = (-half_b + sq) / a;
+        t = t1;
         if (t <= t_min || t >= t_max)
             return 0;
     }
@@ -102,19 +114,188 @@ static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_m
     return 1;
 }
 
+/* Axis-aligned box by the slab method (Kay & Kajiya 1986): the entry face from outside, the
+   exit face from inside; the normal is that face's outward axis. */
+static int hit_box(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    const double lo[3] = {p->g.box.lo.x, p->g.box.lo.y, p->g.box.lo.z};
+    const double hi[3] = {p->g.box.hi.x, p->g.box.hi.y, p->g.box.hi.z};
+    const double o[3] = {r->orig.x, r->orig.y, r->orig.z}, d[3] = {r->dir.x, r->dir.y, r->dir.z};
+    double t_near = -INFINITY, t_far = INFINITY;
+    int near_axis = -1, far_axis = -1;
+    for (int a = 0; a < 3; a++) {
+        if (d[a] == 0) {
+            if (o[a] < lo[a] || o[a] > hi[a])
+                return 0;
+            continue;
+        }
+        double inv = 1.0 / d[a];
+        double ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
+        if (ta > tb) {
+            double t = ta;
+            ta = tb;
+            tb = t;
+        }
+        if (ta > t_near)
+            t_near = ta, near_axis = a;
+        if (tb < t_far)
+            t_far = tb, far_axis = a;
+    }
+    if (t_near > t_far)
+        return 0;
+    double t;
+    int axis;
+    double sign;
+    if (t_near > t_min && t_near < t_max) {
+        t = t_near, axis = near_axis, sign = d[axis] > 0 ? -1.0 : 1.0;
+    } else if (t_far > t_min && t_far < t_max) {
+        t = t_far, axis = far_axis, sign = d[axis] > 0 ? 1.0 : -1.0;
+    } else {
+        return 0;
+    }
+    h->t = t;
+    h->p = ray_at(r, t);
+    set_face(h, r, v3(axis == 0 ? sign : 0, axis == 1 ? sign : 0, axis == 2 ? sign : 0));
+    return 1;
+}
+
+/* Capped cylinder about an arbitrary unit axis: the side is the quadric of the distance to the
+   axis, restricted to 0 <= height <= H; the caps are disks at both ends. */
+static int hit_cylinder(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    vec3 a = p->g.cyl.axis;
+    double H = p->g.cyl.height, R = p->g.cyl.radius;
+    vec3 oc = v3_sub(r->orig, p->g.cyl.base);
+    double d_a = v3_dot(r->dir, a), oc_a = v3_dot(oc, a);
+    vec3 dp = v3_fma(r->dir, a, -d_a), ocp = v3_fma(oc, a, -oc_a);
+    double best = t_max;
+    vec3 outward = v3(0, 0, 0);
+    double A = v3_len2(dp);
+    if (A > 0) {
+        double half_b = v3_dot(ocp, dp), c = v3_len2(ocp) - R * R;
+        double disc = half_b * half_b - A * c;
+        if (disc >= 0) {
+            double sq = sqrt(disc);
+            double roots[2] = {(-half_b - sq) / A, (-half_b + sq) / A};
+            for (int i = 0; i < 2; i++) {
+                double t = roots[i], y = oc_a + t * d_a;
+                if (t > t_min && t < best && y >= 0 && y <= H) {
+                    best = t;
+                    outward = v3_scale(v3_fma(ocp, dp, t), 1.0 / R);
+                    break;
+                }
+            }
+        }
+    }
+    if (d_a != 0) {
+        for (int cap = 0; cap < 2; cap++) {
+            double t = ((cap ? H : 0) - oc_a) / d_a;
+            if (t > t_min && t < best && v3_len2(v3_fma(ocp, dp, t)) <= R * R) {
+                best = t;
+                outward = cap ? a : v3_neg(a);
+            }
+        }
+    }
+    if (best >= t_max)
+        return 0;
+    h->t = best;
+    h->p = ray_at(r, best);
+    set_face(h, r, outward);
+    return 1;
+}
+
+/* Moller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection". */
+static int hit_triangle(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    vec3 e1 = p->g.tri.e1, e2 = p->g.tri.e2;
+    vec3 pvec = v3_cross(r->dir, e2);
+    double det = v3_dot(e1, pvec);
+    if (det == 0)
+        return 0;
+    double inv = 1.0 / det;
+    vec3 tvec = v3_sub(r->orig, p->g.tri.v0);
+    double u = v3_dot(tvec, pvec) * inv;
+    if (u < 0 || u > 1)
+        return 0;
+    vec3 qvec = v3_cross(tvec, e1);
+    double v = v3_dot(r->dir, qvec) * inv;
+    if (v < 0 || u + v > 1)
+        return 0;
+    double t = v3_dot(e2, qvec) * inv;
+    if (!(t > t_min && t < t_max))
+        return 0;
+    h->t = t;
+    h->p = ray_at(r, t);
+    set_face(h, r, p->g.tri.normal);
+    return 1;
+}
+
+/* A uniform number in (0, 1] from the ray's bits and the medium's: the same ray always gets
+   the same free-flight distance, whatever order the BVH tests primitives in. */
+static double ray_hash_uniform(const ray *r, const struct prim *p)
+{
+    double in[9] = {r->orig.x, r->orig.y,          r->orig.z,
+                    r->dir.x,  r->dir.y,           r->dir.z,
+                    r->time,   p->g.medium.radius, p->g.medium.neg_inv_density};
+    uint64_t h = 0x6d656469756dULL;
+    for (int i = 0; i < 9; i++) {
+        uint64_t bits;
+        memcpy(&bits, &in[i], sizeof bits);
+        h = rng_mix64(h ^ bits);
+    }
+    return (double)((h >> 11) + 1) * 0x1.0p-53;
+}
+
+/* Constant-density medium inside a sphere (RTOW "The Next Week", ch. 9): the ray scatters at
+   an exponentially distributed distance while inside, else passes through. */
+static int hit_medium(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    double t0, t1;
+    if (!sphere_roots(p->g.medium.center, p->g.medium.radius, r, &t0, &t1))
+        return 0;
+    double enter = t0 > t_min ? t0 : t_min, leave = t1 < t_max ? t1 : t_max;
+    if (!(enter < leave))
+        return 0;
+    double len = v3_len(r->dir);
+    double dist = p->g.medium.neg_inv_density * log(ray_hash_uniform(r, p));
+    if (dist > (leave - enter) * len)
+        return 0;
+    h->t = enter + dist / len;
+    h->p = ray_at(r, h->t);
+    h->n = v3(1, 0, 0); /* arbitrary: the isotropic phase function ignores it */
+    h->front = 1;
+    return 1;
+}
+
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
     ray local = p->has_xform ? to_object(p, r) : *r;
     int got = 0;
     switch (p->type) {
     case PRIM_SPHERE:
-        got = hit_sphere(p, &local, t_min, t_max, h);
+        got = hit_sphere(p->g.sphere.center, p->g.sphere.radius, &local, t_min, t_max, h);
+        break;
+    case PRIM_MOVING_SPHERE:
+        got = hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, local.time), p->g.msphere.radius,
+                         &local, t_min, t_max, h);
         break;
     case PRIM_RECT:
         got = hit_rect(p, &local, t_min, t_max, h);
         break;
     case PRIM_DISK:
         got = hit_disk(p, &local, t_min, t_max, h);
+        break;
+    case PRIM_BOX:
+        got = hit_box(p, &local, t_min, t_max, h);
+        break;
+    case PRIM_CYLINDER:
+        got = hit_cylinder(p, &local, t_min, t_max, h);
+        break;
+    case PRIM_TRIANGLE:
+        got = hit_triangle(p, &local, t_min, t_max, h);
+        break;
+    case PRIM_MEDIUM:
+        got = hit_medium(p, &local, t_min, t_max, h);
         break;
     }
     if (!got)
@@ -124,115 +305,4 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
         h->n = rotate_to_world(p, h->n);
     }
     return 1;
-}
-
-void shape_uv(const struct prim *p, struct hit *h)
-{
-    if (p->type != PRIM_SPHERE)
-        return; /* rect and disk fill u, v while hitting */
-    vec3 q = h->p;
-    if (p->has_xform) {
-        vec3 o = v3_sub(q, p->offset);
-        q = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
-    }
-    vec3 d = v3_scale(v3_sub(q, p->g.sphere.center), 1.0 / p->g.sphere.radius);
-    double theta = acos(fmax(-1.0, fmin(1.0, -d.y)));
-    double phi = atan2(-d.z, d.x) + PI;
-    h->u = phi / (2 * PI);
-    h->v = theta / PI;
-}
-
-static void object_bounds(const struct prim *p, vec3 *lo, vec3 *hi)
-{
-    switch (p->type) {
-    case PRIM_SPHERE: {
-        vec3 r = v3(p->g.sphere.radius, p->g.sphere.radius, p->g.sphere.radius);
-        *lo = v3_sub(p->g.sphere.center, r);
-        *hi = v3_add(p->g.sphere.center, r);
-        break;
-    }
-    case PRIM_RECT: {
-        int ax = p->g.rect.axis, a, b;
-        rect_axes(ax, &a, &b);
-        double l[3], u[3];
-        l[ax] = p->g.rect.k - 1e-4;
-        u[ax] = p->g.rect.k + 1e-4;
-        l[a] = p->g.rect.a0, u[a] = p->g.rect.a1;
-        l[b] = p->g.rect.b0, u[b] = p->g.rect.b1;
-        *lo = v3(l[0], l[1], l[2]);
-        *hi = v3(u[0], u[1], u[2]);
-        break;
-    }
-    case PRIM_DISK: {
-        /* Exact box of a disk: extent along axis i is r * sqrt(1 - n_i^2). */
-        vec3 n = p->g.disk.normal;
-        double r = p->g.disk.radius;
-        vec3 e = v3(r * sqrt(fmax(0, 1 - n.x * n.x)) + 1e-4, r * sqrt(fmax(0, 1 - n.y * n.y)) + 1e-4,
-                    r * sqrt(fmax(0, 1 - n.z * n.z)) + 1e-4);
-        *lo = v3_sub(p->g.disk.center, e);
-        *hi = v3_add(p->g.disk.center, e);
-        break;
-    }
-    }
-}
-
-void shape_bounds(const struct prim *p, vec3 *lo, vec3 *hi)
-{
-    vec3 l, h;
-    object_bounds(p, &l, &h);
-    if (!p->has_xform) {
-        *lo = l, *hi = h;
-        return;
-    }
-    vec3 mn = v3(DBL_MAX, DBL_MAX, DBL_MAX), mx = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
-    for (int i = 0; i < 8; i++) {
-        vec3 c = v3(i & 1 ? h.x : l.x, i & 2 ? h.y : l.y, i & 4 ? h.z : l.z);
-        vec3 w = v3_add(rotate_to_world(p, c), p->offset);
-        mn = v3_min(mn, w);
-        mx = v3_max(mx, w);
-    }
-    *lo = mn, *hi = mx;
-}
-
-double shape_area(const struct prim *p)
-{
-    switch (p->type) {
-    case PRIM_RECT:
-        return (p->g.rect.a1 - p->g.rect.a0) * (p->g.rect.b1 - p->g.rect.b0);
-    case PRIM_DISK:
-        return PI * p->g.disk.radius * p->g.disk.radius;
-    case PRIM_SPHERE:
-        return 4 * PI * p->g.sphere.radius * p->g.sphere.radius;
-    }
-    return 0;
-}
-
-vec3 shape_light_point(const struct prim *p, struct pt2 s)
-{
-    if (p->type == PRIM_DISK) {
-        /* r = R sqrt(u), theta = 2 pi v: uniform by area over the whole radius-R disk. */
-        double r = p->g.disk.radius * sqrt(s.x), th = 2 * PI * s.y;
-        vec3 q = v3_add(v3_scale(p->g.disk.e1, r * cos(th)), v3_scale(p->g.disk.e2, r * sin(th)));
-        return v3_add(p->g.disk.center, q);
-    }
-    int ax = p->g.rect.axis, a, b;
-    rect_axes(ax, &a, &b);
-    double c[3];
-    c[ax] = p->g.rect.k;
-    c[a] = p->g.rect.a0 + s.x * (p->g.rect.a1 - p->g.rect.a0);
-    c[b] = p->g.rect.b0 + s.y * (p->g.rect.b1 - p->g.rect.b0);
-    return v3(c[0], c[1], c[2]);
-}
-
-double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
-{
-    struct hit h;
-    ray r = {o, dir, time};
-    if (!shape_hit(p, &r, HIT_EPS, DBL_MAX, &h))
-        return 0;
-    double dist2 = h.t * h.t * v3_len2(dir);
-    double cosine = fabs(v3_dot(dir, h.n)) / v3_len(dir);
-    if (cosine < 1e-12)
-        return 0;
-    return dist2 / (cosine * shape_area(p));
 }

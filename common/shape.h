@@ -1,4 +1,4 @@
-/* shape: ray-primitive intersection, bounds, and area sampling of the primitives lights use. */
+/* shape: ray-primitive intersection, bounds, and the sampling of primitives lights use. */
 #ifndef SHAPE_H
 #define SHAPE_H
 
@@ -16,7 +16,8 @@ struct hit {
     int prim;
 };
 
-/* Nearest hit of r with p in (t_min, t_max): 1 and h filled, else 0. */
+/* Nearest hit of r with p in (t_min, t_max): 1 and h filled, else 0. Pure: a medium draws its
+   free-flight distance from a hash of the ray, so the same ray always gets the same answer. */
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h);
 
 /* Fill h->u, h->v for the primitive h->prim (only called when a texture needs them). */
@@ -25,13 +26,22 @@ void shape_uv(const struct prim *p, struct hit *h);
 /* World-space bounds of p. */
 void shape_bounds(const struct prim *p, vec3 *lo, vec3 *hi);
 
-/* Area of p's surface (disk and rect, which lights use). */
+/* Area of p's surface (sphere, disk and rect, which lights use). */
 double shape_area(const struct prim *p);
+
+/* Whether light p draws its points from the job's light sampler (disk, rect); a sphere
+   samples its cone of directions from the path's rng instead. */
+int shape_light_uses_points(const struct prim *p);
 
 /* The point on a disk or rect light for a sample point s in [0,1)^2 (area-uniform map). */
 vec3 shape_light_point(const struct prim *p, struct pt2 s);
 
-/* Density, per solid angle, of choosing direction dir from o by sampling p's area: 0 when the
+/* A direction from o toward light p (not normalised) for s in [0,1)^2: toward an area-uniform
+   point of a disk or rect, or uniform in the cone a sphere subtends (RTOW "The Rest of Your
+   Life", ch. 12; uniform over all directions when o is inside the sphere). */
+vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s);
+
+/* Density, per solid angle, of shape_light_dir choosing direction dir from o: 0 when the
    ray misses p. */
 double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time);
 

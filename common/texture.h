@@ -1,13 +1,16 @@
-/* texture: surface colour lookups (checker). */
+/* texture: surface colour lookups (checker, Perlin marble, image). */
 #ifndef TEXTURE_H
 #define TEXTURE_H
 
 #include "scene.h"
 
-/* Colour of texture t at surface coordinates (u, v) and point p. */
-vec3 texture_value(const struct texture *t, double u, double v, vec3 p);
+/* Colour of texture t of scene sc at surface coordinates (u, v) and world point p. */
+vec3 texture_value(const struct scene *sc, const struct texture *t, double u, double v, vec3 p);
 
 /* Whether t reads (u, v) (so the hit must compute them). */
 int texture_needs_uv(const struct texture *t);
+
+/* The marble colour of RTOW "The Next Week": grey 0.5 (1 + sin(scale z + 10 turb(p))). */
+vec3 texture_marble(const struct perlin *pn, double scale, vec3 p);
 
 #endif

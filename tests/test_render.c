@@ -240,7 +240,7 @@ static void test_integrator(void)
         scene_free(sc);
         return;
     }
-    struct render_settings rs = {4, 4, 10, 1};
+    struct render_settings rs = {4, 4, 10, 1, 0};
     struct render_ctx *ctx = render_ctx_new(sc, &cam, &rs, pix, NULL, &e);
     CHECK(ctx != NULL);
     struct render_stats st;

@@ -25,8 +25,14 @@ static double clock_s(clockid_t id)
 }
 
 /* The child's whole life: render its rows into the mapping, write its stats, _exit. */
-static void child_main(const struct farm_job *fj, int index, int nproc, float *rgb, struct shared *sh)
+static void child_main(const struct farm_job *fj, int index, int nproc, float *rgb, struct shared *sh,
+                       pid_t parent)
 {
+    /* With a stop flag the parent owns SIGINT/SIGTERM (a terminal's Ctrl-C or Slurm's scancel
+       reach the whole process group): it stops the children itself, so a signal that reached a
+       child first can never pass for a crash. Without one, they die as usual. */
+    signal(SIGINT, fj->stop ? SIG_IGN : SIG_DFL);
+    signal(SIGTERM, fj->stop ? SIG_IGN : SIG_DFL);
     double wall0 = clock_s(CLOCK_MONOTONIC);
     struct err e;
     struct render_ctx *ctx = render_ctx_new(fj->scene, fj->camera, &fj->rs, fj->pixel, fj->light, &e);
@@ -44,6 +50,8 @@ static void child_main(const struct farm_job *fj, int index, int nproc, float *r
         for (int x = 0; x < w; x++)
             render_pixel(ctx, x, y, &rgb[((size_t)y * w + x) * 3], &st);
         atomic_fetch_add(&sh->rows_done, 1);
+        if (getppid() != parent) /* the worker was killed: nobody will read our rows */
+            _exit(4);
     }
     render_ctx_free(ctx);
     sh->proc[index].st = st;
@@ -101,6 +109,7 @@ int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, 
     atomic_init(&sh->rows_done, 0);
     pid_t pids[FARM_MAX_PROCESSES] = {0};
     double wall0 = clock_s(CLOCK_MONOTONIC);
+    pid_t parent = getpid();
     int rc = 0;
     for (int i = 0; i < nproc; i++) {
         pids[i] = fork();
@@ -111,7 +120,7 @@ int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, 
             return err_set(e, NULL, 0, 0, "cannot start render process %d: %s", i + 1, strerror(errno));
         }
         if (pids[i] == 0)
-            child_main(fj, i, nproc, rgb, sh);
+            child_main(fj, i, nproc, rgb, sh, parent);
     }
     int left = nproc;
     while (left > 0) {
@@ -119,6 +128,13 @@ int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, 
         pid_t pid = waitpid(-1, &status, WNOHANG);
         if (pid < 0 && errno != EINTR)
             break;
+        if (pid <= 0 && fj->stop && *fj->stop) {
+            err_set(e, NULL, 0, 0, "render stopped by a signal");
+            res->stopped = 1;
+            rc = -1;
+            kill_all(pids, nproc);
+            break;
+        }
         if (pid <= 0) {
             if (fj->progress)
                 fj->progress(fj->progress_arg, atomic_load(&sh->rows_done), rows,
@@ -134,11 +150,18 @@ int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, 
             continue; /* not ours */
         pids[i] = 0;
         left--;
-        if (WIFSIGNALED(status)) {
+        if (fj->stop && *fj->stop) {
+            err_set(e, NULL, 0, 0, "render stopped by a signal");
+            res->stopped = 1;
+            rc = -1;
+        } else if (WIFSIGNALED(status)) {
+            res->child_signal = WTERMSIG(status);
+            res->child_crashed = 1;
             err_set(e, NULL, 0, 0, "render process %d of %d (pid %d) was killed by signal %d (%s)", i + 1,
                     nproc, (int)pid, WTERMSIG(status), strsignal(WTERMSIG(status)));
             rc = -1;
         } else if (WEXITSTATUS(status) != 0 || !sh->proc[i].done) {
+            res->child_crashed = 1;
             err_set(e, NULL, 0, 0, "render process %d of %d (pid %d) failed with exit code %d", i + 1, nproc,
                     (int)pid, WEXITSTATUS(status));
             rc = -1;

@@ -2,15 +2,18 @@
 #include "job.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "fileio.h"
+#include "hash.h"
 
 const char *const job_keys[] = {"name",       "scene",        "width",   "height",
                                 "sampler",    "threshold",    "light_sampler",
                                 "light_threshold", "max_depth", "seed",   "processes",
                                 "format",     "output",       "reference", "poisson_pool",
+                                "light_sampling", "priority",
                                 NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
@@ -86,6 +89,7 @@ void job_defaults(struct job *j, const char *path)
     j->seed = 1;
     j->processes = 2;
     j->format = IMG_PNG;
+    j->light_sampling = 1;
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
@@ -173,10 +177,16 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 1, 256, &n, e) < 0)
             return -1;
         j->processes = (int)n;
+    } else if (!strcmp(k, "priority")) {
+        if (yget_long(d, v, k, -1000000, 1000000, &n, e) < 0)
+            return -1;
+        j->priority = (int)n;
     } else if (!strcmp(k, "poisson_pool")) {
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "light_sampling")) {
+        return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -236,13 +246,33 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     return 0;
 }
 
+int job_hash_file(const char *path, uint64_t *h, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+        return -1;
+    *h = hash_bytes(*h, data, len);
+    free(data);
+    return 0;
+}
+
 int job_load(const char *path, struct job *j, struct err *e)
+{
+    return job_load_as(path, path, j, e);
+}
+
+int job_load_as(const char *from, const char *path, struct job *j, struct err *e)
 {
     struct ydoc d;
     int rc = -1;
     job_defaults(j, path);
-    if (ydoc_load(&d, path, e) < 0)
+    if (ydoc_load(&d, from, e) < 0) {
+        if (strcmp(e->file, from) == 0)
+            snprintf(e->file, sizeof e->file, "%s", path);
         goto done;
+    }
+    snprintf(d.file, sizeof d.file, "%s", path);
     yaml_node_t *root = ydoc_root(&d);
     if (ymap_check(&d, root, job_keys, "job", e) < 0)
         goto done;
@@ -254,7 +284,12 @@ int job_load(const char *path, struct job *j, struct err *e)
         ydoc_fail(&d, root, e, "scene: missing (name a scene file, e.g. scene: checker)");
         goto done;
     }
-    rc = job_finish(j, &d, e);
+    if (job_finish(j, &d, e) < 0)
+        goto done;
+    j->hash = HASH_FNV_OFFSET;
+    if (job_hash_file(from, &j->hash, e) < 0 || job_hash_file(j->scene_path, &j->hash, e) < 0)
+        goto done;
+    rc = 0;
 done:
     ydoc_free(&d);
     return rc;

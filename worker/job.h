@@ -26,6 +26,9 @@ struct job {
     char output[JOB_NAME_MAX];     /* file name under --out DIR/<name>/ */
     char reference[JOB_PATH_MAX];  /* resolved; "" when none */
     int poisson_pool;
+    int light_sampling;            /* 0: no importance sampling of lights (default 1) */
+    int priority;                  /* queue order: higher first (default 0) */
+    uint64_t hash;                 /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2];
@@ -33,6 +36,14 @@ struct job {
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
 int job_load(const char *path, struct job *j, struct err *e);
+
+/* Like job_load, but read the bytes from `from` while treating the file as if it were at `path`:
+   relative scene and reference paths resolve beside `path`, messages and j->path name `path`
+   (a queue job claimed into DIR/running/ still belongs to DIR). */
+int job_load_as(const char *from, const char *path, struct job *j, struct err *e);
+
+/* Hash of the bytes of the file at path, continued from h; -1 when it cannot be read. */
+int job_hash_file(const char *path, uint64_t *h, struct err *e);
 
 /* Set defaults (name from the file's stem). */
 void job_defaults(struct job *j, const char *path);

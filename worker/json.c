@@ -121,3 +121,9 @@ void json_uint(struct json *j, const char *key, uint64_t val)
     member(j, key);
     put(j, "%llu", (unsigned long long)val);
 }
+
+void json_bool(struct json *j, const char *key, int val)
+{
+    member(j, key);
+    put(j, "%s", val ? "true" : "false");
+}

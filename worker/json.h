@@ -22,5 +22,6 @@ void json_end_array(struct json *j);
 void json_string(struct json *j, const char *key, const char *val);
 void json_number(struct json *j, const char *key, double val); /* non-finite -> null */
 void json_uint(struct json *j, const char *key, uint64_t val);
+void json_bool(struct json *j, const char *key, int val);
 
 #endif

@@ -1,5 +1,6 @@
 /* main: the `worker` command line (SPEC "Command line"): parse, dispatch, print, exit. */
 #include <signal.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,14 +11,21 @@
 #include "job.h"
 #include "metrics.h"
 #include "points.h"
+#include "part.h"
+#include "queue.h"
 #include "run.h"
 
 static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
-    "       worker diff A.png B.png [--max-rmse X]  error of B against reference A\n"
+    "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
+    "       worker merge JOB.yaml              merge a job's part files into its image\n"
+    "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
+    "                                          drain a queue directory (--once: exit when empty)\n"
+    "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
     "       worker --help | --version\n"
-    "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n";
+    "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
+    "         --force (render even when the outputs are current)\n";
 
 static const char help[] =
     "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
@@ -47,9 +55,15 @@ static int diff_main(int argc, char **argv)
 {
     const char *files[2] = {0};
     int nfiles = 0;
-    double max_rmse = -1;
+    double max_rmse = -1, block = 1;
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--max-rmse")) {
+        if (!strcmp(argv[i], "--block")) {
+            if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) || block < 1 ||
+                block > 65536) {
+                fprintf(stderr, "worker diff: --block needs a whole number of pixels in [1, 65536]\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--max-rmse")) {
             if (i + 1 >= argc || parse_double_arg(argv[++i], &max_rmse) < 0 || max_rmse < 0) {
                 fprintf(stderr, "worker diff: --max-rmse needs a number >= 0\n");
                 return 2;
@@ -73,7 +87,7 @@ static int diff_main(int argc, char **argv)
     struct err e;
     int rc = 2;
     if (imgio_read(files[0], &a, &e) == 0 && imgio_read(files[1], &b, &e) == 0) {
-        if (metrics_compare(&a, &b, &m, &e) == 0) {
+        if (metrics_compare_blocks(&a, &b, (int)block, &m, &e) == 0) {
             printf("mse %.9g\nrmse %.9g\nrelmse %.9g\npsnr %.4f\n", m.mse, m.rmse, m.relmse, m.psnr);
             rc = 0;
             if (max_rmse >= 0 && m.rmse > max_rmse) {
@@ -91,6 +105,103 @@ static int diff_main(int argc, char **argv)
     return rc;
 }
 
+static int max_rc(int a, int b)
+{
+    return a > b ? a : b;
+}
+
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"--out",     "--processes",     "--queue", "--poll",
+                                        "--retries", "--lease-timeout", "--part",  NULL};
+    for (int i = 0; names[i]; i++)
+        if (!strcmp(a, names[i]))
+            return 1;
+    return 0;
+}
+
+/* One option with a value (--out, --processes, --queue, --poll, --retries, --lease-timeout,
+   --part) into q. 0, or -1 after printing the usage error. */
+static int option_value(const char *a, const char *v, struct queue_opts *q)
+{
+    char *end = "";
+    double d = v ? strtod(v, &end) : 0;
+    int number = v && *v && !*end, whole = number && d == (long)d;
+    if (!v) {
+        fprintf(stderr, "worker: %s needs a value\n%s", a, usage);
+        return -1;
+    } else if (!strcmp(a, "--out")) {
+        q->run.out_dir = v;
+    } else if (!strcmp(a, "--queue")) {
+        q->dir = v;
+    } else if (!strcmp(a, "--processes")) {
+        if (!whole || d < 1 || d > FARM_MAX_PROCESSES)
+            goto bad;
+        q->run.processes = (int)d;
+    } else if (!strcmp(a, "--retries")) {
+        if (!whole || d < 0 || d > 100)
+            goto bad;
+        q->retries = (int)d;
+    } else if (!strcmp(a, "--poll") || !strcmp(a, "--lease-timeout")) {
+        if (!number || !(d > 0 && d <= 604800))
+            goto bad;
+        *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
+    } else if (!strcmp(a, "--part")) {
+        int i, parts, used = 0;
+        if (sscanf(v, "%d/%d%n", &i, &parts, &used) != 2 || v[used] || parts < 1 || parts > PART_MAX ||
+            i < 0 || i >= parts) {
+            fprintf(stderr, "worker: --part must be I/N with 0 <= I < N <= %d, got \"%s\"\n", PART_MAX, v);
+            return -1;
+        }
+        q->run.part = i;
+        q->run.parts = parts;
+    }
+    return 0;
+bad:
+    fprintf(stderr, "worker: %s must be %s, got \"%s\"\n", a,
+            !strcmp(a, "--processes") ? "a whole number in [1, 256]"
+            : !strcmp(a, "--retries") ? "a whole number in [0, 100]"
+                                      : "a number of seconds in (0, 604800]",
+            v);
+    return -1;
+}
+
+/* Render (or, with merge, merge the parts of) one job file; its exit status. */
+static int job_main(const char *path, const struct run_opts *o, int merge)
+{
+    struct job j;
+    struct err e;
+    struct run_result rr;
+    if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
+        if (!merge && !o->parts)
+            return compare_main(path, o);
+        fprintf(stderr, "%s: a compare job renders whole images: no merge or --part\n", path);
+        return 2;
+    }
+    if (job_load(path, &j, &e) < 0) {
+        print_err(&e);
+        return 2;
+    }
+    int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
+    if (rc != 0) {
+        if (rc == 1) { /* a render failure names the job; bad input names its file */
+            char why[sizeof e.msg];
+            snprintf(why, sizeof why, "%s", e.msg);
+            snprintf(e.msg, sizeof e.msg, "%s: %s; nothing written", j.name, why);
+        }
+        print_err(&e);
+    } else if (rr.skipped) {
+        fprintf(stderr, "%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
+                rr.image_path);
+    } else if (merge) {
+        fprintf(stderr, "%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
+                rr.image_path);
+    } else {
+        run_print_summary(&j, &rr);
+    }
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
@@ -100,88 +211,60 @@ int main(int argc, char **argv)
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))
         return diff_main(argc - 1, argv + 1);
-    struct run_opts o = {"out", 0, 0, isatty(2)};
+    struct queue_opts q = {.poll_s = QUEUE_POLL_S,
+                           .retries = QUEUE_RETRIES,
+                           .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
+                           .run = {.out_dir = "out", .progress = isatty(2)}};
+    struct run_opts *o = &q.run;
+    int merge = argc >= 2 && !strcmp(argv[1], "merge");
     const char **jobs = calloc((size_t)argc, sizeof *jobs);
-    int njobs = 0;
+    int njobs = 0, worst = 0;
     if (!jobs)
         return 2;
-    for (int i = 1; i < argc; i++) {
+    for (int i = 1 + merge; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             printf("%s\n%s", help, usage);
-            free(jobs);
-            return 0;
+            goto out;
         } else if (!strcmp(a, "--version")) {
             printf("worker %s\n", WORKER_VERSION);
-            free(jobs);
-            return 0;
+            goto out;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            o.quiet = 1;
-        } else if (!strcmp(a, "--out") || !strcmp(a, "--processes")) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "worker: %s needs a value\n%s", a, usage);
-                free(jobs);
-                return 2;
-            }
-            const char *v = argv[++i];
-            if (a[2] == 'o') {
-                o.out_dir = v;
-            } else {
-                char *end;
-                long n = strtol(v, &end, 10);
-                if (!*v || *end || n < 1 || n > FARM_MAX_PROCESSES) {
-                    fprintf(stderr, "worker: --processes must be a whole number in [1, %d], got \"%s\"\n",
-                            FARM_MAX_PROCESSES, v);
-                    free(jobs);
-                    return 2;
-                }
-                o.processes = (int)n;
+            o->quiet = 1;
+        } else if (!strcmp(a, "--once")) {
+            q.once = 1;
+        } else if (!strcmp(a, "--force")) {
+            o->force = 1;
+        } else if (takes_value(a)) {
+            if (option_value(a, i + 1 < argc ? argv[++i] : NULL, &q) < 0) {
+                worst = 2;
+                goto out;
             }
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "worker: unknown option %s\n%s", a, usage);
-            free(jobs);
-            return 2;
+            worst = 2;
+            goto out;
         } else {
             jobs[njobs++] = a;
         }
     }
-    if (njobs == 0) {
+    if (q.dir && (njobs || merge || o->parts)) {
+        fprintf(stderr, "worker: --queue takes no job files, merge or --part\n%s", usage);
+        worst = 2;
+    } else if (q.dir) {
+        queue_signals_install();
+        worst = queue_main(&q);
+    } else if (njobs == 0) {
         fprintf(stderr, "worker: no job file given\n%s", usage);
-        free(jobs);
-        return 2;
+        worst = 2;
+    } else if (merge && o->parts) {
+        fprintf(stderr, "worker: merge finds the parts itself; --part is for rendering one\n%s", usage);
+        worst = 2;
+    } else {
+        for (int i = 0; i < njobs; i++)
+            worst = max_rc(worst, job_main(jobs[i], o, merge));
     }
-    int worst = 0;
-    for (int i = 0; i < njobs; i++) {
-        struct job j;
-        struct err e;
-        struct run_result rr;
-        if (compare_is_compare_job(jobs[i])) {
-            int rc = compare_main(jobs[i], &o);
-            worst = rc > worst ? rc : worst;
-            continue;
-        }
-        if (job_load(jobs[i], &j, &e) < 0) {
-            print_err(&e);
-            worst = 2;
-            continue;
-        }
-        int rc = run_job(&j, &o, &rr, &e);
-        if (rc != 0) {
-            if (rc == 1) { /* a render failure names the job; bad input names its file */
-                char why[sizeof e.msg];
-                snprintf(why, sizeof why, "%s", e.msg);
-                snprintf(e.msg, sizeof e.msg, "%s: %s; nothing written", j.name, why);
-            }
-            print_err(&e);
-            worst = rc > worst ? rc : worst;
-            continue;
-        }
-        const struct render_stats *t = &rr.farm.total;
-        fprintf(stderr, "%s: %dx%d %s t=%g (%.0f spp mean), %d processes, %.2f s -> %s\n", j.name, rr.width,
-                rr.height, sampler_kind_name(j.sampler), j.threshold,
-                t->pixels ? (double)t->samples / t->pixels : 0.0, rr.farm.processes, rr.farm.wall_s,
-                rr.image_path);
-    }
+out:
     free(jobs);
     return worst;
 }

@@ -12,6 +12,7 @@
 #include "fileio.h"
 #include "limits.h"
 #include "metrics.h"
+#include "part.h"
 #include "scene_load.h"
 #include "sidecar.h"
 
@@ -40,11 +41,15 @@ struct progress {
     const char *name;
     int enabled;
     int last_pct;
+    void (*tick)(void *arg);
+    void *tick_arg;
 };
 
 static void show_progress(void *arg, int done, int rows, double elapsed)
 {
     struct progress *p = arg;
+    if (p->tick)
+        p->tick(p->tick_arg);
     if (!p->enabled || rows == 0)
         return;
     int pct = (int)(100.0 * done / rows);
@@ -65,16 +70,102 @@ static void stem_of(const char *file, char *out, size_t n)
     snprintf(out, n, "%.*s", len, file);
 }
 
+void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n)
+{
+    char stem[JOB_NAME_MAX];
+    stem_of(j->output, stem, sizeof stem);
+    snprintf(dir, n, "%s/%s", out_dir ? out_dir : "out", j->name);
+    snprintf(image, n, "%s/%s/%s", out_dir ? out_dir : "out", j->name, j->output);
+    snprintf(sidecar, n, "%s/%s/%s.json", out_dir ? out_dir : "out", j->name, stem);
+}
+
+static int is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e)
+{
+    *ref = (struct rgb8){0};
+    if (!j->reference[0])
+        return 0;
+    if (imgio_read(j->reference, ref, e) < 0) {
+        char why[sizeof e->msg];
+        snprintf(why, sizeof why, "%s", e->msg);
+        return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s",
+                       j->reference, why);
+    }
+    if (ref->w != w || ref->h != h) {
+        err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
+                "reference: image is %dx%d but the job renders %dx%d", ref->w, ref->h, w, h);
+        rgb8_free(ref);
+        return -1;
+    }
+    return 0;
+}
+
+int run_write_outputs(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
+                      const struct farm_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
+                      struct err *e)
+{
+    char dir[2048];
+    struct rgb8 img = {0};
+    char *json = NULL;
+    int rc = -1;
+    run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
+    if (run_mkdirs(dir, e) < 0 || rgb8_alloc(&img, w, h, e) < 0)
+        goto done;
+    image_float_to_rgb8(rgb, w, h, img.px);
+    struct metrics m;
+    int has_ref = ref && ref->px;
+    if (has_ref && metrics_compare(ref, &img, &m, e) < 0)
+        goto done;
+    struct sidecar sc = {j, w, h, fr, has_ref ? &m : NULL, j->output, parts};
+    if (!(json = sidecar_json(&sc))) {
+        err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
+        goto done;
+    }
+    if (imgio_write(rr->image_path, &img, j->format, e) < 0)
+        goto done;
+    if (fileio_write_atomic(rr->sidecar_path, json, strlen(json), e) < 0) {
+        unlink(rr->image_path); /* an image without its sidecar is not a finished job */
+        goto done;
+    }
+    rc = 0;
+done:
+    free(json);
+    rgb8_free(&img);
+    return rc;
+}
+
+/* Resume: the outputs exist and were made from these very inputs. */
+static int outputs_current(const struct job *j, const struct run_opts *o, struct run_result *rr)
+{
+    char dir[2048];
+    if (j->hash == 0) /* a job not read from a file (no job_load): nothing to compare with */
+        return 0;
+    if (o->parts > 0) {
+        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        rr->sidecar_path[0] = 0;
+        return part_matches(rr->image_path, j, o->part, o->parts);
+    }
+    run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
+    return is_file(rr->image_path) && sidecar_matches(rr->sidecar_path, j->hash);
+}
+
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
 {
     struct scene_file sf = {0};
     struct sampler *pix = NULL, *light = NULL;
-    struct rgb8 img = {0}, ref = {0};
+    struct rgb8 ref = {0};
     float *rgb = NULL;
-    char *json = NULL;
-    int rc = 2, has_ref = 0;
+    int rc = 2;
     memset(rr, 0, sizeof *rr);
-
+    if (!o->force && outputs_current(j, o, rr)) {
+        rr->skipped = 1;
+        return 0;
+    }
     if (scene_load(j->scene_path, &sf, e) < 0)
         goto done;
     int w = j->width;
@@ -92,20 +183,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         goto done;
     }
-    if (j->reference[0]) {
-        if (imgio_read(j->reference, &ref, e) < 0) {
-            char why[sizeof e->msg];
-            snprintf(why, sizeof why, "%s", e->msg);
-            err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s", j->reference, why);
-            goto done;
-        }
-        if (ref.w != w || ref.h != h) {
-            err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
-                    "reference: image is %dx%d but the job renders %dx%d", ref.w, ref.h, w, h);
-            goto done;
-        }
-        has_ref = 1;
-    }
+    if (run_load_reference(j, w, h, &ref, e) < 0)
+        goto done;
     if (limits_check_samples(j, w, h, e) < 0 ||
         limits_check_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0)
         goto done;
@@ -115,50 +194,53 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
-    const char *out_dir = o->out_dir ? o->out_dir : "out";
-    char dir[2048], stem[JOB_NAME_MAX];
-    snprintf(dir, sizeof dir, "%s/%s", out_dir, j->name);
+    char dir[2048], image[2048], sidecar[2048];
+    run_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
     if (limits_check_out_dir(dir, e) < 0)
         goto done;
     rc = 1;
     if (!(rgb = farm_framebuffer_new(w, h, e)))
         goto done;
-    struct progress prog = {j->name, o->progress && !o->quiet, -1};
-    struct farm_job fj = {sf.scene, &cam, {w, h, j->max_depth, j->seed}, pix, light,
-                          o->processes > 0 ? o->processes : j->processes, 0, 1, show_progress, &prog};
+    struct progress prog = {j->name, o->progress && !o->quiet, -1, o->tick, o->tick_arg};
+    struct farm_job fj = {.scene = sf.scene,
+                          .camera = &cam,
+                          .rs = {w, h, j->max_depth, j->seed, !j->light_sampling},
+                          .pixel = pix,
+                          .light = light,
+                          .processes = o->processes > 0 ? o->processes : j->processes,
+                          .row_part = o->parts > 0 ? o->part : 0,
+                          .row_parts = o->parts > 0 ? o->parts : 1,
+                          .progress = show_progress,
+                          .progress_arg = &prog,
+                          .stop = o->stop};
     if (farm_render(&fj, rgb, &rr->farm, e) < 0) {
         if (prog.enabled)
             fprintf(stderr, "\n");
         goto done;
     }
-    if (rgb8_alloc(&img, w, h, e) < 0)
-        goto done;
-    image_float_to_rgb8(rgb, w, h, img.px);
-    struct metrics m;
-    if (has_ref && metrics_compare(&ref, &img, &m, e) < 0)
-        goto done;
-    snprintf(rr->image_path, sizeof rr->image_path, "%s/%s", dir, j->output);
-    stem_of(j->output, stem, sizeof stem);
-    snprintf(rr->sidecar_path, sizeof rr->sidecar_path, "%s/%s.json", dir, stem);
-    struct sidecar sc = {j, w, h, &rr->farm, has_ref ? &m : NULL, j->output};
-    if (!(json = sidecar_json(&sc))) {
-        err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
-        goto done;
-    }
-    if (imgio_write(rr->image_path, &img, j->format, e) < 0)
-        goto done;
-    if (fileio_write_atomic(rr->sidecar_path, json, strlen(json), e) < 0) {
-        unlink(rr->image_path); /* an image without its sidecar is not a finished job */
+    if (o->parts > 0) {
+        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        rr->sidecar_path[0] = 0;
+        if (part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e) < 0)
+            goto done;
+    } else if (run_write_outputs(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
         goto done;
     }
     rc = 0;
 done:
-    free(json);
-    rgb8_free(&img);
     rgb8_free(&ref);
     farm_framebuffer_free(rgb, rr->width, rr->height);
     sampler_free(pix);
     sampler_free(light);
     scene_file_free(&sf);
     return rc;
+}
+
+void run_print_summary(const struct job *j, const struct run_result *rr)
+{
+    const struct render_stats *t = &rr->farm.total;
+    fprintf(stderr, "%s: %dx%d %s t=%g (%.0f spp mean), %d processes, %.2f s -> %s\n", j->name, rr->width,
+            rr->height, sampler_kind_name(j->sampler), j->threshold,
+            t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes, rr->farm.wall_s,
+            rr->image_path);
 }

@@ -2,27 +2,54 @@
 #ifndef RUN_H
 #define RUN_H
 
+#include <signal.h>
+
 #include "farm.h"
 #include "job.h"
 
 struct run_opts {
-    const char *out_dir;  /* default "out" */
-    int processes;        /* > 0 overrides the job's */
+    const char *out_dir; /* default "out" */
+    int processes;       /* > 0 overrides the job's */
     int quiet;
-    int progress;         /* draw progress on stderr (a terminal, not quiet) */
+    int progress;                      /* draw progress on stderr (a terminal, not quiet) */
+    int force;                         /* render even when the outputs are current (resume off) */
+    int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
+    const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
+    void (*tick)(void *arg);           /* optional: called about every 50 ms while rendering */
+    void *tick_arg;
 };
 
 struct run_result {
-    char image_path[2048];
-    char sidecar_path[2048];
+    char image_path[2048];   /* with parts: the part file */
+    char sidecar_path[2048]; /* with parts: "" */
     int width, height;
-    struct farm_result farm;
+    int skipped;             /* outputs were current (same job hash): nothing rendered */
+    struct farm_result farm; /* on a render failure: child_crashed, child_signal, stopped */
 };
 
 /* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing
    rendered), 1 when rendering or writing failed; e says why. No output file exists unless the
-   render completed: image and sidecar are written atomically. */
+   render completed: image and sidecar are written atomically. Unless o->force, a job whose
+   image and sidecar (or part file) exist and record j->hash (non-zero: the job was read by
+   job_load) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
+
+/* The directory OUT/<name>/ and the image and sidecar paths of j (sidecar: image stem + .json). */
+void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
+
+/* Read j's reference into ref and check it is w x h. 0 (ref->px NULL when the job has none),
+   or -1 with e at the job's reference key. */
+int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e);
+
+/* Turn the linear framebuffer rgb (w x h) into the job's image, score it against ref (may be
+   NULL) and write image and sidecar (paths from run_paths under o->out_dir, into rr) atomically;
+   parts > 0 marks a merge of that many part files. 0 or -1 with e filled (nothing left behind). */
+int run_write_outputs(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
+                      const struct farm_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
+                      struct err *e);
+
+/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
+void run_print_summary(const struct job *j, const struct run_result *rr);
 
 /* mkdir -p for path. 0 or -1 with e filled. */
 int run_mkdirs(const char *path, struct err *e);

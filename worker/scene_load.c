@@ -3,7 +3,9 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "fileio.h"
 #include "scene_loader.h"
 
 int loader_find_name(const struct names *nm, const char *s)
@@ -82,6 +84,91 @@ static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
 }
 
 static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL};
+static const char *const noise_keys[] = {"type", "scale", NULL};
+static const char *const image_keys[] = {"type", "file", NULL};
+
+static int load_checker(struct loader *L, yaml_node_t *n, struct texture *t)
+{
+    yaml_node_t *v;
+    if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
+        return -1;
+    t->type = TEX_CHECKER;
+    t->scale = 10;
+    const char *need[] = {"odd", "even"};
+    for (int i = 0; i < 2; i++)
+        if (!ymap_get(&L->d, n, need[i]))
+            return ydoc_fail(&L->d, n, L->e, "%s: missing in checker texture", need[i]);
+    if (loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
+        loader_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
+        return -1;
+    if ((v = ymap_get(&L->d, n, "scale"))) {
+        if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
+            return -1;
+        if (!(t->scale > 0))
+            return ydoc_fail(&L->d, v, L->e, "scale: must be > 0, got %g", t->scale);
+    }
+    return 0;
+}
+
+static int load_noise(struct loader *L, yaml_node_t *n, struct texture *t)
+{
+    yaml_node_t *v;
+    if (ymap_check(&L->d, n, noise_keys, "noise texture", L->e) < 0)
+        return -1;
+    t->type = TEX_NOISE;
+    t->scale = 1;
+    if ((v = ymap_get(&L->d, n, "scale"))) {
+        if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
+            return -1;
+        if (!(t->scale > 0 && t->scale <= 1e6))
+            return ydoc_fail(&L->d, v, L->e, "scale: must be in (0, 1e6], got %g", t->scale);
+    }
+    if (scene_use_perlin(L->sc) < 0)
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    return 0;
+}
+
+/* An image texture: `file` relative to the scene file, PNG or PPM, at most
+   TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
+static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
+{
+    yaml_node_t *v;
+    const char *file;
+    if (ymap_check(&L->d, n, image_keys, "image texture", L->e) < 0)
+        return -1;
+    if (!(v = ymap_get(&L->d, n, "file")))
+        return ydoc_fail(&L->d, n, L->e, "file: missing in image texture");
+    if (yget_string(&L->d, v, "file", &file, L->e) < 0)
+        return -1;
+    char path[1024];
+    const char *slash = strrchr(L->d.file, '/');
+    if (file[0] == '/' || !slash)
+        snprintf(path, sizeof path, "%s", file);
+    else
+        snprintf(path, sizeof path, "%.*s/%s", (int)(slash - L->d.file), L->d.file, file);
+    struct stat st;
+    if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+        return ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
+    if (st.st_size > TEXTURE_MAX_BYTES)
+        return ydoc_fail(&L->d, v, L->e, "file: %s is %lld bytes, over the texture limit of %d",
+                         path, (long long)st.st_size, TEXTURE_MAX_BYTES);
+    struct rgb8 img;
+    struct err ie;
+    if (imgio_read(path, &img, &ie) < 0)
+        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path, ie.msg);
+    if ((long)img.w * img.h > TEXTURE_MAX_PIXELS) {
+        ydoc_fail(&L->d, v, L->e, "file: texture %s is %dx%d, over the limit of %ld pixels", path, img.w,
+                  img.h, (long)TEXTURE_MAX_PIXELS);
+        rgb8_free(&img);
+        return -1;
+    }
+    t->type = TEX_IMAGE;
+    if ((t->image = scene_add_image(L->sc, &img)) < 0) {
+        rgb8_free(&img);
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    }
+    return 0;
+}
 
 static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
 {
@@ -92,26 +179,18 @@ static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
         return -1;
     struct texture t = {0};
-    if (!strcmp(type, "checker")) {
-        if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
-            return -1;
-        t.type = TEX_CHECKER;
-        t.scale = 10;
-        yaml_node_t *v;
-        const char *need[] = {"odd", "even"};
-        for (int i = 0; i < 2; i++)
-            if (!ymap_get(&L->d, n, need[i]))
-                return ydoc_fail(&L->d, n, L->e, "%s: missing in checker texture", need[i]);
-        if (loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t.odd) < 0 ||
-            loader_color(L, ymap_get(&L->d, n, "even"), "even", &t.even) < 0)
-            return -1;
-        if ((v = ymap_get(&L->d, n, "scale")) && yget_double(&L->d, v, "scale", &t.scale, L->e) < 0)
-            return -1;
-        if (!(t.scale > 0))
-            return ydoc_fail(&L->d, v, L->e, "scale: must be > 0");
-    } else {
-        return ydoc_fail(&L->d, tn, L->e, "type: unknown texture type \"%.40s\" (expected checker)", type);
-    }
+    int rc;
+    if (!strcmp(type, "checker"))
+        rc = load_checker(L, n, &t);
+    else if (!strcmp(type, "noise"))
+        rc = load_noise(L, n, &t);
+    else if (!strcmp(type, "image"))
+        rc = load_image(L, n, &t);
+    else
+        return ydoc_fail(&L->d, tn, L->e, "type: unknown texture type \"%.40s\" (expected checker, noise or image)",
+                         type);
+    if (rc < 0)
+        return -1;
     if (scene_add_texture(L->sc, &t) < 0)
         return ydoc_fail(&L->d, n, L->e, "out of memory");
     return 0;
@@ -144,9 +223,13 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     } else if (!strcmp(type, "light")) {
         m.type = MAT_LIGHT;
         allowed = "emit";
+    } else if (!strcmp(type, "isotropic")) {
+        m.type = MAT_ISOTROPIC;
+        allowed = "albedo texture";
     } else {
         return ydoc_fail(&L->d, tn, L->e,
-                         "type: unknown material type \"%.40s\" (expected lambertian, metal, dielectric or light)", type);
+                         "type: unknown material type \"%.40s\" (expected lambertian, metal, dielectric, light or isotropic)",
+                         type);
     }
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
@@ -163,8 +246,8 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
             return -1;
         if ((m.texture = loader_find_name(&L->tex, s)) < 0)
             return ydoc_fail(&L->d, v, L->e, "texture: no texture named \"%.40s\" in textures", s);
-    } else if (m.type == MAT_LAMBERTIAN && !ymap_get(&L->d, n, "albedo")) {
-        return ydoc_fail(&L->d, n, L->e, "albedo: missing in lambertian material \"%s\"", yscalar(k));
+    } else if ((m.type == MAT_LAMBERTIAN || m.type == MAT_ISOTROPIC) && !ymap_get(&L->d, n, "albedo")) {
+        return ydoc_fail(&L->d, n, L->e, "albedo: missing in %s material \"%s\"", type, yscalar(k));
     }
     if ((v = ymap_get(&L->d, n, "fuzz"))) {
         if (yget_double(&L->d, v, "fuzz", &m.fuzz, L->e) < 0)
@@ -237,6 +320,7 @@ int scene_load(const char *path, struct scene_file *out, struct err *e)
     }
     if (load_camera(&L, v, out) < 0)
         goto done;
+    L.cam = &out->camera;
     if ((v = ymap_get(&L.d, root, "background")) && loader_color(&L, v, "background", &L.sc->background) < 0)
         goto done;
     if (load_section(&L, ymap_get(&L.d, root, "textures"), "textures", &L.tex, load_texture) < 0 ||

@@ -2,6 +2,7 @@
 #ifndef SCENE_LOADER_H
 #define SCENE_LOADER_H
 
+#include "camera.h"
 #include "scene.h"
 #include "yamlx.h"
 
@@ -11,11 +12,16 @@ struct names {
     int n;
 };
 
+/* Limits on an image texture: bytes on disk and decoded pixels. */
+#define TEXTURE_MAX_BYTES (64 << 20)
+#define TEXTURE_MAX_PIXELS (4096L * 4096L)
+
 struct loader {
     struct ydoc d;
     struct scene *sc;
     struct names tex, mat;
     struct err *e;
+    const struct camera_desc *cam; /* loaded before the objects (a moving sphere's shutter) */
 };
 
 /* Index of s in nm, or -1. */

@@ -1,8 +1,12 @@
 /* sidecar: job, sampler settings, sample counts, rays, times and error as JSON (SPEC "Stats sidecar"). */
 #include "sidecar.h"
 
+#include <inttypes.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "fileio.h"
 #include "json.h"
 
 char *sidecar_json(const struct sidecar *s)
@@ -16,18 +20,28 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "worker_version", WORKER_VERSION);
     json_string(&js, "job", j->name);
     json_string(&js, "job_file", j->path);
+    char hash[24];
+    snprintf(hash, sizeof hash, "%016" PRIx64, j->hash);
+    json_string(&js, "job_hash", hash);
     json_string(&js, "scene", j->scene_path);
     json_string(&js, "image", s->image);
     json_uint(&js, "width", (uint64_t)s->width);
     json_uint(&js, "height", (uint64_t)s->height);
+    json_begin_array(&js, "size");
+    json_uint(&js, NULL, (uint64_t)s->width);
+    json_uint(&js, NULL, (uint64_t)s->height);
+    json_end_array(&js);
     json_string(&js, "sampler", sampler_kind_name(j->sampler));
     json_number(&js, "threshold", j->threshold);
     json_string(&js, "light_sampler", sampler_kind_name(j->light_sampler));
     json_number(&js, "light_threshold", j->light_threshold);
+    json_bool(&js, "light_sampling", j->light_sampling);
     json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);
     json_uint(&js, "max_depth", (uint64_t)j->max_depth);
     json_uint(&js, "seed", j->seed);
     json_uint(&js, "processes", (uint64_t)r->processes);
+    if (s->parts > 0)
+        json_uint(&js, "parts", (uint64_t)s->parts);
 
     json_begin_object(&js, "samples");
     json_uint(&js, "total", t->samples);
@@ -45,12 +59,12 @@ char *sidecar_json(const struct sidecar *s)
     json_number(&js, "wall_s", r->wall_s);
     json_number(&js, "cpu_s", r->cpu_s);
     json_number(&js, "sampler_s", t->sampler_s);
-    /* sampler_s is wall-clock time inside the render processes, so its share is of their wall
-       time (of their CPU time it passes 1 on a busy machine). */
-    double proc_wall_s = 0;
+    /* Share of the render processes' wall time spent drawing point sets: both clocks are
+       monotonic wall clocks, so a loaded machine cannot push it past 1. */
+    double proc_wall = 0;
     for (int i = 0; i < r->processes; i++)
-        proc_wall_s += r->proc[i].wall_s;
-    json_number(&js, "sampling_share", proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0);
+        proc_wall += r->proc[i].wall_s;
+    json_number(&js, "sampling_share", proc_wall > 0 ? t->sampler_s / proc_wall : 0);
     json_number(&js, "ns_per_sample", t->samples ? r->cpu_s * 1e9 / (double)t->samples : 0);
     json_begin_array(&js, "per_process");
     for (int i = 0; i < r->processes; i++) {
@@ -81,4 +95,18 @@ char *sidecar_json(const struct sidecar *s)
         return NULL;
     }
     return js.buf;
+}
+
+int sidecar_matches(const char *path, uint64_t hash)
+{
+    uint8_t *data;
+    size_t len;
+    struct err e;
+    if (fileio_read_all(path, 1u << 20, &data, &len, &e) < 0)
+        return 0;
+    char want[64];
+    snprintf(want, sizeof want, SIDECAR_HASH_KEY "%016" PRIx64 "\"", hash);
+    int ok = strstr((const char *)data, want) != NULL;
+    free(data);
+    return ok;
 }

@@ -1,0 +1,201 @@
+/* shape_light: bounds, surface coordinates, and the light sampling of spheres (cone), disks and
+   rects (area-uniform points), with the matching solid-angle densities. */
+#include "shape.h"
+
+#include <float.h>
+
+static vec3 rotate_to_world(const struct prim *p, vec3 a)
+{
+    return v3(p->cos_y * a.x + p->sin_y * a.z, a.y, -p->sin_y * a.x + p->cos_y * a.z);
+}
+
+static void rect_axes(int axis, int *a, int *b)
+{
+    *a = axis == 0 ? 1 : 0;
+    *b = axis == 2 ? 1 : 2;
+}
+
+void shape_uv(const struct prim *p, struct hit *h)
+{
+    if (p->type != PRIM_SPHERE)
+        return; /* rect and disk fill u, v while hitting; other shapes carry no texture image */
+    vec3 q = h->p;
+    if (p->has_xform) {
+        vec3 o = v3_sub(q, p->offset);
+        q = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
+    }
+    vec3 d = v3_scale(v3_sub(q, p->g.sphere.center), 1.0 / p->g.sphere.radius);
+    double theta = acos(fmax(-1.0, fmin(1.0, -d.y)));
+    double phi = atan2(-d.z, d.x) + PI;
+    h->u = phi / (2 * PI);
+    h->v = theta / PI;
+}
+
+static void sphere_box(vec3 c, double r, vec3 *lo, vec3 *hi)
+{
+    *lo = v3_sub(c, v3(r, r, r));
+    *hi = v3_add(c, v3(r, r, r));
+}
+
+/* Exact box of a disk of radius r about unit normal n: extent along axis i is r sqrt(1 - n_i^2). */
+static vec3 disk_extent(vec3 n, double r)
+{
+    return v3(r * sqrt(fmax(0, 1 - n.x * n.x)) + 1e-4, r * sqrt(fmax(0, 1 - n.y * n.y)) + 1e-4,
+              r * sqrt(fmax(0, 1 - n.z * n.z)) + 1e-4);
+}
+
+static void object_bounds(const struct prim *p, vec3 *lo, vec3 *hi)
+{
+    switch (p->type) {
+    case PRIM_SPHERE:
+        sphere_box(p->g.sphere.center, p->g.sphere.radius, lo, hi);
+        break;
+    case PRIM_MEDIUM:
+        sphere_box(p->g.medium.center, p->g.medium.radius, lo, hi);
+        break;
+    case PRIM_MOVING_SPHERE: {
+        vec3 l0, h0, l1, h1;
+        const double r = p->g.msphere.radius;
+        sphere_box(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, p->g.msphere.time_lo), r, &l0, &h0);
+        sphere_box(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, p->g.msphere.time_hi), r, &l1, &h1);
+        *lo = v3_min(l0, l1);
+        *hi = v3_max(h0, h1);
+        break;
+    }
+    case PRIM_RECT: {
+        int ax = p->g.rect.axis, a, b;
+        rect_axes(ax, &a, &b);
+        double l[3], u[3];
+        l[ax] = p->g.rect.k - 1e-4;
+        u[ax] = p->g.rect.k + 1e-4;
+        l[a] = p->g.rect.a0, u[a] = p->g.rect.a1;
+        l[b] = p->g.rect.b0, u[b] = p->g.rect.b1;
+        *lo = v3(l[0], l[1], l[2]);
+        *hi = v3(u[0], u[1], u[2]);
+        break;
+    }
+    case PRIM_DISK: {
+        vec3 e = disk_extent(p->g.disk.normal, p->g.disk.radius);
+        *lo = v3_sub(p->g.disk.center, e);
+        *hi = v3_add(p->g.disk.center, e);
+        break;
+    }
+    case PRIM_BOX:
+        *lo = p->g.box.lo;
+        *hi = p->g.box.hi;
+        break;
+    case PRIM_CYLINDER: {
+        /* The union of the two cap disks' boxes encloses the whole cylinder. */
+        vec3 e = disk_extent(p->g.cyl.axis, p->g.cyl.radius);
+        vec3 top = v3_fma(p->g.cyl.base, p->g.cyl.axis, p->g.cyl.height);
+        *lo = v3_sub(v3_min(p->g.cyl.base, top), e);
+        *hi = v3_add(v3_max(p->g.cyl.base, top), e);
+        break;
+    }
+    case PRIM_TRIANGLE: {
+        vec3 a = p->g.tri.v0, b = v3_add(a, p->g.tri.e1), c = v3_add(a, p->g.tri.e2);
+        vec3 pad = v3(1e-4, 1e-4, 1e-4);
+        *lo = v3_sub(v3_min(a, v3_min(b, c)), pad);
+        *hi = v3_add(v3_max(a, v3_max(b, c)), pad);
+        break;
+    }
+    default:
+        *lo = *hi = v3(0, 0, 0);
+    }
+}
+
+void shape_bounds(const struct prim *p, vec3 *lo, vec3 *hi)
+{
+    vec3 l, h;
+    object_bounds(p, &l, &h);
+    if (!p->has_xform) {
+        *lo = l, *hi = h;
+        return;
+    }
+    vec3 mn = v3(DBL_MAX, DBL_MAX, DBL_MAX), mx = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
+    for (int i = 0; i < 8; i++) {
+        vec3 c = v3(i & 1 ? h.x : l.x, i & 2 ? h.y : l.y, i & 4 ? h.z : l.z);
+        vec3 w = v3_add(rotate_to_world(p, c), p->offset);
+        mn = v3_min(mn, w);
+        mx = v3_max(mx, w);
+    }
+    *lo = mn, *hi = mx;
+}
+
+double shape_area(const struct prim *p)
+{
+    switch (p->type) {
+    case PRIM_RECT:
+        return (p->g.rect.a1 - p->g.rect.a0) * (p->g.rect.b1 - p->g.rect.b0);
+    case PRIM_DISK:
+        return PI * p->g.disk.radius * p->g.disk.radius;
+    case PRIM_SPHERE:
+        return 4 * PI * p->g.sphere.radius * p->g.sphere.radius;
+    }
+    return 0;
+}
+
+int shape_light_uses_points(const struct prim *p)
+{
+    return p->type == PRIM_DISK || p->type == PRIM_RECT;
+}
+
+vec3 shape_light_point(const struct prim *p, struct pt2 s)
+{
+    if (p->type == PRIM_DISK) {
+        /* r = R sqrt(u), theta = 2 pi v: uniform by area over the whole radius-R disk. */
+        double r = p->g.disk.radius * sqrt(s.x), th = 2 * PI * s.y;
+        vec3 q = v3_add(v3_scale(p->g.disk.e1, r * cos(th)), v3_scale(p->g.disk.e2, r * sin(th)));
+        return v3_add(p->g.disk.center, q);
+    }
+    int ax = p->g.rect.axis, a, b;
+    rect_axes(ax, &a, &b);
+    double c[3];
+    c[ax] = p->g.rect.k;
+    c[a] = p->g.rect.a0 + s.x * (p->g.rect.a1 - p->g.rect.a0);
+    c[b] = p->g.rect.b0 + s.y * (p->g.rect.b1 - p->g.rect.b0);
+    return v3(c[0], c[1], c[2]);
+}
+
+/* 1 - cos of the half-angle of the cone a sphere subtends from o, computed without
+   cancellation for far spheres; 2 (the whole sphere of directions) when o is inside. */
+static double sphere_one_minus_cos(const struct prim *p, vec3 o)
+{
+    double d2 = v3_len2(v3_sub(p->g.sphere.center, o)), r2 = p->g.sphere.radius * p->g.sphere.radius;
+    if (d2 <= r2)
+        return 2;
+    double s2 = r2 / d2; /* sin^2 of the half-angle */
+    return s2 / (1 + sqrt(1 - s2));
+}
+
+vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
+{
+    if (p->type != PRIM_SPHERE)
+        return v3_sub(shape_light_point(p, s), o);
+    /* z uniform in [cos_max, 1] is uniform over the cone's solid angle. */
+    double z = 1 - s.y * sphere_one_minus_cos(p, o), phi = 2 * PI * s.x;
+    double sin_t = sqrt(fmax(0, 1 - z * z));
+    vec3 to_c = v3_sub(p->g.sphere.center, o);
+    double len = v3_len(to_c);
+    onb f = onb_from_w(len > 0 ? v3_scale(to_c, 1.0 / len) : v3(0, 0, 1));
+    return onb_local(&f, v3(cos(phi) * sin_t, sin(phi) * sin_t, z));
+}
+
+double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
+{
+    if (p->type == PRIM_SPHERE) {
+        double omc = sphere_one_minus_cos(p, o);
+        vec3 to_c = v3_sub(p->g.sphere.center, o);
+        double c = v3_dot(dir, to_c) / (v3_len(dir) * v3_len(to_c));
+        return omc >= 2 || 1 - c <= omc ? 1 / (2 * PI * omc) : 0;
+    }
+    struct hit h;
+    ray r = {o, dir, time};
+    if (!shape_hit(p, &r, HIT_EPS, DBL_MAX, &h))
+        return 0;
+    double dist2 = h.t * h.t * v3_len2(dir);
+    double cosine = fabs(v3_dot(dir, h.n)) / v3_len(dir);
+    if (cosine < 1e-12)
+        return 0;
+    return dist2 / (cosine * shape_area(p));
+}

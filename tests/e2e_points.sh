@@ -1,0 +1,27 @@
+#!/bin/sh
+# `worker points`: CSV sets of the right size inside [0,1), an SVG drawing, clear errors.
+. tests/lib.sh
+count() { "$WORKER" points "$@" | tail -n +2 | wc -l; }
+check "uniform t=5 prints 400 points" [ "$(count uniform 5)" -eq 400 ]
+check "jitter t=3 prints 1089 points" [ "$(count jitter 3)" -eq 1089 ]
+check "random t=1 prints 10000 points" [ "$(count random 1)" -eq 10000 ]
+n=$(count poisson 1 --seed 4)
+check "poisson t=1 prints 6000..6700 points (got $n)" [ "$n" -ge 6000 ] && [ "$n" -le 6700 ]
+check "header is x,y" [ "$("$WORKER" points jitter 50 | head -n 1)" = "x,y" ]
+"$WORKER" points poisson 5 --seed 2 >"$T/a.csv"
+"$WORKER" points poisson 5 --seed 2 >"$T/b.csv"
+"$WORKER" points poisson 5 --seed 3 >"$T/c.csv"
+check "same seed, same set" cmp -s "$T/a.csv" "$T/b.csv"
+check "other seed, other set" sh -c "! cmp -s '$T/a.csv' '$T/c.csv'"
+check "all points in [0,1)" awk -F, 'NR > 1 && ($1 < 0 || $1 >= 1 || $2 < 0 || $2 >= 1) {bad = 1} END {exit bad}' "$T/a.csv"
+"$WORKER" points jitter 20 --svg "$T/p.svg" >/dev/null
+check "svg written" grep -q '<svg' "$T/p.svg"
+check "svg draws 25 points" [ "$(grep -o '<circle' "$T/p.svg" | wc -l)" -eq 25 ]
+"$WORKER" points sobol 5 >/dev/null 2>"$T/e1"; rc=$?
+check "unknown sampler exits 2" [ "$rc" -eq 2 ]
+check "unknown sampler message" grep -q 'unknown sampler "sobol"' "$T/e1"
+"$WORKER" points uniform abc >/dev/null 2>"$T/e2"; rc=$?
+check "bad threshold exits 2" [ "$rc" -eq 2 ]
+"$WORKER" points uniform 0.01 >/dev/null 2>"$T/e3"; rc=$?
+check "oversized set exits 2 naming the count" sh -c "[ $rc -eq 2 ] && grep -q 100000000 '$T/e3'"
+finish

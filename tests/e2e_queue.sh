@@ -1,0 +1,214 @@
+#!/bin/sh
+# End to end: queue directories. Many workers render each job exactly once; a killed worker's
+# claim is recovered; crashed renders are retried (or filed as failed with the signal); bad jobs
+# go to failed/ and the worker carries on; signals hand the job back; priority and age order.
+. tests/lib.sh
+root=$(pwd)
+
+tiny() { # tiny FILE [yaml lines...]: a 16x16 job that renders in a few milliseconds
+    f=$1; shift
+    { echo "scene: $root/scenes/checker.yaml"; echo "width: 16"; echo "height: 16"; echo "threshold: 50"
+      echo "light_threshold: 50"; echo "processes: 1"; for l in "$@"; do echo "$l"; done; } >"$f"
+}
+slow() { # slow FILE: a job long enough (about a second) to be interrupted mid-render
+    { echo "scene: $root/scenes/checker.yaml"; echo "width: 64"; echo "height: 64"; echo "threshold: 3"
+      echo "light_threshold: 50"; echo "processes: 1"; } >"$1"
+}
+render_child() { # render_child PID: print the pid of a render process of worker PID (wait for one)
+    for _ in $(seq 1 500); do
+        c=$(pgrep -P "$1" | head -n 1)
+        [ -n "$c" ] && { echo "$c"; return 0; }
+        sleep 0.02
+    done
+    return 1
+}
+gone() { # gone PID: the process ends (or is a zombie) within 5 s
+    for _ in $(seq 1 250); do
+        s=$(ps -o stat= -p "$1" 2>/dev/null)
+        case "$s" in ''|Z*) return 0 ;; esac
+        sleep 0.02
+    done
+    return 1
+}
+count() { # count GLOB: how many paths match
+    n=0; for f in $1; do [ -e "$f" ] && n=$((n + 1)); done; echo "$n"
+}
+
+# a plain render of the slow job: every recovered or retried render must equal it byte for byte
+mkdir -p "$T/ref"
+slow "$T/ref/slow.yaml"
+"$WORKER" --quiet --out "$T/plain" "$T/ref/slow.yaml" 2>/dev/null
+check "plain render of the slow job" [ -s "$T/plain/slow/slow.png" ]
+
+# 1. four workers started together on 40 tiny jobs: each rendered exactly once, none failed
+Q=$T/q1; mkdir -p "$Q"
+for i in $(seq 1 40); do tiny "$Q/j$i.yaml"; done
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/w1.log" & p1=$!
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/w2.log" & p2=$!
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/w3.log" & p3=$!
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/w4.log" & p4=$!
+rcs=""; for p in $p1 $p2 $p3 $p4; do wait "$p"; rcs="$rcs$?"; done
+check "4 workers: all exit 0 (got $rcs)" [ "$rcs" = 0000 ]
+check "4 workers: 40 job files in done/" [ "$(count "$Q/done/*.yaml")" -eq 40 ]
+check "4 workers: 40 images in done/" [ "$(count "$Q/done/j*/j*.png")" -eq 40 ]
+check "4 workers: none in failed/" [ "$(count "$Q/failed/*")" -eq 0 ]
+check "4 workers: none left waiting" [ "$(count "$Q/*.yaml")" -eq 0 ]
+check "4 workers: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+once=0
+for i in $(seq 1 40); do
+    n=$(cat "$T"/w[1-4].log | grep -c "^j$i: 16x16")
+    if [ "$n" -eq 1 ]; then once=$((once + 1)); else echo "j$i rendered $n times" >&2; fi
+done
+check "4 workers: each job rendered exactly once ($once of 40)" [ "$once" -eq 40 ]
+workers=0
+for w in 1 2 3 4; do grep -q "16x16" "$T/w$w.log" && workers=$((workers + 1)); done
+echo "4 workers: $workers of 4 rendered at least one job"
+
+# 2. kill -9 a worker mid-job: a restarted worker recovers the stale claim and completes the job
+Q=$T/q2; mkdir -p "$Q"; slow "$Q/slow.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/k1.log" & wpid=$!
+child=$(render_child "$wpid")
+check "kill worker: found its render process" [ -n "$child" ]
+check "kill worker: the claim is in running/" [ -f "$Q/running/slow.yaml" ]
+check "kill worker: the lease names the worker" grep -q "^pid $wpid\$" "$Q/running/slow.yaml.lease"
+kill -9 "$wpid"; wait "$wpid" 2>/dev/null
+check "kill worker: the claim stays in running/" [ -f "$Q/running/slow.yaml" ]
+check "kill worker: no image in done/" [ ! -e "$Q/done/slow/slow.png" ]
+check "kill worker: its render process stops" gone "$child"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/k2.log"; rc=$?
+check "kill worker: the next worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "kill worker: it says why it took the claim back" grep -q "slow.yaml: returned to the queue: its worker (pid $wpid on .*) is gone" "$T/k2.log"
+check "kill worker: job file in done/" [ -f "$Q/done/slow.yaml" ]
+check "kill worker: image equals a plain render" cmp -s "$T/plain/slow/slow.png" "$Q/done/slow/slow.png"
+check "kill worker: sidecar written" [ -s "$Q/done/slow/slow.json" ]
+check "kill worker: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+check "kill worker: no temporary files in done/" [ -z "$(ls -A "$Q/done/slow" | grep tmp)" ]
+
+# 2b. the same while another worker is already polling the queue: that one takes the job over
+Q=$T/q2b; mkdir -p "$Q"; slow "$Q/slow.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null & apid=$!
+child=$(render_child "$apid")
+"$WORKER" --queue "$Q" --quiet --poll 0.2 2>"$T/b2.log" & bpid=$!
+sleep 0.3
+check "poller: idle while the claim is alive" [ -f "$Q/running/slow.yaml" ]
+kill -9 "$apid"; wait "$apid" 2>/dev/null
+for _ in $(seq 1 300); do [ -f "$Q/done/slow.yaml" ] && break; sleep 0.05; done
+kill -TERM "$bpid"; wait "$bpid"; rc=$?
+check "poller: took over the dead worker's job" [ -f "$Q/done/slow.yaml" ]
+check "poller: image equals a plain render" cmp -s "$T/plain/slow/slow.png" "$Q/done/slow/slow.png"
+check "poller: exits 0 on SIGTERM when idle (got $rc)" [ "$rc" -eq 0 ]
+check "poller: said it took the claim back" grep -q "slow.yaml: returned to the queue: its worker (pid $apid " "$T/b2.log"
+
+# 3. kill -9 a render process: the job is retried and succeeds
+Q=$T/q3; mkdir -p "$Q"; slow "$Q/crash.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/c.log" & wpid=$!
+child=$(render_child "$wpid")
+[ -n "$child" ] && kill -9 "$child"
+wait "$wpid"; rc=$?
+check "kill child: found a render process" [ -n "$child" ]
+check "kill child: exit 0 after the retry (got $rc)" [ "$rc" -eq 0 ]
+check "kill child: the retry is announced with the signal" grep -q "killed by signal 9.*retrying (attempt 2 of 2)" "$T/c.log"
+check "kill child: job file in done/" [ -f "$Q/done/crash.yaml" ]
+check "kill child: image equals a plain render" cmp -s "$T/plain/slow/slow.png" "$Q/done/crash/crash.png"
+check "kill child: nothing in failed/" [ "$(count "$Q/failed/*")" -eq 0 ]
+
+# 4. the same with --retries 0: failed/ with a log naming the signal
+Q=$T/q4; mkdir -p "$Q"; slow "$Q/crash.yaml"
+"$WORKER" --queue "$Q" --once --quiet --retries 0 2>"$T/c0.log" & wpid=$!
+child=$(render_child "$wpid")
+[ -n "$child" ] && kill -9 "$child"
+wait "$wpid"; rc=$?
+check "retries 0: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "retries 0: job file in failed/" [ -f "$Q/failed/crash.yaml" ]
+check "retries 0: log names the signal" grep -q "^signal: 9 " "$Q/failed/crash.log"
+check "retries 0: log has the error" grep -q "^error: .*killed by signal 9" "$Q/failed/crash.log"
+check "retries 0: log counts one attempt" grep -q "^attempts: 1\$" "$Q/failed/crash.log"
+check "retries 0: no image" [ ! -e "$Q/done/crash/crash.png" ]
+check "retries 0: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+
+# 5. a bad job goes to failed/ with its file:line:col, and the worker carries on
+Q=$T/q5; mkdir -p "$Q"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 16\nthreshold: abc\n' "$root" >"$Q/bad.yaml"
+tiny "$Q/good.yaml"
+touch -d '-1 minute' "$Q/bad.yaml" # the older one is taken first
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/b.log"; rc=$?
+check "bad job: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "bad job: in failed/" [ -f "$Q/failed/bad.yaml" ]
+check "bad job: log has file:line:col" grep -Fq "error: $Q/bad.yaml:3:12: threshold: must be a number in (0, 100], got \"abc\"" "$Q/failed/bad.log"
+check "bad job: stderr has file:line:col" grep -Fq "$Q/bad.yaml:3:12: threshold:" "$T/b.log"
+check "bad job: the next job is done" [ -f "$Q/done/good.yaml" ]
+check "bad job: the next job's image" [ -s "$Q/done/good/good.png" ]
+check "bad job: nothing rendered for it" [ ! -e "$Q/done/bad" ]
+
+# 6. SIGTERM mid-render: children stopped, the job back in the queue, exit 0
+Q=$T/q6; mkdir -p "$Q"; slow "$Q/term.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/t.log" & wpid=$!
+child=$(render_child "$wpid")
+kill -TERM "$wpid"; wait "$wpid"; rc=$?
+check "SIGTERM: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "SIGTERM: job back in the queue" [ -f "$Q/term.yaml" ]
+check "SIGTERM: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+check "SIGTERM: no job file in done/" [ ! -e "$Q/done/term.yaml" ]
+check "SIGTERM: no image in done/" [ "$(count "$Q/done/term/*")" -eq 0 ]
+check "SIGTERM: render process stopped" gone "$child"
+check "SIGTERM: says so" grep -q "term.yaml: stopped by signal 15, returned to the queue" "$T/t.log"
+# SIGTERM to the whole process group (a terminal's Ctrl-C, Slurm's scancel): the render processes
+# ignore it and the worker stops them; never mistaken for a crash, even with --retries 0
+setsid "$WORKER" --queue "$Q" --once --quiet --retries 0 2>"$T/tg.log" & wpid=$!
+child=$(render_child "$wpid")
+kill -TERM "-$wpid"; wait "$wpid"; rc=$?
+check "group SIGTERM: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "group SIGTERM: job back in the queue" [ -f "$Q/term.yaml" ]
+check "group SIGTERM: nothing in failed/" [ "$(count "$Q/failed/*")" -eq 0 ]
+check "group SIGTERM: render process stopped" gone "$child"
+# a second signal kills at once; the job is not lost (waiting or claimed for recovery)
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null & wpid=$!
+render_child "$wpid" >/dev/null
+kill -INT "$wpid"; kill -TERM "$wpid"; wait "$wpid"; rc=$?
+check "two signals: killed at once (got $rc)" [ "$rc" -gt 128 ]
+check "two signals: the job is not lost" sh -c "[ -f '$Q/term.yaml' ] || [ -f '$Q/running/term.yaml' ]"
+
+# 7. leases of other hosts: kept while fresh, recovered once older than --lease-timeout;
+#    a live pid on this host keeps its claim
+Q=$T/q7; mkdir -p "$Q/running"
+tiny "$Q/running/far.yaml"
+printf 'host elsewhere.example\npid 1\nstart 0\ntoken elsewhere:1:0\n' >"$Q/running/far.yaml.lease"
+touch -d '-10 seconds' "$Q/running/far.yaml.lease"
+tiny "$Q/running/near.yaml"
+printf 'host %s\npid %s\nstart 0\ntoken near:1:0\n' "$(uname -n)" "$$" >"$Q/running/near.yaml.lease"
+"$WORKER" --queue "$Q" --once --quiet --lease-timeout 60 2>/dev/null
+check "fresh lease of another host: kept" [ -f "$Q/running/far.yaml" ]
+check "live pid on this host: kept" [ -f "$Q/running/near.yaml" ]
+"$WORKER" --queue "$Q" --once --quiet --lease-timeout 5 2>"$T/far.log"
+check "old lease of another host: recovered and done" [ -s "$Q/done/far/far.png" ]
+check "old lease of another host: job file in done/" [ -f "$Q/done/far.yaml" ]
+check "old lease: the reason names the host" grep -q "pid 1 on elsewhere.example) has not renewed the lease for 1[0-9] s" "$T/far.log"
+check "live pid on this host: still kept" [ -f "$Q/running/near.yaml" ]
+
+# 8. order: higher priority first, then oldest first
+Q=$T/q8; mkdir -p "$Q"
+tiny "$Q/old.yaml"; tiny "$Q/mid.yaml"; tiny "$Q/new.yaml" "priority: 5"; tiny "$Q/low.yaml" "priority: -1"
+touch -d '-40 seconds' "$Q/low.yaml"; touch -d '-30 seconds' "$Q/old.yaml"
+touch -d '-20 seconds' "$Q/mid.yaml"; touch -d '-10 seconds' "$Q/new.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/order.log"
+order=$(grep -o '^[a-z]*: 16x16' "$T/order.log" | cut -d: -f1 | tr '\n' ' ')
+check "order: priority, then age (got '$order')" [ "$order" = "new old mid low " ]
+
+# 9. a claimed job still resolves its scene and reference beside DIR, not running/
+Q=$T/q9/queue; mkdir -p "$Q" "$T/q9/scenes"
+cp "$root/scenes/checker.yaml" "$T/q9/scenes/"
+cp "$Q/../../q8/done/old/old.png" "$T/q9/ref.png"
+printf 'scene: ../scenes/checker.yaml\nreference: ../ref.png\nwidth: 16\nheight: 16\nthreshold: 50\nlight_threshold: 50\n' >"$Q/rel.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/rel.log"; rc=$?
+check "relative paths: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "relative paths: done" [ -s "$Q/done/rel/rel.png" ]
+check "relative paths: scored against the reference" grep -q '"psnr"' "$Q/done/rel/rel.json"
+check "relative paths: sidecar names the queued job file" grep -Fq "\"job_file\": \"$Q/rel.yaml\"" "$Q/done/rel/rel.json"
+
+# 10. usage errors
+"$WORKER" --queue "$T/nowhere" --once 2>"$T/u.log"; rc=$?
+check "missing queue dir: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "missing queue dir: named" grep -q "nowhere: No such file" "$T/u.log"
+"$WORKER" --queue "$T/q8" --retries -1 2>/dev/null; rc=$?
+check "bad --retries: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+finish

@@ -1,0 +1,87 @@
+#!/bin/sh
+# End to end for the shipped scenes: the generated files are reproducible from their committed
+# generators, every job in jobs/ renders (shrunk), light_sampling is a job key, image textures
+# resolve beside their scene and respect the size limit, and `worker diff --block` works.
+. tests/lib.sh
+root=$(pwd)
+TOOLS_DIR=${TOOLS_DIR:-$root/build/tools}
+
+# 1. make scenes reproduces the committed files.
+"$TOOLS_DIR/gen_final" "$T/final.yaml"; rc=$?
+check "gen_final runs (exit $rc)" [ "$rc" -eq 0 ]
+check "scenes/final.yaml is what tools/gen_final.c writes" cmp -s "$T/final.yaml" scenes/final.yaml
+"$TOOLS_DIR/gen_planet" "$T/planet.png"; rc=$?
+check "gen_planet runs (exit $rc)" [ "$rc" -eq 0 ]
+# (0.001 forgives a last-bit libm difference flipping a few texels by one level, nothing more)
+"$WORKER" diff scenes/textures/planet.png "$T/planet.png" --max-rmse 0.001 >"$T/planet.diff" 2>&1; rc=$?
+check "scenes/textures/planet.png has the pixels tools/gen_planet.c bakes (exit $rc)" [ "$rc" -eq 0 ]
+check "final.yaml has 400 ground boxes" [ "$(grep -c 'type: box' scenes/final.yaml)" -eq 400 ]
+check "final.yaml has 1000 cluster spheres" [ "$(grep -c 'rotate_y: 15' scenes/final.yaml)" -eq 1000 ]
+
+# 2. every job in jobs/ renders (shrunk to 24x24 and a few samples) and every scene has a job.
+for j in jobs/*.yaml; do
+    n=$(basename "$j" .yaml)
+    sed -e 's/^width:.*/width: 24/' -e 's/^height:.*/height: 24/' -e 's/^threshold:.*/threshold: 50/' \
+        -e 's/^light_threshold:.*/light_threshold: 50/' -e "s|^scene: \(.*\)|scene: $root/scenes/\1.yaml|" \
+        "$j" >"$T/$n.yaml"
+    "$WORKER" --quiet --out "$T/jobs" "$T/$n.yaml" 2>"$T/$n.err"; rc=$?
+    check "$j renders (exit $rc: $(head -n 1 "$T/$n.err"))" [ "$rc" -eq 0 ]
+    check "$j: image written" [ -s "$T/jobs/$n/$n.png" ]
+    check "$j: sidecar records light_sampling" grep -q '"light_sampling": true' "$T/jobs/$n/$n.json"
+done
+for s in scenes/*.yaml; do
+    n=$(basename "$s" .yaml)
+    check "scene $n has a job in jobs/" grep -q "^scene: $n\$" jobs/*.yaml
+done
+
+# 3. light_sampling: false renders, is recorded, and changes the samples drawn; bad values fail.
+job() { { echo "scene: $root/scenes/cornell-book3.yaml"; for l in "$@"; do echo "$l"; done; } >"$T/ls.yaml"; }
+job "width: 16" "threshold: 50" "light_sampling: false"
+"$WORKER" --quiet --out "$T/off" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "light_sampling: false renders (exit $rc)" [ "$rc" -eq 0 ]
+check "sidecar records light_sampling false" grep -q '"light_sampling": false' "$T/off/ls/ls.json"
+check "no light sample sets drawn with light sampling off" grep -q '"light_sample_sets": 0' "$T/off/ls/ls.json"
+job "width: 16" "light_sampling: maybe"
+rm -rf "$T/bad"
+"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "light_sampling: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "light_sampling error names file:line:col" grep -q "ls.yaml:3:17: light_sampling: must be" "$T/ls.err"
+check "light_sampling error writes nothing" [ ! -e "$T/bad" ]
+
+# 4. An image texture resolves beside its scene file wherever the job runs from.
+mkdir -p "$T/elsewhere/scenes/textures" "$T/cwd"
+cp scenes/cornell.yaml "$T/elsewhere/scenes/" && cp scenes/textures/planet.png "$T/elsewhere/scenes/textures/"
+printf 'scene: ../scenes/cornell.yaml\nwidth: 12\nthreshold: 50\nlight_threshold: 50\n' >"$T/elsewhere/jobs.yaml"
+mkdir -p "$T/elsewhere/jobs" && mv "$T/elsewhere/jobs.yaml" "$T/elsewhere/jobs/tex.yaml"
+(cd "$T/cwd" && "$WORKER" --quiet --out "$T/texout" "$T/elsewhere/jobs/tex.yaml" 2>"$T/tex.err"); rc=$?
+check "texture found relative to the scene file (exit $rc: $(head -n 1 "$T/tex.err"))" [ "$rc" -eq 0 ]
+
+# 5. A texture over the size limit (4097 x 4097 pixels) is refused at its file: key.
+{ printf 'P6\n4097 4097\n255\n'; head -c $((4097 * 4097 * 3)) /dev/zero; } >"$T/elsewhere/scenes/textures/huge.ppm"
+sed 's|file: textures/planet.png|file: textures/huge.ppm|' scenes/cornell.yaml >"$T/elsewhere/scenes/huge.yaml"
+printf 'scene: %s\nwidth: 8\n' "$T/elsewhere/scenes/huge.yaml" >"$T/huge.yaml"
+rm -rf "$T/hugeout"
+"$WORKER" --quiet --out "$T/hugeout" "$T/huge.yaml" 2>"$T/huge.err"; rc=$?
+check "huge texture exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "huge texture error at the file: key" grep -Eq "huge.yaml:8:[0-9]+: file: texture .*huge.ppm is 4097x4097, over the limit" "$T/huge.err"
+check "huge texture writes nothing" [ ! -e "$T/hugeout" ]
+rm -f "$T/elsewhere/scenes/textures/huge.ppm"
+
+# 6. worker diff --block compares block means: noise between two seeds shrinks, a bad value fails.
+for s in 1 2; do
+    printf 'name: s%s\nscene: %s/scenes/checker.yaml\nwidth: 32\nheight: 32\nthreshold: 34\nseed: %s\n' \
+        "$s" "$root" "$s" >"$T/s$s.yaml"
+    "$WORKER" --quiet --out "$T/seeds" "$T/s$s.yaml" 2>/dev/null
+done
+a=$T/seeds/s1/s1.png; b=$T/seeds/s2/s2.png
+px=$("$WORKER" diff "$a" "$b" | sed -n 's/^rmse //p')
+bl=$("$WORKER" diff "$a" "$b" --block 8 | sed -n 's/^rmse //p')
+check "block-8 rmse ($bl) is under half the per-pixel rmse ($px) between seeds" \
+    awk -v a="$bl" -v b="$px" 'BEGIN { exit !(a > 0 && a < b / 2) }'
+check "diff --block 1 equals plain diff" sh -c "[ \"\$('$WORKER' diff '$a' '$b' --block 1)\" = \"\$('$WORKER' diff '$a' '$b')\" ]"
+"$WORKER" diff "$a" "$a" --block 4 --max-rmse 0 >/dev/null 2>&1; rc=$?
+check "diff --block of an image with itself is 0 (exit $rc)" [ "$rc" -eq 0 ]
+"$WORKER" diff "$a" "$b" --block 0 2>"$T/block.err"; rc=$?
+check "diff --block 0 exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "diff --block 0 says why" grep -q -- "--block needs a whole number" "$T/block.err"
+finish

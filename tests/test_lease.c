@@ -1,0 +1,127 @@
+/* test_lease: lease files round-trip, and the rules that declare a claim's holder dead. */
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "lease.h"
+
+/* Set path's mtime seconds_ago into the past. */
+static void age(const char *path, int seconds_ago)
+{
+    struct timespec t[2];
+    clock_gettime(CLOCK_REALTIME, &t[0]);
+    t[0].tv_sec -= seconds_ago;
+    t[1] = t[0];
+    utimensat(AT_FDCWD, path, t, 0);
+}
+
+static void touch(const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (f)
+        fclose(f);
+}
+
+/* A pid that existed and is gone: a reaped child's. */
+static long dead_pid(void)
+{
+    pid_t p = fork();
+    if (p == 0)
+        _exit(0);
+    waitpid(p, NULL, 0);
+    return (long)p;
+}
+
+int main(void)
+{
+    char dir[] = "/tmp/test_lease.XXXXXX", claim[256], side[300], why[512];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(claim, sizeof claim, "%s/job.yaml", dir);
+    snprintf(side, sizeof side, "%s.lease", claim);
+    struct err e;
+    struct lease me, got;
+    double age_s = -1;
+
+    /* a claim that is not there is nobody's business */
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+
+    /* round trip; a fresh own-host lease of a live process is alive */
+    touch(claim);
+    lease_init(&me);
+    CHECK(me.pid == (long)getpid());
+    CHECK(me.host[0] != 0);
+    me.pid = (long)getppid();
+    CHECK(lease_write(claim, &me, &e) == 0);
+    CHECK(lease_read(claim, &got, &age_s) == 0);
+    CHECK(strcmp(got.host, me.host) == 0 && got.pid == me.pid && got.start == me.start);
+    CHECK(strcmp(got.token, me.token) == 0);
+    CHECK(age_s >= 0 && age_s < 5);
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+
+    /* tokens differ between two claims of the same process */
+    struct lease again;
+    lease_init(&again);
+    CHECK(strcmp(again.token, me.token) != 0);
+
+    /* same host, pid gone: dead at once, whatever the lease's age */
+    me.pid = dead_pid();
+    CHECK(lease_write(claim, &me, &e) == 0);
+    CHECK(lease_stale(claim, 3600, why, sizeof why) == 1);
+    CHECK(strstr(why, "is gone") != NULL);
+
+    /* a pid that names no single process (0, -1) is nobody's */
+    me.pid = -1;
+    CHECK(lease_write(claim, &me, &e) == 0);
+    CHECK(lease_stale(claim, 3600, why, sizeof why) == 1);
+
+    /* another host: alive while the lease is fresh, dead once older than the timeout */
+    snprintf(me.host, sizeof me.host, "elsewhere.example");
+    me.pid = 1;
+    CHECK(lease_write(claim, &me, &e) == 0);
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+    age(side, 120);
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 1);
+    CHECK(strstr(why, "elsewhere.example") != NULL && strstr(why, "has not renewed") != NULL);
+    lease_touch(claim); /* the holder renews: alive again */
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+
+    /* no lease: judged by the claim's age (rename() sets its ctime); a fresh claim is alive */
+    lease_remove(claim);
+    CHECK(access(side, F_OK) != 0);
+    CHECK(lease_read(claim, &got, &age_s) == -1);
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+    CHECK(lease_stale(claim, -1, why, sizeof why) == 1);
+    CHECK(strstr(why, "no lease") != NULL);
+
+    /* a damaged lease reads as missing */
+    FILE *f = fopen(side, "w");
+    CHECK(f != NULL);
+    if (f) {
+        fputs("host x\n", f);
+        fclose(f);
+    }
+    CHECK(lease_read(claim, &got, &age_s) == -1);
+
+    /* the recovery lock: one holder at a time; a lock older than the timeout is broken */
+    CHECK(lease_lock(claim, 60) == 0);
+    CHECK(lease_lock(claim, 60) == -1);
+    lease_unlock(claim);
+    CHECK(lease_lock(claim, 60) == 0);
+    char lock[300];
+    snprintf(lock, sizeof lock, "%s.lock", claim);
+    age(lock, 120);
+    CHECK(lease_lock(claim, 60) == -1); /* breaks it ... */
+    CHECK(lease_lock(claim, 60) == 0);  /* ... so the next try takes it */
+    lease_unlock(claim);
+
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0);
+    return check_report("test_lease");
+}

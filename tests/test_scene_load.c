@@ -1,0 +1,103 @@
+/* Tests for the scene loader on the shipped scenes: every object becomes the primitives, lights
+   and textures it should, and transforms and textures resolve as the scene file says. */
+#include <float.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "check.h"
+#include "scene_load.h"
+
+static int count_type(const struct scene *sc, int type)
+{
+    int n = 0;
+    for (int i = 0; i < sc->n_prims; i++)
+        n += sc->prims[i].type == type;
+    return n;
+}
+
+static int load(const char *path, struct scene_file *sf)
+{
+    struct err e;
+    if (scene_load(path, sf, &e) == 0)
+        return 0;
+    fprintf(stderr, "%s:%d:%d: %s\n", e.file, e.line, e.col, e.msg);
+    return -1;
+}
+
+static void test_cornell(void)
+{
+    struct scene_file sf;
+    CHECK(load("scenes/cornell.yaml", &sf) == 0);
+    if (!sf.scene)
+        return;
+    const struct scene *sc = sf.scene;
+    /* 5 walls, 3 disks, a box, a cylinder, a pyramid's 4 triangles, a sphere. */
+    CHECK(sc->n_prims == 15);
+    CHECK(count_type(sc, PRIM_RECT) == 5 && count_type(sc, PRIM_DISK) == 3);
+    CHECK(count_type(sc, PRIM_BOX) == 1 && count_type(sc, PRIM_CYLINDER) == 1);
+    CHECK(count_type(sc, PRIM_TRIANGLE) == 4 && count_type(sc, PRIM_SPHERE) == 1);
+    CHECK(sc->n_lights == 3);
+    for (int i = 0; i < sc->n_lights; i++)
+        CHECK(sc->prims[sc->lights[i]].type == PRIM_DISK);
+    CHECK(sc->n_images == 1 && sc->images[0].w == 256 && sc->images[0].h == 128);
+    /* The pyramid's triangles share the object's transform; its apex ends up at
+       rotate_y(70) (0, 140, 0) + (150, 0, 350) = (150, 140, 350). */
+    int found_apex = 0;
+    for (int i = 0; i < sc->n_prims; i++) {
+        const struct prim *p = &sc->prims[i];
+        if (p->type != PRIM_TRIANGLE)
+            continue;
+        CHECK(p->has_xform && fabs(p->sin_y - sin(70 * PI / 180)) < 1e-12);
+        found_apex += v3_len(v3_sub(p->g.tri.v0, v3(0, 140, 0))) < 1e-12;
+    }
+    CHECK(found_apex == 3);
+    ray down = {v3(150, 500, 350), v3(0, -1, 0), 0};
+    struct hit h;
+    CHECK(bvh_hit(sc, &down, HIT_EPS, DBL_MAX, &h));
+    CHECK(sc->prims[h.prim].type == PRIM_TRIANGLE);
+    CHECK_NEAR(h.p.y, 140, 1e-6);
+    /* The cylinder: base (0,0,0) -> (160, 230, 80) after the transform; its axis is rotated. */
+    ray at_base = {v3(160, 230, 80), v3(0, 0, 1), 0}; /* starts inside, leaves through the side */
+    CHECK(bvh_hit(sc, &at_base, HIT_EPS, DBL_MAX, &h) && sc->prims[h.prim].type == PRIM_CYLINDER);
+    CHECK(!h.front);
+    scene_file_free(&sf);
+}
+
+static void test_book3_and_final(void)
+{
+    struct scene_file sf;
+    CHECK(load("scenes/cornell-book3.yaml", &sf) == 0);
+    if (sf.scene) {
+        const struct scene *sc = sf.scene;
+        CHECK(sc->n_prims == 8 && sc->n_lights == 2);
+        const struct prim *lamp = &sc->prims[sc->lights[0]];
+        const struct prim *glass = &sc->prims[sc->lights[1]];
+        CHECK(lamp->type == PRIM_RECT && lamp->flip && lamp->g.rect.k == 554);
+        CHECK(glass->type == PRIM_SPHERE && sc->materials[glass->material].type == MAT_DIELECTRIC);
+        scene_file_free(&sf);
+    }
+    CHECK(load("scenes/final.yaml", &sf) == 0);
+    if (sf.scene) {
+        const struct scene *sc = sf.scene;
+        CHECK(count_type(sc, PRIM_BOX) == 400);
+        CHECK(count_type(sc, PRIM_SPHERE) ==
+              1005); /* the cluster, glass, metal, blue glass, planet, marble */
+        CHECK(count_type(sc, PRIM_MEDIUM) == 2 && count_type(sc, PRIM_MOVING_SPHERE) == 1);
+        CHECK(sc->n_lights == 1 && sc->perlin != NULL && sc->n_images == 1);
+        CHECK(sf.camera.shutter0 == 0 && sf.camera.shutter1 == 1);
+        CHECK(sc->n_nodes > 100 && sc->n_nodes < 2 * sc->n_prims);
+        scene_file_free(&sf);
+    }
+    CHECK(load("scenes/checker.yaml", &sf) == 0);
+    if (sf.scene) {
+        CHECK(sf.scene->n_prims == 3 && sf.scene->n_lights == 1);
+        scene_file_free(&sf);
+    }
+}
+
+int main(void)
+{
+    test_cornell();
+    test_book3_and_final();
+    return check_report("test_scene_load");
+}

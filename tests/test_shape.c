@@ -1,0 +1,283 @@
+/* Tests for the scene primitives: box, cylinder, triangle, moving sphere and medium hits,
+   bounds that enclose every hit, and light sampling whose pdf matches its directions. */
+#include <float.h>
+
+#include "check.h"
+#include "rng.h"
+#include "shape.h"
+
+static void set_xform(struct prim *p, double deg, vec3 offset)
+{
+    p->has_xform = 1;
+    p->cos_y = cos(deg * PI / 180);
+    p->sin_y = sin(deg * PI / 180);
+    p->offset = offset;
+}
+
+static void test_box(void)
+{
+    struct hit h;
+    struct prim b = {.type = PRIM_BOX};
+    b.g.box.lo = v3(0, 0, 0);
+    b.g.box.hi = v3(1, 2, 3);
+    ray r = {v3(0.5, 1, -5), v3(0, 0, 1), 0};
+    CHECK(shape_hit(&b, &r, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, 5, 1e-12);
+    CHECK(h.front);
+    CHECK_NEAR(h.n.z, -1, 1e-12);
+    ray inside = {v3(0.5, 1, 1), v3(1, 0, 0), 0};
+    CHECK(shape_hit(&b, &inside, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, 0.5, 1e-12);
+    CHECK(!h.front);
+    CHECK_NEAR(h.n.x, -1, 1e-12); /* faces against the ray: the outward +x normal flipped */
+    ray miss = {v3(1.5, 1, -5), v3(0, 0, 1), 0};
+    CHECK(!shape_hit(&b, &miss, HIT_EPS, DBL_MAX, &h));
+    ray parallel = {v3(0.5, 3, -5), v3(0, 0, 1), 0}; /* above the box, parallel to y slabs */
+    CHECK(!shape_hit(&b, &parallel, HIT_EPS, DBL_MAX, &h));
+    ray top = {v3(0.25, 10, 0.5), v3(0, -2, 0), 0};
+    CHECK(shape_hit(&b, &top, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, 4, 1e-12);
+    CHECK_NEAR(h.n.y, 1, 1e-12);
+    /* Rotated 90 degrees about y and moved: the 3-deep z extent now lies along x. */
+    set_xform(&b, 90, v3(10, 0, 0));
+    ray side = {v3(20, 1, -0.5), v3(-1, 0, 0), 0};
+    CHECK(shape_hit(&b, &side, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.p.x, 13, 1e-9);
+    CHECK_NEAR(h.n.x, 1, 1e-9);
+}
+
+static void test_cylinder(void)
+{
+    struct hit h;
+    struct prim c = {.type = PRIM_CYLINDER};
+    vec3 axis = v3_unit(v3(1, 1, 1));
+    c.g.cyl.base = v3(0, 0, 0);
+    c.g.cyl.axis = axis;
+    c.g.cyl.height = sqrt(3.0) * 4;
+    c.g.cyl.radius = 1;
+    /* A ray through the axis midpoint, perpendicular to it, hits the side at distance 1. */
+    vec3 mid = v3(2, 2, 2), perp = v3_unit(v3(1, -1, 0));
+    ray r = {v3_fma(mid, perp, 5), v3_neg(perp), 0};
+    CHECK(shape_hit(&c, &r, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, 4, 1e-9);
+    CHECK_NEAR(v3_dot(h.n, perp), 1, 1e-9);
+    CHECK(h.front);
+    /* Along the axis from below: the base cap, normal -axis, then from inside the top cap. */
+    ray up = {v3_fma(v3_fma(v3(0, 0, 0), axis, -3), perp, 0.5), axis, 0};
+    CHECK(shape_hit(&c, &up, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, 3, 1e-9);
+    CHECK_NEAR(v3_dot(h.n, axis), -1, 1e-9);
+    ray in = {v3_fma(mid, perp, 0.5), axis, 0};
+    CHECK(shape_hit(&c, &in, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, sqrt(3.0) * 2, 1e-9);
+    CHECK(!h.front);
+    /* Past the top: the infinite side would be hit, the capped cylinder is not. */
+    vec3 beyond = v3_fma(v3(0, 0, 0), axis, sqrt(3.0) * 4 + 0.5);
+    ray over = {v3_fma(beyond, perp, 5), v3_neg(perp), 0};
+    CHECK(!shape_hit(&c, &over, HIT_EPS, DBL_MAX, &h));
+    /* Outside the radius along the axis direction: misses the caps. */
+    ray wide = {v3_fma(v3_fma(v3(0, 0, 0), axis, -3), perp, 1.5), axis, 0};
+    CHECK(!shape_hit(&c, &wide, HIT_EPS, DBL_MAX, &h));
+}
+
+static void test_triangle(void)
+{
+    struct hit h;
+    struct prim t = {.type = PRIM_TRIANGLE};
+    t.g.tri.v0 = v3(0, 0, 0);
+    t.g.tri.e1 = v3(1, 0, 0);
+    t.g.tri.e2 = v3(0, 1, 0);
+    t.g.tri.normal = v3(0, 0, 1);
+    ray r = {v3(0.25, 0.25, 2), v3(0, 0, -1), 0};
+    CHECK(shape_hit(&t, &r, HIT_EPS, DBL_MAX, &h));
+    CHECK_NEAR(h.t, 2, 1e-12);
+    CHECK(h.front);
+    CHECK_NEAR(h.n.z, 1, 1e-12);
+    ray back = {v3(0.25, 0.25, -2), v3(0, 0, 1), 0};
+    CHECK(shape_hit(&t, &back, HIT_EPS, DBL_MAX, &h));
+    CHECK(!h.front);
+    CHECK_NEAR(h.n.z, -1, 1e-12);
+    ray out = {v3(0.6, 0.6, 2), v3(0, 0, -1), 0}; /* u + v > 1 */
+    CHECK(!shape_hit(&t, &out, HIT_EPS, DBL_MAX, &h));
+    ray neg = {v3(-0.1, 0.5, 2), v3(0, 0, -1), 0};
+    CHECK(!shape_hit(&t, &neg, HIT_EPS, DBL_MAX, &h));
+    ray flat = {v3(-1, 0.2, 0), v3(1, 0, 0), 0}; /* in the triangle's plane */
+    CHECK(!shape_hit(&t, &flat, HIT_EPS, DBL_MAX, &h));
+}
+
+static void test_moving_sphere(void)
+{
+    struct hit h;
+    struct prim m = {.type = PRIM_MOVING_SPHERE};
+    m.g.msphere.center0 = v3(0, 0, 0);
+    m.g.msphere.velocity = v3(10, 0, 0);
+    m.g.msphere.radius = 1;
+    m.g.msphere.time_lo = 0, m.g.msphere.time_hi = 1;
+    ray at0 = {v3(0, 0, 5), v3(0, 0, -1), 0}, at1 = {v3(10, 0, 5), v3(0, 0, -1), 1};
+    ray at1_early = {v3(10, 0, 5), v3(0, 0, -1), 0.5};
+    CHECK(shape_hit(&m, &at0, HIT_EPS, DBL_MAX, &h));
+    CHECK(shape_hit(&m, &at1, HIT_EPS, DBL_MAX, &h));
+    CHECK(!shape_hit(&m, &at1_early, HIT_EPS, DBL_MAX, &h));
+    vec3 lo, hi;
+    shape_bounds(&m, &lo, &hi);
+    CHECK(lo.x <= -1 && hi.x >= 11 && lo.y <= -1 && hi.y >= 1);
+}
+
+/* Along a diameter of a medium sphere, the chance of scattering is 1 - exp(-density * 2R). */
+static void test_medium(void)
+{
+    struct prim m = {.type = PRIM_MEDIUM};
+    m.g.medium.center = v3(0, 0, 0);
+    m.g.medium.radius = 1;
+    m.g.medium.neg_inv_density = -1 / 0.5;
+    struct rng g;
+    rng_seed(&g, 5, 5);
+    struct hit h;
+    int hits = 0, inside = 1;
+    const int n = 40000;
+    double tsum = 0;
+    for (int i = 0; i < n; i++) {
+        double z = 3 + rng_uniform(&g);
+        ray r = {v3(0, 0, z), v3(0, 0, -1), rng_uniform(&g)};
+        if (shape_hit(&m, &r, HIT_EPS, DBL_MAX, &h)) {
+            hits++;
+            inside &= fabs(h.p.z) <= 1 + 1e-9;
+            tsum += h.t - (z - 1);
+        }
+    }
+    CHECK(inside);
+    CHECK_NEAR((double)hits / n, 1 - exp(-0.5 * 2), 0.01);
+    /* Mean depth of the first scattering given one: truncated exponential on [0, 2]. */
+    double lam = 0.5, L = 2, mean = 1 / lam - L * exp(-lam * L) / (1 - exp(-lam * L));
+    CHECK_NEAR(tsum / hits, mean, 0.02);
+    /* Pure: the same ray always gets the same answer. */
+    ray r = {v3(0.1, 0.2, 3), v3(0, 0, -1), 0.25};
+    int a = shape_hit(&m, &r, HIT_EPS, DBL_MAX, &h);
+    double ta = h.t;
+    int same = 1;
+    for (int i = 0; i < 10; i++) {
+        struct hit h2;
+        int b = shape_hit(&m, &r, HIT_EPS, DBL_MAX, &h2);
+        same &= a == b && (!a || h2.t == ta);
+    }
+    CHECK(same);
+}
+
+/* Light sampling of p from o: every sampled direction hits p with a positive pdf, the mean of
+   1/pdf over sampled directions is the solid angle p covers, the pdf integrates to 1 over the
+   sphere of directions, and the sampled directions are spread as the pdf says: the mean of
+   g(d) = 1 - cos(d, toward c) over samples equals its integral against the pdf (the integrals
+   estimated independently with uniform directions). */
+static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *what)
+{
+    vec3 to_c = v3_unit(v3_sub(c, o));
+    double g_sampled = 0, g_uniform = 0;
+    struct rng g;
+    rng_seed(&g, 11, 11);
+    const int n = 200000;
+    double inv_sum = 0, pdf_sum = 0;
+    int all_hit = 1, covered = 0;
+    struct hit h;
+    for (int i = 0; i < n; i++) {
+        vec3 d = shape_light_dir(p, o, (struct pt2){rng_uniform(&g), rng_uniform(&g)});
+        double pdf = shape_light_pdf(p, o, d, 0);
+        ray r = {o, d, 0};
+        all_hit &= pdf > 0 && shape_hit(p, &r, 1e-9, DBL_MAX, &h);
+        inv_sum += pdf > 0 ? 1 / pdf : 0;
+        g_sampled += 1 - v3_dot(v3_unit(d), to_c);
+        double z = 1 - 2 * rng_uniform(&g), phi = 2 * PI * rng_uniform(&g), s = sqrt(1 - z * z);
+        vec3 u = v3(cos(phi) * s, sin(phi) * s, z);
+        ray ru = {o, u, 0};
+        covered += shape_hit(p, &ru, 1e-9, DBL_MAX, &h);
+        double pu = shape_light_pdf(p, o, u, 0);
+        pdf_sum += pu;
+        g_uniform += (1 - v3_dot(u, to_c)) * pu;
+    }
+    double omega = 4 * PI * covered / n;
+    if (!all_hit)
+        printf("%s: a sampled direction missed the light\n", what);
+    CHECK(all_hit);
+    CHECK_NEAR(inv_sum / n / omega, 1, 0.03);
+    CHECK_NEAR(pdf_sum / n * 4 * PI, 1, 0.03);
+    CHECK_NEAR(g_uniform / n * 4 * PI / (g_sampled / n), 1, 0.05);
+}
+
+static void test_light_pdfs(void)
+{
+    struct prim s = {.type = PRIM_SPHERE};
+    s.g.sphere.center = v3(0, 0, -4);
+    s.g.sphere.radius = 1.5;
+    check_light_pdf(&s, v3(0, 0, 0), s.g.sphere.center, "sphere from outside");
+    check_light_pdf(&s, v3(0.5, 0.2, -4), v3(0, 0, 10), "sphere from inside");
+    /* A tiny far sphere: 1 - cos(theta_max) ~ 1e-14 must not round to 0. */
+    struct prim far = s;
+    far.g.sphere.center = v3(0, 0, -1e7);
+    far.g.sphere.radius = 1;
+    double pdf = shape_light_pdf(&far, v3(0, 0, 0), v3(0, 0, -1), 0);
+    CHECK(isfinite(pdf) && pdf > 0);
+    CHECK_NEAR(pdf * PI * 1e-14, 1, 1e-6); /* 1 / (2 pi (1 - cos)) with 1 - cos = r^2 / 2d^2 */
+
+    struct prim q = {.type = PRIM_RECT};
+    q.g.rect.axis = 1;
+    q.g.rect.a0 = -1, q.g.rect.a1 = 2, q.g.rect.b0 = -1, q.g.rect.b1 = 1, q.g.rect.k = 3;
+    check_light_pdf(&q, v3(0.3, 0, 0.2), v3(0.5, 3, 0), "rect");
+    struct prim dk = {.type = PRIM_DISK};
+    dk.g.disk.center = v3(1, 2, 0);
+    dk.g.disk.radius = 1.2;
+    onb f = onb_from_w(v3_unit(v3(-1, -2, 0.5)));
+    dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
+    check_light_pdf(&dk, v3(0, 0, 0), dk.g.disk.center, "disk");
+    CHECK(shape_light_uses_points(&q) && shape_light_uses_points(&dk) && !shape_light_uses_points(&s));
+}
+
+/* Hits of random rays land inside the primitive's bounds, transformed or not. */
+static void test_bounds(void)
+{
+    struct prim ps[4] = {
+        {.type = PRIM_BOX}, {.type = PRIM_CYLINDER}, {.type = PRIM_TRIANGLE}, {.type = PRIM_SPHERE}};
+    ps[0].g.box.lo = v3(-1, 0, -2), ps[0].g.box.hi = v3(1, 3, 2);
+    ps[1].g.cyl.base = v3(0, 0, 0), ps[1].g.cyl.axis = v3_unit(v3(1, 2, -1)), ps[1].g.cyl.height = 3;
+    ps[1].g.cyl.radius = 0.7;
+    ps[2].g.tri.v0 = v3(0, 0, 0), ps[2].g.tri.e1 = v3(2, 1, 0), ps[2].g.tri.e2 = v3(0, 1, 2);
+    ps[2].g.tri.normal = v3_unit(v3_cross(ps[2].g.tri.e1, ps[2].g.tri.e2));
+    ps[3].g.sphere.center = v3(1, 1, 1), ps[3].g.sphere.radius = 1.5;
+    struct rng g;
+    rng_seed(&g, 2, 2);
+    int inside = 1, hits = 0;
+    for (int k = 0; k < 8; k++) {
+        struct prim p = ps[k % 4];
+        if (k >= 4)
+            set_xform(&p, -18 + 31 * k, v3(160, 230, 80));
+        vec3 lo, hi;
+        shape_bounds(&p, &lo, &hi);
+        vec3 c = v3_scale(v3_add(lo, hi), 0.5);
+        for (int i = 0; i < 2000; i++) {
+            vec3 o = v3_add(
+                c, v3(20 * rng_uniform(&g) - 10, 20 * rng_uniform(&g) - 10, 20 * rng_uniform(&g) - 10));
+            vec3 target = v3_add(
+                c, v3(3 * rng_uniform(&g) - 1.5, 3 * rng_uniform(&g) - 1.5, 3 * rng_uniform(&g) - 1.5));
+            ray r = {o, v3_sub(target, o), 0};
+            struct hit h;
+            if (!shape_hit(&p, &r, HIT_EPS, DBL_MAX, &h))
+                continue;
+            hits++;
+            inside &= h.p.x >= lo.x - 1e-9 && h.p.x <= hi.x + 1e-9 && h.p.y >= lo.y - 1e-9 &&
+                      h.p.y <= hi.y + 1e-9 && h.p.z >= lo.z - 1e-9 && h.p.z <= hi.z + 1e-9;
+            inside &= fabs(v3_len(h.n) - 1) < 1e-9 && v3_dot(h.n, r.dir) <= 0;
+        }
+    }
+    CHECK(inside);
+    CHECK(hits > 4000);
+}
+
+int main(void)
+{
+    test_box();
+    test_cylinder();
+    test_triangle();
+    test_moving_sphere();
+    test_medium();
+    test_light_pdfs();
+    test_bounds();
+    return check_report("test_shape");
+}

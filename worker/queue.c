@@ -1,0 +1,386 @@
+/* queue: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
+#include "queue.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "fileio.h"
+#include "lease.h"
+#include "yamlx.h"
+
+/* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
+static volatile sig_atomic_t queue_stop;
+
+static void on_signal(int sig)
+{
+    if (queue_stop) { /* the second signal: die now, as the user asked */
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    queue_stop = sig;
+}
+
+void queue_signals_install(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL); /* no SA_RESTART: a poll's sleep ends at once */
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+struct queue {
+    const struct queue_opts *o;
+    char dir[1024], running[1100], done[1100], failed[1100];
+    struct lease lease; /* ours, for the claim in hand */
+    char claim[2048];   /* DIR/running/X.yaml while a job is held */
+    struct timespec last_touch;
+    int worst;
+};
+
+struct waiting {
+    char name[256];
+    int priority;
+    struct timespec mtime;
+};
+
+static int has_yaml_suffix(const char *s)
+{
+    size_t n = strlen(s);
+    return s[0] != '.' && n > 5 && strcmp(s + n - 5, ".yaml") == 0;
+}
+
+static double since(const struct timespec *t)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
+}
+
+/* The farm's progress callback (every 50 ms): renew the lease about once a second. */
+static void tick(void *arg)
+{
+    struct queue *q = arg;
+    if (since(&q->last_touch) < 1.0)
+        return;
+    lease_touch(q->claim);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+}
+
+/* A waiting job's priority: its `priority:` key, 0 when absent or unreadable (loading the job
+   later reports the error). */
+static int peek_priority(const char *path)
+{
+    struct ydoc d;
+    struct err e;
+    uint8_t *text;
+    size_t len;
+    int p = 0;
+    if (fileio_read_all(path, YDOC_MAX_BYTES, &text, &len, &e) < 0)
+        return 0;
+    int mentioned = strstr((const char *)text, "priority") != NULL;
+    free(text);
+    if (!mentioned) /* most jobs: no YAML parse on every scan */
+        return 0;
+    if (ydoc_load(&d, path, &e) == 0) {
+        yaml_node_t *root = ydoc_root(&d);
+        yaml_node_t *v = root && root->type == YAML_MAPPING_NODE ? ymap_get(&d, root, "priority") : NULL;
+        const char *s = v ? yscalar(v) : NULL;
+        if (s) {
+            char *end;
+            long n = strtol(s, &end, 10);
+            if (*s && !*end && n >= -1000000 && n <= 1000000)
+                p = (int)n;
+        }
+    }
+    ydoc_free(&d);
+    return p;
+}
+
+/* Higher priority first, then oldest (mtime), then by name. */
+static int waiting_cmp(const void *pa, const void *pb)
+{
+    const struct waiting *a = pa, *b = pb;
+    if (a->priority != b->priority)
+        return a->priority > b->priority ? -1 : 1;
+    if (a->mtime.tv_sec != b->mtime.tv_sec)
+        return a->mtime.tv_sec < b->mtime.tv_sec ? -1 : 1;
+    if (a->mtime.tv_nsec != b->mtime.tv_nsec)
+        return a->mtime.tv_nsec < b->mtime.tv_nsec ? -1 : 1;
+    return strcmp(a->name, b->name);
+}
+
+/* The waiting jobs in claim order into *out (malloc'd); their count, or -1 when DIR is unreadable. */
+static int scan_waiting(struct queue *q, struct waiting **out)
+{
+    DIR *d = opendir(q->dir);
+    *out = NULL;
+    if (!d)
+        return -1;
+    struct waiting *w = NULL;
+    int n = 0, cap = 0;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        char path[2048];
+        struct stat st;
+        if (!has_yaml_suffix(de->d_name) || strlen(de->d_name) >= sizeof w->name)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", q->dir, de->d_name);
+        if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+            continue;
+        if (n == cap) {
+            cap = cap ? cap * 2 : 64;
+            struct waiting *g = realloc(w, (size_t)cap * sizeof *w);
+            if (!g)
+                break;
+            w = g;
+        }
+        snprintf(w[n].name, sizeof w[n].name, "%s", de->d_name);
+        w[n].mtime = st.st_mtim;
+        w[n].priority = peek_priority(path);
+        n++;
+    }
+    closedir(d);
+    if (n > 1)
+        qsort(w, (size_t)n, sizeof *w, waiting_cmp);
+    *out = w;
+    return n;
+}
+
+/* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
+   so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */
+static int return_claim(struct queue *q, const char *claim, const char *name)
+{
+    char back[2048];
+    struct stat st;
+    snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    if (stat(back, &st) == 0) {
+        fprintf(stderr, "queue: %s: cannot return it to the queue: %s exists\n", claim, back);
+        return -1;
+    }
+    lease_remove(claim);
+    return rename(claim, back);
+}
+
+/* Return every dead worker's claim to the queue. */
+static void recover_stale(struct queue *q)
+{
+    DIR *d = opendir(q->running);
+    if (!d)
+        return;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        char claim[2048], why[512];
+        if (!has_yaml_suffix(de->d_name))
+            continue;
+        snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
+        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
+            continue;
+        if (lease_lock(claim, q->o->lease_timeout_s) < 0)
+            continue;
+        /* judged again under the lock: another recoverer may have moved it meanwhile */
+        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why) &&
+            return_claim(q, claim, de->d_name) == 0)
+            fprintf(stderr, "queue: %s: returned to the queue: %s\n", de->d_name, why);
+        lease_unlock(claim);
+    }
+    closedir(d);
+}
+
+/* Claim DIR/name into running/ and write our lease. 0 when the job is ours. */
+static int claim(struct queue *q, const char *name)
+{
+    char from[2048];
+    struct stat st;
+    struct err e;
+    snprintf(from, sizeof from, "%s/%s", q->dir, name);
+    snprintf(q->claim, sizeof q->claim, "%s/%s", q->running, name);
+    if (stat(q->claim, &st) == 0) /* a job of the same file name is running: it waits */
+        return -1;
+    if (rename(from, q->claim) < 0) /* ENOENT: another worker was first */
+        return -1;
+    lease_init(&q->lease);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (lease_write(q->claim, &q->lease, &e) < 0) {
+        char buf[2048];
+        err_format(&e, buf, sizeof buf);
+        fprintf(stderr, "queue: %s: %s; returning it to the queue\n", name, buf);
+        rename(q->claim, from);
+        return -1;
+    }
+    return 0;
+}
+
+/* Still ours? Nobody took the claim away while we rendered (a lease judged dead elsewhere). */
+static int still_ours(struct queue *q)
+{
+    struct lease l;
+    double age;
+    return lease_read(q->claim, &l, &age) == 0 && strcmp(l.token, q->lease.token) == 0;
+}
+
+/* Move the claim to done/ or failed/ and drop the lease. */
+static void file_claim(struct queue *q, const char *name, const char *to_dir)
+{
+    char to[2048];
+    snprintf(to, sizeof to, "%s/%s", to_dir, name);
+    if (rename(q->claim, to) < 0)
+        fprintf(stderr, "queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
+    lease_remove(q->claim);
+}
+
+/* failed/<name>.log: what went wrong, the signal, the attempts. */
+static void write_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
+                      int attempts)
+{
+    char path[2048], text[8192];
+    int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
+    if (sig)
+        n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
+    time_t t = time(NULL);
+    char when[64];
+    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&t));
+    n += snprintf(text + n, sizeof text - n, "attempts: %d\nworker: pid %ld on %s\ntime: %s\n", attempts,
+                  q->lease.pid, q->lease.host, when);
+    snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
+    struct err e;
+    if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
+        fprintf(stderr, "queue: %s: %s\n", name, e.msg);
+}
+
+/* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
+   while it is still ours. */
+static void give_back(struct queue *q, const char *name)
+{
+    for (int i = 0; i < 100 && lease_lock(q->claim, q->o->lease_timeout_s) < 0; i++) {
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    if (still_ours(q) && return_claim(q, q->claim, name) == 0)
+        fprintf(stderr, "%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
+    lease_unlock(q->claim);
+}
+
+static void note_rc(struct queue *q, int rc)
+{
+    if (rc > q->worst)
+        q->worst = rc;
+}
+
+/* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
+static void process(struct queue *q, const char *name)
+{
+    char as[2048], msg[2048], stem[256];
+    struct job j;
+    struct err e;
+    struct run_result rr;
+    snprintf(as, sizeof as, "%s/%s", q->dir, name);
+    snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
+    if (job_load_as(q->claim, as, &j, &e) < 0) { /* invalid: never retried */
+        err_format(&e, msg, sizeof msg);
+        fprintf(stderr, "%s\n%s: invalid job, moved to %s/\n", msg, name, q->failed);
+        write_log(q, name, stem, msg, 0, 0);
+        file_claim(q, name, q->failed);
+        note_rc(q, 2);
+        return;
+    }
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = &queue_stop;
+    ro.tick = tick;
+    ro.tick_arg = q;
+    int attempts = 0, rc;
+    for (;;) {
+        attempts++;
+        rc = run_job(&j, &ro, &rr, &e);
+        if (rc != 1 || !rr.farm.child_crashed || attempts > q->o->retries || queue_stop)
+            break;
+        err_format(&e, msg, sizeof msg);
+        fprintf(stderr, "%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
+    }
+    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
+        give_back(q, name);
+        return;
+    }
+    if (!still_ours(q)) {
+        fprintf(stderr, "%s: the claim was taken over (our lease was judged dead); leaving the job to it\n",
+                name);
+        return;
+    }
+    if (rc == 0) {
+        if (rr.skipped)
+            fprintf(stderr, "%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n",
+                    name, q->done, j.name);
+        else
+            run_print_summary(&j, &rr);
+        file_claim(q, name, q->done);
+        return;
+    }
+    err_format(&e, msg, sizeof msg);
+    fprintf(stderr, "%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
+            attempts > 1 ? "s" : "");
+    write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
+    file_claim(q, name, q->failed);
+    note_rc(q, rc);
+}
+
+/* Sleep up to s seconds; a signal ends it early. */
+static void nap(double s)
+{
+    struct timespec ts = {(time_t)s, (long)((s - (time_t)s) * 1e9)};
+    nanosleep(&ts, NULL);
+}
+
+int queue_main(const struct queue_opts *qo)
+{
+    struct queue q;
+    struct stat st;
+    struct err e;
+    memset(&q, 0, sizeof q);
+    q.o = qo;
+    snprintf(q.dir, sizeof q.dir, "%s", qo->dir);
+    for (size_t n = strlen(q.dir); n > 1 && q.dir[n - 1] == '/'; n--)
+        q.dir[n - 1] = 0;
+    int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+    if (bad) {
+        fprintf(stderr, "worker: --queue %s: %s\n", q.dir, strerror(bad));
+        return 2;
+    }
+    snprintf(q.running, sizeof q.running, "%s/running", q.dir);
+    snprintf(q.done, sizeof q.done, "%s/done", q.dir);
+    snprintf(q.failed, sizeof q.failed, "%s/failed", q.dir);
+    if (run_mkdirs(q.running, &e) < 0 || run_mkdirs(q.done, &e) < 0 || run_mkdirs(q.failed, &e) < 0) {
+        fprintf(stderr, "worker: --queue %s: %s\n", q.dir, e.msg);
+        return 2;
+    }
+    while (!queue_stop) {
+        recover_stale(&q);
+        struct waiting *w;
+        int n = scan_waiting(&q, &w), took = 0;
+        if (n < 0) {
+            fprintf(stderr, "worker: --queue %s: %s\n", q.dir, strerror(errno));
+            free(w);
+            return 2;
+        }
+        for (int i = 0; i < n && !took && !queue_stop; i++)
+            if (claim(&q, w[i].name) == 0) {
+                process(&q, w[i].name);
+                took = 1;
+            }
+        free(w);
+        if (took)
+            continue;
+        if (qo->once)
+            break;
+        nap(qo->poll_s);
+    }
+    return q.worst;
+}
