@@ -2,7 +2,8 @@
 # End to end: a tiny compare job writes images, sidecars, summary.csv, chart.svg (valid XML) and a
 # self-contained report.html that headless Chromium renders; a second run reuses the cached
 # references and says so; at equal samples on the checker scene jitter and poisson beat random;
-# bad compare jobs exit 2 with file:line:col before rendering anything.
+# the shipped compare jobs run (shrunk); bad compare jobs exit 2 with file:line:col before
+# rendering anything.
 . tests/lib.sh
 root=$(pwd)
 variants='
@@ -169,7 +170,25 @@ order() { # order VARIANT: VARIANT's mean relMSE is below random's by > 2 standa
 check "jitter below random at equal samples" order jitter-t5
 check "poisson below random at equal samples" order poisson-t4
 
-# 6. bad compare jobs: exit 2, file:line:col, nothing rendered
+# 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
+for j in jobs/compare.yaml jobs/seed-experiment.yaml; do
+    n=$(basename "$j" .yaml)
+    sed -e 's/^width:.*/width: 8/' -e 's/^height:.*/height: 8/' -e "s/^name:.*/name: $n/" \
+        -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$j" >"$T/jobs-$n.yaml"
+    "$WORKER" --quiet --out "$T/shipped" "$T/jobs-$n.yaml" 2>"$T/$n.err"; rc=$? # bare scene names: ./scenes
+    images=$(awk -F, 'NR > 1' "$T/shipped/$n/summary.csv" 2>/dev/null | wc -l)
+    variants=$(grep -c '^  - {' "$j"); scenes=$(sed -n 's/^scenes: \[\(.*\)\]/\1/p' "$j" | tr ',' '\n' | wc -l)
+    seeds=$(sed -n 's/^seeds: \[\(.*\)\]/\1/p' "$j" | tr ',' '\n' | wc -l)
+    check "$j runs (exit $rc: $(head -n 1 "$T/$n.err"))" [ "$rc" -eq 0 ]
+    check "$j: $scenes scenes x $variants variants x 2 thresholds x $seeds seeds (got $images)" \
+        [ "$images" -eq $((scenes * variants * 2 * seeds)) ]
+    check "$j: report written" [ -s "$T/shipped/$n/report.html" ]
+done
+check "jobs/compare.yaml: checker and cornell" grep -q '^scenes: \[checker, cornell\]' jobs/compare.yaml
+check "jobs/compare.yaml: a sweep of at least 4 thresholds" \
+    [ "$(sed -n 's/^sweep: { threshold: \[\(.*\)\] }.*/\1/p' jobs/compare.yaml | tr ',' '\n' | wc -l)" -ge 4 ]
+
+# 7. bad compare jobs: exit 2, file:line:col, nothing rendered
 bad() { # bad NAME EXPECTED-REGEX (job in $T/NAME.yaml)
     rm -rf "$T/badout"
     "$WORKER" --out "$T/badout" "$T/$1.yaml" 2>"$T/$1.err"; rc=$?
