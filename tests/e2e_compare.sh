@@ -78,6 +78,7 @@ check "report: 4x crops" grep -q '4x nearest-neighbour crops' "$html"
 check "report: error maps" grep -q 'Error maps at' "$html"
 check "report: one stability line per variant and scene" [ "$(grep -c '^<li><b>' "$html")" -eq 10 ]
 check "report: stability names the seed spread" grep -q 'spread across 2 seeds' "$html"
+check "report: variants ranked by efficiency per scene" [ "$(grep -c '<b>For the time spent</b>' "$html")" -eq 2 ]
 check "report: the table has every image" [ "$(grep -c '^<tr><td class="l">' "$html")" -eq 40 ]
 
 # 2. the second run reuses both references, says so, and leaves them untouched

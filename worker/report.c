@@ -224,6 +224,40 @@ done:
     return rc;
 }
 
+/* Variants ranked by Monte Carlo efficiency, 1 / (relMSE x wall s), at their densest point. */
+static int efficiency(struct sbuf *b, const struct compare *c, int s)
+{
+    int *order = calloc((size_t)c->n_points, sizeof *order),
+        *rank = calloc((size_t)c->n_variants, sizeof *rank);
+    double *eff = calloc((size_t)c->n_variants, sizeof *eff);
+    if (!order || !rank || !eff) {
+        free(order), free(rank), free(eff);
+        return -1;
+    }
+    for (int v = 0; v < c->n_variants; v++) {
+        struct compare_agg a;
+        compare_point_order(c, s, v, order);
+        compare_aggregate(c, s, v, order[c->n_points - 1], &a);
+        eff[v] = a.rel > 0 && a.wall_s > 0 ? 1 / (a.rel * a.wall_s) : 0;
+        rank[v] = v;
+        for (int i = v; i > 0 && eff[rank[i]] > eff[rank[i - 1]]; i--) {
+            int t = rank[i];
+            rank[i] = rank[i - 1];
+            rank[i - 1] = t;
+        }
+    }
+    sbuf_printf(b, "<p><b>For the time spent</b> (efficiency 1 / (relMSE x wall s) at each variant's densest "
+                   "point, higher is better): ");
+    for (int i = 0; i < c->n_variants; i++) {
+        sbuf_printf(b, "%s<b>", i ? ", " : "");
+        sbuf_escape(b, c->variants[rank[i]]);
+        sbuf_printf(b, "</b> %.3g", eff[rank[i]]);
+    }
+    sbuf_printf(b, ".</p>\n");
+    free(order), free(rank), free(eff);
+    return 0;
+}
+
 static int scene_section(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[s];
@@ -265,6 +299,10 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         if (closeups(b, c, s, mid, dir, &ref, e) < 0 ||
             (densest != mid && closeups(b, c, s, densest, dir, &ref, e) < 0))
             goto done;
+    }
+    if (has_ref && efficiency(b, c, s) < 0) {
+        err_set(e, NULL, 0, 0, "out of memory");
+        goto done;
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
