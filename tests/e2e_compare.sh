@@ -81,6 +81,19 @@ check "report: stability names the seed spread" grep -q 'spread across 2 seeds' 
 check "report: variants ranked by efficiency per scene" [ "$(grep -c '<b>For the time spent</b>' "$html")" -eq 2 ]
 check "report: the table has every image" [ "$(grep -c '^<tr><td class="l">' "$html")" -eq 40 ]
 
+# 1b. without a reference: images and table, no metrics; with an image file as the reference
+printf 'name: noref\nscenes: [checker]\nwidth: 16\nseeds: [1, 2]\nsweep: { threshold: [50, 25] }\nvariants:\n  - { sampler: jitter }\n  - { sampler: random }\n' >"$T/noref.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/noref.yaml" 2>"$T/noref.err"; rc=$?
+check "no reference: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "no reference: 8 rows without metrics" [ "$(awk -F, 'NR > 1 && $12 == ""' "$T/out/noref/summary.csv" | wc -l)" -eq 8 ]
+check "no reference: the chart says so" grep -q 'no reference given' "$T/out/noref/chart.svg"
+check "no reference: the summary line says so" grep -q 'no reference' "$T/noref.err"
+cp "$T/out/noref/checker-jitter-t25-s1.png" "$T/given.png"
+printf 'name: given\nscene: checker\nwidth: 16\nreference: given.png\nvariants:\n  - { sampler: random, threshold: 50 }\n' >"$T/given.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/given.yaml" 2>/dev/null; rc=$?
+check "reference image file: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "reference image file: scored" [ "$(awk -F, 'NR == 2 && $12 > 0' "$T/out/given/summary.csv" | wc -l)" -eq 1 ]
+
 # 2. the second run reuses both references, says so, and leaves them untouched
 before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)
 "$WORKER" --out "$T/out" "$T/cmp.yaml" 2>"$T/run2.err"; rc=$?
@@ -211,6 +224,8 @@ printf 'scenes: [checker]\nvariants:\n  - { sampler: jitter, width: 10 }\n' >"$T
 bad varwidth '3:24: width: not allowed in a variant'
 printf 'scenes: [checker]\nsweep: { threshold: [5, 2] }\nvariants:\n  - { sampler: jitter, threshold: 3 }\n' >"$T/swept.yaml"
 bad swept '4:24: threshold: swept'
+printf 'name: x\nscene: checker\nwidth: 17\nreference: given.png\nvariants:\n  - { sampler: jitter }\n' >"$T/refsize.yaml"
+bad refsize '4:12: reference: image is 16x16 but the job renders 17x17'
 printf 'scenes: [checker]\nseeds: [1, 2, 1]\nvariants:\n  - { sampler: jitter }\n' >"$T/seeds.yaml"
 bad seeds '2:15: seeds: 1 is listed twice'
 printf 'scenes: [checker]\nsweep: { threshold: [5, 0] }\nvariants:\n  - { sampler: jitter }\n' >"$T/zero.yaml"
