@@ -146,12 +146,63 @@ static void fmt_duration(double s, char *buf, size_t n)
         snprintf(buf, n, "%dh%02dm", (int)s / 3600, (int)s % 3600 / 60);
 }
 
-/* Render one combination and measure it against its scene's reference (ref may be NULL). */
+/* The resume hash of one combination: its scene file's bytes, every setting that changes its
+   pixels, and its reference image's path (which carries the reference's own cache key). An image
+   whose sidecar records it is current and is not rendered again (unless --force). */
+static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *e)
+{
+    const struct job *j = &it->job;
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+        return -1;
+    char text[JOB_PATH_MAX + 512];
+    int n = snprintf(text, sizeof text,
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %s worker %s", j->width,
+                     j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
+                     j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool,
+                     j->light_sampling, j->reference, WORKER_VERSION);
+    *hash = fnv1a(fnv1a(0xcbf29ce484222325ULL, data, len), text, (size_t)n);
+    free(data);
+    return 0;
+}
+
+/* The number after the first "key": in a sidecar's text (0 when absent). */
+static double sidecar_number(const char *text, const char *key)
+{
+    char want[64];
+    snprintf(want, sizeof want, "\"%s\": ", key);
+    const char *p = strstr(text, want);
+    return p ? strtod(p + strlen(want), NULL) : 0;
+}
+
+/* A combination skipped as current: what it measured, from its sidecar. */
+static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(sidecar_path, 1u << 20, &data, &len, e) < 0)
+        return -1;
+    const char *t = (const char *)data;
+    it->spp_mean = sidecar_number(t, "per_pixel_mean");
+    it->spp_min = (uint64_t)sidecar_number(t, "per_pixel_min");
+    it->spp_max = (uint64_t)sidecar_number(t, "per_pixel_max");
+    it->wall_s = sidecar_number(t, "wall_s"); /* the first: the job's, before per_process */
+    it->cpu_s = sidecar_number(t, "cpu_s");
+    it->sampler_share = sidecar_number(t, "sampling_share");
+    free(data);
+    return 0;
+}
+
+/* Render one combination (or take it as it is when current) and measure it against its
+   scene's reference (ref may be NULL). */
 static int render_item(struct compare *c, struct compare_item *it, const struct rgb8 *ref,
                        const struct run_opts *o, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[it->scene];
     snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
+    if (item_hash(it, &it->job.hash, e) < 0)
+        return 2;
     struct run_result rr;
     struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
     quiet_rows.progress = 0;
@@ -160,16 +211,22 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         err_prefix(e, it->job.output);
         return rc;
     }
-    const struct render_stats *t = &rr.farm.total;
-    it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
-    it->spp_min = t->pixels ? t->spp_min : 0;
-    it->spp_max = t->spp_max;
-    it->wall_s = rr.farm.wall_s;
-    it->cpu_s = rr.farm.cpu_s;
-    double proc_wall_s = 0; /* the sidecar's sampling share: of the render processes' wall time */
-    for (int p = 0; p < rr.farm.processes; p++)
-        proc_wall_s += rr.farm.proc[p].wall_s;
-    it->sampler_share = proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0;
+    it->skipped = rr.skipped;
+    if (rr.skipped) {
+        if (item_from_sidecar(it, rr.sidecar_path, e) < 0)
+            return 1;
+    } else {
+        const struct render_stats *t = &rr.farm.total;
+        it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
+        it->spp_min = t->pixels ? t->spp_min : 0;
+        it->spp_max = t->spp_max;
+        it->wall_s = rr.farm.wall_s;
+        it->cpu_s = rr.farm.cpu_s;
+        double proc_wall_s = 0; /* the sidecar's sampling share: of the render processes' wall time */
+        for (int p = 0; p < rr.farm.processes; p++)
+            proc_wall_s += rr.farm.proc[p].wall_s;
+        it->sampler_share = proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0;
+    }
     if (ref) {
         struct rgb8 img = {0};
         rc = imgio_read(rr.image_path, &img, e) < 0 || metrics_compare(ref, &img, &it->error, e) < 0;
@@ -246,16 +303,20 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         const struct compare_scene *cs = &c->scenes[it->scene];
         if ((rc = render_item(c, it, cs->ref_kind != COMPARE_REF_NONE ? &refs[it->scene] : NULL, o, e)) != 0)
             goto fail;
-        done += cost(c, it);
+        if (it->skipped) /* current from an earlier run: no time spent, none to predict */
+            total -= cost(c, it);
+        else
+            done += cost(c, it);
         double elapsed = now_s() - t1;
         char el[32], eta[32], err_text[48] = "";
         fmt_duration(now_s() - t0, el, sizeof el);
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
-        say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s | %s elapsed, ETA %s\n",
+        say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
             c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
-            it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text, el, eta);
+            it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+            it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     rc = 1;
     e->msg[0] = 0;
@@ -290,9 +351,16 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
         snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
     else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
         snprintf(refs, sizeof refs, "reference image given");
+    int current = 0;
+    for (int i = 0; i < c->n_items; i++)
+        current += c->items[i].skipped;
+    char resumed[96] = "";
+    if (current)
+        snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
+                 current);
     snprintf(buf, n,
-             "%s: %d images (%d scenes x %d variants x %d sweep points x %d seeds), %s, %.2f s -> %s/%s/",
-             c->name, c->n_items, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, refs, wall_s,
+             "%s: %d images (%d scenes x %d variants x %d sweep points x %d seeds)%s, %s, %.2f s -> %s/%s/",
+             c->name, c->n_items, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, resumed, refs, wall_s,
              out_dir ? out_dir : "out", c->name);
 }
 

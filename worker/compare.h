@@ -33,6 +33,7 @@ struct compare_item {
     struct job job;
     int scene, variant, point, seed; /* indices */
     int done, has_error;
+    int skipped; /* its image and sidecar were current (same hash): not rendered again */
     double spp_mean, wall_s, cpu_s, sampler_share;
     uint64_t spp_min, spp_max;
     struct metrics error;
