@@ -99,8 +99,9 @@ asan:
 test-slurm: all
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) bash ci/slurm/test-local.sh
 
+# The headline study: every sampler on every scene, charted (out/compare/report.html).
 run: all
-	$(WORKER_BIN) jobs/checker.yaml
+	$(WORKER_BIN) jobs/compare.yaml
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "compare.h"
 #include "fileio.h"
 #include "job.h"
 #include "metrics.h"
@@ -171,6 +172,12 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
     struct job j;
     struct err e;
     struct run_result rr;
+    if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
+        if (!merge && !o->parts)
+            return compare_main(path, o);
+        fprintf(stderr, "%s: a compare job renders whole images: no merge or --part\n", path);
+        return 2;
+    }
     if (job_load(path, &j, &e) < 0) {
         print_err(&e);
         return 2;

@@ -1,0 +1,60 @@
+/* test_chart: the SVG writer: decade axes, skipped non-positive points, escaping, empty panels. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "chart.h"
+#include "check.h"
+
+static int count(const char *s, const char *what)
+{
+    int n = 0;
+    for (const char *p = s; (p = strstr(p, what)); p++)
+        n++;
+    return n;
+}
+
+int main(void)
+{
+    /* x from 2 to 50 and y from 0.003 to 0.2: axes widen to whole decades 1..100 and 0.001..1 */
+    double x[] = {2, 5, 50, -1}, y[] = {0.2, 0.05, 0.003, 0.1};
+    double lo[] = {0.15, 0.04, 0.002, 0.1}, hi[] = {0.25, 0.06, 0.004, 0.1};
+    double y2[] = {0.1, 0.02, 0, 0.01};
+    struct chart_series ser[2] = {{"a<b&c", 4, x, y, lo, hi}, {"second", 4, x, y2, NULL, NULL}};
+    static const double slopes[] = {-1, -1.5};
+    struct chart_panel p[2] = {{"first & panel", "time (s)", "relMSE", NULL, ser, 2, slopes, 2},
+                               {"empty", "x", "y", "nothing to show", ser, 0, NULL, 0}};
+    char *svg = chart_svg("title <1>", p, 2, 2);
+    CHECK(svg != NULL);
+    if (!svg)
+        return check_report("test_chart");
+    CHECK(strncmp(svg,
+                  "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"",
+                  77) == 0);
+    CHECK(strstr(svg, "</svg>\n") != NULL);
+    CHECK(strstr(svg, "title &lt;1&gt;") != NULL);
+    CHECK(strstr(svg, "first &amp; panel") != NULL);
+    CHECK(strstr(svg, ">a&lt;b&amp;c<") != NULL); /* the legend escapes names */
+    CHECK(!strstr(svg, "a<b"));
+    CHECK(count(svg, "<polyline") == 2);
+    /* series 1: x = -1 skipped; series 2: y = 0 skipped too: 3 + 2 points */
+    CHECK(count(svg, "<circle") == 5);
+    CHECK(count(svg, "<path d=\"M") == 3 + 1);      /* three whiskers + the legend's sample whisker */
+    CHECK(count(svg, "stroke-dasharray") == 2 + 1); /* two guides + the legend's sample */
+    CHECK(strstr(svg, ">slope -1.5<") != NULL);
+    CHECK(strstr(svg, ">time (s)<") != NULL);
+    /* decade tick labels of both axes */
+    CHECK(strstr(svg, ">100<") && strstr(svg, ">1<") && strstr(svg, ">1e-3<") && strstr(svg, ">0.01<"));
+    CHECK(strstr(svg, ">nothing to show<") != NULL);
+    CHECK(strstr(svg, "whisker: seed min-max") != NULL);
+    /* 10 sits in the middle of 1..100: plot x = 74 + 390 / 2 = 269 (panel 480 wide, margins 74 and 16) */
+    double xs[] = {1.5, 10, 90}, ys[] = {0.5, 0.05, 0.005};
+    struct chart_series one = {"one", 3, xs, ys, NULL, NULL};
+    struct chart_panel q = {"t", "x", "y", NULL, &one, 1, NULL, 0};
+    char *svg2 = chart_svg("t", &q, 1, 1);
+    CHECK(svg2 && strstr(svg2, "points=\"") && strstr(strstr(svg2, "points=\""), " 269.0,"));
+    CHECK(svg2 && !strstr(svg2, "whisker")); /* no whiskers drawn: none in the legend */
+    CHECK(strstr(chart_color(0), "#") && strcmp(chart_color(1), chart_color(9)) == 0);
+    free(svg2);
+    free(svg);
+    return check_report("test_chart");
+}

@@ -1,0 +1,183 @@
+/* test_compare: loading and expanding compare jobs (names, labels, sweeps, references, errors)
+   and the statistics drawn from their results; nothing is rendered. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "compare.h"
+#include "compare_stats.h"
+
+static char dir[256], scene[1024];
+
+/* Write text (with "SCENE" replaced by the checker scene's path) to dir/name; return the path. */
+static const char *job_file(const char *name, const char *text)
+{
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    for (const char *p = text; *p; p++)
+        if (!strncmp(p, "SCENE", 5)) {
+            fputs(scene, f);
+            p += 4;
+        } else {
+            fputc(*p, f);
+        }
+    fclose(f);
+    return path;
+}
+
+static const struct compare_item *item(const struct compare *c, int s, int v, int p, int k)
+{
+    return &c->items[compare_index(c, s, v, p, k)];
+}
+
+static void test_expand(void)
+{
+    struct err e;
+    const char *path = job_file("full.yaml", "name: full\nscenes: [SCENE]\nwidth: 40\n"
+                                             "reference: { sampler: jitter, threshold: 2 }\n"
+                                             "seeds: [3, 7]\nsweep: { threshold: [20, 10, 5] }\nvariants:\n"
+                                             "  - { sampler: poisson, poisson_pool: 64 }\n"
+                                             "  - { sampler: jitter, light_sampler: random }\n"
+                                             "  - { label: grid, sampler: uniform, max_depth: 4 }\n");
+    CHECK(compare_is_compare_job(path) == 1);
+    struct compare *c = compare_load(path, &e);
+    CHECK(c != NULL);
+    if (!c) {
+        fprintf(stderr, "%s:%d:%d: %s\n", e.file, e.line, e.col, e.msg);
+        return;
+    }
+    CHECK(c->n_scenes == 1 && c->n_variants == 3 && c->n_points == 3 && c->n_seeds == 2 && c->n_items == 18);
+    CHECK(strcmp(c->name, "full") == 0 && strcmp(c->scenes[0].name, "checker") == 0);
+    CHECK(c->scenes[0].width == 40 && c->scenes[0].height == 40); /* the checker camera's aspect is 1 */
+    CHECK(strcmp(c->variants[0], "poisson-pool64") == 0);
+    CHECK(strcmp(c->variants[1], "jitter-lightrandom") == 0);
+    CHECK(strcmp(c->variants[2], "grid") == 0);
+    CHECK(strcmp(c->points[1], "threshold 10") == 0 && strcmp(c->sweep_keys, "threshold") == 0);
+    const struct compare_item *it = item(c, 0, 0, 2, 1);
+    CHECK(strcmp(it->job.output, "checker-poisson-pool64-t5-s7.png") == 0);
+    CHECK(it->job.threshold == 5 && it->job.seed == 7 && it->job.poisson_pool == 64);
+    CHECK(it->job.sampler == SAMPLER_POISSON && it->job.light_sampler == SAMPLER_POISSON); /* default: same */
+    CHECK(strcmp(it->job.name, "full") == 0 && it->job.format == IMG_PNG);
+    it = item(c, 0, 1, 0, 0);
+    CHECK(strcmp(it->job.output, "checker-jitter-lightrandom-t20-s3.png") == 0);
+    CHECK(it->job.light_sampler == SAMPLER_RANDOM && it->job.threshold == 20);
+    it = item(c, 0, 2, 1, 0);
+    CHECK(strcmp(it->job.output, "checker-grid-t10-s3.png") == 0 && it->job.max_depth == 4);
+    CHECK(it->job.max_depth == 4 && item(c, 0, 1, 1, 0)->job.max_depth == 50); /* variants do not leak */
+    /* the reference: its settings on the scene, its own seed, rendered at the images' size */
+    const struct job *r = &c->scenes[0].ref_job;
+    CHECK(c->scenes[0].ref_kind == COMPARE_REF_SETTINGS && r->sampler == SAMPLER_JITTER && r->threshold == 2);
+    CHECK(r->seed == COMPARE_REF_SEED && r->width == 40);
+    compare_free(c);
+}
+
+static void test_two_keys_no_sweep(void)
+{
+    struct err e;
+    struct compare *c =
+        compare_load(job_file("zip.yaml", "scene: SCENE\nwidth: 8\nheight: 6\n"
+                                          "sweep: { threshold: [10, 5], light_threshold: [20, 10] }\n"
+                                          "variants:\n  - { sampler: random }\n"),
+                     &e);
+    CHECK(c && c->n_points == 2 && c->n_seeds == 1 && c->n_items == 2); /* swept keys step together */
+    if (c) {
+        CHECK(strcmp(c->items[1].job.output, "checker-random-t5-lt10-s1.png") == 0);
+        CHECK(c->items[1].job.light_threshold == 10 && c->scenes[0].ref_kind == COMPARE_REF_NONE);
+        CHECK(strcmp(c->points[1], "threshold 5, light_threshold 10") == 0);
+    }
+    compare_free(c);
+    c = compare_load(
+        job_file("plain.yaml", "scene: SCENE\nseed: 9\nvariants:\n  - { sampler: jitter, threshold: 4 }\n"),
+        &e);
+    CHECK(c && c->n_points == 1 && strcmp(c->points[0], "as set") == 0);
+    CHECK(c && strcmp(c->items[0].job.output, "checker-jitter-t4-t4-s9.png") == 0);
+    compare_free(c);
+    CHECK(compare_is_compare_job(job_file("single.yaml", "scene: SCENE\n")) == 0);
+    CHECK(compare_is_compare_job(job_file("broken.yaml", "variants: [\n")) == 0);
+}
+
+static void test_errors(void)
+{
+    struct err e;
+    CHECK(!compare_load(job_file("e1.yaml", "scenes: [SCENE]\nvariants:\n  - { sampler: jitter, seed: 4 }\n"),
+                        &e));
+    CHECK(e.line == 3 && e.col == 24 && strstr(e.msg, "seed: not allowed in a variant: list the seeds once"));
+    CHECK(!compare_load(job_file("e2.yaml", "scenes: [SCENE]\nsweep: { threshold: 5 }\nvariants:\n  - {}\n"),
+                        &e));
+    CHECK(e.line == 2 && e.col == 21 && strstr(e.msg, "threshold: the sweep needs a non-empty list"));
+    CHECK(!compare_load(
+        job_file("e3.yaml", "scenes: [SCENE]\nvariants:\n  - { label: a }\n  - { label: a }\n"), &e));
+    CHECK(e.line == 4 && strstr(e.msg, "two variants are labelled \"a\""));
+    CHECK(!compare_load(job_file("e4.yaml", "scenes: []\nvariants:\n  - { sampler: jitter }\n"), &e));
+    CHECK(e.line == 1 && e.col == 9 && strstr(e.msg, "scenes: must be a non-empty list"));
+    CHECK(!compare_load(
+        job_file("e5.yaml", "scenes: [SCENE]\nreference: nowhere.png\nvariants:\n  - { label: a }\n"), &e));
+    CHECK(e.line == 2 && e.col == 12 && strstr(e.msg, "reference: no image file at"));
+}
+
+/* Hand-made results: relMSE falls as 1/spp for "noise", flattens for "flat". */
+static void test_stats(void)
+{
+    struct err e;
+    struct compare *c = compare_load(job_file("st.yaml", "scenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
+                                                         "sweep: { threshold: [20, 10, 5] }\nvariants:\n"
+                                                         "  - { label: noise }\n  - { label: flat }\n"),
+                                     &e);
+    CHECK(c != NULL);
+    if (!c)
+        return;
+    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
+    for (int v = 0; v < 2; v++)
+        for (int p = 0; p < 3; p++)
+            for (int k = 0; k < 2; k++) {
+                struct compare_item *it = &c->items[compare_index(c, 0, v, p, k)];
+                double spp = 25 << (2 * p); /* 25, 100, 400 */
+                it->done = it->has_error = 1;
+                it->spp_mean = spp;
+                it->wall_s = spp / 1000;
+                it->error.relmse = (v == 0 ? 1 / spp : p == 2 ? 0.0095 : 0.4 / spp + 0.005) * (k ? 1.1 : 0.9);
+            }
+    struct compare_agg a;
+    compare_aggregate(c, 0, 0, 1, &a);
+    CHECK(a.n == 2 && a.spp == 100);
+    CHECK_NEAR(a.rel, 0.01, 1e-12);
+    CHECK_NEAR(a.rel_lo, 0.009, 1e-12);
+    CHECK_NEAR(a.rel_hi, 0.011, 1e-12);
+    int order[3];
+    compare_point_order(c, 0, 0, order);
+    CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
+    char line[1024];
+    struct rgb8 ref = {0};
+    compare_stability(c, 0, 0, dir, &ref, line, sizeof line);
+    CHECK(strstr(line, "spread across 2 seeds at most 20% of the mean relMSE") != NULL);
+    CHECK(strstr(line, "relMSE ~ spp^-1.00") != NULL);
+    CHECK(strstr(line, "error keeps falling down to threshold 5") != NULL);
+    compare_stability(c, 0, 1, dir, &ref, line, sizeof line);
+    CHECK(strstr(line, "error stops falling at threshold 5") != NULL);
+    compare_stability(c, 0, 1, dir, NULL, line, sizeof line);
+    CHECK(strstr(line, "no reference") != NULL);
+    char *svg = compare_chart_svg(c);
+    CHECK(svg && strstr(svg, "checker: error against time") && strstr(svg, ">flat<"));
+    free(svg);
+    compare_free(c);
+}
+
+int main(void)
+{
+    char cwd[512];
+    snprintf(dir, sizeof dir, "/tmp/test_compare.XXXXXX");
+    if (!mkdtemp(dir) || !getcwd(cwd, sizeof cwd))
+        return 1;
+    snprintf(scene, sizeof scene, "%s/scenes/checker.yaml", cwd);
+    test_expand();
+    test_two_keys_no_sweep();
+    test_errors();
+    test_stats();
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0);
+    return check_report("test_compare");
+}

@@ -1,0 +1,77 @@
+/* compare: compare jobs (SPEC "Compare job"): scenes x variants x sweep x seeds, each an
+   ordinary render scored against a cached per-scene reference, summarised as CSV, SVG and HTML. */
+#ifndef COMPARE_H
+#define COMPARE_H
+
+#include <stdint.h>
+
+#include "job.h"
+#include "metrics.h"
+#include "run.h"
+
+/* Most images one compare job may expand to. */
+#define COMPARE_MAX_ITEMS 4096
+#define COMPARE_LABEL_MAX 64
+/* The reference's seed unless its settings give one: apart from the study's seeds, so the
+   reference's noise is independent of every image scored against it. */
+#define COMPARE_REF_SEED 1000003
+
+struct compare_scene {
+    char name[COMPARE_LABEL_MAX]; /* the scene file's stem: "checker" */
+    int width, height;            /* of every image of this scene */
+    int ref_kind;                 /* COMPARE_REF_NONE | _SETTINGS | _IMAGE */
+    struct job ref_job;           /* _SETTINGS: the reference render (output set at run time) */
+    char ref_path[JOB_PATH_MAX];  /* the reference image once known (cache or given path) */
+    int ref_reused;               /* the cached reference was reused */
+    double ref_wall_s;            /* seconds its render took (now or when it was cached) */
+};
+
+enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
+
+/* One combination: an ordinary job plus what its render measured. */
+struct compare_item {
+    struct job job;
+    int scene, variant, point, seed; /* indices */
+    int done, has_error;
+    int skipped; /* its image and sidecar were current (same hash): not rendered again */
+    double spp_mean, wall_s, cpu_s, sampler_share;
+    uint64_t spp_min, spp_max;
+    struct metrics error;
+};
+
+struct compare {
+    char path[JOB_PATH_MAX];
+    char name[JOB_NAME_MAX];
+    int n_scenes, n_variants, n_points, n_seeds, n_items;
+    struct compare_scene *scenes;
+    char (*variants)[COMPARE_LABEL_MAX];    /* labels */
+    char (*points)[COMPARE_LABEL_MAX];      /* sweep point labels: "threshold 5" */
+    char sweep_keys[COMPARE_LABEL_MAX * 2]; /* "threshold" or "threshold, light_threshold"; "" */
+    uint64_t *seeds;
+    struct compare_item *items; /* index compare_index(c, scene, variant, point, seed) */
+};
+
+/* 1 when the YAML file at path is a compare job (its root mapping has `variants:`), else 0
+   (also when it cannot be read: job_load then reports why). */
+int compare_is_compare_job(const char *path);
+
+/* Load, validate and expand the compare job at path into a new struct compare. Everything a
+   render needs is checked here (keys, values, scenes, reference images, set sizes), so a bad
+   job fails before anything renders. NULL with e = "file:line:col: key: message". */
+struct compare *compare_load(const char *path, struct err *e);
+void compare_free(struct compare *c);
+
+/* Index of an item in c->items. */
+int compare_index(const struct compare *c, int scene, int variant, int point, int seed);
+
+/* Render every reference (or reuse the cache under OUT/.cache/) and every combination, then
+   write summary.csv, chart.svg and report.html under OUT/<name>/. Returns 0, 1 when a render
+   or write failed, 2 on bad input found late (a reference image); e says why. Prints one
+   progress line per combination when o->progress and not o->quiet. */
+int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
+
+/* The command line's part: load, run and print one compare job (errors as one line
+   "file:line:col: message", then its summary line). Returns the exit status: 0, 1 or 2. */
+int compare_main(const char *path, const struct run_opts *o);
+
+#endif

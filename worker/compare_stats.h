@@ -1,0 +1,36 @@
+/* compare_stats: a compare job's results across seeds: means and spread per sweep point,
+   stability and structured error per variant, and the chart built from them. */
+#ifndef COMPARE_STATS_H
+#define COMPARE_STATS_H
+
+#include "compare.h"
+
+/* One (scene, variant, sweep point) over its seeds. rel* are relMSE; 0 when not measured. */
+struct compare_agg {
+    int n;                      /* seeds with a result */
+    double spp, wall_s, cpu_s;  /* means */
+    double rel, rel_lo, rel_hi; /* mean, min, max */
+};
+
+void compare_aggregate(const struct compare *c, int scene, int variant, int point, struct compare_agg *a);
+
+/* The sweep points of (scene, variant) ordered by mean samples per pixel, fewest first
+   (order has c->n_points entries). */
+void compare_point_order(const struct compare *c, int scene, int variant, int *order);
+
+/* relMSE of the mean of a point's seed images against ref, and the mean relMSE of the single
+   images: noise falls by the seed count when averaged, structured error (the same in every
+   seed) does not. Reads the images from dir. 0, or -1 with e filled. */
+int compare_seed_average(const struct compare *c, int scene, int variant, int point, const char *dir,
+                         const struct rgb8 *ref, double *rel_of_mean, double *mean_rel, struct err *e);
+
+/* One line for people on (scene, variant): spread across seeds, the slope of error against
+   samples, where error stops falling as the threshold drops, and structured error at the
+   densest point (ref may be NULL: then only what needs no reference). */
+void compare_stability(const struct compare *c, int scene, int variant, const char *dir,
+                       const struct rgb8 *ref, char *buf, size_t n);
+
+/* chart.svg: per scene, relMSE against wall time and against samples per pixel. */
+char *compare_chart_svg(const struct compare *c);
+
+#endif
