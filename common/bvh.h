@@ -1,9 +1,13 @@
-/* bvh: a binned-SAH bounding volume hierarchy in one flat array, traversed without recursion. */
+/* bvh: a binned-SAH bounding volume hierarchy of 4-wide nodes in one flat array, traversed
+   without recursion. */
 #ifndef BVH_H
 #define BVH_H
 
 #include "scene.h"
 #include "shape.h"
+
+/* The deepest a built tree gets (bvh_build.c); the traversal's stack is sized by it. */
+#define BVH_DEPTH 96
 
 /* Build sc->nodes and sc->prim_order over sc->prims. 0, or -1 with e filled (no memory). */
 int bvh_build(struct scene *sc, struct err *e);

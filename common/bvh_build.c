@@ -1,0 +1,246 @@
+/* bvh_build: binned surface-area-heuristic build (Wald 2007, "On fast construction of SAH-based
+   bounding volume hierarchies") collapsed into a flat array of 4-wide nodes (Dammertz et al.
+   2008, "Shallow bounding volume hierarchies for fast SIMD ray tracing"). */
+#include "bvh.h"
+
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BVH_BINS 12
+#define BVH_LEAF_MAX 4
+/* SAH splits down to this depth; below it ranges are halved until they fit a leaf, which takes
+   fewer than 32 more levels for any int count (BVH_DEPTH in all): leaves never exceed
+   BVH_LEAF_MAX prims. */
+#define BVH_SAH_DEPTH (BVH_DEPTH - 32)
+
+struct box {
+    vec3 lo, hi;
+};
+
+static struct box box_empty(void)
+{
+    return (struct box){v3(DBL_MAX, DBL_MAX, DBL_MAX), v3(-DBL_MAX, -DBL_MAX, -DBL_MAX)};
+}
+static struct box box_join(struct box a, struct box b)
+{
+    return (struct box){v3_min(a.lo, b.lo), v3_max(a.hi, b.hi)};
+}
+static double box_area(struct box b)
+{
+    vec3 d = v3_sub(b.hi, b.lo);
+    if (d.x < 0)
+        return 0;
+    return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+/* The binary SAH tree, built first and then collapsed into 4-wide nodes. */
+struct bnode {
+    struct box box;
+    int left, right; /* interior: children; leaf: -1 */
+    int start, count;
+};
+
+struct build {
+    struct scene *sc;
+    struct box *boxes;
+    vec3 *centroids;
+    int32_t *order;
+    struct bnode *bin;
+    int n_bin;
+    struct bvh_node *nodes;
+    int n_nodes;
+};
+
+/* Find the best binned split of order[start..start+count); returns axis or -1 for a leaf. */
+static int best_split(struct build *bd, int start, int count, struct box bounds, double *split_at)
+{
+    struct box cb = box_empty();
+    for (int i = start; i < start + count; i++)
+        cb = box_join(cb, (struct box){bd->centroids[bd->order[i]], bd->centroids[bd->order[i]]});
+    double best = box_area(bounds) * count; /* cost of a leaf, in units of one intersection */
+    int best_axis = -1;
+    for (int ax = 0; ax < 3; ax++) {
+        double lo = v3_get(cb.lo, ax), hi = v3_get(cb.hi, ax);
+        if (hi - lo < 1e-12)
+            continue;
+        struct box bins[BVH_BINS];
+        int cnt[BVH_BINS] = {0};
+        for (int b = 0; b < BVH_BINS; b++)
+            bins[b] = box_empty();
+        double scale = BVH_BINS / (hi - lo);
+        for (int i = start; i < start + count; i++) {
+            int p = bd->order[i];
+            int b = (int)((v3_get(bd->centroids[p], ax) - lo) * scale);
+            b = b < 0 ? 0 : b >= BVH_BINS ? BVH_BINS - 1 : b;
+            cnt[b]++;
+            bins[b] = box_join(bins[b], bd->boxes[p]);
+        }
+        double right_area[BVH_BINS];
+        int right_cnt[BVH_BINS];
+        struct box acc = box_empty();
+        int n = 0;
+        for (int b = BVH_BINS - 1; b > 0; b--) {
+            acc = box_join(acc, bins[b]);
+            n += cnt[b];
+            right_area[b] = box_area(acc);
+            right_cnt[b] = n;
+        }
+        acc = box_empty();
+        n = 0;
+        for (int b = 0; b < BVH_BINS - 1; b++) {
+            acc = box_join(acc, bins[b]);
+            n += cnt[b];
+            if (n == 0 || right_cnt[b + 1] == 0)
+                continue;
+            double cost = 0.125 * box_area(bounds) + box_area(acc) * n + right_area[b + 1] * right_cnt[b + 1];
+            if (cost < best) {
+                best = cost;
+                best_axis = ax;
+                *split_at = lo + (b + 1) / scale;
+            }
+        }
+    }
+    return best_axis;
+}
+
+/* Binary node over order[start..start+count); returns its index in bd->bin. */
+static int build_binary(struct build *bd, int start, int count, int depth)
+{
+    int idx = bd->n_bin++;
+    struct bnode *node = &bd->bin[idx];
+    node->box = box_empty();
+    for (int i = start; i < start + count; i++)
+        node->box = box_join(node->box, bd->boxes[bd->order[i]]);
+    node->left = node->right = -1;
+    node->start = start;
+    node->count = count;
+    double split = 0;
+    int ax = -1;
+    if (count > 1 && depth < BVH_SAH_DEPTH)
+        ax = best_split(bd, start, count, node->box, &split);
+    if (ax < 0 && count <= BVH_LEAF_MAX)
+        return idx;
+    int mid = start;
+    if (ax >= 0) {
+        for (int i = start; i < start + count; i++) {
+            if (v3_get(bd->centroids[bd->order[i]], ax) < split) {
+                int32_t t = bd->order[i];
+                bd->order[i] = bd->order[mid];
+                bd->order[mid++] = t;
+            }
+        }
+    }
+    if (mid == start || mid == start + count) /* no useful split: halve the range */
+        mid = start + count / 2;
+    int left = build_binary(bd, start, mid - start, depth + 1);
+    int right = build_binary(bd, mid, start + count - mid, depth + 1);
+    bd->bin[idx].left = left;
+    bd->bin[idx].right = right;
+    return idx;
+}
+
+/* Lane c of node n holds box b, rounded outward so the float box encloses the double one. */
+static void set_lane(struct bvh_node *n, int c, struct box b)
+{
+    double lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+    for (int a = 0; a < 3; a++) {
+        n->lo[a][c] = nextafterf((float)lo[a], -INFINITY);
+        n->hi[a][c] = nextafterf((float)hi[a], INFINITY);
+    }
+}
+
+/* Wide node for binary interior node b: its children, with the interior child of largest area
+   replaced by its own two children until there are four (or only leaves). Returns its index. */
+static int collapse(struct build *bd, int b)
+{
+    int idx = bd->n_nodes++;
+    int kids[4] = {bd->bin[b].left, bd->bin[b].right}, n = 2;
+    while (n < 4) {
+        int pick = -1;
+        double best = -1;
+        for (int i = 0; i < n; i++) {
+            const struct bnode *k = &bd->bin[kids[i]];
+            double area = box_area(k->box);
+            if (k->left >= 0 && area > best)
+                best = area, pick = i;
+        }
+        if (pick < 0)
+            break;
+        int split = kids[pick];
+        kids[pick] = bd->bin[split].left;
+        kids[n++] = bd->bin[split].right;
+    }
+    struct bvh_node *node = &bd->nodes[idx];
+    memset(node, 0, sizeof *node);
+    for (int c = 0; c < 4; c++)
+        for (int a = 0; a < 3; a++)
+            node->lo[a][c] = INFINITY, node->hi[a][c] = -INFINITY; /* never hit */
+    for (int c = 0; c < n; c++) {
+        const struct bnode *k = &bd->bin[kids[c]];
+        set_lane(node, c, k->box);
+        if (k->left < 0) {
+            node->child[c] = k->start;
+            node->count[c] = (uint16_t)k->count;
+            node->leaves |= (uint8_t)(1u << c);
+        }
+    }
+    for (int c = 0; c < n; c++)
+        if (bd->bin[kids[c]].left >= 0) {
+            int child = collapse(bd, kids[c]); /* bd->nodes is allocated up front: idx stays valid */
+            bd->nodes[idx].child[c] = child;
+        }
+    return idx;
+}
+
+int bvh_build(struct scene *sc, struct err *e)
+{
+    int n = sc->n_prims;
+    struct build bd = {sc, NULL, NULL, NULL, NULL, 0, NULL, 0};
+    free(sc->nodes);
+    free(sc->prim_order);
+    sc->nodes = NULL;
+    sc->prim_order = NULL;
+    sc->n_nodes = 0;
+    if (n == 0)
+        return 0;
+    bd.boxes = malloc((size_t)n * sizeof *bd.boxes);
+    bd.centroids = malloc((size_t)n * sizeof *bd.centroids);
+    bd.order = malloc((size_t)n * sizeof *bd.order);
+    bd.bin = malloc((size_t)(2 * n) * sizeof *bd.bin);
+    bd.nodes = malloc((size_t)n * sizeof *bd.nodes); /* a wide node per binary interior node at most */
+    if (!bd.boxes || !bd.centroids || !bd.order || !bd.bin || !bd.nodes) {
+        free(bd.order);
+        free(bd.nodes);
+        free(bd.bin);
+        free(bd.boxes);
+        free(bd.centroids);
+        return err_set(e, NULL, 0, 0, "out of memory building the BVH of %d primitives", n);
+    }
+    for (int i = 0; i < n; i++) {
+        shape_bounds(&sc->prims[i], &bd.boxes[i].lo, &bd.boxes[i].hi);
+        bd.centroids[i] = v3_scale(v3_add(bd.boxes[i].lo, bd.boxes[i].hi), 0.5);
+        bd.order[i] = i;
+    }
+    build_binary(&bd, 0, n, 0);
+    if (bd.bin[0].left < 0) { /* the whole scene is one leaf: a root with one child */
+        struct bvh_node *root = &bd.nodes[bd.n_nodes++];
+        memset(root, 0, sizeof *root);
+        for (int c = 0; c < 4; c++)
+            for (int a = 0; a < 3; a++)
+                root->lo[a][c] = INFINITY, root->hi[a][c] = -INFINITY;
+        set_lane(root, 0, bd.bin[0].box);
+        root->child[0] = 0;
+        root->count[0] = (uint16_t)n;
+        root->leaves = 1;
+    } else {
+        collapse(&bd, 0);
+    }
+    free(bd.boxes);
+    free(bd.centroids);
+    free(bd.bin);
+    sc->nodes = bd.nodes;
+    sc->n_nodes = bd.n_nodes;
+    sc->prim_order = bd.order;
+    return 0;
+}
