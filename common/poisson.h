@@ -1,0 +1,35 @@
+/* poisson: Bridson's fast Poisson-disk point sets, the workspace behind the poisson sampler. */
+#ifndef POISSON_H
+#define POISSON_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rng.h"
+#include "sampler.h"
+
+/* A background grid and active list sized once for one minimum distance, reused by every draw. */
+struct poisson {
+    double radius;      /* minimum distance r */
+    int side;           /* background grid: side x side cells of size 1/side <= r/sqrt(2) */
+    int pad;            /* cells of margin around it, so a neighbourhood never leaves the array */
+    int window;         /* cells per axis that cover [c - r, c + r] wherever c falls */
+    size_t stride;      /* side + 2 pad */
+    int32_t *cell;      /* stride^2: index of the sample in a cell, -1 when empty */
+    float *cell_u;      /* stride^2 each: that sample's offset inside its cell, in cell widths */
+    float *cell_v;      /* (a filter, see poisson_far_enough); 3.4e38 when empty */
+    int32_t *active;    /* Bridson's active list: indices into the set being drawn */
+    double dir[256][2]; /* r cos, r sin of 2 pi k / 256 */
+};
+
+/* Size the workspace for minimum distance radius, a grid of side cells per axis
+   (1/side <= radius/sqrt 2) and sets of at most capacity points. 0, or -1 on no memory
+   (nothing left to release). */
+int poisson_init(struct poisson *p, double radius, int side, size_t capacity);
+void poisson_release(struct poisson *p);
+
+/* Draw one maximal set with minimum distance radius into out (capacity points), consuming rng;
+   torus != 0 measures distances modulo 1. Returns the count. Allocates nothing. */
+size_t poisson_draw(struct poisson *p, struct rng *rng, struct pt2 *out, int torus);
+
+#endif
