@@ -366,10 +366,15 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
 
 int compare_main(const char *path, const struct run_opts *o)
 {
+    return compare_main_as(path, path, o, NULL, 0);
+}
+
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n)
+{
     struct err e = {0};
     char line[2048];
     double t0 = now_s();
-    struct compare *c = compare_load(path, &e);
+    struct compare *c = compare_load_as(from, path, &e);
     int rc = 2;
     if (c)
         rc = compare_run(c, o, &e);
@@ -384,6 +389,8 @@ int compare_main(const char *path, const struct run_opts *o)
         summary_line(c, now_s() - t0, o->out_dir, line, sizeof line);
     }
     fprintf(stderr, "%s\n", line);
+    if (last)
+        snprintf(last, n, "%s", line);
     compare_free(c);
     return rc;
 }

@@ -59,6 +59,10 @@ int compare_is_compare_job(const char *path);
    render needs is checked here (keys, values, scenes, reference images, set sizes), so a bad
    job fails before anything renders. NULL with e = "file:line:col: key: message". */
 struct compare *compare_load(const char *path, struct err *e);
+
+/* compare_load reading the file at `from` but naming and resolving relative paths as if it were
+   at `path` (a queue's claimed job file, moved into running/). */
+struct compare *compare_load_as(const char *from, const char *path, struct err *e);
 void compare_free(struct compare *c);
 
 /* Index of an item in c->items. */
@@ -73,5 +77,9 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
 /* The command line's part: load, run and print one compare job (errors as one line
    "file:line:col: message", then its summary line). Returns the exit status: 0, 1 or 2. */
 int compare_main(const char *path, const struct run_opts *o);
+
+/* compare_main for a job file read from `from` as if at `path`; the line printed last (the error
+   or the summary) is also copied into last (when not NULL). */
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n);
 
 #endif

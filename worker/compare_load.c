@@ -286,6 +286,11 @@ static int load_variants(struct loading *L)
 
 struct compare *compare_load(const char *path, struct err *e)
 {
+    return compare_load_as(path, path, e);
+}
+
+struct compare *compare_load_as(const char *from, const char *path, struct err *e)
+{
     struct loading L = {.e = e};
     const char *extra[] = {"scenes", "variants", "sweep", "seeds"};
     int ok = 0;
@@ -295,8 +300,12 @@ struct compare *compare_load(const char *path, struct err *e)
     }
     snprintf(L.c->path, sizeof L.c->path, "%s", path);
     job_defaults(&L.base, path);
-    if (ydoc_load(&L.d, path, e) < 0)
+    if (ydoc_load(&L.d, from, e) < 0) {
+        if (strcmp(e->file, from) == 0)
+            snprintf(e->file, sizeof e->file, "%s", path);
         goto done;
+    }
+    snprintf(L.d.file, sizeof L.d.file, "%s", path); /* messages and relative paths as at path */
     yaml_node_t *root = ydoc_root(&L.d), *k, *v;
     const char *keys[64];
     int nk = 0;

@@ -10,6 +10,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "compare.h"
 #include "fileio.h"
 #include "lease.h"
 #include "yamlx.h"
@@ -275,6 +276,37 @@ static void note_rc(struct queue *q, int rc)
         q->worst = rc;
 }
 
+/* A compare job: its combinations render into done/<name>/ as one job; a retry after a crash
+   renders only the combinations still missing (they resume by hash). Invalid: failed/. */
+static void process_compare(struct queue *q, const char *name, const char *as, const char *stem)
+{
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = &queue_stop;
+    ro.tick = tick;
+    ro.tick_arg = q;
+    char last[2048] = "";
+    int attempts = 0, rc;
+    do {
+        attempts++;
+        rc = compare_main_as(q->claim, as, &ro, last, sizeof last);
+    } while (rc == 1 && !queue_stop && attempts <= q->o->retries);
+    if (rc == 1 && queue_stop) {
+        give_back(q, name);
+        return;
+    }
+    if (!still_ours(q))
+        return;
+    if (rc == 0) {
+        file_claim(q, name, q->done);
+        return;
+    }
+    fprintf(stderr, "%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
+    write_log(q, name, stem, last, 0, attempts);
+    file_claim(q, name, q->failed);
+    note_rc(q, rc);
+}
+
 /* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
 static void process(struct queue *q, const char *name)
 {
@@ -284,6 +316,10 @@ static void process(struct queue *q, const char *name)
     struct run_result rr;
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
     snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
+    if (compare_is_compare_job(q->claim)) {
+        process_compare(q, name, as, stem);
+        return;
+    }
     if (job_load_as(q->claim, as, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
         fprintf(stderr, "%s\n%s: invalid job, moved to %s/\n", msg, name, q->failed);
