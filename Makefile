@@ -41,10 +41,16 @@ WORKER_BIN := $(BIN)/worker
 .PHONY: all test unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
-# One line naming the Debian packages when a header is missing.
+# Set-up: when libyaml or zlib headers are missing, root on Debian installs them (NO_INSTALL=1
+# skips that); otherwise, or if that fails, one line naming the Debian packages.
+HAVE_HEADERS = printf '\#include <yaml.h>\n\#include <zlib.h>\n' | $(CC) $(PKG_CFLAGS) -E -x c - >/dev/null 2>&1
 deps:
-	@printf '#include <yaml.h>\n#include <zlib.h>\n' | $(CC) $(PKG_CFLAGS) -E -x c - >/dev/null 2>&1 || \
-	  { echo "error: libyaml and zlib headers are missing: apt-get install libyaml-dev zlib1g-dev" >&2; exit 1; }
+	@$(HAVE_HEADERS) || { \
+	  if [ -z "$(NO_INSTALL)" ] && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "make: installing libyaml-dev zlib1g-dev pkg-config (apt-get)" >&2; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libyaml-dev zlib1g-dev pkg-config; } >/dev/null 2>&1; \
+	  fi; \
+	  $(HAVE_HEADERS) || { echo "error: libyaml and zlib headers are missing: apt-get install libyaml-dev zlib1g-dev" >&2; exit 1; }; }
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
