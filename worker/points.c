@@ -172,8 +172,7 @@ int points_main(int argc, char **argv)
         fprintf(stderr, "worker points: %s\n", line);
         rc = 1;
     }
-    if (rc == 0) {
-        printf("x,y\n");
+    if (rc == 0) { /* one "x,y" line per point, nothing else: a line count is the set's size */
         for (size_t k = 0; k < n; k++)
             printf("%.6f,%.6f\n", shown(p[k].x), shown(p[k].y));
         if (fflush(stdout) != 0 || ferror(stdout)) {
