@@ -22,9 +22,9 @@ int camera_init(struct camera *cam, const struct camera_desc *d, double aspect, 
     cam->origin = d->lookfrom;
     cam->horizontal = v3_scale(cam->u, d->focus_dist * vw);
     cam->vertical = v3_scale(cam->v, d->focus_dist * vh);
-    cam->lower_left = v3_sub(v3_sub(v3_sub(cam->origin, v3_scale(cam->horizontal, 0.5)),
-                                    v3_scale(cam->vertical, 0.5)),
-                             v3_scale(w, d->focus_dist));
+    cam->lower_left =
+        v3_sub(v3_sub(v3_sub(cam->origin, v3_scale(cam->horizontal, 0.5)), v3_scale(cam->vertical, 0.5)),
+               v3_scale(w, d->focus_dist));
     cam->lens_radius = d->aperture / 2;
     cam->time0 = d->shutter0;
     cam->time1 = d->shutter1;
@@ -44,7 +44,7 @@ ray camera_ray(const struct camera *cam, double s, double t, struct rng *rng)
     ray out;
     out.orig = origin;
     out.dir = v3_sub(target, origin);
-    out.time = cam->time0 == cam->time1 ? cam->time0
-                                        : cam->time0 + rng_uniform32(rng) * (cam->time1 - cam->time0);
+    out.time =
+        cam->time0 == cam->time1 ? cam->time0 : cam->time0 + rng_uniform32(rng) * (cam->time1 - cam->time0);
     return out;
 }

@@ -61,8 +61,7 @@ int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *
         goto fail;
     }
     if (st.st_size < 0 || (uintmax_t)st.st_size > max_bytes || (uintmax_t)st.st_size >= SIZE_MAX) {
-        err_set(e, path, 0, 0, "file too large (%jd bytes, limit %zu)", (intmax_t)st.st_size,
-                max_bytes);
+        err_set(e, path, 0, 0, "file too large (%jd bytes, limit %zu)", (intmax_t)st.st_size, max_bytes);
         goto fail;
     }
     buf = malloc((size_t)st.st_size + 1);

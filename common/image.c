@@ -12,8 +12,7 @@ int rgb8_alloc(struct rgb8 *img, int w, int h, struct err *e)
     img->h = 0;
     img->px = NULL;
     if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
-        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h,
-                       IMAGE_MAX_SIDE);
+        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h, IMAGE_MAX_SIDE);
     uint8_t *px = calloc((size_t)w * (size_t)h, 3);
     if (!px)
         return err_set(e, NULL, 0, 0, "out of memory for a %dx%d image", w, h);

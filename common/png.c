@@ -7,8 +7,8 @@
 #define ZLIB_CONST
 #include <zlib.h>
 
-#define PNG_IDAT_MAX (1u << 20)       /* zlib bytes per IDAT chunk we write */
-#define PNG_CHUNK_MAX 0x7fffffffu     /* spec: a chunk's data is at most 2^31 - 1 bytes */
+#define PNG_IDAT_MAX (1u << 20)   /* zlib bytes per IDAT chunk we write */
+#define PNG_CHUNK_MAX 0x7fffffffu /* spec: a chunk's data is at most 2^31 - 1 bytes */
 #define PNG_ZLIB_LEVEL 6
 
 static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -40,17 +40,21 @@ static int paeth(int a, int b, int c)
 static uint8_t predict(int f, int a, int b, int c)
 {
     switch (f) {
-    case 1: return (uint8_t)a;
-    case 2: return (uint8_t)b;
-    case 3: return (uint8_t)((a + b) / 2);
-    case 4: return (uint8_t)paeth(a, b, c);
-    default: return 0;
+    case 1:
+        return (uint8_t)a;
+    case 2:
+        return (uint8_t)b;
+    case 3:
+        return (uint8_t)((a + b) / 2);
+    case 4:
+        return (uint8_t)paeth(a, b, c);
+    default:
+        return 0;
     }
 }
 
 /* Filter row cur (prev is the row above, zeros for the first) with filter f into out. */
-static void filter_row(int f, const uint8_t *cur, const uint8_t *prev, size_t n, size_t bpp,
-                       uint8_t *out)
+static void filter_row(int f, const uint8_t *cur, const uint8_t *prev, size_t n, size_t bpp, uint8_t *out)
 {
     for (size_t i = 0; i < n; i++) {
         int a = i >= bpp ? cur[i - bpp] : 0;
@@ -205,8 +209,7 @@ static int is_type(const struct png_chunk *c, const char *t)
 }
 
 /* Read the chunk at *pos into c and advance; every length is checked against len. */
-static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t *pos,
-                      struct png_chunk *c)
+static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t *pos, struct png_chunk *c)
 {
     size_t left = len - *pos;
     if (left == 0)
@@ -217,8 +220,7 @@ static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t
     for (int i = 0; i < 4; i++) {
         int ch = p[4 + i];
         if (!((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')))
-            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad chunk type at offset %zu",
-                           *pos);
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad chunk type at offset %zu", *pos);
         c->type[i] = (char)ch;
     }
     c->type[4] = '\0';
@@ -227,8 +229,7 @@ static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t
         return err_set(d->e, d->name, 0, 0, "corrupt PNG: chunk %s has length %lu", c->type,
                        (unsigned long)c->len);
     if (c->len > left - 12)
-        return err_set(d->e, d->name, 0, 0, "truncated PNG: chunk %s runs past end of file",
-                       c->type);
+        return err_set(d->e, d->name, 0, 0, "truncated PNG: chunk %s runs past end of file", c->type);
     c->data = p + 8;
     uLong crc = crc32(0L, p + 4, 4 + c->len);
     if ((uint32_t)crc != get_be32(p + 8 + c->len))
@@ -241,11 +242,16 @@ static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t
 static int channels_of(int color_type)
 {
     switch (color_type) {
-    case 0: return 1; /* gray */
-    case 2: return 3; /* RGB */
-    case 4: return 2; /* gray + alpha */
-    case 6: return 4; /* RGBA */
-    default: return 0;
+    case 0:
+        return 1; /* gray */
+    case 2:
+        return 3; /* RGB */
+    case 4:
+        return 2; /* gray + alpha */
+    case 6:
+        return 4; /* RGBA */
+    default:
+        return 0;
     }
 }
 
@@ -262,8 +268,8 @@ static int parse_ihdr(struct png_dec *d, const struct png_chunk *c)
         return err_set(d->e, d->name, 0, 0, "unsupported PNG: size %lux%lu (sides must be 1..%d)",
                        (unsigned long)w, (unsigned long)h, IMAGE_MAX_SIDE);
     if ((uint64_t)w * h > (uint64_t)IMAGE_MAX_PIXELS)
-        return err_set(d->e, d->name, 0, 0, "unsupported PNG: %lux%lu is over %ld pixels",
-                       (unsigned long)w, (unsigned long)h, IMAGE_MAX_PIXELS);
+        return err_set(d->e, d->name, 0, 0, "unsupported PNG: %lux%lu is over %ld pixels", (unsigned long)w,
+                       (unsigned long)h, IMAGE_MAX_PIXELS);
     if (ct == 3)
         return err_set(d->e, d->name, 0, 0, "unsupported PNG: palette images (color type 3)");
     if (!channels_of(ct))
@@ -306,16 +312,14 @@ static int feed_idat(struct png_dec *d, const struct png_chunk *c)
         if (zr == Z_STREAM_END) {
             d->z_done = 1;
             if (d->zs.total_out != d->raw_len)
-                return err_set(d->e, d->name, 0, 0,
-                               "corrupt PNG: image data is %lu bytes, expected %zu",
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: image data is %lu bytes, expected %zu",
                                (unsigned long)d->zs.total_out, d->raw_len);
             return 0;
         }
         /* With input left, no progress means the output buffer is full. */
         if (zr == Z_BUF_ERROR)
             return err_set(d->e, d->name, 0, 0,
-                           "corrupt PNG: image data is larger than the expected %zu bytes",
-                           d->raw_len);
+                           "corrupt PNG: image data is larger than the expected %zu bytes", d->raw_len);
         if (zr != Z_OK)
             return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad zlib data in IDAT (%s)",
                            d->zs.msg ? d->zs.msg : "unexpected zlib state");
@@ -335,8 +339,8 @@ static int unfilter_image(struct png_dec *d)
         uint8_t *row = d->raw + (size_t)y * (stride + 1);
         if (row[0] > 4) {
             free(zero);
-            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad filter type %d on row %lu",
-                           row[0], (unsigned long)y);
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad filter type %d on row %lu", row[0],
+                           (unsigned long)y);
         }
         unfilter_row(row[0], row + 1, prev, stride, (size_t)d->channels);
         prev = row + 1;
@@ -349,8 +353,8 @@ static int unfilter_image(struct png_dec *d)
 static int to_rgb(const struct png_dec *d, struct rgb8 *out)
 {
     if (rgb8_alloc(out, (int)d->w, (int)d->h, d->e) < 0)
-        return err_set(d->e, d->name, 0, 0, "out of memory for a %lux%lu PNG",
-                       (unsigned long)d->w, (unsigned long)d->h);
+        return err_set(d->e, d->name, 0, 0, "out of memory for a %lux%lu PNG", (unsigned long)d->w,
+                       (unsigned long)d->h);
     size_t stride = (size_t)d->w * (size_t)d->channels;
     uint8_t *dst = out->px;
     for (uint32_t y = 0; y < d->h; y++) {
@@ -374,8 +378,7 @@ static int read_chunks(struct png_dec *d, const uint8_t *data, size_t len)
         if (next_chunk(d, data, len, &pos, &c) < 0)
             return -1;
         if (!d->raw && !is_type(&c, "IHDR"))
-            return err_set(d->e, d->name, 0, 0, "corrupt PNG: first chunk is %s, expected IHDR",
-                           c.type);
+            return err_set(d->e, d->name, 0, 0, "corrupt PNG: first chunk is %s, expected IHDR", c.type);
         if (is_type(&c, "IHDR")) {
             if (d->raw)
                 return err_set(d->e, d->name, 0, 0, "corrupt PNG: second IHDR chunk");
@@ -391,8 +394,7 @@ static int read_chunks(struct png_dec *d, const uint8_t *data, size_t len)
             if (d->color_type == 0 || d->color_type == 4)
                 return err_set(d->e, d->name, 0, 0, "corrupt PNG: PLTE chunk in a gray image");
         } else if (!(c.type[0] & 0x20)) {
-            return err_set(d->e, d->name, 0, 0, "unsupported PNG: unknown critical chunk %s",
-                           c.type);
+            return err_set(d->e, d->name, 0, 0, "unsupported PNG: unknown critical chunk %s", c.type);
         }
     }
 }

@@ -275,4 +275,3 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
     *caller_rng = local;
     return count;
 }
-

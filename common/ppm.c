@@ -19,8 +19,7 @@ struct ppm_cur {
 };
 
 /* Fill e at the cursor's line and column. Always returns -1. */
-__attribute__((format(printf, 2, 3))) static int ppm_fail(const struct ppm_cur *c,
-                                                           const char *fmt, ...)
+__attribute__((format(printf, 2, 3))) static int ppm_fail(const struct ppm_cur *c, const char *fmt, ...)
 {
     char msg[sizeof c->e->msg];
     va_list ap;
@@ -113,16 +112,16 @@ static int read_raw(struct ppm_cur *c, unsigned long maxval, struct rgb8 *out)
     size_t n = (size_t)out->w * (size_t)out->h * 3;
     size_t left = c->len - c->pos;
     if (left / bytes < n)
-        return err_set(c->e, c->name, 0, 0,
-                       "truncated PPM: pixel data is %zu bytes, expected %zu", left, n * bytes);
+        return err_set(c->e, c->name, 0, 0, "truncated PPM: pixel data is %zu bytes, expected %zu", left,
+                       n * bytes);
     const uint8_t *s = c->p + c->pos;
     for (size_t i = 0; i < n; i++, s += bytes) {
         unsigned long v = bytes == 2 ? (unsigned long)s[0] << 8 | s[1] : s[0];
         if (v > maxval) {
             size_t px = i / 3;
             return err_set(c->e, c->name, 0, 0,
-                           "corrupt PPM: sample %lu exceeds maxval %lu at pixel (%zu, %zu)", v,
-                           maxval, px % (size_t)out->w, px / (size_t)out->w);
+                           "corrupt PPM: sample %lu exceeds maxval %lu at pixel (%zu, %zu)", v, maxval,
+                           px % (size_t)out->w, px / (size_t)out->w);
         }
         out->px[i] = scale(v, maxval);
     }
@@ -163,8 +162,7 @@ int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *o
     if (h < 1)
         return ppm_fail(&c, "corrupt PPM: height must be at least 1");
     if (w * h > (unsigned long)IMAGE_MAX_PIXELS)
-        return ppm_fail(&c, "unsupported PPM: %lux%lu is over %ld pixels", w, h,
-                        IMAGE_MAX_PIXELS);
+        return ppm_fail(&c, "unsupported PPM: %lux%lu is over %ld pixels", w, h, IMAGE_MAX_PIXELS);
     if (read_uint(&c, PPM_MAXVAL_MAX, "maxval", &maxval) < 0)
         return -1;
     if (maxval < 1)

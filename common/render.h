@@ -18,12 +18,12 @@ struct render_settings {
 /* Counters one process accumulates; summed by the parent. */
 struct render_stats {
     uint64_t pixels;
-    uint64_t samples;      /* camera samples = camera rays */
-    uint64_t rays;         /* path segments traced (camera rays included) */
-    uint64_t light_sets;   /* light point sets drawn */
-    uint64_t nonfinite;    /* samples dropped for NaN/inf */
+    uint64_t samples;    /* camera samples = camera rays */
+    uint64_t rays;       /* path segments traced (camera rays included) */
+    uint64_t light_sets; /* light point sets drawn */
+    uint64_t nonfinite;  /* samples dropped for NaN/inf */
     uint32_t spp_min, spp_max;
-    double sampler_s;      /* seconds spent drawing point sets */
+    double sampler_s; /* seconds spent drawing point sets */
 };
 
 struct render_ctx;

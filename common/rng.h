@@ -59,7 +59,8 @@ static inline uint32_t rng_below(struct rng *r, uint32_t n)
 /* The stream for one pixel of one job: depends on (seed, x, y) only. */
 static inline void rng_pixel(struct rng *r, uint64_t seed, int x, int y, uint64_t purpose)
 {
-    uint64_t key = rng_mix64(seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32) | (uint32_t)y) ^ (purpose * 0xd1b54a32d192ed03ULL));
+    uint64_t key = rng_mix64(seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32) | (uint32_t)y) ^
+                             (purpose * 0xd1b54a32d192ed03ULL));
     rng_seed(r, key, rng_mix64(key + 1));
 }
 

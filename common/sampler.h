@@ -33,8 +33,8 @@ struct sampler;
 /* A sampler for (kind, threshold in (0,100]). pool_size > 0 with kind poisson draws that many
    toroidal Poisson sets once from pool_seed (see sampler_draw). Returns NULL and fills e on a bad
    threshold (e.g. a set over SAMPLER_MAX_POINTS) or out of memory. Free with sampler_free. */
-struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size,
-                            uint64_t pool_seed, struct err *e);
+struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
+                            struct err *e);
 void sampler_free(struct sampler *s);
 
 /* Capacity an `out` array passed to sampler_draw must have. */

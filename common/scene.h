@@ -24,11 +24,11 @@ enum mat_type { MAT_LAMBERTIAN, MAT_METAL, MAT_DIELECTRIC, MAT_LIGHT, MAT_ISOTRO
 
 struct material {
     int type;
-    vec3 albedo;  /* lambertian (when texture < 0), metal */
-    int texture;  /* index into scene textures, or -1 */
-    double fuzz;  /* metal */
-    double ior;   /* dielectric */
-    vec3 emit;    /* light */
+    vec3 albedo; /* lambertian (when texture < 0), metal */
+    int texture; /* index into scene textures, or -1 */
+    double fuzz; /* metal */
+    double ior;  /* dielectric */
+    vec3 emit;   /* light */
 };
 
 enum prim_type {
@@ -58,11 +58,11 @@ struct prim {
             double radius;
         } sphere;
         struct {
-            int axis;         /* normal axis: 0 = x (plane yz), 1 = y (xz), 2 = z (xy) */
-            double a0, a1;    /* extent along the first in-plane axis */
-            double b0, b1;    /* extent along the second in-plane axis */
-            double k;         /* the plane's coordinate on the normal axis */
-            vec3 n, ea, eb;   /* derived: unit vectors along the normal axis and the in-plane axes */
+            int axis;       /* normal axis: 0 = x (plane yz), 1 = y (xz), 2 = z (xy) */
+            double a0, a1;  /* extent along the first in-plane axis */
+            double b0, b1;  /* extent along the second in-plane axis */
+            double k;       /* the plane's coordinate on the normal axis */
+            vec3 n, ea, eb; /* derived: unit vectors along the normal axis and the in-plane axes */
         } rect;
         struct {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */

@@ -15,32 +15,89 @@ typedef struct {
     double time;
 } ray;
 
-static inline vec3 v3(double x, double y, double z) { return (vec3){x, y, z}; }
-static inline vec3 v3_add(vec3 a, vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static inline vec3 v3_sub(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-static inline vec3 v3_mul(vec3 a, vec3 b) { return v3(a.x * b.x, a.y * b.y, a.z * b.z); }
-static inline vec3 v3_scale(vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
-static inline vec3 v3_neg(vec3 a) { return v3(-a.x, -a.y, -a.z); }
-static inline double v3_dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline vec3 v3(double x, double y, double z)
+{
+    return (vec3){x, y, z};
+}
+static inline vec3 v3_add(vec3 a, vec3 b)
+{
+    return v3(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+static inline vec3 v3_sub(vec3 a, vec3 b)
+{
+    return v3(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+static inline vec3 v3_mul(vec3 a, vec3 b)
+{
+    return v3(a.x * b.x, a.y * b.y, a.z * b.z);
+}
+static inline vec3 v3_scale(vec3 a, double s)
+{
+    return v3(a.x * s, a.y * s, a.z * s);
+}
+static inline vec3 v3_neg(vec3 a)
+{
+    return v3(-a.x, -a.y, -a.z);
+}
+static inline double v3_dot(vec3 a, vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 static inline vec3 v3_cross(vec3 a, vec3 b)
 {
     return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
-static inline double v3_len2(vec3 a) { return v3_dot(a, a); }
-static inline double v3_len(vec3 a) { return sqrt(v3_dot(a, a)); }
-static inline vec3 v3_unit(vec3 a) { return v3_scale(a, 1.0 / v3_len(a)); }
-static inline vec3 v3_fma(vec3 a, vec3 b, double s) { return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
-static inline double v3_get(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+static inline double v3_len2(vec3 a)
+{
+    return v3_dot(a, a);
+}
+static inline double v3_len(vec3 a)
+{
+    return sqrt(v3_dot(a, a));
+}
+static inline vec3 v3_unit(vec3 a)
+{
+    return v3_scale(a, 1.0 / v3_len(a));
+}
+static inline vec3 v3_fma(vec3 a, vec3 b, double s)
+{
+    return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s);
+}
+static inline double v3_get(vec3 a, int axis)
+{
+    return axis == 0 ? a.x : axis == 1 ? a.y : a.z;
+}
 /* min and max without libm's fmin/fmax calls (no -ffast-math here, so those are not inlined);
    unlike them these return b when a is NaN. */
-static inline double d_min(double a, double b) { return a < b ? a : b; }
-static inline double d_max(double a, double b) { return a > b ? a : b; }
-static inline vec3 v3_min(vec3 a, vec3 b) { return v3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
-static inline vec3 v3_max(vec3 a, vec3 b) { return v3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
-static inline int v3_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
-static inline vec3 ray_at(const ray *r, double t) { return v3_fma(r->orig, r->dir, t); }
+static inline double d_min(double a, double b)
+{
+    return a < b ? a : b;
+}
+static inline double d_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+static inline vec3 v3_min(vec3 a, vec3 b)
+{
+    return v3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z));
+}
+static inline vec3 v3_max(vec3 a, vec3 b)
+{
+    return v3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z));
+}
+static inline int v3_finite(vec3 a)
+{
+    return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
+}
+static inline vec3 ray_at(const ray *r, double t)
+{
+    return v3_fma(r->orig, r->dir, t);
+}
 
-static inline vec3 v3_reflect(vec3 v, vec3 n) { return v3_sub(v, v3_scale(n, 2 * v3_dot(v, n))); }
+static inline vec3 v3_reflect(vec3 v, vec3 n)
+{
+    return v3_sub(v, v3_scale(n, 2 * v3_dot(v, n)));
+}
 static inline vec3 v3_refract(vec3 uv, vec3 n, double etai_over_etat)
 {
     double cos_theta = d_min(v3_dot(v3_neg(uv), n), 1.0);
@@ -58,14 +115,24 @@ static inline void v3_sincos_turn(double u, double *s, double *c)
     double x4 = 4 * u;
     int q = (int)x4; /* u >= 0: truncation is floor */
     double x = (x4 - q - 0.5) * (PI / 2), x2 = x * x;
-    double sn = x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
-                x2 * (-1.0 / 39916800 + x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000))))))));
-    double cs = 1 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
-                x2 * (-1.0 / 3628800 + x2 * (1.0 / 479001600 + x2 * (-1.0 / 87178291200 +
-                x2 * (1.0 / 20922789888000))))))));
+    double sn =
+        x * (1 + x2 * (-1.0 / 6 +
+                       x2 * (1.0 / 120 +
+                             x2 * (-1.0 / 5040 +
+                                   x2 * (1.0 / 362880 +
+                                         x2 * (-1.0 / 39916800 +
+                                               x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000))))))));
+    double cs =
+        1 + x2 * (-1.0 / 2 +
+                  x2 * (1.0 / 24 +
+                        x2 * (-1.0 / 720 +
+                              x2 * (1.0 / 40320 +
+                                    x2 * (-1.0 / 3628800 +
+                                          x2 * (1.0 / 479001600 +
+                                                x2 * (-1.0 / 87178291200 + x2 * (1.0 / 20922789888000))))))));
     const double half_sqrt2 = 0.70710678118654752440;
     double s0 = (sn + cs) * half_sqrt2, c0 = (cs - sn) * half_sqrt2; /* of x + pi/4 */
-    double s1 = q & 1 ? c0 : s0, c1 = q & 1 ? -s0 : c0;          /* a quarter turn on */
+    double s1 = q & 1 ? c0 : s0, c1 = q & 1 ? -s0 : c0;              /* a quarter turn on */
     *s = q & 2 ? -s1 : s1;
     *c = q & 2 ? -c1 : c1;
 }

@@ -103,8 +103,8 @@ static uint8_t *ref_filter(const uint8_t *s, int w, int h, int ch, int mode, siz
 
 /* A PNG with the given IHDR fields around raw (filtered rows), IDAT split every `split` bytes of
    zlib data (0: one IDAT), and an optional extra chunk before the first IDAT. */
-static struct buf ref_png(uint32_t w, uint32_t h, int depth, int ct, int interlace,
-                          const uint8_t *raw, size_t raw_len, size_t split, const char *extra)
+static struct buf ref_png(uint32_t w, uint32_t h, int depth, int ct, int interlace, const uint8_t *raw,
+                          size_t raw_len, size_t split, const char *extra)
 {
     struct buf b = {0};
     uint8_t ihdr[13] = {0};
@@ -224,9 +224,9 @@ static void test_float_to_rgb8(void)
     image_float_to_rgb8(in, 1, 1, out);
     CHECK(out[0] == 0 && out[1] == 255 && out[2] == 128);
     image_float_to_rgb8(in + 3, 1, 1, out);
-    CHECK(out[0] == 0);  /* NaN */
-    CHECK(out[1] == 0);  /* negative */
-    CHECK(out[2] == 255); /* above 1 */
+    CHECK(out[0] == 0);                         /* NaN */
+    CHECK(out[1] == 0);                         /* negative */
+    CHECK(out[2] == 255);                       /* above 1 */
     image_float_to_rgb8(in + 6, 1, 1, out + 6); /* writes out[6..8] only */
     CHECK(out[6] == 255 && out[7] == 181 && out[8] == 0);
     image_float_to_rgb8(in, 0, 5, out); /* empty image writes nothing */
@@ -532,11 +532,30 @@ static void test_ppm_maxval(void)
 static void test_ppm_garbage(void)
 {
     const char *bad[] = {
-        "", "P", "P3", "P6 ", "P5 1 1 255\n\x01", "P7 1 1 255\n", "Q6 1 1 255\n", "P61 1 255\n",
-        "P6 0 1 255\n", "P6 1 0 255\n", "P6 1 1 0\n", "P6 1 1 65536\n", "P6 -1 1 255\n",
-        "P6 99999999999999999999999999 1 255\n", "P6 1x 1 255\nabc", "P6 40000 1 255\n",
-        "P6 32768 32768 255\n", "P6 1 1 255#\nabc", "P6 1 1 255", "P3 1 1 255 1 2 256",
-        "P3 1 1 255 1 2 -3", "P3 1 1 255 1 2", "P3 1 1 255 1 2 3x", "P6 1 1 255\n\x01\x02",
+        "",
+        "P",
+        "P3",
+        "P6 ",
+        "P5 1 1 255\n\x01",
+        "P7 1 1 255\n",
+        "Q6 1 1 255\n",
+        "P61 1 255\n",
+        "P6 0 1 255\n",
+        "P6 1 0 255\n",
+        "P6 1 1 0\n",
+        "P6 1 1 65536\n",
+        "P6 -1 1 255\n",
+        "P6 99999999999999999999999999 1 255\n",
+        "P6 1x 1 255\nabc",
+        "P6 40000 1 255\n",
+        "P6 32768 32768 255\n",
+        "P6 1 1 255#\nabc",
+        "P6 1 1 255",
+        "P3 1 1 255 1 2 256",
+        "P3 1 1 255 1 2 -3",
+        "P3 1 1 255 1 2",
+        "P3 1 1 255 1 2 3x",
+        "P6 1 1 255\n\x01\x02",
         "P3 1 1 255 1 2 99999999999999999999999999999",
     };
     int failed = 0;

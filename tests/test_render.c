@@ -217,7 +217,8 @@ static void test_bvh(void)
     rng_seed(&r, 9, 9);
     for (int i = 0; i < 500; i++) {
         struct prim p = {.type = PRIM_SPHERE, .material = 0};
-        p.g.sphere.center = v3(rng_uniform(&r) * 20 - 10, rng_uniform(&r) * 20 - 10, rng_uniform(&r) * 20 - 10);
+        p.g.sphere.center =
+            v3(rng_uniform(&r) * 20 - 10, rng_uniform(&r) * 20 - 10, rng_uniform(&r) * 20 - 10);
         p.g.sphere.radius = 0.1 + rng_uniform(&r) * 0.5;
         scene_add_prim(sc, &p);
     }

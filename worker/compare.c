@@ -157,11 +157,11 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
     if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
     char text[JOB_PATH_MAX + 512];
-    int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %s worker %s", j->width,
-                     j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
-                     j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool,
-                     j->light_sampling, j->reference, WORKER_VERSION);
+    int n = snprintf(
+        text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %s worker %s",
+        j->width, j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
+        j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, j->light_sampling,
+        j->reference, WORKER_VERSION);
     *hash = fnv1a(fnv1a(0xcbf29ce484222325ULL, data, len), text, (size_t)n);
     free(data);
     return 0;

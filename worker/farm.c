@@ -77,7 +77,8 @@ float *farm_framebuffer_new(int w, int h, struct err *e)
     size_t bytes = (size_t)w * (size_t)h * 3 * sizeof(float);
     void *p = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) {
-        err_set(e, NULL, 0, 0, "cannot map a %dx%d framebuffer (%zu MB): %s", w, h, bytes >> 20, strerror(errno));
+        err_set(e, NULL, 0, 0, "cannot map a %dx%d framebuffer (%zu MB): %s", w, h, bytes >> 20,
+                strerror(errno));
         return NULL;
     }
     return p;

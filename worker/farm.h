@@ -45,8 +45,8 @@ struct farm_job {
 float *farm_framebuffer_new(int w, int h, struct err *e);
 void farm_framebuffer_free(float *rgb, int w, int h);
 
-/* Render fj into rgb (from farm_framebuffer_new) (width*height*3 floats, linear). Rows are split over the processes as
-   row % processes; every pixel depends only on (seed, x, y), so any split gives the same bytes.
+/* Render fj into rgb (from farm_framebuffer_new) (width*height*3 floats, linear). Rows are split over the
+   processes as row % processes; every pixel depends only on (seed, x, y), so any split gives the same bytes.
    0 on success; -1 with e filled when a child fails (exit code or signal: the others are
    killed and reaped; res->child_crashed, res->child_signal say so), when *fj->stop becomes set
    (children killed and reaped; res->stopped), or when a resource is missing. A child whose

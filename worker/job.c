@@ -9,12 +9,10 @@
 #include "fileio.h"
 #include "hash.h"
 
-const char *const job_keys[] = {"name",       "scene",        "width",   "height",
-                                "sampler",    "threshold",    "light_sampler",
-                                "light_threshold", "max_depth", "seed",   "processes",
-                                "format",     "output",       "reference", "poisson_pool",
-                                "light_sampling", "priority",
-                                NULL};
+const char *const job_keys[] = {
+    "name",          "scene",           "width",        "height",         "sampler",   "threshold",
+    "light_sampler", "light_threshold", "max_depth",    "seed",           "processes", "format",
+    "output",        "reference",       "poisson_pool", "light_sampling", "priority",  NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
 {
@@ -98,21 +96,20 @@ static int safe_name(const char *s)
     if (!*s || !strcmp(s, ".") || !strcmp(s, ".."))
         return 0;
     for (; *s; s++)
-        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') ||
-              *s == '-' || *s == '_' || *s == '.'))
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') || *s == '-' ||
+              *s == '_' || *s == '.'))
             return 0;
     return 1;
 }
 
-static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sampler_kind *out,
-                       struct err *e)
+static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sampler_kind *out, struct err *e)
 {
     const char *s;
     if (yget_string(d, v, key, &s, e) < 0)
         return -1;
     if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)",
-                         key, s);
+        return ydoc_fail(
+            d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)", key, s);
     return 0;
 }
 
@@ -127,7 +124,8 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double
     const char *s = yscalar(v);
     double t;
     if (yget_double(d, v, key, &t, e) < 0 || !(t > 0 && t <= 100))
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"", key, s ? s : "a non-scalar");
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"", key,
+                         s ? s : "a non-scalar");
     *out = t;
     return 0;
 }
@@ -141,7 +139,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(d, v, e, "name: must be letters, digits, '-', '_' or '.' (at most %d), got \"%.40s\"",
+            return ydoc_fail(d, v, e,
+                             "name: must be letters, digits, '-', '_' or '.' (at most %d), got \"%.40s\"",
                              JOB_NAME_MAX - 1, s);
         snprintf(j->name, sizeof j->name, "%s", s);
     } else if (!strcmp(k, "scene")) {
@@ -225,9 +224,8 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
     size_t n = sampler_capacity(k, t);
     if (n <= SAMPLER_MAX_POINTS)
         return 0;
-    return err_set(e, j->path, pos[0], pos[1],
-                   "%s: %g would make up to %zu %s points per set (limit %d)", key, t, n,
-                   sampler_kind_name(k), SAMPLER_MAX_POINTS);
+    return err_set(e, j->path, pos[0], pos[1], "%s: %g would make up to %zu %s points per set (limit %d)",
+                   key, t, n, sampler_kind_name(k), SAMPLER_MAX_POINTS);
 }
 
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
@@ -236,8 +234,8 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     if (!j->has_light_sampler)
         j->light_sampler = j->sampler;
     if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
-        check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold,
-                       "light_threshold", e) < 0)
+        check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
+                       e) < 0)
         return -1;
     if (j->has_output && !j->has_format)
         j->format = has_suffix(j->output, ".ppm") ? IMG_PPM : IMG_PNG;

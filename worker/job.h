@@ -13,7 +13,7 @@
 #define JOB_NAME_MAX 128
 
 struct job {
-    char path[JOB_PATH_MAX];       /* the job file */
+    char path[JOB_PATH_MAX]; /* the job file */
     char name[JOB_NAME_MAX];
     char scene_path[JOB_PATH_MAX]; /* resolved */
     int width, height;             /* height 0: width / camera aspect */
@@ -23,12 +23,12 @@ struct job {
     uint64_t seed;
     int processes;
     enum img_format format;
-    char output[JOB_NAME_MAX];     /* file name under --out DIR/<name>/ */
-    char reference[JOB_PATH_MAX];  /* resolved; "" when none */
+    char output[JOB_NAME_MAX];    /* file name under --out DIR/<name>/ */
+    char reference[JOB_PATH_MAX]; /* resolved; "" when none */
     int poisson_pool;
-    int light_sampling;            /* 0: no importance sampling of lights (default 1) */
-    int priority;                  /* queue order: higher first (default 0) */
-    uint64_t hash;                 /* FNV-1a of the job file's bytes, then its scene file's */
+    int light_sampling; /* 0: no importance sampling of lights (default 1) */
+    int priority;       /* queue order: higher first (default 0) */
+    uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2];

@@ -96,10 +96,22 @@ static void close_(struct json *j, const char *c)
         put(j, "\n");
 }
 
-void json_begin_object(struct json *j, const char *key) { open_(j, key, "{"); }
-void json_end_object(struct json *j) { close_(j, "}"); }
-void json_begin_array(struct json *j, const char *key) { open_(j, key, "["); }
-void json_end_array(struct json *j) { close_(j, "]"); }
+void json_begin_object(struct json *j, const char *key)
+{
+    open_(j, key, "{");
+}
+void json_end_object(struct json *j)
+{
+    close_(j, "}");
+}
+void json_begin_array(struct json *j, const char *key)
+{
+    open_(j, key, "[");
+}
+void json_end_array(struct json *j)
+{
+    close_(j, "]");
+}
 
 void json_string(struct json *j, const char *key, const char *val)
 {

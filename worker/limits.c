@@ -16,8 +16,8 @@ int limits_check_samples(const struct job *j, int width, int height, struct err 
     if (total <= LIMITS_MAX_JOB_SAMPLES)
         return 0;
     return err_set(e, j->path, j->pos_threshold[0], j->pos_threshold[1],
-                   "threshold: %dx%d pixels at up to %.0f samples each is %.3g samples (limit %.3g)",
-                   width, height, per_pixel, total, LIMITS_MAX_JOB_SAMPLES);
+                   "threshold: %dx%d pixels at up to %.0f samples each is %.3g samples (limit %.3g)", width,
+                   height, per_pixel, total, LIMITS_MAX_JOB_SAMPLES);
 }
 
 /* MemAvailable in bytes, or 0 when unknown. */
@@ -40,8 +40,8 @@ int limits_check_memory(const char *what, size_t bytes, struct err *e)
     size_t avail = mem_available();
     if (avail == 0 || bytes <= avail / 2)
         return 0;
-    return err_set(e, NULL, 0, 0, "%s needs %zu MB but only %zu MB of memory is available", what,
-                   bytes >> 20, avail >> 20);
+    return err_set(e, NULL, 0, 0, "%s needs %zu MB but only %zu MB of memory is available", what, bytes >> 20,
+                   avail >> 20);
 }
 
 int limits_check_out_dir(const char *dir, struct err *e)

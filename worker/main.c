@@ -58,8 +58,8 @@ static int diff_main(int argc, char **argv)
     double max_rmse = -1, block = 1;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--block")) {
-            if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) || block < 1 ||
-                block > 65536) {
+            if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) ||
+                block < 1 || block > 65536) {
                 fprintf(stderr, "worker diff: --block needs a whole number of pixels in [1, 65536]\n");
                 return 2;
             }

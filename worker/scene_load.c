@@ -25,7 +25,7 @@ int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out)
     return 0;
 }
 
-static const char *const camera_keys[] = {"lookfrom", "lookat", "vup", "vfov", "aperture",
+static const char *const camera_keys[] = {"lookfrom",   "lookat",  "vup",    "vfov", "aperture",
                                           "focus_dist", "shutter", "aspect", NULL};
 
 static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
@@ -150,8 +150,8 @@ static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
     if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
         return ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
     if (st.st_size > TEXTURE_MAX_BYTES)
-        return ydoc_fail(&L->d, v, L->e, "file: %s is %lld bytes, over the texture limit of %d",
-                         path, (long long)st.st_size, TEXTURE_MAX_BYTES);
+        return ydoc_fail(&L->d, v, L->e, "file: %s is %lld bytes, over the texture limit of %d", path,
+                         (long long)st.st_size, TEXTURE_MAX_BYTES);
     struct rgb8 img;
     struct err ie;
     if (imgio_read(path, &img, &ie) < 0)
@@ -187,8 +187,8 @@ static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     else if (!strcmp(type, "image"))
         rc = load_image(L, n, &t);
     else
-        return ydoc_fail(&L->d, tn, L->e, "type: unknown texture type \"%.40s\" (expected checker, noise or image)",
-                         type);
+        return ydoc_fail(&L->d, tn, L->e,
+                         "type: unknown texture type \"%.40s\" (expected checker, noise or image)", type);
     if (rc < 0)
         return -1;
     if (scene_add_texture(L->sc, &t) < 0)
@@ -228,14 +228,16 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
         allowed = "albedo texture";
     } else {
         return ydoc_fail(&L->d, tn, L->e,
-                         "type: unknown material type \"%.40s\" (expected lambertian, metal, dielectric, light or isotropic)",
+                         "type: unknown material type \"%.40s\" (expected lambertian, metal, dielectric, "
+                         "light or isotropic)",
                          type);
     }
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
         const char *name = yscalar(kk);
         if (strcmp(name, "type") && !strstr(allowed, name))
-            return ydoc_fail(&L->d, kk, L->e, "%s: not a key of a %s material (it takes: %s)", name, type, allowed);
+            return ydoc_fail(&L->d, kk, L->e, "%s: not a key of a %s material (it takes: %s)", name, type,
+                             allowed);
     }
     if ((v = ymap_get(&L->d, n, "albedo")) && loader_color(L, v, "albedo", &m.albedo) < 0)
         return -1;

@@ -6,9 +6,9 @@
 #include "scene.h"
 
 struct scene_file {
-    struct scene *scene;       /* owned */
+    struct scene *scene; /* owned */
     struct camera_desc camera;
-    double aspect;             /* camera aspect (width / height), default 1 */
+    double aspect; /* camera aspect (width / height), default 1 */
 };
 
 /* Load path into out. 0, or -1 with e = "file:line:col: key: message"; nothing to free then. */

@@ -174,8 +174,7 @@ int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_nod
     return *key && *val;
 }
 
-int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what,
-               struct err *e)
+int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what, struct err *e)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
         return ydoc_fail(d, n, e, "%s: expected a mapping of keys, got %s", what,
@@ -272,8 +271,7 @@ int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, st
     return 0;
 }
 
-int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out,
-              struct err *e)
+int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out, struct err *e)
 {
     const char *s = yscalar(n);
     char buf[64];
@@ -313,8 +311,7 @@ int yget_string(struct ydoc *d, yaml_node_t *n, const char *key, const char **ou
     return 0;
 }
 
-static int get_numbers(struct ydoc *d, yaml_node_t *n, const char *key, double *out, int count,
-                       struct err *e)
+static int get_numbers(struct ydoc *d, yaml_node_t *n, const char *key, double *out, int count, struct err *e)
 {
     if (yseq_len(n) != count) {
         char buf[64];

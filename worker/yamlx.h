@@ -32,8 +32,7 @@ int ydoc_fail(struct ydoc *d, const yaml_node_t *n, struct err *e, const char *f
 /* Check that n is a mapping whose keys are scalars from `allowed` (NULL-terminated), with no
    duplicates; an unknown key gets a "did you mean" when one is close. `what` names the mapping
    in messages ("job", "camera"). */
-int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what,
-               struct err *e);
+int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what, struct err *e);
 
 /* The value node for key in mapping n (NULL when absent). */
 yaml_node_t *ymap_get(struct ydoc *d, yaml_node_t *n, const char *key);
@@ -50,8 +49,7 @@ const char *yscalar(yaml_node_t *n);
 
 /* Typed reads; each fails with "key: must be ..., got ..." at the value's position. */
 int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e);
-int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out,
-              struct err *e);
+int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out, struct err *e);
 int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e);
 int yget_string(struct ydoc *d, yaml_node_t *n, const char *key, const char **out, struct err *e);
 int yget_vec3(struct ydoc *d, yaml_node_t *n, const char *key, vec3 *out, struct err *e);
