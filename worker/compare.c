@@ -11,6 +11,7 @@
 
 #include "compare_stats.h"
 #include "fileio.h"
+#include "hash.h"
 #include "limits.h"
 #include "report.h"
 #include "sbuf.h"
@@ -22,16 +23,6 @@ static double now_s(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t len)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < len; i++) {
-        h ^= p[i];
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-
 /* The cache key of a scene's reference: its scene file's bytes, every setting that changes the
    reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
    pixels, and its version string does not change with every commit. */
@@ -41,9 +32,9 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
     uint8_t *data;
     size_t len;
     struct err ignored;
-    uint64_t h = 0xcbf29ce484222325ULL;
+    uint64_t h = HASH_FNV_OFFSET;
     if (fileio_read_all("/proc/self/exe", 1u << 30, &data, &len, &ignored) == 0) {
-        h = fnv1a(h, data, len);
+        h = hash_bytes(h, data, len);
         free(data);
     }
     if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
@@ -53,8 +44,8 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
                      cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
-    h = fnv1a(h, data, len);
-    *key = fnv1a(h, text, (size_t)n);
+    h = hash_bytes(h, data, len);
+    *key = hash_bytes(h, text, (size_t)n);
     free(data);
     return 0;
 }
@@ -162,7 +153,7 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
         j->width, j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
         j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, j->light_sampling,
         j->reference, WORKER_VERSION);
-    *hash = fnv1a(fnv1a(0xcbf29ce484222325ULL, data, len), text, (size_t)n);
+    *hash = hash_bytes(hash_bytes(HASH_FNV_OFFSET, data, len), text, (size_t)n);
     free(data);
     return 0;
 }
