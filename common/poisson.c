@@ -9,8 +9,10 @@
 #define POISSON_TWO_PI 6.28318530717958647692
 /* Bridson's k: candidates tried around an active point before it retires. */
 #define POISSON_TRIES 30
-/* Candidates generated and checked together; divides POISSON_TRIES. */
-#define POISSON_BATCH 3
+/* Offsets within a cell in fixed point: units per cell width (int16 holds +-8 cells). */
+#define POISSON_FIXED 4096
+/* An empty cell's offsets: -5 cells, farther than r from any candidate its window tests. */
+#define POISSON_EMPTY (-5 * POISSON_FIXED)
 
 int poisson_init(struct poisson *s, double radius, int side, size_t capacity)
 {
@@ -21,16 +23,11 @@ int poisson_init(struct poisson *s, double radius, int side, size_t capacity)
     s->window = (int)ceil(2.0 * reach_cells) + 1;
     s->pad = (int)ceil(reach_cells) + 1;
     s->stride = (size_t)s->side + 2 * (size_t)s->pad;
-    for (int k = 0; k < 256; k++) {
-        s->dir[k][0] = s->radius * cos(POISSON_TWO_PI * k / 256.0);
-        s->dir[k][1] = s->radius * sin(POISSON_TWO_PI * k / 256.0);
-    }
     size_t cells = s->stride * s->stride;
     s->cell = malloc(cells * sizeof *s->cell);
-    s->cell_u = malloc(cells * sizeof *s->cell_u);
-    s->cell_v = malloc(cells * sizeof *s->cell_v);
+    s->cell_uv = malloc(2 * cells * sizeof *s->cell_uv);
     s->active = malloc(capacity * sizeof *s->active);
-    if (!s->cell || !s->cell_u || !s->cell_v || !s->active) {
+    if (!s->cell || !s->cell_uv || !s->active) {
         poisson_release(s);
         return -1;
     }
@@ -40,11 +37,10 @@ int poisson_init(struct poisson *s, double radius, int side, size_t capacity)
 void poisson_release(struct poisson *s)
 {
     free(s->cell);
-    free(s->cell_u);
-    free(s->cell_v);
+    free(s->cell_uv);
     free(s->active);
     s->cell = s->active = NULL;
-    s->cell_u = s->cell_v = NULL;
+    s->cell_uv = NULL;
 }
 
 /* Exact test: is (cx, cy) at least r from every sample in the window x window cells from
@@ -76,69 +72,111 @@ static int poisson_far_exact(const struct poisson *s, const struct pt2 *pts, dou
    emits scalar code). */
 typedef float poisson_f4 __attribute__((vector_size(16)));
 typedef int32_t poisson_i4 __attribute__((vector_size(16)));
+typedef uint32_t poisson_u4 __attribute__((vector_size(16)));
 
-/* Whether any lane of a comparison result is set: SSE's movmskps is one instruction where
-   extracting and or-ing four lanes is eight. */
-#if defined(__SSE__)
-#include <xmmintrin.h>
-static inline int poisson_any(poisson_i4 m)
+#if defined(__SSE2__) && !defined(POISSON_PORTABLE)
+#include <emmintrin.h>
+#endif
+
+#if defined(__SSE2__) && !defined(POISSON_PORTABLE)
+/* Lanes where the sample of one of 4 cells in a row (offsets at uv) is closer than the limit
+   to the candidate c, both as (u, v) pairs of int16: (du, dv) squared and summed by one
+   multiply-add (pmaddwd). */
+static inline __m128i poisson_row_near(__m128i c, const int16_t *uv, __m128i limit)
 {
-    return _mm_movemask_ps((__m128)m) != 0;
-}
-#else
-static inline int poisson_any(poisson_i4 m)
-{
-    return (m[0] | m[1] | m[2] | m[3]) != 0;
+    const __m128i d = _mm_sub_epi16(c, _mm_loadu_si128((const __m128i *)(const void *)uv));
+    return _mm_cmplt_epi32(_mm_madd_epi16(d, d), limit);
 }
 #endif
 
-static inline poisson_f4 poisson_load4(const float *p)
+/* Is some sample of the 4 x 4 cells from uv (a row every stride cells) closer than sqrt(near2)
+   to (cu, cv)? All in fixed point, POISSON_FIXED per cell width, (cu, cv) measured from the
+   first cell's corner, with cu + 2^16 cv packed in one word. One row of 4 cells is one 16-byte
+   load and five instructions, with no branch: an empty cell just lies far away. Sums stay
+   below 2^31: |du|, |dv| < 7.5 cells. */
+static inline int poisson_near4(const int16_t *uv, ptrdiff_t stride, uint32_t cuv, int32_t near2)
 {
-    poisson_f4 x;
-    memcpy(&x, p, sizeof x);
-    return x;
+    const int f = POISSON_FIXED;
+#if defined(__SSE2__) && !defined(POISSON_PORTABLE)
+    const __m128i steps = _mm_setr_epi16(0, 0, (int16_t)f, 0, (int16_t)(2 * f), 0, (int16_t)(3 * f), 0);
+    const __m128i down = _mm_setr_epi16(0, (int16_t)f, 0, (int16_t)f, 0, (int16_t)f, 0, (int16_t)f);
+    const __m128i limit = _mm_set1_epi32(near2);
+    const __m128i c0 = _mm_sub_epi16(_mm_set1_epi32((int32_t)cuv), steps);
+    const __m128i c1 = _mm_sub_epi16(c0, down), c2 = _mm_sub_epi16(c1, down), c3 = _mm_sub_epi16(c2, down);
+    const __m128i hit = _mm_or_si128(
+        _mm_or_si128(poisson_row_near(c0, uv, limit), poisson_row_near(c1, uv + 2 * stride, limit)),
+        _mm_or_si128(poisson_row_near(c2, uv + 4 * stride, limit),
+                     poisson_row_near(c3, uv + 6 * stride, limit)));
+    return _mm_movemask_epi8(hit) != 0;
+#else
+    const int32_t cu = (int16_t)(cuv & 0xffffu), cv = (int16_t)(cuv >> 16);
+    int hit = 0;
+    for (int j = 0; j < 4; j++, uv += 2 * stride)
+        for (int i = 0; i < 4; i++) {
+            int32_t du = cu - i * f - uv[2 * i], dv = cv - j * f - uv[2 * i + 1];
+            hit |= du * du + dv * dv < near2;
+        }
+    return hit;
+#endif
 }
 
-/* Lanes where a sample of 4 cells in a row (offsets u, v) is closer than sqrt(near2) to
-   (col[lane], row). */
-static inline poisson_i4 poisson_row_near(const float *u, const float *v, poisson_f4 col, float row,
-                                          float near2)
-{
-    poisson_f4 du = col - poisson_load4(u), dv = row - poisson_load4(v);
-    return du * du + dv * dv < near2;
-}
-
-/* Is some sample of the 4 x 4 cells whose offsets start at u, v closer than sqrt(near2) to
-   (cu, cv)? All in cell widths, (cu, cv) measured from the first cell's corner. One row per
-   vector, no branch: an empty cell is just far away. */
-static inline int poisson_near4(const float *u, const float *v, size_t stride, float cu, float cv,
-                                float near2)
-{
-    const poisson_f4 steps = {0.0f, 1.0f, 2.0f, 3.0f};
-    const poisson_f4 col = cu - steps, row = cv - steps;
-    poisson_i4 hit = poisson_row_near(u, v, col, row[0], near2) |
-                     poisson_row_near(u + stride, v + stride, col, row[1], near2) |
-                     poisson_row_near(u + 2 * stride, v + 2 * stride, col, row[2], near2) |
-                     poisson_row_near(u + 3 * stride, v + 3 * stride, col, row[3], near2);
-    return poisson_any(hit);
-}
-
-/* What poisson_far_enough needs, copied into locals once per draw so the compiler keeps them
-   in registers instead of reloading them after every store. */
+/* What the tests need, copied into locals once per draw so the compiler keeps them in
+   registers instead of reloading them after every store. */
 struct poisson_frame {
-    double side;        /* cells per unit length */
-    double lift;        /* 2 side - r (a hair wider, in cell widths): xs + lift > 0 */
-    int lift_cells;     /* 2 side */
-    float near2;        /* (r (1 - 1e-5))^2 in cell widths */
-    ptrdiff_t stride;   /* cells per row */
-    const float *u, *v; /* offsets of cell (0, 0), inside the margin */
+    double side;       /* cells per unit length */
+    double lift;       /* 2 side - r (a hair wider, in cell widths): xs + lift > 0 */
+    int lift_cells;    /* 2 side */
+    int32_t near2;     /* (r - 4e-4 cells)^2, in fixed point */
+    ptrdiff_t stride;  /* cells per row */
+    const int16_t *uv; /* offsets of cell (0, 0), inside the margin */
     int window;
+    float r_cells; /* r in cell widths */
+    float side_f;  /* side */
 };
 
-/* Is (cx, cy) at least r from every sample so far? This test is most of Bridson's cost, and
-   nearly every candidate fails it, so in the common case (r < 0.086: a 4 x 4 window) a single
-   precision test on offsets within cells (errors below 1e-6 relative) turns down those clearly
-   too close; the few left are settled exactly. */
+/* Four candidates around a base in cell (bi, bj) at offset (bu, bv) inside it, all in cell
+   widths: where they are relative to that cell (lu, lv), whether they lie inside the square,
+   and for the fixed point filter the first cell of the 4 x 4 window that covers
+   [c - r, c + r] (at, from cell (0, 0)) and the candidate's offset from that cell's corner
+   (cuv, packed as poisson_near4 wants). Four lanes at once in single precision: (lu, lv) are
+   below 4 in magnitude, so their rounding is under 5e-7 of a cell, and a kept candidate is
+   defined by them (its position is computed from them in double). */
+struct poisson_lanes {
+    float lu[4], lv[4];
+    int32_t inside[4], at[4];
+    uint32_t cuv[4];
+};
+
+static inline void poisson_lanes(const struct poisson_frame *f, const float *ox, const float *oy, float bu,
+                                 float bv, int bi, int bj, int32_t base_at, struct poisson_lanes *L)
+{
+    poisson_f4 dx, dy;
+    memcpy(&dx, ox, sizeof dx);
+    memcpy(&dy, oy, sizeof dy);
+    const poisson_f4 lu = bu + dx, lv = bv + dy;
+    const float lo_u = (float)-bi, hi_u = f->side_f - (float)bi;
+    const float lo_v = (float)-bj, hi_v = f->side_f - (float)bj;
+    const poisson_i4 inside = (lu >= lo_u) & (lu < hi_u) & (lv >= lo_v) & (lv < hi_v);
+    /* window start relative to the base cell: floor(l - r), with l - r + 8 > 0 (|l| < 4) */
+    const float lift = 8.0f - f->r_cells;
+    const poisson_i4 di = __builtin_convertvector(lu + lift, poisson_i4) - 8;
+    const poisson_i4 dj = __builtin_convertvector(lv + lift, poisson_i4) - 8;
+    const poisson_f4 cu = lu - __builtin_convertvector(di, poisson_f4); /* exact */
+    const poisson_f4 cv = lv - __builtin_convertvector(dj, poisson_f4);
+    const poisson_i4 qu = __builtin_convertvector(cu * (float)POISSON_FIXED + 0.5f, poisson_i4);
+    const poisson_i4 qv = __builtin_convertvector(cv * (float)POISSON_FIXED + 0.5f, poisson_i4);
+    const poisson_i4 at = base_at + dj * (int32_t)f->stride + di;
+    const poisson_u4 cuv = (poisson_u4)qu | ((poisson_u4)qv << 16);
+    memcpy(L->lu, &lu, sizeof lu);
+    memcpy(L->lv, &lv, sizeof lv);
+    memcpy(L->inside, &inside, sizeof inside);
+    memcpy(L->at, &at, sizeof at);
+    memcpy(L->cuv, &cuv, sizeof cuv);
+}
+
+/* Is (cx, cy) at least r from every sample so far? The fixed point filter first (each offset
+   rounded to 1/POISSON_FIXED cell, so a distance errs by under 3.5e-4 cells and near2 is
+   lowered by more: a candidate it turns down is truly too close), then the exact test. */
 static inline int poisson_far_enough(const struct poisson *s, const struct poisson_frame *f,
                                      const struct pt2 *pts, double cx, double cy, int torus)
 {
@@ -148,8 +186,9 @@ static inline int poisson_far_enough(const struct poisson *s, const struct poiss
     int j0 = (int)(ys + f->lift) - f->lift_cells;
     if (f->window == 4) {
         ptrdiff_t at = (ptrdiff_t)j0 * f->stride + i0;
-        if (poisson_near4(f->u + at, f->v + at, (size_t)f->stride, (float)(xs - i0), (float)(ys - j0),
-                          f->near2))
+        uint32_t cu = (uint32_t)((xs - i0) * POISSON_FIXED + 0.5),
+                 cv = (uint32_t)((ys - j0) * POISSON_FIXED + 0.5);
+        if (poisson_near4(f->uv + 2 * at, f->stride, cu | cv << 16, f->near2))
             return 0;
     }
     return poisson_far_exact(s, pts, cx, cy, i0, j0, torus);
@@ -163,7 +202,8 @@ static void poisson_insert(struct poisson *s, struct pt2 p, int32_t k, int torus
     int i = (int)(p.x * side), j = (int)(p.y * side);
     i = i > side - 1 ? side - 1 : i;
     j = j > side - 1 ? side - 1 : j;
-    float u = (float)(p.x * side - i), v = (float)(p.y * side - j);
+    int16_t u = (int16_t)((p.x * side - i) * POISSON_FIXED + 0.5); /* rounded: both are >= 0 */
+    int16_t v = (int16_t)((p.y * side - j) * POISSON_FIXED + 0.5);
     int periods = torus ? pad / side + 1 : 0;
     for (int b = -periods; b <= periods; b++) {
         int jj = j + b * side;
@@ -175,8 +215,8 @@ static void poisson_insert(struct poisson *s, struct pt2 p, int32_t k, int torus
                 continue;
             size_t at = (size_t)(jj + pad) * s->stride + (size_t)(ii + pad);
             s->cell[at] = k;
-            s->cell_u[at] = u;
-            s->cell_v[at] = v;
+            s->cell_uv[2 * at] = u;
+            s->cell_uv[2 * at + 1] = v;
         }
     }
 }
@@ -191,21 +231,60 @@ static inline double wrap_unit(double v)
     return v; /* -1e-18 + 1.0 rounds to 1.0, caught by the second loop */
 }
 
-/* A candidate around base, uniform by area in the annulus [r, 2r]: radius sqrt(r^2 + 3 r^2 u),
-   angle 2 pi v. The angle's top 8 bits pick a table direction (pre-scaled by r), the other 24
-   turn it by t < 2 pi / 256, whose sine and cosine three Taylor terms give to 1e-15 (libm's sin
-   and cos, or rejection sampling with its mispredicted branch, would cost more than the rest
-   of the algorithm). */
-static inline struct pt2 poisson_candidate(const struct poisson *s, struct rng *rng, struct pt2 base)
+/* Four candidate offsets around a sample, uniform by area in the annulus [r, 2r], scaled by
+   `scale` (r in cell widths): radius sqrt(1 + 3 u), angle 2 pi v, four lanes at once in single
+   precision (errors near 1e-7 of r; the exact test in double decides). One 64-bit draw each:
+   u from its top 24 bits, the angle from its low 26, whose top 2 bits pick the quadrant and
+   the other 24 the angle f in it. sin and cos of f come from Taylor polynomials around pi/4
+   (|g| <= pi/4, truncation below 4e-8): cos f = (cos g - sin g) / sqrt 2, sin f = (sin g + cos g) / sqrt 2, g
+   = f - pi/4. libm's sin and cos, or rejection sampling with its mispredicted branch, would cost more than
+   the rest of the algorithm. */
+static inline void poisson_offsets(uint64_t *counter, float scale, float *ox, float *oy)
 {
-    double rho = sqrt(1.0 + rng_u32(rng) * (3.0 * 0x1.0p-32));
-    uint32_t angle = rng_u32(rng);
-    const double *d = s->dir[angle >> 24];
-    double t = (angle & 0xffffffu) * (POISSON_TWO_PI * 0x1.0p-32), t2 = t * t;
-    double sin_t = t + t * t2 * (-1.0 / 6 + t2 * (1.0 / 120 - t2 * (1.0 / 5040)));
-    double cos_t = 1.0 + t2 * (-0.5 + t2 * (1.0 / 24 - t2 * (1.0 / 720)));
-    double c = rho * cos_t, sn = rho * sin_t;
-    return (struct pt2){base.x + (d[0] * c - d[1] * sn), base.y + (d[1] * c + d[0] * sn)};
+    /* four independent draws, written out: a loop here would go through memory */
+    const uint64_t c0 = *counter, step = 0x9e3779b97f4a7c15ULL;
+    const uint64_t a[4] = {rng_mix64(c0), rng_mix64(c0 + step), rng_mix64(c0 + 2 * step),
+                           rng_mix64(c0 + 3 * step)};
+    *counter = c0 + 4 * step;
+    const poisson_i4 ur = {(int32_t)(a[0] >> 40), (int32_t)(a[1] >> 40), (int32_t)(a[2] >> 40),
+                           (int32_t)(a[3] >> 40)};
+    const poisson_i4 an = {(int32_t)(a[0] & 0x3ffffff), (int32_t)(a[1] & 0x3ffffff),
+                           (int32_t)(a[2] & 0x3ffffff), (int32_t)(a[3] & 0x3ffffff)};
+    poisson_f4 u = __builtin_convertvector(ur, poisson_f4) * 0x1.0p-24f;
+    poisson_f4 rho = 1.0f + 3.0f * u;
+#if defined(__SSE__) && !defined(POISSON_PORTABLE)
+    rho = (poisson_f4)_mm_sqrt_ps((__m128)rho);
+#else
+    for (int k = 0; k < 4; k++)
+        rho[k] = sqrtf(rho[k]);
+#endif
+    const poisson_i4 quadrant = an >> 24; /* 0..3 */
+    const poisson_f4 f =
+        __builtin_convertvector(an & 0xffffff, poisson_f4) * (float)(POISSON_TWO_PI / 4 * 0x1.0p-24);
+    const poisson_f4 g = f - (float)(POISSON_TWO_PI / 8), g2 = g * g;
+    const poisson_f4 sin_g =
+        g * (1.0f + g2 * (-1.0f / 6 + g2 * (1.0f / 120 + g2 * (-1.0f / 5040 + g2 * (1.0f / 362880)))));
+    const poisson_f4 cos_g =
+        1.0f + g2 * (-0.5f + g2 * (1.0f / 24 + g2 * (-1.0f / 720 + g2 * (1.0f / 40320))));
+    const float half_sqrt2 = 0.70710678118654752f;
+    rho *= half_sqrt2 * scale;
+    const poisson_f4 c = (cos_g - sin_g) * rho, s = (sin_g + cos_g) * rho;
+    /* turn (c, s) by quadrant quarter turns: (c, s), (-s, c), (-c, -s), (s, -c), on the bits */
+    const poisson_u4 q = (poisson_u4)quadrant, odd = -(q & 1u), cb = (poisson_u4)c, sb = (poisson_u4)s;
+    poisson_u4 x = (odd & sb) | (~odd & cb), y = (odd & cb) | (~odd & sb);
+    x ^= ((q ^ (q >> 1)) & 1u) << 31;
+    y ^= (q >> 1) << 31;
+    memcpy(ox, &x, sizeof x);
+    memcpy(oy, &y, sizeof y);
+}
+
+/* Refill the buffer of candidate offsets: they do not depend on the sample they go around, so
+   they are made in bulk, where the vector arithmetic runs at full throughput instead of
+   waiting on its own latency before every test. */
+static void poisson_refill(struct poisson *s, uint64_t *counter, float scale)
+{
+    for (int k = 0; k < POISSON_OFFSETS; k += 4)
+        poisson_offsets(counter, scale, s->off_x + k, s->off_y + k);
 }
 
 /* Bridson 2007, "Fast Poisson Disk Sampling in Arbitrary Dimensions": a background grid of
@@ -215,24 +294,28 @@ static inline struct pt2 poisson_candidate(const struct poisson *s, struct rng *
 size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const int torus)
 {
     const size_t cells = s->stride * s->stride;
-    memset(s->cell, 0xff, cells * sizeof *s->cell);     /* -1 */
-    memset(s->cell_u, 0x7f, cells * sizeof *s->cell_u); /* 3.4e38: squares to +inf */
-    memset(s->cell_v, 0x7f, cells * sizeof *s->cell_v);
+    memset(s->cell, 0xff, cells * sizeof *s->cell); /* -1 */
+    for (size_t k = 0; k < 2 * cells; k++)          /* an empty cell's sample lies 5 cells away */
+        s->cell_uv[k] = POISSON_EMPTY;
 
-    const double side = s->side, r_cells = s->radius * side;
+    const double side = s->side, inv_side = 1.0 / side, r_cells = s->radius * side;
     const size_t origin = (size_t)s->pad * s->stride + (size_t)s->pad;
     const struct poisson_frame frame = {
         .side = side,
         .lift = 2.0 * side - r_cells * (1.0 + 1e-9), /* rounding never hides a sample */
         .lift_cells = 2 * s->side,
-        .near2 = (float)(r_cells * r_cells * (1.0 - 1e-5)),
+        .near2 = (int32_t)floor(pow((r_cells - 4e-4) * POISSON_FIXED, 2)),
         .stride = (ptrdiff_t)s->stride,
-        .u = s->cell_u + origin,
-        .v = s->cell_v + origin,
+        .uv = s->cell_uv + 2 * origin,
         .window = s->window,
+        .r_cells = (float)r_cells,
+        .side_f = (float)side,
     };
     size_t count = 0, nactive = 0;
     struct rng local = *caller_rng, *rng = &local; /* a copy kept in registers */
+    /* the offsets' own stream: SplitMix64 (Steele et al. 2014) over a counter from rng */
+    uint64_t counter = ((uint64_t)rng_u32(rng) << 32) | rng_u32(rng);
+    int next = POISSON_OFFSETS; /* the buffer starts empty */
     struct pt2 first = {rng_uniform(rng), rng_uniform(rng)};
     out[count] = first;
     poisson_insert(s, first, (int32_t)count, torus);
@@ -240,33 +323,42 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
 
     while (nactive > 0) {
         uint32_t a = rng_below(rng, (uint32_t)nactive);
-        struct pt2 base = out[s->active[a]];
+        const struct pt2 base = out[s->active[a]];
+        /* the base in cell widths: its cell (bi, bj) and its offset (bu, bv) inside it */
+        const double bx = base.x * side, by = base.y * side;
+        const int bi = (int)bx, bj = (int)by;
+        const float bu = (float)(bx - bi), bv = (float)(by - bj);
+        const int32_t base_at = bj * (int32_t)frame.stride + bi;
         int found = 0;
-        /* Candidates in small batches, checked before any is kept: the same law as one by one
-           (the first acceptable one is kept, the rest of its batch forgotten), but independent
-           work the processor can overlap. One outside the square becomes base itself, which
-           the check turns down, so there is no branch per candidate. */
-        for (int k = 0; k < POISSON_TRIES && !found; k += POISSON_BATCH) {
-            struct pt2 c[POISSON_BATCH];
-            int far[POISSON_BATCH];
-            for (int b = 0; b < POISSON_BATCH; b++) {
-                c[b] = poisson_candidate(s, rng, base);
-                if (torus) {
-                    c[b].x = wrap_unit(c[b].x);
-                    c[b].y = wrap_unit(c[b].y);
-                } else if ((c[b].x < 0.0) | (c[b].x >= 1.0) | (c[b].y < 0.0) | (c[b].y >= 1.0)) {
-                    c[b] = base;
-                }
+        /* Candidates four at a time, in order: the first acceptable one is kept and the rest of
+           its four forgotten, the same law as one by one. */
+        for (int k = 0; k < POISSON_TRIES && !found; k += 4) {
+            if (next == POISSON_OFFSETS) {
+                poisson_refill(s, &counter, (float)r_cells);
+                next = 0;
             }
-            for (int b = 0; b < POISSON_BATCH; b++)
-                far[b] = poisson_far_enough(s, &frame, out, c[b].x, c[b].y, torus);
-            for (int b = 0; b < POISSON_BATCH && !found; b++) {
-                if (!far[b])
+            struct poisson_lanes L;
+            poisson_lanes(&frame, s->off_x + next, s->off_y + next, bu, bv, bi, bj, base_at, &L);
+            next += 4;
+            const int lanes = POISSON_TRIES - k < 4 ? POISSON_TRIES - k : 4;
+            for (int b = 0; b < lanes; b++) {
+                if (L.inside[b] && frame.window == 4 &&
+                    poisson_near4(frame.uv + 2 * (ptrdiff_t)L.at[b], frame.stride, L.cuv[b], frame.near2))
+                    continue; /* the common case: clearly too close */
+                struct pt2 c = {(bi + (double)L.lu[b]) * inv_side, (bj + (double)L.lv[b]) * inv_side};
+                if (torus) {
+                    c.x = wrap_unit(c.x);
+                    c.y = wrap_unit(c.y);
+                } else if ((c.x < 0.0) | (c.x >= 1.0) | (c.y < 0.0) | (c.y >= 1.0)) {
                     continue;
-                out[count] = c[b];
-                poisson_insert(s, c[b], (int32_t)count, torus);
+                }
+                if (!poisson_far_enough(s, &frame, out, c.x, c.y, torus))
+                    continue;
+                out[count] = c;
+                poisson_insert(s, c, (int32_t)count, torus);
                 s->active[nactive++] = (int32_t)count++;
                 found = 1;
+                break;
             }
         }
         if (!found)

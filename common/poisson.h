@@ -8,18 +8,20 @@
 #include "rng.h"
 #include "sampler.h"
 
+/* Candidate offsets drawn ahead in one batch (a multiple of 4). */
+#define POISSON_OFFSETS 64
+
 /* A background grid and active list sized once for one minimum distance, reused by every draw. */
 struct poisson {
-    double radius;      /* minimum distance r */
-    int side;           /* background grid: side x side cells of size 1/side <= r/sqrt(2) */
-    int pad;            /* cells of margin around it, so a neighbourhood never leaves the array */
-    int window;         /* cells per axis that cover [c - r, c + r] wherever c falls */
-    size_t stride;      /* side + 2 pad */
-    int32_t *cell;      /* stride^2: index of the sample in a cell, -1 when empty */
-    float *cell_u;      /* stride^2 each: that sample's offset inside its cell, in cell widths */
-    float *cell_v;      /* (a filter, see poisson_far_enough); 3.4e38 when empty */
-    int32_t *active;    /* Bridson's active list: indices into the set being drawn */
-    double dir[256][2]; /* r cos, r sin of 2 pi k / 256 */
+    double radius;    /* minimum distance r */
+    int side;         /* background grid: side x side cells of size 1/side <= r/sqrt(2) */
+    int pad;          /* cells of margin around it, so a neighbourhood never leaves the array */
+    int window;       /* cells per axis that cover [c - r, c + r] wherever c falls */
+    size_t stride;    /* side + 2 pad */
+    int32_t *cell;    /* stride^2: index of the sample in a cell, -1 when empty */
+    int16_t *cell_uv; /* 2 stride^2: that sample's (u, v) offset inside its cell, fixed point */
+    int32_t *active;  /* Bridson's active list: indices into the set being drawn */
+    float off_x[POISSON_OFFSETS], off_y[POISSON_OFFSETS]; /* candidate offsets drawn ahead, in r */
 };
 
 /* Size the workspace for minimum distance radius, a grid of side cells per axis
