@@ -41,8 +41,8 @@ static void compare(double t, int torus, uint64_t seed)
         same = a[k].x == b[k].x && a[k].y == b[k].y;
     CHECK(same);
     if (!same)
-        fprintf(stderr, "  t=%g torus=%d seed=%llu: %zu vs %zu points\n", t, torus, (unsigned long long)seed, n,
-                m);
+        fprintf(stderr, "  t=%g torus=%d seed=%llu: %zu vs %zu points\n", t, torus, (unsigned long long)seed,
+                n, m);
     free(a);
     free(b);
     poisson_release(&fast);
