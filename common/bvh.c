@@ -1,6 +1,7 @@
 /* bvh: iterative traversal of the 4-wide BVH (bvh_build.c) that tests a node's four child
    boxes with one SIMD slab test and visits the hit children nearest first. */
 #include "bvh.h"
+#include "shape_inline.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -134,7 +135,15 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
                 continue;
             for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
                 int p = sc->prim_order[i];
-                if (shape_hit(&sc->prims[p], r, t_min, t_max, h)) {
+                const struct prim *pr = &sc->prims[p];
+                int got_p;
+                if (pr->type == PRIM_RECT && !pr->has_xform)
+                    got_p = hit_rect(pr, r, t_min, t_max, h);
+                else if (pr->type == PRIM_SPHERE && !pr->has_xform)
+                    got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, t_max, h);
+                else
+                    got_p = shape_hit(pr, r, t_min, t_max, h);
+                if (got_p) {
                     t_max = h->t;
                     t_hi = (float)t_max * grow;
                     h->prim = p;

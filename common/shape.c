@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "rng.h"
+#include "shape_inline.h"
 
 /* World -> object space for a rotate_y + translate transform. */
 static ray to_object(const struct prim *p, const ray *r)
@@ -20,12 +21,6 @@ static ray to_object(const struct prim *p, const ray *r)
 static vec3 rotate_to_world(const struct prim *p, vec3 a)
 {
     return v3(p->cos_y * a.x + p->sin_y * a.z, a.y, -p->sin_y * a.x + p->cos_y * a.z);
-}
-
-static void set_face(struct hit *h, const ray *r, vec3 outward)
-{
-    h->front = v3_dot(r->dir, outward) < 0;
-    h->n = h->front ? outward : v3_neg(outward);
 }
 
 /* Both roots t0 <= t1 of |o + t d - c| = rad; 0 when the line misses the sphere. */
@@ -44,30 +39,6 @@ static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1
     return 1;
 }
 
-/* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. */
-static int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_max, struct hit *h)
-{
-    vec3 oc = v3_sub(r->orig, c);
-    double a = v3_len2(r->dir);
-    double half_b = v3_dot(oc, r->dir);
-    double cc = v3_len2(oc) - rad * rad;
-    double disc = half_b * half_b - a * cc;
-    if (disc < 0 || a == 0)
-        return 0;
-    double sq = sqrt(disc), lo = t_min * a, hi = t_max * a;
-    double at = -half_b - sq;
-    if (!(at > lo && at < hi)) {
-        at = -half_b + sq;
-        if (!(at > lo && at < hi))
-            return 0;
-    }
-    double t = at / a;
-    h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, v3_scale(v3_sub(h->p, c), 1.0 / rad));
-    return 1;
-}
-
 void shape_prepare(struct prim *p)
 {
     if (p->type == PRIM_RECT) {
@@ -77,24 +48,6 @@ void shape_prepare(struct prim *p)
         p->g.rect.eb = v3(b == 0, b == 1, b == 2);
     }
     p->area = shape_area(p);
-}
-
-/* Dot products with the rect's unit axes pick coordinates without a branch on the axis; a
-   direction parallel to the plane gives t = +-inf or NaN, which the range test turns down. */
-static int hit_rect(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
-{
-    const vec3 n = p->g.rect.n;
-    double t = (p->g.rect.k - v3_dot(r->orig, n)) / v3_dot(r->dir, n);
-    if (!(t > t_min && t < t_max))
-        return 0;
-    vec3 q = ray_at(r, t);
-    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
-    if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
-        return 0;
-    h->t = t;
-    h->p = q;
-    set_face(h, r, p->flip ? v3_neg(n) : n);
-    return 1;
 }
 
 static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
