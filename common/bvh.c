@@ -1,13 +1,13 @@
-/* bvh: iterative traversal of the 4-wide BVH (bvh_build.c) that tests a node's four child
-   boxes with one SIMD slab test and visits the hit children nearest first. */
+/* bvh: iterative traversal of the 8-wide BVH (bvh_build.c) that tests a node's child boxes four
+   at a time with SIMD slab tests and visits the hit children nearest first. */
 #include "bvh.h"
 #include "shape_inline.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-/* A wide node is visited at most once per level and pushes at most 3 children. */
-#define BVH_STACK (3 * BVH_DEPTH + 1)
+/* A wide node is visited at most once per level and pushes at most BVH_WIDTH - 1 children. */
+#define BVH_STACK ((BVH_WIDTH - 1) * BVH_DEPTH + 1)
 
 /* Four floats in one vector register (a GCC/Clang extension; scalar code without SIMD). */
 typedef float bvh_f4 __attribute__((vector_size(16)));
@@ -72,8 +72,8 @@ struct fray {
 
 static inline void fray_axis(struct fray *fr, int a, double o, double d)
 {
-    const size_t lo = offsetof(struct bvh_node, lo) + (size_t)a * sizeof(bvh_f4);
-    const size_t hi = offsetof(struct bvh_node, hi) + (size_t)a * sizeof(bvh_f4);
+    const size_t lo = offsetof(struct bvh_node, lo) + (size_t)a * BVH_WIDTH * sizeof(float);
+    const size_t hi = offsetof(struct bvh_node, hi) + (size_t)a * BVH_WIDTH * sizeof(float);
     const int neg = signbit(d) != 0;
     double shift = fabs(o) * 0x1.0p-23;
     /* t = (plane - o) / d falls as o grows when d > 0: the near distance from o + shift */
@@ -91,20 +91,26 @@ static inline void fray_init(struct fray *fr, const ray *r)
     fray_axis(fr, 2, r->orig.z, r->dir.z);
 }
 
-/* Entry distances into node n's four child boxes; *hit gets one bit per child hit. */
-static inline bvh_f4 node_test(const struct fray *fr, const char *n, bvh_f4 t_lo, float t_hi, int *hit)
+/* Entry distances into node n's child boxes, into tn[]; returns one bit per child hit. */
+static inline int node_test(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
+                            float *tn)
 {
     const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
-    bvh_f4 tn0 = (f4_load(n + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
-    bvh_f4 tn1 = (f4_load(n + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
-    bvh_f4 tn2 = (f4_load(n + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
-    bvh_f4 tf0 = (f4_load(n + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
-    bvh_f4 tf1 = (f4_load(n + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
-    bvh_f4 tf2 = (f4_load(n + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
-    bvh_f4 tn = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
-    bvh_f4 tf = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
-    *hit = f4_mask(tn <= tf * grow);
-    return tn;
+    int hit = 0;
+    for (int q = 0; q < quads; q++) {
+        const char *m = n + (size_t)q * sizeof(bvh_f4);
+        bvh_f4 tn0 = (f4_load(m + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
+        bvh_f4 tn1 = (f4_load(m + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
+        bvh_f4 tn2 = (f4_load(m + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
+        bvh_f4 tf0 = (f4_load(m + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
+        bvh_f4 tf1 = (f4_load(m + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
+        bvh_f4 tf2 = (f4_load(m + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
+        bvh_f4 near = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
+        bvh_f4 far = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
+        hit |= f4_mask(near <= far * grow) << (4 * q);
+        memcpy(tn + 4 * q, &near, sizeof near);
+    }
+    return hit;
 }
 
 struct bvh_entry {
@@ -125,8 +131,8 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
     int sp = 0, got = 0, node = 0;
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
-        int hit;
-        bvh_f4 tn = node_test(&fr, (const char *)n, t_lo, t_hi, &hit);
+        float tn[BVH_WIDTH];
+        int hit = node_test(&fr, (const char *)n, n->quads, t_lo, t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
         int inner = hit & ~n->leaves;
         for (int m = hit & n->leaves; m; m &= m - 1) {

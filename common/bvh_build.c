@@ -1,5 +1,5 @@
 /* bvh_build: binned surface-area-heuristic build (Wald 2007, "On fast construction of SAH-based
-   bounding volume hierarchies") collapsed into a flat array of 4-wide nodes (Dammertz et al.
+   bounding volume hierarchies") collapsed into a flat array of 8-wide nodes (Dammertz et al.
    2008, "Shallow bounding volume hierarchies for fast SIMD ray tracing"). */
 #include "bvh.h"
 
@@ -34,7 +34,7 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-/* The binary SAH tree, built first and then collapsed into 4-wide nodes. */
+/* The binary SAH tree, built first and then collapsed into BVH_WIDTH-wide nodes. */
 struct bnode {
     struct box box;
     int left, right; /* interior: children; leaf: -1 */
@@ -151,12 +151,13 @@ static void set_lane(struct bvh_node *n, int c, struct box b)
 }
 
 /* Wide node for binary interior node b: its children, with the interior child of largest area
-   replaced by its own two children until there are four (or only leaves). Returns its index. */
+   replaced by its own two children until there are BVH_WIDTH (or only leaves). Returns its
+   index. */
 static int collapse(struct build *bd, int b)
 {
     int idx = bd->n_nodes++;
-    int kids[4] = {bd->bin[b].left, bd->bin[b].right}, n = 2;
-    while (n < 4) {
+    int kids[BVH_WIDTH] = {bd->bin[b].left, bd->bin[b].right}, n = 2;
+    while (n < BVH_WIDTH) {
         int pick = -1;
         double best = -1;
         for (int i = 0; i < n; i++) {
@@ -173,9 +174,10 @@ static int collapse(struct build *bd, int b)
     }
     struct bvh_node *node = &bd->nodes[idx];
     memset(node, 0, sizeof *node);
-    for (int c = 0; c < 4; c++)
+    for (int c = 0; c < BVH_WIDTH; c++)
         for (int a = 0; a < 3; a++)
             node->lo[a][c] = INFINITY, node->hi[a][c] = -INFINITY; /* never hit */
+    node->quads = (uint8_t)((n + 3) / 4);
     for (int c = 0; c < n; c++) {
         const struct bnode *k = &bd->bin[kids[c]];
         set_lane(node, c, k->box);
@@ -226,13 +228,14 @@ int bvh_build(struct scene *sc, struct err *e)
     if (bd.bin[0].left < 0) { /* the whole scene is one leaf: a root with one child */
         struct bvh_node *root = &bd.nodes[bd.n_nodes++];
         memset(root, 0, sizeof *root);
-        for (int c = 0; c < 4; c++)
+        for (int c = 0; c < BVH_WIDTH; c++)
             for (int a = 0; a < 3; a++)
                 root->lo[a][c] = INFINITY, root->hi[a][c] = -INFINITY;
         set_lane(root, 0, bd.bin[0].box);
         root->child[0] = 0;
         root->count[0] = (uint16_t)n;
         root->leaves = 1;
+        root->quads = 1;
     } else {
         collapse(&bd, 0);
     }

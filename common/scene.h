@@ -91,14 +91,16 @@ struct prim {
     } g;
 };
 
-/* A 4-wide BVH node: the boxes of up to four children, stored axis by axis so one SIMD
-   operation tests all four (bvh.c). Boxes are floats rounded outward. */
+/* A wide BVH node: the boxes of up to BVH_WIDTH children, stored axis by axis so SIMD
+   operations test four at a time (bvh.c). Boxes are floats rounded outward. */
+#define BVH_WIDTH 8
 struct bvh_node {
-    float lo[3][4], hi[3][4]; /* child c spans lo[axis][c] .. hi[axis][c]; an unused slot is empty */
-    int32_t child[4];         /* count 0: index of an interior node; else the first prim_order index */
-    uint16_t count[4];        /* prims in a leaf child; 0 for an interior child or an unused slot */
-    uint8_t leaves;           /* bit c set: child c is a leaf */
-    uint8_t pad[7];
+    float lo[3][BVH_WIDTH], hi[3][BVH_WIDTH]; /* child c spans lo[axis][c] .. hi[axis][c]; unused: empty */
+    int32_t child[BVH_WIDTH];  /* count 0: index of an interior node; else the first prim_order index */
+    uint16_t count[BVH_WIDTH]; /* prims in a leaf child; 0 for an interior child or an unused slot */
+    uint8_t leaves;            /* bit c set: child c is a leaf */
+    uint8_t quads;             /* groups of four lanes in use: the rest are empty */
+    uint8_t pad[14];
 };
 
 struct scene {

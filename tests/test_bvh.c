@@ -139,7 +139,7 @@ static void test_degenerate(void)
         CHECK(scene_finish(sc, &e) == 0);
         int small = 1;
         for (int i = 0; i < sc->n_nodes; i++)
-            for (int c = 0; c < 4; c++)
+            for (int c = 0; c < BVH_WIDTH; c++)
                 small &= sc->nodes[i].count[c] <= 4;
         CHECK(small);
         struct rng r;
