@@ -74,14 +74,16 @@ static inline void fray_axis(struct fray *fr, int a, double o, double d)
 {
     const size_t lo = offsetof(struct bvh_node, lo) + (size_t)a * BVH_WIDTH * sizeof(float);
     const size_t hi = offsetof(struct bvh_node, hi) + (size_t)a * BVH_WIDTH * sizeof(float);
-    const int neg = signbit(d) != 0;
-    double shift = fabs(o) * 0x1.0p-23;
-    /* t = (plane - o) / d falls as o grows when d > 0: the near distance from o + shift */
-    fr->o_near[a] = f4_splat((float)(neg ? o - shift : o + shift));
-    fr->o_far[a] = f4_splat((float)(neg ? o + shift : o - shift));
+    const size_t neg = signbit(d) != 0;
+    /* t = (plane - o) / d falls as o grows when d > 0: the near distance from o + shift. The
+       sign comes from d by copysign and the planes by arithmetic, not by branches, which a
+       random direction's signs would mispredict half the time. */
+    double shift = copysign(fabs(o) * 0x1.0p-23, d);
+    fr->o_near[a] = f4_splat((float)(o + shift));
+    fr->o_far[a] = f4_splat((float)(o - shift));
     fr->inv[a] = f4_splat((float)(1.0 / d));
-    fr->near[a] = neg ? hi : lo;
-    fr->far[a] = neg ? lo : hi;
+    fr->near[a] = lo + neg * (hi - lo);
+    fr->far[a] = hi - neg * (hi - lo);
 }
 
 static inline void fray_init(struct fray *fr, const ray *r)
