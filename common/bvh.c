@@ -1,4 +1,4 @@
-/* bvh: iterative traversal of the 8-wide BVH (bvh_build.c) that tests a node's child boxes four
+/* bvh: iterative traversal of the wide BVH (bvh_build.c) that tests a node's child boxes four
    at a time with SIMD slab tests and visits the hit children nearest first. */
 #include "bvh.h"
 #include "shape_inline.h"

@@ -1,4 +1,4 @@
-/* bvh: a binned-SAH bounding volume hierarchy of 8-wide nodes in one flat array, traversed
+/* bvh: a binned-SAH bounding volume hierarchy of 8- or 16-wide nodes in one flat array, traversed
    without recursion. */
 #ifndef BVH_H
 #define BVH_H

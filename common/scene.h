@@ -92,15 +92,16 @@ struct prim {
 };
 
 /* A wide BVH node: the boxes of up to BVH_WIDTH children, stored axis by axis so SIMD
-   operations test four at a time (bvh.c). Boxes are floats rounded outward. */
-#define BVH_WIDTH 8
+   operations test four at a time (bvh.c). Boxes are floats rounded outward. A scene of at most
+   BVH_WIDTH leaves is one node; larger scenes use nodes of BVH_WIDTH / 2 (bvh_build.c). */
+#define BVH_WIDTH 16
 struct bvh_node {
     float lo[3][BVH_WIDTH], hi[3][BVH_WIDTH]; /* child c spans lo[axis][c] .. hi[axis][c]; unused: empty */
     int32_t child[BVH_WIDTH];  /* count 0: index of an interior node; else the first prim_order index */
     uint16_t count[BVH_WIDTH]; /* prims in a leaf child; 0 for an interior child or an unused slot */
-    uint8_t leaves;            /* bit c set: child c is a leaf */
+    uint16_t leaves;           /* bit c set: child c is a leaf */
     uint8_t quads;             /* groups of four lanes in use: the rest are empty */
-    uint8_t pad[14];
+    uint8_t pad[29];           /* 512 bytes: nodes start on cache lines */
 };
 
 struct scene {
