@@ -1,6 +1,7 @@
 #!/bin/sh
 # End to end: resume. A job whose image and sidecar exist and record the same job hash is
-# skipped with one line; --force renders it again; a changed job or scene file renders.
+# skipped with one line; --force renders it again; a changed job file, scene file or texture
+# image renders.
 . tests/lib.sh
 root=$(pwd)
 
@@ -40,6 +41,19 @@ check "image missing: renders" grep -q "^r: 16x16" "$T/7.err"
 rm "$T/out/r/r.json"
 "$WORKER" --out "$T/out" "$T/r.yaml" 2>"$T/8.err"
 check "sidecar missing: renders" grep -q "^r: 16x16" "$T/8.err"
+
+# a scene's image texture is one of its inputs: a changed texture makes the image stale
+mkdir -p "$T/tex/textures"
+cp "$root/scenes/cornell.yaml" "$T/tex/scene.yaml"
+cp "$root/scenes/textures/planet.png" "$T/tex/textures/planet.png"
+printf 'scene: scene.yaml\nwidth: 8\nheight: 8\nthreshold: 50\nlight_threshold: 50\n' >"$T/tex/t.yaml"
+"$WORKER" --out "$T/tout" "$T/tex/t.yaml" 2>"$T/t1.err"
+check "textured scene: renders" grep -q "^t: 8x8" "$T/t1.err"
+"$WORKER" --out "$T/tout" "$T/tex/t.yaml" 2>"$T/t2.err"
+check "textured scene, same inputs: skipped" grep -q "^t: up to date" "$T/t2.err"
+cp "$root/tests/golden/checker-jitter.png" "$T/tex/textures/planet.png"
+"$WORKER" --out "$T/tout" "$T/tex/t.yaml" 2>"$T/t3.err"
+check "changed texture image: renders" grep -q "^t: 8x8" "$T/t3.err"
 
 # in a queue: a finished job put back is skipped and filed as done; --force renders it
 Q=$T/q; mkdir -p "$Q"

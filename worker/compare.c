@@ -15,6 +15,7 @@
 #include "limits.h"
 #include "report.h"
 #include "sbuf.h"
+#include "scene_load.h"
 
 static double now_s(void)
 {
@@ -23,8 +24,8 @@ static double now_s(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-/* The cache key of a scene's reference: its scene file's bytes, every setting that changes the
-   reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
+/* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
+   changes the reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
    pixels, and its version string does not change with every commit. */
 static int reference_key(const struct compare_scene *cs, uint64_t *key, struct err *e)
 {
@@ -37,16 +38,14 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
         h = hash_bytes(h, data, len);
         free(data);
     }
-    if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
         return -1;
     char text[512];
     int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d worker %s",
                      cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
-    h = hash_bytes(h, data, len);
     *key = hash_bytes(h, text, (size_t)n);
-    free(data);
     return 0;
 }
 
@@ -137,15 +136,14 @@ static void fmt_duration(double s, char *buf, size_t n)
         snprintf(buf, n, "%dh%02dm", (int)s / 3600, (int)s % 3600 / 60);
 }
 
-/* The resume hash of one combination: its scene file's bytes, every setting that changes its
-   pixels, and its reference image's path (which carries the reference's own cache key). An image
-   whose sidecar records it is current and is not rendered again (unless --force). */
+/* The resume hash of one combination: its scene file's and texture images' bytes, every setting that changes
+   its pixels, and its reference image's path (which carries the reference's own cache key). An image whose
+   sidecar records it is current and is not rendered again (unless --force). */
 static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *e)
 {
     const struct job *j = &it->job;
-    uint8_t *data;
-    size_t len;
-    if (fileio_read_all(j->scene_path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+    uint64_t h = HASH_FNV_OFFSET;
+    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
         return -1;
     char text[JOB_PATH_MAX + 512];
     int n = snprintf(
@@ -153,8 +151,7 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
         j->width, j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
         j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, j->light_sampling,
         j->reference, WORKER_VERSION);
-    *hash = hash_bytes(hash_bytes(HASH_FNV_OFFSET, data, len), text, (size_t)n);
-    free(data);
+    *hash = hash_bytes(h, text, (size_t)n);
     return 0;
 }
 

@@ -8,6 +8,7 @@
 
 #include "fileio.h"
 #include "hash.h"
+#include "scene_load.h"
 
 const char *const job_keys[] = {
     "name",          "scene",           "width",        "height",         "sampler",   "threshold",
@@ -285,7 +286,7 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
     if (job_finish(j, &d, e) < 0)
         goto done;
     j->hash = HASH_FNV_OFFSET;
-    if (job_hash_file(from, &j->hash, e) < 0 || job_hash_file(j->scene_path, &j->hash, e) < 0)
+    if (job_hash_file(from, &j->hash, e) < 0 || scene_hash_inputs(j->scene_path, &j->hash, e) < 0)
         goto done;
     rc = 0;
 done:

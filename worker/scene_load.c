@@ -2,10 +2,12 @@
 #include "scene_load.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "fileio.h"
+#include "hash.h"
 #include "scene_loader.h"
 
 int loader_find_name(const struct names *nm, const char *s)
@@ -128,6 +130,16 @@ static int load_noise(struct loader *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
+/* Where an image texture's `file` is: relative to the scene file's directory unless absolute. */
+static void texture_path(const char *scene, const char *file, char *path, size_t n)
+{
+    const char *slash = strrchr(scene, '/');
+    if (file[0] == '/' || !slash)
+        snprintf(path, n, "%s", file);
+    else
+        snprintf(path, n, "%.*s/%s", (int)(slash - scene), scene, file);
+}
+
 /* An image texture: `file` relative to the scene file, PNG or PPM, at most
    TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
 static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
@@ -141,11 +153,7 @@ static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
     if (yget_string(&L->d, v, "file", &file, L->e) < 0)
         return -1;
     char path[1024];
-    const char *slash = strrchr(L->d.file, '/');
-    if (file[0] == '/' || !slash)
-        snprintf(path, sizeof path, "%s", file);
-    else
-        snprintf(path, sizeof path, "%.*s/%s", (int)(slash - L->d.file), L->d.file, file);
+    texture_path(L->d.file, file, path, sizeof path);
     struct stat st;
     if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
         return ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
@@ -348,4 +356,33 @@ void scene_file_free(struct scene_file *sf)
 {
     scene_free(sf->scene);
     sf->scene = NULL;
+}
+
+int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+        return -1;
+    *h = hash_bytes(*h, data, len);
+    free(data);
+    struct ydoc d;
+    struct err ignored; /* a scene that does not parse is scene_load's to report */
+    if (ydoc_load(&d, path, &ignored) < 0)
+        return 0;
+    yaml_node_t *textures = ymap_get(&d, ydoc_root(&d), "textures"), *k, *v;
+    for (int i = 0; textures && ymap_pair(&d, textures, i, &k, &v); i++) {
+        yaml_node_t *type = ymap_get(&d, v, "type"), *file = ymap_get(&d, v, "file");
+        const char *t = type ? yscalar(type) : NULL, *f = file ? yscalar(file) : NULL;
+        if (!t || !f || strcmp(t, "image") != 0)
+            continue;
+        char tpath[1024];
+        texture_path(path, f, tpath, sizeof tpath);
+        if (fileio_read_all(tpath, TEXTURE_MAX_BYTES, &data, &len, &ignored) == 0) {
+            *h = hash_bytes(*h, data, len);
+            free(data);
+        }
+    }
+    ydoc_free(&d);
+    return 0;
 }
