@@ -159,14 +159,6 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i)
     return chosen;
 }
 
-static double light_pdf(const struct scene *sc, vec3 o, vec3 dir, double time)
-{
-    double sum = 0;
-    for (int i = 0; i < sc->n_lights; i++)
-        sum += shape_light_pdf(&sc->prims[sc->lights[i]], o, dir, time);
-    return sum / sc->n_lights;
-}
-
 static vec3 random_in_unit_sphere(struct rng *r)
 {
     for (;;) {
@@ -257,7 +249,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
             double cosine = v3_dot(dir, h.n);
             if (!(cosine > 0))
                 return L;
-            double pdf = mix ? 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * (cosine / PI) : cosine / PI;
+            double pdf = mix ? 0.5 * shape_lights_pdf(sc, h.p, dir) + 0.5 * (cosine / PI) : cosine / PI;
             if (!(pdf > 0))
                 return L;
             beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
@@ -293,7 +285,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
             double pdf = phase;
             if (mix) {
                 dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng) : uniform_sphere_direction(rng);
-                pdf = 0.5 * light_pdf(sc, h.p, dir, r.time) + 0.5 * phase;
+                pdf = 0.5 * shape_lights_pdf(sc, h.p, dir) + 0.5 * phase;
             } else {
                 dir = uniform_sphere_direction(rng);
             }

@@ -49,4 +49,8 @@ vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s);
    ray misses p. */
 double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time);
 
+/* The mean of shape_light_pdf over the scene's lights (the mixture's light side); the scene
+   has at least one light. */
+double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir);
+
 #endif

@@ -195,7 +195,7 @@ vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
 /* Solid-angle density of area-uniform sampling of a planar light seen at distance t along dir
    with dn = dir . normal: dist^2 / (cos area) = t^2 |dir|^3 / (|dn| area). Lights are sampled
    from both sides (the back is dark, and the estimate then just adds nothing). */
-static double planar_pdf(const struct prim *p, double t, double dn, vec3 dir)
+static inline double planar_pdf(const struct prim *p, double t, double dn, vec3 dir)
 {
     double d2 = v3_len2(dir), adn = fabs(dn);
     if (!(adn > 1e-12 * sqrt(d2)))
@@ -203,44 +203,71 @@ static double planar_pdf(const struct prim *p, double t, double dn, vec3 dir)
     return t * t * d2 * sqrt(d2) / (adn * p->area);
 }
 
+static inline double sphere_pdf(const struct prim *p, vec3 o, vec3 dir)
+{
+    vec3 to_c = v3_sub(p->g.sphere.center, o);
+    double d2 = v3_len2(to_c), r2 = p->g.sphere.radius * p->g.sphere.radius;
+    if (d2 <= r2)
+        return 1 / (4 * PI); /* o inside: uniform over all directions */
+    /* in the cone iff cos(dir, to_c) >= cos_max = sqrt(1 - r2 / d2): squared and multiplied
+       out, no square root or division for the many directions that miss it */
+    double dc = v3_dot(dir, to_c);
+    if (!(dc > 0 && dc * dc >= (d2 - r2) * v3_len2(dir)))
+        return 0;
+    return 1 / (2 * PI * sphere_one_minus_cos(p, o));
+}
+
+/* shape_hit's rect test, minus the hit record */
+static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
+{
+    const vec3 n = p->g.rect.n;
+    double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
+    if (!(t > HIT_EPS && t < DBL_MAX))
+        return 0;
+    vec3 q = v3_fma(o, dir, t);
+    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
+    if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
+        return 0;
+    return planar_pdf(p, t, dn, dir);
+}
+
+static inline double disk_pdf(const struct prim *p, vec3 o, vec3 dir)
+{
+    const vec3 n = p->g.disk.normal;
+    double dn = v3_dot(dir, n), t = v3_dot(v3_sub(p->g.disk.center, o), n) / dn;
+    if (!(t > HIT_EPS && t < DBL_MAX))
+        return 0;
+    vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
+    if (v3_len2(d) > p->g.disk.radius * p->g.disk.radius)
+        return 0;
+    return planar_pdf(p, t, dn, dir);
+}
+
 double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
 {
-    switch (p->type) {
-    case PRIM_SPHERE: {
-        vec3 to_c = v3_sub(p->g.sphere.center, o);
-        double d2 = v3_len2(to_c), r2 = p->g.sphere.radius * p->g.sphere.radius;
-        if (d2 <= r2)
-            return 1 / (4 * PI); /* o inside: uniform over all directions */
-        /* in the cone iff cos(dir, to_c) >= cos_max = sqrt(1 - r2 / d2): squared and multiplied
-           out, no square root or division for the many directions that miss it */
-        double dc = v3_dot(dir, to_c);
-        if (!(dc > 0 && dc * dc >= (d2 - r2) * v3_len2(dir)))
-            return 0;
-        return 1 / (2 * PI * sphere_one_minus_cos(p, o));
-    }
-    case PRIM_RECT: {
-        /* shape_hit's rect test, minus the hit record */
-        const vec3 n = p->g.rect.n;
-        double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
-        if (!(t > HIT_EPS && t < DBL_MAX))
-            return 0;
-        vec3 q = v3_fma(o, dir, t);
-        double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
-        if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
-            return 0;
-        return planar_pdf(p, t, dn, dir);
-    }
-    case PRIM_DISK: {
-        const vec3 n = p->g.disk.normal;
-        double dn = v3_dot(dir, n), t = v3_dot(v3_sub(p->g.disk.center, o), n) / dn;
-        if (!(t > HIT_EPS && t < DBL_MAX))
-            return 0;
-        vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
-        if (v3_len2(d) > p->g.disk.radius * p->g.disk.radius)
-            return 0;
-        return planar_pdf(p, t, dn, dir);
-    }
-    }
     (void)time;
+    switch (p->type) {
+    case PRIM_SPHERE:
+        return sphere_pdf(p, o, dir);
+    case PRIM_RECT:
+        return rect_pdf(p, o, dir);
+    case PRIM_DISK:
+        return disk_pdf(p, o, dir);
+    }
     return 0;
+}
+
+double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir)
+{
+    double sum = 0;
+    for (int i = 0; i < sc->n_lights; i++) {
+        const struct prim *p = &sc->prims[sc->lights[i]];
+        if (p->type == PRIM_DISK)
+            sum += disk_pdf(p, o, dir);
+        else if (p->type == PRIM_RECT)
+            sum += rect_pdf(p, o, dir);
+        else if (p->type == PRIM_SPHERE)
+            sum += sphere_pdf(p, o, dir);
+    }
+    return sum / sc->n_lights;
 }
