@@ -115,6 +115,13 @@ static inline int node_test(const struct fray *fr, const char *n, int quads, bvh
     return hit;
 }
 
+/* Media met in the leaves are tested after every surface, against the nearest surface hit: a
+   fog that fills the scene is met first, and tested then its whole chord would make a scatter
+   point (a log and a hit record) for a third of the rays, most of them behind the surface the
+   ray then finds. A medium's hit depends only on the ray and (t_min, t_max), so the nearest hit
+   is the same in any order. Past BVH_MEDIA in one ray they are tested as met. */
+#define BVH_MEDIA 4
+
 struct bvh_entry {
     int32_t node;
     float t; /* entry distance into the node's box */
@@ -131,6 +138,8 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
     float t_hi = (float)t_max * grow; /* above t_max: rounding never cuts a hit off */
     struct bvh_entry stack[BVH_STACK];
     int sp = 0, got = 0, node = 0;
+    int32_t media[BVH_MEDIA];
+    int n_media = 0;
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
         float tn[BVH_WIDTH];
@@ -145,6 +154,10 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
                 int p = sc->prim_order[i];
                 const struct prim *pr = &sc->prims[p];
                 int got_p;
+                if (pr->type == PRIM_MEDIUM && n_media < BVH_MEDIA) {
+                    media[n_media++] = p;
+                    continue;
+                }
                 if (pr->type == PRIM_RECT && !pr->has_xform)
                     got_p = hit_rect(pr, r, t_min, t_max, h);
                 else if (pr->type == PRIM_SPHERE && !pr->has_xform)
@@ -195,5 +208,11 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
             break;
         node = stack[--sp].node;
     }
+    for (int i = 0; i < n_media; i++)
+        if (shape_hit(&sc->prims[media[i]], r, t_min, t_max, h)) {
+            t_max = h->t;
+            h->prim = media[i];
+            got = 1;
+        }
     return got;
 }
