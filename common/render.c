@@ -203,8 +203,9 @@ static double reflectance(double cosine, double ref_idx)
 }
 
 /* A unit direction toward one of the scene's lights, chosen uniformly; disk and rect lights
-   take their next point from the light sampler, a sphere its cone sample from rng. */
-static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng)
+   take their next point from the light sampler, a sphere its cone sample from rng. *light is
+   the chosen light's index and *pdf its density for the direction. */
+static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int *light, double *pdf)
 {
     const struct scene *sc = ctx->sc;
     int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
@@ -216,7 +217,8 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng)
         s.x = rng_uniform32(rng);
         s.y = rng_uniform32(rng);
     }
-    return v3_unit(shape_light_dir(lp, o, s));
+    *light = i;
+    return shape_light_sample(lp, o, s, pdf);
 }
 
 /* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
@@ -239,8 +241,10 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
         vec3 dir;
         if (m->type == MAT_LAMBERTIAN) {
             vec3 albedo = surface_albedo(sc, m, &h);
+            int light = -1;
+            double light_pdf = 0;
             if (mix && rng_u32(rng) >> 31) {
-                dir = light_direction(ctx, h.p, rng);
+                dir = light_direction(ctx, h.p, rng, &light, &light_pdf);
             } else {
                 onb frame = onb_from_w(h.n);
                 dir = cosine_direction(&frame, rng);
@@ -249,7 +253,8 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
             double cosine = v3_dot(dir, h.n);
             if (!(cosine > 0))
                 return L;
-            double pdf = mix ? 0.5 * shape_lights_pdf(sc, h.p, dir) + 0.5 * (cosine / PI) : cosine / PI;
+            double pdf = mix ? 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * (cosine / PI)
+                             : cosine / PI;
             if (!(pdf > 0))
                 return L;
             beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
@@ -284,8 +289,11 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
             const double phase = 1 / (4 * PI);
             double pdf = phase;
             if (mix) {
-                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng) : uniform_sphere_direction(rng);
-                pdf = 0.5 * shape_lights_pdf(sc, h.p, dir) + 0.5 * phase;
+                int light = -1;
+                double light_pdf = 0;
+                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng, &light, &light_pdf)
+                                         : uniform_sphere_direction(rng);
+                pdf = 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * phase;
             } else {
                 dir = uniform_sphere_direction(rng);
             }

@@ -49,8 +49,13 @@ vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s);
    ray misses p. */
 double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time);
 
-/* The mean of shape_light_pdf over the scene's lights (the mixture's light side); the scene
-   has at least one light. */
-double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir);
+/* The unit direction of shape_light_dir and, in *pdf, shape_light_pdf's density for it, from
+   what the sampling knows (the chosen point's distance, the cone) instead of intersecting the
+   ray with p again; it may differ from shape_light_pdf's by rounding. */
+vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf);
+
+/* The mean of shape_light_pdf over the scene's lights (the mixture's light side), taking
+   known_pdf for light index known (-1: none); the scene has at least one light. */
+double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf);
 
 #endif

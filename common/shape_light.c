@@ -178,18 +178,26 @@ static double sphere_one_minus_cos(const struct prim *p, vec3 o)
     return s2 / (1 + sqrt(1 - s2));
 }
 
-vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
+/* A direction uniform in the cone sphere p subtends from o; *omc is that cone's 1 - cos. */
+static vec3 sphere_cone_dir(const struct prim *p, vec3 o, struct pt2 s, double *omc)
 {
-    if (p->type != PRIM_SPHERE)
-        return v3_sub(shape_light_point(p, s), o);
     /* z uniform in [cos_max, 1] is uniform over the cone's solid angle. */
-    double z = 1 - s.y * sphere_one_minus_cos(p, o), sin_phi, cos_phi;
+    *omc = sphere_one_minus_cos(p, o);
+    double z = 1 - s.y * *omc, sin_phi, cos_phi;
     double sin_t = sqrt(d_max(0, 1 - z * z));
     v3_sincos_turn(s.x, &sin_phi, &cos_phi);
     vec3 to_c = v3_sub(p->g.sphere.center, o);
     double len = v3_len(to_c);
     onb f = onb_from_w(len > 0 ? v3_scale(to_c, 1.0 / len) : v3(0, 0, 1));
     return onb_local(&f, v3(cos_phi * sin_t, sin_phi * sin_t, z));
+}
+
+vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
+{
+    double omc;
+    if (p->type != PRIM_SPHERE)
+        return v3_sub(shape_light_point(p, s), o);
+    return sphere_cone_dir(p, o, s, &omc);
 }
 
 /* Solid-angle density of area-uniform sampling of a planar light seen at distance t along dir
@@ -257,12 +265,30 @@ double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
     return 0;
 }
 
-double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir)
+vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
+{
+    if (p->type == PRIM_SPHERE) {
+        double omc;
+        vec3 dir = v3_unit(sphere_cone_dir(p, o, s, &omc));
+        *pdf = 1 / (2 * PI * omc); /* omc = 2 inside: 1 / (4 pi), uniform over all directions */
+        return dir;
+    }
+    /* the chosen point is at distance len along dir: the ray's t, no plane to intersect */
+    vec3 to_q = v3_sub(shape_light_point(p, s), o), dir = v3_unit(to_q);
+    double len = v3_len(to_q);
+    double dn = v3_dot(dir, p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n);
+    *pdf = len > HIT_EPS ? planar_pdf(p, len, dn, dir) : 0;
+    return dir;
+}
+
+double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf)
 {
     double sum = 0;
     for (int i = 0; i < sc->n_lights; i++) {
         const struct prim *p = &sc->prims[sc->lights[i]];
-        if (p->type == PRIM_DISK)
+        if (i == known)
+            sum += known_pdf;
+        else if (p->type == PRIM_DISK)
             sum += disk_pdf(p, o, dir);
         else if (p->type == PRIM_RECT)
             sum += rect_pdf(p, o, dir);

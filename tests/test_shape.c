@@ -178,9 +178,14 @@ static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *wh
     double inv_sum = 0, pdf_sum = 0;
     int all_hit = 1, covered = 0;
     struct hit h;
+    int sample_same = 1;
     for (int i = 0; i < n; i++) {
-        vec3 d = shape_light_dir(p, o, (struct pt2){rng_uniform(&g), rng_uniform(&g)});
-        double pdf = shape_light_pdf(p, o, d, 0);
+        struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
+        vec3 d = shape_light_dir(p, o, sp);
+        double pdf = shape_light_pdf(p, o, d, 0), pdf_sample;
+        /* shape_light_sample: the same unit direction, the same density up to rounding */
+        vec3 ds = shape_light_sample(p, o, sp, &pdf_sample);
+        sample_same &= v3_len2(v3_sub(ds, v3_unit(d))) == 0 && fabs(pdf_sample - pdf) <= 1e-9 * pdf;
         ray r = {o, d, 0};
         all_hit &= pdf > 0 && shape_hit(p, &r, 1e-9, DBL_MAX, &h);
         inv_sum += pdf > 0 ? 1 / pdf : 0;
@@ -197,6 +202,9 @@ static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *wh
     if (!all_hit)
         printf("%s: a sampled direction missed the light\n", what);
     CHECK(all_hit);
+    if (!sample_same)
+        printf("%s: shape_light_sample differs from shape_light_dir / shape_light_pdf\n", what);
+    CHECK(sample_same);
     CHECK_NEAR(inv_sum / n / omega, 1, 0.03);
     CHECK_NEAR(pdf_sum / n * 4 * PI, 1, 0.03);
     CHECK_NEAR(g_uniform / n * 4 * PI / (g_sampled / n), 1, 0.05);
