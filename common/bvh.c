@@ -119,7 +119,8 @@ static inline int node_test(const struct fray *fr, const char *n, int quads, bvh
    fog that fills the scene is met first, and tested then its whole chord would make a scatter
    point (a log and a hit record) for a third of the rays, most of them behind the surface the
    ray then finds. A medium's hit depends only on the ray and (t_min, t_max), so the nearest hit
-   is the same in any order. Past BVH_MEDIA in one ray they are tested as met. */
+   is the same in any order. Past BVH_MEDIA in one ray they are tested as met, as are
+   transformed ones (their hash is of the ray in object space). */
 #define BVH_MEDIA 4
 
 struct bvh_entry {
@@ -140,6 +141,7 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
     int sp = 0, got = 0, node = 0;
     int32_t media[BVH_MEDIA];
     int n_media = 0;
+    uint64_t ray_hash = 0;
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
         float tn[BVH_WIDTH];
@@ -154,8 +156,10 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
                 int p = sc->prim_order[i];
                 const struct prim *pr = &sc->prims[p];
                 int got_p;
-                if (pr->type == PRIM_MEDIUM && n_media < BVH_MEDIA) {
-                    media[n_media++] = p;
+                if (pr->type == PRIM_MEDIUM && !pr->has_xform && n_media < BVH_MEDIA) {
+                    if (n_media++ == 0) /* its latency hides under the traversal */
+                        ray_hash = shape_ray_hash(r);
+                    media[n_media - 1] = p;
                     continue;
                 }
                 if (pr->type == PRIM_RECT && !pr->has_xform)
@@ -209,7 +213,7 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
         node = stack[--sp].node;
     }
     for (int i = 0; i < n_media; i++)
-        if (shape_hit(&sc->prims[media[i]], r, t_min, t_max, h)) {
+        if (shape_hit_medium(&sc->prims[media[i]], r, ray_hash, t_min, t_max, h)) {
             t_max = h->t;
             h->prim = media[i];
             got = 1;

@@ -187,28 +187,38 @@ static int hit_triangle(const struct prim *p, const ray *r, double t_min, double
 }
 
 /* A uniform number in (0, 1] from the ray's bits and the medium's: the same ray always gets
-   the same free-flight distance, whatever order the BVH tests primitives in. */
-static double ray_hash_uniform(const ray *r, const struct prim *p)
+   the same free-flight distance, whatever order the BVH tests primitives in. Each word is
+   folded in by a multiply and a shift (every input bit reaches the high half), then one full
+   SplitMix64 finaliser: a third of the cost of finalising every word. The ray's words come
+   first, so bvh_hit can fold them in once per ray (shape_ray_hash) while it traverses. */
+static uint64_t hash_fold(uint64_t h, double x)
 {
-    double in[9] = {r->orig.x, r->orig.y,          r->orig.z,
-                    r->dir.x,  r->dir.y,           r->dir.z,
-                    r->time,   p->g.medium.radius, p->g.medium.neg_inv_density};
-    /* each word folded in by a multiply and a shift (every input bit reaches the high half),
-       then one full SplitMix64 finaliser: a third of the cost of finalising every word */
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    h = (h ^ bits) * 0x9e3779b97f4a7c15ULL;
+    return h ^ (h >> 29);
+}
+
+uint64_t shape_ray_hash(const ray *r)
+{
+    const double in[7] = {r->orig.x, r->orig.y, r->orig.z, r->dir.x, r->dir.y, r->dir.z, r->time};
     uint64_t h = 0x6d656469756dULL;
-    for (int i = 0; i < 9; i++) {
-        uint64_t bits;
-        memcpy(&bits, &in[i], sizeof bits);
-        h = (h ^ bits) * 0x9e3779b97f4a7c15ULL;
-        h ^= h >> 29;
-    }
+    for (int i = 0; i < 7; i++)
+        h = hash_fold(h, in[i]);
+    return h;
+}
+
+static double medium_uniform(uint64_t ray_hash, const struct prim *p)
+{
+    uint64_t h = hash_fold(hash_fold(ray_hash, p->g.medium.radius), p->g.medium.neg_inv_density);
     h = rng_mix64(h);
     return (double)((h >> 11) + 1) * 0x1.0p-53;
 }
 
 /* Constant-density medium inside a sphere (RTOW "The Next Week", ch. 9): the ray scatters at
    an exponentially distributed distance while inside, else passes through. */
-static int hit_medium(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+static int hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, double t_min, double t_max,
+                      struct hit *h)
 {
     double t0, t1;
     if (!sphere_roots(p->g.medium.center, p->g.medium.radius, r, &t0, &t1))
@@ -217,7 +227,7 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
     if (!(enter < leave))
         return 0;
     double len = v3_len(r->dir), span = (leave - enter) * len;
-    double u = ray_hash_uniform(r, p), neg_inv_density = p->g.medium.neg_inv_density;
+    double u = medium_uniform(ray_hash, p), neg_inv_density = p->g.medium.neg_inv_density;
     /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
        rounding), the ray passes through without the log, as most do in thin fog */
     if ((1 - u) * -neg_inv_density > span * (1 + 1e-9))
@@ -230,6 +240,12 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
     h->n = v3(1, 0, 0); /* arbitrary: the isotropic phase function ignores it */
     h->front = 1;
     return 1;
+}
+
+int shape_hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, double t_min, double t_max,
+                     struct hit *h)
+{
+    return hit_medium(p, r, ray_hash, t_min, t_max, h);
 }
 
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
@@ -265,7 +281,7 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
         got = hit_triangle(p, q, t_min, t_max, h);
         break;
     case PRIM_MEDIUM:
-        got = hit_medium(p, q, t_min, t_max, h);
+        got = hit_medium(p, q, shape_ray_hash(q), t_min, t_max, h);
         break;
     }
     if (!got)

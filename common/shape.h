@@ -24,6 +24,13 @@ void shape_prepare(struct prim *p);
    free-flight distance from a hash of the ray, so the same ray always gets the same answer. */
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h);
 
+/* The ray's part of a medium's free-flight hash (shape_hit folds it in itself). */
+uint64_t shape_ray_hash(const ray *r);
+
+/* shape_hit for a medium without a transform, given shape_ray_hash(r). */
+int shape_hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, double t_min, double t_max,
+                     struct hit *h);
+
 /* Fill h->u, h->v for the primitive h->prim (only called when a texture needs them). */
 void shape_uv(const struct prim *p, struct hit *h);
 
