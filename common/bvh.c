@@ -140,6 +140,7 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
     struct bvh_entry stack[BVH_STACK];
     int sp = 0, got = 0, node = 0;
     int32_t media[BVH_MEDIA];
+    struct medium_flight flight[BVH_MEDIA];
     int n_media = 0;
     uint64_t ray_hash = 0;
     for (;;) {
@@ -157,9 +158,10 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
                 const struct prim *pr = &sc->prims[p];
                 int got_p;
                 if (pr->type == PRIM_MEDIUM && !pr->has_xform && n_media < BVH_MEDIA) {
-                    if (n_media++ == 0) /* its latency hides under the traversal */
+                    if (n_media == 0) /* its latency hides under the traversal */
                         ray_hash = shape_ray_hash(r);
-                    media[n_media - 1] = p;
+                    shape_medium_flight(pr, r, ray_hash, &flight[n_media]);
+                    media[n_media++] = p;
                     continue;
                 }
                 if (pr->type == PRIM_RECT && !pr->has_xform)
@@ -213,7 +215,7 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
         node = stack[--sp].node;
     }
     for (int i = 0; i < n_media; i++)
-        if (shape_hit_medium(&sc->prims[media[i]], r, ray_hash, t_min, t_max, h)) {
+        if (shape_medium_hit(&sc->prims[media[i]], r, &flight[i], t_min, t_max, h)) {
             t_max = h->t;
             h->prim = media[i];
             got = 1;

@@ -215,19 +215,23 @@ static double medium_uniform(uint64_t ray_hash, const struct prim *p)
     return (double)((h >> 11) + 1) * 0x1.0p-53;
 }
 
-/* Constant-density medium inside a sphere (RTOW "The Next Week", ch. 9): the ray scatters at
-   an exponentially distributed distance while inside, else passes through. */
-static int hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, double t_min, double t_max,
-                      struct hit *h)
+void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, struct medium_flight *f)
 {
-    double t0, t1;
-    if (!sphere_roots(p->g.medium.center, p->g.medium.radius, r, &t0, &t1))
+    f->crosses = sphere_roots(p->g.medium.center, p->g.medium.radius, r, &f->t0, &f->t1);
+    f->len = v3_len(r->dir);
+    f->u = medium_uniform(ray_hash, p);
+}
+
+int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,
+                     double t_max, struct hit *h)
+{
+    if (!f->crosses)
         return 0;
-    double enter = t0 > t_min ? t0 : t_min, leave = t1 < t_max ? t1 : t_max;
+    double enter = f->t0 > t_min ? f->t0 : t_min, leave = f->t1 < t_max ? f->t1 : t_max;
     if (!(enter < leave))
         return 0;
-    double len = v3_len(r->dir), span = (leave - enter) * len;
-    double u = medium_uniform(ray_hash, p), neg_inv_density = p->g.medium.neg_inv_density;
+    double len = f->len, span = (leave - enter) * len;
+    double u = f->u, neg_inv_density = p->g.medium.neg_inv_density;
     /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
        rounding), the ray passes through without the log, as most do in thin fog */
     if ((1 - u) * -neg_inv_density > span * (1 + 1e-9))
@@ -242,10 +246,13 @@ static int hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, dou
     return 1;
 }
 
-int shape_hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, double t_min, double t_max,
-                     struct hit *h)
+/* Constant-density medium inside a sphere (RTOW "The Next Week", ch. 9): the ray scatters at
+   an exponentially distributed distance while inside, else passes through. */
+static int hit_medium(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    return hit_medium(p, r, ray_hash, t_min, t_max, h);
+    struct medium_flight f;
+    shape_medium_flight(p, r, shape_ray_hash(r), &f);
+    return shape_medium_hit(p, r, &f, t_min, t_max, h);
 }
 
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
@@ -281,7 +288,7 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
         got = hit_triangle(p, q, t_min, t_max, h);
         break;
     case PRIM_MEDIUM:
-        got = hit_medium(p, q, shape_ray_hash(q), t_min, t_max, h);
+        got = hit_medium(p, q, t_min, t_max, h);
         break;
     }
     if (!got)

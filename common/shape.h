@@ -27,9 +27,17 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
 /* The ray's part of a medium's free-flight hash (shape_hit folds it in itself). */
 uint64_t shape_ray_hash(const ray *r);
 
-/* shape_hit for a medium without a transform, given shape_ray_hash(r). */
-int shape_hit_medium(const struct prim *p, const ray *r, uint64_t ray_hash, double t_min, double t_max,
-                     struct hit *h);
+/* A medium's test in two steps: what the ray alone decides (its line's crossings of the
+   boundary, |dir|, the free-flight uniform; ray_hash = shape_ray_hash(r)), then the hit in
+   (t_min, t_max) as shape_hit gives it. For media without a transform; bvh_hit starts the
+   first step when it meets a medium and finishes once the nearest surface is known. */
+struct medium_flight {
+    double t0, t1, len, u;
+    int crosses;
+};
+void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, struct medium_flight *f);
+int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,
+                     double t_max, struct hit *h);
 
 /* Fill h->u, h->v for the primitive h->prim (only called when a texture needs them). */
 void shape_uv(const struct prim *p, struct hit *h);
