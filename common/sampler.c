@@ -114,15 +114,6 @@ static inline double cell_coord(int i, double u, int n)
     return v;
 }
 
-/* Shift p by o modulo 1, staying in [0, 1) whatever the rounding of the sum. */
-static inline double shift_unit(double p, double o)
-{
-    double v = p + o;
-    if (v >= 1.0)
-        v -= 1.0;
-    return v >= 1.0 ? 0.0 : v;
-}
-
 enum sampler_kind sampler_kind_of(const struct sampler *s)
 {
     return s->kind;
@@ -205,11 +196,6 @@ size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct p
     *oy = rng_uniform(rng);
     *pts = s->pool_pts + s->pool_start[pick];
     return s->pool_start[pick + 1] - s->pool_start[pick];
-}
-
-struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
-{
-    return (struct pt2){shift_unit(p.x, ox), shift_unit(p.y, oy)};
 }
 
 /* Draw the pool's toroidal sets from pool_seed into one packed array. */

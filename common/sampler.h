@@ -52,13 +52,26 @@ enum sampler_kind sampler_kind_of(const struct sampler *s);
 uint32_t sampler_cells(const struct sampler *s);
 struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng);
 
+/* Shift p by o modulo 1, staying in [0, 1) whatever the rounding of the sum (inline: the
+   pooled light points take one per point). */
+static inline double sampler_shift_unit(double p, double o)
+{
+    double v = p + o;
+    if (v >= 1.0)
+        v -= 1.0;
+    return v >= 1.0 ? 0.0 : v;
+}
+
 /* A pooled Poisson set without copying it (s poisson with a pool, else 0): the set sampler_draw
    would return for this rng is *pts[0 .. count) each shifted by sampler_shift(p, *ox, *oy);
    returns count and consumes rng exactly as sampler_draw does. */
 int sampler_is_pooled(const struct sampler *s);
 size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pt2 **pts, double *ox,
                         double *oy);
-struct pt2 sampler_shift(struct pt2 p, double ox, double oy);
+static inline struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
+{
+    return (struct pt2){sampler_shift_unit(p.x, ox), sampler_shift_unit(p.y, oy)};
+}
 
 /* Draw one set into out, consuming rng; returns the count (>= 1). Allocates nothing: the
    sampler's workspace is reused, so one sampler serves one thread at a time. With a pool,

@@ -151,7 +151,7 @@ int shape_light_uses_points(const struct prim *p)
     return p->type == PRIM_DISK || p->type == PRIM_RECT;
 }
 
-vec3 shape_light_point(const struct prim *p, struct pt2 s)
+static inline vec3 light_point(const struct prim *p, struct pt2 s)
 {
     if (p->type == PRIM_DISK) {
         /* r = R sqrt(u), theta = 2 pi v: uniform by area over the whole radius-R disk. */
@@ -167,9 +167,14 @@ vec3 shape_light_point(const struct prim *p, struct pt2 s)
                   v3_scale(p->g.rect.eb, pb));
 }
 
+vec3 shape_light_point(const struct prim *p, struct pt2 s)
+{
+    return light_point(p, s);
+}
+
 /* 1 - cos of the half-angle of the cone a sphere subtends from o, computed without
    cancellation for far spheres; 2 (the whole sphere of directions) when o is inside. */
-static double sphere_one_minus_cos(const struct prim *p, vec3 o)
+static inline double sphere_one_minus_cos(const struct prim *p, vec3 o)
 {
     double d2 = v3_len2(v3_sub(p->g.sphere.center, o)), r2 = p->g.sphere.radius * p->g.sphere.radius;
     if (d2 <= r2)
@@ -274,7 +279,7 @@ vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
         return dir;
     }
     /* the chosen point is at distance len along dir: the ray's t, no plane to intersect */
-    vec3 to_q = v3_sub(shape_light_point(p, s), o), dir = v3_unit(to_q);
+    vec3 to_q = v3_sub(light_point(p, s), o), dir = v3_unit(to_q);
     double len = v3_len(to_q);
     double dn = v3_dot(dir, p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n);
     *pdf = len > HIT_EPS ? planar_pdf(p, len, dn, dir) : 0;
