@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "hash.h"
 #include "png.h"
 #include "ppm.h"
 
@@ -127,6 +128,17 @@ static void sync_dir(const char *path, size_t dlen)
 /* Write data to path through "<dir>/.<base>.tmp.XXXXXX": write all, fsync, close, mode 0644,
    rename() over path. On any failure the temporary file is removed, path is untouched, and e
    says "cannot write <path>: <reason>". */
+int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(path, max_bytes, &data, &len, e) < 0)
+        return -1;
+    *h = hash_bytes(*h, data, len);
+    free(data);
+    return 0;
+}
+
 int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e)
 {
     size_t dlen = dir_len(path);

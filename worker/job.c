@@ -247,13 +247,7 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
 
 int job_hash_file(const char *path, uint64_t *h, struct err *e)
 {
-    uint8_t *data;
-    size_t len;
-    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
-        return -1;
-    *h = hash_bytes(*h, data, len);
-    free(data);
-    return 0;
+    return fileio_hash(path, YDOC_MAX_BYTES, h, e);
 }
 
 int job_load(const char *path, struct job *j, struct err *e)

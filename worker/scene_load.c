@@ -7,7 +7,6 @@
 #include <sys/stat.h>
 
 #include "fileio.h"
-#include "hash.h"
 #include "scene_loader.h"
 
 int loader_find_name(const struct names *nm, const char *s)
@@ -360,12 +359,8 @@ void scene_file_free(struct scene_file *sf)
 
 int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
 {
-    uint8_t *data;
-    size_t len;
-    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
+    if (fileio_hash(path, YDOC_MAX_BYTES, h, e) < 0)
         return -1;
-    *h = hash_bytes(*h, data, len);
-    free(data);
     struct ydoc d;
     struct err ignored; /* a scene that does not parse is scene_load's to report */
     if (ydoc_load(&d, path, &ignored) < 0)
@@ -378,10 +373,7 @@ int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
             continue;
         char tpath[1024];
         texture_path(path, f, tpath, sizeof tpath);
-        if (fileio_read_all(tpath, TEXTURE_MAX_BYTES, &data, &len, &ignored) == 0) {
-            *h = hash_bytes(*h, data, len);
-            free(data);
-        }
+        fileio_hash(tpath, TEXTURE_MAX_BYTES, h, &ignored); /* unreadable: scene_load says so */
     }
     ydoc_free(&d);
     return 0;
