@@ -278,11 +278,13 @@ vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
         *pdf = 1 / (2 * PI * omc); /* omc = 2 inside: 1 / (4 pi), uniform over all directions */
         return dir;
     }
-    /* the chosen point is at distance len along dir: the ray's t, no plane to intersect */
-    vec3 to_q = v3_sub(light_point(p, s), o), dir = v3_unit(to_q);
-    double len = v3_len(to_q);
-    double dn = v3_dot(dir, p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n);
-    *pdf = len > HIT_EPS ? planar_pdf(p, len, dn, dir) : 0;
+    /* the chosen point is at distance len: dist^2 / (cos area) = len^3 / (|to_q . n| area), no
+       plane to intersect (planar_pdf's edge-on guard with |dir| = 1) */
+    vec3 to_q = v3_sub(light_point(p, s), o);
+    double len2 = v3_len2(to_q), len = sqrt(len2);
+    vec3 dir = v3_scale(to_q, 1.0 / len);
+    double qn = fabs(v3_dot(to_q, p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n));
+    *pdf = len > HIT_EPS && qn > 1e-12 * len ? len2 * len / (qn * p->area) : 0;
     return dir;
 }
 
