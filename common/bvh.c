@@ -115,12 +115,13 @@ static inline int node_test(const struct fray *fr, const char *n, int quads, bvh
     return hit;
 }
 
-/* Media met in the leaves are tested after every surface, against the nearest surface hit: a
-   fog that fills the scene is met first, and tested then its whole chord would make a scatter
-   point (a log and a hit record) for a third of the rays, most of them behind the surface the
-   ray then finds. A medium's hit depends only on the ray and (t_min, t_max), so the nearest hit
-   is the same in any order. Past BVH_MEDIA in one ray they are tested as met, as are
-   transformed ones (their hash is of the ray in object space). */
+/* Media met in the leaves are tested after every surface, against the nearest surface hit:
+   a fog that fills the scene is met first, and tested then, along its whole chord, it needs
+   the log for two path segments in three (final's fog; one in three when tested last) and
+   makes scatter points that the surface the ray finds next replaces. A medium's hit depends
+   only on the ray and (t_min, t_max), so the nearest hit is the same in any order. Past
+   BVH_MEDIA in one ray they are tested as met, as are transformed ones (their hash is of the
+   ray in object space). */
 #define BVH_MEDIA 4
 
 struct bvh_entry {
