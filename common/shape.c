@@ -26,14 +26,10 @@ static vec3 rotate_to_world(const struct prim *p, vec3 a)
 /* Both roots t0 <= t1 of |o + t d - c| = rad; 0 when the line misses the sphere. */
 static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1)
 {
-    vec3 oc = v3_sub(r->orig, c);
-    double a = v3_len2(r->dir);
-    double half_b = v3_dot(oc, r->dir);
-    double cc = v3_len2(oc) - rad * rad;
-    double disc = half_b * half_b - a * cc;
-    if (disc < 0 || a == 0)
+    double a, half_b, sq;
+    if (!sphere_quadratic(c, rad, r, &a, &half_b, &sq))
         return 0;
-    double sq = sqrt(disc), inv_a = 1 / a;
+    double inv_a = 1 / a;
     *t0 = (-half_b - sq) * inv_a;
     *t1 = (-half_b + sq) * inv_a;
     return 1;

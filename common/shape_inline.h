@@ -11,17 +11,28 @@ static inline void set_face(struct hit *h, const ray *r, vec3 outward)
     h->n = h->front ? outward : v3_neg(outward);
 }
 
+/* The line o + t d against the sphere |p - c| = rad: a = |d|^2, half_b = (o - c).d and the
+   square root of the discriminant, so the roots are (-half_b -+ sq) / a. 0 when it misses. */
+static inline int sphere_quadratic(vec3 c, double rad, const ray *r, double *a, double *half_b, double *sq)
+{
+    vec3 oc = v3_sub(r->orig, c);
+    *a = v3_len2(r->dir);
+    *half_b = v3_dot(oc, r->dir);
+    double cc = v3_len2(oc) - rad * rad;
+    double disc = *half_b * *half_b - *a * cc;
+    if (disc < 0 || *a == 0)
+        return 0;
+    *sq = sqrt(disc);
+    return 1;
+}
+
 /* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. */
 static inline int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    vec3 oc = v3_sub(r->orig, c);
-    double a = v3_len2(r->dir);
-    double half_b = v3_dot(oc, r->dir);
-    double cc = v3_len2(oc) - rad * rad;
-    double disc = half_b * half_b - a * cc;
-    if (disc < 0 || a == 0)
+    double a, half_b, sq;
+    if (!sphere_quadratic(c, rad, r, &a, &half_b, &sq))
         return 0;
-    double sq = sqrt(disc), lo = t_min * a, hi = t_max * a;
+    double lo = t_min * a, hi = t_max * a;
     double at = -half_b - sq;
     if (!(at > lo && at < hi)) {
         at = -half_b + sq;
