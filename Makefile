@@ -115,9 +115,10 @@ install: all
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/worker
 
-# One small render (two forked children) under valgrind memcheck: zero errors, nothing lost.
+# One small render (two forked children, Poisson pixel and light sets) under valgrind memcheck:
+# zero errors, nothing lost.
 valgrind: all
-	$(Q)mkdir -p build/valgrind && printf 'scene: %s/scenes/checker.yaml\nwidth: 24\nheight: 16\nthreshold: 34\nprocesses: 2\n' \
+	$(Q)mkdir -p build/valgrind && printf 'scene: %s/scenes/checker.yaml\nwidth: 24\nheight: 16\nsampler: poisson\nthreshold: 8\nlight_sampler: poisson\nlight_threshold: 5\nprocesses: 2\n' \
 	  "$(CURDIR)" >build/valgrind/job.yaml
 	$(Q)valgrind -q --error-exitcode=3 --leak-check=full --show-leak-kinds=definite \
 	  --errors-for-leak-kinds=definite --trace-children=yes --child-silent-after-fork=no \
