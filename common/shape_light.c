@@ -256,9 +256,9 @@ static inline double disk_pdf(const struct prim *p, vec3 o, vec3 dir)
     return planar_pdf(p, t, dn, dir);
 }
 
-double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
+/* One light's pdf, inline so shape_lights_pdf's loop has no call per light. */
+static inline double light_pdf(const struct prim *p, vec3 o, vec3 dir)
 {
-    (void)time;
     switch (p->type) {
     case PRIM_SPHERE:
         return sphere_pdf(p, o, dir);
@@ -266,8 +266,15 @@ double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
         return rect_pdf(p, o, dir);
     case PRIM_DISK:
         return disk_pdf(p, o, dir);
+    default:
+        return 0;
     }
-    return 0;
+}
+
+double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
+{
+    (void)time;
+    return light_pdf(p, o, dir);
 }
 
 vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
@@ -293,14 +300,7 @@ double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, dou
     double sum = 0;
     for (int i = 0; i < sc->n_lights; i++) {
         const struct prim *p = &sc->prims[sc->lights[i]];
-        if (i == known)
-            sum += known_pdf;
-        else if (p->type == PRIM_DISK)
-            sum += disk_pdf(p, o, dir);
-        else if (p->type == PRIM_RECT)
-            sum += rect_pdf(p, o, dir);
-        else if (p->type == PRIM_SPHERE)
-            sum += sphere_pdf(p, o, dir);
+        sum += i == known ? known_pdf : light_pdf(p, o, dir);
     }
     return sum / sc->n_lights;
 }
