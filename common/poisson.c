@@ -174,17 +174,18 @@ static inline void poisson_lanes(const struct poisson_frame *f, const float *ox,
     memcpy(L->cuv, &cuv, sizeof cuv);
 }
 
-/* Is (cx, cy) at least r from every sample so far? The fixed point filter first (each offset
-   rounded to 1/POISSON_FIXED cell, so a distance errs by under 3.5e-4 cells and near2 is
-   lowered by more: a candidate it turns down is truly too close), then the exact test. */
+/* Is (cx, cy) at least r from every sample so far? The fixed point filter first, unless the
+   caller has applied it already (each offset rounded to 1/POISSON_FIXED cell, so a distance
+   errs by under 3.5e-4 cells and near2 is lowered by more: a candidate it turns down is truly
+   too close), then the exact test. */
 static inline int poisson_far_enough(const struct poisson *s, const struct poisson_frame *f,
-                                     const struct pt2 *pts, double cx, double cy, int torus)
+                                     const struct pt2 *pts, double cx, double cy, int torus, int filtered)
 {
     double xs = cx * f->side, ys = cy * f->side;
     /* the box [c - r, c + r] starts in cell (i0, j0); truncation floors the lifted values */
     int i0 = (int)(xs + f->lift) - f->lift_cells;
     int j0 = (int)(ys + f->lift) - f->lift_cells;
-    if (f->window == 4) {
+    if (f->window == 4 && !filtered) {
         ptrdiff_t at = (ptrdiff_t)j0 * f->stride + i0;
         uint32_t cu = (uint32_t)((xs - i0) * POISSON_FIXED + 0.5),
                  cv = (uint32_t)((ys - j0) * POISSON_FIXED + 0.5);
@@ -342,7 +343,8 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
             next += 4;
             const int lanes = POISSON_TRIES - k < 4 ? POISSON_TRIES - k : 4;
             for (int b = 0; b < lanes; b++) {
-                if (L.inside[b] && frame.window == 4 &&
+                const int filtered = L.inside[b] && frame.window == 4;
+                if (filtered &&
                     poisson_near4(frame.uv + 2 * (ptrdiff_t)L.at[b], frame.stride, L.cuv[b], frame.near2))
                     continue; /* the common case: clearly too close */
                 struct pt2 c = {(bi + (double)L.lu[b]) * inv_side, (bj + (double)L.lv[b]) * inv_side};
@@ -352,7 +354,7 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
                 } else if ((c.x < 0.0) | (c.x >= 1.0) | (c.y < 0.0) | (c.y >= 1.0)) {
                     continue;
                 }
-                if (!poisson_far_enough(s, &frame, out, c.x, c.y, torus))
+                if (!poisson_far_enough(s, &frame, out, c.x, c.y, torus, filtered))
                     continue;
                 out[count] = c;
                 poisson_insert(s, c, (int32_t)count, torus);
