@@ -1,6 +1,7 @@
 /* bvh_build: binned surface-area-heuristic build (Wald 2007, "On fast construction of SAH-based
-   bounding volume hierarchies") collapsed into a flat array of wide nodes (Dammertz et al.
-   2008, "Shallow bounding volume hierarchies for fast SIMD ray tracing"). */
+   bounding volume hierarchies") down to single prims, collapsed into a flat array of wide nodes
+   (Dammertz et al. 2008, "Shallow bounding volume hierarchies for fast SIMD ray tracing") by the
+   cost-optimal plan of Ylitie et al. 2017, which also picks the leaves. */
 #include "bvh.h"
 
 #include <float.h>
@@ -9,9 +10,8 @@
 
 #define BVH_BINS 12
 #define BVH_LEAF_MAX 4
-/* SAH splits down to this depth; below it ranges are halved until they fit a leaf, which takes
-   fewer than 32 more levels for any int count (BVH_DEPTH in all): leaves never exceed
-   BVH_LEAF_MAX prims. */
+/* SAH splits down to this depth; below it ranges are halved down to single prims, which takes
+   fewer than 32 more levels for any int count (BVH_DEPTH in all). */
 #define BVH_SAH_DEPTH (BVH_DEPTH - 32)
 
 struct box {
@@ -41,12 +41,25 @@ struct bnode {
     int start, count;
 };
 
+/* The collapse's plan for binary node b (Ylitie et al. 2017, "Efficient incoherent ray traversal
+   on GPUs through compressed wide BVHs", section 3.1): cost[j] is the least expected cost of its
+   subtree held in at most j lanes of the wide parent (SAH: each part weighted by its box area),
+   with left[j] lanes for the left child's subtree and right[j] for the right's, or left[j] = 0:
+   the node in one lane, a leaf when `leaf`, else a wide node of its own, whose lanes are
+   node_left's for the left child's subtree and node_right's for the right's. */
+struct plan {
+    double cost[BVH_WIDTH + 1];
+    int8_t left[BVH_WIDTH + 1], right[BVH_WIDTH + 1];
+    int8_t leaf, node_left, node_right;
+};
+
 struct build {
     struct scene *sc;
     struct box *boxes;
     vec3 *centroids;
     int32_t *order;
     struct bnode *bin;
+    struct plan *plan;
     int n_bin;
     struct bvh_node *nodes;
     int n_nodes;
@@ -58,7 +71,7 @@ static int best_split(struct build *bd, int start, int count, struct box bounds,
     struct box cb = box_empty();
     for (int i = start; i < start + count; i++)
         cb = box_join(cb, (struct box){bd->centroids[bd->order[i]], bd->centroids[bd->order[i]]});
-    double best = box_area(bounds) * count; /* cost of a leaf, in units of one intersection */
+    double best = INFINITY; /* always split: plan_node picks the leaves */
     int best_axis = -1;
     for (int ax = 0; ax < 3; ax++) {
         double lo = v3_get(cb.lo, ax), hi = v3_get(cb.hi, ax);
@@ -119,7 +132,7 @@ static int build_binary(struct build *bd, int start, int count, int depth)
     int ax = -1;
     if (count > 1 && depth < BVH_SAH_DEPTH)
         ax = best_split(bd, start, count, node->box, &split);
-    if (ax < 0 && count <= BVH_LEAF_MAX)
+    if (count == 1)
         return idx;
     int mid = start;
     if (ax >= 0) {
@@ -150,46 +163,107 @@ static void set_lane(struct bvh_node *n, int c, struct box b)
     }
 }
 
-/* Wide node for binary interior node b: its children, with the interior child of largest area
-   replaced by its own two children until there are `width` (or only leaves). Returns its
-   index. */
-static int collapse(struct build *bd, int b, int width)
+/* The plan's costs, in visits of an 8-wide node (two 4-lane slab tests and the loop around
+   them): a leaf lane met, and a prim tested inline in the traversal (spheres, rects, media whose
+   flight is computed when met) or through shape_hit. Measured on final: other ratios (0.3 / 1.0,
+   0.8 / 2.0, a leaf 0.05-0.5) gave the same trees within 1% of instructions. */
+#define COST_NODE 1.0
+#define COST_LEAF 0.1
+#define COST_FAST 0.5
+#define COST_SLOW 1.5
+
+/* Expected cost of testing p. */
+static double prim_cost(const struct prim *p)
 {
-    int idx = bd->n_nodes++;
-    int kids[BVH_WIDTH] = {bd->bin[b].left, bd->bin[b].right}, n = 2;
-    while (n < width) {
-        int pick = -1;
-        double best = -1;
-        for (int i = 0; i < n; i++) {
-            const struct bnode *k = &bd->bin[kids[i]];
-            double area = box_area(k->box);
-            if (k->left >= 0 && area > best)
-                best = area, pick = i;
-        }
-        if (pick < 0)
-            break;
-        int split = kids[pick];
-        kids[pick] = bd->bin[split].left;
-        kids[n++] = bd->bin[split].right;
+    if ((p->type == PRIM_SPHERE || p->type == PRIM_RECT || p->type == PRIM_MEDIUM) && !p->has_xform)
+        return COST_FAST;
+    return COST_SLOW;
+}
+
+/* Fill bd->plan[b] from its children's plans, for nodes of `width` lanes. */
+static void plan_node(struct build *bd, int b, int width)
+{
+    const struct bnode *k = &bd->bin[b];
+    struct plan *pl = &bd->plan[b];
+    double area = box_area(k->box);
+    double leaf = INFINITY, node = INFINITY;
+    if (k->count <= BVH_LEAF_MAX) {
+        leaf = COST_LEAF;
+        for (int i = k->start; i < k->start + k->count; i++)
+            leaf += prim_cost(&bd->sc->prims[bd->order[i]]);
+        leaf *= area;
     }
-    struct bvh_node *node = &bd->nodes[idx];
+    memset(pl->left, 0, sizeof pl->left);
+    memset(pl->right, 0, sizeof pl->right);
+    for (int j = 1; j <= width; j++)
+        pl->cost[j] = INFINITY;
+    if (k->left >= 0) { /* the best split of j lanes between the children, for every j */
+        const struct plan *l = &bd->plan[k->left], *r = &bd->plan[k->right];
+        for (int j = 2; j <= width; j++)
+            for (int s = 1; s < j; s++)
+                if (l->cost[s] + r->cost[j - s] < pl->cost[j]) {
+                    pl->cost[j] = l->cost[s] + r->cost[j - s];
+                    pl->left[j] = (int8_t)s;
+                    pl->right[j] = (int8_t)(j - s);
+                }
+        node = area * COST_NODE + pl->cost[width];
+    }
+    pl->node_left = pl->left[width];
+    pl->node_right = pl->right[width];
+    pl->leaf = leaf <= node;
+    pl->cost[1] = leaf <= node ? leaf : node;
+    for (int j = 2; j <= width; j++)
+        if (!(pl->cost[j] < pl->cost[j - 1])) { /* j lanes do no better than j - 1 */
+            pl->cost[j] = pl->cost[j - 1];
+            pl->left[j] = pl->left[j - 1];
+            pl->right[j] = pl->right[j - 1];
+        }
+}
+
+/* Append to lanes the binary nodes that hold b's subtree in at most j lanes; the new count. */
+static int plan_lanes(const struct build *bd, int b, int j, int *lanes, int n)
+{
+    const struct plan *pl = &bd->plan[b];
+    if (pl->left[j] == 0) {
+        lanes[n] = b;
+        return n + 1;
+    }
+    n = plan_lanes(bd, bd->bin[b].left, pl->left[j], lanes, n);
+    return plan_lanes(bd, bd->bin[b].right, pl->right[j], lanes, n);
+}
+
+/* A new node of n lanes, all empty (never hit); its index. */
+static int node_new(struct build *bd, int n)
+{
+    struct bvh_node *node = &bd->nodes[bd->n_nodes];
     memset(node, 0, sizeof *node);
     for (int c = 0; c < BVH_WIDTH; c++)
         for (int a = 0; a < 3; a++)
-            node->lo[a][c] = INFINITY, node->hi[a][c] = -INFINITY; /* never hit */
+            node->lo[a][c] = INFINITY, node->hi[a][c] = -INFINITY;
     node->quads = (uint8_t)((n + 3) / 4);
+    return bd->n_nodes++;
+}
+
+/* Wide node for binary interior node b as planned; its index. */
+static int collapse(struct build *bd, int b)
+{
+    const struct plan *pl = &bd->plan[b];
+    int kids[BVH_WIDTH], n = plan_lanes(bd, bd->bin[b].left, pl->node_left, kids, 0);
+    n = plan_lanes(bd, bd->bin[b].right, pl->node_right, kids, n);
+    int idx = node_new(bd, n);
+    struct bvh_node *node = &bd->nodes[idx];
     for (int c = 0; c < n; c++) {
         const struct bnode *k = &bd->bin[kids[c]];
         set_lane(node, c, k->box);
-        if (k->left < 0) {
+        if (bd->plan[kids[c]].leaf) {
             node->child[c] = k->start;
             node->count[c] = (uint16_t)k->count;
             node->leaves |= (uint16_t)(1u << c);
         }
     }
     for (int c = 0; c < n; c++)
-        if (bd->bin[kids[c]].left >= 0) {
-            int child = collapse(bd, kids[c], width); /* bd->nodes is allocated up front: idx stays valid */
+        if (!bd->plan[kids[c]].leaf) {
+            int child = collapse(bd, kids[c]); /* bd->nodes is allocated up front */
             bd->nodes[idx].child[c] = child;
         }
     return idx;
@@ -198,7 +272,7 @@ static int collapse(struct build *bd, int b, int width)
 int bvh_build(struct scene *sc, struct err *e)
 {
     int n = sc->n_prims;
-    struct build bd = {sc, NULL, NULL, NULL, NULL, 0, NULL, 0};
+    struct build bd = {sc, NULL, NULL, NULL, NULL, NULL, 0, NULL, 0};
     free(sc->nodes);
     free(sc->prim_order);
     sc->nodes = NULL;
@@ -210,9 +284,11 @@ int bvh_build(struct scene *sc, struct err *e)
     bd.centroids = malloc((size_t)n * sizeof *bd.centroids);
     bd.order = malloc((size_t)n * sizeof *bd.order);
     bd.bin = malloc((size_t)(2 * n) * sizeof *bd.bin);
+    bd.plan = malloc((size_t)(2 * n) * sizeof *bd.plan);
     /* a wide node per binary interior node at most, each on its own cache lines */
     bd.nodes = aligned_alloc(64, (size_t)n * sizeof *bd.nodes);
-    if (!bd.boxes || !bd.centroids || !bd.order || !bd.bin || !bd.nodes) {
+    if (!bd.boxes || !bd.centroids || !bd.order || !bd.bin || !bd.plan || !bd.nodes) {
+        free(bd.plan);
         free(bd.order);
         free(bd.nodes);
         free(bd.bin);
@@ -227,25 +303,25 @@ int bvh_build(struct scene *sc, struct err *e)
     }
     build_binary(&bd, 0, n, 0);
     if (bd.bin[0].left < 0) { /* the whole scene is one leaf: a root with one child */
-        struct bvh_node *root = &bd.nodes[bd.n_nodes++];
-        memset(root, 0, sizeof *root);
-        for (int c = 0; c < BVH_WIDTH; c++)
-            for (int a = 0; a < 3; a++)
-                root->lo[a][c] = INFINITY, root->hi[a][c] = -INFINITY;
+        struct bvh_node *root = &bd.nodes[node_new(&bd, 1)];
         set_lane(root, 0, bd.bin[0].box);
         root->child[0] = 0;
         root->count[0] = (uint16_t)n;
         root->leaves = 1;
-        root->quads = 1;
     } else {
-        /* A small scene (the Cornell boxes: 8 and 15 prims) in one node of up to 16 leaves: one
-           visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere 8-wide:
-           16 lanes deep in a big tree test more boxes than they save visits (final +4%). */
-        collapse(&bd, 0, bd.n_bin <= 2 * BVH_WIDTH - 1 ? BVH_WIDTH : BVH_WIDTH / 2);
+        /* A scene of at most 16 prims (the Cornell boxes: 8 and 15) in one node, a prim per
+           lane: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere
+           8-wide: 16 lanes deep in a big tree test more boxes than they save visits (final +4%;
+           a 16-wide root alone: +1%). */
+        int width = n <= BVH_WIDTH ? BVH_WIDTH : BVH_WIDTH / 2;
+        for (int b = bd.n_bin - 1; b >= 0; b--) /* children follow their parent */
+            plan_node(&bd, b, width);
+        collapse(&bd, 0);
     }
     free(bd.boxes);
     free(bd.centroids);
     free(bd.bin);
+    free(bd.plan);
     sc->nodes = bd.nodes;
     sc->n_nodes = bd.n_nodes;
     sc->prim_order = bd.order;
