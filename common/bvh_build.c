@@ -34,6 +34,25 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
+/* World box of p: shape_bounds', or for a transformed sphere (final's cluster of 1000: rotate_y
+   15 and a translation) its centre +- radius, where shape_bounds gives the box of its rotated
+   bounding cube, 22% wider in x and z at 15 degrees (32% more area: more box hits and sphere
+   tests per ray). */
+static struct box prim_box(const struct prim *p)
+{
+    struct box b;
+    shape_bounds(p, &b.lo, &b.hi);
+    if (p->has_xform && (p->type == PRIM_SPHERE || p->type == PRIM_MEDIUM)) {
+        vec3 c = p->type == PRIM_SPHERE ? p->g.sphere.center : p->g.medium.center;
+        double r = p->type == PRIM_SPHERE ? p->g.sphere.radius : p->g.medium.radius;
+        vec3 w =
+            v3_add(v3(p->cos_y * c.x + p->sin_y * c.z, c.y, -p->sin_y * c.x + p->cos_y * c.z), p->offset);
+        b.lo = v3_max(b.lo, v3_sub(w, v3(r, r, r)));
+        b.hi = v3_min(b.hi, v3_add(w, v3(r, r, r)));
+    }
+    return b;
+}
+
 /* The binary SAH tree, built first and then collapsed into BVH_WIDTH-wide nodes. */
 struct bnode {
     struct box box;
@@ -297,7 +316,7 @@ int bvh_build(struct scene *sc, struct err *e)
         return err_set(e, NULL, 0, 0, "out of memory building the BVH of %d primitives", n);
     }
     for (int i = 0; i < n; i++) {
-        shape_bounds(&sc->prims[i], &bd.boxes[i].lo, &bd.boxes[i].hi);
+        bd.boxes[i] = prim_box(&sc->prims[i]);
         bd.centroids[i] = v3_scale(v3_add(bd.boxes[i].lo, bd.boxes[i].hi), 0.5);
         bd.order[i] = i;
     }
