@@ -321,15 +321,15 @@ int bvh_build(struct scene *sc, struct err *e)
         bd.order[i] = i;
     }
     build_binary(&bd, 0, n, 0);
-    if (bd.bin[0].left < 0) { /* the whole scene is one leaf: a root with one child */
+    if (bd.bin[0].left < 0) { /* a scene of one prim: a root with one child */
         struct bvh_node *root = &bd.nodes[node_new(&bd, 1)];
         set_lane(root, 0, bd.bin[0].box);
         root->child[0] = 0;
         root->count[0] = (uint16_t)n;
         root->leaves = 1;
     } else {
-        /* A scene of at most 16 prims (the Cornell boxes: 8 and 15) in one node, a prim per
-           lane: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere
+        /* A scene of at most 16 prims (the Cornell boxes: 8 and 15, a prim per lane) in one
+           node: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere
            8-wide: 16 lanes deep in a big tree test more boxes than they save visits (final +4%;
            a 16-wide root alone: +1%). */
         int width = n <= BVH_WIDTH ? BVH_WIDTH : BVH_WIDTH / 2;
