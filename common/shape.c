@@ -1,5 +1,6 @@
 /* shape: ray intersection for every primitive type, dispatched by one switch (no function
-   pointers per ray); rotate_y + translate move the ray into object space first. */
+   pointers per ray). A rotate_y + translate is folded into the geometry at load where the shape
+   allows (shape_bake); for the rest the ray is moved into object space first. */
 #include "shape.h"
 
 #include <string.h>
@@ -44,6 +45,54 @@ void shape_prepare(struct prim *p)
         p->g.rect.eb = v3(b == 0, b == 1, b == 2);
     }
     p->area = shape_area(p);
+}
+
+/* rotate_y + translate of an object-space point (directions take rotate_to_world alone): the
+   same arithmetic shape_hit applies to a transformed prim's hit point. */
+static vec3 point_to_world(const struct prim *p, vec3 a)
+{
+    return v3_add(rotate_to_world(p, a), p->offset);
+}
+
+int shape_bake(struct prim *p, int keep_uv)
+{
+    if (!p->has_xform)
+        return 0;
+    switch (p->type) {
+    case PRIM_SPHERE:
+        /* a sphere's uv is its object-space direction: a rotated one would map its texture
+           differently */
+        if (keep_uv)
+            return 0;
+        p->g.sphere.center = point_to_world(p, p->g.sphere.center);
+        break;
+    case PRIM_MOVING_SPHERE:
+        p->g.msphere.center0 = point_to_world(p, p->g.msphere.center0);
+        p->g.msphere.velocity = rotate_to_world(p, p->g.msphere.velocity);
+        break;
+    case PRIM_DISK:
+        p->g.disk.center = point_to_world(p, p->g.disk.center);
+        p->g.disk.normal = rotate_to_world(p, p->g.disk.normal);
+        p->g.disk.e1 = rotate_to_world(p, p->g.disk.e1);
+        p->g.disk.e2 = rotate_to_world(p, p->g.disk.e2);
+        break;
+    case PRIM_CYLINDER:
+        p->g.cyl.base = point_to_world(p, p->g.cyl.base);
+        p->g.cyl.axis = rotate_to_world(p, p->g.cyl.axis);
+        break;
+    case PRIM_TRIANGLE:
+        p->g.tri.v0 = point_to_world(p, p->g.tri.v0);
+        p->g.tri.e1 = rotate_to_world(p, p->g.tri.e1);
+        p->g.tri.e2 = rotate_to_world(p, p->g.tri.e2);
+        p->g.tri.normal = rotate_to_world(p, p->g.tri.normal);
+        break;
+    default: /* boxes and rects stay axis-aligned in object space; media hash the object-space ray */
+        return 0;
+    }
+    p->has_xform = 0;
+    p->cos_y = 1, p->sin_y = 0, p->offset = v3(0, 0, 0);
+    shape_prepare(p);
+    return 1;
 }
 
 static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
