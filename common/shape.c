@@ -115,48 +115,60 @@ static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_m
     return 1;
 }
 
-/* Axis-aligned box by the slab method (Kay & Kajiya 1986): the entry face from outside, the
-   exit face from inside; the normal is that face's outward axis. */
+/* One slab of the box test: the distances to its near and far planes (picked by the direction's
+   sign), kept when they narrow [t_near, t_far]. A zero direction component (inv = +-inf) gives
+   +-inf, or NaN with the origin on a plane, which the strict comparisons ignore: the ray then
+   misses unless its origin lies within the slab, as when that axis is skipped. */
+static inline void box_slab(double o, double d, double lo, double hi, int axis, double *t_near,
+                            int *near_axis, double *t_far, int *far_axis)
+{
+    double inv = 1.0 / d;
+    double tn = ((inv < 0 ? hi : lo) - o) * inv, tf = ((inv < 0 ? lo : hi) - o) * inv;
+    if (tn > *t_near)
+        *t_near = tn, *near_axis = axis;
+    if (tf < *t_far)
+        *t_far = tf, *far_axis = axis;
+}
+
+/* Axis-aligned box by the slab method (Kay & Kajiya 1986) on the object-space ray, moved there
+   in place (no ray copy): the entry face from outside, the exit face from inside. The normal
+   is -sign(d) along the face's axis with its zeros signed as set_face signs them (+0 entering,
+   -0 leaving: onb_from_w reads the sign of z), then rotated to world space as shape_hit rotates
+   other shapes'. */
 static int hit_box(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    const double lo[3] = {p->g.box.lo.x, p->g.box.lo.y, p->g.box.lo.z};
-    const double hi[3] = {p->g.box.hi.x, p->g.box.hi.y, p->g.box.hi.z};
-    const double o[3] = {r->orig.x, r->orig.y, r->orig.z}, d[3] = {r->dir.x, r->dir.y, r->dir.z};
-    double t_near = -INFINITY, t_far = INFINITY;
-    int near_axis = -1, far_axis = -1;
-    for (int a = 0; a < 3; a++) {
-        if (d[a] == 0) {
-            if (o[a] < lo[a] || o[a] > hi[a])
-                return 0;
-            continue;
-        }
-        double inv = 1.0 / d[a];
-        double ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
-        if (ta > tb) {
-            double t = ta;
-            ta = tb;
-            tb = t;
-        }
-        if (ta > t_near)
-            t_near = ta, near_axis = a;
-        if (tb < t_far)
-            t_far = tb, far_axis = a;
+    vec3 o = r->orig, d = r->dir;
+    if (p->has_xform) {
+        const double c = p->cos_y, s = p->sin_y;
+        vec3 w = v3_sub(r->orig, p->offset);
+        o = v3(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
+        d = v3(c * r->dir.x - s * r->dir.z, r->dir.y, s * r->dir.x + c * r->dir.z);
     }
+    const vec3 lo = p->g.box.lo, hi = p->g.box.hi;
+    double t_near = -INFINITY, t_far = INFINITY;
+    int near_axis = 0, far_axis = 0;
+    box_slab(o.x, d.x, lo.x, hi.x, 0, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(o.y, d.y, lo.y, hi.y, 1, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(o.z, d.z, lo.z, hi.z, 2, &t_near, &near_axis, &t_far, &far_axis);
     if (t_near > t_far)
         return 0;
-    double t;
-    int axis;
-    double sign;
-    if (t_near > t_min && t_near < t_max) {
-        t = t_near, axis = near_axis, sign = d[axis] > 0 ? -1.0 : 1.0;
-    } else if (t_far > t_min && t_far < t_max) {
-        t = t_far, axis = far_axis, sign = d[axis] > 0 ? 1.0 : -1.0;
-    } else {
+    int entry = t_near > t_min && t_near < t_max;
+    if (!entry && !(t_far > t_min && t_far < t_max))
         return 0;
-    }
+    double t = entry ? t_near : t_far;
+    int axis = entry ? near_axis : far_axis;
+    double nv = v3_get(d, axis) > 0 ? -1.0 : 1.0, zero = entry ? 0.0 : -0.0;
+    vec3 q = v3_fma(o, d, t);
+    vec3 n = v3(axis == 0 ? nv : zero, axis == 1 ? nv : zero, axis == 2 ? nv : zero);
     h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, v3(axis == 0 ? sign : 0, axis == 1 ? sign : 0, axis == 2 ? sign : 0));
+    h->front = entry;
+    if (p->has_xform) {
+        h->p = v3_add(rotate_to_world(p, q), p->offset);
+        h->n = rotate_to_world(p, n);
+    } else {
+        h->p = q;
+        h->n = n;
+    }
     return 1;
 }
 
@@ -302,6 +314,8 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
 
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
+    if (p->type == PRIM_BOX) /* moves the ray to object space itself */
+        return hit_box(p, r, t_min, t_max, h);
     ray local;
     const ray *q = r;
     if (p->has_xform) {
@@ -322,9 +336,6 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
         break;
     case PRIM_DISK:
         got = hit_disk(p, q, t_min, t_max, h);
-        break;
-    case PRIM_BOX:
-        got = hit_box(p, q, t_min, t_max, h);
         break;
     case PRIM_CYLINDER:
         got = hit_cylinder(p, q, t_min, t_max, h);
