@@ -274,7 +274,6 @@ static double medium_uniform(uint64_t ray_hash, const struct prim *p)
 
 void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, struct medium_flight *f)
 {
-    f->crosses = sphere_roots(p->g.medium.center, p->g.medium.radius, r, &f->t0, &f->t1);
     f->len = v3_len(r->dir);
     f->u = medium_uniform(ray_hash, p);
 }
@@ -282,16 +281,23 @@ void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, 
 int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,
                      double t_max, struct hit *h)
 {
-    if (!f->crosses)
+    double len = f->len, u = f->u, neg_inv_density = p->g.medium.neg_inv_density;
+    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
+       rounding), the ray passes through without the log, as most do in thin fog. The span
+       inside is at most (t_max - t_min) |dir| (rounding is monotone, so this test turns down
+       no ray the span's own would keep), and that first test spares most rays the boundary's
+       roots; past it, the same test on the span itself. */
+    double flight_lo = (1 - u) * -neg_inv_density;
+    if (flight_lo > (t_max - t_min) * len * (1 + 1e-9))
         return 0;
-    double enter = f->t0 > t_min ? f->t0 : t_min, leave = f->t1 < t_max ? f->t1 : t_max;
+    double t0, t1;
+    if (!sphere_roots(p->g.medium.center, p->g.medium.radius, r, &t0, &t1))
+        return 0;
+    double enter = t0 > t_min ? t0 : t_min, leave = t1 < t_max ? t1 : t_max;
     if (!(enter < leave))
         return 0;
-    double len = f->len, span = (leave - enter) * len;
-    double u = f->u, neg_inv_density = p->g.medium.neg_inv_density;
-    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
-       rounding), the ray passes through without the log, as most do in thin fog */
-    if ((1 - u) * -neg_inv_density > span * (1 + 1e-9))
+    double span = (leave - enter) * len;
+    if (flight_lo > span * (1 + 1e-9))
         return 0;
     double dist = neg_inv_density * log(u);
     if (dist > span)
