@@ -106,5 +106,11 @@ int scene_finish(struct scene *sc, struct err *e)
         if (!shape_bake(p, prim_needs_uv(sc, p)))
             shape_prepare(p);
     }
+    /* lights are sampled in world space: the loader admits only transforms that fold */
+    for (int i = 0; i < sc->n_lights; i++)
+        if (sc->prims[sc->lights[i]].has_xform) {
+            err_set(e, NULL, 0, 0, "internal: light %d keeps a transform shape_bake cannot fold", i);
+            return -1;
+        }
     return bvh_build(sc, e);
 }

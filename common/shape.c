@@ -54,17 +54,64 @@ static vec3 point_to_world(const struct prim *p, vec3 a)
     return v3_add(rotate_to_world(p, a), p->offset);
 }
 
-int shape_bake(struct prim *p, int keep_uv)
+/* A rotate_y by a multiple of 90 degrees: cos and sin within rounding of 0 and +-1. */
+static int quarter_turn(const struct prim *p)
+{
+    return fabs(p->cos_y) < 1e-12 || fabs(p->sin_y) < 1e-12;
+}
+
+int shape_bakes(const struct prim *p, int keep_uv)
 {
     if (!p->has_xform)
         return 0;
     switch (p->type) {
+    case PRIM_SPHERE: /* its uv is its object-space direction: turned, the texture would turn */
+        return !keep_uv;
+    case PRIM_RECT: /* axis-aligned only after quarter turns; its uv would turn too */
+        return !keep_uv && quarter_turn(p);
+    case PRIM_MOVING_SPHERE:
+    case PRIM_DISK: /* its frame turns with it: the same uv */
+    case PRIM_CYLINDER:
+    case PRIM_TRIANGLE:
+        return 1;
+    default: /* boxes stay axis-aligned in object space; media hash the object-space ray */
+        return 0;
+    }
+}
+
+/* A rect turned a quarter turn k times about y and moved is again an axis-aligned rect: its
+   corners and normal turned by the exact rotation (cos, sin rounded to 0 or +-1) and moved. */
+static void rect_bake(struct prim *p)
+{
+    const double c = round(p->cos_y), s = round(p->sin_y);
+    const int ax = p->g.rect.axis, a = ax == 0 ? 1 : 0, b = ax == 2 ? 1 : 2;
+    double lo[3], hi[3], n[3] = {0, 0, 0};
+    lo[ax] = hi[ax] = p->g.rect.k;
+    lo[a] = p->g.rect.a0, hi[a] = p->g.rect.a1;
+    lo[b] = p->g.rect.b0, hi[b] = p->g.rect.b1;
+    n[ax] = p->flip ? -1 : 1;
+    /* rotate_to_world with the exact quarter-turn cos and sin */
+    vec3 wl = v3_add(v3(c * lo[0] + s * lo[2], lo[1], -s * lo[0] + c * lo[2]), p->offset);
+    vec3 wh = v3_add(v3(c * hi[0] + s * hi[2], hi[1], -s * hi[0] + c * hi[2]), p->offset);
+    vec3 wn = v3(c * n[0] + s * n[2], n[1], -s * n[0] + c * n[2]);
+    const int nax = fabs(wn.x) > 0.5 ? 0 : fabs(wn.y) > 0.5 ? 1 : 2, na = nax == 0 ? 1 : 0, nb = nax == 2 ? 1 : 2;
+    p->g.rect.axis = nax;
+    p->flip = v3_get(wn, nax) < 0;
+    p->g.rect.k = v3_get(wl, nax);
+    p->g.rect.a0 = fmin(v3_get(wl, na), v3_get(wh, na)), p->g.rect.a1 = fmax(v3_get(wl, na), v3_get(wh, na));
+    p->g.rect.b0 = fmin(v3_get(wl, nb), v3_get(wh, nb)), p->g.rect.b1 = fmax(v3_get(wl, nb), v3_get(wh, nb));
+}
+
+int shape_bake(struct prim *p, int keep_uv)
+{
+    if (!shape_bakes(p, keep_uv))
+        return 0;
+    switch (p->type) {
     case PRIM_SPHERE:
-        /* a sphere's uv is its object-space direction: a rotated one would map its texture
-           differently */
-        if (keep_uv)
-            return 0;
         p->g.sphere.center = point_to_world(p, p->g.sphere.center);
+        break;
+    case PRIM_RECT:
+        rect_bake(p);
         break;
     case PRIM_MOVING_SPHERE:
         p->g.msphere.center0 = point_to_world(p, p->g.msphere.center0);
@@ -86,7 +133,7 @@ int shape_bake(struct prim *p, int keep_uv)
         p->g.tri.e2 = rotate_to_world(p, p->g.tri.e2);
         p->g.tri.normal = rotate_to_world(p, p->g.tri.normal);
         break;
-    default: /* boxes and rects stay axis-aligned in object space; media hash the object-space ray */
+    default:
         return 0;
     }
     p->has_xform = 0;

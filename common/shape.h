@@ -20,11 +20,14 @@ struct hit {
    editing a prim's geometry by hand. */
 void shape_prepare(struct prim *p);
 
-/* Fold p's rotate_y + translate into its world-space geometry when that shape is closed under
-   it (sphere, moving sphere, disk, cylinder, triangle): 1 and has_xform cleared, its hits then
-   the transformed prim's up to rounding; 0 and p unchanged for boxes, rects and media, and
-   for a sphere when keep_uv (a texture reads its object-space uv). */
+/* Fold p's rotate_y + translate into its world-space geometry where the shape allows: spheres,
+   moving spheres, disks, cylinders, triangles, and rects turned by a multiple of 90 degrees
+   (they stay axis-aligned). 1 and has_xform cleared when folded (the folded prim hits where the
+   transformed one does, up to rounding); 0 and p unchanged for boxes, media, other rects, and
+   spheres and rects when keep_uv (a texture reads their object-space uv). shape_bakes says
+   which without changing p. */
 int shape_bake(struct prim *p, int keep_uv);
+int shape_bakes(const struct prim *p, int keep_uv);
 
 /* Nearest hit of r with p in (t_min, t_max): 1 and h filled, else 0. Pure: a medium draws its
    free-flight distance from a hash of the ray, so the same ray always gets the same answer. */

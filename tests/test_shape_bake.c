@@ -37,9 +37,11 @@ static int near_rel(double a, double b, double scale)
 /* The object-space prim p under a few transforms: shape_bake folds each, and for random rays
    aimed near it the baked prim's hit equals the transformed one's; hits lie in the baked
    bounds. */
-static void check_fold(const struct prim *p, const char *what)
+static const double any_turns[5] = {15, -18, 70, 123.4, -200};
+static const double quarter_turns[5] = {90, -90, 180, 0, 630};
+
+static void check_fold(const struct prim *p, const char *what, const double angles[5])
 {
-    static const double angles[] = {15, -18, 70, 123.4, -200};
     static const vec3 offsets[] = {
         {-100, 270, 395}, {160, 230, 80}, {0, 0, 0}, {3.5, -2, 1e3}, {-7, 1, 0.25}};
     struct rng g;
@@ -102,32 +104,44 @@ static void test_folds(void)
 {
     struct prim s = {.type = PRIM_SPHERE};
     s.g.sphere.center = v3(143.6, 108.47, 23.34), s.g.sphere.radius = 10;
-    check_fold(&s, "sphere");
+    check_fold(&s, "sphere", any_turns);
 
     struct prim m = {.type = PRIM_MOVING_SPHERE};
     m.g.msphere.center0 = v3(1, 2, 3), m.g.msphere.velocity = v3(2, -1, 0.5), m.g.msphere.radius = 1.5;
     m.g.msphere.time_lo = 0, m.g.msphere.time_hi = 1;
-    check_fold(&m, "moving sphere");
+    check_fold(&m, "moving sphere", any_turns);
 
     struct prim d = {.type = PRIM_DISK};
     d.g.disk.center = v3(2, 1, -3), d.g.disk.radius = 4;
     onb f = onb_from_w(v3_unit(v3(1, 2, -0.5)));
     d.g.disk.normal = f.w, d.g.disk.e1 = f.u, d.g.disk.e2 = f.v;
-    check_fold(&d, "disk");
+    check_fold(&d, "disk", any_turns);
 
     struct prim c = {.type = PRIM_CYLINDER};
     c.g.cyl.base = v3(0, 0, 0), c.g.cyl.radius = 50;
     c.g.cyl.height = v3_len(v3(120, 120, 120)), c.g.cyl.axis = v3_unit(v3(120, 120, 120));
-    check_fold(&c, "cylinder");
+    check_fold(&c, "cylinder", any_turns);
 
     struct prim t = {.type = PRIM_TRIANGLE};
     t.g.tri.v0 = v3(0, 140, 0), t.g.tri.e1 = v3(-100.8, -140, -100.8), t.g.tri.e2 = v3(140, -140, 0);
     t.g.tri.normal = v3_unit(v3_cross(t.g.tri.e1, t.g.tri.e2));
-    check_fold(&t, "triangle");
+    check_fold(&t, "triangle", any_turns);
+
+    /* rects stay axis-aligned under quarter turns: every plane, both faces */
+    for (int axis = 0; axis < 3; axis++)
+        for (int flip = 0; flip < 2; flip++) {
+            struct prim r = {.type = PRIM_RECT, .flip = flip};
+            r.g.rect.axis = axis, r.g.rect.k = 3.25;
+            r.g.rect.a0 = -2, r.g.rect.a1 = 5, r.g.rect.b0 = 1, r.g.rect.b1 = 2.5;
+            char what[32];
+            snprintf(what, sizeof what, "rect axis %d flip %d", axis, flip);
+            check_fold(&r, what, quarter_turns);
+        }
 }
 
-/* Boxes, rects and media keep their transform; so does a sphere whose uv a texture reads, and
-   an untransformed prim is left as it is. */
+/* Boxes, media and rects turned by other than quarter turns keep their transform; so do a
+   sphere and a quarter-turned rect whose uv a texture reads, and an untransformed prim is left
+   as it is. */
 static void test_not_folded(void)
 {
     struct prim ps[4] = {
@@ -144,6 +158,12 @@ static void test_not_folded(void)
         CHECK(shape_bake(&q, i == 3) == 0);
         CHECK(memcmp(&p, &q, sizeof p) == 0);
     }
+    struct prim tr = ps[1];
+    set_xform(&tr, 90, v3(1, 2, 3));
+    shape_prepare(&tr);
+    struct prim tq = tr;
+    CHECK(shape_bakes(&tq, 1) == 0 && shape_bake(&tq, 1) == 0 && memcmp(&tr, &tq, sizeof tr) == 0);
+    CHECK(shape_bakes(&tq, 0) == 1);
     struct prim s = ps[3];
     shape_prepare(&s);
     struct prim q = s;
