@@ -94,7 +94,10 @@ static void rect_bake(struct prim *p)
     vec3 wl = v3_add(v3(c * lo[0] + s * lo[2], lo[1], -s * lo[0] + c * lo[2]), p->offset);
     vec3 wh = v3_add(v3(c * hi[0] + s * hi[2], hi[1], -s * hi[0] + c * hi[2]), p->offset);
     vec3 wn = v3(c * n[0] + s * n[2], n[1], -s * n[0] + c * n[2]);
-    const int nax = fabs(wn.x) > 0.5 ? 0 : fabs(wn.y) > 0.5 ? 1 : 2, na = nax == 0 ? 1 : 0, nb = nax == 2 ? 1 : 2;
+    const int nax = fabs(wn.x) > 0.5   ? 0
+                    : fabs(wn.y) > 0.5 ? 1
+                                       : 2,
+              na = nax == 0 ? 1 : 0, nb = nax == 2 ? 1 : 2;
     p->g.rect.axis = nax;
     p->flip = v3_get(wn, nax) < 0;
     p->g.rect.k = v3_get(wl, nax);
