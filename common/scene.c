@@ -5,6 +5,7 @@
 
 #include "bvh.h"
 #include "shape.h"
+#include "texture.h"
 
 struct scene *scene_new(void)
 {
@@ -87,9 +88,29 @@ int scene_use_perlin(struct scene *sc)
     return 0;
 }
 
+/* Whether prim p's material reads surface coordinates (an image texture). */
+static int prim_needs_uv(const struct scene *sc, const struct prim *p)
+{
+    if (p->material < 0 || p->material >= sc->n_materials)
+        return 0;
+    int t = sc->materials[p->material].texture;
+    return t >= 0 && t < sc->n_textures && texture_needs_uv(&sc->textures[t]);
+}
+
 int scene_finish(struct scene *sc, struct err *e)
 {
-    for (int i = 0; i < sc->n_prims; i++)
-        shape_prepare(&sc->prims[i]);
+    /* transforms folded into world-space geometry where exact: such prims take the inline
+       sphere test and shape_hit's direct path */
+    for (int i = 0; i < sc->n_prims; i++) {
+        struct prim *p = &sc->prims[i];
+        if (!shape_bake(p, prim_needs_uv(sc, p)))
+            shape_prepare(p);
+    }
+    /* lights are sampled in world space: the loader admits only transforms that fold */
+    for (int i = 0; i < sc->n_lights; i++)
+        if (sc->prims[sc->lights[i]].has_xform) {
+            err_set(e, NULL, 0, 0, "internal: light %d keeps a transform shape_bake cannot fold", i);
+            return -1;
+        }
     return bvh_build(sc, e);
 }

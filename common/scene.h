@@ -43,6 +43,9 @@ enum prim_type {
 };
 
 /* One primitive. Geometry is in object space; rotate_y (degrees) then translate place it.
+   scene_finish folds the transform into the geometry of the shapes it maps onto themselves
+   (shape_bake) and clears has_xform; boxes, media, rects turned by other than quarter turns,
+   and textured spheres and rects keep it.
    Fields marked "derived" are filled from the others by shape_prepare (scene_add_prim calls it). */
 struct prim {
     int type;

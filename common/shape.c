@@ -1,5 +1,6 @@
 /* shape: ray intersection for every primitive type, dispatched by one switch (no function
-   pointers per ray); rotate_y + translate move the ray into object space first. */
+   pointers per ray). A rotate_y + translate is folded into the geometry at load where the shape
+   allows (shape_bake); for the rest the ray is moved into object space first. */
 #include "shape.h"
 
 #include <string.h>
@@ -46,6 +47,104 @@ void shape_prepare(struct prim *p)
     p->area = shape_area(p);
 }
 
+/* rotate_y + translate of an object-space point (directions take rotate_to_world alone): the
+   same arithmetic shape_hit applies to a transformed prim's hit point. */
+static vec3 point_to_world(const struct prim *p, vec3 a)
+{
+    return v3_add(rotate_to_world(p, a), p->offset);
+}
+
+/* A rotate_y by a multiple of 90 degrees: cos and sin within rounding of 0 and +-1. */
+static int quarter_turn(const struct prim *p)
+{
+    return fabs(p->cos_y) < 1e-12 || fabs(p->sin_y) < 1e-12;
+}
+
+int shape_bakes(const struct prim *p, int keep_uv)
+{
+    if (!p->has_xform)
+        return 0;
+    switch (p->type) {
+    case PRIM_SPHERE: /* its uv is its object-space direction: turned, the texture would turn */
+        return !keep_uv;
+    case PRIM_RECT: /* axis-aligned only after quarter turns; its uv would turn too */
+        return !keep_uv && quarter_turn(p);
+    case PRIM_MOVING_SPHERE:
+    case PRIM_DISK: /* its frame turns with it: the same uv */
+    case PRIM_CYLINDER:
+    case PRIM_TRIANGLE:
+        return 1;
+    default: /* boxes stay axis-aligned in object space; media hash the object-space ray */
+        return 0;
+    }
+}
+
+/* A rect turned a quarter turn k times about y and moved is again an axis-aligned rect: its
+   corners and normal turned by the exact rotation (cos, sin rounded to 0 or +-1) and moved. */
+static void rect_bake(struct prim *p)
+{
+    const double c = round(p->cos_y), s = round(p->sin_y);
+    const int ax = p->g.rect.axis, a = ax == 0 ? 1 : 0, b = ax == 2 ? 1 : 2;
+    double lo[3], hi[3], n[3] = {0, 0, 0};
+    lo[ax] = hi[ax] = p->g.rect.k;
+    lo[a] = p->g.rect.a0, hi[a] = p->g.rect.a1;
+    lo[b] = p->g.rect.b0, hi[b] = p->g.rect.b1;
+    n[ax] = p->flip ? -1 : 1;
+    /* rotate_to_world with the exact quarter-turn cos and sin */
+    vec3 wl = v3_add(v3(c * lo[0] + s * lo[2], lo[1], -s * lo[0] + c * lo[2]), p->offset);
+    vec3 wh = v3_add(v3(c * hi[0] + s * hi[2], hi[1], -s * hi[0] + c * hi[2]), p->offset);
+    vec3 wn = v3(c * n[0] + s * n[2], n[1], -s * n[0] + c * n[2]);
+    const int nax = fabs(wn.x) > 0.5   ? 0
+                    : fabs(wn.y) > 0.5 ? 1
+                                       : 2,
+              na = nax == 0 ? 1 : 0, nb = nax == 2 ? 1 : 2;
+    p->g.rect.axis = nax;
+    p->flip = v3_get(wn, nax) < 0;
+    p->g.rect.k = v3_get(wl, nax);
+    p->g.rect.a0 = fmin(v3_get(wl, na), v3_get(wh, na)), p->g.rect.a1 = fmax(v3_get(wl, na), v3_get(wh, na));
+    p->g.rect.b0 = fmin(v3_get(wl, nb), v3_get(wh, nb)), p->g.rect.b1 = fmax(v3_get(wl, nb), v3_get(wh, nb));
+}
+
+int shape_bake(struct prim *p, int keep_uv)
+{
+    if (!shape_bakes(p, keep_uv))
+        return 0;
+    switch (p->type) {
+    case PRIM_SPHERE:
+        p->g.sphere.center = point_to_world(p, p->g.sphere.center);
+        break;
+    case PRIM_RECT:
+        rect_bake(p);
+        break;
+    case PRIM_MOVING_SPHERE:
+        p->g.msphere.center0 = point_to_world(p, p->g.msphere.center0);
+        p->g.msphere.velocity = rotate_to_world(p, p->g.msphere.velocity);
+        break;
+    case PRIM_DISK:
+        p->g.disk.center = point_to_world(p, p->g.disk.center);
+        p->g.disk.normal = rotate_to_world(p, p->g.disk.normal);
+        p->g.disk.e1 = rotate_to_world(p, p->g.disk.e1);
+        p->g.disk.e2 = rotate_to_world(p, p->g.disk.e2);
+        break;
+    case PRIM_CYLINDER:
+        p->g.cyl.base = point_to_world(p, p->g.cyl.base);
+        p->g.cyl.axis = rotate_to_world(p, p->g.cyl.axis);
+        break;
+    case PRIM_TRIANGLE:
+        p->g.tri.v0 = point_to_world(p, p->g.tri.v0);
+        p->g.tri.e1 = rotate_to_world(p, p->g.tri.e1);
+        p->g.tri.e2 = rotate_to_world(p, p->g.tri.e2);
+        p->g.tri.normal = rotate_to_world(p, p->g.tri.normal);
+        break;
+    default:
+        return 0;
+    }
+    p->has_xform = 0;
+    p->cos_y = 1, p->sin_y = 0, p->offset = v3(0, 0, 0);
+    shape_prepare(p);
+    return 1;
+}
+
 static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
     vec3 n = p->g.disk.normal;
@@ -66,48 +165,60 @@ static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_m
     return 1;
 }
 
-/* Axis-aligned box by the slab method (Kay & Kajiya 1986): the entry face from outside, the
-   exit face from inside; the normal is that face's outward axis. */
+/* One slab of the box test: the distances to its near and far planes (picked by the direction's
+   sign), kept when they narrow [t_near, t_far]. A zero direction component (inv = +-inf) gives
+   +-inf, or NaN with the origin on a plane, which the strict comparisons ignore: the ray then
+   misses unless its origin lies within the slab, as when that axis is skipped. */
+static inline void box_slab(double o, double d, double lo, double hi, int axis, double *t_near,
+                            int *near_axis, double *t_far, int *far_axis)
+{
+    double inv = 1.0 / d;
+    double tn = ((inv < 0 ? hi : lo) - o) * inv, tf = ((inv < 0 ? lo : hi) - o) * inv;
+    if (tn > *t_near)
+        *t_near = tn, *near_axis = axis;
+    if (tf < *t_far)
+        *t_far = tf, *far_axis = axis;
+}
+
+/* Axis-aligned box by the slab method (Kay & Kajiya 1986) on the object-space ray, moved there
+   in place (no ray copy): the entry face from outside, the exit face from inside. The normal
+   is -sign(d) along the face's axis with its zeros signed as set_face signs them (+0 entering,
+   -0 leaving: onb_from_w reads the sign of z), then rotated to world space as shape_hit rotates
+   other shapes'. */
 static int hit_box(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    const double lo[3] = {p->g.box.lo.x, p->g.box.lo.y, p->g.box.lo.z};
-    const double hi[3] = {p->g.box.hi.x, p->g.box.hi.y, p->g.box.hi.z};
-    const double o[3] = {r->orig.x, r->orig.y, r->orig.z}, d[3] = {r->dir.x, r->dir.y, r->dir.z};
-    double t_near = -INFINITY, t_far = INFINITY;
-    int near_axis = -1, far_axis = -1;
-    for (int a = 0; a < 3; a++) {
-        if (d[a] == 0) {
-            if (o[a] < lo[a] || o[a] > hi[a])
-                return 0;
-            continue;
-        }
-        double inv = 1.0 / d[a];
-        double ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
-        if (ta > tb) {
-            double t = ta;
-            ta = tb;
-            tb = t;
-        }
-        if (ta > t_near)
-            t_near = ta, near_axis = a;
-        if (tb < t_far)
-            t_far = tb, far_axis = a;
+    vec3 o = r->orig, d = r->dir;
+    if (p->has_xform) {
+        const double c = p->cos_y, s = p->sin_y;
+        vec3 w = v3_sub(r->orig, p->offset);
+        o = v3(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
+        d = v3(c * r->dir.x - s * r->dir.z, r->dir.y, s * r->dir.x + c * r->dir.z);
     }
+    const vec3 lo = p->g.box.lo, hi = p->g.box.hi;
+    double t_near = -INFINITY, t_far = INFINITY;
+    int near_axis = 0, far_axis = 0;
+    box_slab(o.x, d.x, lo.x, hi.x, 0, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(o.y, d.y, lo.y, hi.y, 1, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(o.z, d.z, lo.z, hi.z, 2, &t_near, &near_axis, &t_far, &far_axis);
     if (t_near > t_far)
         return 0;
-    double t;
-    int axis;
-    double sign;
-    if (t_near > t_min && t_near < t_max) {
-        t = t_near, axis = near_axis, sign = d[axis] > 0 ? -1.0 : 1.0;
-    } else if (t_far > t_min && t_far < t_max) {
-        t = t_far, axis = far_axis, sign = d[axis] > 0 ? 1.0 : -1.0;
-    } else {
+    int entry = t_near > t_min && t_near < t_max;
+    if (!entry && !(t_far > t_min && t_far < t_max))
         return 0;
-    }
+    double t = entry ? t_near : t_far;
+    int axis = entry ? near_axis : far_axis;
+    double nv = v3_get(d, axis) > 0 ? -1.0 : 1.0, zero = entry ? 0.0 : -0.0;
+    vec3 q = v3_fma(o, d, t);
+    vec3 n = v3(axis == 0 ? nv : zero, axis == 1 ? nv : zero, axis == 2 ? nv : zero);
     h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, v3(axis == 0 ? sign : 0, axis == 1 ? sign : 0, axis == 2 ? sign : 0));
+    h->front = entry;
+    if (p->has_xform) {
+        h->p = v3_add(rotate_to_world(p, q), p->offset);
+        h->n = rotate_to_world(p, n);
+    } else {
+        h->p = q;
+        h->n = n;
+    }
     return 1;
 }
 
@@ -213,7 +324,6 @@ static double medium_uniform(uint64_t ray_hash, const struct prim *p)
 
 void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, struct medium_flight *f)
 {
-    f->crosses = sphere_roots(p->g.medium.center, p->g.medium.radius, r, &f->t0, &f->t1);
     f->len = v3_len(r->dir);
     f->u = medium_uniform(ray_hash, p);
 }
@@ -221,16 +331,23 @@ void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, 
 int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,
                      double t_max, struct hit *h)
 {
-    if (!f->crosses)
+    double len = f->len, u = f->u, neg_inv_density = p->g.medium.neg_inv_density;
+    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
+       rounding), the ray passes through without the log, as most do in thin fog. The span
+       inside is at most (t_max - t_min) |dir| (rounding is monotone, so this test turns down
+       no ray the span's own would keep), and that first test spares most rays the boundary's
+       roots; past it, the same test on the span itself. */
+    double flight_lo = (1 - u) * -neg_inv_density;
+    if (flight_lo > (t_max - t_min) * len * (1 + 1e-9))
         return 0;
-    double enter = f->t0 > t_min ? f->t0 : t_min, leave = f->t1 < t_max ? f->t1 : t_max;
+    double t0, t1;
+    if (!sphere_roots(p->g.medium.center, p->g.medium.radius, r, &t0, &t1))
+        return 0;
+    double enter = t0 > t_min ? t0 : t_min, leave = t1 < t_max ? t1 : t_max;
     if (!(enter < leave))
         return 0;
-    double len = f->len, span = (leave - enter) * len;
-    double u = f->u, neg_inv_density = p->g.medium.neg_inv_density;
-    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
-       rounding), the ray passes through without the log, as most do in thin fog */
-    if ((1 - u) * -neg_inv_density > span * (1 + 1e-9))
+    double span = (leave - enter) * len;
+    if (flight_lo > span * (1 + 1e-9))
         return 0;
     double dist = neg_inv_density * log(u);
     if (dist > span)
@@ -253,6 +370,8 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
 
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
+    if (p->type == PRIM_BOX) /* moves the ray to object space itself */
+        return hit_box(p, r, t_min, t_max, h);
     ray local;
     const ray *q = r;
     if (p->has_xform) {
@@ -273,9 +392,6 @@ int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, st
         break;
     case PRIM_DISK:
         got = hit_disk(p, q, t_min, t_max, h);
-        break;
-    case PRIM_BOX:
-        got = hit_box(p, q, t_min, t_max, h);
         break;
     case PRIM_CYLINDER:
         got = hit_cylinder(p, q, t_min, t_max, h);

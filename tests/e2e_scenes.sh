@@ -85,4 +85,34 @@ check "diff --block of an image with itself is 0 (exit $rc)" [ "$rc" -eq 0 ]
 "$WORKER" diff "$a" "$b" --block 0 2>"$T/block.err"; rc=$?
 check "diff --block 0 exits 2 (got $rc)" [ "$rc" -eq 2 ]
 check "diff --block 0 says why" grep -q -- "--block needs a whole number" "$T/block.err"
+# 7. Lights and sampled objects take rotate_y/translate (SPEC: "apply to any object") where the
+#    transform folds into world-space geometry: the third book's box with its lamp placed by a
+#    translate (and, as a second lamp form, a quarter turn) and its glass sphere by a translate
+#    renders byte for byte as the scene that places them directly. A rect light turned by other
+#    than a multiple of 90 degrees is refused at its rotate_y.
+lamp_t='  - { type: rect, plane: xz, min: [-65, -52.5], max: [65, 52.5], at: 0, flip: true, material: lamp, translate: [278, 554, 279.5] }'
+lamp_r='  - { type: rect, plane: xz, min: [-52.5, -65], max: [52.5, 65], at: 0, flip: true, material: lamp, rotate_y: 90, translate: [278, 554, 279.5] }'
+glass_t='  - { type: sphere, center: [0, 0, 0], radius: 90, material: glass, sample: true, translate: [190, 90, 190] }'
+for form in t r; do
+    eval "lamp=\$lamp_$form"
+    awk -v lamp="$lamp" -v glass="$glass_t" '/material: lamp/ { print lamp; next } /material: glass, sample/ { print glass; next } { print }' \
+        scenes/cornell-book3.yaml >"$T/xl-$form.yaml"
+    check "xl-$form: lamp and glass lines replaced" [ "$(grep -c 'translate: \[\(278\|190\)' "$T/xl-$form.yaml")" -eq 2 ]
+done
+for s in "$root/scenes/cornell-book3.yaml" "$T/xl-t.yaml" "$T/xl-r.yaml"; do
+    n=$(basename "$s" .yaml)
+    printf 'name: %s\nscene: %s\nwidth: 24\nthreshold: 25\nlight_threshold: 25\n' "$n" "$s" >"$T/job-$n.yaml"
+    "$WORKER" --quiet --out "$T/xl" "$T/job-$n.yaml" 2>"$T/xl-$n.err"; rc=$?
+    check "transformed lights: $n renders (exit $rc: $(head -n 1 "$T/xl-$n.err"))" [ "$rc" -eq 0 ]
+done
+check "a translated lamp and sphere render as placed directly" cmp -s "$T/xl/cornell-book3/cornell-book3.png" "$T/xl/xl-t/xl-t.png"
+check "a quarter-turned lamp renders as placed directly" cmp -s "$T/xl/cornell-book3/cornell-book3.png" "$T/xl/xl-r/xl-r.png"
+sed 's/rotate_y: 90/rotate_y: 45/' "$T/xl-r.yaml" >"$T/xl-45.yaml"
+printf 'scene: %s\nwidth: 8\n' "$T/xl-45.yaml" >"$T/job-xl-45.yaml"
+rm -rf "$T/xl45"
+"$WORKER" --quiet --out "$T/xl45" "$T/job-xl-45.yaml" 2>"$T/xl-45.err"; rc=$?
+check "a lamp turned 45 degrees exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "and says why at its rotate_y" grep -q "xl-45.yaml:[0-9]*:[0-9]*: rotate_y: a light or sampled rect turns only by multiples of 90 degrees" "$T/xl-45.err"
+check "and writes nothing" [ ! -e "$T/xl45" ]
+
 finish

@@ -40,17 +40,30 @@ static void test_cornell(void)
     for (int i = 0; i < sc->n_lights; i++)
         CHECK(sc->prims[sc->lights[i]].type == PRIM_DISK);
     CHECK(sc->n_images == 1 && sc->images[0].w == 256 && sc->images[0].h == 128);
-    /* The pyramid's triangles share the object's transform; its apex ends up at
-       rotate_y(70) (0, 140, 0) + (150, 0, 350) = (150, 140, 350). */
-    int found_apex = 0;
+    /* The pyramid's triangles share the object's transform, folded into their world-space
+       vertices at load: its apex ends up at rotate_y(70) (0, 140, 0) + (150, 0, 350) =
+       (150, 140, 350), a base vertex (140, 0, 0) at (150 + 140 cos 70, 0, 350 - 140 sin 70).
+       The box keeps its transform. */
+    int found_apex = 0, found_base = 0;
+    const double c70 = cos(70 * PI / 180), s70 = sin(70 * PI / 180);
     for (int i = 0; i < sc->n_prims; i++) {
         const struct prim *p = &sc->prims[i];
+        if (p->type == PRIM_BOX)
+            CHECK(p->has_xform && fabs(p->sin_y - sin(10 * PI / 180)) < 1e-12);
+        if (p->type != PRIM_TRIANGLE && p->type != PRIM_CYLINDER)
+            continue;
+        CHECK(!p->has_xform);
         if (p->type != PRIM_TRIANGLE)
             continue;
-        CHECK(p->has_xform && fabs(p->sin_y - sin(70 * PI / 180)) < 1e-12);
-        found_apex += v3_len(v3_sub(p->g.tri.v0, v3(0, 140, 0))) < 1e-12;
+        CHECK_NEAR(v3_len(p->g.tri.normal), 1, 1e-12);
+        found_apex += v3_len(v3_sub(p->g.tri.v0, v3(150, 140, 350))) < 1e-9;
+        for (int k = 0; k < 3; k++) {
+            vec3 v = k == 0 ? p->g.tri.v0 : v3_add(p->g.tri.v0, k == 1 ? p->g.tri.e1 : p->g.tri.e2);
+            found_base += v3_len(v3_sub(v, v3(150 + 140 * c70, 0, 350 - 140 * s70))) < 1e-9;
+        }
     }
     CHECK(found_apex == 3);
+    CHECK(found_base == 3); /* the base triangle and the two sides that share the vertex */
     ray down = {v3(150, 500, 350), v3(0, -1, 0), 0};
     struct hit h;
     CHECK(bvh_hit(sc, &down, HIT_EPS, DBL_MAX, &h));

@@ -1,6 +1,7 @@
 /* Tests for the scene primitives: box, cylinder, triangle, moving sphere and medium hits,
    bounds that enclose every hit, and light sampling whose pdf matches its directions. */
 #include <float.h>
+#include <string.h>
 
 #include "check.h"
 #include "rng.h"
@@ -25,11 +26,13 @@ static void test_box(void)
     CHECK_NEAR(h.t, 5, 1e-12);
     CHECK(h.front);
     CHECK_NEAR(h.n.z, -1, 1e-12);
+    CHECK(!signbit(h.n.x) && !signbit(h.n.y));
     ray inside = {v3(0.5, 1, 1), v3(1, 0, 0), 0};
     CHECK(shape_hit(&b, &inside, HIT_EPS, DBL_MAX, &h));
     CHECK_NEAR(h.t, 0.5, 1e-12);
     CHECK(!h.front);
-    CHECK_NEAR(h.n.x, -1, 1e-12); /* faces against the ray: the outward +x normal flipped */
+    CHECK_NEAR(h.n.x, -1, 1e-12);            /* faces against the ray: the outward +x normal flipped */
+    CHECK(signbit(h.n.y) && signbit(h.n.z)); /* its zeros too, as set_face flips them */
     ray miss = {v3(1.5, 1, -5), v3(0, 0, 1), 0};
     CHECK(!shape_hit(&b, &miss, HIT_EPS, DBL_MAX, &h));
     ray parallel = {v3(0.5, 3, -5), v3(0, 0, 1), 0}; /* above the box, parallel to y slabs */
@@ -44,6 +47,53 @@ static void test_box(void)
     CHECK(shape_hit(&b, &side, HIT_EPS, DBL_MAX, &h));
     CHECK_NEAR(h.p.x, 13, 1e-9);
     CHECK_NEAR(h.n.x, 1, 1e-9);
+    /* Parallel to a slab with the origin on its plane (+0 and -0 directions): inside it. */
+    struct prim u = {.type = PRIM_BOX};
+    u.g.box.lo = v3(0, 0, 0), u.g.box.hi = v3(1, 2, 3);
+    for (int k = 0; k < 4; k++) {
+        double zero = k & 1 ? -0.0 : 0.0, plane = k & 2 ? 2 : 0;
+        ray on = {v3(-1, plane, 1), v3(1, zero, 0), 0};
+        CHECK(shape_hit(&u, &on, HIT_EPS, DBL_MAX, &h) && h.t == 1 && h.front && h.n.x == -1);
+        ray off = {v3(-1, plane + (k & 2 ? 1e-9 : -1e-9), 1), v3(1, zero, 0), 0};
+        CHECK(!shape_hit(&u, &off, HIT_EPS, DBL_MAX, &h));
+    }
+}
+
+/* A transformed box's hit is the plain box's hit of the ray moved to object space, moved back:
+   the same arithmetic, so the same bits, the zeros' signs included (onb_from_w reads them). */
+static void test_box_xform(void)
+{
+    struct prim b = {.type = PRIM_BOX}, x;
+    b.g.box.lo = v3(0, 0, 0), b.g.box.hi = v3(120, 330, 120);
+    x = b;
+    set_xform(&x, 10, v3(400, 0, 295));
+    struct rng g;
+    rng_seed(&g, 4, 4);
+    int same = 1, hits = 0;
+    for (int i = 0; i < 20000; i++) {
+        vec3 o = v3(555 * rng_uniform(&g), 555 * rng_uniform(&g), 555 * rng_uniform(&g));
+        vec3 d =
+            v3_sub(v3(380 + 160 * rng_uniform(&g), 340 * rng_uniform(&g), 280 + 160 * rng_uniform(&g)), o);
+        if (i % 4 == 0) /* parallel to the y slabs, as a level ray is */
+            d.y = i % 8 ? 0.0 : -0.0;
+        ray r = {o, d, 0};
+        vec3 w = v3_sub(o, x.offset);
+        ray q = {v3(x.cos_y * w.x - x.sin_y * w.z, w.y, x.sin_y * w.x + x.cos_y * w.z),
+                 v3(x.cos_y * d.x - x.sin_y * d.z, d.y, x.sin_y * d.x + x.cos_y * d.z), 0};
+        struct hit hx, hb;
+        int gx = shape_hit(&x, &r, HIT_EPS, DBL_MAX, &hx), gb = shape_hit(&b, &q, HIT_EPS, DBL_MAX, &hb);
+        same &= gx == gb;
+        if (!gx || !gb)
+            continue;
+        hits++;
+        vec3 p = v3(x.cos_y * hb.p.x + x.sin_y * hb.p.z, hb.p.y, -x.sin_y * hb.p.x + x.cos_y * hb.p.z);
+        vec3 n = v3(x.cos_y * hb.n.x + x.sin_y * hb.n.z, hb.n.y, -x.sin_y * hb.n.x + x.cos_y * hb.n.z);
+        p = v3_add(p, x.offset);
+        same &= hx.t == hb.t && hx.front == hb.front && !memcmp(&hx.p, &p, sizeof p) &&
+                !memcmp(&hx.n, &n, sizeof n);
+    }
+    CHECK(same);
+    CHECK(hits > 2000);
 }
 
 static void test_cylinder(void)
@@ -283,6 +333,7 @@ static void test_bounds(void)
 int main(void)
 {
     test_box();
+    test_box_xform();
     test_cylinder();
     test_triangle();
     test_moving_sphere();

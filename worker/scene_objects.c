@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "scene_loader.h"
+#include "shape.h"
 #include "texture.h"
 
 /* Keys every object may have besides its geometry. */
@@ -306,11 +307,17 @@ static int check_placement(struct loader *L, yaml_node_t *n, const struct object
             &L->d, sample ? ymap_get(&L->d, n, "sample") : mn, L->e,
             "%s: a %s cannot be importance-sampled (lights and sample: true take sphere, rect or disk)",
             sample ? "sample" : "material", ot->name);
-    if (p->has_xform) {
+    /* a light is sampled in world space: its transform must fold into its geometry */
+    int needs_uv = m->texture >= 0 && texture_needs_uv(&L->sc->textures[m->texture]);
+    if (p->has_xform && !shape_bakes(p, needs_uv)) {
         yaml_node_t *xn = ymap_get(&L->d, n, "rotate_y");
+        if (p->type == PRIM_RECT && !needs_uv)
+            return ydoc_fail(&L->d, xn, L->e,
+                             "rotate_y: a light or sampled rect turns only by multiples of 90 degrees "
+                             "(it stays axis-aligned)");
         return ydoc_fail(&L->d, xn ? xn : ymap_get(&L->d, n, "translate"), L->e,
-                         "%s: lights and sampled objects cannot be transformed; place them directly",
-                         xn ? "rotate_y" : "translate");
+                         "%s: a sampled %s with an image texture cannot be transformed; place it directly",
+                         xn ? "rotate_y" : "translate", ot->name);
     }
     return 0;
 }
