@@ -34,10 +34,9 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-/* World box of p: shape_bounds', or for a transformed sphere (final's cluster of 1000: rotate_y
-   15 and a translation) its centre +- radius, where shape_bounds gives the box of its rotated
-   bounding cube, 22% wider in x and z at 15 degrees (32% more area: more box hits and sphere
-   tests per ray). */
+/* World box of p: shape_bounds', or for a sphere that keeps its transform (a medium's boundary,
+   an image-textured sphere: shape_bake leaves them) its centre +- radius, where shape_bounds gives
+   the box of its rotated bounding cube, 22% wider in x and z at 15 degrees (32% more area). */
 static struct box prim_box(const struct prim *p)
 {
     struct box b;

@@ -156,31 +156,34 @@ static void test_degenerate(void)
     }
 }
 
-/* Transformed spheres (rotate_y, translate), whose boxes bvh_build makes centre +- radius: rays
-   along an axis that pass just inside and just outside each sphere's extreme point along another
-   axis (where the box is tight) agree with a linear scan. */
+/* Transformed spheres that keep their transform (media: shape_bake leaves them), whose boxes
+   bvh_build makes centre +- radius: rays along an axis that pass just inside and just outside each
+   sphere's extreme point along another axis (where the box is tight) agree with a linear scan. The
+   media are dense enough that any chord scatters. */
 static void test_transformed_spheres(void)
 {
     struct scene *sc = scene_new();
-    struct material m = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+    struct material m = {.type = MAT_ISOTROPIC, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
     scene_add_material(sc, &m);
     struct rng r;
     rng_seed(&r, 5, 5);
     for (int i = 0; i < 200; i++) {
-        struct prim p = {.type = PRIM_SPHERE, .material = 0, .has_xform = 1};
+        struct prim p = {.type = PRIM_MEDIUM, .material = 0, .has_xform = 1};
         double deg = 360 * rng_uniform(&r);
         p.cos_y = cos(deg * PI / 180), p.sin_y = sin(deg * PI / 180);
         p.offset = v3(300 * rng_uniform(&r), 300 * rng_uniform(&r), 300 * rng_uniform(&r));
-        p.g.sphere.center = v3(100 * rng_uniform(&r), 100 * rng_uniform(&r), 100 * rng_uniform(&r));
-        p.g.sphere.radius = 1 + 10 * rng_uniform(&r);
+        p.g.medium.center = v3(100 * rng_uniform(&r), 100 * rng_uniform(&r), 100 * rng_uniform(&r));
+        p.g.medium.radius = 1 + 10 * rng_uniform(&r);
+        p.g.medium.neg_inv_density = -1e-12;
         scene_add_prim(sc, &p);
     }
     struct err e;
     CHECK(scene_finish(sc, &e) == 0);
+    CHECK(sc->prims[0].has_xform);
     int ok = 1, hits = 0, rays = 0;
     for (int i = 0; i < sc->n_prims; i++) {
         const struct prim *p = &sc->prims[i];
-        vec3 c = p->g.sphere.center;
+        vec3 c = p->g.medium.center;
         double w[3] = {p->cos_y * c.x + p->sin_y * c.z + p->offset.x, c.y + p->offset.y,
                        -p->sin_y * c.x + p->cos_y * c.z + p->offset.z};
         for (int a = 0; a < 3; a++)           /* the extreme point along axis a */
@@ -189,7 +192,7 @@ static void test_transformed_spheres(void)
                     if (a == b)
                         continue;
                     double t[3] = {w[0], w[1], w[2]}, d[3] = {0, 0, 0};
-                    t[a] += (k & 1 ? 1 : -1) * p->g.sphere.radius * (k & 2 ? 1 + 1e-9 : 1 - 1e-9);
+                    t[a] += (k & 1 ? 1 : -1) * p->g.medium.radius * (k & 2 ? 1 + 1e-9 : 1 - 1e-9);
                     d[b] = 1;
                     t[b] -= 1000;
                     ray q = {v3(t[0], t[1], t[2]), v3(d[0], d[1], d[2]), 0.5};
