@@ -244,10 +244,21 @@ static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
     return planar_pdf(p, t, dn, dir);
 }
 
-static inline double disk_pdf(const struct prim *p, vec3 o, vec3 dir)
+static inline __attribute__((always_inline)) double disk_pdf(const struct prim *p, vec3 o, vec3 dir)
 {
-    const vec3 n = p->g.disk.normal;
-    double dn = v3_dot(dir, n), t = v3_dot(v3_sub(p->g.disk.center, o), n) / dn;
+    const vec3 n = p->g.disk.normal, to_c = v3_sub(p->g.disk.center, o);
+    /* Most directions miss the disk: reject those outside the cone of its bounding ball
+       (radius R about the centre, o outside it) with squares only, before the plane hit's
+       division and the unpredictable "plane ahead" branch. The margins (1e-6 on R^2 for
+       "outside", 1e-9 of d2 on the cone) are far above rounding, so the test never rejects a
+       direction the exact test below would accept. */
+    double d2 = v3_len2(to_c), r2 = p->g.disk.radius * p->g.disk.radius;
+    if (d2 > r2 * (1 + 1e-6)) {
+        double dc = v3_dot(dir, to_c); /* dc |dc|: one branch rejects dc <= 0 too */
+        if (!(dc * fabs(dc) >= (d2 * (1 - 1e-9) - r2) * v3_len2(dir)))
+            return 0;
+    }
+    double dn = v3_dot(dir, n), t = v3_dot(to_c, n) / dn;
     if (!(t > HIT_EPS && t < DBL_MAX))
         return 0;
     vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);

@@ -290,6 +290,67 @@ static void test_light_pdfs(void)
     CHECK(shape_light_uses_points(&q) && shape_light_uses_points(&dk) && !shape_light_uses_points(&s));
 }
 
+/* The disk pdf as the plane hit computes it, without shape_light_pdf's bounding-cone pre-test. */
+static double disk_pdf_exact(const struct prim *p, vec3 o, vec3 dir)
+{
+    const vec3 n = p->g.disk.normal;
+    double dn = v3_dot(dir, n), t = v3_dot(v3_sub(p->g.disk.center, o), n) / dn;
+    if (!(t > HIT_EPS && t < DBL_MAX))
+        return 0;
+    vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
+    if (v3_len2(d) > p->g.disk.radius * p->g.disk.radius)
+        return 0;
+    double d2 = v3_len2(dir), adn = fabs(dn);
+    if (!(adn > 1e-12 * sqrt(d2)))
+        return 0;
+    return t * t * d2 * sqrt(d2) / (adn * p->area);
+}
+
+/* The pre-test only rejects directions the exact test rejects: the same value, bit for bit, for
+   directions aimed at the rim (just inside and outside it), at the disk and anywhere, from
+   origins far, near, inside the bounding ball and in the disk's plane, and directions of any
+   length. */
+static void test_disk_pdf_pretest(void)
+{
+    struct prim dk = {.type = PRIM_DISK};
+    dk.g.disk.center = v3(278, 554, 279);
+    dk.g.disk.radius = 60;
+    onb f = onb_from_w(v3_unit(v3(0.1, -1, 0.2)));
+    dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
+    shape_prepare(&dk);
+    struct rng g;
+    rng_seed(&g, 5, 5);
+    int same = 1, hits = 0, n = 400000;
+    for (int i = 0; i < n; i++) {
+        double scale = (i % 4 == 0 ? 2 : i % 4 == 1 ? 200 : i % 4 == 2 ? 1000 : 1e5) * rng_uniform(&g);
+        vec3 o =
+            v3_add(dk.g.disk.center, v3(scale * (2 * rng_uniform(&g) - 1), scale * (2 * rng_uniform(&g) - 1),
+                                        scale * (2 * rng_uniform(&g) - 1)));
+        if (i % 16 == 5) /* in the disk's plane */
+            o = v3_fma(o, dk.g.disk.normal, -v3_dot(v3_sub(o, dk.g.disk.center), dk.g.disk.normal));
+        double sin_a, cos_a, rim = dk.g.disk.radius;
+        v3_sincos_turn(rng_uniform(&g), &sin_a, &cos_a);
+        switch (i % 3) {
+        case 0: /* at the rim, within a few ulps to 1e-6 */
+            rim *= 1 + ldexp(2 * rng_uniform(&g) - 1, -(int)(20 + 33 * rng_uniform(&g)));
+            break;
+        case 1:
+            rim *= 1.2 * rng_uniform(&g);
+            break;
+        }
+        vec3 q = v3_add(dk.g.disk.center,
+                        v3_add(v3_scale(dk.g.disk.e1, rim * cos_a), v3_scale(dk.g.disk.e2, rim * sin_a)));
+        vec3 dir = v3_scale(v3_sub(q, o), ldexp(1, (int)(10 * rng_uniform(&g)) - 15));
+        if (i % 3 == 2)
+            dir = v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
+        double want = disk_pdf_exact(&dk, o, dir), got = shape_light_pdf(&dk, o, dir, 0);
+        hits += want > 0;
+        same &= memcmp(&want, &got, sizeof want) == 0;
+    }
+    CHECK(same);
+    CHECK(hits > n / 5);
+}
+
 /* Hits of random rays land inside the primitive's bounds, transformed or not. */
 static void test_bounds(void)
 {
@@ -339,6 +400,7 @@ int main(void)
     test_moving_sphere();
     test_medium();
     test_light_pdfs();
+    test_disk_pdf_pretest();
     test_bounds();
     return check_report("test_shape");
 }
