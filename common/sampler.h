@@ -4,6 +4,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "err.h"
 #include "rng.h"
@@ -56,9 +57,14 @@ struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng
    pooled light points take one per point). */
 static inline double sampler_shift_unit(double p, double o)
 {
-    double v = p + o;
-    if (v >= 1.0)
-        v -= 1.0;
+    /* v - 1 when v >= 1 by masking 1.0's bits, not by a branch (GCC makes one of `?:` here):
+       the wrap is a coin flip, and a light point's branch would wait on the pool's load */
+    double v = p + o, one = 1.0, d;
+    uint64_t bits;
+    memcpy(&bits, &one, sizeof bits);
+    bits &= -(uint64_t)(v >= 1.0);
+    memcpy(&d, &bits, sizeof d);
+    v -= d;
     return v >= 1.0 ? 0.0 : v;
 }
 

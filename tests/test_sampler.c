@@ -288,6 +288,30 @@ static int shifted_copy(const struct pt2 *a, size_t na, const struct pt2 *b, siz
     return 1;
 }
 
+/* sampler_shift_unit's masked subtraction gives what the plain branch gives, bit for bit, on
+   random pairs and at the wrap (p + o at and next to 1), and stays in [0, 1). */
+static void test_shift_unit(void)
+{
+    struct rng g;
+    rng_seed(&g, 8, 8);
+    int same = 1, in_unit = 1;
+    for (int i = 0; i < 1000000; i++) {
+        double p = rng_uniform(&g), o = rng_uniform(&g);
+        if (i % 4 == 1)
+            o = 1.0 - p; /* the sum at 1, or an ulp off it */
+        if (i % 4 == 2)
+            o = nextafter(1.0 - p, i % 8 == 2 ? 0.0 : 1.0);
+        double v = p + o;
+        if (v >= 1.0)
+            v -= 1.0;
+        double want = v >= 1.0 ? 0.0 : v, got = sampler_shift_unit(p, o);
+        same &= memcmp(&want, &got, sizeof want) == 0;
+        in_unit &= got >= 0 && got < 1;
+    }
+    CHECK(same);
+    CHECK(in_unit);
+}
+
 static void test_pool(void)
 {
     struct err e;
@@ -584,6 +608,7 @@ int main(void)
     test_poisson_counts();
     test_poisson_disks();
     test_poisson_fine();
+    test_shift_unit();
     test_pool();
     test_determinism();
     test_bad_input();
