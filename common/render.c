@@ -4,6 +4,7 @@
 
 #include <float.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "bvh.h"
@@ -18,6 +19,7 @@ struct light_points {
     const struct pt2 *pool; /* pooled: the set and its shift */
     double ox, oy;
     size_t n, next;
+    int uses_points; /* shape_light_uses_points of the light, looked up once */
 };
 
 struct render_ctx {
@@ -25,8 +27,10 @@ struct render_ctx {
     const struct camera *cam;
     struct render_settings rs;
     struct sampler *pixel, *light;
+    enum sampler_kind light_kind;
     struct pt2 *pixel_pts;
     struct light_points *lp; /* one per scene light */
+    uint32_t *identity;      /* 0, 1, 2, ...: a fresh shuffle's start, copied */
     struct rng light_rng;
     struct render_stats *st;
 };
@@ -68,6 +72,7 @@ void render_ctx_free(struct render_ctx *ctx)
             free(ctx->lp[i].cells);
         }
     free(ctx->lp);
+    free(ctx->identity);
     free(ctx->pixel_pts);
     free(ctx);
 }
@@ -88,20 +93,32 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
     if (!ctx->pixel_pts || !ctx->lp)
         goto fail;
+    if (light)
+        ctx->light_kind = sampler_kind_of(light);
     for (int i = 0; i < sc->n_lights; i++) {
-        if (rs->light_sampling_off || !shape_light_uses_points(&sc->prims[sc->lights[i]]))
+        ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
+        if (rs->light_sampling_off || !ctx->lp[i].uses_points)
             continue;
         if (!light) {
             err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
             render_ctx_free(ctx);
             return NULL;
         }
-        if (sampler_cells(light) > 0)
-            ctx->lp[i].cells = malloc(sampler_cells(light) * sizeof *ctx->lp[i].cells);
-        else if (sampler_is_pooled(light))
-            ctx->lp[i].cells = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].cells);
-        else
+        size_t cells = sampler_cells(light) > 0   ? sampler_cells(light)
+                       : sampler_is_pooled(light) ? sampler_set_capacity(light)
+                                                  : 0;
+        if (cells > 0) {
+            ctx->lp[i].cells = malloc(cells * sizeof *ctx->lp[i].cells);
+            if (!ctx->identity) {
+                ctx->identity = malloc(cells * sizeof *ctx->identity);
+                if (!ctx->identity)
+                    goto fail;
+                for (size_t c = 0; c < cells; c++)
+                    ctx->identity[c] = (uint32_t)c;
+            }
+        } else {
             ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
+        }
         if (!ctx->lp[i].pts && !ctx->lp[i].cells)
             goto fail;
     }
@@ -124,16 +141,16 @@ fail:
 static struct pt2 next_light_point(struct render_ctx *ctx, int i)
 {
     struct light_points *lp = &ctx->lp[i];
-    const enum sampler_kind kind = sampler_kind_of(ctx->light);
+    const enum sampler_kind kind = ctx->light_kind;
     if (lp->next >= lp->n) {
         double t0 = now_s();
         if (lp->cells) {
             lp->n = kind == SAMPLER_POISSON
                         ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
                         : sampler_cells(ctx->light);
-            if (kind != SAMPLER_RANDOM)
-                for (uint32_t c = 0; c < lp->n; c++)
-                    lp->cells[c] = c;
+            if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
+                memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
+
         } else {
             lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
         }
@@ -211,7 +228,7 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int
     int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
     const struct prim *lp = &sc->prims[sc->lights[i]];
     struct pt2 s;
-    if (shape_light_uses_points(lp)) {
+    if (ctx->lp[i].uses_points) {
         s = next_light_point(ctx, i);
     } else {
         s.x = rng_uniform32(rng);
