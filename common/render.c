@@ -16,8 +16,9 @@
 struct light_points {
     struct pt2 *pts;
     uint32_t *cells;
-    const struct pt2 *pool; /* pooled: the set and its shift */
-    double ox, oy;
+    const struct pt2 *pool;  /* pooled: the set and its shift */
+    const struct pt2 *turns; /* pooled: cos and sin of 2 pi y of the set's points */
+    double ox, oy, cos_oy, sin_oy;
     size_t n, next;
     int uses_points; /* shape_light_uses_points of the light, looked up once */
 };
@@ -138,7 +139,7 @@ fail:
    a cell's point when it is taken; a random set's points are independent, so any order of them
    is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
    point when it is taken. Only a fresh Poisson set is drawn whole. */
-static struct pt2 next_light_point(struct render_ctx *ctx, int i)
+static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *turn, int *turned)
 {
     struct light_points *lp = &ctx->lp[i];
     const enum sampler_kind kind = ctx->light_kind;
@@ -150,7 +151,10 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i)
                         : sampler_cells(ctx->light);
             if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
                 memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
-
+            if (kind == SAMPLER_POISSON) {
+                lp->turns = sampler_pool_turns(ctx->light, lp->pool);
+                v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
+            }
         } else {
             lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
         }
@@ -166,8 +170,13 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i)
         uint32_t cell = lp->cells[j];
         lp->cells[j] = lp->cells[k];
         lp->cells[k] = cell;
-        if (kind == SAMPLER_POISSON)
+        if (kind == SAMPLER_POISSON) {
+            /* the shifted point's angle 2 pi (y + oy): the point's own turned by the shift's */
+            const struct pt2 t = lp->turns[cell];
+            *turn = (struct pt2){t.x * lp->cos_oy - t.y * lp->sin_oy, t.y * lp->cos_oy + t.x * lp->sin_oy};
+            *turned = 1;
             return sampler_shift(lp->pool[cell], lp->ox, lp->oy);
+        }
         return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
     }
     struct pt2 chosen = lp->pts[j];
@@ -227,15 +236,17 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int
     const struct scene *sc = ctx->sc;
     int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
     const struct prim *lp = &sc->prims[sc->lights[i]];
-    struct pt2 s;
+    struct pt2 s, turn = {0, 0};
+    int turned = 0;
     if (ctx->lp[i].uses_points) {
-        s = next_light_point(ctx, i);
+        s = next_light_point(ctx, i, &turn, &turned);
     } else {
         s.x = rng_uniform32(rng);
         s.y = rng_uniform32(rng);
     }
     *light = i;
-    return shape_light_sample(lp, o, s, pdf);
+    return turned ? shape_light_sample_turn(lp, o, s, turn.x, turn.y, pdf)
+                  : shape_light_sample(lp, o, s, pdf);
 }
 
 /* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and

@@ -2,6 +2,7 @@
 #include "sampler.h"
 
 #include "poisson.h"
+#include "vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -22,7 +23,8 @@ struct sampler {
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
     int pool_size;
     struct pt2 *pool_pts;
-    size_t *pool_start; /* set i is pool_pts[pool_start[i] .. pool_start[i+1]) */
+    struct pt2 *pool_turns; /* cos and sin of 2 pi y of each pool point */
+    size_t *pool_start;     /* set i is pool_pts[pool_start[i] .. pool_start[i+1]) */
 };
 
 static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson"};
@@ -99,6 +101,7 @@ void sampler_free(struct sampler *s)
         return;
     poisson_release(&s->bridson);
     free(s->pool_pts);
+    free(s->pool_turns);
     free(s->pool_start);
     free(s);
 }
@@ -198,6 +201,11 @@ size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct p
     return s->pool_start[pick + 1] - s->pool_start[pick];
 }
 
+const struct pt2 *sampler_pool_turns(const struct sampler *s, const struct pt2 *pts)
+{
+    return s->pool_turns + (pts - s->pool_pts);
+}
+
 /* Draw the pool's toroidal sets from pool_seed into one packed array. */
 static int pool_fill(struct sampler *s, uint64_t pool_seed, struct err *e)
 {
@@ -225,6 +233,11 @@ static int pool_fill(struct sampler *s, uint64_t pool_seed, struct err *e)
         used += count;
         s->pool_start[p + 1] = used;
     }
+    s->pool_turns = malloc(used * sizeof *s->pool_turns);
+    if (!s->pool_turns)
+        goto fail;
+    for (size_t k = 0; k < used; k++)
+        v3_sincos_turn(s->pool_pts[k].y, &s->pool_turns[k].y, &s->pool_turns[k].x);
     free(scratch);
     return 0;
 fail:

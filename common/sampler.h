@@ -74,6 +74,11 @@ static inline double sampler_shift_unit(double p, double o)
 int sampler_is_pooled(const struct sampler *s);
 size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pt2 **pts, double *ox,
                         double *oy);
+/* cos and sin of 2 pi y (as x and y) of every point of the pooled set pts that
+   sampler_pool_set gave, index for index, for a caller that maps y to an angle (a disk light's
+   point): the shifted point's angle 2 pi (y + oy) is then the rotation of these by 2 pi oy,
+   with no sine series per point. Valid while s lives. */
+const struct pt2 *sampler_pool_turns(const struct sampler *s, const struct pt2 *pts);
 static inline struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
 {
     return (struct pt2){sampler_shift_unit(p.x, ox), sampler_shift_unit(p.y, oy)};

@@ -78,6 +78,12 @@ double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time);
    ray with p again; it may differ from shape_light_pdf's by rounding. */
 vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf);
 
+/* shape_light_sample for a disk or rect light whose sample point s comes with cos_t and sin_t
+   of 2 pi s.y (as a pooled set's turns give them): a disk takes its angle from them instead of
+   computing it (the same direction up to rounding); a rect ignores them. */
+vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t,
+                             double *pdf);
+
 /* The mean of shape_light_pdf over the scene's lights (the mixture's light side), taking
    known_pdf for light index known (-1: none); the scene has at least one light. */
 double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf);

@@ -151,12 +151,12 @@ int shape_light_uses_points(const struct prim *p)
     return p->type == PRIM_DISK || p->type == PRIM_RECT;
 }
 
-static inline vec3 light_point(const struct prim *p, struct pt2 s)
+/* The point of light p for s: a disk's at angle 2 pi s.y, whose cos and sin are given. */
+static inline vec3 light_point_turn(const struct prim *p, struct pt2 s, double cos_t, double sin_t)
 {
     if (p->type == PRIM_DISK) {
         /* r = R sqrt(u), theta = 2 pi v: uniform by area over the whole radius-R disk. */
-        double r = p->g.disk.radius * sqrt(s.x), sin_t, cos_t;
-        v3_sincos_turn(s.y, &sin_t, &cos_t);
+        double r = p->g.disk.radius * sqrt(s.x);
         vec3 q = v3_add(v3_scale(p->g.disk.e1, r * cos_t), v3_scale(p->g.disk.e2, r * sin_t));
         return v3_add(p->g.disk.center, q);
     }
@@ -165,6 +165,14 @@ static inline vec3 light_point(const struct prim *p, struct pt2 s)
     double pb = p->g.rect.b0 + s.y * (p->g.rect.b1 - p->g.rect.b0);
     return v3_add(v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, pa)),
                   v3_scale(p->g.rect.eb, pb));
+}
+
+static inline vec3 light_point(const struct prim *p, struct pt2 s)
+{
+    double sin_t = 0, cos_t = 0;
+    if (p->type == PRIM_DISK)
+        v3_sincos_turn(s.y, &sin_t, &cos_t);
+    return light_point_turn(p, s, cos_t, sin_t);
 }
 
 vec3 shape_light_point(const struct prim *p, struct pt2 s)
@@ -289,6 +297,19 @@ double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
     return light_pdf(p, o, dir);
 }
 
+/* The unit direction from o to the chosen point q of a planar light and its pdf: q is at
+   distance len, so dist^2 / (cos area) = len^3 / (|to_q . n| area), no plane to intersect
+   (planar_pdf's edge-on guard with |dir| = 1). */
+static inline vec3 planar_sample(const struct prim *p, vec3 o, vec3 q, double *pdf)
+{
+    vec3 to_q = v3_sub(q, o);
+    double len2 = v3_len2(to_q), len = sqrt(len2);
+    vec3 dir = v3_scale(to_q, 1.0 / len);
+    double qn = fabs(v3_dot(to_q, p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n));
+    *pdf = len > HIT_EPS && qn > 1e-12 * len ? len2 * len / (qn * p->area) : 0;
+    return dir;
+}
+
 vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
 {
     if (p->type == PRIM_SPHERE) {
@@ -297,14 +318,13 @@ vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
         *pdf = 1 / (2 * PI * omc); /* omc = 2 inside: 1 / (4 pi), uniform over all directions */
         return dir;
     }
-    /* the chosen point is at distance len: dist^2 / (cos area) = len^3 / (|to_q . n| area), no
-       plane to intersect (planar_pdf's edge-on guard with |dir| = 1) */
-    vec3 to_q = v3_sub(light_point(p, s), o);
-    double len2 = v3_len2(to_q), len = sqrt(len2);
-    vec3 dir = v3_scale(to_q, 1.0 / len);
-    double qn = fabs(v3_dot(to_q, p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n));
-    *pdf = len > HIT_EPS && qn > 1e-12 * len ? len2 * len / (qn * p->area) : 0;
-    return dir;
+    return planar_sample(p, o, light_point(p, s), pdf);
+}
+
+vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t,
+                             double *pdf)
+{
+    return planar_sample(p, o, light_point_turn(p, s, cos_t, sin_t), pdf);
 }
 
 double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf)

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "vec3.h"
 
 #define GAUSS_EXACT 0.5577462853510335         /* (integral of exp(-x^2) over [0, 1])^2 */
 #define QUARTER_DISK_R2 0.63661977236758134308 /* 2 / pi: the disk covers half the square */
@@ -590,6 +591,22 @@ static void test_cells(void)
             equal &= q.x == set[k].x && q.y == set[k].y;
         }
         CHECK(equal);
+        /* the set's turns: cos and sin of 2 pi y of each point, and turned by 2 pi oy those of
+           the shifted point's angle, to rounding */
+        const struct pt2 *turns = sampler_pool_turns(pool, src);
+        double so, co, worst = 0;
+        int exact = 1;
+        v3_sincos_turn(oy, &so, &co);
+        for (size_t k = 0; k < n; k++) {
+            double sy, cy, ss, cs;
+            v3_sincos_turn(src[k].y, &sy, &cy);
+            exact &= turns[k].x == cy && turns[k].y == sy;
+            v3_sincos_turn(set[k].y, &ss, &cs);
+            worst = fmax(worst, fabs(turns[k].x * co - turns[k].y * so - cs));
+            worst = fmax(worst, fabs(turns[k].y * co + turns[k].x * so - ss));
+        }
+        CHECK(exact);
+        CHECK(worst < 1e-15);
         CHECK(sampler_pool_set(p, &b, &src, &ox, &oy) == 0);
         free(set);
         sampler_free(pool);

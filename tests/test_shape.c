@@ -287,6 +287,22 @@ static void test_light_pdfs(void)
     dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
     shape_prepare(&dk);
     check_light_pdf(&dk, v3(0, 0, 0), dk.g.disk.center, "disk");
+    /* given cos and sin of 2 pi s.y, a disk or rect samples as without them, up to rounding */
+    struct rng g;
+    rng_seed(&g, 4, 4);
+    double worst = 0;
+    for (int i = 0; i < 100000; i++) {
+        struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
+        double sn, cs, pdf_plain, pdf_turn;
+        v3_sincos_turn(sp.y, &sn, &cs);
+        const struct prim *lp = i % 2 ? &dk : &q;
+        vec3 o = v3(4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2);
+        vec3 d = shape_light_sample(lp, o, sp, &pdf_plain),
+             dt = shape_light_sample_turn(lp, o, sp, cs, sn, &pdf_turn);
+        worst = fmax(worst, v3_len(v3_sub(d, dt)));
+        worst = fmax(worst, fabs(pdf_plain - pdf_turn) / (pdf_plain + 1e-300));
+    }
+    CHECK(worst < 1e-12);
     CHECK(shape_light_uses_points(&q) && shape_light_uses_points(&dk) && !shape_light_uses_points(&s));
 }
 
