@@ -16,8 +16,7 @@
 struct light_points {
     struct pt2 *pts;
     uint32_t *cells;
-    const struct pt2 *pool;  /* pooled: the set and its shift */
-    const struct pt2 *turns; /* pooled: cos and sin of 2 pi y of the set's points */
+    const struct pool_point *pool; /* pooled: the set and its shift */
     double ox, oy, cos_oy, sin_oy;
     size_t n, next;
     int uses_points; /* shape_light_uses_points of the light, looked up once */
@@ -152,7 +151,6 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *tu
             if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
                 memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
             if (kind == SAMPLER_POISSON) {
-                lp->turns = sampler_pool_turns(ctx->light, lp->pool);
                 v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
             }
         } else {
@@ -172,10 +170,10 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *tu
         lp->cells[k] = cell;
         if (kind == SAMPLER_POISSON) {
             /* the shifted point's angle 2 pi (y + oy): the point's own turned by the shift's */
-            const struct pt2 t = lp->turns[cell];
+            const struct pt2 t = lp->pool[cell].turn;
             *turn = (struct pt2){t.x * lp->cos_oy - t.y * lp->sin_oy, t.y * lp->cos_oy + t.x * lp->sin_oy};
             *turned = 1;
-            return sampler_shift(lp->pool[cell], lp->ox, lp->oy);
+            return sampler_shift(lp->pool[cell].p, lp->ox, lp->oy);
         }
         return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
     }

@@ -22,9 +22,9 @@ struct sampler {
 
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
     int pool_size;
-    struct pt2 *pool_pts;
-    struct pt2 *pool_turns; /* cos and sin of 2 pi y of each pool point */
-    size_t *pool_start;     /* set i is pool_pts[pool_start[i] .. pool_start[i+1]) */
+    struct pt2 *pool_pts;    /* while the pool is drawn */
+    struct pool_point *pool; /* the points and their turns */
+    size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
 };
 
 static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson"};
@@ -101,7 +101,7 @@ void sampler_free(struct sampler *s)
         return;
     poisson_release(&s->bridson);
     free(s->pool_pts);
-    free(s->pool_turns);
+    free(s->pool);
     free(s->pool_start);
     free(s);
 }
@@ -174,11 +174,11 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
     if (s->pool_size <= 0)
         return poisson_draw(&s->bridson, rng, out, 0);
 
-    const struct pt2 *src;
+    const struct pool_point *src;
     double ox, oy;
     count = sampler_pool_set(s, rng, &src, &ox, &oy);
     for (size_t k = 0; k < count; k++)
-        out[k] = sampler_shift(src[k], ox, oy);
+        out[k] = sampler_shift(src[k].p, ox, oy);
     return count;
 }
 
@@ -189,7 +189,7 @@ int sampler_is_pooled(const struct sampler *s)
 
 /* Cranley-Patterson rotation of a pool set: a toroidal set stays Poisson-disk (distances modulo
    1 are unchanged) under any shift modulo 1. */
-size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pt2 **pts, double *ox,
+size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pool_point **pts, double *ox,
                         double *oy)
 {
     if (s->kind != SAMPLER_POISSON || s->pool_size <= 0)
@@ -197,13 +197,8 @@ size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct p
     uint32_t pick = rng_below(rng, (uint32_t)s->pool_size);
     *ox = rng_uniform(rng);
     *oy = rng_uniform(rng);
-    *pts = s->pool_pts + s->pool_start[pick];
+    *pts = s->pool + s->pool_start[pick];
     return s->pool_start[pick + 1] - s->pool_start[pick];
-}
-
-const struct pt2 *sampler_pool_turns(const struct sampler *s, const struct pt2 *pts)
-{
-    return s->pool_turns + (pts - s->pool_pts);
 }
 
 /* Draw the pool's toroidal sets from pool_seed into one packed array. */
@@ -233,11 +228,15 @@ static int pool_fill(struct sampler *s, uint64_t pool_seed, struct err *e)
         used += count;
         s->pool_start[p + 1] = used;
     }
-    s->pool_turns = malloc(used * sizeof *s->pool_turns);
-    if (!s->pool_turns)
+    s->pool = malloc(used * sizeof *s->pool);
+    if (!s->pool)
         goto fail;
-    for (size_t k = 0; k < used; k++)
-        v3_sincos_turn(s->pool_pts[k].y, &s->pool_turns[k].y, &s->pool_turns[k].x);
+    for (size_t k = 0; k < used; k++) {
+        s->pool[k].p = s->pool_pts[k];
+        v3_sincos_turn(s->pool_pts[k].y, &s->pool[k].turn.y, &s->pool[k].turn.x);
+    }
+    free(s->pool_pts);
+    s->pool_pts = NULL;
     free(scratch);
     return 0;
 fail:

@@ -582,28 +582,28 @@ static void test_cells(void)
     if (pool) {
         struct pt2 *set = malloc(sampler_set_capacity(pool) * sizeof *set);
         struct rng a = rng, b = rng;
-        const struct pt2 *src;
+        const struct pool_point *src;
         double ox, oy;
         size_t n = sampler_draw(pool, &a, set), m = sampler_pool_set(pool, &b, &src, &ox, &oy);
         int equal = n == m && a.state == b.state;
         for (size_t k = 0; equal && k < n; k++) {
-            struct pt2 q = sampler_shift(src[k], ox, oy);
+            struct pt2 q = sampler_shift(src[k].p, ox, oy);
             equal &= q.x == set[k].x && q.y == set[k].y;
         }
         CHECK(equal);
         /* the set's turns: cos and sin of 2 pi y of each point, and turned by 2 pi oy those of
            the shifted point's angle, to rounding */
-        const struct pt2 *turns = sampler_pool_turns(pool, src);
         double so, co, worst = 0;
         int exact = 1;
         v3_sincos_turn(oy, &so, &co);
         for (size_t k = 0; k < n; k++) {
             double sy, cy, ss, cs;
-            v3_sincos_turn(src[k].y, &sy, &cy);
-            exact &= turns[k].x == cy && turns[k].y == sy;
+            const struct pt2 t = src[k].turn;
+            v3_sincos_turn(src[k].p.y, &sy, &cy);
+            exact &= t.x == cy && t.y == sy;
             v3_sincos_turn(set[k].y, &ss, &cs);
-            worst = fmax(worst, fabs(turns[k].x * co - turns[k].y * so - cs));
-            worst = fmax(worst, fabs(turns[k].y * co + turns[k].x * so - ss));
+            worst = fmax(worst, fabs(t.x * co - t.y * so - cs));
+            worst = fmax(worst, fabs(t.y * co + t.x * so - ss));
         }
         CHECK(exact);
         CHECK(worst < 1e-15);
