@@ -295,29 +295,29 @@ static int hit_triangle(const struct prim *p, const ray *r, double t_min, double
 
 /* A uniform number in (0, 1] from the ray's bits and the medium's: the same ray always gets
    the same free-flight distance, whatever order the BVH tests primitives in. Each word is
-   folded in by a multiply and a shift (every input bit reaches the high half), then one full
-   SplitMix64 finaliser: a third of the cost of finalising every word. The ray's words come
-   first, so bvh_hit can fold them in once per ray (shape_ray_hash) while it traverses. */
-static uint64_t hash_fold(uint64_t h, double x)
+   multiplied by its own odd constant and the products summed (independent multiplies, not a
+   serial chain: distinct rays differing in one word always differ in the sum), then one
+   SplitMix64 finaliser mixes every bit. The ray's part comes first, so bvh_hit can start it
+   once per ray (shape_ray_hash) while it traverses. */
+static uint64_t hash_word(double x, uint64_t k)
 {
     uint64_t bits;
     memcpy(&bits, &x, sizeof bits);
-    h = (h ^ bits) * 0x9e3779b97f4a7c15ULL;
-    return h ^ (h >> 29);
+    return bits * k;
 }
 
 uint64_t shape_ray_hash(const ray *r)
 {
-    const double in[7] = {r->orig.x, r->orig.y, r->orig.z, r->dir.x, r->dir.y, r->dir.z, r->time};
-    uint64_t h = 0x6d656469756dULL;
-    for (int i = 0; i < 7; i++)
-        h = hash_fold(h, in[i]);
-    return h;
+    return (hash_word(r->orig.x, 0x9e3779b97f4a7c15ULL) + hash_word(r->orig.y, 0xbf58476d1ce4e5b9ULL)) +
+           (hash_word(r->orig.z, 0x94d049bb133111ebULL) + hash_word(r->dir.x, 0xd1b54a32d192ed03ULL)) +
+           ((hash_word(r->dir.y, 0xff51afd7ed558ccdULL) + hash_word(r->dir.z, 0xc4ceb9fe1a85ec53ULL)) +
+            hash_word(r->time, 0x2545f4914f6cdd1dULL));
 }
 
 static double medium_uniform(uint64_t ray_hash, const struct prim *p)
 {
-    uint64_t h = hash_fold(hash_fold(ray_hash, p->g.medium.radius), p->g.medium.neg_inv_density);
+    uint64_t h = ray_hash + (hash_word(p->g.medium.radius, 0x5851f42d4c957f2dULL) +
+                             hash_word(p->g.medium.neg_inv_density, 0xda942042e4dd58b5ULL));
     h = rng_mix64(h);
     return (double)((h >> 11) + 1) * 0x1.0p-53;
 }
