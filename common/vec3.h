@@ -114,22 +114,16 @@ static inline void v3_sincos_turn(double u, double *s, double *c)
 {
     double x4 = 4 * u;
     int q = (int)x4; /* u >= 0: truncation is floor */
-    double x = (x4 - q - 0.5) * (PI / 2), x2 = x * x;
-    double sn =
-        x * (1 + x2 * (-1.0 / 6 +
-                       x2 * (1.0 / 120 +
-                             x2 * (-1.0 / 5040 +
-                                   x2 * (1.0 / 362880 +
-                                         x2 * (-1.0 / 39916800 +
-                                               x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000))))))));
+    double x = (x4 - q - 0.5) * (PI / 2), y = x * x, y2 = y * y, y4 = y2 * y2;
+    /* both series in y = x^2 by Estrin's scheme: pairs, then pairs of pairs, a dependency
+       chain of ~4 multiplies instead of Horner's 8 (the same terms, summed in another order) */
+    double sn = x * ((1 + y * (-1.0 / 6)) + y2 * (1.0 / 120 + y * (-1.0 / 5040)) +
+                     y4 * ((1.0 / 362880 + y * (-1.0 / 39916800)) +
+                           y2 * (1.0 / 6227020800 + y * (-1.0 / 1307674368000))));
     double cs =
-        1 + x2 * (-1.0 / 2 +
-                  x2 * (1.0 / 24 +
-                        x2 * (-1.0 / 720 +
-                              x2 * (1.0 / 40320 +
-                                    x2 * (-1.0 / 3628800 +
-                                          x2 * (1.0 / 479001600 +
-                                                x2 * (-1.0 / 87178291200 + x2 * (1.0 / 20922789888000))))))));
+        (1 + y * (-1.0 / 2)) + y2 * (1.0 / 24 + y * (-1.0 / 720)) +
+        y4 * ((1.0 / 40320 + y * (-1.0 / 3628800)) + y2 * (1.0 / 479001600 + y * (-1.0 / 87178291200))) +
+        y4 * y4 * (1.0 / 20922789888000);
     const double half_sqrt2 = 0.70710678118654752440;
     double s0 = (sn + cs) * half_sqrt2, c0 = (cs - sn) * half_sqrt2; /* of x + pi/4 */
     double s1 = q & 1 ? c0 : s0, c1 = q & 1 ? -s0 : c0;              /* a quarter turn on */
