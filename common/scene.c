@@ -88,8 +88,7 @@ int scene_use_perlin(struct scene *sc)
     return 0;
 }
 
-/* Whether prim p's material reads surface coordinates (an image texture). */
-static int prim_needs_uv(const struct scene *sc, const struct prim *p)
+int scene_prim_needs_uv(const struct scene *sc, const struct prim *p)
 {
     if (p->material < 0 || p->material >= sc->n_materials)
         return 0;
@@ -103,7 +102,7 @@ int scene_finish(struct scene *sc, struct err *e)
        sphere test and shape_hit's direct path */
     for (int i = 0; i < sc->n_prims; i++) {
         struct prim *p = &sc->prims[i];
-        if (!shape_bake(p, prim_needs_uv(sc, p)))
+        if (!shape_bake(p, scene_prim_needs_uv(sc, p)))
             shape_prepare(p);
     }
     /* lights are sampled in world space: the loader admits only transforms that fold */

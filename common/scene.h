@@ -142,6 +142,10 @@ int scene_add_image(struct scene *sc, struct rgb8 *img);
 /* Make sure sc->perlin exists (one fixed-seed table shared by all noise textures). 0 or -1. */
 int scene_use_perlin(struct scene *sc);
 
+/* Whether prim p's material (an index into sc's materials) reads surface coordinates: an image
+   texture. p need not be in sc yet. */
+int scene_prim_needs_uv(const struct scene *sc, const struct prim *p);
+
 /* Build the BVH once every prim is in. 0, or -1 with e filled. */
 int scene_finish(struct scene *sc, struct err *e);
 

@@ -19,11 +19,6 @@ static ray to_object(const struct prim *p, const ray *r)
     return out;
 }
 
-static vec3 rotate_to_world(const struct prim *p, vec3 a)
-{
-    return v3(p->cos_y * a.x + p->sin_y * a.z, a.y, -p->sin_y * a.x + p->cos_y * a.z);
-}
-
 /* Both roots t0 <= t1 of |o + t d - c| = rad; 0 when the line misses the sphere. */
 static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1)
 {
@@ -39,7 +34,8 @@ static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1
 void shape_prepare(struct prim *p)
 {
     if (p->type == PRIM_RECT) {
-        int ax = p->g.rect.axis, a = ax == 0 ? 1 : 0, b = ax == 2 ? 1 : 2;
+        int ax = p->g.rect.axis, a, b;
+        rect_axes(ax, &a, &b);
         p->g.rect.n = v3(ax == 0, ax == 1, ax == 2);
         p->g.rect.ea = v3(a == 0, a == 1, a == 2);
         p->g.rect.eb = v3(b == 0, b == 1, b == 2);
@@ -83,21 +79,19 @@ int shape_bakes(const struct prim *p, int keep_uv)
    corners and normal turned by the exact rotation (cos, sin rounded to 0 or +-1) and moved. */
 static void rect_bake(struct prim *p)
 {
-    const double c = round(p->cos_y), s = round(p->sin_y);
-    const int ax = p->g.rect.axis, a = ax == 0 ? 1 : 0, b = ax == 2 ? 1 : 2;
+    struct prim q = *p; /* the exact quarter turn */
+    q.cos_y = round(p->cos_y), q.sin_y = round(p->sin_y);
+    int ax = p->g.rect.axis, a, b;
+    rect_axes(ax, &a, &b);
     double lo[3], hi[3], n[3] = {0, 0, 0};
     lo[ax] = hi[ax] = p->g.rect.k;
     lo[a] = p->g.rect.a0, hi[a] = p->g.rect.a1;
     lo[b] = p->g.rect.b0, hi[b] = p->g.rect.b1;
     n[ax] = p->flip ? -1 : 1;
-    /* rotate_to_world with the exact quarter-turn cos and sin */
-    vec3 wl = v3_add(v3(c * lo[0] + s * lo[2], lo[1], -s * lo[0] + c * lo[2]), p->offset);
-    vec3 wh = v3_add(v3(c * hi[0] + s * hi[2], hi[1], -s * hi[0] + c * hi[2]), p->offset);
-    vec3 wn = v3(c * n[0] + s * n[2], n[1], -s * n[0] + c * n[2]);
-    const int nax = fabs(wn.x) > 0.5   ? 0
-                    : fabs(wn.y) > 0.5 ? 1
-                                       : 2,
-              na = nax == 0 ? 1 : 0, nb = nax == 2 ? 1 : 2;
+    vec3 wl = point_to_world(&q, v3(lo[0], lo[1], lo[2])), wh = point_to_world(&q, v3(hi[0], hi[1], hi[2]));
+    vec3 wn = rotate_to_world(&q, v3(n[0], n[1], n[2]));
+    int nax = fabs(wn.x) > 0.5 ? 0 : fabs(wn.y) > 0.5 ? 1 : 2, na, nb;
+    rect_axes(nax, &na, &nb);
     p->g.rect.axis = nax;
     p->flip = v3_get(wn, nax) < 0;
     p->g.rect.k = v3_get(wl, nax);

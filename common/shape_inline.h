@@ -5,6 +5,20 @@
 
 #include "shape.h"
 
+/* A rotate_y's turn of object-space vector a into world space (the transform's inverse is
+   shape.c's to_object). */
+static inline vec3 rotate_to_world(const struct prim *p, vec3 a)
+{
+    return v3(p->cos_y * a.x + p->sin_y * a.z, a.y, -p->sin_y * a.x + p->cos_y * a.z);
+}
+
+/* The in-plane axes a, b of a rect whose normal is axis (yz: y, z; xz: x, z; xy: x, y). */
+static inline void rect_axes(int axis, int *a, int *b)
+{
+    *a = axis == 0 ? 1 : 0;
+    *b = axis == 2 ? 1 : 2;
+}
+
 static inline void set_face(struct hit *h, const ray *r, vec3 outward)
 {
     h->front = v3_dot(r->dir, outward) < 0;

@@ -4,16 +4,7 @@
 
 #include <float.h>
 
-static vec3 rotate_to_world(const struct prim *p, vec3 a)
-{
-    return v3(p->cos_y * a.x + p->sin_y * a.z, a.y, -p->sin_y * a.x + p->cos_y * a.z);
-}
-
-static void rect_axes(int axis, int *a, int *b)
-{
-    *a = axis == 0 ? 1 : 0;
-    *b = axis == 2 ? 1 : 2;
-}
+#include "shape_inline.h"
 
 void shape_uv(const struct prim *p, struct hit *h)
 {

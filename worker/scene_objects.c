@@ -4,7 +4,6 @@
 
 #include "scene_loader.h"
 #include "shape.h"
-#include "texture.h"
 
 /* Keys every object may have besides its geometry. */
 #define COMMON_KEYS "type", "material", "rotate_y", "translate", "sample"
@@ -295,8 +294,8 @@ static int check_placement(struct loader *L, yaml_node_t *n, const struct object
         return ydoc_fail(&L->d, mn, L->e,
                          medium ? "material: a medium needs an isotropic material"
                                 : "material: isotropic materials fill media only");
-    if (m->texture >= 0 && texture_needs_uv(&L->sc->textures[m->texture]) &&
-        !(p->type == PRIM_SPHERE || p->type == PRIM_RECT || p->type == PRIM_DISK))
+    const int needs_uv = scene_prim_needs_uv(L->sc, p);
+    if (needs_uv && !(p->type == PRIM_SPHERE || p->type == PRIM_RECT || p->type == PRIM_DISK))
         return ydoc_fail(&L->d, mn, L->e,
                          "material: an image texture needs a sphere, rect or disk (a %s has no uv)",
                          ot->name);
@@ -308,7 +307,6 @@ static int check_placement(struct loader *L, yaml_node_t *n, const struct object
             "%s: a %s cannot be importance-sampled (lights and sample: true take sphere, rect or disk)",
             sample ? "sample" : "material", ot->name);
     /* a light is sampled in world space: its transform must fold into its geometry */
-    int needs_uv = m->texture >= 0 && texture_needs_uv(&L->sc->textures[m->texture]);
     if (p->has_xform && !shape_bakes(p, needs_uv)) {
         yaml_node_t *xn = ymap_get(&L->d, n, "rotate_y");
         if (p->type == PRIM_RECT && !needs_uv)
