@@ -34,21 +34,11 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-/* World box of p: shape_bounds', or for a sphere that keeps its transform (a medium's boundary,
-   an image-textured sphere: shape_bake leaves them) its centre +- radius, where shape_bounds gives
-   the box of its rotated bounding cube, 22% wider in x and z at 15 degrees (32% more area). */
+/* World box of p. */
 static struct box prim_box(const struct prim *p)
 {
     struct box b;
     shape_bounds(p, &b.lo, &b.hi);
-    if (p->has_xform && (p->type == PRIM_SPHERE || p->type == PRIM_MEDIUM)) {
-        vec3 c = p->type == PRIM_SPHERE ? p->g.sphere.center : p->g.medium.center;
-        double r = p->type == PRIM_SPHERE ? p->g.sphere.radius : p->g.medium.radius;
-        vec3 w =
-            v3_add(v3(p->cos_y * c.x + p->sin_y * c.z, c.y, -p->sin_y * c.x + p->cos_y * c.z), p->offset);
-        b.lo = v3_max(b.lo, v3_sub(w, v3(r, r, r)));
-        b.hi = v3_min(b.hi, v3_add(w, v3(r, r, r)));
-    }
     return b;
 }
 

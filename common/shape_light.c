@@ -114,6 +114,16 @@ void shape_bounds(const struct prim *p, vec3 *lo, vec3 *hi)
         *lo = l, *hi = h;
         return;
     }
+    if (p->type == PRIM_SPHERE || p->type == PRIM_MEDIUM) {
+        /* a sphere that keeps its transform (a medium's boundary, an image-textured sphere):
+           its moved centre +- radius, not the box of its rotated bounding cube (22% wider in x
+           and z at 15 degrees) */
+        vec3 c = p->type == PRIM_SPHERE ? p->g.sphere.center : p->g.medium.center;
+        double r = p->type == PRIM_SPHERE ? p->g.sphere.radius : p->g.medium.radius;
+        vec3 w = v3_add(rotate_to_world(p, c), p->offset);
+        *lo = v3_sub(w, v3(r, r, r)), *hi = v3_add(w, v3(r, r, r));
+        return;
+    }
     vec3 mn = v3(DBL_MAX, DBL_MAX, DBL_MAX), mx = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
     for (int i = 0; i < 8; i++) {
         vec3 c = v3(i & 1 ? h.x : l.x, i & 2 ? h.y : l.y, i & 4 ? h.z : l.z);
