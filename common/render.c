@@ -129,6 +129,31 @@ fail:
     return NULL;
 }
 
+/* The uniform rng_u32 would return next, without advancing r (PCG32's output of the state). */
+static inline uint32_t rng_peek_u32(const struct rng *r)
+{
+    uint64_t old = r->state;
+    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+    uint32_t rot = (uint32_t)(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
+}
+
+/* Pooled sets: the pool point each light would take next if it were the next light sampled
+   (the light rng's next draw picks it), fetched into the cache now. One of them is the next
+   point taken unless its set runs out first; without this its load, an L2 hit at the head of
+   the path's dependency chain, was about half of light_direction's time. */
+static inline __attribute__((always_inline)) void prefetch_next_points(const struct render_ctx *ctx)
+{
+    const uint64_t u = rng_peek_u32(&ctx->light_rng);
+    for (int i = 0; i < ctx->sc->n_lights; i++) {
+        const struct light_points *lp = &ctx->lp[i];
+        if (lp->next < lp->n) {
+            size_t j = lp->next + (size_t)((u * (uint32_t)(lp->n - lp->next)) >> 32);
+            __builtin_prefetch(&lp->pool[lp->cells[j]]);
+        }
+    }
+}
+
 /* Next point of light i's current set, drawing a fresh set when it runs out. A pixel uses
    only part of a set, in order; a grid or Poisson set in generation order would then cover
    only part of the light (a grid's first rows, a Poisson blob around its first point) and
@@ -173,6 +198,7 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *tu
             const struct pt2 t = lp->pool[cell].turn;
             *turn = (struct pt2){t.x * lp->cos_oy - t.y * lp->sin_oy, t.y * lp->cos_oy + t.x * lp->sin_oy};
             *turned = 1;
+            prefetch_next_points(ctx);
             return sampler_shift(lp->pool[cell].p, lp->ox, lp->oy);
         }
         return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
