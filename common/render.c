@@ -277,7 +277,7 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int
    isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
    Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
    follow their one direction. Scattered directions are unit vectors. */
-static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays)
+static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *rays)
 {
     const struct scene *sc = ctx->sc;
     const int mix = sc->n_lights > 0 && !ctx->rs.light_sampling_off;
@@ -285,7 +285,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
     for (int depth = 0; depth < ctx->rs.max_depth; depth++) {
         struct hit h;
         ++*rays;
-        if (!bvh_hit(sc, &r, HIT_EPS, DBL_MAX, &h)) {
+        if (!bvh_hit(sc, r, HIT_EPS, DBL_MAX, &h)) {
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
@@ -310,7 +310,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
             if (!(pdf > 0))
                 return L;
             beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
-            r = (ray){h.p, dir, r.time};
+            *r = (ray){h.p, dir, r->time};
             continue;
         }
         switch (m->type) {
@@ -319,21 +319,21 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
                 L = v3_add(L, v3_mul(beta, m->emit));
             return L;
         case MAT_METAL:
-            dir = v3_fma(v3_reflect(v3_unit(r.dir), h.n), random_in_unit_sphere(rng), m->fuzz);
+            dir = v3_fma(v3_reflect(v3_unit(r->dir), h.n), random_in_unit_sphere(rng), m->fuzz);
             if (v3_dot(dir, h.n) <= 0)
                 return L;
             beta = v3_mul(beta, m->albedo);
-            r = (ray){h.p, dir, r.time};
+            *r = (ray){h.p, dir, r->time};
             continue;
         case MAT_DIELECTRIC: {
-            vec3 unit_dir = v3_unit(r.dir);
+            vec3 unit_dir = v3_unit(r->dir);
             double ratio = h.front ? 1.0 / m->ior : m->ior;
             double cos_t = d_min(v3_dot(v3_neg(unit_dir), h.n), 1.0);
             double sin_t = sqrt(1 - cos_t * cos_t);
             dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
                       ? v3_reflect(unit_dir, h.n)
                       : v3_refract(unit_dir, h.n, ratio);
-            r = (ray){h.p, dir, r.time};
+            *r = (ray){h.p, dir, r->time};
             continue;
         }
         default: { /* MAT_ISOTROPIC */
@@ -350,7 +350,7 @@ static vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng, uint64_t *rays
                 dir = uniform_sphere_direction(rng);
             }
             beta = v3_mul(beta, v3_scale(albedo, phase / pdf));
-            r = (ray){h.p, dir, r.time};
+            *r = (ray){h.p, dir, r->time};
             continue;
         }
         }
@@ -379,7 +379,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     for (size_t s = 0; s < n; s++) {
         struct pt2 p = ctx->pixel_pts[s];
         ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-        vec3 c = trace(ctx, r, &path_rng, &rays);
+        vec3 c = trace(ctx, &r, &path_rng, &rays);
         if (!v3_finite(c)) {
             st->nonfinite++;
             continue;
