@@ -70,6 +70,7 @@ struct prim {
         struct {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */
             double radius;
+            double r2, r2_out; /* derived: radius^2, and radius^2 (1 + 1e-6) (light pdf's cone test) */
         } disk;
         struct {
             vec3 center0, velocity; /* center at time t: center0 + t * velocity */

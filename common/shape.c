@@ -40,6 +40,10 @@ void shape_prepare(struct prim *p)
         p->g.rect.ea = v3(a == 0, a == 1, a == 2);
         p->g.rect.eb = v3(b == 0, b == 1, b == 2);
     }
+    if (p->type == PRIM_DISK) {
+        p->g.disk.r2 = p->g.disk.radius * p->g.disk.radius;
+        p->g.disk.r2_out = p->g.disk.r2 * (1 + 1e-6);
+    }
     p->area = shape_area(p);
 }
 

@@ -253,27 +253,36 @@ static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
     return planar_pdf(p, t, dn, dir);
 }
 
-static inline __attribute__((always_inline)) double disk_pdf(const struct prim *p, vec3 o, vec3 dir)
+/* Most directions miss a disk light: reject those outside the cone of its bounding ball (radius
+   R about the centre, o outside it) with squares only, before the plane hit's division and the
+   unpredictable "plane ahead" branch. The margins (1e-6 on R^2 for "outside", 1e-9 of d2 on the
+   cone) are far above rounding, so the test never rejects a direction disk_pdf_hit would accept. */
+static inline __attribute__((always_inline)) int disk_in_cone(const struct prim *p, vec3 o, vec3 dir)
+{
+    const vec3 to_c = v3_sub(p->g.disk.center, o);
+    double d2 = v3_len2(to_c);
+    if (!(d2 > p->g.disk.r2_out))
+        return 1;
+    double dc = v3_dot(dir, to_c); /* dc |dc|: one branch rejects dc <= 0 too */
+    return dc * fabs(dc) >= (d2 * (1 - 1e-9) - p->g.disk.r2) * v3_len2(dir);
+}
+
+/* A disk light's pdf by its plane hit. */
+static inline double disk_pdf_hit(const struct prim *p, vec3 o, vec3 dir)
 {
     const vec3 n = p->g.disk.normal, to_c = v3_sub(p->g.disk.center, o);
-    /* Most directions miss the disk: reject those outside the cone of its bounding ball
-       (radius R about the centre, o outside it) with squares only, before the plane hit's
-       division and the unpredictable "plane ahead" branch. The margins (1e-6 on R^2 for
-       "outside", 1e-9 of d2 on the cone) are far above rounding, so the test never rejects a
-       direction the exact test below would accept. */
-    double d2 = v3_len2(to_c), r2 = p->g.disk.radius * p->g.disk.radius;
-    if (d2 > r2 * (1 + 1e-6)) {
-        double dc = v3_dot(dir, to_c); /* dc |dc|: one branch rejects dc <= 0 too */
-        if (!(dc * fabs(dc) >= (d2 * (1 - 1e-9) - r2) * v3_len2(dir)))
-            return 0;
-    }
     double dn = v3_dot(dir, n), t = v3_dot(to_c, n) / dn;
     if (!(t > HIT_EPS && t < DBL_MAX))
         return 0;
     vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
-    if (v3_len2(d) > p->g.disk.radius * p->g.disk.radius)
+    if (v3_len2(d) > p->g.disk.r2)
         return 0;
     return planar_pdf(p, t, dn, dir);
+}
+
+static inline __attribute__((always_inline)) double disk_pdf(const struct prim *p, vec3 o, vec3 dir)
+{
+    return disk_in_cone(p, o, dir) ? disk_pdf_hit(p, o, dir) : 0;
 }
 
 /* One light's pdf, inline so shape_lights_pdf's loop has no call per light (forced: with two
@@ -328,12 +337,33 @@ vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double 
     return planar_sample(p, o, light_point_turn(p, s, cos_t, sin_t), pdf);
 }
 
+/* shape_lights_pdf from light i on, sum holding the lights before it (out of line: reached by a
+   tail call only for the few directions inside a disk light's cone). */
+static __attribute__((noinline)) double lights_pdf_from(const struct scene *sc, vec3 o, vec3 dir, int known,
+                                                        double known_pdf, int i, double sum)
+{
+    for (; i < sc->n_lights; i++) {
+        const struct prim *p = &sc->prims[sc->lights[i]];
+        sum += i == known ? known_pdf : light_pdf(p, o, dir);
+    }
+    return sum / sc->n_lights;
+}
+
 double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf)
 {
     double sum = 0;
     for (int i = 0; i < sc->n_lights; i++) {
         const struct prim *p = &sc->prims[sc->lights[i]];
-        sum += i == known ? known_pdf : light_pdf(p, o, dir);
+        if (i == known) {
+            sum += known_pdf;
+        } else if (p->type != PRIM_DISK) {
+            sum += light_pdf(p, o, dir);
+        } else if (disk_in_cone(p, o, dir)) {
+            /* the plane hit and whatever follows, out of this loop: without a call to return
+               here, the loop keeps its values in registers (a rejected disk adds 0: sum is
+               unchanged) */
+            return lights_pdf_from(sc, o, dir, known, known_pdf, i, sum);
+        }
     }
     return sum / sc->n_lights;
 }

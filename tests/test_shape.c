@@ -388,6 +388,68 @@ static void test_disk_pdf_pretest(void)
     CHECK(hits > n / 5);
 }
 
+/* shape_lights_pdf is the mean of the lights' own pdfs, summed in index order with the known
+   light's given pdf in its place, bit for bit, whether or not a direction enters a disk's cone
+   (the disks' exact tests run out of the loop from the first disk the direction may hit);
+   shape_prepare fills a disk's r2 and r2_out. */
+static void test_lights_pdf_sum(void)
+{
+    struct scene *sc = scene_new();
+    CHECK(sc != NULL);
+    if (!sc)
+        return;
+    vec3 centers[3] = {v3(278, 554, 279), v3(500, 500, 500), v3(60, 500, 500)};
+    for (int k = 0; k < 3; k++) {
+        struct prim dk = {.type = PRIM_DISK};
+        dk.g.disk.center = centers[k];
+        dk.g.disk.radius = 60;
+        onb f = onb_from_w(v3_unit(v3_sub(v3(278, 0, 279), centers[k])));
+        dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
+        int at = scene_add_prim(sc, &dk);
+        CHECK(at >= 0 && scene_add_light(sc, at) >= 0);
+        if (k == 1) { /* a rect and a sphere between the disks */
+            struct prim q = {.type = PRIM_RECT}, b = {.type = PRIM_SPHERE};
+            q.g.rect.axis = 1;
+            q.g.rect.a0 = 213, q.g.rect.a1 = 343, q.g.rect.b0 = 227, q.g.rect.b1 = 332, q.g.rect.k = 554;
+            b.g.sphere.center = v3(190, 90, 190), b.g.sphere.radius = 90;
+            int qi = scene_add_prim(sc, &q), bi = scene_add_prim(sc, &b);
+            CHECK(qi >= 0 && scene_add_light(sc, qi) >= 0 && bi >= 0 && scene_add_light(sc, bi) >= 0);
+        }
+    }
+    const struct prim *d0 = &sc->prims[sc->lights[0]];
+    CHECK(d0->g.disk.r2 == 60.0 * 60.0 && d0->g.disk.r2_out == 3600 * (1 + 1e-6));
+    struct rng g;
+    rng_seed(&g, 6, 6);
+    int same = 1, inside = 0, n = 200000;
+    for (int i = 0; i < n; i++) {
+        vec3 o = v3(555 * rng_uniform(&g), 555 * rng_uniform(&g), 555 * rng_uniform(&g));
+        int aim = (int)rng_below(&g, (uint32_t)sc->n_lights + 1),
+            known = (int)rng_below(&g, (uint32_t)sc->n_lights + 1);
+        if (known == sc->n_lights)
+            known = -1;
+        vec3 dir;
+        if (aim < sc->n_lights) { /* toward a light's point, or its sphere's centre */
+            const struct prim *lp = &sc->prims[sc->lights[aim]];
+            struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
+            dir = v3_unit(lp->type == PRIM_SPHERE ? v3_sub(lp->g.sphere.center, o)
+                                                  : v3_sub(shape_light_point(lp, sp), o));
+        } else {
+            dir = v3_unit(v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1));
+        }
+        double known_pdf = 0.25 + rng_uniform(&g), sum = 0;
+        for (int k = 0; k < sc->n_lights; k++) {
+            double one = k == known ? known_pdf : shape_light_pdf(&sc->prims[sc->lights[k]], o, dir, 0);
+            inside += k != known && one > 0 && sc->prims[sc->lights[k]].type == PRIM_DISK;
+            sum += one;
+        }
+        double want = sum / sc->n_lights, got = shape_lights_pdf(sc, o, dir, known, known_pdf);
+        same &= memcmp(&want, &got, sizeof want) == 0;
+    }
+    CHECK(same);
+    CHECK(inside > n / 20);
+    scene_free(sc);
+}
+
 /* Hits of random rays land inside the primitive's bounds, transformed or not. */
 static void test_bounds(void)
 {
@@ -438,6 +500,7 @@ int main(void)
     test_medium();
     test_light_pdfs();
     test_disk_pdf_pretest();
+    test_lights_pdf_sum();
     test_bounds();
     return check_report("test_shape");
 }
