@@ -240,7 +240,7 @@ static inline double sphere_pdf(const struct prim *p, vec3 o, vec3 dir)
 }
 
 /* shape_hit's rect test, minus the hit record */
-static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
+static inline double rect_pdf_hit(const struct prim *p, vec3 o, vec3 dir)
 {
     const vec3 n = p->g.rect.n;
     double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
@@ -253,18 +253,41 @@ static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
     return planar_pdf(p, t, dn, dir);
 }
 
-/* Most directions miss a disk light: reject those outside the cone of its bounding ball (radius
-   R about the centre, o outside it) with squares only, before the plane hit's division and the
-   unpredictable "plane ahead" branch. The margins (1e-6 on R^2 for "outside", 1e-9 of d2 on the
-   cone) are far above rounding, so the test never rejects a direction disk_pdf_hit would accept. */
-static inline __attribute__((always_inline)) int disk_in_cone(const struct prim *p, vec3 o, vec3 dir)
+/* Most directions miss a planar light: reject those outside the cone of its bounding ball c, r2
+   (a disk's centre and radius R; a rect's centre and half diagonal), o outside it, with squares
+   only, before the plane hit's division and the unpredictable "plane ahead" branch. The margins
+   (1e-6 on R^2 for "outside", 1e-9 of d2 on the cone, and 1e-9 of a rect's R^2 for the rounding
+   of its centre and diagonal) are far above rounding, so the test never rejects a direction the
+   plane hit would accept. */
+static inline __attribute__((always_inline)) int ball_cone(vec3 c, double r2, double r2_out, vec3 o, vec3 dir)
 {
-    const vec3 to_c = v3_sub(p->g.disk.center, o);
+    const vec3 to_c = v3_sub(c, o);
     double d2 = v3_len2(to_c);
-    if (!(d2 > p->g.disk.r2_out))
+    if (!(d2 > r2_out))
         return 1;
     double dc = v3_dot(dir, to_c); /* dc |dc|: one branch rejects dc <= 0 too */
-    return dc * fabs(dc) >= (d2 * (1 - 1e-9) - p->g.disk.r2) * v3_len2(dir);
+    return dc * fabs(dc) >= (d2 * (1 - 1e-9) - r2) * v3_len2(dir);
+}
+
+static inline __attribute__((always_inline)) int disk_in_cone(const struct prim *p, vec3 o, vec3 dir)
+{
+    return ball_cone(p->g.disk.center, p->g.disk.r2, p->g.disk.r2_out, o, dir);
+}
+
+static inline __attribute__((always_inline)) int rect_in_cone(const struct prim *p, vec3 o, vec3 dir)
+{
+    /* the unit axes have one non-zero component each: the centre's sum is exact */
+    double da = p->g.rect.a1 - p->g.rect.a0, db = p->g.rect.b1 - p->g.rect.b0;
+    vec3 c =
+        v3_add(v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, p->g.rect.a0 + 0.5 * da)),
+               v3_scale(p->g.rect.eb, p->g.rect.b0 + 0.5 * db));
+    double r2 = (da * da + db * db) * (0.25 * (1 + 1e-9));
+    return ball_cone(c, r2, r2 * (1 + 1e-6), o, dir);
+}
+
+static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
+{
+    return rect_in_cone(p, o, dir) ? rect_pdf_hit(p, o, dir) : 0;
 }
 
 /* A disk light's pdf by its plane hit. */
@@ -338,7 +361,7 @@ vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double 
 }
 
 /* shape_lights_pdf from light i on, sum holding the lights before it (out of line: reached by a
-   tail call only for the few directions inside a disk light's cone). */
+   tail call only for the few directions inside a planar light's cone). */
 static __attribute__((noinline)) double lights_pdf_from(const struct scene *sc, vec3 o, vec3 dir, int known,
                                                         double known_pdf, int i, double sum)
 {
@@ -354,16 +377,23 @@ double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, dou
     double sum = 0;
     for (int i = 0; i < sc->n_lights; i++) {
         const struct prim *p = &sc->prims[sc->lights[i]];
+        int in_cone;
         if (i == known) {
             sum += known_pdf;
-        } else if (p->type != PRIM_DISK) {
+            continue;
+        } else if (p->type == PRIM_DISK) {
+            in_cone = disk_in_cone(p, o, dir);
+        } else if (p->type == PRIM_RECT) {
+            in_cone = rect_in_cone(p, o, dir);
+        } else {
             sum += light_pdf(p, o, dir);
-        } else if (disk_in_cone(p, o, dir)) {
-            /* the plane hit and whatever follows, out of this loop: without a call to return
-               here, the loop keeps its values in registers (a rejected disk adds 0: sum is
-               unchanged) */
-            return lights_pdf_from(sc, o, dir, known, known_pdf, i, sum);
+            continue;
         }
+        /* a planar light's plane hit and whatever follows, out of this loop: without a call to
+           return here, the loop keeps its values in registers (a light outside its cone adds 0:
+           sum is unchanged) */
+        if (in_cone)
+            return lights_pdf_from(sc, o, dir, known, known_pdf, i, sum);
     }
     return sum / sc->n_lights;
 }

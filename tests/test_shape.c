@@ -388,6 +388,69 @@ static void test_disk_pdf_pretest(void)
     CHECK(hits > n / 5);
 }
 
+/* The rect pdf as the plane hit computes it, without the bounding-cone pre-test. */
+static double rect_pdf_exact(const struct prim *p, vec3 o, vec3 dir)
+{
+    const vec3 n = p->g.rect.n;
+    double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
+    if (!(t > HIT_EPS && t < DBL_MAX))
+        return 0;
+    vec3 q = v3_fma(o, dir, t);
+    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
+    if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
+        return 0;
+    double d2 = v3_len2(dir), adn = fabs(dn);
+    if (!(adn > 1e-12 * sqrt(d2)))
+        return 0;
+    return t * t * d2 * sqrt(d2) / (adn * p->area);
+}
+
+/* As for the disk: the rect's pre-test (the cone of the ball about its centre through its
+   corners) only rejects directions the plane hit rejects, bit for bit, for directions aimed at
+   its corners and edges (just inside and outside), at it and anywhere, from origins far, near,
+   inside the ball and in its plane, for each normal axis. */
+static void test_rect_pdf_pretest(void)
+{
+    struct rng g;
+    rng_seed(&g, 7, 7);
+    int same = 1, hits = 0, n = 300000;
+    for (int i = 0; i < n; i++) {
+        struct prim q = {.type = PRIM_RECT};
+        q.g.rect.axis = i % 3;
+        q.g.rect.a0 = 213, q.g.rect.a1 = 343, q.g.rect.b0 = 227, q.g.rect.b1 = 332, q.g.rect.k = 554;
+        if (i % 5 == 4) /* thin */
+            q.g.rect.a0 = -0.5, q.g.rect.a1 = 0.25, q.g.rect.b0 = 1e-3, q.g.rect.b1 = 300;
+        shape_prepare(&q);
+        double ca = 0.5 * (q.g.rect.a0 + q.g.rect.a1), cb = 0.5 * (q.g.rect.b0 + q.g.rect.b1);
+        vec3 c = v3_add(v3_add(v3_scale(q.g.rect.n, q.g.rect.k), v3_scale(q.g.rect.ea, ca)),
+                        v3_scale(q.g.rect.eb, cb));
+        double scale = (i % 4 == 0 ? 2 : i % 4 == 1 ? 200 : i % 4 == 2 ? 1000 : 1e5) * rng_uniform(&g);
+        vec3 o = v3_add(c, v3(scale * (2 * rng_uniform(&g) - 1), scale * (2 * rng_uniform(&g) - 1),
+                              scale * (2 * rng_uniform(&g) - 1)));
+        if (i % 16 == 5) /* in the rect's plane */
+            o = v3_fma(o, q.g.rect.n, q.g.rect.k - v3_dot(o, q.g.rect.n));
+        double pa = q.g.rect.a0 + rng_uniform(&g) * (q.g.rect.a1 - q.g.rect.a0);
+        double pb = q.g.rect.b0 + rng_uniform(&g) * (q.g.rect.b1 - q.g.rect.b0);
+        if (i % 3 == 0) { /* at an edge or a corner, within a few ulps to 1e-6 */
+            double nudge = 1 + ldexp(2 * rng_uniform(&g) - 1, -(int)(20 + 33 * rng_uniform(&g)));
+            if (i % 2)
+                pa = (rng_uniform(&g) < 0.5 ? q.g.rect.a0 : q.g.rect.a1) * nudge;
+            if (i % 7 < 4)
+                pb = (rng_uniform(&g) < 0.5 ? q.g.rect.b0 : q.g.rect.b1) * nudge;
+        }
+        vec3 at = v3_add(v3_add(v3_scale(q.g.rect.n, q.g.rect.k), v3_scale(q.g.rect.ea, pa)),
+                         v3_scale(q.g.rect.eb, pb));
+        vec3 dir = v3_scale(v3_sub(at, o), ldexp(1, (int)(10 * rng_uniform(&g)) - 15));
+        if (i % 3 == 2)
+            dir = v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
+        double want = rect_pdf_exact(&q, o, dir), got = shape_light_pdf(&q, o, dir, 0);
+        hits += want > 0;
+        same &= memcmp(&want, &got, sizeof want) == 0;
+    }
+    CHECK(same);
+    CHECK(hits > n / 5);
+}
+
 /* shape_lights_pdf is the mean of the lights' own pdfs, summed in index order with the known
    light's given pdf in its place, bit for bit, whether or not a direction enters a disk's cone
    (the disks' exact tests run out of the loop from the first disk the direction may hit);
@@ -500,6 +563,7 @@ int main(void)
     test_medium();
     test_light_pdfs();
     test_disk_pdf_pretest();
+    test_rect_pdf_pretest();
     test_lights_pdf_sum();
     test_bounds();
     return check_report("test_shape");
