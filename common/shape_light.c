@@ -193,7 +193,8 @@ static inline double sphere_one_minus_cos(const struct prim *p, vec3 o)
 }
 
 /* A direction uniform in the cone sphere p subtends from o; *omc is that cone's 1 - cos. */
-static inline __attribute__((always_inline)) vec3 sphere_cone_dir(const struct prim *p, vec3 o, struct pt2 s, double *omc)
+static inline __attribute__((always_inline)) vec3 sphere_cone_dir(const struct prim *p, vec3 o, struct pt2 s,
+                                                                  double *omc)
 {
     /* z uniform in [cos_max, 1] is uniform over the cone's solid angle. */
     *omc = sphere_one_minus_cos(p, o);
