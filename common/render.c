@@ -305,11 +305,12 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             double cosine = v3_dot(dir, h.n);
             if (!(cosine > 0))
                 return L;
-            double pdf = mix ? 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * (cosine / PI)
-                             : cosine / PI;
+            double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
+            double pdf =
+                mix ? 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
             if (!(pdf > 0))
                 return L;
-            beta = v3_mul(beta, v3_scale(albedo, (cosine / PI) / pdf));
+            beta = v3_mul(beta, v3_scale(albedo, cosine_pdf / pdf));
             *r = (ray){h.p, dir, r->time};
             continue;
         }
