@@ -66,6 +66,7 @@ struct prim {
             double b0, b1;  /* extent along the second in-plane axis */
             double k;       /* the plane's coordinate on the normal axis */
             vec3 n, ea, eb; /* derived: unit vectors along the normal axis and the in-plane axes */
+            long on, oa, ob; /* derived: byte offsets of those axes' components in a vec3 */
         } rect;
         struct {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */
