@@ -156,6 +156,24 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
         int c = __builtin_ctz((unsigned)m);
         if (tn[c] > lr->t_hi)
             continue;
+        const int kind = n->kind[c];
+        if (kind != BVH_LEAF_ANY) { /* one prim, dispatched by the node, not the prim's type */
+            int p = sc->prim_order[n->child[c]], got_p;
+            const struct prim *pr = &sc->prims[p];
+            if (kind == BVH_LEAF_RECT)
+                got_p = hit_rect(pr, r, t_min, lr->t_max, h);
+            else if (kind == BVH_LEAF_SPHERE)
+                got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
+            else
+                got_p = shape_hit(pr, r, t_min, lr->t_max, h);
+            if (got_p) {
+                lr->t_max = h->t;
+                lr->t_hi = (float)lr->t_max * BVH_GROW;
+                h->prim = p;
+                lr->got = 1;
+            }
+            continue;
+        }
         for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
             int p = sc->prim_order[i];
             const struct prim *pr = &sc->prims[p];

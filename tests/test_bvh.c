@@ -49,6 +49,39 @@ static vec3 box_point(vec3 lo, vec3 hi, int k)
                        : 0.5 * (lo.z + hi.z));
 }
 
+/* Every leaf lane's kind says what its prims are (bvh_hit dispatches on it without looking):
+   one untransformed rect or sphere, one prim for shape_hit, or anything (BVH_LEAF_ANY). */
+static int kinds_ok(const struct scene *sc)
+{
+    int ok = 1;
+    for (int i = 0; i < sc->n_nodes; i++) {
+        const struct bvh_node *n = &sc->nodes[i];
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            if (!(n->leaves >> c & 1)) {
+                ok &= n->kind[c] == BVH_LEAF_ANY;
+                continue;
+            }
+            const struct prim *p = &sc->prims[sc->prim_order[n->child[c]]];
+            int one = n->count[c] == 1, plain = one && !p->has_xform;
+            switch (n->kind[c]) {
+            case BVH_LEAF_RECT:
+                ok &= plain && p->type == PRIM_RECT;
+                break;
+            case BVH_LEAF_SPHERE:
+                ok &= plain && p->type == PRIM_SPHERE;
+                break;
+            case BVH_LEAF_SHAPE:
+                ok &= one && (p->has_xform ||
+                              (p->type != PRIM_RECT && p->type != PRIM_SPHERE && p->type != PRIM_MEDIUM));
+                break;
+            default:
+                ok &= n->kind[c] == BVH_LEAF_ANY;
+            }
+        }
+    }
+    return ok;
+}
+
 /* Rays toward 27 points of every stride-th prim's box, from inside the scene and from far_origin. */
 static void test_scene(const char *path, vec3 far_origin, int stride)
 {
@@ -58,6 +91,7 @@ static void test_scene(const char *path, vec3 far_origin, int stride)
     if (!sf.scene)
         return;
     const struct scene *sc = sf.scene;
+    CHECK(kinds_ok(sc));
     vec3 lo = v3(DBL_MAX, DBL_MAX, DBL_MAX), hi = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
     for (int i = 0; i < sc->n_prims; i++) {
         vec3 l, h;
@@ -242,6 +276,7 @@ static void test_one_node(void)
     struct err e;
     CHECK(scene_finish(sc, &e) == 0);
     CHECK(sc->n_prims <= BVH_WIDTH && sc->n_nodes == 1);
+    CHECK(kinds_ok(sc));
     int ok = 1, hits = 0, fog = 0;
     for (int k = 0; k < 20000; k++) {
         ray q = {v3(-2 + 14 * rng_uniform(&r), -2 + 14 * rng_uniform(&r), -2 + 14 * rng_uniform(&r)),
