@@ -160,6 +160,13 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
         if (kind != BVH_LEAF_ANY) { /* one prim, dispatched by the node, not the prim's type */
             int p = sc->prim_order[n->child[c]], got_p;
             const struct prim *pr = &sc->prims[p];
+            if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
+                if (lr->n_media == 0) /* its latency hides under the traversal */
+                    lr->ray_hash = shape_ray_hash(r);
+                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                mm->prim[lr->n_media++] = p;
+                continue;
+            }
             if (kind == BVH_LEAF_RECT)
                 got_p = hit_rect(pr, r, t_min, lr->t_max, h);
             else if (kind == BVH_LEAF_SPHERE)

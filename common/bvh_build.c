@@ -262,7 +262,7 @@ static uint8_t leaf_kind(const struct build *bd, int start, int count)
         return BVH_LEAF_SHAPE;
     return p->type == PRIM_RECT     ? BVH_LEAF_RECT
            : p->type == PRIM_SPHERE ? BVH_LEAF_SPHERE
-           : p->type == PRIM_MEDIUM ? BVH_LEAF_ANY
+           : p->type == PRIM_MEDIUM ? BVH_LEAF_MEDIUM
                                     : BVH_LEAF_SHAPE;
 }
 

@@ -98,9 +98,9 @@ struct prim {
    operations test four at a time (bvh.c). Boxes are floats rounded outward. A scene of at most
    BVH_WIDTH leaves is one node; larger scenes use nodes of BVH_WIDTH / 2 (bvh_build.c). */
 #define BVH_WIDTH 16
-/* A leaf lane's kind (bvh_node.kind): one untransformed rect or sphere, one other prim that
-   shape_hit tests (not a medium without a transform), or anything else. */
-enum { BVH_LEAF_ANY, BVH_LEAF_RECT, BVH_LEAF_SPHERE, BVH_LEAF_SHAPE };
+/* A leaf lane's kind (bvh_node.kind): one untransformed rect, sphere or medium, one other prim
+   that shape_hit tests, or anything else. */
+enum { BVH_LEAF_ANY, BVH_LEAF_RECT, BVH_LEAF_SPHERE, BVH_LEAF_SHAPE, BVH_LEAF_MEDIUM };
 struct bvh_node {
     float lo[3][BVH_WIDTH], hi[3][BVH_WIDTH]; /* child c spans lo[axis][c] .. hi[axis][c]; unused: empty */
     int32_t child[BVH_WIDTH];  /* count 0: index of an interior node; else the first prim_order index */

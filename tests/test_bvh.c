@@ -50,7 +50,7 @@ static vec3 box_point(vec3 lo, vec3 hi, int k)
 }
 
 /* Every leaf lane's kind says what its prims are (bvh_hit dispatches on it without looking):
-   one untransformed rect or sphere, one prim for shape_hit, or anything (BVH_LEAF_ANY). */
+   one untransformed rect, sphere or medium, one prim for shape_hit, or anything (BVH_LEAF_ANY). */
 static int kinds_ok(const struct scene *sc)
 {
     int ok = 1;
@@ -69,6 +69,9 @@ static int kinds_ok(const struct scene *sc)
                 break;
             case BVH_LEAF_SPHERE:
                 ok &= plain && p->type == PRIM_SPHERE;
+                break;
+            case BVH_LEAF_MEDIUM:
+                ok &= plain && p->type == PRIM_MEDIUM;
                 break;
             case BVH_LEAF_SHAPE:
                 ok &= one && (p->has_xform ||
