@@ -61,11 +61,12 @@ struct prim {
             double radius;
         } sphere;
         struct {
-            int axis;       /* normal axis: 0 = x (plane yz), 1 = y (xz), 2 = z (xy) */
-            double a0, a1;  /* extent along the first in-plane axis */
-            double b0, b1;  /* extent along the second in-plane axis */
-            double k;       /* the plane's coordinate on the normal axis */
-            vec3 n, ea, eb; /* derived: unit vectors along the normal axis and the in-plane axes */
+            int axis;        /* normal axis: 0 = x (plane yz), 1 = y (xz), 2 = z (xy) */
+            double a0, a1;   /* extent along the first in-plane axis */
+            double b0, b1;   /* extent along the second in-plane axis */
+            double k;        /* the plane's coordinate on the normal axis */
+            vec3 n, ea, eb;  /* derived: unit vectors along the normal axis and the in-plane axes */
+            long on, oa, ob; /* derived: byte offsets of those axes' components in a vec3 */
         } rect;
         struct {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */

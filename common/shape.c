@@ -39,6 +39,9 @@ void shape_prepare(struct prim *p)
         p->g.rect.n = v3(ax == 0, ax == 1, ax == 2);
         p->g.rect.ea = v3(a == 0, a == 1, a == 2);
         p->g.rect.eb = v3(b == 0, b == 1, b == 2);
+        p->g.rect.on = ax * (long)sizeof(double);
+        p->g.rect.oa = a * (long)sizeof(double);
+        p->g.rect.ob = b * (long)sizeof(double);
     }
     p->area = shape_area(p);
 }

@@ -5,6 +5,8 @@
 
 #include "shape.h"
 
+#include <string.h>
+
 /* A rotate_y's turn of object-space vector a into world space (the transform's inverse is
    shape.c's to_object). */
 static inline vec3 rotate_to_world(const struct prim *p, vec3 a)
@@ -60,21 +62,32 @@ static inline int hit_sphere(vec3 c, double rad, const ray *r, double t_min, dou
     return 1;
 }
 
-/* Dot products with the rect's unit axes pick coordinates without a branch on the axis; a
-   direction parallel to the plane gives t = +-inf or NaN, which the range test turns down. */
+/* Component of v at byte offset off (a rect's on, oa, ob): one load, no branch on the axis. */
+static inline double v3_at_offset(const vec3 *v, long off)
+{
+    double x;
+    memcpy(&x, (const char *)v + off, sizeof x);
+    return x;
+}
+
+/* The plane's distance and the hit's in-plane coordinates read the ray's components on the
+   rect's axes by their offsets: no branch on the axis, and the same values the dot products
+   with the unit axes give (x 1 + y 0 + z 0 is x up to the sign of a zero, which no comparison
+   sees). A direction parallel to the plane gives t = +-inf or NaN, which the range test turns
+   down. */
 static inline int hit_rect(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    const vec3 n = p->g.rect.n;
-    double t = (p->g.rect.k - v3_dot(r->orig, n)) / v3_dot(r->dir, n);
+    const long on = p->g.rect.on, oa = p->g.rect.oa, ob = p->g.rect.ob;
+    double t = (p->g.rect.k - v3_at_offset(&r->orig, on)) / v3_at_offset(&r->dir, on);
     if (!(t > t_min && t < t_max))
         return 0;
-    vec3 q = ray_at(r, t);
-    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
+    double pa = v3_at_offset(&r->orig, oa) + v3_at_offset(&r->dir, oa) * t;
+    double pb = v3_at_offset(&r->orig, ob) + v3_at_offset(&r->dir, ob) * t;
     if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
         return 0;
     h->t = t;
-    h->p = q;
-    set_face(h, r, p->flip ? v3_neg(n) : n);
+    h->p = ray_at(r, t);
+    set_face(h, r, p->flip ? v3_neg(p->g.rect.n) : p->g.rect.n);
     return 1;
 }
 
