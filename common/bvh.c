@@ -223,8 +223,9 @@ static inline __attribute__((always_inline)) int finish(const struct scene *sc, 
 }
 
 /* A scene of one node (at most BVH_WIDTH prims, every lane a leaf): its leaves in one pass,
-   without the stack and the interior children's bookkeeping. */
-static int hit_one_node(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
+   without the stack and the interior children's bookkeeping, in a function of its own (bvh.h's
+   bvh_hit picks it), so it does not pay bvh_hit_tree's frame and register saves either. */
+int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
 {
     struct fray fr;
     fray_init(&fr, r);
@@ -243,12 +244,8 @@ struct bvh_entry {
     float t; /* entry distance into the node's box */
 };
 
-int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
+int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    if (sc->n_nodes == 0)
-        return 0;
-    if (sc->n_nodes == 1)
-        return hit_one_node(sc, r, t_min, t_max, h);
     struct fray fr;
     fray_init(&fr, r);
     const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
