@@ -3,13 +3,6 @@
 #include "bvh.h"
 #include "shape_inline.h"
 
-/* The leaves' sphere and rect tests stay inline in both traversals below (with two callers
-   GCC's unit growth limit would put one copy out of line). */
-static inline int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_max, struct hit *h)
-    __attribute__((always_inline));
-static inline int hit_rect(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
-    __attribute__((always_inline));
-
 #include <stdlib.h>
 #include <string.h>
 
