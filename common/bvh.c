@@ -124,68 +124,143 @@ static inline int node_test(const struct fray *fr, const char *n, int quads, bvh
    ray in object space). */
 #define BVH_MEDIA 4
 
+/* What a ray's leaf tests update: the nearest hit so far (t_max, and t_hi above it in float
+   for the box tests) and the media met (their prims and flights in a media_met), whose test
+   waits for the nearest surface. */
+struct leaf_run {
+    double t_max;
+    float t_hi;
+    int got, n_media;
+    uint64_t ray_hash;
+};
+struct media_met {
+    int32_t prim[BVH_MEDIA];
+    struct medium_flight flight[BVH_MEDIA];
+};
+
+#define BVH_GROW (1.0f + 0x1.0p-20f)
+
+/* Test the prims of node n's leaf lanes m (entry distances tn) against r, as met. */
+static inline __attribute__((always_inline)) void
+test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float *tn, const ray *r,
+            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm)
+{
+    for (; m; m &= m - 1) {
+        int c = __builtin_ctz((unsigned)m);
+        if (tn[c] > lr->t_hi)
+            continue;
+        const int kind = n->kind[c];
+        if (kind != BVH_LEAF_ANY) { /* one prim, dispatched by the node, not the prim's type */
+            int p = sc->prim_order[n->child[c]], got_p;
+            const struct prim *pr = &sc->prims[p];
+            if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
+                if (lr->n_media == 0) /* its latency hides under the traversal */
+                    lr->ray_hash = shape_ray_hash(r);
+                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                mm->prim[lr->n_media++] = p;
+                continue;
+            }
+            if (kind == BVH_LEAF_RECT)
+                got_p = hit_rect(pr, r, t_min, lr->t_max, h);
+            else if (kind == BVH_LEAF_SPHERE)
+                got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
+            else
+                got_p = shape_hit(pr, r, t_min, lr->t_max, h);
+            if (got_p) {
+                lr->t_max = h->t;
+                lr->t_hi = (float)lr->t_max * BVH_GROW;
+                h->prim = p;
+                lr->got = 1;
+            }
+            continue;
+        }
+        for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
+            int p = sc->prim_order[i];
+            const struct prim *pr = &sc->prims[p];
+            int got_p;
+            if (pr->type == PRIM_MEDIUM && !pr->has_xform && lr->n_media < BVH_MEDIA) {
+                if (lr->n_media == 0) /* its latency hides under the traversal */
+                    lr->ray_hash = shape_ray_hash(r);
+                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                mm->prim[lr->n_media++] = p;
+                continue;
+            }
+            if (pr->type == PRIM_RECT && !pr->has_xform)
+                got_p = hit_rect(pr, r, t_min, lr->t_max, h);
+            else if (pr->type == PRIM_SPHERE && !pr->has_xform)
+                got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
+            else
+                got_p = shape_hit(pr, r, t_min, lr->t_max, h);
+            if (got_p) {
+                lr->t_max = h->t;
+                lr->t_hi = (float)lr->t_max * BVH_GROW;
+                h->prim = p;
+                lr->got = 1;
+            }
+        }
+    }
+}
+
+/* The media met, against the nearest surface hit; whether anything was hit. */
+static inline __attribute__((always_inline)) int finish(const struct scene *sc, const ray *r, double t_min,
+                                                        struct hit *h, struct leaf_run *lr,
+                                                        const struct media_met *mm)
+{
+    for (int i = 0; i < lr->n_media; i++)
+        if (shape_medium_hit(&sc->prims[mm->prim[i]], r, &mm->flight[i], t_min, lr->t_max, h)) {
+            lr->t_max = h->t;
+            h->prim = mm->prim[i];
+            lr->got = 1;
+        }
+    return lr->got;
+}
+
+/* A scene of one node (at most BVH_WIDTH prims, every lane a leaf): its leaves in one pass,
+   without the stack and the interior children's bookkeeping, in a function of its own (bvh.h's
+   bvh_hit picks it), so it does not pay bvh_hit_tree's frame and register saves either. */
+int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    struct fray fr;
+    fray_init(&fr, r);
+    const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
+    struct leaf_run lr = {.t_max = t_max, .t_hi = (float)t_max * BVH_GROW};
+    struct media_met mm;
+    const struct bvh_node *n = &sc->nodes[0];
+    float tn[BVH_WIDTH];
+    int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
+    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm);
+    return finish(sc, r, t_min, h, &lr, &mm);
+}
+
 struct bvh_entry {
     int32_t node;
     float t; /* entry distance into the node's box */
 };
 
-int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
+int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    if (sc->n_nodes == 0)
-        return 0;
     struct fray fr;
     fray_init(&fr, r);
-    const float grow = 1.0f + 0x1.0p-20f;
     const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
-    float t_hi = (float)t_max * grow; /* above t_max: rounding never cuts a hit off */
+    /* t_hi above t_max: rounding never cuts a hit off */
+    struct leaf_run lr = {.t_max = t_max, .t_hi = (float)t_max * BVH_GROW};
+    struct media_met mm;
     struct bvh_entry stack[BVH_STACK];
-    int sp = 0, got = 0, node = 0;
-    int32_t media[BVH_MEDIA];
-    struct medium_flight flight[BVH_MEDIA];
-    int n_media = 0;
-    uint64_t ray_hash = 0;
+    int sp = 0, node = 0;
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
         float tn[BVH_WIDTH];
-        int hit = node_test(&fr, (const char *)n, n->quads, t_lo, t_hi, tn);
+        int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
-        int inner = hit & ~n->leaves;
-        for (int m = hit & n->leaves; m; m &= m - 1) {
-            int c = __builtin_ctz((unsigned)m);
-            if (tn[c] > t_hi)
-                continue;
-            for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
-                int p = sc->prim_order[i];
-                const struct prim *pr = &sc->prims[p];
-                int got_p;
-                if (pr->type == PRIM_MEDIUM && !pr->has_xform && n_media < BVH_MEDIA) {
-                    if (n_media == 0) /* its latency hides under the traversal */
-                        ray_hash = shape_ray_hash(r);
-                    shape_medium_flight(pr, r, ray_hash, &flight[n_media]);
-                    media[n_media++] = p;
-                    continue;
-                }
-                if (pr->type == PRIM_RECT && !pr->has_xform)
-                    got_p = hit_rect(pr, r, t_min, t_max, h);
-                else if (pr->type == PRIM_SPHERE && !pr->has_xform)
-                    got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, t_max, h);
-                else
-                    got_p = shape_hit(pr, r, t_min, t_max, h);
-                if (got_p) {
-                    t_max = h->t;
-                    t_hi = (float)t_max * grow;
-                    h->prim = p;
-                    got = 1;
-                }
-            }
-        }
+        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm);
         /* Then the nearest interior child next, the others pushed farthest first. */
+        int inner = hit & ~n->leaves;
         int next = -1;
         float next_t = 0;
         int base = sp;
         for (; inner; inner &= inner - 1) {
             int c = __builtin_ctz((unsigned)inner);
-            if (tn[c] > t_hi)
+            if (tn[c] > lr.t_hi)
                 continue;
             struct bvh_entry k = {n->child[c], tn[c]};
             if (next < 0) {
@@ -209,17 +284,11 @@ int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, st
             continue;
         }
         /* Pop the nearest pushed node still in reach of the nearest hit so far. */
-        while (sp > 0 && stack[sp - 1].t > t_hi)
+        while (sp > 0 && stack[sp - 1].t > lr.t_hi)
             sp--;
         if (sp == 0)
             break;
         node = stack[--sp].node;
     }
-    for (int i = 0; i < n_media; i++)
-        if (shape_medium_hit(&sc->prims[media[i]], r, &flight[i], t_min, t_max, h)) {
-            t_max = h->t;
-            h->prim = media[i];
-            got = 1;
-        }
-    return got;
+    return finish(sc, r, t_min, h, &lr, &mm);
 }

@@ -12,7 +12,17 @@
 /* Build sc->nodes and sc->prim_order over sc->prims. 0, or -1 with e filled (no memory). */
 int bvh_build(struct scene *sc, struct err *e);
 
+/* bvh_hit for a tree of several nodes, and for a scene of one node (at most BVH_WIDTH prims),
+   each with its own frame: the one-node traversal needs no stack. */
+int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h);
+int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h);
+
 /* Nearest hit in (t_min, t_max) over the whole scene: 1 with h filled, else 0. */
-int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h);
+static inline int bvh_hit(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
+{
+    if (sc->n_nodes > 1)
+        return bvh_hit_tree(sc, r, t_min, t_max, h);
+    return sc->n_nodes == 1 && bvh_hit_node(sc, r, t_min, t_max, h);
+}
 
 #endif

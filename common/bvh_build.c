@@ -252,6 +252,20 @@ static int node_new(struct build *bd, int n)
     return bd->n_nodes++;
 }
 
+/* The kind of a leaf of order[start..start+count) (bvh_node.kind). */
+static uint8_t leaf_kind(const struct build *bd, int start, int count)
+{
+    const struct prim *p = &bd->sc->prims[bd->order[start]];
+    if (count != 1)
+        return BVH_LEAF_ANY;
+    if (p->has_xform)
+        return BVH_LEAF_SHAPE;
+    return p->type == PRIM_RECT     ? BVH_LEAF_RECT
+           : p->type == PRIM_SPHERE ? BVH_LEAF_SPHERE
+           : p->type == PRIM_MEDIUM ? BVH_LEAF_MEDIUM
+                                    : BVH_LEAF_SHAPE;
+}
+
 /* Wide node for binary interior node b as planned; its index. */
 static int collapse(struct build *bd, int b)
 {
@@ -267,6 +281,7 @@ static int collapse(struct build *bd, int b)
             node->child[c] = k->start;
             node->count[c] = (uint16_t)k->count;
             node->leaves |= (uint16_t)(1u << c);
+            node->kind[c] = leaf_kind(bd, k->start, k->count);
         }
     }
     for (int c = 0; c < n; c++)
@@ -316,6 +331,7 @@ int bvh_build(struct scene *sc, struct err *e)
         root->child[0] = 0;
         root->count[0] = (uint16_t)n;
         root->leaves = 1;
+        root->kind[0] = leaf_kind(&bd, 0, n);
     } else {
         /* A scene of at most 16 prims (the Cornell boxes: 8 and 15, a prim per lane) in one
            node: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere

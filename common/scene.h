@@ -100,13 +100,17 @@ struct prim {
    operations test four at a time (bvh.c). Boxes are floats rounded outward. A scene of at most
    BVH_WIDTH leaves is one node; larger scenes use nodes of BVH_WIDTH / 2 (bvh_build.c). */
 #define BVH_WIDTH 16
+/* A leaf lane's kind (bvh_node.kind): one untransformed rect, sphere or medium, one other prim
+   that shape_hit tests, or anything else. */
+enum { BVH_LEAF_ANY, BVH_LEAF_RECT, BVH_LEAF_SPHERE, BVH_LEAF_SHAPE, BVH_LEAF_MEDIUM };
 struct bvh_node {
     float lo[3][BVH_WIDTH], hi[3][BVH_WIDTH]; /* child c spans lo[axis][c] .. hi[axis][c]; unused: empty */
     int32_t child[BVH_WIDTH];  /* count 0: index of an interior node; else the first prim_order index */
     uint16_t count[BVH_WIDTH]; /* prims in a leaf child; 0 for an interior child or an unused slot */
     uint16_t leaves;           /* bit c set: child c is a leaf */
     uint8_t quads;             /* groups of four lanes in use: the rest are empty */
-    uint8_t pad[29];           /* 512 bytes: nodes start on cache lines */
+    uint8_t kind[BVH_WIDTH];   /* leaf child c: BVH_LEAF_RECT etc. when it is one such prim, else 0 */
+    uint8_t pad[13];           /* 512 bytes: nodes start on cache lines */
 };
 
 struct scene {

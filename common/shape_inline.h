@@ -42,8 +42,11 @@ static inline int sphere_quadratic(vec3 c, double rad, const ray *r, double *a, 
     return 1;
 }
 
-/* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. */
-static inline int hit_sphere(vec3 c, double rad, const ray *r, double t_min, double t_max, struct hit *h)
+/* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. Always inline, as
+   hit_rect: bvh.c's two traversals each keep their own copy in the leaf loop (with two callers
+   GCC's unit growth limit would put one out of line). */
+static inline __attribute__((always_inline)) int hit_sphere(vec3 c, double rad, const ray *r, double t_min,
+                                                            double t_max, struct hit *h)
 {
     double a, half_b, sq;
     if (!sphere_quadratic(c, rad, r, &a, &half_b, &sq))
@@ -75,7 +78,8 @@ static inline double v3_at_offset(const vec3 *v, long off)
    with the unit axes give (x 1 + y 0 + z 0 is x up to the sign of a zero, which no comparison
    sees). A direction parallel to the plane gives t = +-inf or NaN, which the range test turns
    down. */
-static inline int hit_rect(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+static inline __attribute__((always_inline)) int hit_rect(const struct prim *p, const ray *r, double t_min,
+                                                          double t_max, struct hit *h)
 {
     const long on = p->g.rect.on, oa = p->g.rect.oa, ob = p->g.rect.ob;
     double t = (p->g.rect.k - v3_at_offset(&r->orig, on)) / v3_at_offset(&r->dir, on);

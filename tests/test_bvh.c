@@ -49,6 +49,42 @@ static vec3 box_point(vec3 lo, vec3 hi, int k)
                        : 0.5 * (lo.z + hi.z));
 }
 
+/* Every leaf lane's kind says what its prims are (bvh_hit dispatches on it without looking):
+   one untransformed rect, sphere or medium, one prim for shape_hit, or anything (BVH_LEAF_ANY). */
+static int kinds_ok(const struct scene *sc)
+{
+    int ok = 1;
+    for (int i = 0; i < sc->n_nodes; i++) {
+        const struct bvh_node *n = &sc->nodes[i];
+        for (int c = 0; c < BVH_WIDTH; c++) {
+            if (!(n->leaves >> c & 1)) {
+                ok &= n->kind[c] == BVH_LEAF_ANY;
+                continue;
+            }
+            const struct prim *p = &sc->prims[sc->prim_order[n->child[c]]];
+            int one = n->count[c] == 1, plain = one && !p->has_xform;
+            switch (n->kind[c]) {
+            case BVH_LEAF_RECT:
+                ok &= plain && p->type == PRIM_RECT;
+                break;
+            case BVH_LEAF_SPHERE:
+                ok &= plain && p->type == PRIM_SPHERE;
+                break;
+            case BVH_LEAF_MEDIUM:
+                ok &= plain && p->type == PRIM_MEDIUM;
+                break;
+            case BVH_LEAF_SHAPE:
+                ok &= one && (p->has_xform ||
+                              (p->type != PRIM_RECT && p->type != PRIM_SPHERE && p->type != PRIM_MEDIUM));
+                break;
+            default:
+                ok &= n->kind[c] == BVH_LEAF_ANY;
+            }
+        }
+    }
+    return ok;
+}
+
 /* Rays toward 27 points of every stride-th prim's box, from inside the scene and from far_origin. */
 static void test_scene(const char *path, vec3 far_origin, int stride)
 {
@@ -58,6 +94,7 @@ static void test_scene(const char *path, vec3 far_origin, int stride)
     if (!sf.scene)
         return;
     const struct scene *sc = sf.scene;
+    CHECK(kinds_ok(sc));
     vec3 lo = v3(DBL_MAX, DBL_MAX, DBL_MAX), hi = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
     for (int i = 0; i < sc->n_prims; i++) {
         vec3 l, h;
@@ -205,8 +242,63 @@ static void test_transformed_spheres(void)
     scene_free(sc);
 }
 
+/* A scene of at most BVH_WIDTH prims is one node, which bvh_hit tests without its stack:
+   spheres, rects, a box, a plain medium (tested after the surfaces) and a transformed one
+   (tested as met), hit from random origins in random directions, agree with a linear scan. */
+static void test_one_node(void)
+{
+    struct scene *sc = scene_new();
+    struct material m = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+    scene_add_material(sc, &m);
+    struct rng r;
+    rng_seed(&r, 6, 6);
+    for (int i = 0; i < 6; i++) {
+        struct prim p = {.type = PRIM_SPHERE, .material = 0};
+        p.g.sphere.center = v3(10 * rng_uniform(&r), 10 * rng_uniform(&r), 10 * rng_uniform(&r));
+        p.g.sphere.radius = 0.5 + rng_uniform(&r);
+        scene_add_prim(sc, &p);
+    }
+    for (int i = 0; i < 6; i++) {
+        struct prim p = {.type = PRIM_RECT, .material = 0, .flip = i & 1};
+        p.g.rect.axis = i % 3;
+        p.g.rect.a0 = 10 * rng_uniform(&r), p.g.rect.a1 = p.g.rect.a0 + 1 + 3 * rng_uniform(&r);
+        p.g.rect.b0 = 10 * rng_uniform(&r), p.g.rect.b1 = p.g.rect.b0 + 1 + 3 * rng_uniform(&r);
+        p.g.rect.k = 10 * rng_uniform(&r);
+        scene_add_prim(sc, &p);
+    }
+    struct prim b = {.type = PRIM_BOX, .material = 0};
+    b.g.box.lo = v3(4, 4, 4), b.g.box.hi = v3(6, 5, 7);
+    scene_add_prim(sc, &b);
+    for (int i = 0; i < 2; i++) {
+        struct prim p = {.type = PRIM_MEDIUM, .material = 0, .has_xform = i, .cos_y = 1};
+        p.g.medium.center = v3(5, 5, 5);
+        p.g.medium.radius = i ? 2 : 20;
+        p.g.medium.neg_inv_density = i ? -0.5 : -30;
+        scene_add_prim(sc, &p);
+    }
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    CHECK(sc->n_prims <= BVH_WIDTH && sc->n_nodes == 1);
+    CHECK(kinds_ok(sc));
+    int ok = 1, hits = 0, fog = 0;
+    for (int k = 0; k < 20000; k++) {
+        ray q = {v3(-2 + 14 * rng_uniform(&r), -2 + 14 * rng_uniform(&r), -2 + 14 * rng_uniform(&r)),
+                 v3(rng_uniform(&r) - 0.5, rng_uniform(&r) - 0.5, rng_uniform(&r) - 0.5), 0};
+        struct hit a, c;
+        int ga = bvh_hit(sc, &q, HIT_EPS, DBL_MAX, &a), gc = linear_hit(sc, &q, &c);
+        hits += ga;
+        fog += ga && a.prim == sc->n_prims - 2;
+        ok &= ga == gc && (!ga || (a.t == c.t && a.prim == c.prim));
+    }
+    CHECK(ok);
+    /* the plain medium holds every origin; about half the rays scatter in it */
+    CHECK(fog > 5000 && hits - fog > 1500); /* 8192 and 2308 */
+    scene_free(sc);
+}
+
 int main(void)
 {
+    test_one_node();
     test_transformed_spheres();
     test_small();
     test_degenerate();
