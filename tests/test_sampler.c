@@ -617,8 +617,66 @@ static void test_cells(void)
     sampler_free(p);
 }
 
+/* The seed's cell_coord: (i + u) / n, moved by ulps until strictly inside cell i. */
+static double ref_cell_coord(int i, double u, int n)
+{
+    double v = (i + u) / n;
+    while (v >= 1.0 || (int)(v * n) > i)
+        v = nextafter(v, 0.0);
+    while ((int)(v * n) < i)
+        v = nextafter(v, 1.0);
+    return v;
+}
+
+/* Jitter points, set by set and cell by cell, bit for bit the seed's formula: cell % n and cell / n
+   (sampler_cell_point divides by a multiply and shift), two rng_uniform draws each (the sampler
+   draws them by jump-ahead), the quotient's repair, for grid sides 1 to 2000. */
+static void test_jitter_exact(void)
+{
+    const double thresholds[] = {100, 40, 16.6, 12.5, 7, 3, 0.7, 0.33, 0.07, 0.05};
+    int same_cells = 1, same_sets = 1;
+    struct rng g;
+    rng_seed(&g, 5, 5);
+    for (int t = 0; t < (int)(sizeof thresholds / sizeof thresholds[0]); t++) {
+        struct err e;
+        struct sampler *s = sampler_new(SAMPLER_JITTER, thresholds[t], 0, 0, &e);
+        CHECK(s != NULL);
+        if (!s)
+            continue;
+        const int n = sampler_grid_side(thresholds[t]);
+        const uint32_t cells = sampler_cells(s);
+        for (int k = 0; k < 20000; k++) {
+            uint32_t c = k < 2 * n ? (k < n ? (uint32_t)(k * n + n - 1) : cells - 1 - (uint32_t)(k - n))
+                                   : rng_below(&g, cells);
+            struct rng a = g, b = g;
+            struct pt2 q = sampler_cell_point(s, c, &a);
+            double u = rng_uniform(&b), v = rng_uniform(&b);
+            double x = ref_cell_coord((int)(c % (uint32_t)n), u, n), y = ref_cell_coord((int)(c / (uint32_t)n), v, n);
+            same_cells &= memcmp(&q.x, &x, sizeof x) == 0 && memcmp(&q.y, &y, sizeof y) == 0 && a.state == b.state;
+            rng_u32(&g);
+        }
+        if (n <= 100) {
+            struct pt2 *set = malloc(sampler_set_capacity(s) * sizeof *set);
+            struct rng a = g, b = g;
+            size_t m = set ? sampler_draw(s, &a, set) : 0;
+            same_sets &= m == cells;
+            for (size_t k = 0; k < m; k++) {
+                double u = rng_uniform(&b), v = rng_uniform(&b);
+                double x = ref_cell_coord((int)(k % (size_t)n), u, n), y = ref_cell_coord((int)(k / (size_t)n), v, n);
+                same_sets &= memcmp(&set[k].x, &x, sizeof x) == 0 && memcmp(&set[k].y, &y, sizeof y) == 0;
+            }
+            same_sets &= a.state == b.state;
+            free(set);
+        }
+        sampler_free(s);
+    }
+    CHECK(same_cells);
+    CHECK(same_sets);
+}
+
 int main(void)
 {
+    test_jitter_exact();
     test_cells();
     test_names_and_sizes();
     test_grid_counts();
