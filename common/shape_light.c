@@ -361,6 +361,13 @@ vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double 
     return planar_sample(p, o, light_point_turn(p, s, cos_t, sin_t), pdf);
 }
 
+/* sum / n, without the division's latency for one or two lights (a power of two's reciprocal is
+   exact, so the product is the quotient bit for bit) */
+static inline double lights_mean(double sum, int n)
+{
+    return n == 1 ? sum : n == 2 ? sum * 0.5 : sum / n;
+}
+
 /* shape_lights_pdf from light i on, sum holding the lights before it (out of line: reached by a
    tail call only for the few directions inside a planar light's cone). */
 static __attribute__((noinline)) double lights_pdf_from(const struct scene *sc, vec3 o, vec3 dir, int known,
@@ -370,7 +377,7 @@ static __attribute__((noinline)) double lights_pdf_from(const struct scene *sc, 
         const struct prim *p = &sc->prims[sc->lights[i]];
         sum += i == known ? known_pdf : light_pdf(p, o, dir);
     }
-    return sum / sc->n_lights;
+    return lights_mean(sum, sc->n_lights);
 }
 
 double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf)
@@ -396,5 +403,5 @@ double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, dou
         if (in_cone)
             return lights_pdf_from(sc, o, dir, known, known_pdf, i, sum);
     }
-    return sum / sc->n_lights;
+    return lights_mean(sum, sc->n_lights);
 }

@@ -513,6 +513,52 @@ static void test_lights_pdf_sum(void)
     scene_free(sc);
 }
 
+/* shape_lights_pdf over one, two and three lights (a rect, then a sphere, then a disk) is the
+   in-order sum of the lights' pdfs divided by their count, bit for bit (one or two lights take
+   no division); and a sphere light's sampled direction is a unit vector to rounding. */
+static void test_lights_pdf_mean(void)
+{
+    struct scene *sc = scene_new();
+    CHECK(sc != NULL);
+    if (!sc)
+        return;
+    struct prim q = {.type = PRIM_RECT}, b = {.type = PRIM_SPHERE}, dk = {.type = PRIM_DISK};
+    q.g.rect.axis = 1;
+    q.g.rect.a0 = 213, q.g.rect.a1 = 343, q.g.rect.b0 = 227, q.g.rect.b1 = 332, q.g.rect.k = 554;
+    b.g.sphere.center = v3(190, 90, 190), b.g.sphere.radius = 90;
+    dk.g.disk.center = v3(400, 500, 300), dk.g.disk.radius = 50;
+    onb f = onb_from_w(v3(0, -1, 0));
+    dk.g.disk.normal = f.w, dk.g.disk.e1 = f.u, dk.g.disk.e2 = f.v;
+    const struct prim *add[3] = {&q, &b, &dk};
+    struct rng g;
+    rng_seed(&g, 8, 8);
+    int same = 1, unit = 1, positive = 0;
+    for (int lights = 1; lights <= 3; lights++) {
+        int at = scene_add_prim(sc, add[lights - 1]);
+        CHECK(at >= 0 && scene_add_light(sc, at) >= 0);
+        for (int i = 0; i < 50000; i++) {
+            vec3 o = v3(555 * rng_uniform(&g), 555 * rng_uniform(&g), 555 * rng_uniform(&g));
+            int known = (int)rng_below(&g, (uint32_t)lights + 1) - 1;
+            const struct prim *aim = &sc->prims[sc->lights[rng_below(&g, (uint32_t)lights)]];
+            double pdf;
+            struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
+            vec3 dir = shape_light_sample(aim, o, sp, &pdf);
+            if (aim->type == PRIM_SPHERE)
+                unit &= fabs(v3_len2(dir) - 1) < 1e-14;
+            double known_pdf = 0.25 + rng_uniform(&g), sum = 0;
+            for (int k = 0; k < lights; k++)
+                sum += k == known ? known_pdf : shape_light_pdf(&sc->prims[sc->lights[k]], o, dir, 0);
+            double want = sum / lights, got = shape_lights_pdf(sc, o, dir, known, known_pdf);
+            positive += got > 0;
+            same &= memcmp(&want, &got, sizeof want) == 0;
+        }
+    }
+    CHECK(same);
+    CHECK(unit);
+    CHECK(positive > 100000);
+    scene_free(sc);
+}
+
 /* Hits of random rays land inside the primitive's bounds, transformed or not. */
 static void test_bounds(void)
 {
@@ -565,6 +611,7 @@ int main(void)
     test_disk_pdf_pretest();
     test_rect_pdf_pretest();
     test_lights_pdf_sum();
+    test_lights_pdf_mean();
     test_bounds();
     return check_report("test_shape");
 }
