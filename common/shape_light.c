@@ -348,7 +348,9 @@ vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
 {
     if (p->type == PRIM_SPHERE) {
         double omc;
-        vec3 dir = v3_unit(sphere_cone_dir(p, o, s, &omc));
+        /* unit by construction (a unit vector in an orthonormal frame), to rounding: not made
+           unit again, a square root and a division off the light sample's dependency chain */
+        vec3 dir = sphere_cone_dir(p, o, s, &omc);
         *pdf = 1 / (2 * PI * omc); /* omc = 2 inside: 1 / (4 pi), uniform over all directions */
         return dir;
     }

@@ -254,9 +254,12 @@ static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *wh
         struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
         vec3 d = shape_light_dir(p, o, sp);
         double pdf = shape_light_pdf(p, o, d, 0), pdf_sample;
-        /* shape_light_sample: the same unit direction, the same density up to rounding */
+        /* shape_light_sample: the same direction made unit (a sphere's cone direction is one
+           by construction, to rounding, and is not normalised again), the same density up to
+           rounding */
         vec3 ds = shape_light_sample(p, o, sp, &pdf_sample);
-        sample_same &= v3_len2(v3_sub(ds, v3_unit(d))) == 0 && fabs(pdf_sample - pdf) <= 1e-9 * pdf;
+        sample_same &= v3_len2(v3_sub(ds, p->type == PRIM_SPHERE ? d : v3_unit(d))) == 0 &&
+                       fabs(v3_len2(ds) - 1) < 1e-14 && fabs(pdf_sample - pdf) <= 1e-9 * pdf;
         ray r = {o, d, 0};
         all_hit &= pdf > 0 && shape_hit(p, &r, 1e-9, DBL_MAX, &h);
         inv_sum += pdf > 0 ? 1 / pdf : 0;
