@@ -15,9 +15,9 @@
 struct sampler {
     enum sampler_kind kind;
     double threshold;
-    int grid_n;      /* uniform/jitter/random: n x n cells */
+    int grid_n;       /* uniform/jitter/random: n x n cells */
     uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (cell_row) */
-    size_t capacity; /* sampler_capacity(kind, threshold) */
+    size_t capacity;  /* sampler_capacity(kind, threshold) */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
 

@@ -651,8 +651,10 @@ static void test_jitter_exact(void)
             struct rng a = g, b = g;
             struct pt2 q = sampler_cell_point(s, c, &a);
             double u = rng_uniform(&b), v = rng_uniform(&b);
-            double x = ref_cell_coord((int)(c % (uint32_t)n), u, n), y = ref_cell_coord((int)(c / (uint32_t)n), v, n);
-            same_cells &= memcmp(&q.x, &x, sizeof x) == 0 && memcmp(&q.y, &y, sizeof y) == 0 && a.state == b.state;
+            double x = ref_cell_coord((int)(c % (uint32_t)n), u, n),
+                   y = ref_cell_coord((int)(c / (uint32_t)n), v, n);
+            same_cells &=
+                memcmp(&q.x, &x, sizeof x) == 0 && memcmp(&q.y, &y, sizeof y) == 0 && a.state == b.state;
             rng_u32(&g);
         }
         if (n <= 100) {
@@ -662,7 +664,8 @@ static void test_jitter_exact(void)
             same_sets &= m == cells;
             for (size_t k = 0; k < m; k++) {
                 double u = rng_uniform(&b), v = rng_uniform(&b);
-                double x = ref_cell_coord((int)(k % (size_t)n), u, n), y = ref_cell_coord((int)(k / (size_t)n), v, n);
+                double x = ref_cell_coord((int)(k % (size_t)n), u, n),
+                       y = ref_cell_coord((int)(k / (size_t)n), v, n);
                 same_sets &= memcmp(&set[k].x, &x, sizeof x) == 0 && memcmp(&set[k].y, &y, sizeof y) == 0;
             }
             same_sets &= a.state == b.state;
@@ -672,6 +675,20 @@ static void test_jitter_exact(void)
     }
     CHECK(same_cells);
     CHECK(same_sets);
+}
+
+/* rng_peek_u32 gives the value rng_u32 returns next and leaves the stream where it was (the
+   render's prefetch of the next pool point relies on both). */
+static void test_rng_peek(void)
+{
+    struct rng r;
+    rng_seed(&r, 42, 7);
+    for (int i = 0; i < 100; i++) {
+        struct rng before = r;
+        uint32_t peeked = rng_peek_u32(&r);
+        CHECK(r.state == before.state && r.inc == before.inc);
+        CHECK(peeked == rng_u32(&r));
+    }
 }
 
 int main(void)
@@ -688,5 +705,6 @@ int main(void)
     test_determinism();
     test_bad_input();
     test_convergence();
+    test_rng_peek();
     return check_report("test_sampler");
 }
