@@ -143,7 +143,7 @@ struct media_met {
 /* Test the prims of node n's leaf lanes m (entry distances tn) against r, as met. */
 static inline __attribute__((always_inline)) void
 test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float *tn, const ray *r,
-            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm)
+            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm, int media_inline)
 {
     for (; m; m &= m - 1) {
         int c = __builtin_ctz((unsigned)m);
@@ -155,8 +155,11 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             const struct prim *pr = &sc->prims[p];
             if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
                 if (lr->n_media == 0) /* its latency hides under the traversal */
-                    lr->ray_hash = shape_ray_hash(r);
-                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                    lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
+                if (media_inline)
+                    medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                else
+                    shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
                 mm->prim[lr->n_media++] = p;
                 continue;
             }
@@ -180,8 +183,11 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             int got_p;
             if (pr->type == PRIM_MEDIUM && !pr->has_xform && lr->n_media < BVH_MEDIA) {
                 if (lr->n_media == 0) /* its latency hides under the traversal */
-                    lr->ray_hash = shape_ray_hash(r);
-                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                    lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
+                if (media_inline)
+                    medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                else
+                    shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
                 mm->prim[lr->n_media++] = p;
                 continue;
             }
@@ -228,7 +234,7 @@ int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_ma
     const struct bvh_node *n = &sc->nodes[0];
     float tn[BVH_WIDTH];
     int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
-    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm);
+    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm, 0);
     return finish(sc, r, t_min, h, &lr, &mm);
 }
 
@@ -252,7 +258,7 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
         float tn[BVH_WIDTH];
         int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
-        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm);
+        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1);
         /* Then the nearest interior child next, the others pushed farthest first. */
         int inner = hit & ~n->leaves;
         int next = -1;
