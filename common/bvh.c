@@ -93,24 +93,43 @@ static inline void fray_init(struct fray *fr, const ray *r)
     fray_axis(fr, 2, r->orig.z, r->dir.z);
 }
 
+/* Entry distances into the four child boxes of quad m (a node's address plus the quad's
+   offset), into tn[0..3]; returns one bit per child hit. */
+static inline int quad_test(const struct fray *fr, const char *m, bvh_f4 t_lo, float t_hi, float *tn)
+{
+    const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
+    bvh_f4 tn0 = (f4_load(m + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
+    bvh_f4 tn1 = (f4_load(m + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
+    bvh_f4 tn2 = (f4_load(m + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
+    bvh_f4 tf0 = (f4_load(m + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
+    bvh_f4 tf1 = (f4_load(m + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
+    bvh_f4 tf2 = (f4_load(m + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
+    bvh_f4 near = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
+    bvh_f4 far = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
+    memcpy(tn, &near, sizeof near);
+    return f4_mask(near <= far * grow);
+}
+
 /* Entry distances into node n's child boxes, into tn[]; returns one bit per child hit. */
 static inline int node_test(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
                             float *tn)
 {
-    const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
     int hit = 0;
-    for (int q = 0; q < quads; q++) {
-        const char *m = n + (size_t)q * sizeof(bvh_f4);
-        bvh_f4 tn0 = (f4_load(m + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
-        bvh_f4 tn1 = (f4_load(m + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
-        bvh_f4 tn2 = (f4_load(m + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
-        bvh_f4 tf0 = (f4_load(m + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
-        bvh_f4 tf1 = (f4_load(m + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
-        bvh_f4 tf2 = (f4_load(m + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
-        bvh_f4 near = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
-        bvh_f4 far = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
-        hit |= f4_mask(near <= far * grow) << (4 * q);
-        memcpy(tn + 4 * q, &near, sizeof near);
+    for (int q = 0; q < quads; q++)
+        hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
+    return hit;
+}
+
+/* node_test for a tree's nodes, 8-wide (bvh_build.c): the first two quads without the loop,
+   the second only when in use; any further ones (16-wide nodes) by the loop. */
+static inline int node_test8(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
+                             float *tn)
+{
+    int hit = quad_test(fr, n, t_lo, t_hi, tn);
+    if (quads > 1) {
+        hit |= quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
+        for (int q = 2; q < quads; q++)
+            hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
     }
     return hit;
 }
@@ -256,7 +275,7 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
         float tn[BVH_WIDTH];
-        int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
+        int hit = node_test8(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
         test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1);
         /* Then the nearest interior child next, the others pushed farthest first. */
