@@ -170,7 +170,7 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             continue;
         const int kind = n->kind[c];
         if (kind != BVH_LEAF_ANY) { /* one prim, dispatched by the node, not the prim's type */
-            int p = sc->prim_order[n->child[c]], got_p;
+            int p = n->child[c], got_p;
             const struct prim *pr = &sc->prims[p];
             if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
                 if (lr->n_media == 0) /* its latency hides under the traversal */
