@@ -129,15 +129,6 @@ fail:
     return NULL;
 }
 
-/* The uniform rng_u32 would return next, without advancing r (PCG32's output of the state). */
-static inline uint32_t rng_peek_u32(const struct rng *r)
-{
-    uint64_t old = r->state;
-    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-    uint32_t rot = (uint32_t)(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
-}
-
 /* Pooled sets: the pool point each light would take next if it were the next light sampled
    (the light rng's next draw picks it), fetched into the cache now. One of them is the next
    point taken unless its set runs out first; without this its load, an L2 hit at the head of

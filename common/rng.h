@@ -17,13 +17,25 @@ static inline uint64_t rng_mix64(uint64_t z)
     return z ^ (z >> 31);
 }
 
+/* PCG32's output for a state (XSH RR). */
+static inline uint32_t rng_output(uint64_t state)
+{
+    uint32_t xorshifted = (uint32_t)(((state >> 18u) ^ state) >> 27u);
+    uint32_t rot = (uint32_t)(state >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
+}
+
 static inline uint32_t rng_u32(struct rng *r)
 {
     uint64_t old = r->state;
     r->state = old * 6364136223846793005ULL + r->inc;
-    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-    uint32_t rot = (uint32_t)(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
+    return rng_output(old);
+}
+
+/* The value rng_u32 would return next, without advancing r. */
+static inline uint32_t rng_peek_u32(const struct rng *r)
+{
+    return rng_output(r->state);
 }
 
 /* Seed a stream: distinct `stream` values give independent sequences for the same seed. */
