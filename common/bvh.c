@@ -93,24 +93,43 @@ static inline void fray_init(struct fray *fr, const ray *r)
     fray_axis(fr, 2, r->orig.z, r->dir.z);
 }
 
+/* Entry distances into the four child boxes of quad m (a node's address plus the quad's
+   offset), into tn[0..3]; returns one bit per child hit. */
+static inline int quad_test(const struct fray *fr, const char *m, bvh_f4 t_lo, float t_hi, float *tn)
+{
+    const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
+    bvh_f4 tn0 = (f4_load(m + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
+    bvh_f4 tn1 = (f4_load(m + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
+    bvh_f4 tn2 = (f4_load(m + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
+    bvh_f4 tf0 = (f4_load(m + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
+    bvh_f4 tf1 = (f4_load(m + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
+    bvh_f4 tf2 = (f4_load(m + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
+    bvh_f4 near = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
+    bvh_f4 far = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
+    memcpy(tn, &near, sizeof near);
+    return f4_mask(near <= far * grow);
+}
+
 /* Entry distances into node n's child boxes, into tn[]; returns one bit per child hit. */
 static inline int node_test(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
                             float *tn)
 {
-    const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
     int hit = 0;
-    for (int q = 0; q < quads; q++) {
-        const char *m = n + (size_t)q * sizeof(bvh_f4);
-        bvh_f4 tn0 = (f4_load(m + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
-        bvh_f4 tn1 = (f4_load(m + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
-        bvh_f4 tn2 = (f4_load(m + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
-        bvh_f4 tf0 = (f4_load(m + fr->far[0]) - fr->o_far[0]) * fr->inv[0];
-        bvh_f4 tf1 = (f4_load(m + fr->far[1]) - fr->o_far[1]) * fr->inv[1];
-        bvh_f4 tf2 = (f4_load(m + fr->far[2]) - fr->o_far[2]) * fr->inv[2];
-        bvh_f4 near = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
-        bvh_f4 far = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
-        hit |= f4_mask(near <= far * grow) << (4 * q);
-        memcpy(tn + 4 * q, &near, sizeof near);
+    for (int q = 0; q < quads; q++)
+        hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
+    return hit;
+}
+
+/* node_test for a tree's nodes, 8-wide (bvh_build.c): the first two quads without the loop,
+   the second only when in use; any further ones (16-wide nodes) by the loop. */
+static inline int node_test8(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
+                             float *tn)
+{
+    int hit = quad_test(fr, n, t_lo, t_hi, tn);
+    if (quads > 1) {
+        hit |= quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
+        for (int q = 2; q < quads; q++)
+            hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
     }
     return hit;
 }
@@ -143,7 +162,7 @@ struct media_met {
 /* Test the prims of node n's leaf lanes m (entry distances tn) against r, as met. */
 static inline __attribute__((always_inline)) void
 test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float *tn, const ray *r,
-            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm)
+            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm, int media_inline)
 {
     for (; m; m &= m - 1) {
         int c = __builtin_ctz((unsigned)m);
@@ -151,12 +170,15 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             continue;
         const int kind = n->kind[c];
         if (kind != BVH_LEAF_ANY) { /* one prim, dispatched by the node, not the prim's type */
-            int p = sc->prim_order[n->child[c]], got_p;
+            int p = n->child[c], got_p;
             const struct prim *pr = &sc->prims[p];
             if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
                 if (lr->n_media == 0) /* its latency hides under the traversal */
-                    lr->ray_hash = shape_ray_hash(r);
-                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                    lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
+                if (media_inline)
+                    medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                else
+                    shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
                 mm->prim[lr->n_media++] = p;
                 continue;
             }
@@ -180,8 +202,11 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             int got_p;
             if (pr->type == PRIM_MEDIUM && !pr->has_xform && lr->n_media < BVH_MEDIA) {
                 if (lr->n_media == 0) /* its latency hides under the traversal */
-                    lr->ray_hash = shape_ray_hash(r);
-                shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                    lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
+                if (media_inline)
+                    medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+                else
+                    shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
                 mm->prim[lr->n_media++] = p;
                 continue;
             }
@@ -228,7 +253,7 @@ int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_ma
     const struct bvh_node *n = &sc->nodes[0];
     float tn[BVH_WIDTH];
     int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
-    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm);
+    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm, 0);
     return finish(sc, r, t_min, h, &lr, &mm);
 }
 
@@ -250,9 +275,9 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
         float tn[BVH_WIDTH];
-        int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
+        int hit = node_test8(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
-        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm);
+        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1);
         /* Then the nearest interior child next, the others pushed farthest first. */
         int inner = hit & ~n->leaves;
         int next = -1;

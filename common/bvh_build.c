@@ -278,10 +278,11 @@ static int collapse(struct build *bd, int b)
         const struct bnode *k = &bd->bin[kids[c]];
         set_lane(node, c, k->box);
         if (bd->plan[kids[c]].leaf) {
-            node->child[c] = k->start;
             node->count[c] = (uint16_t)k->count;
             node->leaves |= (uint16_t)(1u << c);
             node->kind[c] = leaf_kind(bd, k->start, k->count);
+            /* a one-prim leaf the traversal dispatches by kind names its prim: one load fewer */
+            node->child[c] = node->kind[c] == BVH_LEAF_ANY ? k->start : bd->order[k->start];
         }
     }
     for (int c = 0; c < n; c++)
@@ -328,10 +329,10 @@ int bvh_build(struct scene *sc, struct err *e)
     if (bd.bin[0].left < 0) { /* a scene of one prim: a root with one child */
         struct bvh_node *root = &bd.nodes[node_new(&bd, 1)];
         set_lane(root, 0, bd.bin[0].box);
-        root->child[0] = 0;
         root->count[0] = (uint16_t)n;
         root->leaves = 1;
         root->kind[0] = leaf_kind(&bd, 0, n);
+        root->child[0] = root->kind[0] == BVH_LEAF_ANY ? 0 : bd.order[0];
     } else {
         /* A scene of at most 16 prims (the Cornell boxes: 8 and 15, a prim per lane) in one
            node: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere

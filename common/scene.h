@@ -105,7 +105,8 @@ struct prim {
 enum { BVH_LEAF_ANY, BVH_LEAF_RECT, BVH_LEAF_SPHERE, BVH_LEAF_SHAPE, BVH_LEAF_MEDIUM };
 struct bvh_node {
     float lo[3][BVH_WIDTH], hi[3][BVH_WIDTH]; /* child c spans lo[axis][c] .. hi[axis][c]; unused: empty */
-    int32_t child[BVH_WIDTH];  /* count 0: index of an interior node; else the first prim_order index */
+    int32_t child[BVH_WIDTH];  /* count 0: index of an interior node; a leaf of a kind: its prim's
+                                  index; else (BVH_LEAF_ANY) its first prim_order index */
     uint16_t count[BVH_WIDTH]; /* prims in a leaf child; 0 for an interior child or an unused slot */
     uint16_t leaves;           /* bit c set: child c is a leaf */
     uint8_t quads;             /* groups of four lanes in use: the rest are empty */

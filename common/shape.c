@@ -5,7 +5,6 @@
 
 #include <string.h>
 
-#include "rng.h"
 #include "shape_inline.h"
 
 /* World -> object space for a rotate_y + translate transform. */
@@ -294,39 +293,14 @@ static int hit_triangle(const struct prim *p, const ray *r, double t_min, double
     return 1;
 }
 
-/* A uniform number in (0, 1] from the ray's bits and the medium's: the same ray always gets
-   the same free-flight distance, whatever order the BVH tests primitives in. Each word is
-   multiplied by its own odd constant and the products summed (independent multiplies, not a
-   serial chain: distinct rays differing in one word always differ in the sum), then one
-   SplitMix64 finaliser mixes every bit. The ray's part comes first, so bvh_hit can start it
-   once per ray (shape_ray_hash) while it traverses. */
-static uint64_t hash_word(double x, uint64_t k)
-{
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    return bits * k;
-}
-
 uint64_t shape_ray_hash(const ray *r)
 {
-    return (hash_word(r->orig.x, 0x9e3779b97f4a7c15ULL) + hash_word(r->orig.y, 0xbf58476d1ce4e5b9ULL)) +
-           (hash_word(r->orig.z, 0x94d049bb133111ebULL) + hash_word(r->dir.x, 0xd1b54a32d192ed03ULL)) +
-           ((hash_word(r->dir.y, 0xff51afd7ed558ccdULL) + hash_word(r->dir.z, 0xc4ceb9fe1a85ec53ULL)) +
-            hash_word(r->time, 0x2545f4914f6cdd1dULL));
-}
-
-static double medium_uniform(uint64_t ray_hash, const struct prim *p)
-{
-    uint64_t h = ray_hash + (hash_word(p->g.medium.radius, 0x5851f42d4c957f2dULL) +
-                             hash_word(p->g.medium.neg_inv_density, 0xda942042e4dd58b5ULL));
-    h = rng_mix64(h);
-    return (double)((h >> 11) + 1) * 0x1.0p-53;
+    return ray_hash_inline(r);
 }
 
 void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, struct medium_flight *f)
 {
-    f->len = v3_len(r->dir);
-    f->u = medium_uniform(ray_hash, p);
+    medium_flight_inline(p, r, ray_hash, f);
 }
 
 int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,

@@ -61,7 +61,8 @@ static int kinds_ok(const struct scene *sc)
                 ok &= n->kind[c] == BVH_LEAF_ANY;
                 continue;
             }
-            const struct prim *p = &sc->prims[sc->prim_order[n->child[c]]];
+            int first = n->kind[c] == BVH_LEAF_ANY ? sc->prim_order[n->child[c]] : n->child[c];
+            const struct prim *p = &sc->prims[first];
             int one = n->count[c] == 1, plain = one && !p->has_xform;
             switch (n->kind[c]) {
             case BVH_LEAF_RECT:
