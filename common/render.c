@@ -321,9 +321,8 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             vec3 unit_dir = v3_unit(r->dir);
             double ratio = h.front ? 1.0 / m->ior : m->ior;
             double cos_t = d_min(v3_dot(v3_neg(unit_dir), h.n), 1.0);
-            /* total internal reflection, ratio sin > 1, squared: no square root to wait on */
-            double sin2 = 1 - cos_t * cos_t;
-            dir = (ratio * ratio * sin2 > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
+            double sin_t = sqrt(1 - cos_t * cos_t);
+            dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
                       ? v3_reflect(unit_dir, h.n)
                       : v3_refract(unit_dir, h.n, ratio);
             *r = (ray){h.p, dir, r->time};
