@@ -17,6 +17,8 @@ static inline uint64_t rng_mix64(uint64_t z)
     return z ^ (z >> 31);
 }
 
+#define RNG_MULT 6364136223846793005ULL
+
 /* PCG32's output for a state (XSH RR). */
 static inline uint32_t rng_output(uint64_t state)
 {
@@ -28,7 +30,7 @@ static inline uint32_t rng_output(uint64_t state)
 static inline uint32_t rng_u32(struct rng *r)
 {
     uint64_t old = r->state;
-    r->state = old * 6364136223846793005ULL + r->inc;
+    r->state = old * RNG_MULT + r->inc;
     return rng_output(old);
 }
 
@@ -53,6 +55,19 @@ static inline double rng_uniform(struct rng *r)
 {
     uint64_t hi = rng_u32(r), lo = rng_u32(r);
     return (double)(((hi << 32) | lo) >> 11) * 0x1.0p-53;
+}
+
+/* u = rng_uniform(r), v = rng_uniform(r): the same values and final state, but the four states
+   made from the first at once by PCG's jump-ahead (k steps: s a^k + inc (a^(k-1) + ... + 1),
+   mod 2^64), a chain of one multiply-add instead of four (a jittered set's points wait on it). */
+static inline void rng_uniform_pair(struct rng *r, double *u, double *v)
+{
+    const uint64_t s0 = r->state, c = r->inc;
+    const uint64_t s1 = s0 * RNG_MULT + c, s2 = s0 * 0x685f98a2018fade9ULL + c * 0x5851f42d4c957f2eULL,
+                   s3 = s0 * 0x0b046976f22528f5ULL + c * 0xc0b18ccf4e252d17ULL;
+    r->state = s0 * 0xfb4d3ae39272be11ULL + c * 0xcbb5f646404a560cULL;
+    *u = (double)((((uint64_t)rng_output(s0) << 32) | rng_output(s1)) >> 11) * 0x1.0p-53;
+    *v = (double)((((uint64_t)rng_output(s2) << 32) | rng_output(s3)) >> 11) * 0x1.0p-53;
 }
 
 /* Uniform double in [0, 1) with 32 random bits: one PCG step instead of two, where a

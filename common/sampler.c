@@ -15,8 +15,9 @@
 struct sampler {
     enum sampler_kind kind;
     double threshold;
-    int grid_n;      /* uniform/jitter/random: n x n cells */
-    size_t capacity; /* sampler_capacity(kind, threshold) */
+    int grid_n;       /* uniform/jitter/random: n x n cells */
+    uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (cell_row) */
+    size_t capacity;  /* sampler_capacity(kind, threshold) */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
 
@@ -106,15 +107,25 @@ void sampler_free(struct sampler *s)
     free(s);
 }
 
-/* (i + u) / n kept strictly inside cell i of n (and so below 1) despite rounding. */
-static inline double cell_coord(int i, double u, int n)
+/* cell_coord's rounding repair: v moved to the last double inside cell i of n (and below 1).
+   Out of line: the first quotient is almost always inside already, and a call in the loops
+   made GCC keep n and the points' values on the stack. */
+static __attribute__((noinline)) double cell_repair(double v, int i, int n)
 {
-    double v = (i + u) / n;
     while (v >= 1.0 || (int)(v * n) > i)
         v = nextafter(v, 0.0);
     while ((int)(v * n) < i)
         v = nextafter(v, 1.0);
     return v;
+}
+
+/* (i + u) / n kept strictly inside cell i of n (and so below 1) despite rounding. */
+static inline double cell_coord(int i, double u, int n)
+{
+    double v = (i + u) / n;
+    if (v < 1.0 && (int)(v * n) == i)
+        return v;
+    return cell_repair(v, i, n);
 }
 
 enum sampler_kind sampler_kind_of(const struct sampler *s)
@@ -127,19 +138,28 @@ uint32_t sampler_cells(const struct sampler *s)
     return s->kind == SAMPLER_POISSON ? 0 : (uint32_t)s->capacity;
 }
 
+/* cell / n without a division: cell < 2^22 (SAMPLER_MAX_POINTS) and n < 2^20, so cell * n_recip
+   / 2^42 exceeds cell / n by less than 2^-20 < 1 / n, never reaching the next integer. */
+static inline int cell_row(const struct sampler *s, uint32_t cell)
+{
+    return (int)((cell * s->n_recip) >> 42);
+}
+
 struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng)
 {
     const int n = s->grid_n;
-    const int i = (int)(cell % (uint32_t)n), j = (int)(cell / (uint32_t)n);
+    const int j = cell_row(s, cell), i = (int)cell - j * n;
     switch (s->kind) {
     case SAMPLER_UNIFORM:
         return (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
     case SAMPLER_JITTER: {
-        double u = rng_uniform(rng), v = rng_uniform(rng);
+        double u, v;
+        rng_uniform_pair(rng, &u, &v);
         return (struct pt2){cell_coord(i, u, n), cell_coord(j, v, n)};
     }
     default: {
-        double u = rng_uniform(rng), v = rng_uniform(rng);
+        double u, v;
+        rng_uniform_pair(rng, &u, &v);
         return (struct pt2){u, v};
     }
     }
@@ -155,16 +175,21 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
             for (int i = 0; i < n; i++)
                 out[count++] = (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
         return count;
-    case SAMPLER_JITTER:
+    case SAMPLER_JITTER: {
+        struct rng r = *rng; /* a local state: out may alias *rng, so GCC stored it per point */
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {
-                double u = rng_uniform(rng), v = rng_uniform(rng);
+                double u, v;
+                rng_uniform_pair(&r, &u, &v);
                 out[count++] = (struct pt2){cell_coord(i, u, n), cell_coord(j, v, n)};
             }
+        *rng = r;
         return count;
+    }
     case SAMPLER_RANDOM:
         for (size_t k = 0; k < (size_t)n * (size_t)n; k++) {
-            double u = rng_uniform(rng), v = rng_uniform(rng);
+            double u, v;
+            rng_uniform_pair(rng, &u, &v);
             out[count++] = (struct pt2){u, v};
         }
         return count;
@@ -272,6 +297,7 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
     s->kind = kind;
     s->threshold = threshold;
     s->grid_n = sampler_grid_side(threshold);
+    s->n_recip = ((uint64_t)1 << 42) / (uint64_t)s->grid_n + 1;
     s->capacity = capacity;
     if (kind != SAMPLER_POISSON)
         return s;

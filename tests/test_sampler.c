@@ -628,9 +628,9 @@ static double ref_cell_coord(int i, double u, int n)
     return v;
 }
 
-/* Jitter points, set by set and cell by cell, bit for bit the seed's formula (cell % n and
-   cell / n, two rng_uniform draws, the quotient's repair), for grid sides 1 to 2000: a guard for
-   any cheaper form of sampler_cell_point or sampler_draw. */
+/* Jitter points, set by set and cell by cell, bit for bit the seed's formula: cell % n and cell / n
+   (sampler_cell_point divides by a multiply and shift), two rng_uniform draws each (the sampler
+   draws them by jump-ahead), the quotient's repair, for grid sides 1 to 2000. */
 static void test_jitter_exact(void)
 {
     const double thresholds[] = {100, 40, 16.6, 12.5, 7, 3, 0.7, 0.33, 0.07, 0.05};
