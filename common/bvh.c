@@ -159,6 +159,30 @@ struct media_met {
 
 #define BVH_GROW (1.0f + 0x1.0p-20f)
 
+/* A plain medium met in a leaf: its flight starts now (its latency hides under the traversal);
+   finish tests it against the nearest surface. */
+static inline __attribute__((always_inline)) void meet_medium(const struct prim *pr, int p, const ray *r,
+                                                              struct leaf_run *lr, struct media_met *mm,
+                                                              int media_inline)
+{
+    if (lr->n_media == 0)
+        lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
+    if (media_inline)
+        medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+    else
+        shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
+    mm->prim[lr->n_media++] = p;
+}
+
+/* Prim p's hit h is the nearest so far: the ray and its float bound shrink to it. */
+static inline __attribute__((always_inline)) void take_hit(struct leaf_run *lr, struct hit *h, int p)
+{
+    lr->t_max = h->t;
+    lr->t_hi = (float)lr->t_max * BVH_GROW;
+    h->prim = p;
+    lr->got = 1;
+}
+
 /* Test the prims of node n's leaf lanes m (entry distances tn) against r, as met. */
 static inline __attribute__((always_inline)) void
 test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float *tn, const ray *r,
@@ -173,13 +197,7 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             int p = n->child[c], got_p;
             const struct prim *pr = &sc->prims[p];
             if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
-                if (lr->n_media == 0) /* its latency hides under the traversal */
-                    lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
-                if (media_inline)
-                    medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
-                else
-                    shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
-                mm->prim[lr->n_media++] = p;
+                meet_medium(pr, p, r, lr, mm, media_inline);
                 continue;
             }
             if (kind == BVH_LEAF_RECT)
@@ -188,12 +206,8 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
                 got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
             else
                 got_p = shape_hit(pr, r, t_min, lr->t_max, h);
-            if (got_p) {
-                lr->t_max = h->t;
-                lr->t_hi = (float)lr->t_max * BVH_GROW;
-                h->prim = p;
-                lr->got = 1;
-            }
+            if (got_p)
+                take_hit(lr, h, p);
             continue;
         }
         for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
@@ -201,13 +215,7 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             const struct prim *pr = &sc->prims[p];
             int got_p;
             if (pr->type == PRIM_MEDIUM && !pr->has_xform && lr->n_media < BVH_MEDIA) {
-                if (lr->n_media == 0) /* its latency hides under the traversal */
-                    lr->ray_hash = media_inline ? ray_hash_inline(r) : shape_ray_hash(r);
-                if (media_inline)
-                    medium_flight_inline(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
-                else
-                    shape_medium_flight(pr, r, lr->ray_hash, &mm->flight[lr->n_media]);
-                mm->prim[lr->n_media++] = p;
+                meet_medium(pr, p, r, lr, mm, media_inline);
                 continue;
             }
             if (pr->type == PRIM_RECT && !pr->has_xform)
@@ -216,12 +224,8 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
                 got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
             else
                 got_p = shape_hit(pr, r, t_min, lr->t_max, h);
-            if (got_p) {
-                lr->t_max = h->t;
-                lr->t_hi = (float)lr->t_max * BVH_GROW;
-                h->prim = p;
-                lr->got = 1;
-            }
+            if (got_p)
+                take_hit(lr, h, p);
         }
     }
 }
