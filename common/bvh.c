@@ -282,35 +282,44 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
         int hit = node_test8(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
         test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1);
-        /* Then the nearest interior child next, the others pushed farthest first. */
+        /* Then the nearest interior child next, the others pushed farthest first; one alone (a
+           third of final's visits, half have none) goes next without the pushes' bookkeeping. */
         int inner = hit & ~n->leaves;
-        int next = -1;
-        float next_t = 0;
-        int base = sp;
-        for (; inner; inner &= inner - 1) {
+        if (__builtin_expect((inner & (inner - 1)) != 0, 0)) {
+            int next = -1;
+            float next_t = 0;
+            int base = sp;
+            for (; inner; inner &= inner - 1) {
+                int c = __builtin_ctz((unsigned)inner);
+                if (tn[c] > lr.t_hi)
+                    continue;
+                struct bvh_entry k = {n->child[c], tn[c]};
+                if (next < 0) {
+                    next = k.node, next_t = k.t;
+                    continue;
+                }
+                if (k.t < next_t) { /* k is the new nearest: push the old one */
+                    struct bvh_entry old = {next, next_t};
+                    next = k.node, next_t = k.t;
+                    k = old;
+                }
+                int j = sp++;
+                while (j > base && stack[j - 1].t < k.t) {
+                    stack[j] = stack[j - 1];
+                    j--;
+                }
+                stack[j] = k;
+            }
+            if (next >= 0) {
+                node = next;
+                continue;
+            }
+        } else if (inner) {
             int c = __builtin_ctz((unsigned)inner);
-            if (tn[c] > lr.t_hi)
-                continue;
-            struct bvh_entry k = {n->child[c], tn[c]};
-            if (next < 0) {
-                next = k.node, next_t = k.t;
+            if (tn[c] <= lr.t_hi) {
+                node = n->child[c];
                 continue;
             }
-            if (k.t < next_t) { /* k is the new nearest: push the old one */
-                struct bvh_entry old = {next, next_t};
-                next = k.node, next_t = k.t;
-                k = old;
-            }
-            int j = sp++;
-            while (j > base && stack[j - 1].t < k.t) {
-                stack[j] = stack[j - 1];
-                j--;
-            }
-            stack[j] = k;
-        }
-        if (next >= 0) {
-            node = next;
-            continue;
         }
         /* Pop the nearest pushed node still in reach of the nearest hit so far. */
         while (sp > 0 && stack[sp - 1].t > lr.t_hi)
