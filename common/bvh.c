@@ -126,11 +126,9 @@ static inline int node_test8(const struct fray *fr, const char *n, int quads, bv
                              float *tn)
 {
     int hit = quad_test(fr, n, t_lo, t_hi, tn);
-    if (quads > 1) {
-        hit |= quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
-        for (int q = 2; q < quads; q++)
-            hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
-    }
+    hit |= quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
+    for (int q = 2; q < quads; q++)
+        hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
     return hit;
 }
 

@@ -86,6 +86,23 @@ static int kinds_ok(const struct scene *sc)
     return ok;
 }
 
+/* A tree's nodes (more than one: bvh_hit_tree) use at most two quads, and bvh_hit_tree tests
+   both: every lane past the node's quads is empty (never hit) and no leaf. */
+static int lanes_ok(const struct scene *sc)
+{
+    int ok = 1;
+    for (int i = 0; sc->n_nodes > 1 && i < sc->n_nodes; i++) {
+        const struct bvh_node *n = &sc->nodes[i];
+        ok &= n->quads >= 1 && n->quads <= 2;
+        for (int c = 4 * n->quads; c < BVH_WIDTH; c++) {
+            ok &= !(n->leaves >> c & 1) && n->count[c] == 0;
+            for (int a = 0; a < 3; a++)
+                ok &= n->lo[a][c] == INFINITY && n->hi[a][c] == -INFINITY;
+        }
+    }
+    return ok;
+}
+
 /* Rays toward 27 points of every stride-th prim's box, from inside the scene and from far_origin. */
 static void test_scene(const char *path, vec3 far_origin, int stride)
 {
@@ -96,6 +113,7 @@ static void test_scene(const char *path, vec3 far_origin, int stride)
         return;
     const struct scene *sc = sf.scene;
     CHECK(kinds_ok(sc));
+    CHECK(lanes_ok(sc));
     vec3 lo = v3(DBL_MAX, DBL_MAX, DBL_MAX), hi = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
     for (int i = 0; i < sc->n_prims; i++) {
         vec3 l, h;
