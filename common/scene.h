@@ -67,6 +67,8 @@ struct prim {
             double k;        /* the plane's coordinate on the normal axis */
             vec3 n, ea, eb;  /* derived: unit vectors along the normal axis and the in-plane axes */
             long on, oa, ob; /* derived: byte offsets of those axes' components in a vec3 */
+            vec3 ball_c;     /* derived: centre of the ball through the corners (light pdf's cone test) */
+            double ball_r2, ball_r2_out; /* derived: its radius^2 (1 + 1e-9), and that (1 + 1e-6) */
         } rect;
         struct {
             vec3 center, normal, e1, e2; /* unit normal (front), frame e1 x e2 = normal */

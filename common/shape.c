@@ -41,6 +41,13 @@ void shape_prepare(struct prim *p)
         p->g.rect.on = ax * (long)sizeof(double);
         p->g.rect.oa = a * (long)sizeof(double);
         p->g.rect.ob = b * (long)sizeof(double);
+        /* the unit axes have one non-zero component each: the centre's sum is exact */
+        double da = p->g.rect.a1 - p->g.rect.a0, db = p->g.rect.b1 - p->g.rect.b0;
+        p->g.rect.ball_c = v3_add(
+            v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, p->g.rect.a0 + 0.5 * da)),
+            v3_scale(p->g.rect.eb, p->g.rect.b0 + 0.5 * db));
+        p->g.rect.ball_r2 = (da * da + db * db) * (0.25 * (1 + 1e-9));
+        p->g.rect.ball_r2_out = p->g.rect.ball_r2 * (1 + 1e-6);
     }
     if (p->type == PRIM_DISK) {
         p->g.disk.r2 = p->g.disk.radius * p->g.disk.radius;

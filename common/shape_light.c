@@ -277,13 +277,7 @@ static inline __attribute__((always_inline)) int disk_in_cone(const struct prim 
 
 static inline __attribute__((always_inline)) int rect_in_cone(const struct prim *p, vec3 o, vec3 dir)
 {
-    /* the unit axes have one non-zero component each: the centre's sum is exact */
-    double da = p->g.rect.a1 - p->g.rect.a0, db = p->g.rect.b1 - p->g.rect.b0;
-    vec3 c =
-        v3_add(v3_add(v3_scale(p->g.rect.n, p->g.rect.k), v3_scale(p->g.rect.ea, p->g.rect.a0 + 0.5 * da)),
-               v3_scale(p->g.rect.eb, p->g.rect.b0 + 0.5 * db));
-    double r2 = (da * da + db * db) * (0.25 * (1 + 1e-9));
-    return ball_cone(c, r2, r2 * (1 + 1e-6), o, dir);
+    return ball_cone(p->g.rect.ball_c, p->g.rect.ball_r2, p->g.rect.ball_r2_out, o, dir);
 }
 
 static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
