@@ -37,6 +37,16 @@ static void test_rng(void)
                      p.inc == q.inc;
     }
     CHECK(pair_same);
+    /* rng_peek_u32 gives the value rng_u32 returns next and leaves the stream where it was (the
+       render's prefetch of the next pool point relies on both). */
+    struct rng pk;
+    rng_seed(&pk, 42, 7);
+    for (int i = 0; i < 100; i++) {
+        struct rng before = pk;
+        uint32_t peeked = rng_peek_u32(&pk);
+        CHECK(pk.state == before.state && pk.inc == before.inc);
+        CHECK(peeked == rng_u32(&pk));
+    }
     /* Uniform in [0,1), mean 1/2, variance 1/12. */
     double sum = 0, sum2 = 0;
     int in_range = 1;

@@ -677,20 +677,6 @@ static void test_jitter_exact(void)
     CHECK(same_sets);
 }
 
-/* rng_peek_u32 gives the value rng_u32 returns next and leaves the stream where it was (the
-   render's prefetch of the next pool point relies on both). */
-static void test_rng_peek(void)
-{
-    struct rng r;
-    rng_seed(&r, 42, 7);
-    for (int i = 0; i < 100; i++) {
-        struct rng before = r;
-        uint32_t peeked = rng_peek_u32(&r);
-        CHECK(r.state == before.state && r.inc == before.inc);
-        CHECK(peeked == rng_u32(&r));
-    }
-}
-
 int main(void)
 {
     test_jitter_exact();
@@ -705,6 +691,5 @@ int main(void)
     test_determinism();
     test_bad_input();
     test_convergence();
-    test_rng_peek();
     return check_report("test_sampler");
 }
