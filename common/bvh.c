@@ -120,16 +120,11 @@ static inline int node_test(const struct fray *fr, const char *n, int quads, bvh
     return hit;
 }
 
-/* node_test for a tree's nodes, 8-wide (bvh_build.c): the first two quads without the loop,
-   the second only when in use; any further ones (16-wide nodes) by the loop. */
-static inline int node_test8(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
-                             float *tn)
+/* node_test for a tree's nodes: 8-wide (bvh_build.c), both quads tested without a loop or a
+   branch (a node's unused lanes are empty boxes, which no ray hits). */
+static inline int node_test8(const struct fray *fr, const char *n, bvh_f4 t_lo, float t_hi, float *tn)
 {
-    int hit = quad_test(fr, n, t_lo, t_hi, tn);
-    hit |= quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
-    for (int q = 2; q < quads; q++)
-        hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
-    return hit;
+    return quad_test(fr, n, t_lo, t_hi, tn) | quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
 }
 
 /* Media met in the leaves are tested after every surface, against the nearest surface hit:
@@ -277,7 +272,7 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
     for (;;) {
         const struct bvh_node *n = &sc->nodes[node];
         float tn[BVH_WIDTH];
-        int hit = node_test8(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
+        int hit = node_test8(&fr, (const char *)n, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
         test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1);
         /* Then the nearest interior child next, the others pushed farthest first; one alone (a
