@@ -42,37 +42,55 @@ static int perlin_cell(double f)
     return (int)fmod(f, PERLIN_N);
 }
 
-/* perlin_noise's body, inline in perlin_turb's octaves (no call per octave). */
-static inline __attribute__((always_inline)) double noise(const struct perlin *p, vec3 q)
+/* The two corners (dk = 0, 1) of one (di, dj) of a cell side by side in one vector of two
+   doubles: weight wxy wz times the gradient's dot with the corner's offset, each rounded as the
+   book rounds it. */
+static inline perlin_d2 corner_pair(const struct perlin *p, int pxy, int pz0, int pz1, double wxy, perlin_d2 wz,
+                                    double dx, double dy, perlin_d2 dz)
+{
+    const vec3 g0 = p->ranvec[pxy ^ pz0], g1 = p->ranvec[pxy ^ pz1];
+    const perlin_d2 gx = {g0.x, g1.x}, gy = {g0.y, g1.y}, gz = {g0.z, g1.z};
+    return wxy * wz * (gx * dx + gy * dy + gz * dz);
+}
+
+/* The eight corners' sum of the cell whose permutation indices are (i, j, k) (already reduced
+   to the table) at offsets (u, v, w) within it: the book's terms summed in its order, the
+   corners' entries, weights and offsets looked up or computed once, the four (di, dj) written
+   out (no loop, no arrays on the stack). */
+static inline __attribute__((always_inline)) double cell_sum(const struct perlin *p, int i, int j, int k,
+                                                              double u, double v, double w)
+{
+    double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
+    const int px0 = p->perm_x[i], px1 = p->perm_x[(i + 1) & 255], py0 = p->perm_y[j],
+              py1 = p->perm_y[(j + 1) & 255], pz0 = p->perm_z[k], pz1 = p->perm_z[(k + 1) & 255];
+    const double wx0 = 1 - uu, wy0 = 1 - vv, dx1 = u - 1, dy1 = v - 1;
+    const perlin_d2 wz = {1 - ww, ww}, dz = {w, w - 1};
+    perlin_d2 t;
+    double accum = 0;
+    t = corner_pair(p, px0 ^ py0, pz0, pz1, wx0 * wy0, wz, u, v, dz);
+    accum += t[0];
+    accum += t[1];
+    t = corner_pair(p, px0 ^ py1, pz0, pz1, wx0 * vv, wz, u, dy1, dz);
+    accum += t[0];
+    accum += t[1];
+    t = corner_pair(p, px1 ^ py0, pz0, pz1, uu * wy0, wz, dx1, v, dz);
+    accum += t[0];
+    accum += t[1];
+    t = corner_pair(p, px1 ^ py1, pz0, pz1, uu * vv, wz, dx1, dy1, dz);
+    accum += t[0];
+    accum += t[1];
+    return accum;
+}
+
+/* perlin_noise's body. */
+static double noise(const struct perlin *p, vec3 q)
 {
     if (!v3_finite(q))
         return 0;
     double fx = floor(q.x), fy = floor(q.y), fz = floor(q.z);
-    double u = q.x - fx, v = q.y - fy, w = q.z - fz;
     /* The table repeats at 256, so only the cell index modulo 256 matters: the low bits of an
        integer conversion where it is exact, fmod (slower) beyond. */
-    int i = perlin_cell(fx), j = perlin_cell(fy), k = perlin_cell(fz);
-    double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
-    /* The corners' permutation entries, weights and offsets looked up or computed once, and
-       the two corners of each (di, dj) evaluated side by side in one vector of two doubles: the
-       book's terms, each rounded as the book rounds it, summed in its order. */
-    const int px[2] = {p->perm_x[i], p->perm_x[(i + 1) & 255]},
-              py[2] = {p->perm_y[j], p->perm_y[(j + 1) & 255]}, pz0 = p->perm_z[k],
-              pz1 = p->perm_z[(k + 1) & 255];
-    const double wx[2] = {1 - uu, uu}, wy[2] = {1 - vv, vv}, dx[2] = {u, u - 1}, dy[2] = {v, v - 1};
-    const perlin_d2 wz = {1 - ww, ww}, dz = {w, w - 1};
-    double accum = 0;
-    for (int di = 0; di < 2; di++)
-        for (int dj = 0; dj < 2; dj++) {
-            const int pxy = px[di] ^ py[dj];
-            const vec3 g0 = p->ranvec[pxy ^ pz0], g1 = p->ranvec[pxy ^ pz1];
-            const perlin_d2 gx = {g0.x, g1.x}, gy = {g0.y, g1.y}, gz = {g0.z, g1.z};
-            const double wxy = wx[di] * wy[dj];
-            perlin_d2 t = wxy * wz * (gx * dx[di] + gy * dy[dj] + gz * dz);
-            accum += t[0];
-            accum += t[1];
-        }
-    return accum;
+    return cell_sum(p, perlin_cell(fx), perlin_cell(fy), perlin_cell(fz), q.x - fx, q.y - fy, q.z - fz);
 }
 
 double perlin_noise(const struct perlin *p, vec3 q)
@@ -80,10 +98,35 @@ double perlin_noise(const struct perlin *p, vec3 q)
     return noise(p, q);
 }
 
+/* Whether every octave's cell and offset follow exactly from the first's: x - floor(x) is exact
+   for x >= 0 (x itself below 1, else a multiple of x's ulp >= 2^-52 below 1) and for x <= -1
+   (likewise), not in (-1, 0), where 1 - |x| may round; 2^32 keeps 2^depth floor(x) far inside
+   an int64 for the octaves that matter and rules out non-finite x. */
+static int octaves_exact(double x)
+{
+    return (x >= 0 || x <= -1) && fabs(x) < 0x1.0p32;
+}
+
 double perlin_turb(const struct perlin *p, vec3 q, int depth)
 {
     double accum = 0, weight = 1;
-    for (int i = 0; i < depth; i++) {
+    if (depth > 0 && depth <= 20 && octaves_exact(q.x) && octaves_exact(q.y) && octaves_exact(q.z)) {
+        /* One floor per axis: at twice the point, the cell is 2 floor(x) + b and the offset
+           2 u - b, b = (u >= 1/2), both exact (2 u - 1 in [0, 1) by Sterbenz), so each octave
+           gets the very cell and offset the book's floor of 2^o x gives. */
+        double fx = floor(q.x), fy = floor(q.y), fz = floor(q.z);
+        double u = q.x - fx, v = q.y - fy, w = q.z - fz;
+        int i = (int)((int64_t)fx & 255), j = (int)((int64_t)fy & 255), k = (int)((int64_t)fz & 255);
+        for (int o = 0; o < depth; o++) {
+            accum += weight * cell_sum(p, i, j, k, u, v, w);
+            weight *= 0.5;
+            const int bi = u >= 0.5, bj = v >= 0.5, bk = w >= 0.5;
+            i = (2 * i + bi) & 255, j = (2 * j + bj) & 255, k = (2 * k + bk) & 255;
+            u = 2 * u - bi, v = 2 * v - bj, w = 2 * w - bk;
+        }
+        return fabs(accum);
+    }
+    for (int o = 0; o < depth; o++) {
         accum += weight * noise(p, q);
         weight *= 0.5;
         q = v3_scale(q, 2);

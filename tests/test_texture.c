@@ -25,6 +25,44 @@ static double book_noise(const struct perlin *p, vec3 q)
     return accum;
 }
 
+/* The book's turbulence: depth octaves of book_noise at 2^o q, weights 2^-o. */
+static double book_turb(const struct perlin *p, vec3 q, int depth)
+{
+    double accum = 0, weight = 1;
+    for (int o = 0; o < depth; o++, weight *= 0.5)
+        accum += weight * book_noise(p, v3_scale(q, (double)(1 << o)));
+    return fabs(accum);
+}
+
+/* perlin_turb derives every octave's cell from the first's: check it bit for bit against the
+   book where that is delicate: coordinates on halves and quarters of a cell (an octave's offset
+   exactly 1/2), tiny negatives (1 - |x| rounds), -1 and -0, large ones, every depth to 10. */
+static void test_perlin_octaves(void)
+{
+    static struct perlin a;
+    perlin_init(&a, 3);
+    const double xs[] = {0, -0.0, 0.5, 0.25, 0.75, 1.5, -0.5, -1, -1.5, -2.25, 1e-300, -1e-300, -0x1.0p-60,
+                         -0.3, 0.3, 255.5, 256, -256.125, 1e6 + 0.5, -1e6 - 0.375, 0x1.0p31 + 0.5, 0x1.0p33,
+                         -0x1.0p33, 0.9999999999999999, -0.9999999999999999, 127.03125};
+    const int n = (int)(sizeof xs / sizeof xs[0]);
+    int as_book = 1;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            for (int depth = 0; depth <= 10; depth++) {
+                vec3 q = v3(xs[i], xs[j], xs[(i + j + depth) % n]);
+                as_book &= perlin_turb(&a, q, depth) == book_turb(&a, q, depth);
+            }
+    struct rng g;
+    rng_seed(&g, 5, 5);
+    for (int i = 0; i < 20000; i++) { /* multiples of 2^-6 in [-8, 8): halves at every octave */
+        vec3 q = v3(((int)rng_below(&g, 1024) - 512) / 64.0, ((int)rng_below(&g, 1024) - 512) / 64.0,
+                    ((int)rng_below(&g, 1024) - 512) / 64.0);
+        as_book &= perlin_turb(&a, q, 7) == book_turb(&a, q, 7);
+    }
+    CHECK(as_book);
+    CHECK(perlin_turb(&a, v3(NAN, 1, 2), 7) == 0 && perlin_turb(&a, v3(1, INFINITY, 2), 7) == 0);
+}
+
 static void test_perlin(void)
 {
     static struct perlin a, b, c;
@@ -163,6 +201,7 @@ int main(void)
 {
     test_checker_sign();
     test_perlin();
+    test_perlin_octaves();
     test_textures();
     test_sphere_uv();
     return check_report("test_texture");
