@@ -30,45 +30,53 @@ void perlin_init(struct perlin *p, uint64_t seed)
     permute(p->perm_x, &r);
     permute(p->perm_y, &r);
     permute(p->perm_z, &r);
+    for (int i = 0; i <= PERLIN_N; i++) {
+        const int n = i & (PERLIN_N - 1);
+        p->grad[n][0] = p->ranvec[n].x, p->grad[n][1] = p->ranvec[n].y, p->grad[n][2] = p->ranvec[n].z;
+        p->grad[n][3] = 0;
+        p->off_x[i] = (unsigned)p->perm_x[n] * (unsigned)sizeof p->grad[0];
+        p->off_y[i] = (unsigned)p->perm_y[n] * (unsigned)sizeof p->grad[0];
+        p->off_z[i] = (unsigned)p->perm_z[n] * (unsigned)sizeof p->grad[0];
+    }
 }
 
 /* Two doubles in one vector register (a GCC/Clang extension, as bvh.c's float lanes). */
 typedef double perlin_d2 __attribute__((vector_size(16)));
 
-static int perlin_cell(double f)
+static unsigned perlin_cell(double f)
 {
     if (fabs(f) < 0x1.0p62)
-        return (int)((int64_t)f & (PERLIN_N - 1));
-    return (int)fmod(f, PERLIN_N);
+        return (unsigned)((int64_t)f & (PERLIN_N - 1));
+    return (unsigned)fabs(fmod(f, PERLIN_N)); /* 0: such f are multiples of 1024 */
 }
 
 /* The two corners (dk = 0, 1) of one (di, dj) of a cell side by side in one vector of two
    doubles: weight wxy wz times the gradient's dot with the corner's offset, each rounded as the
    book rounds it. */
-static inline perlin_d2 corner_pair(const struct perlin *p, int pxy, int pz0, int pz1, double wxy, perlin_d2 wz,
-                                    double dx, double dy, perlin_d2 dz)
+static inline perlin_d2 corner_pair(const struct perlin *p, unsigned pxy, unsigned pz0, unsigned pz1, double wxy,
+                                    perlin_d2 wz, double dx, double dy, perlin_d2 dz)
 {
-    const vec3 g0 = p->ranvec[pxy ^ pz0], g1 = p->ranvec[pxy ^ pz1];
-    const perlin_d2 gx = {g0.x, g1.x}, gy = {g0.y, g1.y}, gz = {g0.z, g1.z};
+    const double *g0 = (const double *)((const char *)p->grad + (pxy ^ pz0)),
+                 *g1 = (const double *)((const char *)p->grad + (pxy ^ pz1));
+    const perlin_d2 gx = {g0[0], g1[0]}, gy = {g0[1], g1[1]}, gz = {g0[2], g1[2]};
     return wxy * wz * (gx * dx + gy * dy + gz * dz);
 }
 
 /* The eight corners' sum of the cell whose permutation indices are (i, j, k) (already reduced
    to the table) at offsets (u, v, w) within it: the book's terms summed in its order, the
    corners' entries, weights and offsets looked up or computed once, the four (di, dj) written
-   out (no loop, no arrays on the stack). */
-static inline __attribute__((always_inline)) double cell_sum(const struct perlin *p, int i, int j, int k,
-                                                              double u, double v, double w)
+   out (no loop, no arrays on the stack). The book's sum starts from +0; this one from the first
+   term, which differs only where every partial sum is zero, and then only in the zero's sign. */
+static inline __attribute__((always_inline)) double cell_sum(const struct perlin *p, unsigned i, unsigned j,
+                                                              unsigned k, double u, double v, double w)
 {
     double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
-    const int px0 = p->perm_x[i], px1 = p->perm_x[(i + 1) & 255], py0 = p->perm_y[j],
-              py1 = p->perm_y[(j + 1) & 255], pz0 = p->perm_z[k], pz1 = p->perm_z[(k + 1) & 255];
+    const unsigned px0 = p->off_x[i], px1 = p->off_x[i + 1], py0 = p->off_y[j], py1 = p->off_y[j + 1],
+                   pz0 = p->off_z[k], pz1 = p->off_z[k + 1];
     const double wx0 = 1 - uu, wy0 = 1 - vv, dx1 = u - 1, dy1 = v - 1;
     const perlin_d2 wz = {1 - ww, ww}, dz = {w, w - 1};
-    perlin_d2 t;
-    double accum = 0;
-    t = corner_pair(p, px0 ^ py0, pz0, pz1, wx0 * wy0, wz, u, v, dz);
-    accum += t[0];
+    perlin_d2 t = corner_pair(p, px0 ^ py0, pz0, pz1, wx0 * wy0, wz, u, v, dz);
+    double accum = t[0];
     accum += t[1];
     t = corner_pair(p, px0 ^ py1, pz0, pz1, wx0 * vv, wz, u, dy1, dz);
     accum += t[0];
@@ -90,7 +98,8 @@ static double noise(const struct perlin *p, vec3 q)
     double fx = floor(q.x), fy = floor(q.y), fz = floor(q.z);
     /* The table repeats at 256, so only the cell index modulo 256 matters: the low bits of an
        integer conversion where it is exact, fmod (slower) beyond. */
-    return cell_sum(p, perlin_cell(fx), perlin_cell(fy), perlin_cell(fz), q.x - fx, q.y - fy, q.z - fz);
+    /* 0 + s: the book's +0 where cell_sum's zero came out -0 (+0 + s is s for any other s) */
+    return 0.0 + cell_sum(p, perlin_cell(fx), perlin_cell(fy), perlin_cell(fz), q.x - fx, q.y - fy, q.z - fz);
 }
 
 double perlin_noise(const struct perlin *p, vec3 q)
@@ -113,14 +122,16 @@ double perlin_turb(const struct perlin *p, vec3 q, int depth)
     if (depth > 0 && depth <= 20 && octaves_exact(q.x) && octaves_exact(q.y) && octaves_exact(q.z)) {
         /* One floor per axis: at twice the point, the cell is 2 floor(x) + b and the offset
            2 u - b, b = (u >= 1/2), both exact (2 u - 1 in [0, 1) by Sterbenz), so each octave
-           gets the very cell and offset the book's floor of 2^o x gives. */
+           gets the very cell and offset the book's floor of 2^o x gives. An octave's noise may
+           differ from the book's in the sign of a zero (cell_sum), which fabs does not see. */
         double fx = floor(q.x), fy = floor(q.y), fz = floor(q.z);
         double u = q.x - fx, v = q.y - fy, w = q.z - fz;
-        int i = (int)((int64_t)fx & 255), j = (int)((int64_t)fy & 255), k = (int)((int64_t)fz & 255);
+        unsigned i = (unsigned)((int64_t)fx & 255), j = (unsigned)((int64_t)fy & 255),
+                 k = (unsigned)((int64_t)fz & 255);
         for (int o = 0; o < depth; o++) {
             accum += weight * cell_sum(p, i, j, k, u, v, w);
             weight *= 0.5;
-            const int bi = u >= 0.5, bj = v >= 0.5, bk = w >= 0.5;
+            const unsigned bi = u >= 0.5, bj = v >= 0.5, bk = w >= 0.5;
             i = (2 * i + bi) & 255, j = (2 * j + bj) & 255, k = (2 * k + bk) & 255;
             u = 2 * u - bi, v = 2 * v - bj, w = 2 * w - bk;
         }

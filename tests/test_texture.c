@@ -61,6 +61,17 @@ static void test_perlin_octaves(void)
     }
     CHECK(as_book);
     CHECK(perlin_turb(&a, v3(NAN, 1, 2), 7) == 0 && perlin_turb(&a, v3(1, INFINITY, 2), 7) == 0);
+    /* At lattice points and on cell faces every term is a zero of some sign: the book's sum
+       starts from +0, so its noise is never -0, and perlin_noise must not be either. */
+    int plus_zero = 1, zeros = 0;
+    for (int x = -12; x < 12; x++)
+        for (int y = -12; y < 12; y++)
+            for (int z = -12; z < 12; z++) {
+                double nz = perlin_noise(&a, v3(x, y, z)), b = book_noise(&a, v3(x, y, z));
+                plus_zero &= nz == 0 && !signbit(nz) && !signbit(b);
+                zeros++;
+            }
+    CHECK(plus_zero && zeros == 24 * 24 * 24);
 }
 
 static void test_perlin(void)
