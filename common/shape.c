@@ -192,7 +192,8 @@ static inline void box_slab(double o, double d, double lo, double hi, int axis, 
    is -sign(d) along the face's axis with its zeros signed as set_face signs them (+0 entering,
    -0 leaving: onb_from_w reads the sign of z), then rotated to world space as shape_hit rotates
    other shapes'. */
-static int hit_box(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
+static __attribute__((noinline)) int hit_box(const struct prim *p, const ray *r, double t_min, double t_max,
+                                             struct hit *h)
 {
     vec3 o = r->orig, d = r->dir;
     if (p->has_xform) {
@@ -272,6 +273,14 @@ static int hit_cylinder(const struct prim *p, const ray *r, double t_min, double
     h->p = ray_at(r, best);
     set_face(h, r, outward);
     return 1;
+}
+
+/* A sphere whose centre moves linearly with the ray's time (RTOW "The Next Week", ch. 2). */
+static __attribute__((noinline)) int hit_moving_sphere(const struct prim *p, const ray *r, double t_min,
+                                                       double t_max, struct hit *h)
+{
+    return hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, r->time), p->g.msphere.radius, r, t_min,
+                      t_max, h);
 }
 
 /* Moller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection". */
@@ -356,8 +365,6 @@ static int hit_medium(const struct prim *p, const ray *r, double t_min, double t
 static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *r, double t_min, double t_max,
                                                struct hit *h)
 {
-    if (p->type == PRIM_BOX) /* moves the ray to object space itself */
-        return hit_box(p, r, t_min, t_max, h);
     ray local;
     const ray *q = r;
     if (p->has_xform) {
@@ -370,8 +377,7 @@ static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *
         got = hit_sphere(p->g.sphere.center, p->g.sphere.radius, q, t_min, t_max, h);
         break;
     case PRIM_MOVING_SPHERE:
-        got = hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, q->time), p->g.msphere.radius, q,
-                         t_min, t_max, h);
+        got = hit_moving_sphere(p, q, t_min, t_max, h);
         break;
     case PRIM_RECT:
         got = hit_rect(p, q, t_min, t_max, h);
@@ -400,11 +406,15 @@ static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *
 
 int shape_hit(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
+    if (p->type == PRIM_BOX) /* moves the ray to object space itself */
+        return hit_box(p, r, t_min, t_max, h);
     if (!p->has_xform) {
         if (p->type == PRIM_DISK)
             return hit_disk(p, r, t_min, t_max, h);
         if (p->type == PRIM_TRIANGLE)
             return hit_triangle(p, r, t_min, t_max, h);
+        if (p->type == PRIM_MOVING_SPHERE)
+            return hit_moving_sphere(p, r, t_min, t_max, h);
     }
     return hit_other(p, r, t_min, t_max, h);
 }
