@@ -329,7 +329,8 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             continue;
         }
         default: { /* MAT_ISOTROPIC */
-            vec3 albedo = surface_albedo(sc, m, &h);
+            /* a plain medium's albedo without the call (media are seldom textured) */
+            vec3 albedo = m->texture < 0 ? m->albedo : surface_albedo(sc, m, &h);
             const double phase = 1 / (4 * PI);
             double pdf = phase;
             if (mix) {

@@ -309,6 +309,56 @@ static void test_integrator(void)
     scene_free(sc);
 }
 
+/* A pixel's value in a scene of one medium sphere (density 0.3, radius 3) around the camera under
+   a background of 1: its isotropic material has albedo `albedo` and, when textured, a checker
+   whose squares are both `tex`. */
+static float medium_pixel(vec3 albedo, int textured, vec3 tex)
+{
+    struct scene *sc = scene_new();
+    sc->background = v3(1, 1, 1);
+    struct texture t = {.type = TEX_CHECKER, .odd = tex, .even = tex, .scale = 1};
+    int ti = scene_add_texture(sc, &t);
+    struct material m = {.type = MAT_ISOTROPIC, .albedo = albedo, .texture = textured ? ti : -1};
+    scene_add_material(sc, &m);
+    struct prim p = {.type = PRIM_MEDIUM, .material = 0};
+    p.g.medium.center = v3(0, 0, 0);
+    p.g.medium.radius = 3;
+    p.g.medium.neg_inv_density = -1 / 0.3;
+    scene_add_prim(sc, &p);
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    struct camera cam;
+    struct camera_desc d = {v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60, 0, 1, 0, 0};
+    camera_init(&cam, &d, 1, &e);
+    struct sampler *pix = sampler_new(SAMPLER_RANDOM, 50, 0, 0, &e);
+    struct render_settings rs = {4, 4, 10, 1, 0};
+    struct render_ctx *ctx = pix ? render_ctx_new(sc, &cam, &rs, pix, NULL, &e) : NULL;
+    float rgb[3] = {-1, -1, -1};
+    if (ctx) {
+        struct render_stats st;
+        render_stats_init(&st);
+        render_pixel(ctx, 1, 2, rgb, &st);
+        CHECK(st.rays > st.samples); /* the paths scatter in the medium */
+    }
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    scene_free(sc);
+    return rgb[0];
+}
+
+/* The isotropic branch takes a medium's albedo from its texture when it has one, else from the
+   material: the same paths (the texture does not draw random numbers), so a plain albedo of 0.5
+   and a texture of 0.5 over an ignored albedo of 1 give the same pixel, and a texture of 1 the
+   brighter one of a plain albedo of 1. */
+static void test_medium_albedo(void)
+{
+    const vec3 half = v3(0.5, 0.5, 0.5), one = v3(1, 1, 1);
+    float plain = medium_pixel(half, 0, one), textured = medium_pixel(one, 1, half);
+    float white = medium_pixel(one, 0, half), white_tex = medium_pixel(half, 1, one);
+    CHECK(plain > 0 && plain < 0.9f && plain == textured);
+    CHECK(white > plain && white == white_tex);
+}
+
 int main(void)
 {
     test_rng();
@@ -317,5 +367,6 @@ int main(void)
     test_shapes();
     test_bvh();
     test_integrator();
+    test_medium_albedo();
     return check_report("test_render");
 }
