@@ -94,6 +94,7 @@ struct prim {
             vec3 center; /* boundary sphere */
             double radius;
             double neg_inv_density;
+            uint64_t hash_key; /* derived: the medium's part of the free-flight hash */
         } medium;
     } g;
 };

@@ -49,6 +49,8 @@ void shape_prepare(struct prim *p)
         p->g.rect.ball_r2 = (da * da + db * db) * (0.25 * (1 + 1e-9));
         p->g.rect.ball_r2_out = p->g.rect.ball_r2 * (1 + 1e-6);
     }
+    if (p->type == PRIM_MEDIUM)
+        p->g.medium.hash_key = medium_hash_key(p);
     if (p->type == PRIM_DISK) {
         p->g.disk.r2 = p->g.disk.radius * p->g.disk.radius;
         p->g.disk.r2_out = p->g.disk.r2 * (1 + 1e-6);

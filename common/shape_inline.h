@@ -118,11 +118,16 @@ static inline uint64_t ray_hash_inline(const ray *r)
             hash_word(r->time, 0x2545f4914f6cdd1dULL));
 }
 
+/* The medium's two words of the hash (shape_prepare keeps it in the prim). */
+static inline uint64_t medium_hash_key(const struct prim *p)
+{
+    return hash_word(p->g.medium.radius, 0x5851f42d4c957f2dULL) +
+           hash_word(p->g.medium.neg_inv_density, 0xda942042e4dd58b5ULL);
+}
+
 static inline double medium_uniform(uint64_t ray_hash, const struct prim *p)
 {
-    uint64_t h = ray_hash + (hash_word(p->g.medium.radius, 0x5851f42d4c957f2dULL) +
-                             hash_word(p->g.medium.neg_inv_density, 0xda942042e4dd58b5ULL));
-    h = rng_mix64(h);
+    uint64_t h = rng_mix64(ray_hash + p->g.medium.hash_key);
     return (double)((h >> 11) + 1) * 0x1.0p-53;
 }
 

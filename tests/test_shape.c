@@ -180,6 +180,7 @@ static void test_medium(void)
     m.g.medium.center = v3(0, 0, 0);
     m.g.medium.radius = 1;
     m.g.medium.neg_inv_density = -1 / 0.5;
+    shape_prepare(&m);
     struct rng g;
     rng_seed(&g, 5, 5);
     struct hit h;
@@ -232,6 +233,20 @@ static void test_medium(void)
     CHECK(tried > 500);
     for (int w = 0; w < 7; w++)
         CHECK(related[w] < tried / 20);
+    /* The flight's uniform: the ray's words and the medium's radius and density (the key
+       shape_prepare derives), each times its odd constant, summed, then SplitMix64's finaliser. */
+    uint64_t rad_bits, nid_bits;
+    memcpy(&rad_bits, &m.g.medium.radius, sizeof rad_bits);
+    memcpy(&nid_bits, &m.g.medium.neg_inv_density, sizeof nid_bits);
+    const uint64_t key = rad_bits * 0x5851f42d4c957f2dULL + nid_bits * 0xda942042e4dd58b5ULL;
+    int as_defined = 1;
+    for (int i = 0; i < 100; i++) {
+        ray b = {v3(rng_uniform(&g), rng_uniform(&g), 3), v3(rng_uniform(&g), 0.1, -1), rng_uniform(&g)};
+        struct medium_flight f;
+        shape_medium_flight(&m, &b, shape_ray_hash(&b), &f);
+        as_defined &= f.u == (double)((rng_mix64(shape_ray_hash(&b) + key) >> 11) + 1) * 0x1.0p-53;
+    }
+    CHECK(as_defined);
 }
 
 /* Light sampling of p from o: every sampled direction hits p with a positive pdf, the mean of
