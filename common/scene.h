@@ -94,7 +94,8 @@ struct prim {
             vec3 center; /* boundary sphere */
             double radius;
             double neg_inv_density;
-            uint64_t hash_key; /* derived: the medium's part of the free-flight hash */
+            uint64_t hash_key;   /* derived: the medium's part of the free-flight hash */
+            double mean_free_lo; /* derived: -neg_inv_density (1 - 1e-9), flight bounds' margin in */
         } medium;
     } g;
 };

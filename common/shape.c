@@ -49,8 +49,10 @@ void shape_prepare(struct prim *p)
         p->g.rect.ball_r2 = (da * da + db * db) * (0.25 * (1 + 1e-9));
         p->g.rect.ball_r2_out = p->g.rect.ball_r2 * (1 + 1e-6);
     }
-    if (p->type == PRIM_MEDIUM)
+    if (p->type == PRIM_MEDIUM) {
         p->g.medium.hash_key = medium_hash_key(p);
+        p->g.medium.mean_free_lo = -p->g.medium.neg_inv_density * (1 - 1e-9);
+    }
     if (p->type == PRIM_DISK) {
         p->g.disk.r2 = p->g.disk.radius * p->g.disk.radius;
         p->g.disk.r2_out = p->g.disk.r2 * (1 + 1e-6);
@@ -325,13 +327,13 @@ int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_fli
                      double t_max, struct hit *h)
 {
     double len = f->len, u = f->u, neg_inv_density = p->g.medium.neg_inv_density;
-    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin above
-       rounding), the ray passes through without the log, as most do in thin fog. The span
-       inside is at most (t_max - t_min) |dir| (rounding is monotone, so this test turns down
-       no ray the span's own would keep), and that first test spares most rays the boundary's
-       roots; past it, the same test on the span itself. */
-    double flight_lo = (1 - u) * -neg_inv_density;
-    if (flight_lo > (t_max - t_min) * len * (1 + 1e-9))
+    /* -log(u) >= 1 - u: when even that bound puts the flight past the span (a margin of 1e-9,
+       far above rounding, folded into mean_free_lo), the ray passes through without the log,
+       as most do in thin fog. The span inside is at most (t_max - t_min) |dir| (rounding is
+       monotone, so this test turns down no ray the span's own would keep), and that first test
+       spares most rays the boundary's roots; past it, the same test on the span itself. */
+    double flight_lo = (1 - u) * p->g.medium.mean_free_lo;
+    if (flight_lo > (t_max - t_min) * len)
         return 0;
     double t0, t1;
     if (!sphere_roots(p->g.medium.center, p->g.medium.radius, r, &t0, &t1))
@@ -340,7 +342,7 @@ int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_fli
     if (!(enter < leave))
         return 0;
     double span = (leave - enter) * len;
-    if (flight_lo > span * (1 + 1e-9))
+    if (flight_lo > span)
         return 0;
     double dist = neg_inv_density * log(u);
     if (dist > span)

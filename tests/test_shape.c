@@ -249,6 +249,57 @@ static void test_medium(void)
     CHECK(as_defined);
 }
 
+/* The book's constant medium with this medium's flight: both roots, the span inside (t_min,
+   t_max), the flight by the log, no bounds; shape_medium_hit must give the same answer and t. */
+static int book_medium(const struct prim *p, const ray *r, double t_min, double t_max, double *t)
+{
+    struct medium_flight f;
+    shape_medium_flight(p, r, shape_ray_hash(r), &f);
+    vec3 oc = v3_sub(r->orig, p->g.medium.center);
+    double a = v3_len2(r->dir), half_b = v3_dot(oc, r->dir);
+    double disc = half_b * half_b - a * (v3_len2(oc) - p->g.medium.radius * p->g.medium.radius);
+    if (disc < 0 || a == 0)
+        return 0;
+    double sq = sqrt(disc), inv_a = 1 / a, t0 = (-half_b - sq) * inv_a, t1 = (-half_b + sq) * inv_a;
+    double enter = t0 > t_min ? t0 : t_min, leave = t1 < t_max ? t1 : t_max;
+    if (!(enter < leave))
+        return 0;
+    double span = (leave - enter) * f.len, dist = p->g.medium.neg_inv_density * log(f.u);
+    if (dist > span)
+        return 0;
+    *t = enter + dist / f.len;
+    return 1;
+}
+
+/* shape_medium_hit's early outs change no answer: random rays from inside and outside media of
+   thin to dense fog, long and short directions, spans cut by t_max or not. */
+static void test_medium_as_book(void)
+{
+    struct rng g;
+    rng_seed(&g, 8, 8);
+    int same = 1, hits = 0, misses = 0;
+    for (int i = 0; i < 200000; i++) {
+        struct prim m = {.type = PRIM_MEDIUM};
+        m.g.medium.center = v3(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+        m.g.medium.radius = 0.5 + 3 * rng_uniform(&g);
+        m.g.medium.neg_inv_density = -exp(6 * rng_uniform(&g) - 3) * m.g.medium.radius;
+        shape_prepare(&m);
+        double scale = exp(4 * rng_uniform(&g) - 2);
+        ray r = {v3(rng_uniform(&g) * 8 - 4, rng_uniform(&g) * 8 - 4, rng_uniform(&g) * 8 - 4),
+                 v3_scale(v3(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5), scale),
+                 rng_uniform(&g)};
+        double t_min = i % 5 == 0 ? 0 : HIT_EPS, t_max = i % 3 ? DBL_MAX : 10 * rng_uniform(&g) / scale;
+        double tb = 0;
+        struct hit h;
+        int b = book_medium(&m, &r, t_min, t_max, &tb), s = shape_hit(&m, &r, t_min, t_max, &h);
+        same &= b == s && (!b || h.t == tb);
+        hits += b;
+        misses += !b;
+    }
+    CHECK(same);
+    CHECK(hits > 10000 && misses > 100000);
+}
+
 /* Light sampling of p from o: every sampled direction hits p with a positive pdf, the mean of
    1/pdf over sampled directions is the solid angle p covers, the pdf integrates to 1 over the
    sphere of directions, and the sampled directions are spread as the pdf says: the mean of
@@ -625,6 +676,7 @@ int main(void)
     test_triangle();
     test_moving_sphere();
     test_medium();
+    test_medium_as_book();
     test_light_pdfs();
     test_disk_pdf_pretest();
     test_rect_pdf_pretest();
