@@ -323,6 +323,17 @@ void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, 
     medium_flight_inline(p, r, ray_hash, f);
 }
 
+/* A medium's hit at t (out of line: shape_medium_hit then keeps no ray component live across
+   its call of log, and spills four values around it instead of ten). */
+static __attribute__((noinline)) int medium_scatter(const ray *r, double t, struct hit *h)
+{
+    h->t = t;
+    h->p = ray_at(r, t);
+    h->n = v3(1, 0, 0); /* arbitrary: the isotropic phase function ignores it */
+    h->front = 1;
+    return 1;
+}
+
 int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,
                      double t_max, struct hit *h)
 {
@@ -347,11 +358,7 @@ int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_fli
     double dist = neg_inv_density * log(u);
     if (dist > span)
         return 0;
-    h->t = enter + dist / len;
-    h->p = ray_at(r, h->t);
-    h->n = v3(1, 0, 0); /* arbitrary: the isotropic phase function ignores it */
-    h->front = 1;
-    return 1;
+    return medium_scatter(r, enter + dist / len, h);
 }
 
 /* Constant-density medium inside a sphere (RTOW "The Next Week", ch. 9): the ray scatters at
