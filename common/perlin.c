@@ -32,11 +32,11 @@ void perlin_init(struct perlin *p, uint64_t seed)
     permute(p->perm_z, &r);
     for (int i = 0; i <= PERLIN_N; i++) {
         const int n = i & (PERLIN_N - 1);
-        p->grad[n][0] = p->ranvec[n].x, p->grad[n][1] = p->ranvec[n].y, p->grad[n][2] = p->ranvec[n].z;
-        p->grad[n][3] = 0;
-        p->off_x[i] = (unsigned)p->perm_x[n] * (unsigned)sizeof p->grad[0];
-        p->off_y[i] = (unsigned)p->perm_y[n] * (unsigned)sizeof p->grad[0];
-        p->off_z[i] = (unsigned)p->perm_z[n] * (unsigned)sizeof p->grad[0];
+        double *g = p->grad + 4 * n;
+        g[0] = p->ranvec[n].x, g[1] = p->ranvec[n].y, g[2] = p->ranvec[n].z, g[3] = 0;
+        p->off_x[i] = 4 * (unsigned)p->perm_x[n];
+        p->off_y[i] = 4 * (unsigned)p->perm_y[n];
+        p->off_z[i] = 4 * (unsigned)p->perm_z[n];
     }
 }
 
@@ -53,11 +53,10 @@ static unsigned perlin_cell(double f)
 /* The two corners (dk = 0, 1) of one (di, dj) of a cell side by side in one vector of two
    doubles: weight wxy wz times the gradient's dot with the corner's offset, each rounded as the
    book rounds it. */
-static inline perlin_d2 corner_pair(const struct perlin *p, unsigned pxy, unsigned pz0, unsigned pz1, double wxy,
-                                    perlin_d2 wz, double dx, double dy, perlin_d2 dz)
+static inline perlin_d2 corner_pair(const struct perlin *p, unsigned pxy, unsigned pz0, unsigned pz1,
+                                    double wxy, perlin_d2 wz, double dx, double dy, perlin_d2 dz)
 {
-    const double *g0 = (const double *)((const char *)p->grad + (pxy ^ pz0)),
-                 *g1 = (const double *)((const char *)p->grad + (pxy ^ pz1));
+    const double *g0 = p->grad + (pxy ^ pz0), *g1 = p->grad + (pxy ^ pz1);
     const perlin_d2 gx = {g0[0], g1[0]}, gy = {g0[1], g1[1]}, gz = {g0[2], g1[2]};
     return wxy * wz * (gx * dx + gy * dy + gz * dz);
 }
@@ -68,7 +67,7 @@ static inline perlin_d2 corner_pair(const struct perlin *p, unsigned pxy, unsign
    out (no loop, no arrays on the stack). The book's sum starts from +0; this one from the first
    term, which differs only where every partial sum is zero, and then only in the zero's sign. */
 static inline __attribute__((always_inline)) double cell_sum(const struct perlin *p, unsigned i, unsigned j,
-                                                              unsigned k, double u, double v, double w)
+                                                             unsigned k, double u, double v, double w)
 {
     double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
     const unsigned px0 = p->off_x[i], px1 = p->off_x[i + 1], py0 = p->off_y[j], py1 = p->off_y[j + 1],

@@ -9,13 +9,13 @@
 #define PERLIN_N 256
 
 /* A gradient table: unit vectors and three permutations, all from one seed; the same again as
-   the noise reads them: the vectors padded to 32 bytes and the permutations as byte offsets into
-   that copy (32 perm: XORed together they are the offset of the XORed index), each with its first
-   entry repeated at the end (a cell's far corner i + 1 without a wrap). */
+   the noise reads them: the vectors padded to four doubles in one flat array and the
+   permutations as offsets into it (4 perm: XORed together they are the offset of the XORed
+   index), each with its first entry repeated at the end (a cell's far corner without a wrap). */
 struct perlin {
     vec3 ranvec[PERLIN_N];
     int perm_x[PERLIN_N], perm_y[PERLIN_N], perm_z[PERLIN_N];
-    double grad[PERLIN_N][4];
+    double grad[4 * PERLIN_N];
     unsigned off_x[PERLIN_N + 1], off_y[PERLIN_N + 1], off_z[PERLIN_N + 1];
 };
 

@@ -283,8 +283,8 @@ static int hit_cylinder(const struct prim *p, const ray *r, double t_min, double
 static __attribute__((noinline)) int hit_moving_sphere(const struct prim *p, const ray *r, double t_min,
                                                        double t_max, struct hit *h)
 {
-    return hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, r->time), p->g.msphere.radius, r, t_min,
-                      t_max, h);
+    return hit_sphere(v3_fma(p->g.msphere.center0, p->g.msphere.velocity, r->time), p->g.msphere.radius, r,
+                      t_min, t_max, h);
 }
 
 /* Moller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection". */
