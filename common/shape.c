@@ -3,6 +3,7 @@
    allows (shape_bake); for the rest the ray is moved into object space first. */
 #include "shape.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "shape_inline.h"
@@ -179,12 +180,21 @@ static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_m
 /* One slab of the box test: the distances to its near and far planes (picked by the direction's
    sign), kept when they narrow [t_near, t_far]. A zero direction component (inv = +-inf) gives
    +-inf, or NaN with the origin on a plane, which the strict comparisons ignore: the ray then
-   misses unless its origin lies within the slab, as when that axis is skipped. */
-static inline void box_slab(double o, double d, double lo, double hi, int axis, double *t_near,
+   misses unless its origin lies within the slab, as when that axis is skipped. The planes are
+   picked by the sign bit of d, which is that of inv = 1 / d (a NaN d gives a NaN inv and NaN
+   distances either way): GCC still branches on it, but the branch no longer waits for the
+   division, so a misprediction (about one slab in six in callgrind's model) resolves sooner. */
+static inline void box_slab(const struct prim *p, int axis, double o, double d, double *t_near,
                             int *near_axis, double *t_far, int *far_axis)
 {
+    const long lo_at = (long)offsetof(struct prim, g.box.lo) + axis * (long)sizeof(double),
+               hi_at = (long)offsetof(struct prim, g.box.hi) + axis * (long)sizeof(double);
+    const int neg = signbit(d) != 0;
+    double near, far;
+    memcpy(&near, (const char *)p + (neg ? hi_at : lo_at), sizeof near);
+    memcpy(&far, (const char *)p + (neg ? lo_at : hi_at), sizeof far);
     double inv = 1.0 / d;
-    double tn = ((inv < 0 ? hi : lo) - o) * inv, tf = ((inv < 0 ? lo : hi) - o) * inv;
+    double tn = (near - o) * inv, tf = (far - o) * inv;
     if (tn > *t_near)
         *t_near = tn, *near_axis = axis;
     if (tf < *t_far)
@@ -206,12 +216,11 @@ static __attribute__((noinline)) int hit_box(const struct prim *p, const ray *r,
         o = v3(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
         d = v3(c * r->dir.x - s * r->dir.z, r->dir.y, s * r->dir.x + c * r->dir.z);
     }
-    const vec3 lo = p->g.box.lo, hi = p->g.box.hi;
     double t_near = -INFINITY, t_far = INFINITY;
     int near_axis = 0, far_axis = 0;
-    box_slab(o.x, d.x, lo.x, hi.x, 0, &t_near, &near_axis, &t_far, &far_axis);
-    box_slab(o.y, d.y, lo.y, hi.y, 1, &t_near, &near_axis, &t_far, &far_axis);
-    box_slab(o.z, d.z, lo.z, hi.z, 2, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(p, 0, o.x, d.x, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(p, 1, o.y, d.y, &t_near, &near_axis, &t_far, &far_axis);
+    box_slab(p, 2, o.z, d.z, &t_near, &near_axis, &t_far, &far_axis);
     if (t_near > t_far)
         return 0;
     int entry = t_near > t_min && t_near < t_max;
