@@ -174,13 +174,23 @@ static inline int quad_test(const struct fray *fr, const char *m, bvh_f4 t_lo, f
     return f4_mask(near <= far * f4_splat(grow));
 }
 
-/* Entry distances into node n's child boxes, into tn[]; returns one bit per child hit. */
+/* Entry distances into node n's child boxes (its quads in use, one to four), into tn[]; returns
+   one bit per child hit. Unrolled: the branches on the count go the same way for every ray of a
+   scene, and a loop cost more (its counter, shifts by a variable count, the planes' addresses
+   set up in registers before it). */
 static inline int node_test(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
                             float *tn, float grow)
 {
-    int hit = 0;
-    for (int q = 0; q < quads; q++)
-        hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q, grow) << (4 * q);
+    const size_t q = sizeof(bvh_f4);
+    int hit = quad_test(fr, n, t_lo, t_hi, tn, grow);
+    if (quads > 1) {
+        hit |= quad_test(fr, n + q, t_lo, t_hi, tn + 4, grow) << 4;
+        if (quads > 2) {
+            hit |= quad_test(fr, n + 2 * q, t_lo, t_hi, tn + 8, grow) << 8;
+            if (quads > 3)
+                hit |= quad_test(fr, n + 3 * q, t_lo, t_hi, tn + 12, grow) << 12;
+        }
+    }
     return hit;
 }
 
