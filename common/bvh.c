@@ -125,8 +125,9 @@ static const struct {
    shifted by |o| 2^-22 + 2^-100 to either side in float, which leaves both shifted origins on
    their side of o after rounding (the 2^-100 for a tiny o, whose float may be a denormal). The
    inverse direction is rcpps's estimate, within 1.5 2^-12 of 1 / d, instead of a division,
-   whose latency headed the chain of every ray's slab tests; its sign bits are d's and pick the
-   planes from a table. */
+   whose latency headed the chain of every ray's slab tests (CPUs differ in its bits, not in
+   that bound, and only the culling sees them: images do not); its sign bits are d's and pick
+   the planes from a table. */
 static inline void fray_init_sse(struct fray *fr, const ray *r)
 {
     __m128d oxy = _mm_loadu_pd(&r->orig.x), oz = _mm_load_sd(&r->orig.z);
