@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "bvh.h"
+#include "shape_light_inline.h"
 #include "texture.h"
 
 /* A light's current point set within the pixel, taken in a random order, then redrawn: the
@@ -252,7 +253,8 @@ static double reflectance(double cosine, double ref_idx)
 /* A unit direction toward one of the scene's lights, chosen uniformly; disk and rect lights
    take their next point from the light sampler, a sphere its cone sample from rng. *light is
    the chosen light's index and *pdf its density for the direction. */
-static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int *light, double *pdf)
+static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, vec3 o,
+                                                                  struct rng *rng, int *light, double *pdf)
 {
     const struct scene *sc = ctx->sc;
     int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
@@ -266,8 +268,7 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int
         s.y = rng_uniform32(rng);
     }
     *light = i;
-    return turned ? shape_light_sample_turn(lp, o, s, turn.x, turn.y, pdf)
-                  : shape_light_sample(lp, o, s, pdf);
+    return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
 /* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
@@ -304,7 +305,7 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
                 return L;
             double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
             double pdf =
-                mix ? 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
+                mix ? 0.5 * lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
             if (!(pdf > 0))
                 return L;
             beta = v3_mul(beta, v3_scale(albedo, cosine_pdf / pdf));
