@@ -29,6 +29,7 @@ struct render_ctx {
     struct render_settings rs;
     struct sampler *pixel, *light;
     enum sampler_kind light_kind;
+    struct sampler_grid light_grid; /* the light sampler's grid (uniform, jitter, random) */
     struct pt2 *pixel_pts;
     struct light_points *lp; /* one per scene light */
     uint32_t *identity;      /* 0, 1, 2, ...: a fresh shuffle's start, copied */
@@ -94,8 +95,10 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
     if (!ctx->pixel_pts || !ctx->lp)
         goto fail;
-    if (light)
+    if (light) {
         ctx->light_kind = sampler_kind_of(light);
+        ctx->light_grid = sampler_grid_of(light);
+    }
     for (int i = 0; i < sc->n_lights; i++) {
         ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
         if (rs->light_sampling_off || !ctx->lp[i].uses_points)
@@ -146,7 +149,8 @@ static inline __attribute__((always_inline)) void prefetch_next_points(const str
     }
 }
 
-/* Next point of light i's current set, drawing a fresh set when it runs out. A pixel uses
+/* Light i's points: next_light_point takes the next point of its current set, and
+   refill_light_points draws a fresh set when it runs out (out of line: once per set). A pixel uses
    only part of a set, in order; a grid or Poisson set in generation order would then cover
    only part of the light (a grid's first rows, a Poisson blob around its first point) and
    bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle done lazily,
@@ -155,31 +159,38 @@ static inline __attribute__((always_inline)) void prefetch_next_points(const str
    a cell's point when it is taken; a random set's points are independent, so any order of them
    is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
    point when it is taken. Only a fresh Poisson set is drawn whole. */
-static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *turn, int *turned)
+static __attribute__((noinline)) void refill_light_points(struct render_ctx *ctx, struct light_points *lp)
+{
+    const enum sampler_kind kind = ctx->light_kind;
+    double t0 = now_s();
+    if (lp->cells) {
+        lp->n = kind == SAMPLER_POISSON
+                    ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
+                    : sampler_cells(ctx->light);
+        if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
+            memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
+        if (kind == SAMPLER_POISSON) {
+            v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
+        }
+    } else {
+        lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
+    }
+    lp->next = 0;
+    ctx->st->sampler_s += now_s() - t0;
+    ctx->st->light_sets++;
+}
+
+/* Inline with the grid kinds' cell point (sampler_grid_point): a light point costs no call. */
+static inline __attribute__((always_inline)) struct pt2 next_light_point(struct render_ctx *ctx, int i,
+                                                                         struct pt2 *turn, int *turned)
 {
     struct light_points *lp = &ctx->lp[i];
     const enum sampler_kind kind = ctx->light_kind;
-    if (lp->next >= lp->n) {
-        double t0 = now_s();
-        if (lp->cells) {
-            lp->n = kind == SAMPLER_POISSON
-                        ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
-                        : sampler_cells(ctx->light);
-            if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
-                memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
-            if (kind == SAMPLER_POISSON) {
-                v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
-            }
-        } else {
-            lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
-        }
-        lp->next = 0;
-        ctx->st->sampler_s += now_s() - t0;
-        ctx->st->light_sets++;
-    }
+    if (lp->next >= lp->n)
+        refill_light_points(ctx, lp);
     size_t k = lp->next++;
     if (kind == SAMPLER_RANDOM)
-        return sampler_cell_point(ctx->light, 0, &ctx->light_rng);
+        return sampler_grid_point(&ctx->light_grid, 0, &ctx->light_rng);
     size_t j = k + rng_below(&ctx->light_rng, (uint32_t)(lp->n - k));
     if (lp->cells) {
         uint32_t cell = lp->cells[j];
@@ -193,7 +204,7 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *tu
             prefetch_next_points(ctx);
             return sampler_shift(lp->pool[cell].p, lp->ox, lp->oy);
         }
-        return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
+        return sampler_grid_point(&ctx->light_grid, cell, &ctx->light_rng);
     }
     struct pt2 chosen = lp->pts[j];
     lp->pts[j] = lp->pts[k];
