@@ -31,8 +31,9 @@ struct render_ctx {
     enum sampler_kind light_kind;
     struct sampler_grid light_grid; /* the light sampler's grid (uniform, jitter, random) */
     struct pt2 *pixel_pts;
-    struct light_points *lp; /* one per scene light */
-    uint32_t *identity;      /* 0, 1, 2, ...: a fresh shuffle's start, copied */
+    struct light_points *lp;               /* one per scene light */
+    uint32_t *identity;                    /* 0, 1, 2, ...: a fresh shuffle's start, copied */
+    const struct material **prim_material; /* each prim's material: one load after a hit */
     struct rng light_rng;
     struct render_stats *st;
 };
@@ -75,6 +76,7 @@ void render_ctx_free(struct render_ctx *ctx)
         }
     free(ctx->lp);
     free(ctx->identity);
+    free(ctx->prim_material);
     free(ctx->pixel_pts);
     free(ctx);
 }
@@ -93,8 +95,11 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->light = light;
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
-    if (!ctx->pixel_pts || !ctx->lp)
+    ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
+    if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
         goto fail;
+    for (int i = 0; i < sc->n_prims; i++)
+        ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
     if (light) {
         ctx->light_kind = sampler_kind_of(light);
         ctx->light_grid = sampler_grid_of(light);
@@ -298,7 +303,7 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        const struct material *m = &sc->materials[sc->prims[h.prim].material];
+        const struct material *m = ctx->prim_material[h.prim];
         vec3 dir;
         if (m->type == MAT_LAMBERTIAN) {
             vec3 albedo = surface_albedo(sc, m, &h);
