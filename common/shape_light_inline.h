@@ -113,9 +113,10 @@ static inline double sphere_pdf(const struct prim *p, vec3 o, vec3 dir)
     if (d2 <= r2)
         return 1 / (4 * PI); /* o inside: uniform over all directions */
     /* in the cone iff cos(dir, to_c) >= cos_max = sqrt(1 - r2 / d2): squared and multiplied
-       out, no square root or division for the many directions that miss it */
+       out, no square root or division for the many directions that miss it; dc |dc| folds the
+       sign test in (the right side is > 0), one branch instead of a coin flip and another */
     double dc = v3_dot(dir, to_c);
-    if (!(dc > 0 && dc * dc >= (d2 - r2) * v3_len2(dir)))
+    if (!(dc * fabs(dc) >= (d2 - r2) * v3_len2(dir)))
         return 0;
     return 1 / (2 * PI * sphere_one_minus_cos(p, o));
 }
