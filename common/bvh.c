@@ -93,11 +93,76 @@ static inline void fray_init(struct fray *fr, const ray *r)
     fray_axis(fr, 2, r->orig.z, r->dir.z);
 }
 
+/* The far distances' scale factor in fray_init's slab tests (see there). */
+#define BVH_GROW (1.0f + 0x1.0p-20f)
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+
+/* The near and far planes' byte offsets for the direction's sign bits m (bit a: axis a negative),
+   as fray_axis picks them. */
+#define FRAY_LO(a) (offsetof(struct bvh_node, lo) + (size_t)(a)*BVH_WIDTH * sizeof(float))
+#define FRAY_HI(a) (offsetof(struct bvh_node, hi) + (size_t)(a)*BVH_WIDTH * sizeof(float))
+#define FRAY_NEAR(a, m) ((m) >> (a)&1 ? FRAY_HI(a) : FRAY_LO(a))
+#define FRAY_FAR(a, m) ((m) >> (a)&1 ? FRAY_LO(a) : FRAY_HI(a))
+#define FRAY_PLANES(m)                                                                                       \
+    {                                                                                                        \
+        {FRAY_NEAR(0, m), FRAY_NEAR(1, m), FRAY_NEAR(2, m)},                                                 \
+        {                                                                                                    \
+            FRAY_FAR(0, m), FRAY_FAR(1, m), FRAY_FAR(2, m)                                                   \
+        }                                                                                                    \
+    }
+static const struct {
+    size_t near[3], far[3];
+} fray_planes[8] = {FRAY_PLANES(0), FRAY_PLANES(1), FRAY_PLANES(2), FRAY_PLANES(3),
+                    FRAY_PLANES(4), FRAY_PLANES(5), FRAY_PLANES(6), FRAY_PLANES(7)};
+
+/* Lane i of v in all four lanes, for sel = 0x55 i (pshufd: no copy first, as shufps needs). */
+#define f4_lane(v, sel) ((bvh_f4)_mm_shuffle_epi32(_mm_castps_si128(v), (sel)))
+
+/* fray_init for the one-node traversal (the tree keeps fray_init), the three axes at once in
+   float vectors. The origin is rounded to float first (off by at most |o| 2^-24) and then
+   shifted by |o| 2^-22 + 2^-100 to either side in float, which leaves both shifted origins on
+   their side of o after rounding (the 2^-100 for a tiny o, whose float may be a denormal). The
+   inverse direction is rcpps's estimate, within 1.5 2^-12 of 1 / d, instead of a division,
+   whose latency headed the chain of every ray's slab tests (CPUs differ in its bits, not in
+   that bound, and only the culling sees them: images do not); its sign bits are d's and pick
+   the planes from a table. */
+static inline void fray_init_sse(struct fray *fr, const ray *r)
+{
+    __m128d oxy = _mm_loadu_pd(&r->orig.x), oz = _mm_load_sd(&r->orig.z);
+    __m128d dxy = _mm_loadu_pd(&r->dir.x), dz = _mm_load_sd(&r->dir.z);
+    __m128 o = _mm_movelh_ps(_mm_cvtpd_ps(oxy), _mm_cvtpd_ps(oz));
+    __m128 inv = _mm_rcp_ps(_mm_movelh_ps(_mm_cvtpd_ps(dxy), _mm_cvtpd_ps(dz)));
+    static const bvh_f4 sign = {-0.0f, -0.0f, -0.0f, -0.0f}, scale = {0x1.0p-22f, 0x1.0p-22f, 0x1.0p-22f, 0},
+                        tiny = {0x1.0p-100f, 0x1.0p-100f, 0x1.0p-100f, 0};
+    __m128 shift = _mm_add_ps(_mm_mul_ps(_mm_andnot_ps((__m128)sign, o), (__m128)scale), (__m128)tiny);
+    shift = _mm_or_ps(shift, _mm_and_ps((__m128)sign, inv));
+    __m128 o_near = _mm_add_ps(o, shift), o_far = _mm_sub_ps(o, shift);
+    fr->o_near[0] = f4_lane(o_near, 0x00), fr->o_near[1] = f4_lane(o_near, 0x55),
+    fr->o_near[2] = f4_lane(o_near, 0xaa);
+    fr->o_far[0] = f4_lane(o_far, 0x00), fr->o_far[1] = f4_lane(o_far, 0x55),
+    fr->o_far[2] = f4_lane(o_far, 0xaa);
+    fr->inv[0] = f4_lane(inv, 0x00), fr->inv[1] = f4_lane(inv, 0x55), fr->inv[2] = f4_lane(inv, 0xaa);
+    int m = _mm_movemask_ps(inv) & 7;
+    memcpy(fr->near, fray_planes[m].near, sizeof fr->near);
+    memcpy(fr->far, fray_planes[m].far, sizeof fr->far);
+}
+/* A slab's two distances share their axis's rcpps error, but the axes' errors differ: near <=
+   far needs a margin of twice that error and the rounding on top (also on the float bound of
+   t_max). A box's entry distance may then come out up to 2^-11 too far, which only delays the
+   nearest-hit cull of a leaf by as much. */
+#define NODE_GROW (1.0f + 0x1.0p-9f)
+#else
+#define fray_init_sse fray_init
+#define NODE_GROW BVH_GROW
+#endif
+
 /* Entry distances into the four child boxes of quad m (a node's address plus the quad's
    offset), into tn[0..3]; returns one bit per child hit. */
-static inline int quad_test(const struct fray *fr, const char *m, bvh_f4 t_lo, float t_hi, float *tn)
+static inline int quad_test(const struct fray *fr, const char *m, bvh_f4 t_lo, float t_hi, float *tn,
+                            float grow)
 {
-    const bvh_f4 grow = f4_splat(1.0f + 0x1.0p-20f);
     bvh_f4 tn0 = (f4_load(m + fr->near[0]) - fr->o_near[0]) * fr->inv[0];
     bvh_f4 tn1 = (f4_load(m + fr->near[1]) - fr->o_near[1]) * fr->inv[1];
     bvh_f4 tn2 = (f4_load(m + fr->near[2]) - fr->o_near[2]) * fr->inv[2];
@@ -107,16 +172,26 @@ static inline int quad_test(const struct fray *fr, const char *m, bvh_f4 t_lo, f
     bvh_f4 near = f4_max(tn2, f4_max(tn1, f4_max(tn0, t_lo)));
     bvh_f4 far = f4_min(tf2, f4_min(tf1, f4_min(tf0, f4_splat(t_hi))));
     memcpy(tn, &near, sizeof near);
-    return f4_mask(near <= far * grow);
+    return f4_mask(near <= far * f4_splat(grow));
 }
 
-/* Entry distances into node n's child boxes, into tn[]; returns one bit per child hit. */
+/* Entry distances into node n's child boxes (its quads in use, one to four), into tn[]; returns
+   one bit per child hit. Unrolled: the branches on the count go the same way for every ray of a
+   scene, and a loop cost more (its counter, shifts by a variable count, the planes' addresses
+   set up in registers before it). */
 static inline int node_test(const struct fray *fr, const char *n, int quads, bvh_f4 t_lo, float t_hi,
-                            float *tn)
+                            float *tn, float grow)
 {
-    int hit = 0;
-    for (int q = 0; q < quads; q++)
-        hit |= quad_test(fr, n + (size_t)q * sizeof(bvh_f4), t_lo, t_hi, tn + 4 * q) << (4 * q);
+    const size_t q = sizeof(bvh_f4);
+    int hit = quad_test(fr, n, t_lo, t_hi, tn, grow);
+    if (quads > 1) {
+        hit |= quad_test(fr, n + q, t_lo, t_hi, tn + 4, grow) << 4;
+        if (quads > 2) {
+            hit |= quad_test(fr, n + 2 * q, t_lo, t_hi, tn + 8, grow) << 8;
+            if (quads > 3)
+                hit |= quad_test(fr, n + 3 * q, t_lo, t_hi, tn + 12, grow) << 12;
+        }
+    }
     return hit;
 }
 
@@ -124,7 +199,8 @@ static inline int node_test(const struct fray *fr, const char *n, int quads, bvh
    branch (a node's unused lanes are empty boxes, which no ray hits). */
 static inline int node_test8(const struct fray *fr, const char *n, bvh_f4 t_lo, float t_hi, float *tn)
 {
-    return quad_test(fr, n, t_lo, t_hi, tn) | quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4) << 4;
+    return quad_test(fr, n, t_lo, t_hi, tn, BVH_GROW) |
+           quad_test(fr, n + sizeof(bvh_f4), t_lo, t_hi, tn + 4, BVH_GROW) << 4;
 }
 
 /* Media met in the leaves are tested after every surface, against the nearest surface hit:
@@ -150,8 +226,6 @@ struct media_met {
     struct medium_flight flight[BVH_MEDIA];
 };
 
-#define BVH_GROW (1.0f + 0x1.0p-20f)
-
 /* A plain medium met in a leaf: its flight starts now (its latency hides under the traversal);
    finish tests it against the nearest surface. */
 static inline __attribute__((always_inline)) void meet_medium(const struct prim *pr, int p, const ray *r,
@@ -168,10 +242,11 @@ static inline __attribute__((always_inline)) void meet_medium(const struct prim 
 }
 
 /* Prim p's hit h is the nearest so far: the ray and its float bound shrink to it. */
-static inline __attribute__((always_inline)) void take_hit(struct leaf_run *lr, struct hit *h, int p)
+static inline __attribute__((always_inline)) void take_hit(struct leaf_run *lr, struct hit *h, int p,
+                                                           float grow)
 {
     lr->t_max = h->t;
-    lr->t_hi = (float)lr->t_max * BVH_GROW;
+    lr->t_hi = (float)lr->t_max * grow;
     h->prim = p;
     lr->got = 1;
 }
@@ -179,7 +254,8 @@ static inline __attribute__((always_inline)) void take_hit(struct leaf_run *lr, 
 /* Test the prims of node n's leaf lanes m (entry distances tn) against r, as met. */
 static inline __attribute__((always_inline)) void
 test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float *tn, const ray *r,
-            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm, int media_inline)
+            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm, int media_inline,
+            float grow)
 {
     for (; m; m &= m - 1) {
         int c = __builtin_ctz((unsigned)m);
@@ -200,7 +276,7 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             else
                 got_p = shape_hit(pr, r, t_min, lr->t_max, h);
             if (got_p)
-                take_hit(lr, h, p);
+                take_hit(lr, h, p, grow);
             continue;
         }
         for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
@@ -218,7 +294,7 @@ test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float
             else
                 got_p = shape_hit(pr, r, t_min, lr->t_max, h);
             if (got_p)
-                take_hit(lr, h, p);
+                take_hit(lr, h, p, grow);
         }
     }
 }
@@ -243,14 +319,14 @@ static inline __attribute__((always_inline)) int finish(const struct scene *sc, 
 int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
 {
     struct fray fr;
-    fray_init(&fr, r);
+    fray_init_sse(&fr, r);
     const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
-    struct leaf_run lr = {.t_max = t_max, .t_hi = (float)t_max * BVH_GROW};
+    struct leaf_run lr = {.t_max = t_max, .t_hi = (float)t_max * NODE_GROW};
     struct media_met mm;
     const struct bvh_node *n = &sc->nodes[0];
     float tn[BVH_WIDTH];
-    int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn);
-    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm, 0);
+    int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn, NODE_GROW);
+    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm, 0, NODE_GROW);
     return finish(sc, r, t_min, h, &lr, &mm);
 }
 
@@ -274,7 +350,7 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
         float tn[BVH_WIDTH];
         int hit = node_test8(&fr, (const char *)n, t_lo, lr.t_hi, tn);
         /* Leaf children first, as met: their hits shorten the ray for the other children. */
-        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1);
+        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1, BVH_GROW);
         /* Then the nearest interior child next, the others pushed farthest first; one alone (a
            third of final's visits, half have none) goes next without the pushes' bookkeeping. */
         int inner = hit & ~n->leaves;

@@ -263,15 +263,16 @@ static void test_transformed_spheres(void)
 
 /* A scene of at most BVH_WIDTH prims is one node, which bvh_hit tests without its stack:
    spheres, rects, a box, a plain medium (tested after the surfaces) and a transformed one
-   (tested as met), hit from random origins in random directions, agree with a linear scan. */
-static void test_one_node(void)
+   (tested as met), hit from random origins in random directions, agree with a linear scan.
+   With 6 spheres the node has four quads in use; with 0 or 3, three. */
+static void test_one_node(int n_spheres)
 {
     struct scene *sc = scene_new();
     struct material m = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
     scene_add_material(sc, &m);
     struct rng r;
     rng_seed(&r, 6, 6);
-    for (int i = 0; i < 6; i++) {
+    for (int i = 0; i < n_spheres; i++) {
         struct prim p = {.type = PRIM_SPHERE, .material = 0};
         p.g.sphere.center = v3(10 * rng_uniform(&r), 10 * rng_uniform(&r), 10 * rng_uniform(&r));
         p.g.sphere.radius = 0.5 + rng_uniform(&r);
@@ -298,6 +299,7 @@ static void test_one_node(void)
     struct err e;
     CHECK(scene_finish(sc, &e) == 0);
     CHECK(sc->n_prims <= BVH_WIDTH && sc->n_nodes == 1);
+    CHECK(sc->nodes[0].quads == (sc->n_prims + 3) / 4);
     CHECK(kinds_ok(sc));
     int ok = 1, hits = 0, fog = 0;
     for (int k = 0; k < 20000; k++) {
@@ -311,13 +313,63 @@ static void test_one_node(void)
     }
     CHECK(ok);
     /* the plain medium holds every origin; about half the rays scatter in it */
-    CHECK(fog > 5000 && hits - fog > 1500); /* 8192 and 2308 */
+    CHECK(fog > 5000 && hits - fog > (n_spheres == 6 ? 1500 : 500)); /* 8192 and 2308 with 6 */
+    scene_free(sc);
+}
+
+/* A one-node scene far from the world's origin (coordinates near 2^20, where a float's ulp is
+   1/8): rays from a unit or so away toward the corners, edges and faces of each prim's box hit
+   what a linear scan hits. The float slab test's origins are rounded there by far more than the
+   traversal's margin on t, which only the shifted origins cover. */
+static void test_one_node_far(void)
+{
+    struct scene *sc = scene_new();
+    struct material m = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+    scene_add_material(sc, &m);
+    const double c = 1048575.25; /* just below 2^20 */
+    for (int i = 0; i < 6; i++) {
+        struct prim p = {.type = PRIM_RECT, .material = 0, .flip = i & 1};
+        p.g.rect.axis = i % 3;
+        p.g.rect.a0 = c - 1.5 + 0.25 * i, p.g.rect.a1 = p.g.rect.a0 + 1.75;
+        p.g.rect.b0 = c - 1 - 0.125 * i, p.g.rect.b1 = p.g.rect.b0 + 2.5;
+        p.g.rect.k = c + (i < 3 ? -1.25 : 1.5);
+        scene_add_prim(sc, &p);
+    }
+    for (int i = 0; i < 2; i++) {
+        struct prim p = {.type = PRIM_SPHERE, .material = 0};
+        p.g.sphere.center = v3(c + i, c - i, c + 0.5);
+        p.g.sphere.radius = 0.375;
+        scene_add_prim(sc, &p);
+    }
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    CHECK(sc->n_nodes == 1);
+    struct rng r;
+    rng_seed(&r, 9, 9);
+    int ok = 1, hits = 0;
+    for (int k = 0; k < 20000; k++) {
+        vec3 pl, ph;
+        shape_bounds(&sc->prims[k % sc->n_prims], &pl, &ph);
+        vec3 target = box_point(pl, ph, k / sc->n_prims % 27);
+        vec3 o =
+            v3_add(target, v3(4 * rng_uniform(&r) - 2, 4 * rng_uniform(&r) - 2, 4 * rng_uniform(&r) - 2));
+        ray q = {o, v3_sub(target, o), 0};
+        struct hit a, b;
+        int ga = bvh_hit(sc, &q, HIT_EPS, DBL_MAX, &a), gb = linear_hit(sc, &q, &b);
+        hits += ga;
+        ok &= ga == gb && (!ga || (a.t == b.t && a.prim == b.prim));
+    }
+    CHECK(ok);
+    CHECK(hits > 10000);
     scene_free(sc);
 }
 
 int main(void)
 {
-    test_one_node();
+    test_one_node(6);
+    test_one_node(3);
+    test_one_node(0);
+    test_one_node_far();
     test_transformed_spheres();
     test_small();
     test_degenerate();
