@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "bvh.h"
+#include "shape_light_inline.h"
 #include "texture.h"
 
 /* A light's current point set within the pixel, taken in a random order, then redrawn: the
@@ -28,9 +29,11 @@ struct render_ctx {
     struct render_settings rs;
     struct sampler *pixel, *light;
     enum sampler_kind light_kind;
+    struct sampler_grid light_grid; /* the light sampler's grid (uniform, jitter, random) */
     struct pt2 *pixel_pts;
-    struct light_points *lp; /* one per scene light */
-    uint32_t *identity;      /* 0, 1, 2, ...: a fresh shuffle's start, copied */
+    struct light_points *lp;               /* one per scene light */
+    uint32_t *identity;                    /* 0, 1, 2, ...: a fresh shuffle's start, copied */
+    const struct material **prim_material; /* each prim's material: one load after a hit */
     struct rng light_rng;
     struct render_stats *st;
 };
@@ -73,6 +76,7 @@ void render_ctx_free(struct render_ctx *ctx)
         }
     free(ctx->lp);
     free(ctx->identity);
+    free(ctx->prim_material);
     free(ctx->pixel_pts);
     free(ctx);
 }
@@ -91,10 +95,15 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->light = light;
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
-    if (!ctx->pixel_pts || !ctx->lp)
+    ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
+    if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
         goto fail;
-    if (light)
+    for (int i = 0; i < sc->n_prims; i++)
+        ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
+    if (light) {
         ctx->light_kind = sampler_kind_of(light);
+        ctx->light_grid = sampler_grid_of(light);
+    }
     for (int i = 0; i < sc->n_lights; i++) {
         ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
         if (rs->light_sampling_off || !ctx->lp[i].uses_points)
@@ -145,7 +154,8 @@ static inline __attribute__((always_inline)) void prefetch_next_points(const str
     }
 }
 
-/* Next point of light i's current set, drawing a fresh set when it runs out. A pixel uses
+/* Light i's points: next_light_point takes the next point of its current set, and
+   refill_light_points draws a fresh set when it runs out (out of line: once per set). A pixel uses
    only part of a set, in order; a grid or Poisson set in generation order would then cover
    only part of the light (a grid's first rows, a Poisson blob around its first point) and
    bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle done lazily,
@@ -154,31 +164,38 @@ static inline __attribute__((always_inline)) void prefetch_next_points(const str
    a cell's point when it is taken; a random set's points are independent, so any order of them
    is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
    point when it is taken. Only a fresh Poisson set is drawn whole. */
-static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *turn, int *turned)
+static __attribute__((noinline)) void refill_light_points(struct render_ctx *ctx, struct light_points *lp)
+{
+    const enum sampler_kind kind = ctx->light_kind;
+    double t0 = now_s();
+    if (lp->cells) {
+        lp->n = kind == SAMPLER_POISSON
+                    ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
+                    : sampler_cells(ctx->light);
+        if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
+            memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
+        if (kind == SAMPLER_POISSON) {
+            v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
+        }
+    } else {
+        lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
+    }
+    lp->next = 0;
+    ctx->st->sampler_s += now_s() - t0;
+    ctx->st->light_sets++;
+}
+
+/* Inline with the grid kinds' cell point (sampler_grid_point): a light point costs no call. */
+static inline __attribute__((always_inline)) struct pt2 next_light_point(struct render_ctx *ctx, int i,
+                                                                         struct pt2 *turn, int *turned)
 {
     struct light_points *lp = &ctx->lp[i];
     const enum sampler_kind kind = ctx->light_kind;
-    if (lp->next >= lp->n) {
-        double t0 = now_s();
-        if (lp->cells) {
-            lp->n = kind == SAMPLER_POISSON
-                        ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
-                        : sampler_cells(ctx->light);
-            if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
-                memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
-            if (kind == SAMPLER_POISSON) {
-                v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
-            }
-        } else {
-            lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
-        }
-        lp->next = 0;
-        ctx->st->sampler_s += now_s() - t0;
-        ctx->st->light_sets++;
-    }
+    if (lp->next >= lp->n)
+        refill_light_points(ctx, lp);
     size_t k = lp->next++;
     if (kind == SAMPLER_RANDOM)
-        return sampler_cell_point(ctx->light, 0, &ctx->light_rng);
+        return sampler_grid_point(&ctx->light_grid, 0, &ctx->light_rng);
     size_t j = k + rng_below(&ctx->light_rng, (uint32_t)(lp->n - k));
     if (lp->cells) {
         uint32_t cell = lp->cells[j];
@@ -192,7 +209,7 @@ static struct pt2 next_light_point(struct render_ctx *ctx, int i, struct pt2 *tu
             prefetch_next_points(ctx);
             return sampler_shift(lp->pool[cell].p, lp->ox, lp->oy);
         }
-        return sampler_cell_point(ctx->light, cell, &ctx->light_rng);
+        return sampler_grid_point(&ctx->light_grid, cell, &ctx->light_rng);
     }
     struct pt2 chosen = lp->pts[j];
     lp->pts[j] = lp->pts[k];
@@ -224,14 +241,20 @@ static vec3 uniform_sphere_direction(struct rng *r)
     return v3(cos_phi * s, sin_phi * s, z);
 }
 
-static vec3 surface_albedo(const struct scene *sc, const struct material *m, struct hit *h)
+static __attribute__((noinline)) vec3 texture_albedo(const struct scene *sc, const struct material *m,
+                                                     struct hit *h)
 {
-    if (m->texture < 0)
-        return m->albedo;
     const struct texture *t = &sc->textures[m->texture];
     if (texture_needs_uv(t))
         shape_uv(&sc->prims[h->prim], h);
     return texture_value(sc, t, h->u, h->v, h->p);
+}
+
+/* A plain material's albedo inline, a texture's lookup out of line (the call and its frame cost
+   every untextured diffuse bounce ~20 instructions). */
+static inline vec3 surface_albedo(const struct scene *sc, const struct material *m, struct hit *h)
+{
+    return m->texture < 0 ? m->albedo : texture_albedo(sc, m, h);
 }
 
 static double reflectance(double cosine, double ref_idx)
@@ -246,7 +269,8 @@ static double reflectance(double cosine, double ref_idx)
 /* A unit direction toward one of the scene's lights, chosen uniformly; disk and rect lights
    take their next point from the light sampler, a sphere its cone sample from rng. *light is
    the chosen light's index and *pdf its density for the direction. */
-static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int *light, double *pdf)
+static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, vec3 o,
+                                                                  struct rng *rng, int *light, double *pdf)
 {
     const struct scene *sc = ctx->sc;
     int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
@@ -260,8 +284,7 @@ static vec3 light_direction(struct render_ctx *ctx, vec3 o, struct rng *rng, int
         s.y = rng_uniform32(rng);
     }
     *light = i;
-    return turned ? shape_light_sample_turn(lp, o, s, turn.x, turn.y, pdf)
-                  : shape_light_sample(lp, o, s, pdf);
+    return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
 /* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
@@ -280,7 +303,7 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        const struct material *m = &sc->materials[sc->prims[h.prim].material];
+        const struct material *m = ctx->prim_material[h.prim];
         vec3 dir;
         if (m->type == MAT_LAMBERTIAN) {
             vec3 albedo = surface_albedo(sc, m, &h);
@@ -298,7 +321,7 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
                 return L;
             double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
             double pdf =
-                mix ? 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
+                mix ? 0.5 * lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
             if (!(pdf > 0))
                 return L;
             beta = v3_mul(beta, v3_scale(albedo, cosine_pdf / pdf));
@@ -329,8 +352,7 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             continue;
         }
         default: { /* MAT_ISOTROPIC */
-            /* a plain medium's albedo without the call (media are seldom textured) */
-            vec3 albedo = m->texture < 0 ? m->albedo : surface_albedo(sc, m, &h);
+            vec3 albedo = surface_albedo(sc, m, &h);
             const double phase = 1 / (4 * PI);
             double pdf = phase;
             if (mix) {

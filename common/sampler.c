@@ -16,7 +16,7 @@ struct sampler {
     enum sampler_kind kind;
     double threshold;
     int grid_n;       /* uniform/jitter/random: n x n cells */
-    uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (cell_row) */
+    uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (sampler_grid_point) */
     size_t capacity;  /* sampler_capacity(kind, threshold) */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
@@ -107,25 +107,15 @@ void sampler_free(struct sampler *s)
     free(s);
 }
 
-/* cell_coord's rounding repair: v moved to the last double inside cell i of n (and below 1).
-   Out of line: the first quotient is almost always inside already, and a call in the loops
+/* Out of line: the first quotient is almost always inside already, and a call in the loops
    made GCC keep n and the points' values on the stack. */
-static __attribute__((noinline)) double cell_repair(double v, int i, int n)
+__attribute__((noinline)) double sampler_cell_repair(double v, int i, int n)
 {
     while (v >= 1.0 || (int)(v * n) > i)
         v = nextafter(v, 0.0);
     while ((int)(v * n) < i)
         v = nextafter(v, 1.0);
     return v;
-}
-
-/* (i + u) / n kept strictly inside cell i of n (and so below 1) despite rounding. */
-static inline double cell_coord(int i, double u, int n)
-{
-    double v = (i + u) / n;
-    if (v < 1.0 && (int)(v * n) == i)
-        return v;
-    return cell_repair(v, i, n);
 }
 
 enum sampler_kind sampler_kind_of(const struct sampler *s)
@@ -138,31 +128,15 @@ uint32_t sampler_cells(const struct sampler *s)
     return s->kind == SAMPLER_POISSON ? 0 : (uint32_t)s->capacity;
 }
 
-/* cell / n without a division: cell < 2^22 (SAMPLER_MAX_POINTS) and n < 2^20, so cell * n_recip
-   / 2^42 exceeds cell / n by less than 2^-20 < 1 / n, never reaching the next integer. */
-static inline int cell_row(const struct sampler *s, uint32_t cell)
+struct sampler_grid sampler_grid_of(const struct sampler *s)
 {
-    return (int)((cell * s->n_recip) >> 42);
+    return (struct sampler_grid){s->kind, s->grid_n, s->n_recip};
 }
 
 struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng)
 {
-    const int n = s->grid_n;
-    const int j = cell_row(s, cell), i = (int)cell - j * n;
-    switch (s->kind) {
-    case SAMPLER_UNIFORM:
-        return (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
-    case SAMPLER_JITTER: {
-        double u, v;
-        rng_uniform_pair(rng, &u, &v);
-        return (struct pt2){cell_coord(i, u, n), cell_coord(j, v, n)};
-    }
-    default: {
-        double u, v;
-        rng_uniform_pair(rng, &u, &v);
-        return (struct pt2){u, v};
-    }
-    }
+    const struct sampler_grid g = sampler_grid_of(s);
+    return sampler_grid_point(&g, cell, rng);
 }
 
 size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
@@ -181,7 +155,7 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
             for (int i = 0; i < n; i++) {
                 double u, v;
                 rng_uniform_pair(&r, &u, &v);
-                out[count++] = (struct pt2){cell_coord(i, u, n), cell_coord(j, v, n)};
+                out[count++] = (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
             }
         *rng = r;
         return count;

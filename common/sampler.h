@@ -53,6 +53,48 @@ enum sampler_kind sampler_kind_of(const struct sampler *s);
 uint32_t sampler_cells(const struct sampler *s);
 struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng);
 
+/* What sampler_cell_point needs of a uniform, jitter or random sampler, for a caller that makes
+   cell points inline (sampler_grid_point: no call, no lookups through the sampler): its kind,
+   its n x n grid, and 2^42 / n + 1, which gives a cell's row as a multiply and shift. */
+struct sampler_grid {
+    enum sampler_kind kind;
+    int n;
+    uint64_t n_recip;
+};
+struct sampler_grid sampler_grid_of(const struct sampler *s);
+
+/* (i + u) / n's rounding repair, out of line: v moved to the last double inside cell i of n. */
+double sampler_cell_repair(double v, int i, int n);
+
+/* (i + u) / n kept strictly inside cell i of n (and so below 1) despite rounding. */
+static inline double sampler_cell_coord(int i, double u, int n)
+{
+    double v = (i + u) / n;
+    if (v < 1.0 && (int)(v * n) == i)
+        return v;
+    return sampler_cell_repair(v, i, n);
+}
+
+/* sampler_cell_point for g = sampler_grid_of(s): the same point, the same draws. cell / n without
+   a division: cell < 2^22 (SAMPLER_MAX_POINTS) and n < 2^20, so cell * n_recip / 2^42 exceeds
+   cell / n by less than 2^-20 < 1 / n, never reaching the next integer. */
+static inline struct pt2 sampler_grid_point(const struct sampler_grid *g, uint32_t cell, struct rng *rng)
+{
+    const int n = g->n;
+    const int j = (int)((cell * g->n_recip) >> 42), i = (int)cell - j * n;
+    double u, v;
+    switch (g->kind) {
+    case SAMPLER_UNIFORM:
+        return (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
+    case SAMPLER_JITTER:
+        rng_uniform_pair(rng, &u, &v);
+        return (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
+    default:
+        rng_uniform_pair(rng, &u, &v);
+        return (struct pt2){u, v};
+    }
+}
+
 /* Shift p by o modulo 1, staying in [0, 1) whatever the rounding of the sum (inline: the
    pooled light points take one per point). */
 static inline double sampler_shift_unit(double p, double o)

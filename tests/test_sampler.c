@@ -575,6 +575,23 @@ static void test_cells(void)
     }
     CHECK(same);
     CHECK(inside);
+    /* sampler_grid_of + sampler_grid_point (the render's inline light points): the kind, the
+       side, and each cell's point and draws as sampler_cell_point's, bit for bit */
+    struct sampler *kinds[3] = {u, j, r};
+    const int sides[3] = {10, 33, 20};
+    int grid_same = 1;
+    for (int t = 0; t < 3; t++) {
+        struct sampler_grid g = sampler_grid_of(kinds[t]);
+        grid_same &= g.kind == sampler_kind_of(kinds[t]) && g.n == sides[t];
+        for (uint32_t c = 0; c < sampler_cells(kinds[t]); c++) {
+            struct rng a = rng, b = rng;
+            struct pt2 q = sampler_grid_point(&g, c, &a), w = sampler_cell_point(kinds[t], c, &b);
+            grid_same &= memcmp(&q, &w, sizeof q) == 0 && a.state == b.state;
+            grid_same &= (int)(q.x * g.n) == (int)(c % (uint32_t)g.n) || t == 2;
+            rng_u32(&rng);
+        }
+    }
+    CHECK(grid_same);
     CHECK(in_square);
     /* a pooled set taken point by point is sampler_draw's set, from the same rng state */
     struct sampler *pool = sampler_new(SAMPLER_POISSON, 5, 8, 3, &e);

@@ -577,6 +577,61 @@ static void test_rect_pdf_pretest(void)
     CHECK(hits > n / 5);
 }
 
+/* A sphere light's pdf as it was before its cone test folded the sign into dc |dc|: dc > 0 and
+   dc^2 >= (d2 - r2) |dir|^2, then the cone's density. */
+static double sphere_pdf_two_tests(const struct prim *p, vec3 o, vec3 dir)
+{
+    vec3 to_c = v3_sub(p->g.sphere.center, o);
+    double d2 = v3_len2(to_c), r2 = p->g.sphere.radius * p->g.sphere.radius;
+    if (d2 <= r2)
+        return 1 / (4 * PI);
+    double dc = v3_dot(dir, to_c);
+    if (!(dc > 0 && dc * dc >= (d2 - r2) * v3_len2(dir)))
+        return 0;
+    double s2 = r2 / d2;
+    return 1 / (2 * PI * (s2 / (1 + sqrt(1 - s2))));
+}
+
+/* The sphere's one-branch cone test gives the two tests' pdf bit for bit: directions at the
+   cone's rim (a few ulps to 1e-6 off a tangent), square to the axis (dc ~ 0, both signs), away
+   from the sphere, from near, far and inside, over scales of direction. */
+static void test_sphere_pdf_cone(void)
+{
+    struct rng g;
+    rng_seed(&g, 9, 9);
+    int same = 1, hits = 0, misses_behind = 0, n = 300000;
+    struct prim b = {.type = PRIM_SPHERE};
+    b.g.sphere.center = v3(190, 90, 190), b.g.sphere.radius = 90;
+    shape_prepare(&b);
+    for (int i = 0; i < n; i++) {
+        double scale = (i % 4 == 0 ? 95 : i % 4 == 1 ? 300 : i % 4 == 2 ? 3000 : 1e6) * rng_uniform(&g);
+        vec3 o =
+            v3_add(b.g.sphere.center, v3(scale * (2 * rng_uniform(&g) - 1), scale * (2 * rng_uniform(&g) - 1),
+                                         scale * (2 * rng_uniform(&g) - 1)));
+        vec3 to_c = v3_sub(b.g.sphere.center, o), w = v3_unit(to_c);
+        vec3 side = v3_unit(v3_cross(w, fabs(w.x) < 0.5 ? v3(1, 0, 0) : v3(0, 1, 0)));
+        double d = v3_len(to_c), sin_max = d > 90 ? 90 / d : 1,
+               cos_max = sqrt(fmax(0, 1 - sin_max * sin_max));
+        vec3 dir;
+        if (i % 3 == 0) { /* at the rim */
+            double nudge = 1 + ldexp(2 * rng_uniform(&g) - 1, -(int)(20 + 33 * rng_uniform(&g)));
+            dir = v3_add(v3_scale(w, cos_max * nudge), v3_scale(side, sin_max));
+        } else if (i % 3 == 1) { /* square to the axis, either side */
+            dir = v3_add(v3_scale(w, ldexp(2 * rng_uniform(&g) - 1, -(int)(60 * rng_uniform(&g)))), side);
+        } else {
+            dir = v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
+        }
+        dir = v3_scale(dir, ldexp(1, (int)(10 * rng_uniform(&g)) - 5));
+        double want = sphere_pdf_two_tests(&b, o, dir), got = shape_light_pdf(&b, o, dir, 0);
+        hits += want > 0;
+        misses_behind += want == 0 && v3_dot(dir, to_c) <= 0;
+        same &= memcmp(&want, &got, sizeof want) == 0;
+    }
+    CHECK(same);
+    CHECK(hits > n / 10);
+    CHECK(misses_behind > n / 10);
+}
+
 /* shape_lights_pdf is the mean of the lights' own pdfs, summed in index order with the known
    light's given pdf in its place, bit for bit, whether or not a direction enters a disk's cone
    (the disks' exact tests run out of the loop from the first disk the direction may hit);
@@ -738,6 +793,7 @@ int main(void)
     test_light_pdfs();
     test_disk_pdf_pretest();
     test_rect_pdf_pretest();
+    test_sphere_pdf_cone();
     test_lights_pdf_sum();
     test_lights_pdf_mean();
     test_bounds();
