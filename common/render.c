@@ -296,7 +296,8 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
     const struct scene *sc = ctx->sc;
     const int mix = sc->n_lights > 0 && !ctx->rs.light_sampling_off;
     vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
-    for (int depth = 0; depth < ctx->rs.max_depth; depth++) {
+    const int last = ctx->rs.max_depth - 1;
+    for (int depth = 0; depth <= last; depth++) {
         struct hit h;
         ++*rays;
         if (!bvh_hit(sc, r, HIT_EPS, DBL_MAX, &h)) {
@@ -304,6 +305,10 @@ static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *ray
             break;
         }
         const struct material *m = ctx->prim_material[h.prim];
+        /* The last segment: only a light's emission counts, a scattered ray would never be
+           traced (its direction, light point and pdfs are not drawn at all). */
+        if (depth == last && m->type != MAT_LIGHT)
+            return L;
         vec3 dir;
         if (m->type == MAT_LAMBERTIAN) {
             vec3 albedo = surface_albedo(sc, m, &h);

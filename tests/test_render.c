@@ -359,6 +359,54 @@ static void test_medium_albedo(void)
     CHECK(white > plain && white == white_tex);
 }
 
+/* A diffuse floor (xz rect at y = 0) under a rect light facing down at y = 2, seen from above:
+   one pixel's stats at max_depth depth. */
+static struct render_stats floor_pixel(int depth)
+{
+    struct scene *sc = scene_new();
+    struct material white = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+    struct material lamp = {.type = MAT_LIGHT, .emit = v3(4, 4, 4), .texture = -1};
+    scene_add_material(sc, &white);
+    scene_add_material(sc, &lamp);
+    struct prim fl = {.type = PRIM_RECT, .material = 0}, li = {.type = PRIM_RECT, .material = 1, .flip = 1};
+    fl.g.rect.axis = li.g.rect.axis = 1;
+    fl.g.rect.a0 = fl.g.rect.b0 = -50, fl.g.rect.a1 = fl.g.rect.b1 = 50, fl.g.rect.k = 0;
+    li.g.rect.a0 = li.g.rect.b0 = -0.5, li.g.rect.a1 = li.g.rect.b1 = 0.5, li.g.rect.k = 2;
+    scene_add_prim(sc, &fl);
+    scene_add_light(sc, scene_add_prim(sc, &li));
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    struct camera cam;
+    struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0}; /* at the floor */
+    camera_init(&cam, &d, 1, &e);
+    struct sampler *pix = sampler_new(SAMPLER_JITTER, 25, 0, 0, &e);
+    struct sampler *lsm = sampler_new(SAMPLER_JITTER, 50, 0, 0, &e);
+    struct render_settings rs = {4, 4, depth, 1, 0};
+    struct render_ctx *ctx = pix && lsm ? render_ctx_new(sc, &cam, &rs, pix, lsm, &e) : NULL;
+    CHECK(ctx != NULL);
+    struct render_stats st;
+    render_stats_init(&st);
+    if (ctx) {
+        float rgb[3];
+        render_pixel(ctx, 1, 1, rgb, &st);
+    }
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    sampler_free(lsm);
+    scene_free(sc);
+    return st;
+}
+
+/* A path's last segment only looks for emission: a surface hit there scatters nothing, so no
+   light point is drawn for it; one segment more and the floor's bounces draw light sets. */
+static void test_last_segment(void)
+{
+    struct render_stats one = floor_pixel(1), two = floor_pixel(2);
+    CHECK(one.samples == 16 && one.rays == 16);
+    CHECK(one.light_sets == 0);
+    CHECK(two.rays > 16 && two.light_sets > 0);
+}
+
 int main(void)
 {
     test_rng();
@@ -368,5 +416,6 @@ int main(void)
     test_bvh();
     test_integrator();
     test_medium_albedo();
+    test_last_segment();
     return check_report("test_render");
 }
