@@ -309,6 +309,34 @@ static void test_integrator(void)
     scene_free(sc);
 }
 
+/* Pixel (1, 2) of a 4x4 render of sc (finished here, then freed) through camera d: jittered
+   pixel points at threshold pixel_t, a jittered light sampler at light_t (0: none), paths of at
+   most depth segments. Its value goes to rgb, its counters are returned. */
+static struct render_stats pixel_of(struct scene *sc, const struct camera_desc *d, double pixel_t,
+                                    double light_t, int depth, float rgb[3])
+{
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    struct camera cam;
+    camera_init(&cam, d, 1, &e);
+    struct sampler *pix = sampler_new(SAMPLER_JITTER, pixel_t, 0, 0, &e);
+    struct sampler *lsm = light_t > 0 ? sampler_new(SAMPLER_JITTER, light_t, 0, 0, &e) : NULL;
+    struct render_settings rs = {4, 4, depth, 1, 0};
+    struct render_ctx *ctx =
+        pix && (lsm || light_t <= 0) ? render_ctx_new(sc, &cam, &rs, pix, lsm, &e) : NULL;
+    CHECK(ctx != NULL);
+    struct render_stats st;
+    render_stats_init(&st);
+    rgb[0] = rgb[1] = rgb[2] = -1;
+    if (ctx)
+        render_pixel(ctx, 1, 2, rgb, &st);
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    sampler_free(lsm);
+    scene_free(sc);
+    return st;
+}
+
 /* A pixel's value in a scene of one medium sphere (density 0.3, radius 3) around the camera under
    a background of 1: its isotropic material has albedo `albedo` and, when textured, a checker
    whose squares are both `tex`. */
@@ -325,24 +353,10 @@ static float medium_pixel(vec3 albedo, int textured, vec3 tex)
     p.g.medium.radius = 3;
     p.g.medium.neg_inv_density = -1 / 0.3;
     scene_add_prim(sc, &p);
-    struct err e;
-    CHECK(scene_finish(sc, &e) == 0);
-    struct camera cam;
     struct camera_desc d = {v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60, 0, 1, 0, 0};
-    camera_init(&cam, &d, 1, &e);
-    struct sampler *pix = sampler_new(SAMPLER_RANDOM, 50, 0, 0, &e);
-    struct render_settings rs = {4, 4, 10, 1, 0};
-    struct render_ctx *ctx = pix ? render_ctx_new(sc, &cam, &rs, pix, NULL, &e) : NULL;
-    float rgb[3] = {-1, -1, -1};
-    if (ctx) {
-        struct render_stats st;
-        render_stats_init(&st);
-        render_pixel(ctx, 1, 2, rgb, &st);
-        CHECK(st.rays > st.samples); /* the paths scatter in the medium */
-    }
-    render_ctx_free(ctx);
-    sampler_free(pix);
-    scene_free(sc);
+    float rgb[3];
+    struct render_stats st = pixel_of(sc, &d, 50, 0, 10, rgb);
+    CHECK(st.rays > st.samples); /* the paths scatter in the medium */
     return rgb[0];
 }
 
@@ -374,27 +388,9 @@ static struct render_stats floor_pixel(int depth)
     li.g.rect.a0 = li.g.rect.b0 = -0.5, li.g.rect.a1 = li.g.rect.b1 = 0.5, li.g.rect.k = 2;
     scene_add_prim(sc, &fl);
     scene_add_light(sc, scene_add_prim(sc, &li));
-    struct err e;
-    CHECK(scene_finish(sc, &e) == 0);
-    struct camera cam;
     struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0}; /* at the floor */
-    camera_init(&cam, &d, 1, &e);
-    struct sampler *pix = sampler_new(SAMPLER_JITTER, 25, 0, 0, &e);
-    struct sampler *lsm = sampler_new(SAMPLER_JITTER, 50, 0, 0, &e);
-    struct render_settings rs = {4, 4, depth, 1, 0};
-    struct render_ctx *ctx = pix && lsm ? render_ctx_new(sc, &cam, &rs, pix, lsm, &e) : NULL;
-    CHECK(ctx != NULL);
-    struct render_stats st;
-    render_stats_init(&st);
-    if (ctx) {
-        float rgb[3];
-        render_pixel(ctx, 1, 1, rgb, &st);
-    }
-    render_ctx_free(ctx);
-    sampler_free(pix);
-    sampler_free(lsm);
-    scene_free(sc);
-    return st;
+    float rgb[3];
+    return pixel_of(sc, &d, 25, 50, depth, rgb);
 }
 
 /* A path's last segment only looks for emission: a surface hit there scatters nothing, so no
