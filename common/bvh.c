@@ -335,67 +335,80 @@ struct bvh_entry {
     float t; /* entry distance into the node's box */
 };
 
+/* The traversal's state between node visits: the float ray, its box bounds, the leaf tests'
+   results and the stack of pushed nodes. */
+struct tree_walk {
+    struct fray fr;
+    bvh_f4 t_lo;
+    struct leaf_run lr;
+    struct media_met mm;
+    int sp;
+    struct bvh_entry stack[BVH_STACK];
+};
+
+/* Visit node `node`: its leaves, then the next node (its nearest interior child in reach, the
+   others pushed farthest first, or the nearest pushed node still in reach); -1 when none is
+   left. */
+static inline __attribute__((always_inline)) int visit(const struct scene *sc, const ray *r, double t_min,
+                                                       struct hit *h, struct tree_walk *w, int node)
+{
+    const struct bvh_node *n = &sc->nodes[node];
+    float tn[BVH_WIDTH];
+    int hit = node_test8(&w->fr, (const char *)n, w->t_lo, w->lr.t_hi, tn);
+    /* Leaf children first, as met: their hits shorten the ray for the other children. */
+    test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &w->lr, &w->mm, 1, BVH_GROW);
+    /* Then the nearest interior child next, the others pushed farthest first; one alone (a
+       third of final's visits, half have none) goes next without the pushes' bookkeeping. */
+    int inner = hit & ~n->leaves;
+    if (__builtin_expect((inner & (inner - 1)) != 0, 0)) {
+        int next = -1;
+        float next_t = 0;
+        int base = w->sp;
+        for (; inner; inner &= inner - 1) {
+            int c = __builtin_ctz((unsigned)inner);
+            if (tn[c] > w->lr.t_hi)
+                continue;
+            struct bvh_entry k = {n->child[c], tn[c]};
+            if (next < 0) {
+                next = k.node, next_t = k.t;
+                continue;
+            }
+            if (k.t < next_t) { /* k is the new nearest: push the old one */
+                struct bvh_entry old = {next, next_t};
+                next = k.node, next_t = k.t;
+                k = old;
+            }
+            int j = w->sp++;
+            while (j > base && w->stack[j - 1].t < k.t) {
+                w->stack[j] = w->stack[j - 1];
+                j--;
+            }
+            w->stack[j] = k;
+        }
+        if (next >= 0)
+            return next;
+    } else if (inner) {
+        int c = __builtin_ctz((unsigned)inner);
+        if (tn[c] <= w->lr.t_hi)
+            return n->child[c];
+    }
+    /* Pop the nearest pushed node still in reach of the nearest hit so far. */
+    while (w->sp > 0 && w->stack[w->sp - 1].t > w->lr.t_hi)
+        w->sp--;
+    if (w->sp == 0)
+        return -1;
+    return w->stack[--w->sp].node;
+}
+
 int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    struct fray fr;
-    fray_init(&fr, r);
-    const bvh_f4 t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
+    struct tree_walk w;
+    fray_init(&w.fr, r);
+    w.t_lo = f4_splat((float)t_min * (1.0f - 0x1.0p-20f));
     /* t_hi above t_max: rounding never cuts a hit off */
-    struct leaf_run lr = {.t_max = t_max, .t_hi = (float)t_max * BVH_GROW};
-    struct media_met mm;
-    struct bvh_entry stack[BVH_STACK];
-    int sp = 0, node = 0;
-    for (;;) {
-        const struct bvh_node *n = &sc->nodes[node];
-        float tn[BVH_WIDTH];
-        int hit = node_test8(&fr, (const char *)n, t_lo, lr.t_hi, tn);
-        /* Leaf children first, as met: their hits shorten the ray for the other children. */
-        test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &lr, &mm, 1, BVH_GROW);
-        /* Then the nearest interior child next, the others pushed farthest first; one alone (a
-           third of final's visits, half have none) goes next without the pushes' bookkeeping. */
-        int inner = hit & ~n->leaves;
-        if (__builtin_expect((inner & (inner - 1)) != 0, 0)) {
-            int next = -1;
-            float next_t = 0;
-            int base = sp;
-            for (; inner; inner &= inner - 1) {
-                int c = __builtin_ctz((unsigned)inner);
-                if (tn[c] > lr.t_hi)
-                    continue;
-                struct bvh_entry k = {n->child[c], tn[c]};
-                if (next < 0) {
-                    next = k.node, next_t = k.t;
-                    continue;
-                }
-                if (k.t < next_t) { /* k is the new nearest: push the old one */
-                    struct bvh_entry old = {next, next_t};
-                    next = k.node, next_t = k.t;
-                    k = old;
-                }
-                int j = sp++;
-                while (j > base && stack[j - 1].t < k.t) {
-                    stack[j] = stack[j - 1];
-                    j--;
-                }
-                stack[j] = k;
-            }
-            if (next >= 0) {
-                node = next;
-                continue;
-            }
-        } else if (inner) {
-            int c = __builtin_ctz((unsigned)inner);
-            if (tn[c] <= lr.t_hi) {
-                node = n->child[c];
-                continue;
-            }
-        }
-        /* Pop the nearest pushed node still in reach of the nearest hit so far. */
-        while (sp > 0 && stack[sp - 1].t > lr.t_hi)
-            sp--;
-        if (sp == 0)
-            break;
-        node = stack[--sp].node;
-    }
-    return finish(sc, r, t_min, h, &lr, &mm);
+    w.lr = (struct leaf_run){.t_max = t_max, .t_hi = (float)t_max * BVH_GROW};
+    w.sp = 0;
+    for (int node = 0; node >= 0;)
+        node = visit(sc, r, t_min, h, &w, node);
+    return finish(sc, r, t_min, h, &w.lr, &w.mm);
 }
