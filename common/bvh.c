@@ -348,7 +348,8 @@ struct tree_walk {
 
 /* Visit node `node`: its leaves, then the next node (its nearest interior child in reach, the
    others pushed farthest first, or the nearest pushed node still in reach); -1 when none is
-   left. */
+   left. Inlined twice by bvh_hit_tree, so that the root's visit (every ray's first, over the
+   same lanes) has branches of its own for the predictor. */
 static inline __attribute__((always_inline)) int visit(const struct scene *sc, const ray *r, double t_min,
                                                        struct hit *h, struct tree_walk *w, int node)
 {
@@ -408,7 +409,7 @@ int bvh_hit_tree(const struct scene *sc, const ray *r, double t_min, double t_ma
     /* t_hi above t_max: rounding never cuts a hit off */
     w.lr = (struct leaf_run){.t_max = t_max, .t_hi = (float)t_max * BVH_GROW};
     w.sp = 0;
-    for (int node = 0; node >= 0;)
+    for (int node = visit(sc, r, t_min, h, &w, 0); node >= 0;)
         node = visit(sc, r, t_min, h, &w, node);
     return finish(sc, r, t_min, h, &w.lr, &w.mm);
 }
