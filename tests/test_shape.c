@@ -6,6 +6,7 @@
 #include "check.h"
 #include "rng.h"
 #include "shape.h"
+#include "shape_light_inline.h"
 
 static void set_xform(struct prim *p, double deg, vec3 offset)
 {
@@ -453,20 +454,19 @@ static void test_light_pdfs(void)
     CHECK(shape_light_uses_points(&q) && shape_light_uses_points(&dk) && !shape_light_uses_points(&s));
 }
 
-/* The disk pdf as the plane hit computes it, without shape_light_pdf's bounding-cone pre-test. */
-static double disk_pdf_exact(const struct prim *p, vec3 o, vec3 dir)
+/* One case of a planar light's pre-test check: a direction from o toward `at` (scaled by a random
+   power of two) or, every third case, anywhere; the pdf through shape_light_pdf (pre-test, then
+   the plane hit) must equal the plane hit's alone (hit: shape_light_inline.h's disk_pdf_hit or
+   rect_pdf_hit), bit for bit. */
+static void check_pretest_case(const struct prim *p, vec3 o, vec3 at, int i, struct rng *g,
+                               double (*hit)(const struct prim *, vec3, vec3), int *same, int *hits)
 {
-    const vec3 n = p->g.disk.normal;
-    double dn = v3_dot(dir, n), t = v3_dot(v3_sub(p->g.disk.center, o), n) / dn;
-    if (!(t > HIT_EPS && t < DBL_MAX))
-        return 0;
-    vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
-    if (v3_len2(d) > p->g.disk.radius * p->g.disk.radius)
-        return 0;
-    double d2 = v3_len2(dir), adn = fabs(dn);
-    if (!(adn > 1e-12 * sqrt(d2)))
-        return 0;
-    return t * t * d2 * sqrt(d2) / (adn * p->area);
+    vec3 dir = v3_scale(v3_sub(at, o), ldexp(1, (int)(10 * rng_uniform(g)) - 15));
+    if (i % 3 == 2)
+        dir = v3(2 * rng_uniform(g) - 1, 2 * rng_uniform(g) - 1, 2 * rng_uniform(g) - 1);
+    double want = hit(p, o, dir), got = shape_light_pdf(p, o, dir, 0);
+    *hits += want > 0;
+    *same &= memcmp(&want, &got, sizeof want) == 0;
 }
 
 /* The pre-test only rejects directions the exact test rejects: the same value, bit for bit, for
@@ -503,32 +503,10 @@ static void test_disk_pdf_pretest(void)
         }
         vec3 q = v3_add(dk.g.disk.center,
                         v3_add(v3_scale(dk.g.disk.e1, rim * cos_a), v3_scale(dk.g.disk.e2, rim * sin_a)));
-        vec3 dir = v3_scale(v3_sub(q, o), ldexp(1, (int)(10 * rng_uniform(&g)) - 15));
-        if (i % 3 == 2)
-            dir = v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
-        double want = disk_pdf_exact(&dk, o, dir), got = shape_light_pdf(&dk, o, dir, 0);
-        hits += want > 0;
-        same &= memcmp(&want, &got, sizeof want) == 0;
+        check_pretest_case(&dk, o, q, i, &g, disk_pdf_hit, &same, &hits);
     }
     CHECK(same);
     CHECK(hits > n / 5);
-}
-
-/* The rect pdf as the plane hit computes it, without the bounding-cone pre-test. */
-static double rect_pdf_exact(const struct prim *p, vec3 o, vec3 dir)
-{
-    const vec3 n = p->g.rect.n;
-    double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
-    if (!(t > HIT_EPS && t < DBL_MAX))
-        return 0;
-    vec3 q = v3_fma(o, dir, t);
-    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
-    if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
-        return 0;
-    double d2 = v3_len2(dir), adn = fabs(dn);
-    if (!(adn > 1e-12 * sqrt(d2)))
-        return 0;
-    return t * t * d2 * sqrt(d2) / (adn * p->area);
 }
 
 /* As for the disk: the rect's pre-test (the cone of the ball about its centre through its
@@ -566,12 +544,7 @@ static void test_rect_pdf_pretest(void)
         }
         vec3 at = v3_add(v3_add(v3_scale(q.g.rect.n, q.g.rect.k), v3_scale(q.g.rect.ea, pa)),
                          v3_scale(q.g.rect.eb, pb));
-        vec3 dir = v3_scale(v3_sub(at, o), ldexp(1, (int)(10 * rng_uniform(&g)) - 15));
-        if (i % 3 == 2)
-            dir = v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
-        double want = rect_pdf_exact(&q, o, dir), got = shape_light_pdf(&q, o, dir, 0);
-        hits += want > 0;
-        same &= memcmp(&want, &got, sizeof want) == 0;
+        check_pretest_case(&q, o, at, i, &g, rect_pdf_hit, &same, &hits);
     }
     CHECK(same);
     CHECK(hits > n / 5);
