@@ -207,12 +207,15 @@ static inline double lights_mean(double sum, int n)
     return n == 1 ? sum : n == 2 ? sum * 0.5 : sum / n;
 }
 
-/* shape_lights_pdf from light i on, sum holding the lights before it (out of line: reached by a
-   tail call only for the few directions inside a planar light's cone). */
+/* shape_lights_pdf from light i on, sum holding the lights before it, light i a disk or rect
+   whose cone holds dir (so only its plane hit is left to test). Out of line: reached by a tail
+   call only for the few directions inside a planar light's cone. */
 static __attribute__((noinline, unused)) double
 lights_pdf_from(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf, int i, double sum)
 {
-    for (; i < sc->n_lights; i++) {
+    const struct prim *lp = &sc->prims[sc->lights[i]];
+    sum += lp->type == PRIM_DISK ? disk_pdf_hit(lp, o, dir) : rect_pdf_hit(lp, o, dir);
+    for (i++; i < sc->n_lights; i++) {
         const struct prim *p = &sc->prims[sc->lights[i]];
         sum += i == known ? known_pdf : light_pdf(p, o, dir);
     }
