@@ -14,7 +14,6 @@
 #include "png.h"
 #include "ppm.h"
 
-#define IMGIO_MAX_BYTES ((size_t)512 << 20)
 #define FILEIO_CHUNK ((size_t)1 << 30) /* largest single read()/write() we ask for */
 
 /* Read up to size bytes from fd into buf, retrying on EINTR; stops early at end of file. */

@@ -19,6 +19,9 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e);
    On any failure (full disk, unwritable folder) no file is left behind and e is filled. */
 int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
 
+/* The largest image file imgio_read accepts. */
+#define IMGIO_MAX_BYTES ((size_t)512 << 20)
+
 /* Read a PNG or PPM file (chosen by its magic bytes) into out. */
 int imgio_read(const char *path, struct rgb8 *out, struct err *e);
 

@@ -37,4 +37,20 @@ check "--force renders them all" sh -c "! grep -q 'current' '$T/err'"
 echo "# changed" >>"$T/checker.yaml"
 run
 check "a changed scene renders every image again" sh -c "! grep -q 'of them current' '$T/err'"
+# a reference given as an image file: replacing its bytes (same path) makes every image stale
+cat >"$T/cmpf.yaml" <<YAML
+name: cmpf
+scene: $T/checker.yaml
+width: 16
+reference: ref.png
+variants:
+  - { sampler: jitter, threshold: 50 }
+YAML
+cp "$T/out/cmp/checker-jitter-t50-s1.png" "$T/ref.png"
+"$WORKER" --quiet --out "$T/out" "$T/cmpf.yaml" 2>"$T/f1"
+"$WORKER" --quiet --out "$T/out" "$T/cmpf.yaml" 2>"$T/f2"
+check "image reference, unchanged: current" grep -q "1 of them current" "$T/f2"
+cp "$T/out/cmp/checker-jitter-t50-s2.png" "$T/ref.png"
+"$WORKER" --quiet --out "$T/out" "$T/cmpf.yaml" 2>"$T/f3"
+check "image reference replaced: rendered and scored again" sh -c "! grep -q 'of them current' '$T/f3'"
 finish

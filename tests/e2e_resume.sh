@@ -55,6 +55,21 @@ cp "$root/tests/golden/checker-jitter.png" "$T/tex/textures/planet.png"
 "$WORKER" --out "$T/tout" "$T/tex/t.yaml" 2>"$T/t3.err"
 check "changed texture image: renders" grep -q "^t: 8x8" "$T/t3.err"
 
+# the reference image is an input too: a replaced reference must not leave the old error figures
+printf 'scene: scene.yaml\nwidth: 16\nheight: 16\nthreshold: 50\nlight_threshold: 50\nreference: ref.png\n' >"$T/ref.yaml"
+cp "$T/out/r/r.png" "$T/ref.png"
+"$WORKER" --out "$T/out" "$T/ref.yaml" 2>"$T/r1.err"
+check "with a reference: renders" grep -q "^ref: 16x16" "$T/r1.err"
+"$WORKER" --out "$T/out" "$T/ref.yaml" 2>"$T/r2.err"
+check "with the same reference: skipped" grep -q "^ref: up to date" "$T/r2.err"
+rmse1=$(grep '"rmse"' "$T/out/ref/ref.json")
+printf 'scene: scene.yaml\nwidth: 16\nheight: 16\nthreshold: 50\nlight_threshold: 50\nseed: 9\n' >"$T/other.yaml"
+"$WORKER" --out "$T/out" "$T/other.yaml" 2>/dev/null
+cp "$T/out/other/other.png" "$T/ref.png"
+"$WORKER" --out "$T/out" "$T/ref.yaml" 2>"$T/r3.err"
+check "changed reference image: renders" grep -q "^ref: 16x16" "$T/r3.err"
+check "changed reference image: new error figures" [ "$(grep '"rmse"' "$T/out/ref/ref.json")" != "$rmse1" ]
+
 # in a queue: a finished job put back is skipped and filed as done; --force renders it
 Q=$T/q; mkdir -p "$Q"
 sed 's|^scene: .*|scene: ../scene.yaml|' "$T/r.yaml" >"$Q/r.yaml"

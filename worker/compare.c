@@ -132,14 +132,18 @@ static void fmt_duration(double s, char *buf, size_t n)
 }
 
 /* The resume hash of one combination: its scene file's and texture images' bytes, every setting that changes
-   its pixels, and its reference image's path (which carries the reference's own cache key). An image whose
-   sidecar records it is current and is not rendered again (unless --force). */
+   its pixels, and its reference image's path (which carries the reference's own cache key) and bytes (a
+   reference given as a file may be replaced under the same path). An image whose sidecar records it is
+   current and is not rendered again (unless --force). */
 static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *e)
 {
     const struct job *j = &it->job;
     uint64_t h = HASH_FNV_OFFSET;
+    struct err ignored; /* an unreadable reference was reported when it was loaded */
     if (scene_hash_inputs(j->scene_path, &h, e) < 0)
         return -1;
+    if (j->reference[0])
+        fileio_hash(j->reference, IMGIO_MAX_BYTES, &h, &ignored);
     char text[JOB_PATH_MAX + 512];
     int n = snprintf(
         text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %s worker %s",

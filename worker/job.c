@@ -282,6 +282,11 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
     j->hash = HASH_FNV_OFFSET;
     if (job_hash_file(from, &j->hash, e) < 0 || scene_hash_inputs(j->scene_path, &j->hash, e) < 0)
         goto done;
+    /* The reference's bytes too: a replaced reference must not leave a sidecar's old error figures
+       current. Unreadable: run_load_reference says so. */
+    struct err ignored;
+    if (j->reference[0])
+        fileio_hash(j->reference, IMGIO_MAX_BYTES, &j->hash, &ignored);
     rc = 0;
 done:
     ydoc_free(&d);
