@@ -35,6 +35,17 @@ job "$T/seed2.yaml" "name: small" "width: 48" "height: 32" "threshold: 25" "ligh
 "$WORKER" --quiet --out "$T/s2" "$T/seed2.yaml" 2>/dev/null
 check "seed 2 differs from seed 1" sh -c "! cmp -s '$T/p1/small/small.png' '$T/s2/small/small.png'"
 
+# format from the output's extension (any case), else png; format: names the default output
+for spec in "x.ppm:x.ppm:P6" "x.PPM:x.PPM:P6" "x.Png:x.Png:PNG" "x.out:x.out:PNG"; do
+    out=${spec%%:*}; rest=${spec#*:}; file=${rest%%:*}; magic=${rest#*:}
+    job "$T/fmt.yaml" "width: 8" "threshold: 50" "output: $out"
+    rm -rf "$T/fmt"; "$WORKER" --quiet --out "$T/fmt" "$T/fmt.yaml" 2>/dev/null
+    check "output: $out is written as $magic" sh -c "head -c 4 '$T/fmt/fmt/$file' | grep -q '$magic'"
+done
+job "$T/fmt.yaml" "width: 8" "threshold: 50" "format: ppm"
+rm -rf "$T/fmt"; "$WORKER" --quiet --out "$T/fmt" "$T/fmt.yaml" 2>/dev/null
+check "format: ppm names the image fmt.ppm" sh -c "head -c 2 '$T/fmt/fmt/fmt.ppm' | grep -q P6"
+
 # 3. bad jobs: exit 2, file:line:col, nothing under --out
 bad() { # bad NAME EXPECTED-REGEX  (file already written to $T/NAME.yaml)
     rm -rf "$T/badout"
