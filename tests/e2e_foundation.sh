@@ -74,6 +74,14 @@ printf 'scene: %s\nwidth: 10\nwidth: 12\n' "$root/scenes/checker.yaml" >"$T/dup.
 bad dup 'dup.yaml:3:1: width: duplicate key'
 "$WORKER" --bogus 2>"$T/usage.err"; rc=$?
 check "unknown option exits 2" [ "$rc" -eq 2 ]
+check "unknown option: one line on stderr" [ "$(wc -l <"$T/usage.err")" -eq 1 ]
+check "unknown option: the line names it" grep -q "^worker: unknown option --bogus" "$T/usage.err"
+"$WORKER" 2>"$T/nojob.err"; rc=$?
+check "no job file: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/nojob.err') -eq 1 ]"
+"$WORKER" diff "$T/a.png" 2>"$T/diff1.err"; rc=$?
+check "diff with one image: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/diff1.err') -eq 1 ]"
+"$WORKER" --out 2>"$T/noval.err"; rc=$?
+check "option without its value: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/noval.err') -eq 1 ]"
 "$WORKER" --help >"$T/help.out"; rc=$?
 check "--help exits 0 and shows usage" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker JOB.yaml' '$T/help.out'"
 check "--version" sh -c "'$WORKER' --version | grep -Eq '^worker [0-9]'"

@@ -69,7 +69,7 @@ static int diff_main(int argc, char **argv)
                 return 2;
             }
         } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "worker diff: unknown option %s\n%s", argv[i], usage);
+            fprintf(stderr, "worker diff: unknown option %s; see worker --help\n", argv[i]);
             return 2;
         } else if (nfiles < 2) {
             files[nfiles++] = argv[i];
@@ -79,7 +79,7 @@ static int diff_main(int argc, char **argv)
         }
     }
     if (nfiles != 2) {
-        fprintf(stderr, "worker diff: expected two images (reference, then image)\n%s", usage);
+        fprintf(stderr, "worker diff: expected two images (reference, then image); see worker --help\n");
         return 2;
     }
     struct rgb8 a = {0}, b = {0};
@@ -128,7 +128,7 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
     double d = v ? strtod(v, &end) : 0;
     int number = v && *v && !*end, whole = number && d == (long)d;
     if (!v) {
-        fprintf(stderr, "worker: %s needs a value\n%s", a, usage);
+        fprintf(stderr, "worker: %s needs a value; see worker --help\n", a);
         return -1;
     } else if (!strcmp(a, "--out")) {
         q->run.out_dir = v;
@@ -241,7 +241,7 @@ int main(int argc, char **argv)
                 goto out;
             }
         } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "worker: unknown option %s\n%s", a, usage);
+            fprintf(stderr, "worker: unknown option %s; see worker --help\n", a);
             worst = 2;
             goto out;
         } else {
@@ -249,16 +249,17 @@ int main(int argc, char **argv)
         }
     }
     if (q.dir && (njobs || merge || o->parts)) {
-        fprintf(stderr, "worker: --queue takes no job files, merge or --part\n%s", usage);
+        fprintf(stderr, "worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;
     } else if (q.dir) {
         queue_signals_install();
         worst = queue_main(&q);
     } else if (njobs == 0) {
-        fprintf(stderr, "worker: no job file given\n%s", usage);
+        fprintf(stderr, "worker: no job file given; see worker --help\n");
         worst = 2;
     } else if (merge && o->parts) {
-        fprintf(stderr, "worker: merge finds the parts itself; --part is for rendering one\n%s", usage);
+        fprintf(stderr,
+                "worker: merge finds the parts itself; --part is for rendering one; see worker --help\n");
         worst = 2;
     } else {
         for (int i = 0; i < njobs; i++)
