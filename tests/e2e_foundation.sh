@@ -104,4 +104,5 @@ check "killed child: exit 1 (got $rc)" [ "$rc" -eq 1 ]
 check "killed child: message names signal 9" grep -q "killed by signal 9" "$T/killed.err"
 check "killed child: no image" [ ! -e "$T/killed/slow/slow.png" ]
 check "killed child: no sidecar" [ ! -e "$T/killed/slow/slow.json" ]
+check "killed child: no empty output folder left" [ ! -e "$T/killed/slow" ]
 finish

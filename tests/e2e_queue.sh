@@ -124,6 +124,7 @@ check "retries 0: log names the signal" grep -q "^signal: 9 " "$Q/failed/crash.l
 check "retries 0: log has the error" grep -q "^error: .*killed by signal 9" "$Q/failed/crash.log"
 check "retries 0: log counts one attempt" grep -q "^attempts: 1\$" "$Q/failed/crash.log"
 check "retries 0: no image" [ ! -e "$Q/done/crash/crash.png" ]
+check "retries 0: no empty done/crash/ folder" [ ! -e "$Q/done/crash" ]
 check "retries 0: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 
 # 5. a bad job goes to failed/ with its file:line:col, and the worker carries on

@@ -160,7 +160,9 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct sampler *pix = NULL, *light = NULL;
     struct rgb8 ref = {0};
     float *rgb = NULL;
-    int rc = 2;
+    char dir[2048], image[2048], sidecar[2048];
+    struct stat st;
+    int rc = 2, made_dir = 0;
     memset(rr, 0, sizeof *rr);
     if (!o->force && outputs_current(j, o, rr)) {
         rr->skipped = 1;
@@ -194,8 +196,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
-    char dir[2048], image[2048], sidecar[2048];
     run_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
+    made_dir = stat(dir, &st) < 0;
     if (limits_check_out_dir(dir, e) < 0)
         goto done;
     rc = 1;
@@ -228,6 +230,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     }
     rc = 0;
 done:
+    if (rc != 0 && made_dir)
+        rmdir(dir); /* a failed render leaves no empty output folder (it fails when not empty) */
     rgb8_free(&ref);
     farm_framebuffer_free(rgb, rr->width, rr->height);
     sampler_free(pix);
