@@ -18,7 +18,8 @@ int err_set(struct err *e, const char *file, int line, int col, const char *fmt,
 /* Prefix e's message with "prefix: " (e.g. a key name). Always returns -1. */
 int err_prefix(struct err *e, const char *prefix);
 
-/* Write "file:line:col: msg" (parts present only when known) into buf. */
+/* Write "file:line:col: msg" (parts present only when known) into buf, as one line: control
+   characters in file and msg are escaped (\n, \t, \r, \xHH). */
 void err_format(const struct err *e, char *buf, size_t n);
 
 #endif
