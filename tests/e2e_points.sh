@@ -24,4 +24,16 @@ check "unknown sampler message" grep -q 'unknown sampler "sobol"' "$T/e1"
 check "bad threshold exits 2" [ "$rc" -eq 2 ]
 "$WORKER" points uniform 0.01 >/dev/null 2>"$T/e3"; rc=$?
 check "oversized set exits 2 naming the count" sh -c "[ $rc -eq 2 ] && grep -q 100000000 '$T/e3'"
+# --quiet is a common option: accepted by points and diff, before the subcommand too
+"$WORKER" points uniform 20 --quiet >"$T/q1.csv" 2>"$T/q1.err"; rc=$?
+check "points ... --quiet: exit 0 and 25 points (got $rc)" sh -c "[ $rc -eq 0 ] && [ \$(wc -l <'$T/q1.csv') -eq 25 ]"
+"$WORKER" --quiet points uniform 20 >"$T/q2.csv" 2>"$T/q2.err"; rc=$?
+check "--quiet points ...: exit 0 and the same points (got $rc)" sh -c "[ $rc -eq 0 ] && cmp -s '$T/q1.csv' '$T/q2.csv'"
+printf 'P3\n1 1\n255\n1 2 3\n' >"$T/one.ppm"
+"$WORKER" diff "$T/one.ppm" "$T/one.ppm" --max-rmse 0 --quiet >"$T/d1.out" 2>"$T/d1.err"; rc=$?
+check "diff ... --quiet: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^rmse 0' '$T/d1.out'"
+"$WORKER" --quiet diff "$T/one.ppm" "$T/one.ppm" >"$T/d2.out" 2>"$T/d2.err"; rc=$?
+check "--quiet diff ...: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^rmse 0' '$T/d2.out'"
+"$WORKER" points uniform >/dev/null 2>"$T/e4"; rc=$?
+check "points without a threshold: exit 2, one line saying what is missing" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/e4') -eq 1 ] && grep -q '^worker points: ' '$T/e4'"
 finish

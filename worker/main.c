@@ -68,6 +68,8 @@ static int diff_main(int argc, char **argv)
                 fprintf(stderr, "worker diff: --max-rmse needs a number >= 0\n");
                 return 2;
             }
+        } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
+            continue; /* a common option; diff draws no progress anyway */
         } else if (argv[i][0] == '-' && argv[i][1]) {
             fprintf(stderr, "worker diff: unknown option %s; see worker --help\n", argv[i]);
             return 2;
@@ -202,11 +204,31 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
     return rc;
 }
 
+/* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
+   subcommand; it is moved to argv[1] and the options after it, where its own parser judges them. */
+static void hoist_subcommand(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++) {
+        if (takes_value(argv[i])) {
+            i++;
+        } else if (!(argv[i][0] == '-' && argv[i][1])) {
+            if (i > 1 &&
+                (!strcmp(argv[i], "diff") || !strcmp(argv[i], "points") || !strcmp(argv[i], "merge"))) {
+                char *sub = argv[i];
+                memmove(&argv[2], &argv[1], (size_t)(i - 1) * sizeof *argv);
+                argv[1] = sub;
+            }
+            return;
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
        kill the process half-way through an output. */
     signal(SIGXFSZ, SIG_IGN);
+    hoist_subcommand(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "points"))
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))

@@ -68,6 +68,8 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                 return 2;
             }
             a->svg_path = v;
+        } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
+            continue; /* a common option; points draws no progress anyway */
         } else if (arg[0] == '-' && arg[1] == '-') {
             fprintf(stderr, "worker points: unknown option %.40s; %s", arg, points_usage);
             return 2;
@@ -79,7 +81,7 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         }
     }
     if (npositional < 2) {
-        fputs(points_usage, stderr);
+        fprintf(stderr, "worker points: expected a sampler and a threshold; %s", points_usage);
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
