@@ -1,4 +1,4 @@
-/* png: an 8-bit RGB PNG encoder with adaptive row filters, and a bounds-checked decoder. */
+/* png: an 8-bit RGB PNG encoder with adaptive row filters, and a bounds-checked decoder of any PNG. */
 #include "png.h"
 
 #include <stdlib.h>
@@ -190,12 +190,42 @@ struct png_dec {
     const char *name;
     struct err *e;
     uint32_t w, h;
-    int color_type, channels;
-    uint8_t *raw; /* h rows of (filter byte, w * channels bytes), inflated */
+    int color_type, channels, depth, interlace;
+    int bits;      /* bits per pixel: channels * depth */
+    int palette_n; /* PLTE entries (0: none seen) */
+    uint8_t palette[768];
+    uint8_t *raw; /* each pass's rows of (filter byte, packed pixels), inflated */
     size_t raw_len;
     z_stream zs;
     int zs_open, z_done, seen_idat;
 };
+
+/* Adam7 (PNG spec 8.2): each pass's first column and row and its steps; pass 0 alone when not
+   interlaced, with steps of 1. */
+static const uint8_t adam7_x0[7] = {0, 4, 0, 2, 0, 1, 0}, adam7_y0[7] = {0, 0, 4, 0, 2, 0, 1};
+static const uint8_t adam7_dx[7] = {8, 8, 4, 4, 2, 2, 1}, adam7_dy[7] = {8, 8, 8, 4, 4, 2, 2};
+
+struct png_pass {
+    uint32_t x0, y0, dx, dy, w, h; /* w or h 0: the pass is empty and has no rows at all */
+    size_t stride;                 /* bytes of packed pixels per row, without the filter byte */
+};
+
+static struct png_pass pass_of(const struct png_dec *d, int i)
+{
+    struct png_pass p = {0, 0, 1, 1, d->w, d->h, 0};
+    if (d->interlace) {
+        p.x0 = adam7_x0[i];
+        p.y0 = adam7_y0[i];
+        p.dx = adam7_dx[i];
+        p.dy = adam7_dy[i];
+        p.w = d->w > p.x0 ? (d->w - p.x0 + p.dx - 1) / p.dx : 0;
+        p.h = d->h > p.y0 ? (d->h - p.y0 + p.dy - 1) / p.dy : 0;
+    }
+    p.stride = ((size_t)p.w * (size_t)d->bits + 7) / 8;
+    if (!p.w || !p.h)
+        p.w = p.h = 0;
+    return p;
+}
 
 struct png_chunk {
     char type[5];
@@ -238,7 +268,7 @@ static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t
     return 0;
 }
 
-/* Channels per pixel for an 8-bit colour type, or 0 when we do not decode it. */
+/* Channels per pixel for a colour type (a palette index is one), or 0 for an unknown type. */
 static int channels_of(int color_type)
 {
     switch (color_type) {
@@ -246,6 +276,8 @@ static int channels_of(int color_type)
         return 1; /* gray */
     case 2:
         return 3; /* RGB */
+    case 3:
+        return 1; /* palette index */
     case 4:
         return 2; /* gray + alpha */
     case 6:
@@ -253,6 +285,16 @@ static int channels_of(int color_type)
     default:
         return 0;
     }
+}
+
+/* Whether the spec (table 11.1) allows this bit depth for this colour type. */
+static int depth_allowed(int color_type, int depth)
+{
+    if (color_type == 0)
+        return depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16;
+    if (color_type == 3)
+        return depth == 1 || depth == 2 || depth == 4 || depth == 8;
+    return depth == 8 || depth == 16;
 }
 
 /* Check IHDR, then allocate the inflate buffer for exactly the declared image. */
@@ -270,23 +312,27 @@ static int parse_ihdr(struct png_dec *d, const struct png_chunk *c)
     if ((uint64_t)w * h > (uint64_t)IMAGE_MAX_PIXELS)
         return err_set(d->e, d->name, 0, 0, "unsupported PNG: %lux%lu is over %ld pixels", (unsigned long)w,
                        (unsigned long)h, IMAGE_MAX_PIXELS);
-    if (ct == 3)
-        return err_set(d->e, d->name, 0, 0, "unsupported PNG: palette images (color type 3)");
     if (!channels_of(ct))
         return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad color type %d", ct);
-    if (depth != 8)
-        return err_set(d->e, d->name, 0, 0, "unsupported PNG: bit depth %d (only 8)", depth);
+    if (!depth_allowed(ct, depth))
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: bit depth %d is not allowed for color type %d",
+                       depth, ct);
     if (p[10] != 0 || p[11] != 0)
         return err_set(d->e, d->name, 0, 0, "corrupt PNG: unknown compression or filter method");
-    if (p[12] == 1)
-        return err_set(d->e, d->name, 0, 0, "unsupported PNG: interlaced");
-    if (p[12] != 0)
+    if (p[12] > 1)
         return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad interlace method %d", p[12]);
     d->w = w;
     d->h = h;
     d->color_type = ct;
     d->channels = channels_of(ct);
-    d->raw_len = (size_t)h * ((size_t)w * (size_t)d->channels + 1); /* < 2^32 by the limits */
+    d->depth = depth;
+    d->interlace = p[12];
+    d->bits = d->channels * depth;
+    d->raw_len = 0; /* at most 8 bytes a pixel plus the filter bytes: < 2^32 by the limits */
+    for (int i = 0; i < (d->interlace ? 7 : 1); i++) {
+        struct png_pass ps = pass_of(d, i);
+        d->raw_len += (size_t)ps.h * (ps.stride + 1);
+    }
     d->raw = malloc(d->raw_len);
     if (!d->raw)
         return err_set(d->e, d->name, 0, 0, "out of memory for a %lux%lu PNG", (unsigned long)w,
@@ -327,43 +373,80 @@ static int feed_idat(struct png_dec *d, const struct png_chunk *c)
     return 0;
 }
 
-/* Undo the row filters in place, checking each filter type. */
+/* Undo the row filters in place, pass by pass (each pass starts from a row of zeros), checking
+   each filter type. Filters work on whole bytes: a pixel of fewer than 8 bits steps by one. */
 static int unfilter_image(struct png_dec *d)
 {
-    size_t stride = (size_t)d->w * (size_t)d->channels;
-    uint8_t *zero = calloc(stride, 1);
+    size_t step = d->bits >= 8 ? (size_t)d->bits / 8 : 1;
+    uint8_t *zero = calloc(((size_t)d->w * (size_t)d->bits + 7) / 8 + 1, 1); /* a full-width row */
     if (!zero)
         return err_set(d->e, d->name, 0, 0, "out of memory decoding PNG");
-    const uint8_t *prev = zero;
-    for (uint32_t y = 0; y < d->h; y++) {
-        uint8_t *row = d->raw + (size_t)y * (stride + 1);
-        if (row[0] > 4) {
-            free(zero);
-            return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad filter type %d on row %lu", row[0],
-                           (unsigned long)y);
+    uint8_t *row = d->raw;
+    for (int i = 0; i < (d->interlace ? 7 : 1); i++) {
+        struct png_pass ps = pass_of(d, i);
+        const uint8_t *prev = zero;
+        for (uint32_t y = 0; y < ps.h; y++, row += ps.stride + 1) {
+            if (row[0] > 4) {
+                free(zero);
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad filter type %d on row %lu%s", row[0],
+                               (unsigned long)y, d->interlace ? " of an interlaced pass" : "");
+            }
+            unfilter_row(row[0], row + 1, prev, ps.stride, step);
+            prev = row + 1;
         }
-        unfilter_row(row[0], row + 1, prev, stride, (size_t)d->channels);
-        prev = row + 1;
     }
     free(zero);
     return 0;
 }
 
-/* Convert the unfiltered rows to RGB in out (gray is replicated, alpha dropped). */
+/* Sample i of a row of packed samples, scaled to 8 bits (palette indices are left as they are). */
+static int sample8(const struct png_dec *d, const uint8_t *row, size_t i)
+{
+    switch (d->depth) {
+    case 16:
+        return ((row[2 * i] * 256 + row[2 * i + 1]) * 255 + 32767) / 65535; /* rounded */
+    case 8:
+        return row[i];
+    default: { /* 1, 2 or 4 bits, the leftmost pixel in the high bits */
+        size_t bit = i * (size_t)d->depth;
+        int v = row[bit / 8] >> (8 - d->depth - (int)(bit % 8)) & ((1 << d->depth) - 1);
+        return d->color_type == 3 ? v : v * 255 / ((1 << d->depth) - 1);
+    }
+    }
+}
+
+/* Convert the unfiltered rows to RGB in out: gray is replicated, palette indices looked up, alpha
+   dropped, 16-bit samples cut to 8, each interlaced pass's pixels put in their places. */
 static int to_rgb(const struct png_dec *d, struct rgb8 *out)
 {
+    if (d->color_type == 3 && !d->palette_n)
+        return err_set(d->e, d->name, 0, 0, "corrupt PNG: palette image without a PLTE chunk");
     if (rgb8_alloc(out, (int)d->w, (int)d->h, d->e) < 0)
         return err_set(d->e, d->name, 0, 0, "out of memory for a %lux%lu PNG", (unsigned long)d->w,
                        (unsigned long)d->h);
-    size_t stride = (size_t)d->w * (size_t)d->channels;
-    uint8_t *dst = out->px;
-    for (uint32_t y = 0; y < d->h; y++) {
-        const uint8_t *src = d->raw + (size_t)y * (stride + 1) + 1;
-        for (uint32_t x = 0; x < d->w; x++, src += d->channels, dst += 3) {
-            int gray = d->color_type == 0 || d->color_type == 4;
-            dst[0] = src[0];
-            dst[1] = gray ? src[0] : src[1];
-            dst[2] = gray ? src[0] : src[2];
+    const uint8_t *row = d->raw + 1;
+    for (int i = 0; i < (d->interlace ? 7 : 1); i++) {
+        struct png_pass ps = pass_of(d, i);
+        for (uint32_t y = 0; y < ps.h; y++, row += ps.stride + 1) {
+            for (uint32_t x = 0; x < ps.w; x++) {
+                uint8_t *dst = out->px + ((size_t)(ps.y0 + y * ps.dy) * d->w + ps.x0 + x * ps.dx) * 3;
+                size_t s0 = (size_t)x * (size_t)d->channels;
+                int v = sample8(d, row, s0);
+                if (d->color_type == 3) {
+                    if (v >= d->palette_n) {
+                        rgb8_free(out);
+                        return err_set(d->e, d->name, 0, 0, "corrupt PNG: palette index %d of %d entries", v,
+                                       d->palette_n);
+                    }
+                    memcpy(dst, d->palette + 3 * v, 3);
+                } else if (d->color_type == 0 || d->color_type == 4) {
+                    dst[0] = dst[1] = dst[2] = (uint8_t)v;
+                } else {
+                    dst[0] = (uint8_t)v;
+                    dst[1] = (uint8_t)sample8(d, row, s0 + 1);
+                    dst[2] = (uint8_t)sample8(d, row, s0 + 2);
+                }
+            }
         }
     }
     return 0;
@@ -393,15 +476,22 @@ static int read_chunks(struct png_dec *d, const uint8_t *data, size_t len)
             /* a suggested palette is allowed for RGB and RGBA; gray images must not have one */
             if (d->color_type == 0 || d->color_type == 4)
                 return err_set(d->e, d->name, 0, 0, "corrupt PNG: PLTE chunk in a gray image");
+            if (d->color_type != 3)
+                continue; /* only a suggestion for RGB and RGBA (libpng warns on a bad one) */
+            if (d->palette_n || d->seen_idat || c.len == 0 || c.len % 3 || c.len > sizeof d->palette)
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad PLTE chunk (length %lu)",
+                               (unsigned long)c.len);
+            memcpy(d->palette, c.data, c.len);
+            d->palette_n = (int)(c.len / 3);
         } else if (!(c.type[0] & 0x20)) {
             return err_set(d->e, d->name, 0, 0, "unsupported PNG: unknown critical chunk %s", c.type);
         }
     }
 }
 
-/* Decode data (len bytes; `name` for messages) into out as RGB. Supports 8-bit gray, gray+alpha,
-   RGB and RGBA, non-interlaced, all five filters; ancillary chunks are ignored. 0, or -1 with e
-   filled and out zeroed. */
+/* Decode data (len bytes; `name` for messages) into out as RGB. Supports every PNG: gray, gray+alpha,
+   RGB, RGBA and palette images at every bit depth the spec allows, Adam7 interlacing, all five filters;
+   ancillary chunks are ignored. 0, or -1 with e filled and out zeroed. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
 {
     struct png_dec d;

@@ -7,9 +7,10 @@
 /* Encode img as 8-bit RGB PNG into a malloc'd buffer (*out, caller frees). 0 or -1. */
 int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct err *e);
 
-/* Decode an 8-bit gray, gray+alpha, RGB or RGBA PNG (non-interlaced, all five row filters) into
-   out (RGB; alpha dropped). `name` is used in error messages. Never reads out of bounds; rejects
-   truncated or corrupt data and sides over IMAGE_MAX_SIDE with -1 and e filled. */
+/* Decode a gray, gray+alpha, RGB, RGBA or palette PNG of any allowed bit depth (1 to 16), plain or
+   Adam7-interlaced, into out (RGB, 8 bits; alpha dropped, 16-bit samples rounded to 8). `name` is
+   used in error messages. Never reads out of bounds; rejects truncated or corrupt data and sides
+   over IMAGE_MAX_SIDE with -1 and e filled. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
 
 #endif

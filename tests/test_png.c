@@ -399,17 +399,173 @@ static void test_unsupported_headers(void)
 {
     uint8_t raw[64] = {0};
     struct err e;
-    CHECK(try_png(2, 2, 8, 2, 1, raw, 14, 0, NULL, &e) == -1 && has(&e, "interlaced"));
-    CHECK(try_png(2, 2, 8, 2, 2, raw, 14, 0, NULL, &e) == -1 && has(&e, "interlace"));
-    CHECK(try_png(2, 2, 16, 2, 0, raw, 26, 0, NULL, &e) == -1 && has(&e, "bit depth 16"));
-    CHECK(try_png(2, 2, 4, 0, 0, raw, 4, 0, NULL, &e) == -1 && has(&e, "bit depth 4"));
-    CHECK(try_png(2, 2, 8, 3, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "palette"));
+    CHECK(try_png(2, 2, 8, 2, 1, raw, 15, 0, NULL, &e) == 0); /* Adam7: passes 1, 6 and 7 */
+    CHECK(try_png(2, 2, 8, 2, 1, raw, 14, 0, NULL, &e) == -1 && has(&e, "expected 15"));
+    CHECK(try_png(2, 2, 8, 2, 2, raw, 14, 0, NULL, &e) == -1 && has(&e, "bad interlace method 2"));
+    CHECK(try_png(2, 2, 16, 2, 0, raw, 26, 0, NULL, &e) == 0);
+    CHECK(try_png(2, 2, 4, 0, 0, raw, 4, 0, NULL, &e) == 0);
+    CHECK(try_png(2, 2, 3, 0, 0, raw, 4, 0, NULL, &e) == -1 && has(&e, "bit depth 3 is not allowed"));
+    CHECK(try_png(2, 2, 16, 3, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "bit depth 16 is not allowed"));
+    CHECK(try_png(2, 2, 4, 2, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "bit depth 4 is not allowed"));
+    CHECK(try_png(2, 2, 8, 3, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "without a PLTE"));
     CHECK(try_png(2, 2, 8, 5, 0, raw, 6, 0, NULL, &e) == -1 && has(&e, "color type 5"));
     CHECK(try_png(0, 2, 8, 2, 0, raw, 2, 0, NULL, &e) == -1);
     CHECK(try_png(100000, 1, 8, 2, 0, raw, 64, 0, NULL, &e) == -1 && has(&e, "100000x1"));
     CHECK(try_png(0xffffffffu, 0xffffffffu, 8, 6, 0, raw, 64, 0, NULL, &e) == -1);
     CHECK(try_png(20000, 20000, 8, 2, 0, raw, 64, 0, NULL, &e) == -1 && has(&e, "pixels"));
     CHECK(!strcmp(e.file, "t.png") && e.line == 0);
+}
+
+/* ---- the other PNG formats: each decodes to the same pixels as an 8-bit RGB of them ---- */
+
+/* Append the samples of pixel (x, y) of img (with palette index idx) in colour type ct at depth
+   bits, packed MSB first into row at sample position *k. */
+static void put_sample(uint8_t *row, size_t *k, int depth, unsigned v)
+{
+    if (depth == 16) {
+        row[*k * 2] = (uint8_t)(v >> 8);
+        row[*k * 2 + 1] = (uint8_t)v;
+    } else if (depth == 8) {
+        row[*k] = (uint8_t)v;
+    } else {
+        size_t bit = *k * (size_t)depth;
+        row[bit / 8] |= (uint8_t)(v << (8 - depth - (int)(bit % 8)));
+    }
+    (*k)++;
+}
+
+/* A PNG of img's pixels in colour type ct at depth: RGB(A) samples scaled up to 16 bits by x257,
+   gray from the red channel (which the caller keeps a multiple of 255 / (2^depth - 1)), palette
+   indices from idx with plte. Rows unfiltered (filter 0), Adam7 when interlace. */
+static struct buf format_png(const struct rgb8 *img, int ct, int depth, int interlace, const uint8_t *idx,
+                             const uint8_t *plte, int plte_n)
+{
+    static const int x0[7] = {0, 4, 0, 2, 0, 1, 0}, y0[7] = {0, 0, 4, 0, 2, 0, 1};
+    static const int dx[7] = {8, 8, 4, 4, 2, 2, 1}, dy[7] = {8, 8, 8, 4, 4, 2, 2};
+    int ch = ct == 2 ? 3 : ct == 6 ? 4 : ct == 4 ? 2 : 1, w = img->w, h = img->h;
+    unsigned top = (1u << depth) - 1;
+    struct buf raw = {0}, b = {0};
+    for (int p = 0; p < (interlace ? 7 : 1); p++) {
+        int px0 = interlace ? x0[p] : 0, py0 = interlace ? y0[p] : 0;
+        int pdx = interlace ? dx[p] : 1, pdy = interlace ? dy[p] : 1;
+        if (px0 >= w || py0 >= h)
+            continue;
+        size_t stride = ((size_t)((w - px0 + pdx - 1) / pdx) * ch * depth + 7) / 8;
+        uint8_t *row = malloc(stride + 1);
+        for (int y = py0; y < h; y += pdy) {
+            memset(row, 0, stride + 1);
+            size_t k = 0;
+            for (int x = px0; x < w; x += pdx) {
+                const uint8_t *q = img->px + ((size_t)y * w + x) * 3;
+                if (ct == 3) {
+                    put_sample(row + 1, &k, depth, idx[(size_t)y * w + x]);
+                } else if (ct == 0 || ct == 4) {
+                    put_sample(row + 1, &k, depth, depth == 16 ? q[0] * 257u : q[0] * top / 255);
+                } else {
+                    for (int c = 0; c < 3; c++)
+                        put_sample(row + 1, &k, depth, depth == 16 ? q[c] * 257u : q[c]);
+                }
+                if (ct == 4 || ct == 6)
+                    put_sample(row + 1, &k, depth, top / 3); /* alpha: dropped */
+            }
+            buf_add(&raw, row, stride + 1);
+        }
+        free(row);
+    }
+    uint8_t ihdr[13] = {0};
+    put32(ihdr, (uint32_t)w);
+    put32(ihdr + 4, (uint32_t)h);
+    ihdr[8] = (uint8_t)depth;
+    ihdr[9] = (uint8_t)ct;
+    ihdr[12] = (uint8_t)interlace;
+    buf_add(&b, signature, 8);
+    add_chunk(&b, "IHDR", ihdr, 13);
+    if (plte)
+        add_chunk(&b, "PLTE", plte, (size_t)plte_n * 3);
+    uLongf zn = compressBound(raw.n);
+    uint8_t *z = malloc(zn);
+    compress2(z, &zn, raw.p, raw.n, 9);
+    add_chunk(&b, "IDAT", z, zn);
+    add_chunk(&b, "IEND", NULL, 0);
+    free(z);
+    free(raw.p);
+    return b;
+}
+
+static int decodes_to(const struct buf *b, const struct rgb8 *want)
+{
+    struct rgb8 out;
+    struct err e = {0};
+    int ok = png_decode(b->p, b->n, "f.png", &out, &e) == 0 && same_image(&out, want);
+    if (!ok)
+        fprintf(stderr, "  decode: %s\n", e.msg);
+    rgb8_free(&out);
+    return ok;
+}
+
+static void test_other_formats(void)
+{
+    static const int sizes[][2] = {{1, 1}, {2, 1}, {1, 5}, {3, 2}, {8, 8}, {9, 7}, {17, 13}};
+    for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
+        int w = sizes[s][0], h = sizes[s][1];
+        for (int il = 0; il <= 1; il++) {
+            struct rgb8 img = pattern(w, h);
+            struct buf b;
+            b = format_png(&img, 2, 8, il, NULL, NULL, 0);
+            CHECK(decodes_to(&b, &img));
+            free(b.p);
+            for (int ct = 2; ct <= 6; ct += 4) {
+                b = format_png(&img, ct, 16, il, NULL, NULL, 0);
+                CHECK(decodes_to(&b, &img));
+                free(b.p);
+            }
+            b = format_png(&img, 6, 8, il, NULL, NULL, 0);
+            CHECK(decodes_to(&b, &img));
+            free(b.p);
+            /* palette images at every depth: 2^depth colours, the pixels' indices a pattern */
+            for (int depth = 1; depth <= 8; depth *= 2) {
+                int n = 1 << depth;
+                uint8_t plte[768], *idx = malloc((size_t)w * h);
+                for (int i = 0; i < n * 3; i++)
+                    plte[i] = (uint8_t)(i * 37 + 11);
+                for (int i = 0; i < w * h; i++) {
+                    idx[i] = (uint8_t)((i * 7 + i / w) % n);
+                    memcpy(img.px + (size_t)i * 3, plte + idx[i] * 3, 3);
+                }
+                b = format_png(&img, 3, depth, il, idx, plte, n);
+                CHECK(decodes_to(&b, &img));
+                free(b.p);
+                free(idx);
+            }
+            /* gray (and gray + alpha) at every depth: levels that survive the scaling both ways */
+            for (int depth = 1; depth <= 16; depth *= 2) {
+                unsigned top = (1u << depth) - 1;
+                for (int i = 0; i < w * h; i++) {
+                    unsigned level =
+                        depth == 16 ? (unsigned)(i * 29 % 256) : (unsigned)(i * 5 % (top + 1)) * 255 / top;
+                    memset(img.px + (size_t)i * 3, (int)level, 3);
+                }
+                b = format_png(&img, 0, depth, il, NULL, NULL, 0);
+                CHECK(decodes_to(&b, &img));
+                free(b.p);
+                if (depth >= 8) {
+                    b = format_png(&img, 4, depth, il, NULL, NULL, 0);
+                    CHECK(decodes_to(&b, &img));
+                    free(b.p);
+                }
+            }
+            rgb8_free(&img);
+        }
+    }
+    /* a palette index past the PLTE's entries is refused */
+    struct rgb8 img = pattern(2, 2);
+    uint8_t idx[4] = {0, 1, 2, 3}, plte[6] = {1, 2, 3, 4, 5, 6};
+    struct buf b = format_png(&img, 3, 8, 0, idx, plte, 2);
+    struct rgb8 out;
+    struct err e = {0};
+    CHECK(png_decode(b.p, b.n, "f.png", &out, &e) == -1 && has(&e, "palette index 2 of 2") && !out.px);
+    free(b.p);
+    rgb8_free(&img);
 }
 
 static void test_damaged_files(void)
@@ -587,6 +743,7 @@ int main(void)
     test_filters_and_color_types();
     test_chunks();
     test_unsupported_headers();
+    test_other_formats();
     test_damaged_files();
     test_ppm_round_trip();
     test_ppm_maxval();
