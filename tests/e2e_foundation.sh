@@ -105,4 +105,16 @@ check "killed child: message names signal 9" grep -q "killed by signal 9" "$T/ki
 check "killed child: no image" [ ! -e "$T/killed/slow/slow.png" ]
 check "killed child: no sidecar" [ ! -e "$T/killed/slow/slow.json" ]
 check "killed child: no empty output folder left" [ ! -e "$T/killed/slow" ]
+# 5. SIGTERM to a plain render: no image, no sidecar, not even an empty folder
+"$WORKER" --quiet --out "$T/term" "$T/slow.yaml" 2>/dev/null &
+wpid=$!
+for _ in $(seq 1 100); do
+    [ -n "$(pgrep -P "$wpid" | head -n 1)" ] && break
+    sleep 0.05
+done
+sleep 0.3
+kill -TERM "$wpid"
+wait "$wpid"; rc=$?
+check "SIGTERM: the worker stops (exit $rc)" [ "$rc" -ne 0 ]
+check "SIGTERM: nothing under --out" [ ! -e "$T/term/slow" ]
 finish

@@ -270,7 +270,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         return 1;
     }
     snprintf(dir, sizeof dir, "%s/%s", out, c->name);
-    if (limits_check_out_dir(dir, e) < 0) {
+    if (limits_check_out_dir(dir, e) < 0 || run_mkdirs(dir, e) < 0) {
         rc = 2;
         goto fail;
     }

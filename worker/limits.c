@@ -46,9 +46,23 @@ int limits_check_memory(const char *what, size_t bytes, struct err *e)
 
 int limits_check_out_dir(const char *dir, struct err *e)
 {
-    if (run_mkdirs(dir, e) < 0)
-        return -1;
-    if (access(dir, W_OK | X_OK) < 0)
-        return err_set(e, NULL, 0, 0, "cannot write to output directory %s: %s", dir, strerror(errno));
-    return 0;
+    char p[2048];
+    snprintf(p, sizeof p, "%s", dir);
+    for (;;) {
+        struct stat st;
+        if (stat(p, &st) == 0) {
+            if (!S_ISDIR(st.st_mode))
+                return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", p);
+            if (access(p, W_OK | X_OK) < 0)
+                return err_set(e, NULL, 0, 0, "cannot write to output directory %s: %s", p, strerror(errno));
+            return 0;
+        }
+        if ((errno != ENOENT && errno != ENOTDIR) || !strcmp(p, "."))
+            return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", dir, strerror(errno));
+        char *slash = strrchr(p, '/');
+        if (!slash)
+            snprintf(p, sizeof p, ".");
+        else
+            slash[slash == p] = '\0'; /* "/x" -> "/", "a/b" -> "a" */
+    }
 }

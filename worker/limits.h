@@ -18,7 +18,9 @@ int limits_check_samples(const struct job *j, int width, int height, struct err 
    (MemAvailable in /proc/meminfo; no check where that is unknown). 0 or -1 with e filled. */
 int limits_check_memory(const char *what, size_t bytes, struct err *e);
 
-/* Check that dir exists or can be made, and is a writable directory. 0 or -1 with e filled. */
+/* Check, making nothing, that dir is a writable directory or can be made as one (its nearest
+   existing ancestor is a writable directory), so an interrupted render leaves no empty folder
+   behind. 0 or -1 with e filled. */
 int limits_check_out_dir(const char *dir, struct err *e);
 
 #endif

@@ -223,7 +223,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (o->parts > 0) {
         part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
-        if (part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e) < 0)
+        if (run_mkdirs(dir, e) < 0 ||
+            part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e) < 0)
             goto done;
     } else if (run_write_outputs(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
         goto done;
