@@ -32,7 +32,7 @@ static const char help[] =
     "\n"
     "Each job file (YAML) names a scene, a pixel sampler (uniform | jitter | random | poisson)\n"
     "and its threshold (the minimum spacing in a 100x100 domain: 1 gives 10000 samples per\n"
-    "pixel for uniform/jitter/random, about 6400 for poisson). Rows are split over forked\n"
+    "pixel for uniform/jitter/random, about 6200 for poisson). Rows are split over forked\n"
     "processes; the image (PNG or PPM) and a JSON stats sidecar land in OUT/<job name>/.\n"
     "\n"
     "exit status: 0 all jobs done, 1 a job failed while rendering, 2 bad usage or bad input.\n";
