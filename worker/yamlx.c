@@ -61,6 +61,27 @@ static int check_shape(struct ydoc *d, struct err *e)
     return 0;
 }
 
+/* A job or scene file holds one YAML document: a second one (after "---") would be silently
+   ignored, so it is an error at its start, as is a syntax error in it. 0 when there is none. */
+static int no_second_document(yaml_parser_t *p, const char *path, struct err *e)
+{
+    yaml_document_t next;
+    if (!yaml_parser_load(p, &next)) {
+        const yaml_mark_t *m = &p->problem_mark;
+        return err_set(e, path, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s",
+                       p->problem ? p->problem : "error");
+    }
+    int rc = 0;
+    const yaml_node_t *root = yaml_document_get_root_node(&next);
+    int empty = root && root->type == YAML_SCALAR_NODE && root->data.scalar.length == 0 &&
+                root->data.scalar.style == YAML_PLAIN_SCALAR_STYLE; /* a bare "---" at the end */
+    if (root && !empty)
+        rc = err_set(e, path, (int)next.start_mark.line + 1, (int)next.start_mark.column + 1,
+                     "a second YAML document: a file holds one job or one scene (one document)");
+    yaml_document_delete(&next);
+    return rc;
+}
+
 int ydoc_load(struct ydoc *d, const char *path, struct err *e)
 {
     memset(d, 0, sizeof *d);
@@ -91,6 +112,8 @@ int ydoc_load(struct ydoc *d, const char *path, struct err *e)
             rc = err_set(e, path, 1, 1, "empty file: expected a mapping of keys");
         else
             rc = check_shape(d, e);
+        if (rc == 0)
+            rc = no_second_document(&p, path, e);
     }
     yaml_parser_delete(&p);
     free(data);
