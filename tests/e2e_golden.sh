@@ -18,6 +18,15 @@ render() { # render NAME SCENE-FILE SAMPLER THRESHOLD LIGHT-THRESHOLD SEED -> $T
     "$WORKER" --quiet --out "$T/out" "$T/$1.yaml" 2>"$T/$1.err"
 }
 rmse() { "$WORKER" diff "$1" "$2" --block "$BLOCK" | sed -n 's/^rmse //p'; }
+SEG_TOL=0.006 # > 2x the largest spread between seeds 1, 2 and 3 (tests/golden/README.md)
+segs() { # segments per camera sample of NAME's render
+    awk '/"samples"/ { s = 1 } s && /"total"/ { st = $2; s = 0 } /"rays"/ { r = 1 } r && /"total"/ { rt = $2; r = 0 }
+         END { gsub(",", "", st); gsub(",", "", rt); if (st > 0) printf "%.5f\n", rt / st }' "$T/out/$1/$1.json"
+}
+seg_golden() { awk -v s="$1" '$1 == s { print $2 }' "$G/SEGMENTS"; }
+seg_within() { awk -v a="$1" -v b="$2" -v t="$SEG_TOL" 'BEGIN { d = (a - b) / b; exit !(b > 0 && d <= t && d >= -t) }'; }
+[ "${GOLDEN_UPDATE:-0}" = 1 ] && printf '%s\n' "# Path segments per camera sample (rays.total / samples.total) of each golden's render: seed 1," \
+    "# as tests/e2e_golden.sh renders it. Written by \`make golden\`; see README.md here." >"$G/SEGMENTS.new"
 
 while read -r scene thr lthr tol; do
     case "$scene" in '#'*|'') continue ;; esac
@@ -27,6 +36,7 @@ while read -r scene thr lthr tol; do
         check "$n: renders (exit $rc)" [ "$rc" -eq 0 ]
         if [ "${GOLDEN_UPDATE:-0}" = 1 ]; then
             cp "$T/out/$n/$n.png" "$G/$n.png" && echo "golden: wrote tests/golden/$n.png"
+            echo "$n $(segs "$n")" >>"$G/SEGMENTS.new"
         elif [ "${GOLDEN_MEASURE:-0}" = 1 ]; then
             render "$n-s2" "$root/scenes/$scene.yaml" "$s" "$thr" "$lthr" 2
             render "$n-s3" "$root/scenes/$scene.yaml" "$s" "$thr" "$lthr" 3
@@ -34,14 +44,19 @@ while read -r scene thr lthr tol; do
                 "seed1-seed3 $(rmse "$T/out/$n/$n.png" "$T/out/$n-s3/$n-s3.png")" \
                 "seed2-seed3 $(rmse "$T/out/$n-s2/$n-s2.png" "$T/out/$n-s3/$n-s3.png")" \
                 "golden-seed1 $(rmse "$G/$n.png" "$T/out/$n/$n.png")"
+            echo "measure: $n segments seed1 $(segs "$n") seed2 $(segs "$n-s2") seed3 $(segs "$n-s3")" \
+                "golden $(seg_golden "$n")"
         else
             got=$(rmse "$G/$n.png" "$T/out/$n/$n.png")
             "$WORKER" diff "$G/$n.png" "$T/out/$n/$n.png" --block "$BLOCK" --max-rmse "$tol" >/dev/null 2>&1; rc=$?
             check "$n: rmse $got within $tol of the golden (exit $rc)" [ "$rc" -eq 0 ]
+            got=$(segs "$n"); want=$(seg_golden "$n")
+            check "$n: $got segments per sample within $SEG_TOL of the golden's ${want:-(none)}" \
+                seg_within "${got:-0}" "${want:-0}"
         fi
     done
 done <"$G/TOLERANCE"
-[ "${GOLDEN_UPDATE:-0}" = 1 ] && { finish; exit; }
+[ "${GOLDEN_UPDATE:-0}" = 1 ] && { [ "$fail" -eq 0 ] && mv "$G/SEGMENTS.new" "$G/SEGMENTS"; rm -f "$G/SEGMENTS.new"; finish; exit; }
 
 # Perturbed scenes must fail the same check: the golden bound is not vacuous.
 tol_of() { awk -v s="$1" '$1 == s { print $4 }' "$G/TOLERANCE"; }
