@@ -48,6 +48,24 @@ check "summary.csv has 40 rows" [ "$(tail -n +2 "$csv" | wc -l)" -eq 40 ]
 check "every row has 14 fields and a relmse" [ "$(awk -F, 'NR > 1 && NF == 14 && $12 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
 check "uniform t=25 has 16 samples per pixel" grep -q '^checker,uniform,25,5,1,16.00,' "$csv"
 check "rows name their images" grep -q ',board-poisson-pool16-t50-s2.png$' "$csv"
+# Every row's times and sampler share are its sidecar's to 5 significant digits: these tiny images
+# take about a millisecond, so a fixed 4 decimals would round them by up to 10% or to 0.
+sidecar_matches() { # every row against the first "key": of its sidecar, relative 1e-5
+    mism=0
+    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ img; do
+        side="$cdir/${img%.png}.json"
+        for kv in "wall_s $wall" "cpu_s $cpu" "sampling_share $share"; do
+            set -- $kv
+            want=$(sed -n "s/.*\"$1\": \([0-9.e+-]*\).*/\1/p" "$side" | head -n 1)
+            awk -v a="$2" -v b="$want" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(b > 0 && d <= 1e-5 * b) }' ||
+                { echo "$img: $1 $2 in summary.csv, $want in its sidecar" >&2; mism=1; }
+        done
+    done <<EOF
+$(tail -n +2 "$csv")
+EOF
+    [ "$mism" -eq 0 ]
+}
+check "summary.csv times match the sidecars" sidecar_matches
 
 # chart.svg: valid XML, 2 panels per scene, one line per variant, guides, units
 svg=$cdir/chart.svg

@@ -233,7 +233,7 @@ static char *summary_csv(const struct compare *c)
                     "sampler_share,mse,rmse,relmse,psnr,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
-        sbuf_printf(&b, "%s,%s,%g,%g,%llu,%.2f,%.4f,%.4f,%.4f,", c->scenes[it->scene].name,
+        sbuf_printf(&b, "%s,%s,%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", c->scenes[it->scene].name,
                     c->variants[it->variant], it->job.threshold, it->job.light_threshold,
                     (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
