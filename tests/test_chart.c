@@ -1,4 +1,5 @@
 /* test_chart: the SVG writer: decade axes, skipped non-positive points, escaping, empty panels. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,6 +55,21 @@ int main(void)
     CHECK(svg2 && strstr(svg2, "points=\"") && strstr(strstr(svg2, "points=\""), " 269.0,"));
     CHECK(svg2 && !strstr(svg2, "whisker")); /* no whiskers drawn: none in the legend */
     CHECK(strstr(chart_color(0), "#") && strcmp(chart_color(1), chart_color(9)) == 0);
+    /* a long label (up to 63 characters) fits inside the legend box and the drawing */
+    struct chart_series longer = {
+        "poisson-lightjitter-pool64-depth8-a-label-as-long-as-allowed-xy", 3, xs, ys, NULL, NULL};
+    struct chart_panel r = {"t", "x", "y", NULL, &longer, 1, NULL, 0};
+    char *svg3 = chart_svg("t", &r, 1, 1);
+    int svg_w = 0;
+    double box_x = 0, box_w = 0;
+    const char *box = svg3 ? strstr(svg3, "stroke=\"#cccccc\"") : NULL; /* the legend's frame */
+    while (box && box > svg3 && strncmp(box, "<rect", 5))
+        box--;
+    CHECK(svg3 && sscanf(svg3 + 39, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\"", &svg_w) == 1);
+    CHECK(box && sscanf(box, "<rect x=\"%lf\" y=\"%*f\" width=\"%lf\"", &box_x, &box_w) == 2);
+    /* sans-serif at 12 px is under 7 px a character; the text starts 34 px into the box */
+    CHECK(box_w >= 34 + 7 * 63 && box_x + box_w <= svg_w);
+    free(svg3);
     free(svg2);
     free(svg);
     return check_report("test_chart");

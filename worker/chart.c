@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "sbuf.h"
 
@@ -13,7 +14,10 @@
 #define MARGIN_T 34
 #define MARGIN_B 50
 #define TITLE_H 34
-#define LEGEND_W 170 /* a legend column right of each row of panels */
+#define LEGEND_W 170     /* the narrowest legend column, right of each row of panels */
+#define LEGEND_TEXT_X 34 /* where a legend entry's text starts in its box */
+#define CHAR_W 7         /* a generous width of one character at 12 px sans-serif */
+#define WHISKER_NOTE "whisker: seed min-max"
 
 const char *chart_color(int i)
 {
@@ -178,8 +182,20 @@ static void series(struct sbuf *b, const struct frame *f, const struct chart_ser
     }
 }
 
+/* The legend column's width: room for the longest entry of any panel (labels may be long). */
+static int legend_width(const struct chart_panel *panels, int n)
+{
+    size_t longest = strlen(WHISKER_NOTE);
+    for (int i = 0; i < n; i++)
+        for (int s = 0; s < panels[i].n_series; s++)
+            if (panels[i].series[s].name && strlen(panels[i].series[s].name) > longest)
+                longest = strlen(panels[i].series[s].name);
+    int w = LEGEND_TEXT_X + CHAR_W * (int)longest + 8 + 12;
+    return w > LEGEND_W ? w : LEGEND_W;
+}
+
 /* The series of panel p, with their colours, and what the dotted lines and whiskers are. */
-static void legend(struct sbuf *b, double x, double y, const struct chart_panel *p)
+static void legend(struct sbuf *b, double x, double y, int legend_w, const struct chart_panel *p)
 {
     int whiskers = 0;
     for (int s = 0; s < p->n_series; s++)
@@ -187,13 +203,13 @@ static void legend(struct sbuf *b, double x, double y, const struct chart_panel 
     int rows = p->n_series + (p->n_slopes > 0) + whiskers;
     sbuf_printf(
         b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%d\" height=\"%d\" fill=\"#ffffff\" stroke=\"#cccccc\"/>\n",
-        x, y, LEGEND_W - 12, 10 + 18 * rows);
+        x, y, legend_w - 12, 10 + 18 * rows);
     for (int s = 0; s < p->n_series; s++) {
         double ly = y + 18 + 18 * s;
         sbuf_printf(
             b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"3\"/>\n",
             x + 8, ly - 4, x + 28, ly - 4, chart_color(s));
-        sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\">", x + 34, ly);
+        sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\">", x + LEGEND_TEXT_X, ly);
         sbuf_escape(b, p->series[s].name);
         sbuf_printf(b, "</text>\n");
     }
@@ -203,15 +219,14 @@ static void legend(struct sbuf *b, double x, double y, const struct chart_panel 
                     "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#777777\" "
                     "stroke-dasharray=\"2 4\"/>\n"
                     "<text x=\"%.1f\" y=\"%.1f\">guide slopes</text>\n",
-                    x + 8, ly - 4, x + 28, ly - 4, x + 34, ly);
+                    x + 8, ly - 4, x + 28, ly - 4, x + LEGEND_TEXT_X, ly);
         ly += 18;
     }
     if (whiskers)
         sbuf_printf(b,
                     "<path d=\"M%.1f %.1fV%.1fM%.1f %.1fh8M%.1f %.1fh8\" stroke=\"#444444\"/>\n<text "
-                    "x=\"%.1f\" y=\"%.1f\">"
-                    "whisker: seed min-max</text>\n",
-                    x + 18, ly - 12, ly + 2, x + 14, ly - 12, x + 14, ly + 2, x + 34, ly);
+                    "x=\"%.1f\" y=\"%.1f\">" WHISKER_NOTE "</text>\n",
+                    x + 18, ly - 12, ly + 2, x + 14, ly - 12, x + 14, ly + 2, x + LEGEND_TEXT_X, ly);
 }
 
 static void panel(struct sbuf *b, const struct chart_panel *p, double ox, double oy)
@@ -245,7 +260,7 @@ char *chart_svg(const char *title, const struct chart_panel *panels, int n, int 
 {
     struct sbuf b = {0};
     int cols = columns < 1 ? 1 : columns, rows = (n + cols - 1) / cols;
-    int w = cols * PANEL_W + LEGEND_W, h = TITLE_H + rows * PANEL_H;
+    int legend_w = legend_width(panels, n), w = cols * PANEL_W + legend_w, h = TITLE_H + rows * PANEL_H;
     sbuf_printf(
         &b,
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -258,7 +273,7 @@ char *chart_svg(const char *title, const struct chart_panel *panels, int n, int 
     for (int i = 0; i < n; i++) {
         panel(&b, &panels[i], (i % cols) * PANEL_W, TITLE_H + (i / cols) * PANEL_H);
         if (i % cols == 0 && panels[i].n_series > 0)
-            legend(&b, cols * PANEL_W + 4, TITLE_H + (i / cols) * PANEL_H + MARGIN_T, &panels[i]);
+            legend(&b, cols * PANEL_W + 4, TITLE_H + (i / cols) * PANEL_H + MARGIN_T, legend_w, &panels[i]);
     }
     sbuf_printf(&b, "</svg>\n");
     return sbuf_take(&b);
