@@ -111,6 +111,12 @@ printf 'name: given\nscene: checker\nwidth: 16\nreference: given.png\nvariants:\
 "$WORKER" --quiet --out "$T/out" "$T/given.yaml" 2>/dev/null; rc=$?
 check "reference image file: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "reference image file: scored" [ "$(awk -F, 'NR == 2 && $12 > 0' "$T/out/given/summary.csv" | wc -l)" -eq 1 ]
+# a scene file whose name holds a comma and a quote: its CSV fields are quoted (RFC 4180)
+cp scenes/checker.yaml "$T/chk,e\"r.yaml"
+printf 'name: comma\nscenes: ["chk,e\\"r.yaml"]\nwidth: 8\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/comma.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/comma.yaml" 2>"$T/comma.err"; rc=$?
+check "comma in a scene name: exit 0 (got $rc: $(cat "$T/comma.err"))" [ "$rc" -eq 0 ]
+check "comma in a scene name: fields quoted" grep -q '^"chk,e""r",jitter-t50,50,5,1,4.00,.*,"chk,e""r-jitter-t50-t50-s1.png"$' "$T/out/comma/summary.csv"
 
 # 2. the second run reuses both references, says so, and leaves them untouched
 before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)

@@ -226,6 +226,20 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     return 0;
 }
 
+/* One CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180), as a scene
+   file's name may. */
+static void csv_field(struct sbuf *b, const char *text, const char *after)
+{
+    if (!strpbrk(text, ",\"\r\n")) {
+        sbuf_printf(b, "%s%s", text, after);
+        return;
+    }
+    sbuf_printf(b, "\"");
+    for (const char *p = text; *p; p++)
+        sbuf_printf(b, "%s%c", *p == '"' ? "\"" : "", *p); /* a quote is doubled */
+    sbuf_printf(b, "\"%s", after);
+}
+
 static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
@@ -233,15 +247,16 @@ static char *summary_csv(const struct compare *c)
                     "sampler_share,mse,rmse,relmse,psnr,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
-        sbuf_printf(&b, "%s,%s,%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", c->scenes[it->scene].name,
-                    c->variants[it->variant], it->job.threshold, it->job.light_threshold,
+        csv_field(&b, c->scenes[it->scene].name, ",");
+        csv_field(&b, c->variants[it->variant], ",");
+        sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
                     (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
             sbuf_printf(&b, "%.6g,%.6g,%.6g,%.4f,", it->error.mse, it->error.rmse, it->error.relmse,
                         it->error.psnr);
         else
             sbuf_printf(&b, ",,,,");
-        sbuf_printf(&b, "%s\n", it->job.output);
+        csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
 }
