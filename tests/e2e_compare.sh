@@ -207,6 +207,24 @@ order() { # order VARIANT: VARIANT's mean relMSE is below random's by > 2 standa
 }
 check "jitter below random at equal samples" order jitter-t5
 check "poisson below random at equal samples" order poisson-t4
+# The error maps of these converged images (400 spp) are visible: their gain comes from the
+# errors themselves. RMS brightness of each map, from `worker diff` against an all-black image.
+ohtml=$T/out/order/report.html
+check "error maps: the gain is stated" grep -q 'Error maps at .*|image - reference| x [0-9]*' "$ohtml"
+sed -n '/<h3>Error maps at/,/^<\/div>/p' "$ohtml" | grep -o 'base64,[^"]*' | head -n 3 | sed 's/^base64,//' >"$T/maps.b64"
+check "error maps: three maps" [ "$(wc -l <"$T/maps.b64")" -eq 3 ]
+dark=0; n=0
+while read -r b64; do
+    n=$((n + 1))
+    echo "$b64" | base64 -d >"$T/map$n.png"
+    set -- $(od -An -tu1 -j16 -N8 "$T/map$n.png") 0 0 0 0 0 0 0 0
+    w=$(( ($1 << 24) + ($2 << 16) + ($3 << 8) + $4 )); h=$(( ($5 << 24) + ($6 << 16) + ($7 << 8) + $8 ))
+    { printf 'P6\n%d %d\n255\n' "$w" "$h"; head -c $((w * h * 3)) /dev/zero; } >"$T/mapblack.ppm"
+    rms=$("$WORKER" diff "$T/mapblack.ppm" "$T/map$n.png" | awk '$1 == "rmse" {print $2}')
+    echo "error map $n: RMS brightness $rms"
+    awk -v r="$rms" 'BEGIN { exit !(r > 0.1) }' || dark=$((dark + 1))
+done <"$T/maps.b64"
+check "error maps: none nearly black (RMS brightness > 0.1)" [ "$n" -eq 3 -a "$dark" -eq 0 ]
 
 # 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
 for j in jobs/compare.yaml jobs/seed-experiment.yaml; do
