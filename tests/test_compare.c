@@ -165,6 +165,42 @@ static void test_stats(void)
     compare_free(c);
 }
 
+/* A sweep that leaves samples per pixel alone (light_threshold): no slope against samples and no
+   claim that error falls; relMSE per point in the sweep's order instead, and that order kept
+   even when the seeds' sample counts differ by a hair (a poisson pixel sampler). */
+static void test_stats_flat_samples(void)
+{
+    struct err e;
+    struct compare *c =
+        compare_load(job_file("lt.yaml", "scenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
+                                         "sweep: { light_threshold: [50, 25, 10] }\nvariants:\n"
+                                         "  - { label: lights }\n"),
+                     &e);
+    CHECK(c != NULL);
+    if (!c)
+        return;
+    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
+    static const double rel[3] = {0.03, 0.02, 0.021}, spp[3] = {66.9, 67.2, 67.0};
+    for (int p = 0; p < 3; p++)
+        for (int k = 0; k < 2; k++) {
+            struct compare_item *it = &c->items[compare_index(c, 0, 0, p, k)];
+            it->done = it->has_error = 1;
+            it->spp_mean = spp[p];
+            it->wall_s = 0.01 * (p + 1);
+            it->error.relmse = rel[p];
+        }
+    int order[3];
+    compare_point_order(c, 0, 0, order);
+    CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
+    char line[1024];
+    struct rgb8 ref = {0};
+    compare_stability(c, 0, 0, dir, &ref, line, sizeof line);
+    CHECK(!strstr(line, "nan") && !strstr(line, "spp^") && !strstr(line, "keeps falling"));
+    CHECK(strstr(line, "light_threshold 50: 0.03, light_threshold 25: 0.02, light_threshold 10: 0.021") !=
+          NULL);
+    compare_free(c);
+}
+
 int main(void)
 {
     char cwd[512];
@@ -176,6 +212,7 @@ int main(void)
     test_two_keys_no_sweep();
     test_errors();
     test_stats();
+    test_stats_flat_samples();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0);

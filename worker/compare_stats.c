@@ -38,11 +38,30 @@ void compare_aggregate(const struct compare *c, int s, int v, int p, struct comp
         a->rel_lo = 0;
 }
 
+/* A sweep "changes the samples" when its points' mean samples per pixel span more than 5%: a
+   light_threshold, max_depth or poisson_pool sweep does not, though a poisson pixel sampler's
+   counts move by a hair from point to point. */
+#define SAMPLES_VARY 1.05
+
+static int samples_vary(const struct compare *c, int s, int v)
+{
+    double lo = INFINITY, hi = 0;
+    struct compare_agg a;
+    for (int p = 0; p < c->n_points; p++) {
+        compare_aggregate(c, s, v, p, &a);
+        if (a.n > 0)
+            lo = fmin(lo, a.spp), hi = fmax(hi, a.spp);
+    }
+    return hi > lo * SAMPLES_VARY;
+}
+
 void compare_point_order(const struct compare *c, int s, int v, int *order)
 {
     struct compare_agg a, b;
     for (int p = 0; p < c->n_points; p++)
         order[p] = p;
+    if (!samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
+        return;
     for (int i = 1; i < c->n_points; i++) /* insertion sort: a handful of points */
         for (int j = i; j > 0; j--) {
             compare_aggregate(c, s, v, order[j], &a);
@@ -137,7 +156,13 @@ void compare_stability(const struct compare *c, int s, int v, const char *dir, c
                     100 * spread, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");
-    if (c->n_points > 1) {
+    if (c->n_points > 1 && !samples_vary(c, s, v)) {
+        /* No slope or "stops falling" against samples that do not change: the figures instead. */
+        sbuf_printf(&b, "; samples per pixel stay at about %.0f along the sweep, so relMSE point by point: ",
+                    a[0].spp);
+        for (int i = 0; i < c->n_points; i++)
+            sbuf_printf(&b, "%s%s: %.3g", i ? ", " : "", c->points[order[i]], a[i].rel);
+    } else if (c->n_points > 1) {
         sbuf_printf(&b, "; relMSE ~ spp^%.2f", slope(a, c->n_points));
         /* Error "stops falling" at the first step whose local slope is above -0.3: more samples
            buy almost nothing there (noise alone falls as spp^-1). */

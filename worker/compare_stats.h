@@ -14,8 +14,9 @@ struct compare_agg {
 
 void compare_aggregate(const struct compare *c, int scene, int variant, int point, struct compare_agg *a);
 
-/* The sweep points of (scene, variant) ordered by mean samples per pixel, fewest first
-   (order has c->n_points entries). */
+/* The sweep points of (scene, variant) ordered by mean samples per pixel, fewest first, or in
+   the sweep's own order when the sweep leaves samples per pixel alone (within 5%: a
+   light_threshold sweep). order has c->n_points entries. */
 void compare_point_order(const struct compare *c, int scene, int variant, int *order);
 
 /* relMSE of the mean of a point's seed images against ref, and the mean relMSE of the single
