@@ -201,6 +201,32 @@ static void test_stats_flat_samples(void)
     compare_free(c);
 }
 
+/* One seed: no spread to show, so the chart draws no whiskers and says why. */
+static void test_chart_one_seed(void)
+{
+    struct err e;
+    struct compare *c = compare_load(job_file("one.yaml", "scenes: [SCENE]\nwidth: 8\n"
+                                                          "sweep: { threshold: [20, 10] }\nvariants:\n"
+                                                          "  - { label: a }\n"),
+                                     &e);
+    CHECK(c != NULL);
+    if (!c)
+        return;
+    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
+    for (int p = 0; p < 2; p++) {
+        struct compare_item *it = &c->items[compare_index(c, 0, 0, p, 0)];
+        it->done = it->has_error = 1;
+        it->spp_mean = 25 << (2 * p);
+        it->wall_s = 0.01 * (p + 1);
+        it->error.relmse = 0.1 / it->spp_mean;
+    }
+    char *svg = compare_chart_svg(c);
+    CHECK(svg && !strstr(svg, "<path d=\"M") && !strstr(svg, "whisker") && !strstr(svg, "1 seeds"));
+    CHECK(svg && strstr(svg, "one seed: no spread across seeds"));
+    free(svg);
+    compare_free(c);
+}
+
 int main(void)
 {
     char cwd[512];
@@ -213,6 +239,7 @@ int main(void)
     test_errors();
     test_stats();
     test_stats_flat_samples();
+    test_chart_one_seed();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0);

@@ -227,8 +227,10 @@ char *compare_chart_svg(const struct compare *c)
                 size_t k = k0 + i;
                 wall[k] = a.wall_s, spp[k] = a.spp, rel[k] = a.rel, lo[k] = a.rel_lo, hi[k] = a.rel_hi;
             }
-            by_time[v] = (struct chart_series){c->variants[v], np, wall + k0, rel + k0, lo + k0, hi + k0};
-            by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, lo + k0, hi + k0};
+            /* One seed has no spread: a whisker would be a dot claiming one. */
+            const double *l = c->n_seeds > 1 ? lo + k0 : NULL, *h = c->n_seeds > 1 ? hi + k0 : NULL;
+            by_time[v] = (struct chart_series){c->variants[v], np, wall + k0, rel + k0, l, h};
+            by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, l, h};
         }
         snprintf(titles[2 * s], sizeof titles[0], "%s: error against time", c->scenes[s].name);
         snprintf(titles[2 * s + 1], sizeof titles[0], "%s: error against samples", c->scenes[s].name);
@@ -251,10 +253,16 @@ char *compare_chart_svg(const struct compare *c)
                                               slopes,
                                               2};
     }
-    snprintf(title, sizeof title,
-             "%s: relMSE against wall time and samples per pixel (mean of %d seeds; whiskers: "
-             "min to max)",
-             c->name, c->n_seeds);
+    if (c->n_seeds > 1)
+        snprintf(title, sizeof title,
+                 "%s: relMSE against wall time and samples per pixel (mean of %d seeds; whiskers: "
+                 "min to max)",
+                 c->name, c->n_seeds);
+    else
+        snprintf(title, sizeof title,
+                 "%s: relMSE against wall time and samples per pixel (one seed: no spread across "
+                 "seeds measured)",
+                 c->name);
     svg = chart_svg(title, pan, 2 * nsc, 2);
 done:
     free(mem);
