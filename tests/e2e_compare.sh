@@ -98,6 +98,13 @@ check "report: one stability line per variant and scene" [ "$(grep -c '^<li><b>'
 check "report: stability names the seed spread" grep -q 'spread across 2 seeds' "$html"
 check "report: variants ranked by efficiency per scene" [ "$(grep -c '<b>For the time spent</b>' "$html")" -eq 2 ]
 check "report: the table has every image" [ "$(grep -c '^<tr><td class="l">' "$html")" -eq 40 ]
+# Links: relative, and each resolves from the report's folder (the page may be opened anywhere)
+grep -o 'href="[^"]*"' "$html" | sed 's/^href="//; s/"$//' >"$T/links"
+check "report: links to summary.csv and chart.svg" sh -c "grep -qx summary.csv '$T/links' && grep -qx chart.svg '$T/links'"
+check "report: every image and sidecar linked from the table" \
+    [ "$(grep -c '\.png$' "$T/links")" -eq 40 -a "$(grep -c '\.json$' "$T/links")" -eq 40 ]
+unresolved=$(while read -r l; do [ -e "$cdir/$l" ] || echo "$l"; done <"$T/links")
+check "report: every link resolves (unresolved: $unresolved)" [ -z "$unresolved" ]
 
 # 1b. without a reference: images and table, no metrics; with an image file as the reference
 printf 'name: noref\nscenes: [checker]\nwidth: 16\nseeds: [1, 2]\nsweep: { threshold: [50, 25] }\nvariants:\n  - { sampler: jitter }\n  - { sampler: random }\n' >"$T/noref.yaml"
@@ -117,6 +124,8 @@ printf 'name: comma\nscenes: ["chk,e\\"r.yaml"]\nwidth: 8\nvariants:\n  - { samp
 "$WORKER" --quiet --out "$T/out" "$T/comma.yaml" 2>"$T/comma.err"; rc=$?
 check "comma in a scene name: exit 0 (got $rc: $(cat "$T/comma.err"))" [ "$rc" -eq 0 ]
 check "comma in a scene name: fields quoted" grep -q '^"chk,e""r",jitter-t50,50,5,1,4.00,.*,"chk,e""r-jitter-t50-t50-s1.png"$' "$T/out/comma/summary.csv"
+check "comma in a scene name: the report's link is percent-encoded" \
+    grep -q 'href="chk%2Ce%22r-jitter-t50-t50-s1.png"' "$T/out/comma/report.html"
 
 # 2. the second run reuses both references, says so, and leaves them untouched
 before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)

@@ -131,7 +131,8 @@ static int error_gain(const struct rgb8 *ref, const struct rgb8 *imgs, int n)
 }
 
 /* out = |img - ref| x gain per channel, clamped: structure in the error shows as a pattern. */
-static int error_map(const struct rgb8 *ref, const struct rgb8 *img, int gain, struct rgb8 *out, struct err *e)
+static int error_map(const struct rgb8 *ref, const struct rgb8 *img, int gain, struct rgb8 *out,
+                     struct err *e)
 {
     if (rgb8_alloc(out, ref->w, ref->h, e) < 0)
         return -1;
@@ -340,14 +341,30 @@ done:
     return rc;
 }
 
+/* A relative link to a file beside the page: href="name" with every byte but letters, digits and
+   "-._~" percent-encoded, so a scene file's name with a quote, '#' or '%' still resolves. */
+static void file_link(struct sbuf *b, const char *name, const char *text)
+{
+    sbuf_printf(b, "<a href=\"");
+    for (const unsigned char *p = (const unsigned char *)name; *p; p++)
+        if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
+            strchr("-._~", *p))
+            sbuf_printf(b, "%c", *p);
+        else
+            sbuf_printf(b, "%%%02X", *p);
+    sbuf_printf(b, "\">");
+    sbuf_escape(b, text);
+    sbuf_printf(b, "</a>");
+}
+
 static void table(struct sbuf *b, const struct compare *c)
 {
     static const char *const head[] = {"scene",    "variant", "threshold", "light threshold", "seed",
                                        "spp mean", "wall s",  "cpu s",     "sampler share",   "mse",
-                                       "rmse",     "relmse",  "psnr dB"};
+                                       "rmse",     "relmse",  "psnr dB",   "image, sidecar"};
     sbuf_printf(b, "<table>\n<tr>");
     for (size_t i = 0; i < sizeof head / sizeof head[0]; i++)
-        sbuf_printf(b, "<th%s>%s</th>", i < 2 ? " class=\"l\"" : "", head[i]);
+        sbuf_printf(b, "<th%s>%s</th>", i < 2 || i == 13 ? " class=\"l\"" : "", head[i]);
     sbuf_printf(b, "</tr>\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
@@ -360,10 +377,17 @@ static void table(struct sbuf *b, const struct compare *c)
             it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
             it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
-            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td></tr>\n", it->error.mse,
+            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td>", it->error.mse,
                         it->error.rmse, it->error.relmse, it->error.psnr);
         else
-            sbuf_printf(b, "<td></td><td></td><td></td><td></td></tr>\n");
+            sbuf_printf(b, "<td></td><td></td><td></td><td></td>");
+        char sidecar[JOB_PATH_MAX + 8];
+        snprintf(sidecar, sizeof sidecar, "%.*s.json", (int)strlen(it->job.output) - 4, it->job.output);
+        sbuf_printf(b, "<td class=\"l\">");
+        file_link(b, it->job.output, it->job.output);
+        sbuf_printf(b, ", ");
+        file_link(b, sidecar, "json");
+        sbuf_printf(b, "</td></tr>\n");
     }
     sbuf_printf(b, "</table>\n");
 }
@@ -395,9 +419,13 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         " x %d seeds. Error is relMSE (mean of (image - reference)^2 / (reference^2 + 0.01) over 8-bit "
         "values scaled to [0, 1]) against each scene's reference; lower is better. The reference's own "
         "noise and 8-bit rounding set a floor under every curve. Wall time is one image's render on "
-        "this machine, so it moves with the machine's load. Every image, its JSON sidecar and "
-        "summary.csv are beside this page.</p>\n",
+        "this machine, so it moves with the machine's load. Every image and its JSON sidecar are "
+        "beside this page (linked from the table at the end), with ",
         c->n_seeds);
+    file_link(&b, "summary.csv", "summary.csv");
+    sbuf_printf(&b, " (the table's figures) and ");
+    file_link(&b, "chart.svg", "chart.svg");
+    sbuf_printf(&b, ".</p>\n");
     const char *body = strstr(svg, "<svg"); /* inline: drop the XML declaration */
     sbuf_printf(&b, "<h2>Speed against accuracy</h2>\n%s\n", body ? body : svg);
     free(svg);
