@@ -8,6 +8,7 @@
 #include "check.h"
 #include "compare.h"
 #include "compare_stats.h"
+#include "fileio.h"
 
 static char dir[256], scene[1024];
 
@@ -227,6 +228,47 @@ static void test_chart_one_seed(void)
     compare_free(c);
 }
 
+/* The error that repeats in every seed, at every sweep point: images on disk where "same" is
+   off the reference by +10 in both seeds (all of it repeats: aliasing, a bias) and "cancel" by
+   +10 in one seed and -10 in the other (none repeats: noise). */
+static void test_repeated_error(void)
+{
+    struct err e;
+    struct compare *c = compare_load(job_file("rep.yaml", "scenes: [SCENE]\nwidth: 4\nheight: 4\n"
+                                                          "seeds: [1, 2]\nsweep: { threshold: [20, 10] }\n"
+                                                          "variants:\n  - { label: same }\n"
+                                                          "  - { label: cancel }\n"),
+                                     &e);
+    CHECK(c != NULL);
+    if (!c)
+        return;
+    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
+    struct rgb8 ref = {0}, img = {0};
+    CHECK(rgb8_alloc(&ref, 4, 4, &e) == 0 && rgb8_alloc(&img, 4, 4, &e) == 0);
+    memset(ref.px, 100, 4 * 4 * 3);
+    for (int v = 0; v < 2; v++)
+        for (int p = 0; p < 2; p++)
+            for (int k = 0; k < 2; k++) {
+                struct compare_item *it = &c->items[compare_index(c, 0, v, p, k)];
+                char path[1024];
+                memset(img.px, v == 0 || k == 0 ? 110 : 90, 4 * 4 * 3);
+                snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
+                CHECK(imgio_write(path, &img, IMG_PNG, &e) == 0);
+                it->done = it->has_error = 1;
+                it->spp_mean = 25 << (2 * p);
+                it->wall_s = 0.01 * (p + 1);
+                CHECK(metrics_compare(&ref, &img, &it->error, &e) == 0);
+            }
+    char line[2048];
+    compare_stability(c, 0, 0, dir, &ref, line, sizeof line);
+    CHECK(strstr(line, "repeats in every seed: 100% at threshold 20, 100% at threshold 10") != NULL);
+    compare_stability(c, 0, 1, dir, &ref, line, sizeof line);
+    CHECK(strstr(line, "repeats in every seed: 0% at threshold 20, 0% at threshold 10") != NULL);
+    rgb8_free(&ref);
+    rgb8_free(&img);
+    compare_free(c);
+}
+
 int main(void)
 {
     char cwd[512];
@@ -240,6 +282,7 @@ int main(void)
     test_stats();
     test_stats_flat_samples();
     test_chart_one_seed();
+    test_repeated_error();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0);

@@ -182,17 +182,29 @@ void compare_stability(const struct compare *c, int s, int v, const char *dir, c
             sbuf_printf(&b, "; error keeps falling down to %s (%.3g at %.0f spp)",
                         c->points[order[c->n_points - 1]], a[c->n_points - 1].rel, a[c->n_points - 1].spp);
     }
-    double rom, mr;
-    struct err e;
-    int last = order[c->n_points - 1];
-    if (c->n_seeds > 1 && compare_seed_average(c, s, v, last, dir, ref, &rom, &mr, &e) == 0 && rom > 0) {
-        double gain = mr / rom, repeated = fmin(1, fmax(0, (c->n_seeds / gain - 1) / (c->n_seeds - 1)));
-        sbuf_printf(
-            &b,
-            "; at %s averaging the %d seeds divides relMSE by %.2f (pure noise: %d), so about %.0f%% of "
-            "the error repeats in every seed%s",
-            c->points[last], c->n_seeds, gain, c->n_seeds, 100 * repeated,
-            repeated > 0.5 ? ": structured error (aliasing, a pattern, or a bias)" : "");
+    /* The share of the error that repeats in every seed, at every point: noise falls by the seed
+       count when the seeds' images are averaged, structure (aliasing, a pattern, a bias) does not.
+       Uniform's fixed grid repeats at every sample count; at the densest point alone the
+       reference's own noise, a floor of a few percent, could hide that. */
+    if (c->n_seeds > 1) {
+        double gain = 0, share = 0;
+        int shown = 0, last = 0;
+        for (int i = 0; i < c->n_points; i++) {
+            double rom, mr;
+            struct err e;
+            if (compare_seed_average(c, s, v, order[i], dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
+                continue;
+            gain = rom > 0 ? mr / rom : INFINITY;
+            share = fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
+            last = order[i];
+            sbuf_printf(&b, "%s%.0f%% at %s",
+                        shown++ ? ", " : "; the share of the error that repeats in every seed: ", 100 * share,
+                        c->points[order[i]]);
+        }
+        if (shown)
+            sbuf_printf(&b, " (averaging the %d seeds divides relMSE by %.2f at %s, pure noise by %d)%s",
+                        c->n_seeds, gain, c->points[last], c->n_seeds,
+                        share > 0.5 ? ": structured error (aliasing, a pattern, or a bias)" : "");
     }
     char *text = sbuf_take(&b);
     snprintf(buf, n, "%s", text ? text : "out of memory");
