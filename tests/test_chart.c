@@ -1,4 +1,5 @@
 /* test_chart: the SVG writer: decade axes, skipped non-positive points, escaping, empty panels. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,6 +70,23 @@ int main(void)
     CHECK(box && sscanf(box, "<rect x=\"%lf\" y=\"%*f\" width=\"%lf\"", &box_x, &box_w) == 2);
     /* sans-serif at 12 px is under 7 px a character; the text starts 34 px into the box */
     CHECK(box_w >= 34 + 7 * 63 && box_x + box_w <= svg_w);
+    /* guide labels that would end close together (a narrow y range) do not overlap: each is
+       right-aligned at its end, "slope -1.5" at 11 px about 60 px wide and 12 px high */
+    double xn[] = {1, 1.2}, yn[] = {0.015, 0.012};
+    struct chart_series near = {"near", 2, xn, yn, NULL, NULL};
+    struct chart_panel u = {"t", "x", "y", NULL, &near, 1, slopes, 2};
+    char *svg4 = chart_svg("t", &u, 1, 1);
+    double lx[2] = {0, 0}, ly[2] = {0, 0};
+    int labels = 0;
+    for (const char *t = svg4; t && (t = strstr(t, "<text x=\"")) && labels < 2; t++) {
+        const char *close = strchr(t, '>');
+        if (close && !strncmp(close, ">slope ", 7) &&
+            sscanf(t, "<text x=\"%lf\" y=\"%lf\"", &lx[labels], &ly[labels]) == 2)
+            labels++;
+    }
+    CHECK(labels == 2);
+    CHECK(fabs(lx[0] - lx[1]) >= 60 || fabs(ly[0] - ly[1]) >= 12);
+    free(svg4);
     free(svg3);
     free(svg2);
     free(svg);

@@ -129,10 +129,13 @@ static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel
     sbuf_printf(b, "</text>\n");
 }
 
-/* Dotted lines of each slope through the top-left-most data point, labelled at their end. */
+/* Dotted lines of each slope through the top-left-most data point, labelled at their end; a
+   label that would overlap one already placed (lines ending close together when the y range is
+   narrow) moves up a line. */
 static void guides(struct sbuf *b, const struct frame *f, const struct chart_panel *p)
 {
-    double ax = INFINITY, ay = 0;
+    double ax = INFINITY, ay = 0, placed_x[8], placed_y[8], placed_w[8];
+    int placed = 0;
     for (int s = 0; s < p->n_series; s++)
         for (int i = 0; i < p->series[s].n; i++) {
             const struct chart_series *se = &p->series[s];
@@ -153,10 +156,21 @@ static void guides(struct sbuf *b, const struct frame *f, const struct chart_pan
             "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#777777\" stroke-width=\"1.2\" "
             "stroke-dasharray=\"2 4\"/>\n",
             x0, y0, x1, y1);
-        sbuf_printf(b,
-                    "<text x=\"%.1f\" y=\"%.1f\" fill=\"#555555\" font-size=\"11\" text-anchor=\"end\">slope "
-                    "%g</text>\n",
-                    x1 - 2, y1 - 4, k);
+        char text[32];
+        int len = snprintf(text, sizeof text, "slope %g", k);
+        /* right-aligned at (tx, ty), 11 px text: about 6.5 px a character, 12 px high */
+        double tx = x1 - 2, ty = y1 - 4, tw = 6.5 * len;
+        for (int q = 0; q < placed; q++)
+            if (tx - tw < placed_x[q] && placed_x[q] - placed_w[q] < tx && fabs(ty - placed_y[q]) < 13) {
+                ty = placed_y[q] - 13;
+                q = -1; /* check the new place against every label again */
+            }
+        if (placed < 8)
+            placed_x[placed] = tx, placed_y[placed] = ty, placed_w[placed++] = tw;
+        sbuf_printf(
+            b,
+            "<text x=\"%.1f\" y=\"%.1f\" fill=\"#555555\" font-size=\"11\" text-anchor=\"end\">%s</text>\n",
+            tx, ty, text);
     }
 }
 
