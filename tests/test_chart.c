@@ -86,6 +86,11 @@ int main(void)
     }
     CHECK(labels == 2);
     CHECK(fabs(lx[0] - lx[1]) >= 60 || fabs(ly[0] - ly[1]) >= 12);
+    /* that panel spans a decade in y (0.01..0.1): with only its two ends labelled no value can
+       be read, so 2 and 5 times each decade are labelled too */
+    CHECK(svg4 && strstr(svg4, ">0.02<") && strstr(svg4, ">0.05<"));
+    CHECK(svg4 && strstr(svg4, ">2<") && strstr(svg4, ">0.5<"));   /* x: 0.1..10, two decades */
+    CHECK(svg && !strstr(svg, ">0.02<") && !strstr(svg, ">0.5<")); /* y: three decades, decades only */
     free(svg4);
     free(svg3);
     free(svg2);

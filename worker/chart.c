@@ -80,14 +80,18 @@ static double py(const struct frame *f, double v)
     return f->top + (f->r.y1 - log10(v)) / (f->r.y1 - f->r.y0) * f->h;
 }
 
-/* "1e-05", "0.01", "100", "1e+04": a tick label for 10^e. */
-static void tick_label(int e, char *buf, size_t n)
+/* "1e-5", "0.02", "100", "5e4": a tick label for m x 10^e. */
+static void tick_label(int m, int e, char *buf, size_t n)
 {
     if (e >= -2 && e <= 3)
-        snprintf(buf, n, "%g", pow(10, e));
+        snprintf(buf, n, "%g", m * pow(10, e));
     else
-        snprintf(buf, n, "1e%d", e);
+        snprintf(buf, n, "%de%d", m, e);
 }
+
+/* An axis spanning at most this many decades also labels 2 and 5 times each decade: with only
+   its ends labelled, a value in between could not be read. */
+#define MINOR_LABEL_DECADES 2
 
 static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel *p)
 {
@@ -102,9 +106,15 @@ static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel
             double x = px(f, m * pow(10, e));
             sbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n", x,
                         f->top, x, f->top + f->h, m == 1 ? "#bbbbbb" : "#eeeeee");
+            if ((m == 2 || m == 5) && dx <= MINOR_LABEL_DECADES) {
+                tick_label(m, e, lab, sizeof lab);
+                sbuf_printf(b,
+                            "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" fill=\"#666666\">%s</text>\n",
+                            x, f->top + f->h + 16, lab);
+            }
         }
         double x = px(f, pow(10, e));
-        tick_label(e, lab, sizeof lab);
+        tick_label(1, e, lab, sizeof lab);
         if (dx <= 8 || e % 2 == 0)
             sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", x,
                         f->top + f->h + 16, lab);
@@ -114,8 +124,13 @@ static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel
             double y = py(f, m * pow(10, e));
             sbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n", f->left,
                         y, f->left + f->w, y, m == 1 ? "#bbbbbb" : "#eeeeee");
+            if ((m == 2 || m == 5) && dy <= MINOR_LABEL_DECADES) {
+                tick_label(m, e, lab, sizeof lab);
+                sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#666666\">%s</text>\n",
+                            f->left - 6, y + 4, lab);
+            }
         }
-        tick_label(e, lab, sizeof lab);
+        tick_label(1, e, lab, sizeof lab);
         if (dy <= 8 || e % 2 == 0)
             sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%s</text>\n", f->left - 6,
                         py(f, pow(10, e)) + 4, lab);
