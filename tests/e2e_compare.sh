@@ -89,6 +89,8 @@ check "chart: whiskers" grep -q '<path d="M' "$svg"
 html=$cdir/report.html
 check "report: html5" sh -c "head -n 1 '$html' | grep -q '<!DOCTYPE html>'"
 check "report: inline chart" grep -q '<svg xmlns' "$html"
+check "report: the chart shrinks to the page's width (a long label widens its legend)" \
+    grep -q 'svg{max-width:100%;height:auto}' "$html"
 check "report: images as data URIs" [ "$(grep -o 'src="data:image/png;base64,' "$html" | wc -l)" -ge 40 ]
 check "report: nothing from the network" sh -c "! grep -Eqi '(src|href)=\"(https?:)?//|url\\(|@import' '$html'"
 check "report: sample counts side by side" grep -q '</b> t=25: 16 spp' "$html"

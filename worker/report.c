@@ -21,6 +21,7 @@ static const char style[] =
     ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}"
     "figure{margin:0;font-size:12px;width:min-content}figcaption{min-width:120px}"
     "img{display:block;border:1px solid #ccc}img.px{image-rendering:pixelated}"
+    "svg{max-width:100%;height:auto}" /* a long label's legend makes the chart wider than the page */
     "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
     "6px;text-align:right}"
     "td.l,th.l{text-align:left}.pt{font-weight:bold;font-size:13px;min-width:90px}"
