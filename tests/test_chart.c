@@ -92,6 +92,21 @@ int main(void)
     CHECK(svg4 && strstr(svg4, ">2<") && strstr(svg4, ">0.5<"));   /* x: 0.1..10, two decades */
     CHECK(svg && !strstr(svg, ">0.02<") && !strstr(svg, ">0.5<")); /* y: three decades, decades only */
     free(svg4);
+    /* the guides start at the highest point, where error is largest, even when the leftmost point
+       is low (noisy wall times): from there they run across the data, not below it */
+    double xg[] = {1, 2, 5}, yg[] = {0.001, 0.1, 0.01}, gx = 0, gy = 0, cx = 0, cy = 0;
+    struct chart_series hi_pt = {"g", 3, xg, yg, NULL, NULL};
+    struct chart_panel gp = {"t", "x", "y", NULL, &hi_pt, 1, slopes, 2};
+    char *svg5 = chart_svg("t", &gp, 1, 1);
+    const char *guide = svg5 ? strstr(svg5, "stroke-dasharray=\"2 4\"") : NULL;
+    while (guide && guide > svg5 && strncmp(guide, "<line", 5))
+        guide--;
+    const char *circle = svg5 ? strstr(svg5, "<circle") : NULL;
+    circle = circle ? strstr(circle + 1, "<circle") : NULL; /* the second point's */
+    CHECK(guide && sscanf(guide, "<line x1=\"%lf\" y1=\"%lf\"", &gx, &gy) == 2);
+    CHECK(circle && sscanf(circle, "<circle cx=\"%lf\" cy=\"%lf\"", &cx, &cy) == 2);
+    CHECK(gx == cx && gy == cy);
+    free(svg5);
     free(svg3);
     free(svg2);
     free(svg);

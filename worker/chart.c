@@ -144,7 +144,8 @@ static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel
     sbuf_printf(b, "</text>\n");
 }
 
-/* Dotted lines of each slope through the top-left-most data point, labelled at their end; a
+/* Dotted lines of each slope through the highest data point (the leftmost of equals), labelled at
+   their end: from the largest error they run across the data even when wall times are noisy; a
    label that would overlap one already placed (lines ending close together when the y range is
    narrow) moves up a line. */
 static void guides(struct sbuf *b, const struct frame *f, const struct chart_panel *p)
@@ -154,7 +155,7 @@ static void guides(struct sbuf *b, const struct frame *f, const struct chart_pan
     for (int s = 0; s < p->n_series; s++)
         for (int i = 0; i < p->series[s].n; i++) {
             const struct chart_series *se = &p->series[s];
-            if (usable(se->x[i]) && usable(se->y[i]) && (se->x[i] < ax || (se->x[i] == ax && se->y[i] > ay)))
+            if (usable(se->x[i]) && usable(se->y[i]) && (se->y[i] > ay || (se->y[i] == ay && se->x[i] < ax)))
                 ax = se->x[i], ay = se->y[i];
         }
     for (int g = 0; g < p->n_slopes; g++) {

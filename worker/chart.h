@@ -10,7 +10,7 @@ struct chart_series {
     const double *x, *y, *lo, *hi;
 };
 
-/* One log-log panel. Guide slopes (e.g. -1 and -1.5) are drawn dotted through the top-left
+/* One log-log panel. Guide slopes (e.g. -1 and -1.5) are drawn dotted through the highest
    data point and labelled. With no drawable point the panel shows `empty_note`. */
 struct chart_panel {
     const char *title, *x_label, *y_label, *empty_note;
