@@ -20,12 +20,13 @@ static const char usage[] =
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
-    "                                          drain a queue directory (--once: exit when empty)\n"
+    "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
     "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
     "       worker --help | --version\n"
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
-    "         --force (render even when the outputs are current)\n";
+    "         --force (render even when the outputs are current)\n"
+    "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n";
 
 static const char help[] =
     "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
