@@ -212,4 +212,18 @@ check "missing queue dir: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "missing queue dir: named" grep -q "nowhere: No such file" "$T/u.log"
 "$WORKER" --queue "$T/q8" --retries -1 2>/dev/null; rc=$?
 check "bad --retries: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+# --out does nothing with --queue (outputs go to DIR/done/) and --once nothing without it: both say so
+Q2="$T/qout"; mkdir -p "$Q2"; tiny "$Q2/one.yaml"
+"$WORKER" --queue "$Q2" --once --quiet --out "$T/elsewhere" 2>"$T/qout.err"; rc=$?
+check "--queue with --out: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "--queue with --out: rendered into DIR/done/" [ -s "$Q2/done/one/one.png" ]
+check "--queue with --out: nothing in --out" [ ! -e "$T/elsewhere" ]
+check "--queue with --out: one line says --out is ignored" \
+    sh -c "grep -c -- '--out is ignored with --queue' '$T/qout.err' | grep -qx 1"
+tiny "$T/solo.yaml"
+"$WORKER" --once --quiet --out "$T/solo-out" "$T/solo.yaml" 2>"$T/solo.err"; rc=$?
+check "--once without --queue: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "--once without --queue: the job renders" [ -s "$T/solo-out/solo/solo.png" ]
+check "--once without --queue: one line says it is ignored" \
+    sh -c "grep -c -- '--once is ignored without --queue' '$T/solo.err' | grep -qx 1"
 finish

@@ -241,11 +241,16 @@ int main(int argc, char **argv)
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
     const char **jobs = calloc((size_t)argc, sizeof *jobs);
-    int njobs = 0, worst = 0;
+    int njobs = 0, worst = 0, out_given = 0;
+    const char *queue_only = NULL; /* the first option that only a queue uses */
     if (!jobs)
         return 2;
     for (int i = 1 + merge; i < argc; i++) {
         const char *a = argv[i];
+        if (!queue_only && (!strcmp(a, "--once") || !strcmp(a, "--poll") || !strcmp(a, "--retries") ||
+                            !strcmp(a, "--lease-timeout")))
+            queue_only = a;
+        out_given |= !strcmp(a, "--out");
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             printf("%s\n%s", help, usage);
             goto out;
@@ -271,6 +276,11 @@ int main(int argc, char **argv)
             jobs[njobs++] = a;
         }
     }
+    /* accepted, but a user who gave them expects something of them: say they do nothing */
+    if (q.dir && out_given)
+        fprintf(stderr, "worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);
+    if (!q.dir && queue_only)
+        fprintf(stderr, "worker: %s is ignored without --queue\n", queue_only);
     if (q.dir && (njobs || merge || o->parts)) {
         fprintf(stderr, "worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;
