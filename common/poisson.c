@@ -12,6 +12,12 @@
 /* Offsets within a cell in fixed point: units per cell width (int16 holds +-8 cells). */
 #define POISSON_FIXED 4096
 /* An empty cell's offsets: -5 cells, farther than r from any candidate its window tests. */
+/* The widest window (in cells) the fixed point filter covers; wider ones (r of 2 cells or more,
+   thresholds near 100) take the exact test alone. A test builds this file again with 0 to
+   check that the filter never changes a set. */
+#ifndef POISSON_FILTER_WINDOW
+#define POISSON_FILTER_WINDOW 5
+#endif
 #define POISSON_EMPTY (-5 * POISSON_FIXED)
 
 int poisson_init(struct poisson *s, double radius, int side, size_t capacity)
@@ -120,6 +126,24 @@ static inline int poisson_near4(const int16_t *uv, ptrdiff_t stride, uint32_t cu
 #endif
 }
 
+/* poisson_near4 for a 5 x 5 window (r of 1.5 cells or more: thresholds above about 8.6, where
+   no whole number of cells per side keeps r under 1.5 cells): the four 4 x 4 windows in its
+   corners. (cu, cv) >= r > 1 cell from the first corner, so moving that corner by one cell
+   keeps both fields positive. */
+static inline int poisson_near5(const int16_t *uv, ptrdiff_t stride, uint32_t cuv, int32_t near2)
+{
+    const uint32_t right = POISSON_FIXED, down = (uint32_t)POISSON_FIXED << 16;
+    return poisson_near4(uv, stride, cuv, near2) | poisson_near4(uv + 2, stride, cuv - right, near2) |
+           poisson_near4(uv + 2 * stride, stride, cuv - down, near2) |
+           poisson_near4(uv + 2 * stride + 2, stride, cuv - right - down, near2);
+}
+
+/* The filter for a window of w cells (4 or 5). */
+static inline int poisson_near(const int16_t *uv, ptrdiff_t stride, uint32_t cuv, int32_t near2, int w)
+{
+    return w == 4 ? poisson_near4(uv, stride, cuv, near2) : poisson_near5(uv, stride, cuv, near2);
+}
+
 /* What the tests need, copied into locals once per draw so the compiler keeps them in
    registers instead of reloading them after every store. */
 struct poisson_frame {
@@ -136,7 +160,7 @@ struct poisson_frame {
 
 /* Four candidates around a base in cell (bi, bj) at offset (bu, bv) inside it, all in cell
    widths: where they are relative to that cell (lu, lv), whether they lie inside the square,
-   and for the fixed point filter the first cell of the 4 x 4 window that covers
+   and for the fixed point filter the first cell of the window that covers
    [c - r, c + r] (at, from cell (0, 0)) and the candidate's offset from that cell's corner
    (cuv, packed as poisson_near4 wants). Four lanes at once in single precision: (lu, lv) are
    below 4 in magnitude, so their rounding is under 5e-7 of a cell, and a kept candidate is
@@ -185,11 +209,11 @@ static inline int poisson_far_enough(const struct poisson *s, const struct poiss
     /* the box [c - r, c + r] starts in cell (i0, j0); truncation floors the lifted values */
     int i0 = (int)(xs + f->lift) - f->lift_cells;
     int j0 = (int)(ys + f->lift) - f->lift_cells;
-    if (f->window == 4 && !filtered) {
+    if (f->window <= POISSON_FILTER_WINDOW && !filtered) {
         ptrdiff_t at = (ptrdiff_t)j0 * f->stride + i0;
         uint32_t cu = (uint32_t)((xs - i0) * POISSON_FIXED + 0.5),
                  cv = (uint32_t)((ys - j0) * POISSON_FIXED + 0.5);
-        if (poisson_near4(f->uv + 2 * at, f->stride, cu | cv << 16, f->near2))
+        if (poisson_near(f->uv + 2 * at, f->stride, cu | cv << 16, f->near2, f->window))
             return 0;
     }
     return poisson_far_exact(s, pts, cx, cy, i0, j0, torus);
@@ -282,7 +306,8 @@ static inline void poisson_offsets(uint64_t *counter, float scale, float *ox, fl
 /* Refill the buffer of candidate offsets: they do not depend on the sample they go around, so
    they are made in bulk, where the vector arithmetic runs at full throughput instead of
    waiting on its own latency before every test. */
-static void poisson_refill(struct poisson *s, uint64_t *counter, float scale)
+static inline __attribute__((always_inline)) void poisson_refill(struct poisson *s, uint64_t *counter,
+                                                                 float scale)
 {
     for (int k = 0; k < POISSON_OFFSETS; k += 4)
         poisson_offsets(counter, scale, s->off_x + k, s->off_y + k);
@@ -292,7 +317,8 @@ static void poisson_refill(struct poisson *s, uint64_t *counter, float scale)
    cells holding at most one sample, an active list, k = 30 candidates uniform by area in the
    annulus [r, 2r] around a random active sample, which retires after k misses. O(N).
    torus != 0 measures distances modulo 1 and wraps candidates into [0, 1). */
-size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const int torus)
+static inline __attribute__((always_inline)) size_t
+draw_window(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const int torus, const int window)
 {
     const size_t cells = s->stride * s->stride;
     memset(s->cell, 0xff, cells * sizeof *s->cell); /* -1 */
@@ -308,7 +334,7 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
         .near2 = (int32_t)floor(pow((r_cells - 4e-4) * POISSON_FIXED, 2)),
         .stride = (ptrdiff_t)s->stride,
         .uv = s->cell_uv + 2 * origin,
-        .window = s->window,
+        .window = window,
         .r_cells = (float)r_cells,
         .side_f = (float)side,
     };
@@ -343,9 +369,9 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
             next += 4;
             const int lanes = POISSON_TRIES - k < 4 ? POISSON_TRIES - k : 4;
             for (int b = 0; b < lanes; b++) {
-                const int filtered = L.inside[b] && frame.window == 4;
-                if (filtered &&
-                    poisson_near4(frame.uv + 2 * (ptrdiff_t)L.at[b], frame.stride, L.cuv[b], frame.near2))
+                const int filtered = L.inside[b] && frame.window <= POISSON_FILTER_WINDOW;
+                if (filtered && poisson_near(frame.uv + 2 * (ptrdiff_t)L.at[b], frame.stride, L.cuv[b],
+                                             frame.near2, frame.window))
                     continue; /* the common case: clearly too close */
                 struct pt2 c = {(bi + (double)L.lu[b]) * inv_side, (bj + (double)L.lv[b]) * inv_side};
                 if (torus) {
@@ -368,4 +394,13 @@ size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, 
     }
     *caller_rng = local;
     return count;
+}
+
+/* The common window of 4 cells (thresholds up to about 8.6) in its own copy, where the filter's
+   width is a constant. */
+size_t poisson_draw(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const int torus)
+{
+    if (s->window == 4)
+        return draw_window(s, caller_rng, out, torus, 4);
+    return draw_window(s, caller_rng, out, torus, s->window);
 }

@@ -84,7 +84,7 @@ static void offsets_law(void)
 int main(void)
 {
     offsets_law();
-    const double thresholds[] = {1, 2.5, 5, 8, 12, 40};
+    const double thresholds[] = {1, 2.5, 5, 8, 10, 12, 20, 40, 100};
     for (size_t i = 0; i < sizeof thresholds / sizeof thresholds[0]; i++)
         for (int torus = 0; torus <= 1; torus++)
             for (uint64_t seed = 1; seed <= 3; seed++)
