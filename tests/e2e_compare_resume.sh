@@ -28,6 +28,9 @@ stamp >"$T/second"
 check "second run leaves every image untouched" cmp -s "$T/first" "$T/second"
 check "summary.csv still has 8 rows with errors" [ "$(grep -c ',checker-' "$T/out/cmp/summary.csv")" -eq 8 ]
 check "skipped rows keep their timing" sh -c "! awk -F, 'NR > 1 && \$6 == \"0.00\"' '$T/out/cmp/summary.csv' | grep -q ."
+# the same --out spelled another way (relative, through ./): the same outputs, all current
+(cd "$T" && "$WORKER" --quiet --out ./out/../out cmp.yaml 2>"$T/err")
+check "--out spelled another way: all 8 current" grep -q "8 of them current" "$T/err"
 sed -i 's/seeds: \[1, 2\]/seeds: [1, 2, 3]/' "$T/cmp.yaml"
 run
 check "a new seed renders only the 4 missing images" grep -q "12 images .*8 of them current" "$T/err"

@@ -132,9 +132,10 @@ static void fmt_duration(double s, char *buf, size_t n)
 }
 
 /* The resume hash of one combination: its scene file's and texture images' bytes, every setting that changes
-   its pixels, and its reference image's path (which carries the reference's own cache key) and bytes (a
-   reference given as a file may be replaced under the same path). An image whose sidecar records it is
-   current and is not rendered again (unless --force). */
+   its pixels, and its reference image's bytes (a cached reference's bytes follow its settings, and a
+   reference given as a file may be replaced under the same path), not its path: the same --out spelled
+   another way finds the same outputs current. An image whose sidecar records it is current and is not
+   rendered again (unless --force). */
 static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *e)
 {
     const struct job *j = &it->job;
@@ -146,10 +147,10 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
         fileio_hash(j->reference, IMGIO_MAX_BYTES, &h, &ignored);
     char text[JOB_PATH_MAX + 512];
     int n = snprintf(
-        text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %s worker %s",
+        text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s",
         j->width, j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
         j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, j->light_sampling,
-        j->reference, WORKER_VERSION);
+        j->reference[0] != 0, WORKER_VERSION);
     *hash = hash_bytes(h, text, (size_t)n);
     return 0;
 }
