@@ -132,10 +132,24 @@ static inline int poisson_near4(const int16_t *uv, ptrdiff_t stride, uint32_t cu
    keeps both fields positive. */
 static inline int poisson_near5(const int16_t *uv, ptrdiff_t stride, uint32_t cuv, int32_t near2)
 {
+#if defined(__SSE2__) && !defined(POISSON_PORTABLE)
+    /* rows of cells 0-3, then of cells 1-4 (the candidate one cell to the left of their corner) */
+    const int f = POISSON_FIXED;
+    const __m128i steps = _mm_setr_epi16(0, 0, (int16_t)f, 0, (int16_t)(2 * f), 0, (int16_t)(3 * f), 0);
+    const __m128i down4 = _mm_setr_epi16(0, (int16_t)f, 0, (int16_t)f, 0, (int16_t)f, 0, (int16_t)f);
+    const __m128i right4 = _mm_setr_epi16((int16_t)f, 0, (int16_t)f, 0, (int16_t)f, 0, (int16_t)f, 0);
+    const __m128i limit = _mm_set1_epi32(near2);
+    __m128i c = _mm_sub_epi16(_mm_set1_epi32((int32_t)cuv), steps), hit = _mm_setzero_si128();
+    for (int j = 0; j < 5; j++, c = _mm_sub_epi16(c, down4), uv += 2 * stride)
+        hit = _mm_or_si128(hit, _mm_or_si128(poisson_row_near(c, uv, limit),
+                                             poisson_row_near(_mm_sub_epi16(c, right4), uv + 2, limit)));
+    return _mm_movemask_epi8(hit) != 0;
+#else
     const uint32_t right = POISSON_FIXED, down = (uint32_t)POISSON_FIXED << 16;
     return poisson_near4(uv, stride, cuv, near2) | poisson_near4(uv + 2, stride, cuv - right, near2) |
            poisson_near4(uv + 2 * stride, stride, cuv - down, near2) |
            poisson_near4(uv + 2 * stride + 2, stride, cuv - right - down, near2);
+#endif
 }
 
 /* The filter for a window of w cells (4 or 5). */
