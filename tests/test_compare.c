@@ -119,18 +119,26 @@ static void test_errors(void)
     CHECK(e.line == 2 && e.col == 12 && strstr(e.msg, "reference: no image file at"));
 }
 
+/* A compare job loaded from yaml (file name, text with SCENE) whose results the test fills by
+   hand: its scene's reference counts as an image file. NULL (a failed check) when it does not load. */
+static struct compare *hand_made(const char *name, const char *yaml)
+{
+    struct err e;
+    struct compare *c = compare_load(job_file(name, yaml), &e);
+    CHECK(c != NULL);
+    if (c)
+        c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
+    return c;
+}
+
 /* Hand-made results: relMSE falls as 1/spp for "noise", flattens for "flat". */
 static void test_stats(void)
 {
-    struct err e;
-    struct compare *c = compare_load(job_file("st.yaml", "scenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
-                                                         "sweep: { threshold: [20, 10, 5] }\nvariants:\n"
-                                                         "  - { label: noise }\n  - { label: flat }\n"),
-                                     &e);
-    CHECK(c != NULL);
+    struct compare *c = hand_made("st.yaml", "scenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
+                                             "sweep: { threshold: [20, 10, 5] }\nvariants:\n"
+                                             "  - { label: noise }\n  - { label: flat }\n");
     if (!c)
         return;
-    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 3; p++)
             for (int k = 0; k < 2; k++) {
@@ -171,16 +179,11 @@ static void test_stats(void)
    even when the seeds' sample counts differ by a hair (a poisson pixel sampler). */
 static void test_stats_flat_samples(void)
 {
-    struct err e;
-    struct compare *c =
-        compare_load(job_file("lt.yaml", "scenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
-                                         "sweep: { light_threshold: [50, 25, 10] }\nvariants:\n"
-                                         "  - { label: lights }\n"),
-                     &e);
-    CHECK(c != NULL);
+    struct compare *c = hand_made("lt.yaml", "scenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
+                                             "sweep: { light_threshold: [50, 25, 10] }\nvariants:\n"
+                                             "  - { label: lights }\n");
     if (!c)
         return;
-    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
     static const double rel[3] = {0.03, 0.02, 0.021}, spp[3] = {66.9, 67.2, 67.0};
     for (int p = 0; p < 3; p++)
         for (int k = 0; k < 2; k++) {
@@ -205,15 +208,11 @@ static void test_stats_flat_samples(void)
 /* One seed: no spread to show, so the chart draws no whiskers and says why. */
 static void test_chart_one_seed(void)
 {
-    struct err e;
-    struct compare *c = compare_load(job_file("one.yaml", "scenes: [SCENE]\nwidth: 8\n"
-                                                          "sweep: { threshold: [20, 10] }\nvariants:\n"
-                                                          "  - { label: a }\n"),
-                                     &e);
-    CHECK(c != NULL);
+    struct compare *c = hand_made("one.yaml", "scenes: [SCENE]\nwidth: 8\n"
+                                              "sweep: { threshold: [20, 10] }\nvariants:\n"
+                                              "  - { label: a }\n");
     if (!c)
         return;
-    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
     for (int p = 0; p < 2; p++) {
         struct compare_item *it = &c->items[compare_index(c, 0, 0, p, 0)];
         it->done = it->has_error = 1;
@@ -234,15 +233,12 @@ static void test_chart_one_seed(void)
 static void test_repeated_error(void)
 {
     struct err e;
-    struct compare *c = compare_load(job_file("rep.yaml", "scenes: [SCENE]\nwidth: 4\nheight: 4\n"
-                                                          "seeds: [1, 2]\nsweep: { threshold: [20, 10] }\n"
-                                                          "variants:\n  - { label: same }\n"
-                                                          "  - { label: cancel }\n"),
-                                     &e);
-    CHECK(c != NULL);
+    struct compare *c = hand_made("rep.yaml", "scenes: [SCENE]\nwidth: 4\nheight: 4\n"
+                                              "seeds: [1, 2]\nsweep: { threshold: [20, 10] }\n"
+                                              "variants:\n  - { label: same }\n"
+                                              "  - { label: cancel }\n");
     if (!c)
         return;
-    c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
     struct rgb8 ref = {0}, img = {0};
     CHECK(rgb8_alloc(&ref, 4, 4, &e) == 0 && rgb8_alloc(&img, 4, 4, &e) == 0);
     memset(ref.px, 100, 4 * 4 * 3);

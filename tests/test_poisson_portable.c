@@ -22,33 +22,9 @@ size_t portable_draw(struct poisson *p, struct rng *rng, struct pt2 *out, int to
 #undef poisson_release
 #undef poisson_draw
 
-/* The same construction sampler.c uses for a threshold t (minimum distance t/100). */
-static void compare(double t, int torus, uint64_t seed)
-{
-    double radius = t / 100.0;
-    int side = (int)ceil(1.4142135623730951 * 100.0 / t * (1.0 + 1e-12));
-    size_t capacity = (size_t)side * (size_t)side;
-    struct poisson fast, slow;
-    CHECK(poisson_init(&fast, radius, side, capacity) == 0);
-    CHECK(portable_init(&slow, radius, side, capacity) == 0);
-    struct pt2 *a = malloc(capacity * sizeof *a), *b = malloc(capacity * sizeof *b);
-    struct rng ra, rb;
-    rng_seed(&ra, seed, 3);
-    rb = ra;
-    size_t n = poisson_draw(&fast, &ra, a, torus);
-    size_t m = portable_draw(&slow, &rb, b, torus);
-    int same = n == m && n > 0 && ra.state == rb.state;
-    for (size_t k = 0; same && k < n; k++)
-        same = a[k].x == b[k].x && a[k].y == b[k].y;
-    CHECK(same);
-    if (!same)
-        fprintf(stderr, "  t=%g torus=%d seed=%llu: %zu vs %zu points\n", t, torus, (unsigned long long)seed,
-                n, m);
-    free(a);
-    free(b);
-    poisson_release(&fast);
-    portable_release(&slow);
-}
+#include "poisson_same.h"
+
+static const struct poisson_build portable = {portable_init, portable_release, portable_draw};
 
 /* The candidate offsets' law: uniform by area in the annulus [1, 2] (scale 1), every direction
    alike. Checked on 80000 offsets: radii in range, the area median at r^2 = 2.5, the mean at the
@@ -88,6 +64,6 @@ int main(void)
     for (size_t i = 0; i < sizeof thresholds / sizeof thresholds[0]; i++)
         for (int torus = 0; torus <= 1; torus++)
             for (uint64_t seed = 1; seed <= 3; seed++)
-                compare(thresholds[i], torus, seed);
+                poisson_same(thresholds[i], torus, seed, 3, &portable, NULL);
     return check_report("test_poisson_portable");
 }
