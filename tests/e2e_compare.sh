@@ -120,6 +120,14 @@ printf 'name: given\nscene: checker\nwidth: 16\nreference: given.png\nvariants:\
 "$WORKER" --quiet --out "$T/out" "$T/given.yaml" 2>/dev/null; rc=$?
 check "reference image file: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "reference image file: scored" [ "$(awk -F, 'NR == 2 && $12 > 0' "$T/out/given/summary.csv" | wc -l)" -eq 1 ]
+# a light_threshold sweep leaves samples per pixel alone: efficiency is read at the sweep's last
+# point, and the report says so instead of "densest"
+printf 'name: lts\nscene: checker\nwidth: 8\nreference: { sampler: jitter, threshold: 20 }\nsweep: { light_threshold: [50, 25] }\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/lts.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/lts.yaml" 2>/dev/null; rc=$?
+check "light_threshold sweep: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "light_threshold sweep: efficiency at the last point of the sweep" \
+    grep -q "at each variant's last point of the sweep" "$T/out/lts/report.html"
+check "threshold sweep: efficiency at the densest point" grep -q "at each variant's densest point" "$html"
 # a scene file whose name holds a comma and a quote: its CSV fields are quoted (RFC 4180)
 cp scenes/checker.yaml "$T/chk,e\"r.yaml"
 printf 'name: comma\nscenes: ["chk,e\\"r.yaml"]\nwidth: 8\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/comma.yaml"

@@ -43,7 +43,7 @@ void compare_aggregate(const struct compare *c, int s, int v, int p, struct comp
    counts move by a hair from point to point. */
 #define SAMPLES_VARY 1.05
 
-static int samples_vary(const struct compare *c, int s, int v)
+int compare_samples_vary(const struct compare *c, int s, int v)
 {
     double lo = INFINITY, hi = 0;
     struct compare_agg a;
@@ -60,7 +60,7 @@ void compare_point_order(const struct compare *c, int s, int v, int *order)
     struct compare_agg a, b;
     for (int p = 0; p < c->n_points; p++)
         order[p] = p;
-    if (!samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
+    if (!compare_samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
         return;
     for (int i = 1; i < c->n_points; i++) /* insertion sort: a handful of points */
         for (int j = i; j > 0; j--) {
@@ -156,7 +156,7 @@ void compare_stability(const struct compare *c, int s, int v, const char *dir, c
                     100 * spread, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");
-    if (c->n_points > 1 && !samples_vary(c, s, v)) {
+    if (c->n_points > 1 && !compare_samples_vary(c, s, v)) {
         /* No slope or "stops falling" against samples that do not change: the figures instead. */
         sbuf_printf(&b, "; samples per pixel stay at about %.0f along the sweep, so relMSE point by point: ",
                     a[0].spp);

@@ -14,6 +14,10 @@ struct compare_agg {
 
 void compare_aggregate(const struct compare *c, int scene, int variant, int point, struct compare_agg *a);
 
+/* Whether variant's sweep points in scene change its samples per pixel by more than 5% (not for
+   a light_threshold, max_depth or poisson_pool sweep). */
+int compare_samples_vary(const struct compare *c, int scene, int variant);
+
 /* The sweep points of (scene, variant) ordered by mean samples per pixel, fewest first, or in
    the sweep's own order when the sweep leaves samples per pixel alone (within 5%: a
    light_threshold sweep). order has c->n_points entries. */

@@ -244,7 +244,8 @@ done:
     return rc;
 }
 
-/* Variants ranked by Monte Carlo efficiency, 1 / (relMSE x wall s), at their densest point. */
+/* Variants ranked by Monte Carlo efficiency, 1 / (relMSE x wall s), at their densest point (the
+   sweep's last point when the sweep leaves samples per pixel alone). */
 static int efficiency(struct sbuf *b, const struct compare *c, int s)
 {
     int *order = calloc((size_t)c->n_points, sizeof *order),
@@ -254,8 +255,10 @@ static int efficiency(struct sbuf *b, const struct compare *c, int s)
         free(order), free(rank), free(eff);
         return -1;
     }
+    int vary = 1;
     for (int v = 0; v < c->n_variants; v++) {
         struct compare_agg a;
+        vary &= compare_samples_vary(c, s, v);
         compare_point_order(c, s, v, order);
         compare_aggregate(c, s, v, order[c->n_points - 1], &a);
         eff[v] = a.rel > 0 && a.wall_s > 0 ? 1 / (a.rel * a.wall_s) : 0;
@@ -266,8 +269,10 @@ static int efficiency(struct sbuf *b, const struct compare *c, int s)
             rank[i - 1] = t;
         }
     }
-    sbuf_printf(b, "<p><b>For the time spent</b> (efficiency 1 / (relMSE x wall s) at each variant's densest "
-                   "point, higher is better): ");
+    sbuf_printf(b,
+                "<p><b>For the time spent</b> (efficiency 1 / (relMSE x wall s) at each variant's %s, higher "
+                "is better): ",
+                vary ? "densest point" : "last point of the sweep");
     for (int i = 0; i < c->n_variants; i++) {
         sbuf_printf(b, "%s<b>", i ? ", " : "");
         sbuf_escape(b, c->variants[rank[i]]);
