@@ -117,4 +117,19 @@ kill -TERM "$wpid"
 wait "$wpid"; rc=$?
 check "SIGTERM: the worker stops (exit $rc)" [ "$rc" -ne 0 ]
 check "SIGTERM: nothing under --out" [ ! -e "$T/term/slow" ]
+# 6. a failed render removes no folder it did not make: another render of a job of the same name
+#    (or a user) may have made OUT/<name>/ meanwhile, and be about to write into it
+"$WORKER" --quiet --out "$T/own" "$T/slow.yaml" 2>/dev/null &
+wpid=$!
+child=""
+for _ in $(seq 1 100); do
+    child=$(pgrep -P "$wpid" | head -n 1)
+    [ -n "$child" ] && break
+    sleep 0.05
+done
+mkdir -p "$T/own/slow"
+[ -n "$child" ] && kill -9 "$child"
+wait "$wpid"; rc=$?
+check "killed child, folder made meanwhile: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "killed child: the folder another process made meanwhile is left alone" [ -d "$T/own/slow" ]
 finish

@@ -37,6 +37,24 @@ int run_mkdirs(const char *path, struct err *e)
     return 0;
 }
 
+/* Make dir (and its parents) for outputs about to be written; *made: whether dir itself was made
+   here, so a failed write may remove it. A folder that was there already, or that another process
+   made meanwhile, is never ours to remove. */
+static int make_out_dir(const char *dir, int *made, struct err *e)
+{
+    char parent[2048];
+    snprintf(parent, sizeof parent, "%s", dir);
+    char *slash = strrchr(parent, '/');
+    *made = 0;
+    if (slash && slash != parent) {
+        *slash = 0;
+        if (run_mkdirs(parent, e) < 0)
+            return -1;
+    }
+    *made = mkdir(dir, 0755) == 0;
+    return run_mkdirs(dir, e);
+}
+
 struct progress {
     const char *name;
     int enabled;
@@ -112,9 +130,9 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     char dir[2048];
     struct rgb8 img = {0};
     char *json = NULL;
-    int rc = -1;
+    int rc = -1, made_dir = 0;
     run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    if (run_mkdirs(dir, e) < 0 || rgb8_alloc(&img, w, h, e) < 0)
+    if (make_out_dir(dir, &made_dir, e) < 0 || rgb8_alloc(&img, w, h, e) < 0)
         goto done;
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
@@ -134,6 +152,8 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     }
     rc = 0;
 done:
+    if (rc != 0 && made_dir)
+        rmdir(dir); /* a failed write leaves no empty folder of ours (it fails when not empty) */
     free(json);
     rgb8_free(&img);
     return rc;
@@ -161,7 +181,6 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct rgb8 ref = {0};
     float *rgb = NULL;
     char dir[2048], image[2048], sidecar[2048];
-    struct stat st;
     int rc = 2, made_dir = 0;
     memset(rr, 0, sizeof *rr);
     if (!o->force && outputs_current(j, o, rr)) {
@@ -196,8 +215,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
+    /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
     run_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
-    made_dir = stat(dir, &st) < 0;
     if (limits_check_out_dir(dir, e) < 0)
         goto done;
     rc = 1;
@@ -223,7 +242,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (o->parts > 0) {
         part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
-        if (run_mkdirs(dir, e) < 0 ||
+        if (make_out_dir(dir, &made_dir, e) < 0 ||
             part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e) < 0)
             goto done;
     } else if (run_write_outputs(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
@@ -232,7 +251,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     rc = 0;
 done:
     if (rc != 0 && made_dir)
-        rmdir(dir); /* a failed render leaves no empty output folder (it fails when not empty) */
+        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
     rgb8_free(&ref);
     farm_framebuffer_free(rgb, rr->width, rr->height);
     sampler_free(pix);
