@@ -36,4 +36,9 @@ check "diff ... --quiet: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ]
 check "--quiet diff ...: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^rmse 0' '$T/d2.out'"
 "$WORKER" points uniform >/dev/null 2>"$T/e4"; rc=$?
 check "points without a threshold: exit 2, one line saying what is missing" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/e4') -eq 1 ] && grep -q '^worker points: ' '$T/e4'"
+# --help and --version before a subcommand still answer (exit 0), as they did before it was hoisted
+"$WORKER" --help diff >"$T/h1.out" 2>"$T/h1.err"; rc=$?
+check "--help diff: exit 0 with the usage (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker' '$T/h1.out'"
+"$WORKER" --version points >"$T/v1.out" 2>"$T/v1.err"; rc=$?
+check "--version points: exit 0 with the version (got $rc)" sh -c "[ $rc -eq 0 ] && grep -Eq '^worker [0-9]' '$T/v1.out'"
 finish

@@ -206,11 +206,14 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
 }
 
 /* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
-   subcommand; it is moved to argv[1] and the options after it, where its own parser judges them. */
+   subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
+   After --help or --version nothing moves: those answer whatever follows. */
 static void hoist_subcommand(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
-        if (takes_value(argv[i])) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--version")) {
+            return;
+        } else if (takes_value(argv[i])) {
             i++;
         } else if (!(argv[i][0] == '-' && argv[i][1])) {
             if (i > 1 &&
