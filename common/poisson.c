@@ -11,14 +11,17 @@
 #define POISSON_TRIES 30
 /* Offsets within a cell in fixed point: units per cell width (int16 holds +-8 cells). */
 #define POISSON_FIXED 4096
-/* An empty cell's offsets: -5 cells, farther than r from any candidate its window tests. */
 /* The widest window (in cells) the fixed point filter covers; wider ones (r of 2 cells or more,
    thresholds near 100) take the exact test alone. A test builds this file again with 0 to
    check that the filter never changes a set. */
 #ifndef POISSON_FILTER_WINDOW
 #define POISSON_FILTER_WINDOW 5
 #endif
-#define POISSON_EMPTY (-5 * POISSON_FIXED)
+/* An empty cell's offsets: -4 cells, at least r from any candidate its window tests on each axis
+   (the candidate is r or more right of and below the window's first corner, the last cell 4 cells
+   on), and under 7 cells from it (r + 1 < 3): at -5 cells a candidate a hair under 3 cells on
+   rounded to 3, 8 cells from the first cell's offsets, whose squares summed to 2^31 and wrapped. */
+#define POISSON_EMPTY (-4 * POISSON_FIXED)
 
 int poisson_init(struct poisson *s, double radius, int side, size_t capacity)
 {
@@ -99,7 +102,7 @@ static inline __m128i poisson_row_near(__m128i c, const int16_t *uv, __m128i lim
    to (cu, cv)? All in fixed point, POISSON_FIXED per cell width, (cu, cv) measured from the
    first cell's corner, with cu + 2^16 cv packed in one word. One row of 4 cells is one 16-byte
    load and five instructions, with no branch: an empty cell just lies far away. Sums stay
-   below 2^31: |du|, |dv| < 7.5 cells. */
+   below 2^31: |du|, |dv| < 7 cells. */
 static inline int poisson_near4(const int16_t *uv, ptrdiff_t stride, uint32_t cuv, int32_t near2)
 {
     const int f = POISSON_FIXED;
