@@ -62,24 +62,30 @@ static int check_shape(struct ydoc *d, struct err *e)
 }
 
 /* A job or scene file holds one YAML document: a second one (after "---") would be silently
-   ignored, so it is an error at its start, as is a syntax error in it. 0 when there is none. */
+   ignored, so it is an error at its start, as is a syntax error in it. Empty documents (a bare
+   "---") are skipped, up to the end of the stream: one may stand before a real second document.
+   0 when there is none. */
 static int no_second_document(yaml_parser_t *p, const char *path, struct err *e)
 {
-    yaml_document_t next;
-    if (!yaml_parser_load(p, &next)) {
-        const yaml_mark_t *m = &p->problem_mark;
-        return err_set(e, path, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s",
-                       p->problem ? p->problem : "error");
+    for (;;) {
+        yaml_document_t next;
+        if (!yaml_parser_load(p, &next)) {
+            const yaml_mark_t *m = &p->problem_mark;
+            return err_set(e, path, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s",
+                           p->problem ? p->problem : "error");
+        }
+        const yaml_node_t *root = yaml_document_get_root_node(&next);
+        int empty = root && root->type == YAML_SCALAR_NODE && root->data.scalar.length == 0 &&
+                    root->data.scalar.style == YAML_PLAIN_SCALAR_STYLE;
+        int rc = root && !empty
+                     ? err_set(e, path, (int)next.start_mark.line + 1, (int)next.start_mark.column + 1,
+                               "a second YAML document: a file holds one job or one scene "
+                               "(one document)")
+                     : 0;
+        yaml_document_delete(&next);
+        if (rc < 0 || !root) /* no root: the end of the stream */
+            return rc;
     }
-    int rc = 0;
-    const yaml_node_t *root = yaml_document_get_root_node(&next);
-    int empty = root && root->type == YAML_SCALAR_NODE && root->data.scalar.length == 0 &&
-                root->data.scalar.style == YAML_PLAIN_SCALAR_STYLE; /* a bare "---" at the end */
-    if (root && !empty)
-        rc = err_set(e, path, (int)next.start_mark.line + 1, (int)next.start_mark.column + 1,
-                     "a second YAML document: a file holds one job or one scene (one document)");
-    yaml_document_delete(&next);
-    return rc;
 }
 
 int ydoc_load(struct ydoc *d, const char *path, struct err *e)
