@@ -128,6 +128,13 @@ check "light_threshold sweep: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "light_threshold sweep: efficiency at the last point of the sweep" \
     grep -q "at each variant's last point of the sweep" "$T/out/lts/report.html"
 check "threshold sweep: efficiency at the densest point" grep -q "at each variant's densest point" "$html"
+# a long sweep: the stability line names every point and ends with its note, however long
+printf 'name: ltl\nscene: checker\nwidth: 4\nreference: { sampler: jitter, threshold: 50 }\nseeds: [1, 2]\nsweep: { light_threshold: [90, 85, 80, 75, 70, 65, 60, 55, 50, 45, 40, 35, 30, 25, 20, 15, 12, 11] }\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/ltl.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/ltl.yaml" 2>/dev/null; rc=$?
+check "18-point sweep: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "18-point sweep: the stability line is whole" \
+    grep -q '% at light_threshold 11 (averaging the 2 seeds divides relMSE by [0-9.]* at light_threshold 11, pure noise by 2)' \
+    "$T/out/ltl/report.html"
 # a scene file whose name holds a comma and a quote: its CSV fields are quoted (RFC 4180)
 cp scenes/checker.yaml "$T/chk,e\"r.yaml"
 printf 'name: comma\nscenes: ["chk,e\\"r.yaml"]\nwidth: 8\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/comma.yaml"

@@ -131,6 +131,14 @@ static struct compare *hand_made(const char *name, const char *yaml)
     return c;
 }
 
+/* compare_stability's line for (scene s, variant v) copied into buf, for strstr. */
+static void stability(const struct compare *c, int s, int v, const struct rgb8 *ref, char *buf, size_t n)
+{
+    char *text = compare_stability(c, s, v, dir, ref);
+    snprintf(buf, n, "%s", text ? text : "");
+    free(text);
+}
+
 /* Hand-made results: relMSE falls as 1/spp for "noise", flattens for "flat". */
 static void test_stats(void)
 {
@@ -160,13 +168,13 @@ static void test_stats(void)
     CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
     char line[1024];
     struct rgb8 ref = {0};
-    compare_stability(c, 0, 0, dir, &ref, line, sizeof line);
+    stability(c, 0, 0, &ref, line, sizeof line);
     CHECK(strstr(line, "spread across 2 seeds at most 20% of the mean relMSE") != NULL);
     CHECK(strstr(line, "relMSE ~ spp^-1.00") != NULL);
     CHECK(strstr(line, "error keeps falling down to threshold 5") != NULL);
-    compare_stability(c, 0, 1, dir, &ref, line, sizeof line);
+    stability(c, 0, 1, &ref, line, sizeof line);
     CHECK(strstr(line, "error stops falling at threshold 5") != NULL);
-    compare_stability(c, 0, 1, dir, NULL, line, sizeof line);
+    stability(c, 0, 1, NULL, line, sizeof line);
     CHECK(strstr(line, "no reference") != NULL);
     char *svg = compare_chart_svg(c);
     CHECK(svg && strstr(svg, "checker: error against time") && strstr(svg, ">flat<"));
@@ -198,7 +206,7 @@ static void test_stats_flat_samples(void)
     CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
     char line[1024];
     struct rgb8 ref = {0};
-    compare_stability(c, 0, 0, dir, &ref, line, sizeof line);
+    stability(c, 0, 0, &ref, line, sizeof line);
     CHECK(!strstr(line, "nan") && !strstr(line, "spp^") && !strstr(line, "keeps falling"));
     CHECK(strstr(line, "light_threshold 50: 0.03, light_threshold 25: 0.02, light_threshold 10: 0.021") !=
           NULL);
@@ -256,9 +264,9 @@ static void test_repeated_error(void)
                 CHECK(metrics_compare(&ref, &img, &it->error, &e) == 0);
             }
     char line[2048];
-    compare_stability(c, 0, 0, dir, &ref, line, sizeof line);
+    stability(c, 0, 0, &ref, line, sizeof line);
     CHECK(strstr(line, "repeats in every seed: 100% at threshold 20, 100% at threshold 10") != NULL);
-    compare_stability(c, 0, 1, dir, &ref, line, sizeof line);
+    stability(c, 0, 1, &ref, line, sizeof line);
     CHECK(strstr(line, "repeats in every seed: 0% at threshold 20, 0% at threshold 10") != NULL);
     rgb8_free(&ref);
     rgb8_free(&img);

@@ -128,21 +128,18 @@ static double slope(const struct compare_agg *a, int n)
     return m >= 2 && den > 0 ? (m * sxy - sx * sy) / den : NAN;
 }
 
-void compare_stability(const struct compare *c, int s, int v, const char *dir, const struct rgb8 *ref,
-                       char *buf, size_t n)
+char *compare_stability(const struct compare *c, int s, int v, const char *dir, const struct rgb8 *ref)
 {
     int *order = calloc((size_t)c->n_points, sizeof *order);
     struct compare_agg *a = calloc((size_t)c->n_points, sizeof *a);
     struct sbuf b = {0};
-    if (!order || !a) {
-        snprintf(buf, n, "out of memory");
+    if (!order || !a)
         goto done;
-    }
     compare_point_order(c, s, v, order);
     for (int i = 0; i < c->n_points; i++)
         compare_aggregate(c, s, v, order[i], &a[i]);
     if (!ref || a[0].n == 0) {
-        snprintf(buf, n, "no reference, so no error to judge stability by");
+        sbuf_printf(&b, "no reference, so no error to judge stability by");
         goto done;
     }
     /* Spread across seeds: (max - min) / mean, largest over the sweep. */
@@ -206,12 +203,10 @@ void compare_stability(const struct compare *c, int s, int v, const char *dir, c
                         c->n_seeds, gain, c->points[last], c->n_seeds,
                         share > 0.5 ? ": structured error (aliasing, a pattern, or a bias)" : "");
     }
-    char *text = sbuf_take(&b);
-    snprintf(buf, n, "%s", text ? text : "out of memory");
-    free(text);
 done:
     free(order);
     free(a);
+    return sbuf_take(&b);
 }
 
 char *compare_chart_svg(const struct compare *c)

@@ -30,10 +30,11 @@ int compare_seed_average(const struct compare *c, int scene, int variant, int po
                          const struct rgb8 *ref, double *rel_of_mean, double *mean_rel, struct err *e);
 
 /* One line for people on (scene, variant): spread across seeds, the slope of error against
-   samples, where error stops falling as the threshold drops, and structured error at the
-   densest point (ref may be NULL: then only what needs no reference). */
-void compare_stability(const struct compare *c, int scene, int variant, const char *dir,
-                       const struct rgb8 *ref, char *buf, size_t n);
+   samples, where error stops falling as the threshold drops, and structured error at each
+   point (ref may be NULL: then only what needs no reference). Its length grows with the sweep:
+   a malloc'd string (caller frees), NULL when out of memory. */
+char *compare_stability(const struct compare *c, int scene, int variant, const char *dir,
+                        const struct rgb8 *ref);
 
 /* chart.svg: per scene, relMSE against wall time and against samples per pixel. */
 char *compare_chart_svg(const struct compare *c);

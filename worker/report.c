@@ -331,13 +331,13 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
-        char line[1024];
-        compare_stability(c, s, v, dir, has_ref ? &ref : NULL, line, sizeof line);
+        char *line = compare_stability(c, s, v, dir, has_ref ? &ref : NULL);
         sbuf_printf(b, "<li><b>");
         sbuf_escape(b, c->variants[v]);
         sbuf_printf(b, "</b>: ");
-        sbuf_escape(b, line);
+        sbuf_escape(b, line ? line : "out of memory");
         sbuf_printf(b, "</li>\n");
+        free(line);
     }
     sbuf_printf(b, "</ul>\n");
     rc = 0;
