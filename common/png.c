@@ -478,8 +478,13 @@ static int read_chunks(struct png_dec *d, const uint8_t *data, size_t len)
                 return err_set(d->e, d->name, 0, 0, "corrupt PNG: PLTE chunk in a gray image");
             if (d->color_type != 3)
                 continue; /* only a suggestion for RGB and RGBA (libpng warns on a bad one) */
-            if (d->palette_n || d->seen_idat || c.len == 0 || c.len % 3 || c.len > sizeof d->palette)
-                return err_set(d->e, d->name, 0, 0, "corrupt PNG: bad PLTE chunk (length %lu)",
+            if (d->seen_idat)
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: PLTE chunk after the image data (IDAT)");
+            if (d->palette_n)
+                return err_set(d->e, d->name, 0, 0, "corrupt PNG: second PLTE chunk");
+            if (c.len == 0 || c.len % 3 || c.len > sizeof d->palette)
+                return err_set(d->e, d->name, 0, 0,
+                               "corrupt PNG: PLTE chunk of %lu bytes (1 to 256 entries of 3 bytes)",
                                (unsigned long)c.len);
             memcpy(d->palette, c.data, c.len);
             d->palette_n = (int)(c.len / 3);

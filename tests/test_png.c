@@ -568,6 +568,40 @@ static void test_other_formats(void)
     rgb8_free(&img);
 }
 
+/* A misplaced or malformed PLTE in a palette image: the message says which, not just "bad". */
+static int plte_fails(const char *order, size_t plte_len, const char *want)
+{
+    static const uint8_t ihdr[13] = {0, 0, 0, 2, 0, 0, 0, 1, 8, 3, 0, 0, 0}, raw[3] = {0, 0, 0};
+    uint8_t plte[771] = {0}, z[64];
+    uLongf zn = sizeof z;
+    compress2(z, &zn, raw, sizeof raw, 9);
+    struct buf b = {0};
+    buf_add(&b, signature, 8);
+    add_chunk(&b, "IHDR", ihdr, 13);
+    for (const char *o = order; *o; o++)
+        if (*o == 'P')
+            add_chunk(&b, "PLTE", plte, plte_len);
+        else
+            add_chunk(&b, "IDAT", z, zn);
+    add_chunk(&b, "IEND", NULL, 0);
+    struct rgb8 out;
+    struct err e = {0};
+    int ok = png_decode(b.p, b.n, "p.png", &out, &e) == -1 && has(&e, want);
+    if (!ok)
+        fprintf(stderr, "  PLTE order %s, %zu bytes: %s\n", order, plte_len, e.msg);
+    rgb8_free(&out);
+    free(b.p);
+    return ok;
+}
+
+static void test_plte_messages(void)
+{
+    CHECK(plte_fails("PIP", 3, "PLTE chunk after the image data"));
+    CHECK(plte_fails("PPI", 3, "second PLTE chunk"));
+    CHECK(plte_fails("PI", 4, "PLTE chunk of 4 bytes"));
+    CHECK(plte_fails("PI", 771, "PLTE chunk of 771 bytes"));
+}
+
 static void test_damaged_files(void)
 {
     struct rgb8 img = pattern(3, 7), out;
@@ -744,6 +778,7 @@ int main(void)
     test_chunks();
     test_unsupported_headers();
     test_other_formats();
+    test_plte_messages();
     test_damaged_files();
     test_ppm_round_trip();
     test_ppm_maxval();
