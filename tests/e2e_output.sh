@@ -46,4 +46,13 @@ elif [ "$(id -u)" != 0 ]; then
     chmod 755 "$T/ro"
 fi
 check "read-only --out: nothing inside" [ "$(leftovers "$T/ro")" -eq 0 ]
+
+# 4. --out (or a folder on its way) is a dangling symbolic link: no folder can be made there, so
+#    bad input (exit 2) before rendering, not a whole render that then fails to write (exit 1).
+ln -s "$T/nowhere/at/all" "$T/dangling"
+"$WORKER" --quiet --out "$T/dangling" "$T/big.yaml" 2>"$T/err4"; rc=$?
+check "dangling symlink --out: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "dangling symlink --out: names it" grep -q "cannot create directory $T/dangling: " "$T/err4"
+"$WORKER" --quiet --out "$T/dangling/deeper" "$T/big.yaml" 2>"$T/err5"; rc=$?
+check "dangling symlink on the way: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 finish

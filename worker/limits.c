@@ -59,6 +59,10 @@ int limits_check_out_dir(const char *dir, struct err *e)
         }
         if ((errno != ENOENT && errno != ENOTDIR) || !strcmp(p, "."))
             return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", dir, strerror(errno));
+        /* missing, but a name is there: a dangling symbolic link, where mkdir fails (EEXIST) */
+        if (lstat(p, &st) == 0)
+            return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way (%s)", p,
+                           S_ISLNK(st.st_mode) ? "a symbolic link to nothing" : "not a directory");
         char *slash = strrchr(p, '/');
         if (!slash)
             snprintf(p, sizeof p, ".");
