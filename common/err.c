@@ -58,3 +58,18 @@ void err_format(const struct err *e, char *buf, size_t n)
     else
         snprintf(buf, n, "%s", msg);
 }
+
+void err_print(const char *fmt, ...)
+{
+    struct err e = {.file = "", .line = 0, .col = 0};
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e.msg, sizeof e.msg, fmt, ap);
+    va_end(ap);
+    size_t n = strlen(e.msg);
+    if (n > 0 && e.msg[n - 1] == '\n')
+        e.msg[n - 1] = 0;
+    char line[sizeof e.msg * 4 + 16];
+    err_format(&e, line, sizeof line);
+    fprintf(stderr, "%s\n", line);
+}

@@ -22,4 +22,9 @@ int err_prefix(struct err *e, const char *prefix);
    characters in file and msg are escaped (\n, \t, \r, \xHH). */
 void err_format(const struct err *e, char *buf, size_t n);
 
+/* Print a printf-style message on stderr as one line: control characters escaped as err_format
+   does (a command-line argument may hold a newline), one trailing newline of the format dropped
+   and one added. For the command line's own messages. */
+void err_print(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
 #endif

@@ -82,6 +82,11 @@ check "no job file: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc 
 check "diff with one image: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/diff1.err') -eq 1 ]"
 "$WORKER" --out 2>"$T/noval.err"; rc=$?
 check "option without its value: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/noval.err') -eq 1 ]"
+# an argument holding a newline is escaped: still one line
+"$WORKER" "$(printf -- '--x\ny')" 2>"$T/nl.err"; rc=$?
+check "unknown option with a newline: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/nl.err') -eq 1 ]"
+"$WORKER" points poisson "$(printf '1\nx')" 2>"$T/nl2.err"; rc=$?
+check "points threshold with a newline: exit 2, one line on stderr" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/nl2.err') -eq 1 ]"
 "$WORKER" --help >"$T/help.out"; rc=$?
 check "--help exits 0 and shows usage" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker JOB.yaml' '$T/help.out'"
 check "--version" sh -c "'$WORKER' --version | grep -Eq '^worker [0-9]'"

@@ -61,28 +61,28 @@ static int diff_main(int argc, char **argv)
         if (!strcmp(argv[i], "--block")) {
             if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) ||
                 block < 1 || block > 65536) {
-                fprintf(stderr, "worker diff: --block needs a whole number of pixels in [1, 65536]\n");
+                err_print("worker diff: --block needs a whole number of pixels in [1, 65536]\n");
                 return 2;
             }
         } else if (!strcmp(argv[i], "--max-rmse")) {
             if (i + 1 >= argc || parse_double_arg(argv[++i], &max_rmse) < 0 || max_rmse < 0) {
-                fprintf(stderr, "worker diff: --max-rmse needs a number >= 0\n");
+                err_print("worker diff: --max-rmse needs a number >= 0\n");
                 return 2;
             }
         } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
             continue; /* a common option; diff draws no progress anyway */
         } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "worker diff: unknown option %s; see worker --help\n", argv[i]);
+            err_print("worker diff: unknown option %s; see worker --help\n", argv[i]);
             return 2;
         } else if (nfiles < 2) {
             files[nfiles++] = argv[i];
         } else {
-            fprintf(stderr, "worker diff: expected two images, got a third: %s\n", argv[i]);
+            err_print("worker diff: expected two images, got a third: %s\n", argv[i]);
             return 2;
         }
     }
     if (nfiles != 2) {
-        fprintf(stderr, "worker diff: expected two images (reference, then image); see worker --help\n");
+        err_print("worker diff: expected two images (reference, then image); see worker --help\n");
         return 2;
     }
     struct rgb8 a = {0}, b = {0};
@@ -94,7 +94,7 @@ static int diff_main(int argc, char **argv)
             printf("mse %.9g\nrmse %.9g\nrelmse %.9g\npsnr %.4f\n", m.mse, m.rmse, m.relmse, m.psnr);
             rc = 0;
             if (max_rmse >= 0 && m.rmse > max_rmse) {
-                fprintf(stderr, "worker diff: rmse %.6g is over --max-rmse %g\n", m.rmse, max_rmse);
+                err_print("worker diff: rmse %.6g is over --max-rmse %g\n", m.rmse, max_rmse);
                 rc = 1;
             }
         } else {
@@ -131,7 +131,7 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
     double d = v ? strtod(v, &end) : 0;
     int number = v && *v && !*end, whole = number && d == (long)d;
     if (!v) {
-        fprintf(stderr, "worker: %s needs a value; see worker --help\n", a);
+        err_print("worker: %s needs a value; see worker --help\n", a);
         return -1;
     } else if (!strcmp(a, "--out")) {
         q->run.out_dir = v;
@@ -153,7 +153,7 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
         int i, parts, used = 0;
         if (sscanf(v, "%d/%d%n", &i, &parts, &used) != 2 || v[used] || parts < 1 || parts > PART_MAX ||
             i < 0 || i >= parts) {
-            fprintf(stderr, "worker: --part must be I/N with 0 <= I < N <= %d, got \"%s\"\n", PART_MAX, v);
+            err_print("worker: --part must be I/N with 0 <= I < N <= %d, got \"%s\"\n", PART_MAX, v);
             return -1;
         }
         q->run.part = i;
@@ -161,11 +161,11 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
     }
     return 0;
 bad:
-    fprintf(stderr, "worker: %s must be %s, got \"%s\"\n", a,
-            !strcmp(a, "--processes") ? "a whole number in [1, 256]"
-            : !strcmp(a, "--retries") ? "a whole number in [0, 100]"
-                                      : "a number of seconds in (0, 604800]",
-            v);
+    err_print("worker: %s must be %s, got \"%s\"\n", a,
+              !strcmp(a, "--processes") ? "a whole number in [1, 256]"
+              : !strcmp(a, "--retries") ? "a whole number in [0, 100]"
+                                        : "a number of seconds in (0, 604800]",
+              v);
     return -1;
 }
 
@@ -178,7 +178,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
     if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
         if (!merge && !o->parts)
             return compare_main(path, o);
-        fprintf(stderr, "%s: a compare job renders whole images: no merge or --part\n", path);
+        err_print("%s: a compare job renders whole images: no merge or --part\n", path);
         return 2;
     }
     if (job_load(path, &j, &e) < 0) {
@@ -194,11 +194,11 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
         }
         print_err(&e);
     } else if (rr.skipped) {
-        fprintf(stderr, "%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
-                rr.image_path);
+        err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
+                  rr.image_path);
     } else if (merge) {
-        fprintf(stderr, "%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
-                rr.image_path);
+        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
+                  rr.image_path);
     } else {
         run_print_summary(&j, &rr);
     }
@@ -272,7 +272,7 @@ int main(int argc, char **argv)
                 goto out;
             }
         } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "worker: unknown option %s; see worker --help\n", a);
+            err_print("worker: unknown option %s; see worker --help\n", a);
             worst = 2;
             goto out;
         } else {
@@ -281,21 +281,20 @@ int main(int argc, char **argv)
     }
     /* accepted, but a user who gave them expects something of them: say they do nothing */
     if (q.dir && out_given)
-        fprintf(stderr, "worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);
+        err_print("worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);
     if (!q.dir && queue_only)
-        fprintf(stderr, "worker: %s is ignored without --queue\n", queue_only);
+        err_print("worker: %s is ignored without --queue\n", queue_only);
     if (q.dir && (njobs || merge || o->parts)) {
-        fprintf(stderr, "worker: --queue takes no job files, merge or --part; see worker --help\n");
+        err_print("worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;
     } else if (q.dir) {
         queue_signals_install();
         worst = queue_main(&q);
     } else if (njobs == 0) {
-        fprintf(stderr, "worker: no job file given; see worker --help\n");
+        err_print("worker: no job file given; see worker --help\n");
         worst = 2;
     } else if (merge && o->parts) {
-        fprintf(stderr,
-                "worker: merge finds the parts itself; --part is for rendering one; see worker --help\n");
+        err_print("worker: merge finds the parts itself; --part is for rendering one; see worker --help\n");
         worst = 2;
     } else {
         for (int i = 0; i < njobs; i++)

@@ -54,48 +54,46 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         } else if (!strcmp(arg, "--seed") || !strncmp(arg, "--seed=", 7)) {
             const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
             if (!v) {
-                fprintf(stderr, "worker points: --seed needs a value; %s", points_usage);
+                err_print("worker points: --seed needs a value; %s", points_usage);
                 return 2;
             }
             if (parse_seed(v, &a->seed) < 0) {
-                fprintf(stderr, "worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
+                err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
                 return 2;
             }
         } else if (!strcmp(arg, "--svg") || !strncmp(arg, "--svg=", 6)) {
             const char *v = arg[5] == '=' ? arg + 6 : (i + 1 < argc ? argv[++i] : NULL);
             if (!v || !*v) {
-                fprintf(stderr, "worker points: --svg needs a file name; %s", points_usage);
+                err_print("worker points: --svg needs a file name; %s", points_usage);
                 return 2;
             }
             a->svg_path = v;
         } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
             continue; /* a common option; points draws no progress anyway */
         } else if (arg[0] == '-' && arg[1] == '-') {
-            fprintf(stderr, "worker points: unknown option %.40s; %s", arg, points_usage);
+            err_print("worker points: unknown option %.40s; %s", arg, points_usage);
             return 2;
         } else if (npositional < 2) {
             positional[npositional++] = arg; /* "-1" too: a threshold, refused below */
         } else {
-            fprintf(stderr, "worker points: unexpected argument \"%.40s\"; %s", arg, points_usage);
+            err_print("worker points: unexpected argument \"%.40s\"; %s", arg, points_usage);
             return 2;
         }
     }
     if (npositional < 2) {
-        fprintf(stderr, "worker points: expected a sampler and a threshold; %s", points_usage);
+        err_print("worker points: expected a sampler and a threshold; %s", points_usage);
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
-        fprintf(stderr,
-                "worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)\n",
-                positional[0]);
+        err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)\n",
+                  positional[0]);
         return 2;
     }
     char *end;
     errno = 0;
     a->threshold = strtod(positional[1], &end);
     if (!positional[1][0] || *end || errno == ERANGE || !(a->threshold > 0.0 && a->threshold <= 100.0)) {
-        fprintf(stderr, "worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n",
-                positional[1]);
+        err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }
     return 0;
@@ -153,12 +151,12 @@ int points_main(int argc, char **argv)
     struct err e;
     struct sampler *s = sampler_new(a.kind, a.threshold, 0, 0, &e);
     if (!s) {
-        fprintf(stderr, "worker points: %s\n", e.msg);
+        err_print("worker points: %s\n", e.msg);
         return 2;
     }
     struct pt2 *p = malloc(sampler_set_capacity(s) * sizeof *p);
     if (!p) {
-        fprintf(stderr, "worker points: out of memory for %zu points\n", sampler_set_capacity(s));
+        err_print("worker points: out of memory for %zu points\n", sampler_set_capacity(s));
         sampler_free(s);
         return 1;
     }
@@ -171,14 +169,14 @@ int points_main(int argc, char **argv)
     if (a.svg_path && write_svg(a.svg_path, &a, p, n, &e) != 0) {
         char line[2048];
         err_format(&e, line, sizeof line);
-        fprintf(stderr, "worker points: %s\n", line);
+        err_print("worker points: %s\n", line);
         rc = 1;
     }
     if (rc == 0) { /* one "x,y" line per point, nothing else: a line count is the set's size */
         for (size_t k = 0; k < n; k++)
             printf("%.6f,%.6f\n", shown(p[k].x), shown(p[k].y));
         if (fflush(stdout) != 0 || ferror(stdout)) {
-            fprintf(stderr, "worker points: writing the points: %s\n", strerror(errno));
+            err_print("worker points: writing the points: %s\n", strerror(errno));
             rc = 1;
         }
     }
