@@ -95,12 +95,7 @@ check "--version" sh -c "'$WORKER' --version | grep -Eq '^worker [0-9]'"
 job "$T/slow.yaml" "width: 200" "height: 200" "threshold: 3" "light_threshold: 5"
 "$WORKER" --quiet --out "$T/killed" "$T/slow.yaml" 2>"$T/killed.err" &
 wpid=$!
-child=""
-for _ in $(seq 1 100); do
-    child=$(pgrep -P "$wpid" | head -n 1)
-    [ -n "$child" ] && break
-    sleep 0.05
-done
+child=$(render_child "$wpid")
 sleep 0.3
 [ -n "$child" ] && kill -9 "$child"
 wait "$wpid"; rc=$?
@@ -113,10 +108,7 @@ check "killed child: no empty output folder left" [ ! -e "$T/killed/slow" ]
 # 5. SIGTERM to a plain render: no image, no sidecar, not even an empty folder
 "$WORKER" --quiet --out "$T/term" "$T/slow.yaml" 2>/dev/null &
 wpid=$!
-for _ in $(seq 1 100); do
-    [ -n "$(pgrep -P "$wpid" | head -n 1)" ] && break
-    sleep 0.05
-done
+render_child "$wpid" >/dev/null
 sleep 0.3
 kill -TERM "$wpid"
 wait "$wpid"; rc=$?
@@ -126,12 +118,7 @@ check "SIGTERM: nothing under --out" [ ! -e "$T/term/slow" ]
 #    (or a user) may have made OUT/<name>/ meanwhile, and be about to write into it
 "$WORKER" --quiet --out "$T/own" "$T/slow.yaml" 2>/dev/null &
 wpid=$!
-child=""
-for _ in $(seq 1 100); do
-    child=$(pgrep -P "$wpid" | head -n 1)
-    [ -n "$child" ] && break
-    sleep 0.05
-done
+child=$(render_child "$wpid")
 mkdir -p "$T/own/slow"
 [ -n "$child" ] && kill -9 "$child"
 wait "$wpid"; rc=$?

@@ -14,14 +14,6 @@ slow() { # slow FILE: a job long enough (about a second) to be interrupted mid-r
     { echo "scene: $root/scenes/checker.yaml"; echo "width: 64"; echo "height: 64"; echo "threshold: 3"
       echo "light_threshold: 50"; echo "processes: 1"; } >"$1"
 }
-render_child() { # render_child PID: print the pid of a render process of worker PID (wait for one)
-    for _ in $(seq 1 500); do
-        c=$(pgrep -P "$1" | head -n 1)
-        [ -n "$c" ] && { echo "$c"; return 0; }
-        sleep 0.02
-    done
-    return 1
-}
 gone() { # gone PID: the process ends (or is a zombie) within 5 s
     for _ in $(seq 1 250); do
         s=$(ps -o stat= -p "$1" 2>/dev/null)

@@ -11,3 +11,11 @@ check() { # check "description" command...
     if "$@"; then ok; else no "$d"; fi
 }
 finish() { echo "$pass passed, $fail failed"; [ "$fail" -eq 0 ]; }
+render_child() { # render_child PID: print the pid of a render process of worker PID (wait up to 10 s)
+    for _ in $(seq 1 500); do
+        c=$(pgrep -P "$1" | head -n 1)
+        [ -n "$c" ] && { echo "$c"; return 0; }
+        sleep 0.02
+    done
+    return 1
+}

@@ -51,4 +51,23 @@ static inline void poisson_same(double t, int torus, uint64_t seed, uint64_t str
     other->release(&alt);
 }
 
+/* An empty cell is never near, in this build's 5-cell filter (poisson.c included before this
+   header). Its offsets lie a few cells up and left of its corner; the
+   farthest candidate the 5-cell window tests sits a hair under r + 1 < 3 cells right of and below
+   the window's first corner (r a hair under 2 cells: t = 66.665 on 3 cells a side, or 99.998 on
+   2), which rounds to 3 cells on both axes: with the offsets at -5 cells that is (8, 8) cells from
+   the first cell's, 2^31 squared and summed, which wraps negative and read as "near". */
+static inline void poisson_empty_cells_far(void)
+{
+    int16_t uv[2 * 5 * 5];
+    for (int k = 0; k < 2 * 5 * 5; k++)
+        uv[k] = POISSON_EMPTY;
+    const double r_cells = 1.99995;
+    const int32_t near2 = (int32_t)floor(pow((r_cells - 4e-4) * POISSON_FIXED, 2));
+    const uint32_t far = (uint32_t)((r_cells + 1 - 1e-5) * POISSON_FIXED + 0.5);
+    CHECK(far == 3 * POISSON_FIXED);
+    CHECK(!poisson_near5(uv, 5, far | far << 16, near2));
+    CHECK(!poisson_near5(uv, 5, far, near2));
+}
+
 #endif

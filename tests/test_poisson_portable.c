@@ -57,27 +57,9 @@ static void offsets_law(void)
         CHECK_NEAR((double)sector[b] / N, 0.125, 5 * se8);
 }
 
-/* An empty cell is never near. Its offsets lie a few cells up and left of its corner; the
-   farthest candidate the 5-cell window tests sits a hair under r + 1 < 3 cells right of and below
-   the window's first corner (r a hair under 2 cells: t = 66.665 on 3 cells a side, or 99.998 on
-   2), which rounds to 3 cells on both axes: with the offsets at -5 cells that is (8, 8) cells from
-   the first cell's, 2^31 squared and summed, which wraps negative and read as "near". */
-static void empty_cells_far(void)
-{
-    int16_t uv[2 * 5 * 5];
-    for (int k = 0; k < 2 * 5 * 5; k++)
-        uv[k] = POISSON_EMPTY;
-    const double r_cells = 1.99995;
-    const int32_t near2 = (int32_t)floor(pow((r_cells - 4e-4) * POISSON_FIXED, 2));
-    const uint32_t far = (uint32_t)((r_cells + 1 - 1e-5) * POISSON_FIXED + 0.5);
-    CHECK(far == 3 * POISSON_FIXED);
-    CHECK(!poisson_near5(uv, 5, far | far << 16, near2));
-    CHECK(!poisson_near5(uv, 5, far, near2));
-}
-
 int main(void)
 {
-    empty_cells_far();
+    poisson_empty_cells_far();
     offsets_law();
     const double thresholds[] = {1, 2.5, 5, 8, 10, 12, 20, 40, 100};
     for (size_t i = 0; i < sizeof thresholds / sizeof thresholds[0]; i++)
