@@ -41,4 +41,9 @@ check "points without a threshold: exit 2, one line saying what is missing" sh -
 check "--help diff: exit 0 with the usage (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker' '$T/h1.out'"
 "$WORKER" --version points >"$T/v1.out" 2>"$T/v1.err"; rc=$?
 check "--version points: exit 0 with the version (got $rc)" sh -c "[ $rc -eq 0 ] && grep -Eq '^worker [0-9]' '$T/v1.out'"
+# --help after a subcommand answers with that subcommand's usage, exit 0
+"$WORKER" diff --help >"$T/dh.out" 2>"$T/dh.err"; rc=$?
+check "diff --help: exit 0 and its usage on stdout (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^usage: worker diff' '$T/dh.out' && [ ! -s '$T/dh.err' ]"
+"$WORKER" points --help >"$T/ph.out" 2>"$T/ph.err"; rc=$?
+check "points --help: exit 0 and its usage on stdout (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^usage: worker points' '$T/ph.out'"
 finish

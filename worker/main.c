@@ -71,6 +71,10 @@ static int diff_main(int argc, char **argv)
             }
         } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
             continue; /* a common option; diff draws no progress anyway */
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: worker diff A.png B.png [--max-rmse X] [--block N] [--quiet]\n"
+                   "error metrics of B against reference A; exit 1 when rmse is over X\n");
+            return 0;
         } else if (argv[i][0] == '-' && argv[i][1]) {
             err_print("worker diff: unknown option %s; see worker --help\n", argv[i]);
             return 2;
