@@ -55,4 +55,31 @@ check "dangling symlink --out: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "dangling symlink --out: names it" grep -q "cannot create directory $T/dangling: " "$T/err4"
 "$WORKER" --quiet --out "$T/dangling/deeper" "$T/big.yaml" 2>"$T/err5"; rc=$?
 check "dangling symlink on the way: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+
+# 5. A writer killed half-way leaves its temporary file (".big.png.tmp.XXXXXX"); the next render
+#    of the job removes it, and nobody else's files.
+"$WORKER" --quiet --out "$T/o5" "$T/big.yaml" 2>/dev/null
+: >"$T/o5/big/.big.png.tmp.Ab3xYz"; : >"$T/o5/big/.big.json.tmp.Qw9Er1"; : >"$T/o5/big/.notes.txt.tmp.Ab3xYz"
+"$WORKER" --quiet --force --out "$T/o5" "$T/big.yaml" 2>/dev/null; rc=$?
+check "dead writer's temporaries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "dead writer's temporaries: removed" [ -z "$(ls -A "$T/o5/big" | grep '^\.big\..*\.tmp\.')" ]
+check "dead writer's temporaries: another file's kept" [ -e "$T/o5/big/.notes.txt.tmp.Ab3xYz" ]
+
+# 6. Writers of one folder take turns (flock on it), so an image and its sidecar always come from
+#    one render: while another holds the folder's lock, the render waits with nothing written.
+if command -v flock >/dev/null; then
+    printf 'scene: %s/scenes/checker.yaml\nname: big\nwidth: 16\nheight: 12\nthreshold: 50\n' "$root" >"$T/small.yaml"
+    mkdir -p "$T/o6/big"
+    flock "$T/o6/big" sh -c "echo locked >'$T/held'; while [ ! -e '$T/release' ]; do sleep 0.05; done" &
+    holder=$!
+    while [ ! -e "$T/held" ]; do sleep 0.05; done
+    "$WORKER" --quiet --out "$T/o6" "$T/small.yaml" 2>/dev/null & wpid=$!
+    sleep 1 # a 16x12 render takes milliseconds: by now it waits for the lock
+    check "folder lock: nothing written while another holds it" [ -z "$(ls -A "$T/o6/big")" ]
+    : >"$T/release"; wait "$holder"; wait "$wpid"; rc=$?
+    check "folder lock: exit 0 once it is free (got $rc)" [ "$rc" -eq 0 ]
+    check "folder lock: written once it is free" [ -s "$T/o6/big/big.png" ]
+else
+    echo "no flock(1): folder lock check skipped"
+fi
 finish

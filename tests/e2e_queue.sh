@@ -67,6 +67,8 @@ kill -9 "$wpid"; wait "$wpid" 2>/dev/null
 check "kill worker: the claim stays in running/" [ -f "$Q/running/slow.yaml" ]
 check "kill worker: no image in done/" [ ! -e "$Q/done/slow/slow.png" ]
 check "kill worker: its render process stops" gone "$child"
+# as if it had been killed while writing the image: its temporary file is left in done/slow/
+mkdir -p "$Q/done/slow"; : >"$Q/done/slow/.slow.png.tmp.k9Xy2Z"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/k2.log"; rc=$?
 check "kill worker: the next worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
 check "kill worker: it says why it took the claim back" grep -q "slow.yaml: returned to the queue: its worker (pid $wpid on .*) is gone" "$T/k2.log"

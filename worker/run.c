@@ -5,7 +5,10 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <dirent.h>
+#include <fcntl.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -53,6 +56,52 @@ static int make_out_dir(const char *dir, int *made, struct err *e)
     }
     *made = mkdir(dir, 0755) == 0;
     return run_mkdirs(dir, e);
+}
+
+/* Remove the temporary files that fileio_write_atomic left for path (".<base>.tmp.XXXXXX" beside
+   it) when its writer was killed half-way. Only the holder of the folder's lock may call it. */
+static void remove_dead_temps(const char *path)
+{
+    char dir[2048];
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    size_t bl = strlen(base);
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        const char *n = de->d_name;
+        if (n[0] == '.' && !strncmp(n + 1, base, bl) && !strncmp(n + 1 + bl, ".tmp.", 5) &&
+            strlen(n + 1 + bl + 5) == 6) {
+            char dead[4096];
+            snprintf(dead, sizeof dead, "%s/%s", dir, n);
+            unlink(dead);
+        }
+    }
+    closedir(d);
+}
+
+int run_out_lock(const char *dir, const char *const *paths)
+{
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC), rc = -1;
+    if (fd < 0)
+        return -1;
+    while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR)
+        ;
+    if (rc < 0) {
+        close(fd);
+        return -1;
+    }
+    for (int i = 0; paths && paths[i]; i++)
+        remove_dead_temps(paths[i]);
+    return fd;
+}
+
+void run_out_unlock(int fd)
+{
+    if (fd >= 0)
+        close(fd); /* closing the last descriptor of the open folder releases the flock */
 }
 
 struct progress {
@@ -130,10 +179,12 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     char dir[2048];
     struct rgb8 img = {0};
     char *json = NULL;
-    int rc = -1, made_dir = 0;
+    int rc = -1, made_dir = 0, lock = -1;
     run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
     if (make_out_dir(dir, &made_dir, e) < 0 || rgb8_alloc(&img, w, h, e) < 0)
         goto done;
+    const char *outs[] = {rr->image_path, rr->sidecar_path, NULL};
+    lock = run_out_lock(dir, outs);
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
     int has_ref = ref && ref->px;
@@ -152,6 +203,7 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     }
     rc = 0;
 done:
+    run_out_unlock(lock);
     if (rc != 0 && made_dir)
         rmdir(dir); /* a failed write leaves no empty folder of ours (it fails when not empty) */
     free(json);
@@ -242,8 +294,13 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (o->parts > 0) {
         part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
-        if (make_out_dir(dir, &made_dir, e) < 0 ||
-            part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e) < 0)
+        if (make_out_dir(dir, &made_dir, e) < 0)
+            goto done;
+        const char *outs[] = {rr->image_path, NULL};
+        int lock = run_out_lock(dir, outs);
+        int wrote = part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
+        run_out_unlock(lock);
+        if (wrote < 0)
             goto done;
     } else if (run_write_outputs(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
         goto done;

@@ -51,6 +51,16 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
 /* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
 
+/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
+   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
+   queue claim was taken over, finishing together). Under the lock, the temporary files that a
+   killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
+   temporary files never outlive its lock. Returns the lock (for run_out_unlock), or -1 when the
+   folder cannot be locked (some network file systems): the writer goes on alone, removing
+   nothing. */
+int run_out_lock(const char *dir, const char *const *paths);
+void run_out_unlock(int lock);
+
 /* mkdir -p for path. 0 or -1 with e filled. */
 int run_mkdirs(const char *path, struct err *e);
 
