@@ -163,6 +163,26 @@ kill -INT "$wpid"; kill -TERM "$wpid"; wait "$wpid"; rc=$?
 check "two signals: killed at once (got $rc)" [ "$rc" -gt 128 ]
 check "two signals: the job is not lost" sh -c "[ -f '$Q/term.yaml' ] || [ -f '$Q/running/term.yaml' ]"
 
+# 6b. a job of the same file name re-submitted while the first one renders, then the worker is
+#     stopped: the first cannot go back without replacing the second, so it stays claimed and the
+#     next worker takes it over in place; both are rendered, the first first (it used to stay
+#     stuck in running/ for ever, blocking the second)
+Q=$T/q6b; mkdir -p "$Q"; slow "$Q/again.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/again1.log" & wpid=$!
+render_child "$wpid" >/dev/null
+tiny "$Q/again.yaml" "seed: 7"
+kill -TERM "$wpid"; wait "$wpid"; rc=$?
+check "re-submitted: the stopped worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "re-submitted: it says why the claim stays" grep -q "a newer again.yaml waits in the queue" "$T/again1.log"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/again2.log"; rc=$?
+check "re-submitted: the next worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "re-submitted: it took the stopped claim over" grep -q "again.yaml: taken over in $Q/running/" "$T/again2.log"
+check "re-submitted: both rendered, the older first" \
+    sh -c "grep -o '^again: [0-9x]*' '$T/again2.log' | tr '\n' ' ' | grep -qx 'again: 64x64 again: 16x16 '"
+check "re-submitted: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+check "re-submitted: nothing waits" [ "$(count "$Q/*.yaml")" -eq 0 ]
+check "re-submitted: done/ holds the newer job" grep -q "^seed: 7" "$Q/done/again.yaml"
+
 # 7. leases of other hosts: kept while fresh, recovered once older than --lease-timeout;
 #    a live pid on this host keeps its claim
 Q=$T/q7; mkdir -p "$Q/running"

@@ -161,24 +161,48 @@ static int scan_waiting(struct queue *q, struct waiting **out)
 static int return_claim(struct queue *q, const char *claim, const char *name)
 {
     char back[2048];
-    struct stat st;
     snprintf(back, sizeof back, "%s/%s", q->dir, name);
-    if (stat(back, &st) == 0) {
-        fprintf(stderr, "queue: %s: cannot return it to the queue: %s exists\n", claim, back);
-        return -1;
-    }
     lease_remove(claim);
     return rename(claim, back);
 }
 
-/* Return every dead worker's claim to the queue. */
-static void recover_stale(struct queue *q)
+/* A job of the claim's file name waits in DIR again (re-submitted while the claim ran): the claim
+   cannot go back without replacing it, nor can it wait there, since that name stays claimed. */
+static int name_waiting(struct queue *q, const char *name)
+{
+    char back[2048];
+    struct stat st;
+    snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    return lstat(back, &st) == 0;
+}
+
+/* Take the dead claim at `claim` over where it lies, under its recovery lock: our lease replaces
+   its holder's and it becomes the claim in hand. 0 when it is ours. */
+static int adopt_claim(struct queue *q, const char *claim, const char *name)
+{
+    struct err e;
+    snprintf(q->claim, sizeof q->claim, "%s", claim);
+    lease_init(&q->lease);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (lease_write(q->claim, &q->lease, &e) == 0)
+        return 0;
+    char buf[2048];
+    err_format(&e, buf, sizeof buf);
+    fprintf(stderr, "queue: %s: %s\n", name, buf);
+    return -1;
+}
+
+/* Return every dead worker's claim to the queue. A dead claim whose file name waits in DIR again
+   is taken over in place instead (its name into `adopted`, and 1: process it now), so that both
+   jobs are rendered, this one first. */
+static int recover_stale(struct queue *q, char *adopted, size_t n)
 {
     DIR *d = opendir(q->running);
+    int took = 0;
     if (!d)
-        return;
+        return 0;
     struct dirent *de;
-    while ((de = readdir(d))) {
+    while (!took && (de = readdir(d))) {
         char claim[2048], why[512];
         if (!has_yaml_suffix(de->d_name))
             continue;
@@ -188,12 +212,21 @@ static void recover_stale(struct queue *q)
         if (lease_lock(claim, q->o->lease_timeout_s) < 0)
             continue;
         /* judged again under the lock: another recoverer may have moved it meanwhile */
-        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why) &&
-            return_claim(q, claim, de->d_name) == 0)
-            fprintf(stderr, "queue: %s: returned to the queue: %s\n", de->d_name, why);
+        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
+            if (!name_waiting(q, de->d_name)) {
+                if (return_claim(q, claim, de->d_name) == 0)
+                    fprintf(stderr, "queue: %s: returned to the queue: %s\n", de->d_name, why);
+            } else if (adopt_claim(q, claim, de->d_name) == 0) {
+                fprintf(stderr, "queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n",
+                        de->d_name, q->running, de->d_name, why);
+                snprintf(adopted, n, "%s", de->d_name);
+                took = 1;
+            }
+        }
         lease_unlock(claim);
     }
     closedir(d);
+    return took;
 }
 
 /* Claim DIR/name into running/ and write our lease. 0 when the job is ours. */
@@ -265,7 +298,14 @@ static void give_back(struct queue *q, const char *name)
         struct timespec nap = {0, 10 * 1000 * 1000};
         nanosleep(&nap, NULL);
     }
-    if (still_ours(q) && return_claim(q, q->claim, name) == 0)
+    if (!still_ours(q))
+        ;
+    else if (name_waiting(q, name))
+        fprintf(stderr,
+                "%s: stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
+                "next worker\n",
+                name, (int)queue_stop, name, q->running);
+    else if (return_claim(q, q->claim, name) == 0)
         fprintf(stderr, "%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
     lease_unlock(q->claim);
 }
@@ -398,7 +438,11 @@ int queue_main(const struct queue_opts *qo)
         return 2;
     }
     while (!queue_stop) {
-        recover_stale(&q);
+        char adopted[256];
+        if (recover_stale(&q, adopted, sizeof adopted)) {
+            process(&q, adopted);
+            continue;
+        }
         struct waiting *w;
         int n = scan_waiting(&q, &w), took = 0;
         if (n < 0) {
