@@ -220,6 +220,24 @@ check "relative paths: done" [ -s "$Q/done/rel/rel.png" ]
 check "relative paths: scored against the reference" grep -q '"psnr"' "$Q/done/rel/rel.json"
 check "relative paths: sidecar names the queued job file" grep -Fq "\"job_file\": \"$Q/rel.yaml\"" "$Q/done/rel/rel.json"
 
+# 9b. odd entries in DIR: job files that are symbolic links (relative and absolute targets) render
+#     (a relative target is seen from DIR, where the link was made, also once the claim moved the
+#     link into running/); a directory named x.yaml and a dangling link are left alone; a name
+#     with spaces renders
+Q=$T/q9b/queue; mkdir -p "$Q" "$T/q9b/store"
+tiny "$T/q9b/store/real.yaml"
+ln -s ../store/real.yaml "$Q/rel.yaml"; ln -s "$T/q9b/store/real.yaml" "$Q/abs.yaml"
+ln -s nowhere.yaml "$Q/dangling.yaml"; mkdir "$Q/dir.yaml"; tiny "$Q/with space.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/odd.log"; rc=$?
+check "odd entries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "odd entries: relative symlink rendered" [ -s "$Q/done/rel/rel.png" ]
+check "odd entries: absolute symlink rendered" [ -s "$Q/done/abs/abs.png" ]
+check "odd entries: name with spaces rendered" [ -s "$Q/done/with space/with space.png" ]
+check "odd entries: nothing failed" [ "$(count "$Q/failed/*")" -eq 0 ]
+check "odd entries: the directory left alone" [ -d "$Q/dir.yaml" ]
+check "odd entries: the dangling link left alone" [ -L "$Q/dangling.yaml" ]
+check "odd entries: the link's target untouched" [ -s "$T/q9b/store/real.yaml" ]
+
 # 10. usage errors
 "$WORKER" --queue "$T/nowhere" --once 2>"$T/u.log"; rc=$?
 check "missing queue dir: exit 2 (got $rc)" [ "$rc" -eq 2 ]

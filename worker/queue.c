@@ -318,7 +318,8 @@ static void note_rc(struct queue *q, int rc)
 
 /* A compare job: its combinations render into done/<name>/ as one job; a retry after a crash
    renders only the combinations still missing (they resume by hash). Invalid: failed/. */
-static void process_compare(struct queue *q, const char *name, const char *as, const char *stem)
+static void process_compare(struct queue *q, const char *name, const char *from, const char *as,
+                            const char *stem)
 {
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
@@ -329,7 +330,7 @@ static void process_compare(struct queue *q, const char *name, const char *as, c
     int attempts = 0, rc;
     do {
         attempts++;
-        rc = compare_main_as(q->claim, as, &ro, last, sizeof last);
+        rc = compare_main_as(from, as, &ro, last, sizeof last);
     } while (rc == 1 && !queue_stop && attempts <= q->o->retries);
     if (rc == 1 && queue_stop) {
         give_back(q, name);
@@ -347,20 +348,36 @@ static void process_compare(struct queue *q, const char *name, const char *as, c
     note_rc(q, rc);
 }
 
+/* The file to read the claimed job from: the claim itself, or, when the job was a symbolic link
+   with a relative target, that target seen from DIR, where the link was made (the claim moved
+   the link into running/, where its target would be looked up beside running/). */
+static void claim_source(const struct queue *q, char *out, size_t n)
+{
+    char target[2048];
+    ssize_t len = readlink(q->claim, target, sizeof target - 1);
+    if (len <= 0 || target[0] == '/') {
+        snprintf(out, n, "%s", q->claim);
+        return;
+    }
+    target[len] = 0;
+    snprintf(out, n, "%s/%s", q->dir, target);
+}
+
 /* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
 static void process(struct queue *q, const char *name)
 {
-    char as[2048], msg[2048], stem[256];
+    char as[2048], from[4096], msg[2048], stem[256];
     struct job j;
     struct err e;
     struct run_result rr;
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
     snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
-    if (compare_is_compare_job(q->claim)) {
-        process_compare(q, name, as, stem);
+    claim_source(q, from, sizeof from);
+    if (compare_is_compare_job(from)) {
+        process_compare(q, name, from, as, stem);
         return;
     }
-    if (job_load_as(q->claim, as, &j, &e) < 0) { /* invalid: never retried */
+    if (job_load_as(from, as, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
         fprintf(stderr, "%s\n%s: invalid job, moved to %s/\n", msg, name, q->failed);
         write_log(q, name, stem, msg, 0, 0);
