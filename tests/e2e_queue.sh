@@ -238,6 +238,19 @@ check "odd entries: the directory left alone" [ -d "$Q/dir.yaml" ]
 check "odd entries: the dangling link left alone" [ -L "$Q/dangling.yaml" ]
 check "odd entries: the link's target untouched" [ -s "$T/q9b/store/real.yaml" ]
 
+# 9c. a file name holding a newline: every message stays one line (control characters escaped)
+Q=$T/q9c; mkdir -p "$Q"
+nl='
+'
+printf 'width: abc\n' >"$Q/bad${nl}name.yaml"; tiny "$Q/good${nl}name.yaml"
+touch -d '-1 minute' "$Q/bad${nl}name.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/nl.log"; rc=$?
+check "newline in a name: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "newline in a name: the good one rendered" [ -s "$Q/done/good${nl}name/good${nl}name.png" ]
+check "newline in a name: three lines on stderr (got $(wc -l <"$T/nl.log"))" [ "$(wc -l <"$T/nl.log")" -eq 3 ]
+check "newline in a name: escaped as \\n" grep -Fq 'bad\nname.yaml: invalid job, moved to' "$T/nl.log"
+check "newline in a name: the summary line escaped" grep -Fq 'good\nname: 16x16' "$T/nl.log"
+
 # 10. usage errors
 "$WORKER" --queue "$T/nowhere" --once 2>"$T/u.log"; rc=$?
 check "missing queue dir: exit 2 (got $rc)" [ "$rc" -eq 2 ]

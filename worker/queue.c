@@ -188,7 +188,7 @@ static int adopt_claim(struct queue *q, const char *claim, const char *name)
         return 0;
     char buf[2048];
     err_format(&e, buf, sizeof buf);
-    fprintf(stderr, "queue: %s: %s\n", name, buf);
+    err_print("queue: %s: %s\n", name, buf);
     return -1;
 }
 
@@ -215,10 +215,10 @@ static int recover_stale(struct queue *q, char *adopted, size_t n)
         if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
             if (!name_waiting(q, de->d_name)) {
                 if (return_claim(q, claim, de->d_name) == 0)
-                    fprintf(stderr, "queue: %s: returned to the queue: %s\n", de->d_name, why);
+                    err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
             } else if (adopt_claim(q, claim, de->d_name) == 0) {
-                fprintf(stderr, "queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n",
-                        de->d_name, q->running, de->d_name, why);
+                err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
+                          q->running, de->d_name, why);
                 snprintf(adopted, n, "%s", de->d_name);
                 took = 1;
             }
@@ -246,7 +246,7 @@ static int claim(struct queue *q, const char *name)
     if (lease_write(q->claim, &q->lease, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);
-        fprintf(stderr, "queue: %s: %s; returning it to the queue\n", name, buf);
+        err_print("queue: %s: %s; returning it to the queue\n", name, buf);
         rename(q->claim, from);
         return -1;
     }
@@ -267,7 +267,7 @@ static void file_claim(struct queue *q, const char *name, const char *to_dir)
     char to[2048];
     snprintf(to, sizeof to, "%s/%s", to_dir, name);
     if (rename(q->claim, to) < 0)
-        fprintf(stderr, "queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
+        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
     lease_remove(q->claim);
 }
 
@@ -287,7 +287,7 @@ static void write_log(struct queue *q, const char *name, const char *job_name, c
     snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
     struct err e;
     if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
-        fprintf(stderr, "queue: %s: %s\n", name, e.msg);
+        err_print("queue: %s: %s\n", name, e.msg);
 }
 
 /* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
@@ -301,12 +301,11 @@ static void give_back(struct queue *q, const char *name)
     if (!still_ours(q))
         ;
     else if (name_waiting(q, name))
-        fprintf(stderr,
-                "%s: stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
-                "next worker\n",
-                name, (int)queue_stop, name, q->running);
+        err_print("%s: stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
+                  "next worker\n",
+                  name, (int)queue_stop, name, q->running);
     else if (return_claim(q, q->claim, name) == 0)
-        fprintf(stderr, "%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
+        err_print("%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
     lease_unlock(q->claim);
 }
 
@@ -342,7 +341,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         file_claim(q, name, q->done);
         return;
     }
-    fprintf(stderr, "%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
+    err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
     write_log(q, name, stem, last, 0, attempts);
     file_claim(q, name, q->failed);
     note_rc(q, rc);
@@ -379,7 +378,8 @@ static void process(struct queue *q, const char *name)
     }
     if (job_load_as(from, as, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
-        fprintf(stderr, "%s\n%s: invalid job, moved to %s/\n", msg, name, q->failed);
+        err_print("%s", msg);
+        err_print("%s: invalid job, moved to %s/", name, q->failed);
         write_log(q, name, stem, msg, 0, 0);
         file_claim(q, name, q->failed);
         note_rc(q, 2);
@@ -397,29 +397,28 @@ static void process(struct queue *q, const char *name)
         if (rc != 1 || !rr.farm.child_crashed || attempts > q->o->retries || queue_stop)
             break;
         err_format(&e, msg, sizeof msg);
-        fprintf(stderr, "%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
+        err_print("%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
     }
     if (rc == 1 && (rr.farm.stopped || queue_stop)) {
         give_back(q, name);
         return;
     }
     if (!still_ours(q)) {
-        fprintf(stderr, "%s: the claim was taken over (our lease was judged dead); leaving the job to it\n",
-                name);
+        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
         return;
     }
     if (rc == 0) {
         if (rr.skipped)
-            fprintf(stderr, "%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n",
-                    name, q->done, j.name);
+            err_print("%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n", name,
+                      q->done, j.name);
         else
             run_print_summary(&j, &rr);
         file_claim(q, name, q->done);
         return;
     }
     err_format(&e, msg, sizeof msg);
-    fprintf(stderr, "%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
-            attempts > 1 ? "s" : "");
+    err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
+              attempts > 1 ? "s" : "");
     write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
     file_claim(q, name, q->failed);
     note_rc(q, rc);
@@ -444,14 +443,14 @@ int queue_main(const struct queue_opts *qo)
         q.dir[n - 1] = 0;
     int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
     if (bad) {
-        fprintf(stderr, "worker: --queue %s: %s\n", q.dir, strerror(bad));
+        err_print("worker: --queue %s: %s\n", q.dir, strerror(bad));
         return 2;
     }
     snprintf(q.running, sizeof q.running, "%s/running", q.dir);
     snprintf(q.done, sizeof q.done, "%s/done", q.dir);
     snprintf(q.failed, sizeof q.failed, "%s/failed", q.dir);
     if (run_mkdirs(q.running, &e) < 0 || run_mkdirs(q.done, &e) < 0 || run_mkdirs(q.failed, &e) < 0) {
-        fprintf(stderr, "worker: --queue %s: %s\n", q.dir, e.msg);
+        err_print("worker: --queue %s: %s\n", q.dir, e.msg);
         return 2;
     }
     while (!queue_stop) {
@@ -463,7 +462,7 @@ int queue_main(const struct queue_opts *qo)
         struct waiting *w;
         int n = scan_waiting(&q, &w), took = 0;
         if (n < 0) {
-            fprintf(stderr, "worker: --queue %s: %s\n", q.dir, strerror(errno));
+            err_print("worker: --queue %s: %s\n", q.dir, strerror(errno));
             free(w);
             return 2;
         }
