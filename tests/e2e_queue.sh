@@ -248,7 +248,7 @@ touch -d '-1 minute' "$Q/bad${nl}name.yaml"
 check "newline in a name: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "newline in a name: the good one rendered" [ -s "$Q/done/good${nl}name/good${nl}name.png" ]
 check "newline in a name: three lines on stderr (got $(wc -l <"$T/nl.log"))" [ "$(wc -l <"$T/nl.log")" -eq 3 ]
-check "newline in a name: escaped as \\n" grep -Fq 'bad\nname.yaml: invalid job, moved to' "$T/nl.log"
+check "newline in a name: escaped as backslash n" grep -Fq 'bad\nname.yaml: invalid job, moved to' "$T/nl.log"
 check "newline in a name: the summary line escaped" grep -Fq 'good\nname: 16x16' "$T/nl.log"
 
 # 10. usage errors
