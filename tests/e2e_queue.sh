@@ -78,6 +78,17 @@ check "kill worker: sidecar written" [ -s "$Q/done/slow/slow.json" ]
 check "kill worker: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 check "kill worker: no temporary files in done/" [ -z "$(ls -A "$Q/done/slow" | grep tmp)" ]
 
+# 2a. a render process whose worker was killed stops at once, not after its row: one row of a
+#     30000-pixel image at 10000 samples per pixel takes many seconds
+Q=$T/q2a; mkdir -p "$Q"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 30000\nheight: 1\nthreshold: 1\nprocesses: 1\n' "$root" >"$Q/wide.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null & wpid=$!
+child=$(render_child "$wpid")
+check "wide row: found the render process" [ -n "$child" ]
+kill -9 "$wpid"; wait "$wpid" 2>/dev/null
+check "wide row: the render process dies with its worker" gone "$child"
+[ -n "$child" ] && kill -9 "$child" 2>/dev/null
+
 # 2b. the same while another worker is already polling the queue: that one takes the job over
 Q=$T/q2b; mkdir -p "$Q"; slow "$Q/slow.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>/dev/null & apid=$!
