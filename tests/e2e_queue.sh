@@ -262,6 +262,29 @@ check "newline in a name: three lines on stderr (got $(wc -l <"$T/nl.log"))" [ "
 check "newline in a name: escaped as backslash n" grep -Fq 'bad\nname.yaml: invalid job, moved to' "$T/nl.log"
 check "newline in a name: the summary line escaped" grep -Fq 'good\nname: 16x16' "$T/nl.log"
 
+# 9d. a queue that cannot be written (a read-only mount; without root, a folder without write
+#     permission): the claim fails, said in one line, exit 2; a worker that idled silently and
+#     exited 0 with the jobs still waiting was taken for an empty queue
+Q=$T/q9d; mkdir -p "$Q/running" "$Q/done" "$Q/failed"; tiny "$Q/stuck.yaml"
+ro=""
+if mkdir -p "$T/q9d-ro" && mount --bind "$Q" "$T/q9d-ro" 2>/dev/null; then
+    if mount -o remount,bind,ro "$T/q9d-ro" 2>/dev/null; then ro="$T/q9d-ro"; else umount "$T/q9d-ro"; fi
+elif [ "$(id -u)" != 0 ]; then
+    chmod 555 "$Q" "$Q/running"; ro=$Q
+fi
+if [ -n "$ro" ]; then
+    "$WORKER" --queue "$ro" --once --quiet 2>"$T/ro.log"; rc=$?
+    check "read-only queue: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "read-only queue: one line says why" \
+        sh -c "[ \$(wc -l <'$T/ro.log') -eq 1 ] && grep -q 'cannot claim stuck.yaml into .*running/: ' '$T/ro.log'"
+    timeout 20 "$WORKER" --queue "$ro" --poll 0.1 --quiet 2>/dev/null; rc=$? # it idled for ever
+    check "read-only queue: a polling worker exits 2 too (got $rc)" [ "$rc" -eq 2 ]
+    check "read-only queue: the job still waits" [ -f "$Q/stuck.yaml" ]
+    if [ "$ro" = "$Q" ]; then chmod 755 "$Q" "$Q/running"; else umount "$ro"; fi
+else
+    echo "read-only queue: no read-only mount possible here, skipped"
+fi
+
 # 10. usage errors
 "$WORKER" --queue "$T/nowhere" --once 2>"$T/u.log"; rc=$?
 check "missing queue dir: exit 2 (got $rc)" [ "$rc" -eq 2 ]

@@ -229,7 +229,9 @@ static int recover_stale(struct queue *q, char *adopted, size_t n)
     return took;
 }
 
-/* Claim DIR/name into running/ and write our lease. 0 when the job is ours. */
+/* Claim DIR/name into running/ and write our lease. 0 when the job is ours; 1 when another worker
+   was first, or a job of its file name is running; -1 when the queue cannot be written (said on
+   stderr: a read-only DIR, no permission, a full disk). */
 static int claim(struct queue *q, const char *name)
 {
     char from[2048];
@@ -238,15 +240,20 @@ static int claim(struct queue *q, const char *name)
     snprintf(from, sizeof from, "%s/%s", q->dir, name);
     snprintf(q->claim, sizeof q->claim, "%s/%s", q->running, name);
     if (stat(q->claim, &st) == 0) /* a job of the same file name is running: it waits */
+        return 1;
+    if (rename(from, q->claim) < 0) {
+        if (errno == ENOENT) /* another worker was first */
+            return 1;
+        err_print("worker: --queue %s: cannot claim %s into %s/: %s", q->dir, name, q->running,
+                  strerror(errno));
         return -1;
-    if (rename(from, q->claim) < 0) /* ENOENT: another worker was first */
-        return -1;
+    }
     lease_init(&q->lease);
     clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
     if (lease_write(q->claim, &q->lease, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);
-        err_print("queue: %s: %s; returning it to the queue\n", name, buf);
+        err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
         rename(q->claim, from);
         return -1;
     }
@@ -466,12 +473,18 @@ int queue_main(const struct queue_opts *qo)
             free(w);
             return 2;
         }
-        for (int i = 0; i < n && !took && !queue_stop; i++)
-            if (claim(&q, w[i].name) == 0) {
+        int unusable = 0;
+        for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
+            int got = claim(&q, w[i].name);
+            unusable = got < 0;
+            if (got == 0) {
                 process(&q, w[i].name);
                 took = 1;
             }
+        }
         free(w);
+        if (unusable)
+            return 2;
         if (took)
             continue;
         if (qo->once)
