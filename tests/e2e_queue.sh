@@ -211,6 +211,19 @@ check "old lease of another host: job file in done/" [ -f "$Q/done/far.yaml" ]
 check "old lease: the reason names the host" grep -q "pid 1 on elsewhere.example) has not renewed the lease for 1[0-9] s" "$T/far.log"
 check "live pid on this host: still kept" [ -f "$Q/running/near.yaml" ]
 
+# 7b. a --lease-timeout under a second: the holder renews its lease often enough (a quarter of the
+#     timeout) that a polling worker never takes a live claim for a dead one and renders it again
+Q=$T/q7b; mkdir -p "$Q"
+{ slow /dev/stdout; echo "max_depth: 100"; } | sed 's/threshold: 3/threshold: 2/' >"$Q/short.yaml"
+"$WORKER" --queue "$Q" --once --quiet --lease-timeout 0.8 2>"$T/short1.log" & apid=$!
+render_child "$apid" >/dev/null
+"$WORKER" --queue "$Q" --quiet --poll 0.1 --lease-timeout 0.8 2>"$T/short2.log" & bpid=$!
+wait "$apid"; rc=$?
+kill -TERM "$bpid"; wait "$bpid"
+check "short lease: the holder exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "short lease: its claim was never taken over" [ ! -s "$T/short2.log" ]
+check "short lease: the holder filed it in done/" [ -f "$Q/done/short.yaml" ]
+
 # 8. order: higher priority first, then oldest first
 Q=$T/q8; mkdir -p "$Q"
 tiny "$Q/old.yaml"; tiny "$Q/mid.yaml"; tiny "$Q/new.yaml" "priority: 5"; tiny "$Q/low.yaml" "priority: -1"

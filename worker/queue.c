@@ -66,11 +66,14 @@ static double since(const struct timespec *t)
     return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
 }
 
-/* The farm's progress callback (every 50 ms): renew the lease about once a second. */
+/* The farm's progress callback (every 5 ms): renew the lease about once a second, or four times
+   per --lease-timeout when that is shorter (renewed only once a second, a live claim looked dead
+   to others for part of every second under a timeout of less than one, and was rendered again). */
 static void tick(void *arg)
 {
     struct queue *q = arg;
-    if (since(&q->last_touch) < 1.0)
+    double every = q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
+    if (since(&q->last_touch) < every)
         return;
     lease_touch(q->claim);
     clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
