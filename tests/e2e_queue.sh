@@ -252,11 +252,17 @@ Q=$T/q9b/queue; mkdir -p "$Q" "$T/q9b/store"
 tiny "$T/q9b/store/real.yaml"
 ln -s ../store/real.yaml "$Q/rel.yaml"; ln -s "$T/q9b/store/real.yaml" "$Q/abs.yaml"
 ln -s nowhere.yaml "$Q/dangling.yaml"; mkdir "$Q/dir.yaml"; tiny "$Q/with space.yaml"
+latin1=$(printf 'caf\351') # "café" in Latin-1: not UTF-8
+tiny "$Q/$latin1.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/odd.log"; rc=$?
 check "odd entries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "odd entries: relative symlink rendered" [ -s "$Q/done/rel/rel.png" ]
 check "odd entries: absolute symlink rendered" [ -s "$Q/done/abs/abs.png" ]
 check "odd entries: name with spaces rendered" [ -s "$Q/done/with space/with space.png" ]
+check "odd entries: a Latin-1 name rendered" [ -s "$Q/done/$latin1/$latin1.png" ]
+check "odd entries: its sidecar is UTF-8 (the byte as U+FFFD)" \
+    sh -c "! LC_ALL=C grep -q \"\$(printf '\\351')\" '$Q/done/$latin1/$latin1.json' &&
+           grep -Fq '\"job\": \"caf\\ufffd\"' '$Q/done/$latin1/$latin1.json'"
 check "odd entries: nothing failed" [ "$(count "$Q/failed/*")" -eq 0 ]
 check "odd entries: the directory left alone" [ -d "$Q/dir.yaml" ]
 check "odd entries: the dangling link left alone" [ -L "$Q/dangling.yaml" ]
