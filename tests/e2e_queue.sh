@@ -224,6 +224,23 @@ check "short lease: the holder exits 0 (got $rc)" [ "$rc" -eq 0 ]
 check "short lease: its claim was never taken over" [ ! -s "$T/short2.log" ]
 check "short lease: the holder filed it in done/" [ -f "$Q/done/short.yaml" ]
 
+# 7c. a worker stopped (SIGSTOP: hung) past --lease-timeout loses its claim; another renders the
+#     job and files it; when the first resumes it writes nothing over the new holder's outputs
+Q=$T/q7c; mkdir -p "$Q"; slow "$Q/hung.yaml"
+"$WORKER" --queue "$Q" --once --quiet --lease-timeout 1 2>"$T/hung1.log" & apid=$!
+render_child "$apid" >/dev/null
+kill -STOP "$apid"
+"$WORKER" --queue "$Q" --quiet --poll 0.1 --lease-timeout 1 2>/dev/null & bpid=$!
+for _ in $(seq 1 200); do [ -f "$Q/done/hung.yaml" ] && break; sleep 0.1; done
+kill -TERM "$bpid"; wait "$bpid"
+cp "$Q/done/hung/hung.json" "$T/hung-b.json" 2>/dev/null
+kill -CONT "$apid"; wait "$apid"; rc=$?
+check "hung worker: the other filed the job" [ -f "$Q/done/hung.yaml" ]
+check "hung worker: exits 0 once resumed (got $rc)" [ "$rc" -eq 0 ]
+check "hung worker: says the claim was taken over" grep -q "hung.yaml: the claim was taken over" "$T/hung1.log"
+check "hung worker: wrote nothing over the new holder's sidecar" cmp -s "$T/hung-b.json" "$Q/done/hung/hung.json"
+check "hung worker: the image equals a plain render" cmp -s "$T/plain/slow/slow.png" "$Q/done/hung/hung.png"
+
 # 8. order: higher priority first, then oldest first
 Q=$T/q8; mkdir -p "$Q"
 tiny "$Q/old.yaml"; tiny "$Q/mid.yaml"; tiny "$Q/new.yaml" "priority: 5"; tiny "$Q/low.yaml" "priority: -1"

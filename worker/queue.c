@@ -271,6 +271,13 @@ static int still_ours(struct queue *q)
     return lease_read(q->claim, &l, &age) == 0 && strcmp(l.token, q->lease.token) == 0;
 }
 
+/* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
+   we were stopped or hung) writes nothing, lest it replace the new holder's outputs. */
+static int claim_held(void *arg)
+{
+    return still_ours(arg);
+}
+
 /* Move the claim to done/ or failed/ and drop the lease. */
 static void file_claim(struct queue *q, const char *name, const char *to_dir)
 {
@@ -399,6 +406,7 @@ static void process(struct queue *q, const char *name)
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
     ro.tick = tick;
+    ro.may_write = claim_held;
     ro.tick_arg = q;
     int attempts = 0, rc;
     for (;;) {

@@ -291,6 +291,10 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
             fprintf(stderr, "\n");
         goto done;
     }
+    if (o->may_write && !o->may_write(o->tick_arg)) {
+        err_set(e, NULL, 0, 0, "rendered, but another worker holds the job now: nothing written");
+        goto done;
+    }
     if (o->parts > 0) {
         part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
