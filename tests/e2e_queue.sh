@@ -202,7 +202,14 @@ printf 'host elsewhere.example\npid 1\nstart 0\ntoken elsewhere:1:0\n' >"$Q/runn
 touch -d '-10 seconds' "$Q/running/far.yaml.lease"
 tiny "$Q/running/near.yaml"
 printf 'host %s\npid %s\nstart 0\ntoken near:1:0\n' "$(uname -n)" "$$" >"$Q/running/near.yaml.lease"
+# this hostname, a dead pid, but another pid space (a container with the host's name): its pid
+# means nothing here, so its fresh lease keeps the claim (it used to be taken as "gone")
+tiny "$Q/running/box.yaml"
+printf 'host %s\npid %s\nstart 0\ntoken box:1:0\npids another-boot:pid:[1]\n' "$(uname -n)" \
+    "$(sh -c 'echo $$')" >"$Q/running/box.yaml.lease"
+touch -d '-10 seconds' "$Q/running/box.yaml.lease"
 "$WORKER" --queue "$Q" --once --quiet --lease-timeout 60 2>/dev/null
+check "fresh lease of another pid space on this host: kept" [ -f "$Q/running/box.yaml" ]
 check "fresh lease of another host: kept" [ -f "$Q/running/far.yaml" ]
 check "live pid on this host: kept" [ -f "$Q/running/near.yaml" ]
 "$WORKER" --queue "$Q" --once --quiet --lease-timeout 5 2>"$T/far.log"
@@ -210,6 +217,7 @@ check "old lease of another host: recovered and done" [ -s "$Q/done/far/far.png"
 check "old lease of another host: job file in done/" [ -f "$Q/done/far.yaml" ]
 check "old lease: the reason names the host" grep -q "pid 1 on elsewhere.example) has not renewed the lease for 1[0-9] s" "$T/far.log"
 check "live pid on this host: still kept" [ -f "$Q/running/near.yaml" ]
+check "old lease of another pid space: recovered and done" [ -s "$Q/done/box/box.png" ]
 
 # 7b. a --lease-timeout under a second: the holder renews its lease often enough (a quarter of the
 #     timeout) that a polling worker never takes a live claim for a dead one and renders it again
