@@ -78,6 +78,16 @@ check "kill worker: sidecar written" [ -s "$Q/done/slow/slow.json" ]
 check "kill worker: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 check "kill worker: no temporary files in done/" [ -z "$(ls -A "$Q/done/slow" | grep tmp)" ]
 
+# 2c. a worker killed just after its claim, while writing the lease, leaves the lease's temporary
+#     file in running/ (most of the time: the fsync is the slow part); once older than the lease
+#     timeout it is a dead writer's and the next scan removes it; a fresh one is left alone
+Q=$T/q2c; mkdir -p "$Q/running"
+: >"$Q/running/.gone.yaml.lease.tmp.Ab12Cd"; touch -d '-2 minutes' "$Q/running/.gone.yaml.lease.tmp.Ab12Cd"
+: >"$Q/running/.busy.yaml.lease.tmp.Ef34Gh"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null
+check "dead lease temporary: removed" [ ! -e "$Q/running/.gone.yaml.lease.tmp.Ab12Cd" ]
+check "fresh lease temporary: kept" [ -e "$Q/running/.busy.yaml.lease.tmp.Ef34Gh" ]
+
 # 2a. a render process whose worker was killed stops at once, not after its row: one row of a
 #     30000-pixel image at 10000 samples per pixel takes many seconds
 Q=$T/q2a; mkdir -p "$Q"

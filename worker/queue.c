@@ -195,6 +195,25 @@ static int adopt_claim(struct queue *q, const char *claim, const char *name)
     return -1;
 }
 
+/* running/.X.yaml.lease.tmp.XXXXXX: the temporary file of a lease write (fileio_write_atomic)
+   whose worker was killed before its rename (a worker killed just after claiming leaves one
+   most of the time: the write's fsync is the slow part). A live writer renames it within
+   moments, so one older than the lease timeout is a dead writer's: removed. */
+static void remove_dead_lease_temp(struct queue *q, const char *name)
+{
+    const char *tmp = strstr(name, ".yaml.lease.tmp.");
+    struct stat st;
+    char path[2048];
+    if (name[0] != '.' || !tmp || strlen(tmp + strlen(".yaml.lease.tmp.")) != 6)
+        return;
+    snprintf(path, sizeof path, "%s/%s", q->running, name);
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
+        (now.tv_sec - st.st_mtim.tv_sec) + (now.tv_nsec - st.st_mtim.tv_nsec) * 1e-9 > q->o->lease_timeout_s)
+        unlink(path);
+}
+
 /* Return every dead worker's claim to the queue. A dead claim whose file name waits in DIR again
    is taken over in place instead (its name into `adopted`, and 1: process it now), so that both
    jobs are rendered, this one first. */
@@ -207,6 +226,7 @@ static int recover_stale(struct queue *q, char *adopted, size_t n)
     struct dirent *de;
     while (!took && (de = readdir(d))) {
         char claim[2048], why[512];
+        remove_dead_lease_temp(q, de->d_name);
         if (!has_yaml_suffix(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
