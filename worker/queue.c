@@ -38,6 +38,14 @@ void queue_signals_install(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
+struct waiting {
+    char name[256];
+    int priority;
+    struct timespec mtime;
+    ino_t ino;
+    off_t size;
+};
+
 struct queue {
     const struct queue_opts *o;
     char dir[1024], running[1100], done[1100], failed[1100];
@@ -45,12 +53,8 @@ struct queue {
     char claim[2048];   /* DIR/running/X.yaml while a job is held */
     struct timespec last_touch;
     int worst;
-};
-
-struct waiting {
-    char name[256];
-    int priority;
-    struct timespec mtime;
+    struct waiting *seen; /* the last scan's jobs by name, to reuse the priorities of unchanged files */
+    int nseen;
 };
 
 static int has_yaml_suffix(const char *s)
@@ -122,6 +126,36 @@ static int waiting_cmp(const void *pa, const void *pb)
     return strcmp(a->name, b->name);
 }
 
+static int by_name(const void *pa, const void *pb)
+{
+    return strcmp(((const struct waiting *)pa)->name, ((const struct waiting *)pb)->name);
+}
+
+/* The priority of the waiting job w (name and stat filled) at path: the last scan's when the file is
+   unchanged (same inode, size and mtime), else read from the file. Reading every waiting file on
+   every scan cost a queue of N jobs N*N/2 reads (on NFS, several round trips each). */
+static int priority_of(const struct queue *q, const struct waiting *w, const char *path)
+{
+    const struct waiting *old = q->nseen ? bsearch(w, q->seen, (size_t)q->nseen, sizeof *w, by_name) : NULL;
+    if (old && old->ino == w->ino && old->size == w->size && old->mtime.tv_sec == w->mtime.tv_sec &&
+        old->mtime.tv_nsec == w->mtime.tv_nsec)
+        return old->priority;
+    return peek_priority(path);
+}
+
+/* Keep a copy of this scan's n jobs w, sorted by name, for the next scan's priority_of. */
+static void remember(struct queue *q, const struct waiting *w, int n)
+{
+    struct waiting *c = n > 0 ? malloc((size_t)n * sizeof *c) : NULL;
+    free(q->seen);
+    q->seen = c;
+    q->nseen = c ? n : 0;
+    if (!c)
+        return;
+    memcpy(c, w, (size_t)n * sizeof *c);
+    qsort(c, (size_t)n, sizeof *c, by_name);
+}
+
 /* The waiting jobs in claim order into *out (malloc'd); their count, or -1 when DIR is unreadable. */
 static int scan_waiting(struct queue *q, struct waiting **out)
 {
@@ -149,10 +183,13 @@ static int scan_waiting(struct queue *q, struct waiting **out)
         }
         snprintf(w[n].name, sizeof w[n].name, "%s", de->d_name);
         w[n].mtime = st.st_mtim;
-        w[n].priority = peek_priority(path);
+        w[n].ino = st.st_ino;
+        w[n].size = st.st_size;
+        w[n].priority = priority_of(q, &w[n], path);
         n++;
     }
     closedir(d);
+    remember(q, w, n);
     if (n > 1)
         qsort(w, (size_t)n, sizeof *w, waiting_cmp);
     *out = w;
@@ -501,8 +538,8 @@ int queue_main(const struct queue_opts *qo)
         int n = scan_waiting(&q, &w), took = 0;
         if (n < 0) {
             err_print("worker: --queue %s: %s\n", q.dir, strerror(errno));
-            free(w);
-            return 2;
+            q.worst = 2;
+            break;
         }
         int unusable = 0;
         for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
@@ -514,13 +551,16 @@ int queue_main(const struct queue_opts *qo)
             }
         }
         free(w);
-        if (unusable)
-            return 2;
+        if (unusable) {
+            q.worst = 2;
+            break;
+        }
         if (took)
             continue;
         if (qo->once)
             break;
         nap(qo->poll_s);
     }
+    free(q.seen);
     return q.worst;
 }
