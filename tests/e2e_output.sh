@@ -56,10 +56,24 @@ check "dangling symlink --out: names it" grep -q "cannot create directory $T/dan
 "$WORKER" --quiet --out "$T/dangling/deeper" "$T/big.yaml" 2>"$T/err5"; rc=$?
 check "dangling symlink on the way: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 
+# 4b. A re-render whose sidecar cannot be written (a 1 KiB file-size limit: the 1x1 PPM fits, the
+#     sidecar does not) fails with exit 1 and leaves the earlier image and sidecar as they were;
+#     the new image used to replace the old one and then be removed with nothing in its place.
+printf 'scene: %s/scenes/checker.yaml\nname: dot\nwidth: 1\nheight: 1\nthreshold: 50\noutput: dot.ppm\n' "$root" >"$T/dot.yaml"
+"$WORKER" --quiet --out "$T/o4b" "$T/dot.yaml" 2>/dev/null
+cp "$T/o4b/dot/dot.ppm" "$T/dot-before.ppm"; cp "$T/o4b/dot/dot.json" "$T/dot-before.json"
+(ulimit -f 1; "$WORKER" --quiet --force --out "$T/o4b" "$T/dot.yaml") 2>"$T/err4b"; rc=$?
+check "sidecar too big: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "sidecar too big: the error names the sidecar" grep -q "cannot write $T/o4b/dot/dot.json: File too large" "$T/err4b"
+check "sidecar too big: the earlier image kept" cmp -s "$T/dot-before.ppm" "$T/o4b/dot/dot.ppm"
+check "sidecar too big: the earlier sidecar kept" cmp -s "$T/dot-before.json" "$T/o4b/dot/dot.json"
+check "sidecar too big: no temporary file left" [ -z "$(ls -A "$T/o4b/dot" | grep tmp)" ]
+
 # 5. A writer killed half-way leaves its temporary file (".big.png.tmp.XXXXXX"); the next render
 #    of the job removes it, and nobody else's files.
 "$WORKER" --quiet --out "$T/o5" "$T/big.yaml" 2>/dev/null
 : >"$T/o5/big/.big.png.tmp.Ab3xYz"; : >"$T/o5/big/.big.json.tmp.Qw9Er1"; : >"$T/o5/big/.notes.txt.tmp.Ab3xYz"
+: >"$T/o5/big/.big.png.tmp.staged"; : >"$T/o5/big/..big.json.tmp.staged.tmp.Zx8Cv7" # killed while staging
 "$WORKER" --quiet --force --out "$T/o5" "$T/big.yaml" 2>/dev/null; rc=$?
 check "dead writer's temporaries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "dead writer's temporaries: removed" [ -z "$(ls -A "$T/o5/big" | grep '^\.big\..*\.tmp\.')" ]

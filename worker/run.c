@@ -172,18 +172,42 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
     return 0;
 }
 
+/* The staging name of path: "<dir>/.<base>.tmp.staged", shaped as fileio_write_atomic's
+   temporaries so that a writer killed between staging and renaming leaves nothing for good. */
+static void staged_name(const char *path, char *out, size_t n)
+{
+    const char *slash = strrchr(path, '/');
+    int dl = slash ? (int)(slash - path) + 1 : 0;
+    snprintf(out, n, "%.*s.%s.tmp.staged", dl, path, path + dl);
+}
+
+/* An error about writing the staging file `staged` names the final path instead. */
+static void name_final(struct err *e, const char *staged, const char *final)
+{
+    char *at = strstr(e->msg, staged);
+    if (!at)
+        return;
+    char msg[sizeof e->msg];
+    snprintf(msg, sizeof msg, "%.*s%s%s", (int)(at - e->msg), e->msg, final, at + strlen(staged));
+    snprintf(e->msg, sizeof e->msg, "%s", msg);
+    if (!strcmp(e->file, staged))
+        snprintf(e->file, sizeof e->file, "%s", final);
+}
+
 int run_write_outputs(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
                       const struct farm_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
                       struct err *e)
 {
-    char dir[2048];
+    char dir[2048], staged_image[2100], staged_sidecar[2100];
     struct rgb8 img = {0};
     char *json = NULL;
     int rc = -1, made_dir = 0, lock = -1;
     run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
     if (make_out_dir(dir, &made_dir, e) < 0 || rgb8_alloc(&img, w, h, e) < 0)
         goto done;
-    const char *outs[] = {rr->image_path, rr->sidecar_path, NULL};
+    staged_name(rr->image_path, staged_image, sizeof staged_image);
+    staged_name(rr->sidecar_path, staged_sidecar, sizeof staged_sidecar);
+    const char *outs[] = {rr->image_path, rr->sidecar_path, staged_image, staged_sidecar, NULL};
     lock = run_out_lock(dir, outs);
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
@@ -195,9 +219,22 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    if (imgio_write(rr->image_path, &img, j->format, e) < 0)
+    /* Both are written whole under staging names first, then renamed, the image first: a failure
+       before the renames (a full disk, a size limit) leaves an earlier image and sidecar as they
+       were. Those of a writer killed meanwhile, and their temporaries, go under the lock. */
+    if (imgio_write(staged_image, &img, j->format, e) < 0) {
+        name_final(e, staged_image, rr->image_path);
         goto done;
-    if (fileio_write_atomic(rr->sidecar_path, json, strlen(json), e) < 0) {
+    }
+    if (fileio_write_atomic(staged_sidecar, json, strlen(json), e) < 0) {
+        name_final(e, staged_sidecar, rr->sidecar_path);
+        unlink(staged_image);
+        goto done;
+    }
+    if (rename(staged_image, rr->image_path) < 0 || rename(staged_sidecar, rr->sidecar_path) < 0) {
+        err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->image_path, strerror(errno));
+        unlink(staged_image);
+        unlink(staged_sidecar);
         unlink(rr->image_path); /* an image without its sidecar is not a finished job */
         goto done;
     }
