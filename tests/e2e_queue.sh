@@ -199,6 +199,22 @@ kill -INT "$wpid"; kill -TERM "$wpid"; wait "$wpid"; rc=$?
 check "two signals: killed at once (got $rc)" [ "$rc" -gt 128 ]
 check "two signals: the job is not lost" sh -c "[ -f '$Q/term.yaml' ] || [ -f '$Q/running/term.yaml' ]"
 
+# 6a. SIGTERM while another worker holds the claim's recovery lock (it judged our lease dead and
+#     is returning the claim): the stopped worker leaves the claim and that lock alone (it used to
+#     return the job itself and delete the other's lock)
+Q=$T/q6a; mkdir -p "$Q"; slow "$Q/locked.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/locked.log" & wpid=$!
+render_child "$wpid" >/dev/null
+: >"$Q/running/locked.yaml.lock"
+kill -TERM "$wpid"; wait "$wpid"; rc=$?
+check "held lock: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "held lock: the other's lock kept" [ -e "$Q/running/locked.yaml.lock" ]
+check "held lock: the claim left in running/" [ -f "$Q/running/locked.yaml" ]
+check "held lock: says so" grep -q "locked.yaml: stopped by signal 15; its recovery lock is held" "$T/locked.log"
+rm -f "$Q/running/locked.yaml.lock" # the other recoverer gave up: the next worker recovers it
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null; rc=$?
+check "held lock: recovered and done afterwards (exit $rc)" [ -f "$Q/done/locked.yaml" ]
+
 # 6b. a job of the same file name re-submitted while the first one renders, then the worker is
 #     stopped: the first cannot go back without replacing the second, so it stays claimed and the
 #     next worker takes it over in place; both are rendered, the first first (it used to stay

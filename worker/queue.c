@@ -221,6 +221,9 @@ static int name_waiting(struct queue *q, const char *name)
 static int adopt_claim(struct queue *q, const char *claim, const char *name)
 {
     struct err e;
+    struct stat st;
+    if (stat(claim, &st) < 0) /* its holder returned it meanwhile, lock or not */
+        return -1;
     snprintf(q->claim, sizeof q->claim, "%s", claim);
     lease_init(&q->lease);
     clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
@@ -368,9 +371,15 @@ static void write_log(struct queue *q, const char *name, const char *job_name, c
    while it is still ours. */
 static void give_back(struct queue *q, const char *name)
 {
-    for (int i = 0; i < 100 && lease_lock(q->claim, q->o->lease_timeout_s) < 0; i++) {
+    int locked = 0;
+    for (int i = 0; i < 100 && !(locked = lease_lock(q->claim, q->o->lease_timeout_s) == 0); i++) {
         struct timespec nap = {0, 10 * 1000 * 1000};
         nanosleep(&nap, NULL);
+    }
+    if (!locked) { /* another worker is recovering it (our lease looked dead): the claim is its now */
+        err_print("%s: stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
+                  name, (int)queue_stop, q->running);
+        return;
     }
     if (!still_ours(q))
         ;
