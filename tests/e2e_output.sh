@@ -73,7 +73,7 @@ check "sidecar too big: no temporary file left" [ -z "$(ls -A "$T/o4b/dot" | gre
 #    of the job removes it, and nobody else's files.
 "$WORKER" --quiet --out "$T/o5" "$T/big.yaml" 2>/dev/null
 : >"$T/o5/big/.big.png.tmp.Ab3xYz"; : >"$T/o5/big/.big.json.tmp.Qw9Er1"; : >"$T/o5/big/.notes.txt.tmp.Ab3xYz"
-: >"$T/o5/big/.big.png.tmp.staged"; : >"$T/o5/big/..big.json.tmp.staged.tmp.Zx8Cv7" # killed while staging
+: >"$T/o5/big/.big.png.tmp.St4g3d"; : >"$T/o5/big/..big.json.tmp.St4g3d.tmp.Zx8Cv7" # killed while staging
 "$WORKER" --quiet --force --out "$T/o5" "$T/big.yaml" 2>/dev/null; rc=$?
 check "dead writer's temporaries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "dead writer's temporaries: removed" [ -z "$(ls -A "$T/o5/big" | grep '^\.big\..*\.tmp\.')" ]

@@ -1,15 +1,16 @@
 /* run: one job from its loaded settings to an image and its sidecar on disk. */
 #include "run.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <dirent.h>
-#include <fcntl.h>
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "fileio.h"
@@ -58,24 +59,37 @@ static int make_out_dir(const char *dir, int *made, struct err *e)
     return run_mkdirs(dir, e);
 }
 
-/* Remove the temporary files that fileio_write_atomic left for path (".<base>.tmp.XXXXXX" beside
-   it) when its writer was killed half-way. Only the holder of the folder's lock may call it. */
+/* Whether n is a temporary of the file named base: fileio_write_atomic's ".<base>.tmp.XXXXXX", or
+   its own temporary of such a staging file, "..<base>.tmp.XXXXXX.tmp.YYYYYY". */
+static int is_temp_of(const char *n, const char *base)
+{
+    size_t bl = strlen(base);
+    if (n[0] != '.')
+        return 0;
+    const char *t = !strncmp(n + 1, base, bl)                  ? n + 1 + bl
+                    : n[1] == '.' && !strncmp(n + 2, base, bl) ? n + 2 + bl
+                                                               : NULL;
+    if (!t || strncmp(t, ".tmp.", 5) != 0)
+        return 0;
+    size_t rest = strlen(t + 5);
+    return t == n + 1 + bl ? rest == 6 : rest == 17 && !strncmp(t + 11, ".tmp.", 5);
+}
+
+/* Remove the temporaries that writers killed half-way left for path beside it (is_temp_of). Only
+   the holder of the folder's lock may call it. */
 static void remove_dead_temps(const char *path)
 {
     char dir[2048];
     const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
     snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
-    size_t bl = strlen(base);
     DIR *d = opendir(dir);
     if (!d)
         return;
     struct dirent *de;
     while ((de = readdir(d))) {
-        const char *n = de->d_name;
-        if (n[0] == '.' && !strncmp(n + 1, base, bl) && !strncmp(n + 1 + bl, ".tmp.", 5) &&
-            strlen(n + 1 + bl + 5) == 6) {
+        if (is_temp_of(de->d_name, base)) {
             char dead[4096];
-            snprintf(dead, sizeof dead, "%s/%s", dir, n);
+            snprintf(dead, sizeof dead, "%s/%s", dir, de->d_name);
             unlink(dead);
         }
     }
@@ -172,13 +186,22 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
     return 0;
 }
 
-/* The staging name of path: "<dir>/.<base>.tmp.staged", shaped as fileio_write_atomic's
-   temporaries so that a writer killed between staging and renaming leaves nothing for good. */
+/* A staging name for path, unique to this writer: "<dir>/.<base>.tmp.XXXXXX" with six letters
+   or digits from the pid and the time, shaped as fileio_write_atomic's temporaries so that a
+   writer killed between staging and renaming leaves nothing for good (is_temp_of). */
 static void staged_name(const char *path, char *out, size_t n)
 {
+    static const char alnum[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    uint64_t x = rng_mix64((uint64_t)getpid() << 32 ^ (uint64_t)ts.tv_sec << 30 ^ (uint64_t)ts.tv_nsec);
+    char suffix[7];
+    for (int i = 0; i < 6; i++, x /= 62)
+        suffix[i] = alnum[x % 62];
+    suffix[6] = 0;
     const char *slash = strrchr(path, '/');
     int dl = slash ? (int)(slash - path) + 1 : 0;
-    snprintf(out, n, "%.*s.%s.tmp.staged", dl, path, path + dl);
+    snprintf(out, n, "%.*s.%s.tmp.%s", dl, path, path + dl, suffix);
 }
 
 /* An error about writing the staging file `staged` names the final path instead. */
@@ -207,7 +230,7 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
         goto done;
     staged_name(rr->image_path, staged_image, sizeof staged_image);
     staged_name(rr->sidecar_path, staged_sidecar, sizeof staged_sidecar);
-    const char *outs[] = {rr->image_path, rr->sidecar_path, staged_image, staged_sidecar, NULL};
+    const char *outs[] = {rr->image_path, rr->sidecar_path, NULL};
     lock = run_out_lock(dir, outs);
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
@@ -221,7 +244,7 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     }
     /* Both are written whole under staging names first, then renamed, the image first: a failure
        before the renames (a full disk, a size limit) leaves an earlier image and sidecar as they
-       were. Those of a writer killed meanwhile, and their temporaries, go under the lock. */
+       were. A killed writer's staged files and their temporaries go under the next one's lock. */
     if (imgio_write(staged_image, &img, j->format, e) < 0) {
         name_final(e, staged_image, rr->image_path);
         goto done;
@@ -231,9 +254,14 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
         unlink(staged_image);
         goto done;
     }
-    if (rename(staged_image, rr->image_path) < 0 || rename(staged_sidecar, rr->sidecar_path) < 0) {
+    if (rename(staged_image, rr->image_path) < 0) {
         err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->image_path, strerror(errno));
         unlink(staged_image);
+        unlink(staged_sidecar);
+        goto done;
+    }
+    if (rename(staged_sidecar, rr->sidecar_path) < 0) {
+        err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->sidecar_path, strerror(errno));
         unlink(staged_sidecar);
         unlink(rr->image_path); /* an image without its sidecar is not a finished job */
         goto done;
