@@ -13,7 +13,7 @@
 #include "compare.h"
 #include "fileio.h"
 #include "lease.h"
-#include "yamlx.h"
+#include "queue_scan.h"
 
 /* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
 static volatile sig_atomic_t queue_stop;
@@ -38,14 +38,6 @@ void queue_signals_install(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
-struct waiting {
-    char name[256];
-    int priority;
-    struct timespec mtime;
-    ino_t ino;
-    off_t size;
-};
-
 struct queue {
     const struct queue_opts *o;
     char dir[1024], running[1100], done[1100], failed[1100];
@@ -53,15 +45,8 @@ struct queue {
     char claim[2048];   /* DIR/running/X.yaml while a job is held */
     struct timespec last_touch;
     int worst;
-    struct waiting *seen; /* the last scan's jobs by name, to reuse the priorities of unchanged files */
-    int nseen;
+    struct queue_scan scan; /* the waiting jobs seen by the last scan */
 };
-
-static int has_yaml_suffix(const char *s)
-{
-    size_t n = strlen(s);
-    return s[0] != '.' && n > 5 && strcmp(s + n - 5, ".yaml") == 0;
-}
 
 static double since(const struct timespec *t)
 {
@@ -81,119 +66,6 @@ static void tick(void *arg)
         return;
     lease_touch(q->claim);
     clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
-}
-
-/* A waiting job's priority: its `priority:` key, 0 when absent or unreadable (loading the job
-   later reports the error). */
-static int peek_priority(const char *path)
-{
-    struct ydoc d;
-    struct err e;
-    uint8_t *text;
-    size_t len;
-    int p = 0;
-    if (fileio_read_all(path, YDOC_MAX_BYTES, &text, &len, &e) < 0)
-        return 0;
-    int mentioned = strstr((const char *)text, "priority") != NULL;
-    free(text);
-    if (!mentioned) /* most jobs: no YAML parse on every scan */
-        return 0;
-    if (ydoc_load(&d, path, &e) == 0) {
-        yaml_node_t *root = ydoc_root(&d);
-        yaml_node_t *v = root && root->type == YAML_MAPPING_NODE ? ymap_get(&d, root, "priority") : NULL;
-        const char *s = v ? yscalar(v) : NULL;
-        if (s) {
-            char *end;
-            long n = strtol(s, &end, 10);
-            if (*s && !*end && n >= -1000000 && n <= 1000000)
-                p = (int)n;
-        }
-    }
-    ydoc_free(&d);
-    return p;
-}
-
-/* Higher priority first, then oldest (mtime), then by name. */
-static int waiting_cmp(const void *pa, const void *pb)
-{
-    const struct waiting *a = pa, *b = pb;
-    if (a->priority != b->priority)
-        return a->priority > b->priority ? -1 : 1;
-    if (a->mtime.tv_sec != b->mtime.tv_sec)
-        return a->mtime.tv_sec < b->mtime.tv_sec ? -1 : 1;
-    if (a->mtime.tv_nsec != b->mtime.tv_nsec)
-        return a->mtime.tv_nsec < b->mtime.tv_nsec ? -1 : 1;
-    return strcmp(a->name, b->name);
-}
-
-static int by_name(const void *pa, const void *pb)
-{
-    return strcmp(((const struct waiting *)pa)->name, ((const struct waiting *)pb)->name);
-}
-
-/* The priority of the waiting job w (name and stat filled) at path: the last scan's when the file is
-   unchanged (same inode, size and mtime), else read from the file. Reading every waiting file on
-   every scan cost a queue of N jobs N*N/2 reads (on NFS, several round trips each). */
-static int priority_of(const struct queue *q, const struct waiting *w, const char *path)
-{
-    const struct waiting *old = q->nseen ? bsearch(w, q->seen, (size_t)q->nseen, sizeof *w, by_name) : NULL;
-    if (old && old->ino == w->ino && old->size == w->size && old->mtime.tv_sec == w->mtime.tv_sec &&
-        old->mtime.tv_nsec == w->mtime.tv_nsec)
-        return old->priority;
-    return peek_priority(path);
-}
-
-/* Keep a copy of this scan's n jobs w, sorted by name, for the next scan's priority_of. */
-static void remember(struct queue *q, const struct waiting *w, int n)
-{
-    struct waiting *c = n > 0 ? malloc((size_t)n * sizeof *c) : NULL;
-    free(q->seen);
-    q->seen = c;
-    q->nseen = c ? n : 0;
-    if (!c)
-        return;
-    memcpy(c, w, (size_t)n * sizeof *c);
-    qsort(c, (size_t)n, sizeof *c, by_name);
-}
-
-/* The waiting jobs in claim order into *out (malloc'd); their count, or -1 when DIR is unreadable. */
-static int scan_waiting(struct queue *q, struct waiting **out)
-{
-    DIR *d = opendir(q->dir);
-    *out = NULL;
-    if (!d)
-        return -1;
-    struct waiting *w = NULL;
-    int n = 0, cap = 0;
-    struct dirent *de;
-    while ((de = readdir(d))) {
-        char path[2048];
-        struct stat st;
-        if (!has_yaml_suffix(de->d_name) || strlen(de->d_name) >= sizeof w->name)
-            continue;
-        snprintf(path, sizeof path, "%s/%s", q->dir, de->d_name);
-        if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
-            continue;
-        if (n == cap) {
-            cap = cap ? cap * 2 : 64;
-            struct waiting *g = realloc(w, (size_t)cap * sizeof *w);
-            if (!g)
-                break;
-            w = g;
-        }
-        snprintf(w[n].name, sizeof w[n].name, "%s", de->d_name);
-        w[n].mtime = st.st_mtim;
-        w[n].ino = st.st_ino;
-        w[n].size = st.st_size;
-        w[n].priority = priority_of(q, &w[n], path);
-        n++;
-    }
-    closedir(d);
-    remember(q, w, n);
-    if (n > 1)
-        qsort(w, (size_t)n, sizeof *w, waiting_cmp);
-    *out = w;
-    return n;
 }
 
 /* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
@@ -267,7 +139,7 @@ static int recover_stale(struct queue *q, char *adopted, size_t n)
     while (!took && (de = readdir(d))) {
         char claim[2048], why[512];
         remove_dead_lease_temp(q, de->d_name);
-        if (!has_yaml_suffix(de->d_name))
+        if (!queue_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
         if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
@@ -543,8 +415,8 @@ int queue_main(const struct queue_opts *qo)
             process(&q, adopted);
             continue;
         }
-        struct waiting *w;
-        int n = scan_waiting(&q, &w), took = 0;
+        struct queue_waiting *w;
+        int n = queue_scan_waiting(&q.scan, q.dir, &w), took = 0;
         if (n < 0) {
             err_print("worker: --queue %s: %s\n", q.dir, strerror(errno));
             q.worst = 2;
@@ -570,6 +442,6 @@ int queue_main(const struct queue_opts *qo)
             break;
         nap(qo->poll_s);
     }
-    free(q.seen);
+    queue_scan_free(&q.scan);
     return q.worst;
 }
