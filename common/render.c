@@ -8,134 +8,16 @@
 #include <time.h>
 
 #include "bvh.h"
+#include "packet.h"
+#include "render_internal.h"
 #include "shape_light_inline.h"
 #include "texture.h"
-
-/* A light's current point set within the pixel, taken in a random order, then redrawn: the
-   points themselves (fresh poisson), the indices of a pool set's points, shifted when taken
-   (pooled poisson), or the cells whose points are made when taken (the others). */
-struct light_points {
-    struct pt2 *pts;
-    uint32_t *cells;
-    const struct pool_point *pool; /* pooled: the set and its shift */
-    double ox, oy, cos_oy, sin_oy;
-    size_t n, next;
-    int uses_points; /* shape_light_uses_points of the light, looked up once */
-};
-
-struct render_ctx {
-    const struct scene *sc;
-    const struct camera *cam;
-    struct render_settings rs;
-    struct sampler *pixel, *light;
-    enum sampler_kind light_kind;
-    struct sampler_grid light_grid; /* the light sampler's grid (uniform, jitter, random) */
-    struct pt2 *pixel_pts;
-    struct light_points *lp;               /* one per scene light */
-    uint32_t *identity;                    /* 0, 1, 2, ...: a fresh shuffle's start, copied */
-    const struct material **prim_material; /* each prim's material: one load after a hit */
-    struct rng light_rng;
-    struct render_stats *st;
-};
 
 static double now_s(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-void render_stats_init(struct render_stats *st)
-{
-    *st = (struct render_stats){0};
-    st->spp_min = UINT32_MAX;
-}
-
-void render_stats_add(struct render_stats *into, const struct render_stats *from)
-{
-    into->pixels += from->pixels;
-    into->samples += from->samples;
-    into->rays += from->rays;
-    into->light_sets += from->light_sets;
-    into->nonfinite += from->nonfinite;
-    into->sampler_s += from->sampler_s;
-    if (from->spp_min < into->spp_min)
-        into->spp_min = from->spp_min;
-    if (from->spp_max > into->spp_max)
-        into->spp_max = from->spp_max;
-}
-
-void render_ctx_free(struct render_ctx *ctx)
-{
-    if (!ctx)
-        return;
-    if (ctx->lp)
-        for (int i = 0; i < ctx->sc->n_lights; i++) {
-            free(ctx->lp[i].pts);
-            free(ctx->lp[i].cells);
-        }
-    free(ctx->lp);
-    free(ctx->identity);
-    free(ctx->prim_material);
-    free(ctx->pixel_pts);
-    free(ctx);
-}
-
-struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *cam,
-                                  const struct render_settings *rs, struct sampler *pixel,
-                                  struct sampler *light, struct err *e)
-{
-    struct render_ctx *ctx = calloc(1, sizeof *ctx);
-    if (!ctx)
-        goto fail;
-    ctx->sc = sc;
-    ctx->cam = cam;
-    ctx->rs = *rs;
-    ctx->pixel = pixel;
-    ctx->light = light;
-    ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
-    ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
-    ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
-    if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
-        goto fail;
-    for (int i = 0; i < sc->n_prims; i++)
-        ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
-    if (light) {
-        ctx->light_kind = sampler_kind_of(light);
-        ctx->light_grid = sampler_grid_of(light);
-    }
-    for (int i = 0; i < sc->n_lights; i++) {
-        ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
-        if (rs->light_sampling_off || !ctx->lp[i].uses_points)
-            continue;
-        if (!light) {
-            err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
-            render_ctx_free(ctx);
-            return NULL;
-        }
-        size_t cells = sampler_cells(light) > 0   ? sampler_cells(light)
-                       : sampler_is_pooled(light) ? sampler_set_capacity(light)
-                                                  : 0;
-        if (cells > 0) {
-            ctx->lp[i].cells = malloc(cells * sizeof *ctx->lp[i].cells);
-            if (!ctx->identity) {
-                ctx->identity = malloc(cells * sizeof *ctx->identity);
-                if (!ctx->identity)
-                    goto fail;
-                for (size_t c = 0; c < cells; c++)
-                    ctx->identity[c] = (uint32_t)c;
-            }
-        } else {
-            ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
-        }
-        if (!ctx->lp[i].pts && !ctx->lp[i].cells)
-            goto fail;
-    }
-    return ctx;
-fail:
-    render_ctx_free(ctx);
-    err_set(e, NULL, 0, 0, "out of memory for the render's sample buffers");
-    return NULL;
 }
 
 /* Pooled sets: the pool point each light would take next if it were the next light sampled
@@ -227,7 +109,7 @@ static vec3 random_in_unit_sphere(struct rng *r)
 }
 
 /* Cosine-weighted direction about n (Malley's method). */
-static vec3 cosine_direction(const onb *frame, struct rng *r)
+static inline __attribute__((always_inline)) vec3 cosine_direction_inline(const onb *frame, struct rng *r)
 {
     double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
     v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
@@ -287,95 +169,185 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
-/* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
+/* A camera path in flight: its ray, weight, radiance so far, segments traced and its rng. */
+struct path {
+    ray r;
+    vec3 beta, L;
+    int depth;
+    struct rng rng;
+};
+
+/* surface_albedo on a copy of h: h itself then stays in registers (the texture's lookup takes
+   its address). */
+static inline __attribute__((always_inline)) vec3
+surface_albedo_copy(const struct scene *sc, const struct material *m, const struct hit *h)
+{
+    if (m->texture < 0)
+        return m->albedo;
+    struct hit copy = *h;
+    return texture_albedo(sc, m, &copy);
+}
+
+/* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
+   with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate). Diffuse and
    isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
    Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
-   follow their one direction. Scattered directions are unit vectors. */
-static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *rays)
+   follow their one direction. Scattered directions are unit vectors. mix: the scene has lights
+   sampled; last: the last segment's depth (max_depth - 1). */
+static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
+                                                       const struct hit *h, int mix, int last)
 {
     const struct scene *sc = ctx->sc;
-    const int mix = sc->n_lights > 0 && !ctx->rs.light_sampling_off;
-    vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
-    const int last = ctx->rs.max_depth - 1;
-    for (int depth = 0; depth <= last; depth++) {
-        struct hit h;
-        ++*rays;
-        if (!bvh_hit(sc, r, HIT_EPS, DBL_MAX, &h)) {
-            L = v3_add(L, v3_mul(beta, sc->background));
-            break;
+    ray *r = &pt->r;
+    struct rng *rng = &pt->rng;
+    if (!got) {
+        pt->L = v3_add(pt->L, v3_mul(pt->beta, sc->background));
+        return 0;
+    }
+    const struct material *m = ctx->prim_material[h->prim];
+    /* The last segment: only a light's emission counts, a scattered ray would never be
+       traced (its direction, light point and pdfs are not drawn at all). */
+    if (pt->depth == last && m->type != MAT_LIGHT)
+        return 0;
+    pt->depth++;
+    vec3 dir;
+    if (m->type == MAT_LAMBERTIAN) {
+        vec3 albedo = surface_albedo_copy(sc, m, h);
+        int light = -1;
+        double light_pdf = 0;
+        if (mix && rng_u32(rng) >> 31) {
+            dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+        } else {
+            onb frame = onb_from_w(h->n);
+            dir = cosine_direction_inline(&frame, rng);
         }
-        const struct material *m = ctx->prim_material[h.prim];
-        /* The last segment: only a light's emission counts, a scattered ray would never be
-           traced (its direction, light point and pdfs are not drawn at all). */
-        if (depth == last && m->type != MAT_LIGHT)
-            return L;
-        vec3 dir;
-        if (m->type == MAT_LAMBERTIAN) {
-            vec3 albedo = surface_albedo(sc, m, &h);
+        /* below the surface: the scattering pdf is 0 and so is the estimate */
+        double cosine = v3_dot(dir, h->n);
+        if (!(cosine > 0))
+            return 0;
+        double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
+        double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
+        if (!(pdf > 0))
+            return 0;
+        pt->beta = v3_mul(pt->beta, v3_scale(albedo, cosine_pdf / pdf));
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    switch (m->type) {
+    case MAT_LIGHT:
+        if (h->front)
+            pt->L = v3_add(pt->L, v3_mul(pt->beta, m->emit));
+        return 0;
+    case MAT_METAL:
+        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
+        if (v3_dot(dir, h->n) <= 0)
+            return 0;
+        pt->beta = v3_mul(pt->beta, m->albedo);
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    case MAT_DIELECTRIC: {
+        vec3 unit_dir = v3_unit(r->dir);
+        double ratio = h->front ? 1.0 / m->ior : m->ior;
+        double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
+        double sin_t = sqrt(1 - cos_t * cos_t);
+        dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
+                  ? v3_reflect(unit_dir, h->n)
+                  : v3_refract(unit_dir, h->n, ratio);
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    default: { /* MAT_ISOTROPIC */
+        vec3 albedo = surface_albedo_copy(sc, m, h);
+        const double phase = 1 / (4 * PI);
+        double pdf = phase;
+        if (mix) {
             int light = -1;
             double light_pdf = 0;
-            if (mix && rng_u32(rng) >> 31) {
-                dir = light_direction(ctx, h.p, rng, &light, &light_pdf);
-            } else {
-                onb frame = onb_from_w(h.n);
-                dir = cosine_direction(&frame, rng);
-            }
-            /* below the surface: the scattering pdf is 0 and so is the estimate */
-            double cosine = v3_dot(dir, h.n);
-            if (!(cosine > 0))
-                return L;
-            double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
-            double pdf =
-                mix ? 0.5 * lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
-            if (!(pdf > 0))
-                return L;
-            beta = v3_mul(beta, v3_scale(albedo, cosine_pdf / pdf));
-            *r = (ray){h.p, dir, r->time};
-            continue;
+            dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                                     : uniform_sphere_direction(rng);
+            pdf = 0.5 * shape_lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * phase;
+        } else {
+            dir = uniform_sphere_direction(rng);
         }
-        switch (m->type) {
-        case MAT_LIGHT:
-            if (h.front)
-                L = v3_add(L, v3_mul(beta, m->emit));
-            return L;
-        case MAT_METAL:
-            dir = v3_fma(v3_reflect(v3_unit(r->dir), h.n), random_in_unit_sphere(rng), m->fuzz);
-            if (v3_dot(dir, h.n) <= 0)
-                return L;
-            beta = v3_mul(beta, m->albedo);
-            *r = (ray){h.p, dir, r->time};
-            continue;
-        case MAT_DIELECTRIC: {
-            vec3 unit_dir = v3_unit(r->dir);
-            double ratio = h.front ? 1.0 / m->ior : m->ior;
-            double cos_t = d_min(v3_dot(v3_neg(unit_dir), h.n), 1.0);
-            double sin_t = sqrt(1 - cos_t * cos_t);
-            dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
-                      ? v3_reflect(unit_dir, h.n)
-                      : v3_refract(unit_dir, h.n, ratio);
-            *r = (ray){h.p, dir, r->time};
-            continue;
-        }
-        default: { /* MAT_ISOTROPIC */
-            vec3 albedo = surface_albedo(sc, m, &h);
-            const double phase = 1 / (4 * PI);
-            double pdf = phase;
-            if (mix) {
-                int light = -1;
-                double light_pdf = 0;
-                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h.p, rng, &light, &light_pdf)
-                                         : uniform_sphere_direction(rng);
-                pdf = 0.5 * shape_lights_pdf(sc, h.p, dir, light, light_pdf) + 0.5 * phase;
-            } else {
-                dir = uniform_sphere_direction(rng);
-            }
-            beta = v3_mul(beta, v3_scale(albedo, phase / pdf));
-            *r = (ray){h.p, dir, r->time};
-            continue;
-        }
+        pt->beta = v3_mul(pt->beta, v3_scale(albedo, phase / pdf));
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    }
+}
+
+/* One camera path from r, its draws from rng; returns its radiance estimate and adds its
+   segments to *rays. */
+static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *rays)
+{
+    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    struct path pt = {*r, v3(1, 1, 1), v3(0, 0, 0), 0, *rng};
+    for (;;) {
+        struct hit h;
+        ++*rays;
+        int got = bvh_hit(ctx->sc, &pt.r, HIT_EPS, DBL_MAX, &h);
+        if (!shade(ctx, &pt, got, &h, mix, last))
+            break;
+    }
+    *rng = pt.rng;
+    return pt.L;
+}
+
+/* Camera sample s of pixel (x, y) into path pt: its own rng, the pixel's path stream (*base)
+   from a state of its own. */
+static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
+                              const struct rng *base)
+{
+    const int w = ctx->rs.width, hgt = ctx->rs.height;
+    pt->rng.inc = base->inc;
+    pt->rng.state = rng_mix64(base->state + s);
+    struct pt2 p = ctx->pixel_pts[s];
+    pt->r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &pt->rng);
+    pt->beta = v3(1, 1, 1);
+    pt->L = v3(0, 0, 0);
+    pt->depth = 0;
+}
+
+/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). */
+static void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double sum[3], size_t *kept,
+                                uint64_t *rays)
+{
+    struct path pt[PACKET_LANES] = {0};
+    const ray *rp[PACKET_LANES];
+    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    struct rng base;
+    rng_pixel(&base, ctx->rs.seed, x, y, 2);
+    int lanes = 0;
+    size_t next = 0;
+    for (int i = 0; i < PACKET_LANES; i++) {
+        rp[i] = &pt[i].r;
+        if (next < n) {
+            path_start(ctx, &pt[i], x, y, next++, &base);
+            lanes |= 1 << i;
         }
     }
-    return L;
+    while (lanes) {
+        struct packet_hits ph;
+        int got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
+        for (int m = lanes; m; m &= m - 1) {
+            int i = __builtin_ctz((unsigned)m);
+            ++*rays;
+            struct hit h = packet_hit_of(&ph, i);
+            if (shade(ctx, &pt[i], got >> i & 1, &h, mix, last))
+                continue;
+            vec3 c = pt[i].L;
+            if (v3_finite(c)) {
+                sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
+                ++*kept;
+            } else {
+                ctx->st->nonfinite++;
+            }
+            if (next < n)
+                path_start(ctx, &pt[i], x, y, next++, &base);
+            else
+                lanes &= ~(1 << i);
+        }
+    }
 }
 
 void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st)
@@ -396,16 +368,20 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     double sum[3] = {0, 0, 0};
     size_t kept = 0;
     uint64_t rays = 0;
-    for (size_t s = 0; s < n; s++) {
-        struct pt2 p = ctx->pixel_pts[s];
-        ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-        vec3 c = trace(ctx, &r, &path_rng, &rays);
-        if (!v3_finite(c)) {
-            st->nonfinite++;
-            continue;
+    if (ctx->packet) {
+        render_pixel_packet(ctx, x, y, n, sum, &kept, &rays);
+    } else {
+        for (size_t s = 0; s < n; s++) {
+            struct pt2 p = ctx->pixel_pts[s];
+            ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
+            vec3 c = trace(ctx, &r, &path_rng, &rays);
+            if (!v3_finite(c)) {
+                st->nonfinite++;
+                continue;
+            }
+            sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
+            kept++;
         }
-        sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
-        kept++;
     }
     double inv = kept ? 1.0 / kept : 0;
     for (int k = 0; k < 3; k++)
