@@ -330,10 +330,11 @@ static AI d4 gather4(const void *const p[PACKET_LANES], size_t off)
     return (d4){x0, x1, x2, x3};
 }
 
-/* One copy for AVX2, one for the baseline, picked when the program loads (x86-64 only). */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+/* One copy for AVX2, one for the baseline, picked when the program loads (x86-64 only; a test
+   builds the baseline alone by defining PACKET_CLONES empty). */
+#if !defined(PACKET_CLONES) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PACKET_CLONES __attribute__((target_clones("avx2", "default")))
-#else
+#elif !defined(PACKET_CLONES)
 #define PACKET_CLONES
 #endif
 

@@ -1,6 +1,7 @@
 /* Tests for packet_hit: four rays at once give bvh_hit's hit records bit for bit (t, prim,
    point, normal, side), for rays at the prims' corners, edges and faces (where two prims tie),
-   along the axes, from hit points (t_min) and in every lane position. */
+   along the axes, from hit points (t_min) and in two lane positions; in the library's build
+   (AVX2 here) and in the baseline's. */
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,24 @@
 #include "rng.h"
 #include "scene_load.h"
 #include "shape.h"
+
+/* packet.c again, built for the baseline alone (SSE2 pairs; the library's packet_hit is the AVX2
+   copy on a CPU that has it): both must agree with bvh_hit. */
+int baseline_packet_hit(const struct packet_scene *ps, const ray *const r[PACKET_LANES], double t_min,
+                        double t_max, struct packet_hits *ph);
+int baseline_packet_usable(const struct scene *sc);
+struct packet_scene *baseline_packet_scene_new(const struct scene *sc);
+void baseline_packet_scene_free(struct packet_scene *ps);
+#define PACKET_CLONES
+#define packet_hit baseline_packet_hit
+#define packet_usable baseline_packet_usable
+#define packet_scene_new baseline_packet_scene_new
+#define packet_scene_free baseline_packet_scene_free
+#include "../common/packet.c"
+#undef packet_hit
+#undef packet_usable
+#undef packet_scene_new
+#undef packet_scene_free
 
 static int same_bits(double a, double b)
 {
@@ -29,16 +48,20 @@ static int packet_agrees(const struct scene *sc, const struct packet_scene *ps, 
                          double t_min, int *hits)
 {
     const ray *rp[PACKET_LANES] = {&q[0], &q[1], &q[2], &q[3]};
-    struct packet_hits ph;
-    int got = packet_hit(ps, rp, t_min, DBL_MAX, &ph), ok = 1;
+    struct packet_hits ph, pb;
+    int got = packet_hit(ps, rp, t_min, DBL_MAX, &ph),
+        got_b = baseline_packet_hit(ps, rp, t_min, DBL_MAX, &pb);
+    int ok = 1;
     for (int i = 0; i < PACKET_LANES; i++) {
-        struct hit a, b = packet_hit_of(&ph, i);
+        struct hit a, b = packet_hit_of(&ph, i), c = packet_hit_of(&pb, i);
         int ga = bvh_hit(sc, &q[i], t_min, DBL_MAX, &a);
         *hits += ga;
-        if (ga != (got >> i & 1) || (ga && !same_hit(&a, &b))) {
+        if (ga != (got >> i & 1) || ga != (got_b >> i & 1) ||
+            (ga && (!same_hit(&a, &b) || !same_hit(&a, &c)))) {
             ok = 0;
-            fprintf(stderr, "lane %d: bvh %d t %.17g prim %d, packet %d t %.17g prim %d\n", i, ga,
-                    ga ? a.t : 0, ga ? a.prim : -1, got >> i & 1, b.t, b.prim);
+            fprintf(stderr,
+                    "lane %d: bvh %d t %.17g prim %d, packet %d t %.17g prim %d, baseline %d t %.17g\n", i,
+                    ga, ga ? a.t : 0, ga ? a.prim : -1, got >> i & 1, b.t, b.prim, got_b >> i & 1, c.t);
         }
     }
     return ok;
