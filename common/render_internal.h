@@ -35,4 +35,10 @@ struct render_ctx {
     struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
 };
 
+/* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
+   time through packet_hit (render_lanes.c; ctx->packet set): their sum, how many were finite
+   (kept) and their segments (rays) added. */
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double sum[3], size_t *kept,
+                         uint64_t *rays);
+
 #endif

@@ -89,8 +89,8 @@ static inline __attribute__((always_inline)) vec3 light_sample(const struct prim
 }
 
 /* shape_light_sample_turn (shape.h) */
-static inline __attribute__((always_inline)) vec3
-light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t, double *pdf)
+static inline vec3 light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t,
+                                     double *pdf)
 {
     return planar_sample(p, o, light_point_turn(p, s, cos_t, sin_t), pdf);
 }
