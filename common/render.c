@@ -1,5 +1,6 @@
 /* render: per-pixel point sets, per-light point sets consumed in order, and the mixture-pdf
-   path integrator of Shirley's "Ray Tracing: The Rest of Your Life" (50% light, 50% cosine). */
+   path integrator of Shirley's "Ray Tracing: The Rest of Your Life" (50% light, 50% cosine);
+   scenes that packet_usable picks trace four paths at once (render_lanes.c). */
 #include "render.h"
 
 #include <float.h>
@@ -7,11 +8,11 @@
 #include "bvh.h"
 #include "render_path.h"
 
-/* One camera path; returns its radiance estimate and adds its segments to *rays (shade's steps
-   for the lanes, above). Diffuse and
+/* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
    isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
    Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
-   follow their one direction. Scattered directions are unit vectors. */
+   follow their one direction. Scattered directions are unit vectors. render_lanes.c's shade
+   does one iteration of this loop for the packet's lanes: keep the two alike. */
 static vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng, uint64_t *rays)
 {
     const struct scene *sc = ctx->sc;

@@ -27,9 +27,9 @@ surface_albedo_copy(const struct scene *sc, const struct material *m, const stru
 /* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
    with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
    scene has lights sampled; last: the last segment's depth (max_depth - 1). The same steps, in
-   the same order, as an iteration of trace's loop below (keep the two alike): trace keeps its
-   own copy because written as a loop over shade it cost the tree scenes, which do not use the
-   packet, 2% (final 249.6 -> 254.7 ns, cornell-pool 193.0 -> 195.0). */
+   the same order, as an iteration of render.c's trace loop (keep the two alike): trace keeps
+   its own copy because written as a loop over shade it cost the scenes that do not use the
+   packet 1-2% (final 249.6 -> 254.7 ns, cornell-pool 193.0 -> 195.0). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
                                                        const struct hit *h, int mix, int last)
 {
@@ -112,8 +112,10 @@ static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, s
     }
 }
 
-/* Camera sample s of pixel (x, y) into path pt: its own rng, the pixel's path stream (*base)
-   from a state of its own. */
+/* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
+   stream (*base) from the state rng_mix64(state + s), so that a sample's draws do not depend on
+   which lane runs it or when (64 starts spread over the 2^64-long sequence, a few hundred draws
+   each: the chance of an overlap is below 2^-40). */
 static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
                               const struct rng *base)
 {
