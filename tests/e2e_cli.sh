@@ -1,0 +1,28 @@
+#!/bin/sh
+# End to end, SPEC conformance as a user drives it: the command line's overrides, the job file's
+# output names and formats, and YAML as written by hand.
+. tests/lib.sh
+root=$(pwd)
+
+job() { # job FILE extra-yaml-lines...
+    f=$1; shift
+    { echo "scene: $root/scenes/checker.yaml"; echo "width: 8"; echo "height: 6"; echo "threshold: 50"
+      echo "light_threshold: 50"; for l in "$@"; do echo "$l"; done; } >"$f"
+}
+
+# --processes N overrides the job even when an earlier run left current outputs: the image is
+# the same, but the sidecar must describe the render that was asked for.
+job "$T/p.yaml"
+"$WORKER" --quiet --out "$T/o" "$T/p.yaml" 2>/dev/null
+"$WORKER" --quiet --out "$T/o" --processes 3 "$T/p.yaml" 2>"$T/err"; rc=$?
+check "--processes 3 after a default run exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "--processes 3 after a default run: sidecar says 3" grep -q '"processes": 3' "$T/o/p/p.json"
+check "--processes 3 after a default run: rendered, not skipped" sh -c "! grep -q 'up to date' '$T/err'"
+"$WORKER" --quiet --out "$T/o" --processes 3 "$T/p.yaml" 2>"$T/err"
+check "the same --processes again is up to date" grep -q 'up to date' "$T/err"
+"$WORKER" --quiet --out "$T/o" "$T/p.yaml" 2>"$T/err"
+check "back to the job's processes: rendered again" grep -q '"processes": 2' "$T/o/p/p.json"
+"$WORKER" --quiet --out "$T/o" --processes 2 "$T/p.yaml" 2>"$T/err"
+check "--processes equal to the job's is up to date" grep -q 'up to date' "$T/err"
+
+finish
