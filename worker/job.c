@@ -195,6 +195,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "format: must be png or ppm, got \"%.40s\"", s);
         j->format = s[1] == 'n' ? IMG_PNG : IMG_PPM;
         j->has_format = 1;
+        mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -202,6 +203,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "output: must be a plain file name (no '/'), got \"%.40s\"", s);
         snprintf(j->output, sizeof j->output, "%s", s);
         j->has_output = 1;
+        mark(j->pos_output, v);
     } else if (!strcmp(k, "reference")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -240,8 +242,18 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
         check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
                        e) < 0)
         return -1;
+    /* The sidecar is the output's stem + ".json": an image named so would be overwritten by it. */
+    size_t len = strlen(j->output);
+    if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
+        return err_set(e, j->path, j->pos_output[0], j->pos_output[1],
+                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)", j->output);
+    int ext_png = has_suffix(j->output, ".png"), ext_ppm = has_suffix(j->output, ".ppm");
+    if (j->has_output && j->has_format && (ext_png || ext_ppm) && ext_ppm != (j->format == IMG_PPM))
+        return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
+                       "format: %s contradicts the output's extension (%s); give one or make them agree",
+                       j->format == IMG_PPM ? "ppm" : "png", j->output);
     if (j->has_output && !j->has_format)
-        j->format = has_suffix(j->output, ".ppm") ? IMG_PPM : IMG_PNG;
+        j->format = ext_ppm ? IMG_PPM : IMG_PNG;
     if (!j->has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, j->format == IMG_PPM ? "ppm" : "png");
     return 0;
