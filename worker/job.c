@@ -126,8 +126,8 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double
     const char *s = yscalar(v);
     double t;
     if (yget_double(d, v, key, &t, e) < 0 || !(t > 0 && t <= 100))
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"", key,
-                         s ? s : "a non-scalar");
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key,
+                         s ? s : "a non-scalar", strstr(e->msg, YQUOTED_NOTE) ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
 }
@@ -246,7 +246,8 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     size_t len = strlen(j->output);
     if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
         return err_set(e, j->path, j->pos_output[0], j->pos_output[1],
-                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)", j->output);
+                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)",
+                       j->output);
     int ext_png = has_suffix(j->output, ".png"), ext_ppm = has_suffix(j->output, ".ppm");
     if (j->has_output && j->has_format && (ext_png || ext_ppm) && ext_ppm != (j->format == IMG_PPM))
         return err_set(e, j->path, j->pos_format[0], j->pos_format[1],

@@ -292,13 +292,20 @@ static int parse_double(const char *s, double *out)
     return 0;
 }
 
+int yquoted(const yaml_node_t *n)
+{
+    return n && n->type == YAML_SCALAR_NODE && n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE &&
+           n->data.scalar.style != YAML_ANY_SCALAR_STYLE;
+}
+
 int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e)
 {
-    if (parse_double(yscalar(n), out) < 0) {
-        char buf[64];
-        shown(n, buf, sizeof buf);
+    char buf[64];
+    shown(n, buf, sizeof buf);
+    if (parse_double(yscalar(n), out) < 0)
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s", key, buf);
-    }
+    if (yquoted(n))
+        return ydoc_fail(d, n, e, "%s: must be a finite number, got %s" YQUOTED_NOTE, key, buf);
     return 0;
 }
 
@@ -312,6 +319,9 @@ int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi,
     long v = s && *s ? strtol(s, &end, 10) : 0;
     if (!s || !*s || *end || errno == ERANGE)
         return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s", key, lo, hi, buf);
+    if (yquoted(n))
+        return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s" YQUOTED_NOTE, key, lo,
+                         hi, buf);
     if (v < lo || v > hi)
         return ydoc_fail(d, n, e, "%s: must be in [%ld, %ld], got %s", key, lo, hi, buf);
     *out = v;
@@ -321,12 +331,17 @@ int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi,
 int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e)
 {
     const char *s = yscalar(n);
+    char buf[64];
+    shown(n, buf, sizeof buf);
     if (s && (!strcmp(s, "true") || !strcmp(s, "false"))) {
+        if (yquoted(n))
+            return ydoc_fail(d, n, e,
+                             "%s: must be true or false, got %s (a quoted string: write true or "
+                             "false without quotes)",
+                             key, buf);
         *out = s[0] == 't';
         return 0;
     }
-    char buf[64];
-    shown(n, buf, sizeof buf);
     return ydoc_fail(d, n, e, "%s: must be true or false, got %s", key, buf);
 }
 

@@ -47,7 +47,14 @@ int yseq_len(yaml_node_t *n);
 /* Scalar text of n, or NULL if n is not a scalar. */
 const char *yscalar(yaml_node_t *n);
 
-/* Typed reads; each fails with "key: must be ..., got ..." at the value's position. */
+/* Whether scalar n was written in quotes ("5", '5'): a string, never a number or a boolean. */
+int yquoted(const yaml_node_t *n);
+
+/* The note a quoted number's message ends with. */
+#define YQUOTED_NOTE " (a quoted string: write numbers without quotes)"
+
+/* Typed reads; each fails with "key: must be ..., got ..." at the value's position. Numbers and
+   booleans must be plain scalars: a quoted "5" is a string, a wrong type. */
 int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e);
 int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out, struct err *e);
 int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e);
