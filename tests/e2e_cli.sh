@@ -25,4 +25,10 @@ check "back to the job's processes: rendered again" grep -q '"processes": 2' "$T
 "$WORKER" --quiet --out "$T/o" --processes 2 "$T/p.yaml" 2>"$T/err"
 check "--processes equal to the job's is up to date" grep -q 'up to date' "$T/err"
 
+# YAML merge keys: a job's own keys win over the merged ones
+printf 'scene: %s/scenes/checker.yaml\nsampler: jitter\n<<: {width: 8, height: 6, threshold: 50, sampler: random}\n' "$root" >"$T/merge.yaml"
+"$WORKER" --quiet --out "$T/o" "$T/merge.yaml" 2>"$T/err"; rc=$?
+check "a job with a merge key renders (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
+check "merged threshold 50 and own sampler jitter" sh -c "grep -q '\"threshold\": 50' '$T/o/merge/merge.json' && grep -q '\"sampler\": \"jitter\"' '$T/o/merge/merge.json'"
+
 finish

@@ -119,6 +119,8 @@ int ydoc_load(struct ydoc *d, const char *path, struct err *e)
         else
             rc = check_shape(d, e);
         if (rc == 0)
+            rc = ydoc_expand_merges(d, e);
+        if (rc == 0)
             rc = no_second_document(&p, path, e);
         if (rc < 0) /* a failure leaves nothing to free */
             ydoc_free(d);

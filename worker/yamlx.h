@@ -23,6 +23,11 @@ struct ydoc {
    Free with ydoc_free, even after a failure. */
 int ydoc_load(struct ydoc *d, const char *path, struct err *e);
 void ydoc_free(struct ydoc *d);
+
+/* Expand YAML 1.1 merge keys in place (ydoc_load does it): each mapping's `<<: *a` or
+   `<<: [*a, *b]` pairs are replaced by the entries of those mappings that it does not set itself
+   (earlier sources first). 0, or -1 with e at a `<<` that names no mapping or loops. */
+int ydoc_expand_merges(struct ydoc *d, struct err *e);
 yaml_node_t *ydoc_root(struct ydoc *d);
 
 /* Fill e at node n's position. Always -1. */
