@@ -85,6 +85,24 @@ static void test_merge(void)
     CHECK(e.line == 1 && e.col == 14 && strstr(e.msg, "merge key"));
 }
 
+/* A merge into a mapping scans its keys for each entry copied: a huge one is refused, not left
+   to run for minutes (20000 keys: 2e8 comparisons, over the bound). */
+static void test_merge_bound(void)
+{
+    size_t cap = 20000 * 16 + 64, len = 0;
+    char *text = malloc(cap);
+    struct ydoc d;
+    struct err e;
+    if (!text)
+        return;
+    len += (size_t)snprintf(text + len, cap - len, "a: &a {");
+    for (int i = 0; i < 20000; i++)
+        len += (size_t)snprintf(text + len, cap - len, "%sk%d: 1", i ? ", " : "", i);
+    snprintf(text + len, cap - len, "}\nb: {<<: *a}\n");
+    CHECK(load_text(&d, text, &e) < 0 && strstr(e.msg, "too large"));
+    free(text);
+}
+
 static void test_quoted(void)
 {
     struct ydoc d;
@@ -106,6 +124,7 @@ static void test_quoted(void)
 int main(void)
 {
     test_merge();
+    test_merge_bound();
     test_quoted();
     return check_report("test_yamlx");
 }

@@ -10,7 +10,7 @@ enum { MERGE_TODO, MERGE_BUSY, MERGE_DONE };
 struct merge {
     struct ydoc *d;
     unsigned char *state; /* per node id - 1 */
-    long added;           /* pairs copied so far, bounded by YDOC_MAX_VISITS */
+    long work;            /* keys compared and pairs copied so far, bounded by YDOC_MAX_VISITS */
     struct err *e;
 };
 
@@ -20,8 +20,10 @@ static int is_merge_key(const yaml_node_t *k)
            !strcmp((const char *)k->data.scalar.value, "<<");
 }
 
-static int has_key(struct ydoc *d, const yaml_node_t *m, const char *key)
+static int has_key(struct merge *mg, const yaml_node_t *m, const char *key)
 {
+    struct ydoc *d = mg->d;
+    mg->work += m->data.mapping.pairs.top - m->data.mapping.pairs.start;
     for (yaml_node_pair_t *p = m->data.mapping.pairs.start; p < m->data.mapping.pairs.top; p++) {
         const char *s = yscalar(yaml_document_get_node(&d->doc, p->key));
         if (s && !strcmp(s, key))
@@ -47,10 +49,13 @@ static int merge_from(struct merge *mg, int id, yaml_node_t *src, int depth)
         yaml_node_pair_t p = src->data.mapping.pairs.start[i]; /* a copy: appending may move them */
         yaml_node_t *m = yaml_document_get_node(&d->doc, id);
         const char *key = yscalar(yaml_document_get_node(&d->doc, p.key));
-        if (key && has_key(d, m, key))
+        int taken = key && has_key(mg, m, key);
+        /* a bound on the work, not only on the pairs: each copy first scans the keys so far */
+        if (++mg->work > YDOC_MAX_VISITS)
+            return ydoc_fail(d, m, mg->e, "<<: merge keys too large to expand (over %d entries compared)",
+                             YDOC_MAX_VISITS);
+        if (taken)
             continue;
-        if (++mg->added > YDOC_MAX_VISITS)
-            return ydoc_fail(d, m, mg->e, "<<: merge keys expand past %d entries", YDOC_MAX_VISITS);
         if (!yaml_document_append_mapping_pair(&d->doc, id, p.key, p.value))
             return ydoc_fail(d, m, mg->e, "out of memory expanding a merge key");
     }
