@@ -31,4 +31,15 @@ printf 'scene: %s/scenes/checker.yaml\nsampler: jitter\n<<: {width: 8, height: 6
 check "a job with a merge key renders (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
 check "merged threshold 50 and own sampler jitter" sh -c "grep -q '\"threshold\": 50' '$T/o/merge/merge.json' && grep -q '\"sampler\": \"jitter\"' '$T/o/merge/merge.json'"
 
+# --opt=value as well as --opt value (GNU style; pbrt and Slurm take both); "--" ends the options
+"$WORKER" --quiet --out="$T/eq" --processes=3 "$T/p.yaml" 2>"$T/err"; rc=$?
+check "--out=DIR --processes=3 exit 0 (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
+check "--out=DIR writes under DIR" [ -s "$T/eq/p/p.png" ]
+check "--processes=3 is taken" grep -q '"processes": 3' "$T/eq/p/p.json"
+cp "$T/p.yaml" "$T/--p.yaml"
+(cd "$T" && "$WORKER" --quiet --out "$T/dd" -- --p.yaml 2>"$T/err"); rc=$?
+check "after --, --p.yaml is a job file (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ] && [ -s "$T/dd/--p/--p.png" ]
+"$WORKER" diff "$T/o/p/p.png" "$T/eq/p/p.png" --max-rmse=0 >/dev/null 2>"$T/err"; rc=$?
+check "diff --max-rmse=0 of identical images exits 0 (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
+
 finish

@@ -215,13 +215,44 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
     return rc;
 }
 
+/* `--out=DIR` as `--out DIR` (GNU style, as pbrt and Slurm take it too) for every option that
+   takes a value, diff's included; a job file's name is never split, nor anything after "--".
+   The new argv (argc grown by one per split) is malloc'ed; NULL when out of memory. */
+static char **split_equals(int *argc, char **argv)
+{
+    static const char *const diff_values[] = {"--max-rmse", "--block", NULL};
+    char **out = calloc((size_t)*argc * 2 + 1, sizeof *out);
+    int n = 0, ended = 0;
+    if (!out)
+        return NULL;
+    for (int i = 0; i < *argc; i++) {
+        char *a = argv[i], *eq = strchr(a, '=');
+        int known = 0;
+        ended |= i > 0 && !strcmp(a, "--");
+        if (!ended && i > 0 && !strncmp(a, "--", 2) && eq) {
+            *eq = 0;
+            known = takes_value(a);
+            for (int k = 0; diff_values[k]; k++)
+                known |= !strcmp(a, diff_values[k]);
+            if (!known)
+                *eq = '=';
+        }
+        out[n++] = a;
+        if (known)
+            out[n++] = eq + 1;
+    }
+    *argc = n;
+    return out;
+}
+
 /* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
    subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
    After --help or --version nothing moves: those answer whatever follows. */
 static void hoist_subcommand(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--version")) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--version") ||
+            !strcmp(argv[i], "--")) {
             return;
         } else if (takes_value(argv[i])) {
             i++;
@@ -237,11 +268,24 @@ static void hoist_subcommand(int argc, char **argv)
     }
 }
 
+static int worker_main(int argc, char **argv);
+
 int main(int argc, char **argv)
 {
     /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
        kill the process half-way through an output. */
     signal(SIGXFSZ, SIG_IGN);
+    char **args = split_equals(&argc, argv);
+    if (!args)
+        return 2;
+    int rc = worker_main(argc, args);
+    free(args);
+    return rc;
+}
+
+/* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
+static int worker_main(int argc, char **argv)
+{
     hoist_subcommand(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "points"))
         return points_main(argc - 1, argv + 1);
@@ -258,8 +302,16 @@ int main(int argc, char **argv)
     const char *queue_only = NULL; /* the first option that only a queue uses */
     if (!jobs)
         return 2;
+    int options_ended = 0; /* after "--" every argument is a job file */
     for (int i = 1 + merge; i < argc; i++) {
         const char *a = argv[i];
+        if (!options_ended && !strcmp(a, "--")) {
+            options_ended = 1;
+            continue;
+        } else if (options_ended) {
+            jobs[njobs++] = a;
+            continue;
+        }
         if (!queue_only && (!strcmp(a, "--once") || !strcmp(a, "--poll") || !strcmp(a, "--retries") ||
                             !strcmp(a, "--lease-timeout")))
             queue_only = a;
