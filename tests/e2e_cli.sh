@@ -42,4 +42,16 @@ check "after --, --p.yaml is a job file (got $rc: $(head -n 1 "$T/err"))" [ "$rc
 "$WORKER" diff "$T/o/p/p.png" "$T/eq/p/p.png" --max-rmse=0 >/dev/null 2>"$T/err"; rc=$?
 check "diff --max-rmse=0 of identical images exits 0 (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
 
+# an empty --out or --queue is a usage error, not the file system's root (--out "" wrote
+# /NAME/NAME.png; a regression is cleaned up below)
+e=e2e-cli-empty-out-$$
+cp "$T/p.yaml" "$T/$e.yaml"
+for opt in --out --queue; do
+    (cd "$T" && "$WORKER" --quiet "$opt" "" "$e.yaml" 2>"$T/err"); rc=$?
+    check "$opt \"\" exits 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "$opt \"\" says why in one line" sh -c "[ \$(grep -c . '$T/err') -eq 1 ] && grep -q -- '$opt' '$T/err'"
+done
+check "nothing written at /$e" [ ! -e "/$e" ]
+rm -rf "/${e:?}"
+
 finish

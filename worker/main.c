@@ -138,6 +138,10 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
     if (!v) {
         err_print("worker: %s needs a value; see worker --help\n", a);
         return -1;
+    } else if (!*v && (!strcmp(a, "--out") || !strcmp(a, "--queue"))) {
+        /* "" would make OUT/<name> "/<name>": the file system's root */
+        err_print("worker: %s needs a directory, got \"\"\n", a);
+        return -1;
     } else if (!strcmp(a, "--out")) {
         q->run.out_dir = v;
     } else if (!strcmp(a, "--queue")) {
