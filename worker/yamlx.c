@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "fileio.h"
 
@@ -224,7 +225,8 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
             const char *near = NULL;
             int best = 3;
             for (const char *const *a = allowed; *a; a++) {
-                int dist = ystr_distance(name, *a);
+                /* the same letters in another case (WIDTH, Max_Depth) are as near as can be */
+                int dist = strcasecmp(name, *a) == 0 ? 0 : ystr_distance(name, *a);
                 if (dist < best && dist <= (int)strlen(*a) / 2) {
                     best = dist;
                     near = *a;
