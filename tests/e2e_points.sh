@@ -22,6 +22,10 @@ check "unknown sampler exits 2" [ "$rc" -eq 2 ]
 check "unknown sampler message" grep -q 'unknown sampler "sobol"' "$T/e1"
 "$WORKER" points uniform abc >/dev/null 2>"$T/e2"; rc=$?
 check "bad threshold exits 2" [ "$rc" -eq 2 ]
+for t in 0x10 " 5" 1e1x; do
+    "$WORKER" points uniform "$t" >/dev/null 2>"$T/e5"; rc=$?
+    check "threshold \"$t\" is refused as in a job file (exit 2, got $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'threshold: must be a number' '$T/e5'"
+done
 "$WORKER" points uniform 0.01 >/dev/null 2>"$T/e3"; rc=$?
 check "oversized set exits 2 naming the count" sh -c "[ $rc -eq 2 ] && grep -q 100000000 '$T/e3'"
 # --quiet is a common option: accepted by points and diff, before the subcommand too

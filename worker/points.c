@@ -92,7 +92,10 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     char *end;
     errno = 0;
     a->threshold = strtod(positional[1], &end);
-    if (!positional[1][0] || *end || errno == ERANGE || !(a->threshold > 0.0 && a->threshold <= 100.0)) {
+    /* decimal only, as a job file's threshold: strtod alone takes hex (0x10) and leading blanks */
+    int decimal = strspn(positional[1], "0123456789+-.eE") == strlen(positional[1]);
+    if (!positional[1][0] || *end || !decimal || errno == ERANGE ||
+        !(a->threshold > 0.0 && a->threshold <= 100.0)) {
         err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }
