@@ -54,4 +54,11 @@ done
 check "nothing written at /$e" [ ! -e "/$e" ]
 rm -rf "/${e:?}"
 
+# bad input found only when rendering (here --out is a file) still names the job file, so a run of
+# several jobs says which one it was
+: >"$T/afile"
+"$WORKER" --quiet --out "$T/afile" "$T/p.yaml" 2>"$T/err"; rc=$?
+check "--out naming a file exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "--out naming a file: the error names the job file ($(head -n 1 "$T/err"))" grep -q "^$T/p.yaml: cannot create directory" "$T/err"
+
 finish

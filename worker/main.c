@@ -201,6 +201,8 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
         j.hash = hash_u64(j.hash, (uint64_t)o->processes);
     int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
     if (rc != 0) {
+        if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */
+            snprintf(e.file, sizeof e.file, "%s", path);
         if (rc == 1) { /* a render failure names the job; bad input names its file */
             char why[sizeof e.msg];
             snprintf(why, sizeof why, "%s", e.msg);
