@@ -61,4 +61,8 @@ rm -rf "/${e:?}"
 check "--out naming a file exits 2 (got $rc)" [ "$rc" -eq 2 ]
 check "--out naming a file: the error names the job file ($(head -n 1 "$T/err"))" grep -q "^$T/p.yaml: cannot create directory" "$T/err"
 
+# numbers on the command line are decimals, as in a job file (strtod took --processes 0x2)
+"$WORKER" --quiet --out "$T/hex" --processes 0x2 "$T/p.yaml" 2>"$T/err"; rc=$?
+check "--processes 0x2 exits 2 (got $rc)" [ "$rc" -eq 2 ]
+
 finish

@@ -40,6 +40,11 @@ check "diff ... --quiet: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ]
 check "--quiet diff ...: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^rmse 0' '$T/d2.out'"
 "$WORKER" points uniform >/dev/null 2>"$T/e4"; rc=$?
 check "points without a threshold: exit 2, one line saying what is missing" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/e4') -eq 1 ] && grep -q '^worker points: ' '$T/e4'"
+# diff's numbers are finite decimals: --max-rmse nan compared false with every rmse (exit 0)
+for v in nan inf 0x0; do
+    "$WORKER" diff "$T/one.ppm" "$T/one.ppm" --max-rmse "$v" >/dev/null 2>"$T/d3.err"; rc=$?
+    check "diff --max-rmse $v is a usage error (exit 2, got $rc)" [ "$rc" -eq 2 ]
+done
 # --help and --version before a subcommand still answer (exit 0), as they did before it was hoisted
 "$WORKER" --help diff >"$T/h1.out" 2>"$T/h1.err"; rc=$?
 check "--help diff: exit 0 with the usage (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker' '$T/h1.out'"

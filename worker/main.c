@@ -46,11 +46,12 @@ static void print_err(const struct err *e)
     fprintf(stderr, "%s\n", buf);
 }
 
+/* A finite decimal number (not nan, inf or hex, which strtod takes too). 0, or -1. */
 static int parse_double_arg(const char *s, double *out)
 {
     char *end;
     *out = strtod(s, &end);
-    return *s && !*end ? 0 : -1;
+    return *s && !*end && isfinite(*out) && strspn(s, "0123456789+-.eE") == strlen(s) ? 0 : -1;
 }
 
 static int diff_main(int argc, char **argv)
@@ -134,7 +135,8 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
 {
     char *end = "";
     double d = v ? strtod(v, &end) : 0;
-    int number = v && *v && !*end, whole = number && d == (long)d;
+    int number = v && *v && !*end && strspn(v, "0123456789+-.eE") == strlen(v),
+        whole = number && d == (long)d;
     if (!v) {
         err_print("worker: %s needs a value; see worker --help\n", a);
         return -1;
