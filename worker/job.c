@@ -1,6 +1,7 @@
 /* job: reading a job file's keys into a struct job, with strict validation and defaults. */
 #include "job.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -229,6 +230,9 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
     size_t n = sampler_capacity(k, t);
     if (n <= SAMPLER_MAX_POINTS)
         return 0;
+    if (n == SIZE_MAX) /* saturated: the count itself does not fit */
+        return err_set(e, j->path, pos[0], pos[1], "%s: %g would make too many %s points per set (limit %d)",
+                       key, t, sampler_kind_name(k), SAMPLER_MAX_POINTS);
     return err_set(e, j->path, pos[0], pos[1], "%s: %g would make up to %zu %s points per set (limit %d)",
                    key, t, n, sampler_kind_name(k), SAMPLER_MAX_POINTS);
 }
