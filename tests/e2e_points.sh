@@ -20,6 +20,8 @@ check "svg draws 25 points" [ "$(grep -o '<circle' "$T/p.svg" | wc -l)" -eq 25 ]
 "$WORKER" points sobol 5 >/dev/null 2>"$T/e1"; rc=$?
 check "unknown sampler exits 2" [ "$rc" -eq 2 ]
 check "unknown sampler message" grep -q 'unknown sampler "sobol"' "$T/e1"
+"$WORKER" points Uniform 5 >/dev/null 2>"$T/e6"; rc=$?
+check "a near miss gets a did you mean (exit $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'did you mean \"uniform\"' '$T/e6'"
 "$WORKER" points uniform abc >/dev/null 2>"$T/e2"; rc=$?
 check "bad threshold exits 2" [ "$rc" -eq 2 ]
 for t in 0x10 " 5" 1e1x; do

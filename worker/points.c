@@ -12,6 +12,7 @@
 #include "fileio.h"
 #include "rng.h"
 #include "sampler.h"
+#include "yamlx.h"
 
 static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--svg F]\n";
 
@@ -82,6 +83,12 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     }
     if (npositional < 2) {
         err_print("worker points: expected a sampler and a threshold; %s", points_usage);
+        return 2;
+    }
+    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
+    const char *near = ystr_nearest(positional[0], names, -1);
+    if (sampler_kind_parse(positional[0], &a->kind) < 0 && near) {
+        err_print("worker points: unknown sampler \"%.40s\" (did you mean \"%s\"?)\n", positional[0], near);
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {

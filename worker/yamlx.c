@@ -184,6 +184,21 @@ int ystr_distance(const char *a, const char *b)
     return row[lb];
 }
 
+const char *ystr_nearest(const char *s, const char *const *names, int n)
+{
+    const char *near = NULL;
+    int best = 3;
+    for (int i = 0; n < 0 ? names[i] != NULL : i < n; i++) {
+        /* the same letters in another case (WIDTH, Max_Depth) are as near as can be */
+        int dist = strcasecmp(s, names[i]) == 0 ? 0 : ystr_distance(s, names[i]);
+        if (dist < best && dist <= (int)strlen(names[i]) / 2) {
+            best = dist;
+            near = names[i];
+        }
+    }
+    return near;
+}
+
 static const char *node_kind(const yaml_node_t *n)
 {
     switch (n->type) {
@@ -222,16 +237,7 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
         for (const char *const *a = allowed; *a; a++)
             known |= strcmp(*a, name) == 0;
         if (!known) {
-            const char *near = NULL;
-            int best = 3;
-            for (const char *const *a = allowed; *a; a++) {
-                /* the same letters in another case (WIDTH, Max_Depth) are as near as can be */
-                int dist = strcasecmp(name, *a) == 0 ? 0 : ystr_distance(name, *a);
-                if (dist < best && dist <= (int)strlen(*a) / 2) {
-                    best = dist;
-                    near = *a;
-                }
-            }
+            const char *near = ystr_nearest(name, allowed, -1);
             if (near)
                 return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?)", name, what, near);
             return ydoc_fail(d, k, e, "%s: unknown key in %s", name, what);

@@ -70,4 +70,8 @@ int yget_vec2(struct ydoc *d, yaml_node_t *n, const char *key, double out[2], st
 /* Edit distance of two short strings (for "did you mean"). */
 int ystr_distance(const char *a, const char *b);
 
+/* The name near s (same letters in another case, or an edit or two away) among names (n of
+   them, or NULL-terminated when n < 0), for a "did you mean"; NULL when none is. */
+const char *ystr_nearest(const char *s, const char *const *names, int n);
+
 #endif
