@@ -129,10 +129,15 @@ static void mark(int pos[2], const yaml_node_t *v)
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
 {
     const char *s = yscalar(v);
-    double t;
-    if (yget_double(d, v, key, &t, e) < 0 || !(t > 0 && t <= 100))
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key,
-                         s ? s : "a non-scalar", strstr(e->msg, YQUOTED_NOTE) ? YQUOTED_NOTE : "");
+    double t = 0;
+    int failed = yget_double(d, v, key, &t, e) < 0; /* e->msg is set only when it failed */
+    int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
+    if (!s)
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
+                         v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
+    if (failed || !(t > 0 && t <= 100))
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key, s,
+                         quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
 }
