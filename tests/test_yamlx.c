@@ -119,6 +119,14 @@ static void test_quoted(void)
     CHECK(yget_bool(&d, ymap_get(&d, root, "w"), "w", &b, &e) < 0 && e.line == 4);
     CHECK(yget_bool(&d, ymap_get(&d, root, "z"), "z", &b, &e) == 0 && b == 1);
     ydoc_free(&d);
+    /* YAML 1.2's core schema booleans, and not 1.1's yes/no */
+    CHECK(load_text(&d, "a: True\nb: FALSE\nc: False\nd: yes\n", &e) == 0);
+    root = ydoc_root(&d);
+    CHECK(yget_bool(&d, ymap_get(&d, root, "a"), "a", &b, &e) == 0 && b == 1);
+    CHECK(yget_bool(&d, ymap_get(&d, root, "b"), "b", &b, &e) == 0 && b == 0);
+    CHECK(yget_bool(&d, ymap_get(&d, root, "c"), "c", &b, &e) == 0 && b == 0);
+    CHECK(yget_bool(&d, ymap_get(&d, root, "d"), "d", &b, &e) < 0 && strstr(e.msg, "true or false"));
+    ydoc_free(&d);
 }
 
 int main(void)

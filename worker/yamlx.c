@@ -343,13 +343,19 @@ int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct 
     const char *s = yscalar(n);
     char buf[64];
     shown(n, buf, sizeof buf);
-    if (s && (!strcmp(s, "true") || !strcmp(s, "false"))) {
+    /* YAML 1.2's core schema: true, True, TRUE and the same for false (not 1.1's yes/no/on/off) */
+    static const char *const truth[] = {"true", "True", "TRUE", "false", "False", "FALSE"};
+    int which = -1;
+    for (int i = 0; s && i < 6; i++)
+        if (!strcmp(s, truth[i]))
+            which = i;
+    if (which >= 0) {
         if (yquoted(n))
             return ydoc_fail(d, n, e,
                              "%s: must be true or false, got %s (a quoted string: write true or "
                              "false without quotes)",
                              key, buf);
-        *out = s[0] == 't';
+        *out = which < 3;
         return 0;
     }
     return ydoc_fail(d, n, e, "%s: must be true or false, got %s", key, buf);
