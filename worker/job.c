@@ -51,8 +51,9 @@ static int is_file(const char *p)
 
 /* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
    then beside the job file, then in the job file's parent (jobs/ and scenes/ are siblings). */
-static int resolve_scene(struct job *j, const char *val)
+static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
 {
+    tried[0] = 0;
     if (!strchr(val, '/') && !strchr(val, '.')) {
         char cand[3][JOB_PATH_MAX], rel[JOB_PATH_MAX];
         snprintf(cand[0], sizeof cand[0], "scenes/%s.yaml", val);
@@ -66,6 +67,12 @@ static int resolve_scene(struct job *j, const char *val)
                 return 0;
             }
         snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
+        /* the other places looked in, when the job is not in ./ */
+        int other1 = strcmp(cand[1], cand[0]) != 0,
+            other2 = strcmp(cand[2], cand[0]) && strcmp(cand[2], cand[1]);
+        if (other1 || other2)
+            snprintf(tried, n, " (nor at %s%s%s)", other1 ? cand[1] : "", other1 && other2 ? " or " : "",
+                     other2 ? cand[2] : "");
         return -1;
     }
     resolve(j->path, val, j->scene_path, sizeof j->scene_path);
@@ -159,8 +166,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_scene, v);
-        if (resolve_scene(j, s) < 0)
-            return ydoc_fail(d, v, e, "scene: no scene file at %s", j->scene_path);
+        char tried[2 * JOB_PATH_MAX + 16];
+        if (resolve_scene(j, s, tried, sizeof tried) < 0)
+            return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
