@@ -298,4 +298,17 @@ printf 'scenes: [checker]\nseeds: [1, 2, 1]\nvariants:\n  - { sampler: jitter }\
 bad seeds '2:15: seeds: 1 is listed twice'
 printf 'scenes: [checker]\nsweep: { threshold: [5, 0] }\nvariants:\n  - { sampler: jitter }\n' >"$T/zero.yaml"
 bad zero '2:25: threshold: must be a number in \(0, 100\]'
+# A compare job stopped by Ctrl-C while its reference renders (nothing written yet) leaves no empty
+# OUT/<name>/ behind (it used to make the folder before rendering anything).
+cat >"$T/cut.yaml" <<EOF
+name: cut
+scenes: [$root/scenes/checker.yaml]
+width: 200
+reference: { sampler: jitter, threshold: 0.5 }
+variants:
+  - { sampler: jitter }
+EOF
+timeout -s INT 1 "$WORKER" --quiet --out "$T/cutout" "$T/cut.yaml" 2>/dev/null; rc=$?
+check "a compare job cut short by SIGINT dies by it (got $rc)" [ "$rc" -eq 124 ]
+check "a compare job cut short leaves no empty folder" [ ! -e "$T/cutout/cut" ]
 finish

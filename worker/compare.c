@@ -286,7 +286,9 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         return 1;
     }
     snprintf(dir, sizeof dir, "%s/%s", out, c->name);
-    if (limits_check_out_dir(dir, e) < 0 || run_mkdirs(dir, e) < 0) {
+    /* Checked now, made only when the first image or the summary is written: a job stopped or
+       failed before that (a reference render cut short by Ctrl-C) leaves no empty folder. */
+    if (limits_check_out_dir(dir, e) < 0) {
         rc = 2;
         goto fail;
     }
@@ -323,7 +325,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     }
     rc = 1;
     e->msg[0] = 0;
-    if (write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
+    if (run_mkdirs(dir, e) < 0 || write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
         write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0)
         goto fail;

@@ -9,11 +9,10 @@
 #include "compare_stats.h"
 #include "fileio.h"
 #include "png.h"
+#include "report_image.h"
 #include "sbuf.h"
 
 #define REPORT_MAX_PNG_BYTES (256u << 20)
-#define CROP_ZOOM 4
-#define ERROR_GAIN_MAX 64
 
 static const char style[] =
     "body{font-family:sans-serif;margin:16px;color:#222;max-width:1180px}"
@@ -69,81 +68,6 @@ static const char *image_path(const struct compare *c, const struct compare_item
     return buf;
 }
 
-/* The square window (side `side`) with the largest summed relative squared error of the
-   images against ref: where samplers differ most (a soft shadow in our scenes). */
-static void worst_window(const struct rgb8 *ref, const struct rgb8 *imgs, int n, int side, int *bx, int *by)
-{
-    int w = ref->w, h = ref->h;
-    double *sat = calloc((size_t)(w + 1) * (h + 1), sizeof *sat); /* summed-area table */
-    *bx = (w - side) / 2, *by = (h - side) / 2;
-    if (!sat)
-        return;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            double v = 0;
-            for (int i = 0; i < n; i++)
-                for (int ch = 0; ch < 3; ch++) {
-                    size_t k = ((size_t)y * w + x) * 3 + ch;
-                    double a = ref->px[k] / 255.0, d = imgs[i].px[k] / 255.0 - a;
-                    v += d * d / (a * a + METRICS_REL_EPS);
-                }
-            sat[(size_t)(y + 1) * (w + 1) + x + 1] = v + sat[(size_t)y * (w + 1) + x + 1] +
-                                                     sat[(size_t)(y + 1) * (w + 1) + x] -
-                                                     sat[(size_t)y * (w + 1) + x];
-        }
-    double best = -1;
-    int step = side / 4 > 1 ? side / 4 : 1;
-    for (int y = 0; y + side <= h; y += step)
-        for (int x = 0; x + side <= w; x += step) {
-            double v = sat[(size_t)(y + side) * (w + 1) + x + side] - sat[(size_t)y * (w + 1) + x + side] -
-                       sat[(size_t)(y + side) * (w + 1) + x] + sat[(size_t)y * (w + 1) + x];
-            if (v > best)
-                best = v, *bx = x, *by = y;
-        }
-    free(sat);
-}
-
-/* out = the side x side window of src at (x0, y0), each pixel repeated CROP_ZOOM times. */
-static int crop_zoom(const struct rgb8 *src, int x0, int y0, int side, struct rgb8 *out, struct err *e)
-{
-    if (rgb8_alloc(out, side * CROP_ZOOM, side * CROP_ZOOM, e) < 0)
-        return -1;
-    for (int y = 0; y < out->h; y++)
-        for (int x = 0; x < out->w; x++)
-            memcpy(&out->px[((size_t)y * out->w + x) * 3],
-                   &src->px[((size_t)(y0 + y / CROP_ZOOM) * src->w + x0 + x / CROP_ZOOM) * 3], 3);
-    return 0;
-}
-
-/* The error maps' gain at one sweep point, the same for every variant so they compare: the
-   99th percentile of |image - reference| over all their pixels and channels shows white. A
-   fixed gain left converged images' maps black, hiding where a method still fails. */
-static int error_gain(const struct rgb8 *ref, const struct rgb8 *imgs, int n)
-{
-    size_t count[256] = {0}, total = (size_t)ref->w * ref->h * 3 * n, seen = 0;
-    for (int i = 0; i < n; i++)
-        for (size_t k = 0; k < (size_t)ref->w * ref->h * 3; k++)
-            count[abs((int)imgs[i].px[k] - (int)ref->px[k])]++;
-    int q = 0;
-    while (q < 255 && (seen += count[q]) < total - total / 100)
-        q++;
-    int gain = q > 0 ? 255 / q : ERROR_GAIN_MAX;
-    return gain < 1 ? 1 : gain > ERROR_GAIN_MAX ? ERROR_GAIN_MAX : gain;
-}
-
-/* out = |img - ref| x gain per channel, clamped: structure in the error shows as a pattern. */
-static int error_map(const struct rgb8 *ref, const struct rgb8 *img, int gain, struct rgb8 *out,
-                     struct err *e)
-{
-    if (rgb8_alloc(out, ref->w, ref->h, e) < 0)
-        return -1;
-    for (size_t k = 0; k < (size_t)ref->w * ref->h * 3; k++) {
-        int d = abs((int)img->px[k] - (int)ref->px[k]) * gain;
-        out->px[k] = (uint8_t)(d > 255 ? 255 : d);
-    }
-    return 0;
-}
-
 /* Rows of images: one row per sweep point, the variants side by side (seed index 0). */
 static int image_grid(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
 {
@@ -195,8 +119,8 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
         free(png);
     }
     int x0, y0;
-    worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
-    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", CROP_ZOOM);
+    report_worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
+    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", REPORT_CROP_ZOOM);
     sbuf_escape(b, c->points[p]);
     sbuf_printf(b,
                 ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
@@ -206,7 +130,7 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     for (int v = -1; v < c->n_variants; v++) {
         const struct rgb8 *src = v < 0 ? ref : &imgs[v];
         sbuf_printf(b, "<figure>");
-        if (crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
+        if (report_crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
             rgb_tag(b, &tmp, 128, v < 0 ? "reference crop" : c->variants[v], e) < 0)
             goto done;
         rgb8_free(&tmp);
@@ -219,7 +143,7 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     }
     sbuf_printf(b, "</div>\n<h3>Error maps at ");
     sbuf_escape(b, c->points[p]);
-    int gain = error_gain(ref, imgs, c->n_variants);
+    int gain = report_error_gain(ref, imgs, c->n_variants);
     sbuf_printf(b,
                 ": |image - reference| x %d, the same for every variant (the 99th percentile of their "
                 "errors shows white). Noise looks like grain; structured error (aliasing, a repeated "
@@ -227,7 +151,8 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
                 gain);
     for (int v = 0; v < c->n_variants; v++) {
         sbuf_printf(b, "<figure>");
-        if (error_map(ref, &imgs[v], gain, &tmp, e) < 0 || rgb_tag(b, &tmp, 160, c->variants[v], e) < 0)
+        if (report_error_map(ref, &imgs[v], gain, &tmp, e) < 0 ||
+            rgb_tag(b, &tmp, 160, c->variants[v], e) < 0)
             goto done;
         rgb8_free(&tmp);
         sbuf_printf(b, "<figcaption>");
