@@ -38,7 +38,8 @@ check "--out=DIR writes under DIR" [ -s "$T/eq/p/p.png" ]
 check "--processes=3 is taken" grep -q '"processes": 3' "$T/eq/p/p.json"
 cp "$T/p.yaml" "$T/--p.yaml"
 (cd "$T" && "$WORKER" --quiet --out "$T/dd" -- --p.yaml 2>"$T/err"); rc=$?
-check "after --, --p.yaml is a job file (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ] && [ -s "$T/dd/--p/--p.png" ]
+check "after --, --p.yaml is a job file (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
+check "after --, --p.yaml rendered" [ -s "$T/dd/--p/--p.png" ]
 "$WORKER" diff "$T/o/p/p.png" "$T/eq/p/p.png" --max-rmse=0 >/dev/null 2>"$T/err"; rc=$?
 check "diff --max-rmse=0 of identical images exits 0 (got $rc: $(head -n 1 "$T/err"))" [ "$rc" -eq 0 ]
 
