@@ -27,6 +27,7 @@ static const char usage[] =
     "       worker --help | --version\n"
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
     "         --force (render even when the outputs are current)\n"
+    "         --opt=VALUE works as --opt VALUE; -- ends the options\n"
     "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n";
 
 static const char help[] =
