@@ -39,9 +39,9 @@ static int expand(struct merge *mg, int id, int depth);
 static int merge_from(struct merge *mg, int id, yaml_node_t *src, int depth)
 {
     struct ydoc *d = mg->d;
-    int src_id = (int)(src - d->doc.nodes.start) + 1;
-    if (src->type != YAML_MAPPING_NODE)
+    if (!src || src->type != YAML_MAPPING_NODE)
         return ydoc_fail(d, src, mg->e, "<<: a merge key takes a mapping or a list of mappings");
+    int src_id = (int)(src - d->doc.nodes.start) + 1;
     if (expand(mg, src_id, depth + 1) < 0)
         return -1;
     long n = src->data.mapping.pairs.top - src->data.mapping.pairs.start;
