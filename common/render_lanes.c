@@ -13,103 +13,18 @@ struct path {
     struct rng rng;
 };
 
-/* surface_albedo on a copy of h: h itself then stays in registers (the texture's lookup takes
-   its address). */
-static inline __attribute__((always_inline)) vec3
-surface_albedo_copy(const struct scene *sc, const struct material *m, const struct hit *h)
-{
-    if (m->texture < 0)
-        return m->albedo;
-    struct hit copy = *h;
-    return texture_albedo(sc, m, &copy);
-}
-
 /* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
    with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
-   scene has lights sampled; last: the last segment's depth (max_depth - 1). The same steps, in
-   the same order, as an iteration of render.c's trace loop (keep the two alike): trace keeps
-   its own copy because written as a loop over shade it cost the scenes that do not use the
-   packet 1-2% (final 249.6 -> 254.7 ns, cornell-pool 193.0 -> 195.0). */
+   scene has lights sampled; last: the last segment's depth (max_depth - 1). trace's loop body:
+   both are path_scatter (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       const struct hit *h, int mix, int last)
+                                                       struct hit *h, int mix, int last)
 {
-    const struct scene *sc = ctx->sc;
-    ray *r = &pt->r;
-    struct rng *rng = &pt->rng;
     if (!got) {
-        pt->L = v3_add(pt->L, v3_mul(pt->beta, sc->background));
+        pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
         return 0;
     }
-    const struct material *m = ctx->prim_material[h->prim];
-    /* The last segment: only a light's emission counts, a scattered ray would never be
-       traced (its direction, light point and pdfs are not drawn at all). */
-    if (pt->depth == last && m->type != MAT_LIGHT)
-        return 0;
-    pt->depth++;
-    vec3 dir;
-    if (m->type == MAT_LAMBERTIAN) {
-        vec3 albedo = surface_albedo_copy(sc, m, h);
-        int light = -1;
-        double light_pdf = 0;
-        if (mix && rng_u32(rng) >> 31) {
-            dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
-        } else {
-            onb frame = onb_from_w(h->n);
-            dir = cosine_direction(&frame, rng);
-        }
-        /* below the surface: the scattering pdf is 0 and so is the estimate */
-        double cosine = v3_dot(dir, h->n);
-        if (!(cosine > 0))
-            return 0;
-        double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
-        double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
-        if (!(pdf > 0))
-            return 0;
-        pt->beta = v3_mul(pt->beta, v3_scale(albedo, cosine_pdf / pdf));
-        *r = (ray){h->p, dir, r->time};
-        return 1;
-    }
-    switch (m->type) {
-    case MAT_LIGHT:
-        if (h->front)
-            pt->L = v3_add(pt->L, v3_mul(pt->beta, m->emit));
-        return 0;
-    case MAT_METAL:
-        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
-        if (v3_dot(dir, h->n) <= 0)
-            return 0;
-        pt->beta = v3_mul(pt->beta, m->albedo);
-        *r = (ray){h->p, dir, r->time};
-        return 1;
-    case MAT_DIELECTRIC: {
-        vec3 unit_dir = v3_unit(r->dir);
-        double ratio = h->front ? 1.0 / m->ior : m->ior;
-        double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
-        double sin_t = sqrt(1 - cos_t * cos_t);
-        dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
-                  ? v3_reflect(unit_dir, h->n)
-                  : v3_refract(unit_dir, h->n, ratio);
-        *r = (ray){h->p, dir, r->time};
-        return 1;
-    }
-    default: { /* MAT_ISOTROPIC */
-        vec3 albedo = surface_albedo_copy(sc, m, h);
-        const double phase = 1 / (4 * PI);
-        double pdf = phase;
-        if (mix) {
-            int light = -1;
-            double light_pdf = 0;
-            dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
-                                     : uniform_sphere_direction(rng);
-            pdf = 0.5 * shape_lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * phase;
-        } else {
-            dir = uniform_sphere_direction(rng);
-        }
-        pt->beta = v3_mul(pt->beta, v3_scale(albedo, phase / pdf));
-        *r = (ray){h->p, dir, r->time};
-        return 1;
-    }
-    }
+    return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path

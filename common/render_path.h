@@ -132,10 +132,15 @@ static __attribute__((noinline, unused)) vec3 texture_albedo(const struct scene 
 }
 
 /* A plain material's albedo inline, a texture's lookup out of line (the call and its frame cost
-   every untextured diffuse bounce ~20 instructions). */
-static inline vec3 surface_albedo(const struct scene *sc, const struct material *m, struct hit *h)
+   every untextured diffuse bounce ~20 instructions), on a copy of h, which the lookup fills with
+   the uv: h itself then stays in the caller's registers. */
+static inline __attribute__((always_inline)) vec3
+surface_albedo(const struct scene *sc, const struct material *m, const struct hit *h)
 {
-    return m->texture < 0 ? m->albedo : texture_albedo(sc, m, h);
+    if (m->texture < 0)
+        return m->albedo;
+    struct hit copy = *h;
+    return texture_albedo(sc, m, &copy);
 }
 
 static __attribute__((unused)) double reflectance(double cosine, double ref_idx)
@@ -166,6 +171,86 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     }
     *light = i;
     return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
+}
+
+/* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
+   lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
+   (*L is then its estimate). at_last: this is the last segment, where only a light's emission
+   counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
+   mix: the scene's lights are sampled. Always inline: the caller's ray, weight and radiance stay
+   in its registers (a texture's lookup reads h through a copy). */
+static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                              vec3 *L, struct rng *rng, const struct hit *h,
+                                                              int at_last, int mix)
+{
+    const struct scene *sc = ctx->sc;
+    const struct material *m = ctx->prim_material[h->prim];
+    if (at_last && m->type != MAT_LIGHT)
+        return 0;
+    vec3 dir;
+    if (m->type == MAT_LAMBERTIAN) {
+        vec3 albedo = surface_albedo(sc, m, h);
+        int light = -1;
+        double light_pdf = 0;
+        if (mix && rng_u32(rng) >> 31) {
+            dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+        } else {
+            onb frame = onb_from_w(h->n);
+            dir = cosine_direction(&frame, rng);
+        }
+        /* below the surface: the scattering pdf is 0 and so is the estimate */
+        double cosine = v3_dot(dir, h->n);
+        if (!(cosine > 0))
+            return 0;
+        double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
+        double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
+        if (!(pdf > 0))
+            return 0;
+        *beta = v3_mul(*beta, v3_scale(albedo, cosine_pdf / pdf));
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    switch (m->type) {
+    case MAT_LIGHT:
+        if (h->front)
+            *L = v3_add(*L, v3_mul(*beta, m->emit));
+        return 0;
+    case MAT_METAL:
+        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
+        if (v3_dot(dir, h->n) <= 0)
+            return 0;
+        *beta = v3_mul(*beta, m->albedo);
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    case MAT_DIELECTRIC: {
+        vec3 unit_dir = v3_unit(r->dir);
+        double ratio = h->front ? 1.0 / m->ior : m->ior;
+        double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
+        double sin_t = sqrt(1 - cos_t * cos_t);
+        dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
+                  ? v3_reflect(unit_dir, h->n)
+                  : v3_refract(unit_dir, h->n, ratio);
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    default: { /* MAT_ISOTROPIC */
+        vec3 albedo = surface_albedo(sc, m, h);
+        const double phase = 1 / (4 * PI);
+        double pdf = phase;
+        if (mix) {
+            int light = -1;
+            double light_pdf = 0;
+            dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                                     : uniform_sphere_direction(rng);
+            pdf = 0.5 * shape_lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * phase;
+        } else {
+            dir = uniform_sphere_direction(rng);
+        }
+        *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    }
 }
 
 #endif
