@@ -14,9 +14,6 @@
 
 #include "shape_inline.h"
 
-/* The helpers below pass 32-byte vectors; all are inlined, so no ABI is at stake. */
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 typedef double d4 __attribute__((vector_size(32)));
 typedef int64_t i4 __attribute__((vector_size(32)));
 typedef double d2 __attribute__((vector_size(16)));

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "bvh.h"
+#include "box_point.h"
 #include "check.h"
 #include "packet.h"
 #include "rng.h"
@@ -65,16 +66,6 @@ static int packet_agrees(const struct scene *sc, const struct packet_scene *ps, 
         }
     }
     return ok;
-}
-
-static vec3 box_point(vec3 lo, vec3 hi, int k)
-{
-    /* k in [0, 27): every corner, edge midpoint, face centre and the centre of the box */
-    int i = k % 3, j = k / 3 % 3, l = k / 9;
-    double x = i == 0 ? lo.x : i == 1 ? hi.x : 0.5 * (lo.x + hi.x);
-    double y = j == 0 ? lo.y : j == 1 ? hi.y : 0.5 * (lo.y + hi.y);
-    double z = l == 0 ? lo.z : l == 1 ? hi.z : 0.5 * (lo.z + hi.z);
-    return v3(x, y, z);
 }
 
 /* Rays toward 27 points of every prim's box from random points in the scene, from `eye` and along
