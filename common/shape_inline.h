@@ -44,6 +44,15 @@ static inline int sphere_quadratic(vec3 c, double rad, const ray *r, double *a, 
     return 1;
 }
 
+/* The hit record of the sphere's hit at t (hit_sphere's, and packet.c's for its winners). */
+static inline __attribute__((always_inline)) void sphere_record(vec3 c, double rad, const ray *r, double t,
+                                                                struct hit *h)
+{
+    h->t = t;
+    h->p = ray_at(r, t);
+    set_face(h, r, v3_scale(v3_sub(h->p, c), 1.0 / rad));
+}
+
 /* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. Always inline, as
    hit_rect: bvh.c's two traversals each keep their own copy in the leaf loop (with two callers
    GCC's unit growth limit would put one out of line). */
@@ -60,10 +69,7 @@ static inline __attribute__((always_inline)) int hit_sphere(vec3 c, double rad, 
         if (!(at > lo && at < hi))
             return 0;
     }
-    double t = at / a;
-    h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, v3_scale(v3_sub(h->p, c), 1.0 / rad));
+    sphere_record(c, rad, r, at / a, h);
     return 1;
 }
 
@@ -73,6 +79,15 @@ static inline double v3_at_offset(const vec3 *v, long off)
     double x;
     memcpy(&x, (const char *)v + off, sizeof x);
     return x;
+}
+
+/* The hit record of the rect's hit at t (hit_rect's, and packet.c's for its winners). */
+static inline __attribute__((always_inline)) void rect_record(const struct prim *p, const ray *r, double t,
+                                                              struct hit *h)
+{
+    h->t = t;
+    h->p = ray_at(r, t);
+    set_face(h, r, p->flip ? v3_neg(p->g.rect.n) : p->g.rect.n);
 }
 
 /* The plane's distance and the hit's in-plane coordinates read the ray's components on the
@@ -91,9 +106,7 @@ static inline __attribute__((always_inline)) int hit_rect(const struct prim *p, 
     double pb = v3_at_offset(&r->orig, ob) + v3_at_offset(&r->dir, ob) * t;
     if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
         return 0;
-    h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, p->flip ? v3_neg(p->g.rect.n) : p->g.rect.n);
+    rect_record(p, r, t, h);
     return 1;
 }
 

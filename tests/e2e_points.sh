@@ -20,8 +20,14 @@ check "svg draws 25 points" [ "$(grep -o '<circle' "$T/p.svg" | wc -l)" -eq 25 ]
 "$WORKER" points sobol 5 >/dev/null 2>"$T/e1"; rc=$?
 check "unknown sampler exits 2" [ "$rc" -eq 2 ]
 check "unknown sampler message" grep -q 'unknown sampler "sobol"' "$T/e1"
+"$WORKER" points Uniform 5 >/dev/null 2>"$T/e6"; rc=$?
+check "a near miss gets a did you mean (exit $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'did you mean \"uniform\"' '$T/e6'"
 "$WORKER" points uniform abc >/dev/null 2>"$T/e2"; rc=$?
 check "bad threshold exits 2" [ "$rc" -eq 2 ]
+for t in 0x10 " 5" 1e1x; do
+    "$WORKER" points uniform "$t" >/dev/null 2>"$T/e5"; rc=$?
+    check "threshold \"$t\" is refused as in a job file (exit 2, got $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'threshold: must be a number' '$T/e5'"
+done
 "$WORKER" points uniform 0.01 >/dev/null 2>"$T/e3"; rc=$?
 check "oversized set exits 2 naming the count" sh -c "[ $rc -eq 2 ] && grep -q 100000000 '$T/e3'"
 # --quiet is a common option: accepted by points and diff, before the subcommand too
@@ -36,6 +42,11 @@ check "diff ... --quiet: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ]
 check "--quiet diff ...: exit 0 with the metrics (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^rmse 0' '$T/d2.out'"
 "$WORKER" points uniform >/dev/null 2>"$T/e4"; rc=$?
 check "points without a threshold: exit 2, one line saying what is missing" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/e4') -eq 1 ] && grep -q '^worker points: ' '$T/e4'"
+# diff's numbers are finite decimals: --max-rmse nan compared false with every rmse (exit 0)
+for v in nan inf 0x0; do
+    "$WORKER" diff "$T/one.ppm" "$T/one.ppm" --max-rmse "$v" >/dev/null 2>"$T/d3.err"; rc=$?
+    check "diff --max-rmse $v is a usage error (exit 2, got $rc)" [ "$rc" -eq 2 ]
+done
 # --help and --version before a subcommand still answer (exit 0), as they did before it was hoisted
 "$WORKER" --help diff >"$T/h1.out" 2>"$T/h1.err"; rc=$?
 check "--help diff: exit 0 with the usage (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q 'usage: worker' '$T/h1.out'"

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "bvh.h"
+#include "box_point.h"
 #include "check.h"
 #include "rng.h"
 #include "scene_load.h"
@@ -32,21 +33,6 @@ static int agrees(const struct scene *sc, const ray *r, int *hits)
     if (ga != gb)
         return 0;
     return !ga || fabs(a.t - b.t) <= 1e-9 * (1 + fabs(b.t));
-}
-
-static vec3 box_point(vec3 lo, vec3 hi, int k)
-{
-    /* k in [0, 27): every corner, edge midpoint, face centre and the centre of the box */
-    int i = k % 3, j = k / 3 % 3, l = k / 9;
-    return v3(i == 0   ? lo.x
-              : i == 1 ? hi.x
-                       : 0.5 * (lo.x + hi.x),
-              j == 0   ? lo.y
-              : j == 1 ? hi.y
-                       : 0.5 * (lo.y + hi.y),
-              l == 0   ? lo.z
-              : l == 1 ? hi.z
-                       : 0.5 * (lo.z + hi.z));
 }
 
 /* Every leaf lane's kind says what its prims are (bvh_hit dispatches on it without looking):

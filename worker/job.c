@@ -1,6 +1,7 @@
 /* job: reading a job file's keys into a struct job, with strict validation and defaults. */
 #include "job.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,8 +51,9 @@ static int is_file(const char *p)
 
 /* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
    then beside the job file, then in the job file's parent (jobs/ and scenes/ are siblings). */
-static int resolve_scene(struct job *j, const char *val)
+static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
 {
+    tried[0] = 0;
     if (!strchr(val, '/') && !strchr(val, '.')) {
         char cand[3][JOB_PATH_MAX], rel[JOB_PATH_MAX];
         snprintf(cand[0], sizeof cand[0], "scenes/%s.yaml", val);
@@ -65,6 +67,12 @@ static int resolve_scene(struct job *j, const char *val)
                 return 0;
             }
         snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
+        /* the other places looked in, when the job is not in ./ */
+        int other1 = strcmp(cand[1], cand[0]) != 0,
+            other2 = strcmp(cand[2], cand[0]) && strcmp(cand[2], cand[1]);
+        if (other1 || other2)
+            snprintf(tried, n, " (nor at %s%s%s)", other1 ? cand[1] : "", other1 && other2 ? " or " : "",
+                     other2 ? cand[2] : "");
         return -1;
     }
     resolve(j->path, val, j->scene_path, sizeof j->scene_path);
@@ -109,6 +117,10 @@ static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sam
     const char *s;
     if (yget_string(d, v, key, &s, e) < 0)
         return -1;
+    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
+    const char *near = ystr_nearest(s, names, -1);
+    if (sampler_kind_parse(s, out) < 0 && near)
+        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
     if (sampler_kind_parse(s, out) < 0)
         return ydoc_fail(
             d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)", key, s);
@@ -124,10 +136,15 @@ static void mark(int pos[2], const yaml_node_t *v)
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
 {
     const char *s = yscalar(v);
-    double t;
-    if (yget_double(d, v, key, &t, e) < 0 || !(t > 0 && t <= 100))
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"", key,
-                         s ? s : "a non-scalar");
+    double t = 0;
+    int failed = yget_double(d, v, key, &t, e) < 0; /* e->msg is set only when it failed */
+    int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
+    if (!s)
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
+                         v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
+    if (failed || !(t > 0 && t <= 100))
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key, s,
+                         quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
 }
@@ -149,8 +166,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_scene, v);
-        if (resolve_scene(j, s) < 0)
-            return ydoc_fail(d, v, e, "scene: no scene file at %s", j->scene_path);
+        char tried[2 * JOB_PATH_MAX + 16];
+        if (resolve_scene(j, s, tried, sizeof tried) < 0)
+            return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
@@ -195,6 +213,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "format: must be png or ppm, got \"%.40s\"", s);
         j->format = s[1] == 'n' ? IMG_PNG : IMG_PPM;
         j->has_format = 1;
+        mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -202,6 +221,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "output: must be a plain file name (no '/'), got \"%.40s\"", s);
         snprintf(j->output, sizeof j->output, "%s", s);
         j->has_output = 1;
+        mark(j->pos_output, v);
     } else if (!strcmp(k, "reference")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -227,6 +247,9 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
     size_t n = sampler_capacity(k, t);
     if (n <= SAMPLER_MAX_POINTS)
         return 0;
+    if (n == SIZE_MAX) /* saturated: the count itself does not fit */
+        return err_set(e, j->path, pos[0], pos[1], "%s: %g would make too many %s points per set (limit %d)",
+                       key, t, sampler_kind_name(k), SAMPLER_MAX_POINTS);
     return err_set(e, j->path, pos[0], pos[1], "%s: %g would make up to %zu %s points per set (limit %d)",
                    key, t, n, sampler_kind_name(k), SAMPLER_MAX_POINTS);
 }
@@ -240,8 +263,19 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
         check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
                        e) < 0)
         return -1;
+    /* The sidecar is the output's stem + ".json": an image named so would be overwritten by it. */
+    size_t len = strlen(j->output);
+    if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
+        return err_set(e, j->path, j->pos_output[0], j->pos_output[1],
+                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)",
+                       j->output);
+    int ext_png = has_suffix(j->output, ".png"), ext_ppm = has_suffix(j->output, ".ppm");
+    if (j->has_output && j->has_format && (ext_png || ext_ppm) && ext_ppm != (j->format == IMG_PPM))
+        return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
+                       "format: %s contradicts the output's extension (%s); give one or make them agree",
+                       j->format == IMG_PPM ? "ppm" : "png", j->output);
     if (j->has_output && !j->has_format)
-        j->format = has_suffix(j->output, ".ppm") ? IMG_PPM : IMG_PNG;
+        j->format = ext_ppm ? IMG_PPM : IMG_PNG;
     if (!j->has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, j->format == IMG_PPM ? "ppm" : "png");
     return 0;

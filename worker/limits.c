@@ -40,8 +40,8 @@ int limits_check_memory(const char *what, size_t bytes, struct err *e)
     size_t avail = mem_available();
     if (avail == 0 || bytes <= avail / 2)
         return 0;
-    return err_set(e, NULL, 0, 0, "%s needs %zu MB but only %zu MB of memory is available", what, bytes >> 20,
-                   avail >> 20);
+    return err_set(e, NULL, 0, 0, "%s needs %zu MB, over half of the %zu MB of memory available", what,
+                   bytes >> 20, avail >> 20);
 }
 
 int limits_check_out_dir(const char *dir, struct err *e)

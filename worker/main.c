@@ -8,6 +8,7 @@
 
 #include "compare.h"
 #include "fileio.h"
+#include "hash.h"
 #include "job.h"
 #include "metrics.h"
 #include "points.h"
@@ -26,6 +27,7 @@ static const char usage[] =
     "       worker --help | --version\n"
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
     "         --force (render even when the outputs are current)\n"
+    "         --opt=VALUE works as --opt VALUE; -- ends the options\n"
     "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n";
 
 static const char help[] =
@@ -45,11 +47,12 @@ static void print_err(const struct err *e)
     fprintf(stderr, "%s\n", buf);
 }
 
+/* A finite decimal number (not nan, inf or hex, which strtod takes too). 0, or -1. */
 static int parse_double_arg(const char *s, double *out)
 {
     char *end;
     *out = strtod(s, &end);
-    return *s && !*end ? 0 : -1;
+    return *s && !*end && isfinite(*out) && strspn(s, "0123456789+-.eE") == strlen(s) ? 0 : -1;
 }
 
 static int diff_main(int argc, char **argv)
@@ -133,9 +136,14 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
 {
     char *end = "";
     double d = v ? strtod(v, &end) : 0;
-    int number = v && *v && !*end, whole = number && d == (long)d;
+    int number = v && *v && !*end && strspn(v, "0123456789+-.eE") == strlen(v),
+        whole = number && d == (long)d;
     if (!v) {
         err_print("worker: %s needs a value; see worker --help\n", a);
+        return -1;
+    } else if (!*v && (!strcmp(a, "--out") || !strcmp(a, "--queue"))) {
+        /* "" would make OUT/<name> "/<name>": the file system's root */
+        err_print("worker: %s needs a directory, got \"\"\n", a);
         return -1;
     } else if (!strcmp(a, "--out")) {
         q->run.out_dir = v;
@@ -189,8 +197,15 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
         print_err(&e);
         return 2;
     }
+    /* Outputs left by a render with another process count are not what --processes asked for:
+       their sidecar records that count and its per-process times. (Parts keep the file's hash:
+       merge matches them against it, whatever split rendered them.) */
+    if (!merge && !o->parts && o->processes > 0 && o->processes != j.processes)
+        j.hash = hash_u64(j.hash, (uint64_t)o->processes);
     int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
     if (rc != 0) {
+        if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */
+            snprintf(e.file, sizeof e.file, "%s", path);
         if (rc == 1) { /* a render failure names the job; bad input names its file */
             char why[sizeof e.msg];
             snprintf(why, sizeof why, "%s", e.msg);
@@ -209,13 +224,44 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
     return rc;
 }
 
+/* `--out=DIR` as `--out DIR` (GNU style, as pbrt and Slurm take it too) for every option that
+   takes a value, diff's included; a job file's name is never split, nor anything after "--".
+   The new argv (argc grown by one per split) is malloc'ed; NULL when out of memory. */
+static char **split_equals(int *argc, char **argv)
+{
+    static const char *const diff_values[] = {"--max-rmse", "--block", NULL};
+    char **out = calloc((size_t)*argc * 2 + 1, sizeof *out);
+    int n = 0, ended = 0;
+    if (!out)
+        return NULL;
+    for (int i = 0; i < *argc; i++) {
+        char *a = argv[i], *eq = strchr(a, '=');
+        int known = 0;
+        ended |= i > 0 && !strcmp(a, "--");
+        if (!ended && i > 0 && !strncmp(a, "--", 2) && eq) {
+            *eq = 0;
+            known = takes_value(a);
+            for (int k = 0; diff_values[k]; k++)
+                known |= !strcmp(a, diff_values[k]);
+            if (!known)
+                *eq = '=';
+        }
+        out[n++] = a;
+        if (known)
+            out[n++] = eq + 1;
+    }
+    *argc = n;
+    return out;
+}
+
 /* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
    subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
    After --help or --version nothing moves: those answer whatever follows. */
 static void hoist_subcommand(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--version")) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--version") ||
+            !strcmp(argv[i], "--")) {
             return;
         } else if (takes_value(argv[i])) {
             i++;
@@ -231,11 +277,24 @@ static void hoist_subcommand(int argc, char **argv)
     }
 }
 
+static int worker_main(int argc, char **argv);
+
 int main(int argc, char **argv)
 {
     /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
        kill the process half-way through an output. */
     signal(SIGXFSZ, SIG_IGN);
+    char **args = split_equals(&argc, argv);
+    if (!args)
+        return 2;
+    int rc = worker_main(argc, args);
+    free(args);
+    return rc;
+}
+
+/* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
+static int worker_main(int argc, char **argv)
+{
     hoist_subcommand(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "points"))
         return points_main(argc - 1, argv + 1);
@@ -252,8 +311,16 @@ int main(int argc, char **argv)
     const char *queue_only = NULL; /* the first option that only a queue uses */
     if (!jobs)
         return 2;
+    int options_ended = 0; /* after "--" every argument is a job file */
     for (int i = 1 + merge; i < argc; i++) {
         const char *a = argv[i];
+        if (!options_ended && !strcmp(a, "--")) {
+            options_ended = 1;
+            continue;
+        } else if (options_ended) {
+            jobs[njobs++] = a;
+            continue;
+        }
         if (!queue_only && (!strcmp(a, "--once") || !strcmp(a, "--poll") || !strcmp(a, "--retries") ||
                             !strcmp(a, "--lease-timeout")))
             queue_only = a;

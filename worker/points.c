@@ -12,6 +12,7 @@
 #include "fileio.h"
 #include "rng.h"
 #include "sampler.h"
+#include "yamlx.h"
 
 static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--svg F]\n";
 
@@ -84,6 +85,12 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         err_print("worker points: expected a sampler and a threshold; %s", points_usage);
         return 2;
     }
+    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
+    const char *near = ystr_nearest(positional[0], names, -1);
+    if (sampler_kind_parse(positional[0], &a->kind) < 0 && near) {
+        err_print("worker points: unknown sampler \"%.40s\" (did you mean \"%s\"?)\n", positional[0], near);
+        return 2;
+    }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
         err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)\n",
                   positional[0]);
@@ -92,7 +99,10 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     char *end;
     errno = 0;
     a->threshold = strtod(positional[1], &end);
-    if (!positional[1][0] || *end || errno == ERANGE || !(a->threshold > 0.0 && a->threshold <= 100.0)) {
+    /* decimal only, as a job file's threshold: strtod alone takes hex (0x10) and leading blanks */
+    int decimal = strspn(positional[1], "0123456789+-.eE") == strlen(positional[1]);
+    if (!positional[1][0] || *end || !decimal || errno == ERANGE ||
+        !(a->threshold > 0.0 && a->threshold <= 100.0)) {
         err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }

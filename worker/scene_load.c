@@ -17,6 +17,25 @@ int loader_find_name(const struct names *nm, const char *s)
     return -1;
 }
 
+int loader_unknown(struct loader *L, yaml_node_t *v, const char *what, const char *s,
+                   const char *const *names, const char *expected)
+{
+    const char *near = ystr_nearest(s, names, -1);
+    if (near)
+        return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (did you mean \"%s\"?)", what, s, near);
+    return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (expected %s)", what, s, expected);
+}
+
+int loader_no_name(struct loader *L, yaml_node_t *v, const char *key, const char *s, const struct names *nm,
+                   const char *section)
+{
+    const char *near = ystr_nearest(s, nm->name, nm->n);
+    if (near)
+        return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s (did you mean \"%s\"?)", key, key,
+                         s, section, near);
+    return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s", key, key, s, section);
+}
+
 int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out)
 {
     if (yget_vec3(&L->d, v, key, out, L->e) < 0)
@@ -83,6 +102,9 @@ static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
         return ydoc_fail(&L->d, n, L->e, "camera: %s", L->e->msg);
     return 0;
 }
+
+static const char *const texture_types[] = {"checker", "noise", "image", NULL};
+static const char *const material_types[] = {"lambertian", "metal", "dielectric", "light", "isotropic", NULL};
 
 static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL};
 static const char *const noise_keys[] = {"type", "scale", NULL};
@@ -194,8 +216,8 @@ static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     else if (!strcmp(type, "image"))
         rc = load_image(L, n, &t);
     else
-        return ydoc_fail(&L->d, tn, L->e,
-                         "type: unknown texture type \"%.40s\" (expected checker, noise or image)", type);
+        return loader_unknown(L, tn, "type: unknown texture type", type, texture_types,
+                              "checker, noise or image");
     if (rc < 0)
         return -1;
     if (scene_add_texture(L->sc, &t) < 0)
@@ -234,10 +256,8 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
         m.type = MAT_ISOTROPIC;
         allowed = "albedo texture";
     } else {
-        return ydoc_fail(&L->d, tn, L->e,
-                         "type: unknown material type \"%.40s\" (expected lambertian, metal, dielectric, "
-                         "light or isotropic)",
-                         type);
+        return loader_unknown(L, tn, "type: unknown material type", type, material_types,
+                              "lambertian, metal, dielectric, light or isotropic");
     }
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
@@ -254,7 +274,7 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
         if (yget_string(&L->d, v, "texture", &s, L->e) < 0)
             return -1;
         if ((m.texture = loader_find_name(&L->tex, s)) < 0)
-            return ydoc_fail(&L->d, v, L->e, "texture: no texture named \"%.40s\" in textures", s);
+            return loader_no_name(L, v, "texture", s, &L->tex, "textures");
     } else if ((m.type == MAT_LAMBERTIAN || m.type == MAT_ISOTROPIC) && !ymap_get(&L->d, n, "albedo")) {
         return ydoc_fail(&L->d, n, L->e, "albedo: missing in %s material \"%s\"", type, yscalar(k));
     }

@@ -27,6 +27,15 @@ struct loader {
 /* Index of s in nm, or -1. */
 int loader_find_name(const struct names *nm, const char *s);
 
+/* Fail at v with "<what> \"s\"" and a "did you mean" among names (NULL-terminated) when one is
+   near, else the expected list. Always -1. */
+int loader_unknown(struct loader *L, yaml_node_t *v, const char *what, const char *s,
+                   const char *const *names, const char *expected);
+
+/* Fail at v: key names s, which is not in nm (the section's names), with a "did you mean". -1. */
+int loader_no_name(struct loader *L, yaml_node_t *v, const char *key, const char *s, const struct names *nm,
+                   const char *section);
+
 /* Read a colour (three numbers >= 0). */
 int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out);
 

@@ -242,7 +242,7 @@ static int load_common(struct loader *L, yaml_node_t *n, struct prim *p, int *sa
     if (need(L, n, "material", "object", &v) < 0 || yget_string(&L->d, v, "material", &s, L->e) < 0)
         return -1;
     if ((p->material = loader_find_name(&L->mat, s)) < 0)
-        return ydoc_fail(&L->d, v, L->e, "material: no material named \"%.40s\" in materials", s);
+        return loader_no_name(L, v, "material", s, &L->mat, "materials");
     double deg = 0;
     if ((v = ymap_get(&L->d, n, "rotate_y")) && yget_double(&L->d, v, "rotate_y", &deg, L->e) < 0)
         return -1;
@@ -333,12 +333,14 @@ static int load_object(struct loader *L, yaml_node_t *n)
     for (int i = 0; i < N_OBJECT_TYPES; i++)
         if (!strcmp(type, object_types[i].name))
             ot = &object_types[i];
-    if (!ot)
-        return ydoc_fail(
-            &L->d, tn, L->e,
-            "type: unknown object type \"%.40s\" (expected sphere, moving_sphere, rect, disk, box, "
-            "cylinder, triangle, pyramid or medium)",
-            type);
+    if (!ot) {
+        const char *names[N_OBJECT_TYPES + 1] = {NULL};
+        for (int i = 0; i < N_OBJECT_TYPES; i++)
+            names[i] = object_types[i].name;
+        return loader_unknown(
+            L, tn, "type: unknown object type", type, names,
+            "sphere, moving_sphere, rect, disk, box, cylinder, triangle, pyramid or medium");
+    }
     int count, sample;
     if (ymap_check(&L->d, n, ot->keys, ot->name, L->e) < 0 || (count = ot->load(L, n, p)) < 0 ||
         load_common(L, n, &p[0], &sample) < 0 || check_placement(L, n, ot, &p[0], sample) < 0)

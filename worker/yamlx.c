@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "fileio.h"
 
@@ -119,6 +120,8 @@ int ydoc_load(struct ydoc *d, const char *path, struct err *e)
         else
             rc = check_shape(d, e);
         if (rc == 0)
+            rc = ydoc_expand_merges(d, e);
+        if (rc == 0)
             rc = no_second_document(&p, path, e);
         if (rc < 0) /* a failure leaves nothing to free */
             ydoc_free(d);
@@ -181,6 +184,21 @@ int ystr_distance(const char *a, const char *b)
     return row[lb];
 }
 
+const char *ystr_nearest(const char *s, const char *const *names, int n)
+{
+    const char *near = NULL;
+    int best = 3;
+    for (int i = 0; n < 0 ? names[i] != NULL : i < n; i++) {
+        /* the same letters in another case (WIDTH, Max_Depth) are as near as can be */
+        int dist = strcasecmp(s, names[i]) == 0 ? 0 : ystr_distance(s, names[i]);
+        if (dist < best && dist <= (int)strlen(names[i]) / 2) {
+            best = dist;
+            near = names[i];
+        }
+    }
+    return near;
+}
+
 static const char *node_kind(const yaml_node_t *n)
 {
     switch (n->type) {
@@ -219,15 +237,7 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
         for (const char *const *a = allowed; *a; a++)
             known |= strcmp(*a, name) == 0;
         if (!known) {
-            const char *near = NULL;
-            int best = 3;
-            for (const char *const *a = allowed; *a; a++) {
-                int dist = ystr_distance(name, *a);
-                if (dist < best && dist <= (int)strlen(*a) / 2) {
-                    best = dist;
-                    near = *a;
-                }
-            }
+            const char *near = ystr_nearest(name, allowed, -1);
             if (near)
                 return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?)", name, what, near);
             return ydoc_fail(d, k, e, "%s: unknown key in %s", name, what);
@@ -292,13 +302,20 @@ static int parse_double(const char *s, double *out)
     return 0;
 }
 
+int yquoted(const yaml_node_t *n)
+{
+    return n && n->type == YAML_SCALAR_NODE && n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE &&
+           n->data.scalar.style != YAML_ANY_SCALAR_STYLE;
+}
+
 int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e)
 {
-    if (parse_double(yscalar(n), out) < 0) {
-        char buf[64];
-        shown(n, buf, sizeof buf);
+    char buf[64];
+    shown(n, buf, sizeof buf);
+    if (parse_double(yscalar(n), out) < 0)
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s", key, buf);
-    }
+    if (yquoted(n))
+        return ydoc_fail(d, n, e, "%s: must be a finite number, got %s" YQUOTED_NOTE, key, buf);
     return 0;
 }
 
@@ -312,6 +329,9 @@ int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi,
     long v = s && *s ? strtol(s, &end, 10) : 0;
     if (!s || !*s || *end || errno == ERANGE)
         return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s", key, lo, hi, buf);
+    if (yquoted(n))
+        return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s" YQUOTED_NOTE, key, lo,
+                         hi, buf);
     if (v < lo || v > hi)
         return ydoc_fail(d, n, e, "%s: must be in [%ld, %ld], got %s", key, lo, hi, buf);
     *out = v;
@@ -321,12 +341,23 @@ int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi,
 int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e)
 {
     const char *s = yscalar(n);
-    if (s && (!strcmp(s, "true") || !strcmp(s, "false"))) {
-        *out = s[0] == 't';
-        return 0;
-    }
     char buf[64];
     shown(n, buf, sizeof buf);
+    /* YAML 1.2's core schema: true, True, TRUE and the same for false (not 1.1's yes/no/on/off) */
+    static const char *const truth[] = {"true", "True", "TRUE", "false", "False", "FALSE"};
+    int which = -1;
+    for (int i = 0; s && i < 6; i++)
+        if (!strcmp(s, truth[i]))
+            which = i;
+    if (which >= 0) {
+        if (yquoted(n))
+            return ydoc_fail(d, n, e,
+                             "%s: must be true or false, got %s (a quoted string: write true or "
+                             "false without quotes)",
+                             key, buf);
+        *out = which < 3;
+        return 0;
+    }
     return ydoc_fail(d, n, e, "%s: must be true or false, got %s", key, buf);
 }
 

@@ -23,6 +23,11 @@ struct ydoc {
    Free with ydoc_free, even after a failure. */
 int ydoc_load(struct ydoc *d, const char *path, struct err *e);
 void ydoc_free(struct ydoc *d);
+
+/* Expand YAML 1.1 merge keys in place (ydoc_load does it): each mapping's `<<: *a` or
+   `<<: [*a, *b]` pairs are replaced by the entries of those mappings that it does not set itself
+   (earlier sources first). 0, or -1 with e at a `<<` that names no mapping or loops. */
+int ydoc_expand_merges(struct ydoc *d, struct err *e);
 yaml_node_t *ydoc_root(struct ydoc *d);
 
 /* Fill e at node n's position. Always -1. */
@@ -47,7 +52,14 @@ int yseq_len(yaml_node_t *n);
 /* Scalar text of n, or NULL if n is not a scalar. */
 const char *yscalar(yaml_node_t *n);
 
-/* Typed reads; each fails with "key: must be ..., got ..." at the value's position. */
+/* Whether scalar n was written in quotes ("5", '5'): a string, never a number or a boolean. */
+int yquoted(const yaml_node_t *n);
+
+/* The note a quoted number's message ends with. */
+#define YQUOTED_NOTE " (a quoted string: write numbers without quotes)"
+
+/* Typed reads; each fails with "key: must be ..., got ..." at the value's position. Numbers and
+   booleans must be plain scalars: a quoted "5" is a string, a wrong type. */
 int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e);
 int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out, struct err *e);
 int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e);
@@ -57,5 +69,9 @@ int yget_vec2(struct ydoc *d, yaml_node_t *n, const char *key, double out[2], st
 
 /* Edit distance of two short strings (for "did you mean"). */
 int ystr_distance(const char *a, const char *b);
+
+/* The name near s (same letters in another case, or an edit or two away) among names (n of
+   them, or NULL-terminated when n < 0), for a "did you mean"; NULL when none is. */
+const char *ystr_nearest(const char *s, const char *const *names, int n);
 
 #endif

@@ -1,0 +1,101 @@
+/* render_ctx: the render context's buffers and tables, made once per process, and the render's
+   counters. */
+#include <stdlib.h>
+
+#include "render_internal.h"
+
+void render_stats_init(struct render_stats *st)
+{
+    *st = (struct render_stats){0};
+    st->spp_min = UINT32_MAX;
+}
+
+void render_stats_add(struct render_stats *into, const struct render_stats *from)
+{
+    into->pixels += from->pixels;
+    into->samples += from->samples;
+    into->rays += from->rays;
+    into->light_sets += from->light_sets;
+    into->nonfinite += from->nonfinite;
+    into->sampler_s += from->sampler_s;
+    if (from->spp_min < into->spp_min)
+        into->spp_min = from->spp_min;
+    if (from->spp_max > into->spp_max)
+        into->spp_max = from->spp_max;
+}
+
+void render_ctx_free(struct render_ctx *ctx)
+{
+    if (!ctx)
+        return;
+    if (ctx->lp)
+        for (int i = 0; i < ctx->sc->n_lights; i++) {
+            free(ctx->lp[i].pts);
+            free(ctx->lp[i].cells);
+        }
+    free(ctx->lp);
+    free(ctx->identity);
+    free(ctx->prim_material);
+    packet_scene_free(ctx->packet);
+    free(ctx->pixel_pts);
+    free(ctx);
+}
+
+struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *cam,
+                                  const struct render_settings *rs, struct sampler *pixel,
+                                  struct sampler *light, struct err *e)
+{
+    struct render_ctx *ctx = calloc(1, sizeof *ctx);
+    if (!ctx)
+        goto fail;
+    ctx->sc = sc;
+    ctx->cam = cam;
+    ctx->rs = *rs;
+    ctx->pixel = pixel;
+    ctx->light = light;
+    ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
+    ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
+    ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
+    if (packet_usable(sc) && !(ctx->packet = packet_scene_new(sc)))
+        goto fail;
+    if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
+        goto fail;
+    for (int i = 0; i < sc->n_prims; i++)
+        ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
+    if (light) {
+        ctx->light_kind = sampler_kind_of(light);
+        ctx->light_grid = sampler_grid_of(light);
+    }
+    for (int i = 0; i < sc->n_lights; i++) {
+        ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
+        if (rs->light_sampling_off || !ctx->lp[i].uses_points)
+            continue;
+        if (!light) {
+            err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
+            render_ctx_free(ctx);
+            return NULL;
+        }
+        size_t cells = sampler_cells(light) > 0   ? sampler_cells(light)
+                       : sampler_is_pooled(light) ? sampler_set_capacity(light)
+                                                  : 0;
+        if (cells > 0) {
+            ctx->lp[i].cells = malloc(cells * sizeof *ctx->lp[i].cells);
+            if (!ctx->identity) {
+                ctx->identity = malloc(cells * sizeof *ctx->identity);
+                if (!ctx->identity)
+                    goto fail;
+                for (size_t c = 0; c < cells; c++)
+                    ctx->identity[c] = (uint32_t)c;
+            }
+        } else {
+            ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
+        }
+        if (!ctx->lp[i].pts && !ctx->lp[i].cells)
+            goto fail;
+    }
+    return ctx;
+fail:
+    render_ctx_free(ctx);
+    err_set(e, NULL, 0, 0, "out of memory for the render's sample buffers");
+    return NULL;
+}

@@ -1,0 +1,95 @@
+/* render_lanes: a pixel's camera samples four paths at a time, their rays traced together by
+   packet_hit (one-node scenes, packet_usable), each path advanced by shade, trace's loop body. */
+#include <float.h>
+
+#include "packet.h"
+#include "render_path.h"
+
+/* A camera path in flight: its ray, weight, radiance so far, segments traced and its rng. */
+struct path {
+    ray r;
+    vec3 beta, L;
+    int depth;
+    struct rng rng;
+};
+
+/* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
+   with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
+   scene has lights sampled; last: the last segment's depth (max_depth - 1). trace's loop body:
+   both are path_scatter (render_path.h). */
+static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
+                                                       struct hit *h, int mix, int last)
+{
+    if (!got) {
+        pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
+        return 0;
+    }
+    return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix);
+}
+
+/* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
+   stream (*base) from the state rng_mix64(state + s), so that a sample's draws do not depend on
+   which lane runs it or when (64 starts spread over the 2^64-long sequence, a few hundred draws
+   each: the chance of an overlap is below 2^-40). */
+static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
+                              const struct rng *base)
+{
+    const int w = ctx->rs.width, hgt = ctx->rs.height;
+    pt->rng.inc = base->inc;
+    pt->rng.state = rng_mix64(base->state + s);
+    struct pt2 p = ctx->pixel_pts[s];
+    pt->r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &pt->rng);
+    pt->beta = v3(1, 1, 1);
+    pt->L = v3(0, 0, 0);
+    pt->depth = 0;
+}
+
+/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). */
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double sum_out[3], size_t *kept_out,
+                         uint64_t *rays_out)
+{
+    double sum[3] = {0, 0, 0};
+    size_t kept = 0;
+    uint64_t rays = 0, nonfinite = 0;
+    struct path pt[PACKET_LANES] = {0};
+    const ray *rp[PACKET_LANES];
+    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    struct rng base;
+    rng_pixel(&base, ctx->rs.seed, x, y, 2);
+    int lanes = 0;
+    size_t next = 0;
+    for (int i = 0; i < PACKET_LANES; i++) {
+        rp[i] = &pt[i].r;
+        if (next < n) {
+            path_start(ctx, &pt[i], x, y, next++, &base);
+            lanes |= 1 << i;
+        }
+    }
+    while (lanes) {
+        struct packet_hits ph;
+        int got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
+        for (int m = lanes; m; m &= m - 1) {
+            int i = __builtin_ctz((unsigned)m);
+            ++rays;
+            struct hit h = packet_hit_of(&ph, i);
+            if (shade(ctx, &pt[i], got >> i & 1, &h, mix, last))
+                continue;
+            vec3 c = pt[i].L;
+            if (v3_finite(c)) {
+                sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
+                ++kept;
+            } else {
+                nonfinite++;
+            }
+            if (next < n)
+                path_start(ctx, &pt[i], x, y, next++, &base);
+            else
+                lanes &= ~(1 << i);
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        sum_out[k] += sum[k];
+    *kept_out += kept;
+    *rays_out += rays;
+    ctx->st->nonfinite += nonfinite;
+}
