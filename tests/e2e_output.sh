@@ -69,6 +69,21 @@ check "sidecar too big: the earlier image kept" cmp -s "$T/dot-before.ppm" "$T/o
 check "sidecar too big: the earlier sidecar kept" cmp -s "$T/dot-before.json" "$T/o4b/dot/dot.json"
 check "sidecar too big: no temporary file left" [ -z "$(ls -A "$T/o4b/dot" | grep tmp)" ]
 
+# 4c. Two job files of one name on one command line (jobs/a/render.yaml, jobs/b/render.yaml) would
+#     write the same OUT/<name>/: the later one is refused (exit 2, one line naming both files) and
+#     the earlier one's outputs stay; it used to replace them silently, exit 0. The same file
+#     given twice is one job: the second time is current and skipped.
+mkdir -p "$T/two/a" "$T/two/b"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nheight: 8\nthreshold: 50\n' "$root" >"$T/two/a/render.yaml"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 12\nheight: 12\nthreshold: 50\n' "$root" >"$T/two/b/render.yaml"
+"$WORKER" --quiet --out "$T/o4c" "$T/two/a/render.yaml" "$T/two/b/render.yaml" 2>"$T/err4c"; rc=$?
+check "same name twice: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "same name twice: one line names both files" \
+    grep -q "^$T/two/b/render.yaml: name \"render\" is also the name of $T/two/a/render.yaml" "$T/err4c"
+check "same name twice: the first job's image kept" grep -q '"width": 8,' "$T/o4c/render/render.json"
+"$WORKER" --quiet --out "$T/o4c" "$T/two/a/render.yaml" "$T/two/a/render.yaml" 2>"$T/err4c2"; rc=$?
+check "same file twice: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+
 # 5. A writer killed half-way leaves its temporary file (".big.png.tmp.XXXXXX"); the next render
 #    of the job removes it, and nobody else's files.
 "$WORKER" --quiet --out "$T/o5" "$T/big.yaml" 2>/dev/null
