@@ -159,7 +159,9 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
             goto bad;
         q->retries = (int)d;
     } else if (!strcmp(a, "--poll") || !strcmp(a, "--lease-timeout")) {
-        if (!number || !(d > 0 && d <= 604800))
+        /* a lease is renewed every quarter of its timeout: under 0.1 s a busy machine's scheduling
+           alone would let a live claim expire */
+        if (!number || !(d > 0 && d <= 604800) || (a[2] == 'l' && d < 0.1))
             goto bad;
         *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
     } else if (!strcmp(a, "--part")) {
@@ -175,9 +177,10 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
     return 0;
 bad:
     err_print("worker: %s must be %s, got \"%s\"\n", a,
-              !strcmp(a, "--processes") ? "a whole number in [1, 256]"
-              : !strcmp(a, "--retries") ? "a whole number in [0, 100]"
-                                        : "a number of seconds in (0, 604800]",
+              !strcmp(a, "--processes")       ? "a whole number in [1, 256]"
+              : !strcmp(a, "--retries")       ? "a whole number in [0, 100]"
+              : !strcmp(a, "--lease-timeout") ? "a number of seconds in [0.1, 604800]"
+                                              : "a number of seconds in (0, 604800]",
               v);
     return -1;
 }

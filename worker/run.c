@@ -389,8 +389,8 @@ done:
 void run_print_summary(const struct job *j, const struct run_result *rr)
 {
     const struct render_stats *t = &rr->farm.total;
-    err_print("%s: %dx%d %s t=%g (%.0f spp mean), %d processes, %.2f s -> %s\n", j->name, rr->width,
+    err_print("%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s\n", j->name, rr->width,
               rr->height, sampler_kind_name(j->sampler), j->threshold,
-              t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes, rr->farm.wall_s,
-              rr->image_path);
+              t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes,
+              rr->farm.processes == 1 ? "" : "es", rr->farm.wall_s, rr->image_path);
 }
