@@ -217,6 +217,16 @@ static void name_final(struct err *e, const char *staged, const char *final)
         snprintf(e->file, sizeof e->file, "%s", final);
 }
 
+/* Whether this render may still write (run_opts.may_write), asked under the folder's lock: a
+   claim taken over while we waited for the lock (another writer, a slow disk) writes nothing. 0, or
+   -1 with e filled. */
+static int still_may_write(const struct run_opts *o, struct err *e)
+{
+    if (!o->may_write || o->may_write(o->tick_arg))
+        return 0;
+    return err_set(e, NULL, 0, 0, "rendered, but another worker holds the job now: nothing written");
+}
+
 int run_write_outputs(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
                       const struct farm_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
                       struct err *e)
@@ -232,6 +242,8 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     staged_name(rr->sidecar_path, staged_sidecar, sizeof staged_sidecar);
     const char *outs[] = {rr->image_path, rr->sidecar_path, NULL};
     lock = run_out_lock(dir, outs);
+    if (still_may_write(o, e) < 0)
+        goto done;
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
     int has_ref = ref && ref->px;
@@ -356,10 +368,6 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
             fprintf(stderr, "\n");
         goto done;
     }
-    if (o->may_write && !o->may_write(o->tick_arg)) {
-        err_set(e, NULL, 0, 0, "rendered, but another worker holds the job now: nothing written");
-        goto done;
-    }
     if (o->parts > 0) {
         part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
@@ -367,7 +375,9 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
             goto done;
         const char *outs[] = {rr->image_path, NULL};
         int lock = run_out_lock(dir, outs);
-        int wrote = part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
+        int wrote = still_may_write(o, e) < 0
+                        ? -1
+                        : part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
         run_out_unlock(lock);
         if (wrote < 0)
             goto done;
