@@ -369,18 +369,19 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
              out_dir ? out_dir : "out", c->name);
 }
 
-int compare_main(const char *path, const struct run_opts *o)
-{
-    return compare_main_as(path, path, o, NULL, 0);
-}
-
-int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n)
+/* compare_main_as, with compare_main's name_ok. */
+static int main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                   int (*name_ok)(const char *name, void *arg), void *arg)
 {
     struct err e = {0};
     char line[2048];
     double t0 = now_s();
     struct compare *c = compare_load_as(from, path, &e);
     int rc = 2;
+    if (c && name_ok && !name_ok(c->name, arg)) {
+        compare_free(c);
+        return 2;
+    }
     if (c)
         rc = compare_run(c, o, &e);
     if (rc != 0) {
@@ -398,4 +399,15 @@ int compare_main_as(const char *from, const char *path, const struct run_opts *o
         snprintf(last, n, "%s", line);
     compare_free(c);
     return rc;
+}
+
+int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
+                 void *arg)
+{
+    return main_as(path, path, o, NULL, 0, name_ok, arg);
+}
+
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n)
+{
+    return main_as(from, path, o, last, n, NULL, NULL);
 }

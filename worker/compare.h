@@ -75,8 +75,11 @@ int compare_index(const struct compare *c, int scene, int variant, int point, in
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
 
 /* The command line's part: load, run and print one compare job (errors as one line
-   "file:line:col: message", then its summary line). Returns the exit status: 0, 1 or 2. */
-int compare_main(const char *path, const struct run_opts *o);
+   "file:line:col: message", then its summary line). name_ok (optional) is asked, with arg, about
+   the loaded job's name before anything renders: 0 refuses the job (name_ok said why on stderr),
+   exit status 2. Returns the exit status: 0, 1 or 2. */
+int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
+                 void *arg);
 
 /* compare_main for a job file read from `from` as if at `path`; the line printed last (the error
    or the summary) is also copied into last (when not NULL). */

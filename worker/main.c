@@ -194,39 +194,55 @@ struct named {
     ino_t ino;
 };
 
-/* 1 (said on stderr) when j's name is another file's among the n in taken; else j is added. */
-static int name_taken(const struct job *j, const char *path, const struct run_opts *o, struct named *taken,
+/* 1 (said on stderr) when the name of the job file at path is another file's among the n in taken;
+   else it is added. */
+static int name_taken(const char *name, const char *path, const struct run_opts *o, struct named *taken,
                       int *n)
 {
     struct stat st;
     if (stat(path, &st) < 0)
         st.st_dev = 0, st.st_ino = 0;
     for (int i = 0; i < *n; i++) {
-        if (strcmp(taken[i].name, j->name) != 0)
+        if (strcmp(taken[i].name, name) != 0)
             continue;
         if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
             return 0;
         err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
                   "%s/%s/ would replace that job's (give one of them another name:)",
-                  path, j->name, taken[i].path, o->out_dir, j->name);
+                  path, name, taken[i].path, o->out_dir, name);
         return 1;
     }
     taken[*n] = (struct named){.path = path, .dev = st.st_dev, .ino = st.st_ino};
-    snprintf(taken[*n].name, sizeof taken[*n].name, "%s", j->name);
+    snprintf(taken[*n].name, sizeof taken[*n].name, "%s", name);
     (*n)++;
     return 0;
 }
 
+/* A compare job's name against the command line's others (compare_main's name_ok). */
+struct names_seen {
+    const char *path;
+    const struct run_opts *o;
+    struct named *taken;
+    int *ntaken;
+};
+
+static int compare_name_ok(const char *name, void *arg)
+{
+    struct names_seen *ns = arg;
+    return !name_taken(name, ns->path, ns->o, ns->taken, ns->ntaken);
+}
+
 /* Render (or, with merge, merge the parts of) one job file; its exit status. taken: the jobs of
-   this command line so far (name_taken). */
+   this command line so far (name_taken), compare jobs included. */
 static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
 {
     struct job j;
     struct err e;
     struct run_result rr;
     if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
+        struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
-            return compare_main(path, o);
+            return compare_main(path, o, compare_name_ok, &ns);
         err_print("%s: a compare job renders whole images: no merge or --part\n", path);
         return 2;
     }
@@ -234,7 +250,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
         print_err(&e);
         return 2;
     }
-    if (name_taken(&j, path, o, taken, ntaken))
+    if (name_taken(j.name, path, o, taken, ntaken))
         return 2;
     /* Outputs left by a render with another process count are not what --processes asked for:
        their sidecar records that count and its per-process times. (Parts keep the file's hash:
