@@ -308,7 +308,8 @@ reference: { sampler: jitter, threshold: 0.5 }
 variants:
   - { sampler: jitter }
 EOF
-timeout -s INT 1 "$WORKER" --quiet --out "$T/cutout" "$T/cut.yaml" 2>/dev/null; rc=$?
-check "a compare job cut short by SIGINT dies by it (got $rc)" [ "$rc" -eq 124 ]
+# (--preserve-status: timeout's own 124 says only that the second passed, not how the worker ended)
+timeout --preserve-status -s INT 1 "$WORKER" --quiet --out "$T/cutout" "$T/cut.yaml" 2>/dev/null; rc=$?
+check "a compare job cut short by SIGINT dies by it (got $rc)" [ "$rc" -eq 130 ]
 check "a compare job cut short leaves no empty folder" [ ! -e "$T/cutout/cut" ]
 finish
