@@ -96,16 +96,19 @@ static void remove_dead_temps(const char *path)
     closedir(d);
 }
 
-int run_out_lock(const char *dir, const char *const *paths)
+int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop)
 {
     int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC), rc = -1;
     if (fd < 0)
         return -1;
-    while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR)
+    /* a stop signal interrupts the wait (the queue's handlers have no SA_RESTART): a holder that
+       hangs must not make this writer deaf to it */
+    while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR && !(stop && *stop))
         ;
     if (rc < 0) {
+        int stopped = errno == EINTR;
         close(fd);
-        return -1;
+        return stopped ? RUN_OUT_STOPPED : -1;
     }
     for (int i = 0; paths && paths[i]; i++)
         remove_dead_temps(paths[i]);
@@ -217,11 +220,17 @@ static void name_final(struct err *e, const char *staged, const char *final)
         snprintf(e->file, sizeof e->file, "%s", final);
 }
 
-/* Whether this render may still write (run_opts.may_write), asked under the folder's lock: a
-   claim taken over while we waited for the lock (another writer, a slow disk) writes nothing. 0, or
-   -1 with e filled. */
-static int still_may_write(const struct run_opts *o, struct err *e)
+/* Take dir's lock for writing paths (run_out_lock) into *lock, then ask whether this render may
+   still write (run_opts.may_write): a claim taken over while we waited for the lock (another
+   writer, a slow disk) writes nothing, nor does a writer stopped while it waited. 0, or -1 with e
+   filled; run_out_unlock(*lock) either way. */
+static int lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
+                        struct err *e)
 {
+    *lock = run_out_lock(dir, paths, o->stop);
+    if (*lock == RUN_OUT_STOPPED)
+        return err_set(e, NULL, 0, 0, "stopped while waiting for another writer of %s/: nothing written",
+                       dir);
     if (!o->may_write || o->may_write(o->tick_arg))
         return 0;
     return err_set(e, NULL, 0, 0, "rendered, but another worker holds the job now: nothing written");
@@ -241,8 +250,7 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
     staged_name(rr->image_path, staged_image, sizeof staged_image);
     staged_name(rr->sidecar_path, staged_sidecar, sizeof staged_sidecar);
     const char *outs[] = {rr->image_path, rr->sidecar_path, NULL};
-    lock = run_out_lock(dir, outs);
-    if (still_may_write(o, e) < 0)
+    if (lock_outputs(dir, outs, o, &lock, e) < 0)
         goto done;
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
@@ -374,8 +382,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         if (make_out_dir(dir, &made_dir, e) < 0)
             goto done;
         const char *outs[] = {rr->image_path, NULL};
-        int lock = run_out_lock(dir, outs);
-        int wrote = still_may_write(o, e) < 0
+        int lock;
+        int wrote = lock_outputs(dir, outs, o, &lock, e) < 0
                         ? -1
                         : part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
         run_out_unlock(lock);

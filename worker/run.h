@@ -60,8 +60,10 @@ void run_print_summary(const struct job *j, const struct run_result *rr);
    killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
    temporary files never outlive its lock. Returns the lock (for run_out_unlock), or -1 when the
    folder cannot be locked (some network file systems): the writer goes on alone, removing
+   nothing; RUN_OUT_STOPPED when *stop (optional) was set by a signal while it waited: write
    nothing. */
-int run_out_lock(const char *dir, const char *const *paths);
+#define RUN_OUT_STOPPED (-2)
+int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
 void run_out_unlock(int lock);
 
 /* mkdir -p for path. 0 or -1 with e filled. */
