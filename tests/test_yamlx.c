@@ -83,6 +83,11 @@ static void test_merge(void)
     CHECK(e.line == 2 && e.col == 5 && strstr(e.msg, "<<: a merge key takes a mapping"));
     CHECK(load_text(&d, "<<: [{a: 1}, [2]]\n", &e) < 0);
     CHECK(e.line == 1 && e.col == 14 && strstr(e.msg, "merge key"));
+
+    /* two << keys in one mapping are a duplicate key, as any other (one of them used to win
+       silently: the first here, the last in PyYAML) */
+    CHECK(load_text(&d, "a: 1\n<<: {b: 1}\n<<: {b: 2}\n", &e) < 0);
+    CHECK(e.line == 3 && e.col == 1 && strstr(e.msg, "<<: duplicate key") && strstr(e.msg, "line 2"));
 }
 
 /* A merge into a mapping scans its keys for each entry copied: a huge one is refused, not left

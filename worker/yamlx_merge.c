@@ -78,10 +78,18 @@ static int expand(struct merge *mg, int id, int depth)
     int *src = n ? malloc((size_t)n * sizeof *src) : NULL;
     if (n && !src)
         return ydoc_fail(d, m, mg->e, "out of memory expanding a merge key");
+    yaml_node_t *first = NULL; /* the mapping's << key: a second one is a duplicate key */
     for (long i = 0; i < n; i++) {
         yaml_node_pair_t p = m->data.mapping.pairs.start[i];
-        if (is_merge_key(yaml_document_get_node(&d->doc, p.key)))
-            src[nsrc++] = p.value;
+        yaml_node_t *k = yaml_document_get_node(&d->doc, p.key);
+        if (is_merge_key(k) && first) {
+            free(src);
+            return ydoc_fail(d, k, mg->e,
+                             "<<: duplicate key (first at line %d; merge several with <<: [*a, *b])",
+                             (int)first->start_mark.line + 1);
+        }
+        if (is_merge_key(k))
+            first = k, src[nsrc++] = p.value;
         else
             m->data.mapping.pairs.start[kept++] = p;
     }
