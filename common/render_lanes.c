@@ -68,8 +68,12 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double 
     while (lanes) {
         struct packet_hits ph;
         int got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
-        for (int m = lanes; m; m &= m - 1) {
-            int i = __builtin_ctz((unsigned)m);
+        /* unrolled: each lane's path and record at a fixed place in the frame, no index
+           arithmetic in shade's loads and stores (one copy of shade per lane) */
+#pragma GCC unroll 4
+        for (int i = 0; i < PACKET_LANES; i++) {
+            if (!(lanes >> i & 1))
+                continue;
             ++rays;
             struct hit h = packet_hit_of(&ph, i);
             if (shade(ctx, &pt[i], got >> i & 1, &h, mix, last))
