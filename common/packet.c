@@ -307,12 +307,11 @@ static __attribute__((noinline)) void record_scalar(const struct packet_scene *p
 {
     for (; lanes; lanes &= lanes - 1) {
         int i = __builtin_ctz((unsigned)lanes);
-        struct hit h;
-        shape_hit(&ps->sc->prims[ph->prim[i]], r[i], t_min, t_max, &h);
-        ph->t[i] = h.t;
-        ph->px[i] = h.p.x, ph->py[i] = h.p.y, ph->pz[i] = h.p.z;
-        ph->nx[i] = h.n.x, ph->ny[i] = h.n.y, ph->nz[i] = h.n.z;
-        ph->front[i] = h.front;
+        struct hit *h = &ph->h[i];
+        const int prim = h->prim;
+        shape_hit(&ps->sc->prims[prim], r[i], t_min, t_max, h);
+        h->prim = prim;
+        h->u = h->v = 0;
     }
 }
 
@@ -378,7 +377,7 @@ PACKET_CLONES int packet_hit(const struct packet_scene *ps, const ray *const r[P
         rc[i] = &ps->rec[best_i[i] + 1];
         got |= (best_i[i] >= 0) << i;
         scalar |= rc[i]->scalar << i;
-        ph->prim[i] = rc[i]->prim;
+        ph->h[i].prim = rc[i]->prim;
     }
     const void *const rcv[PACKET_LANES] = {rc[0], rc[1], rc[2], rc[3]};
     const d4 t = pk.best_t;
@@ -394,10 +393,14 @@ PACKET_CLONES int packet_hit(const struct packet_scene *ps, const ray *const r[P
     const i4 front = pk.d[0] * ux + pk.d[1] * uy + pk.d[2] * uz < d4_splat(0);
     const i4 flip = ~front & (i4)d4_splat(-0.0);
     const d4 nx = (d4)((i4)ux ^ flip), ny = (d4)((i4)uy ^ flip), nz = (d4)((i4)uz ^ flip);
-    memcpy(ph->t, &t, sizeof t);
-    memcpy(ph->px, &px, sizeof px), memcpy(ph->py, &py, sizeof py), memcpy(ph->pz, &pz, sizeof pz);
-    memcpy(ph->nx, &nx, sizeof nx), memcpy(ph->ny, &ny, sizeof ny), memcpy(ph->nz, &nz, sizeof nz);
-    memcpy(ph->front, &front, sizeof front);
+    for (int i = 0; i < PACKET_LANES; i++) {
+        struct hit *h = &ph->h[i];
+        h->t = t[i];
+        h->p = v3(px[i], py[i], pz[i]);
+        h->n = v3(nx[i], ny[i], nz[i]);
+        h->u = h->v = 0;
+        h->front = front[i] != 0;
+    }
     if (scalar & got)
         record_scalar(ps, r, scalar & got, t_min, t_max, ph);
     return got;

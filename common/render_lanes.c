@@ -68,15 +68,14 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double 
     while (lanes) {
         struct packet_hits ph;
         int got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
-        /* unrolled: each lane's path and record at a fixed place in the frame, no index
+        /* unrolled: each lane's path and hit record at a fixed place in the frame, no index
            arithmetic in shade's loads and stores (one copy of shade per lane) */
 #pragma GCC unroll 4
         for (int i = 0; i < PACKET_LANES; i++) {
             if (!(lanes >> i & 1))
                 continue;
             ++rays;
-            struct hit h = packet_hit_of(&ph, i);
-            if (shade(ctx, &pt[i], got >> i & 1, &h, mix, last))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, last))
                 continue;
             vec3 c = pt[i].L;
             if (v3_finite(c)) {
