@@ -66,4 +66,14 @@ check "--out naming a file: the error names the job file ($(head -n 1 "$T/err"))
 "$WORKER" --quiet --out "$T/hex" --processes 0x2 "$T/p.yaml" 2>"$T/err"; rc=$?
 check "--processes 0x2 exits 2 (got $rc)" [ "$rc" -eq 2 ]
 
+# a lease under 0.1 s cannot be renewed in time (renewed every quarter of it): refused
+mkdir -p "$T/q"
+"$WORKER" --queue "$T/q" --once --lease-timeout 0.05 2>"$T/err"; rc=$?
+check "--lease-timeout 0.05 exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "--lease-timeout 0.05 says the range" grep -q 'lease-timeout must be a number of seconds in \[0.1,' "$T/err"
+
+# the summary line counts processes in the singular too
+"$WORKER" --quiet --out "$T/one" --processes 1 "$T/p.yaml" 2>"$T/err"
+check "summary says '1 process,' ($(cat "$T/err"))" grep -q ', 1 process, ' "$T/err"
+
 finish

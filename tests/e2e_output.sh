@@ -55,4 +55,60 @@ check "dangling symlink --out: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "dangling symlink --out: names it" grep -q "cannot create directory $T/dangling: " "$T/err4"
 "$WORKER" --quiet --out "$T/dangling/deeper" "$T/big.yaml" 2>"$T/err5"; rc=$?
 check "dangling symlink on the way: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+
+# 4b. A re-render whose sidecar cannot be written (a 1 KiB file-size limit: the 1x1 PPM fits, the
+#     sidecar does not) fails with exit 1 and leaves the earlier image and sidecar as they were;
+#     the new image used to replace the old one and then be removed with nothing in its place.
+printf 'scene: %s/scenes/checker.yaml\nname: dot\nwidth: 1\nheight: 1\nthreshold: 50\noutput: dot.ppm\n' "$root" >"$T/dot.yaml"
+"$WORKER" --quiet --out "$T/o4b" "$T/dot.yaml" 2>/dev/null
+cp "$T/o4b/dot/dot.ppm" "$T/dot-before.ppm"; cp "$T/o4b/dot/dot.json" "$T/dot-before.json"
+(ulimit -f 1; "$WORKER" --quiet --force --out "$T/o4b" "$T/dot.yaml") 2>"$T/err4b"; rc=$?
+check "sidecar too big: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "sidecar too big: the error names the sidecar" grep -q "cannot write $T/o4b/dot/dot.json: File too large" "$T/err4b"
+check "sidecar too big: the earlier image kept" cmp -s "$T/dot-before.ppm" "$T/o4b/dot/dot.ppm"
+check "sidecar too big: the earlier sidecar kept" cmp -s "$T/dot-before.json" "$T/o4b/dot/dot.json"
+check "sidecar too big: no temporary file left" [ -z "$(ls -A "$T/o4b/dot" | grep tmp)" ]
+
+# 4c. Two job files of one name on one command line (jobs/a/render.yaml, jobs/b/render.yaml) would
+#     write the same OUT/<name>/: the later one is refused (exit 2, one line naming both files) and
+#     the earlier one's outputs stay; it used to replace them silently, exit 0. The same file
+#     given twice is one job: the second time is current and skipped.
+mkdir -p "$T/two/a" "$T/two/b"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nheight: 8\nthreshold: 50\n' "$root" >"$T/two/a/render.yaml"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 12\nheight: 12\nthreshold: 50\n' "$root" >"$T/two/b/render.yaml"
+"$WORKER" --quiet --out "$T/o4c" "$T/two/a/render.yaml" "$T/two/b/render.yaml" 2>"$T/err4c"; rc=$?
+check "same name twice: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "same name twice: one line names both files" \
+    grep -q "^$T/two/b/render.yaml: name \"render\" is also the name of $T/two/a/render.yaml" "$T/err4c"
+check "same name twice: the first job's image kept" grep -q '"width": 8,' "$T/o4c/render/render.json"
+"$WORKER" --quiet --out "$T/o4c" "$T/two/a/render.yaml" "$T/two/a/render.yaml" 2>"$T/err4c2"; rc=$?
+check "same file twice: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+
+# 5. A writer killed half-way leaves its temporary file (".big.png.tmp.XXXXXX"); the next render
+#    of the job removes it, and nobody else's files.
+"$WORKER" --quiet --out "$T/o5" "$T/big.yaml" 2>/dev/null
+: >"$T/o5/big/.big.png.tmp.Ab3xYz"; : >"$T/o5/big/.big.json.tmp.Qw9Er1"; : >"$T/o5/big/.notes.txt.tmp.Ab3xYz"
+: >"$T/o5/big/.big.png.tmp.St4g3d"; : >"$T/o5/big/..big.json.tmp.St4g3d.tmp.Zx8Cv7" # killed while staging
+"$WORKER" --quiet --force --out "$T/o5" "$T/big.yaml" 2>/dev/null; rc=$?
+check "dead writer's temporaries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "dead writer's temporaries: removed" [ -z "$(ls -A "$T/o5/big" | grep '^\.big\..*\.tmp\.')" ]
+check "dead writer's temporaries: another file's kept" [ -e "$T/o5/big/.notes.txt.tmp.Ab3xYz" ]
+
+# 6. Writers of one folder take turns (flock on it), so an image and its sidecar always come from
+#    one render: while another holds the folder's lock, the render waits with nothing written.
+if command -v flock >/dev/null; then
+    printf 'scene: %s/scenes/checker.yaml\nname: big\nwidth: 16\nheight: 12\nthreshold: 50\n' "$root" >"$T/small.yaml"
+    mkdir -p "$T/o6/big"
+    flock "$T/o6/big" sh -c "echo locked >'$T/held'; while [ ! -e '$T/release' ]; do sleep 0.05; done" &
+    holder=$!
+    while [ ! -e "$T/held" ]; do sleep 0.05; done
+    "$WORKER" --quiet --out "$T/o6" "$T/small.yaml" 2>/dev/null & wpid=$!
+    sleep 1 # a 16x12 render takes milliseconds: by now it waits for the lock
+    check "folder lock: nothing written while another holds it" [ -z "$(ls -A "$T/o6/big")" ]
+    : >"$T/release"; wait "$holder"; wait "$wpid"; rc=$?
+    check "folder lock: exit 0 once it is free (got $rc)" [ "$rc" -eq 0 ]
+    check "folder lock: written once it is free" [ -s "$T/o6/big/big.png" ]
+else
+    echo "no flock(1): folder lock check skipped"
+fi
 finish

@@ -56,6 +56,23 @@ workers=0
 for w in 1 2 3 4; do grep -q "16x16" "$T/w$w.log" && workers=$((workers + 1)); done
 echo "4 workers: $workers of 4 rendered at least one job"
 
+# 1b. a scan reads a waiting file (for its priority) only when it changed since the last scan:
+#     reading them all on every scan cost a queue of N jobs N*N/2 reads (465 for 30; on NFS,
+#     round trips each). Counted with strace where it is installed.
+if command -v strace >/dev/null; then
+    Q=$T/q1b; mkdir -p "$Q"
+    for i in $(seq 1 30); do tiny "$Q/j$i.yaml"; done
+    # (LeakSanitizer cannot run under ptrace: a `make asan` build would fail on exit otherwise)
+    ASAN_OPTIONS=detect_leaks=0 strace -f -e trace=openat -o "$T/q1b.trace" "$WORKER" --queue "$Q" --once --quiet \
+        2>/dev/null; rc=$?
+    opens=$(grep -c "\"$Q/j[0-9]*[.]yaml\"," "$T/q1b.trace")
+    check "scan reads: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+    check "scan reads: 30 jobs done" [ "$(count "$Q/done/*.yaml")" -eq 30 ]
+    check "scan reads: each waiting file read once or twice, not once per scan (got $opens)" [ "$opens" -le 60 ]
+else
+    echo "no strace: scan read count not checked"
+fi
+
 # 2. kill -9 a worker mid-job: a restarted worker recovers the stale claim and completes the job
 Q=$T/q2; mkdir -p "$Q"; slow "$Q/slow.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/k1.log" & wpid=$!
@@ -67,6 +84,8 @@ kill -9 "$wpid"; wait "$wpid" 2>/dev/null
 check "kill worker: the claim stays in running/" [ -f "$Q/running/slow.yaml" ]
 check "kill worker: no image in done/" [ ! -e "$Q/done/slow/slow.png" ]
 check "kill worker: its render process stops" gone "$child"
+# as if it had been killed while writing the image: its temporary file is left in done/slow/
+mkdir -p "$Q/done/slow"; : >"$Q/done/slow/.slow.png.tmp.k9Xy2Z"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/k2.log"; rc=$?
 check "kill worker: the next worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
 check "kill worker: it says why it took the claim back" grep -q "slow.yaml: returned to the queue: its worker (pid $wpid on .*) is gone" "$T/k2.log"
@@ -75,6 +94,27 @@ check "kill worker: image equals a plain render" cmp -s "$T/plain/slow/slow.png"
 check "kill worker: sidecar written" [ -s "$Q/done/slow/slow.json" ]
 check "kill worker: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 check "kill worker: no temporary files in done/" [ -z "$(ls -A "$Q/done/slow" | grep tmp)" ]
+
+# 2c. a worker killed just after its claim, while writing the lease, leaves the lease's temporary
+#     file in running/ (most of the time: the fsync is the slow part); once older than the lease
+#     timeout it is a dead writer's and the next scan removes it; a fresh one is left alone
+Q=$T/q2c; mkdir -p "$Q/running"
+: >"$Q/running/.gone.yaml.lease.tmp.Ab12Cd"; touch -d '-2 minutes' "$Q/running/.gone.yaml.lease.tmp.Ab12Cd"
+: >"$Q/running/.busy.yaml.lease.tmp.Ef34Gh"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null
+check "dead lease temporary: removed" [ ! -e "$Q/running/.gone.yaml.lease.tmp.Ab12Cd" ]
+check "fresh lease temporary: kept" [ -e "$Q/running/.busy.yaml.lease.tmp.Ef34Gh" ]
+
+# 2a. a render process whose worker was killed stops at once, not after its row: one row of a
+#     30000-pixel image at 10000 samples per pixel takes many seconds
+Q=$T/q2a; mkdir -p "$Q"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 30000\nheight: 1\nthreshold: 1\nprocesses: 1\n' "$root" >"$Q/wide.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null & wpid=$!
+child=$(render_child "$wpid")
+check "wide row: found the render process" [ -n "$child" ]
+kill -9 "$wpid"; wait "$wpid" 2>/dev/null
+check "wide row: the render process dies with its worker" gone "$child"
+[ -n "$child" ] && kill -9 "$child" 2>/dev/null
 
 # 2b. the same while another worker is already polling the queue: that one takes the job over
 Q=$T/q2b; mkdir -p "$Q"; slow "$Q/slow.yaml"
@@ -161,6 +201,42 @@ kill -INT "$wpid"; kill -TERM "$wpid"; wait "$wpid"; rc=$?
 check "two signals: killed at once (got $rc)" [ "$rc" -gt 128 ]
 check "two signals: the job is not lost" sh -c "[ -f '$Q/term.yaml' ] || [ -f '$Q/running/term.yaml' ]"
 
+# 6a. SIGTERM while another worker holds the claim's recovery lock (it judged our lease dead and
+#     is returning the claim): the stopped worker leaves the claim and that lock alone (it used to
+#     return the job itself and delete the other's lock)
+Q=$T/q6a; mkdir -p "$Q"; slow "$Q/locked.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/locked.log" & wpid=$!
+render_child "$wpid" >/dev/null
+: >"$Q/running/locked.yaml.lock"
+kill -TERM "$wpid"; wait "$wpid"; rc=$?
+check "held lock: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "held lock: the other's lock kept" [ -e "$Q/running/locked.yaml.lock" ]
+check "held lock: the claim left in running/" [ -f "$Q/running/locked.yaml" ]
+check "held lock: says so" grep -q "locked.yaml: stopped by signal 15; its recovery lock is held" "$T/locked.log"
+rm -f "$Q/running/locked.yaml.lock" # the other recoverer gave up: the next worker recovers it
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null; rc=$?
+check "held lock: recovered and done afterwards (exit $rc)" [ -f "$Q/done/locked.yaml" ]
+
+# 6b. a job of the same file name re-submitted while the first one renders, then the worker is
+#     stopped: the first cannot go back without replacing the second, so it stays claimed and the
+#     next worker takes it over in place; both are rendered, the first first (it used to stay
+#     stuck in running/ for ever, blocking the second)
+Q=$T/q6b; mkdir -p "$Q"; slow "$Q/again.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/again1.log" & wpid=$!
+render_child "$wpid" >/dev/null
+tiny "$Q/again.yaml" "seed: 7"
+kill -TERM "$wpid"; wait "$wpid"; rc=$?
+check "re-submitted: the stopped worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "re-submitted: it says why the claim stays" grep -q "a newer again.yaml waits in the queue" "$T/again1.log"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/again2.log"; rc=$?
+check "re-submitted: the next worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "re-submitted: it took the stopped claim over" grep -q "again.yaml: taken over in $Q/running/" "$T/again2.log"
+check "re-submitted: both rendered, the older first" \
+    sh -c "grep -o '^again: [0-9x]*' '$T/again2.log' | tr '\n' ' ' | grep -qx 'again: 64x64 again: 16x16 '"
+check "re-submitted: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+check "re-submitted: nothing waits" [ "$(count "$Q/*.yaml")" -eq 0 ]
+check "re-submitted: done/ holds the newer job" grep -q "^seed: 7" "$Q/done/again.yaml"
+
 # 7. leases of other hosts: kept while fresh, recovered once older than --lease-timeout;
 #    a live pid on this host keeps its claim
 Q=$T/q7; mkdir -p "$Q/running"
@@ -169,7 +245,14 @@ printf 'host elsewhere.example\npid 1\nstart 0\ntoken elsewhere:1:0\n' >"$Q/runn
 touch -d '-10 seconds' "$Q/running/far.yaml.lease"
 tiny "$Q/running/near.yaml"
 printf 'host %s\npid %s\nstart 0\ntoken near:1:0\n' "$(uname -n)" "$$" >"$Q/running/near.yaml.lease"
+# this hostname, a dead pid, but another pid space (a container with the host's name): its pid
+# means nothing here, so its fresh lease keeps the claim (it used to be taken as "gone")
+tiny "$Q/running/box.yaml"
+printf 'host %s\npid %s\nstart 0\ntoken box:1:0\npids another-boot:pid:[1]\n' "$(uname -n)" \
+    "$(sh -c 'echo $$')" >"$Q/running/box.yaml.lease"
+touch -d '-10 seconds' "$Q/running/box.yaml.lease"
 "$WORKER" --queue "$Q" --once --quiet --lease-timeout 60 2>/dev/null
+check "fresh lease of another pid space on this host: kept" [ -f "$Q/running/box.yaml" ]
 check "fresh lease of another host: kept" [ -f "$Q/running/far.yaml" ]
 check "live pid on this host: kept" [ -f "$Q/running/near.yaml" ]
 "$WORKER" --queue "$Q" --once --quiet --lease-timeout 5 2>"$T/far.log"
@@ -177,6 +260,37 @@ check "old lease of another host: recovered and done" [ -s "$Q/done/far/far.png"
 check "old lease of another host: job file in done/" [ -f "$Q/done/far.yaml" ]
 check "old lease: the reason names the host" grep -q "pid 1 on elsewhere.example) has not renewed the lease for 1[0-9] s" "$T/far.log"
 check "live pid on this host: still kept" [ -f "$Q/running/near.yaml" ]
+check "old lease of another pid space: recovered and done" [ -s "$Q/done/box/box.png" ]
+
+# 7b. a --lease-timeout under a second: the holder renews its lease often enough (a quarter of the
+#     timeout) that a polling worker never takes a live claim for a dead one and renders it again
+Q=$T/q7b; mkdir -p "$Q"
+{ slow /dev/stdout; echo "max_depth: 100"; } | sed 's/threshold: 3/threshold: 2/' >"$Q/short.yaml"
+"$WORKER" --queue "$Q" --once --quiet --lease-timeout 0.8 2>"$T/short1.log" & apid=$!
+render_child "$apid" >/dev/null
+"$WORKER" --queue "$Q" --quiet --poll 0.1 --lease-timeout 0.8 2>"$T/short2.log" & bpid=$!
+wait "$apid"; rc=$?
+kill -TERM "$bpid"; wait "$bpid"
+check "short lease: the holder exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "short lease: its claim was never taken over" [ ! -s "$T/short2.log" ]
+check "short lease: the holder filed it in done/" [ -f "$Q/done/short.yaml" ]
+
+# 7c. a worker stopped (SIGSTOP: hung) past --lease-timeout loses its claim; another renders the
+#     job and files it; when the first resumes it writes nothing over the new holder's outputs
+Q=$T/q7c; mkdir -p "$Q"; slow "$Q/hung.yaml"
+"$WORKER" --queue "$Q" --once --quiet --lease-timeout 1 2>"$T/hung1.log" & apid=$!
+render_child "$apid" >/dev/null
+kill -STOP "$apid"
+"$WORKER" --queue "$Q" --quiet --poll 0.1 --lease-timeout 1 2>/dev/null & bpid=$!
+for _ in $(seq 1 200); do [ -f "$Q/done/hung.yaml" ] && break; sleep 0.1; done
+kill -TERM "$bpid"; wait "$bpid"
+cp "$Q/done/hung/hung.json" "$T/hung-b.json" 2>/dev/null
+kill -CONT "$apid"; wait "$apid"; rc=$?
+check "hung worker: the other filed the job" [ -f "$Q/done/hung.yaml" ]
+check "hung worker: exits 0 once resumed (got $rc)" [ "$rc" -eq 0 ]
+check "hung worker: says the claim was taken over" grep -q "hung.yaml: the claim was taken over" "$T/hung1.log"
+check "hung worker: wrote nothing over the new holder's sidecar" cmp -s "$T/hung-b.json" "$Q/done/hung/hung.json"
+check "hung worker: the image equals a plain render" cmp -s "$T/plain/slow/slow.png" "$Q/done/hung/hung.png"
 
 # 8. order: higher priority first, then oldest first
 Q=$T/q8; mkdir -p "$Q"
@@ -197,6 +311,66 @@ check "relative paths: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "relative paths: done" [ -s "$Q/done/rel/rel.png" ]
 check "relative paths: scored against the reference" grep -q '"psnr"' "$Q/done/rel/rel.json"
 check "relative paths: sidecar names the queued job file" grep -Fq "\"job_file\": \"$Q/rel.yaml\"" "$Q/done/rel/rel.json"
+
+# 9b. odd entries in DIR: job files that are symbolic links (relative and absolute targets) render
+#     (a relative target is seen from DIR, where the link was made, also once the claim moved the
+#     link into running/); a directory named x.yaml and a dangling link are left alone; a name
+#     with spaces renders
+Q=$T/q9b/queue; mkdir -p "$Q" "$T/q9b/store"
+tiny "$T/q9b/store/real.yaml"
+ln -s ../store/real.yaml "$Q/rel.yaml"; ln -s "$T/q9b/store/real.yaml" "$Q/abs.yaml"
+ln -s nowhere.yaml "$Q/dangling.yaml"; mkdir "$Q/dir.yaml"; tiny "$Q/with space.yaml"
+latin1=$(printf 'caf\351') # "café" in Latin-1: not UTF-8
+tiny "$Q/$latin1.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/odd.log"; rc=$?
+check "odd entries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "odd entries: relative symlink rendered" [ -s "$Q/done/rel/rel.png" ]
+check "odd entries: absolute symlink rendered" [ -s "$Q/done/abs/abs.png" ]
+check "odd entries: name with spaces rendered" [ -s "$Q/done/with space/with space.png" ]
+check "odd entries: a Latin-1 name rendered" [ -s "$Q/done/$latin1/$latin1.png" ]
+check "odd entries: its sidecar is UTF-8 (the byte as U+FFFD)" \
+    sh -c "! LC_ALL=C grep -q \"\$(printf '\\351')\" '$Q/done/$latin1/$latin1.json' &&
+           grep -Fq '\"job\": \"caf\\ufffd\"' '$Q/done/$latin1/$latin1.json'"
+check "odd entries: nothing failed" [ "$(count "$Q/failed/*")" -eq 0 ]
+check "odd entries: the directory left alone" [ -d "$Q/dir.yaml" ]
+check "odd entries: the dangling link left alone" [ -L "$Q/dangling.yaml" ]
+check "odd entries: the link's target untouched" [ -s "$T/q9b/store/real.yaml" ]
+
+# 9c. a file name holding a newline: every message stays one line (control characters escaped)
+Q=$T/q9c; mkdir -p "$Q"
+nl='
+'
+printf 'width: abc\n' >"$Q/bad${nl}name.yaml"; tiny "$Q/good${nl}name.yaml"
+touch -d '-1 minute' "$Q/bad${nl}name.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/nl.log"; rc=$?
+check "newline in a name: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "newline in a name: the good one rendered" [ -s "$Q/done/good${nl}name/good${nl}name.png" ]
+check "newline in a name: three lines on stderr (got $(wc -l <"$T/nl.log"))" [ "$(wc -l <"$T/nl.log")" -eq 3 ]
+check "newline in a name: escaped as backslash n" grep -Fq 'bad\nname.yaml: invalid job, moved to' "$T/nl.log"
+check "newline in a name: the summary line escaped" grep -Fq 'good\nname: 16x16' "$T/nl.log"
+
+# 9d. a queue that cannot be written (a read-only mount; without root, a folder without write
+#     permission): the claim fails, said in one line, exit 2; a worker that idled silently and
+#     exited 0 with the jobs still waiting was taken for an empty queue
+Q=$T/q9d; mkdir -p "$Q/running" "$Q/done" "$Q/failed"; tiny "$Q/stuck.yaml"
+ro=""
+if mkdir -p "$T/q9d-ro" && mount --bind "$Q" "$T/q9d-ro" 2>/dev/null; then
+    if mount -o remount,bind,ro "$T/q9d-ro" 2>/dev/null; then ro="$T/q9d-ro"; else umount "$T/q9d-ro"; fi
+elif [ "$(id -u)" != 0 ]; then
+    chmod 555 "$Q" "$Q/running"; ro=$Q
+fi
+if [ -n "$ro" ]; then
+    "$WORKER" --queue "$ro" --once --quiet 2>"$T/ro.log"; rc=$?
+    check "read-only queue: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "read-only queue: one line says why" \
+        sh -c "[ \$(wc -l <'$T/ro.log') -eq 1 ] && grep -q 'cannot claim stuck.yaml into .*running/: ' '$T/ro.log'"
+    timeout 20 "$WORKER" --queue "$ro" --poll 0.1 --quiet 2>/dev/null; rc=$? # it idled for ever
+    check "read-only queue: a polling worker exits 2 too (got $rc)" [ "$rc" -eq 2 ]
+    check "read-only queue: the job still waits" [ -f "$Q/stuck.yaml" ]
+    if [ "$ro" = "$Q" ]; then chmod 755 "$Q" "$Q/running"; else umount "$ro"; fi
+else
+    echo "read-only queue: no read-only mount possible here, skipped"
+fi
 
 # 10. usage errors
 "$WORKER" --queue "$T/nowhere" --once 2>"$T/u.log"; rc=$?

@@ -8,6 +8,9 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -33,6 +36,13 @@ static void child_main(const struct farm_job *fj, int index, int nproc, float *r
        child first can never pass for a crash. Without one, they die as usual. */
     signal(SIGINT, fj->stop ? SIG_IGN : SIG_DFL);
     signal(SIGTERM, fj->stop ? SIG_IGN : SIG_DFL);
+#ifdef __linux__
+    /* Die with the worker at once: one row of a wide image at a low threshold takes minutes, and
+       elsewhere a child only notices its parent's death between rows (getppid below). */
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+#endif
+    if (getppid() != parent) /* the worker died before the line above */
+        _exit(4);
     double wall0 = clock_s(CLOCK_MONOTONIC);
     struct err e;
     struct render_ctx *ctx = render_ctx_new(fj->scene, fj->camera, &fj->rs, fj->pixel, fj->light, &e);

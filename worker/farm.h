@@ -50,7 +50,7 @@ void farm_framebuffer_free(float *rgb, int w, int h);
    0 on success; -1 with e filled when a child fails (exit code or signal: the others are
    killed and reaped; res->child_crashed, res->child_signal say so), when *fj->stop becomes set
    (children killed and reaped; res->stopped), or when a resource is missing. A child whose
-   parent dies stops after its current row. */
+   parent dies is killed with it on Linux (PR_SET_PDEATHSIG), elsewhere stops after its current row. */
 int farm_render(const struct farm_job *fj, float *rgb, struct farm_result *res, struct err *e);
 
 #endif

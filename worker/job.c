@@ -103,7 +103,7 @@ void job_defaults(struct job *j, const char *path)
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
 static int safe_name(const char *s)
 {
-    if (!*s || !strcmp(s, ".") || !strcmp(s, ".."))
+    if (!*s || *s == '.') /* ".", "..", and hidden folders (.cache holds compare references) */
         return 0;
     for (; *s; s++)
         if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') || *s == '-' ||
@@ -158,9 +158,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(d, v, e,
-                             "name: must be letters, digits, '-', '_' or '.' (at most %d), got \"%.40s\"",
-                             JOB_NAME_MAX - 1, s);
+            return ydoc_fail(
+                d, v, e,
+                "name: must be letters, digits, '-', '_' or '.' (at most %d, not starting with '.'), "
+                "got \"%.40s\"",
+                JOB_NAME_MAX - 1, s);
         snprintf(j->name, sizeof j->name, "%s", s);
     } else if (!strcmp(k, "scene")) {
         if (yget_string(d, v, k, &s, e) < 0)

@@ -44,16 +44,40 @@ static void put(struct json *j, const char *fmt, ...)
     }
 }
 
+/* Length of the well-formed UTF-8 sequence at c (RFC 3629: no overlong forms, surrogates or
+   code points over U+10FFFF), or 0. */
+static int utf8_len(const unsigned char *c)
+{
+    int n = c[0] < 0x80                    ? 1
+            : c[0] >= 0xc2 && c[0] <= 0xdf ? 2
+            : c[0] >= 0xe0 && c[0] <= 0xef ? 3
+            : c[0] >= 0xf0 && c[0] <= 0xf4 ? 4
+                                           : 0;
+    for (int i = 1; i < n; i++)
+        if ((c[i] & 0xc0) != 0x80)
+            return 0;
+    if ((c[0] == 0xe0 && c[1] < 0xa0) || (c[0] == 0xed && c[1] > 0x9f) || (c[0] == 0xf0 && c[1] < 0x90) ||
+        (c[0] == 0xf4 && c[1] > 0x8f))
+        return 0;
+    return n;
+}
+
+/* A JSON string: quotes, backslashes and control characters escaped; a byte that is not part of
+   well-formed UTF-8 (a file name in another encoding) becomes U+FFFD, as JSON text must be UTF-8. */
 static void put_string(struct json *j, const char *s)
 {
     put(j, "\"");
-    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-        if (*c == '"' || *c == '\\')
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int n = utf8_len(c);
+        if (n == 0)
+            put(j, "\\ufffd");
+        else if (*c == '"' || *c == '\\')
             put(j, "\\%c", *c);
         else if (*c < 0x20)
             put(j, "\\u%04x", *c);
         else
-            put(j, "%c", *c);
+            put(j, "%.*s", n, (const char *)c);
+        c += n ? n : 1;
     }
     put(j, "\"");
 }

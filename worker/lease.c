@@ -30,6 +30,29 @@ static double mtime_s(const struct stat *st)
     return st->st_mtim.tv_sec + st->st_mtim.tv_nsec * 1e-9;
 }
 
+/* This process's pid space into out: the boot id (one per kernel boot, so per machine) and the pid
+   namespace (one per container); "" where /proc does not say (not Linux). */
+static void pid_space(char *out, size_t n)
+{
+    char boot[64] = "", ns[64] = "";
+    FILE *f = fopen("/proc/sys/kernel/random/boot_id", "r");
+    if (f) {
+        if (!fgets(boot, sizeof boot, f))
+            boot[0] = 0;
+        fclose(f);
+    }
+    boot[strcspn(boot, "\n")] = 0;
+    ssize_t len = readlink("/proc/self/ns/pid", ns, sizeof ns - 1);
+    ns[len > 0 ? len : 0] = 0;
+    if (boot[0] && ns[0])
+        snprintf(out, n, "%s:%s", boot, ns);
+    else
+        out[0] = 0;
+    for (char *c = out; *c; c++) /* one word per line in the lease file */
+        if (*c == ' ' || *c == '\n')
+            *c = '_';
+}
+
 void lease_init(struct lease *l)
 {
     memset(l, 0, sizeof *l);
@@ -41,6 +64,7 @@ void lease_init(struct lease *l)
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
     l->pid = (long)getpid();
+    pid_space(l->pids, sizeof l->pids);
     l->start = (long long)ts.tv_sec;
     snprintf(l->token, sizeof l->token, "%s:%ld:%lld%09ld", l->host, l->pid, (long long)ts.tv_sec,
              ts.tv_nsec);
@@ -52,6 +76,8 @@ int lease_write(const char *claim, const struct lease *l, struct err *e)
     side_path(claim, ".lease", path, sizeof path);
     int n = snprintf(text, sizeof text, "host %s\npid %ld\nstart %lld\ntoken %s\n", l->host, l->pid, l->start,
                      l->token);
+    if (l->pids[0]) /* optional: leases of earlier versions lack it */
+        n += snprintf(text + n, sizeof text - n, "pids %s\n", l->pids);
     return fileio_write_atomic(path, text, (size_t)n, e);
 }
 
@@ -71,6 +97,7 @@ int lease_read(const char *claim, struct lease *l, double *age_s)
         fields += sscanf(line, "pid %ld", &l->pid) == 1;
         fields += sscanf(line, "start %lld", &l->start) == 1;
         fields += sscanf(line, "token %383s", l->token) == 1;
+        (void)sscanf(line, "pids %127s", l->pids);
     }
     int ok = fstat(fileno(f), &st) == 0 && fields == 4;
     fclose(f);
@@ -108,9 +135,12 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
         return claimed > timeout_s;
     }
     lease_init(&me);
+    /* The pid is only ours to ask kill() about in our pid space: a worker in a container that
+       shares this hostname (host networking) has pids we cannot see, and is judged by its lease's
+       age as another host's is. A lease that does not say (an earlier version) is taken as ours. */
+    int same_space = !strcmp(l.host, me.host) && (!l.pids[0] || !me.pids[0] || !strcmp(l.pids, me.pids));
     /* pid 0 or -1 would ask kill() about whole process groups: such a lease names nobody */
-    if (!strcmp(l.host, me.host) &&
-        (l.pid <= 0 || l.pid == me.pid || (kill((pid_t)l.pid, 0) < 0 && errno == ESRCH))) {
+    if (same_space && (l.pid <= 0 || l.pid == me.pid || (kill((pid_t)l.pid, 0) < 0 && errno == ESRCH))) {
         snprintf(why, n, "its worker (pid %ld on %s) is gone", l.pid, l.host);
         return 1;
     }

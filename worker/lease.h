@@ -12,9 +12,12 @@ struct lease {
     long pid;
     long long start; /* seconds since the epoch */
     char token[384]; /* unique per claim: host:pid:start_ns */
+    char pids[128];  /* the pid space `pid` lives in: "<boot id>:<pid namespace>" ("" unknown) */
 };
 
-/* This process's lease for a claim made now (hostname, getpid, the time, a fresh token). */
+/* This process's lease for a claim made now (hostname, getpid, the time, a fresh token, and on
+   Linux the pid space: the kernel's boot id and the pid namespace, since containers sharing the
+   host's name, or cloned machines, share the hostname but not their pids). */
 void lease_init(struct lease *l);
 
 /* Write l beside the claim file (claim + ".lease") atomically. 0 or -1 with e filled. */
@@ -30,7 +33,8 @@ void lease_touch(const char *claim);
 /* Remove the lease file of claim. */
 void lease_remove(const char *claim);
 
-/* 1 when the claim's holder is dead: on this host its pid is gone; on any host its lease was not
+/* 1 when the claim's holder is dead: on this host (same hostname and, when both leases know it,
+   same pid space) its pid is gone; on any host its lease was not
    refreshed for timeout_s; without a lease, the claim is older than timeout_s (the holder died
    between claiming and writing it). why gets a short reason. 0 when alive, or the claim is gone. */
 int lease_stale(const char *claim, double timeout_s, char *why, size_t n);

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "compare.h"
@@ -158,7 +159,9 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
             goto bad;
         q->retries = (int)d;
     } else if (!strcmp(a, "--poll") || !strcmp(a, "--lease-timeout")) {
-        if (!number || !(d > 0 && d <= 604800))
+        /* a lease is renewed every quarter of its timeout: under 0.1 s a busy machine's scheduling
+           alone would let a live claim expire */
+        if (!number || !(d > 0 && d <= 604800) || (a[2] == 'l' && d < 0.1))
             goto bad;
         *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
     } else if (!strcmp(a, "--part")) {
@@ -174,15 +177,49 @@ static int option_value(const char *a, const char *v, struct queue_opts *q)
     return 0;
 bad:
     err_print("worker: %s must be %s, got \"%s\"\n", a,
-              !strcmp(a, "--processes") ? "a whole number in [1, 256]"
-              : !strcmp(a, "--retries") ? "a whole number in [0, 100]"
-                                        : "a number of seconds in (0, 604800]",
+              !strcmp(a, "--processes")       ? "a whole number in [1, 256]"
+              : !strcmp(a, "--retries")       ? "a whole number in [0, 100]"
+              : !strcmp(a, "--lease-timeout") ? "a number of seconds in [0.1, 604800]"
+                                              : "a number of seconds in (0, 604800]",
               v);
     return -1;
 }
 
-/* Render (or, with merge, merge the parts of) one job file; its exit status. */
-static int job_main(const char *path, const struct run_opts *o, int merge)
+/* The job files of one command line taken so far, by name: two files of one name would write the
+   same OUT/<name>/, the later replacing the earlier's outputs. */
+struct named {
+    char name[JOB_NAME_MAX];
+    const char *path;
+    dev_t dev;
+    ino_t ino;
+};
+
+/* 1 (said on stderr) when j's name is another file's among the n in taken; else j is added. */
+static int name_taken(const struct job *j, const char *path, const struct run_opts *o, struct named *taken,
+                      int *n)
+{
+    struct stat st;
+    if (stat(path, &st) < 0)
+        st.st_dev = 0, st.st_ino = 0;
+    for (int i = 0; i < *n; i++) {
+        if (strcmp(taken[i].name, j->name) != 0)
+            continue;
+        if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
+            return 0;
+        err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
+                  "%s/%s/ would replace that job's (give one of them another name:)",
+                  path, j->name, taken[i].path, o->out_dir, j->name);
+        return 1;
+    }
+    taken[*n] = (struct named){.path = path, .dev = st.st_dev, .ino = st.st_ino};
+    snprintf(taken[*n].name, sizeof taken[*n].name, "%s", j->name);
+    (*n)++;
+    return 0;
+}
+
+/* Render (or, with merge, merge the parts of) one job file; its exit status. taken: the jobs of
+   this command line so far (name_taken). */
+static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
 {
     struct job j;
     struct err e;
@@ -197,6 +234,8 @@ static int job_main(const char *path, const struct run_opts *o, int merge)
         print_err(&e);
         return 2;
     }
+    if (name_taken(&j, path, o, taken, ntaken))
+        return 2;
     /* Outputs left by a render with another process count are not what --processes asked for:
        their sidecar records that count and its per-process times. (Parts keep the file's hash:
        merge matches them against it, whatever split rendered them.) */
@@ -368,8 +407,15 @@ static int worker_main(int argc, char **argv)
         err_print("worker: merge finds the parts itself; --part is for rendering one; see worker --help\n");
         worst = 2;
     } else {
-        for (int i = 0; i < njobs; i++)
-            worst = max_rc(worst, job_main(jobs[i], o, merge));
+        struct named *taken = calloc((size_t)njobs, sizeof *taken);
+        int ntaken = 0;
+        for (int i = 0; taken && i < njobs; i++)
+            worst = max_rc(worst, job_main(jobs[i], o, merge, taken, &ntaken));
+        if (!taken) {
+            err_print("worker: out of memory");
+            worst = 2;
+        }
+        free(taken);
     }
 out:
     free(jobs);

@@ -7,7 +7,7 @@
 #include "run.h"
 
 /* Layout under DIR: waiting jobs DIR/X.yaml; claims DIR/running/X.yaml with their lease
-   DIR/running/X.yaml.lease ("host H", "pid P", "start S", "token T" lines, mtime refreshed while
+   DIR/running/X.yaml.lease ("host H", "pid P", "start S", "token T", "pids B:N" lines, mtime refreshed while
    rendering); finished DIR/done/X.yaml with outputs in DIR/done/<name>/; failed DIR/failed/X.yaml
    and DIR/failed/<name>.log. */
 struct queue_opts {

@@ -15,7 +15,9 @@ struct run_opts {
     int force;                         /* render even when the outputs are current (resume off) */
     int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
     const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
-    void (*tick)(void *arg);           /* optional: called about every 50 ms while rendering */
+    void (*tick)(void *arg);           /* optional: called about every 5 ms while rendering */
+    int (*may_write)(void *arg);       /* optional: asked (with tick_arg) once the render is done;
+                                          0 = write nothing, fail (a queue claim taken over) */
     void *tick_arg;
 };
 
@@ -50,6 +52,16 @@ int run_write_outputs(const struct job *j, const struct run_opts *o, const float
 
 /* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
+
+/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
+   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
+   queue claim was taken over, finishing together). Under the lock, the temporary files that a
+   killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
+   temporary files never outlive its lock. Returns the lock (for run_out_unlock), or -1 when the
+   folder cannot be locked (some network file systems): the writer goes on alone, removing
+   nothing. */
+int run_out_lock(const char *dir, const char *const *paths);
+void run_out_unlock(int lock);
 
 /* mkdir -p for path. 0 or -1 with e filled. */
 int run_mkdirs(const char *path, struct err *e);
