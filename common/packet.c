@@ -32,12 +32,12 @@ struct packet_prim {
 
 /* What a winner's record needs (index: the prim's place in the order + 1; 0: no hit): the
    outward normal n, or (p - c) s for a sphere (mask `sphere` all ones); `scalar`: the record is
-   its scalar test's. */
+   its scalar test's. c and s, n and sphere: one 32-byte load each (transposed in the lanes). */
 struct packet_rec {
     double c[3], s, n[3];
     int64_t sphere;
     int prim, scalar;
-};
+} __attribute__((aligned(32)));
 
 struct packet_scene {
     const struct scene *sc;
@@ -241,11 +241,12 @@ struct packet_scene *packet_scene_new(const struct scene *sc)
         return NULL;
     ps->sc = sc;
     ps->prims = aligned_alloc(32, ((size_t)sc->n_prims + 1) * sizeof *ps->prims);
-    ps->rec = calloc((size_t)sc->n_prims + 1, sizeof *ps->rec);
+    ps->rec = aligned_alloc(32, ((size_t)sc->n_prims + 1) * sizeof *ps->rec);
     if (!ps->prims || !ps->rec) {
         packet_scene_free(ps);
         return NULL;
     }
+    memset(ps->rec, 0, ((size_t)sc->n_prims + 1) * sizeof *ps->rec);
     const struct bvh_node *n = &sc->nodes[0];
     for (int m = n->leaves; m; m &= m - 1) {
         int c = __builtin_ctz((unsigned)m);
@@ -307,12 +308,11 @@ static __attribute__((noinline)) void record_scalar(const struct packet_scene *p
 {
     for (; lanes; lanes &= lanes - 1) {
         int i = __builtin_ctz((unsigned)lanes);
-        struct hit h;
-        shape_hit(&ps->sc->prims[ph->prim[i]], r[i], t_min, t_max, &h);
-        ph->t[i] = h.t;
-        ph->px[i] = h.p.x, ph->py[i] = h.p.y, ph->pz[i] = h.p.z;
-        ph->nx[i] = h.n.x, ph->ny[i] = h.n.y, ph->nz[i] = h.n.z;
-        ph->front[i] = h.front;
+        struct hit *h = &ph->h[i];
+        const int prim = h->prim;
+        shape_hit(&ps->sc->prims[prim], r[i], t_min, t_max, h);
+        h->prim = prim;
+        h->u = h->v = 0;
     }
 }
 
@@ -325,6 +325,20 @@ static AI d4 gather4(const void *const p[PACKET_LANES], size_t off)
     memcpy(&x2, (const char *)p[2] + off, sizeof x2);
     memcpy(&x3, (const char *)p[3] + off, sizeof x3);
     return (d4){x0, x1, x2, x3};
+}
+
+/* The four rows p[i][0..3] (32-byte aligned) as four columns c[0..3]. */
+static AI void transpose4(const double *const p[PACKET_LANES], d4 c[4])
+{
+    const d4 a0 = *(const d4 *)p[0], a1 = *(const d4 *)p[1], a2 = *(const d4 *)p[2], a3 = *(const d4 *)p[3];
+    const d4 lo01 = __builtin_shufflevector(a0, a1, 0, 4, 2, 6),
+             hi01 = __builtin_shufflevector(a0, a1, 1, 5, 3, 7);
+    const d4 lo23 = __builtin_shufflevector(a2, a3, 0, 4, 2, 6),
+             hi23 = __builtin_shufflevector(a2, a3, 1, 5, 3, 7);
+    c[0] = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
+    c[1] = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
+    c[2] = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
+    c[3] = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
 }
 
 /* One copy for AVX2, one for the baseline, picked when the program loads (x86-64 only; a test
@@ -378,26 +392,30 @@ PACKET_CLONES int packet_hit(const struct packet_scene *ps, const ray *const r[P
         rc[i] = &ps->rec[best_i[i] + 1];
         got |= (best_i[i] >= 0) << i;
         scalar |= rc[i]->scalar << i;
-        ph->prim[i] = rc[i]->prim;
+        ph->h[i].prim = rc[i]->prim;
     }
-    const void *const rcv[PACKET_LANES] = {rc[0], rc[1], rc[2], rc[3]};
+    const double *const cs[PACKET_LANES] = {rc[0]->c, rc[1]->c, rc[2]->c, rc[3]->c};
+    const double *const ns[PACKET_LANES] = {rc[0]->n, rc[1]->n, rc[2]->n, rc[3]->n};
+    d4 c[4], nm[4];
+    transpose4(cs, c);
+    transpose4(ns, nm);
     const d4 t = pk.best_t;
     const d4 px = pk.o[0] + pk.d[0] * t, py = pk.o[1] + pk.d[1] * t, pz = pk.o[2] + pk.d[2] * t;
-    const d4 s = gather4(rcv, offsetof(struct packet_rec, s));
-    const i4 sphere = (i4)gather4(rcv, offsetof(struct packet_rec, sphere));
-    const d4 ux = d4_pick(sphere, (px - gather4(rcv, offsetof(struct packet_rec, c[0]))) * s,
-                          gather4(rcv, offsetof(struct packet_rec, n[0])));
-    const d4 uy = d4_pick(sphere, (py - gather4(rcv, offsetof(struct packet_rec, c[1]))) * s,
-                          gather4(rcv, offsetof(struct packet_rec, n[1])));
-    const d4 uz = d4_pick(sphere, (pz - gather4(rcv, offsetof(struct packet_rec, c[2]))) * s,
-                          gather4(rcv, offsetof(struct packet_rec, n[2])));
+    const i4 sphere = (i4)nm[3];
+    const d4 ux = d4_pick(sphere, (px - c[0]) * c[3], nm[0]);
+    const d4 uy = d4_pick(sphere, (py - c[1]) * c[3], nm[1]);
+    const d4 uz = d4_pick(sphere, (pz - c[2]) * c[3], nm[2]);
     const i4 front = pk.d[0] * ux + pk.d[1] * uy + pk.d[2] * uz < d4_splat(0);
     const i4 flip = ~front & (i4)d4_splat(-0.0);
     const d4 nx = (d4)((i4)ux ^ flip), ny = (d4)((i4)uy ^ flip), nz = (d4)((i4)uz ^ flip);
-    memcpy(ph->t, &t, sizeof t);
-    memcpy(ph->px, &px, sizeof px), memcpy(ph->py, &py, sizeof py), memcpy(ph->pz, &pz, sizeof pz);
-    memcpy(ph->nx, &nx, sizeof nx), memcpy(ph->ny, &ny, sizeof ny), memcpy(ph->nz, &nz, sizeof nz);
-    memcpy(ph->front, &front, sizeof front);
+    for (int i = 0; i < PACKET_LANES; i++) {
+        struct hit *h = &ph->h[i];
+        h->t = t[i];
+        h->p = v3(px[i], py[i], pz[i]);
+        h->n = v3(nx[i], ny[i], nz[i]);
+        h->u = h->v = 0;
+        h->front = front[i] != 0;
+    }
     if (scalar & got)
         record_scalar(ps, r, scalar & got, t_min, t_max, ph);
     return got;

@@ -11,12 +11,10 @@
 /* The scene's prims in the one-node traversal's test order, with what the packet tests need. */
 struct packet_scene;
 
-/* The four lanes' hit records, component by component (lane i's record: packet_hit_of). */
+/* The four lanes' hit records, each as bvh_hit fills it (u and v 0: shape_uv fills them when a
+   texture reads them), so that a lane's record is used where it is, without a copy. */
 struct packet_hits {
-    double t[PACKET_LANES], px[PACKET_LANES], py[PACKET_LANES], pz[PACKET_LANES];
-    double nx[PACKET_LANES], ny[PACKET_LANES], nz[PACKET_LANES];
-    int64_t front[PACKET_LANES]; /* nonzero: the ray hit the front side */
-    int prim[PACKET_LANES];
+    struct hit h[PACKET_LANES];
 };
 
 /* Whether the packet pays in sc: one node, and every prim one packet_hit tests in its lanes (a
@@ -34,18 +32,5 @@ void packet_scene_free(struct packet_scene *ps);
    hit record (packet_hit_of). Returns one bit per lane hit; ph holds the records of those. */
 int packet_hit(const struct packet_scene *ps, const ray *const r[PACKET_LANES], double t_min, double t_max,
                struct packet_hits *ph);
-
-/* Lane i's hit record (u and v 0: shape_uv fills them when a texture reads them). */
-static inline struct hit packet_hit_of(const struct packet_hits *ph, int i)
-{
-    struct hit h;
-    h.t = ph->t[i];
-    h.p = v3(ph->px[i], ph->py[i], ph->pz[i]);
-    h.n = v3(ph->nx[i], ph->ny[i], ph->nz[i]);
-    h.front = ph->front[i] != 0;
-    h.prim = ph->prim[i];
-    h.u = h.v = 0;
-    return h;
-}
 
 #endif

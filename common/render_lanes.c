@@ -2,6 +2,7 @@
    packet_hit (one-node scenes, packet_usable), each path advanced by shade, trace's loop body. */
 #include <float.h>
 
+#include "bvh.h"
 #include "packet.h"
 #include "render_path.h"
 
@@ -67,12 +68,21 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double 
     }
     while (lanes) {
         struct packet_hits ph;
-        int got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
-        for (int m = lanes; m; m &= m - 1) {
-            int i = __builtin_ctz((unsigned)m);
+        int got;
+        if (lanes & (lanes - 1)) {
+            got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
+        } else { /* one lane left: its ray alone by the scalar traversal (the same hit) */
+            const int i = __builtin_ctz((unsigned)lanes);
+            got = bvh_hit_node(ctx->sc, rp[i], HIT_EPS, DBL_MAX, &ph.h[i]) << i;
+        }
+        /* unrolled: each lane's path and hit record at a fixed place in the frame, no index
+           arithmetic in shade's loads and stores (one copy of shade per lane) */
+#pragma GCC unroll 4
+        for (int i = 0; i < PACKET_LANES; i++) {
+            if (!(lanes >> i & 1))
+                continue;
             ++rays;
-            struct hit h = packet_hit_of(&ph, i);
-            if (shade(ctx, &pt[i], got >> i & 1, &h, mix, last))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, last))
                 continue;
             vec3 c = pt[i].L;
             if (v3_finite(c)) {

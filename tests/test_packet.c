@@ -54,7 +54,7 @@ static int packet_agrees(const struct scene *sc, const struct packet_scene *ps, 
         got_b = baseline_packet_hit(ps, rp, t_min, DBL_MAX, &pb);
     int ok = 1;
     for (int i = 0; i < PACKET_LANES; i++) {
-        struct hit a, b = packet_hit_of(&ph, i), c = packet_hit_of(&pb, i);
+        struct hit a, b = ph.h[i], c = pb.h[i];
         int ga = bvh_hit(sc, &q[i], t_min, DBL_MAX, &a);
         *hits += ga;
         if (ga != (got >> i & 1) || ga != (got_b >> i & 1) ||

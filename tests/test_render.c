@@ -403,6 +403,44 @@ static void test_last_segment(void)
     CHECK(two.rays > 16 && two.light_sets > 0);
 }
 
+/* A closed unit box of six diffuse walls with a lamp under its ceiling, seen from inside (the
+   camera at (x, y)) under a background of 1e30: one node, so render_pixel traces its paths
+   four at a time and a pixel's last path alone (bvh_hit_node). No path escapes the box, so the
+   background never shows; a lane that lost its hit would add 1e30 times its weight (3 of these
+   25 pixels end with lane 1 alone). */
+static void closed_box_pixel(double x, double y, float rgb[3])
+{
+    struct scene *sc = scene_new();
+    sc->background = v3(1e30, 1e30, 1e30);
+    struct material white = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
+    struct material lamp = {.type = MAT_LIGHT, .emit = v3(4, 4, 4), .texture = -1};
+    scene_add_material(sc, &white);
+    scene_add_material(sc, &lamp);
+    for (int w = 0; w < 6; w++) {
+        struct prim wall = {.type = PRIM_RECT, .material = 0};
+        wall.g.rect.axis = w / 2;
+        wall.g.rect.a1 = wall.g.rect.b1 = 1, wall.g.rect.k = w % 2;
+        scene_add_prim(sc, &wall);
+    }
+    struct prim li = {.type = PRIM_RECT, .material = 1, .flip = 1};
+    li.g.rect.axis = 1;
+    li.g.rect.a0 = li.g.rect.b0 = 0.2, li.g.rect.a1 = li.g.rect.b1 = 0.8, li.g.rect.k = 0.99;
+    scene_add_light(sc, scene_add_prim(sc, &li));
+    struct camera_desc d = {v3(x, y, 0.9), v3(x, y, 0), v3(0, 1, 0), 60, 0, 1, 0, 0};
+    struct render_stats st = pixel_of(sc, &d, 6.25, 25, 50, rgb);
+    CHECK(st.samples == 256 && st.rays > 2 * st.samples);
+}
+
+static void test_closed_box(void)
+{
+    for (int i = 0; i < 25; i++) {
+        float rgb[3];
+        closed_box_pixel(0.1 + 0.2 * (i % 5), 0.1 + 0.2 * (i / 5), rgb);
+        for (int k = 0; k < 3; k++)
+            CHECK(rgb[k] > 0 && rgb[k] < 10);
+    }
+}
+
 int main(void)
 {
     test_rng();
@@ -413,5 +451,6 @@ int main(void)
     test_integrator();
     test_medium_albedo();
     test_last_segment();
+    test_closed_box();
     return check_report("test_render");
 }
