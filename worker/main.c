@@ -208,7 +208,7 @@ static int name_taken(const char *name, const char *path, const struct run_opts 
         if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
             return 0;
         err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
-                  "%s/%s/ would replace that job's (give one of them another name:)",
+                  "%s/%s/ would replace that job's (give one of them another name: in its file)",
                   path, name, taken[i].path, o->out_dir, name);
         return 1;
     }
