@@ -1,7 +1,6 @@
 /* queue: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
 #include "queue.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +12,7 @@
 #include "compare.h"
 #include "fileio.h"
 #include "lease.h"
+#include "queue_claim.h"
 #include "queue_scan.h"
 
 /* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
@@ -36,188 +36,6 @@ void queue_signals_install(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL); /* no SA_RESTART: a poll's sleep ends at once */
     sigaction(SIGTERM, &sa, NULL);
-}
-
-struct queue {
-    const struct queue_opts *o;
-    char dir[1024], running[1100], done[1100], failed[1100];
-    struct lease lease; /* ours, for the claim in hand */
-    char claim[2048];   /* DIR/running/X.yaml while a job is held */
-    struct timespec last_touch;
-    int worst;
-    struct queue_scan scan; /* the waiting jobs seen by the last scan */
-};
-
-static double since(const struct timespec *t)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
-}
-
-/* The farm's progress callback (every 5 ms): renew the lease about once a second, or four times
-   per --lease-timeout when that is shorter (renewed only once a second, a live claim looked dead
-   to others for part of every second under a timeout of less than one, and was rendered again). */
-static void tick(void *arg)
-{
-    struct queue *q = arg;
-    double every = q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
-    if (since(&q->last_touch) < every)
-        return;
-    lease_touch(q->claim);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
-}
-
-/* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
-   so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */
-static int return_claim(struct queue *q, const char *claim, const char *name)
-{
-    char back[2048];
-    snprintf(back, sizeof back, "%s/%s", q->dir, name);
-    lease_remove(claim);
-    return rename(claim, back);
-}
-
-/* A job of the claim's file name waits in DIR again (re-submitted while the claim ran): the claim
-   cannot go back without replacing it, nor can it wait there, since that name stays claimed. */
-static int name_waiting(struct queue *q, const char *name)
-{
-    char back[2048];
-    struct stat st;
-    snprintf(back, sizeof back, "%s/%s", q->dir, name);
-    return lstat(back, &st) == 0;
-}
-
-/* Take the dead claim at `claim` over where it lies, under its recovery lock: our lease replaces
-   its holder's and it becomes the claim in hand. 0 when it is ours. */
-static int adopt_claim(struct queue *q, const char *claim, const char *name)
-{
-    struct err e;
-    struct stat st;
-    if (stat(claim, &st) < 0) /* its holder returned it meanwhile, lock or not */
-        return -1;
-    snprintf(q->claim, sizeof q->claim, "%s", claim);
-    lease_init(&q->lease);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
-    if (lease_write(q->claim, &q->lease, &e) == 0)
-        return 0;
-    char buf[2048];
-    err_format(&e, buf, sizeof buf);
-    err_print("queue: %s: %s\n", name, buf);
-    return -1;
-}
-
-/* running/.X.yaml.lease.tmp.XXXXXX: the temporary file of a lease write (fileio_write_atomic)
-   whose worker was killed before its rename (a worker killed just after claiming leaves one
-   most of the time: the write's fsync is the slow part). A live writer renames it within
-   moments, so one older than the lease timeout is a dead writer's: removed. */
-static void remove_dead_lease_temp(struct queue *q, const char *name)
-{
-    const char *tmp = strstr(name, ".yaml.lease.tmp.");
-    struct stat st;
-    char path[2048];
-    if (name[0] != '.' || !tmp || strlen(tmp + strlen(".yaml.lease.tmp.")) != 6)
-        return;
-    snprintf(path, sizeof path, "%s/%s", q->running, name);
-    struct timespec now;
-    clock_gettime(CLOCK_REALTIME, &now);
-    if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
-        (now.tv_sec - st.st_mtim.tv_sec) + (now.tv_nsec - st.st_mtim.tv_nsec) * 1e-9 > q->o->lease_timeout_s)
-        unlink(path);
-}
-
-/* Return every dead worker's claim to the queue. A dead claim whose file name waits in DIR again
-   is taken over in place instead (its name into `adopted`, and 1: process it now), so that both
-   jobs are rendered, this one first. */
-static int recover_stale(struct queue *q, char *adopted, size_t n)
-{
-    DIR *d = opendir(q->running);
-    int took = 0;
-    if (!d)
-        return 0;
-    struct dirent *de;
-    while (!took && (de = readdir(d))) {
-        char claim[2048], why[512];
-        remove_dead_lease_temp(q, de->d_name);
-        if (!queue_is_job_file(de->d_name))
-            continue;
-        snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
-        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
-            continue;
-        if (lease_lock(claim, q->o->lease_timeout_s) < 0)
-            continue;
-        /* judged again under the lock: another recoverer may have moved it meanwhile */
-        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
-            if (!name_waiting(q, de->d_name)) {
-                if (return_claim(q, claim, de->d_name) == 0)
-                    err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
-            } else if (adopt_claim(q, claim, de->d_name) == 0) {
-                err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
-                          q->running, de->d_name, why);
-                snprintf(adopted, n, "%s", de->d_name);
-                took = 1;
-            }
-        }
-        lease_unlock(claim);
-    }
-    closedir(d);
-    return took;
-}
-
-/* Claim DIR/name into running/ and write our lease. 0 when the job is ours; 1 when another worker
-   was first, or a job of its file name is running; -1 when the queue cannot be written (said on
-   stderr: a read-only DIR, no permission, a full disk). */
-static int claim(struct queue *q, const char *name)
-{
-    char from[2048];
-    struct stat st;
-    struct err e;
-    snprintf(from, sizeof from, "%s/%s", q->dir, name);
-    snprintf(q->claim, sizeof q->claim, "%s/%s", q->running, name);
-    if (stat(q->claim, &st) == 0) /* a job of the same file name is running: it waits */
-        return 1;
-    if (rename(from, q->claim) < 0) {
-        if (errno == ENOENT) /* another worker was first */
-            return 1;
-        err_print("worker: --queue %s: cannot claim %s into %s/: %s", q->dir, name, q->running,
-                  strerror(errno));
-        return -1;
-    }
-    lease_init(&q->lease);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
-    if (lease_write(q->claim, &q->lease, &e) < 0) {
-        char buf[2048];
-        err_format(&e, buf, sizeof buf);
-        err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
-        rename(q->claim, from);
-        return -1;
-    }
-    return 0;
-}
-
-/* Still ours? Nobody took the claim away while we rendered (a lease judged dead elsewhere). */
-static int still_ours(struct queue *q)
-{
-    struct lease l;
-    double age;
-    return lease_read(q->claim, &l, &age) == 0 && strcmp(l.token, q->lease.token) == 0;
-}
-
-/* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
-   we were stopped or hung) writes nothing, lest it replace the new holder's outputs. */
-static int claim_held(void *arg)
-{
-    return still_ours(arg);
-}
-
-/* Move the claim to done/ or failed/ and drop the lease. */
-static void file_claim(struct queue *q, const char *name, const char *to_dir)
-{
-    char to[2048];
-    snprintf(to, sizeof to, "%s/%s", to_dir, name);
-    if (rename(q->claim, to) < 0)
-        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
-    lease_remove(q->claim);
 }
 
 /* failed/<name>.log: what went wrong, the signal, the attempts. */
@@ -253,13 +71,13 @@ static void give_back(struct queue *q, const char *name)
                   name, (int)queue_stop, q->running);
         return;
     }
-    if (!still_ours(q))
+    if (!queue_claim_still_ours(q))
         ;
-    else if (name_waiting(q, name))
+    else if (queue_claim_name_waiting(q, name))
         err_print("%s: stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
                   "next worker\n",
                   name, (int)queue_stop, name, q->running);
-    else if (return_claim(q, q->claim, name) == 0)
+    else if (queue_claim_return(q, q->claim, name) == 0)
         err_print("%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
     lease_unlock(q->claim);
 }
@@ -278,7 +96,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
-    ro.tick = tick;
+    ro.tick = queue_claim_tick;
     ro.tick_arg = q;
     char last[2048] = "";
     int attempts = 0, rc;
@@ -290,15 +108,15 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         give_back(q, name);
         return;
     }
-    if (!still_ours(q))
+    if (!queue_claim_still_ours(q))
         return;
     if (rc == 0) {
-        file_claim(q, name, q->done);
+        queue_claim_file(q, name, q->done);
         return;
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
     write_log(q, name, stem, last, 0, attempts);
-    file_claim(q, name, q->failed);
+    queue_claim_file(q, name, q->failed);
     note_rc(q, rc);
 }
 
@@ -336,15 +154,15 @@ static void process(struct queue *q, const char *name)
         err_print("%s", msg);
         err_print("%s: invalid job, moved to %s/", name, q->failed);
         write_log(q, name, stem, msg, 0, 0);
-        file_claim(q, name, q->failed);
+        queue_claim_file(q, name, q->failed);
         note_rc(q, 2);
         return;
     }
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
-    ro.tick = tick;
-    ro.may_write = claim_held;
+    ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
     ro.tick_arg = q;
     int attempts = 0, rc;
     for (;;) {
@@ -359,7 +177,7 @@ static void process(struct queue *q, const char *name)
         give_back(q, name);
         return;
     }
-    if (!still_ours(q)) {
+    if (!queue_claim_still_ours(q)) {
         err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
         return;
     }
@@ -369,14 +187,14 @@ static void process(struct queue *q, const char *name)
                       q->done, j.name);
         else
             run_print_summary(&j, &rr);
-        file_claim(q, name, q->done);
+        queue_claim_file(q, name, q->done);
         return;
     }
     err_format(&e, msg, sizeof msg);
     err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
     write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
-    file_claim(q, name, q->failed);
+    queue_claim_file(q, name, q->failed);
     note_rc(q, rc);
 }
 
@@ -411,7 +229,7 @@ int queue_main(const struct queue_opts *qo)
     }
     while (!queue_stop) {
         char adopted[256];
-        if (recover_stale(&q, adopted, sizeof adopted)) {
+        if (queue_claim_recover(&q, adopted, sizeof adopted)) {
             process(&q, adopted);
             continue;
         }
@@ -424,7 +242,7 @@ int queue_main(const struct queue_opts *qo)
         }
         int unusable = 0;
         for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
-            int got = claim(&q, w[i].name);
+            int got = queue_claim_take(&q, w[i].name);
             unusable = got < 0;
             if (got == 0) {
                 process(&q, w[i].name);

@@ -1,0 +1,167 @@
+/* queue_claim: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
+#include "queue_claim.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "err.h"
+
+static double since(const struct timespec *t)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
+}
+
+void queue_claim_tick(void *arg)
+{
+    struct queue *q = arg;
+    double every = q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
+    if (since(&q->last_touch) < every)
+        return;
+    lease_touch(q->claim);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+}
+
+int queue_claim_return(struct queue *q, const char *claim, const char *name)
+{
+    char back[2048];
+    snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    lease_remove(claim);
+    return rename(claim, back);
+}
+
+int queue_claim_name_waiting(struct queue *q, const char *name)
+{
+    char back[2048];
+    struct stat st;
+    snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    return lstat(back, &st) == 0;
+}
+
+/* Take the dead claim at `claim` over where it lies, under its recovery lock: our lease replaces
+   its holder's and it becomes the claim in hand. 0 when it is ours. */
+static int adopt_claim(struct queue *q, const char *claim, const char *name)
+{
+    struct err e;
+    struct stat st;
+    if (stat(claim, &st) < 0) /* its holder returned it meanwhile, lock or not */
+        return -1;
+    snprintf(q->claim, sizeof q->claim, "%s", claim);
+    lease_init(&q->lease);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (lease_write(q->claim, &q->lease, &e) == 0)
+        return 0;
+    char buf[2048];
+    err_format(&e, buf, sizeof buf);
+    err_print("queue: %s: %s\n", name, buf);
+    return -1;
+}
+
+/* running/.X.yaml.lease.tmp.XXXXXX: the temporary file of a lease write (fileio_write_atomic)
+   whose worker was killed before its rename (a worker killed just after claiming leaves one
+   most of the time: the write's fsync is the slow part). A live writer renames it within
+   moments, so one older than the lease timeout is a dead writer's: removed. */
+static void remove_dead_lease_temp(struct queue *q, const char *name)
+{
+    const char *tmp = strstr(name, ".yaml.lease.tmp.");
+    struct stat st;
+    char path[2048];
+    if (name[0] != '.' || !tmp || strlen(tmp + strlen(".yaml.lease.tmp.")) != 6)
+        return;
+    snprintf(path, sizeof path, "%s/%s", q->running, name);
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
+        (now.tv_sec - st.st_mtim.tv_sec) + (now.tv_nsec - st.st_mtim.tv_nsec) * 1e-9 > q->o->lease_timeout_s)
+        unlink(path);
+}
+
+int queue_claim_recover(struct queue *q, char *adopted, size_t n)
+{
+    DIR *d = opendir(q->running);
+    int took = 0;
+    if (!d)
+        return 0;
+    struct dirent *de;
+    while (!took && (de = readdir(d))) {
+        char claim[2048], why[512];
+        remove_dead_lease_temp(q, de->d_name);
+        if (!queue_is_job_file(de->d_name))
+            continue;
+        snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
+        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
+            continue;
+        if (lease_lock(claim, q->o->lease_timeout_s) < 0)
+            continue;
+        /* judged again under the lock: another recoverer may have moved it meanwhile */
+        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
+            if (!queue_claim_name_waiting(q, de->d_name)) {
+                if (queue_claim_return(q, claim, de->d_name) == 0)
+                    err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
+            } else if (adopt_claim(q, claim, de->d_name) == 0) {
+                err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
+                          q->running, de->d_name, why);
+                snprintf(adopted, n, "%s", de->d_name);
+                took = 1;
+            }
+        }
+        lease_unlock(claim);
+    }
+    closedir(d);
+    return took;
+}
+
+int queue_claim_take(struct queue *q, const char *name)
+{
+    char from[2048];
+    struct stat st;
+    struct err e;
+    snprintf(from, sizeof from, "%s/%s", q->dir, name);
+    snprintf(q->claim, sizeof q->claim, "%s/%s", q->running, name);
+    if (stat(q->claim, &st) == 0) /* a job of the same file name is running: it waits */
+        return 1;
+    if (rename(from, q->claim) < 0) {
+        if (errno == ENOENT) /* another worker was first */
+            return 1;
+        err_print("worker: --queue %s: cannot claim %s into %s/: %s", q->dir, name, q->running,
+                  strerror(errno));
+        return -1;
+    }
+    lease_init(&q->lease);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (lease_write(q->claim, &q->lease, &e) < 0) {
+        char buf[2048];
+        err_format(&e, buf, sizeof buf);
+        err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
+        rename(q->claim, from);
+        return -1;
+    }
+    return 0;
+}
+
+int queue_claim_still_ours(struct queue *q)
+{
+    struct lease l;
+    double age;
+    return lease_read(q->claim, &l, &age) == 0 && strcmp(l.token, q->lease.token) == 0;
+}
+
+int queue_claim_held(void *arg)
+{
+    return queue_claim_still_ours(arg);
+}
+
+void queue_claim_file(struct queue *q, const char *name, const char *to_dir)
+{
+    char to[2048];
+    snprintf(to, sizeof to, "%s/%s", to_dir, name);
+    if (rename(q->claim, to) < 0)
+        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
+    lease_remove(q->claim);
+}

@@ -1,0 +1,58 @@
+/* queue_claim: a queue worker's claims: take a waiting job into running/ by rename() with our
+   lease, renew the lease while rendering, file the claim as done or failed, and recover dead
+   workers' claims (returned to the queue, or taken over in place). Owns struct queue, the state
+   of one worker draining a queue directory. */
+#ifndef QUEUE_CLAIM_H
+#define QUEUE_CLAIM_H
+
+#include <stddef.h>
+#include <time.h>
+
+#include "lease.h"
+#include "queue.h"
+#include "queue_scan.h"
+
+struct queue {
+    const struct queue_opts *o;
+    char dir[1024], running[1100], done[1100], failed[1100];
+    struct lease lease; /* ours, for the claim in hand */
+    char claim[2048];   /* DIR/running/X.yaml while a job is held */
+    struct timespec last_touch;
+    int worst;
+    struct queue_scan scan; /* the waiting jobs seen by the last scan */
+};
+
+/* The farm's progress callback (every 5 ms): renew the lease about once a second, or four times
+   per --lease-timeout when that is shorter (renewed only once a second, a live claim looked dead
+   to others for part of every second under a timeout of less than one, and was rendered again). */
+void queue_claim_tick(void *arg);
+
+/* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
+   so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */
+int queue_claim_return(struct queue *q, const char *claim, const char *name);
+
+/* A job of the claim's file name waits in DIR again (re-submitted while the claim ran): the claim
+   cannot go back without replacing it, nor can it wait there, since that name stays claimed. */
+int queue_claim_name_waiting(struct queue *q, const char *name);
+
+/* Return every dead worker's claim to the queue. A dead claim whose file name waits in DIR again
+   is taken over in place instead (its name into `adopted`, and 1: process it now), so that both
+   jobs are rendered, this one first. */
+int queue_claim_recover(struct queue *q, char *adopted, size_t n);
+
+/* Claim DIR/name into running/ and write our lease. 0 when the job is ours; 1 when another worker
+   was first, or a job of its file name is running; -1 when the queue cannot be written (said on
+   stderr: a read-only DIR, no permission, a full disk). */
+int queue_claim_take(struct queue *q, const char *name);
+
+/* Still ours? Nobody took the claim away while we rendered (a lease judged dead elsewhere). */
+int queue_claim_still_ours(struct queue *q);
+
+/* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
+   we were stopped or hung) writes nothing, lest it replace the new holder's outputs. */
+int queue_claim_held(void *arg);
+
+/* Move the claim to done/ or failed/ and drop the lease. */
+void queue_claim_file(struct queue *q, const char *name, const char *to_dir);
+
+#endif
