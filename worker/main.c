@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "compare.h"
 #include "fileio.h"
 #include "hash.h"
@@ -121,70 +122,6 @@ static int max_rc(int a, int b)
     return a > b ? a : b;
 }
 
-static int takes_value(const char *a)
-{
-    static const char *const names[] = {"--out",     "--processes",     "--queue", "--poll",
-                                        "--retries", "--lease-timeout", "--part",  NULL};
-    for (int i = 0; names[i]; i++)
-        if (!strcmp(a, names[i]))
-            return 1;
-    return 0;
-}
-
-/* One option with a value (--out, --processes, --queue, --poll, --retries, --lease-timeout,
-   --part) into q. 0, or -1 after printing the usage error. */
-static int option_value(const char *a, const char *v, struct queue_opts *q)
-{
-    char *end = "";
-    double d = v ? strtod(v, &end) : 0;
-    int number = v && *v && !*end && strspn(v, "0123456789+-.eE") == strlen(v),
-        whole = number && d == (long)d;
-    if (!v) {
-        err_print("worker: %s needs a value; see worker --help\n", a);
-        return -1;
-    } else if (!*v && (!strcmp(a, "--out") || !strcmp(a, "--queue"))) {
-        /* "" would make OUT/<name> "/<name>": the file system's root */
-        err_print("worker: %s needs a directory, got \"\"\n", a);
-        return -1;
-    } else if (!strcmp(a, "--out")) {
-        q->run.out_dir = v;
-    } else if (!strcmp(a, "--queue")) {
-        q->dir = v;
-    } else if (!strcmp(a, "--processes")) {
-        if (!whole || d < 1 || d > FARM_MAX_PROCESSES)
-            goto bad;
-        q->run.processes = (int)d;
-    } else if (!strcmp(a, "--retries")) {
-        if (!whole || d < 0 || d > 100)
-            goto bad;
-        q->retries = (int)d;
-    } else if (!strcmp(a, "--poll") || !strcmp(a, "--lease-timeout")) {
-        /* a lease is renewed every quarter of its timeout: under 0.1 s a busy machine's scheduling
-           alone would let a live claim expire */
-        if (!number || !(d > 0 && d <= 604800) || (a[2] == 'l' && d < 0.1))
-            goto bad;
-        *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
-    } else if (!strcmp(a, "--part")) {
-        int i, parts, used = 0;
-        if (sscanf(v, "%d/%d%n", &i, &parts, &used) != 2 || v[used] || parts < 1 || parts > PART_MAX ||
-            i < 0 || i >= parts) {
-            err_print("worker: --part must be I/N with 0 <= I < N <= %d, got \"%s\"\n", PART_MAX, v);
-            return -1;
-        }
-        q->run.part = i;
-        q->run.parts = parts;
-    }
-    return 0;
-bad:
-    err_print("worker: %s must be %s, got \"%s\"\n", a,
-              !strcmp(a, "--processes")       ? "a whole number in [1, 256]"
-              : !strcmp(a, "--retries")       ? "a whole number in [0, 100]"
-              : !strcmp(a, "--lease-timeout") ? "a number of seconds in [0.1, 604800]"
-                                              : "a number of seconds in (0, 604800]",
-              v);
-    return -1;
-}
-
 /* The job files of one command line taken so far, by name: two files of one name would write the
    same OUT/<name>/, the later replacing the earlier's outputs. */
 struct named {
@@ -279,59 +216,6 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     return rc;
 }
 
-/* `--out=DIR` as `--out DIR` (GNU style, as pbrt and Slurm take it too) for every option that
-   takes a value, diff's included; a job file's name is never split, nor anything after "--".
-   The new argv (argc grown by one per split) is malloc'ed; NULL when out of memory. */
-static char **split_equals(int *argc, char **argv)
-{
-    static const char *const diff_values[] = {"--max-rmse", "--block", NULL};
-    char **out = calloc((size_t)*argc * 2 + 1, sizeof *out);
-    int n = 0, ended = 0;
-    if (!out)
-        return NULL;
-    for (int i = 0; i < *argc; i++) {
-        char *a = argv[i], *eq = strchr(a, '=');
-        int known = 0;
-        ended |= i > 0 && !strcmp(a, "--");
-        if (!ended && i > 0 && !strncmp(a, "--", 2) && eq) {
-            *eq = 0;
-            known = takes_value(a);
-            for (int k = 0; diff_values[k]; k++)
-                known |= !strcmp(a, diff_values[k]);
-            if (!known)
-                *eq = '=';
-        }
-        out[n++] = a;
-        if (known)
-            out[n++] = eq + 1;
-    }
-    *argc = n;
-    return out;
-}
-
-/* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
-   subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
-   After --help or --version nothing moves: those answer whatever follows. */
-static void hoist_subcommand(int argc, char **argv)
-{
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--version") ||
-            !strcmp(argv[i], "--")) {
-            return;
-        } else if (takes_value(argv[i])) {
-            i++;
-        } else if (!(argv[i][0] == '-' && argv[i][1])) {
-            if (i > 1 &&
-                (!strcmp(argv[i], "diff") || !strcmp(argv[i], "points") || !strcmp(argv[i], "merge"))) {
-                char *sub = argv[i];
-                memmove(&argv[2], &argv[1], (size_t)(i - 1) * sizeof *argv);
-                argv[1] = sub;
-            }
-            return;
-        }
-    }
-}
-
 static int worker_main(int argc, char **argv);
 
 int main(int argc, char **argv)
@@ -339,7 +223,7 @@ int main(int argc, char **argv)
     /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
        kill the process half-way through an output. */
     signal(SIGXFSZ, SIG_IGN);
-    char **args = split_equals(&argc, argv);
+    char **args = cli_split_equals(&argc, argv);
     if (!args)
         return 2;
     int rc = worker_main(argc, args);
@@ -350,7 +234,7 @@ int main(int argc, char **argv)
 /* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
 static int worker_main(int argc, char **argv)
 {
-    hoist_subcommand(argc, argv);
+    cli_hoist_subcommand(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "points"))
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))
@@ -392,8 +276,8 @@ static int worker_main(int argc, char **argv)
             q.once = 1;
         } else if (!strcmp(a, "--force")) {
             o->force = 1;
-        } else if (takes_value(a)) {
-            if (option_value(a, i + 1 < argc ? argv[++i] : NULL, &q) < 0) {
+        } else if (cli_takes_value(a)) {
+            if (cli_option_value(a, i + 1 < argc ? argv[++i] : NULL, &q) < 0) {
                 worst = 2;
                 goto out;
             }
