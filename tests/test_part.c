@@ -7,6 +7,7 @@
 #include "check.h"
 #include "fileio.h"
 #include "part.h"
+#include "run_out.h"
 
 enum { W = 7, H = 11 };
 
@@ -60,7 +61,7 @@ int main(void)
     /* write 3 parts, with one missing first */
     char sub[2100];
     snprintf(sub, sizeof sub, "%s/merge", dir);
-    CHECK(run_mkdirs(sub, &e) == 0);
+    CHECK(run_out_mkdirs(sub, &e) == 0);
     struct farm_result fr;
     for (int p = 0; p < 3; p += 2) {
         result(&fr, p);

@@ -14,6 +14,7 @@
 #include "hash.h"
 #include "limits.h"
 #include "report.h"
+#include "run_out.h"
 #include "sbuf.h"
 #include "scene_load.h"
 
@@ -325,7 +326,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     }
     rc = 1;
     e->msg[0] = 0;
-    if (run_mkdirs(dir, e) < 0 || write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
+    if (run_out_mkdirs(dir, e) < 0 || write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
         write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0)
         goto fail;

@@ -9,6 +9,7 @@
 
 #include "fileio.h"
 #include "hash.h"
+#include "run_out.h"
 
 #define PART_MAGIC "WPART\r\n\x1a" /* 8 bytes; the CR LF catch text-mode mangling, as PNG's do */
 #define PART_HEADER 120            /* bytes before the rows */
@@ -343,7 +344,7 @@ int part_merge(const struct job *j, const struct run_opts *o, struct run_result 
     if (run_load_reference(j, w, h, &ref, e) < 0)
         goto done;
     rr->farm = *fr;
-    rc = run_write_outputs(j, o, rgb, w, h, fr, &ref, parts, rr, e) < 0 ? 1 : 0;
+    rc = run_out_write(j, o, rgb, w, h, fr, &ref, parts, rr, e) < 0 ? 1 : 0;
 done:
     rgb8_free(&ref);
     free(rgb);

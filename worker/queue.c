@@ -14,6 +14,7 @@
 #include "lease.h"
 #include "queue_claim.h"
 #include "queue_scan.h"
+#include "run_out.h"
 
 /* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
 static volatile sig_atomic_t queue_stop;
@@ -223,7 +224,8 @@ int queue_main(const struct queue_opts *qo)
     snprintf(q.running, sizeof q.running, "%s/running", q.dir);
     snprintf(q.done, sizeof q.done, "%s/done", q.dir);
     snprintf(q.failed, sizeof q.failed, "%s/failed", q.dir);
-    if (run_mkdirs(q.running, &e) < 0 || run_mkdirs(q.done, &e) < 0 || run_mkdirs(q.failed, &e) < 0) {
+    if (run_out_mkdirs(q.running, &e) < 0 || run_out_mkdirs(q.done, &e) < 0 ||
+        run_out_mkdirs(q.failed, &e) < 0) {
         err_print("worker: --queue %s: %s\n", q.dir, e.msg);
         return 2;
     }

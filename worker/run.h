@@ -44,29 +44,7 @@ void run_paths(const struct job *j, const char *out_dir, char *dir, char *image,
    or -1 with e at the job's reference key. */
 int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e);
 
-/* Turn the linear framebuffer rgb (w x h) into the job's image, score it against ref (may be
-   NULL) and write image and sidecar (paths from run_paths under o->out_dir, into rr) atomically;
-   parts > 0 marks a merge of that many part files. 0 or -1 with e filled (nothing left behind). */
-int run_write_outputs(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                      const struct farm_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
-                      struct err *e);
-
 /* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
-
-/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
-   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
-   queue claim was taken over, finishing together). Under the lock, the temporary files that a
-   killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
-   temporary files never outlive its lock. Returns the lock (for run_out_unlock), or -1 when the
-   folder cannot be locked (some network file systems): the writer goes on alone, removing
-   nothing; RUN_OUT_STOPPED when *stop (optional) was set by a signal while it waited: write
-   nothing. */
-#define RUN_OUT_STOPPED (-2)
-int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
-void run_out_unlock(int lock);
-
-/* mkdir -p for path. 0 or -1 with e filled. */
-int run_mkdirs(const char *path, struct err *e);
 
 #endif
