@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "compare_ref.h"
 #include "compare_stats.h"
 #include "fileio.h"
 #include "hash.h"
@@ -25,47 +26,7 @@ static double now_s(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-/* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
-   changes the reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
-   pixels, and its version string does not change with every commit. */
-static int reference_key(const struct compare_scene *cs, uint64_t *key, struct err *e)
-{
-    const struct job *j = &cs->ref_job;
-    struct err ignored;
-    uint64_t h = HASH_FNV_OFFSET;
-    fileio_hash("/proc/self/exe", 1u << 30, &h, &ignored); /* unreadable: the key lacks it */
-    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
-        return -1;
-    char text[512];
-    int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d worker %s",
-                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
-                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
-                     (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
-    *key = hash_bytes(h, text, (size_t)n);
-    return 0;
-}
-
-/* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
-static double cached_wall_s(const char *png_path)
-{
-    char json[JOB_PATH_MAX + 8];
-    snprintf(json, sizeof json, "%.*s.json", (int)strlen(png_path) - 4, png_path);
-    uint8_t *data;
-    size_t len;
-    struct err e;
-    double s = 0;
-    if (fileio_read_all(json, 1 << 20, &data, &len, &e) < 0)
-        return 0;
-    const char *p = strstr((const char *)data, "\"wall_s\": ");
-    if (p)
-        s = strtod(p + 10, NULL);
-    free(data);
-    return s;
-}
-
-/* A progress line on stderr: only on a terminal and without --quiet (SPEC "Command line"). */
-static void say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void say(const struct run_opts *o, const char *fmt, ...)
+void compare_say(const struct run_opts *o, const char *fmt, ...)
 {
     if (o->quiet || !o->progress)
         return;
@@ -73,43 +34,6 @@ static void say(const struct run_opts *o, const char *fmt, ...)
     va_start(ap, fmt);
     vfprintf(stderr, fmt, ap);
     va_end(ap);
-}
-
-/* Render scene s's reference into OUT/.cache/, or reuse it when the cache holds one. */
-static int reference(struct compare *c, int s, const struct run_opts *o, struct err *e)
-{
-    struct compare_scene *cs = &c->scenes[s];
-    if (cs->ref_kind != COMPARE_REF_SETTINGS)
-        return 0;
-    uint64_t key;
-    if (reference_key(cs, &key, e) < 0)
-        return 2;
-    struct job j = cs->ref_job;
-    snprintf(j.name, sizeof j.name, ".cache");
-    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.png", cs->name, (unsigned long long)key);
-    snprintf(cs->ref_path, sizeof cs->ref_path, "%s/.cache/%s", o->out_dir ? o->out_dir : "out", j.output);
-    struct rgb8 img = {0};
-    struct err ignored;
-    if (imgio_read(cs->ref_path, &img, &ignored) == 0 && img.w == cs->width && img.h == cs->height) {
-        rgb8_free(&img);
-        cs->ref_reused = 1;
-        cs->ref_wall_s = cached_wall_s(cs->ref_path);
-        say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
-            cs->ref_wall_s);
-        return 0;
-    }
-    rgb8_free(&img);
-    say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
-        sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
-        cs->ref_path);
-    struct run_result rr;
-    int rc = run_job(&j, o, &rr, e);
-    if (rc != 0) {
-        err_prefix(e, "reference");
-        return rc;
-    }
-    cs->ref_wall_s = rr.farm.wall_s;
-    return 0;
 }
 
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
@@ -294,7 +218,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         goto fail;
     }
     for (int s = 0; s < c->n_scenes; s++) {
-        if ((rc = reference(c, s, o, e)) != 0)
+        if ((rc = compare_ref_prepare(c, s, o, e)) != 0)
             goto fail;
         if (c->scenes[s].ref_kind != COMPARE_REF_NONE && imgio_read(c->scenes[s].ref_path, &refs[s], e) < 0) {
             rc = 2;
@@ -319,10 +243,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
-        say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
-            c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
-            it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
-            it->skipped ? " (current, not rendered again)" : "", el, eta);
+        compare_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
+                    c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+                    it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+                    it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     rc = 1;
     e->msg[0] = 0;
