@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "yamlx.h"
+#include "yget.h"
 
 static char path[64];
 

@@ -11,6 +11,7 @@
 #include "fileio.h"
 #include "limits.h"
 #include "scene_load.h"
+#include "yget.h"
 
 int compare_index(const struct compare *c, int scene, int variant, int point, int seed)
 {

@@ -11,6 +11,7 @@
 #include "fileio.h"
 #include "hash.h"
 #include "scene_load.h"
+#include "yget.h"
 
 const char *const job_keys[] = {
     "name",          "scene",           "width",        "height",         "sampler",   "threshold",

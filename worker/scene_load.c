@@ -8,6 +8,7 @@
 
 #include "fileio.h"
 #include "scene_loader.h"
+#include "yget.h"
 
 int loader_find_name(const struct names *nm, const char *s)
 {

@@ -4,6 +4,7 @@
 
 #include "scene_loader.h"
 #include "shape.h"
+#include "yget.h"
 
 /* Keys every object may have besides its geometry. */
 #define COMMON_KEYS "type", "material", "rotate_y", "translate", "sample"

@@ -49,6 +49,9 @@ int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_nod
 yaml_node_t *yseq_item(struct ydoc *d, yaml_node_t *n, int i);
 int yseq_len(yaml_node_t *n);
 
+/* What node n is, for messages: "a mapping", "a list" or "a scalar". */
+const char *ydoc_node_kind(const yaml_node_t *n);
+
 /* Scalar text of n, or NULL if n is not a scalar. */
 const char *yscalar(yaml_node_t *n);
 
@@ -57,15 +60,6 @@ int yquoted(const yaml_node_t *n);
 
 /* The note a quoted number's message ends with. */
 #define YQUOTED_NOTE " (a quoted string: write numbers without quotes)"
-
-/* Typed reads; each fails with "key: must be ..., got ..." at the value's position. Numbers and
-   booleans must be plain scalars: a quoted "5" is a string, a wrong type. */
-int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, struct err *e);
-int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi, long *out, struct err *e);
-int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct err *e);
-int yget_string(struct ydoc *d, yaml_node_t *n, const char *key, const char **out, struct err *e);
-int yget_vec3(struct ydoc *d, yaml_node_t *n, const char *key, vec3 *out, struct err *e);
-int yget_vec2(struct ydoc *d, yaml_node_t *n, const char *key, double out[2], struct err *e);
 
 /* Edit distance of two short strings (for "did you mean"). */
 int ystr_distance(const char *a, const char *b);
