@@ -333,16 +333,15 @@ static AI d4 gather4(const void *const p[PACKET_LANES], size_t off)
     return (d4){x0, x1, x2, x3};
 }
 
-/* A 32-byte load of whatever lies there (packet_rec's n and its int64_t sphere mask as one
-   vector): may_alias, so the access is not a type-punned one under C's aliasing rules. */
-typedef double d4_any __attribute__((vector_size(32), may_alias));
-
-/* The 32 bytes at offset off of each lane's record (32-byte aligned there) as four columns c[0..3]. */
+/* The 32 bytes at offset off of each lane's record (32-byte aligned there) as four columns c[0..3].
+   Copied, not read through a cast pointer: a row may hold an int64_t (n's sphere mask). */
 static AI void transpose4(const struct packet_rec *const rc[PACKET_LANES], size_t off, d4 c[4])
 {
-#define ROW(i) (*(const d4_any *)((const char *)rc[i] + off))
-    const d4 a0 = ROW(0), a1 = ROW(1), a2 = ROW(2), a3 = ROW(3);
-#undef ROW
+    d4 a0, a1, a2, a3;
+    memcpy(&a0, (const char *)rc[0] + off, sizeof a0);
+    memcpy(&a1, (const char *)rc[1] + off, sizeof a1);
+    memcpy(&a2, (const char *)rc[2] + off, sizeof a2);
+    memcpy(&a3, (const char *)rc[3] + off, sizeof a3);
     const d4 lo01 = __builtin_shufflevector(a0, a1, 0, 4, 2, 6),
              hi01 = __builtin_shufflevector(a0, a1, 1, 5, 3, 7);
     const d4 lo23 = __builtin_shufflevector(a2, a3, 0, 4, 2, 6),
