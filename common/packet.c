@@ -32,12 +32,18 @@ struct packet_prim {
 
 /* What a winner's record needs (index: the prim's place in the order + 1; 0: no hit): the
    outward normal n, or (p - c) s for a sphere (mask `sphere` all ones); `scalar`: the record is
-   its scalar test's. c and s, n and sphere: one 32-byte load each (transposed in the lanes). */
+   its scalar test's. c and s, n and sphere: one 32-byte load each (transposed in the lanes),
+   so each pair is contiguous and 32-byte aligned (checked below). */
 struct packet_rec {
     double c[3], s, n[3];
     int64_t sphere;
     int prim, scalar;
 } __attribute__((aligned(32)));
+_Static_assert(offsetof(struct packet_rec, s) == offsetof(struct packet_rec, c) + 3 * sizeof(double) &&
+                   offsetof(struct packet_rec, sphere) ==
+                       offsetof(struct packet_rec, n) + 3 * sizeof(double) &&
+                   offsetof(struct packet_rec, n) % 32 == 0,
+               "packet_rec's pairs must be 32-byte rows");
 
 struct packet_scene {
     const struct scene *sc;
@@ -327,10 +333,15 @@ static AI d4 gather4(const void *const p[PACKET_LANES], size_t off)
     return (d4){x0, x1, x2, x3};
 }
 
-/* The four rows p[i][0..3] (32-byte aligned) as four columns c[0..3]. */
-static AI void transpose4(const double *const p[PACKET_LANES], d4 c[4])
+/* The 32 bytes at offset off of each lane's record (32-byte aligned there) as four columns c[0..3].
+   Copied, not read through a cast pointer: a row may hold an int64_t (n's sphere mask). */
+static AI void transpose4(const struct packet_rec *const rc[PACKET_LANES], size_t off, d4 c[4])
 {
-    const d4 a0 = *(const d4 *)p[0], a1 = *(const d4 *)p[1], a2 = *(const d4 *)p[2], a3 = *(const d4 *)p[3];
+    d4 a0, a1, a2, a3;
+    memcpy(&a0, (const char *)rc[0] + off, sizeof a0);
+    memcpy(&a1, (const char *)rc[1] + off, sizeof a1);
+    memcpy(&a2, (const char *)rc[2] + off, sizeof a2);
+    memcpy(&a3, (const char *)rc[3] + off, sizeof a3);
     const d4 lo01 = __builtin_shufflevector(a0, a1, 0, 4, 2, 6),
              hi01 = __builtin_shufflevector(a0, a1, 1, 5, 3, 7);
     const d4 lo23 = __builtin_shufflevector(a2, a3, 0, 4, 2, 6),
@@ -394,11 +405,9 @@ PACKET_CLONES int packet_hit(const struct packet_scene *ps, const ray *const r[P
         scalar |= rc[i]->scalar << i;
         ph->h[i].prim = rc[i]->prim;
     }
-    const double *const cs[PACKET_LANES] = {rc[0]->c, rc[1]->c, rc[2]->c, rc[3]->c};
-    const double *const ns[PACKET_LANES] = {rc[0]->n, rc[1]->n, rc[2]->n, rc[3]->n};
     d4 c[4], nm[4];
-    transpose4(cs, c);
-    transpose4(ns, nm);
+    transpose4(rc, offsetof(struct packet_rec, c), c);
+    transpose4(rc, offsetof(struct packet_rec, n), nm);
     const d4 t = pk.best_t;
     const d4 px = pk.o[0] + pk.d[0] * t, py = pk.o[1] + pk.d[1] * t, pz = pk.o[2] + pk.d[2] * t;
     const i4 sphere = (i4)nm[3];

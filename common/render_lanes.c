@@ -29,9 +29,11 @@ static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, s
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
-   stream (*base) from the state rng_mix64(state + s), so that a sample's draws do not depend on
-   which lane runs it or when (64 starts spread over the 2^64-long sequence, a few hundred draws
-   each: the chance of an overlap is below 2^-40). */
+   stream (*base) from the state rng_mix64(state + s), so that a sample's own draws do not depend
+   on which lane runs it or when (64 starts spread over the 2^64-long sequence, a few hundred
+   draws each: the chance of an overlap is below 2^-40). Its light points do: they come from the
+   pixel's shared sets (ctx->lp, ctx->light_rng), taken in the order the lanes ask for them. That
+   order is fixed by the pixel's own work, so a pixel still depends only on seed and pixel. */
 static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
                               const struct rng *base)
 {
