@@ -145,7 +145,7 @@ bench: all build/bench_bridson
 FUZZ_CC     ?= clang
 SECONDS     ?= 30
 FUZZ_TARGETS ?= job scene image
-FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
+FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -ffp-contract=off -Wno-psabi
 FUZZ_SRC    := $(COMMON_SRC) $(WORKER_SRC) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c
 fuzz: deps
 	@mkdir -p build/fuzz
