@@ -49,21 +49,15 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
 
     double sum[3] = {0, 0, 0};
     size_t kept = 0;
-    uint64_t rays = 0;
+    uint64_t rays = 0, nonfinite = 0;
+    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     if (ctx->packet) {
-        render_pixel_packet(ctx, x, y, n, sum, &kept, &rays);
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, last, sum, &kept, &nonfinite, &rays);
     } else {
-        const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
         for (size_t s = 0; s < n; s++) {
             struct pt2 p = ctx->pixel_pts[s];
             ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-            vec3 c = trace(ctx, &r, &path_rng, &rays, mix, last);
-            if (!v3_finite(c)) {
-                st->nonfinite++;
-                continue;
-            }
-            sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
-            kept++;
+            add_estimate(trace(ctx, &r, &path_rng, &rays, mix, last), sum, &kept, &nonfinite);
         }
     }
     double inv = kept ? 1.0 / kept : 0;
@@ -72,6 +66,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     st->pixels++;
     st->samples += n;
     st->rays += rays;
+    st->nonfinite += nonfinite;
     if (n < st->spp_min)
         st->spp_min = (uint32_t)n;
     if (n > st->spp_max)

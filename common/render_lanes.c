@@ -48,23 +48,20 @@ static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, in
 }
 
 /* render_pixel's samples four paths at a time, their rays traced together (packet_hit). */
-void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double sum_out[3], size_t *kept_out,
-                         uint64_t *rays_out)
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
+                         int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
 {
-    double sum[3] = {0, 0, 0};
-    size_t kept = 0;
-    uint64_t rays = 0, nonfinite = 0;
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES];
-    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
-    struct rng base;
-    rng_pixel(&base, ctx->rs.seed, x, y, 2);
+    double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
+    size_t acc_kept = 0;
+    uint64_t acc_rays = 0, acc_nonfinite = 0;
     int lanes = 0;
     size_t next = 0;
     for (int i = 0; i < PACKET_LANES; i++) {
         rp[i] = &pt[i].r;
         if (next < n) {
-            path_start(ctx, &pt[i], x, y, next++, &base);
+            path_start(ctx, &pt[i], x, y, next++, base);
             lanes |= 1 << i;
         }
     }
@@ -83,25 +80,19 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, double 
         for (int i = 0; i < PACKET_LANES; i++) {
             if (!(lanes >> i & 1))
                 continue;
-            ++rays;
+            ++acc_rays;
             if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, last))
                 continue;
-            vec3 c = pt[i].L;
-            if (v3_finite(c)) {
-                sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
-                ++kept;
-            } else {
-                nonfinite++;
-            }
+            add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
             if (next < n)
-                path_start(ctx, &pt[i], x, y, next++, &base);
+                path_start(ctx, &pt[i], x, y, next++, base);
             else
                 lanes &= ~(1 << i);
         }
     }
     for (int k = 0; k < 3; k++)
-        sum_out[k] += sum[k];
-    *kept_out += kept;
-    *rays_out += rays;
-    ctx->st->nonfinite += nonfinite;
+        sum[k] += acc[k];
+    *kept += acc_kept;
+    *nonfinite += acc_nonfinite;
+    *rays += acc_rays;
 }

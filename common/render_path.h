@@ -173,6 +173,17 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
+/* A camera sample's estimate c into the pixel's sums: kept when finite, else counted as dropped. */
+static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *nonfinite)
+{
+    if (!v3_finite(c)) {
+        ++*nonfinite;
+        return;
+    }
+    sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
+    ++*kept;
+}
+
 /* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
    lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission

@@ -5,7 +5,7 @@
 #include "yamlx.h"
 
 /* A mapping's merge state while expanding: not yet, in progress (a loop), done. */
-enum { MERGE_TODO, MERGE_BUSY, MERGE_DONE };
+enum { MERGE_PENDING, MERGE_BUSY, MERGE_DONE };
 
 struct merge {
     struct ydoc *d;
