@@ -8,6 +8,7 @@
    packet test are tested after, lane by lane, by shape_hit. */
 #include "packet.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -274,16 +275,6 @@ void packet_scene_free(struct packet_scene *ps)
     free(ps);
 }
 
-/* The next double above x > 0 (+inf above DBL_MAX). */
-static double next_up(double x)
-{
-    uint64_t b;
-    memcpy(&b, &x, sizeof b);
-    b++;
-    memcpy(&x, &b, sizeof x);
-    return x;
-}
-
 /* The other prims, lane by lane, after the packet's: a hit nearer than the lane's nearest wins,
    and so does one as near from a prim earlier in the order (the tie bvh.c's order resolves
    for it). */
@@ -297,7 +288,7 @@ static __attribute__((noinline)) void test_others(const struct packet_scene *ps,
         const struct prim *pr = &ps->sc->prims[ps->prims[k].prim];
         for (int i = 0; i < PACKET_LANES; i++) {
             struct hit h;
-            if (!shape_hit(pr, r[i], t_min, next_up(best_t[i]), &h))
+            if (!shape_hit(pr, r[i], t_min, nextafter(best_t[i], INFINITY), &h))
                 continue;
             if (h.t < best_t[i] || (h.t == best_t[i] && best_i[i] > k)) {
                 best_t[i] = h.t;
