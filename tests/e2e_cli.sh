@@ -76,4 +76,14 @@ check "--lease-timeout 0.05 says the range" grep -q 'lease-timeout must be a num
 "$WORKER" --quiet --out "$T/one" --processes 1 "$T/p.yaml" 2>"$T/err"
 check "summary says '1 process,' ($(cat "$T/err"))" grep -q ', 1 process, ' "$T/err"
 
+# --processes joins the outputs' match in a queue too: a job queued again and drained with another
+# count renders again (its sidecar records the count), as on the command line
+mkdir -p "$T/qp"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nthreshold: 50\n' "$(pwd)" >"$T/qp.yaml"
+cp "$T/qp.yaml" "$T/qp/j.yaml"
+"$WORKER" --quiet --queue "$T/qp" --once 2>/dev/null
+cp "$T/qp.yaml" "$T/qp/j.yaml"
+"$WORKER" --quiet --queue "$T/qp" --once --processes 1 2>"$T/err"
+check "queue with --processes 1 renders again ($(cat "$T/err"))" grep -q '"processes": 1,' "$T/qp/done/j/j.json"
+
 finish

@@ -10,7 +10,6 @@
 #include "cli.h"
 #include "compare.h"
 #include "fileio.h"
-#include "hash.h"
 #include "job.h"
 #include "metrics.h"
 #include "points.h"
@@ -189,11 +188,6 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     }
     if (name_taken(j.name, path, o, taken, ntaken))
         return 2;
-    /* Outputs left by a render with another process count are not what --processes asked for:
-       their sidecar records that count and its per-process times. (Parts keep the file's hash:
-       merge matches them against it, whatever split rendered them.) */
-    if (!merge && !o->parts && o->processes > 0 && o->processes != j.processes)
-        j.hash = hash_u64(j.hash, (uint64_t)o->processes);
     int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
     if (rc != 0) {
         if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */

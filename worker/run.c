@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "fileio.h"
+#include "hash.h"
 #include "limits.h"
 #include "part.h"
 #include "run_out.h"
@@ -100,6 +101,16 @@ static int outputs_current(const struct job *j, const struct run_opts *o, struct
 
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
 {
+    /* Outputs left by a render with another process count are not what --processes asked for:
+       their sidecar records that count and its per-process times; so an override joins the hash
+       the outputs are matched by, from the command line, a queue or a compare job alike. (Parts
+       keep the file's hash: merge matches them against it, whatever split rendered them.) */
+    struct job overridden;
+    if (j->hash != 0 && o->parts == 0 && o->processes > 0 && o->processes != j->processes) {
+        overridden = *j;
+        overridden.hash = hash_u64(j->hash, (uint64_t)o->processes);
+        j = &overridden;
+    }
     struct scene_file sf = {0};
     struct sampler *pix = NULL, *light = NULL;
     struct rgb8 ref = {0};
