@@ -16,40 +16,42 @@
 #include "metrics.h"
 #include "sidecar.h"
 
-int run_out_mkdirs(const char *path, struct err *e)
+/* Make path and its parents; *made (unless NULL): whether path itself was made here. */
+static int mkdirs(const char *path, int *made, struct err *e)
 {
     char buf[2048];
     snprintf(buf, sizeof buf, "%s", path);
+    if (made)
+        *made = 0;
     for (char *p = buf + 1;; p++) {
         if (*p == '/' || *p == 0) {
             char c = *p;
             *p = 0;
-            if (mkdir(buf, 0755) < 0 && errno != EEXIST)
+            int ok = mkdir(buf, 0755) == 0;
+            if (!ok && errno != EEXIST)
                 return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", buf, strerror(errno));
             struct stat st;
             if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
                 return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", buf);
             *p = c;
-            if (!c)
+            if (!c) {
+                if (made)
+                    *made = ok;
                 break;
+            }
         }
     }
     return 0;
 }
 
+int run_out_mkdirs(const char *path, struct err *e)
+{
+    return mkdirs(path, NULL, e);
+}
+
 int run_out_make_dir(const char *dir, int *made, struct err *e)
 {
-    char parent[2048];
-    snprintf(parent, sizeof parent, "%s", dir);
-    char *slash = strrchr(parent, '/');
-    *made = 0;
-    if (slash && slash != parent) {
-        *slash = 0;
-        if (run_out_mkdirs(parent, e) < 0)
-            return -1;
-    }
-    *made = mkdir(dir, 0755) == 0;
-    return run_out_mkdirs(dir, e);
+    return mkdirs(dir, made, e);
 }
 
 /* Whether n is a temporary of the file named base: fileio_write_atomic's ".<base>.tmp.XXXXXX", or
