@@ -51,7 +51,9 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
     const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
-    if (ctx->packet) {
+    if (ctx->wide) {
+        render_pixel_wide(ctx, x, y, n, &path_rng, last, sum, &kept, &nonfinite, &rays);
+    } else if (ctx->packet) {
         render_pixel_packet(ctx, x, y, n, &path_rng, mix, last, sum, &kept, &nonfinite, &rays);
     } else {
         for (size_t s = 0; s < n; s++) {
