@@ -51,7 +51,8 @@ static int prim_ok(const struct prim *p)
 
 int wide_usable(const struct scene *sc, int light_sampling_off)
 {
-    if (!__builtin_cpu_supports("avx2") || sc->n_nodes != 1 || light_sampling_off || sc->n_lights < 1 || sc->n_lights > WIDE_MAX_LIGHTS)
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma") || sc->n_nodes != 1 ||
+        sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 || sc->n_lights > WIDE_MAX_LIGHTS)
         return 0;
     for (int i = 0; i < sc->n_prims; i++) {
         const struct prim *p = &sc->prims[i];

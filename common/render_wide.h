@@ -1,4 +1,4 @@
-/* render_wide: a one-node scene's camera paths four at a time with their whole state in double
+/* render_wide: a one-node scene's camera paths eight at a time with their whole state in float
    SIMD lanes (SPMD style): the nearest hit, the materials' scattering, the light mixture and the
    random draws, lane by lane under masks; a lane whose path ends takes the pixel's next sample.
    Internal to common/. */
@@ -15,13 +15,15 @@ struct render_ctx;
 
 /* The most lights a scene the wide kernel renders has. */
 #define WIDE_MAX_LIGHTS 4
+/* The most prims. */
+#define WIDE_MAX_PRIMS 15
 
 /* The scene's prims, materials and lights in the lanes' tables. */
 struct wide_scene;
 
 /* Whether the wide kernel renders sc: one BVH node; prims untransformed rects and spheres and
-   boxes; materials lambertian without texture, dielectric, light; lights rects and spheres,
-   sampled (light_sampling_off: 0). */
+   boxes (at most WIDE_MAX_PRIMS); materials lambertian without texture, dielectric, light; lights
+   rects and spheres, sampled (light_sampling_off: 0); a CPU with AVX2 and FMA. */
 int wide_usable(const struct scene *sc, int light_sampling_off);
 
 /* The tables for sc (wide_usable), valid while sc is; NULL on no memory. Free with
@@ -29,12 +31,16 @@ int wide_usable(const struct scene *sc, int light_sampling_off);
 struct wide_scene *wide_scene_new(const struct scene *sc);
 void wide_scene_free(struct wide_scene *ws);
 
-/* The nearest hit of each of four rays (o, d by component, lane i = ray i) for t in (t_min,
-   inf): its t, the prim's index in sc (-1: none) and the outward normal. For the tests. */
-void wide_scene_hit(const struct wide_scene *ws, const double o[3][4], const double d[3][4], double t_min,
-                    double t[4], int prim[4], double n[3][4]);
+/* The lanes of the wide kernel (float). */
+#define WIDE_LANES 8
 
-/* render_pixel's n samples of pixel (x, y) four paths at a time in the lanes (ctx's wide
+/* The nearest hit of each of eight rays (o, d by component, lane i = ray i, rounded to float) for
+   t in (t_min, FLT_MAX): its t, the prim's index in sc (-1: none) and the outward normal. For the
+   tests. */
+void wide_scene_hit(const struct wide_scene *ws, const double o[3][WIDE_LANES], const double d[3][WIDE_LANES],
+                    double t_min, double t[WIDE_LANES], int prim[WIDE_LANES], double n[3][WIDE_LANES]);
+
+/* render_pixel's n samples of pixel (x, y) eight paths at a time in the lanes (ctx's wide
    scene), each sample's rng from the pixel's path stream *base as render_pixel_packet's;
    last: max_depth - 1. Sums as render_pixel_packet. */
 void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int last,

@@ -11,147 +11,145 @@
 
 enum { WK_RECT_X, WK_RECT_Y, WK_RECT_Z, WK_SPHERE, WK_BOX };
 
-/* A prim's constants, each in all four lanes: a rect's k, a0, a1, b0, b1; a sphere's centre,
+/* A prim's constants, each in all eight lanes: a rect's k, a0, a1, b0, b1; a sphere's centre,
    radius^2 and 1 / radius; a box's cos_y, sin_y, offset, lo and hi. */
 struct wide_prim {
-    d4 v[12];
+    f8 v[12];
     int kind, prim;
 } __attribute__((aligned(32)));
 
-/* A prim's material and normal as 32-byte rows (gathered per lane and transposed): albedo and
-   ior; emission (a light's, or the background for the miss entry) and the type; a rect's outward
-   normal (0 for the others) and 1 for a sphere or box, whose normal is made from the hit. */
+/* The columns of the prims' materials and normals, one entry per prim and the miss (entry n):
+   albedo, ior, emission (a light's, or the background for the miss), type, a rect's outward
+   normal (0 for the others), and 1 for a sphere or box, whose normal is made from the hit. */
 enum { WM_LAMBERTIAN, WM_DIELECTRIC, WM_EMIT };
-struct wide_mat {
-    double albedo[3], ior, emit[3], type, n[3], curved;
-} __attribute__((aligned(32)));
+enum { WC_ALBEDO = 0, WC_IOR = 3, WC_EMIT = 4, WC_TYPE = 7, WC_N = 8, WC_CURVED = 11, WC_COLUMNS = 12 };
 
 /* A light: a rect (axis-aligned, unit axes) or a sphere. */
 struct wide_light {
     int sphere, on, oa, ob;
-    double k, a0, a1, b0, b1, area, ball_c[3], ball_r2, ball_r2_out;
-    double c[3], r2;
+    float k, a0, a1, b0, b1, area;
+    float c[3], r2;
 };
 
 struct wide_scene {
     const struct scene *sc;
     int n, n_lights;
     int end[WK_BOX + 1]; /* prims are grouped by kind: kind j's end at end[j] */
+    float offset;        /* a new ray's origin this far off the surface (the positions' rounding) */
     struct wide_prim *prims;
-    struct wide_mat *mats; /* n + 1: entry n is the miss (the background) */
+    f8 col[WC_COLUMNS][2]; /* entries 0-7, 8-15 */
     struct wide_light *lights;
 };
 
 /* The lanes' nearest hits: t and the prim's place in the order (-1: none). */
 struct wide_best {
-    d4 t;
-    i4 k;
+    f8 t;
+    i8 k;
 };
 
-static WAI void wide_keep(struct wide_best *b, i4 m, d4 t, int64_t k)
+static WAI void wide_keep(struct wide_best *b, i8 m, f8 t, int32_t k)
 {
     b->t = pick(m, t, b->t);
-    b->k = (i4)pick(m, (d4)(i4){k, k, k, k}, (d4)b->k);
+    b->k = picki(m, i8s(k), b->k);
 }
 
 /* hit_rect's test for a rect of normal axis on and in-plane axes oa, ob (constants). */
-static WAI void wide_rect(const d4 o[3], const d4 d[3], d4 t_min, struct wide_best *b, const struct wide_prim *e,
-                          int64_t k, int on, int oa, int ob)
+static WAI void wide_rect(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b, const struct wide_prim *e,
+                          int32_t k, int on, int oa, int ob)
 {
-    const d4 t = (e->v[0] - o[on]) / d[on];
-    i4 m = (t > t_min) & (t < b->t);
-    const d4 pa = o[oa] + d[oa] * t, pb = o[ob] + d[ob] * t;
+    const f8 t = (e->v[0] - o[on]) / d[on];
+    i8 m = (t > t_min) & (t < b->t);
+    const f8 pa = o[oa] + d[oa] * t, pb = o[ob] + d[ob] * t;
     m &= ~((pa < e->v[1]) | (pa > e->v[2]) | (pb < e->v[3]) | (pb > e->v[4]));
     wide_keep(b, m, t, k);
 }
 
-static WAI void wide_sphere(const d4 o[3], const d4 d[3], d4 t_min, struct wide_best *b,
-                            const struct wide_prim *e, int64_t k)
+static WAI void wide_sphere(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b,
+                            const struct wide_prim *e, int32_t k)
 {
-    const d4 ocx = o[0] - e->v[0], ocy = o[1] - e->v[1], ocz = o[2] - e->v[2];
-    const d4 a = dot4(d, d);
-    const d4 half_b = ocx * d[0] + ocy * d[1] + ocz * d[2];
-    const d4 cc = (ocx * ocx + ocy * ocy + ocz * ocz) - e->v[3];
-    const d4 disc = half_b * half_b - a * cc;
-    const i4 ok = ~((disc < 0) | (a == 0));
-    const d4 sq = wsqrt(disc);
-    const d4 lo = t_min * a, hi = b->t * a;
-    const d4 at0 = -half_b - sq, at1 = -half_b + sq;
-    const i4 m0 = (at0 > lo) & (at0 < hi), m1 = (at1 > lo) & (at1 < hi);
+    const f8 ocx = o[0] - e->v[0], ocy = o[1] - e->v[1], ocz = o[2] - e->v[2];
+    const f8 a = dot8(d, d);
+    const f8 half_b = ocx * d[0] + ocy * d[1] + ocz * d[2];
+    const f8 cc = (ocx * ocx + ocy * ocy + ocz * ocz) - e->v[3];
+    const f8 disc = half_b * half_b - a * cc;
+    const i8 ok = ~((disc < 0) | (a == 0));
+    const f8 sq = wsqrt(disc);
+    const f8 lo = t_min * a, hi = b->t * a;
+    const f8 at0 = -half_b - sq, at1 = -half_b + sq;
+    const i8 m0 = (at0 > lo) & (at0 < hi), m1 = (at1 > lo) & (at1 < hi);
     wide_keep(b, ok & (m0 | m1), pick(m0, at0, at1) / a, k);
 }
 
 /* one slab of the box: the nearest entry and farthest exit so far, and (axes) their axes */
-static WAI void wide_slab(d4 lo, d4 hi, d4 o, d4 d, int axis, d4 *t_near, d4 *t_far, i4 *a_near, i4 *a_far)
+static WAI void wide_slab(f8 lo, f8 hi, f8 o, f8 d, int axis, f8 *t_near, f8 *t_far, i8 *a_near, i8 *a_far)
 {
-    const i4 neg = (i4)d < 0;
-    const d4 near = pick(neg, hi, lo), far = pick(neg, lo, hi);
-    const d4 inv = 1.0 / d;
-    const d4 tn = (near - o) * inv, tf = (far - o) * inv;
-    const i4 mn = tn > *t_near, mf = tf < *t_far;
+    const i8 neg = (i8)d < 0;
+    const f8 near = pick(neg, hi, lo), far = pick(neg, lo, hi);
+    const f8 inv = 1.0f / d;
+    const f8 tn = (near - o) * inv, tf = (far - o) * inv;
+    const i8 mn = tn > *t_near, mf = tf < *t_far;
     *t_near = pick(mn, tn, *t_near);
     *t_far = pick(mf, tf, *t_far);
     if (a_near) {
-        const d4 a = (d4)(i4){axis, axis, axis, axis};
-        *a_near = (i4)pick(mn, a, (d4)*a_near);
-        *a_far = (i4)pick(mf, a, (d4)*a_far);
+        *a_near = picki(mn, i8s(axis), *a_near);
+        *a_far = picki(mf, i8s(axis), *a_far);
     }
 }
 
 /* The ray in the box's frame (its rotate_y + translate undone). */
-static WAI void box_frame(const d4 o[3], const d4 d[3], const struct wide_prim *e, d4 lo[3], d4 ld[3])
+static WAI void box_frame(const f8 o[3], const f8 d[3], const struct wide_prim *e, f8 lo[3], f8 ld[3])
 {
-    const d4 c = e->v[0], s = e->v[1];
-    const d4 wx = o[0] - e->v[2], wy = o[1] - e->v[3], wz = o[2] - e->v[4];
+    const f8 c = e->v[0], s = e->v[1];
+    const f8 wx = o[0] - e->v[2], wy = o[1] - e->v[3], wz = o[2] - e->v[4];
     lo[0] = c * wx - s * wz, lo[1] = wy, lo[2] = s * wx + c * wz;
     ld[0] = c * d[0] - s * d[2], ld[1] = d[1], ld[2] = s * d[0] + c * d[2];
 }
 
 /* hit_box's test; with axes, also the axes of its entry and exit. */
-static WAI void box_slabs(const d4 o[3], const d4 d[3], const struct wide_prim *e, d4 *t_near, d4 *t_far,
-                          i4 *a_near, i4 *a_far)
+static WAI void box_slabs(const f8 o[3], const f8 d[3], const struct wide_prim *e, f8 *t_near, f8 *t_far,
+                          i8 *a_near, i8 *a_far)
 {
-    d4 lo[3], ld[3];
+    f8 lo[3], ld[3];
     box_frame(o, d, e, lo, ld);
-    *t_near = d4s(-INFINITY), *t_far = d4s(INFINITY);
+    *t_near = f8s(-INFINITY), *t_far = f8s(INFINITY);
     wide_slab(e->v[5], e->v[8], lo[0], ld[0], 0, t_near, t_far, a_near, a_far);
     wide_slab(e->v[6], e->v[9], lo[1], ld[1], 1, t_near, t_far, a_near, a_far);
     wide_slab(e->v[7], e->v[10], lo[2], ld[2], 2, t_near, t_far, a_near, a_far);
 }
 
-static WAI void wide_box(const d4 o[3], const d4 d[3], d4 t_min, struct wide_best *b, const struct wide_prim *e,
-                         int64_t k)
+static WAI void wide_box(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b, const struct wide_prim *e,
+                         int32_t k)
 {
-    d4 t_near, t_far;
+    f8 t_near, t_far;
     box_slabs(o, d, e, &t_near, &t_far, NULL, NULL);
-    const i4 entry = (t_near > t_min) & (t_near < b->t);
-    const i4 leave = (t_far > t_min) & (t_far < b->t);
+    const i8 entry = (t_near > t_min) & (t_near < b->t);
+    const i8 leave = (t_far > t_min) & (t_far < b->t);
     wide_keep(b, ~(t_near > t_far) & (entry | leave), pick(entry, t_near, t_far), k);
 }
 
 /* The box's outward normal for lanes hitting it at t (its test again, with the axes). */
-static WAI void box_normal(const d4 o[3], const d4 d[3], d4 t, const struct wide_prim *e, d4 n[3])
+static WAI void box_normal(const f8 o[3], const f8 d[3], f8 t, const struct wide_prim *e, f8 n[3])
 {
-    d4 t_near, t_far, lo[3], ld[3];
-    i4 a_near = {0, 0, 0, 0}, a_far = {0, 0, 0, 0};
+    f8 t_near, t_far, lo[3], ld[3];
+    i8 a_near = i8s(0), a_far = i8s(0);
     box_slabs(o, d, e, &t_near, &t_far, &a_near, &a_far);
     box_frame(o, d, e, lo, ld);
-    const i4 entry = t == t_near;
-    const i4 axis = (i4)pick(entry, (d4)a_near, (d4)a_far);
-    const i4 ax0 = axis == 0, ax1 = axis == 1, ax2 = axis == 2;
+    const i8 entry = t == t_near;
+    const i8 axis = picki(entry, a_near, a_far);
+    const i8 ax0 = axis == 0, ax1 = axis == 1, ax2 = axis == 2;
     /* the face's normal against d along its axis (hit_box's), outward: reversed on an exit */
-    const d4 da = pick(ax0, ld[0], pick(ax1, ld[1], ld[2]));
-    const d4 nv = (d4)((i4)pick(da > 0, d4s(-1), d4s(1)) ^ ((i4)d4s(-0.0) & ~entry));
-    const d4 lx = (d4)((i4)nv & ax0), ly = (d4)((i4)nv & ax1), lz = (d4)((i4)nv & ax2);
-    const d4 c = e->v[0], s = e->v[1];
+    const f8 da = pick(ax0, ld[0], pick(ax1, ld[1], ld[2]));
+    const f8 nv = (f8)((i8)pick(da > 0, f8s(-1), f8s(1)) ^ ((i8)f8s(-0.0f) & ~entry));
+    const f8 lx = (f8)((i8)nv & ax0), ly = (f8)((i8)nv & ax1), lz = (f8)((i8)nv & ax2);
+    const f8 c = e->v[0], s = e->v[1];
     n[0] = c * lx + s * lz, n[1] = ly, n[2] = c * lz - s * lx;
 }
 
-/* Every prim against the lanes' rays o + t d, t in (t_min, DBL_MAX), kind by kind (a tie
+/* Every prim against the lanes' rays o + t d, t in (t_min, FLT_MAX), kind by kind (a tie
    between two prims at the same t, on an edge where they meet: the first in this order). */
-static WAI struct wide_best wide_hit(const struct wide_scene *ws, const d4 o[3], const d4 d[3], d4 t_min)
+static WAI struct wide_best wide_hit(const struct wide_scene *ws, const f8 o[3], const f8 d[3], f8 t_min)
 {
-    struct wide_best b = {d4s(DBL_MAX), (i4){-1, -1, -1, -1}};
+    struct wide_best b = {f8s(FLT_MAX), i8s(-1)};
     const struct wide_prim *e = ws->prims;
     int k = 0;
     for (; k < ws->end[WK_RECT_X]; k++)
@@ -167,18 +165,25 @@ static WAI struct wide_best wide_hit(const struct wide_scene *ws, const d4 o[3],
     return b;
 }
 
-/* The outward normals of the hits b (p = o + t d): rows[2] (a rect's, from its material row)
-   where it is not curved, else the sphere's or box's own, made for the prims some lane hit. */
-static WAI void wide_normal(const struct wide_scene *ws, const d4 o[3], const d4 d[3], const d4 p[3],
-                            struct wide_best b, const d4 row[4], d4 n[3])
+/* Column c of the prims' table at the lanes' entries k (the miss: entry n). */
+static WAI f8 wide_col(const struct wide_scene *ws, int c, i8 k)
 {
-    n[0] = row[0], n[1] = row[1], n[2] = row[2];
-    for (int bits = lane_bits(row[3] != 0); bits;) {
-        const int k = (int)b.k[__builtin_ctz((unsigned)bits)];
-        const struct wide_prim *e = &ws->prims[k];
-        const i4 m = b.k == k;
+    return lookup16(ws->col[c][0], ws->col[c][1], k);
+}
+
+/* The outward normals of the hits b at entries k (p = o + t d): a rect's from the table, a
+   sphere's or box's made for the prims some lane hit. */
+static WAI void wide_normal(const struct wide_scene *ws, const f8 o[3], const f8 d[3], const f8 p[3],
+                            struct wide_best b, i8 k, f8 n[3])
+{
+    for (int j = 0; j < 3; j++)
+        n[j] = wide_col(ws, WC_N + j, k);
+    for (int bits = lane_bits(wide_col(ws, WC_CURVED, k) != 0); bits;) {
+        const int kk = b.k[__builtin_ctz((unsigned)bits)];
+        const struct wide_prim *e = &ws->prims[kk];
+        const i8 m = b.k == kk;
         bits &= ~lane_bits(m);
-        d4 c[3];
+        f8 c[3];
         if (e->kind == WK_SPHERE) {
             for (int j = 0; j < 3; j++)
                 c[j] = (p[j] - e->v[j]) * e->v[4];
