@@ -52,14 +52,16 @@ static int prim_ok(const struct prim *p)
 int wide_usable(const struct scene *sc, int light_sampling_off)
 {
     if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma") || sc->n_nodes != 1 ||
-        sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 || sc->n_lights > WIDE_MAX_LIGHTS)
+        sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 ||
+        sc->n_lights > WIDE_MAX_LIGHTS)
         return 0;
     for (int i = 0; i < sc->n_prims; i++) {
         const struct prim *p = &sc->prims[i];
         const struct material *m = &sc->materials[p->material];
         if (!prim_ok(p))
             return 0;
-        if (!(m->type == MAT_LIGHT || m->type == MAT_DIELECTRIC || (m->type == MAT_LAMBERTIAN && m->texture < 0)))
+        if (!(m->type == MAT_LIGHT || m->type == MAT_DIELECTRIC ||
+              (m->type == MAT_LAMBERTIAN && m->texture < 0)))
             return 0;
     }
     for (int i = 0; i < sc->n_lights; i++) {

@@ -226,7 +226,8 @@ void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const str
            its own path only */
         const u8 r0 = rng8_u32(&ln.rng, inc);
         const f8 u1 = u32_unit(rng8_u32(&ln.rng, inc)), u2 = u32_unit(rng8_u32(&ln.rng, inc));
-        const i8 lam = live_m & ~end & (type == WM_LAMBERTIAN), diel = live_m & ~end & (type == WM_DIELECTRIC);
+        const i8 lam = live_m & ~end & (type == WM_LAMBERTIAN),
+                 diel = live_m & ~end & (type == WM_DIELECTRIC);
         f8 nd[3] = {ln.d[0], ln.d[1], ln.d[2]};
         if (lane_bits(lam))
             lambertian8(ctx, ws, lam, p, nf, albedo, r0, u1, u2, nd, ln.beta, &end);

@@ -34,11 +34,11 @@ void wide_scene_free(struct wide_scene *ws);
 /* The lanes of the wide kernel (float). */
 #define WIDE_LANES 8
 
-/* The nearest hit of each of eight rays (o, d by component, lane i = ray i, rounded to float) for
-   t in (t_min, FLT_MAX): its t, the prim's index in sc (-1: none) and the outward normal. For the
-   tests. */
-void wide_scene_hit(const struct wide_scene *ws, const double o[3][WIDE_LANES], const double d[3][WIDE_LANES],
-                    double t_min, double t[WIDE_LANES], int prim[WIDE_LANES], double n[3][WIDE_LANES]);
+/* The nearest hit of each of eight rays (o, d by component: o[j * WIDE_LANES + i] is component j of
+   ray i; rounded to float) for t in (t_min, FLT_MAX): its t, the prim's index in sc (-1: none) and
+   the outward normal (n as o). For the tests. */
+void wide_scene_hit(const struct wide_scene *ws, const double *o, const double *d, double t_min, double *t,
+                    int *prim, double *n);
 
 /* render_pixel's n samples of pixel (x, y) eight paths at a time in the lanes (ctx's wide
    scene), each sample's rng from the pixel's path stream *base as render_pixel_packet's;

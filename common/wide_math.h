@@ -105,7 +105,8 @@ static WAI void sincos8(f8 u, f8 *s, f8 *c)
     const i8 q1 = x4 >= 1, q2 = x4 >= 2, q3 = x4 >= 3;
     const f8 q = (f8)((i8)f8s(1) & q1) + (f8)((i8)f8s(1) & q2) + (f8)((i8)f8s(1) & q3);
     const f8 x = (x4 - q - 0.5f) * (float)(PI / 2), y = x * x, y2 = y * y;
-    const f8 sn = x * ((1 + y * (-1.0f / 6)) + y2 * (1.0f / 120 + y * (-1.0f / 5040)) + y2 * y2 * (1.0f / 362880));
+    const f8 sn =
+        x * ((1 + y * (-1.0f / 6)) + y2 * (1.0f / 120 + y * (-1.0f / 5040)) + y2 * y2 * (1.0f / 362880));
     const f8 cs = (1 + y * (-1.0f / 2)) + y2 * (1.0f / 24 + y * (-1.0f / 720)) +
                   y2 * y2 * (1.0f / 40320 + y * (-1.0f / 3628800));
     const float half_sqrt2 = 0.70710678118654752440f;

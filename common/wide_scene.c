@@ -60,7 +60,9 @@ static void add_prim(struct wide_scene *ws, int p)
     set_col(ws, WC_EMIT, k, m->emit.x), set_col(ws, WC_EMIT + 1, k, m->emit.y);
     set_col(ws, WC_EMIT + 2, k, m->emit.z);
     set_col(ws, WC_TYPE, k,
-            m->type == MAT_LIGHT ? WM_EMIT : m->type == MAT_DIELECTRIC ? WM_DIELECTRIC : WM_LAMBERTIAN);
+            m->type == MAT_LIGHT        ? WM_EMIT
+            : m->type == MAT_DIELECTRIC ? WM_DIELECTRIC
+                                        : WM_LAMBERTIAN);
     ws->offset = fmaxf(ws->offset, (float)(prim_reach(pr) * 0x1p-20)); /* 16 float ulps */
 }
 
@@ -119,13 +121,13 @@ void wide_scene_free(struct wide_scene *ws)
     free(ws);
 }
 
-void wide_scene_hit(const struct wide_scene *ws, const double o[3][WIDE_LANES], const double d[3][WIDE_LANES],
-                    double t_min, double t[WIDE_LANES], int prim[WIDE_LANES], double n[3][WIDE_LANES])
+void wide_scene_hit(const struct wide_scene *ws, const double *o, const double *d, double t_min, double *t,
+                    int *prim, double *n)
 {
     f8 o8[3], d8[3], p[3], n8[3];
     for (int j = 0; j < 3; j++)
         for (int i = 0; i < WIDE_LANES; i++)
-            o8[j][i] = (float)o[j][i], d8[j][i] = (float)d[j][i];
+            o8[j][i] = (float)o[j * WIDE_LANES + i], d8[j][i] = (float)d[j * WIDE_LANES + i];
     const struct wide_best b = wide_hit(ws, o8, d8, f8s((float)t_min));
     const i8 k = picki(b.k < 0, i8s(ws->n), b.k);
     for (int j = 0; j < 3; j++)
@@ -135,6 +137,6 @@ void wide_scene_hit(const struct wide_scene *ws, const double o[3][WIDE_LANES], 
         t[i] = b.t[i];
         prim[i] = b.k[i] < 0 ? -1 : ws->prims[b.k[i]].prim;
         for (int j = 0; j < 3; j++)
-            n[j][i] = n8[j][i];
+            n[j * WIDE_LANES + i] = n8[j][i];
     }
 }

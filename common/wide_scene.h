@@ -54,8 +54,8 @@ static WAI void wide_keep(struct wide_best *b, i8 m, f8 t, int32_t k)
 }
 
 /* hit_rect's test for a rect of normal axis on and in-plane axes oa, ob (constants). */
-static WAI void wide_rect(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b, const struct wide_prim *e,
-                          int32_t k, int on, int oa, int ob)
+static WAI void wide_rect(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b,
+                          const struct wide_prim *e, int32_t k, int on, int oa, int ob)
 {
     const f8 t = (e->v[0] - o[on]) / d[on];
     i8 m = (t > t_min) & (t < b->t);
@@ -117,8 +117,8 @@ static WAI void box_slabs(const f8 o[3], const f8 d[3], const struct wide_prim *
     wide_slab(e->v[7], e->v[10], lo[2], ld[2], 2, t_near, t_far, a_near, a_far);
 }
 
-static WAI void wide_box(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b, const struct wide_prim *e,
-                         int32_t k)
+static WAI void wide_box(const f8 o[3], const f8 d[3], f8 t_min, struct wide_best *b,
+                         const struct wide_prim *e, int32_t k)
 {
     f8 t_near, t_far;
     box_slabs(o, d, e, &t_near, &t_far, NULL, NULL);
