@@ -7,8 +7,14 @@
 
 #include <float.h>
 
+#include "bvh.h"
 #include "render_path.h"
 #include "wide_scene.h"
+
+/* A pixel's last paths go on in the scalar integrator once this few are left (lane_finish). */
+#ifndef WIDE_FINISH_LANES
+#define WIDE_FINISH_LANES 2
+#endif
 
 /* The paths in flight: ray, weight, segments traced, rng state, by component. */
 struct lanes {
@@ -181,6 +187,28 @@ static WAI void dielectric8(i8 diel, const f8 d[3], const f8 n[3], i8 front, f8 
         dir[j] = pick(diel, pick(refl, ud[j] - n[j] * (2 * un), perp[j] + n[j] * para), dir[j]);
 }
 
+/* Lane i's path on alone by the scalar integrator (path_scatter in double, bvh_hit) to its end:
+   its estimate; its segments into *rays. For a pixel's last paths: a lane alone in the vectors
+   costs a whole wide step (~200 ns) per segment, the scalar loop ~50. */
+static vec3 lane_finish(struct render_ctx *ctx, const struct lanes *ln, int i, int last, uint64_t inc,
+                        uint64_t *rays)
+{
+    ray r = {v3(ln->o[0][i], ln->o[1][i], ln->o[2][i]), v3(ln->d[0][i], ln->d[1][i], ln->d[2][i]), 0};
+    vec3 beta = v3(ln->beta[0][i], ln->beta[1][i], ln->beta[2][i]), L = v3(0, 0, 0);
+    struct rng rng = {i < 4 ? ln->rng.lo[i] : ln->rng.hi[i - 4], inc};
+    for (int depth = ln->depth[i]; depth <= last; depth++) {
+        struct hit h;
+        ++*rays;
+        if (!bvh_hit(ctx->sc, &r, HIT_EPS, DBL_MAX, &h)) {
+            L = v3_add(L, v3_mul(beta, ctx->sc->background));
+            break;
+        }
+        if (!path_scatter(ctx, &r, &beta, &L, &rng, &h, depth == last, 1))
+            break;
+    }
+    return L;
+}
+
 void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int last,
                        double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
 {
@@ -201,6 +229,12 @@ void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const str
         live |= 1 << i;
     }
     while (live) {
+        if (next >= n && __builtin_popcount((unsigned)live) <= WIDE_FINISH_LANES) {
+            for (; live; live &= live - 1)
+                add_estimate(lane_finish(ctx, &ln, __builtin_ctz((unsigned)live), last, inc, &acc_rays), acc,
+                             &acc_kept, &acc_nonfinite);
+            break;
+        }
         const struct wide_best hb = wide_hit(ws, ln.o, ln.d, f8s((float)HIT_EPS));
         acc_rays += (uint64_t)__builtin_popcount((unsigned)live);
         /* the hit point, the material, the normal against the ray */
