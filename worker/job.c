@@ -100,7 +100,8 @@ static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
             for (int k = 0; k < i; k++)
                 seen |= strcmp(cand[k], cand[i]) == 0;
             if (!seen)
-                used += (size_t)snprintf(tried + used, n - used, "%s%s", used ? " or " : " (nor at ", cand[i]);
+                used +=
+                    (size_t)snprintf(tried + used, n - used, "%s%s", used ? " or " : " (nor at ", cand[i]);
         }
         if (used && used < n)
             snprintf(tried + used, n - used, ")");
