@@ -83,7 +83,6 @@ typedef float poisson_f4 __attribute__((vector_size(16)));
 typedef int32_t poisson_i4 __attribute__((vector_size(16)));
 typedef uint32_t poisson_u4 __attribute__((vector_size(16)));
 
-
 /* What the tests need, copied into locals once per draw so the compiler keeps them in
    registers instead of reloading them after every store. */
 struct poisson_frame {
