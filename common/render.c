@@ -1,6 +1,7 @@
 /* render: per-pixel point sets, per-light point sets consumed in order, and the mixture-pdf
    path integrator of Shirley's "Ray Tracing: The Rest of Your Life" (50% light, 50% cosine);
-   scenes that packet_usable picks trace four paths at once (render_lanes.c). */
+   scenes that wide_usable picks trace eight paths at once in float lanes (render_wide.c), the
+   others that packet_usable picks four at once (render_lanes.c). */
 #include "render.h"
 
 #include <float.h>

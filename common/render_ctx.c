@@ -51,8 +51,13 @@ static int prim_ok(const struct prim *p)
 
 int wide_usable(const struct scene *sc, int light_sampling_off)
 {
-    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma") || sc->n_nodes != 1 ||
-        sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 ||
+#if WIDE_KERNEL
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma"))
+        return 0;
+#else
+    return 0;
+#endif
+    if (sc->n_nodes != 1 || sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 ||
         sc->n_lights > WIDE_MAX_LIGHTS)
         return 0;
     for (int i = 0; i < sc->n_prims; i++) {

@@ -5,6 +5,7 @@
    (in lane order from the pixel's shared sets), and a lane's start and its estimate's sum. */
 #include "render_wide.h"
 
+#if WIDE_KERNEL
 #include <float.h>
 
 #include "bvh.h"
@@ -288,3 +289,9 @@ void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const str
     *nonfinite += acc_nonfinite;
     *rays += acc_rays;
 }
+#else
+void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int last,
+                       double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+{
+}
+#endif

@@ -13,6 +13,14 @@
 
 struct render_ctx;
 
+/* The kernel is built by GCC for x86-64 (its AVX2 and FMA code through #pragma GCC target); with
+   another compiler or CPU family wide_usable is 0 and the rest is never called. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define WIDE_KERNEL 1
+#else
+#define WIDE_KERNEL 0
+#endif
+
 /* The most lights a scene the wide kernel renders has. */
 #define WIDE_MAX_LIGHTS 4
 /* The most prims. */

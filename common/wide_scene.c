@@ -1,11 +1,13 @@
 /* wide_scene: which scenes the wide path tracer renders and its tables (wide_scene.h). */
-#include "wide_scene.h"
+#include "render_wide.h"
 
+#if WIDE_KERNEL
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "shape_inline.h"
+#include "wide_scene.h"
 
 static int kind_of(const struct prim *p)
 {
@@ -140,3 +142,16 @@ void wide_scene_hit(const struct wide_scene *ws, const double *o, const double *
             n[j * WIDE_LANES + i] = n8[j][i];
     }
 }
+#else
+struct wide_scene *wide_scene_new(const struct scene *sc)
+{
+    return NULL;
+}
+
+void wide_scene_free(struct wide_scene *ws) {}
+
+void wide_scene_hit(const struct wide_scene *ws, const double *o, const double *d, double t_min, double *t,
+                    int *prim, double *n)
+{
+}
+#endif
