@@ -1,8 +1,9 @@
 /* Tests for the wide kernel's nearest hit (wide_scene_hit, eight float lanes): against bvh_hit
    (double) for rays at every prim's corners, edges and face centres, from the eye, along the axes
    and in random directions, then from their hits: the same prim, t and outward normal within
-   float's rounding; where two prims meet (a ray aimed at an edge or corner) either of them, at
-   the same distance. And which scenes the kernel takes (wide_usable). */
+   float's rounding (a ray grazing the sphere: across its surface); where two prims meet (a ray
+   aimed at an edge or corner) either of them, at the same distance. And which scenes the kernel takes
+   (wide_usable). */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -66,7 +67,11 @@ static void compare(const struct scene *sc, const struct wide_scene *ws, const r
         if (!got && prim[i] < 0)
             continue;
         const vec3 out = h.front ? h.n : v3_neg(h.n), wn = v3(n[i], n[WIDE_LANES + i], n[2 * WIDE_LANES + i]);
-        if (got && prim[i] == h.prim && dist <= tol && v3_dot(out, wn) > 0.9999)
+        /* a ray grazing the sphere (its root's square root amplifies the rounding) may be off
+           along the surface, not off it: the distance across the surface within tol */
+        const double across = fabs((t[i] - h.t) * v3_dot(q[i].dir, h.n));
+        if (got && prim[i] == h.prim && (dist <= tol || (across <= tol && dist <= 1)) &&
+            v3_len(v3_sub(out, wn)) < 1e-2)
             continue;
         ty->bad++;
         if (ty->bad <= 5)
