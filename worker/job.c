@@ -313,7 +313,7 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
         if (job_apply(j, &d, k, v, e) < 0)
             goto done;
     if (!ymap_get(&d, root, "scene")) {
-        ydoc_fail(&d, root, e, "scene: missing (name a scene file, e.g. scene: checker)");
+        ymap_missing(&d, root, "scene", e, "scene: missing (name a scene file, e.g. scene: checker)");
         goto done;
     }
     if (job_finish(j, &d, e) < 0)
