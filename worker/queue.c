@@ -21,7 +21,7 @@ static volatile sig_atomic_t queue_stop;
 
 static void on_signal(int sig)
 {
-    if (queue_stop) { /* the second signal: die now, as the user asked */
+    if (queue_stop > 0) { /* the second signal: die now, as the user asked */
         signal(sig, SIG_DFL);
         raise(sig);
         return;
@@ -83,6 +83,37 @@ static void give_back(struct queue *q, const char *name)
     lease_unlock(q->claim);
 }
 
+/* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
+   One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
+   of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
+   removes our lease first, then returns the claim to the queue or adopts it). */
+static void say_lost(struct queue *q, const char *name)
+{
+    struct lease l;
+    double age;
+    if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
+        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+        return;
+    }
+    lease_remove(q->claim);
+    err_print("%s: %s was removed or moved away while it rendered: render stopped, nothing written\n", name,
+              q->claim);
+}
+
+/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
+   that came meanwhile is kept). */
+static void clear_lost_stop(void)
+{
+    sigset_t block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigprocmask(SIG_BLOCK, &block, &old);
+    if (queue_stop == QUEUE_STOP_CLAIM_LOST)
+        queue_stop = 0;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+}
+
 static void note_rc(struct queue *q, int rc)
 {
     if (rc > q->worst)
@@ -98,6 +129,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
     ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
     ro.tick_arg = q;
     char last[2048] = "";
     int attempts = 0, rc;
@@ -105,12 +137,14 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         attempts++;
         rc = compare_main_as(from, as, &ro, last, sizeof last);
     } while (rc == 1 && !queue_stop && attempts <= q->o->retries);
+    if (q->lost || !queue_claim_still_ours(q)) {
+        say_lost(q, name);
+        return;
+    }
     if (rc == 1 && queue_stop) {
         give_back(q, name);
         return;
     }
-    if (!queue_claim_still_ours(q))
-        return;
     if (rc == 0) {
         queue_claim_file(q, name, q->done);
         return;
@@ -137,7 +171,7 @@ static void claim_source(const struct queue *q, char *out, size_t n)
 }
 
 /* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
-static void process(struct queue *q, const char *name)
+static void process_claim(struct queue *q, const char *name)
 {
     char as[2048], from[4096], msg[2048], stem[256];
     struct job j;
@@ -174,12 +208,12 @@ static void process(struct queue *q, const char *name)
         err_format(&e, msg, sizeof msg);
         err_print("%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
     }
-    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
-        give_back(q, name);
+    if (q->lost || !queue_claim_still_ours(q)) {
+        say_lost(q, name);
         return;
     }
-    if (!queue_claim_still_ours(q)) {
-        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
+        give_back(q, name);
         return;
     }
     if (rc == 0) {
@@ -199,6 +233,16 @@ static void process(struct queue *q, const char *name)
     note_rc(q, rc);
 }
 
+/* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */
+static void process(struct queue *q, const char *name)
+{
+    q->lost = 0;
+    queue_claim_renew_start(q);
+    process_claim(q, name);
+    queue_claim_renew_stop();
+    clear_lost_stop();
+}
+
 /* Sleep up to s seconds; a signal ends it early. */
 static void nap(double s)
 {
@@ -213,6 +257,7 @@ int queue_main(const struct queue_opts *qo)
     struct err e;
     memset(&q, 0, sizeof q);
     q.o = qo;
+    q.stop = &queue_stop;
     snprintf(q.dir, sizeof q.dir, "%s", qo->dir);
     for (size_t n = strlen(q.dir); n > 1 && q.dir[n - 1] == '/'; n--)
         q.dir[n - 1] = 0;

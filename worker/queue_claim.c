@@ -3,9 +3,12 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -18,14 +21,68 @@ static double since(const struct timespec *t)
     return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
 }
 
+static double renew_every_s(const struct queue *q)
+{
+    return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
+}
+
 void queue_claim_tick(void *arg)
 {
     struct queue *q = arg;
-    double every = q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
-    if (since(&q->last_touch) < every)
+    if (since(&q->last_touch) < renew_every_s(q))
         return;
-    lease_touch(q->claim);
     clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (!queue_claim_still_ours(q)) {
+        q->lost = 1;
+        if (q->stop && !*q->stop)
+            *q->stop = QUEUE_STOP_CLAIM_LOST;
+        return;
+    }
+    lease_touch(q->claim);
+}
+
+/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
+static volatile sig_atomic_t renew_fd = -1;
+
+static void on_renew_alarm(int sig)
+{
+    (void)sig;
+    int saved = errno, fd = renew_fd;
+    if (fd >= 0)
+        (void)futimens(fd, NULL);
+    errno = saved;
+}
+
+void queue_claim_renew_start(struct queue *q)
+{
+    char path[2100];
+    snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
+    queue_claim_renew_stop();
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return; /* no lease to renew: the tick's check finds the claim lost */
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_renew_alarm;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGALRM, &sa, NULL);
+    renew_fd = fd;
+    double every = renew_every_s(q);
+    struct itimerval it = {{(time_t)every, (suseconds_t)((every - (time_t)every) * 1e6)},
+                           {(time_t)every, (suseconds_t)((every - (time_t)every) * 1e6)}};
+    setitimer(ITIMER_REAL, &it, NULL);
+}
+
+void queue_claim_renew_stop(void)
+{
+    struct itimerval off;
+    memset(&off, 0, sizeof off);
+    setitimer(ITIMER_REAL, &off, NULL);
+    int fd = renew_fd;
+    renew_fd = -1;
+    if (fd >= 0)
+        close(fd);
 }
 
 int queue_claim_return(struct queue *q, const char *claim, const char *name)
@@ -148,8 +205,16 @@ int queue_claim_take(struct queue *q, const char *name)
 int queue_claim_still_ours(struct queue *q)
 {
     struct lease l;
+    struct stat st;
     double age;
-    return lease_read(q->claim, &l, &age) == 0 && strcmp(l.token, q->lease.token) == 0;
+    return lstat(q->claim, &st) == 0 && lease_read(q->claim, &l, &age) == 0 &&
+           strcmp(l.token, q->lease.token) == 0;
+}
+
+int queue_claim_gone(struct queue *q)
+{
+    struct stat st;
+    return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
 int queue_claim_held(void *arg)
