@@ -120,6 +120,23 @@ static void note_rc(struct queue *q, int rc)
         q->worst = rc;
 }
 
+/* The claim's output folder holds the outputs of another job file of the queue with the same name
+   (q->name_owner): filed in failed/ as invalid, the log naming that file; the folder is left as it
+   is. The same file re-queued (edited or not) renders again: only another file name conflicts. */
+static void name_taken(struct queue *q, const char *name, const char *log_name)
+{
+    char msg[4600];
+    const char *job_name = strrchr(q->name_dir, '/') ? strrchr(q->name_dir, '/') + 1 : q->name_dir;
+    snprintf(msg, sizeof msg,
+             "%s/%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name", q->dir,
+             name, job_name, q->name_dir, q->name_owner);
+    err_print("%s\n", msg);
+    err_print("%s: name taken, moved to %s/\n", name, q->failed);
+    write_log(q, name, log_name, msg, 0, 0);
+    queue_claim_file(q, name, q->failed);
+    note_rc(q, 2);
+}
+
 /* A compare job: its combinations render into done/<name>/ as one job; a retry after a crash
    renders only the combinations still missing (they resume by hash). Invalid: failed/. */
 static void process_compare(struct queue *q, const char *name, const char *from, const char *as,
@@ -136,7 +153,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     do {
         attempts++;
         rc = compare_main_as(from, as, &ro, last, sizeof last);
-    } while (rc == 1 && !queue_stop && attempts <= q->o->retries);
+    } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);
         return;
@@ -147,6 +164,10 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     }
     if (rc == 0) {
         queue_claim_file(q, name, q->done);
+        return;
+    }
+    if (q->name_owner[0]) {
+        name_taken(q, name, stem);
         return;
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
@@ -193,6 +214,13 @@ static void process_claim(struct queue *q, const char *name)
         note_rc(q, 2);
         return;
     }
+    char folder[2048];
+    snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
+    if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
+        snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
+        name_taken(q, name, stem);
+        return;
+    }
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
@@ -225,6 +253,10 @@ static void process_claim(struct queue *q, const char *name)
         queue_claim_file(q, name, q->done);
         return;
     }
+    if (q->name_owner[0]) { /* another file of this name wrote its outputs while we rendered */
+        name_taken(q, name, stem);
+        return;
+    }
     err_format(&e, msg, sizeof msg);
     err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
@@ -237,6 +269,7 @@ static void process_claim(struct queue *q, const char *name)
 static void process(struct queue *q, const char *name)
 {
     q->lost = 0;
+    q->name_owner[0] = 0;
     queue_claim_renew_start(q);
     process_claim(q, name);
     queue_claim_renew_stop();

@@ -5,7 +5,9 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/time.h>
@@ -13,6 +15,7 @@
 #include <unistd.h>
 
 #include "err.h"
+#include "fileio.h"
 
 static double since(const struct timespec *t)
 {
@@ -217,9 +220,60 @@ int queue_claim_gone(struct queue *q)
     return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
-int queue_claim_held(void *arg)
+/* The "job_file" string of sidecar text json into out (JSON escapes undone); 0, or -1 when none. */
+static int sidecar_job_file(const char *json, char *out, size_t n)
 {
-    return queue_claim_still_ours(arg);
+    const char *key = "\"job_file\": \"", *s = strstr(json, key);
+    size_t k = 0;
+    if (!s || n == 0)
+        return -1;
+    for (s += strlen(key); *s && *s != '"' && k + 1 < n; s++)
+        out[k++] = *s == '\\' && s[1] ? *++s : *s;
+    out[k] = 0;
+    return *s == '"' ? 0 : -1;
+}
+
+int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
+{
+    const char *mine = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    DIR *d = opendir(dir);
+    int taken = 0;
+    if (!d)
+        return 0;
+    struct dirent *de;
+    while (!taken && (de = readdir(d))) {
+        size_t len = strlen(de->d_name);
+        char path[4096], file[2048];
+        uint8_t *text;
+        size_t bytes;
+        struct err e;
+        if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (fileio_read_all(path, 1 << 20, &text, &bytes, &e) < 0)
+            continue;
+        if (sidecar_job_file((const char *)text, file, sizeof file) == 0) {
+            const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
+            if (strcmp(base, mine) != 0) {
+                snprintf(owner, n, "%s", file);
+                taken = 1;
+            }
+        }
+        free(text);
+    }
+    closedir(d);
+    return taken;
+}
+
+int queue_claim_held(void *arg, const char *dir)
+{
+    struct queue *q = arg;
+    if (!queue_claim_still_ours(q))
+        return 0;
+    if (!queue_claim_name_owner(q, dir, q->name_owner, sizeof q->name_owner))
+        return 1;
+    snprintf(q->name_dir, sizeof q->name_dir, "%s", dir);
+    return 0;
 }
 
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir)

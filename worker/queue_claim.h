@@ -23,6 +23,8 @@ struct queue {
     struct queue_scan scan;      /* the waiting jobs seen by the last scan */
     volatile sig_atomic_t *stop; /* the queue's stop flag, which also stops the render in hand */
     int lost;                    /* the claim in hand was found gone or taken over (tick) */
+    char name_owner[2048];       /* its output folder holds another queued job file's outputs */
+    char name_dir[2048];         /* that folder */
 };
 
 /* *queue.stop's value when the tick found the claim in hand gone (not a signal number): the render
@@ -71,8 +73,15 @@ int queue_claim_still_ours(struct queue *q);
 int queue_claim_gone(struct queue *q);
 
 /* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
-   we were stopped or hung) writes nothing, lest it replace the new holder's outputs. */
-int queue_claim_held(void *arg);
+   we were stopped or hung) writes nothing, lest it replace the new holder's outputs; nor does one
+   whose output folder `dir` holds the outputs of another job file of the queue with the same
+   `name:` (q->name_owner says which). */
+int queue_claim_held(void *arg, const char *dir);
+
+/* The job file (its file name) whose outputs output folder `dir` holds, when that is not the claim
+   in hand's file name: its path (a sidecar's "job_file") into owner, and 1. 0 when the folder is
+   empty, absent or the claim's own (the same file re-queued, edited or not). */
+int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n);
 
 /* Move the claim to done/ or failed/ and drop the lease. */
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir);
