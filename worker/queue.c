@@ -283,6 +283,16 @@ static void nap(double s)
     nanosleep(&ts, NULL);
 }
 
+/* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
+   it): its parent is itself. A queue there would make /running, /done and /failed. */
+static int is_root_dir(const char *dir, const struct stat *st)
+{
+    char up[1100];
+    struct stat pst;
+    snprintf(up, sizeof up, "%s/..", dir);
+    return stat(up, &pst) == 0 && pst.st_dev == st->st_dev && pst.st_ino == st->st_ino;
+}
+
 int queue_main(const struct queue_opts *qo)
 {
     struct queue q;
@@ -297,6 +307,12 @@ int queue_main(const struct queue_opts *qo)
     int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
     if (bad) {
         err_print("worker: --queue %s: %s\n", q.dir, strerror(bad));
+        return 2;
+    }
+    if (is_root_dir(q.dir, &st)) {
+        err_print("worker: --queue %s: is the file system's root directory; give the queue a directory of "
+                  "its own (running/, done/ and failed/ are made in it)\n",
+                  q.dir);
         return 2;
     }
     snprintf(q.running, sizeof q.running, "%s/running", q.dir);
