@@ -36,6 +36,9 @@ struct job {
 };
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
+/* The smallest threshold sampler kind k takes (its sets stay within SAMPLER_MAX_POINTS). */
+double job_smallest_threshold(enum sampler_kind k);
+
 int job_load(const char *path, struct job *j, struct err *e);
 
 /* Like job_load, but read the bytes from `from` while treating the file as if it were at `path`:
