@@ -28,4 +28,15 @@ printf 'name: x\nscenes: [%s/scenes/checker.yaml]\nwidth: 8\nthreshold: 50\nvari
 check "a compare job of a taken name: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "... filed in failed/ with a log naming the first" grep -q 'holds the outputs of .*a.yaml' "$Q/failed/c.log"
 check "... wrote nothing into the folder" [ "$(ls "$Q/done/x" | sort | tr '\n' ' ')" = "x.json x.png " ]
+# two compare jobs of their own names share DIR/done/.cache/ (the references): no conflict there
+Q=$T/q2; mkdir -p "$Q"
+for n in c1 c2; do
+    t=1; [ "$n" = c2 ] && t=2
+    printf 'scenes: [%s/scenes/checker.yaml]\nwidth: 8\nthreshold: 50\nreference: { sampler: jitter, threshold: %s }\nvariants: [{ sampler: jitter }]\n' \
+        "$root" "$t" >"$Q/$n.yaml"
+done
+touch -d '1 minute ago' "$Q/c1.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/log4"; rc=$?
+check "two compare jobs sharing the reference cache: exit 0 (got $rc: $(cat "$T/log4"))" [ "$rc" -eq 0 ]
+check "... both done" sh -c "[ -f '$Q/done/c1.yaml' ] && [ -f '$Q/done/c2.yaml' ]"
 finish

@@ -236,6 +236,9 @@ static int sidecar_job_file(const char *json, char *out, size_t n)
 int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
 {
     const char *mine = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    const char *folder = strrchr(dir, '/') ? strrchr(dir, '/') + 1 : dir;
+    if (folder[0] == '.') /* no job's name: DIR/done/.cache/, the references all compare jobs share */
+        return 0;
     DIR *d = opendir(dir);
     int taken = 0;
     if (!d)
