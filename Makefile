@@ -121,8 +121,12 @@ run: all
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 0755 $(WORKER_BIN) $(DESTDIR)$(PREFIX)/bin/worker
+	install -d $(DESTDIR)$(PREFIX)/share/worker/scenes/textures
+	install -m 0644 scenes/*.yaml $(DESTDIR)$(PREFIX)/share/worker/scenes/
+	install -m 0644 scenes/textures/* $(DESTDIR)$(PREFIX)/share/worker/scenes/textures/
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/worker
+	rm -rf $(DESTDIR)$(PREFIX)/share/worker
 
 # One small render (two forked children, Poisson pixel and light sets) under valgrind memcheck:
 # zero errors, nothing lost.

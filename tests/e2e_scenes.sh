@@ -57,6 +57,27 @@ mkdir -p "$T/elsewhere/jobs" && mv "$T/elsewhere/jobs.yaml" "$T/elsewhere/jobs/t
 (cd "$T/cwd" && "$WORKER" --quiet --out "$T/texout" "$T/elsewhere/jobs/tex.yaml" 2>"$T/tex.err"); rc=$?
 check "texture found relative to the scene file (exit $rc: $(head -n 1 "$T/tex.err"))" [ "$rc" -eq 0 ]
 
+# 4b. A bare scene name in a job file anywhere, run from anywhere: the scenes shipped with the
+# program, beside its binary (bin/worker in a checkout: ../scenes) or installed
+# (PREFIX/bin/worker: PREFIX/share/worker/scenes), textures included.
+for layout in checkout installed; do
+    p="$T/$layout"
+    case $layout in
+    checkout) sd="$p/scenes" ;;
+    installed) sd="$p/share/worker/scenes" ;;
+    esac
+    mkdir -p "$p/bin" "$sd/textures" "$T/jobs-$layout" "$T/cwd-$layout"
+    cp "$WORKER" "$p/bin/worker" && cp scenes/cornell.yaml "$sd/" && cp scenes/textures/planet.png "$sd/textures/"
+    printf 'scene: cornell\nwidth: 12\nthreshold: 50\nlight_threshold: 50\n' >"$T/jobs-$layout/bare.yaml"
+    (cd "$T/cwd-$layout" && "$p/bin/worker" --quiet --out "$T/out-$layout" "$T/jobs-$layout/bare.yaml" 2>"$T/bare.err"); rc=$?
+    check "$layout: a bare scene name finds the shipped scene (exit $rc: $(head -n 1 "$T/bare.err"))" [ "$rc" -eq 0 ]
+    check "$layout: and renders" [ -s "$T/out-$layout/bare/bare.png" ]
+    rm -f "$sd/cornell.yaml"
+    (cd "$T/cwd-$layout" && "$p/bin/worker" --quiet --out "$T/none-$layout" "$T/jobs-$layout/bare.yaml" 2>"$T/bare.err"); rc=$?
+    check "$layout: without it exits 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "$layout: and names the shipped place looked in" grep -q "nor at .*$sd/cornell.yaml" "$T/bare.err"
+done
+
 # 5. A texture over the size limit (4097 x 4097 pixels) is refused at its file: key.
 { printf 'P6\n4097 4097\n255\n'; head -c $((4097 * 4097 * 3)) /dev/zero; } >"$T/elsewhere/scenes/textures/huge.ppm"
 sed 's|file: textures/planet.png|file: textures/huge.ppm|' scenes/cornell.yaml >"$T/elsewhere/scenes/huge.yaml"

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "fileio.h"
 #include "hash.h"
@@ -51,30 +52,60 @@ static int is_file(const char *p)
     return stat(p, &st) == 0 && S_ISREG(st.st_mode);
 }
 
+/* The scenes shipped with the program, for a bare name in a job file anywhere: ../scenes beside
+   the binary (bin/worker in a checkout) and ../share/worker/scenes (`make install`). n: how many
+   of the two were found (0 when /proc/self/exe cannot be read). */
+static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
+{
+    char exe[JOB_PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len <= 0 || len >= (ssize_t)sizeof exe - 1)
+        return 0;
+    exe[len] = 0;
+    char bin[JOB_PATH_MAX], top[JOB_PATH_MAX];
+    dir_of(exe, bin, sizeof bin);
+    dir_of(bin, top, sizeof top);
+    const char *sep = strcmp(top, "/") ? "/" : "";
+    snprintf(dirs[0], JOB_PATH_MAX, "%.*s%sscenes", JOB_PATH_MAX - 32, top, sep);
+    snprintf(dirs[1], JOB_PATH_MAX, "%.*s%sshare/worker/scenes", JOB_PATH_MAX - 32, top, sep);
+    return 2;
+}
+
 /* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
-   then beside the job file, then in the job file's parent (jobs/ and scenes/ are siblings). */
+   beside the job file, in the job file's parent (jobs/ and scenes/ are siblings), then among the
+   scenes shipped with the program. On failure *tried lists the places after the first. */
 static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
 {
     tried[0] = 0;
     if (!strchr(val, '/') && !strchr(val, '.')) {
-        char cand[3][JOB_PATH_MAX], rel[JOB_PATH_MAX];
-        snprintf(cand[0], sizeof cand[0], "scenes/%s.yaml", val);
+        enum { N_CAND = 5 };
+        char cand[N_CAND][JOB_PATH_MAX], rel[JOB_PATH_MAX], shipped[2][JOB_PATH_MAX];
+        int nc = 0;
+        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
         snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
-        resolve(j->path, rel, cand[1], sizeof cand[1]);
+        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
         snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
-        resolve(j->path, rel, cand[2], sizeof cand[2]);
-        for (int i = 0; i < 3; i++)
+        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
+        for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
+            snprintf(cand[nc++], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, shipped[k], val);
+        for (int i = 0; i < nc; i++)
             if (is_file(cand[i])) {
                 snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[i]);
                 return 0;
             }
         snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
-        /* the other places looked in, when the job is not in ./ */
-        int other1 = strcmp(cand[1], cand[0]) != 0,
-            other2 = strcmp(cand[2], cand[0]) && strcmp(cand[2], cand[1]);
-        if (other1 || other2)
-            snprintf(tried, n, " (nor at %s%s%s)", other1 ? cand[1] : "", other1 && other2 ? " or " : "",
-                     other2 ? cand[2] : "");
+        /* the other places looked in, each once */
+        size_t used = 0;
+        for (int i = 1; i < nc && used < n; i++) {
+            int seen = 0;
+            for (int k = 0; k < i; k++)
+                seen |= strcmp(cand[k], cand[i]) == 0;
+            if (!seen)
+                used +=
+                    (size_t)snprintf(tried + used, n - used, "%s%s", used ? " or " : " (nor at ", cand[i]);
+        }
+        if (used && used < n)
+            snprintf(tried + used, n - used, ")");
         return -1;
     }
     resolve(j->path, val, j->scene_path, sizeof j->scene_path);
@@ -170,7 +201,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_scene, v);
-        char tried[2 * JOB_PATH_MAX + 16];
+        char tried[4 * JOB_PATH_MAX + 32];
         if (resolve_scene(j, s, tried, sizeof tried) < 0)
             return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
