@@ -331,7 +331,8 @@ static int main_as(const char *from, const char *path, const struct run_opts *o,
     } else {
         summary_line(c, now_s() - t0, o->out_dir, line, sizeof line);
     }
-    fprintf(stderr, "%s\n", line);
+    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
+        fprintf(stderr, "%s\n", line);
     if (last)
         snprintf(last, n, "%s", line);
     compare_free(c);
