@@ -128,8 +128,9 @@ static void name_taken(struct queue *q, const char *name, const char *log_name)
     char msg[4600];
     const char *job_name = strrchr(q->name_dir, '/') ? strrchr(q->name_dir, '/') + 1 : q->name_dir;
     snprintf(msg, sizeof msg,
-             "%s/%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name", q->dir,
-             name, job_name, q->name_dir, q->name_owner);
+             "%s/%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
+             "remove that folder to replace them)",
+             q->dir, name, job_name, q->name_dir, q->name_owner);
     err_print("%s\n", msg);
     err_print("%s: name taken, moved to %s/\n", name, q->failed);
     write_log(q, name, log_name, msg, 0, 0);
