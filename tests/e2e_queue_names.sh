@@ -15,7 +15,7 @@ check "second file of one name: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "the first is done" [ -f "$Q/done/a.yaml" ]
 check "the second is in failed/" [ -f "$Q/failed/b.yaml" ]
 check "its log names the first: $(cat "$Q/failed/b.log" 2>/dev/null)" grep -q 'name: "x" is taken: .*done/x/ holds the outputs of .*a.yaml' "$Q/failed/b.log"
-check "stderr says so" grep -q 'b.yaml: name: "x" is taken' "$T/log"
+check "stderr says so, at the name key: $(head -n 1 "$T/log")" grep -q 'b.yaml:1:7: name: "x" is taken' "$T/log"
 check "the first's outputs are its own (seed 1)" grep -q '"seed": 1,' "$Q/done/x/x.json"
 # the same file queued again, edited: rendered again
 job "$Q/a.yaml" 3

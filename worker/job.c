@@ -197,6 +197,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
                 "got \"%.40s\"",
                 JOB_NAME_MAX - 1, s);
         snprintf(j->name, sizeof j->name, "%s", s);
+        mark(j->pos_name, v);
     } else if (!strcmp(k, "scene")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;

@@ -123,14 +123,16 @@ static void note_rc(struct queue *q, int rc)
 /* The claim's output folder holds the outputs of another job file of the queue with the same name
    (q->name_owner): filed in failed/ as invalid, the log naming that file; the folder is left as it
    is. The same file re-queued (edited or not) renders again: only another file name conflicts. */
-static void name_taken(struct queue *q, const char *name, const char *log_name)
+static void name_taken(struct queue *q, const char *name, const char *log_name, const int pos[2])
 {
-    char msg[4600];
+    char msg[4600], at[32] = "";
     const char *job_name = strrchr(q->name_dir, '/') ? strrchr(q->name_dir, '/') + 1 : q->name_dir;
+    if (pos && pos[0])
+        snprintf(at, sizeof at, ":%d:%d", pos[0], pos[1]);
     snprintf(msg, sizeof msg,
-             "%s/%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
+             "%s/%s%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
              "remove that folder to replace them)",
-             q->dir, name, job_name, q->name_dir, q->name_owner);
+             q->dir, name, at, job_name, q->name_dir, q->name_owner);
     err_print("%s\n", msg);
     err_print("%s: name taken, moved to %s/\n", name, q->failed);
     write_log(q, name, log_name, msg, 0, 0);
@@ -168,7 +170,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         return;
     }
     if (q->name_owner[0]) {
-        name_taken(q, name, stem);
+        name_taken(q, name, stem, NULL);
         return;
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
@@ -219,7 +221,7 @@ static void process_claim(struct queue *q, const char *name)
     snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
     if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
         snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
-        name_taken(q, name, stem);
+        name_taken(q, name, stem, j.pos_name);
         return;
     }
     struct run_opts ro = q->o->run;
@@ -255,7 +257,7 @@ static void process_claim(struct queue *q, const char *name)
         return;
     }
     if (q->name_owner[0]) { /* another file of this name wrote its outputs while we rendered */
-        name_taken(q, name, stem);
+        name_taken(q, name, stem, j.pos_name);
         return;
     }
     err_format(&e, msg, sizeof msg);
