@@ -37,7 +37,8 @@ void render_ctx_free(struct render_ctx *ctx)
     free(ctx->identity);
     free(ctx->prim_material);
     packet_scene_free(ctx->packet);
-    wide_scene_free(ctx->wide);
+    if (ctx->wide) /* wide_scene.c is AVX2 code: entered only where wide_usable said the CPU has it */
+        wide_scene_free(ctx->wide);
     free(ctx->pixel_pts);
     free(ctx);
 }
