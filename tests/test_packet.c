@@ -86,12 +86,8 @@ static void test_scene(const char *path, vec3 eye, int usable)
         scene_file_free(&sf);
         return;
     }
-    vec3 lo = v3(DBL_MAX, DBL_MAX, DBL_MAX), hi = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
-    for (int i = 0; i < sc->n_prims; i++) {
-        vec3 l, h;
-        shape_bounds(&sc->prims[i], &l, &h);
-        lo = v3_min(lo, l), hi = v3_max(hi, h);
-    }
+    vec3 lo, hi;
+    scene_box(sc, &lo, &hi);
     struct rng r;
     rng_seed(&r, 5, 5);
     int ok = 1, hits = 0, rays = 0, n = 0;
