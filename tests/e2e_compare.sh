@@ -40,6 +40,7 @@ check "sidecar threshold 25" grep -q '"threshold": 25,' "$cdir/checker-jitter-t2
 check "sidecar seed 2" grep -q '"seed": 2,' "$cdir/checker-jitter-t25-s2.json"
 check "one cached reference per scene" [ "$(ls "$T"/out/.cache/ref-*.png 2>/dev/null | wc -l)" -eq 2 ]
 check "first run rendered both references" grep -q "references: 2 rendered, 0 reused from cache" "$T/run1.err"
+check "the summary line counts the combinations" grep -q "cmp: 40 images (2 scenes x 5 variants x 2 sweep points x 2 seeds)" "$T/run1.err"
 
 # summary.csv: a header and one row of 14 fields per image, with its metrics
 csv=$cdir/summary.csv
@@ -312,4 +313,18 @@ EOF
 timeout --preserve-status -s INT 1 "$WORKER" --quiet --out "$T/cutout" "$T/cut.yaml" 2>/dev/null; rc=$?
 check "a compare job cut short by SIGINT dies by it (got $rc)" [ "$rc" -eq 130 ]
 check "a compare job cut short leaves no empty folder" [ ! -e "$T/cutout/cut" ]
+
+# one of each: the summary line says "1 scene", not "1 scenes"
+cat >"$T/one.yaml" <<EOF
+name: one
+scenes: [$root/scenes/checker.yaml]
+width: 8
+height: 6
+reference: { sampler: jitter, threshold: 50 }
+variants:
+  - { sampler: jitter, threshold: 50 }
+EOF
+"$WORKER" --out "$T/oneout" "$T/one.yaml" 2>"$T/one.err"; rc=$?
+check "a one-image compare job exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "and its summary line is in the singular" grep -q "one: 1 image (1 scene x 1 variant x 1 sweep point x 1 seed)" "$T/one.err"
 finish

@@ -274,6 +274,12 @@ fail:
     return rc;
 }
 
+/* "s" after a count other than one */
+static const char *plural(int n)
+{
+    return n == 1 ? "" : "s";
+}
+
 /* "compare: 120 images (2 scenes x ...), references: 1 rendered, 1 reused from cache, 41 s -> ..." */
 static void summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
 {
@@ -300,10 +306,12 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
     if (current)
         snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
                  current);
-    snprintf(buf, n,
-             "%s: %d images (%d scenes x %d variants x %d sweep points x %d seeds)%s, %s, %.2f s -> %s/%s/",
-             c->name, c->n_items, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, resumed, refs, wall_s,
-             out_dir ? out_dir : "out", c->name);
+    snprintf(
+        buf, n,
+        "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> %s/%s/",
+        c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
+        plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
+        refs, wall_s, out_dir ? out_dir : "out", c->name);
 }
 
 /* compare_main_as, with compare_main's name_ok. */
