@@ -57,5 +57,5 @@ check "image reference, unchanged: current" grep -q "1 of them current" "$T/f2"
 cp "$T/out/cmp/checker-jitter-t50-s2.png" "$T/ref.png"
 "$WORKER" --quiet --out "$T/out" "$T/cmpf.yaml" 2>"$T/f3"; rc=$?
 check "image reference replaced: rendered and scored again (exit $rc)" \
-    sh -c "[ $rc -eq 0 ] && grep -q '^cmpf: 1 images' '$T/f3' && ! grep -q 'of them current' '$T/f3'"
+    sh -c "[ $rc -eq 0 ] && grep -q '^cmpf: 1 image ' '$T/f3' && ! grep -q 'of them current' '$T/f3'"
 finish
