@@ -43,9 +43,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     for (int i = 0; i < ctx->sc->n_lights; i++)
         ctx->lp[i].n = ctx->lp[i].next = 0;
 
-    double t0 = now_s();
+    const int timed = sampler_timed(st->pixels);
+    const double t0 = timed ? now_s() : 0;
     size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
-    st->sampler_s += now_s() - t0;
+    if (timed)
+        st->sampler_s += SAMPLER_TIME_EVERY * (now_s() - t0);
 
     double sum[3] = {0, 0, 0};
     size_t kept = 0;

@@ -2,6 +2,7 @@
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "bvh.h"
 #include "camera.h"
@@ -441,6 +442,45 @@ static void test_closed_box(void)
     }
 }
 
+/* The sidecar's sampler_s times one draw in several and counts it for all of them: in a scene of
+   nothing but the background a fresh Poisson set per pixel (~260 points, ~0.1 ms) is nearly all
+   of a pixel's time, so sampler_s must come out near the render's wall time, not a fraction or a
+   multiple of it. Three tries: a time slice lost inside a timed draw counts several times. */
+static double sampler_share_of_render(void)
+{
+    struct scene *sc = scene_new();
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    struct camera cam;
+    struct camera_desc d = {v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60, 0, 1, 0, 0};
+    camera_init(&cam, &d, 1, &e);
+    struct sampler *pix = sampler_new(SAMPLER_POISSON, 5, 0, 0, &e);
+    struct render_settings rs = {16, 16, 4, 1, 0};
+    struct render_ctx *ctx = pix ? render_ctx_new(sc, &cam, &rs, pix, NULL, &e) : NULL;
+    CHECK(ctx != NULL);
+    struct render_stats st;
+    render_stats_init(&st);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    float rgb[3];
+    for (int p = 0; ctx && p < rs.width * rs.height; p++)
+        render_pixel(ctx, p % rs.width, p / rs.width, rgb, &st);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    scene_free(sc);
+    double wall = (double)(t1.tv_sec - t0.tv_sec) + (t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    return wall > 0 ? st.sampler_s / wall : 0;
+}
+
+static void test_sampler_time(void)
+{
+    double share = 0;
+    for (int i = 0; i < 3 && !(share > 0.6 && share < 1.4); i++)
+        share = sampler_share_of_render();
+    CHECK(share > 0.6 && share < 1.4);
+}
+
 int main(void)
 {
     test_rng();
@@ -452,5 +492,6 @@ int main(void)
     test_medium_albedo();
     test_last_segment();
     test_closed_box();
+    test_sampler_time();
     return check_report("test_render");
 }
