@@ -26,7 +26,7 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        if (!path_scatter(ctx, r, &beta, &L, rng, &h, depth == last, mix))
+        if (!path_scatter(ctx, r, &beta, &L, rng, &h, depth == last, mix, 1))
             break;
     }
     return L;

@@ -200,11 +200,14 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
-   mix: the scene's lights are sampled. Always inline: the caller's ray, weight and radiance stay
-   in its registers (a texture's lookup reads h through a copy). */
+   mix: the scene's lights are sampled; media_pdf_inline: a medium's mixture pdf inline, as a
+   surface's (trace: final's fog scatters on most paths), else through shape_lights_pdf (the
+   lanes, whose scenes hold no media: inline there it cost checker ~1% by the code it moved).
+   Always inline: the caller's ray, weight and radiance stay in its registers (a texture's lookup
+   reads h through a copy). */
 static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
                                                               vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix)
+                                                              int at_last, int mix, int media_pdf_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -265,7 +268,9 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
             double light_pdf = 0;
             dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
                                      : uniform_sphere_direction(rng);
-            pdf = 0.5 * shape_lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * phase;
+            pdf = 0.5 * (media_pdf_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
+                                          : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
+                  0.5 * phase;
         } else {
             dir = uniform_sphere_direction(rng);
         }
