@@ -127,11 +127,18 @@ static __attribute__((unused)) vec3 cosine_direction(const onb *frame, struct rn
     return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
 }
 
-static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
+/* A uniform direction: inline where trace scatters in a medium (path_scatter's media_inline),
+   a call elsewhere (GCC's choice; inline in the lanes it cost cornell-book3 7 instructions). */
+static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_inline(struct rng *r)
 {
     double z = 1 - 2 * rng_uniform32(r), s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
     v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
     return v3(cos_phi * s, sin_phi * s, z);
+}
+
+static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
+{
+    return uniform_sphere_direction_inline(r);
 }
 
 static __attribute__((noinline, unused)) vec3 texture_albedo(const struct scene *sc, const struct material *m,
@@ -200,14 +207,15 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
-   mix: the scene's lights are sampled; media_pdf_inline: a medium's mixture pdf inline, as a
-   surface's (trace: final's fog scatters on most paths), else through shape_lights_pdf (the
-   lanes, whose scenes hold no media: inline there it cost checker ~1% by the code it moved).
+   mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
+   and mixture pdf) inline, as a surface's (trace: final's fog scatters on most paths), else
+   through calls (the lanes, whose scenes hold no media: inline there it cost checker ~1% and
+   cornell-book3 7 instructions a sample by the code it moved).
    Always inline: the caller's ray, weight and radiance stay in its registers (a texture's lookup
    reads h through a copy). */
 static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
                                                               vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix, int media_pdf_inline)
+                                                              int at_last, int mix, int media_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -267,12 +275,13 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
             int light = -1;
             double light_pdf = 0;
             dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                  : media_inline     ? uniform_sphere_direction_inline(rng)
                                      : uniform_sphere_direction(rng);
-            pdf = 0.5 * (media_pdf_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
-                                          : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
+            pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
+                                      : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
                   0.5 * phase;
         } else {
-            dir = uniform_sphere_direction(rng);
+            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
         }
         *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
         *r = (ray){h->p, dir, r->time};
