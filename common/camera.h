@@ -25,7 +25,8 @@ int camera_init(struct camera *cam, const struct camera_desc *d, double aspect, 
 
 /* The ray through film point (s, t) in [0,1]^2, s rightwards, t upwards; lens and time from rng.
    Inline: one per camera sample, and a call passed the ray back through memory. */
-static inline ray camera_ray(const struct camera *cam, double s, double t, struct rng *rng)
+static inline __attribute__((always_inline)) ray camera_ray(const struct camera *cam, double s, double t,
+                                                            struct rng *rng)
 {
     vec3 origin = cam->origin;
     if (cam->lens_radius > 0) {

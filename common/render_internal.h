@@ -5,6 +5,7 @@
 
 #include "packet.h"
 #include "render.h"
+#include "render_wide.h"
 #include "rng.h"
 
 /* A light's current point set within the pixel, taken in a random order, then redrawn: the
@@ -33,6 +34,7 @@ struct render_ctx {
     struct rng light_rng;
     struct render_stats *st;
     struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
+    struct wide_scene *wide;     /* NULL, or four paths at once in the lanes (render_wide.c) */
 };
 
 /* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a

@@ -208,14 +208,15 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
    mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
-   and mixture pdf) inline, as a surface's (trace: final's fog scatters on most paths), else
-   through calls (the lanes, whose scenes hold no media: inline there it cost checker ~1% and
-   cornell-book3 7 instructions a sample by the code it moved).
-   Always inline: the caller's ray, weight and radiance stay in its registers (a texture's lookup
-   reads h through a copy). */
-static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
-                                                              vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix, int media_inline)
+   and mixture pdf) inline, as a surface's (path_scatter_as from trace: final's fog scatters on
+   most paths), else through calls (path_scatter, for the lanes and the wide kernel, whose scenes
+   hold no media: inline in the lanes it cost checker ~1% and cornell-book3 7 instructions a
+   sample by the code it moved). Always inline: the caller's ray, weight and radiance stay in
+   its registers (a texture's lookup reads h through a copy). */
+static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                                 vec3 *L, struct rng *rng,
+                                                                 const struct hit *h, int at_last, int mix,
+                                                                 int media_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -288,6 +289,14 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
         return 1;
     }
     }
+}
+
+/* path_scatter_as with a medium's scatter through calls. */
+static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                              vec3 *L, struct rng *rng, const struct hit *h,
+                                                              int at_last, int mix)
+{
+    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, 0);
 }
 
 #endif

@@ -260,8 +260,8 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
             err_set(e, NULL, 0, 0, "threshold %g would make too many points per set (limit %d)", threshold,
                     SAMPLER_MAX_POINTS);
         else
-            err_set(e, NULL, 0, 0, "threshold %g would make %s%zu points per set (limit %d)", threshold,
-                    kind == SAMPLER_POISSON ? "up to " : "", capacity, SAMPLER_MAX_POINTS);
+            err_set(e, NULL, 0, 0, "threshold %g would need %zu %s per set (limit %d)", threshold, capacity,
+                    kind == SAMPLER_POISSON ? "Bridson grid cells" : "points", SAMPLER_MAX_POINTS);
         return NULL;
     }
 

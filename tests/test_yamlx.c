@@ -135,8 +135,34 @@ static void test_quoted(void)
     ydoc_free(&d);
 }
 
+/* A null on a key reads as the key absent (its default); ymap_check still sees the key, and a
+   required one says "needs a value" at the null. */
+static void test_null(void)
+{
+    struct ydoc d;
+    struct err e;
+    static const char *const keys[] = {"a", "b", "c", "d", "f", "g", "h", NULL};
+    CHECK(load_text(&d, "a: ~\nb:\nc: null\nd: \"~\"\nf: !!null x\ng: NULL\nh: 1\n", &e) == 0);
+    yaml_node_t *root = ydoc_root(&d);
+    CHECK(ymap_check(&d, root, keys, "m", &e) == 0);
+    CHECK(!ymap_get(&d, root, "a") && !ymap_get(&d, root, "b") && !ymap_get(&d, root, "c"));
+    CHECK(eq(root_value(&d, "d"), "~")); /* quoted: a string */
+    CHECK(!ymap_get(&d, root, "f") && !ymap_get(&d, root, "g") && eq(root_value(&d, "h"), "1"));
+    CHECK(ymap_get_raw(&d, root, "a") != NULL);
+    CHECK(pairs(&d, root) == 2); /* d and h */
+    CHECK(ymap_missing(&d, root, "c", &e, "c: missing") < 0 && e.line == 3 && e.col == 4 &&
+          strstr(e.msg, "c: needs a value"));
+    CHECK(ymap_missing(&d, root, "z", &e, "z: missing") < 0 && e.line == 1 && !strcmp(e.msg, "z: missing"));
+    ydoc_free(&d);
+    static const char *const one[] = {"a", NULL};
+    CHECK(load_text(&d, "a: ~\nb: ~\n", &e) == 0);
+    CHECK(ymap_check(&d, ydoc_root(&d), one, "m", &e) < 0 && strstr(e.msg, "b: unknown key"));
+    ydoc_free(&d);
+}
+
 int main(void)
 {
+    test_null();
     test_merge();
     test_merge_bound();
     test_quoted();

@@ -250,10 +250,22 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     }
     rc = 1;
     e->msg[0] = 0;
-    if (run_out_mkdirs(dir, e) < 0 || write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
+    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
+       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
+    char summary[2100], chart[2100], report[2100];
+    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
+    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
+    snprintf(report, sizeof report, "%s/report.html", dir);
+    const char *outs[] = {summary, chart, report, NULL};
+    int lock = -1;
+    if (run_out_mkdirs(dir, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
+        write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
         write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
-        write_text(dir, "report.html", report_html(c, dir, e), e) < 0)
+        write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
+        run_out_unlock(lock);
         goto fail;
+    }
+    run_out_unlock(lock);
     rc = 0;
 fail:
     for (int s = 0; s < c->n_scenes; s++)
@@ -319,7 +331,8 @@ static int main_as(const char *from, const char *path, const struct run_opts *o,
     } else {
         summary_line(c, now_s() - t0, o->out_dir, line, sizeof line);
     }
-    fprintf(stderr, "%s\n", line);
+    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
+        fprintf(stderr, "%s\n", line);
     if (last)
         snprintf(last, n, "%s", line);
     compare_free(c);

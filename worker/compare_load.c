@@ -25,7 +25,7 @@ int compare_is_compare_job(const char *path)
     int yes = 0;
     if (ydoc_load(&d, path, &e) == 0) {
         yaml_node_t *root = ydoc_root(&d);
-        yes = root && root->type == YAML_MAPPING_NODE && ymap_get(&d, root, "variants") != NULL;
+        yes = root && root->type == YAML_MAPPING_NODE && ymap_get_raw(&d, root, "variants") != NULL;
     }
     ydoc_free(&d);
     return yes;
@@ -134,8 +134,8 @@ static int load_scenes(struct loading *L, yaml_node_t *root)
     if (list && one)
         return ydoc_fail(d, list, L->e, "scenes: give either scene or scenes, not both");
     if (!list && !one)
-        return ydoc_fail(d, root, L->e,
-                         "scenes: missing (list the scenes to compare, e.g. scenes: [checker])");
+        return ymap_missing(d, root, ymap_get_raw(d, root, "scene") ? "scene" : "scenes", L->e,
+                            "scenes: missing (list the scenes to compare, e.g. scenes: [checker])");
     int n = list ? yseq_len(list) : 1;
     if (n < 1)
         return ydoc_fail(d, list, L->e, "scenes: must be a non-empty list of scene names or files");
@@ -260,6 +260,8 @@ static int load_variants(struct loading *L)
     struct ydoc *d = &L->d;
     yaml_node_t *list = L->variants, *k, *v;
     int n = yseq_len(list);
+    if (!list) /* written, as compare_is_compare_job saw, but null */
+        return ymap_missing(d, ydoc_root(d), "variants", L->e, "variants: missing");
     if (n < 1)
         return ydoc_fail(d, list, L->e,
                          "variants: must be a non-empty list of job settings, e.g. - { sampler: jitter }");

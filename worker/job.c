@@ -1,6 +1,7 @@
 /* job: reading a job file's keys into a struct job, with strict validation and defaults. */
 #include "job.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -196,6 +197,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
                 "got \"%.40s\"",
                 JOB_NAME_MAX - 1, s);
         snprintf(j->name, sizeof j->name, "%s", s);
+        mark(j->pos_name, v);
     } else if (!strcmp(k, "scene")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -274,18 +276,36 @@ static int has_suffix(const char *s, const char *suf)
     return a >= b && strcasecmp(s + a - b, suf) == 0;
 }
 
-/* Refuse a threshold whose sets would not fit the per-set limit, naming the count. */
+double job_smallest_threshold(enum sampler_kind k)
+{
+    double side = floor(sqrt((double)SAMPLER_MAX_POINTS));
+    /* grid kinds: n = floor(100 / t) <= side; poisson: Bridson's grid side ceil(sqrt(2) 100 / t) <= side */
+    double t = k == SAMPLER_POISSON ? sqrt(2.0) * 100.0 / side : 100.0 / (side + 1.0);
+    return ceil(t * (1.0 + 1e-9) * 1e4) / 1e4;
+}
+
+/* Refuse a threshold whose sets would not fit the per-set limit: the count, the limit, why, and
+   the smallest threshold that fits. The same limit for all four samplers: a set is held whole in
+   memory (per render process, one for the pixel and one per sampled light). Poisson's is on
+   Bridson's background grid, one cell per possible point (at most one point per cell): its
+   points are about a third of its cells. */
 static int check_set_size(const struct job *j, enum sampler_kind k, double t, const int pos[2],
                           const char *key, struct err *e)
 {
     size_t n = sampler_capacity(k, t);
     if (n <= SAMPLER_MAX_POINTS)
         return 0;
+    char count[64];
     if (n == SIZE_MAX) /* saturated: the count itself does not fit */
-        return err_set(e, j->path, pos[0], pos[1], "%s: %g would make too many %s points per set (limit %d)",
-                       key, t, sampler_kind_name(k), SAMPLER_MAX_POINTS);
-    return err_set(e, j->path, pos[0], pos[1], "%s: %g would make up to %zu %s points per set (limit %d)",
-                   key, t, n, sampler_kind_name(k), SAMPLER_MAX_POINTS);
+        snprintf(count, sizeof count, "more than %zu", (size_t)SAMPLER_MAX_POINTS);
+    else
+        snprintf(count, sizeof count, "%zu", n);
+    const char *what = k == SAMPLER_POISSON ? "Bridson grid cells" : "points";
+    return err_set(e, j->path, pos[0], pos[1],
+                   "%s: %g would need %s %s per %s set (limit %d per set, each set held whole in memory); "
+                   "the smallest %s %s is %g",
+                   key, t, count, what, sampler_kind_name(k), SAMPLER_MAX_POINTS, sampler_kind_name(k), key,
+                   job_smallest_threshold(k));
 }
 
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
@@ -344,7 +364,7 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
         if (job_apply(j, &d, k, v, e) < 0)
             goto done;
     if (!ymap_get(&d, root, "scene")) {
-        ydoc_fail(&d, root, e, "scene: missing (name a scene file, e.g. scene: checker)");
+        ymap_missing(&d, root, "scene", e, "scene: missing (name a scene file, e.g. scene: checker)");
         goto done;
     }
     if (job_finish(j, &d, e) < 0)

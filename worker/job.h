@@ -32,10 +32,13 @@ struct job {
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2], pos_format[2],
-        pos_output[2];
+        pos_output[2], pos_name[2];
 };
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
+/* The smallest threshold sampler kind k takes (its sets stay within SAMPLER_MAX_POINTS). */
+double job_smallest_threshold(enum sampler_kind k);
+
 int job_load(const char *path, struct job *j, struct err *e);
 
 /* Like job_load, but read the bytes from `from` while treating the file as if it were at `path`:

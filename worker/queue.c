@@ -21,7 +21,7 @@ static volatile sig_atomic_t queue_stop;
 
 static void on_signal(int sig)
 {
-    if (queue_stop) { /* the second signal: die now, as the user asked */
+    if (queue_stop > 0) { /* the second signal: die now, as the user asked */
         signal(sig, SIG_DFL);
         raise(sig);
         return;
@@ -83,10 +83,61 @@ static void give_back(struct queue *q, const char *name)
     lease_unlock(q->claim);
 }
 
+/* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
+   One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
+   of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
+   removes our lease first, then returns the claim to the queue or adopts it). */
+static void say_lost(struct queue *q, const char *name)
+{
+    struct lease l;
+    double age;
+    if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
+        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+        return;
+    }
+    lease_remove(q->claim);
+    err_print("%s: %s was removed or moved away while it rendered: render stopped, nothing written\n", name,
+              q->claim);
+}
+
+/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
+   that came meanwhile is kept). */
+static void clear_lost_stop(void)
+{
+    sigset_t block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigprocmask(SIG_BLOCK, &block, &old);
+    if (queue_stop == QUEUE_STOP_CLAIM_LOST)
+        queue_stop = 0;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+}
+
 static void note_rc(struct queue *q, int rc)
 {
     if (rc > q->worst)
         q->worst = rc;
+}
+
+/* The claim's output folder holds the outputs of another job file of the queue with the same name
+   (q->name_owner): filed in failed/ as invalid, the log naming that file; the folder is left as it
+   is. The same file re-queued (edited or not) renders again: only another file name conflicts. */
+static void name_taken(struct queue *q, const char *name, const char *log_name, const int pos[2])
+{
+    char msg[4600], at[32] = "";
+    const char *job_name = strrchr(q->name_dir, '/') ? strrchr(q->name_dir, '/') + 1 : q->name_dir;
+    if (pos && pos[0])
+        snprintf(at, sizeof at, ":%d:%d", pos[0], pos[1]);
+    snprintf(msg, sizeof msg,
+             "%s/%s%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
+             "remove that folder to replace them)",
+             q->dir, name, at, job_name, q->name_dir, q->name_owner);
+    err_print("%s\n", msg);
+    err_print("%s: name taken, moved to %s/\n", name, q->failed);
+    write_log(q, name, log_name, msg, 0, 0);
+    queue_claim_file(q, name, q->failed);
+    note_rc(q, 2);
 }
 
 /* A compare job: its combinations render into done/<name>/ as one job; a retry after a crash
@@ -98,21 +149,28 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
     ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
     ro.tick_arg = q;
     char last[2048] = "";
     int attempts = 0, rc;
     do {
         attempts++;
         rc = compare_main_as(from, as, &ro, last, sizeof last);
-    } while (rc == 1 && !queue_stop && attempts <= q->o->retries);
+    } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
+    if (q->lost || !queue_claim_still_ours(q)) {
+        say_lost(q, name);
+        return;
+    }
     if (rc == 1 && queue_stop) {
         give_back(q, name);
         return;
     }
-    if (!queue_claim_still_ours(q))
-        return;
     if (rc == 0) {
         queue_claim_file(q, name, q->done);
+        return;
+    }
+    if (q->name_owner[0]) {
+        name_taken(q, name, stem, NULL);
         return;
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
@@ -137,7 +195,7 @@ static void claim_source(const struct queue *q, char *out, size_t n)
 }
 
 /* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
-static void process(struct queue *q, const char *name)
+static void process_claim(struct queue *q, const char *name)
 {
     char as[2048], from[4096], msg[2048], stem[256];
     struct job j;
@@ -159,6 +217,13 @@ static void process(struct queue *q, const char *name)
         note_rc(q, 2);
         return;
     }
+    char folder[2048];
+    snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
+    if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
+        snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
+        name_taken(q, name, stem, j.pos_name);
+        return;
+    }
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
     ro.stop = &queue_stop;
@@ -174,12 +239,12 @@ static void process(struct queue *q, const char *name)
         err_format(&e, msg, sizeof msg);
         err_print("%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
     }
-    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
-        give_back(q, name);
+    if (q->lost || !queue_claim_still_ours(q)) {
+        say_lost(q, name);
         return;
     }
-    if (!queue_claim_still_ours(q)) {
-        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
+        give_back(q, name);
         return;
     }
     if (rc == 0) {
@@ -191,12 +256,27 @@ static void process(struct queue *q, const char *name)
         queue_claim_file(q, name, q->done);
         return;
     }
+    if (q->name_owner[0]) { /* another file of this name wrote its outputs while we rendered */
+        name_taken(q, name, stem, j.pos_name);
+        return;
+    }
     err_format(&e, msg, sizeof msg);
     err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
     write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
     queue_claim_file(q, name, q->failed);
     note_rc(q, rc);
+}
+
+/* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */
+static void process(struct queue *q, const char *name)
+{
+    q->lost = 0;
+    q->name_owner[0] = 0;
+    queue_claim_renew_start(q);
+    process_claim(q, name);
+    queue_claim_renew_stop();
+    clear_lost_stop();
 }
 
 /* Sleep up to s seconds; a signal ends it early. */
@@ -206,6 +286,16 @@ static void nap(double s)
     nanosleep(&ts, NULL);
 }
 
+/* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
+   it): its parent is itself. A queue there would make /running, /done and /failed. */
+static int is_root_dir(const char *dir, const struct stat *st)
+{
+    char up[1100];
+    struct stat pst;
+    snprintf(up, sizeof up, "%s/..", dir);
+    return stat(up, &pst) == 0 && pst.st_dev == st->st_dev && pst.st_ino == st->st_ino;
+}
+
 int queue_main(const struct queue_opts *qo)
 {
     struct queue q;
@@ -213,12 +303,19 @@ int queue_main(const struct queue_opts *qo)
     struct err e;
     memset(&q, 0, sizeof q);
     q.o = qo;
+    q.stop = &queue_stop;
     snprintf(q.dir, sizeof q.dir, "%s", qo->dir);
     for (size_t n = strlen(q.dir); n > 1 && q.dir[n - 1] == '/'; n--)
         q.dir[n - 1] = 0;
     int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
     if (bad) {
         err_print("worker: --queue %s: %s\n", q.dir, strerror(bad));
+        return 2;
+    }
+    if (is_root_dir(q.dir, &st)) {
+        err_print("worker: --queue %s: is the file system's root directory; give the queue a directory of "
+                  "its own (running/, done/ and failed/ are made in it)\n",
+                  q.dir);
         return 2;
     }
     snprintf(q.running, sizeof q.running, "%s/running", q.dir);

@@ -3,13 +3,19 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "err.h"
+#include "fileio.h"
 
 static double since(const struct timespec *t)
 {
@@ -18,14 +24,68 @@ static double since(const struct timespec *t)
     return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
 }
 
+static double renew_every_s(const struct queue *q)
+{
+    return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
+}
+
 void queue_claim_tick(void *arg)
 {
     struct queue *q = arg;
-    double every = q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
-    if (since(&q->last_touch) < every)
+    if (since(&q->last_touch) < renew_every_s(q))
         return;
-    lease_touch(q->claim);
     clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (!queue_claim_still_ours(q)) {
+        q->lost = 1;
+        if (q->stop && !*q->stop)
+            *q->stop = QUEUE_STOP_CLAIM_LOST;
+        return;
+    }
+    lease_touch(q->claim);
+}
+
+/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
+static volatile sig_atomic_t renew_fd = -1;
+
+static void on_renew_alarm(int sig)
+{
+    (void)sig;
+    int saved = errno, fd = renew_fd;
+    if (fd >= 0)
+        (void)futimens(fd, NULL);
+    errno = saved;
+}
+
+void queue_claim_renew_start(struct queue *q)
+{
+    char path[2100];
+    snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
+    queue_claim_renew_stop();
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return; /* no lease to renew: the tick's check finds the claim lost */
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_renew_alarm;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGALRM, &sa, NULL);
+    renew_fd = fd;
+    double every = renew_every_s(q);
+    struct itimerval it = {{(time_t)every, (suseconds_t)((every - (time_t)every) * 1e6)},
+                           {(time_t)every, (suseconds_t)((every - (time_t)every) * 1e6)}};
+    setitimer(ITIMER_REAL, &it, NULL);
+}
+
+void queue_claim_renew_stop(void)
+{
+    struct itimerval off;
+    memset(&off, 0, sizeof off);
+    setitimer(ITIMER_REAL, &off, NULL);
+    int fd = renew_fd;
+    renew_fd = -1;
+    if (fd >= 0)
+        close(fd);
 }
 
 int queue_claim_return(struct queue *q, const char *claim, const char *name)
@@ -148,13 +208,75 @@ int queue_claim_take(struct queue *q, const char *name)
 int queue_claim_still_ours(struct queue *q)
 {
     struct lease l;
+    struct stat st;
     double age;
-    return lease_read(q->claim, &l, &age) == 0 && strcmp(l.token, q->lease.token) == 0;
+    return lstat(q->claim, &st) == 0 && lease_read(q->claim, &l, &age) == 0 &&
+           strcmp(l.token, q->lease.token) == 0;
 }
 
-int queue_claim_held(void *arg)
+int queue_claim_gone(struct queue *q)
 {
-    return queue_claim_still_ours(arg);
+    struct stat st;
+    return lstat(q->claim, &st) < 0 && errno == ENOENT;
+}
+
+/* The "job_file" string of sidecar text json into out (JSON escapes undone); 0, or -1 when none. */
+static int sidecar_job_file(const char *json, char *out, size_t n)
+{
+    const char *key = "\"job_file\": \"", *s = strstr(json, key);
+    size_t k = 0;
+    if (!s || n == 0)
+        return -1;
+    for (s += strlen(key); *s && *s != '"' && k + 1 < n; s++)
+        out[k++] = *s == '\\' && s[1] ? *++s : *s;
+    out[k] = 0;
+    return *s == '"' ? 0 : -1;
+}
+
+int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
+{
+    const char *mine = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    const char *folder = strrchr(dir, '/') ? strrchr(dir, '/') + 1 : dir;
+    if (folder[0] == '.') /* no job's name: DIR/done/.cache/, the references all compare jobs share */
+        return 0;
+    DIR *d = opendir(dir);
+    int taken = 0;
+    if (!d)
+        return 0;
+    struct dirent *de;
+    while (!taken && (de = readdir(d))) {
+        size_t len = strlen(de->d_name);
+        char path[4096], file[2048];
+        uint8_t *text;
+        size_t bytes;
+        struct err e;
+        if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (fileio_read_all(path, 1 << 20, &text, &bytes, &e) < 0)
+            continue;
+        if (sidecar_job_file((const char *)text, file, sizeof file) == 0) {
+            const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
+            if (strcmp(base, mine) != 0) {
+                snprintf(owner, n, "%s", file);
+                taken = 1;
+            }
+        }
+        free(text);
+    }
+    closedir(d);
+    return taken;
+}
+
+int queue_claim_held(void *arg, const char *dir)
+{
+    struct queue *q = arg;
+    if (!queue_claim_still_ours(q))
+        return 0;
+    if (!queue_claim_name_owner(q, dir, q->name_owner, sizeof q->name_owner))
+        return 1;
+    snprintf(q->name_dir, sizeof q->name_dir, "%s", dir);
+    return 0;
 }
 
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir)

@@ -5,6 +5,7 @@
 #ifndef QUEUE_CLAIM_H
 #define QUEUE_CLAIM_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <time.h>
 
@@ -19,13 +20,32 @@ struct queue {
     char claim[2048];   /* DIR/running/X.yaml while a job is held */
     struct timespec last_touch;
     int worst;
-    struct queue_scan scan; /* the waiting jobs seen by the last scan */
+    struct queue_scan scan;      /* the waiting jobs seen by the last scan */
+    volatile sig_atomic_t *stop; /* the queue's stop flag, which also stops the render in hand */
+    int lost;                    /* the claim in hand was found gone or taken over (tick) */
+    char name_owner[2048];       /* its output folder holds another queued job file's outputs */
+    char name_dir[2048];         /* that folder */
 };
 
-/* The farm's progress callback (every 5 ms): renew the lease about once a second, or four times
-   per --lease-timeout when that is shorter (renewed only once a second, a live claim looked dead
-   to others for part of every second under a timeout of less than one, and was rendered again). */
+/* *queue.stop's value when the tick found the claim in hand gone (not a signal number): the render
+   stops, writes nothing, and the worker goes on with the next job. */
+#define QUEUE_STOP_CLAIM_LOST (-1)
+
+/* The farm's progress callback (every 5 ms): about once a second, or four times per
+   --lease-timeout when that is shorter, see that the claim is still ours (its file still in
+   running/, its lease still ours) and renew the lease; a claim gone (the job file removed or moved
+   away: the job was cancelled) or taken over sets q->lost and *q->stop to QUEUE_STOP_CLAIM_LOST,
+   which stops the render. */
 void queue_claim_tick(void *arg);
+
+/* Renew the claim in hand's lease from a timer (SIGALRM, SA_RESTART) as often as the tick would,
+   whatever the worker is doing: loading a scene (a big texture), encoding and writing an image,
+   waiting for its output folder's lock, between a compare job's renders. The tick alone ran only
+   while the farm rendered, so a long load or encode let the lease look dead and another worker
+   take a live claim. A stopped (SIGSTOP) or dead worker renews nothing. The lease file is held
+   open: a lease rewritten by a new holder is a new file that our timer does not touch. */
+void queue_claim_renew_start(struct queue *q);
+void queue_claim_renew_stop(void);
 
 /* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
    so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */
@@ -45,12 +65,23 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n);
    stderr: a read-only DIR, no permission, a full disk). */
 int queue_claim_take(struct queue *q, const char *name);
 
-/* Still ours? Nobody took the claim away while we rendered (a lease judged dead elsewhere). */
+/* Still ours? The claim's file is still in running/ (not removed or moved away) and nobody took
+   the claim away while we rendered (a lease judged dead elsewhere). */
 int queue_claim_still_ours(struct queue *q);
 
+/* The claim's file is no longer in running/: removed or moved away while we held it (cancelled). */
+int queue_claim_gone(struct queue *q);
+
 /* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
-   we were stopped or hung) writes nothing, lest it replace the new holder's outputs. */
-int queue_claim_held(void *arg);
+   we were stopped or hung) writes nothing, lest it replace the new holder's outputs; nor does one
+   whose output folder `dir` holds the outputs of another job file of the queue with the same
+   `name:` (q->name_owner says which). */
+int queue_claim_held(void *arg, const char *dir);
+
+/* The job file (its file name) whose outputs output folder `dir` holds, when that is not the claim
+   in hand's file name: its path (a sidecar's "job_file") into owner, and 1. 0 when the folder is
+   empty, absent or the claim's own (the same file re-queued, edited or not). */
+int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n);
 
 /* Move the claim to done/ or failed/ and drop the lease. */
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir);

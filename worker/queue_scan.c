@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "fileio.h"
 #include "yamlx.h"
@@ -44,6 +45,17 @@ static int peek_priority(const char *path)
     }
     ydoc_free(&d);
     return p;
+}
+
+/* An empty file changed less than QUEUE_SCAN_EMPTY_GRACE_S ago: a copier (cp, scp) has created it
+   and not yet written it (a small job file is written in one go). Left for a later scan; an older
+   empty file is claimed and filed in failed/ as invalid. Files with content are claimed at once. */
+static int just_created(const struct stat *st)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    double age = (double)(now.tv_sec - st->st_mtim.tv_sec) + (now.tv_nsec - st->st_mtim.tv_nsec) * 1e-9;
+    return st->st_size == 0 && age < QUEUE_SCAN_EMPTY_GRACE_S;
 }
 
 /* Higher priority first, then oldest (mtime), then by name. */
@@ -105,7 +117,7 @@ int queue_scan_waiting(struct queue_scan *q, const char *dir, struct queue_waiti
         if (!queue_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof w->name)
             continue;
         snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+        if (stat(path, &st) < 0 || !S_ISREG(st.st_mode) || just_created(&st))
             continue;
         if (n == cap) {
             cap = cap ? cap * 2 : 64;

@@ -22,6 +22,9 @@ struct queue_scan {
     int nseen;
 };
 
+/* Seconds an empty DIR/X.yaml is left alone after its last change (a copier is about to write it). */
+#define QUEUE_SCAN_EMPTY_GRACE_S 10.0
+
 /* 1 when a directory entry's name is a job file's: X.yaml, not hidden (temporaries start with a dot). */
 int queue_is_job_file(const char *name);
 

@@ -16,9 +16,10 @@ struct run_opts {
     int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
     const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
     void (*tick)(void *arg);           /* optional: called about every 5 ms while rendering */
-    int (*may_write)(void *arg);       /* optional: asked (with tick_arg) under the output folder's
-                                          lock, just before writing; 0 = write nothing, fail (a
-                                          queue claim taken over) */
+    int (*may_write)(void *arg, const char *dir); /* optional: asked (with tick_arg and the output
+                                          folder) under that folder's lock, just before writing;
+                                          0 = write nothing, fail (a queue claim taken over, the
+                                          folder another queued job's) */
     void *tick_arg;
 };
 

@@ -154,9 +154,12 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
     if (*lock == RUN_OUT_STOPPED)
         return err_set(e, NULL, 0, 0, "stopped while waiting for another writer of %s/: nothing written",
                        dir);
-    if (!o->may_write || o->may_write(o->tick_arg))
+    if (!o->may_write || o->may_write(o->tick_arg, dir))
         return 0;
-    return err_set(e, NULL, 0, 0, "rendered, but another worker holds the job now: nothing written");
+    return err_set(e, NULL, 0, 0,
+                   "rendered, but it may not write %s/ now (another worker holds the job, or the folder is "
+                   "another job's): nothing written",
+                   dir);
 }
 
 int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,

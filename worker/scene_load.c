@@ -60,7 +60,7 @@ static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
     const char *need[] = {"lookfrom", "lookat", "vfov"};
     for (int i = 0; i < 3; i++)
         if (!ymap_get(&L->d, n, need[i]))
-            return ydoc_fail(&L->d, n, L->e, "%s: missing in camera", need[i]);
+            return ymap_missing(&L->d, n, need[i], L->e, "%s: missing in camera", need[i]);
     if (yget_vec3(&L->d, ymap_get(&L->d, n, "lookfrom"), "lookfrom", &c->lookfrom, L->e) < 0 ||
         yget_vec3(&L->d, ymap_get(&L->d, n, "lookat"), "lookat", &c->lookat, L->e) < 0)
         return -1;
@@ -121,7 +121,7 @@ static int load_checker(struct loader *L, yaml_node_t *n, struct texture *t)
     const char *need[] = {"odd", "even"};
     for (int i = 0; i < 2; i++)
         if (!ymap_get(&L->d, n, need[i]))
-            return ydoc_fail(&L->d, n, L->e, "%s: missing in checker texture", need[i]);
+            return ymap_missing(&L->d, n, need[i], L->e, "%s: missing in checker texture", need[i]);
     if (loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
         loader_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
         return -1;
@@ -171,7 +171,7 @@ static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
     if (ymap_check(&L->d, n, image_keys, "image texture", L->e) < 0)
         return -1;
     if (!(v = ymap_get(&L->d, n, "file")))
-        return ydoc_fail(&L->d, n, L->e, "file: missing in image texture");
+        return ymap_missing(&L->d, n, "file", L->e, "file: missing in image texture");
     if (yget_string(&L->d, v, "file", &file, L->e) < 0)
         return -1;
     char path[1024];
@@ -205,7 +205,7 @@ static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     const char *type;
     yaml_node_t *tn = ymap_get(&L->d, n, "type");
     if (!tn)
-        return ydoc_fail(&L->d, n, L->e, "type: missing in texture \"%s\"", yscalar(k));
+        return ymap_missing(&L->d, n, "type", L->e, "type: missing in texture \"%s\"", yscalar(k));
     if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
         return -1;
     struct texture t = {0};
@@ -235,7 +235,7 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     const char *type, *s;
     yaml_node_t *tn = ymap_get(&L->d, n, "type"), *v;
     if (!tn)
-        return ydoc_fail(&L->d, n, L->e, "type: missing in material \"%s\"", yscalar(k));
+        return ymap_missing(&L->d, n, "type", L->e, "type: missing in material \"%s\"", yscalar(k));
     if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
         return -1;
     struct material m = {.texture = -1, .albedo = v3(1, 1, 1), .ior = 1.5};
@@ -277,7 +277,8 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
         if ((m.texture = loader_find_name(&L->tex, s)) < 0)
             return loader_no_name(L, v, "texture", s, &L->tex, "textures");
     } else if ((m.type == MAT_LAMBERTIAN || m.type == MAT_ISOTROPIC) && !ymap_get(&L->d, n, "albedo")) {
-        return ydoc_fail(&L->d, n, L->e, "albedo: missing in %s material \"%s\"", type, yscalar(k));
+        return ymap_missing(&L->d, n, "albedo", L->e, "albedo: missing in %s material \"%s\"", type,
+                            yscalar(k));
     }
     if ((v = ymap_get(&L->d, n, "fuzz"))) {
         if (yget_double(&L->d, v, "fuzz", &m.fuzz, L->e) < 0)
@@ -293,7 +294,7 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     }
     if (m.type == MAT_LIGHT) {
         if (!(v = ymap_get(&L->d, n, "emit")))
-            return ydoc_fail(&L->d, n, L->e, "emit: missing in light material \"%s\"", yscalar(k));
+            return ymap_missing(&L->d, n, "emit", L->e, "emit: missing in light material \"%s\"", yscalar(k));
         if (loader_color(L, v, "emit", &m.emit) < 0)
             return -1;
     }
@@ -345,7 +346,7 @@ int scene_load(const char *path, struct scene_file *out, struct err *e)
     if (ymap_check(&L.d, root, scene_keys, "scene", e) < 0)
         goto done;
     if (!(v = ymap_get(&L.d, root, "camera"))) {
-        ydoc_fail(&L.d, root, e, "camera: missing in scene");
+        ymap_missing(&L.d, root, "camera", e, "camera: missing in scene");
         goto done;
     }
     if (load_camera(&L, v, out) < 0)

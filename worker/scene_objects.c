@@ -27,7 +27,7 @@ static const char *const boundary_keys[] = {"type", "center", "radius", NULL};
 static int need(struct loader *L, yaml_node_t *n, const char *key, const char *type, yaml_node_t **out)
 {
     if (!(*out = ymap_get(&L->d, n, key)))
-        return ydoc_fail(&L->d, n, L->e, "%s: missing in %s", key, type);
+        return ymap_missing(&L->d, n, key, L->e, "%s: missing in %s", key, type);
     return 0;
 }
 
@@ -363,7 +363,7 @@ static int load_object(struct loader *L, yaml_node_t *n)
 int load_objects(struct loader *L, yaml_node_t *list, yaml_node_t *root)
 {
     if (!list)
-        return ydoc_fail(&L->d, root, L->e, "objects: missing in scene");
+        return ymap_missing(&L->d, root, "objects", L->e, "objects: missing in scene");
     int n = yseq_len(list);
     if (n < 0)
         return ydoc_fail(&L->d, list, L->e, "objects: must be a list of objects");

@@ -209,7 +209,20 @@ const char *ydoc_node_kind(const yaml_node_t *n)
     }
 }
 
-int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_node_t **val)
+int ynull(const yaml_node_t *n)
+{
+    if (!n || n->type != YAML_SCALAR_NODE)
+        return 0;
+    const char *tag = (const char *)n->tag, *s = (const char *)n->data.scalar.value;
+    if (tag && strcmp(tag, YAML_NULL_TAG) == 0)
+        return 1;
+    if (yquoted(n) || (tag && strcmp(tag, YAML_DEFAULT_SCALAR_TAG) != 0)) /* "~", !!str ~ */
+        return 0;
+    return !*s || !strcmp(s, "~") || !strcmp(s, "null") || !strcmp(s, "Null") || !strcmp(s, "NULL");
+}
+
+/* The i-th pair of mapping n as written, null values included. */
+static int pair_raw(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_node_t **val)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
         return 0;
@@ -221,13 +234,23 @@ int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_nod
     return *key && *val;
 }
 
+int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_node_t **val)
+{
+    if (i < 0)
+        return 0;
+    for (int raw = 0, seen = 0; pair_raw(d, n, raw, key, val); raw++)
+        if (!ynull(*val) && seen++ == i)
+            return 1;
+    return 0;
+}
+
 int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what, struct err *e)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
         return ydoc_fail(d, n, e, "%s: expected a mapping of keys, got %s", what,
                          n ? ydoc_node_kind(n) : "nothing");
     yaml_node_t *k, *v;
-    for (int i = 0; ymap_pair(d, n, i, &k, &v); i++) {
+    for (int i = 0; pair_raw(d, n, i, &k, &v); i++) {
         const char *name = yscalar(k);
         if (!name)
             return ydoc_fail(d, k, e, "%s: keys must be plain names, got %s", what, ydoc_node_kind(k));
@@ -241,7 +264,7 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
             return ydoc_fail(d, k, e, "%s: unknown key in %s", name, what);
         }
         yaml_node_t *k2, *v2;
-        for (int j = 0; j < i && ymap_pair(d, n, j, &k2, &v2); j++)
+        for (int j = 0; j < i && pair_raw(d, n, j, &k2, &v2); j++)
             if (yscalar(k2) && strcmp(yscalar(k2), name) == 0)
                 return ydoc_fail(d, k, e, "%s: duplicate key in %s (first at line %d)", name, what,
                                  (int)k2->start_mark.line + 1);
@@ -249,13 +272,33 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
     return 0;
 }
 
-yaml_node_t *ymap_get(struct ydoc *d, yaml_node_t *n, const char *key)
+yaml_node_t *ymap_get_raw(struct ydoc *d, yaml_node_t *n, const char *key)
 {
     yaml_node_t *k, *v;
-    for (int i = 0; ymap_pair(d, n, i, &k, &v); i++)
+    for (int i = 0; pair_raw(d, n, i, &k, &v); i++)
         if (yscalar(k) && strcmp(yscalar(k), key) == 0)
             return v;
     return NULL;
+}
+
+yaml_node_t *ymap_get(struct ydoc *d, yaml_node_t *n, const char *key)
+{
+    yaml_node_t *v = ymap_get_raw(d, n, key);
+    return ynull(v) ? NULL : v;
+}
+
+int ymap_missing(struct ydoc *d, yaml_node_t *n, const char *key, struct err *e, const char *fmt, ...)
+{
+    yaml_node_t *v = ymap_get_raw(d, n, key);
+    if (v && ynull(v))
+        return ydoc_fail(d, v, e, "%s: needs a value (it is required), got %s", key,
+                         *yscalar(v) ? yscalar(v) : "nothing");
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return ydoc_fail(d, n, e, "%s", msg);
 }
 
 int yseq_len(yaml_node_t *n)

@@ -39,10 +39,23 @@ int ydoc_fail(struct ydoc *d, const yaml_node_t *n, struct err *e, const char *f
    in messages ("job", "camera"). */
 int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what, struct err *e);
 
-/* The value node for key in mapping n (NULL when absent). */
+/* Whether n is a YAML null: a plain (unquoted) empty scalar, ~, null, Null or NULL, or one tagged
+   !!null. An optional key given null takes its default: ymap_get and ymap_pair pass over it as if
+   it were absent (ymap_check still sees its key). */
+int ynull(const yaml_node_t *n);
+
+/* The value node for key in mapping n (NULL when absent or null). */
 yaml_node_t *ymap_get(struct ydoc *d, yaml_node_t *n, const char *key);
 
-/* Iterate: the i-th pair of mapping n (0-based), or 0 when past the end. */
+/* The value node for key in mapping n as written, null or not (NULL when absent). */
+yaml_node_t *ymap_get_raw(struct ydoc *d, yaml_node_t *n, const char *key);
+
+/* A required key is not there: "key: needs a value" at the value's position when it is written
+   with a null value, else the message fmt at mapping n's. Always -1. */
+int ymap_missing(struct ydoc *d, yaml_node_t *n, const char *key, struct err *e, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+/* Iterate: the i-th pair of mapping n (0-based) whose value is not null, or 0 when past the end. */
 int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_node_t **val);
 
 /* The i-th item of sequence n, NULL past the end; ysize gives the count (-1 if not a sequence). */
