@@ -27,7 +27,7 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        if (!path_scatter(ctx, r, &beta, &L, rng, &h, depth == last, mix))
+        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, 1))
             break;
     }
     return L;
@@ -44,9 +44,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     for (int i = 0; i < ctx->sc->n_lights; i++)
         ctx->lp[i].n = ctx->lp[i].next = 0;
 
-    double t0 = now_s();
+    const int timed = sampler_timed(st->pixels);
+    const double t0 = timed ? now_s() : 0;
     size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
-    st->sampler_s += now_s() - t0;
+    if (timed)
+        st->sampler_s += SAMPLER_TIME_EVERY * (now_s() - t0);
 
     double sum[3] = {0, 0, 0};
     size_t kept = 0;

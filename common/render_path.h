@@ -18,6 +18,16 @@ static __attribute__((unused)) double now_s(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
+/* The sidecar's sampler_s times one point-set draw in SAMPLER_TIME_EVERY of each kind (the
+   pixels' sets by st->pixels, the lights' by st->light_sets) and counts that draw's time that
+   many times: an estimate of the whole from a systematic sample, not a total. Timing every
+   draw cost two clock reads per set, ~0.8% of final's time, more than drawing a jitter set. */
+#define SAMPLER_TIME_EVERY 8
+static inline int sampler_timed(uint64_t count)
+{
+    return count % SAMPLER_TIME_EVERY == 0;
+}
+
 /* Pooled sets: the pool point each light would take next if it were the next light sampled
    (the light rng's next draw picks it), fetched into the cache now. One of them is the next
    point taken unless its set runs out first; without this its load, an L2 hit at the head of
@@ -48,7 +58,8 @@ static __attribute__((noinline, unused)) void refill_light_points(struct render_
                                                                   struct light_points *lp)
 {
     const enum sampler_kind kind = ctx->light_kind;
-    double t0 = now_s();
+    const int timed = sampler_timed(ctx->st->light_sets);
+    const double t0 = timed ? now_s() : 0;
     if (lp->cells) {
         lp->n = kind == SAMPLER_POISSON
                     ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
@@ -62,7 +73,8 @@ static __attribute__((noinline, unused)) void refill_light_points(struct render_
         lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
     }
     lp->next = 0;
-    ctx->st->sampler_s += now_s() - t0;
+    if (timed)
+        ctx->st->sampler_s += SAMPLER_TIME_EVERY * (now_s() - t0);
     ctx->st->light_sets++;
 }
 
@@ -115,11 +127,18 @@ static __attribute__((unused)) vec3 cosine_direction(const onb *frame, struct rn
     return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
 }
 
-static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
+/* A uniform direction: inline where trace scatters in a medium (path_scatter's media_inline),
+   a call elsewhere (GCC's choice; inline in the lanes it cost cornell-book3 7 instructions). */
+static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_inline(struct rng *r)
 {
     double z = 1 - 2 * rng_uniform32(r), s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
     v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
     return v3(cos_phi * s, sin_phi * s, z);
+}
+
+static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
+{
+    return uniform_sphere_direction_inline(r);
 }
 
 static __attribute__((noinline, unused)) vec3 texture_albedo(const struct scene *sc, const struct material *m,
@@ -188,11 +207,16 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
-   mix: the scene's lights are sampled. Always inline: the caller's ray, weight and radiance stay
-   in its registers (a texture's lookup reads h through a copy). */
-static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
-                                                              vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix)
+   mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
+   and mixture pdf) inline, as a surface's (path_scatter_as from trace: final's fog scatters on
+   most paths), else through calls (path_scatter, for the lanes and the wide kernel, whose scenes
+   hold no media: inline in the lanes it cost checker ~1% and cornell-book3 7 instructions a
+   sample by the code it moved). Always inline: the caller's ray, weight and radiance stay in
+   its registers (a texture's lookup reads h through a copy). */
+static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                                 vec3 *L, struct rng *rng,
+                                                                 const struct hit *h, int at_last, int mix,
+                                                                 int media_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -252,16 +276,27 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
             int light = -1;
             double light_pdf = 0;
             dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                  : media_inline     ? uniform_sphere_direction_inline(rng)
                                      : uniform_sphere_direction(rng);
-            pdf = 0.5 * shape_lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * phase;
+            pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
+                                      : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
+                  0.5 * phase;
         } else {
-            dir = uniform_sphere_direction(rng);
+            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
         }
         *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
         *r = (ray){h->p, dir, r->time};
         return 1;
     }
     }
+}
+
+/* path_scatter_as with a medium's scatter through calls. */
+static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                              vec3 *L, struct rng *rng, const struct hit *h,
+                                                              int at_last, int mix)
+{
+    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, 0);
 }
 
 #endif

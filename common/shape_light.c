@@ -28,8 +28,9 @@ void shape_uv(const struct prim *p, struct hit *h)
     if (p->type != PRIM_SPHERE)
         return; /* other shapes carry no texture image */
     vec3 d = v3_scale(v3_sub(q, p->g.sphere.center), 1.0 / p->g.sphere.radius);
-    double theta = acos(fmax(-1.0, fmin(1.0, -d.y)));
-    double phi = atan2(-d.z, d.x) + PI;
+    /* acos(-d.y) as the angle of (|(d.x, d.z)|, -d.y): no clamp of d.y to [-1, 1] needed */
+    double theta = d_atan2(sqrt(d.x * d.x + d.z * d.z), -d.y);
+    double phi = d_atan2(-d.z, d.x) + PI;
     h->u = phi / (2 * PI);
     h->v = theta / PI;
 }

@@ -4,7 +4,7 @@
 
 vec3 texture_marble(const struct perlin *pn, double scale, vec3 p)
 {
-    double g = 0.5 * (1 + sin(scale * p.z + 10 * perlin_turb(pn, p, 7)));
+    double g = 0.5 * (1 + d_sin(scale * p.z + 10 * perlin_turb(pn, p, 7)));
     return v3(g, g, g);
 }
 

@@ -2,6 +2,7 @@
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "bvh.h"
 #include "camera.h"
@@ -106,6 +107,38 @@ static void test_sincos_turn(void)
     v3_sincos_turn(nextafter(1.0, 0.0), &s, &c);
     CHECK_NEAR(s, 0, 1e-15);
     CHECK_NEAR(c, 1, 1e-15);
+}
+
+/* d_sin and d_atan2 agree with libm: d_sin within 1e-15 + 2e-16 |x| over |x| <= 1000, d_atan2
+   within 1e-15 over every octant, near the tan(pi/8) seam, and at the signed zeros and axes. */
+static void test_sin_atan2(void)
+{
+    struct rng r;
+    rng_seed(&r, 5, 6);
+    double worst_sin = 0, worst_atan = 0;
+    for (int i = 0; i < 200000; i++) {
+        double x = (2 * rng_uniform(&r) - 1) * 1000;
+        double e = fabs(d_sin(x) - sin(x)) / (1e-15 + 2e-16 * fabs(x));
+        worst_sin = e > worst_sin ? e : worst_sin;
+        double a = 2 * rng_uniform(&r) - 1, b = 2 * rng_uniform(&r) - 1;
+        if (i % 4 == 1)
+            a = 0.41421356237309504880 * b * (1 + (a - 0.5) * 1e-9); /* the seam */
+        if (i % 4 == 2)
+            b *= 1e-9;
+        e = fabs(d_atan2(a, b) - atan2(a, b));
+        worst_atan = e > worst_atan ? e : worst_atan;
+    }
+    CHECK(worst_sin <= 1);
+    CHECK(worst_atan < 1e-15);
+    const double zs[][2] = {{0, 0}, {-0.0, 0}, {0, -0.0}, {-0.0, -0.0}, {0, -1}, {-0.0, -1},
+                            {1, 0}, {-1, 0},   {1, 1},    {-1, -1},     {3, -4}, {-4, 3}};
+    int same = 1;
+    for (size_t i = 0; i < sizeof zs / sizeof zs[0]; i++) {
+        double want = atan2(zs[i][0], zs[i][1]), got = d_atan2(zs[i][0], zs[i][1]);
+        same &= fabs(got - want) < 1e-15 && signbit(got) == signbit(want);
+    }
+    CHECK(same);
+    CHECK(d_sin(1e300) == sin(1e300));
 }
 
 static void test_camera(void)
@@ -443,10 +476,50 @@ static void test_closed_box(void)
     }
 }
 
+/* The sidecar's sampler_s times one draw in several and counts it for all of them: in a scene of
+   nothing but the background a fresh Poisson set per pixel (~260 points, ~0.1 ms) is nearly all
+   of a pixel's time, so sampler_s must come out near the render's wall time, not a fraction or a
+   multiple of it. Three tries: a time slice lost inside a timed draw counts several times. One
+   CHECK whatever the tries, so the suite's count does not depend on them. */
+static double sampler_share_of_render(void)
+{
+    struct scene *sc = scene_new();
+    struct err e;
+    const int finished = scene_finish(sc, &e) == 0;
+    struct camera cam;
+    struct camera_desc d = {v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60, 0, 1, 0, 0};
+    camera_init(&cam, &d, 1, &e);
+    struct sampler *pix = sampler_new(SAMPLER_POISSON, 5, 0, 0, &e);
+    struct render_settings rs = {16, 16, 4, 1, 0};
+    struct render_ctx *ctx = finished && pix ? render_ctx_new(sc, &cam, &rs, pix, NULL, &e) : NULL;
+    struct render_stats st;
+    render_stats_init(&st);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    float rgb[3];
+    for (int p = 0; ctx && p < rs.width * rs.height; p++)
+        render_pixel(ctx, p % rs.width, p / rs.width, rgb, &st);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    scene_free(sc);
+    double wall = (double)(t1.tv_sec - t0.tv_sec) + (t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    return ctx && wall > 0 ? st.sampler_s / wall : 0; /* 0 (a failure) without a render */
+}
+
+static void test_sampler_time(void)
+{
+    double share = 0;
+    for (int i = 0; i < 3 && !(share > 0.6 && share < 1.4); i++)
+        share = sampler_share_of_render();
+    CHECK(share > 0.6 && share < 1.4);
+}
+
 int main(void)
 {
     test_rng();
     test_sincos_turn();
+    test_sin_atan2();
     test_camera();
     test_shapes();
     test_bvh();
@@ -454,5 +527,6 @@ int main(void)
     test_medium_albedo();
     test_last_segment();
     test_closed_box();
+    test_sampler_time();
     return check_report("test_render");
 }
