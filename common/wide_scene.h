@@ -70,8 +70,11 @@ static WAI void wide_sphere(const f8 o[3], const f8 d[3], f8 t_min, struct wide_
     const f8 ocx = o[0] - e->v[0], ocy = o[1] - e->v[1], ocz = o[2] - e->v[2];
     const f8 a = dot8(d, d);
     const f8 half_b = ocx * d[0] + ocy * d[1] + ocz * d[2];
-    const f8 cc = (ocx * ocx + ocy * ocy + ocz * ocz) - e->v[3];
-    const f8 disc = half_b * half_b - a * cc;
+    /* half_b^2 - a c as a (r^2 - |f|^2), f the centre's offset across the ray (Haines et al.,
+       Ray Tracing Gems ch. 7): in float, b^2 - a c of terms ~|o - c|^2 put a grazing ray's hit
+       up to 1e-2 off a small far sphere, inside the new origin's offset (acne: dark rims) */
+    const f8 s = half_b / a, fx = ocx - s * d[0], fy = ocy - s * d[1], fz = ocz - s * d[2];
+    const f8 disc = a * (e->v[3] - (fx * fx + fy * fy + fz * fz));
     const i8 ok = ~((disc < 0) | (a == 0));
     const f8 sq = wsqrt(disc);
     const f8 lo = t_min * a, hi = b->t * a;

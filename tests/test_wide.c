@@ -214,6 +214,69 @@ static void test_unbiased(const char *path)
     scene_file_free(&sf);
 }
 
+/* A small sphere far from the eye: rays grazing it (aimed at its silhouette, from the eye) hit it
+   at a point within the kernel's origin offset (16 float ulps of the scene's reach, 555 here) of
+   its surface, or the bounce's new origin may lie inside and its ray hit the sphere again (the
+   sphere's tops under the light came out darker). The quadratic's discriminant in the textbook
+   form, b^2 - a c of terms |o - c|^2 ~ 1e6, put these points up to 5e-3 off. */
+static void test_graze(void)
+{
+    char path[] = "/tmp/test_wide_XXXXXX";
+    const int fd = mkstemp(path);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fputs("camera: { lookfrom: [278, 278, -800], lookat: [278, 278, 0], vup: [0, 1, 0], vfov: 40 }\n"
+          "materials: { white: { type: lambertian, albedo: [0.7, 0.7, 0.7] },\n"
+          "             lamp: { type: light, emit: [15, 15, 15] } }\n"
+          "objects:\n"
+          "  - { type: rect, plane: xz, min: [0, 0], max: [555, 555], at: 0, material: white }\n"
+          "  - { type: rect, plane: xz, min: [213, 227], max: [343, 332], at: 554, flip: true, material: lamp }\n"
+          "  - { type: sphere, center: [278, 400, 300], radius: 10, material: white }\n",
+          f);
+    fclose(f);
+    struct scene_file sf = {0};
+    struct err e;
+    const int loaded = scene_load(path, &sf, &e);
+    remove(path);
+    CHECK(loaded == 0);
+    if (!sf.scene)
+        return;
+    struct wide_scene *ws = wide_usable(sf.scene, 0) ? wide_scene_new(sf.scene) : NULL;
+    CHECK(ws != NULL);
+    const vec3 eye = v3(278, 278, -800), c = v3(278, 400, 300);
+    const double r = 10, bound = 555 * 0x1p-20;
+    double worst = 0;
+    int hits = 0;
+    for (int k = 0; ws && k < 64; k++) {
+        double o[3 * WIDE_LANES], d[3 * WIDE_LANES], t[WIDE_LANES], n[3 * WIDE_LANES];
+        int prim[WIDE_LANES];
+        for (int i = 0; i < WIDE_LANES; i++) {
+            /* around the silhouette, from 1 - 1e-1 to 1 - 1e-8 of the radius off the centre */
+            const double a = 2 * PI * k / 64, off = r * (1 - pow(10, -1 - i));
+            const vec3 dir = v3_sub(v3(c.x + off * cos(a), c.y + off * sin(a), c.z), eye);
+            o[i] = eye.x, o[WIDE_LANES + i] = eye.y, o[2 * WIDE_LANES + i] = eye.z;
+            d[i] = dir.x, d[WIDE_LANES + i] = dir.y, d[2 * WIDE_LANES + i] = dir.z;
+        }
+        wide_scene_hit(ws, o, d, HIT_EPS, t, prim, n);
+        for (int i = 0; i < WIDE_LANES; i++) {
+            if (prim[i] != 2)
+                continue;
+            hits++;
+            const vec3 p = v3(o[i] + t[i] * d[i], o[WIDE_LANES + i] + t[i] * d[WIDE_LANES + i],
+                              o[2 * WIDE_LANES + i] + t[i] * d[2 * WIDE_LANES + i]);
+            worst = fmax(worst, fabs(v3_len(v3_sub(p, c)) - r));
+        }
+    }
+    fprintf(stderr, "grazing a sphere of radius 10 from 1100 away: %d hits, worst %.3g off its surface "
+                    "(bound %.3g)\n", hits, worst, bound);
+    CHECK(hits > 64 * 6);
+    CHECK(worst < bound);
+    wide_scene_free(ws);
+    scene_file_free(&sf);
+}
+
 static void test_usable(const char *path, int want)
 {
     struct scene_file sf = {0};
@@ -237,6 +300,7 @@ int main(void)
 #endif
     test_hits("scenes/cornell-book3.yaml", v3(278, 278, -800));
     test_unbiased("scenes/cornell-book3.yaml");
+    test_graze();
     test_usable("scenes/checker.yaml", 0); /* a disk and a texture: today's lanes */
     test_usable("scenes/cornell.yaml", 0); /* a cylinder */
     test_usable("scenes/final.yaml", 0);   /* many nodes */
