@@ -232,7 +232,8 @@ static void test_graze(void)
           "             lamp: { type: light, emit: [15, 15, 15] } }\n"
           "objects:\n"
           "  - { type: rect, plane: xz, min: [0, 0], max: [555, 555], at: 0, material: white }\n"
-          "  - { type: rect, plane: xz, min: [213, 227], max: [343, 332], at: 554, flip: true, material: lamp }\n"
+          "  - { type: rect, plane: xz, min: [213, 227], max: [343, 332], at: 554, flip: true, material: "
+          "lamp }\n"
           "  - { type: sphere, center: [278, 400, 300], radius: 10, material: white }\n",
           f);
     fclose(f);
@@ -269,8 +270,10 @@ static void test_graze(void)
             worst = fmax(worst, fabs(v3_len(v3_sub(p, c)) - r));
         }
     }
-    fprintf(stderr, "grazing a sphere of radius 10 from 1100 away: %d hits, worst %.3g off its surface "
-                    "(bound %.3g)\n", hits, worst, bound);
+    fprintf(stderr,
+            "grazing a sphere of radius 10 from 1100 away: %d hits, worst %.3g off its surface "
+            "(bound %.3g)\n",
+            hits, worst, bound);
     CHECK(hits > 64 * 6);
     CHECK(worst < bound);
     wide_scene_free(ws);
