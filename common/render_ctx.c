@@ -50,6 +50,14 @@ static int prim_ok(const struct prim *p)
     return !p->has_xform && (p->type == PRIM_RECT || p->type == PRIM_SPHERE);
 }
 
+/* Whether each component of colour c is at most `most`. The wide kernel's lanes are float: with
+   albedos up to 1 a weight grows by at most 2 a bounce (cosine over the mixture's pdf), and
+   radiance up to 2^64 leaves that growth 2^64 below float's overflow. */
+static int at_most(vec3 c, double most)
+{
+    return c.x <= most && c.y <= most && c.z <= most;
+}
+
 int wide_usable(const struct scene *sc, int light_sampling_off)
 {
 #if WIDE_KERNEL
@@ -59,7 +67,7 @@ int wide_usable(const struct scene *sc, int light_sampling_off)
     return 0;
 #endif
     if (sc->n_nodes != 1 || sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 ||
-        sc->n_lights > WIDE_MAX_LIGHTS)
+        sc->n_lights > WIDE_MAX_LIGHTS || !at_most(sc->background, 0x1p64))
         return 0;
     for (int i = 0; i < sc->n_prims; i++) {
         const struct prim *p = &sc->prims[i];
@@ -67,7 +75,8 @@ int wide_usable(const struct scene *sc, int light_sampling_off)
         if (!prim_ok(p))
             return 0;
         if (!(m->type == MAT_LIGHT || m->type == MAT_DIELECTRIC ||
-              (m->type == MAT_LAMBERTIAN && m->texture < 0)))
+              (m->type == MAT_LAMBERTIAN && m->texture < 0 && at_most(m->albedo, 1))) ||
+            (m->type == MAT_LIGHT && !at_most(m->emit, 0x1p64)))
             return 0;
     }
     for (int i = 0; i < sc->n_lights; i++) {

@@ -31,7 +31,8 @@ struct wide_scene;
 
 /* Whether the wide kernel renders sc: one BVH node; prims untransformed rects and spheres and
    boxes (at most WIDE_MAX_PRIMS); materials lambertian without texture, dielectric, light; lights
-   rects and spheres, sampled (light_sampling_off: 0); a CPU with AVX2 and FMA. */
+   rects and spheres, sampled (light_sampling_off: 0); albedos at most 1 and emission and
+   background at most 2^64 (float lanes); a CPU with AVX2 and FMA. */
 int wide_usable(const struct scene *sc, int light_sampling_off);
 
 /* The tables for sc (wide_usable), valid while sc is; NULL on no memory. Free with
