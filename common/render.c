@@ -44,11 +44,12 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     for (int i = 0; i < ctx->sc->n_lights; i++)
         ctx->lp[i].n = ctx->lp[i].next = 0;
 
-    const int timed = sampler_timed(st->pixels);
+    const int timed = sampler_timed(st->pixels, ctx->pixel_set_s);
     const double t0 = timed ? now_s() : 0;
     size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
     if (timed)
-        st->sampler_s += SAMPLER_TIME_EVERY * (now_s() - t0);
+        ctx->pixel_set_s = now_s() - t0;
+    st->sampler_s += ctx->pixel_set_s;
 
     double sum[3] = {0, 0, 0};
     size_t kept = 0;

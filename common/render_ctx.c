@@ -99,6 +99,7 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->rs = *rs;
     ctx->pixel = pixel;
     ctx->light = light;
+    ctx->pixel_set_s = ctx->light_set_s = -1;
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
     ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
