@@ -39,4 +39,16 @@ touch -d '1 minute ago' "$Q/c1.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/log4"; rc=$?
 check "two compare jobs sharing the reference cache: exit 0 (got $rc: $(cat "$T/log4"))" [ "$rc" -eq 0 ]
 check "... both done" sh -c "[ -f '$Q/done/c1.yaml' ] && [ -f '$Q/done/c2.yaml' ]"
+# a job file named in Latin-1 and one with a tab in its name (their sidecars say \ufffd, \u0009):
+# queued again, each is the same file, not another of its name
+for f in "$(printf 'caf\351.yaml')" "$(printf 'a\tb.yaml')"; do
+    Q=$T/q3; rm -rf "$Q"; mkdir -p "$Q"
+    job "$Q/$f" 1
+    "$WORKER" --queue "$Q" --once --quiet 2>"$T/log5"; rc=$?
+    check "a job file named '$f': exit 0 (got $rc: $(cat "$T/log5"))" [ "$rc" -eq 0 ]
+    job "$Q/$f" 4
+    "$WORKER" --queue "$Q" --once --quiet 2>"$T/log6"; rc=$?
+    check "... queued again after an edit: exit 0 (got $rc: $(cat "$T/log6"))" [ "$rc" -eq 0 ]
+    check "... rendered again (seed 4)" grep -q '"seed": 4,' "$Q/done/x/x.json"
+done
 finish

@@ -16,6 +16,7 @@
 
 #include "err.h"
 #include "fileio.h"
+#include "json.h"
 
 static double since(const struct timespec *t)
 {
@@ -220,22 +221,57 @@ int queue_claim_gone(struct queue *q)
     return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
-/* The "job_file" string of sidecar text json into out (JSON escapes undone); 0, or -1 when none. */
+/* The "job_file" string of sidecar text json as written there (its JSON escapes kept) into out; 0,
+   or -1 when none. */
 static int sidecar_job_file(const char *json, char *out, size_t n)
 {
     const char *key = "\"job_file\": \"", *s = strstr(json, key);
     size_t k = 0;
     if (!s || n == 0)
         return -1;
-    for (s += strlen(key); *s && *s != '"' && k + 1 < n; s++)
-        out[k++] = *s == '\\' && s[1] ? *++s : *s;
+    for (s += strlen(key); *s && *s != '"' && k + 2 < n; s++) {
+        if (*s == '\\' && s[1])
+            out[k++] = *s++;
+        out[k++] = *s;
+    }
     out[k] = 0;
     return *s == '"' ? 0 : -1;
 }
 
+/* JSON string text (escapes) into out with its escapes undone, for a message. */
+static void json_unescape(const char *text, char *out, size_t n)
+{
+    size_t k = 0;
+    for (const char *s = text; *s && k + 1 < n; s++)
+        out[k++] = *s == '\\' && s[1] ? *++s : *s;
+    if (n)
+        out[k] = 0;
+}
+
+/* name as the sidecar writes a string (json.c: control characters and bytes that are not UTF-8
+   escaped) into out, without its quotes; 0, or -1 when it does not fit. A sidecar's job_file is
+   compared in that form: undoing its escapes made a file named in Latin-1 ("caf\xe9.yaml": its
+   sidecar says "caf\ufffd.yaml") another file than itself, so that re-queued it was "name taken". */
+static int json_escaped(const char *name, char *out, size_t n)
+{
+    struct json js;
+    json_init(&js);
+    json_string(&js, NULL, name);
+    const int ok = !js.oom && js.len >= 2 && js.len - 2 < n;
+    if (ok) {
+        memcpy(out, js.buf + 1, js.len - 2);
+        out[js.len - 2] = 0;
+    }
+    json_free(&js);
+    return ok ? 0 : -1;
+}
+
 int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
 {
-    const char *mine = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    const char *base_name = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    char mine[2048];
+    if (json_escaped(base_name, mine, sizeof mine) < 0)
+        return 0;
     const char *folder = strrchr(dir, '/') ? strrchr(dir, '/') + 1 : dir;
     if (folder[0] == '.') /* no job's name: DIR/done/.cache/, the references all compare jobs share */
         return 0;
@@ -258,7 +294,7 @@ int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, 
         if (sidecar_job_file((const char *)text, file, sizeof file) == 0) {
             const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
             if (strcmp(base, mine) != 0) {
-                snprintf(owner, n, "%s", file);
+                json_unescape(file, owner, n);
                 taken = 1;
             }
         }
