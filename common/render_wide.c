@@ -31,7 +31,18 @@ static WAI void lane_start(struct render_ctx *ctx, struct lanes *ln, int i, int 
     const int w = ctx->rs.width, hgt = ctx->rs.height;
     struct rng r = {rng_mix64(base->state + s), base->inc};
     const struct pt2 p = ctx->pixel_pts[s];
-    const ray cr = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &r);
+    ray cr = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &r);
+    /* an eye far from the scene: the ray starts (in double) a ball's radius and t_min before the
+       ball that holds every prim, so its float origin and hits round at the scene's scale, which
+       the new origins' offset covers (from 1e5 away its hits were 0.008 off: bounces began inside
+       the box, whose face came out at half its brightness) */
+    const struct wide_scene *ws = ctx->wide;
+    const double len = v3_len(cr.dir),
+                 ahead =
+                     v3_dot(v3_sub(v3(ws->centre[0], ws->centre[1], ws->centre[2]), cr.orig), cr.dir) / len -
+                     2 * ws->radius - HIT_EPS * len;
+    if (ahead > 0)
+        cr.orig = v3_fma(cr.orig, cr.dir, ahead / len);
     ln->o[0][i] = (float)cr.orig.x, ln->o[1][i] = (float)cr.orig.y, ln->o[2][i] = (float)cr.orig.z;
     ln->d[0][i] = (float)cr.dir.x, ln->d[1][i] = (float)cr.dir.y, ln->d[2][i] = (float)cr.dir.z;
     ln->beta[0][i] = ln->beta[1][i] = ln->beta[2][i] = 1;

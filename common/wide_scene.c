@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "shape.h"
 #include "shape_inline.h"
 #include "wide_scene.h"
 
@@ -108,6 +109,16 @@ struct wide_scene *wide_scene_new(const struct scene *sc)
     }
     set_col(ws, WC_EMIT, ws->n, sc->background.x), set_col(ws, WC_EMIT + 1, ws->n, sc->background.y);
     set_col(ws, WC_EMIT + 2, ws->n, sc->background.z), set_col(ws, WC_TYPE, ws->n, WM_EMIT);
+    vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
+    for (int i = 0; i < sc->n_prims; i++) {
+        vec3 pl, ph;
+        shape_bounds(&sc->prims[i], &pl, &ph);
+        lo = v3(fmin(lo.x, pl.x), fmin(lo.y, pl.y), fmin(lo.z, pl.z));
+        hi = v3(fmax(hi.x, ph.x), fmax(hi.y, ph.y), fmax(hi.z, ph.z));
+    }
+    const vec3 mid = v3_scale(v3_add(lo, hi), 0.5);
+    ws->centre[0] = mid.x, ws->centre[1] = mid.y, ws->centre[2] = mid.z;
+    ws->radius = sc->n_prims > 0 ? v3_len(v3_sub(hi, mid)) : 0;
     ws->n_lights = sc->n_lights;
     for (int i = 0; i < sc->n_lights; i++)
         add_light(&ws->lights[i], &sc->prims[sc->lights[i]]);

@@ -34,8 +34,9 @@ struct wide_light {
 struct wide_scene {
     const struct scene *sc;
     int n, n_lights;
-    int end[WK_BOX + 1]; /* prims are grouped by kind: kind j's end at end[j] */
-    float offset;        /* a new ray's origin this far off the surface (the positions' rounding) */
+    int end[WK_BOX + 1];      /* prims are grouped by kind: kind j's end at end[j] */
+    float offset;             /* a new ray's origin this far off the surface (the positions' rounding) */
+    double centre[3], radius; /* a ball holding every prim: camera rays start near it */
     struct wide_prim *prims;
     f8 col[WC_COLUMNS][2]; /* entries 0-7, 8-15 */
     struct wide_light *lights;

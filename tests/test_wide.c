@@ -7,6 +7,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "box_point.h"
 #include "bvh.h"
@@ -219,16 +220,25 @@ static void test_unbiased(const char *path)
    its surface, or the bounce's new origin may lie inside and its ray hit the sphere again (the
    sphere's tops under the light came out darker). The quadratic's discriminant in the textbook
    form, b^2 - a c of terms |o - c|^2 ~ 1e6, put these points up to 5e-3 off. */
-/* The scene of YAML text into *sf through a temporary file: scene_load's return. */
-static int load_text(const char *text, struct scene_file *sf)
+/* YAML text into a new temporary file, its name into path (at least 32 bytes): 0, or -1. */
+static int write_temp(const char *text, char *path)
 {
-    char path[] = "/tmp/test_wide_XXXXXX";
+    snprintf(path, 32, "/tmp/test_wide_XXXXXX");
     const int fd = mkstemp(path);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!f)
         return -1;
     fputs(text, f);
     fclose(f);
+    return 0;
+}
+
+/* The scene of YAML text into *sf through a temporary file: scene_load's return. */
+static int load_text(const char *text, struct scene_file *sf)
+{
+    char path[32];
+    if (write_temp(text, path) < 0)
+        return -1;
     struct err e;
     const int rc = scene_load(path, sf, &e);
     remove(path);
@@ -325,6 +335,28 @@ static void test_radiance(const char *albedo, const char *emit, const char *bg)
     scene_file_free(&sf);
 }
 
+/* cornell-book3 seen from 1e5 away (vfov 0.3: about the same view): the camera rays' float hit
+   points rounded at 1e5's scale (ulp 0.008), far beyond the new origin's offset (16 ulps of the
+   scene's 770): bounces began inside the box, whose face came out at half its brightness. */
+static void test_far_eye(void)
+{
+    char text[4096], path[32];
+    FILE *f = fopen("scenes/cornell-book3.yaml", "r");
+    const size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f)
+        fclose(f);
+    text[n] = 0;
+    char *eye = strstr(text, "lookfrom: [278, 278, -800]"), *fov = strstr(text, "vfov: 40");
+    CHECK(eye && fov);
+    if (!eye || !fov)
+        return;
+    memcpy(eye, "lookfrom: [278, 278, -1e5]", 26);
+    memcpy(fov, "vfov: .3", 8);
+    CHECK(write_temp(text, path) == 0);
+    test_unbiased(path);
+    remove(path);
+}
+
 static void test_usable(const char *path, int want)
 {
     struct scene_file sf = {0};
@@ -349,6 +381,7 @@ int main(void)
     test_hits("scenes/cornell-book3.yaml", v3(278, 278, -800));
     test_unbiased("scenes/cornell-book3.yaml");
     test_graze();
+    test_far_eye();
     test_radiance("[0.7, 0.7, 0.7]", "[1e39, 1e39, 1e39]", "[0, 0, 0]");
     test_radiance("[0.7, 0.7, 0.7]", "[15, 15, 15]", "[1e39, 0, 0]");
     test_radiance("[1e30, 1, 1]", "[15, 15, 15]", "[0, 0, 0]");
