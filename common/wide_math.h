@@ -54,6 +54,11 @@ static WAI f8 f8_min(f8 a, f8 b)
     return _mm256_min_ps(a, b);
 }
 
+static WAI f8 f8_max(f8 a, f8 b)
+{
+    return _mm256_max_ps(a, b);
+}
+
 static WAI f8 wsqrt(f8 x)
 {
     return _mm256_sqrt_ps(x);

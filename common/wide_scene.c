@@ -20,17 +20,6 @@ static void set_col(struct wide_scene *ws, int c, int k, double x)
     ws->col[c][k >> 3][k & 7] = (float)x;
 }
 
-/* The largest coordinate of prim pr's points (bounds the hit points' rounding). */
-static double prim_reach(const struct prim *pr)
-{
-    if (pr->type == PRIM_RECT)
-        return fmax(fmax(fabs(pr->g.rect.k), fmax(fabs(pr->g.rect.a0), fabs(pr->g.rect.a1))),
-                    fmax(fabs(pr->g.rect.b0), fabs(pr->g.rect.b1)));
-    if (pr->type == PRIM_SPHERE)
-        return v3_len(pr->g.sphere.center) + pr->g.sphere.radius;
-    return v3_len(pr->offset) + fmax(v3_len(pr->g.box.lo), v3_len(pr->g.box.hi));
-}
-
 static void add_prim(struct wide_scene *ws, int p)
 {
     const struct prim *pr = &ws->sc->prims[p];
@@ -66,7 +55,6 @@ static void add_prim(struct wide_scene *ws, int p)
             m->type == MAT_LIGHT        ? WM_EMIT
             : m->type == MAT_DIELECTRIC ? WM_DIELECTRIC
                                         : WM_LAMBERTIAN);
-    ws->offset = fmaxf(ws->offset, (float)(prim_reach(pr) * 0x1p-20)); /* 16 float ulps */
 }
 
 static void add_light(struct wide_light *l, const struct prim *p)

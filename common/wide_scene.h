@@ -35,7 +35,6 @@ struct wide_scene {
     const struct scene *sc;
     int n, n_lights;
     int end[WK_BOX + 1];      /* prims are grouped by kind: kind j's end at end[j] */
-    float offset;             /* a new ray's origin this far off the surface (the positions' rounding) */
     double centre[3], radius; /* a ball holding every prim: camera rays start near it */
     struct wide_prim *prims;
     f8 col[WC_COLUMNS][2]; /* entries 0-7, 8-15 */
@@ -73,7 +72,7 @@ static WAI void wide_sphere(const f8 o[3], const f8 d[3], f8 t_min, struct wide_
     const f8 half_b = ocx * d[0] + ocy * d[1] + ocz * d[2];
     /* half_b^2 - a c as a (r^2 - |f|^2), f the centre's offset across the ray (Haines et al.,
        Ray Tracing Gems ch. 7): in float, b^2 - a c of terms ~|o - c|^2 put a grazing ray's hit
-       up to 1e-2 off a small far sphere, inside the new origin's offset (acne: dark rims) */
+       up to 1e-2 off a small far sphere, beyond the new origin's offset (acne: dark rims) */
     const f8 s = half_b / a, fx = ocx - s * d[0], fy = ocy - s * d[1], fz = ocz - s * d[2];
     const f8 disc = a * (e->v[3] - (fx * fx + fy * fy + fz * fz));
     const i8 ok = ~((disc < 0) | (a == 0));
