@@ -160,7 +160,9 @@ static inline double d_atan2(double y, double x)
     const int swap = ay > ax;
     const double lo = swap ? ax : ay, hi = swap ? ay : ax;
     const int past = lo > 0.41421356237309504880 * hi;
-    const double num = past ? lo - hi : lo, den = past ? lo + hi : hi;
+    /* halved near DBL_MAX, where lo + hi would overflow (exactly: by 1 elsewhere, nothing moves) */
+    const double k = hi > 0x1p1022 ? 0.5 : 1;
+    const double num = past ? lo * k - hi * k : lo, den = past ? lo * k + hi * k : hi;
     const double t = den > 0 ? num / den : 0, z = t * t, z2 = z * z, z4 = z2 * z2, z8 = z4 * z4;
     const double p =
         ((0.99999999999999996532 + z * -0.333333333333284385718) +
