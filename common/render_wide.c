@@ -43,7 +43,8 @@ static WAI void lane_start(struct render_ctx *ctx, struct lanes *ln, int i, int 
                      2 * ws->radius - HIT_EPS * len;
     if (ahead > 0)
         cr.orig = v3_fma(cr.orig, cr.dir, ahead / len);
-    ln->o[0][i] = (float)cr.orig.x, ln->o[1][i] = (float)cr.orig.y, ln->o[2][i] = (float)cr.orig.z;
+    for (int j = 0; j < 3; j++)
+        ln->o[j][i] = (float)(v3_get(cr.orig, j) - ws->centre[j]);
     ln->d[0][i] = (float)cr.dir.x, ln->d[1][i] = (float)cr.dir.y, ln->d[2][i] = (float)cr.dir.z;
     ln->beta[0][i] = ln->beta[1][i] = ln->beta[2][i] = 1;
     ln->depth[i] = 0;
@@ -205,7 +206,9 @@ static WAI void dielectric8(i8 diel, const f8 d[3], const f8 n[3], i8 front, f8 
 static vec3 lane_finish(struct render_ctx *ctx, const struct lanes *ln, int i, int last, uint64_t inc,
                         uint64_t *rays)
 {
-    ray r = {v3(ln->o[0][i], ln->o[1][i], ln->o[2][i]), v3(ln->d[0][i], ln->d[1][i], ln->d[2][i]), 0};
+    const double *c0 = ctx->wide->centre; /* the lanes' positions are relative to it */
+    ray r = {v3(ln->o[0][i] + c0[0], ln->o[1][i] + c0[1], ln->o[2][i] + c0[2]),
+             v3(ln->d[0][i], ln->d[1][i], ln->d[2][i]), 0};
     vec3 beta = v3(ln->beta[0][i], ln->beta[1][i], ln->beta[2][i]), L = v3(0, 0, 0);
     struct rng rng = {i < 4 ? ln->rng.lo[i] : ln->rng.hi[i - 4], inc};
     for (int depth = ln->depth[i]; depth <= last; depth++) {

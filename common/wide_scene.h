@@ -34,8 +34,11 @@ struct wide_light {
 struct wide_scene {
     const struct scene *sc;
     int n, n_lights;
-    int end[WK_BOX + 1];      /* prims are grouped by kind: kind j's end at end[j] */
-    double centre[3], radius; /* a ball holding every prim: camera rays start near it */
+    int end[WK_BOX + 1]; /* prims are grouped by kind: kind j's end at end[j] */
+    /* a ball holding every prim: camera rays start near it, and the lanes' positions (the tables'
+       and the rays') are relative to its centre, so they round at the scene's size, not at its
+       distance from the origin (cornell-book3 moved by 1e6 rounded to 1/16 in float) */
+    double centre[3], radius;
     struct wide_prim *prims;
     f8 col[WC_COLUMNS][2]; /* entries 0-7, 8-15 */
     struct wide_light *lights;
