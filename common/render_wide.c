@@ -37,12 +37,15 @@ static WAI void lane_start(struct render_ctx *ctx, struct lanes *ln, int i, int 
        the eye's (from 1e5 away its hits were 0.008 off: bounces began inside the box, whose face
        came out at half its brightness) */
     const struct wide_scene *ws = ctx->wide;
-    const double len = v3_len(cr.dir),
-                 ahead =
-                     v3_dot(v3_sub(v3(ws->centre[0], ws->centre[1], ws->centre[2]), cr.orig), cr.dir) / len -
-                     2 * ws->radius - HIT_EPS * len;
-    if (ahead > 0)
-        cr.orig = v3_fma(cr.orig, cr.dir, ahead / len);
+    const vec3 to_c = v3_sub(v3(ws->centre[0], ws->centre[1], ws->centre[2]), cr.orig);
+    /* only for an eye beyond 8 radii: nearer, the offset's |o| term is enough, and most camera
+       rays pay no square root (cornell-book3's eye is 2.2 radii away) */
+    if (v3_len2(to_c) > 64 * ws->radius * ws->radius) {
+        const double len = v3_len(cr.dir),
+                     ahead = v3_dot(to_c, cr.dir) / len - 2 * ws->radius - HIT_EPS * len;
+        if (ahead > 0)
+            cr.orig = v3_fma(cr.orig, cr.dir, ahead / len);
+    }
     for (int j = 0; j < 3; j++)
         ln->o[j][i] = (float)(v3_get(cr.orig, j) - ws->centre[j]);
     ln->d[0][i] = (float)cr.dir.x, ln->d[1][i] = (float)cr.dir.y, ln->d[2][i] = (float)cr.dir.z;
