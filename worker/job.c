@@ -254,7 +254,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(d, v, e, "output: must be a plain file name (no '/'), got \"%.40s\"", s);
+            return ydoc_fail(d, v, e,
+                             "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
+                             "most %d, not starting with '.'), got \"%.40s\"",
+                             JOB_NAME_MAX - 1, s);
         snprintf(j->output, sizeof j->output, "%s", s);
         j->has_output = 1;
         mark(j->pos_output, v);

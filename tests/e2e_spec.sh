@@ -1,0 +1,94 @@
+#!/bin/sh
+# End to end, SPEC.md as a black box: its example job, compare job and scene copied verbatim (only
+# paths and sizes adjusted), defaults it states, and what a user sees from another folder.
+. tests/lib.sh
+root=$(pwd)
+mkdir -p "$T/jobs" "$T/scenes"
+cp -r "$root/scenes/." "$T/scenes/"
+
+# 1. SPEC's example job, verbatim: it parses to its last line (a missing ref.png is the one error,
+#    at 14:12), then, sized down, renders with every key as written and scores against ref.png
+cat >"$T/jobs/spec.yaml" <<'EOF'
+name: cornell-poisson        # default: the file's stem
+scene: ../scenes/cornell.yaml  # relative to this file; a bare name (cornell) = scenes/cornell.yaml
+width: 300                   # default 300; height defaults to width / the camera's aspect
+height: 300
+sampler: poisson             # uniform | jitter | random | poisson   (pixel sampler)
+threshold: 1                 # min spacing in a 100x100 domain, 0 < t <= 100
+light_sampler: poisson       # same four names; default: same as sampler
+light_threshold: 5           # default 5
+max_depth: 50                # default 50
+seed: 1                      # default 1
+processes: 2                 # forked renderers, default 2; rows are split between them
+format: png                  # png | ppm; default from output's extension, else png
+output: cornell-poisson.png  # written under --out DIR/<name>/
+reference: ref.png           # optional: an image to score against (path relative to this file)
+EOF
+(cd "$T" && "$WORKER" --out "$T/o1" jobs/spec.yaml 2>"$T/e1"); rc=$?
+check "SPEC job without its ref.png: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "SPEC job without its ref.png: one line at 14:12 ($(cat "$T/e1"))" \
+    sh -c "[ \$(wc -l <'$T/e1') -eq 1 ] && grep -q '^jobs/spec.yaml:14:12: reference: ' '$T/e1'"
+check "SPEC job without its ref.png: nothing written" [ ! -e "$T/o1" ]
+sed -e 's/^width: 300 /width: 24  /; s/^height: 300/height: 24 /; s/^threshold: 1 /threshold: 25/' \
+    "$T/jobs/spec.yaml" >"$T/jobs/small.yaml"
+grep -v '^reference:' "$T/jobs/small.yaml" | sed 's/^name: cornell-poisson/name: ref/' >"$T/jobs/ref.yaml"
+(cd "$T" && "$WORKER" --out "$T/o1" jobs/ref.yaml 2>/dev/null)
+cp "$T/o1/ref/cornell-poisson.png" "$T/jobs/ref.png"
+(cd "$T" && "$WORKER" --out "$T/o1" jobs/small.yaml 2>"$T/e1"); rc=$?
+s="$T/o1/cornell-poisson/cornell-poisson.json"
+check "SPEC job (sized down) renders (got $rc: $(cat "$T/e1"))" [ "$rc" -eq 0 ]
+check "SPEC job: image at --out DIR/<name>/<output>" [ -s "$T/o1/cornell-poisson/cornell-poisson.png" ]
+for key in '"job": "cornell-poisson"' '"sampler": "poisson"' '"light_sampler": "poisson"' \
+    '"light_threshold": 5' '"seed": 1' '"processes": 2' '"threshold": 25' '"rmse": 0,' '"relmse_eps": 0.01'; do
+    check "SPEC job: sidecar has $key" grep -q "$key" "$s"
+done
+check "SPEC job: the summary line is the only stderr line (not a terminal)" [ "$(wc -l <"$T/e1")" -eq 1 ]
+
+# 2. defaults: width 300, height = width / the camera's aspect (rounded), name = the file's stem,
+#    output <name>.png, light sampler = sampler, light_threshold 5, max_depth 50, seed 1, processes 2
+printf 'scene: cornell\nthreshold: 100\nlight_threshold: 100\nmax_depth: 1\n' >"$T/jobs/plain.yaml"
+(cd "$T" && "$WORKER" --quiet --out "$T/o2" jobs/plain.yaml 2>/dev/null); rc=$?
+tr -d '\n' <"$T/o2/plain/plain.json" >"$T/flat.json"
+check "width defaults to 300, cornell's aspect 1 gives 300 rows (exit $rc)" grep -q '"size": \[ *300, *300 *\]' "$T/flat.json"
+printf 'scene: checker\nwidth: 8\nthreshold: 50\nsampler: jitter\n' >"$T/jobs/defaults.yaml"
+(cd "$T" && "$WORKER" --quiet --out "$T/o2" jobs/defaults.yaml 2>/dev/null)
+for key in '"job": "defaults"' '"image": "defaults.png"' '"light_sampler": "jitter"' '"light_threshold": 5' \
+    '"max_depth": 50' '"seed": 1' '"processes": 2'; do
+    check "defaults: sidecar has $key" grep -q "$key" "$T/o2/defaults/defaults.json"
+done
+for a in "2 8 4" "2 7 4" "0.75 8 11" "0.75 7 9" "2 1 1" "0.75 3 4"; do
+    set -- $a
+    sed "s/aspect: 1 }/aspect: $1 }/" "$root/scenes/cornell.yaml" >"$T/scenes/aspect.yaml"
+    printf 'scene: aspect\nwidth: %s\nthreshold: 50\nlight_threshold: 50\n' "$2" >"$T/jobs/aspect.yaml"
+    rm -rf "$T/o2/aspect"
+    (cd "$T" && "$WORKER" --quiet --out "$T/o2" jobs/aspect.yaml 2>/dev/null)
+    check "aspect $1, width $2: height $3" sh -c "head -c 24 '$T/o2/aspect/aspect.png' | od -An -tu1 | tr -s ' \n' ' ' | grep -q ' 0 0 0 $2 0 0 0 $3 *\$'"
+done
+
+# 3. processes above the row count: one process per row, the same bytes; a 1x1 image in either format
+printf 'scene: checker\nwidth: 5\nheight: 3\nthreshold: 50\nprocesses: 8\n' >"$T/jobs/rows.yaml"
+"$WORKER" --quiet --out "$T/o3" "$T/jobs/rows.yaml" 2>/dev/null; rc=$?
+check "processes: 8 over 3 rows: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "processes: 8 over 3 rows: three processes recorded" [ "$(grep -c '"pixels"' "$T/o3/rows/rows.json")" -eq 3 ]
+cp "$T/o3/rows/rows.png" "$T/rows8.png"
+"$WORKER" --quiet --out "$T/o3" --processes 1 "$T/jobs/rows.yaml" 2>/dev/null
+check "processes: 8 over 3 rows: the bytes of one process" cmp -s "$T/rows8.png" "$T/o3/rows/rows.png"
+for f in png ppm; do
+    printf 'scene: cornell\nwidth: 1\nheight: 1\nthreshold: 20\nsampler: poisson\nformat: %s\n' "$f" >"$T/jobs/one$f.yaml"
+    "$WORKER" --quiet --out "$T/o3" "$T/jobs/one$f.yaml" 2>/dev/null; rc=$?
+    check "1x1 $f: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+    "$WORKER" diff "$T/o3/one$f/one$f.$f" "$T/o3/one$f/one$f.$f" --max-rmse 0 >/dev/null 2>&1; rc=$?
+    check "1x1 $f: a readable image (diff with itself exits $rc)" [ "$rc" -eq 0 ]
+done
+check "1x1 ppm: P6 1 1 255 and three bytes" sh -c "[ \$(wc -c <'$T/o3/oneppm/oneppm.ppm') -eq 14 ] && head -c 11 '$T/o3/oneppm/oneppm.ppm' | od -c | grep -q 'P   6  \\\\n   1       1  \\\\n   2   5   5  \\\\n'"
+
+# 4. output names: a bad one says what a plain file name is (".png" and "a b.png" have no '/')
+for o in '.png' 'a b.png'; do
+    printf 'scene: checker\nwidth: 8\noutput: "%s"\n' "$o" >"$T/jobs/outname.yaml"
+    "$WORKER" --quiet --out "$T/o4" "$T/jobs/outname.yaml" 2>"$T/e4"; rc=$?
+    check "output: \"$o\": exit 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "output: \"$o\": the error says what is allowed ($(cat "$T/e4"))" \
+        grep -q "outname.yaml:3:9: output: must be .*letters, digits, '-', '_' or '.'.*not starting with '.'" "$T/e4"
+done
+
+finish
