@@ -91,4 +91,21 @@ for o in '.png' 'a b.png'; do
         grep -q "outname.yaml:3:9: output: must be .*letters, digits, '-', '_' or '.'.*not starting with '.'" "$T/e4"
 done
 
+# 5. worker points --svg to a place that cannot take it is bad usage (exit 2, one line), nothing on
+#    stdout, as --out naming a file is for a job; a full disk stays exit 1 (not tested here)
+: >"$T/afile"
+mkdir -p "$T/adir"
+for f in "$T/nofolder/p.svg" "$T/afile/p.svg" "$T/adir"; do
+    "$WORKER" points jitter 20 --svg "$f" >"$T/p5.out" 2>"$T/p5.err"; rc=$?
+    check "points --svg $f: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "points --svg $f: one line naming it ($(cat "$T/p5.err"))" \
+        sh -c "[ \$(wc -l <'$T/p5.err') -eq 1 ] && grep -q -- '$f' '$T/p5.err'"
+    check "points --svg $f: no points printed" [ ! -s "$T/p5.out" ]
+done
+if [ "$(id -u)" != 0 ]; then
+    mkdir -p "$T/ro" && chmod a-w "$T/ro"
+    "$WORKER" points jitter 20 --svg "$T/ro/p.svg" >/dev/null 2>&1; rc=$?
+    check "points --svg into a read-only folder: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+fi
+
 finish
