@@ -108,4 +108,22 @@ if [ "$(id -u)" != 0 ]; then
     check "points --svg into a read-only folder: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 fi
 
+# 6. the queue's layout as SPEC states it: a job named apart from its file renders into
+#    DIR/done/<name>/ and the file goes to DIR/done/X.yaml; an invalid job or compare job goes to
+#    DIR/failed/X.yaml with a log, never attempted (the log says "attempts: 0" for both kinds)
+Q="$T/q"; mkdir -p "$Q"
+printf 'name: named\nscene: ../scenes/cornell.yaml\nwidth: 8\nthreshold: 50\nlight_threshold: 50\n' >"$Q/a.yaml"
+printf 'scene: cornell\nthreshold: abc\n' >"$Q/bad.yaml"
+printf 'name: cmp\nscene: cornell\nwidth: 4\nvariants:\n  - { sampler: sobol }\n' >"$Q/badcmp.yaml"
+(cd "$T" && "$WORKER" --queue q --once 2>"$T/q.err"); rc=$?
+check "queue: exit 2 with an invalid job among them (got $rc)" [ "$rc" -eq 2 ]
+check "queue: DIR/done/<name>/ holds the image and sidecar" sh -c "[ -s '$Q/done/named/named.png' ] && [ -s '$Q/done/named/named.json' ]"
+check "queue: DIR/done/X.yaml" [ -f "$Q/done/a.yaml" ]
+check "queue: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
+for b in bad badcmp; do
+    check "queue: invalid $b: DIR/failed/$b.yaml and its log" sh -c "[ -f '$Q/failed/$b.yaml' ] && [ -s '$Q/failed/$b.log' ]"
+    check "queue: invalid $b: the log has the file:line:col" grep -q "^error: .*$b.yaml:[0-9]*:[0-9]*: " "$Q/failed/$b.log"
+    check "queue: invalid $b: never attempted ($(grep attempts "$Q/failed/$b.log"))" grep -q '^attempts: 0$' "$Q/failed/$b.log"
+done
+
 finish

@@ -174,7 +174,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         return;
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
-    write_log(q, name, stem, last, 0, attempts);
+    write_log(q, name, stem, last, 0, rc == 2 ? 0 : attempts); /* invalid: checked, never rendered */
     queue_claim_file(q, name, q->failed);
     note_rc(q, rc);
 }
