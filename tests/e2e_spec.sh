@@ -126,4 +126,22 @@ for b in bad badcmp; do
     check "queue: invalid $b: never attempted ($(grep attempts "$Q/failed/$b.log"))" grep -q '^attempts: 0$' "$Q/failed/$b.log"
 done
 
+# 7. progress: on a terminal (script(1) gives one) percent of rows, elapsed and ETA, then the summary;
+#    with --quiet, or stderr not a terminal, only the summary line. No ETA is claimed before a row
+#    is done (it printed "0% ... ETA 0.0 s")
+printf 'scene: cornell\nwidth: 24\nthreshold: 20\nlight_threshold: 20\n' >"$T/jobs/prog.yaml"
+if command -v script >/dev/null 2>&1; then
+    script -qec "'$WORKER' --force --out '$T/o7' '$T/jobs/prog.yaml'" /dev/null >"$T/tty.out" 2>&1
+    tr '\r' '\n' <"$T/tty.out" | grep . >"$T/tty.lines"
+    check "terminal: a 100% line with elapsed and ETA" grep -Eq '^prog: 100% \(24/24 rows\) [0-9.]+ s elapsed, ETA [0-9.]+ s' "$T/tty.lines"
+    check "terminal: the summary line last" sh -c "tail -n 1 '$T/tty.lines' | grep -q '^prog: 24x24 '"
+    check "terminal: no ETA claimed at 0% ($(grep ' 0% ' "$T/tty.lines"))" sh -c "! grep -q ' 0% .*ETA 0.0 s' '$T/tty.lines'"
+    script -qec "'$WORKER' --quiet --force --out '$T/o7' '$T/jobs/prog.yaml'" /dev/null >"$T/ttyq.out" 2>&1
+    check "terminal, --quiet: the summary line only" sh -c "[ \$(tr '\\r' '\\n' <'$T/ttyq.out' | grep -c .) -eq 1 ] && grep -q '^prog: 24x24 ' '$T/ttyq.out'"
+else
+    echo "note: script(1) missing, progress on a terminal not checked"
+fi
+"$WORKER" --force --out "$T/o7" "$T/jobs/prog.yaml" 2>"$T/nt.err"
+check "stderr not a terminal: the summary line only" sh -c "[ \$(wc -l <'$T/nt.err') -eq 1 ] && ! grep -q '%' '$T/nt.err'"
+
 finish

@@ -35,9 +35,11 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
     if (pct == p->last_pct && done != rows)
         return;
     p->last_pct = pct;
-    double eta = done > 0 ? elapsed * (rows - done) / done : 0;
-    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %.1f s   ", p->name, pct, done, rows,
-            elapsed, eta);
+    char eta[32] = "--"; /* unknown until a row is done */
+    if (done > 0)
+        snprintf(eta, sizeof eta, "%.1f s", elapsed * (rows - done) / done);
+    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %s   ", p->name, pct, done, rows, elapsed,
+            eta);
     if (done == rows)
         fprintf(stderr, "\n");
 }
