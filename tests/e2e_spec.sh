@@ -144,4 +144,75 @@ fi
 "$WORKER" --force --out "$T/o7" "$T/jobs/prog.yaml" 2>"$T/nt.err"
 check "stderr not a terminal: the summary line only" sh -c "[ \$(wc -l <'$T/nt.err') -eq 1 ] && ! grep -q '%' '$T/nt.err'"
 
+# 8. SPEC's compare job, its keys and layout verbatim (sizes and thresholds only made small): every
+#    image with its sidecar, summary.csv, chart.svg and report.html under --out DIR/<name>/
+cat >"$T/jobs/compare.yaml" <<'EOF'
+name: compare
+scenes: [checker, cornell]
+width: 200
+reference: { sampler: jitter, threshold: 0.5 }   # a converged render per scene, cached
+seeds: [1, 2, 3]                                 # spread = stability
+sweep: { threshold: [20, 10, 5, 2, 1] }          # points along each speed/accuracy curve
+variants:
+  - { sampler: poisson, light_sampler: poisson }
+  - { sampler: jitter,  light_sampler: jitter }
+  - { sampler: uniform, light_sampler: uniform }
+  - { sampler: random,  light_sampler: random }
+EOF
+sed -i -e 's/^width: 200/width: 6  /; s/threshold: 0.5 }/threshold: 25 }/; s/\[20, 10, 5, 2, 1\]/[50, 34]/' \
+    "$T/jobs/compare.yaml"
+(cd "$T/jobs" && "$WORKER" --out "$T/o8" compare.yaml 2>"$T/e8"); rc=$?
+check "SPEC compare job: exit 0 (got $rc: $(head -n 1 "$T/e8"))" [ "$rc" -eq 0 ]
+check "SPEC compare job: one summary line" [ "$(wc -l <"$T/e8")" -eq 1 ]
+n=$(ls "$T/o8/compare" | grep -c '\.png$')
+check "SPEC compare job: 2 scenes x 4 variants x 2 thresholds x 3 seeds = 48 images (got $n)" [ "$n" -eq 48 ]
+for f in summary.csv chart.svg report.html checker-poisson-t50-s1.json cornell-random-t34-s3.png; do
+    check "SPEC compare job: $f" [ -s "$T/o8/compare/$f" ]
+done
+check "SPEC compare job: summary.csv has a header and 48 rows" [ "$(wc -l <"$T/o8/compare/summary.csv")" -eq 49 ]
+
+# 9. SPEC's scene file, verbatim (its image texture copied beside it): every type and key it shows
+mkdir -p "$T/spec_scene/textures"
+cp "$root/scenes/textures/planet.png" "$T/spec_scene/textures/"
+cat >"$T/spec_scene/scene.yaml" <<'EOF'
+camera: { lookfrom: [278, 278, -800], lookat: [278, 278, 0], vup: [0, 1, 0],
+          vfov: 40, aperture: 0, focus_dist: 10, shutter: [0, 1], aspect: 1 }  # vup, aperture, shutter, aspect (1) optional
+background: [0, 0, 0]
+textures:
+  board:  { type: checker, odd: [0.2, 0.3, 0.1], even: [0.9, 0.9, 0.9], scale: 10 }
+  marble: { type: noise, scale: 4 }
+  planet: { type: image, file: textures/planet.png }      # PNG or PPM, relative to the scene
+materials:
+  white:  { type: lambertian, albedo: [0.73, 0.73, 0.73] }
+  ground: { type: lambertian, texture: board }
+  alu:    { type: metal, albedo: [0.8, 0.85, 0.88], fuzz: 0 }
+  glass:  { type: dielectric, ior: 1.5 }
+  lamp:   { type: light, emit: [15, 15, 15] }
+  smoke:  { type: isotropic, albedo: [1, 1, 1] }
+objects:
+  - { type: sphere, center: [0, 1, 0], radius: 1, material: white }
+  - { type: moving_sphere, center0: [0, 1, 0], center1: [0, 1.5, 0], radius: 1, material: white }
+  - { type: rect, plane: yz, min: [0, 0], max: [555, 555], at: 555, material: white }  # xy | xz | yz
+  - { type: box, min: [0, 0, 0], max: [120, 330, 120], material: white, rotate_y: 10, translate: [400, 0, 295] }
+  - { type: disk, center: [278, 554, 279], toward: [278, 0, 279], radius: 60, material: lamp }
+  - { type: cylinder, base: [0, 0, 0], top: [120, 120, 120], radius: 50, material: alu }
+  - { type: triangle, vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], material: white }
+  - { type: pyramid, apex: [0, 140, 0], base: [[-100, 0, -100], [140, 0, 0], [0, 0, 140]], material: white }
+  - { type: medium, boundary: { type: sphere, center: [0, 0, 0], radius: 5000 }, density: 0.0001, material: smoke }
+EOF
+printf 'scene: ../spec_scene/scene.yaml\nwidth: 12\nthreshold: 50\nlight_threshold: 50\n' >"$T/jobs/specscene.yaml"
+"$WORKER" --out "$T/o9" "$T/jobs/specscene.yaml" 2>"$T/e9"; rc=$?
+check "SPEC scene: renders (got $rc: $(head -n 1 "$T/e9"))" [ "$rc" -eq 0 ]
+check "SPEC scene: 12x12 image" [ -s "$T/o9/specscene/specscene.png" ]
+
+# 10. from another folder: a bare scene name finds the shipped scene, outputs go to ./out
+mkdir -p "$T/elsewhere"
+printf 'scene: checker\nwidth: 8\nthreshold: 50\n' >"$T/elsewhere/mine.yaml"
+(cd "$T/elsewhere" && "$WORKER" --quiet mine.yaml 2>"$T/e10"); rc=$?
+check "another folder: exit 0 (got $rc: $(head -n 1 "$T/e10"))" [ "$rc" -eq 0 ]
+check "another folder: ./out/<name>/<name>.png and .json" \
+    sh -c "[ -s '$T/elsewhere/out/mine/mine.png' ] && [ -s '$T/elsewhere/out/mine/mine.json' ]"
+(cd "$T/elsewhere" && "$WORKER" --quiet "$root/jobs/cornell-book3.yaml" --out "$T/o10" 2>/dev/null); rc=$?
+check "another folder: a shipped job by its path renders (got $rc)" [ -s "$T/o10/cornell-book3/cornell-book3.png" ]
+
 finish
