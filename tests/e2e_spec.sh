@@ -215,4 +215,28 @@ check "another folder: ./out/<name>/<name>.png and .json" \
 (cd "$T/elsewhere" && "$WORKER" --quiet "$root/jobs/cornell-book3.yaml" --out "$T/o10" 2>/dev/null); rc=$?
 check "another folder: a shipped job by its path renders (got $rc)" [ -s "$T/o10/cornell-book3/cornell-book3.png" ]
 
+# 11. worker diff: metrics of B against reference A on stdout, by hand for a 1x1 pair (reference
+#     (128, 0, 0), image black: mse = (128/255)^2 / 3, relmse = v^2 / (v^2 + 0.01) / 3, psnr =
+#     10 log10(1 / mse)); exit 1 only over --max-rmse (equal is not over), 2 for sizes that differ
+printf 'P3 1 1 255 128 0 0' >"$T/ref1.ppm"
+printf 'P3 1 1 255 0 0 0' >"$T/img1.ppm"
+printf 'P3 2 1 255 0 0 0 0 0 0' >"$T/img2.ppm"
+"$WORKER" diff "$T/ref1.ppm" "$T/img1.ppm" >"$T/d.out" 2>"$T/d.err"; rc=$?
+check "diff: exit 0 without --max-rmse (got $rc)" [ "$rc" -eq 0 ]
+check "diff: mse, rmse, relmse, psnr by hand ($(tr '\n' ' ' <"$T/d.out"))" awk '
+    /^mse / {m = $2} /^rmse / {r = $2} /^relmse / {l = $2} /^psnr / {p = $2}
+    function off(a, b) { return (a - b) / b > 1e-5 || (b - a) / b > 1e-5 }
+    END { exit off(m, 0.0839882097) || off(r, 0.2898071939) || off(l, 0.3206089692) || off(p, 10.7578168) }' "$T/d.out"
+"$WORKER" diff "$T/ref1.ppm" "$T/img1.ppm" --max-rmse 0.2899 >/dev/null 2>&1; rc=$?
+check "diff --max-rmse above the rmse: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+"$WORKER" diff "$T/ref1.ppm" "$T/img1.ppm" --max-rmse 0.2897 >/dev/null 2>"$T/d.err"; rc=$?
+check "diff --max-rmse below the rmse: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "diff over --max-rmse: one line saying so" sh -c "[ \$(wc -l <'$T/d.err') -eq 1 ] && grep -q 'max-rmse' '$T/d.err'"
+printf 'P3 2 1 255 0 0 0 255 255 255' >"$T/ref2.ppm"
+printf 'P3 2 1 255 255 255 255 0 0 0' >"$T/inv2.ppm"
+"$WORKER" diff "$T/ref2.ppm" "$T/inv2.ppm" --max-rmse 1 >/dev/null 2>&1; rc=$?
+check "diff: rmse 1 with --max-rmse 1 is not over (exit $rc)" [ "$rc" -eq 0 ]
+"$WORKER" diff "$T/ref1.ppm" "$T/img2.ppm" >/dev/null 2>"$T/d.err"; rc=$?
+check "diff of two sizes: exit 2, one line (got $rc)" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/d.err') -eq 1 ]"
+
 finish
