@@ -241,4 +241,27 @@ check "diff: rmse 1 with --max-rmse 1 is not over (exit $rc)" [ "$rc" -eq 0 ]
 "$WORKER" diff "$T/ref1.ppm" "$T/img2.ppm" >/dev/null 2>"$T/d.err"; rc=$?
 check "diff of two sizes: exit 2, one line (got $rc)" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/d.err') -eq 1 ]"
 
+# 12. a job without name: is named for its file's stem; a stem that cannot name a folder under --out
+#     ("..yaml" gave ".", writing OUT/..png; "...yaml" gave "..", writing beside --out, outside it) is
+#     refused, exit 2, naming the file, with nothing written
+mkdir -p "$T/stems/in"
+for f in '..yaml' '...yaml' '.hidden.yaml'; do
+    printf 'scene: checker\nwidth: 4\nthreshold: 50\n' >"$T/stems/in/$f"
+    rm -rf "$T/stems/in/o"
+    (cd "$T/stems/in" && "$WORKER" --quiet --out o "./$f" 2>"$T/e12"); rc=$?
+    check "job file $f: exit 2 (got $rc: $(cat "$T/e12"))" [ "$rc" -eq 2 ]
+    check "job file $f: one line naming it and name:" sh -c "[ \$(wc -l <'$T/e12') -eq 1 ] && grep -q -- '^\\./$f:1:1: name: ' '$T/e12'"
+    check "job file $f: nothing written" sh -c "[ ! -e '$T/stems/in/o' ] && [ -z \"\$(ls '$T/stems' | grep -v '^in\$')\" ] && [ -z \"\$(ls '$T/stems/in' | grep -v yaml)\" ]"
+done
+printf 'scene: checker\nwidth: 4\nthreshold: 50\nvariants:\n  - { sampler: jitter }\n' >"$T/stems/in/...yaml"
+(cd "$T/stems/in" && "$WORKER" --quiet --out o ./...yaml 2>"$T/e12"); rc=$?
+check "compare job file ...yaml: exit 2 naming the stem (got $rc: $(cat "$T/e12"))" \
+    sh -c "[ $rc -eq 2 ] && grep -q '^\./\.\.\.yaml:1:1: name: ' '$T/e12' && [ ! -e '$T/stems/in/o' ]"
+printf 'name: fine\nscene: checker\nwidth: 4\nthreshold: 50\n' >"$T/stems/in/...yaml"
+(cd "$T/stems/in" && "$WORKER" --quiet --out o ./...yaml 2>/dev/null); rc=$?
+check "job file ...yaml with a name: renders into o/fine/ (got $rc)" [ -s "$T/stems/in/o/fine/fine.png" ]
+cp "$T/stems/in/..yaml" "$T/stems/in/my job.yaml"
+(cd "$T/stems/in" && "$WORKER" --quiet --out o "my job.yaml" 2>/dev/null); rc=$?
+check "job file 'my job.yaml': named for its stem as before (got $rc)" [ -s "$T/stems/in/o/my job/my job.png" ]
+
 finish

@@ -314,6 +314,13 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
 {
     (void)d;
+    /* A name from the file's stem ("..yaml" gives ".", "...yaml" "..") names the output folder too:
+       the rule for name: keeps it inside --out and off hidden folders (.cache). */
+    if (!j->pos_name[0] && (!j->name[0] || j->name[0] == '.'))
+        return err_set(e, j->path, 1, 1,
+                       "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
+                       "give the job a name:",
+                       j->name);
     if (!j->has_light_sampler)
         j->light_sampler = j->sampler;
     if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
