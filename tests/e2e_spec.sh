@@ -265,4 +265,11 @@ cp "$T/stems/in/..yaml" "$T/stems/in/my job.yaml"
 (cd "$T/stems/in" && "$WORKER" --quiet --out o "my job.yaml" 2>/dev/null); rc=$?
 check "job file 'my job.yaml': named for its stem as before (got $rc)" [ -s "$T/stems/in/o/my job/my job.png" ]
 
+# 13. --out DIR/ (a shell's completion adds the slash) names the same paths as --out DIR: the summary
+#     line said DIR//<name>/<name>.png
+printf 'scene: checker\nwidth: 4\nthreshold: 50\n' >"$T/jobs/slash.yaml"
+"$WORKER" --out "$T/o13//" "$T/jobs/slash.yaml" 2>"$T/e13"; rc=$?
+check "--out DIR//: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "--out DIR//: the summary line names DIR/slash/slash.png ($(cat "$T/e13"))" grep -q -- "-> $T/o13/slash/slash.png\$" "$T/e13"
+
 finish
