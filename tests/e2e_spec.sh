@@ -272,4 +272,14 @@ printf 'scene: checker\nwidth: 4\nthreshold: 50\n' >"$T/jobs/slash.yaml"
 check "--out DIR//: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "--out DIR//: the summary line names DIR/slash/slash.png ($(cat "$T/e13"))" grep -q -- "-> $T/o13/slash/slash.png\$" "$T/e13"
 
+# 14. a height made from width / the camera's aspect past the 32768 limit is an error at the width's
+#     line and column (it had none: "job.yaml: height: ...")
+sed "s/aspect: 1 }/aspect: 0.5 }/" "$root/scenes/cornell.yaml" >"$T/scenes/tall.yaml"
+printf 'scene: ../scenes/tall.yaml\nwidth: 20000\nthreshold: 100\n' >"$T/jobs/tall.yaml"
+"$WORKER" --out "$T/o14" "$T/jobs/tall.yaml" 2>"$T/e14"; rc=$?
+check "height past the limit from the aspect: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "height past the limit from the aspect: file:line:col at width: ($(cat "$T/e14"))" \
+    sh -c "[ \$(wc -l <'$T/e14') -eq 1 ] && grep -q '^$T/jobs/tall.yaml:2:8: width: .*40000 rows' '$T/e14'"
+check "height past the limit from the aspect: nothing written" [ ! -e "$T/o14" ]
+
 finish

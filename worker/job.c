@@ -209,6 +209,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
         *(k[0] == 'w' ? &j->width : &j->height) = (int)n;
+        if (k[0] == 'w')
+            mark(j->pos_width, v);
     } else if (!strcmp(k, "sampler")) {
         return get_sampler(d, v, k, &j->sampler, e);
     } else if (!strcmp(k, "light_sampler")) {

@@ -131,7 +131,10 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (h < 1)
         h = 1;
     if (h > IMAGE_MAX_SIDE) {
-        err_set(e, j->path, 0, 0, "height: width / aspect gives %d rows (limit %d)", h, IMAGE_MAX_SIDE);
+        /* only a given width can get here (300 / the smallest aspect, 0.01, is within the limit) */
+        err_set(e, j->path, j->pos_width[0], j->pos_width[1],
+                "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", w, sf.aspect, h,
+                IMAGE_MAX_SIDE);
         goto done;
     }
     rr->width = w;
