@@ -208,14 +208,17 @@ printf 'scene: ../spec_scene/scene.yaml\nwidth: 12\nthreshold: 50\nlight_thresho
 check "SPEC scene: renders (got $rc: $(head -n 1 "$T/e9"))" [ "$rc" -eq 0 ]
 check "SPEC scene: 12x12 image" [ -s "$T/o9/specscene/specscene.png" ]
 
-# 10. from another folder: a bare scene name finds the shipped scene, outputs go to ./out
-mkdir -p "$T/elsewhere"
-printf 'scene: checker\nwidth: 8\nthreshold: 50\n' >"$T/elsewhere/mine.yaml"
-(cd "$T/elsewhere" && "$WORKER" --quiet mine.yaml 2>"$T/e10"); rc=$?
+# 10. from another folder: a bare scene name finds the shipped scene (scenes/ beside the program's bin/,
+#     when this build has one), outputs go to ./out; a shipped job file by its path renders
+mkdir -p "$T/far/away"
+scene=checker
+[ -d "$(dirname "$WORKER")/../scenes" ] || scene=$root/scenes/checker.yaml
+printf 'scene: %s\nwidth: 8\nthreshold: 50\n' "$scene" >"$T/far/away/mine.yaml"
+(cd "$T/far/away" && "$WORKER" --quiet mine.yaml 2>"$T/e10"); rc=$?
 check "another folder: exit 0 (got $rc: $(head -n 1 "$T/e10"))" [ "$rc" -eq 0 ]
 check "another folder: ./out/<name>/<name>.png and .json" \
-    sh -c "[ -s '$T/elsewhere/out/mine/mine.png' ] && [ -s '$T/elsewhere/out/mine/mine.json' ]"
-(cd "$T/elsewhere" && "$WORKER" --quiet "$root/jobs/cornell-book3.yaml" --out "$T/o10" 2>/dev/null); rc=$?
+    sh -c "[ -s '$T/far/away/out/mine/mine.png' ] && [ -s '$T/far/away/out/mine/mine.json' ]"
+(cd "$T/far/away" && "$WORKER" --quiet "$root/jobs/cornell-book3.yaml" --out "$T/o10" 2>/dev/null); rc=$?
 check "another folder: a shipped job by its path renders (got $rc)" [ -s "$T/o10/cornell-book3/cornell-book3.png" ]
 
 # 11. worker diff: metrics of B against reference A on stdout, by hand for a 1x1 pair (reference
@@ -247,18 +250,18 @@ check "diff of two sizes: exit 2, one line (got $rc)" sh -c "[ $rc -eq 2 ] && [ 
 #     refused, exit 2, naming the file, with nothing written
 mkdir -p "$T/stems/in"
 for f in '..yaml' '...yaml' '.hidden.yaml'; do
-    printf 'scene: checker\nwidth: 4\nthreshold: 50\n' >"$T/stems/in/$f"
+    printf 'scene: %s\nwidth: 4\nthreshold: 50\n' "$root/scenes/checker.yaml" >"$T/stems/in/$f"
     rm -rf "$T/stems/in/o"
     (cd "$T/stems/in" && "$WORKER" --quiet --out o "./$f" 2>"$T/e12"); rc=$?
     check "job file $f: exit 2 (got $rc: $(cat "$T/e12"))" [ "$rc" -eq 2 ]
     check "job file $f: one line naming it and name:" sh -c "[ \$(wc -l <'$T/e12') -eq 1 ] && grep -q -- '^\\./$f:1:1: name: ' '$T/e12'"
     check "job file $f: nothing written" sh -c "[ ! -e '$T/stems/in/o' ] && [ -z \"\$(ls '$T/stems' | grep -v '^in\$')\" ] && [ -z \"\$(ls '$T/stems/in' | grep -v yaml)\" ]"
 done
-printf 'scene: checker\nwidth: 4\nthreshold: 50\nvariants:\n  - { sampler: jitter }\n' >"$T/stems/in/...yaml"
+printf 'scene: %s\nwidth: 4\nthreshold: 50\nvariants:\n  - { sampler: jitter }\n' "$root/scenes/checker.yaml" >"$T/stems/in/...yaml"
 (cd "$T/stems/in" && "$WORKER" --quiet --out o ./...yaml 2>"$T/e12"); rc=$?
 check "compare job file ...yaml: exit 2 naming the stem (got $rc: $(cat "$T/e12"))" \
     sh -c "[ $rc -eq 2 ] && grep -q '^\./\.\.\.yaml:1:1: name: ' '$T/e12' && [ ! -e '$T/stems/in/o' ]"
-printf 'name: fine\nscene: checker\nwidth: 4\nthreshold: 50\n' >"$T/stems/in/...yaml"
+printf 'name: fine\nscene: %s\nwidth: 4\nthreshold: 50\n' "$root/scenes/checker.yaml" >"$T/stems/in/...yaml"
 (cd "$T/stems/in" && "$WORKER" --quiet --out o ./...yaml 2>/dev/null); rc=$?
 check "job file ...yaml with a name: renders into o/fine/ (got $rc)" [ -s "$T/stems/in/o/fine/fine.png" ]
 cp "$T/stems/in/..yaml" "$T/stems/in/my job.yaml"
