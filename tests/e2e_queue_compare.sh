@@ -28,4 +28,15 @@ check "nothing left running" [ -z "$(ls "$q/running" 2>/dev/null | grep yaml)" ]
 mv "$q/done/study.yaml" "$q/study.yaml"
 "$WORKER" --quiet --queue "$q" --once 2>"$T/err2"
 check "requeued compare job resumes: all 8 current" grep -q "8 of them current" "$T/err2"
+# a compare job that loads but fails (its output folder is a file) logs under its name:
+# failed/<name>.log, as SPEC says; only a job file that does not load logs under the file's stem
+q2=$T/queue2
+mkdir -p "$q2/done"
+printf 'name: renamed\nscenes: [../scenes/checker.yaml]\nwidth: 8\nheight: 6\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$q2/cj.yaml"
+: >"$q2/done/renamed"
+"$WORKER" --quiet --queue "$q2" --once 2>"$T/err3"; rc=$?
+check "a compare job whose folder is a file fails (got $rc)" [ "$rc" -ne 0 ]
+check "its job file in failed/" [ -f "$q2/failed/cj.yaml" ]
+check "its log is failed/<name>.log" grep -q "a file is in the way" "$q2/failed/renamed.log"
+
 finish

@@ -316,13 +316,15 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
 
 /* compare_main_as, with compare_main's name_ok. */
 static int main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                   int (*name_ok)(const char *name, void *arg), void *arg)
+                   char *name, size_t name_n, int (*name_ok)(const char *name, void *arg), void *arg)
 {
     struct err e = {0};
     char line[2048];
     double t0 = now_s();
     struct compare *c = compare_load_as(from, path, &e);
     int rc = 2;
+    if (c && name)
+        snprintf(name, name_n, "%s", c->name);
     if (c && name_ok && !name_ok(c->name, arg)) {
         compare_free(c);
         return 2;
@@ -350,10 +352,11 @@ static int main_as(const char *from, const char *path, const struct run_opts *o,
 int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
                  void *arg)
 {
-    return main_as(path, path, o, NULL, 0, name_ok, arg);
+    return main_as(path, path, o, NULL, 0, NULL, 0, name_ok, arg);
 }
 
-int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n)
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                    char *name, size_t name_n)
 {
-    return main_as(from, path, o, last, n, NULL, NULL);
+    return main_as(from, path, o, last, n, name, name_n, NULL, NULL);
 }

@@ -85,7 +85,9 @@ int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(cons
                  void *arg);
 
 /* compare_main for a job file read from `from` as if at `path`; the line printed last (the error
-   or the summary) is also copied into last (when not NULL). */
-int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n);
+   or the summary) is also copied into last (when not NULL), and the job's name, once it loaded,
+   into name (when not NULL; left as it is when the job is invalid). */
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                    char *name, size_t name_n);
 
 #endif

@@ -209,6 +209,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
         *(k[0] == 'w' ? &j->width : &j->height) = (int)n;
+        if (k[0] == 'w')
+            mark(j->pos_width, v);
     } else if (!strcmp(k, "sampler")) {
         return get_sampler(d, v, k, &j->sampler, e);
     } else if (!strcmp(k, "light_sampler")) {
@@ -254,7 +256,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(d, v, e, "output: must be a plain file name (no '/'), got \"%.40s\"", s);
+            return ydoc_fail(d, v, e,
+                             "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
+                             "most %d, not starting with '.'), got \"%.40s\"",
+                             JOB_NAME_MAX - 1, s);
         snprintf(j->output, sizeof j->output, "%s", s);
         j->has_output = 1;
         mark(j->pos_output, v);
@@ -311,6 +316,13 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
 {
     (void)d;
+    /* A name from the file's stem ("..yaml" gives ".", "...yaml" "..") names the output folder too:
+       the rule for name: keeps it inside --out and off hidden folders (.cache). */
+    if (!j->pos_name[0] && (!j->name[0] || j->name[0] == '.'))
+        return err_set(e, j->path, 1, 1,
+                       "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
+                       "give the job a name:",
+                       j->name);
     if (!j->has_light_sampler)
         j->light_sampler = j->sampler;
     if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||

@@ -283,6 +283,12 @@ static int worker_main(int argc, char **argv)
             jobs[njobs++] = a;
         }
     }
+    /* --out DIR/ (a shell's completion adds the slash) is DIR: no "DIR//<name>" in paths shown */
+    char out_dir[4096];
+    snprintf(out_dir, sizeof out_dir, "%s", o->out_dir);
+    for (size_t n = strlen(out_dir); n > 1 && out_dir[n - 1] == '/'; n--)
+        out_dir[n - 1] = 0;
+    o->out_dir = out_dir;
     /* accepted, but a user who gave them expects something of them: say they do nothing */
     if (q.dir && out_given)
         err_print("worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);

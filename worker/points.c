@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "err.h"
 #include "fileio.h"
@@ -34,6 +36,37 @@ static int parse_seed(const char *s, uint64_t *out)
     if (*end || errno == ERANGE)
         return -1;
     *out = (uint64_t)v;
+    return 0;
+}
+
+/* Whether the --svg file can go where it is named (its folder exists and is writable, and it is not
+   a folder itself): 0, or 2 after one line on stderr. Bad usage, found before anything is drawn; a
+   write that fails later (a full disk) is exit 1. */
+static int svg_place_ok(const char *path)
+{
+    if (!path)
+        return 0;
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        err_print("worker points: --svg %s: is a directory\n", path);
+        return 2;
+    }
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        err_print("worker points: --svg %s: no folder %s\n", path, dir);
+        return 2;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        err_print("worker points: --svg %s: cannot write in %s: %s\n", path, dir, strerror(errno));
+        return 2;
+    }
     return 0;
 }
 
@@ -106,7 +139,7 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }
-    return 0;
+    return svg_place_ok(a->svg_path);
 }
 
 /* %.6f of v in [0, 1), never rounded up to "1.000000". */

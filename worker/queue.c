@@ -151,11 +151,12 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.tick = queue_claim_tick;
     ro.may_write = queue_claim_held;
     ro.tick_arg = q;
-    char last[2048] = "";
+    char last[2048] = "", log_name[JOB_NAME_MAX];
+    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads (SPEC: <name>.log) */
     int attempts = 0, rc;
     do {
         attempts++;
-        rc = compare_main_as(from, as, &ro, last, sizeof last);
+        rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);
@@ -170,11 +171,11 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         return;
     }
     if (q->name_owner[0]) {
-        name_taken(q, name, stem, NULL);
+        name_taken(q, name, stem, NULL); /* <name>.log would be the other file's log name */
         return;
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
-    write_log(q, name, stem, last, 0, attempts);
+    write_log(q, name, log_name, last, 0, rc == 2 ? 0 : attempts); /* invalid: checked, never rendered */
     queue_claim_file(q, name, q->failed);
     note_rc(q, rc);
 }

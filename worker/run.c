@@ -35,9 +35,11 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
     if (pct == p->last_pct && done != rows)
         return;
     p->last_pct = pct;
-    double eta = done > 0 ? elapsed * (rows - done) / done : 0;
-    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %.1f s   ", p->name, pct, done, rows,
-            elapsed, eta);
+    char eta[32] = "--"; /* unknown until a row is done */
+    if (done > 0)
+        snprintf(eta, sizeof eta, "%.1f s", elapsed * (rows - done) / done);
+    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %s   ", p->name, pct, done, rows, elapsed,
+            eta);
     if (done == rows)
         fprintf(stderr, "\n");
 }
@@ -129,7 +131,10 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (h < 1)
         h = 1;
     if (h > IMAGE_MAX_SIDE) {
-        err_set(e, j->path, 0, 0, "height: width / aspect gives %d rows (limit %d)", h, IMAGE_MAX_SIDE);
+        /* only a given width can get here (300 / the smallest aspect, 0.01, is within the limit) */
+        err_set(e, j->path, j->pos_width[0], j->pos_width[1],
+                "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", w, sf.aspect, h,
+                IMAGE_MAX_SIDE);
         goto done;
     }
     rr->width = w;
