@@ -312,8 +312,12 @@ void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const str
     *rays += acc_rays;
 }
 #else
+#include <stdlib.h>
+
+/* Without the kernel wide_usable is 0 and ctx->wide NULL: never called, reaching it is a bug. */
 void render_pixel_wide(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int last,
                        double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
 {
+    abort();
 }
 #endif

@@ -149,15 +149,22 @@ void wide_scene_hit(const struct wide_scene *ws, const double *o, const double *
     }
 }
 #else
+/* Without the kernel wide_usable is 0, so none of these is ever called: reaching one is a bug. */
+#include <stdlib.h>
+
 struct wide_scene *wide_scene_new(const struct scene *sc)
 {
-    return NULL;
+    abort();
 }
 
-void wide_scene_free(struct wide_scene *ws) {}
+void wide_scene_free(struct wide_scene *ws)
+{
+    abort();
+}
 
 void wide_scene_hit(const struct wide_scene *ws, const double *o, const double *d, double t_min, double *t,
                     int *prim, double *n)
 {
+    abort();
 }
 #endif
