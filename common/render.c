@@ -1,7 +1,7 @@
 /* render: per-pixel point sets, per-light point sets consumed in order, and the mixture-pdf
    path integrator of Shirley's "Ray Tracing: The Rest of Your Life" (50% light, 50% cosine);
-   scenes that wide_usable picks trace eight paths at once in float lanes (render_wide.c), the
-   others that packet_usable picks four at once (render_lanes.c). */
+   scenes that packet_usable picks trace four paths at once through vector hit tests
+   (render_lanes.c) that return the scalar tests' answers bit for bit. */
 #include "render.h"
 
 #include <float.h>
@@ -55,9 +55,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
     const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
-    if (ctx->wide) {
-        render_pixel_wide(ctx, x, y, n, &path_rng, last, sum, &kept, &nonfinite, &rays);
-    } else if (ctx->packet) {
+    if (ctx->packet) {
         render_pixel_packet(ctx, x, y, n, &path_rng, mix, last, sum, &kept, &nonfinite, &rays);
     } else {
         for (size_t s = 0; s < n; s++) {

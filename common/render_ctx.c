@@ -37,54 +37,8 @@ void render_ctx_free(struct render_ctx *ctx)
     free(ctx->identity);
     free(ctx->prim_material);
     packet_scene_free(ctx->packet);
-    if (ctx->wide) /* wide_scene.c is AVX2 code: entered only where wide_usable said the CPU has it */
-        wide_scene_free(ctx->wide);
     free(ctx->pixel_pts);
     free(ctx);
-}
-
-static int prim_ok(const struct prim *p)
-{
-    if (p->type == PRIM_BOX)
-        return 1;
-    return !p->has_xform && (p->type == PRIM_RECT || p->type == PRIM_SPHERE);
-}
-
-/* Whether each component of colour c is at most `most`. The wide kernel's lanes are float: with
-   albedos up to 1 a weight grows by at most 2 a bounce (cosine over the mixture's pdf), and
-   radiance up to 2^64 leaves that growth 2^64 below float's overflow. */
-static int at_most(vec3 c, double most)
-{
-    return c.x <= most && c.y <= most && c.z <= most;
-}
-
-int wide_usable(const struct scene *sc, int light_sampling_off)
-{
-#if WIDE_KERNEL
-    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma"))
-        return 0;
-#else
-    return 0;
-#endif
-    if (sc->n_nodes != 1 || sc->n_prims > WIDE_MAX_PRIMS || light_sampling_off || sc->n_lights < 1 ||
-        sc->n_lights > WIDE_MAX_LIGHTS || !at_most(sc->background, 0x1p64))
-        return 0;
-    for (int i = 0; i < sc->n_prims; i++) {
-        const struct prim *p = &sc->prims[i];
-        const struct material *m = &sc->materials[p->material];
-        if (!prim_ok(p))
-            return 0;
-        if (!(m->type == MAT_LIGHT || m->type == MAT_DIELECTRIC ||
-              (m->type == MAT_LAMBERTIAN && m->texture < 0 && at_most(m->albedo, 1))) ||
-            (m->type == MAT_LIGHT && !at_most(m->emit, 0x1p64)))
-            return 0;
-    }
-    for (int i = 0; i < sc->n_lights; i++) {
-        const struct prim *p = &sc->prims[sc->lights[i]];
-        if (p->has_xform || (p->type != PRIM_RECT && p->type != PRIM_SPHERE))
-            return 0;
-    }
-    return 1;
 }
 
 struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *cam,
@@ -103,12 +57,8 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
     ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
-    if (wide_usable(sc, rs->light_sampling_off)) {
-        if (!(ctx->wide = wide_scene_new(sc)))
-            goto fail;
-    } else if (packet_usable(sc) && !(ctx->packet = packet_scene_new(sc))) {
+    if (packet_usable(sc) && !(ctx->packet = packet_scene_new(sc)))
         goto fail;
-    }
     if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
         goto fail;
     for (int i = 0; i < sc->n_prims; i++)

@@ -5,7 +5,6 @@
 
 #include "packet.h"
 #include "render.h"
-#include "render_wide.h"
 #include "rng.h"
 
 /* A light's current point set within the pixel, taken in a random order, then redrawn: the
@@ -37,7 +36,6 @@ struct render_ctx {
        which sampler_s counts again for each draw after it that is not timed */
     double pixel_set_s, light_set_s;
     struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
-    struct wide_scene *wide;     /* NULL, or four paths at once in the lanes (render_wide.c) */
 };
 
 /* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a

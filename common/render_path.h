@@ -212,7 +212,7 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
    mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
    and mixture pdf) inline, as a surface's (path_scatter_as from trace: final's fog scatters on
-   most paths), else through calls (path_scatter, for the lanes and the wide kernel, whose scenes
+   most paths), else through calls (path_scatter, for the lanes, whose scenes
    hold no media: inline in the lanes it cost checker ~1% and cornell-book3 7 instructions a
    sample by the code it moved). Always inline: the caller's ray, weight and radiance stay in
    its registers (a texture's lookup reads h through a copy). */

@@ -1,5 +1,5 @@
 /* box_point: the 27 points of a box that ray tests aim at, and a scene's box (test_bvh,
-   test_packet, test_wide). */
+   test_packet). */
 #ifndef BOX_POINT_H
 #define BOX_POINT_H
 

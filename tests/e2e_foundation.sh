@@ -23,7 +23,7 @@ check "summary line names the job" grep -q "small: 48x32" "$T/err"
 check "no temporary files left" sh -c "! ls -a '$T/out/small' | grep -q tmp"
 
 # 2. byte-identical across process counts: checker (four paths at a time in double lanes) and the
-# book's Cornell box (the wide kernel where the CPU has AVX2: eight paths at a time, a scalar tail);
+# book's Cornell box (one BVH node: four paths at a time through the lanes);
 # a pixel must depend only on seed and pixel
 printf 'name: box\nscene: %s/scenes/cornell-book3.yaml\nwidth: 24\nheight: 24\nthreshold: 25\n' "$root" >"$T/box.yaml"
 for job in small box; do

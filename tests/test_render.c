@@ -444,11 +444,9 @@ static void test_last_segment(void)
 
 /* A closed unit box of six diffuse walls with a lamp under its ceiling, seen from inside (the
    camera at (x, y)) under a background of 1e30: one node, so render_pixel traces its paths in
-   lanes: eight at a time in float where the CPU has AVX2 and FMA (render_wide.c, the last two
-   alone in the scalar loop), else four at a time (render_lanes.c) and a pixel's last path alone
-   (bvh_hit_node). No path escapes the box, so the background never shows; a lane that lost its
-   hit, or a float origin left outside a wall, would add 1e30 times its weight (in the four
-   lanes, 3 of these 25 pixels end with lane 1 alone). */
+   lanes, four at a time (render_lanes.c), and a pixel's last path alone (bvh_hit_node). No path
+   escapes the box, so the background never shows; a lane that lost its hit would add 1e30 times
+   its weight (3 of these 25 pixels end with lane 1 alone). */
 static void closed_box_pixel(double x, double y, float rgb[3])
 {
     struct scene *sc = scene_new();
