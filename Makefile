@@ -34,8 +34,8 @@ else
 Q := @
 endif
 
-COMMON_SRC := $(wildcard common/*.c)
-WORKER_SRC := $(filter-out worker/main.c,$(wildcard worker/*.c))
+COMMON_SRC := $(wildcard common/*/*.c)
+WORKER_SRC := $(filter-out worker/cli/main.c,$(wildcard worker/*/*.c))
 TEST_SRC   := $(wildcard tests/test_*.c)
 TOOL_SRC   := $(wildcard tools/*.c)
 COMMON_OBJ := $(COMMON_SRC:%.c=$(BUILD)/%.o)
@@ -71,7 +71,7 @@ $(LIBCOMMON): $(COMMON_OBJ)
 $(LIBWORKER): $(WORKER_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^
 
-$(WORKER_BIN): $(BUILD)/worker/main.o $(LIBWORKER) $(LIBCOMMON)
+$(WORKER_BIN): $(BUILD)/worker/cli/main.o $(LIBWORKER) $(LIBCOMMON)
 	@mkdir -p $(dir $@)
 	@$(if $(Q),echo "  LD      $@")
 	$(Q)$(CC) $(OPT) -o $@ $^ $(LDLIBS_ALL)
@@ -166,10 +166,10 @@ fuzz: deps
 	done
 
 lint:
-	clang-format --dry-run --Werror common/*.[ch] worker/*.[ch] tests/*.[ch]
+	clang-format --dry-run --Werror common/*/*.[ch] worker/*/*.[ch] tests/*.[ch] tests/fuzz/*.[ch] tools/*.c
 	cppcheck --quiet --error-exitcode=1 --enable=warning,portability --std=c11 -Icommon -Iworker common worker
 
 clean:
 	rm -rf build bin
 
--include $(COMMON_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/main.d $(TEST_BIN:=.d) $(TOOL_BIN:=.d)
+-include $(COMMON_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/cli/main.d $(TEST_BIN:=.d) $(TOOL_BIN:=.d)

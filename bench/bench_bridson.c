@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "sampler.h"
+#include "sample/sampler.h"
 
 static double now_s(void)
 {

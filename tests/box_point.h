@@ -5,9 +5,9 @@
 
 #include <float.h>
 
-#include "scene.h"
-#include "shape.h"
-#include "vec3.h"
+#include "geom/scene.h"
+#include "geom/shape.h"
+#include "base/vec3.h"
 
 /* k in [0, 27): every corner, edge midpoint, face centre and the centre of the box [lo, hi] */
 static inline vec3 box_point(vec3 lo, vec3 hi, int k)

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "err.h"
-#include "image.h"
+#include "base/err.h"
+#include "image/image.h"
 
 struct buf {
     uint8_t *p;
@@ -35,7 +35,7 @@ static inline void buf_add(struct buf *b, const void *data, size_t n)
 static inline struct rgb8 pattern(int w, int h)
 {
     struct rgb8 img;
-    rgb8_alloc(&img, w, h, NULL);
+    image_alloc(&img, w, h, NULL);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             uint8_t *q = img.px + ((size_t)y * w + x) * 3;

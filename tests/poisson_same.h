@@ -9,8 +9,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "poisson.h"
-#include "sampler.h"
+#include "sample/poisson.h"
+#include "sample/sampler.h"
 
 struct poisson_build {
     int (*init)(struct poisson *p, double radius, int side, size_t capacity);

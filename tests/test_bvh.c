@@ -3,12 +3,12 @@
 #include <float.h>
 #include <stdlib.h>
 
-#include "bvh.h"
+#include "geom/bvh.h"
 #include "box_point.h"
 #include "check.h"
-#include "rng.h"
-#include "scene_load.h"
-#include "shape.h"
+#include "base/rng.h"
+#include "scenefile/scene_load.h"
+#include "geom/shape.h"
 
 /* Nearest hit by testing every primitive. */
 static int linear_hit(const struct scene *sc, const ray *r, struct hit *h)

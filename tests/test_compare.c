@@ -6,9 +6,10 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "compare.h"
-#include "compare_stats.h"
-#include "fileio.h"
+#include "study/compare.h"
+#include "study/compare_stats.h"
+#include "base/fileio.h"
+#include "image/imgio.h"
 
 static char dir[256], scene[1024];
 
@@ -248,7 +249,7 @@ static void test_repeated_error(void)
     if (!c)
         return;
     struct rgb8 ref = {0}, img = {0};
-    CHECK(rgb8_alloc(&ref, 4, 4, &e) == 0 && rgb8_alloc(&img, 4, 4, &e) == 0);
+    CHECK(image_alloc(&ref, 4, 4, &e) == 0 && image_alloc(&img, 4, 4, &e) == 0);
     memset(ref.px, 100, 4 * 4 * 3);
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
@@ -268,8 +269,8 @@ static void test_repeated_error(void)
     CHECK(strstr(line, "repeats in every seed: 100% at threshold 20, 100% at threshold 10") != NULL);
     stability(c, 0, 1, &ref, line, sizeof line);
     CHECK(strstr(line, "repeats in every seed: 0% at threshold 20, 0% at threshold 10") != NULL);
-    rgb8_free(&ref);
-    rgb8_free(&img);
+    image_free(&ref);
+    image_free(&img);
     compare_free(c);
 }
 

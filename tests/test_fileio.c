@@ -10,8 +10,9 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "fileio.h"
-#include "image.h"
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "image/image.h"
 
 static char dir[256];
 
@@ -129,7 +130,7 @@ static void test_images(void)
 {
     struct rgb8 img, back;
     struct err e = {0};
-    CHECK(rgb8_alloc(&img, 5, 4, &e) == 0);
+    CHECK(image_alloc(&img, 5, 4, &e) == 0);
     for (int i = 0; i < 5 * 4 * 3; i++)
         img.px[i] = (uint8_t)(i * 13);
     char png[512];
@@ -137,13 +138,13 @@ static void test_images(void)
     CHECK(imgio_write(png, &img, IMG_PNG, &e) == 0);
     CHECK(imgio_read(png, &back, &e) == 0);
     CHECK(back.w == 5 && back.h == 4 && !memcmp(back.px, img.px, 60));
-    rgb8_free(&back);
+    image_free(&back);
     char ppm[512];
     in_dir(ppm, "i.ppm");
     CHECK(imgio_write(ppm, &img, IMG_PPM, &e) == 0);
     CHECK(imgio_read(ppm, &back, &e) == 0);
     CHECK(back.w == 5 && back.h == 4 && !memcmp(back.px, img.px, 60));
-    rgb8_free(&back);
+    image_free(&back);
     unlink(png);
     unlink(ppm);
 
@@ -162,7 +163,7 @@ static void test_images(void)
     struct rgb8 empty = {0};
     CHECK(imgio_write(png, &empty, IMG_PNG, &e) == -1 && !strcmp(e.file, png));
     CHECK(count_entries(dir) == 0);
-    rgb8_free(&img);
+    image_free(&img);
 }
 
 int main(void)

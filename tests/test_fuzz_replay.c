@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "fileio.h"
+#include "base/fileio.h"
 #include "fuzz/fuzz_targets.c"
 
 typedef int (*target_fn)(const uint8_t *, size_t);

@@ -4,7 +4,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "job.h"
+#include "job/job.h"
 
 static char dir[64], scene[1024];
 

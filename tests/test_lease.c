@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "lease.h"
+#include "farm/lease.h"
 
 /* Set path's mtime seconds_ago into the past. */
 static void age(const char *path, int seconds_ago)

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "render.h"
-#include "scene_load.h"
+#include "render/render.h"
+#include "scenefile/scene_load.h"
 
 #define SIDE 32  /* image side, pixels */
 #define REGION 8 /* regions of REGION x REGION pixels: a 4 x 4 grid */

@@ -6,13 +6,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
+#include "geom/bvh.h"
 #include "box_point.h"
 #include "check.h"
-#include "packet.h"
-#include "rng.h"
-#include "scene_load.h"
-#include "shape.h"
+#include "geom/packet.h"
+#include "base/rng.h"
+#include "scenefile/scene_load.h"
+#include "geom/shape.h"
 
 /* packet.c again, built for the baseline alone (SSE2 pairs; the library's packet_hit is the AVX2
    copy on a CPU that has it): both must agree with bvh_hit. */
@@ -26,7 +26,7 @@ void baseline_packet_scene_free(struct packet_scene *ps);
 #define packet_usable baseline_packet_usable
 #define packet_scene_new baseline_packet_scene_new
 #define packet_scene_free baseline_packet_scene_free
-#include "../common/packet.c"
+#include "../common/geom/packet.c"
 #undef packet_hit
 #undef packet_usable
 #undef packet_scene_new

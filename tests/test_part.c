@@ -5,9 +5,10 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "fileio.h"
-#include "part.h"
-#include "run_out.h"
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "farm/part.h"
+#include "job/run_out.h"
 
 enum { W = 7, H = 11 };
 
@@ -18,7 +19,7 @@ static void fill(float *rgb)
         rgb[i] = (float)(i % 97) / 96.0f;
 }
 
-static void result(struct farm_result *fr, int part)
+static void result(struct procs_result *fr, int part)
 {
     memset(fr, 0, sizeof *fr);
     render_stats_init(&fr->total);
@@ -62,7 +63,7 @@ int main(void)
     char sub[2100];
     snprintf(sub, sizeof sub, "%s/merge", dir);
     CHECK(run_out_mkdirs(sub, &e) == 0);
-    struct farm_result fr;
+    struct procs_result fr;
     for (int p = 0; p < 3; p += 2) {
         result(&fr, p);
         part_path(&j, dir, p, 3, path, sizeof path);
@@ -97,11 +98,11 @@ int main(void)
     CHECK(rr.farm.proc[1].st.samples == 101);
     struct rgb8 got, want;
     CHECK(imgio_read(rr.image_path, &got, &e) == 0);
-    CHECK(rgb8_alloc(&want, W, H, &e) == 0);
+    CHECK(image_alloc(&want, W, H, &e) == 0);
     image_float_to_rgb8(rgb, W, H, want.px);
     CHECK(got.w == W && got.h == H && memcmp(got.px, want.px, (size_t)W * H * 3) == 0);
-    rgb8_free(&got);
-    rgb8_free(&want);
+    image_free(&got);
+    image_free(&want);
     CHECK(fileio_read_all(rr.sidecar_path, 1 << 20, &data, &len, &e) == 0);
     CHECK(strstr((char *)data, "\"parts\": 3") != NULL);
     CHECK(strstr((char *)data, "\"job_hash\": \"0000000000001234\"") != NULL);

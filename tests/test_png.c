@@ -6,9 +6,9 @@
 #include <zlib.h>
 
 #include "check.h"
-#include "image.h"
+#include "image/image.h"
 #include "image_fixture.h"
-#include "png.h"
+#include "image/png.h"
 
 /* ---- a byte buffer and a hand-made PNG writer/reader, independent of png.c ---- */
 
@@ -186,8 +186,8 @@ static void test_encode_reference(void)
     CHECK(same_image(&img, &back));
     free(px);
     free(png);
-    rgb8_free(&back);
-    rgb8_free(&img);
+    image_free(&back);
+    image_free(&img);
 }
 
 static void test_odd_sizes(void)
@@ -206,8 +206,8 @@ static void test_odd_sizes(void)
         CHECK(px && w == img.w && h == img.h && !memcmp(px, img.px, (size_t)w * h * 3));
         free(px);
         free(png);
-        rgb8_free(&back);
-        rgb8_free(&img);
+        image_free(&back);
+        image_free(&img);
     }
     struct rgb8 empty = {0};
     struct err e = {0};
@@ -240,7 +240,7 @@ static void test_filters_and_color_types(void)
             CHECK(rc == 0 && out.w == w && out.h == h && !memcmp(out.px, want, sizeof want));
             if (rc)
                 fprintf(stderr, "  color type %d filter %d: %s\n", types[t], mode, e.msg);
-            rgb8_free(&out);
+            image_free(&out);
             free(b.p);
             free(raw);
         }
@@ -257,7 +257,7 @@ static int try_png(uint32_t w, uint32_t h, int depth, int ct, int interlace, con
     int rc = png_decode(b.p, b.n, "t.png", &out, e);
     if (rc != 0)
         rc = out.px == NULL && out.w == 0 ? -1 : -2; /* -2: a failure that left pixels behind */
-    rgb8_free(&out);
+    image_free(&out);
     free(b.p);
     return rc;
 }
@@ -308,7 +308,7 @@ static void test_chunks(void)
     CHECK(try_png(9, 8, 8, 2, 0, raw, raw_len, 0, NULL, &e) == -1);
     CHECK(has(&e, "bad filter type 7 on row 3"));
     free(raw);
-    rgb8_free(&img);
+    image_free(&img);
 }
 
 static void test_unsupported_headers(void)
@@ -415,7 +415,7 @@ static int decodes_to(const struct buf *b, const struct rgb8 *want)
     int ok = png_decode(b->p, b->n, "f.png", &out, &e) == 0 && same_image(&out, want);
     if (!ok)
         fprintf(stderr, "  decode: %s\n", e.msg);
-    rgb8_free(&out);
+    image_free(&out);
     return ok;
 }
 
@@ -470,7 +470,7 @@ static void test_other_formats(void)
                     free(b.p);
                 }
             }
-            rgb8_free(&img);
+            image_free(&img);
         }
     }
     /* a palette index past the PLTE's entries is refused */
@@ -481,7 +481,7 @@ static void test_other_formats(void)
     struct err e = {0};
     CHECK(png_decode(b.p, b.n, "f.png", &out, &e) == -1 && has(&e, "palette index 2 of 2") && !out.px);
     free(b.p);
-    rgb8_free(&img);
+    image_free(&img);
 }
 
 /* A misplaced or malformed PLTE in a palette image: the message says which, not just "bad". */
@@ -505,7 +505,7 @@ static int plte_fails(const char *order, size_t plte_len, const char *want)
     int ok = png_decode(b.p, b.n, "p.png", &out, &e) == -1 && has(&e, want);
     if (!ok)
         fprintf(stderr, "  PLTE order %s, %zu bytes: %s\n", order, plte_len, e.msg);
-    rgb8_free(&out);
+    image_free(&out);
     free(b.p);
     return ok;
 }
@@ -529,7 +529,7 @@ static void test_damaged_files(void)
     for (size_t k = 0; k < n; k++) {
         memset(&e, 0, sizeof e);
         prefix_fail += png_decode(png, k, "p.png", &out, &e) == -1 && out.px == NULL && e.msg[0];
-        rgb8_free(&out);
+        image_free(&out);
     }
     CHECK(prefix_fail == (int)n);
     uint8_t *bad = malloc(n);
@@ -537,7 +537,7 @@ static void test_damaged_files(void)
         memcpy(bad, png, n);
         bad[k] ^= 0x10;
         flip_fail += png_decode(bad, n, "f.png", &out, &e) == -1 && out.px == NULL;
-        rgb8_free(&out);
+        image_free(&out);
     }
     CHECK(flip_fail == (int)n);
     memcpy(bad, png, n);
@@ -555,10 +555,10 @@ static void test_damaged_files(void)
     put32(bad + 8, 0x90000000u);
     CHECK(png_decode(bad, n, "f.png", &out, &e) == -1 && has(&e, "length"));
     CHECK(png_decode(png, n, "ok.png", &out, &e) == 0 && same_image(&img, &out));
-    rgb8_free(&out);
+    image_free(&out);
     free(bad);
     free(png);
-    rgb8_free(&img);
+    image_free(&img);
 }
 
 int main(void)

@@ -4,8 +4,8 @@
    (POISSON_FILTER_WINDOW 0: every candidate takes the exact test), for thresholds whose windows
    are 4, 5 and 6 cells wide, in the square and on the torus. */
 #include "check.h"
-#include "poisson.h"
-#include "sampler.h"
+#include "sample/poisson.h"
+#include "sample/sampler.h"
 
 int exact_init(struct poisson *p, double radius, int side, size_t capacity);
 void exact_release(struct poisson *p);
@@ -15,7 +15,7 @@ size_t exact_draw(struct poisson *p, struct rng *rng, struct pt2 *out, int torus
 #define poisson_init exact_init
 #define poisson_release exact_release
 #define poisson_draw exact_draw
-#include "../common/poisson.c"
+#include "../common/sample/poisson.c"
 #undef poisson_init
 #undef poisson_release
 #undef poisson_draw

@@ -6,8 +6,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "poisson.h"
-#include "sampler.h"
+#include "sample/poisson.h"
+#include "sample/sampler.h"
 
 int portable_init(struct poisson *p, double radius, int side, size_t capacity);
 void portable_release(struct poisson *p);
@@ -17,7 +17,7 @@ size_t portable_draw(struct poisson *p, struct rng *rng, struct pt2 *out, int to
 #define poisson_init portable_init
 #define poisson_release portable_release
 #define poisson_draw portable_draw
-#include "../common/poisson.c"
+#include "../common/sample/poisson.c"
 #undef poisson_init
 #undef poisson_release
 #undef poisson_draw

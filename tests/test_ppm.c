@@ -5,9 +5,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "image.h"
+#include "image/image.h"
 #include "image_fixture.h"
-#include "ppm.h"
+#include "image/ppm.h"
 
 static void test_float_to_rgb8(void)
 {
@@ -30,19 +30,19 @@ static void test_rgb8_alloc(void)
 {
     struct rgb8 img = {0};
     struct err e = {0};
-    rgb8_free(&img); /* a zeroed struct is fine */
-    rgb8_free(NULL);
-    CHECK(rgb8_alloc(&img, 0, 4, &e) == -1 && img.px == NULL && has(&e, "out of range"));
-    CHECK(rgb8_alloc(&img, 4, -1, &e) == -1);
-    CHECK(rgb8_alloc(&img, IMAGE_MAX_SIDE + 1, 1, &e) == -1);
-    CHECK(rgb8_alloc(&img, 3, 2, &e) == 0 && img.w == 3 && img.h == 2 && img.px);
+    image_free(&img); /* a zeroed struct is fine */
+    image_free(NULL);
+    CHECK(image_alloc(&img, 0, 4, &e) == -1 && img.px == NULL && has(&e, "out of range"));
+    CHECK(image_alloc(&img, 4, -1, &e) == -1);
+    CHECK(image_alloc(&img, IMAGE_MAX_SIDE + 1, 1, &e) == -1);
+    CHECK(image_alloc(&img, 3, 2, &e) == 0 && img.w == 3 && img.h == 2 && img.px);
     int zero = 1;
     for (int i = 0; img.px && i < 18; i++)
         zero &= img.px[i] == 0;
     CHECK(zero);
-    rgb8_free(&img);
+    image_free(&img);
     CHECK(img.px == NULL && img.w == 0);
-    rgb8_free(&img); /* twice is harmless */
+    image_free(&img); /* twice is harmless */
 }
 
 static int ppm_str(const char *s, size_t n, struct rgb8 *out, struct err *e)
@@ -63,7 +63,7 @@ static void test_ppm_round_trip(void)
     CHECK(ppm_encode(&img, &ppm, &n, &e) == 0);
     CHECK(n == 11 + 45 && !memcmp(ppm, "P6\n5 3\n255\n", 11));
     CHECK(ppm_decode(ppm, n, "a.ppm", &out, &e) == 0 && same_image(&img, &out));
-    rgb8_free(&out);
+    image_free(&out);
     int prefix_fail = 0;
     for (size_t k = 0; k < n; k++)
         prefix_fail += ppm_decode(ppm, k, "a.ppm", &out, &e) == -1 && out.px == NULL;
@@ -82,13 +82,13 @@ static void test_ppm_round_trip(void)
         buf_add(&b, num, (size_t)len);
     }
     CHECK(ppm_str((const char *)b.p, b.n, &out, &e) == 0 && same_image(&img, &out));
-    rgb8_free(&out);
+    image_free(&out);
     prefix_fail = 0;
     for (size_t k = 0; k <= last_start; k++) /* cutting inside the last number still parses */
         prefix_fail += ppm_str((const char *)b.p, k, &out, &e) == -1;
     CHECK(prefix_fail == (int)last_start + 1);
     free(b.p);
-    rgb8_free(&img);
+    image_free(&img);
 }
 
 static void test_ppm_maxval(void)
@@ -100,19 +100,19 @@ static void test_ppm_maxval(void)
     CHECK(ppm_str(wide, sizeof wide - 1, &out, &e) == 0);
     CHECK(out.px && out.px[0] == 255 && out.px[1] == 128 && out.px[2] == 0);
     CHECK(out.px && out.px[3] == 0 && out.px[4] == 127 && out.px[5] == 128);
-    rgb8_free(&out);
+    image_free(&out);
     const char p3[] = "P3 2 1 65535 65535 0 32768 1 257 65534";
     CHECK(ppm_str(p3, sizeof p3 - 1, &out, &e) == 0);
     CHECK(out.px && !memcmp(out.px, "\xff\x00\x80\x00\x01\xff", 6));
-    rgb8_free(&out);
+    image_free(&out);
     const char one[] = "P3\n2 1\n1\n1 0 1\n0 1 0\n";
     CHECK(ppm_str(one, sizeof one - 1, &out, &e) == 0);
     CHECK(out.px && !memcmp(out.px, "\xff\x00\xff\x00\xff\x00", 6));
-    rgb8_free(&out);
+    image_free(&out);
     const char thousand[] = "P3 1 1 1000 500 2 998";
     CHECK(ppm_str(thousand, sizeof thousand - 1, &out, &e) == 0);
     CHECK(out.px && out.px[0] == 128 && out.px[1] == 1 && out.px[2] == 254);
-    rgb8_free(&out);
+    image_free(&out);
     const char small[] = "P6 1 1 100\n\x64\x00\x65";
     CHECK(ppm_str(small, sizeof small - 1, &out, &e) == -1 && has(&e, "exceeds maxval 100"));
 }
@@ -154,7 +154,7 @@ static void test_ppm_garbage(void)
         failed += rc == -1 && e.msg[0] && !strcmp(e.file, "t.ppm");
         if (rc != -1)
             fprintf(stderr, "  accepted or leaked: \"%s\"\n", bad[i]);
-        rgb8_free(&out);
+        image_free(&out);
     }
     CHECK(failed == (int)(sizeof bad / sizeof bad[0]));
     const char late[] = "P3\n1 1\n255\n0 0 300\n";
@@ -163,7 +163,7 @@ static void test_ppm_garbage(void)
     CHECK(ppm_str(p5, sizeof p5 - 1, &out, &e) == -1 && has(&e, "P5"));
     const char trailing[] = "P6 1 1 255\n\x01\x02\x03P6 1 1 255\n";
     CHECK(ppm_str(trailing, sizeof trailing - 1, &out, &e) == 0 && out.px[2] == 3);
-    rgb8_free(&out);
+    image_free(&out);
 }
 
 int main(void)

@@ -4,12 +4,12 @@
 #include <string.h>
 #include <time.h>
 
-#include "bvh.h"
-#include "camera.h"
+#include "geom/bvh.h"
+#include "geom/camera.h"
 #include "check.h"
-#include "render.h"
-#include "rng.h"
-#include "shape.h"
+#include "render/render.h"
+#include "base/rng.h"
+#include "geom/shape.h"
 
 static void test_rng(void)
 {

@@ -3,13 +3,13 @@
 #include <string.h>
 
 #include "check.h"
-#include "report_image.h"
+#include "study/report_image.h"
 
 /* An image of w x h pixels, every channel v. */
 static void flat(struct rgb8 *img, int w, int h, uint8_t v)
 {
     struct err e = {0};
-    CHECK(rgb8_alloc(img, w, h, &e) == 0);
+    CHECK(image_alloc(img, w, h, &e) == 0);
     memset(img->px, v, (size_t)w * h * 3);
 }
 
@@ -36,8 +36,8 @@ static void test_worst_window(void)
     report_worst_window(&ref, &ref, 1, 8, &bx, &by);
     CHECK(bx >= 0 && by >= 0 && bx + 8 <= 40 && by + 8 <= 32);
     for (int i = 0; i < 2; i++)
-        rgb8_free(&imgs[i]);
-    rgb8_free(&ref);
+        image_free(&imgs[i]);
+    image_free(&ref);
 }
 
 static void test_crop_zoom(void)
@@ -57,8 +57,8 @@ static void test_crop_zoom(void)
             CHECK(v == want);
         }
     CHECK(lit == REPORT_CROP_ZOOM * REPORT_CROP_ZOOM);
-    rgb8_free(&out);
-    rgb8_free(&src);
+    image_free(&out);
+    image_free(&src);
 }
 
 static void test_error_maps(void)
@@ -78,9 +78,9 @@ static void test_error_maps(void)
     CHECK(map.px[0] == 255);        /* 200 x 51, clamped */
     CHECK(map.px[2 * 3] == 3 * 51); /* |47 - 50| x 51: below the reference counts too */
     CHECK(map.px[5 * 3] == 255);    /* 5 x 51 */
-    rgb8_free(&map);
-    rgb8_free(&img);
-    rgb8_free(&ref);
+    image_free(&map);
+    image_free(&img);
+    image_free(&ref);
 }
 
 int main(void)

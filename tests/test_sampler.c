@@ -1,13 +1,13 @@
 /* test_sampler: set sizes, cells and disks, determinism, the pool's rotation, bad input, and the
    convergence rates of the four samplers on two integrands. */
-#include "sampler.h"
+#include "sample/sampler.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
-#include "vec3.h"
+#include "base/vec3.h"
 
 #define GAUSS_EXACT 0.5577462853510335         /* (integral of exp(-x^2) over [0, 1])^2 */
 #define QUARTER_DISK_R2 0.63661977236758134308 /* 2 / pi: the disk covers half the square */

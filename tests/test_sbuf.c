@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "sbuf.h"
+#include "base/sbuf.h"
 
 /* base64 of the first n bytes of s, as a fresh string. */
 static char *b64(const char *s, size_t n)

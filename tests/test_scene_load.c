@@ -3,9 +3,9 @@
 #include <float.h>
 #include <string.h>
 
-#include "bvh.h"
+#include "geom/bvh.h"
 #include "check.h"
-#include "scene_load.h"
+#include "scenefile/scene_load.h"
 
 static int count_type(const struct scene *sc, int type)
 {

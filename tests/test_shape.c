@@ -4,9 +4,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "rng.h"
-#include "shape.h"
-#include "shape_light_inline.h"
+#include "base/rng.h"
+#include "geom/shape.h"
+#include "geom/shape_light_inline.h"
 
 static void set_xform(struct prim *p, double deg, vec3 offset)
 {

@@ -5,8 +5,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "rng.h"
-#include "shape.h"
+#include "base/rng.h"
+#include "geom/shape.h"
 
 #define RAYS 20000
 

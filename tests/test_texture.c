@@ -2,8 +2,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "shape.h"
-#include "texture.h"
+#include "geom/shape.h"
+#include "geom/texture.h"
 
 /* The book's noise as written (RTOW "The Next Week", ch. 5, with floor and & 255 cells):
    perlin_noise and perlin_turb must give it bit for bit, whatever they do to be fast. */
@@ -143,7 +143,7 @@ static void test_textures(void)
     /* A 2x2 image: red, green on the top row; blue, white below. */
     struct rgb8 img;
     struct err e;
-    CHECK(rgb8_alloc(&img, 2, 2, &e) == 0);
+    CHECK(image_alloc(&img, 2, 2, &e) == 0);
     const uint8_t px[12] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
     for (int i = 0; i < 12; i++)
         img.px[i] = px[i];

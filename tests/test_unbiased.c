@@ -4,8 +4,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "render.h"
-#include "scene_load.h"
+#include "render/render.h"
+#include "scenefile/scene_load.h"
 
 #define W 32
 #define H 24

@@ -5,8 +5,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "yamlx.h"
-#include "yget.h"
+#include "scenefile/yamlx.h"
+#include "scenefile/yget.h"
 
 static char path[64];
 

@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "fileio.h"
-#include "rng.h"
+#include "base/fileio.h"
+#include "base/rng.h"
 
 #define FINAL_SEED 20210102u
 #define FINAL_MAX_BYTES (1u << 20)

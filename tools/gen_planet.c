@@ -3,8 +3,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "fileio.h"
-#include "perlin.h"
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "geom/perlin.h"
 
 #define PLANET_W 256
 #define PLANET_H 128
@@ -55,7 +56,7 @@ int main(int argc, char **argv)
     struct rgb8 img;
     struct err e;
     perlin_init(&pn, PLANET_SEED);
-    if (rgb8_alloc(&img, PLANET_W, PLANET_H, &e) < 0)
+    if (image_alloc(&img, PLANET_W, PLANET_H, &e) < 0)
         goto fail;
     for (int j = 0; j < PLANET_H; j++) {
         for (int i = 0; i < PLANET_W; i++) {
@@ -73,10 +74,10 @@ int main(int argc, char **argv)
     }
     if (imgio_write(argv[1], &img, IMG_PNG, &e) < 0)
         goto fail;
-    rgb8_free(&img);
+    image_free(&img);
     return 0;
 fail:
-    rgb8_free(&img);
+    image_free(&img);
     char buf[1400];
     err_format(&e, buf, sizeof buf);
     fprintf(stderr, "gen_planet: %s\n", buf);

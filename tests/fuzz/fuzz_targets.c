@@ -6,11 +6,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "image.h"
-#include "job.h"
-#include "png.h"
-#include "ppm.h"
-#include "scene_load.h"
+#include "image/image.h"
+#include "job/job.h"
+#include "image/png.h"
+#include "image/ppm.h"
+#include "scenefile/scene_load.h"
 
 /* The loaders read files: write the input to a private temporary file first. */
 static int with_file(const uint8_t *data, size_t size, char *path, size_t n)
@@ -52,9 +52,9 @@ int fuzz_image(const uint8_t *data, size_t size)
     struct rgb8 img = {0};
     struct err e;
     if (png_decode(data, size, "fuzz", &img, &e) == 0)
-        rgb8_free(&img);
+        image_free(&img);
     struct rgb8 img2 = {0};
     if (ppm_decode(data, size, "fuzz", &img2, &e) == 0)
-        rgb8_free(&img2);
+        image_free(&img2);
     return 0;
 }

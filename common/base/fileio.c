@@ -1,0 +1,174 @@
+/* fileio: bounded whole-file reads and atomic writes (temporary file + rename). */
+#include "fileio.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "hash.h"
+
+#define FILEIO_CHUNK ((size_t)1 << 30) /* largest single read()/write() we ask for */
+
+/* Read up to size bytes from fd into buf, retrying on EINTR; stops early at end of file. */
+static int read_full(int fd, uint8_t *buf, size_t size, size_t *got)
+{
+    *got = 0;
+    while (*got < size) {
+        size_t want = size - *got < FILEIO_CHUNK ? size - *got : FILEIO_CHUNK;
+        ssize_t r = read(fd, buf + *got, want);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0)
+            return -1;
+        if (r == 0)
+            break;
+        *got += (size_t)r;
+    }
+    return 0;
+}
+
+/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer *data with a NUL
+   at data[*len]; the caller frees it. 0, or -1 with e filled (file = path, message from errno,
+   "Is a directory", "not a regular file" or "file too large (N bytes, limit M)"). */
+int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e)
+{
+    *data = NULL;
+    *len = 0;
+    /* O_NONBLOCK so that opening a FIFO cannot hang; fstat rejects it just below */
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0)
+        return err_set(e, path, 0, 0, "%s", strerror(errno));
+    struct stat st;
+    uint8_t *buf = NULL;
+    size_t got = 0;
+    if (fstat(fd, &st) < 0) {
+        err_set(e, path, 0, 0, "%s", strerror(errno));
+        goto fail;
+    }
+    if (S_ISDIR(st.st_mode)) {
+        err_set(e, path, 0, 0, "%s", strerror(EISDIR));
+        goto fail;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        err_set(e, path, 0, 0, "not a regular file");
+        goto fail;
+    }
+    if (st.st_size < 0 || (uintmax_t)st.st_size > max_bytes || (uintmax_t)st.st_size >= SIZE_MAX) {
+        err_set(e, path, 0, 0, "file too large (%jd bytes, limit %zu)", (intmax_t)st.st_size, max_bytes);
+        goto fail;
+    }
+    buf = malloc((size_t)st.st_size + 1);
+    if (!buf) {
+        err_set(e, path, 0, 0, "out of memory reading %jd bytes", (intmax_t)st.st_size);
+        goto fail;
+    }
+    if (read_full(fd, buf, (size_t)st.st_size, &got) < 0) {
+        err_set(e, path, 0, 0, "read error: %s", strerror(errno));
+        goto fail;
+    }
+    close(fd);
+    buf[got] = '\0';
+    *data = buf;
+    *len = got;
+    return 0;
+fail:
+    free(buf);
+    close(fd);
+    return -1;
+}
+
+/* Write all len bytes, continuing after short writes and EINTR. */
+static int write_full(int fd, const uint8_t *p, size_t len)
+{
+    while (len > 0) {
+        ssize_t w = write(fd, p, len < FILEIO_CHUNK ? len : FILEIO_CHUNK);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w < 0)
+            return -1;
+        if (w == 0) {
+            errno = ENOSPC; /* no progress and no error: treat as a full device */
+            return -1;
+        }
+        p += w;
+        len -= (size_t)w;
+    }
+    return 0;
+}
+
+/* Length of path's directory part including its last '/', or 0 when there is none. */
+static size_t dir_len(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? (size_t)(slash - path) + 1 : 0;
+}
+
+/* Make the rename durable by syncing the directory; best effort, errors are ignored. */
+static void sync_dir(const char *path, size_t dlen)
+{
+    char *dir = dlen ? strndup(path, dlen) : strdup(".");
+    if (!dir)
+        return;
+    int fd = open(dir, O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+        (void)fsync(fd);
+        close(fd);
+    }
+    free(dir);
+}
+
+/* Write data to path through "<dir>/.<base>.tmp.XXXXXX": write all, fsync, close, mode 0644,
+   rename() over path. On any failure the temporary file is removed, path is untouched, and e
+   says "cannot write <path>: <reason>". */
+int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(path, max_bytes, &data, &len, e) < 0)
+        return -1;
+    *h = hash_bytes(*h, data, len);
+    free(data);
+    return 0;
+}
+
+int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e)
+{
+    size_t dlen = dir_len(path);
+    const char *base = path + dlen;
+    if (!*base)
+        return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(EISDIR));
+    size_t tmp_size = dlen + strlen(base) + sizeof "..tmp.XXXXXX";
+    char *tmp = malloc(tmp_size);
+    if (!tmp)
+        return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
+    snprintf(tmp, tmp_size, "%.*s.%s.tmp.XXXXXX", (int)dlen, path, base);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+        free(tmp);
+        return -1;
+    }
+    if (fchmod(fd, 0644) < 0 || write_full(fd, data, len) < 0 || fsync(fd) < 0)
+        goto fail;
+    int closing = fd;
+    fd = -1;
+    if (close(closing) < 0)
+        goto fail;
+    if (rename(tmp, path) < 0)
+        goto fail;
+    sync_dir(path, dlen);
+    free(tmp);
+    return 0;
+fail:
+    err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+    if (fd >= 0)
+        close(fd);
+    unlink(tmp);
+    free(tmp);
+    return -1;
+}

@@ -1,0 +1,21 @@
+/* fileio: whole-file reads with a size bound, and atomic writes (temporary file + rename). */
+#ifndef FILEIO_H
+#define FILEIO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+
+/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer, NUL-terminated
+   one byte past *len. 0, or -1 with e filled (missing, a directory, too large, read error). */
+int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e);
+
+/* Fold the bytes of path (at most max_bytes) into the FNV-1a hash *h. 0, or -1 with e filled. */
+int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e);
+
+/* Write data to path atomically: a temporary file in the same directory, fsync, rename().
+   On any failure (full disk, unwritable folder) no file is left behind and e is filled. */
+int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
+
+#endif

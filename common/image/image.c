@@ -1,0 +1,51 @@
+/* image: allocating 8-bit RGB rasters and converting the renderer's linear floats to them. */
+#include "image.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Allocate a zeroed w x h RGB raster into img (sides 1..IMAGE_MAX_SIDE). On failure img is
+   zeroed and e filled. The caller releases it with image_free. */
+int image_alloc(struct rgb8 *img, int w, int h, struct err *e)
+{
+    img->w = 0;
+    img->h = 0;
+    img->px = NULL;
+    if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
+        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h, IMAGE_MAX_SIDE);
+    uint8_t *px = calloc((size_t)w * (size_t)h, 3);
+    if (!px)
+        return err_set(e, NULL, 0, 0, "out of memory for a %dx%d image", w, h);
+    img->w = w;
+    img->h = h;
+    img->px = px;
+    return 0;
+}
+
+/* Release img's pixels; accepts NULL, a zeroed struct, or one already freed. */
+void image_free(struct rgb8 *img)
+{
+    if (!img)
+        return;
+    free(img->px);
+    img->px = NULL;
+    img->w = 0;
+    img->h = 0;
+}
+
+/* One channel: NaN and negatives give 0, then gamma 2, clamp below 1, scale to 0..255. */
+static uint8_t float_to_byte(float c)
+{
+    double v = c > 0 ? sqrt((double)c) : 0.0; /* !(c > 0) also catches NaN */
+    if (v > 0.999)
+        v = 0.999;
+    return (uint8_t)(int)(256.0 * v);
+}
+
+/* Convert w*h*3 linear floats in rgb to bytes in out (same layout). Never fails. */
+void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out)
+{
+    size_t n = (size_t)(w > 0 ? w : 0) * (size_t)(h > 0 ? h : 0) * 3;
+    for (size_t i = 0; i < n; i++)
+        out[i] = float_to_byte(rgb[i]);
+}

@@ -1,0 +1,78 @@
+/* render: per-pixel point sets, per-light point sets consumed in order, and the mixture-pdf
+   path integrator of Shirley's "Ray Tracing: The Rest of Your Life" (50% light, 50% cosine);
+   scenes that packet_usable picks trace four paths at once through vector hit tests
+   (render_lanes.c) that return the scalar tests' answers bit for bit. */
+#include "render.h"
+
+#include <float.h>
+
+#include "geom/bvh.h"
+#include "render_path.h"
+
+/* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
+   isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
+   Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
+   follow their one direction. Scattered directions are unit vectors. Each segment's
+   interaction is path_scatter (render_path.h), which the packet's lanes (render_lanes.c) share;
+   inline, with mix and last made once per pixel. */
+static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng,
+                                                        uint64_t *rays, int mix, int last)
+{
+    const struct scene *sc = ctx->sc;
+    vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
+    for (int depth = 0; depth <= last; depth++) {
+        struct hit h;
+        ++*rays;
+        if (!bvh_hit(sc, r, HIT_EPS, DBL_MAX, &h)) {
+            L = v3_add(L, v3_mul(beta, sc->background));
+            break;
+        }
+        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, 1))
+            break;
+    }
+    return L;
+}
+
+void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st)
+{
+    struct rng pix_rng, path_rng;
+    const int w = ctx->rs.width, hgt = ctx->rs.height;
+    ctx->st = st;
+    rng_pixel(&pix_rng, ctx->rs.seed, x, y, 0);
+    rng_pixel(&ctx->light_rng, ctx->rs.seed, x, y, 1);
+    rng_pixel(&path_rng, ctx->rs.seed, x, y, 2);
+    for (int i = 0; i < ctx->sc->n_lights; i++)
+        ctx->lp[i].n = ctx->lp[i].next = 0;
+
+    const int timed = sampler_timed(st->pixels, ctx->pixel_set_s);
+    const double t0 = timed ? now_s() : 0;
+    size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
+    if (timed)
+        ctx->pixel_set_s = now_s() - t0;
+    st->sampler_s += ctx->pixel_set_s;
+
+    double sum[3] = {0, 0, 0};
+    size_t kept = 0;
+    uint64_t rays = 0, nonfinite = 0;
+    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    if (ctx->packet) {
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, last, sum, &kept, &nonfinite, &rays);
+    } else {
+        for (size_t s = 0; s < n; s++) {
+            struct pt2 p = ctx->pixel_pts[s];
+            ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
+            add_estimate(trace(ctx, &r, &path_rng, &rays, mix, last), sum, &kept, &nonfinite);
+        }
+    }
+    double inv = kept ? 1.0 / kept : 0;
+    for (int k = 0; k < 3; k++)
+        rgb[k] = (float)(sum[k] * inv);
+    st->pixels++;
+    st->samples += n;
+    st->rays += rays;
+    st->nonfinite += nonfinite;
+    if (n < st->spp_min)
+        st->spp_min = (uint32_t)n;
+    if (n > st->spp_max)
+        st->spp_max = (uint32_t)n;
+}

@@ -1,0 +1,48 @@
+/* render: the path integrator of RTOW "The Rest of Your Life" driven by our point samplers. */
+#ifndef RENDER_H
+#define RENDER_H
+
+#include <stdint.h>
+
+#include "geom/camera.h"
+#include "sample/sampler.h"
+#include "geom/scene.h"
+
+struct render_settings {
+    int width, height;
+    int max_depth;
+    uint64_t seed;
+    int light_sampling_off; /* 1: scatter by the material alone (cosine / phase); lights still emit */
+};
+
+/* Counters one process accumulates; summed by the parent. */
+struct render_stats {
+    uint64_t pixels;
+    uint64_t samples;    /* camera samples = camera rays */
+    uint64_t rays;       /* path segments traced (camera rays included) */
+    uint64_t light_sets; /* light point sets drawn */
+    uint64_t nonfinite;  /* samples dropped for NaN/inf */
+    uint32_t spp_min, spp_max;
+    double sampler_s; /* seconds spent drawing point sets */
+};
+
+struct render_ctx;
+
+/* A per-process render context over sc and cam (both must outlive it). pixel and light are the
+   job's samplers (light may be NULL when the scene has no disk or rect light or light
+   sampling is off); the context
+   allocates every buffer a pixel needs now, so render_pixel allocates nothing. NULL + e on
+   no memory. */
+struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *cam,
+                                  const struct render_settings *rs, struct sampler *pixel,
+                                  struct sampler *light, struct err *e);
+void render_ctx_free(struct render_ctx *ctx);
+
+/* Render pixel (x, y) (row 0 at the top) into rgb (linear); its value depends only on the job
+   seed, x and y. Adds to st. */
+void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st);
+
+void render_stats_init(struct render_stats *st);
+void render_stats_add(struct render_stats *into, const struct render_stats *from);
+
+#endif

@@ -1,0 +1,49 @@
+/* render_internal: the render context that render.c and render_ctx.c share. Internal to
+   common/. */
+#ifndef RENDER_INTERNAL_H
+#define RENDER_INTERNAL_H
+
+#include "geom/packet.h"
+#include "render.h"
+#include "base/rng.h"
+
+/* A light's current point set within the pixel, taken in a random order, then redrawn: the
+   points themselves (fresh poisson), the indices of a pool set's points, shifted when taken
+   (pooled poisson), or the cells whose points are made when taken (the others). */
+struct light_points {
+    struct pt2 *pts;
+    uint32_t *cells;
+    const struct pool_point *pool; /* pooled: the set and its shift */
+    double ox, oy, cos_oy, sin_oy;
+    size_t n, next;
+    int uses_points; /* shape_light_uses_points of the light, looked up once */
+};
+
+struct render_ctx {
+    const struct scene *sc;
+    const struct camera *cam;
+    struct render_settings rs;
+    struct sampler *pixel, *light;
+    enum sampler_kind light_kind;
+    struct sampler_grid light_grid; /* the light sampler's grid (uniform, jitter, random) */
+    struct pt2 *pixel_pts;
+    struct light_points *lp;               /* one per scene light */
+    uint32_t *identity;                    /* 0, 1, 2, ...: a fresh shuffle's start, copied */
+    const struct material **prim_material; /* each prim's material: one load after a hit */
+    struct rng light_rng;
+    struct render_stats *st;
+    /* the last timed point-set draw of each kind, pixels' and lights' (seconds; -1: none yet),
+       which sampler_s counts again for each draw after it that is not timed */
+    double pixel_set_s, light_set_s;
+    struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
+};
+
+/* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
+   time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started from the
+   pixel's path stream *base; mix: the scene's lights are sampled; last: max_depth - 1. Their
+   estimates go into sum and kept (add_estimate), the dropped ones into *nonfinite, their
+   segments into *rays. */
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
+                         int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays);
+
+#endif

@@ -1,0 +1,98 @@
+/* render_lanes: a pixel's camera samples four paths at a time, their rays traced together by
+   packet_hit (one-node scenes, packet_usable), each path advanced by shade, trace's loop body. */
+#include <float.h>
+
+#include "geom/bvh.h"
+#include "geom/packet.h"
+#include "render_path.h"
+
+/* A camera path in flight: its ray, weight, radiance so far, segments traced and its rng. */
+struct path {
+    ray r;
+    vec3 beta, L;
+    int depth;
+    struct rng rng;
+};
+
+/* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
+   with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
+   scene has lights sampled; last: the last segment's depth (max_depth - 1). trace's loop body:
+   both are path_scatter (render_path.h). */
+static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
+                                                       struct hit *h, int mix, int last)
+{
+    if (!got) {
+        pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
+        return 0;
+    }
+    return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix);
+}
+
+/* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
+   stream (*base) from the state rng_mix64(state + s), so that a sample's own draws do not depend
+   on which lane runs it or when (64 starts spread over the 2^64-long sequence, a few hundred
+   draws each: the chance of an overlap is below 2^-40). Its light points do: they come from the
+   pixel's shared sets (ctx->lp, ctx->light_rng), taken in the order the lanes ask for them. That
+   order is fixed by the pixel's own work, so a pixel still depends only on seed and pixel. */
+static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
+                              const struct rng *base)
+{
+    const int w = ctx->rs.width, hgt = ctx->rs.height;
+    pt->rng.inc = base->inc;
+    pt->rng.state = rng_mix64(base->state + s);
+    struct pt2 p = ctx->pixel_pts[s];
+    pt->r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &pt->rng);
+    pt->beta = v3(1, 1, 1);
+    pt->L = v3(0, 0, 0);
+    pt->depth = 0;
+}
+
+/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). */
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
+                         int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+{
+    struct path pt[PACKET_LANES] = {0};
+    const ray *rp[PACKET_LANES];
+    double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
+    size_t acc_kept = 0;
+    uint64_t acc_rays = 0, acc_nonfinite = 0;
+    int lanes = 0;
+    size_t next = 0;
+    for (int i = 0; i < PACKET_LANES; i++) {
+        rp[i] = &pt[i].r;
+        if (next < n) {
+            path_start(ctx, &pt[i], x, y, next++, base);
+            lanes |= 1 << i;
+        }
+    }
+    while (lanes) {
+        struct packet_hits ph;
+        int got;
+        if (lanes & (lanes - 1)) {
+            got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
+        } else { /* one lane left: its ray alone by the scalar traversal (the same hit) */
+            const int i = __builtin_ctz((unsigned)lanes);
+            got = bvh_hit_node(ctx->sc, rp[i], HIT_EPS, DBL_MAX, &ph.h[i]) << i;
+        }
+        /* unrolled: each lane's path and hit record at a fixed place in the frame, no index
+           arithmetic in shade's loads and stores (one copy of shade per lane) */
+#pragma GCC unroll 4
+        for (int i = 0; i < PACKET_LANES; i++) {
+            if (!(lanes >> i & 1))
+                continue;
+            ++acc_rays;
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, last))
+                continue;
+            add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
+            if (next < n)
+                path_start(ctx, &pt[i], x, y, next++, base);
+            else
+                lanes &= ~(1 << i);
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        sum[k] += acc[k];
+    *kept += acc_kept;
+    *nonfinite += acc_nonfinite;
+    *rays += acc_rays;
+}

@@ -1,0 +1,305 @@
+/* render_path: the integrator's steps that trace (render.c) and the packet's lanes
+   (render_lanes.c) share: the light points, the scattered directions, albedo and Schlick's
+   reflectance. Internal to common/; static, so each of the two keeps its own inlined copies. */
+#ifndef RENDER_PATH_H
+#define RENDER_PATH_H
+
+#include <string.h>
+#include <time.h>
+
+#include "render_internal.h"
+#include "geom/shape_light_inline.h"
+#include "geom/texture.h"
+
+static __attribute__((unused)) double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* The sidecar's sampler_s times one point-set draw in SAMPLER_TIME_EVERY of each kind (the
+   pixels' sets by st->pixels, the lights' by st->light_sets), and the first one (last_s < 0),
+   and counts each draw as the time of the last one timed: an estimate of the whole from a
+   systematic sample, not a total, and never more draws than were made (a draw timed and counted
+   eight times made a process of two pixels' share 4). Timing every draw cost two clock reads per
+   set, ~0.8% of final's time, more than drawing a jitter set. */
+#define SAMPLER_TIME_EVERY 8
+static inline int sampler_timed(uint64_t count, double last_s)
+{
+    return count % SAMPLER_TIME_EVERY == 0 || last_s < 0;
+}
+
+/* Pooled sets: the pool point each light would take next if it were the next light sampled
+   (the light rng's next draw picks it), fetched into the cache now. One of them is the next
+   point taken unless its set runs out first; without this its load, an L2 hit at the head of
+   the path's dependency chain, was about half of light_direction's time. */
+static inline __attribute__((always_inline)) void prefetch_next_points(const struct render_ctx *ctx)
+{
+    const uint64_t u = rng_peek_u32(&ctx->light_rng);
+    for (int i = 0; i < ctx->sc->n_lights; i++) {
+        const struct light_points *lp = &ctx->lp[i];
+        if (lp->next < lp->n) {
+            size_t j = lp->next + (size_t)((u * (uint32_t)(lp->n - lp->next)) >> 32);
+            __builtin_prefetch(&lp->pool[lp->cells[j]]);
+        }
+    }
+}
+
+/* Light i's points: next_light_point takes the next point of its current set, and
+   refill_light_points draws a fresh set when it runs out (out of line: once per set). A pixel uses
+   only part of a set, in order; a grid or Poisson set in generation order would then cover
+   only part of the light (a grid's first rows, a Poisson blob around its first point) and
+   bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle done lazily,
+   one swap per point taken. Every point consumed is then uniform over the light, and the set
+   still stratifies what is consumed of it. Uniform and jitter sets shuffle their cells and make
+   a cell's point when it is taken; a random set's points are independent, so any order of them
+   is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
+   point when it is taken. Only a fresh Poisson set is drawn whole. */
+static __attribute__((noinline, unused)) void refill_light_points(struct render_ctx *ctx,
+                                                                  struct light_points *lp)
+{
+    const enum sampler_kind kind = ctx->light_kind;
+    const int timed = sampler_timed(ctx->st->light_sets, ctx->light_set_s);
+    const double t0 = timed ? now_s() : 0;
+    if (lp->cells) {
+        lp->n = kind == SAMPLER_POISSON
+                    ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
+                    : sampler_cells(ctx->light);
+        if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
+            memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
+        if (kind == SAMPLER_POISSON) {
+            v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
+        }
+    } else {
+        lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
+    }
+    lp->next = 0;
+    if (timed)
+        ctx->light_set_s = now_s() - t0;
+    ctx->st->sampler_s += ctx->light_set_s;
+    ctx->st->light_sets++;
+}
+
+/* Inline with the grid kinds' cell point (sampler_grid_point): a light point costs no call. */
+static inline __attribute__((always_inline)) struct pt2 next_light_point(struct render_ctx *ctx, int i,
+                                                                         struct pt2 *turn, int *turned)
+{
+    struct light_points *lp = &ctx->lp[i];
+    const enum sampler_kind kind = ctx->light_kind;
+    if (lp->next >= lp->n)
+        refill_light_points(ctx, lp);
+    size_t k = lp->next++;
+    if (kind == SAMPLER_RANDOM)
+        return sampler_grid_point(&ctx->light_grid, 0, &ctx->light_rng);
+    size_t j = k + rng_below(&ctx->light_rng, (uint32_t)(lp->n - k));
+    if (lp->cells) {
+        uint32_t cell = lp->cells[j];
+        lp->cells[j] = lp->cells[k];
+        lp->cells[k] = cell;
+        if (kind == SAMPLER_POISSON) {
+            /* the shifted point's angle 2 pi (y + oy): the point's own turned by the shift's */
+            const struct pt2 t = lp->pool[cell].turn;
+            *turn = (struct pt2){t.x * lp->cos_oy - t.y * lp->sin_oy, t.y * lp->cos_oy + t.x * lp->sin_oy};
+            *turned = 1;
+            prefetch_next_points(ctx);
+            return sampler_shift(lp->pool[cell].p, lp->ox, lp->oy);
+        }
+        return sampler_grid_point(&ctx->light_grid, cell, &ctx->light_rng);
+    }
+    struct pt2 chosen = lp->pts[j];
+    lp->pts[j] = lp->pts[k];
+    lp->pts[k] = chosen;
+    return chosen;
+}
+
+static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
+{
+    for (;;) {
+        vec3 p = v3(2 * rng_uniform32(r) - 1, 2 * rng_uniform32(r) - 1, 2 * rng_uniform32(r) - 1);
+        if (v3_len2(p) < 1)
+            return p;
+    }
+}
+
+/* Cosine-weighted direction about n (Malley's method). */
+static __attribute__((unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
+{
+    double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
+    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
+    return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
+}
+
+/* A uniform direction: inline where trace scatters in a medium (path_scatter's media_inline),
+   a call elsewhere (GCC's choice; inline in the lanes it cost cornell-book3 7 instructions). */
+static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_inline(struct rng *r)
+{
+    double z = 1 - 2 * rng_uniform32(r), s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
+    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
+    return v3(cos_phi * s, sin_phi * s, z);
+}
+
+static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
+{
+    return uniform_sphere_direction_inline(r);
+}
+
+static __attribute__((noinline, unused)) vec3 texture_albedo(const struct scene *sc, const struct material *m,
+                                                             struct hit *h)
+{
+    const struct texture *t = &sc->textures[m->texture];
+    if (texture_needs_uv(t))
+        shape_uv(&sc->prims[h->prim], h);
+    return texture_value(sc, t, h->u, h->v, h->p);
+}
+
+/* A plain material's albedo inline, a texture's lookup out of line (the call and its frame cost
+   every untextured diffuse bounce ~20 instructions), on a copy of h, which the lookup fills with
+   the uv: h itself then stays in the caller's registers. */
+static inline __attribute__((always_inline)) vec3
+surface_albedo(const struct scene *sc, const struct material *m, const struct hit *h)
+{
+    if (m->texture < 0)
+        return m->albedo;
+    struct hit copy = *h;
+    return texture_albedo(sc, m, &copy);
+}
+
+static __attribute__((unused)) double reflectance(double cosine, double ref_idx)
+{
+    /* Schlick's approximation. */
+    double r0 = (1 - ref_idx) / (1 + ref_idx);
+    r0 *= r0;
+    double x = 1 - cosine, x2 = x * x;
+    return r0 + (1 - r0) * (x2 * x2 * x);
+}
+
+/* A unit direction toward one of the scene's lights, chosen uniformly; disk and rect lights
+   take their next point from the light sampler, a sphere its cone sample from rng. *light is
+   the chosen light's index and *pdf its density for the direction. */
+static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, vec3 o,
+                                                                  struct rng *rng, int *light, double *pdf)
+{
+    const struct scene *sc = ctx->sc;
+    int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
+    const struct prim *lp = &sc->prims[sc->lights[i]];
+    struct pt2 s, turn = {0, 0};
+    int turned = 0;
+    if (ctx->lp[i].uses_points) {
+        s = next_light_point(ctx, i, &turn, &turned);
+    } else {
+        s.x = rng_uniform32(rng);
+        s.y = rng_uniform32(rng);
+    }
+    *light = i;
+    return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
+}
+
+/* A camera sample's estimate c into the pixel's sums: kept when finite, else counted as dropped. */
+static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *nonfinite)
+{
+    if (!v3_finite(c)) {
+        ++*nonfinite;
+        return;
+    }
+    sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
+    ++*kept;
+}
+
+/* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
+   lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
+   (*L is then its estimate). at_last: this is the last segment, where only a light's emission
+   counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
+   mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
+   and mixture pdf) inline, as a surface's (path_scatter_as from trace: final's fog scatters on
+   most paths), else through calls (path_scatter, for the lanes, whose scenes
+   hold no media: inline in the lanes it cost checker ~1% and cornell-book3 7 instructions a
+   sample by the code it moved). Always inline: the caller's ray, weight and radiance stay in
+   its registers (a texture's lookup reads h through a copy). */
+static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                                 vec3 *L, struct rng *rng,
+                                                                 const struct hit *h, int at_last, int mix,
+                                                                 int media_inline)
+{
+    const struct scene *sc = ctx->sc;
+    const struct material *m = ctx->prim_material[h->prim];
+    if (at_last && m->type != MAT_LIGHT)
+        return 0;
+    vec3 dir;
+    if (m->type == MAT_LAMBERTIAN) {
+        vec3 albedo = surface_albedo(sc, m, h);
+        int light = -1;
+        double light_pdf = 0;
+        if (mix && rng_u32(rng) >> 31) {
+            dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+        } else {
+            onb frame = onb_from_w(h->n);
+            dir = cosine_direction(&frame, rng);
+        }
+        /* below the surface: the scattering pdf is 0 and so is the estimate */
+        double cosine = v3_dot(dir, h->n);
+        if (!(cosine > 0))
+            return 0;
+        double cosine_pdf = cosine / PI; /* once: GCC divided again after the mixture */
+        double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
+        if (!(pdf > 0))
+            return 0;
+        *beta = v3_mul(*beta, v3_scale(albedo, cosine_pdf / pdf));
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    switch (m->type) {
+    case MAT_LIGHT:
+        if (h->front)
+            *L = v3_add(*L, v3_mul(*beta, m->emit));
+        return 0;
+    case MAT_METAL:
+        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
+        if (v3_dot(dir, h->n) <= 0)
+            return 0;
+        *beta = v3_mul(*beta, m->albedo);
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    case MAT_DIELECTRIC: {
+        vec3 unit_dir = v3_unit(r->dir);
+        double ratio = h->front ? 1.0 / m->ior : m->ior;
+        double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
+        double sin_t = sqrt(1 - cos_t * cos_t);
+        dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
+                  ? v3_reflect(unit_dir, h->n)
+                  : v3_refract(unit_dir, h->n, ratio);
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    default: { /* MAT_ISOTROPIC */
+        vec3 albedo = surface_albedo(sc, m, h);
+        const double phase = 1 / (4 * PI);
+        double pdf = phase;
+        if (mix) {
+            int light = -1;
+            double light_pdf = 0;
+            dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                  : media_inline     ? uniform_sphere_direction_inline(rng)
+                                     : uniform_sphere_direction(rng);
+            pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
+                                      : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
+                  0.5 * phase;
+        } else {
+            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
+        }
+        *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
+        *r = (ray){h->p, dir, r->time};
+        return 1;
+    }
+    }
+}
+
+/* path_scatter_as with a medium's scatter through calls. */
+static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                              vec3 *L, struct rng *rng, const struct hit *h,
+                                                              int at_last, int mix)
+{
+    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, 0);
+}
+
+#endif

@@ -1,0 +1,293 @@
+/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk). */
+#include "sampler.h"
+
+#include "poisson.h"
+#include "base/vec3.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SAMPLER_SQRT2 1.41421356237309504880
+/* The pool's own rng stream, so pool sets never correlate with the caller's draws. */
+#define POOL_STREAM 0x706f6f6cULL
+
+struct sampler {
+    enum sampler_kind kind;
+    double threshold;
+    int grid_n;       /* uniform/jitter/random: n x n cells */
+    uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (sampler_grid_point) */
+    size_t capacity;  /* sampler_capacity(kind, threshold) */
+
+    struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
+
+    /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
+    int pool_size;
+    struct pt2 *pool_pts;    /* while the pool is drawn */
+    struct pool_point *pool; /* the points and their turns */
+    size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
+};
+
+static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson"};
+
+int sampler_kind_parse(const char *name, enum sampler_kind *out)
+{
+    for (int i = 0; i < (int)(sizeof kind_names / sizeof kind_names[0]); i++) {
+        if (name && strcmp(name, kind_names[i]) == 0) {
+            *out = (enum sampler_kind)i;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+const char *sampler_kind_name(enum sampler_kind kind)
+{
+    if ((int)kind < 0 || (int)kind >= (int)(sizeof kind_names / sizeof kind_names[0]))
+        return "unknown";
+    return kind_names[kind];
+}
+
+static int threshold_valid(double threshold)
+{
+    return threshold > 0.0 && threshold <= 100.0;
+}
+
+/* The 1e-9 keeps exact divisors exact: 100 / 0.1 is 999.9999999999999 in doubles. */
+static double grid_side_real(double threshold)
+{
+    return floor(100.0 / threshold + 1e-9);
+}
+
+/* Background-grid side for radius r: ceil(sqrt(2) / r), nudged up so that rounding can never
+   let two points at least r apart share a cell. */
+static double poisson_side_real(double threshold)
+{
+    return ceil(SAMPLER_SQRT2 * 100.0 / threshold * (1.0 + 1e-12));
+}
+
+int sampler_grid_side(double threshold)
+{
+    if (!threshold_valid(threshold))
+        return 0;
+    double n = grid_side_real(threshold);
+    return n >= (double)INT32_MAX ? INT32_MAX : (int)n;
+}
+
+/* side * side, saturating at SIZE_MAX. */
+static size_t side_squared(double side)
+{
+    if (side >= 4294967295.0 || side * side >= (double)SIZE_MAX)
+        return SIZE_MAX;
+    return (size_t)side * (size_t)side;
+}
+
+size_t sampler_capacity(enum sampler_kind kind, double threshold)
+{
+    if (!threshold_valid(threshold))
+        return 0;
+    if (kind == SAMPLER_POISSON)
+        return side_squared(poisson_side_real(threshold));
+    return side_squared(grid_side_real(threshold));
+}
+
+size_t sampler_set_capacity(const struct sampler *s)
+{
+    return s->capacity;
+}
+
+void sampler_free(struct sampler *s)
+{
+    if (!s)
+        return;
+    poisson_release(&s->bridson);
+    free(s->pool_pts);
+    free(s->pool);
+    free(s->pool_start);
+    free(s);
+}
+
+/* Out of line: the first quotient is almost always inside already, and a call in the loops
+   made GCC keep n and the points' values on the stack. */
+__attribute__((noinline)) double sampler_cell_repair(double v, int i, int n)
+{
+    while (v >= 1.0 || (int)(v * n) > i)
+        v = nextafter(v, 0.0);
+    while ((int)(v * n) < i)
+        v = nextafter(v, 1.0);
+    return v;
+}
+
+enum sampler_kind sampler_kind_of(const struct sampler *s)
+{
+    return s->kind;
+}
+
+uint32_t sampler_cells(const struct sampler *s)
+{
+    return s->kind == SAMPLER_POISSON ? 0 : (uint32_t)s->capacity;
+}
+
+struct sampler_grid sampler_grid_of(const struct sampler *s)
+{
+    return (struct sampler_grid){s->kind, s->grid_n, s->n_recip};
+}
+
+struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng)
+{
+    const struct sampler_grid g = sampler_grid_of(s);
+    return sampler_grid_point(&g, cell, rng);
+}
+
+size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    const int n = s->grid_n;
+    size_t count = 0;
+    switch (s->kind) {
+    case SAMPLER_UNIFORM:
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                out[count++] = (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
+        return count;
+    case SAMPLER_JITTER: {
+        struct rng r = *rng; /* a local state: out may alias *rng, so GCC stored it per point */
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                double u, v;
+                rng_uniform_pair(&r, &u, &v);
+                out[count++] = (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
+            }
+        *rng = r;
+        return count;
+    }
+    case SAMPLER_RANDOM:
+        for (size_t k = 0; k < (size_t)n * (size_t)n; k++) {
+            double u, v;
+            rng_uniform_pair(rng, &u, &v);
+            out[count++] = (struct pt2){u, v};
+        }
+        return count;
+    case SAMPLER_POISSON:
+        break;
+    }
+    if (s->pool_size <= 0)
+        return poisson_draw(&s->bridson, rng, out, 0);
+
+    const struct pool_point *src;
+    double ox, oy;
+    count = sampler_pool_set(s, rng, &src, &ox, &oy);
+    for (size_t k = 0; k < count; k++)
+        out[k] = sampler_shift(src[k].p, ox, oy);
+    return count;
+}
+
+int sampler_is_pooled(const struct sampler *s)
+{
+    return s->kind == SAMPLER_POISSON && s->pool_size > 0;
+}
+
+/* Cranley-Patterson rotation of a pool set: a toroidal set stays Poisson-disk (distances modulo
+   1 are unchanged) under any shift modulo 1. */
+size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pool_point **pts, double *ox,
+                        double *oy)
+{
+    if (s->kind != SAMPLER_POISSON || s->pool_size <= 0)
+        return 0;
+    uint32_t pick = rng_below(rng, (uint32_t)s->pool_size);
+    *ox = rng_uniform(rng);
+    *oy = rng_uniform(rng);
+    *pts = s->pool + s->pool_start[pick];
+    return s->pool_start[pick + 1] - s->pool_start[pick];
+}
+
+/* Draw the pool's toroidal sets from pool_seed into one packed array. */
+static int pool_fill(struct sampler *s, uint64_t pool_seed, struct err *e)
+{
+    struct rng pool_rng;
+    rng_seed(&pool_rng, pool_seed, POOL_STREAM);
+    struct pt2 *scratch = malloc(s->capacity * sizeof *scratch);
+    s->pool_start = malloc(((size_t)s->pool_size + 1) * sizeof *s->pool_start);
+    size_t used = 0, room = 0;
+    if (!scratch || !s->pool_start)
+        goto fail;
+    s->pool_start[0] = 0;
+    for (int p = 0; p < s->pool_size; p++) {
+        size_t count = poisson_draw(&s->bridson, &pool_rng, scratch, 1);
+        if (used + count > room) {
+            size_t grown = room ? room * 2 : count * (size_t)s->pool_size + count / 8 + 1;
+            while (grown < used + count)
+                grown *= 2;
+            struct pt2 *bigger = realloc(s->pool_pts, grown * sizeof *bigger);
+            if (!bigger)
+                goto fail;
+            s->pool_pts = bigger;
+            room = grown;
+        }
+        memcpy(s->pool_pts + used, scratch, count * sizeof *scratch);
+        used += count;
+        s->pool_start[p + 1] = used;
+    }
+    s->pool = malloc(used * sizeof *s->pool);
+    if (!s->pool)
+        goto fail;
+    for (size_t k = 0; k < used; k++) {
+        s->pool[k].p = s->pool_pts[k];
+        v3_sincos_turn(s->pool_pts[k].y, &s->pool[k].turn.y, &s->pool[k].turn.x);
+    }
+    free(s->pool_pts);
+    s->pool_pts = NULL;
+    free(scratch);
+    return 0;
+fail:
+    free(scratch);
+    return err_set(e, NULL, 0, 0, "out of memory for a pool of %d Poisson sets", s->pool_size);
+}
+
+struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
+                            struct err *e)
+{
+    if ((int)kind < SAMPLER_UNIFORM || (int)kind > SAMPLER_POISSON) {
+        err_set(e, NULL, 0, 0, "sampler: unknown kind %d", (int)kind);
+        return NULL;
+    }
+    if (!threshold_valid(threshold)) {
+        err_set(e, NULL, 0, 0, "threshold: must be a number in (0, 100], got %g", threshold);
+        return NULL;
+    }
+    size_t capacity = sampler_capacity(kind, threshold);
+    if (capacity > SAMPLER_MAX_POINTS) {
+        if (capacity == SIZE_MAX)
+            err_set(e, NULL, 0, 0, "threshold %g would make too many points per set (limit %d)", threshold,
+                    SAMPLER_MAX_POINTS);
+        else
+            err_set(e, NULL, 0, 0, "threshold %g would need %zu %s per set (limit %d)", threshold, capacity,
+                    kind == SAMPLER_POISSON ? "Bridson grid cells" : "points", SAMPLER_MAX_POINTS);
+        return NULL;
+    }
+
+    struct sampler *s = calloc(1, sizeof *s);
+    if (!s)
+        goto oom;
+    s->kind = kind;
+    s->threshold = threshold;
+    s->grid_n = sampler_grid_side(threshold);
+    s->n_recip = ((uint64_t)1 << 42) / (uint64_t)s->grid_n + 1;
+    s->capacity = capacity;
+    if (kind != SAMPLER_POISSON)
+        return s;
+
+    if (poisson_init(&s->bridson, threshold / 100.0, (int)poisson_side_real(threshold), capacity) < 0)
+        goto oom;
+    if (pool_size > 0) {
+        s->pool_size = pool_size;
+        if (pool_fill(s, pool_seed, e) != 0)
+            goto fail;
+    }
+    return s;
+oom:
+    err_set(e, NULL, 0, 0, "out of memory for a %s sampler at threshold %g", sampler_kind_name(kind),
+            threshold);
+fail:
+    sampler_free(s);
+    return NULL;
+}

@@ -1,0 +1,136 @@
+/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk). */
+#ifndef SAMPLER_H
+#define SAMPLER_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "base/err.h"
+#include "base/rng.h"
+
+struct pt2 {
+    double x, y;
+};
+
+enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON };
+
+/* Largest set a job may ask for, per pixel or per light draw. */
+#define SAMPLER_MAX_POINTS 4000000
+
+/* Name <-> kind. parse returns 0, or -1 for an unknown name. */
+int sampler_kind_parse(const char *name, enum sampler_kind *out);
+const char *sampler_kind_name(enum sampler_kind kind);
+
+/* n = floor(100 / threshold): the grid side of uniform/jitter/random. */
+int sampler_grid_side(double threshold);
+
+/* Upper bound on the size of one set of (kind, threshold): n*n for the grid kinds, the
+   background-grid cell count for poisson. Fits in size_t for any threshold in (0, 100]. */
+size_t sampler_capacity(enum sampler_kind kind, double threshold);
+
+struct sampler;
+
+/* A sampler for (kind, threshold in (0,100]). pool_size > 0 with kind poisson draws that many
+   toroidal Poisson sets once from pool_seed (see sampler_draw). Returns NULL and fills e on a bad
+   threshold (e.g. a set over SAMPLER_MAX_POINTS) or out of memory. Free with sampler_free. */
+struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
+                            struct err *e);
+void sampler_free(struct sampler *s);
+
+/* Capacity an `out` array passed to sampler_draw must have. */
+size_t sampler_set_capacity(const struct sampler *s);
+
+/* The kind s was made with. */
+enum sampler_kind sampler_kind_of(const struct sampler *s);
+
+/* Sets point by point, for a caller that consumes a set in random order and often only part
+   of it (a light's points within one pixel). A uniform, jitter or random set has one point per
+   cell of an n x n grid, and that point depends on its cell alone (random: on nothing), so it
+   can be made when taken instead of drawing the whole set: sampler_cells is n * n (0 for
+   poisson, whose sets must be drawn whole), and sampler_cell_point makes cell c's point,
+   distributed exactly as in sampler_draw's set. */
+uint32_t sampler_cells(const struct sampler *s);
+struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng);
+
+/* What sampler_cell_point needs of a uniform, jitter or random sampler, for a caller that makes
+   cell points inline (sampler_grid_point: no call, no lookups through the sampler): its kind,
+   its n x n grid, and 2^42 / n + 1, which gives a cell's row as a multiply and shift. */
+struct sampler_grid {
+    enum sampler_kind kind;
+    int n;
+    uint64_t n_recip;
+};
+struct sampler_grid sampler_grid_of(const struct sampler *s);
+
+/* (i + u) / n's rounding repair, out of line: v moved to the last double inside cell i of n. */
+double sampler_cell_repair(double v, int i, int n);
+
+/* (i + u) / n kept strictly inside cell i of n (and so below 1) despite rounding. */
+static inline double sampler_cell_coord(int i, double u, int n)
+{
+    double v = (i + u) / n;
+    if (v < 1.0 && (int)(v * n) == i)
+        return v;
+    return sampler_cell_repair(v, i, n);
+}
+
+/* sampler_cell_point for g = sampler_grid_of(s): the same point, the same draws. cell / n without
+   a division: cell < 2^22 (SAMPLER_MAX_POINTS) and n < 2^20, so cell * n_recip / 2^42 exceeds
+   cell / n by less than 2^-20 < 1 / n, never reaching the next integer. */
+static inline struct pt2 sampler_grid_point(const struct sampler_grid *g, uint32_t cell, struct rng *rng)
+{
+    const int n = g->n;
+    const int j = (int)((cell * g->n_recip) >> 42), i = (int)cell - j * n;
+    double u, v;
+    switch (g->kind) {
+    case SAMPLER_UNIFORM:
+        return (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
+    case SAMPLER_JITTER:
+        rng_uniform_pair(rng, &u, &v);
+        return (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
+    default:
+        rng_uniform_pair(rng, &u, &v);
+        return (struct pt2){u, v};
+    }
+}
+
+/* Shift p by o modulo 1, staying in [0, 1) whatever the rounding of the sum (inline: the
+   pooled light points take one per point). */
+static inline double sampler_shift_unit(double p, double o)
+{
+    /* v - 1 when v >= 1 by masking 1.0's bits, not by a branch (GCC makes one of `?:` here):
+       the wrap is a coin flip, and a light point's branch would wait on the pool's load */
+    double v = p + o, one = 1.0, d;
+    uint64_t bits;
+    memcpy(&bits, &one, sizeof bits);
+    bits &= -(uint64_t)(v >= 1.0);
+    memcpy(&d, &bits, sizeof d);
+    v -= d;
+    return v >= 1.0 ? 0.0 : v;
+}
+
+/* A pooled Poisson set without copying it (s poisson with a pool, else 0): the set sampler_draw
+   would return for this rng is (*pts)[0 .. count).p each shifted by sampler_shift(p, *ox, *oy);
+   returns count and consumes rng exactly as sampler_draw does. */
+int sampler_is_pooled(const struct sampler *s);
+/* A pooled point with cos and sin of 2 pi p.y in turn (x, y), for a caller that maps y to an
+   angle (a disk light's point): the shifted point's angle 2 pi (y + oy) is then turn rotated by
+   2 pi oy, with no sine series per point. Both in one 32-byte record: one cache line a point. */
+struct pool_point {
+    struct pt2 p, turn;
+};
+size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pool_point **pts, double *ox,
+                        double *oy);
+static inline struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
+{
+    return (struct pt2){sampler_shift_unit(p.x, ox), sampler_shift_unit(p.y, oy)};
+}
+
+/* Draw one set into out, consuming rng; returns the count (>= 1). Allocates nothing: the
+   sampler's workspace is reused, so one sampler serves one thread at a time. With a pool,
+   the set is one of the pool's, picked by rng and shifted by an rng offset modulo 1
+   (Cranley-Patterson rotation). */
+size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out);
+
+#endif

@@ -1,0 +1,403 @@
+/* scene_load: validating a scene file and building the renderer's scene from it. */
+#include "scene_load.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "scene_loader.h"
+#include "yget.h"
+
+int loader_find_name(const struct names *nm, const char *s)
+{
+    for (int i = 0; i < nm->n; i++)
+        if (!strcmp(nm->name[i], s))
+            return i;
+    return -1;
+}
+
+int loader_unknown(struct loader *L, yaml_node_t *v, const char *what, const char *s,
+                   const char *const *names, const char *expected)
+{
+    const char *near = ystr_nearest(s, names, -1);
+    if (near)
+        return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (did you mean \"%s\"?)", what, s, near);
+    return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (expected %s)", what, s, expected);
+}
+
+int loader_no_name(struct loader *L, yaml_node_t *v, const char *key, const char *s, const struct names *nm,
+                   const char *section)
+{
+    const char *near = ystr_nearest(s, nm->name, nm->n);
+    if (near)
+        return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s (did you mean \"%s\"?)", key, key,
+                         s, section, near);
+    return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s", key, key, s, section);
+}
+
+int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out)
+{
+    if (yget_vec3(&L->d, v, key, out, L->e) < 0)
+        return -1;
+    if (out->x < 0 || out->y < 0 || out->z < 0)
+        return ydoc_fail(&L->d, v, L->e, "%s: colour components must be >= 0", key);
+    return 0;
+}
+
+static const char *const camera_keys[] = {"lookfrom",   "lookat",  "vup",    "vfov", "aperture",
+                                          "focus_dist", "shutter", "aspect", NULL};
+
+static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
+{
+    struct camera_desc *c = &out->camera;
+    *c = (struct camera_desc){.vup = v3(0, 1, 0), .vfov_deg = 40, .focus_dist = 10};
+    out->aspect = 1;
+    if (ymap_check(&L->d, n, camera_keys, "camera", L->e) < 0)
+        return -1;
+    yaml_node_t *v;
+    const char *need[] = {"lookfrom", "lookat", "vfov"};
+    for (int i = 0; i < 3; i++)
+        if (!ymap_get(&L->d, n, need[i]))
+            return ymap_missing(&L->d, n, need[i], L->e, "%s: missing in camera", need[i]);
+    if (yget_vec3(&L->d, ymap_get(&L->d, n, "lookfrom"), "lookfrom", &c->lookfrom, L->e) < 0 ||
+        yget_vec3(&L->d, ymap_get(&L->d, n, "lookat"), "lookat", &c->lookat, L->e) < 0)
+        return -1;
+    if ((v = ymap_get(&L->d, n, "vup")) && yget_vec3(&L->d, v, "vup", &c->vup, L->e) < 0)
+        return -1;
+    v = ymap_get(&L->d, n, "vfov");
+    if (yget_double(&L->d, v, "vfov", &c->vfov_deg, L->e) < 0)
+        return -1;
+    if (!(c->vfov_deg > 0 && c->vfov_deg < 180))
+        return ydoc_fail(&L->d, v, L->e, "vfov: must be in (0, 180) degrees, got %g", c->vfov_deg);
+    if ((v = ymap_get(&L->d, n, "aperture"))) {
+        if (yget_double(&L->d, v, "aperture", &c->aperture, L->e) < 0)
+            return -1;
+        if (c->aperture < 0)
+            return ydoc_fail(&L->d, v, L->e, "aperture: must be >= 0, got %g", c->aperture);
+    }
+    if ((v = ymap_get(&L->d, n, "focus_dist"))) {
+        if (yget_double(&L->d, v, "focus_dist", &c->focus_dist, L->e) < 0)
+            return -1;
+        if (!(c->focus_dist > 0))
+            return ydoc_fail(&L->d, v, L->e, "focus_dist: must be > 0, got %g", c->focus_dist);
+    }
+    double sh[2] = {0, 1};
+    if ((v = ymap_get(&L->d, n, "shutter"))) {
+        if (yget_vec2(&L->d, v, "shutter", sh, L->e) < 0)
+            return -1;
+        if (sh[1] < sh[0])
+            return ydoc_fail(&L->d, v, L->e, "shutter: must be [open, close] with open <= close");
+    }
+    c->shutter0 = sh[0];
+    c->shutter1 = sh[1];
+    if ((v = ymap_get(&L->d, n, "aspect"))) {
+        if (yget_double(&L->d, v, "aspect", &out->aspect, L->e) < 0)
+            return -1;
+        if (!(out->aspect >= 0.01 && out->aspect <= 100))
+            return ydoc_fail(&L->d, v, L->e, "aspect: must be in [0.01, 100], got %g", out->aspect);
+    }
+    struct camera probe;
+    if (camera_init(&probe, c, out->aspect, L->e) < 0)
+        return ydoc_fail(&L->d, n, L->e, "camera: %s", L->e->msg);
+    return 0;
+}
+
+static const char *const texture_types[] = {"checker", "noise", "image", NULL};
+static const char *const material_types[] = {"lambertian", "metal", "dielectric", "light", "isotropic", NULL};
+
+static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL};
+static const char *const noise_keys[] = {"type", "scale", NULL};
+static const char *const image_keys[] = {"type", "file", NULL};
+
+static int load_checker(struct loader *L, yaml_node_t *n, struct texture *t)
+{
+    yaml_node_t *v;
+    if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
+        return -1;
+    t->type = TEX_CHECKER;
+    t->scale = 10;
+    const char *need[] = {"odd", "even"};
+    for (int i = 0; i < 2; i++)
+        if (!ymap_get(&L->d, n, need[i]))
+            return ymap_missing(&L->d, n, need[i], L->e, "%s: missing in checker texture", need[i]);
+    if (loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
+        loader_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
+        return -1;
+    if ((v = ymap_get(&L->d, n, "scale"))) {
+        if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
+            return -1;
+        if (!(t->scale > 0))
+            return ydoc_fail(&L->d, v, L->e, "scale: must be > 0, got %g", t->scale);
+    }
+    return 0;
+}
+
+static int load_noise(struct loader *L, yaml_node_t *n, struct texture *t)
+{
+    yaml_node_t *v;
+    if (ymap_check(&L->d, n, noise_keys, "noise texture", L->e) < 0)
+        return -1;
+    t->type = TEX_NOISE;
+    t->scale = 1;
+    if ((v = ymap_get(&L->d, n, "scale"))) {
+        if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
+            return -1;
+        if (!(t->scale > 0 && t->scale <= 1e6))
+            return ydoc_fail(&L->d, v, L->e, "scale: must be in (0, 1e6], got %g", t->scale);
+    }
+    if (scene_use_perlin(L->sc) < 0)
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    return 0;
+}
+
+/* Where an image texture's `file` is: relative to the scene file's directory unless absolute. */
+static void texture_path(const char *scene, const char *file, char *path, size_t n)
+{
+    const char *slash = strrchr(scene, '/');
+    if (file[0] == '/' || !slash)
+        snprintf(path, n, "%s", file);
+    else
+        snprintf(path, n, "%.*s/%s", (int)(slash - scene), scene, file);
+}
+
+/* An image texture: `file` relative to the scene file, PNG or PPM, at most
+   TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
+static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
+{
+    yaml_node_t *v;
+    const char *file;
+    if (ymap_check(&L->d, n, image_keys, "image texture", L->e) < 0)
+        return -1;
+    if (!(v = ymap_get(&L->d, n, "file")))
+        return ymap_missing(&L->d, n, "file", L->e, "file: missing in image texture");
+    if (yget_string(&L->d, v, "file", &file, L->e) < 0)
+        return -1;
+    char path[1024];
+    texture_path(L->d.file, file, path, sizeof path);
+    struct stat st;
+    if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+        return ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
+    if (st.st_size > TEXTURE_MAX_BYTES)
+        return ydoc_fail(&L->d, v, L->e, "file: %s is %lld bytes, over the texture limit of %d", path,
+                         (long long)st.st_size, TEXTURE_MAX_BYTES);
+    struct rgb8 img;
+    struct err ie;
+    if (imgio_read(path, &img, &ie) < 0)
+        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path, ie.msg);
+    if ((long)img.w * img.h > TEXTURE_MAX_PIXELS) {
+        ydoc_fail(&L->d, v, L->e, "file: texture %s is %dx%d, over the limit of %ld pixels", path, img.w,
+                  img.h, (long)TEXTURE_MAX_PIXELS);
+        image_free(&img);
+        return -1;
+    }
+    t->type = TEX_IMAGE;
+    if ((t->image = scene_add_image(L->sc, &img)) < 0) {
+        image_free(&img);
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    }
+    return 0;
+}
+
+static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
+{
+    const char *type;
+    yaml_node_t *tn = ymap_get(&L->d, n, "type");
+    if (!tn)
+        return ymap_missing(&L->d, n, "type", L->e, "type: missing in texture \"%s\"", yscalar(k));
+    if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
+        return -1;
+    struct texture t = {0};
+    int rc;
+    if (!strcmp(type, "checker"))
+        rc = load_checker(L, n, &t);
+    else if (!strcmp(type, "noise"))
+        rc = load_noise(L, n, &t);
+    else if (!strcmp(type, "image"))
+        rc = load_image(L, n, &t);
+    else
+        return loader_unknown(L, tn, "type: unknown texture type", type, texture_types,
+                              "checker, noise or image");
+    if (rc < 0)
+        return -1;
+    if (scene_add_texture(L->sc, &t) < 0)
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    return 0;
+}
+
+static const char *const material_keys[] = {"type", "albedo", "texture", "fuzz", "ior", "emit", NULL};
+
+static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
+{
+    if (ymap_check(&L->d, n, material_keys, "material", L->e) < 0)
+        return -1;
+    const char *type, *s;
+    yaml_node_t *tn = ymap_get(&L->d, n, "type"), *v;
+    if (!tn)
+        return ymap_missing(&L->d, n, "type", L->e, "type: missing in material \"%s\"", yscalar(k));
+    if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
+        return -1;
+    struct material m = {.texture = -1, .albedo = v3(1, 1, 1), .ior = 1.5};
+    /* Which keys each type takes: albedo|texture for lambertian, etc. */
+    const char *allowed;
+    if (!strcmp(type, "lambertian")) {
+        m.type = MAT_LAMBERTIAN;
+        allowed = "albedo texture";
+    } else if (!strcmp(type, "metal")) {
+        m.type = MAT_METAL;
+        allowed = "albedo fuzz";
+    } else if (!strcmp(type, "dielectric")) {
+        m.type = MAT_DIELECTRIC;
+        allowed = "ior";
+    } else if (!strcmp(type, "light")) {
+        m.type = MAT_LIGHT;
+        allowed = "emit";
+    } else if (!strcmp(type, "isotropic")) {
+        m.type = MAT_ISOTROPIC;
+        allowed = "albedo texture";
+    } else {
+        return loader_unknown(L, tn, "type: unknown material type", type, material_types,
+                              "lambertian, metal, dielectric, light or isotropic");
+    }
+    yaml_node_t *kk;
+    for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
+        const char *name = yscalar(kk);
+        if (strcmp(name, "type") && !strstr(allowed, name))
+            return ydoc_fail(&L->d, kk, L->e, "%s: not a key of a %s material (it takes: %s)", name, type,
+                             allowed);
+    }
+    if ((v = ymap_get(&L->d, n, "albedo")) && loader_color(L, v, "albedo", &m.albedo) < 0)
+        return -1;
+    if ((v = ymap_get(&L->d, n, "texture"))) {
+        if (ymap_get(&L->d, n, "albedo"))
+            return ydoc_fail(&L->d, v, L->e, "texture: give albedo or texture, not both");
+        if (yget_string(&L->d, v, "texture", &s, L->e) < 0)
+            return -1;
+        if ((m.texture = loader_find_name(&L->tex, s)) < 0)
+            return loader_no_name(L, v, "texture", s, &L->tex, "textures");
+    } else if ((m.type == MAT_LAMBERTIAN || m.type == MAT_ISOTROPIC) && !ymap_get(&L->d, n, "albedo")) {
+        return ymap_missing(&L->d, n, "albedo", L->e, "albedo: missing in %s material \"%s\"", type,
+                            yscalar(k));
+    }
+    if ((v = ymap_get(&L->d, n, "fuzz"))) {
+        if (yget_double(&L->d, v, "fuzz", &m.fuzz, L->e) < 0)
+            return -1;
+        if (m.fuzz < 0 || m.fuzz > 1)
+            return ydoc_fail(&L->d, v, L->e, "fuzz: must be in [0, 1], got %g", m.fuzz);
+    }
+    if ((v = ymap_get(&L->d, n, "ior"))) {
+        if (yget_double(&L->d, v, "ior", &m.ior, L->e) < 0)
+            return -1;
+        if (!(m.ior >= 1 && m.ior <= 10))
+            return ydoc_fail(&L->d, v, L->e, "ior: must be in [1, 10], got %g", m.ior);
+    }
+    if (m.type == MAT_LIGHT) {
+        if (!(v = ymap_get(&L->d, n, "emit")))
+            return ymap_missing(&L->d, n, "emit", L->e, "emit: missing in light material \"%s\"", yscalar(k));
+        if (loader_color(L, v, "emit", &m.emit) < 0)
+            return -1;
+    }
+    if (scene_add_material(L->sc, &m) < 0)
+        return ydoc_fail(&L->d, n, L->e, "out of memory");
+    return 0;
+}
+
+/* Load a named mapping section (textures or materials). */
+static int load_section(struct loader *L, yaml_node_t *sec, const char *what, struct names *nm,
+                        int (*one)(struct loader *, yaml_node_t *, yaml_node_t *))
+{
+    if (!sec)
+        return 0;
+    if (sec->type != YAML_MAPPING_NODE)
+        return ydoc_fail(&L->d, sec, L->e, "%s: must be a mapping of name: {...}", what);
+    yaml_node_t *k, *v;
+    for (int i = 0; ymap_pair(&L->d, sec, i, &k, &v); i++) {
+        const char *name = yscalar(k);
+        if (!name || !*name)
+            return ydoc_fail(&L->d, k, L->e, "%s: names must be plain strings", what);
+        if (loader_find_name(nm, name) >= 0)
+            return ydoc_fail(&L->d, k, L->e, "%s: duplicate name \"%.40s\"", what, name);
+        if (nm->n >= 256)
+            return ydoc_fail(&L->d, k, L->e, "%s: more than 256 entries", what);
+        if (v->type != YAML_MAPPING_NODE)
+            return ydoc_fail(&L->d, v, L->e, "%s: \"%.40s\" must be a mapping {type: ...}", what, name);
+        if (one(L, k, v) < 0)
+            return -1;
+        nm->name[nm->n++] = name;
+    }
+    return 0;
+}
+
+static const char *const scene_keys[] = {"camera", "background", "textures", "materials", "objects", NULL};
+
+int scene_load(const char *path, struct scene_file *out, struct err *e)
+{
+    struct loader L = {.e = e};
+    memset(out, 0, sizeof *out);
+    int rc = -1;
+    if (ydoc_load(&L.d, path, e) < 0)
+        goto done;
+    if (!(L.sc = scene_new())) {
+        err_set(e, path, 0, 0, "out of memory");
+        goto done;
+    }
+    yaml_node_t *root = ydoc_root(&L.d), *v;
+    if (ymap_check(&L.d, root, scene_keys, "scene", e) < 0)
+        goto done;
+    if (!(v = ymap_get(&L.d, root, "camera"))) {
+        ymap_missing(&L.d, root, "camera", e, "camera: missing in scene");
+        goto done;
+    }
+    if (load_camera(&L, v, out) < 0)
+        goto done;
+    L.cam = &out->camera;
+    if ((v = ymap_get(&L.d, root, "background")) && loader_color(&L, v, "background", &L.sc->background) < 0)
+        goto done;
+    if (load_section(&L, ymap_get(&L.d, root, "textures"), "textures", &L.tex, load_texture) < 0 ||
+        load_section(&L, ymap_get(&L.d, root, "materials"), "materials", &L.mat, load_material) < 0)
+        goto done;
+    if (load_objects(&L, ymap_get(&L.d, root, "objects"), root) < 0)
+        goto done;
+    if (scene_finish(L.sc, e) < 0) {
+        e->line = 0;
+        snprintf(e->file, sizeof e->file, "%s", path);
+        goto done;
+    }
+    out->scene = L.sc;
+    L.sc = NULL;
+    rc = 0;
+done:
+    scene_free(L.sc);
+    ydoc_free(&L.d);
+    return rc;
+}
+
+void scene_file_free(struct scene_file *sf)
+{
+    scene_free(sf->scene);
+    sf->scene = NULL;
+}
+
+int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
+{
+    if (fileio_hash(path, YDOC_MAX_BYTES, h, e) < 0)
+        return -1;
+    struct ydoc d;
+    struct err ignored; /* a scene that does not parse is scene_load's to report */
+    if (ydoc_load(&d, path, &ignored) < 0)
+        return 0;
+    yaml_node_t *textures = ymap_get(&d, ydoc_root(&d), "textures"), *k, *v;
+    for (int i = 0; textures && ymap_pair(&d, textures, i, &k, &v); i++) {
+        yaml_node_t *type = ymap_get(&d, v, "type"), *file = ymap_get(&d, v, "file");
+        const char *t = type ? yscalar(type) : NULL, *f = file ? yscalar(file) : NULL;
+        if (!t || !f || strcmp(t, "image") != 0)
+            continue;
+        char tpath[1024];
+        texture_path(path, f, tpath, sizeof tpath);
+        fileio_hash(tpath, TEXTURE_MAX_BYTES, h, &ignored); /* unreadable: scene_load says so */
+    }
+    ydoc_free(&d);
+    return 0;
+}

@@ -1,0 +1,26 @@
+/* scene_load: a scene YAML file (SPEC "Scene file") into a struct scene and a camera. */
+#ifndef SCENE_LOAD_H
+#define SCENE_LOAD_H
+
+#include <stdint.h>
+
+#include "geom/camera.h"
+#include "geom/scene.h"
+
+struct scene_file {
+    struct scene *scene; /* owned */
+    struct camera_desc camera;
+    double aspect; /* camera aspect (width / height), default 1 */
+};
+
+/* Load path into out. 0, or -1 with e = "file:line:col: key: message"; nothing to free then. */
+int scene_load(const char *path, struct scene_file *out, struct err *e);
+void scene_file_free(struct scene_file *sf);
+
+/* Fold into *h what a render of the scene at path reads: the scene file's bytes, then the bytes
+   of each image texture it names (so a changed texture makes outputs stale). 0, or -1 with e
+   when the scene file cannot be read; a scene that does not parse, or a texture that cannot be
+   read, adds nothing (scene_load reports those). */
+int scene_hash_inputs(const char *path, uint64_t *h, struct err *e);
+
+#endif

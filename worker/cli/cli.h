@@ -1,0 +1,26 @@
+/* cli: the command line's options: `--opt=VALUE` split, a subcommand after leading options moved
+   first, and each option with a value checked into struct queue_opts (usage errors on stderr). */
+#ifndef CLI_H
+#define CLI_H
+
+#include "farm/queue.h"
+
+/* 1 when a is an option that takes a value (--out, --processes, --queue, --poll, --retries,
+   --lease-timeout, --part). */
+int cli_takes_value(const char *a);
+
+/* One option with a value (--out, --processes, --queue, --poll, --retries, --lease-timeout,
+   --part) into q. 0, or -1 after printing the usage error. */
+int cli_option_value(const char *a, const char *v, struct queue_opts *q);
+
+/* `--out=DIR` as `--out DIR` (GNU style, as pbrt and Slurm take it too) for every option that
+   takes a value, diff's included; a job file's name is never split, nor anything after "--".
+   The new argv (argc grown by one per split) is malloc'ed; NULL when out of memory. */
+char **cli_split_equals(int *argc, char **argv);
+
+/* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
+   subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
+   After --help or --version nothing moves: those answer whatever follows. */
+void cli_hoist_subcommand(int argc, char **argv);
+
+#endif

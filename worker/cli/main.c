@@ -1,0 +1,324 @@
+/* main: the `worker` command line (SPEC "Command line"): parse, dispatch, print, exit. */
+#include <signal.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "study/compare.h"
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "job/job.h"
+#include "image/metrics.h"
+#include "points.h"
+#include "farm/part.h"
+#include "farm/queue.h"
+#include "job/run.h"
+
+static const char usage[] =
+    "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
+    "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
+    "       worker merge JOB.yaml              merge a job's part files into its image\n"
+    "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
+    "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
+    "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
+    "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
+    "       worker --help | --version\n"
+    "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
+    "         --force (render even when the outputs are current)\n"
+    "         --opt=VALUE works as --opt VALUE; -- ends the options\n"
+    "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n";
+
+static const char help[] =
+    "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
+    "\n"
+    "Each job file (YAML) names a scene, a pixel sampler (uniform | jitter | random | poisson)\n"
+    "and its threshold (the minimum spacing in a 100x100 domain: 1 gives 10000 samples per\n"
+    "pixel for uniform/jitter/random, about 6200 for poisson). Rows are split over forked\n"
+    "processes; the image (PNG or PPM) and a JSON stats sidecar land in OUT/<job name>/.\n"
+    "\n"
+    "exit status: 0 all jobs done, 1 a job failed while rendering, 2 bad usage or bad input.\n";
+
+static void print_err(const struct err *e)
+{
+    char buf[2048];
+    err_format(e, buf, sizeof buf);
+    fprintf(stderr, "%s\n", buf);
+}
+
+/* A finite decimal number (not nan, inf or hex, which strtod takes too). 0, or -1. */
+static int parse_double_arg(const char *s, double *out)
+{
+    char *end;
+    *out = strtod(s, &end);
+    return *s && !*end && isfinite(*out) && strspn(s, "0123456789+-.eE") == strlen(s) ? 0 : -1;
+}
+
+static int diff_main(int argc, char **argv)
+{
+    const char *files[2] = {0};
+    int nfiles = 0;
+    double max_rmse = -1, block = 1;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--block")) {
+            if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) ||
+                block < 1 || block > 65536) {
+                err_print("worker diff: --block needs a whole number of pixels in [1, 65536]\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--max-rmse")) {
+            if (i + 1 >= argc || parse_double_arg(argv[++i], &max_rmse) < 0 || max_rmse < 0) {
+                err_print("worker diff: --max-rmse needs a number >= 0\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
+            continue; /* a common option; diff draws no progress anyway */
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: worker diff A.png B.png [--max-rmse X] [--block N] [--quiet]\n"
+                   "error metrics of B against reference A; exit 1 when rmse is over X\n");
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            err_print("worker diff: unknown option %s; see worker --help\n", argv[i]);
+            return 2;
+        } else if (nfiles < 2) {
+            files[nfiles++] = argv[i];
+        } else {
+            err_print("worker diff: expected two images, got a third: %s\n", argv[i]);
+            return 2;
+        }
+    }
+    if (nfiles != 2) {
+        err_print("worker diff: expected two images (reference, then image); see worker --help\n");
+        return 2;
+    }
+    struct rgb8 a = {0}, b = {0};
+    struct metrics m;
+    struct err e;
+    int rc = 2;
+    if (imgio_read(files[0], &a, &e) == 0 && imgio_read(files[1], &b, &e) == 0) {
+        if (metrics_compare_blocks(&a, &b, (int)block, &m, &e) == 0) {
+            printf("mse %.9g\nrmse %.9g\nrelmse %.9g\npsnr %.4f\n", m.mse, m.rmse, m.relmse, m.psnr);
+            rc = 0;
+            if (max_rmse >= 0 && m.rmse > max_rmse) {
+                err_print("worker diff: rmse %.6g is over --max-rmse %g\n", m.rmse, max_rmse);
+                rc = 1;
+            }
+        } else {
+            snprintf(e.file, sizeof e.file, "%s", files[1]);
+        }
+    }
+    if (rc == 2)
+        print_err(&e);
+    image_free(&a);
+    image_free(&b);
+    return rc;
+}
+
+static int max_rc(int a, int b)
+{
+    return a > b ? a : b;
+}
+
+/* The job files of one command line taken so far, by name: two files of one name would write the
+   same OUT/<name>/, the later replacing the earlier's outputs. */
+struct named {
+    char name[JOB_NAME_MAX];
+    const char *path;
+    dev_t dev;
+    ino_t ino;
+};
+
+/* 1 (said on stderr) when the name of the job file at path is another file's among the n in taken;
+   else it is added. */
+static int name_taken(const char *name, const char *path, const struct run_opts *o, struct named *taken,
+                      int *n)
+{
+    struct stat st;
+    if (stat(path, &st) < 0)
+        st.st_dev = 0, st.st_ino = 0;
+    for (int i = 0; i < *n; i++) {
+        if (strcmp(taken[i].name, name) != 0)
+            continue;
+        if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
+            return 0;
+        err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
+                  "%s/%s/ would replace that job's (give one of them another name: in its file)",
+                  path, name, taken[i].path, o->out_dir, name);
+        return 1;
+    }
+    taken[*n] = (struct named){.path = path, .dev = st.st_dev, .ino = st.st_ino};
+    snprintf(taken[*n].name, sizeof taken[*n].name, "%s", name);
+    (*n)++;
+    return 0;
+}
+
+/* A compare job's name against the command line's others (compare_main's name_ok). */
+struct names_seen {
+    const char *path;
+    const struct run_opts *o;
+    struct named *taken;
+    int *ntaken;
+};
+
+static int compare_name_ok(const char *name, void *arg)
+{
+    struct names_seen *ns = arg;
+    return !name_taken(name, ns->path, ns->o, ns->taken, ns->ntaken);
+}
+
+/* Render (or, with merge, merge the parts of) one job file; its exit status. taken: the jobs of
+   this command line so far (name_taken), compare jobs included. */
+static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
+{
+    struct job j;
+    struct err e;
+    struct run_result rr;
+    if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
+        struct names_seen ns = {path, o, taken, ntaken};
+        if (!merge && !o->parts)
+            return compare_main(path, o, compare_name_ok, &ns);
+        err_print("%s: a compare job renders whole images: no merge or --part\n", path);
+        return 2;
+    }
+    if (job_load(path, &j, &e) < 0) {
+        print_err(&e);
+        return 2;
+    }
+    if (name_taken(j.name, path, o, taken, ntaken))
+        return 2;
+    int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
+    if (rc != 0) {
+        if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */
+            snprintf(e.file, sizeof e.file, "%s", path);
+        if (rc == 1) { /* a render failure names the job; bad input names its file */
+            char why[sizeof e.msg];
+            snprintf(why, sizeof why, "%s", e.msg);
+            snprintf(e.msg, sizeof e.msg, "%s: %s; nothing written", j.name, why);
+        }
+        print_err(&e);
+    } else if (rr.skipped) {
+        err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
+                  rr.image_path);
+    } else if (merge) {
+        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
+                  rr.image_path);
+    } else {
+        run_print_summary(&j, &rr);
+    }
+    return rc;
+}
+
+static int worker_main(int argc, char **argv);
+
+int main(int argc, char **argv)
+{
+    /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
+       kill the process half-way through an output. */
+    signal(SIGXFSZ, SIG_IGN);
+    char **args = cli_split_equals(&argc, argv);
+    if (!args)
+        return 2;
+    int rc = worker_main(argc, args);
+    free(args);
+    return rc;
+}
+
+/* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
+static int worker_main(int argc, char **argv)
+{
+    cli_hoist_subcommand(argc, argv);
+    if (argc >= 2 && !strcmp(argv[1], "points"))
+        return points_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "diff"))
+        return diff_main(argc - 1, argv + 1);
+    struct queue_opts q = {.poll_s = QUEUE_POLL_S,
+                           .retries = QUEUE_RETRIES,
+                           .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
+                           .run = {.out_dir = "out", .progress = isatty(2)}};
+    struct run_opts *o = &q.run;
+    int merge = argc >= 2 && !strcmp(argv[1], "merge");
+    const char **jobs = calloc((size_t)argc, sizeof *jobs);
+    int njobs = 0, worst = 0, out_given = 0;
+    const char *queue_only = NULL; /* the first option that only a queue uses */
+    if (!jobs)
+        return 2;
+    int options_ended = 0; /* after "--" every argument is a job file */
+    for (int i = 1 + merge; i < argc; i++) {
+        const char *a = argv[i];
+        if (!options_ended && !strcmp(a, "--")) {
+            options_ended = 1;
+            continue;
+        } else if (options_ended) {
+            jobs[njobs++] = a;
+            continue;
+        }
+        if (!queue_only && (!strcmp(a, "--once") || !strcmp(a, "--poll") || !strcmp(a, "--retries") ||
+                            !strcmp(a, "--lease-timeout")))
+            queue_only = a;
+        out_given |= !strcmp(a, "--out");
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            printf("%s\n%s", help, usage);
+            goto out;
+        } else if (!strcmp(a, "--version")) {
+            printf("worker %s\n", WORKER_VERSION);
+            goto out;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o->quiet = 1;
+        } else if (!strcmp(a, "--once")) {
+            q.once = 1;
+        } else if (!strcmp(a, "--force")) {
+            o->force = 1;
+        } else if (cli_takes_value(a)) {
+            if (cli_option_value(a, i + 1 < argc ? argv[++i] : NULL, &q) < 0) {
+                worst = 2;
+                goto out;
+            }
+        } else if (a[0] == '-' && a[1]) {
+            err_print("worker: unknown option %s; see worker --help\n", a);
+            worst = 2;
+            goto out;
+        } else {
+            jobs[njobs++] = a;
+        }
+    }
+    /* --out DIR/ (a shell's completion adds the slash) is DIR: no "DIR//<name>" in paths shown */
+    char out_dir[4096];
+    snprintf(out_dir, sizeof out_dir, "%s", o->out_dir);
+    for (size_t n = strlen(out_dir); n > 1 && out_dir[n - 1] == '/'; n--)
+        out_dir[n - 1] = 0;
+    o->out_dir = out_dir;
+    /* accepted, but a user who gave them expects something of them: say they do nothing */
+    if (q.dir && out_given)
+        err_print("worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);
+    if (!q.dir && queue_only)
+        err_print("worker: %s is ignored without --queue\n", queue_only);
+    if (q.dir && (njobs || merge || o->parts)) {
+        err_print("worker: --queue takes no job files, merge or --part; see worker --help\n");
+        worst = 2;
+    } else if (q.dir) {
+        queue_signals_install();
+        worst = queue_main(&q);
+    } else if (njobs == 0) {
+        err_print("worker: no job file given; see worker --help\n");
+        worst = 2;
+    } else if (merge && o->parts) {
+        err_print("worker: merge finds the parts itself; --part is for rendering one; see worker --help\n");
+        worst = 2;
+    } else {
+        struct named *taken = calloc((size_t)njobs, sizeof *taken);
+        int ntaken = 0;
+        for (int i = 0; taken && i < njobs; i++)
+            worst = max_rc(worst, job_main(jobs[i], o, merge, taken, &ntaken));
+        if (!taken) {
+            err_print("worker: out of memory");
+            worst = 2;
+        }
+        free(taken);
+    }
+out:
+    free(jobs);
+    return worst;
+}

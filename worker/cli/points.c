@@ -1,0 +1,228 @@
+/* points: `worker points SAMPLER THRESHOLD [--seed S] [--svg F]`, one sample set as CSV / SVG. */
+#include "points.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/err.h"
+#include "base/fileio.h"
+#include "base/rng.h"
+#include "sample/sampler.h"
+#include "scenefile/yamlx.h"
+
+static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--svg F]\n";
+
+struct points_args {
+    enum sampler_kind kind;
+    double threshold;
+    uint64_t seed;
+    const char *svg_path; /* NULL: no picture */
+};
+
+/* A whole decimal number in [0, 2^64 - 1]: no sign, no trailing garbage. */
+static int parse_seed(const char *s, uint64_t *out)
+{
+    if (s[0] < '0' || s[0] > '9')
+        return -1;
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (*end || errno == ERANGE)
+        return -1;
+    *out = (uint64_t)v;
+    return 0;
+}
+
+/* Whether the --svg file can go where it is named (its folder exists and is writable, and it is not
+   a folder itself): 0, or 2 after one line on stderr. Bad usage, found before anything is drawn; a
+   write that fails later (a full disk) is exit 1. */
+static int svg_place_ok(const char *path)
+{
+    if (!path)
+        return 0;
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        err_print("worker points: --svg %s: is a directory\n", path);
+        return 2;
+    }
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        err_print("worker points: --svg %s: no folder %s\n", path, dir);
+        return 2;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        err_print("worker points: --svg %s: cannot write in %s: %s\n", path, dir, strerror(errno));
+        return 2;
+    }
+    return 0;
+}
+
+/* Fill a from argv. Returns 0, or the exit status after one line on stderr; --help prints the
+   usage, sets done and returns 0. */
+static int points_parse(int argc, char **argv, struct points_args *a, int *done)
+{
+    const char *positional[2] = {NULL, NULL};
+    int npositional = 0;
+    *done = 0;
+    a->seed = 1;
+    a->svg_path = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+            fputs(points_usage, stdout);
+            *done = 1;
+            return 0;
+        } else if (!strcmp(arg, "--seed") || !strncmp(arg, "--seed=", 7)) {
+            const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v) {
+                err_print("worker points: --seed needs a value; %s", points_usage);
+                return 2;
+            }
+            if (parse_seed(v, &a->seed) < 0) {
+                err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
+                return 2;
+            }
+        } else if (!strcmp(arg, "--svg") || !strncmp(arg, "--svg=", 6)) {
+            const char *v = arg[5] == '=' ? arg + 6 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || !*v) {
+                err_print("worker points: --svg needs a file name; %s", points_usage);
+                return 2;
+            }
+            a->svg_path = v;
+        } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
+            continue; /* a common option; points draws no progress anyway */
+        } else if (arg[0] == '-' && arg[1] == '-') {
+            err_print("worker points: unknown option %.40s; %s", arg, points_usage);
+            return 2;
+        } else if (npositional < 2) {
+            positional[npositional++] = arg; /* "-1" too: a threshold, refused below */
+        } else {
+            err_print("worker points: unexpected argument \"%.40s\"; %s", arg, points_usage);
+            return 2;
+        }
+    }
+    if (npositional < 2) {
+        err_print("worker points: expected a sampler and a threshold; %s", points_usage);
+        return 2;
+    }
+    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
+    const char *near = ystr_nearest(positional[0], names, -1);
+    if (sampler_kind_parse(positional[0], &a->kind) < 0 && near) {
+        err_print("worker points: unknown sampler \"%.40s\" (did you mean \"%s\"?)\n", positional[0], near);
+        return 2;
+    }
+    if (sampler_kind_parse(positional[0], &a->kind) < 0) {
+        err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)\n",
+                  positional[0]);
+        return 2;
+    }
+    char *end;
+    errno = 0;
+    a->threshold = strtod(positional[1], &end);
+    /* decimal only, as a job file's threshold: strtod alone takes hex (0x10) and leading blanks */
+    int decimal = strspn(positional[1], "0123456789+-.eE") == strlen(positional[1]);
+    if (!positional[1][0] || *end || !decimal || errno == ERANGE ||
+        !(a->threshold > 0.0 && a->threshold <= 100.0)) {
+        err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
+        return 2;
+    }
+    return svg_place_ok(a->svg_path);
+}
+
+/* %.6f of v in [0, 1), never rounded up to "1.000000". */
+static double shown(double v)
+{
+    return v < 0.9999995 ? v : 0.999999;
+}
+
+/* The set as an SVG picture: the unit square (y up) and a dot per point, written atomically. */
+static int write_svg(const char *path, const struct points_args *a, const struct pt2 *p, size_t n,
+                     struct err *e)
+{
+    const double side = 500.0, margin = 10.0;
+    double dot = 0.35 * side / sqrt((double)n);
+    dot = dot < 0.4 ? 0.4 : dot > 4.0 ? 4.0 : dot;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (!f)
+        return err_set(e, path, 0, 0, "%s", strerror(errno));
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    fprintf(f,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\">\n",
+            side + 2 * margin, side + 2 * margin, side + 2 * margin, side + 2 * margin);
+    fprintf(f, "<title>%s, threshold %g, seed %llu: %zu points</title>\n", sampler_kind_name(a->kind),
+            a->threshold, (unsigned long long)a->seed, n);
+    fprintf(f, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"white\" stroke=\"black\"/>\n",
+            margin, margin, side, side);
+    fprintf(f, "<g fill=\"black\">\n");
+    for (size_t k = 0; k < n; k++)
+        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", margin + p[k].x * side,
+                margin + (1.0 - p[k].y) * side, dot);
+    fprintf(f, "</g>\n</svg>\n");
+    int failed = ferror(f);
+    if (fclose(f) != 0 || failed) {
+        free(buf);
+        return err_set(e, path, 0, 0, "out of memory while drawing %zu points", n);
+    }
+    int rc = fileio_write_atomic(path, buf, len, e);
+    free(buf);
+    return rc;
+}
+
+int points_main(int argc, char **argv)
+{
+    struct points_args a;
+    int done;
+    int rc = points_parse(argc, argv, &a, &done);
+    if (rc != 0 || done)
+        return rc;
+
+    struct err e;
+    struct sampler *s = sampler_new(a.kind, a.threshold, 0, 0, &e);
+    if (!s) {
+        err_print("worker points: %s\n", e.msg);
+        return 2;
+    }
+    struct pt2 *p = malloc(sampler_set_capacity(s) * sizeof *p);
+    if (!p) {
+        err_print("worker points: out of memory for %zu points\n", sampler_set_capacity(s));
+        sampler_free(s);
+        return 1;
+    }
+    struct rng rng;
+    rng_seed(&rng, a.seed, 0);
+    size_t n = sampler_draw(s, &rng, p);
+    sampler_free(s);
+
+    rc = 0;
+    if (a.svg_path && write_svg(a.svg_path, &a, p, n, &e) != 0) {
+        char line[2048];
+        err_format(&e, line, sizeof line);
+        err_print("worker points: %s\n", line);
+        rc = 1;
+    }
+    if (rc == 0) { /* one "x,y" line per point, nothing else: a line count is the set's size */
+        for (size_t k = 0; k < n; k++)
+            printf("%.6f,%.6f\n", shown(p[k].x), shown(p[k].y));
+        if (fflush(stdout) != 0 || ferror(stdout)) {
+            err_print("worker points: writing the points: %s\n", strerror(errno));
+            rc = 1;
+        }
+    }
+    free(p);
+    return rc;
+}

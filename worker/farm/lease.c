@@ -1,0 +1,171 @@
+/* lease: the lease file beside each queue claim, its refresh, and the staleness rules. */
+#include "lease.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "base/fileio.h"
+
+static void side_path(const char *claim, const char *suffix, char *out, size_t n)
+{
+    snprintf(out, n, "%s%s", claim, suffix);
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static double mtime_s(const struct stat *st)
+{
+    return st->st_mtim.tv_sec + st->st_mtim.tv_nsec * 1e-9;
+}
+
+/* This process's pid space into out: the boot id (one per kernel boot, so per machine) and the pid
+   namespace (one per container); "" where /proc does not say (not Linux). */
+static void pid_space(char *out, size_t n)
+{
+    char boot[64] = "", ns[64] = "";
+    FILE *f = fopen("/proc/sys/kernel/random/boot_id", "r");
+    if (f) {
+        if (!fgets(boot, sizeof boot, f))
+            boot[0] = 0;
+        fclose(f);
+    }
+    boot[strcspn(boot, "\n")] = 0;
+    ssize_t len = readlink("/proc/self/ns/pid", ns, sizeof ns - 1);
+    ns[len > 0 ? len : 0] = 0;
+    if (boot[0] && ns[0])
+        snprintf(out, n, "%s:%s", boot, ns);
+    else
+        out[0] = 0;
+    for (char *c = out; *c; c++) /* one word per line in the lease file */
+        if (*c == ' ' || *c == '\n')
+            *c = '_';
+}
+
+void lease_init(struct lease *l)
+{
+    memset(l, 0, sizeof *l);
+    if (gethostname(l->host, sizeof l->host - 1) < 0 || !l->host[0])
+        snprintf(l->host, sizeof l->host, "localhost");
+    for (char *c = l->host; *c; c++) /* one word per line in the lease file */
+        if (*c == ' ' || *c == '\n')
+            *c = '_';
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    l->pid = (long)getpid();
+    pid_space(l->pids, sizeof l->pids);
+    l->start = (long long)ts.tv_sec;
+    snprintf(l->token, sizeof l->token, "%s:%ld:%lld%09ld", l->host, l->pid, (long long)ts.tv_sec,
+             ts.tv_nsec);
+}
+
+int lease_write(const char *claim, const struct lease *l, struct err *e)
+{
+    char path[2048], text[1024];
+    side_path(claim, ".lease", path, sizeof path);
+    int n = snprintf(text, sizeof text, "host %s\npid %ld\nstart %lld\ntoken %s\n", l->host, l->pid, l->start,
+                     l->token);
+    if (l->pids[0]) /* optional: leases of earlier versions lack it */
+        n += snprintf(text + n, sizeof text - n, "pids %s\n", l->pids);
+    return fileio_write_atomic(path, text, (size_t)n, e);
+}
+
+int lease_read(const char *claim, struct lease *l, double *age_s)
+{
+    char path[2048];
+    side_path(claim, ".lease", path, sizeof path);
+    memset(l, 0, sizeof *l);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    struct stat st;
+    int fields = 0;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        fields += sscanf(line, "host %255s", l->host) == 1;
+        fields += sscanf(line, "pid %ld", &l->pid) == 1;
+        fields += sscanf(line, "start %lld", &l->start) == 1;
+        fields += sscanf(line, "token %383s", l->token) == 1;
+        (void)sscanf(line, "pids %127s", l->pids);
+    }
+    int ok = fstat(fileno(f), &st) == 0 && fields == 4;
+    fclose(f);
+    if (!ok)
+        return -1;
+    *age_s = now_s() - mtime_s(&st);
+    return 0;
+}
+
+void lease_touch(const char *claim)
+{
+    char path[2048];
+    side_path(claim, ".lease", path, sizeof path);
+    (void)utimensat(AT_FDCWD, path, NULL, 0);
+}
+
+void lease_remove(const char *claim)
+{
+    char path[2048];
+    side_path(claim, ".lease", path, sizeof path);
+    unlink(path);
+}
+
+int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
+{
+    struct stat cst;
+    if (stat(claim, &cst) < 0)
+        return 0;
+    struct lease l, me;
+    double age;
+    if (lease_read(claim, &l, &age) < 0) {
+        /* rename() sets the claim's ctime: the time it was claimed */
+        double claimed = now_s() - (cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9);
+        snprintf(why, n, "claimed %.0f s ago and no lease was written", claimed);
+        return claimed > timeout_s;
+    }
+    lease_init(&me);
+    /* The pid is only ours to ask kill() about in our pid space: a worker in a container that
+       shares this hostname (host networking) has pids we cannot see, and is judged by its lease's
+       age as another host's is. A lease that does not say (an earlier version) is taken as ours. */
+    int same_space = !strcmp(l.host, me.host) && (!l.pids[0] || !me.pids[0] || !strcmp(l.pids, me.pids));
+    /* pid 0 or -1 would ask kill() about whole process groups: such a lease names nobody */
+    if (same_space && (l.pid <= 0 || l.pid == me.pid || (kill((pid_t)l.pid, 0) < 0 && errno == ESRCH))) {
+        snprintf(why, n, "its worker (pid %ld on %s) is gone", l.pid, l.host);
+        return 1;
+    }
+    snprintf(why, n, "its worker (pid %ld on %s) has not renewed the lease for %.0f s", l.pid, l.host, age);
+    return age > timeout_s;
+}
+
+int lease_lock(const char *claim, double timeout_s)
+{
+    char path[2048];
+    side_path(claim, ".lock", path, sizeof path);
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+        close(fd);
+        return 0;
+    }
+    struct stat st;
+    if (errno == EEXIST && stat(path, &st) == 0 && now_s() - mtime_s(&st) > timeout_s)
+        unlink(path); /* its holder died mid-recovery; the next scan takes it */
+    return -1;
+}
+
+void lease_unlock(const char *claim)
+{
+    char path[2048];
+    side_path(claim, ".lock", path, sizeof path);
+    unlink(path);
+}

@@ -1,0 +1,48 @@
+/* lease: who holds a queue claim (host, pid, start, token) and whether that holder is dead. */
+#ifndef LEASE_H
+#define LEASE_H
+
+#include <stddef.h>
+#include <sys/types.h>
+
+#include "base/err.h"
+
+struct lease {
+    char host[256];
+    long pid;
+    long long start; /* seconds since the epoch */
+    char token[384]; /* unique per claim: host:pid:start_ns */
+    char pids[128];  /* the pid space `pid` lives in: "<boot id>:<pid namespace>" ("" unknown) */
+};
+
+/* This process's lease for a claim made now (hostname, getpid, the time, a fresh token, and on
+   Linux the pid space: the kernel's boot id and the pid namespace, since containers sharing the
+   host's name, or cloned machines, share the hostname but not their pids). */
+void lease_init(struct lease *l);
+
+/* Write l beside the claim file (claim + ".lease") atomically. 0 or -1 with e filled. */
+int lease_write(const char *claim, const struct lease *l, struct err *e);
+
+/* Read the lease of claim into l and its age (seconds since its mtime). 0, or -1 when it is
+   missing or unreadable. */
+int lease_read(const char *claim, struct lease *l, double *age_s);
+
+/* Refresh the lease's mtime (the holder is alive). Failure is ignored: the next call retries. */
+void lease_touch(const char *claim);
+
+/* Remove the lease file of claim. */
+void lease_remove(const char *claim);
+
+/* 1 when the claim's holder is dead: on this host (same hostname and, when both leases know it,
+   same pid space) its pid is gone; on any host its lease was not
+   refreshed for timeout_s; without a lease, the claim is older than timeout_s (the holder died
+   between claiming and writing it). why gets a short reason. 0 when alive, or the claim is gone. */
+int lease_stale(const char *claim, double timeout_s, char *why, size_t n);
+
+/* Take the claim's recovery lock (claim + ".lock", created exclusively) that serialises whoever
+   returns the claim to the queue. 0 when taken; -1 when another holds it (a lock older than
+   timeout_s is broken so that a recoverer's death cannot block the job for ever). */
+int lease_lock(const char *claim, double timeout_s);
+void lease_unlock(const char *claim);
+
+#endif

@@ -1,0 +1,365 @@
+/* queue: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
+#include "queue.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "study/compare.h"
+#include "base/fileio.h"
+#include "lease.h"
+#include "queue_claim.h"
+#include "queue_scan.h"
+#include "job/run_out.h"
+
+/* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
+static volatile sig_atomic_t queue_stop;
+
+static void on_signal(int sig)
+{
+    if (queue_stop > 0) { /* the second signal: die now, as the user asked */
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    queue_stop = sig;
+}
+
+void queue_signals_install(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL); /* no SA_RESTART: a poll's sleep ends at once */
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+/* failed/<name>.log: what went wrong, the signal, the attempts. */
+static void write_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
+                      int attempts)
+{
+    char path[2048], text[8192];
+    int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
+    if (sig)
+        n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
+    time_t t = time(NULL);
+    char when[64];
+    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&t));
+    n += snprintf(text + n, sizeof text - n, "attempts: %d\nworker: pid %ld on %s\ntime: %s\n", attempts,
+                  q->lease.pid, q->lease.host, when);
+    snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
+    struct err e;
+    if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
+        err_print("queue: %s: %s\n", name, e.msg);
+}
+
+/* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
+   while it is still ours. */
+static void give_back(struct queue *q, const char *name)
+{
+    int locked = 0;
+    for (int i = 0; i < 100 && !(locked = lease_lock(q->claim, q->o->lease_timeout_s) == 0); i++) {
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    if (!locked) { /* another worker is recovering it (our lease looked dead): the claim is its now */
+        err_print("%s: stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
+                  name, (int)queue_stop, q->running);
+        return;
+    }
+    if (!queue_claim_still_ours(q))
+        ;
+    else if (queue_claim_name_waiting(q, name))
+        err_print("%s: stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
+                  "next worker\n",
+                  name, (int)queue_stop, name, q->running);
+    else if (queue_claim_return(q, q->claim, name) == 0)
+        err_print("%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
+    lease_unlock(q->claim);
+}
+
+/* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
+   One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
+   of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
+   removes our lease first, then returns the claim to the queue or adopts it). */
+static void say_lost(struct queue *q, const char *name)
+{
+    struct lease l;
+    double age;
+    if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
+        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+        return;
+    }
+    lease_remove(q->claim);
+    err_print("%s: %s was removed or moved away while it rendered: render stopped, nothing written\n", name,
+              q->claim);
+}
+
+/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
+   that came meanwhile is kept). */
+static void clear_lost_stop(void)
+{
+    sigset_t block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigprocmask(SIG_BLOCK, &block, &old);
+    if (queue_stop == QUEUE_STOP_CLAIM_LOST)
+        queue_stop = 0;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+}
+
+static void note_rc(struct queue *q, int rc)
+{
+    if (rc > q->worst)
+        q->worst = rc;
+}
+
+/* The claim's output folder holds the outputs of another job file of the queue with the same name
+   (q->name_owner): filed in failed/ as invalid, the log naming that file; the folder is left as it
+   is. The same file re-queued (edited or not) renders again: only another file name conflicts. */
+static void name_taken(struct queue *q, const char *name, const char *log_name, const int pos[2])
+{
+    char msg[4600], at[32] = "";
+    const char *job_name = strrchr(q->name_dir, '/') ? strrchr(q->name_dir, '/') + 1 : q->name_dir;
+    if (pos && pos[0])
+        snprintf(at, sizeof at, ":%d:%d", pos[0], pos[1]);
+    snprintf(msg, sizeof msg,
+             "%s/%s%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
+             "remove that folder to replace them)",
+             q->dir, name, at, job_name, q->name_dir, q->name_owner);
+    err_print("%s\n", msg);
+    err_print("%s: name taken, moved to %s/\n", name, q->failed);
+    write_log(q, name, log_name, msg, 0, 0);
+    queue_claim_file(q, name, q->failed);
+    note_rc(q, 2);
+}
+
+/* A compare job: its combinations render into done/<name>/ as one job; a retry after a crash
+   renders only the combinations still missing (they resume by hash). Invalid: failed/. */
+static void process_compare(struct queue *q, const char *name, const char *from, const char *as,
+                            const char *stem)
+{
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = &queue_stop;
+    ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
+    ro.tick_arg = q;
+    char last[2048] = "", log_name[JOB_NAME_MAX];
+    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads (SPEC: <name>.log) */
+    int attempts = 0, rc;
+    do {
+        attempts++;
+        rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
+    } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
+    if (q->lost || !queue_claim_still_ours(q)) {
+        say_lost(q, name);
+        return;
+    }
+    if (rc == 1 && queue_stop) {
+        give_back(q, name);
+        return;
+    }
+    if (rc == 0) {
+        queue_claim_file(q, name, q->done);
+        return;
+    }
+    if (q->name_owner[0]) {
+        name_taken(q, name, stem, NULL); /* <name>.log would be the other file's log name */
+        return;
+    }
+    err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
+    write_log(q, name, log_name, last, 0, rc == 2 ? 0 : attempts); /* invalid: checked, never rendered */
+    queue_claim_file(q, name, q->failed);
+    note_rc(q, rc);
+}
+
+/* The file to read the claimed job from: the claim itself, or, when the job was a symbolic link
+   with a relative target, that target seen from DIR, where the link was made (the claim moved
+   the link into running/, where its target would be looked up beside running/). */
+static void claim_source(const struct queue *q, char *out, size_t n)
+{
+    char target[2048];
+    ssize_t len = readlink(q->claim, target, sizeof target - 1);
+    if (len <= 0 || target[0] == '/') {
+        snprintf(out, n, "%s", q->claim);
+        return;
+    }
+    target[len] = 0;
+    snprintf(out, n, "%s/%s", q->dir, target);
+}
+
+/* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
+static void process_claim(struct queue *q, const char *name)
+{
+    char as[2048], from[4096], msg[2048], stem[256];
+    struct job j;
+    struct err e;
+    struct run_result rr;
+    snprintf(as, sizeof as, "%s/%s", q->dir, name);
+    snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
+    claim_source(q, from, sizeof from);
+    if (compare_is_compare_job(from)) {
+        process_compare(q, name, from, as, stem);
+        return;
+    }
+    if (job_load_as(from, as, &j, &e) < 0) { /* invalid: never retried */
+        err_format(&e, msg, sizeof msg);
+        err_print("%s", msg);
+        err_print("%s: invalid job, moved to %s/", name, q->failed);
+        write_log(q, name, stem, msg, 0, 0);
+        queue_claim_file(q, name, q->failed);
+        note_rc(q, 2);
+        return;
+    }
+    char folder[2048];
+    snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
+    if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
+        snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
+        name_taken(q, name, stem, j.pos_name);
+        return;
+    }
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = &queue_stop;
+    ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
+    ro.tick_arg = q;
+    int attempts = 0, rc;
+    for (;;) {
+        attempts++;
+        rc = run_job(&j, &ro, &rr, &e);
+        if (rc != 1 || !rr.farm.child_crashed || attempts > q->o->retries || queue_stop)
+            break;
+        err_format(&e, msg, sizeof msg);
+        err_print("%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
+    }
+    if (q->lost || !queue_claim_still_ours(q)) {
+        say_lost(q, name);
+        return;
+    }
+    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
+        give_back(q, name);
+        return;
+    }
+    if (rc == 0) {
+        if (rr.skipped)
+            err_print("%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n", name,
+                      q->done, j.name);
+        else
+            run_print_summary(&j, &rr);
+        queue_claim_file(q, name, q->done);
+        return;
+    }
+    if (q->name_owner[0]) { /* another file of this name wrote its outputs while we rendered */
+        name_taken(q, name, stem, j.pos_name);
+        return;
+    }
+    err_format(&e, msg, sizeof msg);
+    err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
+              attempts > 1 ? "s" : "");
+    write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
+    queue_claim_file(q, name, q->failed);
+    note_rc(q, rc);
+}
+
+/* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */
+static void process(struct queue *q, const char *name)
+{
+    q->lost = 0;
+    q->name_owner[0] = 0;
+    queue_claim_renew_start(q);
+    process_claim(q, name);
+    queue_claim_renew_stop();
+    clear_lost_stop();
+}
+
+/* Sleep up to s seconds; a signal ends it early. */
+static void nap(double s)
+{
+    struct timespec ts = {(time_t)s, (long)((s - (time_t)s) * 1e9)};
+    nanosleep(&ts, NULL);
+}
+
+/* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
+   it): its parent is itself. A queue there would make /running, /done and /failed. */
+static int is_root_dir(const char *dir, const struct stat *st)
+{
+    char up[1100];
+    struct stat pst;
+    snprintf(up, sizeof up, "%s/..", dir);
+    return stat(up, &pst) == 0 && pst.st_dev == st->st_dev && pst.st_ino == st->st_ino;
+}
+
+int queue_main(const struct queue_opts *qo)
+{
+    struct queue q;
+    struct stat st;
+    struct err e;
+    memset(&q, 0, sizeof q);
+    q.o = qo;
+    q.stop = &queue_stop;
+    snprintf(q.dir, sizeof q.dir, "%s", qo->dir);
+    for (size_t n = strlen(q.dir); n > 1 && q.dir[n - 1] == '/'; n--)
+        q.dir[n - 1] = 0;
+    int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+    if (bad) {
+        err_print("worker: --queue %s: %s\n", q.dir, strerror(bad));
+        return 2;
+    }
+    if (is_root_dir(q.dir, &st)) {
+        err_print("worker: --queue %s: is the file system's root directory; give the queue a directory of "
+                  "its own (running/, done/ and failed/ are made in it)\n",
+                  q.dir);
+        return 2;
+    }
+    snprintf(q.running, sizeof q.running, "%s/running", q.dir);
+    snprintf(q.done, sizeof q.done, "%s/done", q.dir);
+    snprintf(q.failed, sizeof q.failed, "%s/failed", q.dir);
+    if (run_out_mkdirs(q.running, &e) < 0 || run_out_mkdirs(q.done, &e) < 0 ||
+        run_out_mkdirs(q.failed, &e) < 0) {
+        err_print("worker: --queue %s: %s\n", q.dir, e.msg);
+        return 2;
+    }
+    while (!queue_stop) {
+        char adopted[256];
+        if (queue_claim_recover(&q, adopted, sizeof adopted)) {
+            process(&q, adopted);
+            continue;
+        }
+        struct queue_waiting *w;
+        int n = queue_scan_waiting(&q.scan, q.dir, &w), took = 0;
+        if (n < 0) {
+            err_print("worker: --queue %s: %s\n", q.dir, strerror(errno));
+            q.worst = 2;
+            break;
+        }
+        int unusable = 0;
+        for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
+            int got = queue_claim_take(&q, w[i].name);
+            unusable = got < 0;
+            if (got == 0) {
+                process(&q, w[i].name);
+                took = 1;
+            }
+        }
+        free(w);
+        if (unusable) {
+            q.worst = 2;
+            break;
+        }
+        if (took)
+            continue;
+        if (qo->once)
+            break;
+        nap(qo->poll_s);
+    }
+    queue_scan_free(&q.scan);
+    return q.worst;
+}

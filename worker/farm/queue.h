@@ -1,0 +1,36 @@
+/* queue: drain a queue directory of job files with many workers (SPEC "Queue directory"). */
+#ifndef QUEUE_H
+#define QUEUE_H
+
+#include <signal.h>
+
+#include "job/run.h"
+
+/* Layout under DIR: waiting jobs DIR/X.yaml; claims DIR/running/X.yaml with their lease
+   DIR/running/X.yaml.lease ("host H", "pid P", "start S", "token T", "pids B:N" lines, mtime refreshed while
+   rendering); finished DIR/done/X.yaml with outputs in DIR/done/<name>/; failed DIR/failed/X.yaml
+   and DIR/failed/<name>.log. */
+struct queue_opts {
+    const char *dir;
+    int once;               /* exit when no job is waiting */
+    double poll_s;          /* seconds between scans of an empty queue */
+    int retries;            /* renders of a job whose render process crashed, after the first */
+    double lease_timeout_s; /* a lease not refreshed for this long is dead, whatever its host */
+    struct run_opts run;    /* processes, quiet, progress, force; out_dir is set to DIR/done */
+};
+
+#define QUEUE_POLL_S 2.0
+#define QUEUE_RETRIES 1
+#define QUEUE_LEASE_TIMEOUT_S 60.0
+
+/* Route SIGINT and SIGTERM to a stop flag: the running render is stopped and its job returned to
+   the queue. A second signal terminates the process at once. */
+void queue_signals_install(void);
+
+/* Claim, render and file jobs until the queue is empty (once) or a stop signal arrives, returning
+   stale claims of dead workers to the queue on every scan. Prints one line per job on stderr.
+   Returns the exit status: 0 every job taken was done (or skipped as current, or returned on a
+   stop), 1 one failed while rendering, 2 the queue directory is unusable or a job was invalid. */
+int queue_main(const struct queue_opts *qo);
+
+#endif

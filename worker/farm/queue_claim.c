@@ -1,0 +1,325 @@
+/* queue_claim: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
+#include "queue_claim.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "base/err.h"
+#include "base/fileio.h"
+#include "base/json.h"
+
+static double since(const struct timespec *t)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
+}
+
+static double renew_every_s(const struct queue *q)
+{
+    return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
+}
+
+void queue_claim_tick(void *arg)
+{
+    struct queue *q = arg;
+    if (since(&q->last_touch) < renew_every_s(q))
+        return;
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (!queue_claim_still_ours(q)) {
+        q->lost = 1;
+        if (q->stop && !*q->stop)
+            *q->stop = QUEUE_STOP_CLAIM_LOST;
+        return;
+    }
+    lease_touch(q->claim);
+}
+
+/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
+static volatile sig_atomic_t renew_fd = -1;
+
+static void on_renew_alarm(int sig)
+{
+    (void)sig;
+    int saved = errno, fd = renew_fd;
+    if (fd >= 0)
+        (void)futimens(fd, NULL);
+    errno = saved;
+}
+
+void queue_claim_renew_start(struct queue *q)
+{
+    char path[2100];
+    snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
+    queue_claim_renew_stop();
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return; /* no lease to renew: the tick's check finds the claim lost */
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_renew_alarm;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGALRM, &sa, NULL);
+    renew_fd = fd;
+    double every = renew_every_s(q);
+    struct itimerval it = {{(time_t)every, (suseconds_t)((every - (time_t)every) * 1e6)},
+                           {(time_t)every, (suseconds_t)((every - (time_t)every) * 1e6)}};
+    setitimer(ITIMER_REAL, &it, NULL);
+}
+
+void queue_claim_renew_stop(void)
+{
+    struct itimerval off;
+    memset(&off, 0, sizeof off);
+    setitimer(ITIMER_REAL, &off, NULL);
+    int fd = renew_fd;
+    renew_fd = -1;
+    if (fd >= 0)
+        close(fd);
+}
+
+int queue_claim_return(struct queue *q, const char *claim, const char *name)
+{
+    char back[2048];
+    snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    lease_remove(claim);
+    return rename(claim, back);
+}
+
+int queue_claim_name_waiting(struct queue *q, const char *name)
+{
+    char back[2048];
+    struct stat st;
+    snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    return lstat(back, &st) == 0;
+}
+
+/* Take the dead claim at `claim` over where it lies, under its recovery lock: our lease replaces
+   its holder's and it becomes the claim in hand. 0 when it is ours. */
+static int adopt_claim(struct queue *q, const char *claim, const char *name)
+{
+    struct err e;
+    struct stat st;
+    if (stat(claim, &st) < 0) /* its holder returned it meanwhile, lock or not */
+        return -1;
+    snprintf(q->claim, sizeof q->claim, "%s", claim);
+    lease_init(&q->lease);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (lease_write(q->claim, &q->lease, &e) == 0)
+        return 0;
+    char buf[2048];
+    err_format(&e, buf, sizeof buf);
+    err_print("queue: %s: %s\n", name, buf);
+    return -1;
+}
+
+/* running/.X.yaml.lease.tmp.XXXXXX: the temporary file of a lease write (fileio_write_atomic)
+   whose worker was killed before its rename (a worker killed just after claiming leaves one
+   most of the time: the write's fsync is the slow part). A live writer renames it within
+   moments, so one older than the lease timeout is a dead writer's: removed. */
+static void remove_dead_lease_temp(struct queue *q, const char *name)
+{
+    const char *tmp = strstr(name, ".yaml.lease.tmp.");
+    struct stat st;
+    char path[2048];
+    if (name[0] != '.' || !tmp || strlen(tmp + strlen(".yaml.lease.tmp.")) != 6)
+        return;
+    snprintf(path, sizeof path, "%s/%s", q->running, name);
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
+        (now.tv_sec - st.st_mtim.tv_sec) + (now.tv_nsec - st.st_mtim.tv_nsec) * 1e-9 > q->o->lease_timeout_s)
+        unlink(path);
+}
+
+int queue_claim_recover(struct queue *q, char *adopted, size_t n)
+{
+    DIR *d = opendir(q->running);
+    int took = 0;
+    if (!d)
+        return 0;
+    struct dirent *de;
+    while (!took && (de = readdir(d))) {
+        char claim[2048], why[512];
+        remove_dead_lease_temp(q, de->d_name);
+        if (!queue_is_job_file(de->d_name))
+            continue;
+        snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
+        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
+            continue;
+        if (lease_lock(claim, q->o->lease_timeout_s) < 0)
+            continue;
+        /* judged again under the lock: another recoverer may have moved it meanwhile */
+        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
+            if (!queue_claim_name_waiting(q, de->d_name)) {
+                if (queue_claim_return(q, claim, de->d_name) == 0)
+                    err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
+            } else if (adopt_claim(q, claim, de->d_name) == 0) {
+                err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
+                          q->running, de->d_name, why);
+                snprintf(adopted, n, "%s", de->d_name);
+                took = 1;
+            }
+        }
+        lease_unlock(claim);
+    }
+    closedir(d);
+    return took;
+}
+
+int queue_claim_take(struct queue *q, const char *name)
+{
+    char from[2048];
+    struct stat st;
+    struct err e;
+    snprintf(from, sizeof from, "%s/%s", q->dir, name);
+    snprintf(q->claim, sizeof q->claim, "%s/%s", q->running, name);
+    if (stat(q->claim, &st) == 0) /* a job of the same file name is running: it waits */
+        return 1;
+    if (rename(from, q->claim) < 0) {
+        if (errno == ENOENT) /* another worker was first */
+            return 1;
+        err_print("worker: --queue %s: cannot claim %s into %s/: %s", q->dir, name, q->running,
+                  strerror(errno));
+        return -1;
+    }
+    lease_init(&q->lease);
+    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    if (lease_write(q->claim, &q->lease, &e) < 0) {
+        char buf[2048];
+        err_format(&e, buf, sizeof buf);
+        err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
+        rename(q->claim, from);
+        return -1;
+    }
+    return 0;
+}
+
+int queue_claim_still_ours(struct queue *q)
+{
+    struct lease l;
+    struct stat st;
+    double age;
+    return lstat(q->claim, &st) == 0 && lease_read(q->claim, &l, &age) == 0 &&
+           strcmp(l.token, q->lease.token) == 0;
+}
+
+int queue_claim_gone(struct queue *q)
+{
+    struct stat st;
+    return lstat(q->claim, &st) < 0 && errno == ENOENT;
+}
+
+/* The "job_file" string of sidecar text json as written there (its JSON escapes kept) into out; 0,
+   or -1 when none. */
+static int sidecar_job_file(const char *json, char *out, size_t n)
+{
+    const char *key = "\"job_file\": \"", *s = strstr(json, key);
+    size_t k = 0;
+    if (!s || n == 0)
+        return -1;
+    for (s += strlen(key); *s && *s != '"' && k + 2 < n; s++) {
+        if (*s == '\\' && s[1])
+            out[k++] = *s++;
+        out[k++] = *s;
+    }
+    out[k] = 0;
+    return *s == '"' ? 0 : -1;
+}
+
+/* JSON string text (escapes) into out with its escapes undone, for a message. */
+static void json_unescape(const char *text, char *out, size_t n)
+{
+    size_t k = 0;
+    for (const char *s = text; *s && k + 1 < n; s++)
+        out[k++] = *s == '\\' && s[1] ? *++s : *s;
+    if (n)
+        out[k] = 0;
+}
+
+/* name as the sidecar writes a string (json.c: control characters and bytes that are not UTF-8
+   escaped) into out, without its quotes; 0, or -1 when it does not fit. A sidecar's job_file is
+   compared in that form: undoing its escapes made a file named in Latin-1 ("caf\xe9.yaml": its
+   sidecar says "caf\ufffd.yaml") another file than itself, so that re-queued it was "name taken". */
+static int json_escaped(const char *name, char *out, size_t n)
+{
+    struct json js;
+    json_init(&js);
+    json_string(&js, NULL, name);
+    const int ok = !js.oom && js.len >= 2 && js.len - 2 < n;
+    if (ok) {
+        memcpy(out, js.buf + 1, js.len - 2);
+        out[js.len - 2] = 0;
+    }
+    json_free(&js);
+    return ok ? 0 : -1;
+}
+
+int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
+{
+    const char *base_name = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    char mine[2048];
+    if (json_escaped(base_name, mine, sizeof mine) < 0)
+        return 0;
+    const char *folder = strrchr(dir, '/') ? strrchr(dir, '/') + 1 : dir;
+    if (folder[0] == '.') /* no job's name: DIR/done/.cache/, the references all compare jobs share */
+        return 0;
+    DIR *d = opendir(dir);
+    int taken = 0;
+    if (!d)
+        return 0;
+    struct dirent *de;
+    while (!taken && (de = readdir(d))) {
+        size_t len = strlen(de->d_name);
+        char path[4096], file[2048];
+        uint8_t *text;
+        size_t bytes;
+        struct err e;
+        if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (fileio_read_all(path, 1 << 20, &text, &bytes, &e) < 0)
+            continue;
+        if (sidecar_job_file((const char *)text, file, sizeof file) == 0) {
+            const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
+            if (strcmp(base, mine) != 0) {
+                json_unescape(file, owner, n);
+                taken = 1;
+            }
+        }
+        free(text);
+    }
+    closedir(d);
+    return taken;
+}
+
+int queue_claim_held(void *arg, const char *dir)
+{
+    struct queue *q = arg;
+    if (!queue_claim_still_ours(q))
+        return 0;
+    if (!queue_claim_name_owner(q, dir, q->name_owner, sizeof q->name_owner))
+        return 1;
+    snprintf(q->name_dir, sizeof q->name_dir, "%s", dir);
+    return 0;
+}
+
+void queue_claim_file(struct queue *q, const char *name, const char *to_dir)
+{
+    char to[2048];
+    snprintf(to, sizeof to, "%s/%s", to_dir, name);
+    if (rename(q->claim, to) < 0)
+        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
+    lease_remove(q->claim);
+}

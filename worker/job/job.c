@@ -1,0 +1,397 @@
+/* job: reading a job file's keys into a struct job, with strict validation and defaults. */
+#include "job.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "base/hash.h"
+#include "scenefile/scene_load.h"
+#include "scenefile/yget.h"
+
+const char *const job_keys[] = {
+    "name",          "scene",           "width",        "height",         "sampler",   "threshold",
+    "light_sampler", "light_threshold", "max_depth",    "seed",           "processes", "format",
+    "output",        "reference",       "poisson_pool", "light_sampling", "priority",  NULL};
+
+static void dir_of(const char *path, char *out, size_t n)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(out, n, ".");
+    else if (slash == path)
+        snprintf(out, n, "/");
+    else
+        snprintf(out, n, "%.*s", (int)(slash - path), path);
+}
+
+/* path relative to the directory of `base` (absolute paths are kept). */
+static void resolve(const char *base, const char *rel, char *out, size_t n)
+{
+    if (rel[0] == '/') {
+        snprintf(out, n, "%s", rel);
+        return;
+    }
+    char dir[JOB_PATH_MAX];
+    dir_of(base, dir, sizeof dir);
+    if (strcmp(dir, ".") == 0)
+        snprintf(out, n, "%s", rel);
+    else
+        snprintf(out, n, "%s/%s", dir, rel);
+}
+
+static int is_file(const char *p)
+{
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* The scenes shipped with the program, for a bare name in a job file anywhere: ../scenes beside
+   the binary (bin/worker in a checkout) and ../share/worker/scenes (`make install`). n: how many
+   of the two were found (0 when /proc/self/exe cannot be read). */
+static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
+{
+    char exe[JOB_PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len <= 0 || len >= (ssize_t)sizeof exe - 1)
+        return 0;
+    exe[len] = 0;
+    char bin[JOB_PATH_MAX], top[JOB_PATH_MAX];
+    dir_of(exe, bin, sizeof bin);
+    dir_of(bin, top, sizeof top);
+    const char *sep = strcmp(top, "/") ? "/" : "";
+    snprintf(dirs[0], JOB_PATH_MAX, "%.*s%sscenes", JOB_PATH_MAX - 32, top, sep);
+    snprintf(dirs[1], JOB_PATH_MAX, "%.*s%sshare/worker/scenes", JOB_PATH_MAX - 32, top, sep);
+    return 2;
+}
+
+/* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
+   beside the job file, in the job file's parent (jobs/ and scenes/ are siblings), then among the
+   scenes shipped with the program. On failure *tried lists the places after the first. */
+static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
+{
+    tried[0] = 0;
+    if (!strchr(val, '/') && !strchr(val, '.')) {
+        enum { N_CAND = 5 };
+        char cand[N_CAND][JOB_PATH_MAX], rel[JOB_PATH_MAX], shipped[2][JOB_PATH_MAX];
+        int nc = 0;
+        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
+        snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
+        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
+        snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
+        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
+        for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
+            snprintf(cand[nc++], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, shipped[k], val);
+        for (int i = 0; i < nc; i++)
+            if (is_file(cand[i])) {
+                snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[i]);
+                return 0;
+            }
+        snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
+        /* the other places looked in, each once */
+        size_t used = 0;
+        for (int i = 1; i < nc && used < n; i++) {
+            int seen = 0;
+            for (int k = 0; k < i; k++)
+                seen |= strcmp(cand[k], cand[i]) == 0;
+            if (!seen)
+                used +=
+                    (size_t)snprintf(tried + used, n - used, "%s%s", used ? " or " : " (nor at ", cand[i]);
+        }
+        if (used && used < n)
+            snprintf(tried + used, n - used, ")");
+        return -1;
+    }
+    resolve(j->path, val, j->scene_path, sizeof j->scene_path);
+    return is_file(j->scene_path) ? 0 : -1;
+}
+
+void job_defaults(struct job *j, const char *path)
+{
+    memset(j, 0, sizeof *j);
+    snprintf(j->path, sizeof j->path, "%s", path);
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    int len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
+    snprintf(j->name, sizeof j->name, "%.*s", len < JOB_NAME_MAX - 1 ? len : JOB_NAME_MAX - 1, base);
+    j->width = 300;
+    j->sampler = SAMPLER_RANDOM;
+    j->threshold = 5;
+    j->light_sampler = SAMPLER_RANDOM;
+    j->light_threshold = 5;
+    j->max_depth = 50;
+    j->seed = 1;
+    j->processes = 2;
+    j->format = IMG_PNG;
+    j->light_sampling = 1;
+}
+
+/* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
+static int safe_name(const char *s)
+{
+    if (!*s || *s == '.') /* ".", "..", and hidden folders (.cache holds compare references) */
+        return 0;
+    for (; *s; s++)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') || *s == '-' ||
+              *s == '_' || *s == '.'))
+            return 0;
+    return 1;
+}
+
+static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sampler_kind *out, struct err *e)
+{
+    const char *s;
+    if (yget_string(d, v, key, &s, e) < 0)
+        return -1;
+    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
+    const char *near = ystr_nearest(s, names, -1);
+    if (sampler_kind_parse(s, out) < 0 && near)
+        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
+    if (sampler_kind_parse(s, out) < 0)
+        return ydoc_fail(
+            d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)", key, s);
+    return 0;
+}
+
+static void mark(int pos[2], const yaml_node_t *v)
+{
+    pos[0] = (int)v->start_mark.line + 1;
+    pos[1] = (int)v->start_mark.column + 1;
+}
+
+static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
+{
+    const char *s = yscalar(v);
+    double t = 0;
+    int failed = yget_double(d, v, key, &t, e) < 0; /* e->msg is set only when it failed */
+    int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
+    if (!s)
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
+                         v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
+    if (failed || !(t > 0 && t <= 100))
+        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key, s,
+                         quoted_number ? YQUOTED_NOTE : "");
+    *out = t;
+    return 0;
+}
+
+int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, struct err *e)
+{
+    const char *k = yscalar(key);
+    const char *s;
+    long n;
+    if (!strcmp(k, "name")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
+            return ydoc_fail(
+                d, v, e,
+                "name: must be letters, digits, '-', '_' or '.' (at most %d, not starting with '.'), "
+                "got \"%.40s\"",
+                JOB_NAME_MAX - 1, s);
+        snprintf(j->name, sizeof j->name, "%s", s);
+        mark(j->pos_name, v);
+    } else if (!strcmp(k, "scene")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        mark(j->pos_scene, v);
+        char tried[4 * JOB_PATH_MAX + 32];
+        if (resolve_scene(j, s, tried, sizeof tried) < 0)
+            return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
+    } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
+        if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
+            return -1;
+        *(k[0] == 'w' ? &j->width : &j->height) = (int)n;
+        if (k[0] == 'w')
+            mark(j->pos_width, v);
+    } else if (!strcmp(k, "sampler")) {
+        return get_sampler(d, v, k, &j->sampler, e);
+    } else if (!strcmp(k, "light_sampler")) {
+        j->has_light_sampler = 1;
+        return get_sampler(d, v, k, &j->light_sampler, e);
+    } else if (!strcmp(k, "threshold")) {
+        mark(j->pos_threshold, v);
+        return get_threshold(d, v, k, &j->threshold, e);
+    } else if (!strcmp(k, "light_threshold")) {
+        mark(j->pos_light_threshold, v);
+        return get_threshold(d, v, k, &j->light_threshold, e);
+    } else if (!strcmp(k, "max_depth")) {
+        if (yget_long(d, v, k, 1, 10000, &n, e) < 0)
+            return -1;
+        j->max_depth = (int)n;
+    } else if (!strcmp(k, "seed")) {
+        if (yget_long(d, v, k, 0, 2147483647L, &n, e) < 0)
+            return -1;
+        j->seed = (uint64_t)n;
+    } else if (!strcmp(k, "processes")) {
+        if (yget_long(d, v, k, 1, 256, &n, e) < 0)
+            return -1;
+        j->processes = (int)n;
+    } else if (!strcmp(k, "priority")) {
+        if (yget_long(d, v, k, -1000000, 1000000, &n, e) < 0)
+            return -1;
+        j->priority = (int)n;
+    } else if (!strcmp(k, "poisson_pool")) {
+        if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
+            return -1;
+        j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "light_sampling")) {
+        return yget_bool(d, v, k, &j->light_sampling, e);
+    } else if (!strcmp(k, "format")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (strcmp(s, "png") && strcmp(s, "ppm"))
+            return ydoc_fail(d, v, e, "format: must be png or ppm, got \"%.40s\"", s);
+        j->format = s[1] == 'n' ? IMG_PNG : IMG_PPM;
+        j->has_format = 1;
+        mark(j->pos_format, v);
+    } else if (!strcmp(k, "output")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
+            return ydoc_fail(d, v, e,
+                             "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
+                             "most %d, not starting with '.'), got \"%.40s\"",
+                             JOB_NAME_MAX - 1, s);
+        snprintf(j->output, sizeof j->output, "%s", s);
+        j->has_output = 1;
+        mark(j->pos_output, v);
+    } else if (!strcmp(k, "reference")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        mark(j->pos_reference, v);
+        resolve(j->path, s, j->reference, sizeof j->reference);
+        if (!is_file(j->reference))
+            return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
+    }
+    return 0;
+}
+
+/* Whether s ends in suf, ignoring case (an output named X.PPM is a PPM). */
+static int has_suffix(const char *s, const char *suf)
+{
+    size_t a = strlen(s), b = strlen(suf);
+    return a >= b && strcasecmp(s + a - b, suf) == 0;
+}
+
+double job_smallest_threshold(enum sampler_kind k)
+{
+    double side = floor(sqrt((double)SAMPLER_MAX_POINTS));
+    /* grid kinds: n = floor(100 / t) <= side; poisson: Bridson's grid side ceil(sqrt(2) 100 / t) <= side */
+    double t = k == SAMPLER_POISSON ? sqrt(2.0) * 100.0 / side : 100.0 / (side + 1.0);
+    return ceil(t * (1.0 + 1e-9) * 1e4) / 1e4;
+}
+
+/* Refuse a threshold whose sets would not fit the per-set limit: the count, the limit, why, and
+   the smallest threshold that fits. The same limit for all four samplers: a set is held whole in
+   memory (per render process, one for the pixel and one per sampled light). Poisson's is on
+   Bridson's background grid, one cell per possible point (at most one point per cell): its
+   points are about a third of its cells. */
+static int check_set_size(const struct job *j, enum sampler_kind k, double t, const int pos[2],
+                          const char *key, struct err *e)
+{
+    size_t n = sampler_capacity(k, t);
+    if (n <= SAMPLER_MAX_POINTS)
+        return 0;
+    char count[64];
+    if (n == SIZE_MAX) /* saturated: the count itself does not fit */
+        snprintf(count, sizeof count, "more than %zu", (size_t)SAMPLER_MAX_POINTS);
+    else
+        snprintf(count, sizeof count, "%zu", n);
+    const char *what = k == SAMPLER_POISSON ? "Bridson grid cells" : "points";
+    return err_set(e, j->path, pos[0], pos[1],
+                   "%s: %g would need %s %s per %s set (limit %d per set, each set held whole in memory); "
+                   "the smallest %s %s is %g",
+                   key, t, count, what, sampler_kind_name(k), SAMPLER_MAX_POINTS, sampler_kind_name(k), key,
+                   job_smallest_threshold(k));
+}
+
+int job_finish(struct job *j, struct ydoc *d, struct err *e)
+{
+    (void)d;
+    /* A name from the file's stem ("..yaml" gives ".", "...yaml" "..") names the output folder too:
+       the rule for name: keeps it inside --out and off hidden folders (.cache). */
+    if (!j->pos_name[0] && (!j->name[0] || j->name[0] == '.'))
+        return err_set(e, j->path, 1, 1,
+                       "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
+                       "give the job a name:",
+                       j->name);
+    if (!j->has_light_sampler)
+        j->light_sampler = j->sampler;
+    if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
+        check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
+                       e) < 0)
+        return -1;
+    /* The sidecar is the output's stem + ".json": an image named so would be overwritten by it. */
+    size_t len = strlen(j->output);
+    if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
+        return err_set(e, j->path, j->pos_output[0], j->pos_output[1],
+                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)",
+                       j->output);
+    int ext_png = has_suffix(j->output, ".png"), ext_ppm = has_suffix(j->output, ".ppm");
+    if (j->has_output && j->has_format && (ext_png || ext_ppm) && ext_ppm != (j->format == IMG_PPM))
+        return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
+                       "format: %s contradicts the output's extension (%s); give one or make them agree",
+                       j->format == IMG_PPM ? "ppm" : "png", j->output);
+    if (j->has_output && !j->has_format)
+        j->format = ext_ppm ? IMG_PPM : IMG_PNG;
+    if (!j->has_output)
+        snprintf(j->output, sizeof j->output, "%s.%s", j->name, j->format == IMG_PPM ? "ppm" : "png");
+    return 0;
+}
+
+int job_hash_file(const char *path, uint64_t *h, struct err *e)
+{
+    return fileio_hash(path, YDOC_MAX_BYTES, h, e);
+}
+
+int job_load(const char *path, struct job *j, struct err *e)
+{
+    return job_load_as(path, path, j, e);
+}
+
+int job_load_as(const char *from, const char *path, struct job *j, struct err *e)
+{
+    struct ydoc d;
+    int rc = -1;
+    job_defaults(j, path);
+    if (ydoc_load(&d, from, e) < 0) {
+        if (strcmp(e->file, from) == 0)
+            snprintf(e->file, sizeof e->file, "%s", path);
+        goto done;
+    }
+    snprintf(d.file, sizeof d.file, "%s", path);
+    yaml_node_t *root = ydoc_root(&d);
+    if (ymap_check(&d, root, job_keys, "job", e) < 0)
+        goto done;
+    yaml_node_t *k, *v;
+    for (int i = 0; ymap_pair(&d, root, i, &k, &v); i++)
+        if (job_apply(j, &d, k, v, e) < 0)
+            goto done;
+    if (!ymap_get(&d, root, "scene")) {
+        ymap_missing(&d, root, "scene", e, "scene: missing (name a scene file, e.g. scene: checker)");
+        goto done;
+    }
+    if (job_finish(j, &d, e) < 0)
+        goto done;
+    j->hash = HASH_FNV_OFFSET;
+    if (job_hash_file(from, &j->hash, e) < 0 || scene_hash_inputs(j->scene_path, &j->hash, e) < 0)
+        goto done;
+    /* The reference's bytes too: a replaced reference must not leave a sidecar's old error figures
+       current. Unreadable: run_load_reference says so. */
+    struct err ignored;
+    if (j->reference[0])
+        fileio_hash(j->reference, IMGIO_MAX_BYTES, &j->hash, &ignored);
+    rc = 0;
+done:
+    ydoc_free(&d);
+    return rc;
+}

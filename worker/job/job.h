@@ -1,0 +1,64 @@
+/* job: one render job as read from a YAML job file, validated strictly. */
+#ifndef JOB_H
+#define JOB_H
+
+#include <stdint.h>
+
+#include "base/err.h"
+#include "image/image.h"
+#include "sample/sampler.h"
+#include "scenefile/yamlx.h"
+
+#define JOB_PATH_MAX 1024
+#define JOB_NAME_MAX 128
+
+struct job {
+    char path[JOB_PATH_MAX]; /* the job file */
+    char name[JOB_NAME_MAX];
+    char scene_path[JOB_PATH_MAX]; /* resolved */
+    int width, height;             /* height 0: width / camera aspect */
+    enum sampler_kind sampler, light_sampler;
+    double threshold, light_threshold;
+    int max_depth;
+    uint64_t seed;
+    int processes;
+    enum img_format format;
+    char output[JOB_NAME_MAX];    /* file name under --out DIR/<name>/ */
+    char reference[JOB_PATH_MAX]; /* resolved; "" when none */
+    int poisson_pool;
+    int light_sampling; /* 0: no importance sampling of lights (default 1) */
+    int priority;       /* queue order: higher first (default 0) */
+    uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
+    /* which keys were given, and where (1-based line, col; 0 when absent) */
+    int has_light_sampler, has_format, has_output;
+    int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2], pos_format[2],
+        pos_output[2], pos_name[2], pos_width[2];
+};
+
+/* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
+/* The smallest threshold sampler kind k takes (its sets stay within SAMPLER_MAX_POINTS). */
+double job_smallest_threshold(enum sampler_kind k);
+
+int job_load(const char *path, struct job *j, struct err *e);
+
+/* Like job_load, but read the bytes from `from` while treating the file as if it were at `path`:
+   relative scene and reference paths resolve beside `path`, messages and j->path name `path`
+   (a queue job claimed into DIR/running/ still belongs to DIR). */
+int job_load_as(const char *from, const char *path, struct job *j, struct err *e);
+
+/* Hash of the bytes of the file at path, continued from h; -1 when it cannot be read. */
+int job_hash_file(const char *path, uint64_t *h, struct err *e);
+
+/* Set defaults (name from the file's stem). */
+void job_defaults(struct job *j, const char *path);
+
+/* Apply one key/value pair of a job mapping to j (used for job files and compare variants). */
+int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *val, struct err *e);
+
+/* Derive what depends on several keys (light sampler default, format, output name). */
+int job_finish(struct job *j, struct ydoc *d, struct err *e);
+
+/* The keys a job file may hold, NULL-terminated. */
+extern const char *const job_keys[];
+
+#endif

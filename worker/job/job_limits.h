@@ -1,0 +1,26 @@
+/* job_limits: refusing jobs that would run for ever or exhaust memory, before anything is forked. */
+#ifndef JOB_LIMITS_H
+#define JOB_LIMITS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "job.h"
+
+/* Most camera samples one job may ask for (width x height x samples per set). */
+#define LIMITS_MAX_JOB_SAMPLES 100000000000.0
+
+/* Refuse a job whose width x height x (largest pixel set) exceeds LIMITS_MAX_JOB_SAMPLES.
+   0, or -1 with e at the threshold key. */
+int job_limits_samples(const struct job *j, int width, int height, struct err *e);
+
+/* Refuse a framebuffer (and friends) of `bytes` when it exceeds half the memory available now
+   (MemAvailable in /proc/meminfo; no check where that is unknown). 0 or -1 with e filled. */
+int job_limits_memory(const char *what, size_t bytes, struct err *e);
+
+/* Check, making nothing, that dir is a writable directory or can be made as one (its nearest
+   existing ancestor is a writable directory), so an interrupted render leaves no empty folder
+   behind. 0 or -1 with e filled. */
+int job_limits_out_dir(const char *dir, struct err *e);
+
+#endif

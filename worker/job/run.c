@@ -1,0 +1,218 @@
+/* run: one job from its loaded settings to an image and its sidecar on disk. */
+#include "run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "base/hash.h"
+#include "job_limits.h"
+#include "farm/part.h"
+#include "run_out.h"
+#include "scenefile/scene_load.h"
+#include "sidecar.h"
+
+struct progress {
+    const char *name;
+    int enabled;
+    int last_pct;
+    void (*tick)(void *arg);
+    void *tick_arg;
+};
+
+static void show_progress(void *arg, int done, int rows, double elapsed)
+{
+    struct progress *p = arg;
+    if (p->tick)
+        p->tick(p->tick_arg);
+    if (!p->enabled || rows == 0)
+        return;
+    int pct = (int)(100.0 * done / rows);
+    if (pct == p->last_pct && done != rows)
+        return;
+    p->last_pct = pct;
+    char eta[32] = "--"; /* unknown until a row is done */
+    if (done > 0)
+        snprintf(eta, sizeof eta, "%.1f s", elapsed * (rows - done) / done);
+    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %s   ", p->name, pct, done, rows, elapsed,
+            eta);
+    if (done == rows)
+        fprintf(stderr, "\n");
+}
+
+static void stem_of(const char *file, char *out, size_t n)
+{
+    const char *dot = strrchr(file, '.');
+    int len = dot && dot != file ? (int)(dot - file) : (int)strlen(file);
+    snprintf(out, n, "%.*s", len, file);
+}
+
+void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n)
+{
+    char stem[JOB_NAME_MAX];
+    stem_of(j->output, stem, sizeof stem);
+    snprintf(dir, n, "%s/%s", out_dir ? out_dir : "out", j->name);
+    snprintf(image, n, "%s/%s/%s", out_dir ? out_dir : "out", j->name, j->output);
+    snprintf(sidecar, n, "%s/%s/%s.json", out_dir ? out_dir : "out", j->name, stem);
+}
+
+static int is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e)
+{
+    *ref = (struct rgb8){0};
+    if (!j->reference[0])
+        return 0;
+    if (imgio_read(j->reference, ref, e) < 0) {
+        char why[sizeof e->msg];
+        snprintf(why, sizeof why, "%s", e->msg);
+        return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s",
+                       j->reference, why);
+    }
+    if (ref->w != w || ref->h != h) {
+        err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
+                "reference: image is %dx%d but the job renders %dx%d", ref->w, ref->h, w, h);
+        image_free(ref);
+        return -1;
+    }
+    return 0;
+}
+
+/* Resume: the outputs exist and were made from these very inputs. */
+static int outputs_current(const struct job *j, const struct run_opts *o, struct run_result *rr)
+{
+    char dir[2048];
+    if (j->hash == 0) /* a job not read from a file (no job_load): nothing to compare with */
+        return 0;
+    if (o->parts > 0) {
+        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        rr->sidecar_path[0] = 0;
+        return part_matches(rr->image_path, j, o->part, o->parts);
+    }
+    run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
+    return is_file(rr->image_path) && sidecar_matches(rr->sidecar_path, j->hash);
+}
+
+int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
+{
+    /* Outputs left by a render with another process count are not what --processes asked for:
+       their sidecar records that count and its per-process times; so an override joins the hash
+       the outputs are matched by, from the command line, a queue or a compare job alike. (Parts
+       keep the file's hash: merge matches them against it, whatever split rendered them.) */
+    struct job overridden;
+    if (j->hash != 0 && o->parts == 0 && o->processes > 0 && o->processes != j->processes) {
+        overridden = *j;
+        overridden.hash = hash_u64(j->hash, (uint64_t)o->processes);
+        j = &overridden;
+    }
+    struct scene_file sf = {0};
+    struct sampler *pix = NULL, *light = NULL;
+    struct rgb8 ref = {0};
+    float *rgb = NULL;
+    char dir[2048], image[2048], sidecar[2048];
+    int rc = 2, made_dir = 0;
+    memset(rr, 0, sizeof *rr);
+    if (!o->force && outputs_current(j, o, rr)) {
+        rr->skipped = 1;
+        return 0;
+    }
+    if (scene_load(j->scene_path, &sf, e) < 0)
+        goto done;
+    int w = j->width;
+    int h = j->height ? j->height : (int)lround(w / sf.aspect);
+    if (h < 1)
+        h = 1;
+    if (h > IMAGE_MAX_SIDE) {
+        /* only a given width can get here (300 / the smallest aspect, 0.01, is within the limit) */
+        err_set(e, j->path, j->pos_width[0], j->pos_width[1],
+                "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", w, sf.aspect, h,
+                IMAGE_MAX_SIDE);
+        goto done;
+    }
+    rr->width = w;
+    rr->height = h;
+    struct camera cam;
+    if (camera_init(&cam, &sf.camera, (double)w / h, e) < 0) {
+        snprintf(e->file, sizeof e->file, "%s", j->scene_path);
+        goto done;
+    }
+    if (run_load_reference(j, w, h, &ref, e) < 0)
+        goto done;
+    if (job_limits_samples(j, w, h, e) < 0 ||
+        job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0)
+        goto done;
+    uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL);
+    if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
+        !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
+        snprintf(e->file, sizeof e->file, "%s", j->path);
+        goto done;
+    }
+    /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
+    run_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
+    if (job_limits_out_dir(dir, e) < 0)
+        goto done;
+    rc = 1;
+    if (!(rgb = procs_framebuffer_new(w, h, e)))
+        goto done;
+    struct progress prog = {j->name, o->progress && !o->quiet, -1, o->tick, o->tick_arg};
+    struct procs_job fj = {.scene = sf.scene,
+                           .camera = &cam,
+                           .rs = {w, h, j->max_depth, j->seed, !j->light_sampling},
+                           .pixel = pix,
+                           .light = light,
+                           .processes = o->processes > 0 ? o->processes : j->processes,
+                           .row_part = o->parts > 0 ? o->part : 0,
+                           .row_parts = o->parts > 0 ? o->parts : 1,
+                           .progress = show_progress,
+                           .progress_arg = &prog,
+                           .stop = o->stop};
+    if (procs_render(&fj, rgb, &rr->farm, e) < 0) {
+        if (prog.enabled)
+            fprintf(stderr, "\n");
+        goto done;
+    }
+    if (o->parts > 0) {
+        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        rr->sidecar_path[0] = 0;
+        if (run_out_make_dir(dir, &made_dir, e) < 0)
+            goto done;
+        const char *outs[] = {rr->image_path, NULL};
+        int lock;
+        int wrote = run_out_lock_outputs(dir, outs, o, &lock, e) < 0
+                        ? -1
+                        : part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
+        run_out_unlock(lock);
+        if (wrote < 0)
+            goto done;
+    } else if (run_out_write(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
+        goto done;
+    }
+    rc = 0;
+done:
+    if (rc != 0 && made_dir)
+        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
+    image_free(&ref);
+    procs_framebuffer_free(rgb, rr->width, rr->height);
+    sampler_free(pix);
+    sampler_free(light);
+    scene_file_free(&sf);
+    return rc;
+}
+
+void run_print_summary(const struct job *j, const struct run_result *rr)
+{
+    const struct render_stats *t = &rr->farm.total;
+    err_print("%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s\n", j->name, rr->width,
+              rr->height, sampler_kind_name(j->sampler), j->threshold,
+              t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes,
+              rr->farm.processes == 1 ? "" : "es", rr->farm.wall_s, rr->image_path);
+}

@@ -1,0 +1,51 @@
+/* run: render one loaded job end to end (scene, samplers, farm, image, sidecar). */
+#ifndef RUN_H
+#define RUN_H
+
+#include <signal.h>
+
+#include "procs.h"
+#include "job.h"
+
+struct run_opts {
+    const char *out_dir; /* default "out" */
+    int processes;       /* > 0 overrides the job's */
+    int quiet;
+    int progress;                      /* draw progress on stderr (a terminal, not quiet) */
+    int force;                         /* render even when the outputs are current (resume off) */
+    int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
+    const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
+    void (*tick)(void *arg);           /* optional: called about every 5 ms while rendering */
+    int (*may_write)(void *arg, const char *dir); /* optional: asked (with tick_arg and the output
+                                          folder) under that folder's lock, just before writing;
+                                          0 = write nothing, fail (a queue claim taken over, the
+                                          folder another queued job's) */
+    void *tick_arg;
+};
+
+struct run_result {
+    char image_path[2048];   /* with parts: the part file */
+    char sidecar_path[2048]; /* with parts: "" */
+    int width, height;
+    int skipped;              /* outputs were current (same job hash): nothing rendered */
+    struct procs_result farm; /* on a render failure: child_crashed, child_signal, stopped */
+};
+
+/* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing
+   rendered), 1 when rendering or writing failed; e says why. No output file exists unless the
+   render completed: image and sidecar are written atomically. Unless o->force, a job whose
+   image and sidecar (or part file) exist and record j->hash (non-zero: the job was read by
+   job_load) is not rendered: 0, rr->skipped. */
+int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
+
+/* The directory OUT/<name>/ and the image and sidecar paths of j (sidecar: image stem + .json). */
+void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
+
+/* Read j's reference into ref and check it is w x h. 0 (ref->px NULL when the job has none),
+   or -1 with e at the job's reference key. */
+int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e);
+
+/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
+void run_print_summary(const struct job *j, const struct run_result *rr);
+
+#endif

@@ -1,0 +1,363 @@
+/* compare: running a loaded compare job: references (cached), every combination, then
+   summary.csv, chart.svg and report.html. */
+#include "compare.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "compare_ref.h"
+#include "compare_stats.h"
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "base/hash.h"
+#include "job/job_limits.h"
+#include "report.h"
+#include "job/run_out.h"
+#include "base/sbuf.h"
+#include "scenefile/scene_load.h"
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+void compare_say(const struct run_opts *o, const char *fmt, ...)
+{
+    if (o->quiet || !o->progress)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+}
+
+/* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
+static double cost(const struct compare *c, const struct compare_item *it)
+{
+    double n = sampler_grid_side(it->job.threshold);
+    double spp = it->job.sampler == SAMPLER_POISSON
+                     ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
+                     : n * n;
+    return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
+}
+
+static void fmt_duration(double s, char *buf, size_t n)
+{
+    if (s < 60)
+        snprintf(buf, n, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(buf, n, "%dm%02ds", (int)s / 60, (int)s % 60);
+    else
+        snprintf(buf, n, "%dh%02dm", (int)s / 3600, (int)s % 3600 / 60);
+}
+
+/* The resume hash of one combination: its scene file's and texture images' bytes, every setting that changes
+   its pixels, and its reference image's bytes (a cached reference's bytes follow its settings, and a
+   reference given as a file may be replaced under the same path), not its path: the same --out spelled
+   another way finds the same outputs current. An image whose sidecar records it is current and is not
+   rendered again (unless --force). */
+static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *e)
+{
+    const struct job *j = &it->job;
+    uint64_t h = HASH_FNV_OFFSET;
+    struct err ignored; /* an unreadable reference was reported when it was loaded */
+    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
+        return -1;
+    if (j->reference[0])
+        fileio_hash(j->reference, IMGIO_MAX_BYTES, &h, &ignored);
+    char text[JOB_PATH_MAX + 512];
+    int n = snprintf(
+        text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s",
+        j->width, j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
+        j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, j->light_sampling,
+        j->reference[0] != 0, WORKER_VERSION);
+    *hash = hash_bytes(h, text, (size_t)n);
+    return 0;
+}
+
+/* The number after the first "key": in a sidecar's text (0 when absent). */
+static double sidecar_number(const char *text, const char *key)
+{
+    char want[64];
+    snprintf(want, sizeof want, "\"%s\": ", key);
+    const char *p = strstr(text, want);
+    return p ? strtod(p + strlen(want), NULL) : 0;
+}
+
+/* A combination skipped as current: what it measured, from its sidecar. */
+static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    if (fileio_read_all(sidecar_path, 1u << 20, &data, &len, e) < 0)
+        return -1;
+    const char *t = (const char *)data;
+    it->spp_mean = sidecar_number(t, "per_pixel_mean");
+    it->spp_min = (uint64_t)sidecar_number(t, "per_pixel_min");
+    it->spp_max = (uint64_t)sidecar_number(t, "per_pixel_max");
+    it->wall_s = sidecar_number(t, "wall_s"); /* the first: the job's, before per_process */
+    it->cpu_s = sidecar_number(t, "cpu_s");
+    it->sampler_share = sidecar_number(t, "sampling_share");
+    free(data);
+    return 0;
+}
+
+/* Render one combination (or take it as it is when current) and measure it against its
+   scene's reference (ref may be NULL). */
+static int render_item(struct compare *c, struct compare_item *it, const struct rgb8 *ref,
+                       const struct run_opts *o, struct err *e)
+{
+    const struct compare_scene *cs = &c->scenes[it->scene];
+    snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
+    if (item_hash(it, &it->job.hash, e) < 0)
+        return 2;
+    struct run_result rr;
+    struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
+    quiet_rows.progress = 0;
+    int rc = run_job(&it->job, &quiet_rows, &rr, e);
+    if (rc != 0) {
+        err_prefix(e, it->job.output);
+        return rc;
+    }
+    it->skipped = rr.skipped;
+    if (rr.skipped) {
+        if (item_from_sidecar(it, rr.sidecar_path, e) < 0)
+            return 1;
+    } else {
+        const struct render_stats *t = &rr.farm.total;
+        it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
+        it->spp_min = t->pixels ? t->spp_min : 0;
+        it->spp_max = t->spp_max;
+        it->wall_s = rr.farm.wall_s;
+        it->cpu_s = rr.farm.cpu_s;
+        double proc_wall_s = 0; /* the sidecar's sampling share: of the render processes' wall time */
+        for (int p = 0; p < rr.farm.processes; p++)
+            proc_wall_s += rr.farm.proc[p].wall_s;
+        it->sampler_share = proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0;
+    }
+    if (ref) {
+        struct rgb8 img = {0};
+        rc = imgio_read(rr.image_path, &img, e) < 0 || metrics_compare(ref, &img, &it->error, e) < 0;
+        image_free(&img);
+        if (rc)
+            return 1;
+        it->has_error = 1;
+    }
+    it->done = 1;
+    return 0;
+}
+
+/* One CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180), as a scene
+   file's name may. */
+static void csv_field(struct sbuf *b, const char *text, const char *after)
+{
+    if (!strpbrk(text, ",\"\r\n")) {
+        sbuf_printf(b, "%s%s", text, after);
+        return;
+    }
+    sbuf_printf(b, "\"");
+    for (const char *p = text; *p; p++)
+        sbuf_printf(b, "%s%c", *p == '"' ? "\"" : "", *p); /* a quote is doubled */
+    sbuf_printf(b, "\"%s", after);
+}
+
+static char *summary_csv(const struct compare *c)
+{
+    struct sbuf b = {0};
+    sbuf_printf(&b, "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
+                    "sampler_share,mse,rmse,relmse,psnr,image\n");
+    for (int i = 0; i < c->n_items; i++) {
+        const struct compare_item *it = &c->items[i];
+        csv_field(&b, c->scenes[it->scene].name, ",");
+        csv_field(&b, c->variants[it->variant], ",");
+        sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
+                    (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
+        if (it->has_error)
+            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.4f,", it->error.mse, it->error.rmse, it->error.relmse,
+                        it->error.psnr);
+        else
+            sbuf_printf(&b, ",,,,");
+        csv_field(&b, it->job.output, "\n");
+    }
+    return sbuf_take(&b);
+}
+
+/* Write text (taken; NULL: its maker failed and filled e, or ran out of memory) to dir/file. */
+static int write_text(const char *dir, const char *file, char *text, struct err *e)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    if (!text)
+        return e->msg[0] ? -1 : err_set(e, NULL, 0, 0, "out of memory writing %s", path);
+    int rc = fileio_write_atomic(path, text, strlen(text), e);
+    free(text);
+    return rc;
+}
+
+int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
+{
+    const char *out = o->out_dir ? o->out_dir : "out";
+    char dir[2048];
+    struct rgb8 *refs = calloc((size_t)c->n_scenes, sizeof *refs);
+    int rc = 1;
+    double t0 = now_s(), total = 0, done = 0;
+    if (!refs) {
+        err_set(e, NULL, 0, 0, "out of memory");
+        return 1;
+    }
+    snprintf(dir, sizeof dir, "%s/%s", out, c->name);
+    /* Checked now, made only when the first image or the summary is written: a job stopped or
+       failed before that (a reference render cut short by Ctrl-C) leaves no empty folder. */
+    if (job_limits_out_dir(dir, e) < 0) {
+        rc = 2;
+        goto fail;
+    }
+    for (int s = 0; s < c->n_scenes; s++) {
+        if ((rc = compare_ref_prepare(c, s, o, e)) != 0)
+            goto fail;
+        if (c->scenes[s].ref_kind != COMPARE_REF_NONE && imgio_read(c->scenes[s].ref_path, &refs[s], e) < 0) {
+            rc = 2;
+            goto fail;
+        }
+    }
+    for (int i = 0; i < c->n_items; i++)
+        total += cost(c, &c->items[i]);
+    double t1 = now_s();
+    for (int i = 0; i < c->n_items; i++) {
+        struct compare_item *it = &c->items[i];
+        const struct compare_scene *cs = &c->scenes[it->scene];
+        if ((rc = render_item(c, it, cs->ref_kind != COMPARE_REF_NONE ? &refs[it->scene] : NULL, o, e)) != 0)
+            goto fail;
+        if (it->skipped) /* current from an earlier run: no time spent, none to predict */
+            total -= cost(c, it);
+        else
+            done += cost(c, it);
+        double elapsed = now_s() - t1;
+        char el[32], eta[32], err_text[48] = "";
+        fmt_duration(now_s() - t0, el, sizeof el);
+        fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
+        if (it->has_error)
+            snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
+        compare_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
+                    c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+                    it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+                    it->skipped ? " (current, not rendered again)" : "", el, eta);
+    }
+    rc = 1;
+    e->msg[0] = 0;
+    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
+       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
+    char summary[2100], chart[2100], report[2100];
+    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
+    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
+    snprintf(report, sizeof report, "%s/report.html", dir);
+    const char *outs[] = {summary, chart, report, NULL};
+    int lock = -1;
+    if (run_out_mkdirs(dir, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
+        write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
+        write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
+        write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
+        run_out_unlock(lock);
+        goto fail;
+    }
+    run_out_unlock(lock);
+    rc = 0;
+fail:
+    for (int s = 0; s < c->n_scenes; s++)
+        image_free(&refs[s]);
+    free(refs);
+    return rc;
+}
+
+/* "s" after a count other than one */
+static const char *plural(int n)
+{
+    return n == 1 ? "" : "s";
+}
+
+/* "compare: 120 images (2 scenes x ...), references: 1 rendered, 1 reused from cache, 41 s -> ..." */
+static void summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
+{
+    int reused = 0, rendered = 0;
+    double saved_s = 0;
+    for (int s = 0; s < c->n_scenes; s++) {
+        const struct compare_scene *cs = &c->scenes[s];
+        reused += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused;
+        rendered += cs->ref_kind == COMPARE_REF_SETTINGS && !cs->ref_reused;
+        saved_s += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused ? cs->ref_wall_s : 0;
+    }
+    char refs[128] = "no reference";
+    if (reused)
+        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered,
+                 reused, saved_s);
+    else if (rendered)
+        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
+    else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
+        snprintf(refs, sizeof refs, "reference image given");
+    int current = 0;
+    for (int i = 0; i < c->n_items; i++)
+        current += c->items[i].skipped;
+    char resumed[96] = "";
+    if (current)
+        snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
+                 current);
+    snprintf(
+        buf, n,
+        "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> %s/%s/",
+        c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
+        plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
+        refs, wall_s, out_dir ? out_dir : "out", c->name);
+}
+
+/* compare_main_as, with compare_main's name_ok. */
+static int main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                   char *name, size_t name_n, int (*name_ok)(const char *name, void *arg), void *arg)
+{
+    struct err e = {0};
+    char line[2048];
+    double t0 = now_s();
+    struct compare *c = compare_load_as(from, path, &e);
+    int rc = 2;
+    if (c && name)
+        snprintf(name, name_n, "%s", c->name);
+    if (c && name_ok && !name_ok(c->name, arg)) {
+        compare_free(c);
+        return 2;
+    }
+    if (c)
+        rc = compare_run(c, o, &e);
+    if (rc != 0) {
+        if (rc == 1 && c) { /* a render failure names the job; bad input names its file */
+            char why[sizeof e.msg];
+            snprintf(why, sizeof why, "%s", e.msg);
+            snprintf(e.msg, sizeof e.msg, "%s: %s", c->name, why);
+        }
+        err_format(&e, line, sizeof line);
+    } else {
+        summary_line(c, now_s() - t0, o->out_dir, line, sizeof line);
+    }
+    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
+        fprintf(stderr, "%s\n", line);
+    if (last)
+        snprintf(last, n, "%s", line);
+    compare_free(c);
+    return rc;
+}
+
+int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
+                 void *arg)
+{
+    return main_as(path, path, o, NULL, 0, NULL, 0, name_ok, arg);
+}
+
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                    char *name, size_t name_n)
+{
+    return main_as(from, path, o, last, n, name, name_n, NULL, NULL);
+}

@@ -1,0 +1,93 @@
+/* compare: compare jobs (SPEC "Compare job"): scenes x variants x sweep x seeds, each an
+   ordinary render scored against a cached per-scene reference, summarised as CSV, SVG and HTML. */
+#ifndef COMPARE_H
+#define COMPARE_H
+
+#include <stdint.h>
+
+#include "job/job.h"
+#include "image/metrics.h"
+#include "job/run.h"
+
+/* Most images one compare job may expand to. */
+#define COMPARE_MAX_ITEMS 4096
+#define COMPARE_LABEL_MAX 64
+/* The reference's seed unless its settings give one: apart from the study's seeds, so the
+   reference's noise is independent of every image scored against it. */
+#define COMPARE_REF_SEED 1000003
+
+struct compare_scene {
+    char name[COMPARE_LABEL_MAX]; /* the scene file's stem: "checker" */
+    int width, height;            /* of every image of this scene */
+    int ref_kind;                 /* COMPARE_REF_NONE | _SETTINGS | _IMAGE */
+    struct job ref_job;           /* _SETTINGS: the reference render (output set at run time) */
+    char ref_path[JOB_PATH_MAX];  /* the reference image once known (cache or given path) */
+    int ref_reused;               /* the cached reference was reused */
+    double ref_wall_s;            /* seconds its render took (now or when it was cached) */
+};
+
+enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
+
+/* One combination: an ordinary job plus what its render measured. */
+struct compare_item {
+    struct job job;
+    int scene, variant, point, seed; /* indices */
+    int done, has_error;
+    int skipped; /* its image and sidecar were current (same hash): not rendered again */
+    double spp_mean, wall_s, cpu_s, sampler_share;
+    uint64_t spp_min, spp_max;
+    struct metrics error;
+};
+
+struct compare {
+    char path[JOB_PATH_MAX];
+    char name[JOB_NAME_MAX];
+    int n_scenes, n_variants, n_points, n_seeds, n_items;
+    struct compare_scene *scenes;
+    char (*variants)[COMPARE_LABEL_MAX];    /* labels */
+    char (*points)[COMPARE_LABEL_MAX];      /* sweep point labels: "threshold 5" */
+    char sweep_keys[COMPARE_LABEL_MAX * 2]; /* "threshold" or "threshold, light_threshold"; "" */
+    uint64_t *seeds;
+    struct compare_item *items; /* index compare_index(c, scene, variant, point, seed) */
+};
+
+/* 1 when the YAML file at path is a compare job (its root mapping has `variants:`), else 0
+   (also when it cannot be read: job_load then reports why). */
+int compare_is_compare_job(const char *path);
+
+/* Load, validate and expand the compare job at path into a new struct compare. Everything a
+   render needs is checked here (keys, values, scenes, reference images, set sizes), so a bad
+   job fails before anything renders. NULL with e = "file:line:col: key: message". */
+struct compare *compare_load(const char *path, struct err *e);
+
+/* compare_load reading the file at `from` but naming and resolving relative paths as if it were
+   at `path` (a queue's claimed job file, moved into running/). */
+struct compare *compare_load_as(const char *from, const char *path, struct err *e);
+void compare_free(struct compare *c);
+
+/* Index of an item in c->items. */
+int compare_index(const struct compare *c, int scene, int variant, int point, int seed);
+
+/* Render every reference (or reuse the cache under OUT/.cache/) and every combination, then
+   write summary.csv, chart.svg and report.html under OUT/<name>/. Returns 0, 1 when a render
+   or write failed, 2 on bad input found late (a reference image); e says why. Prints one
+   progress line per combination when o->progress and not o->quiet. */
+int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
+
+/* A progress line on stderr: only on a terminal and without --quiet (SPEC "Command line"). */
+void compare_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* The command line's part: load, run and print one compare job (errors as one line
+   "file:line:col: message", then its summary line). name_ok (optional) is asked, with arg, about
+   the loaded job's name before anything renders: 0 refuses the job (name_ok said why on stderr),
+   exit status 2. Returns the exit status: 0, 1 or 2. */
+int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
+                 void *arg);
+
+/* compare_main for a job file read from `from` as if at `path`; the line printed last (the error
+   or the summary) is also copied into last (when not NULL), and the job's name, once it loaded,
+   into name (when not NULL; left as it is when the job is invalid). */
+int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                    char *name, size_t name_n);
+
+#endif

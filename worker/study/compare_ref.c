@@ -1,0 +1,85 @@
+/* compare_ref: render a compare job's references into OUT/.cache/, or reuse the cached ones. */
+#include "compare_ref.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/fileio.h"
+#include "image/imgio.h"
+#include "base/hash.h"
+#include "scenefile/scene_load.h"
+
+/* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
+   changes the reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
+   pixels, and its version string does not change with every commit. */
+static int reference_key(const struct compare_scene *cs, uint64_t *key, struct err *e)
+{
+    const struct job *j = &cs->ref_job;
+    struct err ignored;
+    uint64_t h = HASH_FNV_OFFSET;
+    fileio_hash("/proc/self/exe", 1u << 30, &h, &ignored); /* unreadable: the key lacks it */
+    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
+        return -1;
+    char text[512];
+    int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d worker %s",
+                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
+                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
+                     (unsigned long long)j->seed, j->poisson_pool, WORKER_VERSION);
+    *key = hash_bytes(h, text, (size_t)n);
+    return 0;
+}
+
+/* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
+static double cached_wall_s(const char *png_path)
+{
+    char json[JOB_PATH_MAX + 8];
+    snprintf(json, sizeof json, "%.*s.json", (int)strlen(png_path) - 4, png_path);
+    uint8_t *data;
+    size_t len;
+    struct err e;
+    double s = 0;
+    if (fileio_read_all(json, 1 << 20, &data, &len, &e) < 0)
+        return 0;
+    const char *p = strstr((const char *)data, "\"wall_s\": ");
+    if (p)
+        s = strtod(p + 10, NULL);
+    free(data);
+    return s;
+}
+
+int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
+{
+    struct compare_scene *cs = &c->scenes[s];
+    if (cs->ref_kind != COMPARE_REF_SETTINGS)
+        return 0;
+    uint64_t key;
+    if (reference_key(cs, &key, e) < 0)
+        return 2;
+    struct job j = cs->ref_job;
+    snprintf(j.name, sizeof j.name, ".cache");
+    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.png", cs->name, (unsigned long long)key);
+    snprintf(cs->ref_path, sizeof cs->ref_path, "%s/.cache/%s", o->out_dir ? o->out_dir : "out", j.output);
+    struct rgb8 img = {0};
+    struct err ignored;
+    if (imgio_read(cs->ref_path, &img, &ignored) == 0 && img.w == cs->width && img.h == cs->height) {
+        image_free(&img);
+        cs->ref_reused = 1;
+        cs->ref_wall_s = cached_wall_s(cs->ref_path);
+        compare_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name,
+                    cs->ref_path, cs->ref_wall_s);
+        return 0;
+    }
+    image_free(&img);
+    compare_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
+                sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler),
+                j.light_threshold, cs->ref_path);
+    struct run_result rr;
+    int rc = run_job(&j, o, &rr, e);
+    if (rc != 0) {
+        err_prefix(e, "reference");
+        return rc;
+    }
+    cs->ref_wall_s = rr.farm.wall_s;
+    return 0;
+}

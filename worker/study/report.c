@@ -1,0 +1,375 @@
+/* report: the compare job's HTML page: chart, images side by side, crops, error maps, table. */
+#include "report.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compare_stats.h"
+#include "base/fileio.h"
+#include "image/png.h"
+#include "report_image.h"
+#include "base/sbuf.h"
+
+#define REPORT_MAX_PNG_BYTES (256u << 20)
+
+static const char style[] =
+    "body{font-family:sans-serif;margin:16px;color:#222;max-width:1180px}"
+    "h1{font-size:22px}h2{font-size:19px;border-top:2px solid #ddd;padding-top:10px}h3{font-size:15px}"
+    ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}"
+    "figure{margin:0;font-size:12px;width:min-content}figcaption{min-width:120px}"
+    "img{display:block;border:1px solid #ccc}img.px{image-rendering:pixelated}"
+    "svg{max-width:100%;height:auto}" /* a long label's legend makes the chart wider than the page */
+    "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
+    "6px;text-align:right}"
+    "td.l,th.l{text-align:left}.pt{font-weight:bold;font-size:13px;min-width:90px}"
+    ".note{color:#555;font-size:13px}li{margin-bottom:4px}";
+
+/* Read a PNG file's bytes (for a data URI) and, when img is not NULL, decode it too. */
+static int read_png(const char *path, uint8_t **bytes, size_t *len, struct rgb8 *img, struct err *e)
+{
+    if (fileio_read_all(path, REPORT_MAX_PNG_BYTES, bytes, len, e) < 0)
+        return -1;
+    if (img && png_decode(*bytes, *len, path, img, e) < 0) {
+        free(*bytes);
+        *bytes = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+/* <img> of PNG bytes, shown at least min_w pixels wide (small images scaled up, pixelated). */
+static void img_tag(struct sbuf *b, const uint8_t *png, size_t len, int w, int min_w, const char *alt)
+{
+    sbuf_printf(b, "<img%s src=\"data:image/png;base64,", w < min_w ? " class=\"px\"" : "");
+    sbuf_base64(b, png, len);
+    sbuf_printf(b, "\" width=\"%d\" alt=\"", w < min_w ? min_w : w);
+    sbuf_escape(b, alt);
+    sbuf_printf(b, "\">");
+}
+
+static int rgb_tag(struct sbuf *b, const struct rgb8 *img, int min_w, const char *alt, struct err *e)
+{
+    uint8_t *png;
+    size_t len;
+    if (png_encode(img, &png, &len, e) < 0)
+        return -1;
+    img_tag(b, png, len, img->w, min_w, alt);
+    free(png);
+    return 0;
+}
+
+static const char *image_path(const struct compare *c, const struct compare_item *it, const char *dir,
+                              char *buf, size_t n)
+{
+    (void)c;
+    snprintf(buf, n, "%s/%s", dir, it->job.output);
+    return buf;
+}
+
+/* Rows of images: one row per sweep point, the variants side by side (seed index 0). */
+static int image_grid(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
+{
+    int shown_w = c->scenes[s].width < 160 ? 160 : c->scenes[s].width;
+    for (int p = 0; p < c->n_points; p++) {
+        sbuf_printf(b, "<div class=\"row\"><div class=\"pt\">");
+        sbuf_escape(b, c->points[p]);
+        sbuf_printf(b, "<br>seed %llu</div>\n", (unsigned long long)c->seeds[0]);
+        for (int v = 0; v < c->n_variants; v++) {
+            const struct compare_item *it = &c->items[compare_index(c, s, v, p, 0)];
+            char path[4096], alt[256];
+            uint8_t *png;
+            size_t len;
+            if (read_png(image_path(c, it, dir, path, sizeof path), &png, &len, NULL, e) < 0)
+                return -1;
+            snprintf(alt, sizeof alt, "%s %s", c->variants[v], it->job.output);
+            sbuf_printf(b, "<figure>");
+            img_tag(b, png, len, c->scenes[s].width, shown_w, alt);
+            free(png);
+            sbuf_printf(b, "<figcaption><b>");
+            sbuf_escape(b, c->variants[v]);
+            sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, it->spp_mean);
+            if (it->has_error)
+                sbuf_printf(b, ", relMSE %.3g", it->error.relmse);
+            sbuf_printf(b, ", %.2f s</figcaption></figure>\n", it->wall_s);
+        }
+        sbuf_printf(b, "</div>\n");
+    }
+    return 0;
+}
+
+/* Crops and error maps at sweep point p (seed index 0), against the reference. */
+static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                    const struct rgb8 *ref, struct err *e)
+{
+    struct rgb8 *imgs = calloc((size_t)c->n_variants, sizeof *imgs), tmp = {0};
+    int rc = -1, w = ref->w, h = ref->h;
+    int side = (w < h ? w : h) / 5;
+    side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
+    if (!imgs)
+        return err_set(e, NULL, 0, 0, "out of memory");
+    for (int v = 0; v < c->n_variants; v++) {
+        char path[4096];
+        uint8_t *png;
+        size_t len;
+        if (read_png(image_path(c, &c->items[compare_index(c, s, v, p, 0)], dir, path, sizeof path), &png,
+                     &len, &imgs[v], e) < 0)
+            goto done;
+        free(png);
+    }
+    int x0, y0;
+    report_worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
+    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", REPORT_CROP_ZOOM);
+    sbuf_escape(b, c->points[p]);
+    sbuf_printf(b,
+                ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
+                "(by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n<div "
+                "class=\"row\">",
+                x0, x0 + side - 1, y0, y0 + side - 1);
+    for (int v = -1; v < c->n_variants; v++) {
+        const struct rgb8 *src = v < 0 ? ref : &imgs[v];
+        sbuf_printf(b, "<figure>");
+        if (report_crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
+            rgb_tag(b, &tmp, 128, v < 0 ? "reference crop" : c->variants[v], e) < 0)
+            goto done;
+        image_free(&tmp);
+        sbuf_printf(b, "<figcaption>");
+        if (v < 0)
+            sbuf_printf(b, "reference");
+        else
+            sbuf_escape(b, c->variants[v]);
+        sbuf_printf(b, "</figcaption></figure>\n");
+    }
+    sbuf_printf(b, "</div>\n<h3>Error maps at ");
+    sbuf_escape(b, c->points[p]);
+    int gain = report_error_gain(ref, imgs, c->n_variants);
+    sbuf_printf(b,
+                ": |image - reference| x %d, the same for every variant (the 99th percentile of their "
+                "errors shows white). Noise looks like grain; structured error (aliasing, a repeated "
+                "pattern, bright spots) looks like a pattern</h3>\n<div class=\"row\">",
+                gain);
+    for (int v = 0; v < c->n_variants; v++) {
+        sbuf_printf(b, "<figure>");
+        if (report_error_map(ref, &imgs[v], gain, &tmp, e) < 0 ||
+            rgb_tag(b, &tmp, 160, c->variants[v], e) < 0)
+            goto done;
+        image_free(&tmp);
+        sbuf_printf(b, "<figcaption>");
+        sbuf_escape(b, c->variants[v]);
+        sbuf_printf(b, "</figcaption></figure>\n");
+    }
+    sbuf_printf(b, "</div>\n");
+    rc = 0;
+done:
+    image_free(&tmp);
+    for (int v = 0; v < c->n_variants; v++)
+        image_free(&imgs[v]);
+    free(imgs);
+    return rc;
+}
+
+/* Variants ranked by Monte Carlo efficiency, 1 / (relMSE x wall s), at their densest point (the
+   sweep's last point when the sweep leaves samples per pixel alone). */
+static int efficiency(struct sbuf *b, const struct compare *c, int s)
+{
+    int *order = calloc((size_t)c->n_points, sizeof *order),
+        *rank = calloc((size_t)c->n_variants, sizeof *rank);
+    double *eff = calloc((size_t)c->n_variants, sizeof *eff);
+    if (!order || !rank || !eff) {
+        free(order), free(rank), free(eff);
+        return -1;
+    }
+    int vary = 1;
+    for (int v = 0; v < c->n_variants; v++) {
+        struct compare_agg a;
+        vary &= compare_samples_vary(c, s, v);
+        compare_point_order(c, s, v, order);
+        compare_aggregate(c, s, v, order[c->n_points - 1], &a);
+        eff[v] = a.rel > 0 && a.wall_s > 0 ? 1 / (a.rel * a.wall_s) : 0;
+        rank[v] = v;
+        for (int i = v; i > 0 && eff[rank[i]] > eff[rank[i - 1]]; i--) {
+            int t = rank[i];
+            rank[i] = rank[i - 1];
+            rank[i - 1] = t;
+        }
+    }
+    sbuf_printf(b,
+                "<p><b>For the time spent</b> (efficiency 1 / (relMSE x wall s) at each variant's %s, higher "
+                "is better): ",
+                vary ? "densest point" : "last point of the sweep");
+    for (int i = 0; i < c->n_variants; i++) {
+        sbuf_printf(b, "%s<b>", i ? ", " : "");
+        sbuf_escape(b, c->variants[rank[i]]);
+        sbuf_printf(b, "</b> %.3g", eff[rank[i]]);
+    }
+    sbuf_printf(b, ".</p>\n");
+    free(order), free(rank), free(eff);
+    return 0;
+}
+
+static int scene_section(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
+{
+    const struct compare_scene *cs = &c->scenes[s];
+    struct rgb8 ref = {0};
+    uint8_t *png = NULL;
+    size_t len;
+    int rc = -1, has_ref = cs->ref_kind != COMPARE_REF_NONE;
+    sbuf_printf(b, "<h2>Scene ");
+    sbuf_escape(b, cs->name);
+    sbuf_printf(b, " (%dx%d)</h2>\n", cs->width, cs->height);
+    if (has_ref) {
+        if (read_png(cs->ref_path, &png, &len, &ref, e) < 0)
+            goto done;
+        sbuf_printf(b, "<div class=\"row\"><figure>");
+        img_tag(b, png, len, ref.w, 160, "reference");
+        sbuf_printf(b, "<figcaption><b>reference</b>: ");
+        if (cs->ref_kind == COMPARE_REF_SETTINGS)
+            sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s",
+                        sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
+                        sampler_kind_name(cs->ref_job.light_sampler), cs->ref_job.light_threshold,
+                        (unsigned long long)cs->ref_job.seed,
+                        cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
+        else
+            sbuf_escape(b, cs->ref_path);
+        sbuf_printf(b, "</figcaption></figure></div>\n");
+    }
+    sbuf_printf(b, "<h3>Side by side at each sweep point, with samples per pixel</h3>\n");
+    if (image_grid(b, c, s, dir, e) < 0)
+        goto done;
+    if (has_ref) {
+        int *order = calloc((size_t)c->n_points, sizeof *order);
+        if (!order) {
+            err_set(e, NULL, 0, 0, "out of memory");
+            goto done;
+        }
+        compare_point_order(c, s, 0, order);
+        int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
+        free(order);
+        if (closeups(b, c, s, mid, dir, &ref, e) < 0 ||
+            (densest != mid && closeups(b, c, s, densest, dir, &ref, e) < 0))
+            goto done;
+    }
+    if (has_ref && efficiency(b, c, s) < 0) {
+        err_set(e, NULL, 0, 0, "out of memory");
+        goto done;
+    }
+    sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
+    for (int v = 0; v < c->n_variants; v++) {
+        char *line = compare_stability(c, s, v, dir, has_ref ? &ref : NULL);
+        sbuf_printf(b, "<li><b>");
+        sbuf_escape(b, c->variants[v]);
+        sbuf_printf(b, "</b>: ");
+        sbuf_escape(b, line ? line : "out of memory");
+        sbuf_printf(b, "</li>\n");
+        free(line);
+    }
+    sbuf_printf(b, "</ul>\n");
+    rc = 0;
+done:
+    free(png);
+    image_free(&ref);
+    return rc;
+}
+
+/* A relative link to a file beside the page: href="name" with every byte but letters, digits and
+   "-._~" percent-encoded, so a scene file's name with a quote, '#' or '%' still resolves. */
+static void file_link(struct sbuf *b, const char *name, const char *text)
+{
+    sbuf_printf(b, "<a href=\"");
+    for (const unsigned char *p = (const unsigned char *)name; *p; p++)
+        if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
+            strchr("-._~", *p))
+            sbuf_printf(b, "%c", *p);
+        else
+            sbuf_printf(b, "%%%02X", *p);
+    sbuf_printf(b, "\">");
+    sbuf_escape(b, text);
+    sbuf_printf(b, "</a>");
+}
+
+static void table(struct sbuf *b, const struct compare *c)
+{
+    static const char *const head[] = {"scene",    "variant", "threshold", "light threshold", "seed",
+                                       "spp mean", "wall s",  "cpu s",     "sampler share",   "mse",
+                                       "rmse",     "relmse",  "psnr dB",   "image, sidecar"};
+    sbuf_printf(b, "<table>\n<tr>");
+    for (size_t i = 0; i < sizeof head / sizeof head[0]; i++)
+        sbuf_printf(b, "<th%s>%s</th>", i < 2 || i == 13 ? " class=\"l\"" : "", head[i]);
+    sbuf_printf(b, "</tr>\n");
+    for (int i = 0; i < c->n_items; i++) {
+        const struct compare_item *it = &c->items[i];
+        sbuf_printf(b, "<tr><td class=\"l\">");
+        sbuf_escape(b, c->scenes[it->scene].name);
+        sbuf_printf(b, "</td><td class=\"l\">");
+        sbuf_escape(b, c->variants[it->variant]);
+        sbuf_printf(
+            b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
+            it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
+            it->wall_s, it->cpu_s, it->sampler_share);
+        if (it->has_error)
+            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td>", it->error.mse,
+                        it->error.rmse, it->error.relmse, it->error.psnr);
+        else
+            sbuf_printf(b, "<td></td><td></td><td></td><td></td>");
+        char sidecar[JOB_PATH_MAX + 8];
+        snprintf(sidecar, sizeof sidecar, "%.*s.json", (int)strlen(it->job.output) - 4, it->job.output);
+        sbuf_printf(b, "<td class=\"l\">");
+        file_link(b, it->job.output, it->job.output);
+        sbuf_printf(b, ", ");
+        file_link(b, sidecar, "json");
+        sbuf_printf(b, "</td></tr>\n");
+    }
+    sbuf_printf(b, "</table>\n");
+}
+
+char *report_html(const struct compare *c, const char *dir, struct err *e)
+{
+    struct sbuf b = {0};
+    char *svg = compare_chart_svg(c);
+    if (!svg) {
+        err_set(e, NULL, 0, 0, "out of memory drawing the chart");
+        return NULL;
+    }
+    sbuf_printf(&b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
+    sbuf_escape(&b, c->name);
+    sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", style);
+    sbuf_escape(&b, c->name);
+    sbuf_printf(&b,
+                ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Job ");
+    sbuf_escape(&b, c->path);
+    sbuf_printf(&b, ": %d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
+                c->n_variants, c->n_points);
+    if (c->sweep_keys[0]) {
+        sbuf_printf(&b, " (sweep: ");
+        sbuf_escape(&b, c->sweep_keys);
+        sbuf_printf(&b, ")");
+    }
+    sbuf_printf(
+        &b,
+        " x %d seeds. Error is relMSE (mean of (image - reference)^2 / (reference^2 + 0.01) over 8-bit "
+        "values scaled to [0, 1]) against each scene's reference; lower is better. The reference's own "
+        "noise and 8-bit rounding set a floor under every curve. Wall time is one image's render on "
+        "this machine, so it moves with the machine's load. Every image and its JSON sidecar are "
+        "beside this page (linked from the table at the end), with ",
+        c->n_seeds);
+    file_link(&b, "summary.csv", "summary.csv");
+    sbuf_printf(&b, " (the table's figures) and ");
+    file_link(&b, "chart.svg", "chart.svg");
+    sbuf_printf(&b, ".</p>\n");
+    const char *body = strstr(svg, "<svg"); /* inline: drop the XML declaration */
+    sbuf_printf(&b, "<h2>Speed against accuracy</h2>\n%s\n", body ? body : svg);
+    free(svg);
+    for (int s = 0; s < c->n_scenes; s++)
+        if (scene_section(&b, c, s, dir, e) < 0) {
+            sbuf_free(&b);
+            return NULL;
+        }
+    sbuf_printf(&b, "<h2>Every image</h2>\n");
+    table(&b, c);
+    sbuf_printf(&b, "</body></html>\n");
+    char *html = sbuf_take(&b);
+    if (!html)
+        err_set(e, NULL, 0, 0, "out of memory writing the report");
+    return html;
+}
