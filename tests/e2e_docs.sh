@@ -1,0 +1,246 @@
+#!/bin/sh
+# e2e_docs: the docs stay true. (1) Every key the loaders accept, read from their C tables, is a
+# row of its doc's reference table, and no row names a key they refuse; (2) every ```yaml block in
+# README.md and docs/ loads and renders (tiny), or fails with its "# expect-error: TEXT"; (3) the
+# pictures in docs/img/ are what `worker points` draws; (4) relative links and anchors resolve;
+# README.md stays within 160 lines. Each check is also run on a broken copy, which it must refuse.
+. tests/lib.sh
+root=$(pwd)
+
+# --- 1. keys: the loaders' tables, mechanically ------------------------------------------------
+
+# "TABLE KEY" for every string in a `char *[const] NAME[] = {...}` table named *_keys or *_types
+# (and compare_load.c's `extra`), and in a `#define NAME_KEYS "a", "b"` list; "TABLE @MACRO" where
+# a table includes such a list.
+cat >"$T/tables.awk" <<'EOF'
+function emit(tab, text,   s) {
+    s = text
+    while (match(s, /"[^"]*"/)) { print tab, substr(s, RSTART + 1, RLENGTH - 2); s = substr(s, RSTART + RLENGTH) }
+    s = text
+    while (match(s, /[A-Z][A-Z_]*_KEYS/)) { print tab, "@" substr(s, RSTART, RLENGTH); s = substr(s, RSTART + RLENGTH) }
+}
+/^#define [A-Z][A-Z_]*_KEYS / { name = $2; sub(/^#define [A-Z_]+ /, ""); emit(name, $0); next }
+intab { buf = buf " " $0; if ($0 ~ /};/) { emit(tab, buf); intab = 0 }; next }
+/char \*(const )?[a-z_]+\[\] = \{/ {
+    match($0, /[a-z_]+\[\] = \{/); n = substr($0, RSTART, RLENGTH); sub(/\[\].*/, "", n)
+    if (n ~ /_keys$/ || n ~ /_types$/ || n == "extra") {
+        rest = substr($0, RSTART + RLENGTH)
+        if (rest ~ /};/) emit(n, rest); else { intab = 1; tab = n; buf = rest }
+    }
+}
+EOF
+loaders="worker/job/job.c common/scenefile/scene_load.c common/scenefile/scene_objects.c worker/study/compare_load.c"
+awk -f "$T/tables.awk" $loaders >"$T/tables"
+# a compare variant's extra key: compare_check_keys(L, var, "variant", "label")
+grep -ho 'compare_check_keys([^;]*, "[a-z_]*")' worker/study/compare_*.c |
+    sed 's/.*"\([a-z_]*\)")$/extra \1/' >>"$T/tables"
+# object types and their tables: {"sphere", sphere_keys, load_sphere, 1},
+sed -n 's/^ *{"\([a-z_]*\)", \([a-z_]*_keys\),.*/\1 \2/p' common/scenefile/scene_objects.c >"$T/objects"
+awk '{print "object_types", $1}' "$T/objects" >>"$T/tables"
+
+n_tables=$(cut -d' ' -f1 "$T/tables" | sort -u | wc -l)
+n_keys=$(wc -l <"$T/tables")
+check "the loaders' tables were found (got $n_tables tables, $n_keys entries)" \
+    [ "$n_tables" -ge 20 -a "$n_keys" -ge 90 ]
+for t in job_keys extra scene_keys camera_keys material_keys COMMON_KEYS object_types sphere_keys; do
+    check "table $t read from the source" grep -q "^$t " "$T/tables"
+done
+# every table a loader checks keys against (ymap_check's third argument) is one read above
+for t in $(grep -ho 'ymap_check([^,]*, [^,]*, [a-z_]*_keys,' $loaders | sed 's/.*, \([a-z_]*_keys\),$/\1/' | sort -u); do
+    check "ymap_check's table $t is read by this test" grep -q "^$t " "$T/tables"
+done
+
+# rows.awk: the first cells "| `x` |" of a section's own body (the heading's text given exactly,
+# up to the next heading of any level; with sub=1 down to the next heading of its level or above,
+# headings "`x`" included).
+cat >"$T/rows.awk" <<'EOF'
+/^```/ { fence = !fence; next }
+fence { next }
+/^#+ / {
+    match($0, /^#+/); level = RLENGTH; text = substr($0, level + 2)
+    if (on && (!sub_ || level <= on)) on = 0
+    if (text == want) { on = level; found = 1; next }
+    if (on && sub_ && text ~ /^`[^`]*`$/) print substr(text, 2, length(text) - 2)
+    next
+}
+on && /^\| `[^`]*` \|/ { s = $0; sub(/^\| `/, "", s); sub(/`.*/, "", s); print s }
+END { if (!found) print "?no-heading:" want }
+EOF
+rows() { # rows FILE HEADING [sub]
+    awk -v want="$2" -v sub_="${3:-0}" -f "$T/rows.awk" "$1"
+}
+
+# The doc and heading each table is documented under.
+place() {
+    case $1 in
+    job_keys) echo "job-format.md|Keys" ;;
+    extra) echo "compare.md|Keys" ;;
+    scene_keys) echo "scene-format.md|Top level" ;;
+    material_keys | material_types) echo "scene-format.md|Materials" ;;
+    COMMON_KEYS) echo "scene-format.md|Every object" ;;
+    texture_types) echo "scene-format.md|Textures" ;;
+    object_types) echo "scene-format.md|Objects" ;;
+    *_keys) echo "scene-format.md|\`${1%_keys}\`" ;;
+    esac
+}
+
+# check_keys DOCS: print one line per fault (a key not documented, a row the loader refuses).
+check_keys() {
+    d=$1
+    for t in $(cut -d' ' -f1 "$T/tables" | sort -u); do
+        p=$(place "$t")
+        [ -n "$p" ] || { echo "table $t: no doc place known (add it to place() in tests/e2e_docs.sh)"; continue; }
+        f=$d/${p%%|*} h=${p#*|}
+        [ -f "$f" ] || { echo "$f: missing"; continue; }
+        case $t in *_types) sub_=1 ;; *) sub_=0 ;; esac
+        rows "$f" "$h" "$sub_" >"$T/rows.$t"
+        grep '^?no-heading:' "$T/rows.$t" | sed "s|^?no-heading:|$f: no heading |"
+        for k in $(awk -v t="$t" '$1 == t && $2 !~ /^@/ {print $2}' "$T/tables"); do
+            grep -qxF "$k" "$T/rows.$t" || echo "$f: $k ($t) is not a row | \`$k\` | under \"$h\""
+        done
+        # rows that are not keys: the table's, its types' (materials), job keys (compare)
+        case $t in *_types) continue ;; esac
+        awk -v t="$t" '$1 == t {print $2}' "$T/tables" >"$T/ok.$t"
+        [ "$t" = material_keys ] && awk '$1 == "material_types" {print $2}' "$T/tables" >>"$T/ok.$t"
+        [ "$t" = extra ] && awk '$1 == "job_keys" {print $2}' "$T/tables" >>"$T/ok.$t"
+        grep -v '^?' "$T/rows.$t" | while read -r k; do
+            grep -qxF "$k" "$T/ok.$t" || echo "$f: row \`$k\` under \"$h\" is not a key the loader accepts ($t)"
+        done
+    done
+}
+
+check_keys "$root/docs" >"$T/keys.out"
+check "every accepted key is documented, every documented key accepted: $(cat "$T/keys.out")" [ ! -s "$T/keys.out" ]
+# ... and the check sees a key gone from its table and a key the loader does not have
+mkdir -p "$T/bad1"
+cp "$root"/docs/*.md "$T/bad1/"
+sed -i '/^| `aperture` |/d; s/^| `focus_dist` |/| `focus_distance` |/' "$T/bad1/scene-format.md"
+check_keys "$T/bad1" >"$T/bad1.out"
+check "a key missing from scene-format.md is found" grep -q 'aperture (camera_keys)' "$T/bad1.out"
+check "a documented key the loader refuses is found" grep -q 'row `focus_distance`' "$T/bad1.out"
+
+# --- 2. every ```yaml block loads ---------------------------------------------------------------
+
+# Blocks into DIR/NNN.yaml, with DIR/NNN.where = "file:line".
+extract() { # extract DIR FILE...
+    out=$1; shift
+    mkdir -p "$out"
+    awk -v out="$out" '
+        /^```yaml[ \t]*$/ { n++; f = sprintf("%s/%03d", out, n); print FILENAME ":" FNR >(f ".where"); close(f ".where"); on = 1; next }
+        on && /^```/ { on = 0; close(f ".yaml"); next }
+        on { print >(f ".yaml") }
+    ' "$@"
+}
+
+# A camera for scene blocks that leave it out (the sections' examples).
+CAMERA='camera: { lookfrom: [0, 2, -12], lookat: [0, 1, 0], vfov: 40 }'
+
+# check_examples DIR: run each block; print one line per fault. A job (scene: or scenes:) or compare
+# job (variants:) runs as written but at 6x4 pixels and with one process; a scene (camera:,
+# objects:, materials: or textures: at the top) loads and renders through a tiny job beside it.
+# "# expect-error: TEXT" in a block: it must fail, exit 2, with TEXT on stderr.
+check_examples() {
+    for y in "$1"/*.yaml; do
+        [ -f "$y" ] || continue
+        b=${y%.yaml} where=$(cat "${y%.yaml}.where")
+        w=$b.run
+        mkdir -p "$w"
+        ln -s "$root/scenes" "$w/scenes"
+        expect=$(sed -n 's/^# expect-error: //p' "$y" | head -n 1)
+        top=$(sed -n 's/^\([a-z_]*\):.*/\1/p' "$y")
+        if echo "$top" | grep -qxE 'variants|scenes?'; then
+            if [ -n "$expect" ]; then cp "$y" "$w/job.yaml"; else
+                grep -vE '^(width|height):' "$y" >"$w/job.yaml"
+                printf 'width: 6\nheight: 4\n' >>"$w/job.yaml"
+            fi
+        elif echo "$top" | grep -qxE 'camera|objects|materials|textures'; then
+            ln -s "$root/scenes/textures" "$w/textures"
+            { echo "$top" | grep -qx camera || echo "$CAMERA"; cat "$y"; } >"$w/scene.yaml"
+            printf 'name: doc\nscene: scene.yaml\nwidth: 6\nheight: 4\nthreshold: 50\nlight_threshold: 50\n' >"$w/job.yaml"
+        else
+            echo "$where: a yaml block that is neither a job nor a scene (top-level keys: $(echo $top))"
+            continue
+        fi
+        (cd "$w" && "$WORKER" --quiet --processes 1 --out out job.yaml) >"$w/stdout" 2>"$w/stderr"
+        rc=$?
+        if [ -n "$expect" ]; then
+            [ "$rc" -eq 2 ] && grep -qF -- "$expect" "$w/stderr" ||
+                echo "$where: expected exit 2 and \"$expect\", got exit $rc: $(head -c 300 "$w/stderr")"
+        elif [ "$rc" -ne 0 ]; then
+            echo "$where: exit $rc: $(head -c 300 "$w/stderr")"
+        elif [ -z "$(find "$w/out" -name '*.png' 2>/dev/null | head -n 1)" ]; then
+            echo "$where: exit 0 but no image under --out"
+        fi
+    done
+}
+
+extract "$T/ex" "$root/README.md" "$root"/docs/*.md
+n_ex=$(ls "$T/ex"/*.yaml 2>/dev/null | wc -l)
+check "yaml examples found in README.md and docs/ (got $n_ex)" [ "$n_ex" -ge 20 ]
+check "expect-error examples found" [ "$(cat "$T/ex"/*.yaml | grep -c '^# expect-error: ')" -ge 3 ]
+check_examples "$T/ex" >"$T/ex.out"
+check "every yaml example loads, or fails as it says: $(cat "$T/ex.out")" [ ! -s "$T/ex.out" ]
+# ... and the check sees a broken example, a wrong expected error and an unclassifiable block
+cat >"$T/bad2.md" <<'EOF'
+```yaml
+materials:
+  white: { type: lambertian, albedo: [0.73, 0.73, 0.73] }
+objects:
+  - { type: sphere, center: [0, 1, 0], radius: 1, material: whte }
+```
+
+```yaml
+# expect-error: threshold: must be a number in (0, 10]
+scene: checker
+threshold: abc
+```
+
+```yaml
+sweep: { threshold: [20, 10] }
+```
+EOF
+extract "$T/ex2" "$T/bad2.md"
+check_examples "$T/ex2" >"$T/ex2.out"
+check "a broken example is found" grep -q 'bad2.md:1: exit 2: .*material: no material named "whte"' "$T/ex2.out"
+check "a wrong expected error is found" grep -q 'bad2.md:8: expected exit 2' "$T/ex2.out"
+check "a block that is not a job or scene is found" grep -q 'bad2.md:14: a yaml block that is neither' "$T/ex2.out"
+
+# --- 3. the pictures: docs/img/SAMPLER-tT.svg is `worker points SAMPLER T --seed 1 --svg F` ---------
+n_img=0
+for f in "$root"/docs/img/*-t*.svg; do
+    [ -f "$f" ] || continue
+    n_img=$((n_img + 1))
+    s=$(basename "$f" .svg)
+    "$WORKER" points "${s%-t*}" "${s##*-t}" --seed 1 --svg "$T/pic.svg" >/dev/null 2>&1
+    check "docs/img/$s.svg is what worker points ${s%-t*} ${s##*-t} --seed 1 --svg draws" cmp -s "$f" "$T/pic.svg"
+done
+check "samplers.md has pictures (got $n_img)" [ "$n_img" -ge 4 ]
+
+# --- 4. links and length ------------------------------------------------------------------------
+
+# check_links FILE...: every relative link's file exists, and its #anchor is a heading there
+# (GitHub's slugs: lower case, punctuation dropped, spaces to '-').
+check_links() {
+    for md in "$@"; do
+        dir=$(dirname "$md")
+        grep -o '](\([^)#]*\)\(#[^)]*\)\?)' "$md" | sed 's/^](//; s/)$//' | while read -r l; do
+            case $l in http://* | https://* | mailto:*) continue ;; esac
+            file=${l%%#*} anchor=
+            case $l in *'#'*) anchor=${l#*#} ;; esac
+            target=$md
+            [ -n "$file" ] && target=$dir/$file
+            [ -e "$target" ] || { echo "$md: link to $l: no such file"; continue; }
+            [ -z "$anchor" ] && continue
+            grep '^#' "$target" | sed 's/^#* //' | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9 _-]//g; s/ /-/g' |
+                grep -qxF -- "$anchor" || echo "$md: link to $l: no heading #$anchor there"
+        done
+    done
+}
+check_links "$root/README.md" "$root"/docs/*.md >"$T/links.out"
+check "links resolve: $(cat "$T/links.out")" [ ! -s "$T/links.out" ]
+printf '[a](nowhere.md) [b](%s#no-such-heading)\n' "$root/docs/job-format.md" >"$T/bad3.md"
+check_links "$T/bad3.md" >"$T/links3.out"
+check "a broken link and a broken anchor are found" [ "$(wc -l <"$T/links3.out")" -eq 2 ]
+lines=$(wc -l <"$root/README.md")
+check "README.md is at most 160 lines (got $lines)" [ "$lines" -le 160 ]
+finish
