@@ -50,63 +50,82 @@ for t in $(grep -ho 'ymap_check([^,]*, [^,]*, [a-z_]*_keys,' $loaders | sed 's/.
     check "ymap_check's table $t is read by this test" grep -q "^$t " "$T/tables"
 done
 
-# rows.awk: the first cells "| `x` |" of a section's own body (the heading's text given exactly,
-# up to the next heading of any level; with sub=1 down to the next heading of its level or above,
-# headings "`x`" included).
-cat >"$T/rows.awk" <<'EOF'
+# index.awk DOC...: "file S heading" for each heading, "file R heading key" for each table row
+# | `key` | (heading: the nearest above), "file H ancestor name" for each heading `name` under
+# every heading above it; tab-separated, code blocks skipped.
+cat >"$T/index.awk" <<'EOF'
+BEGIN { OFS = "\t" }
+FNR == 1 { n = split(FILENAME, p, "/"); f = p[n]; depth = 0; fence = 0 }
 /^```/ { fence = !fence; next }
 fence { next }
 /^#+ / {
-    match($0, /^#+/); level = RLENGTH; text = substr($0, level + 2)
-    if (on && (!sub_ || level <= on)) on = 0
-    if (text == want) { on = level; found = 1; next }
-    if (on && sub_ && text ~ /^`[^`]*`$/) print substr(text, 2, length(text) - 2)
+    match($0, /^#+/); lvl = RLENGTH; text = substr($0, lvl + 2)
+    while (depth > 0 && slvl[depth] >= lvl) depth--
+    name = text
+    if (text ~ /^`[^`]*`$/) name = substr(text, 2, length(text) - 2)
+    for (i = 1; i <= depth; i++) print f, "H", stxt[i], name
+    depth++; slvl[depth] = lvl; stxt[depth] = text
+    print f, "S", text, ""
     next
 }
-on && /^\| `[^`]*` \|/ { s = $0; sub(/^\| `/, "", s); sub(/`.*/, "", s); print s }
-END { if (!found) print "?no-heading:" want }
+depth && /^\| `[^`]*` \|/ { s = $0; sub(/^\| `/, "", s); sub(/`.*/, "", s); print f, "R", stxt[depth], s }
 EOF
-rows() { # rows FILE HEADING [sub]
-    awk -v want="$2" -v sub_="${3:-0}" -f "$T/rows.awk" "$1"
-}
 
-# The doc and heading each table is documented under.
+# The doc and heading each table is documented under: keys as rows | `key` | right under the
+# heading; types as such rows or as headings `type` anywhere inside its section.
 place() {
     case $1 in
-    job_keys) echo "job-format.md|Keys" ;;
-    extra) echo "compare.md|Keys" ;;
-    scene_keys) echo "scene-format.md|Top level" ;;
-    material_keys | material_types) echo "scene-format.md|Materials" ;;
-    COMMON_KEYS) echo "scene-format.md|Every object" ;;
-    texture_types) echo "scene-format.md|Textures" ;;
-    object_types) echo "scene-format.md|Objects" ;;
-    *_keys) echo "scene-format.md|\`${1%_keys}\`" ;;
+    job_keys) echo "$1	job-format.md	Keys	keys" ;;
+    extra) echo "$1	compare.md	Keys	keys" ;;
+    scene_keys) echo "$1	scene-format.md	Top level	keys" ;;
+    material_keys) echo "$1	scene-format.md	Materials	keys" ;;
+    material_types) echo "$1	scene-format.md	Materials	types" ;;
+    COMMON_KEYS) echo "$1	scene-format.md	Every object	keys" ;;
+    texture_types) echo "$1	scene-format.md	Textures	types" ;;
+    object_types) echo "$1	scene-format.md	Objects	types" ;;
+    *_keys) echo "$1	scene-format.md	\`${1%_keys}\`	keys" ;;
+    *) echo "$1	?	?	?" ;;
     esac
 }
 
-# check_keys DOCS: print one line per fault (a key not documented, a row the loader refuses).
+# check.awk PLACES TABLES INDEX: one line per fault: a table with no place or heading, a key with
+# no row, a row that names no key of its table (nor a material type; a compare doc may list job keys).
+cat >"$T/check.awk" <<'EOF'
+FILENAME == ARGV[1] { split($0, a, "\t"); pf[a[1]] = a[2]; ph[a[1]] = a[3]; pk[a[1]] = a[4]; next }
+FILENAME == ARGV[2] { if ($2 !~ /^@/) { n[$1]++; key[$1, n[$1]] = $2; has[$1, $2] = 1 }; next }
+{
+    split($0, a, "\t")
+    if (a[2] == "S") sec[a[1], a[3]] = 1
+    if (a[2] == "R") { row[a[1], a[3], a[4]] = 1; nr[a[1], a[3]]++; rk[a[1], a[3], nr[a[1], a[3]]] = a[4] }
+    if (a[2] == "H") head[a[1], a[3], a[4]] = 1
+}
+END {
+    for (t in pf) {
+        f = pf[t]; h = ph[t]
+        if (f == "?") { print "table " t ": no doc place known (add it to place() in tests/e2e_docs.sh)"; continue }
+        if (!((f, h) in sec)) { print f ": no heading \"" h "\" for " t; continue }
+        for (i = 1; i <= n[t]; i++) {
+            k = key[t, i]
+            if (!((f, h, k) in row) && !(pk[t] == "types" && (f, h, k) in head))
+                print f ": " k " (" t ") is not a row | `" k "` | under \"" h "\""
+        }
+        if (pk[t] != "keys") continue
+        for (i = 1; i <= nr[f, h]; i++) {
+            k = rk[f, h, i]
+            if ((t, k) in has || (t == "material_keys" && ("material_types", k) in has) ||
+                (t == "extra" && ("job_keys", k) in has)) continue
+            print f ": row `" k "` under \"" h "\" is not a key the loader accepts (" t ")"
+        }
+    }
+}
+EOF
+
+# check_keys DOCS: print one line per fault.
 check_keys() {
-    d=$1
-    for t in $(cut -d' ' -f1 "$T/tables" | sort -u); do
-        p=$(place "$t")
-        [ -n "$p" ] || { echo "table $t: no doc place known (add it to place() in tests/e2e_docs.sh)"; continue; }
-        f=$d/${p%%|*} h=${p#*|}
-        [ -f "$f" ] || { echo "$f: missing"; continue; }
-        case $t in *_types) sub_=1 ;; *) sub_=0 ;; esac
-        rows "$f" "$h" "$sub_" >"$T/rows.$t"
-        grep '^?no-heading:' "$T/rows.$t" | sed "s|^?no-heading:|$f: no heading |"
-        for k in $(awk -v t="$t" '$1 == t && $2 !~ /^@/ {print $2}' "$T/tables"); do
-            grep -qxF "$k" "$T/rows.$t" || echo "$f: $k ($t) is not a row | \`$k\` | under \"$h\""
-        done
-        # rows that are not keys: the table's, its types' (materials), job keys (compare)
-        case $t in *_types) continue ;; esac
-        awk -v t="$t" '$1 == t {print $2}' "$T/tables" >"$T/ok.$t"
-        [ "$t" = material_keys ] && awk '$1 == "material_types" {print $2}' "$T/tables" >>"$T/ok.$t"
-        [ "$t" = extra ] && awk '$1 == "job_keys" {print $2}' "$T/tables" >>"$T/ok.$t"
-        grep -v '^?' "$T/rows.$t" | while read -r k; do
-            grep -qxF "$k" "$T/ok.$t" || echo "$f: row \`$k\` under \"$h\" is not a key the loader accepts ($t)"
-        done
-    done
+    : >"$T/places"
+    for t in $(cut -d' ' -f1 "$T/tables" | sort -u); do place "$t" >>"$T/places"; done
+    awk -f "$T/index.awk" "$1"/*.md >"$T/index"
+    awk -f "$T/check.awk" "$T/places" "$T/tables" "$T/index" | sort
 }
 
 check_keys "$root/docs" >"$T/keys.out"
@@ -132,46 +151,57 @@ extract() { # extract DIR FILE...
     ' "$@"
 }
 
-# A camera for scene blocks that leave it out (the sections' examples).
-CAMERA='camera: { lookfrom: [0, 2, -12], lookat: [0, 1, 0], vfov: 40 }'
+# one.sh BLOCK: run one block; print one line per fault. A job (scene: or scenes:) or compare job
+# (variants:) runs as written but at 6x4 pixels and with one process; a scene (camera:, objects:,
+# materials: or textures: at the top) loads and renders through a tiny job beside it, a camera
+# added when it has none. "# expect-error: TEXT" in a block: it must fail, exit 2, with TEXT on
+# stderr. A block the same as an earlier one but for comments and blanks (README.md repeats a
+# few) runs once.
+cat >"$T/one.sh" <<'EOF_ONE'
+y=$1 b=${1%.yaml}
+where=$(cat "$b.where") w=$b.run
+mkdir -p "$w"
+ln -s "$root/scenes" "$w/scenes"
+expect=$(sed -n 's/^# expect-error: //p' "$y" | head -n 1)
+top=$(sed -n 's/^\([a-z_]*\):.*/\1/p' "$y")
+if echo "$top" | grep -qxE 'variants|scenes?'; then
+    if [ -n "$expect" ]; then cp "$y" "$w/job.yaml"; else
+        grep -vE '^(width|height):' "$y" >"$w/job.yaml"
+        printf 'width: 6\nheight: 4\n' >>"$w/job.yaml"
+    fi
+elif echo "$top" | grep -qxE 'camera|objects|materials|textures'; then
+    ln -s "$root/scenes/textures" "$w/textures"
+    { echo "$top" | grep -qx camera ||
+        echo 'camera: { lookfrom: [0, 2, -12], lookat: [0, 1, 0], vfov: 40 }'; cat "$y"; } >"$w/scene.yaml"
+    printf 'name: doc\nscene: scene.yaml\nwidth: 6\nheight: 4\nthreshold: 50\nlight_threshold: 50\n' >"$w/job.yaml"
+else
+    echo "$where: a yaml block that is neither a job nor a scene (top-level keys: $(echo $top))"
+    exit 0
+fi
+(cd "$w" && "$WORKER" --quiet --processes 1 --out out job.yaml) >"$w/stdout" 2>"$w/stderr"
+rc=$?
+if [ -n "$expect" ]; then
+    [ "$rc" -eq 2 ] && grep -qF -- "$expect" "$w/stderr" ||
+        echo "$where: expected exit 2 and \"$expect\", got exit $rc: $(head -c 300 "$w/stderr")"
+elif [ "$rc" -ne 0 ]; then
+    echo "$where: exit $rc: $(head -c 300 "$w/stderr")"
+elif [ -z "$(find "$w/out" -name '*.png' 2>/dev/null | head -n 1)" ]; then
+    echo "$where: exit 0 but no image under --out"
+fi
+EOF_ONE
+export WORKER root
 
-# check_examples DIR: run each block; print one line per fault. A job (scene: or scenes:) or compare
-# job (variants:) runs as written but at 6x4 pixels and with one process; a scene (camera:,
-# objects:, materials: or textures: at the top) loads and renders through a tiny job beside it.
-# "# expect-error: TEXT" in a block: it must fail, exit 2, with TEXT on stderr.
+# check_examples DIR: every block there, two at a time; one line per fault.
 check_examples() {
     for y in "$1"/*.yaml; do
         [ -f "$y" ] || continue
-        b=${y%.yaml} where=$(cat "${y%.yaml}.where")
-        w=$b.run
-        mkdir -p "$w"
-        ln -s "$root/scenes" "$w/scenes"
-        expect=$(sed -n 's/^# expect-error: //p' "$y" | head -n 1)
-        top=$(sed -n 's/^\([a-z_]*\):.*/\1/p' "$y")
-        if echo "$top" | grep -qxE 'variants|scenes?'; then
-            if [ -n "$expect" ]; then cp "$y" "$w/job.yaml"; else
-                grep -vE '^(width|height):' "$y" >"$w/job.yaml"
-                printf 'width: 6\nheight: 4\n' >>"$w/job.yaml"
-            fi
-        elif echo "$top" | grep -qxE 'camera|objects|materials|textures'; then
-            ln -s "$root/scenes/textures" "$w/textures"
-            { echo "$top" | grep -qx camera || echo "$CAMERA"; cat "$y"; } >"$w/scene.yaml"
-            printf 'name: doc\nscene: scene.yaml\nwidth: 6\nheight: 4\nthreshold: 50\nlight_threshold: 50\n' >"$w/job.yaml"
-        else
-            echo "$where: a yaml block that is neither a job nor a scene (top-level keys: $(echo $top))"
-            continue
-        fi
-        (cd "$w" && "$WORKER" --quiet --processes 1 --out out job.yaml) >"$w/stdout" 2>"$w/stderr"
-        rc=$?
-        if [ -n "$expect" ]; then
-            [ "$rc" -eq 2 ] && grep -qF -- "$expect" "$w/stderr" ||
-                echo "$where: expected exit 2 and \"$expect\", got exit $rc: $(head -c 300 "$w/stderr")"
-        elif [ "$rc" -ne 0 ]; then
-            echo "$where: exit $rc: $(head -c 300 "$w/stderr")"
-        elif [ -z "$(find "$w/out" -name '*.png' 2>/dev/null | head -n 1)" ]; then
-            echo "$where: exit 0 but no image under --out"
-        fi
+        sed '/^# expect-error: /!s/ *#.*//; /^ *$/d' "$y" >"${y%.yaml}.norm"
+        for o in "$1"/*.norm; do
+            [ "$o" = "${y%.yaml}.norm" ] && break
+            cmp -s "$o" "${y%.yaml}.norm" && { rm "$y"; break; }
+        done
     done
+    ls "$1"/*.yaml 2>/dev/null | xargs -r -n 1 -P 2 sh "$T/one.sh" | sort
 }
 
 extract "$T/ex" "$root/README.md" "$root"/docs/*.md
