@@ -205,6 +205,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     } else if (merge) {
         err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
                   rr.image_path);
+        run_print_warnings(&j, &rr);
     } else {
         run_print_summary(&j, &rr);
     }
