@@ -1,7 +1,8 @@
 #!/bin/sh
-# End to end: small usability defects of issue 18, each a check that failed before its fix:
-# a black image says so, an output extension must name a format, --help points at compare jobs
-# and the format docs, and the sidecar's sampling_share is a fraction.
+# End to end: small usability defects of issue 18, each a check that failed before its fix: a
+# black image says so, --help tells of compare jobs and where the formats are written down, and
+# the sidecar's sampling_share is a fraction. (An output extension naming no format and the
+# "did you mean" for other renderers' words are cases of tests/bad/, run by e2e_bad.sh.)
 . tests/lib.sh
 root=$(pwd)
 
@@ -40,6 +41,16 @@ printf 'scene: %s/away.yaml\nwidth: 8\nthreshold: 50\n' "$T" >"$T/q/qdark.yaml"
 "$WORKER" --quiet --queue "$T/q" --once 2>"$T/q.err"; rc=$?
 check "black queue job: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "black queue job: the warning ($(cat "$T/q.err"))" grep -q "^qdark: warning: $warning" "$T/q.err"
+
+# 4. --help says what a compare job is (a job with variants:), names the queue, diff and points,
+#    and where the job and scene formats are written down.
+"$WORKER" --help >"$T/help.out" 2>"$T/help.err"; rc=$?
+check "--help: exit 0 (got $rc), nothing on stderr" sh -c "[ $rc -eq 0 ] && [ ! -s '$T/help.err' ]"
+for want in 'compare job is a job file with variants:' 'report.html' '--queue DIR' 'worker diff' \
+    'worker points' 'formats: docs/job-format.md, docs/scene-format.md' 'docs/compare.md' 'docs/farm.md' \
+    'docs/samplers.md'; do
+    check "--help mentions '$want'" grep -qF -- "$want" "$T/help.out"
+done
 
 # 5. The sidecar's sampling_share is a fraction of the render processes' CPU time, and
 #    sampler_s a part of cpu_s: a fresh Poisson set per pixel at a small threshold (drawing is
