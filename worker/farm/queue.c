@@ -80,6 +80,11 @@ static void give_back(struct queue *q, const char *name)
                   name, (int)queue_stop, name, q->running);
     else if (queue_claim_return(q, q->claim, name) == 0)
         err_print("%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
+    else
+        err_print("%s: stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
+                  "next worker\n",
+                  name, (int)queue_stop,
+                  errno == EEXIST ? "a newer one of its name arrived" : strerror(errno), q->running);
     lease_unlock(q->claim);
 }
 

@@ -93,8 +93,19 @@ int queue_claim_return(struct queue *q, const char *claim, const char *name)
 {
     char back[2048];
     snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    /* the lease goes first (see the header), and comes back when a new file took the name */
+    struct lease l;
+    double age;
+    int had = lease_read(claim, &l, &age) == 0;
     lease_remove(claim);
-    return rename(claim, back);
+    if (fileio_rename_noreplace(claim, back) == 0)
+        return 0;
+    int saved = errno;
+    struct err e;
+    if (had)
+        (void)lease_write(claim, &l, &e);
+    errno = saved;
+    return -1;
 }
 
 int queue_claim_name_waiting(struct queue *q, const char *name)
@@ -162,10 +173,13 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
             continue;
         /* judged again under the lock: another recoverer may have moved it meanwhile */
         if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
+            int returned = 0;
             if (!queue_claim_name_waiting(q, de->d_name)) {
-                if (queue_claim_return(q, claim, de->d_name) == 0)
+                returned = queue_claim_return(q, claim, de->d_name) == 0;
+                if (returned)
                     err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
-            } else if (adopt_claim(q, claim, de->d_name) == 0) {
+            } /* not returned: a new file of that name waits (or arrived just now) */
+            if (!returned && adopt_claim(q, claim, de->d_name) == 0) {
                 err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
                           q->running, de->d_name, why);
                 snprintf(adopted, n, "%s", de->d_name);
@@ -200,7 +214,7 @@ int queue_claim_take(struct queue *q, const char *name)
         char buf[2048];
         err_format(&e, buf, sizeof buf);
         err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
-        rename(q->claim, from);
+        (void)fileio_rename_noreplace(q->claim, from);
         return -1;
     }
     return 0;
