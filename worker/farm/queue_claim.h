@@ -25,6 +25,8 @@ struct queue {
     int lost;                    /* the claim in hand was found gone or taken over (tick) */
     char name_owner[2048];       /* its output folder holds another queued job file's outputs */
     char name_dir[2048];         /* that folder */
+    char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */
+    int nreported;
 };
 
 /* *queue.stop's value when the tick found the claim in hand gone (not a signal number): the render
