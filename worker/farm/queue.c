@@ -160,7 +160,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads (SPEC: <name>.log) */
     int attempts = 0, rc;
     do {
-        attempts++;
+        q->attempt = ++attempts;
         rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
@@ -238,7 +238,7 @@ static void process_claim(struct queue *q, const char *name)
     ro.tick_arg = q;
     int attempts = 0, rc;
     for (;;) {
-        attempts++;
+        q->attempt = ++attempts;
         rc = run_job(&j, &ro, &rr, &e);
         if (rc != 1 || !rr.farm.child_crashed || attempts > q->o->retries || queue_stop)
             break;

@@ -30,7 +30,10 @@ static double renew_every_s(const struct queue *q)
     return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
 }
 
-void queue_claim_tick(void *arg)
+/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
+static volatile sig_atomic_t renew_fd = -1;
+
+void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s)
 {
     struct queue *q = arg;
     if (since(&q->last_touch) < renew_every_s(q))
@@ -42,11 +45,11 @@ void queue_claim_tick(void *arg)
             *q->stop = QUEUE_STOP_CLAIM_LOST;
         return;
     }
-    lease_touch(q->claim);
+    if (renew_fd >= 0)
+        lease_progress(renew_fd, rows_done, rows, elapsed_s, q->attempt);
+    else
+        lease_touch(q->claim);
 }
-
-/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
-static volatile sig_atomic_t renew_fd = -1;
 
 static void on_renew_alarm(int sig)
 {
@@ -62,7 +65,7 @@ void queue_claim_renew_start(struct queue *q)
     char path[2100];
     snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
     queue_claim_renew_stop();
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    int fd = open(path, O_RDWR | O_CLOEXEC);
     if (fd < 0)
         return; /* no lease to renew: the tick's check finds the claim lost */
     struct sigaction sa;
