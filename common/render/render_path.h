@@ -116,7 +116,10 @@ static inline __attribute__((always_inline)) struct pt2 next_light_point(struct 
 static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
 {
     for (;;) {
-        vec3 p = v3(2 * rng_uniform32(r) - 1, 2 * rng_uniform32(r) - 1, 2 * rng_uniform32(r) - 1);
+        /* one draw a declarator: a call's arguments have no order in C (gcc took them last
+           first, clang first first); z, y, x keeps the images gcc made */
+        double z = 2 * rng_uniform32(r) - 1, y = 2 * rng_uniform32(r) - 1, x = 2 * rng_uniform32(r) - 1;
+        vec3 p = v3(x, y, z);
         if (v3_len2(p) < 1)
             return p;
     }
