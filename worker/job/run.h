@@ -29,6 +29,7 @@ struct run_result {
     char sidecar_path[2048]; /* with parts: "" */
     int width, height;
     int skipped;              /* outputs were current (same job hash): nothing rendered */
+    int black;                /* the image written is entirely black (run_print_warnings) */
     struct procs_result farm; /* on a render failure: child_crashed, child_signal, stopped */
 };
 
@@ -46,7 +47,12 @@ void run_paths(const struct job *j, const char *out_dir, char *dir, char *image,
    or -1 with e at the job's reference key. */
 int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e);
 
-/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
+/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image),
+   then its warnings (run_print_warnings). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
+
+/* A line on stderr, naming the job, for what an exit code of 0 would hide: an entirely black
+   image (no light reaches the camera: a light facing away, lights missing). */
+void run_print_warnings(const struct job *j, const struct run_result *rr);
 
 #endif
