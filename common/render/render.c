@@ -59,10 +59,13 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     if (ctx->packet) {
         render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, last, sum, &kept, &nonfinite, &rays);
     } else {
+        /* nee a constant in each loop: the mixture's inlined trace holds none of nee's code */
         for (size_t s = 0; s < n; s++) {
             struct pt2 p = ctx->pixel_pts[s];
             ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-            add_estimate(trace(ctx, &r, &path_rng, &rays, mix, nee, last), sum, &kept, &nonfinite);
+            vec3 c = nee ? trace(ctx, &r, &path_rng, &rays, 0, 1, last)
+                         : trace(ctx, &r, &path_rng, &rays, mix, 0, last);
+            add_estimate(c, sum, &kept, &nonfinite);
         }
     }
     double inv = kept ? 1.0 / kept : 0;

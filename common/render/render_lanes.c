@@ -52,9 +52,12 @@ static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, in
     pt->depth = 0;
 }
 
-/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). */
-void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). Inline
+   into the two callers below, nee a constant in each: the mixture's code holds none of nee's. */
+static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
+                                                            const struct rng *base, int mix, int nee,
+                                                            int last, double sum[3], size_t *kept,
+                                                            uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES];
@@ -103,4 +106,20 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const s
     *kept += acc_kept;
     *nonfinite += acc_nonfinite;
     *rays += acc_rays;
+}
+
+static __attribute__((noinline)) void lanes_nee(struct render_ctx *ctx, int x, int y, size_t n,
+                                                const struct rng *base, int last, double sum[3], size_t *kept,
+                                                uint64_t *nonfinite, uint64_t *rays)
+{
+    lanes_run(ctx, x, y, n, base, 0, 1, last, sum, kept, nonfinite, rays);
+}
+
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
+                         int nee, int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+{
+    if (nee)
+        lanes_nee(ctx, x, y, n, base, last, sum, kept, nonfinite, rays);
+    else
+        lanes_run(ctx, x, y, n, base, mix, 0, last, sum, kept, nonfinite, rays);
 }

@@ -126,8 +126,9 @@ static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
     }
 }
 
-/* Cosine-weighted direction about n (Malley's method). */
-static __attribute__((unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
+/* Cosine-weighted direction about n (Malley's method). Always inline: with nee's call beside the
+   mixture's GCC kept it out of line, +2% of cornell-book3's instructions. */
+static inline __attribute__((always_inline, unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
 {
     double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
     v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
@@ -324,7 +325,8 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
             return 0;
         *beta = v3_mul(*beta, m->albedo);
         *r = (ray){h->p, dir, r->time};
-        *mis_pdf = 0;
+        if (nee) /* a specular bounce: the emission it reaches counts whole */
+            *mis_pdf = 0;
         return 1;
     case MAT_DIELECTRIC: {
         vec3 unit_dir = v3_unit(r->dir);
@@ -335,7 +337,8 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
                   ? v3_reflect(unit_dir, h->n)
                   : v3_refract(unit_dir, h->n, ratio);
         *r = (ray){h->p, dir, r->time};
-        *mis_pdf = 0;
+        if (nee) /* a specular bounce: the emission it reaches counts whole */
+            *mis_pdf = 0;
         return 1;
     }
     default: { /* MAT_ISOTROPIC */
