@@ -118,15 +118,15 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         err_print("worker points: expected a sampler and a threshold; %s", points_usage);
         return 2;
     }
-    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
-    const char *near = ystr_nearest(positional[0], names, -1);
+    const char *near = ystr_nearest(positional[0], sampler_kind_names(), -1);
     if (sampler_kind_parse(positional[0], &a->kind) < 0 && near) {
         err_print("worker points: unknown sampler \"%.40s\" (did you mean \"%s\"?)\n", positional[0], near);
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
-        err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)\n",
-                  positional[0]);
+        err_print(
+            "worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson or sobol)\n",
+            positional[0]);
         return 2;
     }
     char *end;
