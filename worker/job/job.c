@@ -151,13 +151,13 @@ static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sam
     const char *s;
     if (yget_string(d, v, key, &s, e) < 0)
         return -1;
-    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
-    const char *near = ystr_nearest(s, names, -1);
+    const char *near = ystr_nearest(s, sampler_kind_names(), -1);
     if (sampler_kind_parse(s, out) < 0 && near)
         return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
     if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(
-            d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)", key, s);
+        return ydoc_fail(d, v, e,
+                         "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson or sobol)",
+                         key, s);
     return 0;
 }
 
