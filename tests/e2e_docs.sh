@@ -29,13 +29,13 @@ intab { buf = buf " " $0; if ($0 ~ /};/) { emit(tab, buf); intab = 0 }; next }
     }
 }
 EOF
-loaders="worker/job/job.c common/scenefile/scene_load.c common/scenefile/scene_objects.c worker/study/compare_load.c"
+loaders="worker/job/*.c common/scenefile/*.c worker/study/compare*.c"
 awk -f "$T/tables.awk" $loaders >"$T/tables"
-# a compare variant's extra key: compare_check_keys(L, var, "variant", "label")
-grep -ho 'compare_check_keys([^;]*, "[a-z_]*")' worker/study/compare_*.c |
-    sed 's/.*"\([a-z_]*\)")$/extra \1/' >>"$T/tables"
+# a compare variant's extra key, the argument after "variant" in the key check's call:
+# compare_keys_check(&L->d, var, "variant", "label", L->e)
+grep -ho '"variant", "[a-z_]*"' $loaders | sed 's/.*, "\([a-z_]*\)"$/extra \1/' | sort -u >>"$T/tables"
 # object types and their tables: {"sphere", sphere_keys, load_sphere, 1},
-sed -n 's/^ *{"\([a-z_]*\)", \([a-z_]*_keys\),.*/\1 \2/p' common/scenefile/scene_objects.c >"$T/objects"
+sed -n 's/^ *{"\([a-z_]*\)", \([a-z_]*_keys\),.*/\1 \2/p' common/scenefile/*.c >"$T/objects"
 awk '{print "object_types", $1}' "$T/objects" >>"$T/tables"
 
 n_tables=$(cut -d' ' -f1 "$T/tables" | sort -u | wc -l)
@@ -45,6 +45,8 @@ check "the loaders' tables were found (got $n_tables tables, $n_keys entries)" \
 for t in job_keys extra scene_keys camera_keys material_keys COMMON_KEYS object_types sphere_keys; do
     check "table $t read from the source" grep -q "^$t " "$T/tables"
 done
+check "a compare job's own keys read (scenes, variants, sweep, seeds; a variant's label)" \
+    [ "$(grep -c '^extra ' "$T/tables")" -ge 5 ]
 # every table a loader checks keys against (ymap_check's third argument) is one read above
 for t in $(grep -ho 'ymap_check([^,]*, [^,]*, [a-z_]*_keys,' $loaders | sed 's/.*, \([a-z_]*_keys\),$/\1/' | sort -u); do
     check "ymap_check's table $t is read by this test" grep -q "^$t " "$T/tables"
