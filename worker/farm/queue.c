@@ -62,12 +62,8 @@ static void write_log(struct queue *q, const char *name, const char *job_name, c
    while it is still ours. */
 static void give_back(struct queue *q, const char *name)
 {
-    int locked = 0;
-    for (int i = 0; i < 100 && !(locked = lease_lock(q->claim, q->o->lease_timeout_s) == 0); i++) {
-        struct timespec nap = {0, 10 * 1000 * 1000};
-        nanosleep(&nap, NULL);
-    }
-    if (!locked) { /* another worker is recovering it (our lease looked dead): the claim is its now */
+    if (queue_claim_lock(q) <
+        0) { /* another worker is recovering it (our lease looked dead): the claim is its now */
         err_print("%s: stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
                   name, (int)queue_stop, q->running);
         return;

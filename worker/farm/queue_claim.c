@@ -332,11 +332,39 @@ int queue_claim_held(void *arg, const char *dir)
     return 0;
 }
 
+int queue_claim_lock(struct queue *q)
+{
+    for (int i = 0; i < 100; i++) {
+        if (lease_lock(q->claim, q->o->lease_timeout_s) == 0)
+            return 0;
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    return -1;
+}
+
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir)
 {
     char to[2048];
     snprintf(to, sizeof to, "%s/%s", to_dir, name);
-    if (rename(q->claim, to) < 0)
-        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
+    /* The lease goes first, under the claim's recovery lock: removed after the move, it could be
+       the lease of another worker that claimed a re-queued file of this name in between (issue 21,
+       defect 7). The lock keeps recoverers away while the claim has no lease; without it (held
+       for a second by another), only the check that the lease is still ours stands guard. */
+    int locked = queue_claim_lock(q) == 0;
+    if (!queue_claim_still_ours(q)) {
+        err_print("queue: %s: the claim was taken over before it was filed; leaving the job to it\n", name);
+        if (locked)
+            lease_unlock(q->claim);
+        return;
+    }
     lease_remove(q->claim);
+    if (rename(q->claim, to) < 0) {
+        int saved = errno;
+        struct err e;
+        (void)lease_write(q->claim, &q->lease, &e); /* still ours, in running/: the next scan decides */
+        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(saved));
+    }
+    if (locked)
+        lease_unlock(q->claim);
 }

@@ -86,7 +86,11 @@ int queue_claim_held(void *arg, const char *dir);
    empty, absent or the claim's own (the same file re-queued, edited or not). */
 int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n);
 
-/* Move the claim to done/ or failed/ and drop the lease. */
+/* Take the claim in hand's recovery lock (lease_lock), trying for about a second. 0 when taken. */
+int queue_claim_lock(struct queue *q);
+
+/* Move the claim to done/ or failed/ and drop the lease: the lease first, under the recovery
+   lock, so that a re-queued file of the same name claimed the next instant keeps its own. */
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir);
 
 #endif

@@ -1,0 +1,35 @@
+#!/bin/sh
+# End to end: issue 21's remaining race windows in the queue, widened on purpose by an LD_PRELOAD
+# shim (tests/shim/race.c: a kill -9, a SIGSTOP or another worker's claim at one chosen rename) so
+# that they are hit every time.
+. tests/lib.sh
+root=$(pwd)
+CC=${CC:-cc}
+
+tiny() { # tiny FILE SIZE [SEED]: a SIZExSIZE job that renders in a few milliseconds
+    { echo "scene: $root/scenes/checker.yaml"; echo "width: $2"; echo "height: $2"; echo "threshold: 50"
+      echo "light_threshold: 50"; echo "processes: 1"; echo "seed: ${3:-1}"; } >"$1"
+}
+temps() { find "$1" -name '.*.tmp.*' | wc -l; }
+
+if ! $CC -shared -fPIC -o "$T/race.so" tests/shim/race.c -ldl 2>"$T/cc.log"; then
+    cat "$T/cc.log"
+    echo "no C compiler for the shim: race tests skipped"
+    finish
+    exit $?
+fi
+
+# defect 7: a finished job is filed in done/ and, that instant, another worker claims a re-queued
+# file of the same name: the new claim's lease must survive the filing of the old one
+Q=$T/q7; mkdir -p "$Q"
+tiny "$Q/x.yaml" 16
+sleep 60 & live=$!
+printf 'host %s\npid %s\nstart %s\ntoken %s:%s:7\n' "$(hostname)" "$live" "$(date +%s)" "$(hostname)" "$live" \
+    >"$T/lease7"
+SHIM_REQUEUE=$T/lease7 LD_PRELOAD=$T/race.so "$WORKER" --queue "$Q" --once 2>"$T/q7.log"; rc=$?
+check "7: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "7: the first x.yaml is done" [ -f "$Q/done/x.yaml" ]
+check "7: the new claim of x.yaml keeps its lease" grep -q "token .*:$live:7" "$Q/running/x.yaml.lease"
+kill "$live" 2>/dev/null; wait "$live" 2>/dev/null
+
+finish
