@@ -32,4 +32,20 @@ check "7: the first x.yaml is done" [ -f "$Q/done/x.yaml" ]
 check "7: the new claim of x.yaml keeps its lease" grep -q "token .*:$live:7" "$Q/running/x.yaml.lease"
 kill "$live" 2>/dev/null; wait "$live" 2>/dev/null
 
+# defect 8: a writer killed half-way left its temporaries in done/<name>/; the job, run again, ends
+# in failed/ (its reference is another size): they go with it, whatever wrote them
+Q=$T/q8; mkdir -p "$Q"
+tiny "$Q/y.yaml" 16
+SHIM_KILL_TO=.json LD_PRELOAD=$T/race.so "$WORKER" --queue "$Q" --once 2>"$T/q8a.log"
+check "8: the writer was killed with temporaries left" [ "$(temps "$Q/done/y")" -gt 0 ]
+"$WORKER" "$root/jobs/checker.yaml" --out "$T/ref8" --quiet 2>/dev/null
+echo "reference: $(ls "$T"/ref8/*/*.png | head -n 1)" >>"$Q/running/y.yaml"
+"$WORKER" --queue "$Q" --once 2>"$T/q8b.log"
+check "8: the job ended in failed/" [ -f "$Q/failed/y.yaml" ]
+check "8: no temporary file left in done/y/" [ "$(temps "$Q/done")" -eq 0 ]
+: >"$Q/done/y/.z.png.tmp.AbC123"
+tiny "$Q/y.yaml" 16; echo "width: 0" >>"$Q/y.yaml"
+"$WORKER" --queue "$Q" --once 2>"$T/q8c.log"
+check "8: an invalid job's folder is cleaned too" [ "$(temps "$Q/done")" -eq 0 ]
+
 finish

@@ -115,6 +115,18 @@ static void clear_lost_stop(void)
     sigprocmask(SIG_SETMASK, &old, NULL);
 }
 
+/* File the claim in hand in failed/: the temporaries a killed writer of an earlier attempt left in
+   its output folder done/<job_name>/ go first (nothing else would remove them). */
+static void file_failed(struct queue *q, const char *name, const char *job_name)
+{
+    char dir[2048];
+    if (job_name[0] && job_name[0] != '.' && !strchr(job_name, '/')) {
+        snprintf(dir, sizeof dir, "%s/%s", q->done, job_name);
+        run_out_remove_temps(dir);
+    }
+    queue_claim_file(q, name, q->failed);
+}
+
 static void note_rc(struct queue *q, int rc)
 {
     if (rc > q->worst)
@@ -177,7 +189,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     }
     err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
     write_log(q, name, log_name, last, 0, rc == 2 ? 0 : attempts); /* invalid: checked, never rendered */
-    queue_claim_file(q, name, q->failed);
+    file_failed(q, name, log_name);
     note_rc(q, rc);
 }
 
@@ -215,7 +227,7 @@ static void process_claim(struct queue *q, const char *name)
         err_print("%s", msg);
         err_print("%s: invalid job, moved to %s/", name, q->failed);
         write_log(q, name, stem, msg, 0, 0);
-        queue_claim_file(q, name, q->failed);
+        file_failed(q, name, stem);
         note_rc(q, 2);
         return;
     }
@@ -266,7 +278,7 @@ static void process_claim(struct queue *q, const char *name)
     err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
     write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
-    queue_claim_file(q, name, q->failed);
+    file_failed(q, name, j.name);
     note_rc(q, rc);
 }
 

@@ -98,6 +98,32 @@ static void remove_dead_temps(const char *path)
     closedir(d);
 }
 
+/* Whether n is any writer's temporary (is_temp_of, whatever the file): ".<base>.tmp.XXXXXX". */
+static int is_temp(const char *n)
+{
+    size_t len = strlen(n);
+    return n[0] == '.' && len > 12 && !strncmp(n + len - 11, ".tmp.", 5);
+}
+
+void run_out_remove_temps(const char *dir)
+{
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), locked = 0;
+    if (fd < 0)
+        return;
+    for (int i = 0; i < 100 && !(locked = flock(fd, LOCK_EX | LOCK_NB) == 0); i++) {
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    DIR *d = locked ? fdopendir(dup(fd)) : NULL;
+    struct dirent *de;
+    while (d && (de = readdir(d)))
+        if (is_temp(de->d_name))
+            (void)unlinkat(fd, de->d_name, 0);
+    if (d)
+        closedir(d);
+    close(fd); /* and the lock with it */
+}
+
 int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop)
 {
     int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */

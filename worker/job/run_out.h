@@ -27,6 +27,11 @@ int run_out_make_dir(const char *dir, int *made, struct err *e);
 int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
 void run_out_unlock(int lock);
 
+/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir, under its lock: for a
+   job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
+   A lock held by another writer for over a second leaves them (they may be that writer's). */
+void run_out_remove_temps(const char *dir);
+
 /* Take dir's lock for writing paths (run_out_lock) into *lock, then ask whether this render may
    still write (run_opts.may_write): a claim taken over while we waited for the lock (another
    writer, a slow disk) writes nothing, nor does a writer stopped while it waited. 0, or -1 with e
