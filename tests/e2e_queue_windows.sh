@@ -48,4 +48,18 @@ tiny "$Q/y.yaml" 16; echo "width: 0" >>"$Q/y.yaml"
 "$WORKER" --queue "$Q" --once 2>"$T/q8c.log"
 check "8: an invalid job's folder is cleaned too" [ "$(temps "$Q/done")" -eq 0 ]
 
+# defect 6: a writer killed between the image's rename and the sidecar's never leaves a new image
+# beside the old sidecar: the old sidecar goes first, so a reader sees the old pair, or an image
+# without a sidecar (not finished: rendered again), or the new pair
+O=$T/o6
+tiny "$T/z.yaml" 16 1
+"$WORKER" "$T/z.yaml" --out "$O" --quiet 2>/dev/null
+tiny "$T/z.yaml" 16 2
+SHIM_KILL_TO=.json LD_PRELOAD=$T/race.so "$WORKER" "$T/z.yaml" --out "$O" --quiet 2>/dev/null
+check "6: killed before the sidecar's rename: no sidecar of another render" \
+    sh -c '[ ! -e "$1" ] || grep -q "\"seed\": 2" "$1"' - "$O/z/z.json"
+"$WORKER" "$T/z.yaml" --out "$O" 2>"$T/o6.log"
+check "6: the next run renders it again" grep -q "16x16" "$T/o6.log"
+check "6: then the pair agrees" grep -q '"seed": 2' "$O/z/z.json"
+
 finish

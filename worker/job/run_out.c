@@ -223,9 +223,12 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* Both are written whole under staging names first, then renamed, the image first: a failure
-       before the renames (a full disk, a size limit) leaves an earlier image and sidecar as they
-       were. A killed writer's staged files and their temporaries go under the next one's lock. */
+    /* Both are written whole under staging names first: a failure before the renames (a full disk,
+       a size limit) leaves an earlier image and sidecar as they were. Then the earlier sidecar
+       goes, the image is renamed, the sidecar last: a reader (or a writer killed at any step)
+       sees the earlier pair, an image without a sidecar (not finished: rendered again), or the
+       new pair, never a new image beside an earlier sidecar (issue 21, defect 6). A killed
+       writer's staged files and their temporaries go under the next one's lock. */
     if (imgio_write(staged_image, &img, j->format, e) < 0) {
         name_final(e, staged_image, rr->image_path);
         goto done;
@@ -235,7 +238,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         unlink(staged_image);
         goto done;
     }
-    if (rename(staged_image, rr->image_path) < 0) {
+    if ((unlink(rr->sidecar_path) < 0 && errno != ENOENT) || rename(staged_image, rr->image_path) < 0) {
         err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->image_path, strerror(errno));
         unlink(staged_image);
         unlink(staged_sidecar);
