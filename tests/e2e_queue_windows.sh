@@ -62,4 +62,30 @@ check "6: killed before the sidecar's rename: no sidecar of another render" \
 check "6: the next run renders it again" grep -q "16x16" "$T/o6.log"
 check "6: then the pair agrees" grep -q '"seed": 2' "$O/z/z.json"
 
+# defect 3: a worker stopped (SIGSTOP) while it holds its output folder's lock, its claim taken
+# over: the new holder waits for the lock no longer than a lease timeout, writes, and files the job;
+# the stopped one, resumed, sees before renaming anything that the claim is no longer its own and
+# writes nothing
+Q=$T/q3; mkdir -p "$Q"
+tiny "$Q/s.yaml" 16
+SHIM_STOP_TO=.json.tmp. LD_PRELOAD=$T/race.so "$WORKER" --queue "$Q" --once --lease-timeout 2 \
+    2>"$T/q3a.log" & a=$!
+for _ in $(seq 1 500); do
+    [ "$(ps -o stat= -p "$a" | cut -c1)" = T ] && break
+    sleep 0.02
+done
+check "3: the first worker stopped holding the lock" [ "$(ps -o stat= -p "$a" | cut -c1)" = T ]
+sleep 3
+timeout 20 "$WORKER" --queue "$Q" --once --lease-timeout 2 2>"$T/q3b.log"; rc=$?
+check "3: the new holder is not blocked by the stopped one (exit $rc)" [ "$rc" -eq 0 ]
+check "3: it filed the job in done/" [ -f "$Q/done/s.yaml" ]
+check "3: saying it wrote without the lock" grep -q "writing without it" "$T/q3b.log"
+ino=$(ls -i "$Q/done/s/s.png" 2>/dev/null | cut -d' ' -f1)
+kill -CONT "$a"; wait "$a"
+check "3: the resumed worker wrote nothing over the new holder's image" \
+    [ -n "$ino" ] && [ "$(ls -i "$Q/done/s/s.png" | cut -d' ' -f1)" = "$ino" ]
+check "3: and said why" grep -q "taken over" "$T/q3a.log"
+check "3: no temporary file left" [ "$(temps "$Q/done")" -eq 0 ]
+check "3: the pair agrees" grep -q '"seed": 1' "$Q/done/s/s.json"
+
 finish

@@ -163,6 +163,8 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.stop = &queue_stop;
     ro.tick = queue_claim_tick;
     ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = q;
     char last[2048] = "", log_name[JOB_NAME_MAX];
     snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads (SPEC: <name>.log) */
@@ -243,6 +245,8 @@ static void process_claim(struct queue *q, const char *name)
     ro.stop = &queue_stop;
     ro.tick = queue_claim_tick;
     ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = q;
     int attempts = 0, rc;
     for (;;) {

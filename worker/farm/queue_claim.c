@@ -232,6 +232,11 @@ int queue_claim_still_ours(struct queue *q)
            strcmp(l.token, q->lease.token) == 0;
 }
 
+int queue_claim_still_held(void *arg)
+{
+    return queue_claim_still_ours(arg);
+}
+
 int queue_claim_gone(struct queue *q)
 {
     struct stat st;

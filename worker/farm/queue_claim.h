@@ -72,6 +72,9 @@ int queue_claim_take(struct queue *q, const char *name);
    the claim away while we rendered (a lease judged dead elsewhere). */
 int queue_claim_still_ours(struct queue *q);
 
+/* run_opts.still_held: queue_claim_still_ours, asked just before each output is renamed. */
+int queue_claim_still_held(void *arg);
+
 /* The claim's file is no longer in running/: removed or moved away while we held it (cancelled). */
 int queue_claim_gone(struct queue *q);
 

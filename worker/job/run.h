@@ -22,6 +22,12 @@ struct run_opts {
                                           0 = write nothing, fail (a queue claim taken over, the
                                           folder another queued job's) */
     void *tick_arg;
+    double lock_wait_s;           /* > 0: wait no longer for the output folder's lock (a queue: its lease
+                                     timeout); then its holder is stopped or hung, and this render writes
+                                     without it when may_write still says yes */
+    int (*still_held)(void *arg); /* optional: asked (with tick_arg) just before each output is
+                                     renamed into place: 0 = the claim was taken over meanwhile;
+                                     rename nothing more, fail */
 };
 
 struct run_result {
