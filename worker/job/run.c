@@ -147,9 +147,17 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     }
     if (run_load_reference(j, w, h, &ref, e) < 0)
         goto done;
-    if (job_limits_samples(j, w, h, e) < 0 ||
-        job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0)
+    if (job_limits_samples(j, w, h, e) < 0)
         goto done;
+    if (job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0) {
+        char why[sizeof e->msg];
+        snprintf(why, sizeof why, "%s", e->msg); /* at the size's key: the user's lever */
+        if (j->pos_width[0])
+            err_set(e, j->path, j->pos_width[0], j->pos_width[1], "width: %dx%d pixels: %s", w, h, why);
+        else
+            err_set(e, j->path, 1, 1, "size: %dx%d pixels: %s", w, h, why);
+        goto done;
+    }
     uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL);
     if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
         !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
