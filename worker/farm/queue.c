@@ -13,6 +13,7 @@
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"
+#include "queue_inputs.h"
 #include "queue_scan.h"
 #include "job/run_out.h"
 
@@ -224,7 +225,8 @@ static void process_claim(struct queue *q, const char *name)
         process_compare(q, name, from, as, stem);
         return;
     }
-    if (job_load_as(from, as, &j, &e) < 0) { /* invalid: never retried */
+    if (job_load_as(from, as, &j, &e) < 0 ||
+        queue_inputs_check(q->dir, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
         err_print("%s", msg);
         err_print("%s: invalid job, moved to %s/", name, q->failed);
