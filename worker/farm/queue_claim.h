@@ -24,6 +24,7 @@ struct queue {
     volatile sig_atomic_t *stop; /* the queue's stop flag, which also stops the render in hand */
     int lost;                    /* the claim in hand was found gone or taken over (tick) */
     int attempt;                 /* the render attempt of the claim in hand (1, 2 after a crash) */
+    int processes;               /* its render processes (0 until its job is loaded) */
     char name_owner[2048];       /* its output folder holds another queued job file's outputs */
     char name_dir[2048];         /* that folder */
     char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */

@@ -57,6 +57,11 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
    then its warnings (run_print_warnings). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
 
+/* run_print_summary's line and run_print_warnings' into buf (no newline); run_format_warning
+   returns 0 when there is none. */
+void run_format_summary(const struct job *j, const struct run_result *rr, char *buf, size_t n);
+int run_format_warning(const struct job *j, const struct run_result *rr, char *buf, size_t n);
+
 /* A line on stderr, naming the job, for what an exit code of 0 would hide: an entirely black
    image (no light reaches the camera: a light facing away, lights missing). */
 void run_print_warnings(const struct job *j, const struct run_result *rr);
