@@ -262,7 +262,7 @@ static void test_repeated_error(void)
                 it->done = it->has_error = 1;
                 it->spp_mean = 25 << (2 * p);
                 it->wall_s = 0.01 * (p + 1);
-                CHECK(metrics_compare(&ref, &img, &it->error, &e) == 0);
+                CHECK(metrics_display_compare(&ref, &img, &it->error, &e) == 0);
             }
     char line[2048];
     stability(c, 0, 0, &ref, line, sizeof line);

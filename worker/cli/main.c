@@ -94,12 +94,14 @@ static int diff_main(int argc, char **argv)
         err_print("worker diff: expected two images (reference, then image); see worker --help\n");
         return 2;
     }
-    struct rgb8 a = {0}, b = {0};
+    struct rgb8 a8 = {0}, b8 = {0};
+    struct rgbf a = {0}, b = {0};
     struct metrics m;
     struct err e;
     int rc = 2;
-    if (imgio_read(files[0], &a, &e) == 0 && imgio_read(files[1], &b, &e) == 0) {
-        if (metrics_compare_blocks(&a, &b, (int)block, &m, &e) == 0) {
+    if (imgio_read(files[0], &a8, &e) == 0 && imgio_read(files[1], &b8, &e) == 0 &&
+        image_f_from_rgb8(&a8, &a, &e) == 0 && image_f_from_rgb8(&b8, &b, &e) == 0) {
+        if (metrics_compare_f(&a, &b, (int)block, &m, &e) == 0) {
             printf("mse %.9g\nrmse %.9g\nrelmse %.9g\npsnr %.4f\n", m.mse, m.rmse, m.relmse, m.psnr);
             rc = 0;
             if (max_rmse >= 0 && m.rmse > max_rmse) {
@@ -112,8 +114,10 @@ static int diff_main(int argc, char **argv)
     }
     if (rc == 2)
         print_err(&e);
-    image_free(&a);
-    image_free(&b);
+    image_free(&a8);
+    image_free(&b8);
+    image_f_free(&a);
+    image_f_free(&b);
     return rc;
 }
 

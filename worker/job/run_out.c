@@ -182,7 +182,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
     image_float_to_rgb8(rgb, w, h, img.px);
     struct metrics m;
     int has_ref = ref && ref->px;
-    if (has_ref && metrics_compare(ref, &img, &m, e) < 0)
+    if (has_ref && metrics_display_compare(ref, &img, &m, e) < 0)
         goto done;
     struct sidecar sc = {j, w, h, fr, has_ref ? &m : NULL, j->output, parts};
     if (!(json = sidecar_json(&sc))) {

@@ -143,7 +143,7 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     }
     if (ref) {
         struct rgb8 img = {0};
-        rc = imgio_read(rr.image_path, &img, e) < 0 || metrics_compare(ref, &img, &it->error, e) < 0;
+        rc = imgio_read(rr.image_path, &img, e) < 0 || metrics_display_compare(ref, &img, &it->error, e) < 0;
         image_free(&img);
         if (rc)
             return 1;
