@@ -135,6 +135,31 @@ void job_defaults(struct job *j, const char *path)
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
+/* The image formats by key value and output extension: PNG and PPM hold 8-bit display values,
+   EXR and PFM the linear framebuffer. */
+struct job_format {
+    const char *name, *ext;
+    enum img_format format;
+};
+static const struct job_format job_formats[] = {
+    {"png", ".png", IMG_PNG}, {"ppm", ".ppm", IMG_PPM}, {"exr", ".exr", IMG_EXR}, {"pfm", ".pfm", IMG_PFM}};
+
+static const struct job_format *format_named(const char *name)
+{
+    for (size_t i = 0; i < sizeof job_formats / sizeof *job_formats; i++)
+        if (!strcmp(job_formats[i].name, name))
+            return &job_formats[i];
+    return NULL;
+}
+
+static const struct job_format *format_of(enum img_format f)
+{
+    for (size_t i = 0; i < sizeof job_formats / sizeof *job_formats; i++)
+        if (job_formats[i].format == f)
+            return &job_formats[i];
+    return &job_formats[0];
+}
+
 static int safe_name(const char *s)
 {
     if (!*s || *s == '.') /* ".", "..", and hidden folders (.cache holds compare references) */
@@ -248,9 +273,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
-        if (strcmp(s, "png") && strcmp(s, "ppm"))
-            return ydoc_fail(d, v, e, "format: must be png or ppm, got \"%.40s\"", s);
-        j->format = s[1] == 'n' ? IMG_PNG : IMG_PPM;
+        const struct job_format *f = format_named(s);
+        if (!f)
+            return ydoc_fail(d, v, e, "format: must be png, ppm, exr or pfm, got \"%.40s\"", s);
+        j->format = f->format;
         j->has_format = 1;
         mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
@@ -333,18 +359,22 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     /* The sidecar is the output's stem + ".json": an image named so would be overwritten by it. */
     size_t len = strlen(j->output);
     if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
-        return err_set(e, j->path, j->pos_output[0], j->pos_output[1],
-                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)",
-                       j->output);
-    int ext_png = has_suffix(j->output, ".png"), ext_ppm = has_suffix(j->output, ".ppm");
-    if (j->has_output && j->has_format && (ext_png || ext_ppm) && ext_ppm != (j->format == IMG_PPM))
+        return err_set(
+            e, j->path, j->pos_output[0], j->pos_output[1],
+            "output: %s would be overwritten by its own sidecar (name it .png, .ppm, .exr or .pfm)",
+            j->output);
+    const struct job_format *ext = NULL;
+    for (size_t i = 0; i < sizeof job_formats / sizeof *job_formats; i++)
+        if (has_suffix(j->output, job_formats[i].ext))
+            ext = &job_formats[i];
+    if (j->has_output && j->has_format && ext && ext->format != j->format)
         return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
                        "format: %s contradicts the output's extension (%s); give one or make them agree",
-                       j->format == IMG_PPM ? "ppm" : "png", j->output);
+                       format_of(j->format)->name, j->output);
     if (j->has_output && !j->has_format)
-        j->format = ext_ppm ? IMG_PPM : IMG_PNG;
+        j->format = ext ? ext->format : IMG_PNG;
     if (!j->has_output)
-        snprintf(j->output, sizeof j->output, "%s.%s", j->name, j->format == IMG_PPM ? "ppm" : "png");
+        snprintf(j->output, sizeof j->output, "%s%s", j->name, format_of(j->format)->ext);
     return 0;
 }
 

@@ -28,6 +28,8 @@ struct job {
     int poisson_pool;
     int light_sampling; /* 0: no importance sampling of lights (default 1) */
     int priority;       /* queue order: higher first (default 0) */
+    int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
+                           image (a compare job's renders, scored in linear radiance) */
     uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
