@@ -22,9 +22,11 @@ struct run_opts {
                                           0 = write nothing, fail (a queue claim taken over, the
                                           folder another queued job's) */
     void *tick_arg;
-    const struct rgbf *ref;     /* optional: the job's reference, already read (a compare job reads each
-                                   scene's once); NULL: run_job reads j->reference itself */
-    enum img_domain ref_domain; /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
+    const struct rgbf *ref;         /* optional: the job's reference, already read (a compare job reads each
+                                       scene's once); NULL: run_job reads j->reference itself */
+    enum img_domain ref_domain;     /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
+    const struct rgb8 *ref_display; /* optional: the reference as 8-bit display values: the PNG or
+                                       PPM image is also scored against it (display_error) */
 };
 
 struct run_result {
@@ -35,6 +37,8 @@ struct run_result {
     struct procs_result farm; /* on a render failure: child_crashed, child_signal, stopped */
     int has_error;            /* rendered against a reference: error holds the figures */
     struct metrics error;
+    int has_display_error;        /* o->ref_display given and the image is PNG or PPM */
+    struct metrics display_error; /* the 8-bit image against o->ref_display */
     enum img_domain error_domain; /* linear radiance, or 8-bit display values (a PNG/PPM reference) */
     char float_path[2048];        /* the float copy beside a PNG/PPM image (job.float_copy), else "" */
 };

@@ -224,9 +224,14 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         goto done;
     if (img.px)
         image_float_to_rgb8(rgb, w, h, img.px);
-    rr->has_error = 0;
+    rr->has_error = rr->has_display_error = 0;
     if (has_ref && score(&fb, &img, ref, ref_domain, rr, e) < 0)
         goto done;
+    if (o->ref_display && img.px) {
+        if (metrics_display_compare(o->ref_display, &img, &rr->display_error, e) < 0)
+            goto done;
+        rr->has_display_error = 1;
+    }
     struct sidecar sc = {j, w, h, fr, rr->has_error ? &rr->error : NULL, ref_domain, j->output, parts};
     if (!(json = sidecar_json(&sc))) {
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
