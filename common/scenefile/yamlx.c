@@ -60,6 +60,63 @@ static int check_shape(struct ydoc *d, struct err *e)
     return 0;
 }
 
+/* Walk the stream's events before anything is composed, and refuse one that nests deeper than
+   YDOC_MAX_DEPTH or holds more than YDOC_MAX_ANCHORS anchors or YDOC_MAX_ALIASES aliases, at the
+   offending event. libyaml's composer (yaml_parser_load) takes time quadratic in the depth and in
+   the anchors (each anchor and alias is looked up in a list), so a 200k-bracket `[[[...]]]` ran
+   for minutes before check_shape could see it; the events arrive one at a time, and the scanner
+   reads only a bounded way ahead, so this stops within microseconds of the limit. Syntax errors
+   are left to the load that follows (same parser, same message). 0 when within bounds. */
+static int check_events(const uint8_t *data, size_t len, const char *path, struct err *e)
+{
+    yaml_parser_t p;
+    if (!yaml_parser_initialize(&p))
+        return err_set(e, path, 0, 0, "out of memory starting the YAML parser");
+    yaml_parser_set_input_string(&p, data, len);
+    int depth = 0, rc = 0;
+    long anchors = 0, aliases = 0;
+    for (int done = 0; !done && rc == 0;) {
+        yaml_event_t ev;
+        if (!yaml_parser_parse(&p, &ev))
+            break;
+        const yaml_mark_t *m = &ev.start_mark;
+        const char *anchor = NULL;
+        switch (ev.type) {
+        case YAML_STREAM_END_EVENT:
+            done = 1;
+            break;
+        case YAML_SEQUENCE_START_EVENT:
+        case YAML_MAPPING_START_EVENT:
+            anchor = ev.type == YAML_SEQUENCE_START_EVENT ? (const char *)ev.data.sequence_start.anchor
+                                                          : (const char *)ev.data.mapping_start.anchor;
+            if (++depth > YDOC_MAX_DEPTH)
+                rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "nesting deeper than %d levels",
+                             YDOC_MAX_DEPTH);
+            break;
+        case YAML_SEQUENCE_END_EVENT:
+        case YAML_MAPPING_END_EVENT:
+            depth--;
+            break;
+        case YAML_SCALAR_EVENT:
+            anchor = (const char *)ev.data.scalar.anchor;
+            break;
+        case YAML_ALIAS_EVENT:
+            if (++aliases > YDOC_MAX_ALIASES)
+                rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "more than %d aliases",
+                             YDOC_MAX_ALIASES);
+            break;
+        default:
+            break;
+        }
+        if (rc == 0 && anchor && ++anchors > YDOC_MAX_ANCHORS)
+            rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "more than %d anchors (&name)",
+                         YDOC_MAX_ANCHORS);
+        yaml_event_delete(&ev);
+    }
+    yaml_parser_delete(&p);
+    return rc;
+}
+
 /* A job or scene file holds one YAML document: a second one (after "---") would be silently
    ignored, so it is an error at its start, as is a syntax error in it. Empty documents (a bare
    "---") are skipped, up to the end of the stream: one may stand before a real second document.
@@ -95,6 +152,10 @@ int ydoc_load(struct ydoc *d, const char *path, struct err *e)
     size_t len = 0;
     if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
+    if (check_events(data, len, path, e) < 0) {
+        free(data);
+        return -1;
+    }
     yaml_parser_t p;
     if (!yaml_parser_initialize(&p)) {
         free(data);
@@ -244,6 +305,71 @@ int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_nod
     return 0;
 }
 
+#define SPACING_NOTE "the points' minimum spacing in a 100x100 domain, 0 < t <= 100"
+#define SPP_NOTE                                                                                             \
+    "the samples per pixel follow from it, " SPACING_NOTE ": 5 gives 400, 1 gives 10000 with a grid sampler"
+#define LIGHT_NOTE "a light's points per set follow from it, " SPACING_NOTE
+
+/* Words other renderers and formats use for our keys, which edit distance cannot find ("spp"
+   is nowhere near "threshold"), for the "did you mean" of job and scene keys alike. A word is
+   offered only where its key is allowed (the first such), before any near miss ("samples" is
+   nearer "sampler"); note, when set, says what the key means. */
+static const struct {
+    const char *word, *key, *note;
+} synonyms[] = {
+    {"color", "albedo", NULL},
+    {"colour", "albedo", NULL},
+    {"diffuse", "albedo", NULL},
+    {"base_color", "albedo", NULL},
+    {"emission", "emit", NULL},
+    {"emissive", "emit", NULL},
+    {"emittance", "emit", NULL},
+    {"intensity", "emit", NULL},
+    {"ref_idx", "ior", NULL},
+    {"eta", "ior", NULL},
+    {"refraction_index", "ior", NULL},
+    {"roughness", "fuzz", NULL},
+    {"spp", "threshold", SPP_NOTE},
+    {"samples", "threshold", SPP_NOTE},
+    {"samples_per_pixel", "threshold", SPP_NOTE},
+    {"light_spp", "light_threshold", LIGHT_NOTE},
+    {"light_samples", "light_threshold", LIGHT_NOTE},
+    {"depth", "max_depth", NULL},
+    {"bounces", "max_depth", NULL},
+    {"max_bounces", "max_depth", NULL},
+    {"threads", "processes", NULL},
+    {"workers", "processes", NULL},
+    {"out", "output", NULL},
+    {"filename", "output", NULL},
+    {"filename", "file", NULL},
+    {"position", "center", NULL},
+    {"position", "lookfrom", NULL},
+    {"eye", "lookfrom", NULL},
+    {"target", "lookat", NULL},
+    {"rotation", "rotate_y", NULL},
+    {"translation", "translate", NULL},
+    {"mat", "material", NULL},
+    {"r", "radius", NULL},
+    {"rad", "radius", NULL},
+};
+
+/* The "did you mean" for an unknown key name among allowed: a synonym's key (and in note what
+   it means, or NULL), else a near miss; NULL when none fits. */
+static const char *key_suggestion(const char *name, const char *const *allowed, const char **note)
+{
+    *note = NULL;
+    for (size_t i = 0; i < sizeof synonyms / sizeof synonyms[0]; i++) {
+        if (strcasecmp(synonyms[i].word, name) != 0)
+            continue;
+        for (const char *const *a = allowed; *a; a++)
+            if (!strcmp(*a, synonyms[i].key)) {
+                *note = synonyms[i].note;
+                return *a;
+            }
+    }
+    return ystr_nearest(name, allowed, -1);
+}
+
 int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what, struct err *e)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
@@ -258,9 +384,10 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
         for (const char *const *a = allowed; *a; a++)
             known |= strcmp(*a, name) == 0;
         if (!known) {
-            const char *near = ystr_nearest(name, allowed, -1);
+            const char *note, *near = key_suggestion(name, allowed, &note);
             if (near)
-                return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?)", name, what, near);
+                return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?%s%s)", name, what,
+                                 near, note ? " " : "", note ? note : "");
             return ydoc_fail(d, k, e, "%s: unknown key in %s", name, what);
         }
         yaml_node_t *k2, *v2;

@@ -17,6 +17,7 @@
 #include "points.h"
 #include "farm/part.h"
 #include "farm/queue.h"
+#include "farm/queue_status.h"
 #include "job/run.h"
 
 static const char usage[] =
@@ -25,6 +26,8 @@ static const char usage[] =
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
+    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs\n"
+    "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
     "       worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N]\n"
     "                                          error of B against reference A (EXR, PFM, PNG, PPM)\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
@@ -42,6 +45,19 @@ static const char help[] =
     "pixel for uniform/jitter/random, about 6200 for poisson). Rows are split over forked\n"
     "processes; the image (PNG or PPM: 8-bit display values; EXR or PFM: linear radiance) and a\n"
     "JSON stats sidecar land in OUT/<job name>/.\n"
+    "\n"
+    "A compare job is a job file with variants: (and optionally scenes:, sweep:, seeds:): it\n"
+    "renders every combination, scores each against a reference render and writes the images,\n"
+    "summary.csv, chart.svg (error against time) and report.html in OUT/<name>/.\n"
+    "A queue (--queue DIR) is a folder of job files that any number of workers, on one machine\n"
+    "or many sharing it, drain: outputs in DIR/done/<name>/, failed jobs in DIR/failed/.\n"
+    "--part I/N and merge split one job's rows over machines and join them again.\n"
+    "worker diff scores an image against a reference (in linear radiance for EXR/PFM, see\n"
+    "docs/formats.md); worker points prints (or draws, --svg)\n"
+    "one point set of a sampler.\n"
+    "\n"
+    "formats: docs/job-format.md, docs/scene-format.md (every key, with examples)\n"
+    "more:    docs/compare.md, docs/farm.md, docs/samplers.md (in the source tree)\n"
     "\n"
     "exit status: 0 all jobs done, 1 a job failed while rendering, 2 bad usage or bad input.\n";
 
@@ -140,6 +156,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     } else if (merge) {
         err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
                   rr.image_path);
+        run_print_warnings(&j, &rr);
     } else {
         run_print_summary(&j, &rr);
     }
@@ -169,6 +186,10 @@ static int worker_main(int argc, char **argv)
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))
         return diff_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "status"))
+        return queue_status_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "requeue"))
+        return queue_requeue_main(argc - 1, argv + 1);
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,

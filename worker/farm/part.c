@@ -2,9 +2,12 @@
 #include "part.h"
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "base/fileio.h"
@@ -112,8 +115,14 @@ static void encode_header(uint8_t *b, const struct part_header *h)
     put_u64(p, h->peak_rss_kb);
 }
 
-/* Decode and check the header of a part file of len bytes: magic, version, a sane split and a
-   length that matches the rows it claims. 0 or -1 with e filled (file = path). */
+/* Bytes of the part file whose header is h: header, its rows, CRC. */
+static size_t part_bytes(const struct part_header *h)
+{
+    return PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
+}
+
+/* Decode and check the header of a part file of len bytes: magic, version, a sane size and
+   split (read_part checks the length against it). 0 or -1 with e filled (file = path). */
 static int decode_header(const uint8_t *b, size_t len, const char *path, struct part_header *h, struct err *e)
 {
     if (len < PART_HEADER || memcmp(b, PART_MAGIC, 8) != 0)
@@ -140,14 +149,11 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     if (h->version != PART_VERSION)
         return err_set(e, path, 0, 0, "part file version %u, this worker reads version %d", h->version,
                        PART_VERSION);
+    /* the sides a render allows, not a decoder's IMAGE_MAX_PIXELS: parts of a 10240x10240 render
+       (1.05e8 pixels) were refused as damaged, and --part resume never saw them as current */
     if (h->width < 1 || h->width > IMAGE_MAX_SIDE || h->height < 1 || h->height > IMAGE_MAX_SIDE ||
-        h->parts < 1 || h->parts > PART_MAX || h->part >= h->parts ||
-        (uint64_t)h->width * h->height > IMAGE_MAX_PIXELS)
+        h->parts < 1 || h->parts > PART_MAX || h->part >= h->parts)
         return err_set(e, path, 0, 0, "damaged part file (impossible size or split)");
-    size_t want =
-        PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
-    if (len != want)
-        return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", len, want);
     return 0;
 }
 
@@ -188,10 +194,24 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
  *data. 0 or -1 with e filled. */
 static int read_part(const char *path, uint8_t **data, size_t *len, struct part_header *h, struct err *e)
 {
-    if (fileio_read_all(path, (size_t)IMAGE_MAX_PIXELS * 12 + PART_HEADER + 4, data, len, e) < 0)
+    /* the header first: the file may be no longer than the rows it says it holds */
+    uint8_t head[PART_HEADER];
+    struct err ignored;
+    size_t max = PART_HEADER + 4;
+    *data = NULL;
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd >= 0) {
+        if (read(fd, head, sizeof head) == (ssize_t)sizeof head &&
+            decode_header(head, sizeof head, path, h, &ignored) == 0)
+            max = part_bytes(h);
+        close(fd);
+    }
+    if (fileio_read_all(path, max, data, len, e) < 0)
         return -1;
     if (decode_header(*data, *len, path, h, e) < 0)
         return -1;
+    if (*len != part_bytes(h))
+        return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", *len, part_bytes(h));
     const uint8_t *p = *data + *len - 4;
     if (get_u32(&p) != (uint32_t)crc32(0L, *data, (uInt)(*len - 4)))
         return err_set(e, path, 0, 0, "damaged part file: checksum mismatch");
@@ -318,11 +338,14 @@ int part_merge(const struct job *j, const struct run_opts *o, struct run_result 
         goto done;
     for (int i = 0; i < parts; i++) {
         part_path(j, o->out_dir, i, parts, path, sizeof path);
-        FILE *f = fopen(path, "rb");
-        if (f) {
-            fclose(f);
-            continue;
+        struct stat st;
+        if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode)) { /* opening a FIFO would block */
+            err_set(e, path, 0, 0,
+                    "not a regular file (a part file is one; remove it and render that part again)");
+            goto done;
         }
+        if (lstat(path, &st) == 0)
+            continue;
         size_t l = strlen(missing);
         if (l + 16 < sizeof missing)
             snprintf(missing + l, sizeof missing - l, "%s%d", nmissing ? ", " : "", i);

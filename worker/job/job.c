@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -135,31 +134,6 @@ void job_defaults(struct job *j, const char *path)
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
-/* The image formats by key value and output extension: PNG and PPM hold 8-bit display values,
-   EXR and PFM the linear framebuffer. */
-struct job_format {
-    const char *name, *ext;
-    enum img_format format;
-};
-static const struct job_format job_formats[] = {
-    {"png", ".png", IMG_PNG}, {"ppm", ".ppm", IMG_PPM}, {"exr", ".exr", IMG_EXR}, {"pfm", ".pfm", IMG_PFM}};
-
-static const struct job_format *format_named(const char *name)
-{
-    for (size_t i = 0; i < sizeof job_formats / sizeof *job_formats; i++)
-        if (!strcmp(job_formats[i].name, name))
-            return &job_formats[i];
-    return NULL;
-}
-
-static const struct job_format *format_of(enum img_format f)
-{
-    for (size_t i = 0; i < sizeof job_formats / sizeof *job_formats; i++)
-        if (job_formats[i].format == f)
-            return &job_formats[i];
-    return &job_formats[0];
-}
-
 static int safe_name(const char *s)
 {
     if (!*s || *s == '.') /* ".", "..", and hidden folders (.cache holds compare references) */
@@ -206,6 +180,27 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double
                          quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
+}
+
+/* An output's extension names the format written (any case; none: format:, else png): one that
+   names no format we write is an error at v, not a PNG under that name. The sidecar's own
+   extension gets its own message. */
+static int check_output_ext(struct ydoc *d, yaml_node_t *v, const char *out, struct err *e)
+{
+    enum img_format f;
+    size_t len = strlen(out);
+    char list[128];
+    img_format_list(list, sizeof list);
+    if (len > 5 && !strcmp(out + len - 5, ".json")) /* the sidecar is the output's stem + ".json" */
+        return ydoc_fail(
+            d, v, e,
+            "output: %s would be overwritten by its own sidecar (give it an image format's extension: %s)",
+            out, list);
+    if (img_format_of_file(out, &f) >= 0)
+        return 0;
+    return ydoc_fail(d, v, e,
+                     "output: %s: the extension \"%.20s\" names no image format this worker writes (%s)", out,
+                     strrchr(out, '.'), list);
 }
 
 int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, struct err *e)
@@ -273,10 +268,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
-        const struct job_format *f = format_named(s);
-        if (!f)
-            return ydoc_fail(d, v, e, "format: must be png, ppm, exr or pfm, got \"%.40s\"", s);
-        j->format = f->format;
+        if (img_format_parse(s, &j->format) < 0) {
+            char list[128];
+            img_format_list(list, sizeof list);
+            return ydoc_fail(d, v, e, "format: must be %s, got \"%.40s\"", list, s);
+        }
         j->has_format = 1;
         mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
@@ -287,6 +283,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
                              "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
                              "most %d, not starting with '.'), got \"%.40s\"",
                              JOB_NAME_MAX - 1, s);
+        if (check_output_ext(d, v, s, e) < 0)
+            return -1;
         snprintf(j->output, sizeof j->output, "%s", s);
         j->has_output = 1;
         mark(j->pos_output, v);
@@ -299,13 +297,6 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
     }
     return 0;
-}
-
-/* Whether s ends in suf, ignoring case (an output named X.PPM is a PPM). */
-static int has_suffix(const char *s, const char *suf)
-{
-    size_t a = strlen(s), b = strlen(suf);
-    return a >= b && strcasecmp(s + a - b, suf) == 0;
 }
 
 double job_smallest_threshold(enum sampler_kind k)
@@ -356,25 +347,17 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
         check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
                        e) < 0)
         return -1;
-    /* The sidecar is the output's stem + ".json": an image named so would be overwritten by it. */
-    size_t len = strlen(j->output);
-    if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
-        return err_set(
-            e, j->path, j->pos_output[0], j->pos_output[1],
-            "output: %s would be overwritten by its own sidecar (name it .png, .ppm, .exr or .pfm)",
-            j->output);
-    const struct job_format *ext = NULL;
-    for (size_t i = 0; i < sizeof job_formats / sizeof *job_formats; i++)
-        if (has_suffix(j->output, job_formats[i].ext))
-            ext = &job_formats[i];
-    if (j->has_output && j->has_format && ext && ext->format != j->format)
+    /* the output's extension (job_apply checked it names a format) and format: must agree */
+    enum img_format ext;
+    int has_ext = j->has_output && img_format_of_file(j->output, &ext) > 0;
+    if (has_ext && j->has_format && ext != j->format)
         return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
                        "format: %s contradicts the output's extension (%s); give one or make them agree",
-                       format_of(j->format)->name, j->output);
-    if (j->has_output && !j->has_format)
-        j->format = ext ? ext->format : IMG_PNG;
+                       img_format_name(j->format), j->output);
+    if (has_ext)
+        j->format = ext;
     if (!j->has_output)
-        snprintf(j->output, sizeof j->output, "%s%s", j->name, format_of(j->format)->ext);
+        snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
 }
 

@@ -21,7 +21,7 @@ struct progress {
     const char *name;
     int enabled;
     int last_pct;
-    void (*tick)(void *arg);
+    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s);
     void *tick_arg;
 };
 
@@ -29,7 +29,7 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
 {
     struct progress *p = arg;
     if (p->tick)
-        p->tick(p->tick_arg);
+        p->tick(p->tick_arg, done, rows, elapsed);
     if (!p->enabled || rows == 0)
         return;
     int pct = (int)(100.0 * done / rows);
@@ -240,4 +240,13 @@ void run_print_summary(const struct job *j, const struct run_result *rr)
               rr->height, sampler_kind_name(j->sampler), j->threshold,
               t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes,
               rr->farm.processes == 1 ? "" : "es", rr->farm.wall_s, rr->image_path);
+    run_print_warnings(j, rr);
+}
+
+void run_print_warnings(const struct job *j, const struct run_result *rr)
+{
+    if (rr->black)
+        err_print("%s: warning: the image is entirely black (no light reaches the camera? a light emits "
+                  "from its front face only: a rect's flip:, a disk's toward:)\n",
+                  j->name);
 }

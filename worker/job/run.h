@@ -16,7 +16,8 @@ struct run_opts {
     int force;                         /* render even when the outputs are current (resume off) */
     int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
     const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
-    void (*tick)(void *arg);           /* optional: called about every 5 ms while rendering */
+    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s); /* optional: about every 5 ms
+                                          while rendering, with its progress */
     int (*may_write)(void *arg, const char *dir); /* optional: asked (with tick_arg and the output
                                           folder) under that folder's lock, just before writing;
                                           0 = write nothing, fail (a queue claim taken over, the
@@ -34,6 +35,7 @@ struct run_result {
     char sidecar_path[2048]; /* with parts: "" */
     int width, height;
     int skipped;              /* outputs were current (same job hash): nothing rendered */
+    int black;                /* the image written is entirely black (run_print_warnings) */
     struct procs_result farm; /* on a render failure: child_crashed, child_signal, stopped */
     int has_error;            /* rendered against a reference: error holds the figures */
     struct metrics error;
@@ -67,7 +69,12 @@ int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum
    8-bit display values (a PNG or PPM reference), not on linear radiance. */
 void run_warn_display_reference(const char *job_name, const char *path);
 
-/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
+/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image),
+   then its warnings (run_print_warnings). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
+
+/* A line on stderr, naming the job, for what an exit code of 0 would hide: an entirely black
+   image (no light reaches the camera: a light facing away, lights missing). */
+void run_print_warnings(const struct job *j, const struct run_result *rr);
 
 #endif

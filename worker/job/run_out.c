@@ -32,6 +32,12 @@ static int mkdirs(const char *path, int *made, struct err *e)
             if (!ok && errno != EEXIST)
                 return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", buf, strerror(errno));
             struct stat st;
+            /* the folder itself is never a symbolic link: outputs would land wherever it points */
+            if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
+                return err_set(e, NULL, 0, 0,
+                               "%s is a symbolic link: outputs are never written through one (make it a "
+                               "folder)",
+                               buf);
             if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
                 return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", buf);
             *p = c;
@@ -94,7 +100,7 @@ static void remove_dead_temps(const char *path)
 
 int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop)
 {
-    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC), rc = -1;
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */
     if (fd < 0)
         return -1;
     /* a stop signal interrupts the wait (the queue's handlers have no SA_RESTART): a holder that
@@ -152,6 +158,8 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                          struct err *e)
 {
     *lock = run_out_lock(dir, paths, o->stop);
+    if (*lock == -1 && (errno == ELOOP || errno == ENOTDIR))
+        return err_set(e, NULL, 0, 0, "%s is a symbolic link: outputs are never written through one", dir);
     if (*lock == RUN_OUT_STOPPED)
         return err_set(e, NULL, 0, 0, "stopped while waiting for another writer of %s/: nothing written",
                        dir);
@@ -262,6 +270,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
             unlink(k2 < i ? final[k2] : staged[k2]);
         goto done;
     }
+    rr->black = image_float_black(rgb, w, h);
     rc = 0;
 done:
     run_out_unlock(lock);

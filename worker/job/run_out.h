@@ -38,8 +38,8 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
    EXR/PFM: the floats as they are), with its float copy (j->float_copy) and sidecar (paths from
    run_paths under o->out_dir, into rr), all atomically. With a reference (ref not NULL, ref->px
    set) score it into rr->error: on the linear floats when ref_domain is IMG_LINEAR, else on the
-   8-bit image's display values. parts > 0 marks a merge of that many part files. 0 or -1 with e
-   filled (nothing left behind). */
+   8-bit image's display values. parts > 0 marks a merge of that many part files; rr->black: the
+   image is entirely black. 0 or -1 with e filled (nothing left behind). */
 int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
                   const struct procs_result *fr, const struct rgbf *ref, enum img_domain ref_domain,
                   int parts, struct run_result *rr, struct err *e);
