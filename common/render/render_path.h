@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "render_internal.h"
+#include "geom/bvh.h"
 #include "geom/shape_light_inline.h"
 #include "geom/texture.h"
 
@@ -125,21 +126,38 @@ static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
     }
 }
 
-/* Cosine-weighted direction about n (Malley's method). */
-static __attribute__((unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
+/* Cosine-weighted direction about n (Malley's method) from two uniforms: u2 the radius squared,
+   a the angle in turns. */
+static inline __attribute__((always_inline, unused)) vec3 cosine_direction_uv(const onb *frame, double u2,
+                                                                              double a)
 {
-    double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
-    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
+    double s = sqrt(u2), sin_phi, cos_phi;
+    v3_sincos_turn(a, &sin_phi, &cos_phi);
     return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
+}
+
+/* cosine_direction_uv from r. Always inline: with nee's call beside the mixture's GCC kept it
+   out of line, +2% of cornell-book3's instructions. */
+static inline __attribute__((always_inline, unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
+{
+    double u2 = rng_uniform32(r);
+    return cosine_direction_uv(frame, u2, rng_uniform32(r));
+}
+
+/* A uniform direction from two uniforms (z from u, the angle in turns from a). */
+static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_uv(double u, double a)
+{
+    double z = 1 - 2 * u, s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
+    v3_sincos_turn(a, &sin_phi, &cos_phi);
+    return v3(cos_phi * s, sin_phi * s, z);
 }
 
 /* A uniform direction: inline where trace scatters in a medium (path_scatter's media_inline),
    a call elsewhere (GCC's choice; inline in the lanes it cost cornell-book3 7 instructions). */
 static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_inline(struct rng *r)
 {
-    double z = 1 - 2 * rng_uniform32(r), s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
-    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
-    return v3(cos_phi * s, sin_phi * s, z);
+    double u = rng_uniform32(r);
+    return uniform_sphere_direction_uv(u, rng_uniform32(r));
 }
 
 static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
@@ -198,6 +216,50 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
+/* light_direction under sampler_dims: all: the light chosen by choice in [0, 1), its point s. */
+static inline __attribute__((always_inline)) vec3
+light_direction_at(struct render_ctx *ctx, vec3 o, double choice, struct pt2 s, int *light, double *pdf)
+{
+    const struct scene *sc = ctx->sc;
+    int i = (int)(choice * sc->n_lights);
+    i = i < sc->n_lights ? i : sc->n_lights - 1;
+    *light = i;
+    return light_sample(&sc->prims[sc->lights[i]], o, s, pdf);
+}
+
+/* Where a vertex's decisions come from: under sampler_dims: all (dims) sample's points of the
+   pixel's sets for the vertex's bounce (depth), while that bounce has sets; else the path's rng. */
+struct path_at {
+    int dims, depth;
+    uint32_t sample;
+};
+
+/* Decision k (DIM_DIR, DIM_LIGHT, DIM_CHOICE) of the vertex at->depth: two uniforms. */
+static inline __attribute__((always_inline)) struct pt2 path_decide(struct render_ctx *ctx, struct rng *rng,
+                                                                    struct path_at at, int k)
+{
+    if (at.depth < ctx->dims_bounces)
+        return render_dims_point(ctx, DIMS_CAMERA + DIMS_PER_BOUNCE * at.depth + k, at.sample);
+    struct pt2 p;
+    p.x = rng_uniform32(rng);
+    p.y = rng_uniform32(rng);
+    return p;
+}
+
+/* camera_ray under sampler_dims: all: the lens point and the shutter time of sample s from the
+   pixel's sets (each drawn only where the camera uses it). */
+static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct render_ctx *ctx, double u,
+                                                                        double v, uint32_t s)
+{
+    const struct camera *cam = ctx->cam;
+    struct pt2 lens = {0, 0}, time = {0, 0};
+    if (cam->lens_radius > 0)
+        lens = render_dims_point(ctx, 0, s);
+    if (cam->time0 != cam->time1)
+        time = render_dims_point(ctx, 1, s);
+    return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
+}
+
 /* A camera sample's estimate c into the pixel's sums: kept when finite, else counted as dropped. */
 static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *nonfinite)
 {
@@ -209,20 +271,70 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
     ++*kept;
 }
 
+/* Next-event estimation at a scattering vertex h (diffuse surface or medium), before its own
+   scatter: one light point from the light sampler's sets, a shadow ray toward it, and the
+   emission it reaches weighted by the power heuristic against the material's own sampling
+   (Veach 1997, ch. 9). f is the scattering function times the cosine (or the phase), bsdf_pdf
+   the material's pdf for that direction; both per the direction, so given as closures over h:
+   lambertian (cosine / pi) when phase is 0, else the isotropic phase. The light strategy's pdf
+   is the lights' mixture (every light chosen alike), so an emitter the shadow ray reaches first
+   counts whichever light was chosen. */
+static inline __attribute__((always_inline)) void
+path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct rng *rng,
+                const struct hit *h, vec3 albedo, double phase, uint64_t *rays, struct path_at at)
+{
+    const struct scene *sc = ctx->sc;
+    int light = -1;
+    double light_pdf = 0;
+    vec3 dir;
+    if (at.dims) {
+        struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
+        dir = light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf);
+    } else {
+        dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+    }
+    double f_pdf; /* the material's pdf for dir, which is also its f times cosine / albedo */
+    if (phase > 0) {
+        f_pdf = phase;
+    } else {
+        double cosine = v3_dot(dir, h->n);
+        if (!(cosine > 0))
+            return;
+        f_pdf = cosine / PI;
+    }
+    double pl = lights_pdf(sc, h->p, dir, light, light_pdf);
+    if (!(pl > 0))
+        return;
+    ray shadow = {h->p, dir, r->time};
+    struct hit sh;
+    ++*rays;
+    if (!bvh_hit(sc, &shadow, HIT_EPS, DBL_MAX, &sh))
+        return;
+    const struct material *lm = ctx->prim_material[sh.prim];
+    if (lm->type != MAT_LIGHT || !sh.front)
+        return;
+    double w = pl * pl / (pl * pl + f_pdf * f_pdf);
+    *L = v3_add(*L, v3_mul(v3_mul(beta, albedo), v3_scale(lm->emit, f_pdf * w / pl)));
+}
+
 /* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
    lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
-   mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
-   and mixture pdf) inline, as a surface's (path_scatter_as from trace: final's fog scatters on
-   most paths), else through calls (path_scatter, for the lanes, whose scenes
-   hold no media: inline in the lanes it cost checker ~1% and cornell-book3 7 instructions a
-   sample by the code it moved). Always inline: the caller's ray, weight and radiance stay in
-   its registers (a texture's lookup reads h through a copy). */
+   mix: the scene's lights are sampled by the books' pdf mixture; nee (instead of mix): by
+   next-event estimation with MIS, *mis_pdf carrying the last scatter's pdf (0 after the camera
+   or a mirror or glass: its emission then counts whole) and *rays counting the shadow rays;
+   media_inline: a medium's scatter (its uniform direction and mixture pdf) inline, as a
+   surface's (path_scatter_as from trace: final's fog scatters on most paths), else through calls
+   (path_scatter, for the lanes, whose scenes hold no media: inline in the lanes it cost checker
+   ~1% and cornell-book3 7 instructions a sample by the code it moved). Always inline: the
+   caller's ray, weight and radiance stay in its registers (a texture's lookup reads h through a
+   copy). */
 static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
                                                                  vec3 *L, struct rng *rng,
                                                                  const struct hit *h, int at_last, int mix,
-                                                                 int media_inline)
+                                                                 int nee, double *mis_pdf, uint64_t *rays,
+                                                                 struct path_at at, int media_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -231,9 +343,36 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
     vec3 dir;
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
+        if (nee) {
+            path_next_event(ctx, r, *beta, L, rng, h, albedo, 0, rays, at);
+            onb frame = onb_from_w(h->n);
+            if (at.dims) {
+                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
+                dir = cosine_direction_uv(&frame, u.x, u.y);
+            } else {
+                dir = cosine_direction(&frame, rng);
+            }
+            double cosine = v3_dot(dir, h->n);
+            if (!(cosine > 0))
+                return 0;
+            *mis_pdf = cosine / PI;
+            *beta = v3_mul(*beta, albedo);
+            *r = (ray){h->p, dir, r->time};
+            return 1;
+        }
         int light = -1;
         double light_pdf = 0;
-        if (mix && rng_u32(rng) >> 31) {
+        if (at.dims) {
+            struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
+            if (mix && c.x < 0.5) {
+                dir = light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light,
+                                         &light_pdf);
+            } else {
+                onb frame = onb_from_w(h->n);
+                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
+                dir = cosine_direction_uv(&frame, u.x, u.y);
+            }
+        } else if (mix && rng_u32(rng) >> 31) {
             dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
         } else {
             onb frame = onb_from_w(h->n);
@@ -253,8 +392,14 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
     }
     switch (m->type) {
     case MAT_LIGHT:
-        if (h->front)
+        if (!h->front)
+            return 0;
+        if (nee && *mis_pdf > 0) { /* reached by a scatter that next-event estimation also sampled */
+            double pl = lights_pdf(sc, r->orig, r->dir, -1, 0), pb = *mis_pdf;
+            *L = v3_add(*L, v3_mul(*beta, v3_scale(m->emit, pb * pb / (pb * pb + pl * pl))));
+        } else {
             *L = v3_add(*L, v3_mul(*beta, m->emit));
+        }
         return 0;
     case MAT_METAL:
         dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
@@ -262,33 +407,57 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
             return 0;
         *beta = v3_mul(*beta, m->albedo);
         *r = (ray){h->p, dir, r->time};
+        if (nee) /* a specular bounce: the emission it reaches counts whole */
+            *mis_pdf = 0;
         return 1;
     case MAT_DIELECTRIC: {
         vec3 unit_dir = v3_unit(r->dir);
         double ratio = h->front ? 1.0 / m->ior : m->ior;
         double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
         double sin_t = sqrt(1 - cos_t * cos_t);
-        dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
+        dir = (ratio * sin_t > 1 ||
+               reflectance(cos_t, ratio) >
+                   (at.dims ? path_decide(ctx, rng, at, DIM_CHOICE).x : rng_uniform32(rng)))
                   ? v3_reflect(unit_dir, h->n)
                   : v3_refract(unit_dir, h->n, ratio);
         *r = (ray){h->p, dir, r->time};
+        if (nee) /* a specular bounce: the emission it reaches counts whole */
+            *mis_pdf = 0;
         return 1;
     }
     default: { /* MAT_ISOTROPIC */
         vec3 albedo = surface_albedo(sc, m, h);
         const double phase = 1 / (4 * PI);
         double pdf = phase;
-        if (mix) {
+        struct pt2 u = {0, 0}, c = {0, 0};
+        if (at.dims) {
+            u = path_decide(ctx, rng, at, DIM_DIR);
+            c = path_decide(ctx, rng, at, DIM_CHOICE);
+        }
+        if (nee) {
+            path_next_event(ctx, r, *beta, L, rng, h, albedo, phase, rays, at);
+            dir = at.dims        ? uniform_sphere_direction_uv(u.x, u.y)
+                  : media_inline ? uniform_sphere_direction_inline(rng)
+                                 : uniform_sphere_direction(rng);
+            *mis_pdf = phase;
+        } else if (mix) {
             int light = -1;
             double light_pdf = 0;
-            dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
-                  : media_inline     ? uniform_sphere_direction_inline(rng)
-                                     : uniform_sphere_direction(rng);
+            if (at.dims)
+                dir = c.x < 0.5 ? light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT),
+                                                     &light, &light_pdf)
+                                : uniform_sphere_direction_uv(u.x, u.y);
+            else
+                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                      : media_inline     ? uniform_sphere_direction_inline(rng)
+                                         : uniform_sphere_direction(rng);
             pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
                                       : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
                   0.5 * phase;
         } else {
-            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
+            dir = at.dims        ? uniform_sphere_direction_uv(u.x, u.y)
+                  : media_inline ? uniform_sphere_direction_inline(rng)
+                                 : uniform_sphere_direction(rng);
         }
         *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
         *r = (ray){h->p, dir, r->time};
@@ -300,9 +469,10 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
 /* path_scatter_as with a medium's scatter through calls. */
 static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
                                                               vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix)
+                                                              int at_last, int mix, int nee, double *mis_pdf,
+                                                              uint64_t *rays, struct path_at at)
 {
-    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, 0);
+    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, nee, mis_pdf, rays, at, 0);
 }
 
 #endif

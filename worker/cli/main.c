@@ -31,6 +31,7 @@ static const char usage[] =
     "       worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N]\n"
     "                                          error of B against reference A (EXR, PFM, PNG, PPM)\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
+    "              [--sets M] [--spectrum F.png] [--radial F.svg] [--stats]  and its spectrum, statistics\n"
     "       worker --help | --version\n"
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
     "         --force (render even when the outputs are current)\n"

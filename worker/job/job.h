@@ -27,6 +27,8 @@ struct job {
     char reference[JOB_PATH_MAX]; /* resolved; "" when none */
     int poisson_pool;
     int light_sampling; /* 0: no importance sampling of lights (default 1) */
+    int nee;            /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
+    int dims_all;       /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
     int priority;       /* queue order: higher first (default 0) */
     int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
                            image (a compare job's renders, scored in linear radiance) */
