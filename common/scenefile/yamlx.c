@@ -67,8 +67,9 @@ static int check_shape(struct ydoc *d, struct err *e)
    for minutes before check_shape could see it; the events arrive one at a time, and the scanner
    reads only a bounded way ahead, so this stops within microseconds of the limit. Syntax errors
    are left to the load that follows (same parser, same message). 0 when within bounds. */
-static int check_events(const uint8_t *data, size_t len, const char *path, struct err *e)
+static int check_events(struct ydoc *d, const uint8_t *data, size_t len, const char *path, struct err *e)
 {
+    size_t cap = 0;
     yaml_parser_t p;
     if (!yaml_parser_initialize(&p))
         return err_set(e, path, 0, 0, "out of memory starting the YAML parser");
@@ -99,6 +100,17 @@ static int check_events(const uint8_t *data, size_t len, const char *path, struc
             break;
         case YAML_SCALAR_EVENT:
             anchor = (const char *)ev.data.scalar.anchor;
+            if (ev.data.scalar.tag && !strcmp((const char *)ev.data.scalar.tag, YAML_STR_TAG)) {
+                if ((size_t)d->n_str_tagged == cap) {
+                    size_t *grown = realloc(d->str_tagged, (cap = cap ? 2 * cap : 16) * sizeof *grown);
+                    if (!grown) {
+                        rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "out of memory");
+                        break;
+                    }
+                    d->str_tagged = grown;
+                }
+                d->str_tagged[d->n_str_tagged++] = m->index;
+            }
             break;
         case YAML_ALIAS_EVENT:
             if (++aliases > YDOC_MAX_ALIASES)
@@ -152,7 +164,7 @@ int ydoc_load(struct ydoc *d, const char *path, struct err *e)
     size_t len = 0;
     if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
-    if (check_events(data, len, path, e) < 0) {
+    if (check_events(d, data, len, path, e) < 0) {
         free(data);
         return -1;
     }
@@ -195,6 +207,24 @@ void ydoc_free(struct ydoc *d)
     if (d->loaded)
         yaml_document_delete(&d->doc);
     d->loaded = 0;
+    free(d->str_tagged);
+    d->str_tagged = NULL;
+    d->n_str_tagged = 0;
+}
+
+int ystr_tagged(const struct ydoc *d, const yaml_node_t *n)
+{
+    if (!n || n->type != YAML_SCALAR_NODE)
+        return 0;
+    long lo = 0, hi = d->n_str_tagged;
+    while (lo < hi) {
+        long mid = lo + (hi - lo) / 2;
+        if (d->str_tagged[mid] < n->start_mark.index)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < d->n_str_tagged && d->str_tagged[lo] == n->start_mark.index;
 }
 
 yaml_node_t *ydoc_root(struct ydoc *d)

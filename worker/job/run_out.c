@@ -98,19 +98,72 @@ static void remove_dead_temps(const char *path)
     closedir(d);
 }
 
-int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop)
+/* Whether n is any writer's temporary (is_temp_of, whatever the file): ".<base>.tmp.XXXXXX". */
+static int is_temp(const char *n)
+{
+    size_t len = strlen(n);
+    return n[0] == '.' && len > 12 && !strncmp(n + len - 11, ".tmp.", 5);
+}
+
+void run_out_remove_temps(const char *dir)
+{
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), locked = 0;
+    if (fd < 0)
+        return;
+    for (int i = 0; i < 100 && !(locked = flock(fd, LOCK_EX | LOCK_NB) == 0); i++) {
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    DIR *d = locked ? fdopendir(dup(fd)) : NULL;
+    struct dirent *de;
+    while (d && (de = readdir(d)))
+        if (is_temp(de->d_name))
+            (void)unlinkat(fd, de->d_name, 0);
+    if (d)
+        closedir(d);
+    close(fd); /* and the lock with it */
+}
+
+/* flock(fd, LOCK_EX) for at most wait_s seconds (> 0) in 20 ms steps; -1 with errno EWOULDBLOCK
+   when waited out, EINTR when *stop was set meanwhile. */
+static int lock_within(int fd, double wait_s, const volatile sig_atomic_t *stop)
+{
+    struct timespec t0, now, nap = {0, 20 * 1000 * 1000};
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        if (flock(fd, LOCK_EX | LOCK_NB) == 0)
+            return 0;
+        if (errno != EWOULDBLOCK && errno != EINTR)
+            return -1;
+        if (stop && *stop) {
+            errno = EINTR;
+            return -1;
+        }
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        if ((now.tv_sec - t0.tv_sec) + (now.tv_nsec - t0.tv_nsec) * 1e-9 > wait_s) {
+            errno = EWOULDBLOCK;
+            return -1;
+        }
+        nanosleep(&nap, NULL);
+    }
+}
+
+int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s)
 {
     int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */
     if (fd < 0)
         return -1;
     /* a stop signal interrupts the wait (the queue's handlers have no SA_RESTART): a holder that
        hangs must not make this writer deaf to it */
-    while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR && !(stop && *stop))
-        ;
+    if (wait_s > 0)
+        rc = lock_within(fd, wait_s, stop);
+    else
+        while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR && !(stop && *stop))
+            ;
     if (rc < 0) {
-        int stopped = errno == EINTR;
+        int why = errno;
         close(fd);
-        return stopped ? RUN_OUT_STOPPED : -1;
+        return why == EINTR ? RUN_OUT_STOPPED : why == EWOULDBLOCK ? RUN_OUT_WAITED_OUT : -1;
     }
     for (int i = 0; paths && paths[i]; i++)
         remove_dead_temps(paths[i]);
@@ -157,7 +210,11 @@ static void name_final(struct err *e, const char *staged, const char *final)
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e)
 {
-    *lock = run_out_lock(dir, paths, o->stop);
+    *lock = run_out_lock(dir, paths, o->stop, o->lock_wait_s);
+    if (*lock == RUN_OUT_WAITED_OUT && (!o->may_write || o->may_write(o->tick_arg, dir)))
+        err_print("%s/: its lock has been held for over %g s (a lease timeout) by a writer that is stopped "
+                  "or hung: writing without it\n",
+                  dir, o->lock_wait_s);
     if (*lock == -1 && (errno == ELOOP || errno == ENOTDIR))
         return err_set(e, NULL, 0, 0, "%s is a symbolic link: outputs are never written through one", dir);
     if (*lock == RUN_OUT_STOPPED)
@@ -169,6 +226,13 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                    "rendered, but it may not write %s/ now (another worker holds the job, or the folder is "
                    "another job's): nothing written",
                    dir);
+}
+
+int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e)
+{
+    if (!o->still_held || o->still_held(o->tick_arg))
+        return 0;
+    return err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
 }
 
 /* The EXR header's string attributes for j (nothing that depends on the process count or the
@@ -245,9 +309,12 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* All are written whole under staging names first, then renamed, the image first: a failure
-       before the renames (a full disk, a size limit) leaves earlier outputs as they were. A
-       killed writer's staged files and their temporaries go under the next one's lock. */
+    /* All are written whole under staging names first: a failure before the renames (a full disk,
+       a size limit) leaves the earlier outputs as they were. Then the earlier sidecar goes, the
+       image and its float copy are renamed, the sidecar last: a reader (or a writer killed at any
+       step) sees the earlier outputs, images without a sidecar (not finished: rendered again), or
+       the new ones, never a new image beside an earlier sidecar (issue 21, defect 6). A killed
+       writer's staged files and their temporaries go under the next one's lock. */
     size_t nattrs = exr_attrs(j, attrs, attr_text);
     int k = 0, wrote = is_float ? imgio_write_f(staged[0], &fb, j->format, attrs, nattrs, e)
                                 : imgio_write(staged[0], &img, j->format, e);
@@ -261,13 +328,23 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
             unlink(staged[k]);
         goto done;
     }
+    /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
+    int failed = run_out_still_held(o, dir, e) < 0;
+    if (!failed && unlink(rr->sidecar_path) < 0 && errno != ENOENT)
+        failed = err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->sidecar_path, strerror(errno)) < 0;
     for (int i = 0; i < n; i++) {
+        /* a claim taken over between renames: what is renamed stays, without a sidecar */
+        if (failed || (i > 0 && run_out_still_held(o, dir, e) < 0)) {
+            for (int r = i; r < n; r++)
+                unlink(staged[r]);
+            goto done;
+        }
         if (rename(staged[i], final[i]) == 0)
             continue;
         /* an image without its sidecar is not a finished job: undo the renames done */
         err_set(e, NULL, 0, 0, "cannot write %s: %s", final[i], strerror(errno));
-        for (int k2 = 0; k2 < n; k2++)
-            unlink(k2 < i ? final[k2] : staged[k2]);
+        for (int r = 0; r < n; r++)
+            unlink(r < i ? final[r] : staged[r]);
         goto done;
     }
     rr->black = image_float_black(rgb, w, h);

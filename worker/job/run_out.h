@@ -22,15 +22,28 @@ int run_out_make_dir(const char *dir, int *made, struct err *e);
    temporary files never outlive its lock. Returns the lock (for run_out_unlock), or -1 when the
    folder cannot be locked (some network file systems): the writer goes on alone, removing
    nothing; RUN_OUT_STOPPED when *stop (optional) was set by a signal while it waited: write
-   nothing. */
+   nothing; RUN_OUT_WAITED_OUT when wait_s > 0 and the lock was not had within wait_s seconds
+   (its holder is stopped or hung). wait_s 0: wait as long as it takes. */
 #define RUN_OUT_STOPPED (-2)
-int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
+#define RUN_OUT_WAITED_OUT (-3)
+int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s);
 void run_out_unlock(int lock);
+
+/* Whether the render may still rename an output into place (run_opts.still_held): 0, or -1 with e
+   filled (the claim was taken over while it wrote). */
+int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e);
+
+/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir, under its lock: for a
+   job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
+   A lock held by another writer for over a second leaves them (they may be that writer's). */
+void run_out_remove_temps(const char *dir);
 
 /* Take dir's lock for writing paths (run_out_lock) into *lock, then ask whether this render may
    still write (run_opts.may_write): a claim taken over while we waited for the lock (another
-   writer, a slow disk) writes nothing, nor does a writer stopped while it waited. 0, or -1 with e
-   filled; run_out_unlock(*lock) either way. */
+   writer, a slow disk) writes nothing, nor does a writer stopped while it waited. A lock not had
+   within o->lock_wait_s (> 0) is held by a stopped or hung writer, whose claim was taken over (it
+   checks before each rename, run_out_still_held, and gives up): this writer goes on without it,
+   saying so, when may_write says yes. 0, or -1 with e filled; run_out_unlock(*lock) either way. */
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e);
 
