@@ -79,10 +79,13 @@ char *sidecar_json(const struct sidecar *s)
     if (s->error) {
         json_begin_object(&js, "error");
         json_string(&js, "reference", j->reference);
+        json_string(&js, "domain", image_domain_name(s->error_domain));
         json_number(&js, "mse", s->error->mse);
         json_number(&js, "rmse", s->error->rmse);
         json_number(&js, "relmse", s->error->relmse);
         json_number(&js, "relmse_eps", METRICS_REL_EPS);
+        json_number(&js, "relmse_robust", s->error->relmse_robust);
+        json_number(&js, "relmse_robust_drop", METRICS_ROBUST_DROP);
         json_number(&js, "psnr", s->error->psnr);
         json_end_object(&js);
     }

@@ -10,9 +10,10 @@ struct sidecar {
     const struct job *job;
     int width, height;
     const struct procs_result *res;
-    const struct metrics *error; /* NULL when the job has no reference */
-    const char *image;           /* the image file's name */
-    int parts;                   /* > 0: merged from this many --part files (res->proc[i] = part i) */
+    const struct metrics *error;  /* NULL when the job has no reference */
+    enum img_domain error_domain; /* what error was measured on: linear radiance or 8-bit values */
+    const char *image;            /* the image file's name */
+    int parts;                    /* > 0: merged from this many --part files (res->proc[i] = part i) */
 };
 
 /* The sidecar's record of the job's inputs: "job_hash": "<16 hex digits>". */

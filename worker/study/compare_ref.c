@@ -31,10 +31,10 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
 }
 
 /* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
-static double cached_wall_s(const char *png_path)
+static double cached_wall_s(const char *image_path)
 {
     char json[JOB_PATH_MAX + 8];
-    snprintf(json, sizeof json, "%.*s.json", (int)strlen(png_path) - 4, png_path);
+    snprintf(json, sizeof json, "%.*s.json", (int)strlen(image_path) - 4, image_path);
     uint8_t *data;
     size_t len;
     struct err e;
@@ -58,19 +58,24 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         return 2;
     struct job j = cs->ref_job;
     snprintf(j.name, sizeof j.name, ".cache");
-    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.png", cs->name, (unsigned long long)key);
+    /* linear radiance, as every error is measured in */
+    j.format = IMG_EXR;
+    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
     snprintf(cs->ref_path, sizeof cs->ref_path, "%s/.cache/%s", o->out_dir ? o->out_dir : "out", j.output);
-    struct rgb8 img = {0};
+    cs->ref_domain = IMG_LINEAR;
+    struct rgbf img = {0};
+    enum img_domain domain;
     struct err ignored;
-    if (imgio_read(cs->ref_path, &img, &ignored) == 0 && img.w == cs->width && img.h == cs->height) {
-        image_free(&img);
+    if (imgio_read_f(cs->ref_path, &img, &domain, &ignored) == 0 && img.w == cs->width &&
+        img.h == cs->height) {
+        image_f_free(&img);
         cs->ref_reused = 1;
         cs->ref_wall_s = cached_wall_s(cs->ref_path);
         compare_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name,
                     cs->ref_path, cs->ref_wall_s);
         return 0;
     }
-    image_free(&img);
+    image_f_free(&img);
     compare_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
                 sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler),
                 j.light_threshold, cs->ref_path);
