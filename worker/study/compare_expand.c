@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "compare.h"
-#include "compare_loading.h"
+#include "compare_expand.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job_limits.h"

@@ -1,7 +1,7 @@
 /* compare_load: reading a compare job's keys, scenes, seeds, sweep and variants, with every
    check done before anything renders (compare_expand.c makes the combinations). */
 #include "compare.h"
-#include "compare_loading.h"
+#include "compare_expand.h"
 
 #include <math.h>
 #include <stdio.h>

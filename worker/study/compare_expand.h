@@ -1,6 +1,6 @@
 /* compare_loading: what the compare job loader's parts share while reading one file. Internal. */
-#ifndef COMPARE_LOADING_H
-#define COMPARE_LOADING_H
+#ifndef COMPARE_EXPAND_H
+#define COMPARE_EXPAND_H
 
 #include "compare.h"
 #include "scenefile/yamlx.h"
