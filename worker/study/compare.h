@@ -66,7 +66,10 @@ struct compare *compare_load_as(const char *from, const char *path, struct err *
 void compare_free(struct compare *c);
 
 /* Index of an item in c->items. */
-int compare_index(const struct compare *c, int scene, int variant, int point, int seed);
+static inline int compare_index(const struct compare *c, int scene, int variant, int point, int seed)
+{
+    return ((scene * c->n_variants + variant) * c->n_points + point) * c->n_seeds + seed;
+}
 
 /* Render every reference (or reuse the cache under OUT/.cache/) and every combination, then
    write summary.csv, chart.svg and report.html under OUT/<name>/. Returns 0, 1 when a render

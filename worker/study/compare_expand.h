@@ -1,4 +1,5 @@
-/* compare_loading: what the compare job loader's parts share while reading one file. Internal. */
+/* compare_expand: a loaded compare job's reference and its combinations as ordinary jobs, from
+   the loader's state (struct compare_loading, compare_load.c's while it reads one file). Internal. */
 #ifndef COMPARE_EXPAND_H
 #define COMPARE_EXPAND_H
 
@@ -6,7 +7,7 @@
 #include "scenefile/yamlx.h"
 
 /* What the loader holds while it reads one file. */
-struct loading {
+struct compare_loading {
     struct ydoc d;
     struct compare *c;
     struct job base;        /* the top-level keys */
@@ -15,20 +16,10 @@ struct loading {
     struct err *e;
 };
 
-/* job_apply of value v under the key named `key` (a scene under scenes:, a swept value). */
-int compare_apply(struct job *j, struct ydoc *d, const char *key, yaml_node_t *v, struct err *e);
+/* The `reference:` key into each scene (settings, an image, or none). 0 or -1 with L->e. */
+int compare_expand_reference(struct compare_loading *L);
 
-/* Check mapping n's keys: job keys (plus `extra`, may be NULL), none that `where` forbids
-   ("top", "variant", "sweep", "reference"). 0, or -1 with L->e at the key. */
-int compare_check_keys(struct loading *L, yaml_node_t *n, const char *where, const char *extra);
-
-/* Append "-<short key><value>" to buf (n bytes), the value made file-name safe. */
-void compare_add_part(char *buf, size_t n, const char *key, const char *val);
-
-/* The `reference:` key into each scene (settings, an image, or none). 0 or -1. */
-int compare_load_reference(struct loading *L);
-
-/* Every combination (scene x variant x sweep point x seed) as a finished job. 0 or -1. */
-int compare_expand(struct loading *L, yaml_node_t *root);
+/* Every combination (scene x variant x sweep point x seed) as a finished job. 0 or -1 with L->e. */
+int compare_expand_items(struct compare_loading *L, yaml_node_t *root);
 
 #endif
