@@ -2,6 +2,7 @@
 #include "run.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -206,6 +207,16 @@ done:
     sampler_free(light);
     scene_file_free(&sf);
     return rc;
+}
+
+void run_say(const struct run_opts *o, const char *fmt, ...)
+{
+    if (o->quiet || !o->progress)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
 }
 
 void run_print_summary(const struct job *j, const struct run_result *rr)

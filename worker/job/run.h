@@ -45,6 +45,9 @@ void run_paths(const struct job *j, const char *out_dir, char *dir, char *image,
    or -1 with e at the job's reference key. */
 int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e);
 
+/* A progress line on stderr, printed only when o->progress (a terminal) and not o->quiet. */
+void run_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
 

@@ -3,7 +3,6 @@
 #include "compare.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,16 +24,6 @@ static double now_s(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-void compare_say(const struct run_opts *o, const char *fmt, ...)
-{
-    if (o->quiet || !o->progress)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
 }
 
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
@@ -244,10 +233,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
-        compare_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
-                    c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
-                    it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
-                    it->skipped ? " (current, not rendered again)" : "", el, eta);
+        run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
+                c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+                it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+                it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     rc = 1;
     e->msg[0] = 0;

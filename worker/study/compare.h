@@ -77,9 +77,6 @@ static inline int compare_index(const struct compare *c, int scene, int variant,
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
 
-/* A progress line on stderr: only on a terminal and without --quiet (SPEC "Command line"). */
-void compare_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
 /* The command line's part: load, run and print one compare job (errors as one line
    "file:line:col: message", then its summary line). name_ok (optional) is asked, with arg, about
    the loaded job's name before anything renders: 0 refuses the job (name_ok said why on stderr),

@@ -66,14 +66,14 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         image_free(&img);
         cs->ref_reused = 1;
         cs->ref_wall_s = cached_wall_s(cs->ref_path);
-        compare_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name,
-                    cs->ref_path, cs->ref_wall_s);
+        run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
+                cs->ref_wall_s);
         return 0;
     }
     image_free(&img);
-    compare_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
-                sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler),
-                j.light_threshold, cs->ref_path);
+    run_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
+            sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
+            cs->ref_path);
     struct run_result rr;
     int rc = run_job(&j, o, &rr, e);
     if (rc != 0) {
