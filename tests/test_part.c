@@ -8,6 +8,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "farm/part.h"
+#include "job/outdir.h"
 #include "job/run_out.h"
 
 enum { W = 7, H = 11 };
@@ -49,7 +50,7 @@ int main(void)
     fill(rgb);
 
     /* the path names the split; the hash covers the inputs */
-    part_path(&j, dir, 2, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 2, 3, path, sizeof path);
     CHECK(strstr(path, "/merge/merge.part-2-of-3") != NULL);
     struct job other = j;
     other.hash = 0x1235;
@@ -62,11 +63,11 @@ int main(void)
     /* write 3 parts, with one missing first */
     char sub[2100];
     snprintf(sub, sizeof sub, "%s/merge", dir);
-    CHECK(run_out_mkdirs(sub, &e) == 0);
+    CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
     struct procs_result fr;
     for (int p = 0; p < 3; p += 2) {
         result(&fr, p);
-        part_path(&j, dir, p, 3, path, sizeof path);
+        outdir_part_path(&j, dir, p, 3, path, sizeof path);
         CHECK(part_write(path, &j, W, H, p, 3, rgb, &fr, &e) == 0);
         CHECK(part_matches(path, &j, p, 3) == 1);
         CHECK(part_matches(path, &other, p, 3) == 0);
@@ -75,7 +76,7 @@ int main(void)
     CHECK(part_merge(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "missing part 1 of 3") != NULL);
     result(&fr, 1);
-    part_path(&j, dir, 1, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 1, 3, path, sizeof path);
     CHECK(part_write(path, &j, W, H, 1, 3, rgb, &fr, &e) == 0);
 
     /* a part's file holds exactly its rows: header, ceil((11 - 1) / 3) = 4 rows, CRC */
@@ -109,7 +110,7 @@ int main(void)
     free(data);
 
     /* a part from other inputs is refused, naming the file */
-    part_path(&j, dir, 0, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 0, 3, path, sizeof path);
     result(&fr, 0);
     CHECK(part_write(path, &other, W, H, 0, 3, rgb, &fr, &e) == 0);
     CHECK(part_merge(&j, &o, &rr, &e) == 2);
@@ -117,7 +118,7 @@ int main(void)
     CHECK(part_write(path, &j, W, H, 0, 3, rgb, &fr, &e) == 0);
 
     /* a flipped byte in the rows fails the checksum */
-    part_path(&j, dir, 2, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 2, 3, path, sizeof path);
     CHECK(fileio_read_all(path, 1 << 20, &data, &len, &e) == 0);
     data[130] ^= 1;
     CHECK(fileio_write_atomic(path, data, len, &e) == 0);

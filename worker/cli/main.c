@@ -12,6 +12,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job.h"
+#include "job/outdir.h"
 #include "image/metrics.h"
 #include "points.h"
 #include "farm/part.h"
@@ -237,7 +238,7 @@ static int worker_main(int argc, char **argv)
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
-                           .run = {.out_dir = "out", .progress = isatty(2)}};
+                           .run = {.out_dir = OUTDIR_DEFAULT, .progress = isatty(2)}};
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
     const char **jobs = calloc((size_t)argc, sizeof *jobs);

@@ -9,6 +9,7 @@
 
 #include "base/fileio.h"
 #include "base/hash.h"
+#include "job/outdir.h"
 #include "job/run_out.h"
 
 #define PART_MAGIC "WPART\r\n\x1a" /* 8 bytes; the CR LF catch text-mode mangling, as PNG's do */
@@ -21,14 +22,6 @@ struct part_header {
     double wall_s, cpu_s;
     uint64_t peak_rss_kb;
 };
-
-void part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n)
-{
-    const char *dot = strrchr(j->output, '.');
-    int stem = dot && dot != j->output ? (int)(dot - j->output) : (int)strlen(j->output);
-    snprintf(buf, n, "%s/%s/%.*s.part-%d-of-%d", out_dir ? out_dir : "out", j->name, stem, j->output, part,
-             parts);
-}
 
 uint64_t part_hash(const struct job *j)
 {
@@ -214,10 +207,6 @@ int part_matches(const char *path, const struct job *j, int part, int parts)
    several splits lie side by side. */
 static int find_split(const struct job *j, const char *dir, struct err *e)
 {
-    char prefix[JOB_NAME_MAX + 8];
-    const char *dot = strrchr(j->output, '.');
-    int stem = dot && dot != j->output ? (int)(dot - j->output) : (int)strlen(j->output);
-    snprintf(prefix, sizeof prefix, "%.*s.part-", stem, j->output);
     DIR *d = opendir(dir);
     if (!d)
         return err_set(e, j->path, 0, 0,
@@ -227,10 +216,8 @@ static int find_split(const struct job *j, const char *dir, struct err *e)
     int split = 0, other = 0;
     struct dirent *de;
     while ((de = readdir(d))) {
-        int i, n, end = 0;
-        size_t pl = strlen(prefix);
-        if (strncmp(de->d_name, prefix, pl) != 0 ||
-            sscanf(de->d_name + pl, "%d-of-%d%n", &i, &n, &end) != 2 || de->d_name[pl + end] != 0)
+        int i, n;
+        if (!outdir_part_name(j, de->d_name, &i, &n))
             continue;
         if (!split)
             split = n;
@@ -311,12 +298,12 @@ int part_merge(const struct job *j, const struct run_opts *o, struct run_result 
         err_set(e, NULL, 0, 0, "out of memory");
         return 1;
     }
-    snprintf(dir, sizeof dir, "%s/%s", o->out_dir ? o->out_dir : "out", j->name);
+    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
     int parts = find_split(j, dir, e);
     if (parts < 0)
         goto done;
     for (int i = 0; i < parts; i++) {
-        part_path(j, o->out_dir, i, parts, path, sizeof path);
+        outdir_part_path(j, o->out_dir, i, parts, path, sizeof path);
         FILE *f = fopen(path, "rb");
         if (f) {
             fclose(f);
@@ -335,7 +322,7 @@ int part_merge(const struct job *j, const struct run_opts *o, struct run_result 
     render_stats_init(&fr->total);
     fr->processes = parts;
     for (int i = 0; i < parts; i++) {
-        part_path(j, o->out_dir, i, parts, path, sizeof path);
+        outdir_part_path(j, o->out_dir, i, parts, path, sizeof path);
         if (merge_one(j, path, i, parts, &rgb, &w, &h, fr, e) < 0)
             goto done;
     }

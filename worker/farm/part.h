@@ -12,9 +12,6 @@
 #define PART_VERSION 1
 #define PART_MAX PROCS_MAX_PROCESSES /* most parts one image may be split into */
 
-/* The part file of part I of N: OUT/<name>/<output stem>.part-I-of-N. */
-void part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n);
-
 /* What a part must have been rendered from to merge with j's other parts: j->hash (job file and
    scene bytes), the part format and the worker's version. */
 uint64_t part_hash(const struct job *j);

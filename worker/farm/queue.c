@@ -14,7 +14,8 @@
 #include "lease.h"
 #include "queue_claim.h"
 #include "queue_scan.h"
-#include "job/run_out.h"
+#include "job/outdir.h"
+#include "job/run.h"
 
 /* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
 static volatile sig_atomic_t queue_stop;
@@ -203,7 +204,7 @@ static void process_claim(struct queue *q, const char *name)
     struct err e;
     struct run_result rr;
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
-    snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
+    outdir_stem(name, stem, sizeof stem);
     claim_source(q, from, sizeof from);
     if (compare_is_compare_job(from)) {
         process_compare(q, name, from, as, stem);
@@ -322,8 +323,8 @@ int queue_main(const struct queue_opts *qo)
     snprintf(q.running, sizeof q.running, "%s/running", q.dir);
     snprintf(q.done, sizeof q.done, "%s/done", q.dir);
     snprintf(q.failed, sizeof q.failed, "%s/failed", q.dir);
-    if (run_out_mkdirs(q.running, &e) < 0 || run_out_mkdirs(q.done, &e) < 0 ||
-        run_out_mkdirs(q.failed, &e) < 0) {
+    if (outdir_mkdirs(q.running, NULL, &e) < 0 || outdir_mkdirs(q.done, NULL, &e) < 0 ||
+        outdir_mkdirs(q.failed, NULL, &e) < 0) {
         err_print("worker: --queue %s: %s\n", q.dir, e.msg);
         return 2;
     }

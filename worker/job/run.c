@@ -14,6 +14,7 @@
 #include "base/hash.h"
 #include "job_limits.h"
 #include "farm/part.h"
+#include "outdir.h"
 #include "run_out.h"
 #include "scenefile/scene_load.h"
 #include "sidecar.h"
@@ -44,22 +45,6 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
             eta);
     if (done == rows)
         fprintf(stderr, "\n");
-}
-
-static void stem_of(const char *file, char *out, size_t n)
-{
-    const char *dot = strrchr(file, '.');
-    int len = dot && dot != file ? (int)(dot - file) : (int)strlen(file);
-    snprintf(out, n, "%.*s", len, file);
-}
-
-void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n)
-{
-    char stem[JOB_NAME_MAX];
-    stem_of(j->output, stem, sizeof stem);
-    snprintf(dir, n, "%s/%s", out_dir ? out_dir : "out", j->name);
-    snprintf(image, n, "%s/%s/%s", out_dir ? out_dir : "out", j->name, j->output);
-    snprintf(sidecar, n, "%s/%s/%s.json", out_dir ? out_dir : "out", j->name, stem);
 }
 
 static int is_file(const char *path)
@@ -95,11 +80,11 @@ static int outputs_current(const struct job *j, const struct run_opts *o, struct
     if (j->hash == 0) /* a job not read from a file (no job_load): nothing to compare with */
         return 0;
     if (o->parts > 0) {
-        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
         return part_matches(rr->image_path, j, o->part, o->parts);
     }
-    run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
+    outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
     return is_file(rr->image_path) && sidecar_matches(rr->sidecar_path, j->hash);
 }
 
@@ -158,8 +143,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
-    run_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
-    if (job_limits_out_dir(dir, e) < 0)
+    outdir_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
+    if (outdir_check(dir, e) < 0)
         goto done;
     rc = 1;
     if (!(rgb = procs_framebuffer_new(w, h, e)))
@@ -182,16 +167,16 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     if (o->parts > 0) {
-        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
-        if (run_out_make_dir(dir, &made_dir, e) < 0)
+        if (outdir_mkdirs(dir, &made_dir, e) < 0)
             goto done;
         const char *outs[] = {rr->image_path, NULL};
         int lock;
         int wrote = run_out_lock_outputs(dir, outs, o, &lock, e) < 0
                         ? -1
                         : part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
-        run_out_unlock(lock);
+        outdir_unlock(lock);
         if (wrote < 0)
             goto done;
     } else if (run_out_write(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {

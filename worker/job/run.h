@@ -8,7 +8,7 @@
 #include "job.h"
 
 struct run_opts {
-    const char *out_dir; /* default "out" */
+    const char *out_dir; /* NULL: OUTDIR_DEFAULT (outdir.h) */
     int processes;       /* > 0 overrides the job's */
     int quiet;
     int progress;                      /* draw progress on stderr (a terminal, not quiet) */
@@ -37,9 +37,6 @@ struct run_result {
    image and sidecar (or part file) exist and record j->hash (non-zero: the job was read by
    job_load) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
-
-/* The directory OUT/<name>/ and the image and sidecar paths of j (sidecar: image stem + .json). */
-void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
 
 /* Read j's reference into ref and check it is w x h. 0 (ref->px NULL when the job has none),
    or -1 with e at the job's reference key. */

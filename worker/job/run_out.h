@@ -1,5 +1,5 @@
-/* run_out: a job's output folder: made on demand, locked while written (a killed writer's
-   temporaries removed under the lock), and the image and sidecar written there atomically. */
+/* run_out: a job's outputs written into its folder (outdir.h: names, making, locking): the image
+   and its sidecar atomically, under the folder's lock and the run's permission to write. */
 #ifndef RUN_OUT_H
 #define RUN_OUT_H
 
@@ -7,35 +7,15 @@
 
 #include "run.h"
 
-/* mkdir -p for path. 0 or -1 with e filled. */
-int run_out_mkdirs(const char *path, struct err *e);
-
-/* Make dir (and its parents) for outputs about to be written; *made: whether dir itself was made
-   here, so a failed write may remove it. A folder that was there already, or that another process
-   made meanwhile, is never ours to remove. */
-int run_out_make_dir(const char *dir, int *made, struct err *e);
-
-/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
-   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
-   queue claim was taken over, finishing together). Under the lock, the temporary files that a
-   killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
-   temporary files never outlive its lock. Returns the lock (for run_out_unlock), or -1 when the
-   folder cannot be locked (some network file systems): the writer goes on alone, removing
-   nothing; RUN_OUT_STOPPED when *stop (optional) was set by a signal while it waited: write
-   nothing. */
-#define RUN_OUT_STOPPED (-2)
-int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
-void run_out_unlock(int lock);
-
-/* Take dir's lock for writing paths (run_out_lock) into *lock, then ask whether this render may
+/* Take dir's lock for writing paths (outdir_lock) into *lock, then ask whether this render may
    still write (run_opts.may_write): a claim taken over while we waited for the lock (another
    writer, a slow disk) writes nothing, nor does a writer stopped while it waited. 0, or -1 with e
-   filled; run_out_unlock(*lock) either way. */
+   filled; outdir_unlock(*lock) either way. */
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e);
 
 /* Turn the linear framebuffer rgb (w x h) into the job's image, score it against ref (may be
-   NULL) and write image and sidecar (paths from run_paths under o->out_dir, into rr) atomically;
+   NULL) and write image and sidecar (paths from outdir_paths under o->out_dir, into rr) atomically;
    parts > 0 marks a merge of that many part files. 0 or -1 with e filled (nothing left behind). */
 int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
                   const struct procs_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,

@@ -13,7 +13,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
-#include "job/job_limits.h"
+#include "job/outdir.h"
 #include "report.h"
 #include "job/run_out.h"
 #include "base/sbuf.h"
@@ -191,7 +191,6 @@ static int write_text(const char *dir, const char *file, char *text, struct err 
 
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
-    const char *out = o->out_dir ? o->out_dir : "out";
     char dir[2048];
     struct rgb8 *refs = calloc((size_t)c->n_scenes, sizeof *refs);
     int rc = 1;
@@ -200,10 +199,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         err_set(e, NULL, 0, 0, "out of memory");
         return 1;
     }
-    snprintf(dir, sizeof dir, "%s/%s", out, c->name);
+    outdir_dir(o->out_dir, c->name, dir, sizeof dir);
     /* Checked now, made only when the first image or the summary is written: a job stopped or
        failed before that (a reference render cut short by Ctrl-C) leaves no empty folder. */
-    if (job_limits_out_dir(dir, e) < 0) {
+    if (outdir_check(dir, e) < 0) {
         rc = 2;
         goto fail;
     }
@@ -248,14 +247,14 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     snprintf(report, sizeof report, "%s/report.html", dir);
     const char *outs[] = {summary, chart, report, NULL};
     int lock = -1;
-    if (run_out_mkdirs(dir, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
+    if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
         write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
         write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
-        run_out_unlock(lock);
+        outdir_unlock(lock);
         goto fail;
     }
-    run_out_unlock(lock);
+    outdir_unlock(lock);
     rc = 0;
 fail:
     for (int s = 0; s < c->n_scenes; s++)
@@ -301,7 +300,7 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
         "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> %s/%s/",
         c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
         plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
-        refs, wall_s, out_dir ? out_dir : "out", c->name);
+        refs, wall_s, outdir_root(out_dir), c->name);
 }
 
 /* compare_main_as, with compare_main's name_ok. */

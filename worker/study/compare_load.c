@@ -11,6 +11,7 @@
 
 #include "base/fileio.h"
 #include "job/job_limits.h"
+#include "job/outdir.h"
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
 
@@ -37,16 +38,6 @@ void compare_free(struct compare *c)
     free(c->seeds);
     free(c->items);
     free(c);
-}
-
-/* The scene file's stem: "scenes/checker.yaml" -> "checker". */
-static void stem(const char *path, char *out, size_t n)
-{
-    const char *b = strrchr(path, '/');
-    b = b ? b + 1 : path;
-    const char *dot = strrchr(b, '.');
-    int len = dot && dot != b ? (int)(dot - b) : (int)strlen(b);
-    snprintf(out, n, "%.*s", len, b);
 }
 
 /* Scene size: the job's width, height or width / the camera's aspect (as run_job does). */
@@ -89,7 +80,7 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
         L->scene_base[s] = L->base;
         if (list && compare_keys_apply(&L->scene_base[s], d, "scene", item, L->e) < 0)
             return -1;
-        stem(L->scene_base[s].scene_path, L->c->scenes[s].name, sizeof L->c->scenes[s].name);
+        outdir_stem(L->scene_base[s].scene_path, L->c->scenes[s].name, sizeof L->c->scenes[s].name);
         for (int t = 0; t < s; t++)
             if (!strcmp(L->c->scenes[t].name, L->c->scenes[s].name))
                 return ydoc_fail(d, item, L->e, "scenes: \"%s\" is listed twice", L->c->scenes[s].name);

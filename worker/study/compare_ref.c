@@ -8,6 +8,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
+#include "job/outdir.h"
 #include "scenefile/scene_load.h"
 
 /* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
@@ -31,10 +32,8 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
 }
 
 /* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
-static double cached_wall_s(const char *png_path)
+static double cached_wall_s(const char *json)
 {
-    char json[JOB_PATH_MAX + 8];
-    snprintf(json, sizeof json, "%.*s.json", (int)strlen(png_path) - 4, png_path);
     uint8_t *data;
     size_t len;
     struct err e;
@@ -59,13 +58,14 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
     struct job j = cs->ref_job;
     snprintf(j.name, sizeof j.name, ".cache");
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx.png", cs->name, (unsigned long long)key);
-    snprintf(cs->ref_path, sizeof cs->ref_path, "%s/.cache/%s", o->out_dir ? o->out_dir : "out", j.output);
+    char dir[JOB_PATH_MAX], sidecar[JOB_PATH_MAX];
+    outdir_paths(&j, o->out_dir, dir, cs->ref_path, sidecar, sizeof cs->ref_path);
     struct rgb8 img = {0};
     struct err ignored;
     if (imgio_read(cs->ref_path, &img, &ignored) == 0 && img.w == cs->width && img.h == cs->height) {
         image_free(&img);
         cs->ref_reused = 1;
-        cs->ref_wall_s = cached_wall_s(cs->ref_path);
+        cs->ref_wall_s = cached_wall_s(sidecar);
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);
         return 0;
