@@ -7,7 +7,7 @@
 #include "check.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
-#include "farm/part.h"
+#include "job/part.h"
 #include "job/outdir.h"
 #include "job/run_out.h"
 

@@ -15,7 +15,7 @@
 #include "job/outdir.h"
 #include "image/metrics.h"
 #include "points.h"
-#include "farm/part.h"
+#include "job/part.h"
 #include "farm/queue.h"
 #include "job/run.h"
 

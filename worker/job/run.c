@@ -13,7 +13,7 @@
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job_limits.h"
-#include "farm/part.h"
+#include "part.h"
 #include "outdir.h"
 #include "run_out.h"
 #include "scenefile/scene_load.h"

@@ -9,8 +9,8 @@
 
 #include "base/fileio.h"
 #include "base/hash.h"
-#include "job/outdir.h"
-#include "job/run_out.h"
+#include "outdir.h"
+#include "run_out.h"
 
 #define PART_MAGIC "WPART\r\n\x1a" /* 8 bytes; the CR LF catch text-mode mangling, as PNG's do */
 #define PART_HEADER 120            /* bytes before the rows */

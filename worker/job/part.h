@@ -5,9 +5,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "job/procs.h"
-#include "job/job.h"
-#include "job/run.h"
+#include "procs.h"
+#include "job.h"
+#include "run.h"
 
 #define PART_VERSION 1
 #define PART_MAX PROCS_MAX_PROCESSES /* most parts one image may be split into */
