@@ -7,6 +7,7 @@
 #include "check.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
+#include "farm/merge.h"
 #include "job/part.h"
 #include "job/outdir.h"
 #include "job/run_out.h"
@@ -57,7 +58,7 @@ int main(void)
     CHECK(part_hash(&j) != part_hash(&other));
 
     /* no parts: refused */
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "no part files") != NULL);
 
     /* write 3 parts, with one missing first */
@@ -73,7 +74,7 @@ int main(void)
         CHECK(part_matches(path, &other, p, 3) == 0);
         CHECK(part_matches(path, &j, (p + 1) % 3, 3) == 0);
     }
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "missing part 1 of 3") != NULL);
     result(&fr, 1);
     outdir_part_path(&j, dir, 1, 3, path, sizeof path);
@@ -88,7 +89,7 @@ int main(void)
     free(data);
 
     /* the merge gives the whole image and sums the stats */
-    CHECK(part_merge(&j, &o, &rr, &e) == 0);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 0);
     CHECK(rr.width == W && rr.height == H);
     CHECK(rr.farm.processes == 3);
     CHECK(rr.farm.total.pixels == 10 + 11 + 12);
@@ -113,7 +114,7 @@ int main(void)
     outdir_part_path(&j, dir, 0, 3, path, sizeof path);
     result(&fr, 0);
     CHECK(part_write(path, &other, W, H, 0, 3, rgb, &fr, &e) == 0);
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.file, "merge.part-0-of-3") != NULL && strstr(e.msg, "other inputs") != NULL);
     CHECK(part_write(path, &j, W, H, 0, 3, rgb, &fr, &e) == 0);
 
@@ -123,7 +124,7 @@ int main(void)
     data[130] ^= 1;
     CHECK(fileio_write_atomic(path, data, len, &e) == 0);
     free(data);
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "checksum") != NULL);
     CHECK(part_matches(path, &j, 2, 3) == 0); /* a damaged part is not current: resume renders it */
 

@@ -15,7 +15,7 @@
 #include "job/outdir.h"
 #include "image/metrics.h"
 #include "points.h"
-#include "job/part.h"
+#include "farm/merge.h"
 #include "farm/queue.h"
 #include "job/run.h"
 
@@ -190,7 +190,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     }
     if (name_taken(j.name, path, o, taken, ntaken))
         return 2;
-    int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
+    int rc = merge ? merge_parts(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
     if (rc != 0) {
         if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */
             snprintf(e.file, sizeof e.file, "%s", path);

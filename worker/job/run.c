@@ -105,7 +105,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct rgb8 ref = {0};
     float *rgb = NULL;
     char dir[2048], image[2048], sidecar[2048];
-    int rc = 2, made_dir = 0;
+    int rc = 2;
     memset(rr, 0, sizeof *rr);
     if (!o->force && outputs_current(j, o, rr)) {
         rr->skipped = 1;
@@ -167,25 +167,13 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     if (o->parts > 0) {
-        outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
-        rr->sidecar_path[0] = 0;
-        if (outdir_mkdirs(dir, &made_dir, e) < 0)
-            goto done;
-        const char *outs[] = {rr->image_path, NULL};
-        int lock;
-        int wrote = run_out_lock_outputs(dir, outs, o, &lock, e) < 0
-                        ? -1
-                        : part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
-        outdir_unlock(lock);
-        if (wrote < 0)
+        if (run_out_write_part(j, o, rgb, w, h, &rr->farm, rr, e) < 0)
             goto done;
     } else if (run_out_write(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
         goto done;
     }
     rc = 0;
 done:
-    if (rc != 0 && made_dir)
-        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
     image_free(&ref);
     procs_framebuffer_free(rgb, rr->width, rr->height);
     sampler_free(pix);

@@ -12,6 +12,7 @@
 #include "image/imgio.h"
 #include "image/metrics.h"
 #include "outdir.h"
+#include "part.h"
 #include "sidecar.h"
 
 /* An error about writing the staging file `staged` names the final path instead. */
@@ -99,5 +100,22 @@ done:
         rmdir(dir); /* a failed write leaves no empty folder of ours (it fails when not empty) */
     free(json);
     image_free(&img);
+    return rc;
+}
+
+int run_out_write_part(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
+                       const struct procs_result *fr, struct run_result *rr, struct err *e)
+{
+    char dir[2048];
+    int made_dir = 0, lock = -1, rc = -1;
+    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
+    outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+    rr->sidecar_path[0] = 0;
+    const char *outs[] = {rr->image_path, NULL};
+    if (outdir_mkdirs(dir, &made_dir, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0)
+        rc = part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, fr, e);
+    outdir_unlock(lock);
+    if (rc != 0 && made_dir)
+        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
     return rc;
 }

@@ -21,4 +21,10 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
                   const struct procs_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
                   struct err *e);
 
+/* Write rows o->part of o->parts of the framebuffer rgb (w x h) into j's part file (its path into
+   rr->image_path; rr->sidecar_path ""), under the folder's lock as run_out_write. 0 or -1 with e
+   filled (nothing left behind). */
+int run_out_write_part(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
+                       const struct procs_result *fr, struct run_result *rr, struct err *e);
+
 #endif
