@@ -182,3 +182,22 @@ void json_bool(struct json *j, const char *key, int val)
     member(j, key);
     put(j, "%s", val ? "true" : "false");
 }
+
+int json_string_read_back(const char *s, char *out, size_t n)
+{
+    size_t k = 0;
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int len = utf8_len(c);
+        const char *piece = len ? (const char *)c : "\xef\xbf\xbd";
+        size_t pl = len ? (size_t)len : 3;
+        if (k + pl >= n)
+            return -1;
+        memcpy(out + k, piece, pl);
+        k += pl;
+        c += len ? len : 1;
+    }
+    if (n == 0)
+        return -1;
+    out[k] = 0;
+    return 0;
+}

@@ -14,6 +14,7 @@
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
+#include "job/sidecar.h"
 #include "report.h"
 #include "job/run_out.h"
 #include "base/sbuf.h"
@@ -70,30 +71,18 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
     return 0;
 }
 
-/* The number after the first "key": in a sidecar's text (0 when absent). */
-static double sidecar_number(const char *text, const char *key)
-{
-    char want[64];
-    snprintf(want, sizeof want, "\"%s\": ", key);
-    const char *p = strstr(text, want);
-    return p ? strtod(p + strlen(want), NULL) : 0;
-}
-
 /* A combination skipped as current: what it measured, from its sidecar. */
 static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, struct err *e)
 {
-    uint8_t *data;
-    size_t len;
-    if (fileio_read_all(sidecar_path, 1u << 20, &data, &len, e) < 0)
+    struct sidecar_info info;
+    if (sidecar_read(sidecar_path, &info, e) < 0)
         return -1;
-    const char *t = (const char *)data;
-    it->spp_mean = sidecar_number(t, "per_pixel_mean");
-    it->spp_min = (uint64_t)sidecar_number(t, "per_pixel_min");
-    it->spp_max = (uint64_t)sidecar_number(t, "per_pixel_max");
-    it->wall_s = sidecar_number(t, "wall_s"); /* the first: the job's, before per_process */
-    it->cpu_s = sidecar_number(t, "cpu_s");
-    it->sampler_share = sidecar_number(t, "sampling_share");
-    free(data);
+    it->spp_mean = info.spp_mean;
+    it->spp_min = info.spp_min;
+    it->spp_max = info.spp_max;
+    it->wall_s = info.wall_s;
+    it->cpu_s = info.cpu_s;
+    it->sampler_share = info.sampling_share;
     return 0;
 }
 

@@ -1,6 +1,7 @@
 /* compare_ref: render a compare job's references into OUT/.cache/, or reuse the cached ones. */
 #include "compare_ref.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +10,7 @@
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
+#include "job/sidecar.h"
 #include "scenefile/scene_load.h"
 
 /* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
@@ -32,19 +34,11 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
 }
 
 /* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
-static double cached_wall_s(const char *json)
+static double cached_wall_s(const char *sidecar)
 {
-    uint8_t *data;
-    size_t len;
+    struct sidecar_info info;
     struct err e;
-    double s = 0;
-    if (fileio_read_all(json, 1 << 20, &data, &len, &e) < 0)
-        return 0;
-    const char *p = strstr((const char *)data, "\"wall_s\": ");
-    if (p)
-        s = strtod(p + 10, NULL);
-    free(data);
-    return s;
+    return sidecar_read(sidecar, &info, &e) == 0 && isfinite(info.wall_s) ? info.wall_s : 0;
 }
 
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
