@@ -154,7 +154,7 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
     while (!took && (de = readdir(d))) {
         char claim[2048], why[512];
         remove_dead_lease_temp(q, de->d_name);
-        if (!queue_is_job_file(de->d_name))
+        if (!queue_scan_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
         if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))

@@ -238,7 +238,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     int lock = -1;
     if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
         write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
-        write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
+        write_text(dir, "chart.svg", compare_stats_chart_svg(c), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
         outdir_unlock(lock);
         goto fail;
