@@ -91,13 +91,13 @@ int main(void)
     /* the merge gives the whole image and sums the stats */
     CHECK(merge_parts(&j, &o, &rr, &e) == 0);
     CHECK(rr.width == W && rr.height == H);
-    CHECK(rr.farm.processes == 3);
-    CHECK(rr.farm.total.pixels == 10 + 11 + 12);
-    CHECK(rr.farm.total.samples == 100 + 101 + 102);
-    CHECK(rr.farm.total.spp_min == 3 && rr.farm.total.spp_max == 11);
-    CHECK_NEAR(rr.farm.cpu_s, 0.75, 1e-12);
-    CHECK(rr.farm.peak_rss_kb == 300);
-    CHECK(rr.farm.proc[1].st.samples == 101);
+    CHECK(rr.procs.processes == 3);
+    CHECK(rr.procs.total.pixels == 10 + 11 + 12);
+    CHECK(rr.procs.total.samples == 100 + 101 + 102);
+    CHECK(rr.procs.total.spp_min == 3 && rr.procs.total.spp_max == 11);
+    CHECK_NEAR(rr.procs.cpu_s, 0.75, 1e-12);
+    CHECK(rr.procs.peak_rss_kb == 300);
+    CHECK(rr.procs.proc[1].st.samples == 101);
     struct rgb8 got, want;
     CHECK(imgio_read(rr.image_path, &got, &e) == 0);
     CHECK(image_alloc(&want, W, H, &e) == 0);

@@ -35,13 +35,13 @@ struct render_ctx {
     /* the last timed point-set draw of each kind, pixels' and lights' (seconds; -1: none yet),
        which sampler_s counts again for each draw after it that is not timed */
     double pixel_set_s, light_set_s;
-    struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
+    struct packet_scene *packet; /* NULL, or PACKET_LANES paths at once through packet_hit */
 };
 
-/* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
-   time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started from the
-   pixel's path stream *base; mix: the scene's lights are sampled; last: max_depth - 1. Their
-   estimates go into sum and kept (add_estimate), the dropped ones into *nonfinite, their
+/* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) PACKET_LANES (four)
+   paths at a time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started
+   from the pixel's path stream *base; mix: the scene's lights are sampled; last: max_depth - 1.
+   Their estimates go into sum and kept (add_estimate), the dropped ones into *nonfinite, their
    segments into *rays. */
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
                          int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays);

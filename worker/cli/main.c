@@ -1,4 +1,4 @@
-/* main: the `worker` command line (SPEC "Command line"): parse, dispatch, print, exit. */
+/* main: the `worker` command line: parse, dispatch, print, exit. */
 #include <signal.h>
 #include <math.h>
 #include <stdio.h>
@@ -177,7 +177,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     struct job j;
     struct err e;
     struct run_result rr;
-    if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
+    if (compare_is_compare_job(path)) { /* a job with variants: a compare job */
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
             return compare_main(path, o, compare_name_ok, &ns);
@@ -204,7 +204,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
         err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
                   rr.image_path);
     } else if (merge) {
-        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
+        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.procs.processes, rr.width, rr.height,
                   rr.image_path);
     } else {
         run_print_summary(&j, &rr);

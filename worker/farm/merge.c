@@ -133,7 +133,7 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
     rr->height = h;
     if (run_load_reference(j, w, h, &ref, e) < 0)
         goto done;
-    rr->farm = *fr;
+    rr->procs = *fr;
     rc = run_out_write(j, o, rgb, w, h, fr, &ref, parts, rr, e) < 0 ? 1 : 0;
 done:
     image_free(&ref);

@@ -17,7 +17,7 @@
 #include "job/outdir.h"
 #include "job/run.h"
 
-/* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
+/* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the render in hand. */
 static volatile sig_atomic_t queue_stop;
 
 static void on_signal(int sig)
@@ -153,7 +153,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.may_write = queue_claim_held;
     ro.tick_arg = q;
     char last[2048] = "", log_name[JOB_NAME_MAX];
-    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads (SPEC: <name>.log) */
+    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads: failed/<name>.log */
     int attempts = 0, rc;
     do {
         attempts++;
@@ -236,7 +236,7 @@ static void process_claim(struct queue *q, const char *name)
     for (;;) {
         attempts++;
         rc = run_job(&j, &ro, &rr, &e);
-        if (rc != 1 || !rr.farm.child_crashed || attempts > q->o->retries || queue_stop)
+        if (rc != 1 || !rr.procs.child_crashed || attempts > q->o->retries || queue_stop)
             break;
         err_format(&e, msg, sizeof msg);
         err_print("%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
@@ -245,7 +245,7 @@ static void process_claim(struct queue *q, const char *name)
         say_lost(q, name);
         return;
     }
-    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
+    if (rc == 1 && (rr.procs.stopped || queue_stop)) {
         give_back(q, name);
         return;
     }
@@ -265,7 +265,7 @@ static void process_claim(struct queue *q, const char *name)
     err_format(&e, msg, sizeof msg);
     err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
-    write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
+    write_log(q, name, j.name, msg, rr.procs.child_signal, attempts);
     queue_claim_file(q, name, q->failed);
     note_rc(q, rc);
 }

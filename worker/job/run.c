@@ -161,15 +161,15 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
                            .progress = show_progress,
                            .progress_arg = &prog,
                            .stop = o->stop};
-    if (procs_render(&fj, rgb, &rr->farm, e) < 0) {
+    if (procs_render(&fj, rgb, &rr->procs, e) < 0) {
         if (prog.enabled)
             fprintf(stderr, "\n");
         goto done;
     }
     if (o->parts > 0) {
-        if (run_out_write_part(j, o, rgb, w, h, &rr->farm, rr, e) < 0)
+        if (run_out_write_part(j, o, rgb, w, h, &rr->procs, rr, e) < 0)
             goto done;
-    } else if (run_out_write(j, o, rgb, w, h, &rr->farm, &ref, 0, rr, e) < 0) {
+    } else if (run_out_write(j, o, rgb, w, h, &rr->procs, &ref, 0, rr, e) < 0) {
         goto done;
     }
     rc = 0;
@@ -194,9 +194,9 @@ void run_say(const struct run_opts *o, const char *fmt, ...)
 
 void run_print_summary(const struct job *j, const struct run_result *rr)
 {
-    const struct render_stats *t = &rr->farm.total;
+    const struct render_stats *t = &rr->procs.total;
     err_print("%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s\n", j->name, rr->width,
               rr->height, sampler_kind_name(j->sampler), j->threshold,
-              t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes,
-              rr->farm.processes == 1 ? "" : "es", rr->farm.wall_s, rr->image_path);
+              t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
+              rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->image_path);
 }

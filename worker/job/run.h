@@ -1,4 +1,4 @@
-/* run: render one loaded job end to end (scene, samplers, farm, image, sidecar). */
+/* run: render one loaded job end to end (scene, samplers, forked render processes, image, sidecar). */
 #ifndef RUN_H
 #define RUN_H
 
@@ -27,8 +27,8 @@ struct run_result {
     char image_path[2048];   /* with parts: the part file */
     char sidecar_path[2048]; /* with parts: "" */
     int width, height;
-    int skipped;              /* outputs were current (same job hash): nothing rendered */
-    struct procs_result farm; /* on a render failure: child_crashed, child_signal, stopped */
+    int skipped;               /* outputs were current (same job hash): nothing rendered */
+    struct procs_result procs; /* on a render failure: child_crashed, child_signal, stopped */
 };
 
 /* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing

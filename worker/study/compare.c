@@ -108,15 +108,15 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         if (item_from_sidecar(it, rr.sidecar_path, e) < 0)
             return 1;
     } else {
-        const struct render_stats *t = &rr.farm.total;
+        const struct render_stats *t = &rr.procs.total;
         it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
         it->spp_min = t->pixels ? t->spp_min : 0;
         it->spp_max = t->spp_max;
-        it->wall_s = rr.farm.wall_s;
-        it->cpu_s = rr.farm.cpu_s;
+        it->wall_s = rr.procs.wall_s;
+        it->cpu_s = rr.procs.cpu_s;
         double proc_wall_s = 0; /* the sidecar's sampling share: of the render processes' wall time */
-        for (int p = 0; p < rr.farm.processes; p++)
-            proc_wall_s += rr.farm.proc[p].wall_s;
+        for (int p = 0; p < rr.procs.processes; p++)
+            proc_wall_s += rr.procs.proc[p].wall_s;
         it->sampler_share = proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0;
     }
     if (ref) {

@@ -1,5 +1,5 @@
-/* compare: compare jobs (SPEC "Compare job"): scenes x variants x sweep x seeds, each an
-   ordinary render scored against a cached per-scene reference, summarised as CSV, SVG and HTML. */
+/* compare: compare jobs: scenes x variants x sweep x seeds, each an ordinary render scored
+   against a cached per-scene reference, summarised as CSV, SVG and HTML. */
 #ifndef COMPARE_H
 #define COMPARE_H
 

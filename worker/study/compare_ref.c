@@ -74,6 +74,6 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         err_prefix(e, "reference");
         return rc;
     }
-    cs->ref_wall_s = rr.farm.wall_s;
+    cs->ref_wall_s = rr.procs.wall_s;
     return 0;
 }
