@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include "base/fileio.h"
 #include "image/imgio.h"
@@ -104,7 +103,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct sampler *pix = NULL, *light = NULL;
     struct rgb8 ref = {0};
     float *rgb = NULL;
-    char dir[2048], image[2048], sidecar[2048];
+    char dir[2048];
     int rc = 2;
     memset(rr, 0, sizeof *rr);
     if (!o->force && outputs_current(j, o, rr)) {
@@ -143,7 +142,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
-    outdir_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
+    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
     if (outdir_check(dir, e) < 0)
         goto done;
     rc = 1;
