@@ -7,6 +7,7 @@ BUILD   ?= build
 BIN     ?= bin
 OPT     ?= -O2 -g
 SAN     ?=
+SIMD    ?= 1
 VERSION := 0.1.0
 
 WARN    := -std=c11 -Wall -Wextra -Wpedantic -Werror -Wshadow -Wno-unused-parameter
@@ -22,6 +23,9 @@ WARN    += -Wno-psabi
 # depend on the compiler.
 WARN    += -ffp-contract=off
 DEFS    := -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -DWORKER_VERSION='"$(VERSION)"'
+ifeq ($(SIMD),0)
+DEFS    += -DWORKER_NO_SIMD # no vector paths (common/base/simd.h): the determinism test's reference
+endif
 PKGS    := yaml-0.1 zlib
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lz)

@@ -40,8 +40,8 @@ job "$T/seed2.yaml" "name: small" "width: 48" "height: 32" "threshold: 25" "ligh
 "$WORKER" --quiet --out "$T/s2" "$T/seed2.yaml" 2>/dev/null
 check "seed 2 differs from seed 1" sh -c "! cmp -s '$T/p1/small/small.png' '$T/s2/small/small.png'"
 
-# format from the output's extension (any case), else png; format: names the default output
-for spec in "x.ppm:x.ppm:P6" "x.PPM:x.PPM:P6" "x.Png:x.Png:PNG" "x.out:x.out:PNG"; do
+# format from the output's extension (any case), png without one; format: names the default output
+for spec in "x.ppm:x.ppm:P6" "x.PPM:x.PPM:P6" "x.Png:x.Png:PNG" "x:x:PNG"; do
     out=${spec%%:*}; rest=${spec#*:}; file=${rest%%:*}; magic=${rest#*:}
     job "$T/fmt.yaml" "width: 8" "threshold: 50" "output: $out"
     rm -rf "$T/fmt"; "$WORKER" --quiet --out "$T/fmt" "$T/fmt.yaml" 2>/dev/null

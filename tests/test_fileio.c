@@ -166,6 +166,23 @@ static void test_images(void)
     image_free(&img);
 }
 
+/* The formats written, by name and by an output's extension (any case); none: 0; another: -1. */
+static void test_formats(void)
+{
+    enum img_format f = IMG_PPM;
+    CHECK(img_format_of_file("a.b.PNG", &f) == 1 && f == IMG_PNG);
+    CHECK(img_format_of_file("a.Ppm", &f) == 1 && f == IMG_PPM);
+    CHECK(img_format_of_file("render", &f) == 0);
+    CHECK(img_format_of_file("a.exr", &f) == -1 && img_format_of_file("a.tiff", &f) == -1);
+    CHECK(img_format_of_file("a.png.x", &f) == -1 && img_format_of_file("a.", &f) == -1);
+    CHECK(img_format_parse("ppm", &f) == 0 && f == IMG_PPM && !strcmp(img_format_name(f), "ppm"));
+    CHECK(img_format_parse("png", &f) == 0 && f == IMG_PNG && !strcmp(img_format_name(f), "png"));
+    CHECK(img_format_parse("PNG", &f) == -1 && img_format_parse("jpg", &f) == -1);
+    char list[128];
+    img_format_list(list, sizeof list);
+    CHECK(!strcmp(list, "png or ppm"));
+}
+
 int main(void)
 {
     const char *tmp = getenv("TMPDIR");
@@ -178,6 +195,7 @@ int main(void)
     test_read_errors();
     test_write_errors();
     test_images();
+    test_formats();
     CHECK(rmdir(dir) == 0); /* every test cleans up after itself */
     return check_report("test_fileio");
 }

@@ -22,7 +22,7 @@ static struct procs_result *result(void)
     r.total = (struct render_stats){
         .pixels = 12, .samples = 300, .rays = 900, .spp_min = 20, .spp_max = 30, .sampler_s = 0.25};
     r.wall_s = 1.5;
-    r.cpu_s = 2.75;
+    r.cpu_s = 2.5;
     r.proc[0] = (struct procs_proc){.st = {.pixels = 6, .samples = 150}, .wall_s = 0.5, .cpu_s = 1.25};
     r.proc[1] = (struct procs_proc){.st = {.pixels = 6, .samples = 150}, .wall_s = 1.5, .cpu_s = 1.5};
     r.peak_rss_kb = 1234;
@@ -62,8 +62,8 @@ static void test_round_trip(void)
     CHECK(in.width == 4 && in.height == 3 && in.processes == 2 && in.parts == 0);
     CHECK(in.samples_total == 300 && in.spp_min == 20 && in.spp_max == 30);
     CHECK(in.spp_mean == 25);
-    CHECK(in.wall_s == 1.5 && in.cpu_s == 2.75 && in.sampler_s == 0.25); /* the job's, not per_process */
-    CHECK(in.sampling_share == 0.125);                                   /* 0.25 s of 2 s */
+    CHECK(in.wall_s == 1.5 && in.cpu_s == 2.5 && in.sampler_s == 0.25); /* the job's, not per_process */
+    CHECK_NEAR(in.sampling_share, 0.1, 1e-12);                          /* 0.25 s of the 2.5 s of CPU */
     CHECK(in.has_error && in.mse == 0.5 && in.relmse == 0.125 && isnan(in.psnr));
     CHECK_NEAR(in.rmse, sqrt(0.5), 1e-9); /* written with 10 digits */
     CHECK(sidecar_matches(path, 0x0123456789abcdefULL) == 1);

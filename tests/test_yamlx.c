@@ -160,9 +160,41 @@ static void test_null(void)
     ydoc_free(&d);
 }
 
+/* An unknown key's "did you mean": a synonym's key where it is allowed, ahead of a near miss;
+   else the near miss; else none. */
+static const char *suggestion(const char *text, const char *const *keys)
+{
+    static char msg[512];
+    struct ydoc d;
+    struct err e;
+    msg[0] = 0;
+    if (load_text(&d, text, &e) == 0 && ymap_check(&d, ydoc_root(&d), keys, "m", &e) < 0)
+        snprintf(msg, sizeof msg, "%s", e.msg);
+    ydoc_free(&d);
+    const char *q = strstr(msg, "(did you mean \"");
+    return q ? q + 15 : "";
+}
+
+static int starts(const char *s, const char *prefix)
+{
+    return !strncmp(s, prefix, strlen(prefix));
+}
+
+static void test_synonyms(void)
+{
+    static const char *const job[] = {"sampler", "threshold", NULL}, *const mat[] = {"type", "albedo", NULL},
+                             *const tex[] = {"type", "scale", NULL};
+    CHECK(starts(suggestion("samples: 4\n", job), "threshold\"? the samples per pixel"));
+    CHECK(starts(suggestion("SPP: 4\n", job), "threshold\"?"));
+    CHECK(starts(suggestion("sampler: x\nsamplr: 4\n", job), "sampler\"?)"));
+    CHECK(starts(suggestion("colour: [1, 1, 1]\n", mat), "albedo\"?)"));
+    CHECK(!strcmp(suggestion("colour: [1, 1, 1]\n", tex), "")); /* albedo is not a key there */
+}
+
 int main(void)
 {
     test_null();
+    test_synonyms();
     test_merge();
     test_merge_bound();
     test_quoted();

@@ -1,6 +1,7 @@
 /* bvh: iterative traversal of the wide BVH (bvh_build.c) that tests a node's child boxes four
    at a time with SIMD slab tests and visits the hit children nearest first. */
 #include "bvh.h"
+#include "base/simd.h"
 #include "shape_inline.h"
 
 #include <stdlib.h>
@@ -27,7 +28,7 @@ static inline bvh_f4 f4_splat(float x)
 /* max(a, b) and min(a, b) lane by lane, b where a is NaN: a NaN slab (a zero direction
    component with the origin on the plane) then constrains nothing. SSE's maxps/minps have
    exactly this rule; the generic form compiles to four instructions instead of one. */
-#if defined(__SSE__)
+#if SIMD_SSE
 #include <xmmintrin.h>
 static inline bvh_f4 f4_max(bvh_f4 a, bvh_f4 b)
 {
@@ -96,7 +97,7 @@ static inline void fray_init(struct fray *fr, const ray *r)
 /* The far distances' scale factor in fray_init's slab tests (see there). */
 #define BVH_GROW (1.0f + 0x1.0p-20f)
 
-#if defined(__SSE2__)
+#if SIMD_SSE
 #include <emmintrin.h>
 
 /* The near and far planes' byte offsets for the direction's sign bits m (bit a: axis a negative),
@@ -124,16 +125,15 @@ static const struct {
    float vectors. The origin is rounded to float first (off by at most |o| 2^-24) and then
    shifted by |o| 2^-22 + 2^-100 to either side in float, which leaves both shifted origins on
    their side of o after rounding (the 2^-100 for a tiny o, whose float may be a denormal). The
-   inverse direction is rcpps's estimate, within 1.5 2^-12 of 1 / d, instead of a division,
-   whose latency headed the chain of every ray's slab tests (CPUs differ in its bits, not in
-   that bound, and only the culling sees them: images do not); its sign bits are d's and pick
-   the planes from a table. */
+   inverse direction is an IEEE division, not rcpps's estimate: CPUs differ in the estimate's
+   bits, and the order in which boxes are visited must not depend on the CPU; its sign bits are
+   d's and pick the planes from a table. */
 static inline void fray_init_sse(struct fray *fr, const ray *r)
 {
     __m128d oxy = _mm_loadu_pd(&r->orig.x), oz = _mm_load_sd(&r->orig.z);
     __m128d dxy = _mm_loadu_pd(&r->dir.x), dz = _mm_load_sd(&r->dir.z);
     __m128 o = _mm_movelh_ps(_mm_cvtpd_ps(oxy), _mm_cvtpd_ps(oz));
-    __m128 inv = _mm_rcp_ps(_mm_movelh_ps(_mm_cvtpd_ps(dxy), _mm_cvtpd_ps(dz)));
+    __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), _mm_movelh_ps(_mm_cvtpd_ps(dxy), _mm_cvtpd_ps(dz)));
     static const bvh_f4 sign = {-0.0f, -0.0f, -0.0f, -0.0f}, scale = {0x1.0p-22f, 0x1.0p-22f, 0x1.0p-22f, 0},
                         tiny = {0x1.0p-100f, 0x1.0p-100f, 0x1.0p-100f, 0};
     __m128 shift = _mm_add_ps(_mm_mul_ps(_mm_andnot_ps((__m128)sign, o), (__m128)scale), (__m128)tiny);

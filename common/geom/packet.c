@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/simd.h"
 #include "shape_inline.h"
 
 typedef double d4 __attribute__((vector_size(32)));
@@ -66,7 +67,7 @@ static AI d4 d4_pick(i4 m, d4 a, d4 b)
 
 static AI d4 d4_sqrt(d4 x)
 {
-#if defined(__SSE2__)
+#if SIMD_SSE
     d2 lo = __builtin_shufflevector(x, x, 0, 1), hi = __builtin_shufflevector(x, x, 2, 3);
     lo = __builtin_ia32_sqrtpd(lo);
     hi = __builtin_ia32_sqrtpd(hi);
@@ -345,7 +346,7 @@ static AI void transpose4(const struct packet_rec *const rc[PACKET_LANES], size_
 
 /* One copy for AVX2, one for the baseline, picked when the program loads (x86-64 only; a test
    builds the baseline alone by defining PACKET_CLONES empty). */
-#if !defined(PACKET_CLONES) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if !defined(PACKET_CLONES) && SIMD_SSE && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PACKET_CLONES __attribute__((target_clones("avx2", "default")))
 #elif !defined(PACKET_CLONES)
 #define PACKET_CLONES

@@ -23,7 +23,10 @@ void perlin_init(struct perlin *p, uint64_t seed)
     for (int i = 0; i < PERLIN_N; i++) {
         vec3 v;
         do {
-            v = v3(2 * rng_uniform(&r) - 1, 2 * rng_uniform(&r) - 1, 2 * rng_uniform(&r) - 1);
+            /* one draw a declarator: a call's arguments have no order in C (gcc took them last
+               first, clang first first); z, y, x keeps the images gcc made */
+            double z = 2 * rng_uniform(&r) - 1, y = 2 * rng_uniform(&r) - 1, x = 2 * rng_uniform(&r) - 1;
+            v = v3(x, y, z);
         } while (v3_len2(v) < 1e-6 || v3_len2(v) > 1);
         p->ranvec[i] = v3_unit(v);
     }

@@ -49,3 +49,12 @@ void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out)
     for (size_t i = 0; i < n; i++)
         out[i] = float_to_byte(rgb[i]);
 }
+
+int image_float_black(const float *rgb, int w, int h)
+{
+    size_t n = (size_t)(w > 0 ? w : 0) * (size_t)(h > 0 ? h : 0) * 3;
+    for (size_t i = 0; i < n; i++)
+        if (rgb[i] > 0)
+            return 0;
+    return 1;
+}

@@ -27,4 +27,7 @@ void image_free(struct rgb8 *img);
 /* Linear float RGB (w*h*3) to 8 bits: sqrt (gamma 2), clamp to [0, 0.999], times 256. */
 void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out);
 
+/* Whether no component of the w*h*3 linear floats in rgb is above 0: an entirely black image. */
+int image_float_black(const float *rgb, int w, int h);
+
 #endif

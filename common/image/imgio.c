@@ -5,10 +5,64 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "base/fileio.h"
 #include "png.h"
 #include "ppm.h"
+
+/* The formats we write, by name; a new one is a line here (and its encoder in imgio_write). */
+static const struct {
+    const char *name;
+    enum img_format fmt;
+} formats[] = {
+    {"png", IMG_PNG},
+    {"ppm", IMG_PPM},
+};
+enum { N_FORMATS = sizeof formats / sizeof formats[0] };
+
+const char *img_format_name(enum img_format fmt)
+{
+    for (int i = 0; i < N_FORMATS; i++)
+        if (formats[i].fmt == fmt)
+            return formats[i].name;
+    return "?";
+}
+
+int img_format_parse(const char *name, enum img_format *out)
+{
+    for (int i = 0; i < N_FORMATS; i++)
+        if (!strcmp(formats[i].name, name)) {
+            *out = formats[i].fmt;
+            return 0;
+        }
+    return -1;
+}
+
+int img_format_of_file(const char *file, enum img_format *out)
+{
+    const char *dot = strrchr(file, '.');
+    if (!dot)
+        return 0;
+    for (int i = 0; i < N_FORMATS; i++)
+        if (!strcasecmp(formats[i].name, dot + 1)) {
+            *out = formats[i].fmt;
+            return 1;
+        }
+    return -1;
+}
+
+void img_format_list(char *buf, size_t n)
+{
+    size_t used = 0;
+    buf[0] = 0;
+    for (int i = 0; i < N_FORMATS && used < n; i++)
+        used += (size_t)snprintf(buf + used, n - used, "%s%s",
+                                 i == 0               ? ""
+                                 : i == N_FORMATS - 1 ? " or "
+                                                      : ", ",
+                                 formats[i].name);
+}
 
 /* Read a PNG or PPM file, chosen by its first bytes, into out (limit 512 MiB). 0 or -1. */
 int imgio_read(const char *path, struct rgb8 *out, struct err *e)

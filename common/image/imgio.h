@@ -11,6 +11,20 @@
 /* Read a PNG or PPM file (chosen by its magic bytes) into out. */
 int imgio_read(const char *path, struct rgb8 *out, struct err *e);
 
+/* The formats imgio_write writes: a format: name, also the file extension (any case) that
+   chooses it. */
+const char *img_format_name(enum img_format fmt);
+
+/* The format named name (png, ppm: as written, lower case). 0, or -1 when none is. */
+int img_format_parse(const char *name, enum img_format *out);
+
+/* The format the extension of file (after its last '.', any case) names: 1 and *out set; 0 when
+   file has no extension; -1 when its extension names no format we write. */
+int img_format_of_file(const char *file, enum img_format *out);
+
+/* The formats' names for a message into buf (n bytes, at least 64): "png or ppm". */
+void img_format_list(char *buf, size_t n);
+
 /* Encode img in fmt and write it atomically to path. */
 int imgio_write(const char *path, const struct rgb8 *img, enum img_format fmt, struct err *e);
 

@@ -44,12 +44,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     for (int i = 0; i < ctx->sc->n_lights; i++)
         ctx->lp[i].n = ctx->lp[i].next = 0;
 
-    const int timed = sampler_timed(st->pixels, ctx->pixel_set_s);
-    const double t0 = timed ? now_s() : 0;
+    const int timed = ctx->timed = sampler_timed(st->pixels);
+    const uint64_t t0 = timed ? now_ns() : 0;
     size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
     if (timed)
-        ctx->pixel_set_s = now_s() - t0;
-    st->sampler_s += ctx->pixel_set_s;
+        st->timed_draw_ns += now_ns() - t0;
 
     double sum[3] = {0, 0, 0};
     size_t kept = 0;
@@ -67,6 +66,8 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     double inv = kept ? 1.0 / kept : 0;
     for (int k = 0; k < 3; k++)
         rgb[k] = (float)(sum[k] * inv);
+    if (timed)
+        st->timed_pixel_ns += now_ns() - t0;
     st->pixels++;
     st->samples += n;
     st->rays += rays;

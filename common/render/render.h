@@ -23,7 +23,10 @@ struct render_stats {
     uint64_t light_sets; /* light point sets drawn */
     uint64_t nonfinite;  /* samples dropped for NaN/inf */
     uint32_t spp_min, spp_max;
-    double sampler_s; /* seconds spent drawing point sets */
+    /* One pixel in SAMPLER_TIME_EVERY is timed whole, and every point-set draw in it: their
+       monotonic nanoseconds. Draws lie inside their pixel, so draw_ns <= pixel_ns always. */
+    uint64_t timed_pixel_ns, timed_draw_ns;
+    double sampler_s; /* estimated CPU seconds spent drawing point sets (render_stats_finish) */
 };
 
 struct render_ctx;
@@ -44,5 +47,13 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
 
 void render_stats_init(struct render_stats *st);
 void render_stats_add(struct render_stats *into, const struct render_stats *from);
+
+/* The fraction of the timed pixels' time spent drawing point sets: in [0, 1], 0 when none was
+   timed. */
+double render_stats_draw_share(const struct render_stats *st);
+
+/* At the end of a render process: sampler_s = its draw share times cpu_s, the process's CPU
+   seconds, so that sampler_s never exceeds the CPU time it is a part of. */
+void render_stats_finish(struct render_stats *st, double cpu_s);
 
 #endif

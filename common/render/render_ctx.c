@@ -17,11 +17,23 @@ void render_stats_add(struct render_stats *into, const struct render_stats *from
     into->rays += from->rays;
     into->light_sets += from->light_sets;
     into->nonfinite += from->nonfinite;
+    into->timed_pixel_ns += from->timed_pixel_ns;
+    into->timed_draw_ns += from->timed_draw_ns;
     into->sampler_s += from->sampler_s;
     if (from->spp_min < into->spp_min)
         into->spp_min = from->spp_min;
     if (from->spp_max > into->spp_max)
         into->spp_max = from->spp_max;
+}
+
+double render_stats_draw_share(const struct render_stats *st)
+{
+    return st->timed_pixel_ns > 0 ? (double)st->timed_draw_ns / (double)st->timed_pixel_ns : 0;
+}
+
+void render_stats_finish(struct render_stats *st, double cpu_s)
+{
+    st->sampler_s = cpu_s > 0 ? render_stats_draw_share(st) * cpu_s : 0;
 }
 
 void render_ctx_free(struct render_ctx *ctx)
@@ -53,7 +65,6 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->rs = *rs;
     ctx->pixel = pixel;
     ctx->light = light;
-    ctx->pixel_set_s = ctx->light_set_s = -1;
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
     ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);

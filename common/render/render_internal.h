@@ -32,9 +32,7 @@ struct render_ctx {
     const struct material **prim_material; /* each prim's material: one load after a hit */
     struct rng light_rng;
     struct render_stats *st;
-    /* the last timed point-set draw of each kind, pixels' and lights' (seconds; -1: none yet),
-       which sampler_s counts again for each draw after it that is not timed */
-    double pixel_set_s, light_set_s;
+    int timed; /* the current pixel is timed (sampler_timed): its light draws add to timed_draw_ns */
     struct packet_scene *packet; /* NULL, or PACKET_LANES paths at once through packet_hit */
 };
 

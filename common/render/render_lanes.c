@@ -2,6 +2,7 @@
    packet_hit (one-node scenes, packet_usable), each path advanced by shade, trace's loop body. */
 #include <float.h>
 
+#include "base/simd.h"
 #include "geom/bvh.h"
 #include "geom/packet.h"
 #include "render_path.h"
@@ -68,11 +69,14 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const s
     while (lanes) {
         struct packet_hits ph;
         int got;
-        if (lanes & (lanes - 1)) {
+        if (SIMD_LANES && (lanes & (lanes - 1))) {
             got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
-        } else { /* one lane left: its ray alone by the scalar traversal (the same hit) */
-            const int i = __builtin_ctz((unsigned)lanes);
-            got = bvh_hit_node(ctx->sc, rp[i], HIT_EPS, DBL_MAX, &ph.h[i]) << i;
+        } else { /* one lane left, or no vector back-end: each ray alone by the scalar traversal
+                    (the same hits: packet_hit returns the scalar tests' answers bit for bit) */
+            got = 0;
+            for (int i = 0; i < PACKET_LANES; i++)
+                if (lanes >> i & 1)
+                    got |= bvh_hit_node(ctx->sc, rp[i], HIT_EPS, DBL_MAX, &ph.h[i]) << i;
         }
         /* unrolled: each lane's path and hit record at a fixed place in the frame, no index
            arithmetic in shade's loads and stores (one copy of shade per lane) */

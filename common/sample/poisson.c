@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/simd.h"
 #include "poisson_filter.h"
 
 #define POISSON_TWO_PI 6.28318530717958647692
@@ -216,7 +217,7 @@ static inline void poisson_offsets(uint64_t *counter, float scale, float *ox, fl
                            (int32_t)(a[2] & 0x3ffffff), (int32_t)(a[3] & 0x3ffffff)};
     poisson_f4 u = __builtin_convertvector(ur, poisson_f4) * 0x1.0p-24f;
     poisson_f4 rho = 1.0f + 3.0f * u;
-#if defined(__SSE__) && !defined(POISSON_PORTABLE)
+#if SIMD_SSE && !defined(POISSON_PORTABLE)
     rho = (poisson_f4)_mm_sqrt_ps((__m128)rho);
 #else
     for (int k = 0; k < 4; k++)
@@ -280,9 +281,12 @@ draw_window(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const in
     size_t count = 0, nactive = 0;
     struct rng local = *caller_rng, *rng = &local; /* a copy kept in registers */
     /* the offsets' own stream: SplitMix64 (Steele et al. 2014) over a counter from rng */
-    uint64_t counter = ((uint64_t)rng_u32(rng) << 32) | rng_u32(rng);
+    /* one draw a declarator: the operands of | (and an initializer's members) have no order in C */
+    const uint64_t counter_hi = rng_u32(rng), counter_lo = rng_u32(rng);
+    uint64_t counter = (counter_hi << 32) | counter_lo;
     int next = POISSON_OFFSETS; /* the buffer starts empty */
-    struct pt2 first = {rng_uniform(rng), rng_uniform(rng)};
+    const double first_x = rng_uniform(rng), first_y = rng_uniform(rng);
+    struct pt2 first = {first_x, first_y};
     out[count] = first;
     poisson_insert(s, first, (int32_t)count, torus);
     s->active[nactive++] = (int32_t)count++;

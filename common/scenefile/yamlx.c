@@ -115,6 +115,71 @@ int ymap_pair(struct ydoc *d, yaml_node_t *n, int i, yaml_node_t **key, yaml_nod
     return 0;
 }
 
+#define SPACING_NOTE "the points' minimum spacing in a 100x100 domain, 0 < t <= 100"
+#define SPP_NOTE                                                                                             \
+    "the samples per pixel follow from it, " SPACING_NOTE ": 5 gives 400, 1 gives 10000 with a grid sampler"
+#define LIGHT_NOTE "a light's points per set follow from it, " SPACING_NOTE
+
+/* Words other renderers and formats use for our keys, which edit distance cannot find ("spp"
+   is nowhere near "threshold"), for the "did you mean" of job and scene keys alike. A word is
+   offered only where its key is allowed (the first such), before any near miss ("samples" is
+   nearer "sampler"); note, when set, says what the key means. */
+static const struct {
+    const char *word, *key, *note;
+} synonyms[] = {
+    {"color", "albedo", NULL},
+    {"colour", "albedo", NULL},
+    {"diffuse", "albedo", NULL},
+    {"base_color", "albedo", NULL},
+    {"emission", "emit", NULL},
+    {"emissive", "emit", NULL},
+    {"emittance", "emit", NULL},
+    {"intensity", "emit", NULL},
+    {"ref_idx", "ior", NULL},
+    {"eta", "ior", NULL},
+    {"refraction_index", "ior", NULL},
+    {"roughness", "fuzz", NULL},
+    {"spp", "threshold", SPP_NOTE},
+    {"samples", "threshold", SPP_NOTE},
+    {"samples_per_pixel", "threshold", SPP_NOTE},
+    {"light_spp", "light_threshold", LIGHT_NOTE},
+    {"light_samples", "light_threshold", LIGHT_NOTE},
+    {"depth", "max_depth", NULL},
+    {"bounces", "max_depth", NULL},
+    {"max_bounces", "max_depth", NULL},
+    {"threads", "processes", NULL},
+    {"workers", "processes", NULL},
+    {"out", "output", NULL},
+    {"filename", "output", NULL},
+    {"filename", "file", NULL},
+    {"position", "center", NULL},
+    {"position", "lookfrom", NULL},
+    {"eye", "lookfrom", NULL},
+    {"target", "lookat", NULL},
+    {"rotation", "rotate_y", NULL},
+    {"translation", "translate", NULL},
+    {"mat", "material", NULL},
+    {"r", "radius", NULL},
+    {"rad", "radius", NULL},
+};
+
+/* The "did you mean" for an unknown key name among allowed: a synonym's key (and in note what
+   it means, or NULL), else a near miss; NULL when none fits. */
+static const char *key_suggestion(const char *name, const char *const *allowed, const char **note)
+{
+    *note = NULL;
+    for (size_t i = 0; i < sizeof synonyms / sizeof synonyms[0]; i++) {
+        if (strcasecmp(synonyms[i].word, name) != 0)
+            continue;
+        for (const char *const *a = allowed; *a; a++)
+            if (!strcmp(*a, synonyms[i].key)) {
+                *note = synonyms[i].note;
+                return *a;
+            }
+    }
+    return ystr_nearest(name, allowed, -1);
+}
+
 int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const char *what, struct err *e)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
@@ -129,9 +194,10 @@ int ymap_check(struct ydoc *d, yaml_node_t *n, const char *const *allowed, const
         for (const char *const *a = allowed; *a; a++)
             known |= strcmp(*a, name) == 0;
         if (!known) {
-            const char *near = ystr_nearest(name, allowed, -1);
+            const char *note, *near = key_suggestion(name, allowed, &note);
             if (near)
-                return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?)", name, what, near);
+                return ydoc_fail(d, k, e, "%s: unknown key in %s (did you mean \"%s\"?%s%s)", name, what,
+                                 near, note ? " " : "", note ? note : "");
             return ydoc_fail(d, k, e, "%s: unknown key in %s", name, what);
         }
         yaml_node_t *k2, *v2;

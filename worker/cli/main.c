@@ -41,6 +41,18 @@ static const char help[] =
     "pixel for uniform/jitter/random, about 6200 for poisson). Rows are split over forked\n"
     "processes; the image (PNG or PPM) and a JSON stats sidecar land in OUT/<job name>/.\n"
     "\n"
+    "A compare job is a job file with variants: (and optionally scenes:, sweep:, seeds:): it\n"
+    "renders every combination, scores each against a reference render and writes the images,\n"
+    "summary.csv, chart.svg (error against time) and report.html in OUT/<name>/.\n"
+    "A queue (--queue DIR) is a folder of job files that any number of workers, on one machine\n"
+    "or many sharing it, drain: outputs in DIR/done/<name>/, failed jobs in DIR/failed/.\n"
+    "--part I/N and merge split one job's rows over machines and join them again.\n"
+    "worker diff scores an image against a reference; worker points prints (or draws, --svg)\n"
+    "one point set of a sampler.\n"
+    "\n"
+    "formats: docs/job-format.md, docs/scene-format.md (every key, with examples)\n"
+    "more:    docs/compare.md, docs/farm.md, docs/samplers.md (in the source tree)\n"
+    "\n"
     "exit status: 0 all jobs done, 1 a job failed while rendering, 2 bad usage or bad input.\n";
 
 static void print_err(const struct err *e)
@@ -206,6 +218,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     } else if (merge) {
         err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.procs.processes, rr.width, rr.height,
                   rr.image_path);
+        run_print_warnings(&j, &rr);
     } else {
         run_print_summary(&j, &rr);
     }

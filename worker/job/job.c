@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -180,6 +179,27 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double
     return 0;
 }
 
+/* An output's extension names the format written (any case; none: format:, else png): one that
+   names no format we write is an error at v, not a PNG under that name. The sidecar's own
+   extension gets its own message. */
+static int check_output_ext(struct ydoc *d, yaml_node_t *v, const char *out, struct err *e)
+{
+    enum img_format f;
+    size_t len = strlen(out);
+    char list[128];
+    img_format_list(list, sizeof list);
+    if (len > 5 && !strcmp(out + len - 5, ".json")) /* the sidecar is the output's stem + ".json" */
+        return ydoc_fail(
+            d, v, e,
+            "output: %s would be overwritten by its own sidecar (give it an image format's extension: %s)",
+            out, list);
+    if (img_format_of_file(out, &f) >= 0)
+        return 0;
+    return ydoc_fail(d, v, e,
+                     "output: %s: the extension \"%.20s\" names no image format this worker writes (%s)", out,
+                     strrchr(out, '.'), list);
+}
+
 int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, struct err *e)
 {
     const char *k = yscalar(key);
@@ -245,9 +265,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
-        if (strcmp(s, "png") && strcmp(s, "ppm"))
-            return ydoc_fail(d, v, e, "format: must be png or ppm, got \"%.40s\"", s);
-        j->format = s[1] == 'n' ? IMG_PNG : IMG_PPM;
+        if (img_format_parse(s, &j->format) < 0) {
+            char list[128];
+            img_format_list(list, sizeof list);
+            return ydoc_fail(d, v, e, "format: must be %s, got \"%.40s\"", list, s);
+        }
         j->has_format = 1;
         mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
@@ -258,6 +280,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
                              "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
                              "most %d, not starting with '.'), got \"%.40s\"",
                              JOB_NAME_MAX - 1, s);
+        if (check_output_ext(d, v, s, e) < 0)
+            return -1;
         snprintf(j->output, sizeof j->output, "%s", s);
         j->has_output = 1;
         mark(j->pos_output, v);
@@ -270,13 +294,6 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
     }
     return 0;
-}
-
-/* Whether s ends in suf, ignoring case (an output named X.PPM is a PPM). */
-static int has_suffix(const char *s, const char *suf)
-{
-    size_t a = strlen(s), b = strlen(suf);
-    return a >= b && strcasecmp(s + a - b, suf) == 0;
 }
 
 double job_smallest_threshold(enum sampler_kind k)
@@ -327,21 +344,17 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
         check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
                        e) < 0)
         return -1;
-    /* The sidecar is the output's stem + ".json": an image named so would be overwritten by it. */
-    size_t len = strlen(j->output);
-    if (j->has_output && len > 5 && !strcmp(j->output + len - 5, ".json"))
-        return err_set(e, j->path, j->pos_output[0], j->pos_output[1],
-                       "output: %s would be overwritten by its own sidecar (name it .png or .ppm)",
-                       j->output);
-    int ext_png = has_suffix(j->output, ".png"), ext_ppm = has_suffix(j->output, ".ppm");
-    if (j->has_output && j->has_format && (ext_png || ext_ppm) && ext_ppm != (j->format == IMG_PPM))
+    /* the output's extension (job_apply checked it names a format) and format: must agree */
+    enum img_format ext;
+    int has_ext = j->has_output && img_format_of_file(j->output, &ext) > 0;
+    if (has_ext && j->has_format && ext != j->format)
         return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
                        "format: %s contradicts the output's extension (%s); give one or make them agree",
-                       j->format == IMG_PPM ? "ppm" : "png", j->output);
-    if (j->has_output && !j->has_format)
-        j->format = ext_ppm ? IMG_PPM : IMG_PNG;
+                       img_format_name(j->format), j->output);
+    if (has_ext)
+        j->format = ext;
     if (!j->has_output)
-        snprintf(j->output, sizeof j->output, "%s.%s", j->name, j->format == IMG_PPM ? "ppm" : "png");
+        snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
 }
 

@@ -64,9 +64,11 @@ static void child_main(const struct procs_job *fj, int index, int nproc, float *
             _exit(4);
     }
     render_ctx_free(ctx);
+    const double cpu_s = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+    render_stats_finish(&st, cpu_s); /* sampler_s: a part of cpu_s, never more */
     sh->proc[index].st = st;
     sh->proc[index].wall_s = clock_s(CLOCK_MONOTONIC) - wall0;
-    sh->proc[index].cpu_s = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+    sh->proc[index].cpu_s = cpu_s;
     sh->proc[index].done = 1;
     _exit(0);
 }
@@ -98,6 +100,11 @@ void procs_framebuffer_free(float *rgb, int w, int h)
 {
     if (rgb)
         munmap(rgb, (size_t)w * (size_t)h * 3 * sizeof(float));
+}
+
+double procs_sampling_share(const struct procs_result *r)
+{
+    return r->cpu_s > 0 ? r->total.sampler_s / r->cpu_s : 0;
 }
 
 int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e)

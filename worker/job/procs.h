@@ -53,4 +53,9 @@ void procs_framebuffer_free(float *rgb, int w, int h);
    parent dies is killed with it on Linux (PR_SET_PDEATHSIG), elsewhere stops after its current row. */
 int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
+/* The share of the render processes' CPU time spent drawing point sets, in [0, 1]: each
+   process's sampler_s is a fraction of its own cpu_s (render_stats_finish), and r sums both
+   over the processes (or the parts merged) in one order. */
+double procs_sampling_share(const struct procs_result *r);
+
 #endif

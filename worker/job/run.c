@@ -198,4 +198,13 @@ void run_print_summary(const struct job *j, const struct run_result *rr)
               rr->height, sampler_kind_name(j->sampler), j->threshold,
               t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
               rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->image_path);
+    run_print_warnings(j, rr);
+}
+
+void run_print_warnings(const struct job *j, const struct run_result *rr)
+{
+    if (rr->black)
+        err_print("%s: warning: the image is entirely black (no light reaches the camera? a light emits "
+                  "from its front face only: a rect's flip:, a disk's toward:)\n",
+                  j->name);
 }

@@ -28,6 +28,7 @@ struct run_result {
     char sidecar_path[2048]; /* with parts: "" */
     int width, height;
     int skipped;               /* outputs were current (same job hash): nothing rendered */
+    int black;                 /* the image written is entirely black (run_print_warnings) */
     struct procs_result procs; /* on a render failure: child_crashed, child_signal, stopped */
 };
 
@@ -45,7 +46,12 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
 /* A progress line on stderr, printed only when o->progress (a terminal) and not o->quiet. */
 void run_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image). */
+/* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image),
+   then its warnings (run_print_warnings). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
+
+/* A line on stderr, naming the job, for what an exit code of 0 would hide: an entirely black
+   image (no light reaches the camera: a light facing away, lights missing). */
+void run_print_warnings(const struct job *j, const struct run_result *rr);
 
 #endif

@@ -93,6 +93,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         unlink(rr->image_path); /* an image without its sidecar is not a finished job */
         goto done;
     }
+    rr->black = image_float_black(rgb, w, h);
     rc = 0;
 done:
     outdir_unlock(lock);

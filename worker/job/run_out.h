@@ -16,7 +16,8 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
 
 /* Turn the linear framebuffer rgb (w x h) into the job's image, score it against ref (may be
    NULL) and write image and sidecar (paths from outdir_paths under o->out_dir, into rr) atomically;
-   parts > 0 marks a merge of that many part files. 0 or -1 with e filled (nothing left behind). */
+   parts > 0 marks a merge of that many part files; rr->black: the image is entirely black. 0 or -1
+   with e filled (nothing left behind). */
 int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
                   const struct procs_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
                   struct err *e);

@@ -63,12 +63,7 @@ char *sidecar_json(const struct sidecar *s)
     json_number(&js, "wall_s", r->wall_s);
     json_number(&js, "cpu_s", r->cpu_s);
     json_number(&js, "sampler_s", t->sampler_s);
-    /* Share of the render processes' wall time spent drawing point sets: both clocks are
-       monotonic wall clocks, so a loaded machine cannot push it past 1. */
-    double proc_wall = 0;
-    for (int i = 0; i < r->processes; i++)
-        proc_wall += r->proc[i].wall_s;
-    json_number(&js, "sampling_share", proc_wall > 0 ? t->sampler_s / proc_wall : 0);
+    json_number(&js, "sampling_share", procs_sampling_share(r));
     json_number(&js, "ns_per_sample", t->samples ? r->cpu_s * 1e9 / (double)t->samples : 0);
     json_begin_array(&js, "per_process");
     for (int i = 0; i < r->processes; i++) {

@@ -114,10 +114,7 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->spp_max = t->spp_max;
         it->wall_s = rr.procs.wall_s;
         it->cpu_s = rr.procs.cpu_s;
-        double proc_wall_s = 0; /* the sidecar's sampling share: of the render processes' wall time */
-        for (int p = 0; p < rr.procs.processes; p++)
-            proc_wall_s += rr.procs.proc[p].wall_s;
-        it->sampler_share = proc_wall_s > 0 ? t->sampler_s / proc_wall_s : 0;
+        it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
     }
     if (ref) {
         struct rgb8 img = {0};
