@@ -51,7 +51,7 @@ LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
 .SECONDARY:
-.PHONY: all test unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
+.PHONY: all test stress test-big unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
 # Set-up: when libyaml or zlib headers are missing, root on Debian installs them (NO_INSTALL=1
@@ -104,6 +104,13 @@ golden: all
 test: all $(TEST_BIN) $(TOOL_BIN)
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) \
 	  TOOLS_DIR=$(abspath $(BUILD)/tools) sh tests/run.sh
+
+# The long runs of issue 21's must-shows: a kill -9 storm over 200 jobs for 5 minutes, and a
+# 10240x10240 job (1.05e8 pixels) rendered in 4 parts and merged (about 2 minutes, 2 GB).
+stress: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) STRESS_JOBS=200 STRESS_SECONDS=300 sh tests/e2e_queue_stress.sh
+test-big: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) sh tests/long/big_merge.sh
 
 unit: all $(TEST_BIN)
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) E2E=0 sh tests/run.sh

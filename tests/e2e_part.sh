@@ -88,4 +88,17 @@ check "part resume: file untouched" [ "$(ino "$T/o3/p/p.part-2-of-3")" = "$befor
 check "part --force: rewritten" [ "$(ino "$T/o3/p/p.part-2-of-3")" != "$before" ]
 "$WORKER" merge --out "$T/o3" "$T/p.yaml" 2>/dev/null
 check "part --force: still merges to the plain render" cmp -s "$T/plain/p/p.png" "$T/o3/p/p.png"
+# 9. a FIFO (or a directory) in place of a part: merge fails at once, naming it, instead of
+#    blocking in open() for a writer that never comes
+mkdir -p "$T/fifo"; cp -r "$T/o3/p" "$T/fifo/"
+rm "$T/fifo/p/p.part-1-of-3" && mkfifo "$T/fifo/p/p.part-1-of-3"
+rm -f "$T/fifo/p/p.png" "$T/fifo/p/p.json"
+timeout 10 "$WORKER" merge --out "$T/fifo" "$T/p.yaml" 2>"$T/fifo.err"; rc=$?
+check "fifo part: merge exits 2 at once (got $rc)" [ "$rc" -eq 2 ]
+check "fifo part: names the file" grep -q "p.part-1-of-3: not a regular file" "$T/fifo.err"
+check "fifo part: no image written" [ ! -e "$T/fifo/p/p.png" ]
+rm "$T/fifo/p/p.part-1-of-3" && mkdir "$T/fifo/p/p.part-1-of-3"
+timeout 10 "$WORKER" merge --out "$T/fifo" "$T/p.yaml" 2>"$T/dir.err"; rc=$?
+check "directory part: merge exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "directory part: names the file" grep -q "p.part-1-of-3: not a regular file" "$T/dir.err"
 finish

@@ -314,7 +314,8 @@ check "relative paths: sidecar names the queued job file" grep -Fq "\"job_file\"
 
 # 9b. odd entries in DIR: job files that are symbolic links (relative and absolute targets) render
 #     (a relative target is seen from DIR, where the link was made, also once the claim moved the
-#     link into running/); a directory named x.yaml and a dangling link are left alone; a name
+#     link into running/); a directory named x.yaml and a dangling link are filed in failed/ with
+#     a log (issue 21: they used to lie in DIR for ever, unsaid); a name
 #     with spaces renders
 Q=$T/q9b/queue; mkdir -p "$Q" "$T/q9b/store"
 tiny "$T/q9b/store/real.yaml"
@@ -323,7 +324,7 @@ ln -s nowhere.yaml "$Q/dangling.yaml"; mkdir "$Q/dir.yaml"; tiny "$Q/with space.
 latin1=$(printf 'caf\351') # "café" in Latin-1: not UTF-8
 tiny "$Q/$latin1.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/odd.log"; rc=$?
-check "odd entries: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "odd entries: exit 2, for the two that cannot run (got $rc)" [ "$rc" -eq 2 ]
 check "odd entries: relative symlink rendered" [ -s "$Q/done/rel/rel.png" ]
 check "odd entries: absolute symlink rendered" [ -s "$Q/done/abs/abs.png" ]
 check "odd entries: name with spaces rendered" [ -s "$Q/done/with space/with space.png" ]
@@ -331,9 +332,10 @@ check "odd entries: a Latin-1 name rendered" [ -s "$Q/done/$latin1/$latin1.png" 
 check "odd entries: its sidecar is UTF-8 (the byte as U+FFFD)" \
     sh -c "! LC_ALL=C grep -q \"\$(printf '\\351')\" '$Q/done/$latin1/$latin1.json' &&
            grep -Fq '\"job\": \"caf\\ufffd\"' '$Q/done/$latin1/$latin1.json'"
-check "odd entries: nothing failed" [ "$(count "$Q/failed/*")" -eq 0 ]
-check "odd entries: the directory left alone" [ -d "$Q/dir.yaml" ]
-check "odd entries: the dangling link left alone" [ -L "$Q/dangling.yaml" ]
+check "odd entries: only those two failed" [ "$(ls "$Q/failed" | grep -c 'yaml$')" -eq 2 ]
+check "odd entries: the directory filed in failed/ with a log" [ -d "$Q/failed/dir.yaml" ] && [ -s "$Q/failed/dir.log" ]
+check "odd entries: the dangling link filed in failed/ with a log" [ -L "$Q/failed/dangling.yaml" ] &&
+    [ -s "$Q/failed/dangling.log" ]
 check "odd entries: the link's target untouched" [ -s "$T/q9b/store/real.yaml" ]
 
 # 9c. a file name holding a newline: every message stays one line (control characters escaped)

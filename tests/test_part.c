@@ -128,6 +128,25 @@ int main(void)
     CHECK(strstr(e.msg, "checksum") != NULL);
     CHECK(part_matches(path, &j, 2, 3) == 0); /* a damaged part is not current: resume renders it */
 
+    /* parts of an image over 1e8 pixels (a render allows sides up to 32768) are parts like any
+       other: a part of a 10240x10240 image, split 256 ways (40 rows), matches its job */
+    {
+        enum { BW = 10240, BH = 10240, BPARTS = 256 };
+        float *big = calloc((size_t)BW * BH * 3, sizeof *big); /* only the part's rows are touched */
+        CHECK(big != NULL);
+        if (big) {
+            struct job bj = j;
+            snprintf(bj.name, sizeof bj.name, "big");
+            snprintf(sub, sizeof sub, "%s/big", dir);
+            CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
+            result(&fr, 5);
+            outdir_part_path(&bj, dir, 5, BPARTS, path, sizeof path);
+            CHECK(part_write(path, &bj, BW, BH, 5, BPARTS, big, &fr, &e) == 0);
+            CHECK(part_matches(path, &bj, 5, BPARTS) == 1);
+            free(big);
+        }
+    }
+
     char cmd[2200];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0);

@@ -1,4 +1,5 @@
 /* fileio: bounded whole-file reads and atomic writes (temporary file + rename). */
+#define _GNU_SOURCE /* renameat2 */
 #include "fileio.h"
 
 #include <errno.h>
@@ -171,4 +172,22 @@ fail:
     unlink(tmp);
     free(tmp);
     return -1;
+}
+
+int fileio_rename_noreplace(const char *from, const char *to)
+{
+    if (renameat2(AT_FDCWD, from, AT_FDCWD, to, RENAME_NOREPLACE) == 0)
+        return 0;
+    if (errno != EINVAL && errno != ENOSYS) /* EEXIST, ENOENT, ...: the answer */
+        return -1;
+    /* a file system without RENAME_NOREPLACE: link() refuses an existing name just as well */
+    if (link(from, to) < 0)
+        return -1;
+    if (unlink(from) < 0) {
+        int saved = errno;
+        unlink(to);
+        errno = saved;
+        return -1;
+    }
+    return 0;
 }

@@ -18,4 +18,8 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e);
    On any failure (full disk, unwritable folder) no file is left behind and e is filled. */
 int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
 
+/* rename(from, to) that never replaces an existing `to` (renameat2 RENAME_NOREPLACE, or link +
+   unlink where the file system lacks it): 0, or -1 with errno (EEXIST when `to` exists). */
+int fileio_rename_noreplace(const char *from, const char *to);
+
 #endif

@@ -14,6 +14,9 @@
 #define YDOC_MAX_DEPTH 32
 #define YDOC_MAX_NODES 2000000
 #define YDOC_MAX_VISITS 4000000
+/* libyaml's composer looks each anchor and alias up in a list: bounded so that it stays quick. */
+#define YDOC_MAX_ANCHORS 1000
+#define YDOC_MAX_ALIASES 100000
 
 struct ydoc {
     yaml_document_t doc;

@@ -58,6 +58,63 @@ static int check_shape(struct ydoc *d, struct err *e)
     return 0;
 }
 
+/* Walk the stream's events before anything is composed, and refuse one that nests deeper than
+   YDOC_MAX_DEPTH or holds more than YDOC_MAX_ANCHORS anchors or YDOC_MAX_ALIASES aliases, at the
+   offending event. libyaml's composer (yaml_parser_load) takes time quadratic in the depth and in
+   the anchors (each anchor and alias is looked up in a list), so a 200k-bracket `[[[...]]]` ran
+   for minutes before check_shape could see it; the events arrive one at a time, and the scanner
+   reads only a bounded way ahead, so this stops within microseconds of the limit. Syntax errors
+   are left to the load that follows (same parser, same message). 0 when within bounds. */
+static int check_events(const uint8_t *data, size_t len, const char *path, struct err *e)
+{
+    yaml_parser_t p;
+    if (!yaml_parser_initialize(&p))
+        return err_set(e, path, 0, 0, "out of memory starting the YAML parser");
+    yaml_parser_set_input_string(&p, data, len);
+    int depth = 0, rc = 0;
+    long anchors = 0, aliases = 0;
+    for (int done = 0; !done && rc == 0;) {
+        yaml_event_t ev;
+        if (!yaml_parser_parse(&p, &ev))
+            break;
+        const yaml_mark_t *m = &ev.start_mark;
+        const char *anchor = NULL;
+        switch (ev.type) {
+        case YAML_STREAM_END_EVENT:
+            done = 1;
+            break;
+        case YAML_SEQUENCE_START_EVENT:
+        case YAML_MAPPING_START_EVENT:
+            anchor = ev.type == YAML_SEQUENCE_START_EVENT ? (const char *)ev.data.sequence_start.anchor
+                                                          : (const char *)ev.data.mapping_start.anchor;
+            if (++depth > YDOC_MAX_DEPTH)
+                rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "nesting deeper than %d levels",
+                             YDOC_MAX_DEPTH);
+            break;
+        case YAML_SEQUENCE_END_EVENT:
+        case YAML_MAPPING_END_EVENT:
+            depth--;
+            break;
+        case YAML_SCALAR_EVENT:
+            anchor = (const char *)ev.data.scalar.anchor;
+            break;
+        case YAML_ALIAS_EVENT:
+            if (++aliases > YDOC_MAX_ALIASES)
+                rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "more than %d aliases",
+                             YDOC_MAX_ALIASES);
+            break;
+        default:
+            break;
+        }
+        if (rc == 0 && anchor && ++anchors > YDOC_MAX_ANCHORS)
+            rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "more than %d anchors (&name)",
+                         YDOC_MAX_ANCHORS);
+        yaml_event_delete(&ev);
+    }
+    yaml_parser_delete(&p);
+    return rc;
+}
+
 /* A job or scene file holds one YAML document: a second one (after "---") would be silently
    ignored, so it is an error at its start, as is a syntax error in it. Empty documents (a bare
    "---") are skipped, up to the end of the stream: one may stand before a real second document.
@@ -89,6 +146,8 @@ int ydoc_parse(struct ydoc *d, const char *name, const uint8_t *data, size_t len
 {
     memset(d, 0, sizeof *d);
     snprintf(d->file, sizeof d->file, "%s", name);
+    if (check_events(data, len, name, e) < 0)
+        return -1;
     yaml_parser_t p;
     if (!yaml_parser_initialize(&p))
         return err_set(e, name, 0, 0, "out of memory starting the YAML parser");

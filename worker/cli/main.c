@@ -17,6 +17,7 @@
 #include "points.h"
 #include "farm/merge.h"
 #include "farm/queue.h"
+#include "farm/queue_status.h"
 #include "job/run.h"
 
 static const char usage[] =
@@ -25,6 +26,8 @@ static const char usage[] =
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
+    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs\n"
+    "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
     "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
     "       worker --help | --version\n"
@@ -248,6 +251,10 @@ static int worker_main(int argc, char **argv)
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))
         return diff_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "status"))
+        return queue_status_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "requeue"))
+        return queue_requeue_main(argc - 1, argv + 1);
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "job/outdir.h"
 #include "job/part.h"
@@ -107,11 +108,14 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
         goto done;
     for (int i = 0; i < parts; i++) {
         outdir_part_path(j, o->out_dir, i, parts, path, sizeof path);
-        FILE *f = fopen(path, "rb");
-        if (f) {
-            fclose(f);
-            continue;
+        struct stat st;
+        if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode)) { /* opening a FIFO would block */
+            err_set(e, path, 0, 0,
+                    "not a regular file (a part file is one; remove it and render that part again)");
+            goto done;
         }
+        if (lstat(path, &st) == 0)
+            continue;
         size_t l = strlen(missing);
         if (l + 16 < sizeof missing)
             snprintf(missing + l, sizeof missing - l, "%s%d", nmissing ? ", " : "", i);

@@ -81,6 +81,11 @@ static void give_back(struct queue *q, const char *name)
                   name, (int)queue_stop, name, q->running);
     else if (queue_claim_return(q, q->claim, name) == 0)
         err_print("%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
+    else
+        err_print("%s: stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
+                  "next worker\n",
+                  name, (int)queue_stop,
+                  errno == EEXIST ? "a newer one of its name arrived" : strerror(errno), q->running);
     lease_unlock(q->claim);
 }
 
@@ -156,7 +161,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads: failed/<name>.log */
     int attempts = 0, rc;
     do {
-        attempts++;
+        q->attempt = ++attempts;
         rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
@@ -234,7 +239,7 @@ static void process_claim(struct queue *q, const char *name)
     ro.tick_arg = q;
     int attempts = 0, rc;
     for (;;) {
-        attempts++;
+        q->attempt = ++attempts;
         rc = run_job(&j, &ro, &rr, &e);
         if (rc != 1 || !rr.procs.child_crashed || attempts > q->o->retries || queue_stop)
             break;
@@ -279,6 +284,49 @@ static void process(struct queue *q, const char *name)
     process_claim(q, name);
     queue_claim_renew_stop();
     clear_lost_stop();
+}
+
+/* What the unrunnable entry at path is, for messages. */
+static const char *unrunnable_kind(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) < 0)
+        return "gone";
+    if (S_ISLNK(st.st_mode))
+        return stat(path, &st) < 0 && errno == ELOOP ? "a symbolic link that loops"
+                                                     : "a symbolic link to nothing";
+    return S_ISDIR(st.st_mode)    ? "a directory"
+           : S_ISFIFO(st.st_mode) ? "a FIFO"
+           : S_ISSOCK(st.st_mode) ? "a socket"
+                                  : "not a regular file";
+}
+
+/* DIR/name can never run (queue_scan's unrunnable): moved to failed/ with a log saying why, by
+   whichever worker's rename() gets it; when it cannot be moved, said once per worker. */
+static void file_unrunnable(struct queue *q, const char *name)
+{
+    char from[2048], to[2048], msg[2600];
+    snprintf(from, sizeof from, "%s/%s", q->dir, name);
+    snprintf(to, sizeof to, "%s/%s", q->failed, name);
+    snprintf(msg, sizeof msg, "%s: cannot run: %s (a job file is a regular file, or a link to one)", from,
+             unrunnable_kind(from));
+    if (rename(from, to) == 0) {
+        char stem[256];
+        outdir_stem(name, stem, sizeof stem);
+        err_print("%s; moved to %s/\n", msg, q->failed);
+        write_log(q, name, stem, msg, 0, 0);
+        note_rc(q, 2);
+        return;
+    }
+    if (errno == ENOENT) /* another worker filed it */
+        return;
+    for (int i = 0; i < q->nreported; i++)
+        if (!strcmp(q->reported[i], name))
+            return;
+    if (q->nreported < (int)(sizeof q->reported / sizeof q->reported[0]))
+        snprintf(q->reported[q->nreported++], sizeof q->reported[0], "%s", name);
+    err_print("%s; cannot move it to %s/: %s\n", msg, q->failed, strerror(errno));
+    note_rc(q, 2);
 }
 
 /* Sleep up to s seconds; a signal ends it early. */
@@ -341,6 +389,8 @@ int queue_main(const struct queue_opts *qo)
             q.worst = 2;
             break;
         }
+        for (int i = 0; i < q.scan.nunrunnable && !queue_stop; i++)
+            file_unrunnable(&q, q.scan.unrunnable[i]);
         int unusable = 0;
         for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
             int got = queue_claim_take(&q, w[i].name);

@@ -31,7 +31,10 @@ static double renew_every_s(const struct queue *q)
     return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
 }
 
-void queue_claim_tick(void *arg)
+/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
+static volatile sig_atomic_t renew_fd = -1;
+
+void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s)
 {
     struct queue *q = arg;
     if (since(&q->last_touch) < renew_every_s(q))
@@ -43,11 +46,11 @@ void queue_claim_tick(void *arg)
             *q->stop = QUEUE_STOP_CLAIM_LOST;
         return;
     }
-    lease_touch(q->claim);
+    if (renew_fd >= 0)
+        lease_progress(renew_fd, rows_done, rows, elapsed_s, q->attempt);
+    else
+        lease_touch(q->claim);
 }
-
-/* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
-static volatile sig_atomic_t renew_fd = -1;
 
 static void on_renew_alarm(int sig)
 {
@@ -63,7 +66,7 @@ void queue_claim_renew_start(struct queue *q)
     char path[2100];
     snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
     queue_claim_renew_stop();
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    int fd = open(path, O_RDWR | O_CLOEXEC);
     if (fd < 0)
         return; /* no lease to renew: the tick's check finds the claim lost */
     struct sigaction sa;
@@ -94,8 +97,19 @@ int queue_claim_return(struct queue *q, const char *claim, const char *name)
 {
     char back[2048];
     snprintf(back, sizeof back, "%s/%s", q->dir, name);
+    /* the lease goes first (see the header), and comes back when a new file took the name */
+    struct lease l;
+    double age;
+    int had = lease_read(claim, &l, &age) == 0;
     lease_remove(claim);
-    return rename(claim, back);
+    if (fileio_rename_noreplace(claim, back) == 0)
+        return 0;
+    int saved = errno;
+    struct err e;
+    if (had)
+        (void)lease_write(claim, &l, &e);
+    errno = saved;
+    return -1;
 }
 
 int queue_claim_name_waiting(struct queue *q, const char *name)
@@ -163,10 +177,13 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
             continue;
         /* judged again under the lock: another recoverer may have moved it meanwhile */
         if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
+            int returned = 0;
             if (!queue_claim_name_waiting(q, de->d_name)) {
-                if (queue_claim_return(q, claim, de->d_name) == 0)
+                returned = queue_claim_return(q, claim, de->d_name) == 0;
+                if (returned)
                     err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
-            } else if (adopt_claim(q, claim, de->d_name) == 0) {
+            } /* not returned: a new file of that name waits (or arrived just now) */
+            if (!returned && adopt_claim(q, claim, de->d_name) == 0) {
                 err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
                           q->running, de->d_name, why);
                 snprintf(adopted, n, "%s", de->d_name);
@@ -201,7 +218,7 @@ int queue_claim_take(struct queue *q, const char *name)
         char buf[2048];
         err_format(&e, buf, sizeof buf);
         err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
-        rename(q->claim, from);
+        (void)fileio_rename_noreplace(q->claim, from);
         return -1;
     }
     return 0;

@@ -23,8 +23,11 @@ struct queue {
     struct queue_scan scan;      /* the waiting jobs seen by the last scan */
     volatile sig_atomic_t *stop; /* the queue's stop flag, which also stops the render in hand */
     int lost;                    /* the claim in hand was found gone or taken over (tick) */
+    int attempt;                 /* the render attempt of the claim in hand (1, 2 after a crash) */
     char name_owner[2048];       /* its output folder holds another queued job file's outputs */
     char name_dir[2048];         /* that folder */
+    char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */
+    int nreported;
 };
 
 /* *queue.stop's value when the tick found the claim in hand gone (not a signal number): the render
@@ -33,10 +36,10 @@ struct queue {
 
 /* The render's progress callback (run_opts.tick, every 5 ms): about once a second, or four times per
    --lease-timeout when that is shorter, see that the claim is still ours (its file still in
-   running/, its lease still ours) and renew the lease; a claim gone (the job file removed or moved
-   away: the job was cancelled) or taken over sets q->lost and *q->stop to QUEUE_STOP_CLAIM_LOST,
-   which stops the render. */
-void queue_claim_tick(void *arg);
+   running/, its lease still ours) and renew the lease with the render's progress; a claim gone (the job file
+   removed or moved away: the job was cancelled) or taken over sets q->lost and *q->stop to
+   QUEUE_STOP_CLAIM_LOST, which stops the render. */
+void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s);
 
 /* Renew the claim in hand's lease from a timer (SIGALRM, SA_RESTART) as often as the tick would,
    whatever the worker is doing: loading a scene (a big texture), encoding and writing an image,

@@ -2,6 +2,7 @@
 #include "queue_scan.h"
 
 #include <dirent.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,10 +103,20 @@ static void remember(struct queue_scan *q, const struct queue_waiting *w, int n)
     qsort(c, (size_t)n, sizeof *c, by_name);
 }
 
+static void note_unrunnable(struct queue_scan *q, const char *name)
+{
+    char(*g)[256] = realloc(q->unrunnable, (size_t)(q->nunrunnable + 1) * sizeof *g);
+    if (!g)
+        return;
+    q->unrunnable = g;
+    snprintf(g[q->nunrunnable++], sizeof *g, "%s", name);
+}
+
 int queue_scan_waiting(struct queue_scan *q, const char *dir, struct queue_waiting **out)
 {
     DIR *d = opendir(dir);
     *out = NULL;
+    q->nunrunnable = 0;
     if (!d)
         return -1;
     struct queue_waiting *w = NULL;
@@ -117,7 +128,14 @@ int queue_scan_waiting(struct queue_scan *q, const char *dir, struct queue_waiti
         if (!queue_scan_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof w->name)
             continue;
         snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (stat(path, &st) < 0 || !S_ISREG(st.st_mode) || just_created(&st))
+        int bad = stat(path, &st) < 0 ? errno : 0;
+        if (bad && bad != ELOOP && (lstat(path, &st) < 0 || !S_ISLNK(st.st_mode)))
+            continue;                      /* claimed meanwhile */
+        if (bad || !S_ISREG(st.st_mode)) { /* a dangling or looping link, a FIFO, a folder */
+            note_unrunnable(q, de->d_name);
+            continue;
+        }
+        if (just_created(&st))
             continue;
         if (n == cap) {
             cap = cap ? cap * 2 : 64;
@@ -146,4 +164,7 @@ void queue_scan_free(struct queue_scan *q)
     free(q->seen);
     q->seen = NULL;
     q->nseen = 0;
+    free(q->unrunnable);
+    q->unrunnable = NULL;
+    q->nunrunnable = 0;
 }

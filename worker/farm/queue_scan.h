@@ -20,6 +20,8 @@ struct queue_waiting {
 struct queue_scan {
     struct queue_waiting *seen;
     int nseen;
+    char (*unrunnable)[256]; /* this scan's DIR/X.yaml entries that can never run (see below) */
+    int nunrunnable;
 };
 
 /* Seconds an empty DIR/X.yaml is left alone after its last change (a copier is about to write it). */
@@ -29,7 +31,8 @@ struct queue_scan {
 int queue_scan_is_job_file(const char *name);
 
 /* The regular files DIR/X.yaml in claim order into *out (malloc'd, the caller frees it); their
-   count, or -1 when dir cannot be read (errno says why). */
+   count, or -1 when dir cannot be read (errno says why). The entries named X.yaml that can never
+   run (a FIFO, a directory, a socket, a dangling or looping symbolic link) go to s->unrunnable. */
 int queue_scan_waiting(struct queue_scan *s, const char *dir, struct queue_waiting **out);
 
 void queue_scan_free(struct queue_scan *s);

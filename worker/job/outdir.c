@@ -100,6 +100,12 @@ int outdir_mkdirs(const char *path, int *made, struct err *e)
             if (!ok && errno != EEXIST)
                 return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", buf, strerror(errno));
             struct stat st;
+            /* the folder itself is never a symbolic link: outputs would land wherever it points */
+            if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
+                return err_set(e, NULL, 0, 0,
+                               "%s is a symbolic link: outputs are never written through one (make it a "
+                               "folder)",
+                               buf);
             if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
                 return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", buf);
             *p = c;
@@ -152,7 +158,7 @@ static void remove_dead_temps(const char *path)
 
 int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop)
 {
-    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC), rc = -1;
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */
     if (fd < 0)
         return -1;
     /* a stop signal interrupts the wait (the queue's handlers have no SA_RESTART): a holder that

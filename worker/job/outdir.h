@@ -39,7 +39,7 @@ int outdir_check(const char *dir, struct err *e);
 
 /* mkdir -p for path; *made (unless NULL): whether path itself was made here, so a failed write
    may remove it (a folder that was there already, or that another process made meanwhile, is
-   never ours to remove). 0 or -1 with e filled. */
+   never ours to remove). path itself must not be a symbolic link. 0 or -1 with e filled. */
 int outdir_mkdirs(const char *path, int *made, struct err *e);
 
 /* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
@@ -48,8 +48,8 @@ int outdir_mkdirs(const char *path, int *made, struct err *e);
    killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
    temporary files never outlive its lock. Returns the lock (for outdir_unlock), or -1 when the
    folder cannot be locked (some network file systems): the writer goes on alone, removing
-   nothing; OUTDIR_STOPPED when *stop (optional) was set by a signal while it waited: write
-   nothing. */
+   nothing; or when dir cannot be opened (errno ELOOP or ENOTDIR: it is a symbolic link); OUTDIR_STOPPED when
+   *stop (optional) was set by a signal while it waited: write nothing. */
 #define OUTDIR_STOPPED (-2)
 int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
 void outdir_unlock(int lock);

@@ -1,9 +1,11 @@
 /* part: encoding and decoding the part files of `worker JOB --part I/N` (merged by farm/merge.c). */
 #include "part.h"
 
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "base/fileio.h"
@@ -94,8 +96,14 @@ static void encode_header(uint8_t *b, const struct part_header *h)
     put_u64(p, h->peak_rss_kb);
 }
 
-/* Decode and check the header of a part file of len bytes: magic, version, a sane split and a
-   length that matches the rows it claims. 0 or -1 with e filled (file = path). */
+/* Bytes of the part file whose header is h: header, its rows, CRC. */
+static size_t part_bytes(const struct part_header *h)
+{
+    return PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
+}
+
+/* Decode and check the header of a part file of len bytes: magic, version, a sane size and
+   split (part_read checks the length against it). 0 or -1 with e filled (file = path). */
 static int decode_header(const uint8_t *b, size_t len, const char *path, struct part_header *h, struct err *e)
 {
     if (len < PART_HEADER || memcmp(b, PART_MAGIC, 8) != 0)
@@ -122,14 +130,11 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     if (h->version != PART_VERSION)
         return err_set(e, path, 0, 0, "part file version %u, this worker reads version %d", h->version,
                        PART_VERSION);
+    /* the sides a render allows, not a decoder's IMAGE_MAX_PIXELS: parts of a 10240x10240 render
+       (1.05e8 pixels) were refused as damaged, and --part resume never saw them as current */
     if (h->width < 1 || h->width > IMAGE_MAX_SIDE || h->height < 1 || h->height > IMAGE_MAX_SIDE ||
-        h->parts < 1 || h->parts > PART_MAX || h->part >= h->parts ||
-        (uint64_t)h->width * h->height > IMAGE_MAX_PIXELS)
+        h->parts < 1 || h->parts > PART_MAX || h->part >= h->parts)
         return err_set(e, path, 0, 0, "damaged part file (impossible size or split)");
-    size_t want =
-        PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
-    if (len != want)
-        return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", len, want);
     return 0;
 }
 
@@ -169,10 +174,24 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
 int part_read(const char *path, struct part_file *pf, struct err *e)
 {
     memset(pf, 0, sizeof *pf);
-    if (fileio_read_all(path, (size_t)IMAGE_MAX_PIXELS * 12 + PART_HEADER + 4, &pf->data, &pf->len, e) < 0)
+    /* the header first: the file may be no longer than the rows it says it holds */
+    uint8_t head[PART_HEADER];
+    struct err ignored;
+    size_t max = PART_HEADER + 4;
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd >= 0) {
+        if (read(fd, head, sizeof head) == (ssize_t)sizeof head &&
+            decode_header(head, sizeof head, path, &pf->h, &ignored) == 0)
+            max = part_bytes(&pf->h);
+        close(fd);
+    }
+    if (fileio_read_all(path, max, &pf->data, &pf->len, e) < 0)
         return -1;
     if (decode_header(pf->data, pf->len, path, &pf->h, e) < 0)
         return -1;
+    if (pf->len != part_bytes(&pf->h))
+        return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", pf->len,
+                       part_bytes(&pf->h));
     const uint8_t *p = pf->data + pf->len - 4;
     if (get_u32(&p) != (uint32_t)crc32(0L, pf->data, (uInt)(pf->len - 4)))
         return err_set(e, path, 0, 0, "damaged part file: checksum mismatch");

@@ -22,7 +22,7 @@ struct progress {
     const char *name;
     int enabled;
     int last_pct;
-    void (*tick)(void *arg);
+    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s);
     void *tick_arg;
 };
 
@@ -30,7 +30,7 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
 {
     struct progress *p = arg;
     if (p->tick)
-        p->tick(p->tick_arg);
+        p->tick(p->tick_arg, done, rows, elapsed);
     if (!p->enabled || rows == 0)
         return;
     int pct = (int)(100.0 * done / rows);

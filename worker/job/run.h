@@ -15,7 +15,8 @@ struct run_opts {
     int force;                         /* render even when the outputs are current (resume off) */
     int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
     const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
-    void (*tick)(void *arg);           /* optional: called about every 5 ms while rendering */
+    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s); /* optional: about every 5 ms
+                                          while rendering, with its progress */
     int (*may_write)(void *arg, const char *dir); /* optional: asked (with tick_arg and the output
                                           folder) under that folder's lock, just before writing;
                                           0 = write nothing, fail (a queue claim taken over, the

@@ -32,6 +32,8 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                          struct err *e)
 {
     *lock = outdir_lock(dir, paths, o->stop);
+    if (*lock == -1 && (errno == ELOOP || errno == ENOTDIR))
+        return err_set(e, NULL, 0, 0, "%s is a symbolic link: outputs are never written through one", dir);
     if (*lock == OUTDIR_STOPPED)
         return err_set(e, NULL, 0, 0, "stopped while waiting for another writer of %s/: nothing written",
                        dir);

@@ -1,0 +1,449 @@
+/* queue_status: what a queue holds (status) and moving finished jobs back into it (requeue). */
+#include "queue_status.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "base/err.h"
+#include "base/fileio.h"
+#include "base/json.h"
+#include "job/outdir.h"
+#include "job/sidecar.h"
+#include "lease.h"
+#include "queue_scan.h"
+#include "scenefile/yamlx.h"
+
+/* One job file of done/ or failed/ (or running/), with what status says about it. */
+struct entry {
+    char file[256];
+    char name[256]; /* the job's name: its `name:`, else the file's stem */
+    struct timespec when;
+    double wall_s, cpu_s, samples; /* done: from the sidecar; < 0 unknown */
+    char reason[512];              /* failed: the log's error, first line */
+    struct lease lease;            /* running */
+    double age_s;                  /* running: seconds since the lease was renewed; < 0 no lease */
+};
+
+static void iso8601(time_t t, char *out, size_t n)
+{
+    struct tm tm;
+    gmtime_r(&t, &tm);
+    strftime(out, n, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+/* The job name of the job file at path: its `name:` when it has a valid-looking one, else stem. */
+static void job_name_of(const char *path, const char *file, char *out, size_t n)
+{
+    struct ydoc d;
+    struct err e;
+    outdir_stem(file, out, n);
+    if (ydoc_load(&d, path, &e) == 0) {
+        yaml_node_t *root = ydoc_root(&d);
+        const char *s = root && root->type == YAML_MAPPING_NODE ? yscalar(ymap_get(&d, root, "name")) : NULL;
+        if (s && *s && s[0] != '.' && !strchr(s, '/'))
+            snprintf(out, n, "%s", s);
+    }
+    ydoc_free(&d);
+}
+
+/* Fill x's wall, CPU and samples from the sidecar in done/<name>/ made from x's job file. */
+static void read_sidecar(const char *done, struct entry *x)
+{
+    char folder[2048];
+    snprintf(folder, sizeof folder, "%s/%s", done, x->name);
+    x->wall_s = x->cpu_s = x->samples = -1;
+    char file[1024];
+    if (json_string_read_back(x->file, file, sizeof file) < 0) /* as a sidecar records it */
+        return;
+    DIR *dir = opendir(folder);
+    if (!dir)
+        return;
+    struct dirent *de;
+    while ((de = readdir(dir))) {
+        size_t len = strlen(de->d_name);
+        if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
+            continue;
+        char path[4096];
+        struct sidecar_info info;
+        struct err e;
+        snprintf(path, sizeof path, "%s/%s", folder, de->d_name);
+        if (sidecar_read(path, &info, &e) == 0) {
+            const char *jf = info.job_file, *base = strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
+            if (!strcmp(base, file)) {
+                x->wall_s = isfinite(info.wall_s) ? info.wall_s : -1;
+                x->cpu_s = isfinite(info.cpu_s) ? info.cpu_s : -1;
+                x->samples = (double)info.samples_total;
+            }
+        }
+        if (x->wall_s >= 0)
+            break;
+    }
+    closedir(dir);
+}
+
+/* The first line of the error in failed/<name>.log (or <stem>.log) into x->reason. */
+static void read_reason(const char *failed, struct entry *x)
+{
+    char path[2048];
+    uint8_t *text = NULL;
+    size_t len;
+    struct err e;
+    snprintf(path, sizeof path, "%s/%s.log", failed, x->name);
+    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0) {
+        char stem[256];
+        outdir_stem(x->file, stem, sizeof stem);
+        snprintf(path, sizeof path, "%s/%s.log", failed, stem);
+        if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
+            text = NULL;
+    }
+    const char *s = text ? strstr((const char *)text, "error: ") : NULL;
+    if (s) {
+        s += strlen("error: ");
+        snprintf(x->reason, sizeof x->reason, "%.*s", (int)strcspn(s, "\n"), s);
+    } else
+        snprintf(x->reason, sizeof x->reason, "(no log)");
+    free(text);
+}
+
+static int by_when(const void *pa, const void *pb)
+{
+    const struct entry *a = pa, *b = pb;
+    if (a->when.tv_sec != b->when.tv_sec)
+        return a->when.tv_sec < b->when.tv_sec ? -1 : 1;
+    return strcmp(a->file, b->file);
+}
+
+/* The job files X.yaml of folder dir (running/, done/ or failed/) into *out, by time. */
+static int list_folder(const char *dir, const char *kind, const char *done, struct entry **out)
+{
+    DIR *d = opendir(dir);
+    struct entry *v = NULL;
+    int n = 0;
+    *out = NULL;
+    if (!d)
+        return 0;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        char path[2048];
+        struct stat st;
+        if (!queue_scan_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof v->file)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (lstat(path, &st) < 0)
+            continue;
+        struct entry *g = realloc(v, (size_t)(n + 1) * sizeof *v);
+        if (!g)
+            break;
+        v = g;
+        struct entry *x = &v[n++];
+        memset(x, 0, sizeof *x);
+        snprintf(x->file, sizeof x->file, "%s", de->d_name);
+        x->when = st.st_ctim; /* the rename into this folder */
+        job_name_of(path, x->file, x->name, sizeof x->name);
+        if (!strcmp(kind, "done"))
+            read_sidecar(done, x);
+        else if (!strcmp(kind, "failed"))
+            read_reason(dir, x);
+        else if (lease_read(path, &x->lease, &x->age_s) < 0)
+            x->age_s = -1;
+    }
+    closedir(d);
+    if (n > 1)
+        qsort(v, (size_t)n, sizeof *v, by_when);
+    *out = v;
+    return n;
+}
+
+/* Elapsed seconds of a running entry (since its claim) and its ETA (-1: unknown). */
+static void running_times(const struct entry *x, double *elapsed, double *eta)
+{
+    *elapsed = x->age_s >= 0 && x->lease.start > 0 ? (double)(time(NULL) - x->lease.start) : -1;
+    *eta = -1;
+    if (x->lease.rows > 0 && x->lease.rows_done > 0)
+        *eta = x->lease.render_s * (x->lease.rows - x->lease.rows_done) / x->lease.rows_done;
+}
+
+static double percent(const struct entry *x)
+{
+    return x->lease.rows > 0 ? 100.0 * x->lease.rows_done / x->lease.rows : 0;
+}
+
+static void print_text(const char *dir, const struct queue_waiting *w, int nw, const struct entry *r, int nr,
+                       const struct entry *dn, int nd, const struct entry *f, int nf)
+{
+    char when[64];
+    printf("queue %s: %d waiting, %d running, %d done, %d failed\n", dir, nw, nr, nd, nf);
+    if (nw)
+        printf("waiting (in claim order):\n");
+    for (int i = 0; i < nw; i++) {
+        iso8601(w[i].mtime.tv_sec, when, sizeof when);
+        printf("  %3d. %s  priority %d  queued %s\n", i + 1, w[i].name, w[i].priority, when);
+    }
+    if (nr)
+        printf("running:\n");
+    for (int i = 0; i < nr; i++) {
+        double elapsed, eta;
+        running_times(&r[i], &elapsed, &eta);
+        if (r[i].age_s < 0) {
+            printf("  %s  (no lease yet)\n", r[i].file);
+            continue;
+        }
+        char eta_s[32] = "--";
+        if (eta >= 0)
+            snprintf(eta_s, sizeof eta_s, "%.0f s", eta);
+        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %.0f s  ETA %s\n", r[i].file,
+               r[i].lease.host, r[i].lease.pid, r[i].lease.attempt, percent(&r[i]), r[i].lease.rows_done,
+               r[i].lease.rows, elapsed, eta_s);
+    }
+    if (nd)
+        printf("done:\n");
+    for (int i = 0; i < nd; i++) {
+        iso8601(dn[i].when.tv_sec, when, sizeof when);
+        if (dn[i].wall_s < 0)
+            printf("  %s  finished %s  (no sidecar)\n", dn[i].file, when);
+        else
+            printf("  %s  finished %s  wall %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file, when,
+                   dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
+    }
+    if (nf)
+        printf("failed:\n");
+    for (int i = 0; i < nf; i++)
+        printf("  %s  %s\n", f[i].file, f[i].reason);
+}
+
+static void json_maybe(struct json *js, const char *key, double v)
+{
+    json_number(js, key, v < 0 ? (double)NAN : v); /* non-finite: null (unknown) */
+}
+
+static void print_json(const char *dir, const struct queue_waiting *w, int nw, const struct entry *r, int nr,
+                       const struct entry *dn, int nd, const struct entry *f, int nf)
+{
+    struct json js;
+    char when[64];
+    json_init(&js);
+    json_begin_object(&js, NULL);
+    json_string(&js, "queue", dir);
+    json_begin_array(&js, "waiting");
+    for (int i = 0; i < nw; i++) {
+        json_begin_object(&js, NULL);
+        json_string(&js, "file", w[i].name);
+        json_number(&js, "priority", w[i].priority);
+        iso8601(w[i].mtime.tv_sec, when, sizeof when);
+        json_string(&js, "queued", when);
+        json_end_object(&js);
+    }
+    json_end_array(&js);
+    json_begin_array(&js, "running");
+    for (int i = 0; i < nr; i++) {
+        double elapsed, eta;
+        running_times(&r[i], &elapsed, &eta);
+        json_begin_object(&js, NULL);
+        json_string(&js, "file", r[i].file);
+        json_string(&js, "name", r[i].name);
+        json_string(&js, "host", r[i].lease.host);
+        json_number(&js, "pid", (double)r[i].lease.pid);
+        json_number(&js, "attempt", r[i].lease.attempt);
+        json_number(&js, "rows_done", r[i].lease.rows_done);
+        json_number(&js, "rows", r[i].lease.rows);
+        json_number(&js, "percent", percent(&r[i]));
+        json_maybe(&js, "elapsed_s", elapsed);
+        json_maybe(&js, "eta_s", eta);
+        json_maybe(&js, "lease_age_s", r[i].age_s);
+        json_end_object(&js);
+    }
+    json_end_array(&js);
+    json_begin_array(&js, "done");
+    for (int i = 0; i < nd; i++) {
+        json_begin_object(&js, NULL);
+        json_string(&js, "file", dn[i].file);
+        json_string(&js, "name", dn[i].name);
+        iso8601(dn[i].when.tv_sec, when, sizeof when);
+        json_string(&js, "finished", when);
+        json_maybe(&js, "wall_s", dn[i].wall_s);
+        json_maybe(&js, "cpu_s", dn[i].cpu_s);
+        json_maybe(&js, "samples", dn[i].samples);
+        json_end_object(&js);
+    }
+    json_end_array(&js);
+    json_begin_array(&js, "failed");
+    for (int i = 0; i < nf; i++) {
+        json_begin_object(&js, NULL);
+        json_string(&js, "file", f[i].file);
+        json_string(&js, "name", f[i].name);
+        iso8601(f[i].when.tv_sec, when, sizeof when);
+        json_string(&js, "failed", when);
+        json_string(&js, "reason", f[i].reason);
+        json_end_object(&js);
+    }
+    json_end_array(&js);
+    json_end_object(&js);
+    if (!js.oom)
+        printf("%.*s\n", (int)js.len, js.buf);
+    json_free(&js);
+}
+
+/* DIR without trailing slashes into out; 0, or 2 after one line when it is no queue directory. */
+static int queue_dir(const char *cmd, const char *arg, char *out, size_t n)
+{
+    struct stat st;
+    snprintf(out, n, "%s", arg);
+    for (size_t l = strlen(out); l > 1 && out[l - 1] == '/'; l--)
+        out[l - 1] = 0;
+    if (stat(out, &st) < 0 || !S_ISDIR(st.st_mode)) {
+        err_print("worker %s: %s: %s\n", cmd, out, stat(out, &st) < 0 ? strerror(errno) : strerror(ENOTDIR));
+        return 2;
+    }
+    return 0;
+}
+
+int queue_status_main(int argc, char **argv)
+{
+    const char *dir_arg = NULL;
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--json"))
+            json = 1;
+        else if (!strcmp(argv[i], "--quiet"))
+            continue;
+        else if (argv[i][0] == '-' && argv[i][1]) {
+            err_print("worker status: unknown option %s; usage: worker status DIR [--json]\n", argv[i]);
+            return 2;
+        } else if (dir_arg) {
+            err_print("worker status: one queue directory, got a second: %s\n", argv[i]);
+            return 2;
+        } else
+            dir_arg = argv[i];
+    }
+    char dir[1024], sub[1100];
+    if (!dir_arg) {
+        err_print("worker status: expected a queue directory; usage: worker status DIR [--json]\n");
+        return 2;
+    }
+    if (queue_dir("status", dir_arg, dir, sizeof dir))
+        return 2;
+    struct queue_scan scan = {0};
+    struct queue_waiting *w;
+    struct entry *r, *dn, *f;
+    int nw = queue_scan_waiting(&scan, dir, &w);
+    char done[1100];
+    snprintf(done, sizeof done, "%s/done", dir);
+    snprintf(sub, sizeof sub, "%s/running", dir);
+    int nr = list_folder(sub, "running", done, &r);
+    int nd = list_folder(done, "done", done, &dn);
+    snprintf(sub, sizeof sub, "%s/failed", dir);
+    int nf = list_folder(sub, "failed", done, &f);
+    if (nw < 0)
+        nw = 0;
+    if (json)
+        print_json(dir, w, nw, r, nr, dn, nd, f, nf);
+    else
+        print_text(dir, w, nw, r, nr, dn, nd, f, nf);
+    free(w);
+    free(r);
+    free(dn);
+    free(f);
+    queue_scan_free(&scan);
+    return 0;
+}
+
+/* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
+static int requeue_one(const char *dir, const char *from, const char *file)
+{
+    char src[2048], dst[2048], running[2048];
+    struct stat st;
+    snprintf(src, sizeof src, "%s/%s/%s", dir, from, file);
+    snprintf(dst, sizeof dst, "%s/%s", dir, file);
+    snprintf(running, sizeof running, "%s/running/%s", dir, file);
+    if (lstat(running, &st) == 0) {
+        err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
+        return -1;
+    }
+    if (fileio_rename_noreplace(src, dst) < 0) {
+        err_print("worker requeue: %s: %s\n", file,
+                  errno == EEXIST ? "a job of that file name waits in the queue already" : strerror(errno));
+        return -1;
+    }
+    if (!strcmp(from, "failed")) { /* its log goes with it: it is no longer a failed job */
+        char name[256], log[2048];
+        job_name_of(dst, file, name, sizeof name);
+        snprintf(log, sizeof log, "%s/failed/%s.log", dir, name);
+        unlink(log);
+    }
+    err_print("%s: requeued from %s/\n", file, from);
+    return 0;
+}
+
+int queue_requeue_main(int argc, char **argv)
+{
+    const char *dir_arg = NULL;
+    int all_failed = 0, nnames = 0, rc = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--failed"))
+            all_failed = 1;
+        else if (!strcmp(argv[i], "--quiet"))
+            continue;
+        else if (argv[i][0] == '-' && argv[i][1]) {
+            err_print("worker requeue: unknown option %s; usage: worker requeue DIR NAME... | --failed\n",
+                      argv[i]);
+            return 2;
+        } else if (!dir_arg)
+            dir_arg = argv[i];
+        else
+            nnames++;
+    }
+    if (!dir_arg || (nnames == 0) == !all_failed) {
+        err_print("worker requeue: usage: worker requeue DIR NAME... | --failed\n");
+        return 2;
+    }
+    char dir[1024], failed[1100], done[1100];
+    if (queue_dir("requeue", dir_arg, dir, sizeof dir))
+        return 2;
+    snprintf(failed, sizeof failed, "%s/failed", dir);
+    snprintf(done, sizeof done, "%s/done", dir);
+    if (all_failed) {
+        struct entry *f;
+        int nf = list_folder(failed, "failed", done, &f);
+        for (int i = 0; i < nf; i++)
+            if (requeue_one(dir, "failed", f[i].file) < 0)
+                rc = 2;
+        free(f);
+        return rc;
+    }
+    for (int i = 1, seen_dir = 0; i < argc; i++) {
+        if (argv[i][0] == '-' && argv[i][1])
+            continue;
+        if (!seen_dir++)
+            continue;
+        char file[256], path[2048];
+        struct stat st;
+        size_t len = strlen(argv[i]);
+        if (strchr(argv[i], '/') || len == 0 || len > 200) {
+            err_print("worker requeue: %s: give a job file's name (X or X.yaml), not a path\n", argv[i]);
+            rc = 2;
+            continue;
+        }
+        snprintf(file, sizeof file, "%s%s", argv[i],
+                 len > 5 && !strcmp(argv[i] + len - 5, ".yaml") ? "" : ".yaml");
+        const char *from = NULL;
+        snprintf(path, sizeof path, "%s/%s", failed, file);
+        if (lstat(path, &st) == 0)
+            from = "failed";
+        snprintf(path, sizeof path, "%s/%s", done, file);
+        if (!from && lstat(path, &st) == 0)
+            from = "done";
+        if (!from) {
+            err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
+            rc = 2;
+        } else if (requeue_one(dir, from, file) < 0)
+            rc = 2;
+    }
+    return rc;
+}
