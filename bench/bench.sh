@@ -120,6 +120,7 @@ sed 's/^/    /; $!s/$/,/' "$out/bridson" >>"$json"
 echo "  ]" >>"$json"
 echo "}" >>"$json"
 mv "$json" bench/results.json
-awk -F'[:,}]' '{printf "bridson t=%s pool=%s: %s us/point CPU (median of %s, spread %s-%s)\n", $2, $4, $10, $8, $12, $14}' \
+awk -F'[:,}]' '{k = $16; gsub(/[ "]/, "", k); if (k == "poisson") k = "bridson"
+    printf "%s t=%s pool=%s: %s us/point CPU (median of %s, spread %s-%s)\n", k, $2, $4, $10, $8, $12, $14}' \
     "$out/bridson" | sed 's/  */ /g'
 echo "wrote bench/results.json"

@@ -1,5 +1,6 @@
-/* bench_bridson: microseconds per point of Bridson Poisson-disk sets, fresh and from a pool,
-   in CPU time (the machine is shared: wall time would count other people's work). */
+/* bench_bridson: microseconds per point of Bridson Poisson-disk sets, fresh and from a pool, and of
+   Owen-scrambled Sobol sets for comparison, in CPU time (the machine is shared: wall time would
+   count other people's work). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -19,11 +20,11 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Median over `runs` timings of drawing `sets` sets; prints one JSON object line. */
-static void bench(double t, int pool, int runs, int sets)
+/* Median over `runs` timings of drawing `sets` sets of kind; prints one JSON object line. */
+static void bench(enum sampler_kind kind, double t, int pool, int runs, int sets)
 {
     struct err e;
-    struct sampler *s = sampler_new(SAMPLER_POISSON, t, pool, 1, &e);
+    struct sampler *s = sampler_new(kind, t, pool, 1, &e);
     if (!s) {
         fprintf(stderr, "bench_bridson: %s\n", e.msg);
         exit(1);
@@ -43,16 +44,19 @@ static void bench(double t, int pool, int runs, int sets)
     }
     qsort(us, runs, sizeof us[0], cmp);
     printf("{\"threshold\": %g, \"pool\": %d, \"points_per_set\": %zu, \"runs\": %d, "
-           "\"us_per_point_median\": %.4f, \"us_per_point_min\": %.4f, \"us_per_point_max\": %.4f}\n",
-           t, pool, points, runs, us[runs / 2], us[0], us[runs - 1]);
+           "\"us_per_point_median\": %.4f, \"us_per_point_min\": %.4f, \"us_per_point_max\": %.4f, "
+           "\"sampler\": \"%s\"}\n",
+           t, pool, points, runs, us[runs / 2], us[0], us[runs - 1], sampler_kind_name(kind));
     free(out);
     sampler_free(s);
 }
 
 int main(void)
 {
-    bench(1, 0, 9, 20);
-    bench(0.25, 0, 9, 2);
-    bench(1, 64, 9, 200);
+    bench(SAMPLER_POISSON, 1, 0, 9, 20);
+    bench(SAMPLER_POISSON, 0.25, 0, 9, 2);
+    bench(SAMPLER_POISSON, 1, 64, 9, 200);
+    bench(SAMPLER_SOBOL, 1, 0, 9, 200);
+    bench(SAMPLER_SOBOL, 6.25, 0, 9, 20000);
     return 0;
 }

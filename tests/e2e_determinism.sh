@@ -27,7 +27,7 @@ fi
 build scalar OPT=-O0 SIMD=0 && builds="$builds scalar"
 
 bin_of() { [ "$1" = default ] && echo "$WORKER" || echo "$root/build/det-$1/bin/worker"; }
-samplers="uniform jitter random poisson"
+samplers="uniform jitter random poisson sobol"
 for scene in checker cornell cornell-book3 final; do
     for s in $samplers; do
         j=$scene-$s

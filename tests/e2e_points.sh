@@ -17,9 +17,9 @@ check "all points in [0,1)" awk -F, '($1 < 0 || $1 >= 1 || $2 < 0 || $2 >= 1) {b
 "$WORKER" points jitter 20 --svg "$T/p.svg" >/dev/null
 check "svg written" grep -q '<svg' "$T/p.svg"
 check "svg draws 25 points" [ "$(grep -o '<circle' "$T/p.svg" | wc -l)" -eq 25 ]
-"$WORKER" points sobol 5 >/dev/null 2>"$T/e1"; rc=$?
+"$WORKER" points halton 5 >/dev/null 2>"$T/e1"; rc=$?
 check "unknown sampler exits 2" [ "$rc" -eq 2 ]
-check "unknown sampler message" grep -q 'unknown sampler "sobol"' "$T/e1"
+check "unknown sampler message" grep -q 'unknown sampler "halton"' "$T/e1"
 "$WORKER" points Uniform 5 >/dev/null 2>"$T/e6"; rc=$?
 check "a near miss gets a did you mean (exit $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'did you mean \"uniform\"' '$T/e6'"
 "$WORKER" points uniform abc >/dev/null 2>"$T/e2"; rc=$?
@@ -57,4 +57,71 @@ check "--version points: exit 0 with the version (got $rc)" sh -c "[ $rc -eq 0 ]
 check "diff --help: exit 0 and its usage on stdout (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^usage: worker diff' '$T/dh.out' && [ ! -s '$T/dh.err' ]"
 "$WORKER" points --help >"$T/ph.out" 2>"$T/ph.err"; rc=$?
 check "points --help: exit 0 and its usage on stdout (got $rc)" sh -c "[ $rc -eq 0 ] && grep -q '^usage: worker points' '$T/ph.out'"
+# sobol: 256 points at t=6.25 forming a (0,8,2)-net: every elementary interval of area 1/256
+# (2^a x 2^b boxes, a + b = 8) holds exactly one point, for several seeds
+net() { # net FILE M: FILE's points are 2^M and every 2^a x 2^b box (a + b = M) holds one
+    awk -F, -v m="$2" '{x[NR] = $1; y[NR] = $2} END {
+        bad = NR != 2 ^ m
+        for (a = 0; a <= m; a++) { b = m - a; delete c
+            for (i = 1; i <= NR; i++) if (c[int(x[i] * 2 ^ a) * 65536 + int(y[i] * 2 ^ b)]++) bad = 1 }
+        exit bad }' "$1"
+}
+check "sobol t=6.25 prints 256 points" [ "$(count sobol 6.25)" -eq 256 ]
+for s in 1 2 7; do
+    "$WORKER" points sobol 6.25 --seed $s >"$T/net$s.csv"
+    check "sobol t=6.25 seed $s: 256 points forming a (0,8,2)-net" net "$T/net$s.csv" 8
+done
+"$WORKER" points sobol 25 --seed 3 >"$T/s16.csv"
+check "sobol t=25: 16 points forming a (0,4,2)-net" net "$T/s16.csv" 4
+"$WORKER" points jitter 6.25 >"$T/j256.csv"
+fails() { ! "$@"; }
+check "a jittered set of 256 is no (0,8,2)-net (the check can fail)" fails net "$T/j256.csv" 8
+"$WORKER" points sobol 3 --seed 5 >"$T/s1.csv"
+"$WORKER" points sobol 3 --seed 5 >"$T/s2.csv"
+"$WORKER" points sobol 3 --seed 6 >"$T/s3.csv"
+check "sobol: same seed, same set; 1089 points" sh -c "cmp -s '$T/s1.csv' '$T/s2.csv' && [ \$(wc -l <'$T/s1.csv') -eq 1089 ]"
+check "sobol: other seed, other set" sh -c "! cmp -s '$T/s1.csv' '$T/s3.csv'"
+
+# --spectrum, --radial and --stats work for every sampler
+stat() { awk -v k="$1" '$1 == k {print $2}' "$2"; }
+for s in uniform jitter random poisson sobol; do
+    "$WORKER" points $s 6.25 --sets 4 --stats --spectrum "$T/$s.png" --radial "$T/$s.svg" >"$T/$s.stats" 2>"$T/$s.err"; rc=$?
+    check "$s: --spectrum --radial --stats exit 0 (got $rc: $(head -c 200 "$T/$s.err"))" [ "$rc" -eq 0 ]
+    check "$s: the spectrum is a PNG" sh -c "head -c 8 '$T/$s.png' | od -An -c | grep -q 'P   N   G'"
+    check "$s: the radial chart is an SVG with two panels" sh -c "grep -q '<svg' '$T/$s.svg' && grep -q 'radial mean power' '$T/$s.svg' && grep -q 'anisotropy' '$T/$s.svg'"
+    for k in count min_distance min_distance_toroidal star_discrepancy_l2 low_frequency_power; do
+        check "$s: --stats prints $k" sh -c "[ -n \"\$(awk '\$1 == \"$k\" {print \$2}' '$T/$s.stats')\" ]"
+    done
+    check "$s: --stats prints no points" sh -c "! grep -q '^0\\.[0-9]*,' '$T/$s.stats'"
+done
+check "sobol --stats: count 256" [ "$(stat count "$T/sobol.stats")" = 256 ]
+check "uniform --stats: min distance 1/16 plain and toroidal" sh -c "[ '$(stat min_distance "$T/uniform.stats")' = 0.0625 ] && [ '$(stat min_distance_toroidal "$T/uniform.stats")' = 0.0625 ]"
+check "--stats names the sets' seeds" grep -q '^sets 4 (seeds 1\.\.4)$' "$T/sobol.stats"
+check "--stats says which minimum distance is which" sh -c "grep -q '^min_distance .*not toroidal' '$T/sobol.stats' && grep -q '^min_distance_toroidal .*modulo 1' '$T/sobol.stats'"
+# random's low frequencies at ~1 (16 sets of 256: 196 frequencies each, standard error ~0.03),
+# jitter's, poisson's and sobol's well below
+"$WORKER" points random 6.25 --sets 16 --stats >"$T/r16.stats"
+lf=$(stat low_frequency_power "$T/r16.stats")
+check "random: low-frequency power 1 within 0.15 (got $lf)" awk -v v="$lf" 'BEGIN {exit !(v > 0.85 && v < 1.15)}'
+for s in jitter poisson sobol; do
+    lf=$(stat low_frequency_power "$T/$s.stats")
+    check "$s: low-frequency power below 0.5 (got $lf)" awk -v v="$lf" 'BEGIN {exit !(v < 0.5)}'
+done
+d_r=$(stat star_discrepancy_l2 "$T/random.stats"); d_s=$(stat star_discrepancy_l2 "$T/sobol.stats")
+check "sobol's discrepancy below random's ($d_s < $d_r)" awk -v a="$d_s" -v b="$d_r" 'BEGIN {exit !(a < b / 3)}'
+"$WORKER" points sobol 6.25 --sets 4 --stats >"$T/again.stats"
+check "--stats: the same seeds, the same figures" cmp -s "$T/sobol.stats" "$T/again.stats"
+"$WORKER" points sobol 6.25 --spectrum "$T/one.png" >"$T/one.csv"
+check "--spectrum alone still prints the set" [ "$(wc -l <"$T/one.csv")" -eq 256 ]
+# bounded: too much work is refused before anything is written
+"$WORKER" points random 0.5 --spectrum "$T/big.png" >"$T/big.out" 2>"$T/big.err"; rc=$?
+check "an oversized spectrum: exit 2, the limit named, no file, no points" sh -c "[ $rc -eq 2 ] && grep -q 'limit' '$T/big.err' && [ ! -e '$T/big.png' ] && [ ! -s '$T/big.out' ]"
+"$WORKER" points random 0.3 --stats >/dev/null 2>"$T/big2.err"; rc=$?
+check "oversized --stats: exit 2 naming the point pairs" sh -c "[ $rc -eq 2 ] && grep -q 'point pairs' '$T/big2.err'"
+for v in 0 -1 x 100001; do
+    "$WORKER" points random 5 --sets "$v" --stats >/dev/null 2>"$T/sets.err"; rc=$?
+    check "--sets $v: exit 2" sh -c "[ $rc -eq 2 ] && grep -q -- '--sets' '$T/sets.err'"
+done
+"$WORKER" points random 5 --spectrum "$T/nodir/x.png" >/dev/null 2>"$T/nd.err"; rc=$?
+check "--spectrum into a missing folder: exit 2" sh -c "[ $rc -eq 2 ] && grep -q 'no folder' '$T/nd.err'"
 finish

@@ -49,6 +49,25 @@ check "light_sampling: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
 check "light_sampling error names file:line:col" grep -q "ls.yaml:3:17: light_sampling: must be" "$T/ls.err"
 check "light_sampling error writes nothing" [ ! -e "$T/bad" ]
 
+# 3b. integrator: nee renders, is recorded, traces shadow rays (more segments than the mixture's
+# for the same samples), differs from the mixture; bad values fail with file:line:col.
+for integ in mixture nee; do
+    job "name: $integ" "width: 16" "threshold: 25" "integrator: $integ"
+    "$WORKER" --quiet --out "$T/integ" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+    check "integrator: $integ renders (exit $rc)" [ "$rc" -eq 0 ]
+    check "sidecar records integrator $integ" grep -q "\"integrator\": \"$integ\"" "$T/integ/$integ/$integ.json"
+done
+segs() { sed -n '/"rays"/,/}/s/.*"total": \([0-9]*\).*/\1/p' "$1" | head -n 1; }
+check "nee traces more segments than the mixture ($(segs "$T/integ/nee/nee.json") vs $(segs "$T/integ/mixture/mixture.json"))" \
+    [ "$(segs "$T/integ/nee/nee.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
+check "nee's image differs from the mixture's" sh -c "! cmp -s '$T/integ/nee/nee.png' '$T/integ/mixture/mixture.png'"
+job "width: 16" "integrator: path"
+rm -rf "$T/bad"
+"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "integrator: path exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "integrator error names file:line:col" grep -q "ls.yaml:3:13: integrator: must be mixture or nee" "$T/ls.err"
+check "integrator error writes nothing" [ ! -e "$T/bad" ]
+
 # 4. An image texture resolves beside its scene file wherever the job runs from.
 mkdir -p "$T/elsewhere/scenes/textures" "$T/cwd"
 cp scenes/cornell.yaml "$T/elsewhere/scenes/" && cp scenes/textures/planet.png "$T/elsewhere/scenes/textures/"

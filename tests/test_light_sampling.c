@@ -1,6 +1,7 @@
-/* Unbiasedness of the light-sampling mixture: cornell-book3 rendered with light sampling on
-   (rect light + cone toward the sample: true glass sphere) and off (pure cosine / BRDF) must
-   converge to the same image. Compared region by region with a noise bound measured from
+/* Unbiasedness of the light-sampling mixture and of next-event estimation: cornell-book3
+   rendered with light sampling on (rect light + cone toward the sample: true glass sphere) and
+   off (pure cosine / BRDF) must converge to the same image, and every shipped scene rendered
+   with the mixture and with nee likewise. Compared region by region with a noise bound measured from
    independent renders; a 10% change of the light's emission must break the same bound. */
 #include <stdlib.h>
 
@@ -21,7 +22,7 @@ struct region_stats {
 /* Render the scene SIDE x SIDE RUNS times (seeds seed0, seed0 + 1, ...; 64 random samples per
    pixel, one process) and reduce it to region means over all runs and their standard errors
    (the spread of the per-run region means over sqrt(RUNS)). */
-static int render_regions(const struct scene_file *sf, int light_sampling_off, uint64_t seed0,
+static int render_regions(const struct scene_file *sf, int light_sampling_off, int nee, uint64_t seed0,
                           struct region_stats *out)
 {
     struct err e;
@@ -35,7 +36,7 @@ static int render_regions(const struct scene_file *sf, int light_sampling_off, u
     if (!pix || !light || !img || camera_init(&cam, &sf->camera, 1.0, &e) < 0)
         goto done;
     for (int k = 0; k < RUNS; k++) {
-        struct render_settings rs = {SIDE, SIDE, 50, seed0 + (uint64_t)k, light_sampling_off};
+        struct render_settings rs = {SIDE, SIDE, 50, seed0 + (uint64_t)k, light_sampling_off, nee};
         render_ctx_free(ctx);
         if (!(ctx = render_ctx_new(sf->scene, &cam, &rs, pix, light, &e)))
             goto done;
@@ -104,8 +105,8 @@ int main(void)
         return check_report("test_light_sampling");
     }
     CHECK(sf.scene->n_lights == 2); /* the rect light and the glass sphere */
-    CHECK(render_regions(&sf, 0, 1, &on) == 0);
-    CHECK(render_regions(&sf, 1, 1000, &off) == 0);
+    CHECK(render_regions(&sf, 0, 0, 1, &on) == 0);
+    CHECK(render_regions(&sf, 1, 0, 1000, &off) == 0);
     double worst;
     int apart = regions_apart(&on, &off, &worst);
     printf("light sampling on vs off: %d of %d region-channels over %g sigma, worst %.2f sigma\n", apart,
@@ -115,11 +116,30 @@ int main(void)
     for (int i = 0; i < sf.scene->n_materials; i++)
         if (sf.scene->materials[i].type == MAT_LIGHT)
             sf.scene->materials[i].emit = v3_scale(sf.scene->materials[i].emit, 0.9);
-    CHECK(render_regions(&sf, 0, 2000, &dim) == 0);
+    CHECK(render_regions(&sf, 0, 0, 2000, &dim) == 0);
     int dim_apart = regions_apart(&on, &dim, &worst);
     printf("light 10%% dimmer: %d of %d region-channels over %g sigma, worst %.2f sigma\n", dim_apart,
            NREG * NREG * 3, K_SIGMA, worst);
     CHECK(dim_apart >= NREG * NREG * 3 / 4);
     scene_file_free(&sf);
+    /* next-event estimation with MIS against the mixture, scene by scene */
+    static const char *const scenes[] = {"checker", "cornell", "cornell-book3", "final"};
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[64];
+        snprintf(path, sizeof path, "scenes/%s.yaml", scenes[i]);
+        if (scene_load(path, &sf, &e) < 0) {
+            fprintf(stderr, "%s:%d: %s\n", e.file, e.line, e.msg);
+            CHECK(0);
+            continue;
+        }
+        static struct region_stats mix, nee;
+        CHECK(render_regions(&sf, 0, 0, 3000, &mix) == 0);
+        CHECK(render_regions(&sf, 0, 1, 4000, &nee) == 0);
+        apart = regions_apart(&mix, &nee, &worst);
+        printf("%s: mixture vs nee: %d of %d region-channels over %g sigma, worst %.2f sigma\n", scenes[i],
+               apart, NREG * NREG * 3, K_SIGMA, worst);
+        CHECK(apart == 0);
+        scene_file_free(&sf);
+    }
     return check_report("test_light_sampling");
 }

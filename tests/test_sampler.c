@@ -81,12 +81,14 @@ static double max_gap(const struct pt2 *p, size_t n, int probes, int torus)
 
 static void test_names_and_sizes(void)
 {
-    const char *names[] = {"uniform", "jitter", "random", "poisson"};
-    for (int k = 0; k < 4; k++) {
+    const char *names[] = {"uniform", "jitter", "random", "poisson", "sobol"};
+    for (int k = 0; k < 5; k++) {
         enum sampler_kind kind;
         CHECK(sampler_kind_parse(names[k], &kind) == 0 && (int)kind == k);
         CHECK(strcmp(sampler_kind_name(kind), names[k]) == 0);
+        CHECK(strcmp(sampler_kind_names()[k], names[k]) == 0);
     }
+    CHECK(sampler_kind_names()[5] == NULL);
     enum sampler_kind kind = SAMPLER_RANDOM;
     CHECK(sampler_kind_parse("foo", &kind) == -1 && kind == SAMPLER_RANDOM);
     CHECK(sampler_kind_parse("Poisson", &kind) == -1);

@@ -71,11 +71,9 @@ int main(void)
         enum sampler_kind kind;
         double t;
         int pool;
-    } cfg[] = {{"uniform", SAMPLER_UNIFORM, 10, 0},
-               {"jitter", SAMPLER_JITTER, 10, 0},
-               {"random", SAMPLER_RANDOM, 10, 0},
-               {"poisson", SAMPLER_POISSON, 8, 0},
-               {"poisson+pool", SAMPLER_POISSON, 8, 16}};
+    } cfg[] = {{"uniform", SAMPLER_UNIFORM, 10, 0},      {"jitter", SAMPLER_JITTER, 10, 0},
+               {"random", SAMPLER_RANDOM, 10, 0},        {"poisson", SAMPLER_POISSON, 8, 0},
+               {"poisson+pool", SAMPLER_POISSON, 8, 16}, {"sobol", SAMPLER_SOBOL, 10, 0}};
     for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
         double sum[2] = {0, 0}, sum2[2] = {0, 0};
         for (int s = 0; s < SEEDS; s++) {

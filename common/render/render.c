@@ -16,10 +16,11 @@
    interaction is path_scatter (render_path.h), which the packet's lanes (render_lanes.c) share;
    inline, with mix and last made once per pixel. */
 static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng,
-                                                        uint64_t *rays, int mix, int last)
+                                                        uint64_t *rays, int mix, int nee, int last)
 {
     const struct scene *sc = ctx->sc;
     vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
+    double mis_pdf = 0;
     for (int depth = 0; depth <= last; depth++) {
         struct hit h;
         ++*rays;
@@ -27,7 +28,7 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, 1))
+        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, 1))
             break;
     }
     return L;
@@ -53,14 +54,18 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     double sum[3] = {0, 0, 0};
     size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
-    const int mix = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    const int nee = lights && ctx->rs.nee, mix = lights && !nee;
     if (ctx->packet) {
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, last, sum, &kept, &nonfinite, &rays);
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, last, sum, &kept, &nonfinite, &rays);
     } else {
+        /* nee a constant in each loop: the mixture's inlined trace holds none of nee's code */
         for (size_t s = 0; s < n; s++) {
             struct pt2 p = ctx->pixel_pts[s];
             ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-            add_estimate(trace(ctx, &r, &path_rng, &rays, mix, last), sum, &kept, &nonfinite);
+            vec3 c = nee ? trace(ctx, &r, &path_rng, &rays, 0, 1, last)
+                         : trace(ctx, &r, &path_rng, &rays, mix, 0, last);
+            add_estimate(c, sum, &kept, &nonfinite);
         }
     }
     double inv = kept ? 1.0 / kept : 0;

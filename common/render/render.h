@@ -13,6 +13,7 @@ struct render_settings {
     int max_depth;
     uint64_t seed;
     int light_sampling_off; /* 1: scatter by the material alone (cosine / phase); lights still emit */
+    int nee; /* 1: next-event estimation with MIS at every diffuse or medium vertex; 0: the books' mixture */
 };
 
 /* Counters one process accumulates; summed by the parent. */

@@ -11,6 +11,7 @@
 struct path {
     ray r;
     vec3 beta, L;
+    double mis_pdf; /* next-event estimation's: the last scatter's pdf (path_scatter_as) */
     int depth;
     struct rng rng;
 };
@@ -20,13 +21,15 @@ struct path {
    scene has lights sampled; last: the last segment's depth (max_depth - 1). trace's loop body:
    both are path_scatter (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       struct hit *h, int mix, int last)
+                                                       struct hit *h, int mix, int nee, int last,
+                                                       uint64_t *rays)
 {
     if (!got) {
         pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
         return 0;
     }
-    return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix);
+    return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix, nee,
+                        &pt->mis_pdf, rays);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
@@ -45,12 +48,16 @@ static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, in
     pt->r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &pt->rng);
     pt->beta = v3(1, 1, 1);
     pt->L = v3(0, 0, 0);
+    pt->mis_pdf = 0;
     pt->depth = 0;
 }
 
-/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). */
-void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). Inline
+   into the two callers below, nee a constant in each: the mixture's code holds none of nee's. */
+static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
+                                                            const struct rng *base, int mix, int nee,
+                                                            int last, double sum[3], size_t *kept,
+                                                            uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES];
@@ -85,7 +92,7 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const s
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, last))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, last, &acc_rays))
                 continue;
             add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
             if (next < n)
@@ -99,4 +106,20 @@ void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const s
     *kept += acc_kept;
     *nonfinite += acc_nonfinite;
     *rays += acc_rays;
+}
+
+static __attribute__((noinline)) void lanes_nee(struct render_ctx *ctx, int x, int y, size_t n,
+                                                const struct rng *base, int last, double sum[3], size_t *kept,
+                                                uint64_t *nonfinite, uint64_t *rays)
+{
+    lanes_run(ctx, x, y, n, base, 0, 1, last, sum, kept, nonfinite, rays);
+}
+
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
+                         int nee, int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+{
+    if (nee)
+        lanes_nee(ctx, x, y, n, base, last, sum, kept, nonfinite, rays);
+    else
+        lanes_run(ctx, x, y, n, base, mix, 0, last, sum, kept, nonfinite, rays);
 }

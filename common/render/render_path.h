@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "render_internal.h"
+#include "geom/bvh.h"
 #include "geom/shape_light_inline.h"
 #include "geom/texture.h"
 
@@ -125,8 +126,9 @@ static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
     }
 }
 
-/* Cosine-weighted direction about n (Malley's method). */
-static __attribute__((unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
+/* Cosine-weighted direction about n (Malley's method). Always inline: with nee's call beside the
+   mixture's GCC kept it out of line, +2% of cornell-book3's instructions. */
+static inline __attribute__((always_inline, unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
 {
     double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
     v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
@@ -209,20 +211,63 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
     ++*kept;
 }
 
+/* Next-event estimation at a scattering vertex h (diffuse surface or medium), before its own
+   scatter: one light point from the light sampler's sets, a shadow ray toward it, and the
+   emission it reaches weighted by the power heuristic against the material's own sampling
+   (Veach 1997, ch. 9). f is the scattering function times the cosine (or the phase), bsdf_pdf
+   the material's pdf for that direction; both per the direction, so given as closures over h:
+   lambertian (cosine / pi) when phase is 0, else the isotropic phase. The light strategy's pdf
+   is the lights' mixture (every light chosen alike), so an emitter the shadow ray reaches first
+   counts whichever light was chosen. */
+static inline __attribute__((always_inline)) void path_next_event(struct render_ctx *ctx, const ray *r,
+                                                                  vec3 beta, vec3 *L, struct rng *rng,
+                                                                  const struct hit *h, vec3 albedo,
+                                                                  double phase, uint64_t *rays)
+{
+    const struct scene *sc = ctx->sc;
+    int light = -1;
+    double light_pdf = 0;
+    vec3 dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+    double f_pdf; /* the material's pdf for dir, which is also its f times cosine / albedo */
+    if (phase > 0) {
+        f_pdf = phase;
+    } else {
+        double cosine = v3_dot(dir, h->n);
+        if (!(cosine > 0))
+            return;
+        f_pdf = cosine / PI;
+    }
+    double pl = lights_pdf(sc, h->p, dir, light, light_pdf);
+    if (!(pl > 0))
+        return;
+    ray shadow = {h->p, dir, r->time};
+    struct hit sh;
+    ++*rays;
+    if (!bvh_hit(sc, &shadow, HIT_EPS, DBL_MAX, &sh))
+        return;
+    const struct material *lm = ctx->prim_material[sh.prim];
+    if (lm->type != MAT_LIGHT || !sh.front)
+        return;
+    double w = pl * pl / (pl * pl + f_pdf * f_pdf);
+    *L = v3_add(*L, v3_mul(v3_mul(beta, albedo), v3_scale(lm->emit, f_pdf * w / pl)));
+}
+
 /* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
    lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
    (*L is then its estimate). at_last: this is the last segment, where only a light's emission
    counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
-   mix: the scene's lights are sampled; media_inline: a medium's scatter (its uniform direction
-   and mixture pdf) inline, as a surface's (path_scatter_as from trace: final's fog scatters on
-   most paths), else through calls (path_scatter, for the lanes, whose scenes
-   hold no media: inline in the lanes it cost checker ~1% and cornell-book3 7 instructions a
-   sample by the code it moved). Always inline: the caller's ray, weight and radiance stay in
-   its registers (a texture's lookup reads h through a copy). */
-static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
-                                                                 vec3 *L, struct rng *rng,
-                                                                 const struct hit *h, int at_last, int mix,
-                                                                 int media_inline)
+   mix: the scene's lights are sampled by the books' pdf mixture; nee (instead of mix): by
+   next-event estimation with MIS, *mis_pdf carrying the last scatter's pdf (0 after the camera
+   or a mirror or glass: its emission then counts whole) and *rays counting the shadow rays;
+   media_inline: a medium's scatter (its uniform direction and mixture pdf) inline, as a
+   surface's (path_scatter_as from trace: final's fog scatters on most paths), else through calls
+   (path_scatter, for the lanes, whose scenes hold no media: inline in the lanes it cost checker
+   ~1% and cornell-book3 7 instructions a sample by the code it moved). Always inline: the
+   caller's ray, weight and radiance stay in its registers (a texture's lookup reads h through a
+   copy). */
+static inline __attribute__((always_inline)) int
+path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng *rng, const struct hit *h,
+                int at_last, int mix, int nee, double *mis_pdf, uint64_t *rays, int media_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -231,6 +276,18 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
     vec3 dir;
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
+        if (nee) {
+            path_next_event(ctx, r, *beta, L, rng, h, albedo, 0, rays);
+            onb frame = onb_from_w(h->n);
+            dir = cosine_direction(&frame, rng);
+            double cosine = v3_dot(dir, h->n);
+            if (!(cosine > 0))
+                return 0;
+            *mis_pdf = cosine / PI;
+            *beta = v3_mul(*beta, albedo);
+            *r = (ray){h->p, dir, r->time};
+            return 1;
+        }
         int light = -1;
         double light_pdf = 0;
         if (mix && rng_u32(rng) >> 31) {
@@ -253,8 +310,14 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
     }
     switch (m->type) {
     case MAT_LIGHT:
-        if (h->front)
+        if (!h->front)
+            return 0;
+        if (nee && *mis_pdf > 0) { /* reached by a scatter that next-event estimation also sampled */
+            double pl = lights_pdf(sc, r->orig, r->dir, -1, 0), pb = *mis_pdf;
+            *L = v3_add(*L, v3_mul(*beta, v3_scale(m->emit, pb * pb / (pb * pb + pl * pl))));
+        } else {
             *L = v3_add(*L, v3_mul(*beta, m->emit));
+        }
         return 0;
     case MAT_METAL:
         dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
@@ -262,6 +325,8 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
             return 0;
         *beta = v3_mul(*beta, m->albedo);
         *r = (ray){h->p, dir, r->time};
+        if (nee) /* a specular bounce: the emission it reaches counts whole */
+            *mis_pdf = 0;
         return 1;
     case MAT_DIELECTRIC: {
         vec3 unit_dir = v3_unit(r->dir);
@@ -272,13 +337,19 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
                   ? v3_reflect(unit_dir, h->n)
                   : v3_refract(unit_dir, h->n, ratio);
         *r = (ray){h->p, dir, r->time};
+        if (nee) /* a specular bounce: the emission it reaches counts whole */
+            *mis_pdf = 0;
         return 1;
     }
     default: { /* MAT_ISOTROPIC */
         vec3 albedo = surface_albedo(sc, m, h);
         const double phase = 1 / (4 * PI);
         double pdf = phase;
-        if (mix) {
+        if (nee) {
+            path_next_event(ctx, r, *beta, L, rng, h, albedo, phase, rays);
+            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
+            *mis_pdf = phase;
+        } else if (mix) {
             int light = -1;
             double light_pdf = 0;
             dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
@@ -300,9 +371,10 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
 /* path_scatter_as with a medium's scatter through calls. */
 static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
                                                               vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix)
+                                                              int at_last, int mix, int nee, double *mis_pdf,
+                                                              uint64_t *rays)
 {
-    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, 0);
+    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, nee, mis_pdf, rays, 0);
 }
 
 #endif

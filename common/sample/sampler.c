@@ -1,7 +1,9 @@
-/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk). */
+/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk, Owen-scrambled
+   Sobol). */
 #include "sampler.h"
 
 #include "poisson.h"
+#include "sobol.h"
 #include "base/vec3.h"
 
 #include <math.h>
@@ -28,11 +30,12 @@ struct sampler {
     size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
 };
 
-static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson"};
+static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson", "sobol", NULL};
+#define KIND_COUNT ((int)(sizeof kind_names / sizeof kind_names[0]) - 1)
 
 int sampler_kind_parse(const char *name, enum sampler_kind *out)
 {
-    for (int i = 0; i < (int)(sizeof kind_names / sizeof kind_names[0]); i++) {
+    for (int i = 0; i < KIND_COUNT; i++) {
         if (name && strcmp(name, kind_names[i]) == 0) {
             *out = (enum sampler_kind)i;
             return 0;
@@ -43,9 +46,14 @@ int sampler_kind_parse(const char *name, enum sampler_kind *out)
 
 const char *sampler_kind_name(enum sampler_kind kind)
 {
-    if ((int)kind < 0 || (int)kind >= (int)(sizeof kind_names / sizeof kind_names[0]))
+    if ((int)kind < 0 || (int)kind >= KIND_COUNT)
         return "unknown";
     return kind_names[kind];
+}
+
+const char *const *sampler_kind_names(void)
+{
+    return kind_names;
 }
 
 static int threshold_valid(double threshold)
@@ -125,7 +133,7 @@ enum sampler_kind sampler_kind_of(const struct sampler *s)
 
 uint32_t sampler_cells(const struct sampler *s)
 {
-    return s->kind == SAMPLER_POISSON ? 0 : (uint32_t)s->capacity;
+    return s->kind == SAMPLER_POISSON || s->kind == SAMPLER_SOBOL ? 0 : (uint32_t)s->capacity;
 }
 
 struct sampler_grid sampler_grid_of(const struct sampler *s)
@@ -166,6 +174,12 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
             rng_uniform_pair(rng, &u, &v);
             out[count++] = (struct pt2){u, v};
         }
+        return count;
+    case SAMPLER_SOBOL:
+        /* the first n * n points of a sequence scrambled for this set: a (0,2)-net when n * n is a
+           power of two, a net's prefix otherwise (sobol.h) */
+        count = (size_t)n * (size_t)n;
+        sobol_fill(sobol_seeds_draw(rng), count, out);
         return count;
     case SAMPLER_POISSON:
         break;
@@ -246,7 +260,7 @@ fail:
 struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
                             struct err *e)
 {
-    if ((int)kind < SAMPLER_UNIFORM || (int)kind > SAMPLER_POISSON) {
+    if ((int)kind < SAMPLER_UNIFORM || (int)kind > SAMPLER_SOBOL) {
         err_set(e, NULL, 0, 0, "sampler: unknown kind %d", (int)kind);
         return NULL;
     }

@@ -1,4 +1,5 @@
-/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk). */
+/* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk, Owen-scrambled
+   Sobol). */
 #ifndef SAMPLER_H
 #define SAMPLER_H
 
@@ -13,7 +14,7 @@ struct pt2 {
     double x, y;
 };
 
-enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON };
+enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON, SAMPLER_SOBOL };
 
 /* Largest set a job may ask for, per pixel or per light draw. */
 #define SAMPLER_MAX_POINTS 4000000
@@ -21,12 +22,15 @@ enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POI
 /* Name <-> kind. parse returns 0, or -1 for an unknown name. */
 int sampler_kind_parse(const char *name, enum sampler_kind *out);
 const char *sampler_kind_name(enum sampler_kind kind);
+/* Every kind's name in enum order, then NULL (for "did you mean" and usage lines). */
+const char *const *sampler_kind_names(void);
 
-/* n = floor(100 / threshold): the grid side of uniform/jitter/random. */
+/* n = floor(100 / threshold): the grid side of uniform/jitter/random; sobol draws n * n points. */
 int sampler_grid_side(double threshold);
 
 /* Upper bound on the size of one set of (kind, threshold): n*n for the grid kinds, the
-   background-grid cell count for poisson. Fits in size_t for any threshold in (0, 100]. */
+   background-grid cell count for poisson, n*n points for sobol. Fits in size_t for any threshold in (0, 100].
+ */
 size_t sampler_capacity(enum sampler_kind kind, double threshold);
 
 struct sampler;
@@ -48,7 +52,7 @@ enum sampler_kind sampler_kind_of(const struct sampler *s);
    of it (a light's points within one pixel). A uniform, jitter or random set has one point per
    cell of an n x n grid, and that point depends on its cell alone (random: on nothing), so it
    can be made when taken instead of drawing the whole set: sampler_cells is n * n (0 for
-   poisson, whose sets must be drawn whole), and sampler_cell_point makes cell c's point,
+   poisson and sobol, whose sets are drawn whole), and sampler_cell_point makes cell c's point,
    distributed exactly as in sampler_draw's set. */
 uint32_t sampler_cells(const struct sampler *s);
 struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng);

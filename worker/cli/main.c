@@ -30,6 +30,7 @@ static const char usage[] =
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
     "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
+    "              [--sets M] [--spectrum F.png] [--radial F.svg] [--stats]  and its spectrum, statistics\n"
     "       worker --help | --version\n"
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
     "         --force (render even when the outputs are current)\n"

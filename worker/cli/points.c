@@ -1,4 +1,5 @@
-/* points: `worker points SAMPLER THRESHOLD [--seed S] [--svg F]`, one sample set as CSV / SVG. */
+/* points: `worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] [--spectrum F.png]
+   [--radial F.svg] [--stats]`: one sample set as CSV / SVG, and its spectrum and statistics. */
 #include "points.h"
 
 #include <errno.h>
@@ -13,16 +14,23 @@
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/rng.h"
+#include "points_analysis.h"
 #include "sample/sampler.h"
 #include "scenefile/yamlx.h"
 
-static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--svg F]\n";
+static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] "
+                                   "[--spectrum F.png] [--radial F.svg] "
+                                   "[--stats]\n";
+
+/* Most sets --sets may average (the work limits bound them further). */
+#define POINTS_MAX_SETS 100000
 
 struct points_args {
     enum sampler_kind kind;
     double threshold;
     uint64_t seed;
     const char *svg_path; /* NULL: no picture */
+    struct points_analysis an;
 };
 
 /* A whole decimal number in [0, 2^64 - 1]: no sign, no trailing garbage. */
@@ -39,10 +47,10 @@ static int parse_seed(const char *s, uint64_t *out)
     return 0;
 }
 
-/* Whether the --svg file can go where it is named (its folder exists and is writable, and it is not
+/* Whether the file of option opt can go where it is named (its folder exists and is writable, and it is not
    a folder itself): 0, or 2 after one line on stderr. Bad usage, found before anything is drawn; a
    write that fails later (a full disk) is exit 1. */
-static int svg_place_ok(const char *path)
+static int place_ok(const char *opt, const char *path)
 {
     if (!path)
         return 0;
@@ -56,18 +64,25 @@ static int svg_place_ok(const char *path)
         snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
     struct stat st;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        err_print("worker points: --svg %s: is a directory\n", path);
+        err_print("worker points: %s %s: is a directory\n", opt, path);
         return 2;
     }
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        err_print("worker points: --svg %s: no folder %s\n", path, dir);
+        err_print("worker points: %s %s: no folder %s\n", opt, path, dir);
         return 2;
     }
     if (access(dir, W_OK | X_OK) != 0) {
-        err_print("worker points: --svg %s: cannot write in %s: %s\n", path, dir, strerror(errno));
+        err_print("worker points: %s %s: cannot write in %s: %s\n", opt, path, dir, strerror(errno));
         return 2;
     }
     return 0;
+}
+
+/* Whether arg is option name, alone or as name=value. */
+static int file_option(const char *arg, const char *name)
+{
+    const size_t len = strlen(name);
+    return !strncmp(arg, name, len) && (arg[len] == '\0' || arg[len] == '=');
 }
 
 /* Fill a from argv. Returns 0, or the exit status after one line on stderr; --help prints the
@@ -79,6 +94,7 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     *done = 0;
     a->seed = 1;
     a->svg_path = NULL;
+    a->an = (struct points_analysis){NULL, NULL, 0, 1, 1, 0};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
@@ -95,13 +111,33 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                 err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
                 return 2;
             }
-        } else if (!strcmp(arg, "--svg") || !strncmp(arg, "--svg=", 6)) {
-            const char *v = arg[5] == '=' ? arg + 6 : (i + 1 < argc ? argv[++i] : NULL);
-            if (!v || !*v) {
-                err_print("worker points: --svg needs a file name; %s", points_usage);
+        } else if (!strcmp(arg, "--sets") || !strncmp(arg, "--sets=", 7)) {
+            const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
+            uint64_t m;
+            if (!v) {
+                err_print("worker points: --sets needs a value; %s", points_usage);
                 return 2;
             }
-            a->svg_path = v;
+            if (parse_seed(v, &m) < 0 || m < 1 || m > POINTS_MAX_SETS) {
+                err_print("worker points: --sets: must be a whole number in [1, %d], got \"%.40s\"\n",
+                          POINTS_MAX_SETS, v);
+                return 2;
+            }
+            a->an.sets = (int)m;
+        } else if (file_option(arg, "--svg") || file_option(arg, "--spectrum") ||
+                   file_option(arg, "--radial")) {
+            const size_t len = strcspn(arg, "=");
+            const char *v = arg[len] == '=' ? arg + len + 1 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || !*v) {
+                err_print("worker points: %.*s needs a file name; %s", (int)len, arg, points_usage);
+                return 2;
+            }
+            const char **slot = !strncmp(arg, "--svg", len)        ? &a->svg_path
+                                : !strncmp(arg, "--spectrum", len) ? &a->an.spectrum_path
+                                                                   : &a->an.radial_path;
+            *slot = v;
+        } else if (!strcmp(arg, "--stats")) {
+            a->an.stats = 1;
         } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
             continue; /* a common option; points draws no progress anyway */
         } else if (arg[0] == '-' && arg[1] == '-') {
@@ -118,15 +154,15 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         err_print("worker points: expected a sampler and a threshold; %s", points_usage);
         return 2;
     }
-    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
-    const char *near = ystr_nearest(positional[0], names, -1);
+    const char *near = ystr_nearest(positional[0], sampler_kind_names(), -1);
     if (sampler_kind_parse(positional[0], &a->kind) < 0 && near) {
         err_print("worker points: unknown sampler \"%.40s\" (did you mean \"%s\"?)\n", positional[0], near);
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
-        err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)\n",
-                  positional[0]);
+        err_print(
+            "worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson or sobol)\n",
+            positional[0]);
         return 2;
     }
     char *end;
@@ -139,7 +175,21 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }
-    return svg_place_ok(a->svg_path);
+    if (a->seed > UINT64_MAX - (uint64_t)(a->an.sets - 1)) {
+        err_print("worker points: --seed %llu with --sets %d runs past the largest seed\n",
+                  (unsigned long long)a->seed, a->an.sets);
+        return 2;
+    }
+    a->an.seed = a->seed;
+    a->an.threshold = a->threshold;
+    int rc = 0;
+    if (a->svg_path)
+        rc = place_ok("--svg", a->svg_path);
+    if (!rc && a->an.spectrum_path)
+        rc = place_ok("--spectrum", a->an.spectrum_path);
+    if (!rc && a->an.radial_path)
+        rc = place_ok("--radial", a->an.radial_path);
+    return rc;
 }
 
 /* %.6f of v in [0, 1), never rounded up to "1.000000". */
@@ -206,16 +256,15 @@ int points_main(int argc, char **argv)
     struct rng rng;
     rng_seed(&rng, a.seed, 0);
     size_t n = sampler_draw(s, &rng, p);
-    sampler_free(s);
 
-    rc = 0;
-    if (a.svg_path && write_svg(a.svg_path, &a, p, n, &e) != 0) {
+    rc = points_analysis_check(&a.an, n);
+    if (rc == 0 && a.svg_path && write_svg(a.svg_path, &a, p, n, &e) != 0) {
         char line[2048];
         err_format(&e, line, sizeof line);
         err_print("worker points: %s\n", line);
         rc = 1;
     }
-    if (rc == 0) { /* one "x,y" line per point, nothing else: a line count is the set's size */
+    if (rc == 0 && !a.an.stats) { /* one "x,y" line per point, nothing else: a line count is the set's size */
         for (size_t k = 0; k < n; k++)
             printf("%.6f,%.6f\n", shown(p[k].x), shown(p[k].y));
         if (fflush(stdout) != 0 || ferror(stdout)) {
@@ -223,6 +272,9 @@ int points_main(int argc, char **argv)
             rc = 1;
         }
     }
+    if (rc == 0 && points_analysis_wanted(&a.an))
+        rc = points_analysis_run(&a.an, s, p);
+    sampler_free(s);
     free(p);
     return rc;
 }

@@ -17,9 +17,10 @@
 #include "scenefile/yget.h"
 
 const char *const job_keys[] = {
-    "name",          "scene",           "width",        "height",         "sampler",   "threshold",
-    "light_sampler", "light_threshold", "max_depth",    "seed",           "processes", "format",
-    "output",        "reference",       "poisson_pool", "light_sampling", "priority",  NULL};
+    "name",           "scene",         "width",           "height",    "sampler",
+    "threshold",      "light_sampler", "light_threshold", "max_depth", "seed",
+    "processes",      "format",        "output",          "reference", "poisson_pool",
+    "light_sampling", "priority",      "integrator",      NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
 {
@@ -147,13 +148,13 @@ static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sam
     const char *s;
     if (yget_string(d, v, key, &s, e) < 0)
         return -1;
-    static const char *const names[] = {"uniform", "jitter", "random", "poisson", NULL};
-    const char *near = ystr_nearest(s, names, -1);
+    const char *near = ystr_nearest(s, sampler_kind_names(), -1);
     if (sampler_kind_parse(s, out) < 0 && near)
         return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
     if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(
-            d, v, e, "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random or poisson)", key, s);
+        return ydoc_fail(d, v, e,
+                         "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson or sobol)",
+                         key, s);
     return 0;
 }
 
@@ -262,6 +263,12 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         j->poisson_pool = (int)n;
     } else if (!strcmp(k, "light_sampling")) {
         return yget_bool(d, v, k, &j->light_sampling, e);
+    } else if (!strcmp(k, "integrator")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (strcmp(s, "mixture") && strcmp(s, "nee"))
+            return ydoc_fail(d, v, e, "integrator: must be mixture or nee, got \"%.40s\"", s);
+        j->nee = !strcmp(s, "nee");
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
