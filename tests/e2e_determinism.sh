@@ -27,12 +27,15 @@ fi
 build scalar OPT=-O0 SIMD=0 && builds="$builds scalar"
 
 bin_of() { [ "$1" = default ] && echo "$WORKER" || echo "$root/build/det-$1/bin/worker"; }
-samplers="uniform jitter random poisson sobol"
+# every pixel sampler with the defaults; then next-event estimation with every dimension sampled
+# (sobol and poisson sets for all of a path's decisions)
+samplers="uniform jitter random poisson sobol sobol-nee poisson-nee"
 for scene in checker cornell cornell-book3 final; do
     for s in $samplers; do
         j=$scene-$s
         printf 'name: %s\nscene: %s/scenes/%s.yaml\nwidth: 20\nheight: 20\nsampler: %s\nthreshold: 25\nlight_threshold: 20\n' \
-            "$j" "$root" "$scene" "$s" >"$T/$j.yaml"
+            "$j" "$root" "$scene" "${s%-nee}" >"$T/$j.yaml"
+        case $s in *-nee) printf 'integrator: nee\nsampler_dims: all\n' >>"$T/$j.yaml" ;; esac
         for b in $builds; do
             for n in 1 3; do
                 [ "$b" != default ] && [ "$n" = 3 ] && [ "$b" != clang ] && continue

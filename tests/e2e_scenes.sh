@@ -61,6 +61,18 @@ segs() { sed -n '/"rays"/,/}/s/.*"total": \([0-9]*\).*/\1/p' "$1" | head -n 1; }
 check "nee traces more segments than the mixture ($(segs "$T/integ/nee/nee.json") vs $(segs "$T/integ/mixture/mixture.json"))" \
     [ "$(segs "$T/integ/nee/nee.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
 check "nee's image differs from the mixture's" sh -c "! cmp -s '$T/integ/nee/nee.png' '$T/integ/mixture/mixture.png'"
+for dims in pixel_light all; do
+    job "name: d-$dims" "width: 16" "threshold: 25" "sampler: jitter" "sampler_dims: $dims"
+    "$WORKER" --quiet --out "$T/dims" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+    check "sampler_dims: $dims renders (exit $rc)" [ "$rc" -eq 0 ]
+    check "sidecar records sampler_dims $dims" grep -q "\"sampler_dims\": \"$dims\"" "$T/dims/d-$dims/d-$dims.json"
+done
+check "sampler_dims: all's image differs from pixel_light's" \
+    sh -c "! cmp -s '$T/dims/d-all/d-all.png' '$T/dims/d-pixel_light/d-pixel_light.png'"
+job "width: 16" "sampler_dims: every"
+"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "sampler_dims: every exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "sampler_dims error names file:line:col" grep -q "ls.yaml:3:15: sampler_dims: must be pixel_light or all" "$T/ls.err"
 job "width: 16" "integrator: path"
 rm -rf "$T/bad"
 "$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?

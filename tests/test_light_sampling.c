@@ -22,12 +22,12 @@ struct region_stats {
 /* Render the scene SIDE x SIDE RUNS times (seeds seed0, seed0 + 1, ...; 64 random samples per
    pixel, one process) and reduce it to region means over all runs and their standard errors
    (the spread of the per-run region means over sqrt(RUNS)). */
-static int render_regions(const struct scene_file *sf, int light_sampling_off, int nee, uint64_t seed0,
-                          struct region_stats *out)
+static int render_regions_as(const struct scene_file *sf, int light_sampling_off, int nee, int dims_all,
+                             enum sampler_kind pixel_kind, uint64_t seed0, struct region_stats *out)
 {
     struct err e;
     struct camera cam;
-    struct sampler *pix = sampler_new(SAMPLER_RANDOM, 12.5, 0, 0, &e);
+    struct sampler *pix = sampler_new(pixel_kind, 12.5, 0, 0, &e);
     struct sampler *light = sampler_new(SAMPLER_RANDOM, 10, 0, 0, &e);
     struct render_ctx *ctx = NULL;
     float *img = malloc(sizeof(float) * 3 * SIDE * SIDE);
@@ -36,7 +36,7 @@ static int render_regions(const struct scene_file *sf, int light_sampling_off, i
     if (!pix || !light || !img || camera_init(&cam, &sf->camera, 1.0, &e) < 0)
         goto done;
     for (int k = 0; k < RUNS; k++) {
-        struct render_settings rs = {SIDE, SIDE, 50, seed0 + (uint64_t)k, light_sampling_off, nee};
+        struct render_settings rs = {SIDE, SIDE, 50, seed0 + (uint64_t)k, light_sampling_off, nee, dims_all};
         render_ctx_free(ctx);
         if (!(ctx = render_ctx_new(sf->scene, &cam, &rs, pix, light, &e)))
             goto done;
@@ -74,6 +74,12 @@ done:
     sampler_free(light);
     free(img);
     return rc;
+}
+
+static int render_regions(const struct scene_file *sf, int light_sampling_off, int nee, uint64_t seed0,
+                          struct region_stats *out)
+{
+    return render_regions_as(sf, light_sampling_off, nee, 0, SAMPLER_RANDOM, seed0, out);
 }
 
 /* Regions (of NREG^2 x 3 channels) whose means differ by more than K_SIGMA combined errors;
@@ -132,13 +138,23 @@ int main(void)
             CHECK(0);
             continue;
         }
-        static struct region_stats mix, nee;
+        static struct region_stats mix, nee, all;
         CHECK(render_regions(&sf, 0, 0, 3000, &mix) == 0);
         CHECK(render_regions(&sf, 0, 1, 4000, &nee) == 0);
         apart = regions_apart(&mix, &nee, &worst);
         printf("%s: mixture vs nee: %d of %d region-channels over %g sigma, worst %.2f sigma\n", scenes[i],
                apart, NREG * NREG * 3, K_SIGMA, worst);
         CHECK(apart == 0);
+        /* sampler_dims: all, every decision from jittered sets, with either integrator */
+        for (int integ = 0; integ < 2; integ++) {
+            CHECK(render_regions_as(&sf, 0, integ, 1, SAMPLER_JITTER, 5000 + 1000 * (uint64_t)integ, &all) ==
+                  0);
+            apart = regions_apart(&mix, &all, &worst);
+            printf("%s: mixture vs %s, sampler_dims all: %d of %d region-channels over %g sigma, worst %.2f "
+                   "sigma\n",
+                   scenes[i], integ ? "nee" : "mixture", apart, NREG * NREG * 3, K_SIGMA, worst);
+            CHECK(apart == 0);
+        }
         scene_file_free(&sf);
     }
     return check_report("test_light_sampling");

@@ -16,7 +16,8 @@
    interaction is path_scatter (render_path.h), which the packet's lanes (render_lanes.c) share;
    inline, with mix and last made once per pixel. */
 static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng,
-                                                        uint64_t *rays, int mix, int nee, int last)
+                                                        uint64_t *rays, int mix, int nee, int dims,
+                                                        uint32_t sample, int last)
 {
     const struct scene *sc = ctx->sc;
     vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
@@ -28,7 +29,8 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, 1))
+        const struct path_at at = {dims, depth, sample};
+        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, at, 1))
             break;
     }
     return L;
@@ -55,16 +57,28 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
     const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
-    const int nee = lights && ctx->rs.nee, mix = lights && !nee;
+    const int nee = lights && ctx->rs.nee, mix = lights && !nee, dims = ctx->rs.dims_all;
+    if (dims) {
+        ctx->px = x, ctx->py = y, ctx->dims_n = n;
+        ctx->dims_pixel++;
+    }
     if (ctx->packet) {
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, last, sum, &kept, &nonfinite, &rays);
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &kept, &nonfinite, &rays);
     } else {
-        /* nee a constant in each loop: the mixture's inlined trace holds none of nee's code */
+        /* nee and dims constants in the default loop: the mixture's inlined trace holds none of
+           their code */
         for (size_t s = 0; s < n; s++) {
             struct pt2 p = ctx->pixel_pts[s];
-            ray r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &path_rng);
-            vec3 c = nee ? trace(ctx, &r, &path_rng, &rays, 0, 1, last)
-                         : trace(ctx, &r, &path_rng, &rays, mix, 0, last);
+            const double u = (x + p.x) / w, v = (hgt - y - p.y) / hgt;
+            vec3 c;
+            if (nee || dims) {
+                ray r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s)
+                             : camera_ray(ctx->cam, u, v, &path_rng);
+                c = trace(ctx, &r, &path_rng, &rays, mix, nee, dims, (uint32_t)s, last);
+            } else {
+                ray r = camera_ray(ctx->cam, u, v, &path_rng);
+                c = trace(ctx, &r, &path_rng, &rays, mix, 0, 0, 0, last);
+            }
             add_estimate(c, sum, &kept, &nonfinite);
         }
     }

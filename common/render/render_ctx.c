@@ -50,6 +50,8 @@ void render_ctx_free(struct render_ctx *ctx)
     free(ctx->prim_material);
     packet_scene_free(ctx->packet);
     free(ctx->pixel_pts);
+    free(ctx->dims_pts);
+    free(ctx->dims_gen);
     free(ctx);
 }
 
@@ -72,6 +74,10 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
         goto fail;
     if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
         goto fail;
+    if (rs->dims_all && render_dims_init(ctx, e) < 0) {
+        render_ctx_free(ctx);
+        return NULL;
+    }
     for (int i = 0; i < sc->n_prims; i++)
         ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
     if (light) {

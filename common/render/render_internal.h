@@ -19,6 +19,13 @@ struct light_points {
     int uses_points; /* shape_light_uses_points of the light, looked up once */
 };
 
+/* sampler_dims: all: the sets' slots. Two for the camera (lens point; shutter time in x), then
+   per bounce the scatter direction, the light point and (the mixture's or glass's coin in x,
+   the light's choice in y). */
+#define DIMS_CAMERA 2
+#define DIMS_PER_BOUNCE 3
+enum { DIM_DIR, DIM_LIGHT, DIM_CHOICE };
+
 struct render_ctx {
     const struct scene *sc;
     const struct camera *cam;
@@ -33,15 +40,38 @@ struct render_ctx {
     struct rng light_rng;
     struct render_stats *st;
     int timed; /* the current pixel is timed (sampler_timed): its light draws add to timed_draw_ns */
-    struct packet_scene *packet; /* NULL, or PACKET_LANES paths at once through packet_hit */
+    struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
+    /* sampler_dims: all (render_dims.c): dims_slots sets of up to dims_slot_cap points in one
+       array, slot k valid for the current pixel when dims_gen[k] == dims_pixel; the pixel's
+       (px, py) and its sample count dims_n; bounces past dims_bounces draw from the path's rng */
+    struct pt2 *dims_pts;
+    uint64_t *dims_gen, dims_pixel;
+    size_t dims_slot_cap, dims_n;
+    int dims_slots, dims_bounces, px, py;
 };
 
-/* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) PACKET_LANES (four)
-   paths at a time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started
-   from the pixel's path stream *base; mix: the scene's lights are sampled by the mixture, nee: by
-   next-event estimation; last: max_depth - 1. Their estimates go into sum and kept (add_estimate),
-   the dropped ones into *nonfinite, their segments into *rays. */
+/* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
+   time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started from the
+   pixel's path stream *base; mix: the scene's lights are sampled by the mixture, nee: by
+   next-event estimation; dims: sampler_dims: all; last: max_depth - 1. Their
+   estimates go into sum and kept (add_estimate), the dropped ones into *nonfinite, their
+   segments into *rays. */
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays);
+                         int nee, int dims, int last, double sum[3], size_t *kept, uint64_t *nonfinite,
+                         uint64_t *rays);
+
+/* Allocate the sets of sampler_dims: all (ctx->rs.dims_all). 0, or -1 with e filled. */
+int render_dims_init(struct render_ctx *ctx, struct err *e);
+
+/* Draw slot's set for the current pixel: ctx->dims_n points of the pixel sampler, shuffled. */
+void render_dims_fill(struct render_ctx *ctx, int slot);
+
+/* Sample s's point of set `slot` of the current pixel, drawn on first use. */
+static inline struct pt2 render_dims_point(struct render_ctx *ctx, int slot, uint32_t s)
+{
+    if (ctx->dims_gen[slot] != ctx->dims_pixel)
+        render_dims_fill(ctx, slot);
+    return ctx->dims_pts[(size_t)slot * ctx->dims_slot_cap + s];
+}
 
 #endif

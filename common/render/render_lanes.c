@@ -13,23 +13,25 @@ struct path {
     vec3 beta, L;
     double mis_pdf; /* next-event estimation's: the last scatter's pdf (path_scatter_as) */
     int depth;
+    uint32_t s; /* its camera sample's index in the pixel */
     struct rng rng;
 };
 
 /* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
    with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
-   scene has lights sampled; last: the last segment's depth (max_depth - 1). trace's loop body:
-   both are path_scatter (render_path.h). */
+   scene has lights sampled (nee: by next-event estimation; dims: sampler_dims: all); last: the last segment's
+   depth (max_depth - 1). trace's loop body: both are path_scatter (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       struct hit *h, int mix, int nee, int last,
+                                                       struct hit *h, int mix, int nee, int dims, int last,
                                                        uint64_t *rays)
 {
     if (!got) {
         pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
         return 0;
     }
+    const struct path_at at = {dims, pt->depth, pt->s};
     return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix, nee,
-                        &pt->mis_pdf, rays);
+                        &pt->mis_pdf, rays, at);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
@@ -39,13 +41,15 @@ static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, s
    pixel's shared sets (ctx->lp, ctx->light_rng), taken in the order the lanes ask for them. That
    order is fixed by the pixel's own work, so a pixel still depends only on seed and pixel. */
 static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
-                              const struct rng *base)
+                              const struct rng *base, int dims)
 {
     const int w = ctx->rs.width, hgt = ctx->rs.height;
     pt->rng.inc = base->inc;
     pt->rng.state = rng_mix64(base->state + s);
     struct pt2 p = ctx->pixel_pts[s];
-    pt->r = camera_ray(ctx->cam, (x + p.x) / w, (hgt - y - p.y) / hgt, &pt->rng);
+    const double u = (x + p.x) / w, v = (hgt - y - p.y) / hgt;
+    pt->r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s) : camera_ray(ctx->cam, u, v, &pt->rng);
+    pt->s = (uint32_t)s;
     pt->beta = v3(1, 1, 1);
     pt->L = v3(0, 0, 0);
     pt->mis_pdf = 0;
@@ -53,10 +57,11 @@ static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, in
 }
 
 /* render_pixel's samples four paths at a time, their rays traced together (packet_hit). Inline
-   into the two callers below, nee a constant in each: the mixture's code holds none of nee's. */
+   into the two callers below, nee and dims constants in the default's: the mixture's code holds
+   none of theirs. */
 static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
                                                             const struct rng *base, int mix, int nee,
-                                                            int last, double sum[3], size_t *kept,
+                                                            int dims, int last, double sum[3], size_t *kept,
                                                             uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
@@ -69,7 +74,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     for (int i = 0; i < PACKET_LANES; i++) {
         rp[i] = &pt[i].r;
         if (next < n) {
-            path_start(ctx, &pt[i], x, y, next++, base);
+            path_start(ctx, &pt[i], x, y, next++, base, dims);
             lanes |= 1 << i;
         }
     }
@@ -92,11 +97,11 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, last, &acc_rays))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, dims, last, &acc_rays))
                 continue;
             add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
             if (next < n)
-                path_start(ctx, &pt[i], x, y, next++, base);
+                path_start(ctx, &pt[i], x, y, next++, base, dims);
             else
                 lanes &= ~(1 << i);
         }
@@ -108,18 +113,21 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     *rays += acc_rays;
 }
 
-static __attribute__((noinline)) void lanes_nee(struct render_ctx *ctx, int x, int y, size_t n,
-                                                const struct rng *base, int last, double sum[3], size_t *kept,
-                                                uint64_t *nonfinite, uint64_t *rays)
+/* nee or sampler_dims: all (runtime values), out of line from the default's loop. */
+static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
+                                                  const struct rng *base, int mix, int nee, int dims,
+                                                  int last, double sum[3], size_t *kept, uint64_t *nonfinite,
+                                                  uint64_t *rays)
 {
-    lanes_run(ctx, x, y, n, base, 0, 1, last, sum, kept, nonfinite, rays);
+    lanes_run(ctx, x, y, n, base, mix, nee, dims, last, sum, kept, nonfinite, rays);
 }
 
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int last, double sum[3], size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+                         int nee, int dims, int last, double sum[3], size_t *kept, uint64_t *nonfinite,
+                         uint64_t *rays)
 {
-    if (nee)
-        lanes_nee(ctx, x, y, n, base, last, sum, kept, nonfinite, rays);
+    if (nee || dims)
+        lanes_other(ctx, x, y, n, base, mix, nee, dims, last, sum, kept, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, last, sum, kept, nonfinite, rays);
+        lanes_run(ctx, x, y, n, base, mix, 0, 0, last, sum, kept, nonfinite, rays);
 }

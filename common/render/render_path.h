@@ -126,22 +126,38 @@ static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
     }
 }
 
-/* Cosine-weighted direction about n (Malley's method). Always inline: with nee's call beside the
-   mixture's GCC kept it out of line, +2% of cornell-book3's instructions. */
+/* Cosine-weighted direction about n (Malley's method) from two uniforms: u2 the radius squared,
+   a the angle in turns. */
+static inline __attribute__((always_inline, unused)) vec3 cosine_direction_uv(const onb *frame, double u2,
+                                                                              double a)
+{
+    double s = sqrt(u2), sin_phi, cos_phi;
+    v3_sincos_turn(a, &sin_phi, &cos_phi);
+    return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
+}
+
+/* cosine_direction_uv from r. Always inline: with nee's call beside the mixture's GCC kept it
+   out of line, +2% of cornell-book3's instructions. */
 static inline __attribute__((always_inline, unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
 {
-    double u2 = rng_uniform32(r), s = sqrt(u2), sin_phi, cos_phi;
-    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
-    return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
+    double u2 = rng_uniform32(r);
+    return cosine_direction_uv(frame, u2, rng_uniform32(r));
+}
+
+/* A uniform direction from two uniforms (z from u, the angle in turns from a). */
+static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_uv(double u, double a)
+{
+    double z = 1 - 2 * u, s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
+    v3_sincos_turn(a, &sin_phi, &cos_phi);
+    return v3(cos_phi * s, sin_phi * s, z);
 }
 
 /* A uniform direction: inline where trace scatters in a medium (path_scatter's media_inline),
    a call elsewhere (GCC's choice; inline in the lanes it cost cornell-book3 7 instructions). */
 static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_inline(struct rng *r)
 {
-    double z = 1 - 2 * rng_uniform32(r), s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
-    v3_sincos_turn(rng_uniform32(r), &sin_phi, &cos_phi);
-    return v3(cos_phi * s, sin_phi * s, z);
+    double u = rng_uniform32(r);
+    return uniform_sphere_direction_uv(u, rng_uniform32(r));
 }
 
 static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
@@ -200,6 +216,50 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
+/* light_direction under sampler_dims: all: the light chosen by choice in [0, 1), its point s. */
+static inline __attribute__((always_inline)) vec3
+light_direction_at(struct render_ctx *ctx, vec3 o, double choice, struct pt2 s, int *light, double *pdf)
+{
+    const struct scene *sc = ctx->sc;
+    int i = (int)(choice * sc->n_lights);
+    i = i < sc->n_lights ? i : sc->n_lights - 1;
+    *light = i;
+    return light_sample(&sc->prims[sc->lights[i]], o, s, pdf);
+}
+
+/* Where a vertex's decisions come from: under sampler_dims: all (dims) sample's points of the
+   pixel's sets for the vertex's bounce (depth), while that bounce has sets; else the path's rng. */
+struct path_at {
+    int dims, depth;
+    uint32_t sample;
+};
+
+/* Decision k (DIM_DIR, DIM_LIGHT, DIM_CHOICE) of the vertex at->depth: two uniforms. */
+static inline __attribute__((always_inline)) struct pt2 path_decide(struct render_ctx *ctx, struct rng *rng,
+                                                                    struct path_at at, int k)
+{
+    if (at.depth < ctx->dims_bounces)
+        return render_dims_point(ctx, DIMS_CAMERA + DIMS_PER_BOUNCE * at.depth + k, at.sample);
+    struct pt2 p;
+    p.x = rng_uniform32(rng);
+    p.y = rng_uniform32(rng);
+    return p;
+}
+
+/* camera_ray under sampler_dims: all: the lens point and the shutter time of sample s from the
+   pixel's sets (each drawn only where the camera uses it). */
+static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct render_ctx *ctx, double u,
+                                                                        double v, uint32_t s)
+{
+    const struct camera *cam = ctx->cam;
+    struct pt2 lens = {0, 0}, time = {0, 0};
+    if (cam->lens_radius > 0)
+        lens = render_dims_point(ctx, 0, s);
+    if (cam->time0 != cam->time1)
+        time = render_dims_point(ctx, 1, s);
+    return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
+}
+
 /* A camera sample's estimate c into the pixel's sums: kept when finite, else counted as dropped. */
 static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *nonfinite)
 {
@@ -219,15 +279,20 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    lambertian (cosine / pi) when phase is 0, else the isotropic phase. The light strategy's pdf
    is the lights' mixture (every light chosen alike), so an emitter the shadow ray reaches first
    counts whichever light was chosen. */
-static inline __attribute__((always_inline)) void path_next_event(struct render_ctx *ctx, const ray *r,
-                                                                  vec3 beta, vec3 *L, struct rng *rng,
-                                                                  const struct hit *h, vec3 albedo,
-                                                                  double phase, uint64_t *rays)
+static inline __attribute__((always_inline)) void
+path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct rng *rng,
+                const struct hit *h, vec3 albedo, double phase, uint64_t *rays, struct path_at at)
 {
     const struct scene *sc = ctx->sc;
     int light = -1;
     double light_pdf = 0;
-    vec3 dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+    vec3 dir;
+    if (at.dims) {
+        struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
+        dir = light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf);
+    } else {
+        dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+    }
     double f_pdf; /* the material's pdf for dir, which is also its f times cosine / albedo */
     if (phase > 0) {
         f_pdf = phase;
@@ -265,9 +330,11 @@ static inline __attribute__((always_inline)) void path_next_event(struct render_
    ~1% and cornell-book3 7 instructions a sample by the code it moved). Always inline: the
    caller's ray, weight and radiance stay in its registers (a texture's lookup reads h through a
    copy). */
-static inline __attribute__((always_inline)) int
-path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng *rng, const struct hit *h,
-                int at_last, int mix, int nee, double *mis_pdf, uint64_t *rays, int media_inline)
+static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
+                                                                 vec3 *L, struct rng *rng,
+                                                                 const struct hit *h, int at_last, int mix,
+                                                                 int nee, double *mis_pdf, uint64_t *rays,
+                                                                 struct path_at at, int media_inline)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -277,9 +344,14 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
         if (nee) {
-            path_next_event(ctx, r, *beta, L, rng, h, albedo, 0, rays);
+            path_next_event(ctx, r, *beta, L, rng, h, albedo, 0, rays, at);
             onb frame = onb_from_w(h->n);
-            dir = cosine_direction(&frame, rng);
+            if (at.dims) {
+                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
+                dir = cosine_direction_uv(&frame, u.x, u.y);
+            } else {
+                dir = cosine_direction(&frame, rng);
+            }
             double cosine = v3_dot(dir, h->n);
             if (!(cosine > 0))
                 return 0;
@@ -290,7 +362,17 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
         }
         int light = -1;
         double light_pdf = 0;
-        if (mix && rng_u32(rng) >> 31) {
+        if (at.dims) {
+            struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
+            if (mix && c.x < 0.5) {
+                dir = light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light,
+                                         &light_pdf);
+            } else {
+                onb frame = onb_from_w(h->n);
+                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
+                dir = cosine_direction_uv(&frame, u.x, u.y);
+            }
+        } else if (mix && rng_u32(rng) >> 31) {
             dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
         } else {
             onb frame = onb_from_w(h->n);
@@ -333,7 +415,9 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
         double ratio = h->front ? 1.0 / m->ior : m->ior;
         double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
         double sin_t = sqrt(1 - cos_t * cos_t);
-        dir = (ratio * sin_t > 1 || reflectance(cos_t, ratio) > rng_uniform32(rng))
+        dir = (ratio * sin_t > 1 ||
+               reflectance(cos_t, ratio) >
+                   (at.dims ? path_decide(ctx, rng, at, DIM_CHOICE).x : rng_uniform32(rng)))
                   ? v3_reflect(unit_dir, h->n)
                   : v3_refract(unit_dir, h->n, ratio);
         *r = (ray){h->p, dir, r->time};
@@ -345,21 +429,35 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
         vec3 albedo = surface_albedo(sc, m, h);
         const double phase = 1 / (4 * PI);
         double pdf = phase;
+        struct pt2 u = {0, 0}, c = {0, 0};
+        if (at.dims) {
+            u = path_decide(ctx, rng, at, DIM_DIR);
+            c = path_decide(ctx, rng, at, DIM_CHOICE);
+        }
         if (nee) {
-            path_next_event(ctx, r, *beta, L, rng, h, albedo, phase, rays);
-            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
+            path_next_event(ctx, r, *beta, L, rng, h, albedo, phase, rays, at);
+            dir = at.dims        ? uniform_sphere_direction_uv(u.x, u.y)
+                  : media_inline ? uniform_sphere_direction_inline(rng)
+                                 : uniform_sphere_direction(rng);
             *mis_pdf = phase;
         } else if (mix) {
             int light = -1;
             double light_pdf = 0;
-            dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
-                  : media_inline     ? uniform_sphere_direction_inline(rng)
-                                     : uniform_sphere_direction(rng);
+            if (at.dims)
+                dir = c.x < 0.5 ? light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT),
+                                                     &light, &light_pdf)
+                                : uniform_sphere_direction_uv(u.x, u.y);
+            else
+                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
+                      : media_inline     ? uniform_sphere_direction_inline(rng)
+                                         : uniform_sphere_direction(rng);
             pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
                                       : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
                   0.5 * phase;
         } else {
-            dir = media_inline ? uniform_sphere_direction_inline(rng) : uniform_sphere_direction(rng);
+            dir = at.dims        ? uniform_sphere_direction_uv(u.x, u.y)
+                  : media_inline ? uniform_sphere_direction_inline(rng)
+                                 : uniform_sphere_direction(rng);
         }
         *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
         *r = (ray){h->p, dir, r->time};
@@ -372,9 +470,9 @@ path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta, vec3 *L, struct rng 
 static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
                                                               vec3 *L, struct rng *rng, const struct hit *h,
                                                               int at_last, int mix, int nee, double *mis_pdf,
-                                                              uint64_t *rays)
+                                                              uint64_t *rays, struct path_at at)
 {
-    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, nee, mis_pdf, rays, 0);
+    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, nee, mis_pdf, rays, at, 0);
 }
 
 #endif

@@ -16,11 +16,11 @@
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
 
-const char *const job_keys[] = {
-    "name",           "scene",         "width",           "height",    "sampler",
-    "threshold",      "light_sampler", "light_threshold", "max_depth", "seed",
-    "processes",      "format",        "output",          "reference", "poisson_pool",
-    "light_sampling", "priority",      "integrator",      NULL};
+const char *const job_keys[] = {"name",      "scene",      "width",         "height",
+                                "sampler",   "threshold",  "light_sampler", "light_threshold",
+                                "max_depth", "seed",       "processes",     "format",
+                                "output",    "reference",  "poisson_pool",  "light_sampling",
+                                "priority",  "integrator", "sampler_dims",  NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
 {
@@ -269,6 +269,12 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (strcmp(s, "mixture") && strcmp(s, "nee"))
             return ydoc_fail(d, v, e, "integrator: must be mixture or nee, got \"%.40s\"", s);
         j->nee = !strcmp(s, "nee");
+    } else if (!strcmp(k, "sampler_dims")) {
+        if (yget_string(d, v, k, &s, e) < 0)
+            return -1;
+        if (strcmp(s, "pixel_light") && strcmp(s, "all"))
+            return ydoc_fail(d, v, e, "sampler_dims: must be pixel_light or all, got \"%.40s\"", s);
+        j->dims_all = !strcmp(s, "all");
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;

@@ -28,6 +28,7 @@ struct job {
     int poisson_pool;
     int light_sampling; /* 0: no importance sampling of lights (default 1) */
     int nee;            /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
+    int dims_all;       /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
     int priority;       /* queue order: higher first (default 0) */
     uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */

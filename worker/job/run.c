@@ -151,7 +151,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct progress prog = {j->name, o->progress && !o->quiet, -1, o->tick, o->tick_arg};
     struct procs_job fj = {.scene = sf.scene,
                            .camera = &cam,
-                           .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->nee},
+                           .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->nee, j->dims_all},
                            .pixel = pix,
                            .light = light,
                            .processes = o->processes > 0 ? o->processes : j->processes,
