@@ -3,6 +3,7 @@
 # claim is recovered; crashed renders are retried (or filed as failed with the signal); bad jobs
 # go to failed/ and the worker carries on; signals hand the job back; priority and age order.
 . tests/lib.sh
+TS='[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z' # a queue log line's time (ISO 8601, UTC)
 root=$(pwd)
 
 tiny() { # tiny FILE [yaml lines...]: a 16x16 job that renders in a few milliseconds
@@ -48,7 +49,7 @@ check "4 workers: none left waiting" [ "$(count "$Q/*.yaml")" -eq 0 ]
 check "4 workers: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 once=0
 for i in $(seq 1 40); do
-    n=$(cat "$T"/w[1-4].log | grep -c "^j$i: 16x16")
+    n=$(cat "$T"/w[1-4].log | grep -cE "^$TS j$i\.yaml: j$i: 16x16")
     if [ "$n" -eq 1 ]; then once=$((once + 1)); else echo "j$i rendered $n times" >&2; fi
 done
 check "4 workers: each job rendered exactly once ($once of 40)" [ "$once" -eq 40 ]
@@ -232,7 +233,8 @@ check "re-submitted: it says why the claim stays" grep -q "a newer again.yaml wa
 check "re-submitted: the next worker exits 0 (got $rc)" [ "$rc" -eq 0 ]
 check "re-submitted: it took the stopped claim over" grep -q "again.yaml: taken over in $Q/running/" "$T/again2.log"
 check "re-submitted: both rendered, the older first" \
-    sh -c "grep -o '^again: [0-9x]*' '$T/again2.log' | tr '\n' ' ' | grep -qx 'again: 64x64 again: 16x16 '"
+    sh -c "grep -oE '^$TS again.yaml: again: [0-9x]*' '$T/again2.log' | sed 's/^.* again.yaml: //' | tr '\n' ' ' |
+           grep -qx 'again: 64x64 again: 16x16 '"
 check "re-submitted: running/ is empty" [ -z "$(ls -A "$Q/running")" ]
 check "re-submitted: nothing waits" [ "$(count "$Q/*.yaml")" -eq 0 ]
 check "re-submitted: done/ holds the newer job" grep -q "^seed: 7" "$Q/done/again.yaml"
@@ -298,7 +300,7 @@ tiny "$Q/old.yaml"; tiny "$Q/mid.yaml"; tiny "$Q/new.yaml" "priority: 5"; tiny "
 touch -d '-40 seconds' "$Q/low.yaml"; touch -d '-30 seconds' "$Q/old.yaml"
 touch -d '-20 seconds' "$Q/mid.yaml"; touch -d '-10 seconds' "$Q/new.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/order.log"
-order=$(grep -o '^[a-z]*: 16x16' "$T/order.log" | cut -d: -f1 | tr '\n' ' ')
+order=$(grep -oE "^$TS [a-z]*\.yaml: [a-z]*: 16x16" "$T/order.log" | sed -E 's/^[^ ]* ([a-z]*)\.yaml: .*/\1/' | tr '\n' ' ')
 check "order: priority, then age (got '$order')" [ "$order" = "new old mid low " ]
 
 # 9. a claimed job still resolves its scene and reference beside DIR, not running/
@@ -347,7 +349,8 @@ touch -d '-1 minute' "$Q/bad${nl}name.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/nl.log"; rc=$?
 check "newline in a name: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "newline in a name: the good one rendered" [ -s "$Q/done/good${nl}name/good${nl}name.png" ]
-check "newline in a name: three lines on stderr (got $(wc -l <"$T/nl.log"))" [ "$(wc -l <"$T/nl.log")" -eq 3 ]
+# two claims, the error and its filing, the summary
+check "newline in a name: five lines on stderr (got $(wc -l <"$T/nl.log"))" [ "$(wc -l <"$T/nl.log")" -eq 5 ]
 check "newline in a name: escaped as backslash n" grep -Fq 'bad\nname.yaml: invalid job, moved to' "$T/nl.log"
 check "newline in a name: the summary line escaped" grep -Fq 'good\nname: 16x16' "$T/nl.log"
 

@@ -47,4 +47,32 @@ for n in fifo dir dangling loop; do
     check "unrunnable: $n.log says why" grep -q "cannot run" "$Q/failed/$n.log"
 done
 check "unrunnable: one line each on stderr" [ "$(grep -c "cannot run" "$T/q4.log")" -eq 4 ]
+
+# 5. input side: a scene or reference inside the queue that a link leads out of it is not read,
+#    and nothing of the file it points to reaches the world-readable failed/*.log; the same files
+#    named by their own path (outside the queue, on purpose) are read as ever
+Q=$T/q5; mkdir -p "$Q/in" "$T/secret"
+printf 'root: x:0:0:SECRET-LINE\n' >"$T/secret/passwd.yaml"
+ln -s "$T/secret/passwd.yaml" "$Q/in/scene.yaml"
+{ echo "scene: in/scene.yaml"; echo "width: 8"; } >"$Q/f.yaml"
+tiny "$T/r.yaml"; "$WORKER" --quiet --out "$T/o5" "$T/r.yaml"; cp "$T/o5/r/r.png" "$T/secret/ref.png"
+ln -s "$T/secret/ref.png" "$Q/in/ref.png"
+{ echo "scene: $root/scenes/checker.yaml"; echo "width: 8"; echo "reference: in/ref.png"; } >"$Q/g.yaml"
+{ echo "scene: $T/secret/passwd.yaml"; echo "width: 8"; } >"$Q/h.yaml"
+timeout 60 "$WORKER" --queue "$Q" --once --quiet 2>"$T/q5.log"; rc=$?
+check "input link: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "input link: the scene's job in failed/" [ -f "$Q/failed/f.yaml" ]
+check "input link: its log names the key and the link" grep -q "f.yaml:1:8: scene: .*leaves the queue through a symbolic link" "$Q/failed/f.log"
+check "input link: nothing of the file in the log" sh -c "! grep -q -e SECRET-LINE -e 'root: unknown' '$Q/failed/f.log'"
+check "input link: the reference's job in failed/" grep -q "g.yaml:3:12: reference: .*leaves the queue" "$Q/failed/g.log"
+check "input named outside on purpose: read (its error is about its content)" grep -q "root: unknown key" "$Q/failed/h.log"
+
+# 6. a scene or reference that is not a regular file (a FIFO) is refused at once, in or out of a queue
+mkfifo "$T/fifo-scene.yaml" "$T/fifo-ref.png"
+{ echo "scene: $T/fifo-scene.yaml"; echo "width: 8"; } >"$T/fs.yaml"
+{ echo "scene: $root/scenes/checker.yaml"; echo "width: 8"; echo "reference: $T/fifo-ref.png"; } >"$T/fr.yaml"
+for j in fs fr; do
+    timeout 20 "$WORKER" --quiet --out "$T/o6" "$T/$j.yaml" 2>"$T/$j.log"; rc=$?
+    check "FIFO input ($j): exit 2 at once (got $rc): $(cat "$T/$j.log")" [ "$rc" -eq 2 ]
+done
 finish

@@ -3,6 +3,7 @@
 # skipped with one line; --force renders it again; a changed job file, scene file or texture
 # image renders.
 . tests/lib.sh
+TS='[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z' # a queue log line's time (ISO 8601, UTC)
 root=$(pwd)
 
 ino() { ls -i "$1" | cut -d' ' -f1; }
@@ -74,14 +75,14 @@ check "changed reference image: new error figures" [ "$(grep '"rmse"' "$T/out/re
 Q=$T/q; mkdir -p "$Q"
 sed 's|^scene: .*|scene: ../scene.yaml|' "$T/r.yaml" >"$Q/r.yaml"
 "$WORKER" --queue "$Q" --once 2>"$T/q1.err"
-check "queue: first run renders" grep -q "^r: 16x16" "$T/q1.err"
+check "queue: first run renders" grep -Eq "^$TS r\.yaml: r: 16x16" "$T/q1.err"
 png=$(ino "$Q/done/r/r.png")
 cp "$Q/done/r.yaml" "$Q/"
 "$WORKER" --queue "$Q" --once 2>"$T/q2.err"; rc=$?
-check "queue: re-queued job skipped (exit $rc)" grep -q "^r.yaml: up to date in .*done/r/ (same job hash), skipped" "$T/q2.err"
+check "queue: re-queued job skipped (exit $rc)" grep -Eq "^$TS r\.yaml: up to date in .*done/r/ \(same job hash\), skipped" "$T/q2.err"
 check "queue: skipped job filed as done" sh -c "[ -f '$Q/done/r.yaml' ] && [ ! -e '$Q/r.yaml' ]"
 check "queue: image untouched" [ "$(ino "$Q/done/r/r.png")" = "$png" ]
 cp "$Q/done/r.yaml" "$Q/"
 "$WORKER" --queue "$Q" --once --force 2>"$T/q3.err"
-check "queue --force: renders" grep -q "^r: 16x16" "$T/q3.err"
+check "queue --force: renders" grep -Eq "^$TS r\.yaml: r: 16x16" "$T/q3.err"
 finish

@@ -4,6 +4,7 @@
 # the sidecar's sampling_share is a fraction. (An output extension naming no format and the
 # "did you mean" for other renderers' words are cases of tests/bad/, run by e2e_bad.sh.)
 . tests/lib.sh
+TS='[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z' # a queue log line's time (ISO 8601, UTC)
 root=$(pwd)
 
 # 1. A rect light facing away from everything renders black: exit 0 still, but one warning line
@@ -40,7 +41,7 @@ mkdir -p "$T/q"
 printf 'scene: %s/away.yaml\nwidth: 8\nthreshold: 50\n' "$T" >"$T/q/qdark.yaml"
 "$WORKER" --quiet --queue "$T/q" --once 2>"$T/q.err"; rc=$?
 check "black queue job: exit 0 (got $rc)" [ "$rc" -eq 0 ]
-check "black queue job: the warning ($(cat "$T/q.err"))" grep -q "^qdark: warning: $warning" "$T/q.err"
+check "black queue job: the warning ($(cat "$T/q.err"))" sh -c "grep -E '^$TS qdark\.yaml: qdark: warning: ' '$T/q.err' | grep -qF '$warning'"
 
 # 4. --help says what a compare job is (a job with variants:), names the queue, diff and points,
 #    and where the job and scene formats are written down.

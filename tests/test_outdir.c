@@ -97,7 +97,7 @@ static void test_lock(const char *root)
     char dir[512];
     snprintf(dir, sizeof dir, "%s/a", root);
     const char *paths[] = {img, NULL};
-    int lock = outdir_lock(dir, paths, NULL);
+    int lock = outdir_lock(dir, paths, NULL, 0);
     CHECK(lock >= 0);
     CHECK(!exists(dead)); /* a killed writer's temporary of img.png: removed under the lock */
     CHECK(exists(other)); /* another file's: kept */
@@ -105,7 +105,7 @@ static void test_lock(const char *root)
     outdir_unlock(lock);
     outdir_unlock(-1); /* no lock: nothing to do */
     snprintf(dir, sizeof dir, "%s/missing", root);
-    CHECK(outdir_lock(dir, paths, NULL) == -1);
+    CHECK(outdir_lock(dir, paths, NULL, 0) == -1);
 }
 
 int main(void)

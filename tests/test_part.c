@@ -44,6 +44,8 @@ int main(void)
     job_defaults(&j, "merge.yaml");
     snprintf(j.output, sizeof j.output, "merge.png");
     j.hash = 0x1234;
+    j.width = W; /* the size the job renders: merge checks the parts against it */
+    j.height = H;
     struct run_opts o = {.out_dir = dir};
     struct run_result rr;
     struct err e;

@@ -304,6 +304,7 @@ int scene_load(const char *path, struct scene_file *out, struct err *e)
     int rc = -1;
     if (ydoc_load(&L.d, path, e) < 0)
         goto done;
+    L.d.max_abs = SCENE_MAX_ABS;
     if (!(L.sc = scene_new())) {
         err_set(e, path, 0, 0, "out of memory");
         goto done;

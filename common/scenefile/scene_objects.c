@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "scene_load.h"
 #include "scene_objects.h"
 #include "geom/shape.h"
 #include "yget.h"
@@ -38,6 +39,9 @@ static int positive(struct scene_loader *L, yaml_node_t *n, const char *key, con
         return -1;
     if (!(*out > 0))
         return ydoc_fail(&L->d, v, L->e, "%s: must be > 0, got %g", key, *out);
+    if (*out < SCENE_MIN_SIZE)
+        return ydoc_fail(&L->d, v, L->e, "%s: must be at least %g, got %g (its square underflows)", key,
+                         SCENE_MIN_SIZE, *out);
     return 0;
 }
 

@@ -7,6 +7,21 @@
 #include <string.h>
 #include <strings.h>
 
+int ystr_tagged(const struct ydoc *d, const yaml_node_t *n)
+{
+    if (!n || n->type != YAML_SCALAR_NODE)
+        return 0;
+    long lo = 0, hi = d->n_str_tagged;
+    while (lo < hi) {
+        long mid = lo + (hi - lo) / 2;
+        if (d->str_tagged[mid] < n->start_mark.index)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < d->n_str_tagged && d->str_tagged[lo] == n->start_mark.index;
+}
+
 yaml_node_t *ydoc_root(struct ydoc *d)
 {
     return d->loaded ? yaml_document_get_root_node(&d->doc) : NULL;

@@ -22,6 +22,10 @@ struct ydoc {
     yaml_document_t doc;
     int loaded;
     char file[512];
+    size_t *str_tagged; /* where the scalars tagged !!str start (mark index, ascending): libyaml's
+                           document gives `!!str 16` the tag of a plain 16 */
+    long n_str_tagged;
+    double max_abs; /* > 0: yget_double refuses a number of larger magnitude (a scene: its floats) */
 };
 
 /* Read and parse path into d (one document). 0, or -1 with e at the problem's line:col.
@@ -79,6 +83,12 @@ const char *yscalar(yaml_node_t *n);
 
 /* Whether scalar n was written in quotes ("5", '5'): a string, never a number or a boolean. */
 int yquoted(const yaml_node_t *n);
+
+/* Whether scalar n was tagged !!str (`width: !!str 16`): a string, never a number or a boolean. */
+int ystr_tagged(const struct ydoc *d, const yaml_node_t *n);
+
+/* The note a !!str-tagged number's message ends with. */
+#define YSTR_TAGGED_NOTE " (tagged !!str: a string, never a number)"
 
 /* The note a quoted number's message ends with. */
 #define YQUOTED_NOTE " (a quoted string: write numbers without quotes)"

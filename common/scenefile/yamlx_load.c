@@ -65,8 +65,9 @@ static int check_shape(struct ydoc *d, struct err *e)
    for minutes before check_shape could see it; the events arrive one at a time, and the scanner
    reads only a bounded way ahead, so this stops within microseconds of the limit. Syntax errors
    are left to the load that follows (same parser, same message). 0 when within bounds. */
-static int check_events(const uint8_t *data, size_t len, const char *path, struct err *e)
+static int check_events(struct ydoc *d, const uint8_t *data, size_t len, const char *path, struct err *e)
 {
+    size_t cap = 0;
     yaml_parser_t p;
     if (!yaml_parser_initialize(&p))
         return err_set(e, path, 0, 0, "out of memory starting the YAML parser");
@@ -97,6 +98,17 @@ static int check_events(const uint8_t *data, size_t len, const char *path, struc
             break;
         case YAML_SCALAR_EVENT:
             anchor = (const char *)ev.data.scalar.anchor;
+            if (ev.data.scalar.tag && !strcmp((const char *)ev.data.scalar.tag, YAML_STR_TAG)) {
+                if ((size_t)d->n_str_tagged == cap) {
+                    size_t *grown = realloc(d->str_tagged, (cap = cap ? 2 * cap : 16) * sizeof *grown);
+                    if (!grown) {
+                        rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "out of memory");
+                        break;
+                    }
+                    d->str_tagged = grown;
+                }
+                d->str_tagged[d->n_str_tagged++] = m->index;
+            }
             break;
         case YAML_ALIAS_EVENT:
             if (++aliases > YDOC_MAX_ALIASES)
@@ -146,8 +158,10 @@ int ydoc_parse(struct ydoc *d, const char *name, const uint8_t *data, size_t len
 {
     memset(d, 0, sizeof *d);
     snprintf(d->file, sizeof d->file, "%s", name);
-    if (check_events(data, len, name, e) < 0)
+    if (check_events(d, data, len, name, e) < 0) {
+        ydoc_free(d);
         return -1;
+    }
     yaml_parser_t p;
     if (!yaml_parser_initialize(&p))
         return err_set(e, name, 0, 0, "out of memory starting the YAML parser");
@@ -197,4 +211,7 @@ void ydoc_free(struct ydoc *d)
     if (d->loaded)
         yaml_document_delete(&d->doc);
     d->loaded = 0;
+    free(d->str_tagged);
+    d->str_tagged = NULL;
+    d->n_str_tagged = 0;
 }

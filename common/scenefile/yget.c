@@ -43,6 +43,13 @@ int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, st
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s", key, buf);
     if (yquoted(n))
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s" YQUOTED_NOTE, key, buf);
+    if (ystr_tagged(d, n))
+        return ydoc_fail(d, n, e, "%s: must be a finite number, got %s" YSTR_TAGGED_NOTE, key, buf);
+    if (d->max_abs > 0 && fabs(*out) > d->max_abs)
+        return ydoc_fail(d, n, e,
+                         "%s: must be within [-%g, %g], got %s (the renderer keeps bounds and colours in "
+                         "float)",
+                         key, d->max_abs, d->max_abs, buf);
     return 0;
 }
 
@@ -59,6 +66,9 @@ int yget_long(struct ydoc *d, yaml_node_t *n, const char *key, long lo, long hi,
     if (yquoted(n))
         return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s" YQUOTED_NOTE, key, lo,
                          hi, buf);
+    if (ystr_tagged(d, n))
+        return ydoc_fail(d, n, e, "%s: must be a whole number in [%ld, %ld], got %s" YSTR_TAGGED_NOTE, key,
+                         lo, hi, buf);
     if (v < lo || v > hi)
         return ydoc_fail(d, n, e, "%s: must be in [%ld, %ld], got %s", key, lo, hi, buf);
     *out = v;
@@ -77,7 +87,7 @@ int yget_bool(struct ydoc *d, yaml_node_t *n, const char *key, int *out, struct 
         if (!strcmp(s, truth[i]))
             which = i;
     if (which >= 0) {
-        if (yquoted(n))
+        if (yquoted(n) || ystr_tagged(d, n))
             return ydoc_fail(d, n, e,
                              "%s: must be true or false, got %s (a quoted string: write true or "
                              "false without quotes)",

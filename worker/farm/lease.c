@@ -71,18 +71,21 @@ void lease_init(struct lease *l)
 }
 
 /* The fixed-width progress line (LEASE_PROGRESS_LEN bytes with its newline) into out. */
-static int progress_line(char *out, size_t n, int rows_done, int rows, double render_s, int attempt)
+static int progress_line(char *out, size_t n, int rows_done, int rows, double render_s, int attempt,
+                         int processes)
 {
     if (render_s < 0 || render_s > 9e9)
         render_s = 0;
-    return snprintf(out, n, "progress %10d %10d %12.1f %5d\n", rows_done, rows, render_s, attempt);
+    return snprintf(out, n, "progress %10d %10d %12.1f %5d %5d\n", rows_done, rows, render_s, attempt,
+                    processes);
 }
 
-void lease_progress(int fd, int rows_done, int rows, double render_s, int attempt)
+void lease_progress(int fd, int rows_done, int rows, double render_s, int attempt, int processes)
 {
     char line[LEASE_PROGRESS_LEN + 1];
     struct stat st;
-    if (progress_line(line, sizeof line, rows_done, rows, render_s, attempt) != LEASE_PROGRESS_LEN ||
+    if (progress_line(line, sizeof line, rows_done, rows, render_s, attempt, processes) !=
+            LEASE_PROGRESS_LEN ||
         fstat(fd, &st) < 0 || st.st_size < LEASE_PROGRESS_LEN)
         return;
     (void)pwrite(fd, line, LEASE_PROGRESS_LEN, st.st_size - LEASE_PROGRESS_LEN);
@@ -96,7 +99,8 @@ int lease_write(const char *claim, const struct lease *l, struct err *e)
                      l->token);
     if (l->pids[0]) /* optional: leases of earlier versions lack it */
         n += snprintf(text + n, sizeof text - n, "pids %s\n", l->pids);
-    n += progress_line(text + n, sizeof text - n, l->rows_done, l->rows, l->render_s, l->attempt);
+    n += progress_line(text + n, sizeof text - n, l->rows_done, l->rows, l->render_s, l->attempt,
+                       l->processes);
     return fileio_write_atomic(path, text, (size_t)n, e);
 }
 
@@ -117,7 +121,8 @@ int lease_read(const char *claim, struct lease *l, double *age_s)
         fields += sscanf(line, "start %lld", &l->start) == 1;
         fields += sscanf(line, "token %383s", l->token) == 1;
         (void)sscanf(line, "pids %127s", l->pids);
-        (void)sscanf(line, "progress %d %d %lf %d", &l->rows_done, &l->rows, &l->render_s, &l->attempt);
+        (void)sscanf(line, "progress %d %d %lf %d %d", &l->rows_done, &l->rows, &l->render_s, &l->attempt,
+                     &l->processes);
     }
     int ok = fstat(fileno(f), &st) == 0 && fields == 4;
     fclose(f);

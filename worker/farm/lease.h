@@ -13,14 +13,15 @@ struct lease {
     long long start; /* seconds since the epoch */
     char token[384]; /* unique per claim: host:pid:start_ns */
     char pids[128];  /* the pid space `pid` lives in: "<boot id>:<pid namespace>" ("" unknown) */
-    /* the last line, "progress D R S A", fixed width so that the holder rewrites it in place:
-       rows done of R, seconds the render has run, render attempt (all 0 until it starts) */
-    int rows_done, rows, attempt;
+    /* the last line, "progress D R S A P", fixed width so that the holder rewrites it in place:
+       rows done of R, seconds the render has run, render attempt, render processes (all 0 until
+       it starts; a lease of an earlier version has no P) */
+    int rows_done, rows, attempt, processes;
     double render_s;
 };
 
 /* Bytes of the lease's last line, "progress ...\n" (lease_progress rewrites it). */
-#define LEASE_PROGRESS_LEN 50
+#define LEASE_PROGRESS_LEN 56
 
 /* This process's lease for a claim made now (hostname, getpid, the time, a fresh token, and on
    Linux the pid space: the kernel's boot id and the pid namespace, since containers sharing the
@@ -36,7 +37,7 @@ int lease_read(const char *claim, struct lease *l, double *age_s);
 
 /* Rewrite the progress line of the lease open as fd (O_RDWR, as lease_write wrote it) in place,
    which renews it too (its mtime). Async-signal-safe; failure is ignored (the next call retries). */
-void lease_progress(int fd, int rows_done, int rows, double render_s, int attempt);
+void lease_progress(int fd, int rows_done, int rows, double render_s, int attempt, int processes);
 
 /* Refresh the lease's mtime (the holder is alive). Failure is ignored: the next call retries. */
 void lease_touch(const char *claim);

@@ -66,6 +66,14 @@ static int merge_one(const struct job *j, const char *path, int part, int parts,
                 "changed): render this part again");
         goto done;
     }
+    /* the hash says the inputs are the job's; the size must be too (a part rewritten whole, its
+       checksum made again, was merged at its own size) */
+    if ((int)hd->width != j->width || (j->height && (int)hd->height != j->height)) {
+        char want[32];
+        snprintf(want, sizeof want, j->height ? "%dx%d" : "%d pixels wide", j->width, j->height);
+        err_set(e, path, 0, 0, "is %ux%u but the job renders %s", hd->width, hd->height, want);
+        goto done;
+    }
     if (!*rgb) {
         *w = (int)hd->width;
         *h = (int)hd->height;

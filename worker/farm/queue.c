@@ -13,6 +13,8 @@
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"
+#include "queue_inputs.h"
+#include "queue_log.h"
 #include "queue_scan.h"
 #include "job/outdir.h"
 #include "job/run.h"
@@ -56,36 +58,34 @@ static void write_log(struct queue *q, const char *name, const char *job_name, c
     snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
     struct err e;
     if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
-        err_print("queue: %s: %s\n", name, e.msg);
+        queue_log(name, "%s", e.msg);
 }
 
 /* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
    while it is still ours. */
 static void give_back(struct queue *q, const char *name)
 {
-    int locked = 0;
-    for (int i = 0; i < 100 && !(locked = lease_lock(q->claim, q->o->lease_timeout_s) == 0); i++) {
-        struct timespec nap = {0, 10 * 1000 * 1000};
-        nanosleep(&nap, NULL);
-    }
-    if (!locked) { /* another worker is recovering it (our lease looked dead): the claim is its now */
-        err_print("%s: stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
-                  name, (int)queue_stop, q->running);
+    if (queue_claim_lock(q) <
+        0) { /* another worker is recovering it (our lease looked dead): the claim is its now */
+        queue_log(name, "stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
+                  (int)queue_stop, q->running);
         return;
     }
     if (!queue_claim_still_ours(q))
         ;
     else if (queue_claim_name_waiting(q, name))
-        err_print("%s: stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
+        queue_log(name,
+                  "stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
                   "next worker\n",
-                  name, (int)queue_stop, name, q->running);
+                  (int)queue_stop, name, q->running);
     else if (queue_claim_return(q, q->claim, name) == 0)
-        err_print("%s: stopped by signal %d, returned to the queue\n", name, (int)queue_stop);
+        queue_log(name, "stopped by signal %d, returned to the queue\n", (int)queue_stop);
     else
-        err_print("%s: stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
+        queue_log(name,
+                  "stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
                   "next worker\n",
-                  name, (int)queue_stop,
-                  errno == EEXIST ? "a newer one of its name arrived" : strerror(errno), q->running);
+                  (int)queue_stop, errno == EEXIST ? "a newer one of its name arrived" : strerror(errno),
+                  q->running);
     lease_unlock(q->claim);
 }
 
@@ -98,11 +98,11 @@ static void say_lost(struct queue *q, const char *name)
     struct lease l;
     double age;
     if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
-        err_print("%s: the claim was taken over (our lease was judged dead); leaving the job to it\n", name);
+        queue_log(name, "the claim was taken over (our lease was judged dead); leaving the job to it\n");
         return;
     }
     lease_remove(q->claim);
-    err_print("%s: %s was removed or moved away while it rendered: render stopped, nothing written\n", name,
+    queue_log(name, "%s was removed or moved away while it rendered: render stopped, nothing written\n",
               q->claim);
 }
 
@@ -118,6 +118,18 @@ static void clear_lost_stop(void)
     if (queue_stop == QUEUE_STOP_CLAIM_LOST)
         queue_stop = 0;
     sigprocmask(SIG_SETMASK, &old, NULL);
+}
+
+/* File the claim in hand in failed/: the temporaries a killed writer of an earlier attempt left in
+   its output folder done/<job_name>/ go first (nothing else would remove them). */
+static void file_failed(struct queue *q, const char *name, const char *job_name)
+{
+    char dir[2048];
+    if (job_name[0] && job_name[0] != '.' && !strchr(job_name, '/')) {
+        outdir_dir(q->done, job_name, dir, sizeof dir);
+        outdir_remove_temps(dir);
+    }
+    queue_claim_file(q, name, q->failed);
 }
 
 static void note_rc(struct queue *q, int rc)
@@ -139,8 +151,8 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
              "%s/%s%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
              "remove that folder to replace them)",
              q->dir, name, at, job_name, q->name_dir, q->name_owner);
-    err_print("%s\n", msg);
-    err_print("%s: name taken, moved to %s/\n", name, q->failed);
+    queue_log(name, "%s\n", msg);
+    queue_log(name, "name taken, moved to %s/\n", q->failed);
     write_log(q, name, log_name, msg, 0, 0);
     queue_claim_file(q, name, q->failed);
     note_rc(q, 2);
@@ -156,6 +168,8 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.stop = &queue_stop;
     ro.tick = queue_claim_tick;
     ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = q;
     char last[2048] = "", log_name[JOB_NAME_MAX];
     snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads: failed/<name>.log */
@@ -180,9 +194,9 @@ static void process_compare(struct queue *q, const char *name, const char *from,
         name_taken(q, name, stem, NULL); /* <name>.log would be the other file's log name */
         return;
     }
-    err_print("%s: %s compare job, moved to %s/\n", name, rc == 2 ? "invalid" : "failed", q->failed);
+    queue_log(name, "%s compare job, moved to %s/\n", rc == 2 ? "invalid" : "failed", q->failed);
     write_log(q, name, log_name, last, 0, rc == 2 ? 0 : attempts); /* invalid: checked, never rendered */
-    queue_claim_file(q, name, q->failed);
+    file_failed(q, name, log_name);
     note_rc(q, rc);
 }
 
@@ -201,6 +215,16 @@ static void claim_source(const struct queue *q, char *out, size_t n)
     snprintf(out, n, "%s/%s", q->dir, target);
 }
 
+/* The summary line of a rendered job, and its warnings, as queue log lines. */
+static void log_summary(const char *name, const struct job *j, const struct run_result *rr)
+{
+    char line[4400];
+    run_format_summary(j, rr, line, sizeof line);
+    queue_log(name, "%s", line);
+    if (run_format_warning(j, rr, line, sizeof line))
+        queue_log(name, "%s", line);
+}
+
 /* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
 static void process_claim(struct queue *q, const char *name)
 {
@@ -215,12 +239,13 @@ static void process_claim(struct queue *q, const char *name)
         process_compare(q, name, from, as, stem);
         return;
     }
-    if (job_load_as(from, as, &j, &e) < 0) { /* invalid: never retried */
+    if (job_load_as(from, as, &j, &e) < 0 ||
+        queue_inputs_check(q->dir, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
-        err_print("%s", msg);
-        err_print("%s: invalid job, moved to %s/", name, q->failed);
+        queue_log(name, "%s", msg);
+        queue_log(name, "invalid job, moved to %s/", q->failed);
         write_log(q, name, stem, msg, 0, 0);
-        queue_claim_file(q, name, q->failed);
+        file_failed(q, name, stem);
         note_rc(q, 2);
         return;
     }
@@ -236,7 +261,11 @@ static void process_claim(struct queue *q, const char *name)
     ro.stop = &queue_stop;
     ro.tick = queue_claim_tick;
     ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = q;
+    q->processes = ro.processes > 0 ? ro.processes : j.processes;
+    queue_log_check_cores(q->running, &q->lease, q->claim, name, q->processes);
     int attempts = 0, rc;
     for (;;) {
         q->attempt = ++attempts;
@@ -244,7 +273,7 @@ static void process_claim(struct queue *q, const char *name)
         if (rc != 1 || !rr.procs.child_crashed || attempts > q->o->retries || queue_stop)
             break;
         err_format(&e, msg, sizeof msg);
-        err_print("%s: %s; retrying (attempt %d of %d)\n", name, msg, attempts + 1, q->o->retries + 1);
+        queue_log(name, "%s; retrying (attempt %d of %d)\n", msg, attempts + 1, q->o->retries + 1);
     }
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);
@@ -256,10 +285,10 @@ static void process_claim(struct queue *q, const char *name)
     }
     if (rc == 0) {
         if (rr.skipped)
-            err_print("%s: up to date in %s/%s/ (same job hash), skipped; --force renders it again\n", name,
+            queue_log(name, "up to date in %s/%s/ (same job hash), skipped; --force renders it again\n",
                       q->done, j.name);
         else
-            run_print_summary(&j, &rr);
+            log_summary(name, &j, &rr);
         queue_claim_file(q, name, q->done);
         return;
     }
@@ -268,10 +297,10 @@ static void process_claim(struct queue *q, const char *name)
         return;
     }
     err_format(&e, msg, sizeof msg);
-    err_print("%s: %s; moved to %s/ after %d attempt%s\n", name, msg, q->failed, attempts,
+    queue_log(name, "%s; moved to %s/ after %d attempt%s\n", msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
     write_log(q, name, j.name, msg, rr.procs.child_signal, attempts);
-    queue_claim_file(q, name, q->failed);
+    file_failed(q, name, j.name);
     note_rc(q, rc);
 }
 
@@ -279,6 +308,7 @@ static void process_claim(struct queue *q, const char *name)
 static void process(struct queue *q, const char *name)
 {
     q->lost = 0;
+    q->processes = 0;
     q->name_owner[0] = 0;
     queue_claim_renew_start(q);
     process_claim(q, name);
@@ -313,7 +343,7 @@ static void file_unrunnable(struct queue *q, const char *name)
     if (rename(from, to) == 0) {
         char stem[256];
         outdir_stem(name, stem, sizeof stem);
-        err_print("%s; moved to %s/\n", msg, q->failed);
+        queue_log(name, "%s; moved to %s/\n", msg, q->failed);
         write_log(q, name, stem, msg, 0, 0);
         note_rc(q, 2);
         return;
@@ -325,7 +355,7 @@ static void file_unrunnable(struct queue *q, const char *name)
             return;
     if (q->nreported < (int)(sizeof q->reported / sizeof q->reported[0]))
         snprintf(q->reported[q->nreported++], sizeof q->reported[0], "%s", name);
-    err_print("%s; cannot move it to %s/: %s\n", msg, q->failed, strerror(errno));
+    queue_log(name, "%s; cannot move it to %s/: %s\n", msg, q->failed, strerror(errno));
     note_rc(q, 2);
 }
 

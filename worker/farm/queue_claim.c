@@ -18,6 +18,7 @@
 #include "base/fileio.h"
 #include "base/json.h"
 #include "job/sidecar.h"
+#include "queue_log.h"
 
 static double since(const struct timespec *t)
 {
@@ -47,7 +48,7 @@ void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s)
         return;
     }
     if (renew_fd >= 0)
-        lease_progress(renew_fd, rows_done, rows, elapsed_s, q->attempt);
+        lease_progress(renew_fd, rows_done, rows, elapsed_s, q->attempt, q->processes);
     else
         lease_touch(q->claim);
 }
@@ -135,7 +136,7 @@ static int adopt_claim(struct queue *q, const char *claim, const char *name)
         return 0;
     char buf[2048];
     err_format(&e, buf, sizeof buf);
-    err_print("queue: %s: %s\n", name, buf);
+    queue_log(name, "%s\n", buf);
     return -1;
 }
 
@@ -181,11 +182,11 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
             if (!queue_claim_name_waiting(q, de->d_name)) {
                 returned = queue_claim_return(q, claim, de->d_name) == 0;
                 if (returned)
-                    err_print("queue: %s: returned to the queue: %s\n", de->d_name, why);
+                    queue_log(de->d_name, "returned to the queue: %s\n", why);
             } /* not returned: a new file of that name waits (or arrived just now) */
             if (!returned && adopt_claim(q, claim, de->d_name) == 0) {
-                err_print("queue: %s: taken over in %s/ (a newer %s waits in the queue): %s\n", de->d_name,
-                          q->running, de->d_name, why);
+                queue_log(de->d_name, "taken over in %s/ (a newer %s waits in the queue): %s\n", q->running,
+                          de->d_name, why);
                 snprintf(adopted, n, "%s", de->d_name);
                 took = 1;
             }
@@ -208,7 +209,7 @@ int queue_claim_take(struct queue *q, const char *name)
     if (rename(from, q->claim) < 0) {
         if (errno == ENOENT) /* another worker was first */
             return 1;
-        err_print("worker: --queue %s: cannot claim %s into %s/: %s", q->dir, name, q->running,
+        queue_log(name, "worker: --queue %s: cannot claim %s into %s/: %s", q->dir, name, q->running,
                   strerror(errno));
         return -1;
     }
@@ -217,10 +218,11 @@ int queue_claim_take(struct queue *q, const char *name)
     if (lease_write(q->claim, &q->lease, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);
-        err_print("worker: --queue %s: %s: %s; returned it to the queue", q->dir, name, buf);
+        queue_log(name, "worker: --queue %s: %s; returned it to the queue", q->dir, buf);
         (void)fileio_rename_noreplace(q->claim, from);
         return -1;
     }
+    queue_log(name, "claimed by pid %ld on %s", q->lease.pid, q->lease.host);
     return 0;
 }
 
@@ -231,6 +233,11 @@ int queue_claim_still_ours(struct queue *q)
     double age;
     return lstat(q->claim, &st) == 0 && lease_read(q->claim, &l, &age) == 0 &&
            strcmp(l.token, q->lease.token) == 0;
+}
+
+int queue_claim_still_held(void *arg)
+{
+    return queue_claim_still_ours(arg);
 }
 
 int queue_claim_gone(struct queue *q)
@@ -286,11 +293,39 @@ int queue_claim_held(void *arg, const char *dir)
     return 0;
 }
 
+int queue_claim_lock(struct queue *q)
+{
+    for (int i = 0; i < 100; i++) {
+        if (lease_lock(q->claim, q->o->lease_timeout_s) == 0)
+            return 0;
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    return -1;
+}
+
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir)
 {
     char to[2048];
     snprintf(to, sizeof to, "%s/%s", to_dir, name);
-    if (rename(q->claim, to) < 0)
-        err_print("queue: %s: cannot move it to %s: %s\n", name, to, strerror(errno));
+    /* The lease goes first, under the claim's recovery lock: removed after the move, it could be
+       the lease of another worker that claimed a re-queued file of this name in between (issue 21,
+       defect 7). The lock keeps recoverers away while the claim has no lease; without it (held
+       for a second by another), only the check that the lease is still ours stands guard. */
+    int locked = queue_claim_lock(q) == 0;
+    if (!queue_claim_still_ours(q)) {
+        queue_log(name, "the claim was taken over before it was filed; leaving the job to it\n");
+        if (locked)
+            lease_unlock(q->claim);
+        return;
+    }
     lease_remove(q->claim);
+    if (rename(q->claim, to) < 0) {
+        int saved = errno;
+        struct err e;
+        (void)lease_write(q->claim, &q->lease, &e); /* still ours, in running/: the next scan decides */
+        queue_log(name, "cannot move it to %s: %s\n", to, strerror(saved));
+    }
+    if (locked)
+        lease_unlock(q->claim);
 }

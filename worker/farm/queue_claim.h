@@ -24,6 +24,7 @@ struct queue {
     volatile sig_atomic_t *stop; /* the queue's stop flag, which also stops the render in hand */
     int lost;                    /* the claim in hand was found gone or taken over (tick) */
     int attempt;                 /* the render attempt of the claim in hand (1, 2 after a crash) */
+    int processes;               /* its render processes (0 until its job is loaded) */
     char name_owner[2048];       /* its output folder holds another queued job file's outputs */
     char name_dir[2048];         /* that folder */
     char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */
@@ -72,6 +73,9 @@ int queue_claim_take(struct queue *q, const char *name);
    the claim away while we rendered (a lease judged dead elsewhere). */
 int queue_claim_still_ours(struct queue *q);
 
+/* run_opts.still_held: queue_claim_still_ours, asked just before each output is renamed. */
+int queue_claim_still_held(void *arg);
+
 /* The claim's file is no longer in running/: removed or moved away while we held it (cancelled). */
 int queue_claim_gone(struct queue *q);
 
@@ -86,7 +90,11 @@ int queue_claim_held(void *arg, const char *dir);
    empty, absent or the claim's own (the same file re-queued, edited or not). */
 int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n);
 
-/* Move the claim to done/ or failed/ and drop the lease. */
+/* Take the claim in hand's recovery lock (lease_lock), trying for about a second. 0 when taken. */
+int queue_claim_lock(struct queue *q);
+
+/* Move the claim to done/ or failed/ and drop the lease: the lease first, under the recovery
+   lock, so that a re-queued file of the same name claimed the next instant keeps its own. */
 void queue_claim_file(struct queue *q, const char *name, const char *to_dir);
 
 #endif

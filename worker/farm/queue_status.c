@@ -251,6 +251,7 @@ static void print_json(const char *dir, const struct queue_waiting *w, int nw, c
         json_string(&js, "host", r[i].lease.host);
         json_number(&js, "pid", (double)r[i].lease.pid);
         json_number(&js, "attempt", r[i].lease.attempt);
+        json_number(&js, "processes", r[i].lease.processes);
         json_number(&js, "rows_done", r[i].lease.rows_done);
         json_number(&js, "rows", r[i].lease.rows);
         json_number(&js, "percent", percent(&r[i]));

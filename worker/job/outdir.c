@@ -156,19 +156,72 @@ static void remove_dead_temps(const char *path)
     closedir(d);
 }
 
-int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop)
+/* Whether n is any writer's temporary (is_temp_of, whatever the file): ".<base>.tmp.XXXXXX". */
+static int is_temp(const char *n)
+{
+    size_t len = strlen(n);
+    return n[0] == '.' && len > 12 && !strncmp(n + len - 11, ".tmp.", 5);
+}
+
+void outdir_remove_temps(const char *dir)
+{
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), locked = 0;
+    if (fd < 0)
+        return;
+    for (int i = 0; i < 100 && !(locked = flock(fd, LOCK_EX | LOCK_NB) == 0); i++) {
+        struct timespec nap = {0, 10 * 1000 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    DIR *d = locked ? fdopendir(dup(fd)) : NULL;
+    struct dirent *de;
+    while (d && (de = readdir(d)))
+        if (is_temp(de->d_name))
+            (void)unlinkat(fd, de->d_name, 0);
+    if (d)
+        closedir(d);
+    close(fd); /* and the lock with it */
+}
+
+/* flock(fd, LOCK_EX) for at most wait_s seconds (> 0) in 20 ms steps; -1 with errno EWOULDBLOCK
+   when waited out, EINTR when *stop was set meanwhile. */
+static int lock_within(int fd, double wait_s, const volatile sig_atomic_t *stop)
+{
+    struct timespec t0, now, nap = {0, 20 * 1000 * 1000};
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        if (flock(fd, LOCK_EX | LOCK_NB) == 0)
+            return 0;
+        if (errno != EWOULDBLOCK && errno != EINTR)
+            return -1;
+        if (stop && *stop) {
+            errno = EINTR;
+            return -1;
+        }
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        if ((now.tv_sec - t0.tv_sec) + (now.tv_nsec - t0.tv_nsec) * 1e-9 > wait_s) {
+            errno = EWOULDBLOCK;
+            return -1;
+        }
+        nanosleep(&nap, NULL);
+    }
+}
+
+int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s)
 {
     int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */
     if (fd < 0)
         return -1;
     /* a stop signal interrupts the wait (the queue's handlers have no SA_RESTART): a holder that
        hangs must not make this writer deaf to it */
-    while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR && !(stop && *stop))
-        ;
+    if (wait_s > 0)
+        rc = lock_within(fd, wait_s, stop);
+    else
+        while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR && !(stop && *stop))
+            ;
     if (rc < 0) {
-        int stopped = errno == EINTR;
+        int why = errno;
         close(fd);
-        return stopped ? OUTDIR_STOPPED : -1;
+        return why == EINTR ? OUTDIR_STOPPED : why == EWOULDBLOCK ? OUTDIR_WAITED_OUT : -1;
     }
     for (int i = 0; paths && paths[i]; i++)
         remove_dead_temps(paths[i]);

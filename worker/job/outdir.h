@@ -48,11 +48,19 @@ int outdir_mkdirs(const char *path, int *made, struct err *e);
    killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
    temporary files never outlive its lock. Returns the lock (for outdir_unlock), or -1 when the
    folder cannot be locked (some network file systems): the writer goes on alone, removing
-   nothing; or when dir cannot be opened (errno ELOOP or ENOTDIR: it is a symbolic link); OUTDIR_STOPPED when
-   *stop (optional) was set by a signal while it waited: write nothing. */
+   nothing; or when dir cannot be opened (errno ELOOP or ENOTDIR: it is a symbolic link);
+   OUTDIR_STOPPED when *stop (optional) was set by a signal while it waited: write nothing;
+   OUTDIR_WAITED_OUT when wait_s > 0 and the lock was not had within wait_s seconds (its holder
+   is stopped or hung). wait_s 0: wait as long as it takes. */
 #define OUTDIR_STOPPED (-2)
-int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop);
+#define OUTDIR_WAITED_OUT (-3)
+int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s);
 void outdir_unlock(int lock);
+
+/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir, under its lock: for a
+   job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
+   A lock held by another writer for over a second leaves them (they may be that writer's). */
+void outdir_remove_temps(const char *dir);
 
 /* A staging name for path, unique to this writer: "<dir>/.<base>.tmp.XXXXXX", shaped as
    fileio_write_atomic's temporaries, so that the next holder of the folder's lock removes it when

@@ -132,9 +132,17 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     }
     if (run_load_reference(j, w, h, &ref, e) < 0)
         goto done;
-    if (job_limits_samples(j, w, h, e) < 0 ||
-        job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0)
+    if (job_limits_samples(j, w, h, e) < 0)
         goto done;
+    if (job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0) {
+        char why[sizeof e->msg];
+        snprintf(why, sizeof why, "%s", e->msg); /* at the size's key: the user's lever */
+        if (j->pos_width[0])
+            err_set(e, j->path, j->pos_width[0], j->pos_width[1], "width: %dx%d pixels: %s", w, h, why);
+        else
+            err_set(e, j->path, 1, 1, "size: %dx%d pixels: %s", w, h, why);
+        goto done;
+    }
     uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL);
     if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
         !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
@@ -191,20 +199,37 @@ void run_say(const struct run_opts *o, const char *fmt, ...)
     va_end(ap);
 }
 
-void run_print_summary(const struct job *j, const struct run_result *rr)
+void run_format_summary(const struct job *j, const struct run_result *rr, char *buf, size_t n)
 {
     const struct render_stats *t = &rr->procs.total;
-    err_print("%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s\n", j->name, rr->width,
-              rr->height, sampler_kind_name(j->sampler), j->threshold,
-              t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
-              rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->image_path);
+    snprintf(buf, n, "%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s", j->name, rr->width,
+             rr->height, sampler_kind_name(j->sampler), j->threshold,
+             t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
+             rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->image_path);
+}
+
+int run_format_warning(const struct job *j, const struct run_result *rr, char *buf, size_t n)
+{
+    if (!rr->black)
+        return 0;
+    snprintf(buf, n,
+             "%s: warning: the image is entirely black (no light reaches the camera? a light emits from its "
+             "front face only: a rect's flip:, a disk's toward:)",
+             j->name);
+    return 1;
+}
+
+void run_print_summary(const struct job *j, const struct run_result *rr)
+{
+    char line[4400];
+    run_format_summary(j, rr, line, sizeof line);
+    err_print("%s\n", line);
     run_print_warnings(j, rr);
 }
 
 void run_print_warnings(const struct job *j, const struct run_result *rr)
 {
-    if (rr->black)
-        err_print("%s: warning: the image is entirely black (no light reaches the camera? a light emits "
-                  "from its front face only: a rect's flip:, a disk's toward:)\n",
-                  j->name);
+    char line[600];
+    if (run_format_warning(j, rr, line, sizeof line))
+        err_print("%s\n", line);
 }

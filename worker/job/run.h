@@ -22,6 +22,12 @@ struct run_opts {
                                           0 = write nothing, fail (a queue claim taken over, the
                                           folder another queued job's) */
     void *tick_arg;
+    double lock_wait_s;           /* > 0: wait no longer for the output folder's lock (a queue: its lease
+                                     timeout); then its holder is stopped or hung, and this render writes
+                                     without it when may_write still says yes */
+    int (*still_held)(void *arg); /* optional: asked (with tick_arg) just before each output is
+                                     renamed into place: 0 = the claim was taken over meanwhile;
+                                     rename nothing more, fail */
 };
 
 struct run_result {
@@ -50,6 +56,11 @@ void run_say(const struct run_opts *o, const char *fmt, ...) __attribute__((form
 /* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image),
    then its warnings (run_print_warnings). */
 void run_print_summary(const struct job *j, const struct run_result *rr);
+
+/* run_print_summary's line and run_print_warnings' into buf (no newline); run_format_warning
+   returns 0 when there is none. */
+void run_format_summary(const struct job *j, const struct run_result *rr, char *buf, size_t n);
+int run_format_warning(const struct job *j, const struct run_result *rr, char *buf, size_t n);
 
 /* A line on stderr, naming the job, for what an exit code of 0 would hide: an entirely black
    image (no light reaches the camera: a light facing away, lights missing). */

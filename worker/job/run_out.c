@@ -31,7 +31,11 @@ static void name_final(struct err *e, const char *staged, const char *final)
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e)
 {
-    *lock = outdir_lock(dir, paths, o->stop);
+    *lock = outdir_lock(dir, paths, o->stop, o->lock_wait_s);
+    if (*lock == OUTDIR_WAITED_OUT && (!o->may_write || o->may_write(o->tick_arg, dir)))
+        err_print("%s/: its lock has been held for over %g s (a lease timeout) by a writer that is stopped "
+                  "or hung: writing without it\n",
+                  dir, o->lock_wait_s);
     if (*lock == -1 && (errno == ELOOP || errno == ENOTDIR))
         return err_set(e, NULL, 0, 0, "%s is a symbolic link: outputs are never written through one", dir);
     if (*lock == OUTDIR_STOPPED)
@@ -43,6 +47,13 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                    "rendered, but it may not write %s/ now (another worker holds the job, or the folder is "
                    "another job's): nothing written",
                    dir);
+}
+
+int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e)
+{
+    if (!o->still_held || o->still_held(o->tick_arg))
+        return 0;
+    return err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
 }
 
 int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
@@ -71,9 +82,12 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* Both are written whole under staging names first, then renamed, the image first: a failure
-       before the renames (a full disk, a size limit) leaves an earlier image and sidecar as they
-       were. A killed writer's staged files and their temporaries go under the next one's lock. */
+    /* Both are written whole under staging names first: a failure before the renames (a full disk,
+       a size limit) leaves an earlier image and sidecar as they were. Then the earlier sidecar
+       goes, the image is renamed, the sidecar last: a reader (or a writer killed at any step)
+       sees the earlier pair, an image without a sidecar (not finished: rendered again), or the
+       new pair, never a new image beside an earlier sidecar (issue 21, defect 6). A killed
+       writer's staged files and their temporaries go under the next one's lock. */
     if (imgio_write(staged_image, &img, j->format, e) < 0) {
         name_final(e, staged_image, rr->image_path);
         goto done;
@@ -83,9 +97,19 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         unlink(staged_image);
         goto done;
     }
-    if (rename(staged_image, rr->image_path) < 0) {
+    /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
+    if (run_out_still_held(o, dir, e) < 0) {
+        unlink(staged_image);
+        unlink(staged_sidecar);
+        goto done;
+    }
+    if ((unlink(rr->sidecar_path) < 0 && errno != ENOENT) || rename(staged_image, rr->image_path) < 0) {
         err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->image_path, strerror(errno));
         unlink(staged_image);
+        unlink(staged_sidecar);
+        goto done;
+    }
+    if (run_out_still_held(o, dir, e) < 0) { /* the image stays, without a sidecar: not finished */
         unlink(staged_sidecar);
         goto done;
     }
