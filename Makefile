@@ -29,7 +29,15 @@ endif
 PKGS    := yaml-0.1 zlib
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lz)
-CFLAGS_ALL  = $(WARN) $(OPT) $(SAN) $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -MMD -MP $(CFLAGS)
+# OpenEXR: only its C core (OpenEXRCore, openexr.h). pkg-config's OpenEXR module names the C++
+# libraries too; of its --libs we keep the search paths and the core (its name carries the
+# version, OpenEXRCore-3_1 on Debian 12).
+EXR_CFLAGS := $(shell pkg-config --cflags OpenEXR 2>/dev/null || echo -I/usr/include/OpenEXR)
+EXR_LIBS   := $(filter -L% -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null))
+EXR_LIBS   := $(if $(filter -lOpenEXRCore%,$(EXR_LIBS)),$(EXR_LIBS),-lOpenEXRCore-3_1)
+PKG_CFLAGS += $(EXR_CFLAGS)
+PKG_LIBS   += $(EXR_LIBS)
+CFLAGS_ALL  = $(WARN) $(OPT) $(SAN) $(DEFS) -Icommon -Iworker $(PKG_CFLAGS) -MMD -MP $(CFLAGS)
 LDLIBS_ALL  = $(SAN) $(PKG_LIBS) -lm $(LDFLAGS) $(LDLIBS)
 
 ifeq ($(V),1)
@@ -54,16 +62,19 @@ WORKER_BIN := $(BIN)/worker
 .PHONY: all test stress test-big unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
-# Set-up: when libyaml or zlib headers are missing, root on Debian installs them (NO_INSTALL=1
-# skips that); otherwise, or if that fails, one line naming the Debian packages.
-HAVE_HEADERS = printf '\#include <yaml.h>\n\#include <zlib.h>\n' | $(CC) $(PKG_CFLAGS) -E -x c - >/dev/null 2>&1
+# Set-up: when libyaml, zlib or OpenEXR headers are missing, root on Debian installs them
+# (NO_INSTALL=1 skips that); otherwise, or if that fails, one line naming the Debian packages.
+# The include path is asked of pkg-config afresh: the one computed above predates the install.
+HAVE_HEADERS = printf '\#include <yaml.h>\n\#include <zlib.h>\n\#include <openexr.h>\n' | \
+  $(CC) $(PKG_CFLAGS) $$(pkg-config --cflags OpenEXR 2>/dev/null) -E -x c - >/dev/null 2>&1
+DEB_PKGS = libyaml-dev zlib1g-dev libopenexr-dev pkg-config
 deps:
 	@$(HAVE_HEADERS) || { \
 	  if [ -z "$(NO_INSTALL)" ] && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "make: installing libyaml-dev zlib1g-dev pkg-config (apt-get)" >&2; \
-	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libyaml-dev zlib1g-dev pkg-config; } >/dev/null 2>&1; \
+	    echo "make: installing $(DEB_PKGS) (apt-get)" >&2; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PKGS); } >/dev/null 2>&1; \
 	  fi; \
-	  $(HAVE_HEADERS) || { echo "error: libyaml and zlib headers are missing: apt-get install libyaml-dev zlib1g-dev" >&2; exit 1; }; }
+	  $(HAVE_HEADERS) || { echo "error: libyaml, zlib or OpenEXR headers are missing: apt-get install libyaml-dev zlib1g-dev libopenexr-dev" >&2; exit 1; }; }
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)

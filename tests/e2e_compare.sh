@@ -38,22 +38,36 @@ check "sidecar scores against the cached reference" grep -q '"reference": ".*/.c
 check "sidecar has relmse" grep -q '"relmse": [0-9]' "$cdir/checker-jitter-t25-s2.json"
 check "sidecar threshold 25" grep -q '"threshold": 25,' "$cdir/checker-jitter-t25-s2.json"
 check "sidecar seed 2" grep -q '"seed": 2,' "$cdir/checker-jitter-t25-s2.json"
-check "one cached reference per scene" [ "$(ls "$T"/out/.cache/ref-*.png 2>/dev/null | wc -l)" -eq 2 ]
+check "one cached reference per scene, a float image" [ "$(ls "$T"/out/.cache/ref-*.exr 2>/dev/null | wc -l)" -eq 2 ]
+check "no 8-bit cached reference" [ "$(ls "$T"/out/.cache/ref-*.png 2>/dev/null | wc -l)" -eq 0 ]
+check "every render keeps its float image beside its PNG" \
+    [ "$(ls "$cdir"/*.exr | wc -l)" -eq 40 ] && [ -s "$cdir/checker-jitter-t25-s2.exr" ]
+check "sidecar: error in linear radiance" grep -q '"domain": "linear"' "$cdir/checker-jitter-t25-s2.json"
 check "first run rendered both references" grep -q "references: 2 rendered, 0 reused from cache" "$T/run1.err"
 check "the summary line counts the combinations" grep -q "cmp: 40 images (2 scenes x 5 variants x 2 sweep points x 2 seeds)" "$T/run1.err"
 
-# summary.csv: a header and one row of 14 fields per image, with its metrics
+# summary.csv: a header and one row of 18 fields per image, with its metrics in linear radiance
+# (mse, rmse, relmse, relmse_robust, psnr, domain) and the 8-bit display figures beside them
 csv=$cdir/summary.csv
-check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,psnr,image" ]
+check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,image" ]
 check "summary.csv has 40 rows" [ "$(tail -n +2 "$csv" | wc -l)" -eq 40 ]
-check "every row has 14 fields and a relmse" [ "$(awk -F, 'NR > 1 && NF == 14 && $12 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
+check "every row has 18 fields, a relmse, a robust one no larger, linear, and 8-bit figures" \
+    [ "$(awk -F, 'NR > 1 && NF == 18 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
+# the row's relmse is its sidecar's and worker diff's of the float images (to the CSV's 6 digits)
+row=$(grep ',checker-jitter-t25-s2.png$' "$csv")
+ref=$(ls "$T"/out/.cache/ref-checker-*.exr)
+drel=$("$WORKER" diff "$ref" "$cdir/checker-jitter-t25-s2.exr" | awk '$1 == "relmse" {print $2}')
+srel=$(sed -n 's/.*"relmse": \([0-9.e+-]*\).*/\1/p' "$cdir/checker-jitter-t25-s2.json")
+check "summary.csv relmse = the sidecar's = worker diff's on the EXRs ($row; $srel; $drel)" \
+    awk -v a="$(echo "$row" | cut -d, -f12)" -v b="$srel" -v c="$drel" \
+    'BEGIN { exit !(b > 0 && (a - b) ^ 2 <= (1e-5 * b) ^ 2 && (c - b) ^ 2 <= (1e-8 * b) ^ 2) }'
 check "uniform t=25 has 16 samples per pixel" grep -q '^checker,uniform,25,5,1,16.00,' "$csv"
 check "rows name their images" grep -q ',board-poisson-pool16-t50-s2.png$' "$csv"
 # Every row's times and sampler share are its sidecar's to 5 significant digits: these tiny images
 # take about a millisecond, so a fixed 4 decimals would round them by up to 10% or to 0.
 sidecar_matches() { # every row against the first "key": of its sidecar, relative 1e-5
     mism=0
-    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ img; do
+    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ img; do
         side="$cdir/${img%.png}.json"
         for kv in "wall_s $wall" "cpu_s $cpu" "sampling_share $share"; do
             set -- $kv
@@ -146,12 +160,12 @@ check "comma in a scene name: the report's link is percent-encoded" \
     grep -q 'href="chk%2Ce%22r-jitter-t50-t50-s1.png"' "$T/out/comma/report.html"
 
 # 2. the second run reuses both references, says so, and leaves them untouched
-before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)
+before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.exr)
 "$WORKER" --out "$T/out" "$T/cmp.yaml" 2>"$T/run2.err"; rc=$?
 check "second run exits 0" [ "$rc" -eq 0 ]
 check "second run summary: 0 rendered, 2 reused" grep -q "references: 0 rendered, 2 reused from cache (saving [0-9.]* s)" "$T/run2.err"
 check "not a terminal: only the summary line" [ "$(wc -l <"$T/run2.err")" -eq 1 ]
-check "cached references not rewritten" [ "$before" = "$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.png)" ]
+check "cached references not rewritten" [ "$before" = "$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.exr)" ]
 # a changed scene file is a new cache key: only its reference renders again
 echo "# changed" >>"$T/board.yaml"
 "$WORKER" --quiet --out "$T/out" "$T/cmp.yaml" 2>"$T/run3.err"

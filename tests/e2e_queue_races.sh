@@ -21,6 +21,8 @@ if ! $CC -shared -fPIC -o "$T/arrive.so" tests/shim/arrive.c -ldl 2>"$T/cc.log";
     finish
     exit $?
 fi
+# under ASan (make asan) the preloaded shim comes before the sanitizer's runtime: allowed here
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
 
 # 1. a dead worker's claim is returned to DIR just as a new job of its file name arrives there:
 #    the new file must survive (rename() replaced it), and both jobs render

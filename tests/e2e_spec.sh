@@ -42,7 +42,10 @@ for key in '"job": "cornell-poisson"' '"sampler": "poisson"' '"light_sampler": "
     '"light_threshold": 5' '"seed": 1' '"processes": 2' '"threshold": 25' '"rmse": 0,' '"relmse_eps": 0.01'; do
     check "SPEC job: sidecar has $key" grep -q "$key" "$s"
 done
-check "SPEC job: the summary line is the only stderr line (not a terminal)" [ "$(wc -l <"$T/e1")" -eq 1 ]
+# ref.png is 8-bit: one warning line says the error is measured on 8-bit display values
+check "SPEC job: the 8-bit reference's warning and the summary line are the only stderr lines (not a terminal)" \
+    sh -c "[ \$(wc -l <'$T/e1') -eq 2 ] && grep -q '^cornell-poisson: warning: reference .*8-bit display values' '$T/e1'"
+check "SPEC job: its error names the 8-bit domain" grep -q '"domain": "8-bit"' "$s"
 
 # 2. defaults: width 300, height = width / the camera's aspect (rounded), name = the file's stem,
 #    output <name>.png, light sampler = sampler, light_threshold 5, max_depth 50, seed 1, processes 2

@@ -133,7 +133,7 @@ static struct compare *hand_made(const char *name, const char *yaml)
 }
 
 /* compare_stats_stability's line for (scene s, variant v) copied into buf, for strstr. */
-static void stability(const struct compare *c, int s, int v, const struct rgb8 *ref, char *buf, size_t n)
+static void stability(const struct compare *c, int s, int v, const struct rgbf *ref, char *buf, size_t n)
 {
     char *text = compare_stats_stability(c, s, v, dir, ref);
     snprintf(buf, n, "%s", text ? text : "");
@@ -168,7 +168,7 @@ static void test_stats(void)
     compare_stats_point_order(c, 0, 0, order);
     CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
     char line[1024];
-    struct rgb8 ref = {0};
+    struct rgbf ref = {0};
     stability(c, 0, 0, &ref, line, sizeof line);
     CHECK(strstr(line, "spread across 2 seeds at most 20% of the mean relMSE") != NULL);
     CHECK(strstr(line, "relMSE ~ spp^-1.00") != NULL);
@@ -206,7 +206,7 @@ static void test_stats_flat_samples(void)
     compare_stats_point_order(c, 0, 0, order);
     CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
     char line[1024];
-    struct rgb8 ref = {0};
+    struct rgbf ref = {0};
     stability(c, 0, 0, &ref, line, sizeof line);
     CHECK(!strstr(line, "nan") && !strstr(line, "spp^") && !strstr(line, "keeps falling"));
     CHECK(strstr(line, "light_threshold 50: 0.03, light_threshold 25: 0.02, light_threshold 10: 0.021") !=
@@ -248,29 +248,33 @@ static void test_repeated_error(void)
                                               "  - { label: cancel }\n");
     if (!c)
         return;
-    struct rgb8 ref = {0}, img = {0};
-    CHECK(image_alloc(&ref, 4, 4, &e) == 0 && image_alloc(&img, 4, 4, &e) == 0);
-    memset(ref.px, 100, 4 * 4 * 3);
+    /* in linear radiance, as a compare job measures: the seeds' float copies (<stem>.exr) */
+    struct rgbf ref = {0}, img = {0};
+    CHECK(image_f_alloc(&ref, 4, 4, &e) == 0 && image_f_alloc(&img, 4, 4, &e) == 0);
+    for (int i = 0; i < 4 * 4 * 3; i++)
+        ref.px[i] = 0.4f;
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
             for (int k = 0; k < 2; k++) {
                 struct compare_item *it = &c->items[compare_index(c, 0, v, p, k)];
                 char path[1024];
-                memset(img.px, v == 0 || k == 0 ? 110 : 90, 4 * 4 * 3);
-                snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
-                CHECK(imgio_write(path, &img, IMG_PNG, &e) == 0);
+                for (int i = 0; i < 4 * 4 * 3; i++)
+                    img.px[i] = v == 0 || k == 0 ? 0.44f : 0.36f;
+                snprintf(path, sizeof path, "%s/%.*s.exr", dir, (int)strlen(it->job.output) - 4,
+                         it->job.output);
+                CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
                 it->done = it->has_error = 1;
                 it->spp_mean = 25 << (2 * p);
                 it->wall_s = 0.01 * (p + 1);
-                CHECK(metrics_compare(&ref, &img, &it->error, &e) == 0);
+                CHECK(metrics_compare_f(&ref, &img, 1, &it->error, &e) == 0);
             }
     char line[2048];
     stability(c, 0, 0, &ref, line, sizeof line);
     CHECK(strstr(line, "repeats in every seed: 100% at threshold 20, 100% at threshold 10") != NULL);
     stability(c, 0, 1, &ref, line, sizeof line);
     CHECK(strstr(line, "repeats in every seed: 0% at threshold 20, 0% at threshold 10") != NULL);
-    image_free(&ref);
-    image_free(&img);
+    image_f_free(&ref);
+    image_f_free(&img);
     compare_free(c);
 }
 

@@ -173,14 +173,21 @@ static void test_formats(void)
     CHECK(img_format_of_file("a.b.PNG", &f) == 1 && f == IMG_PNG);
     CHECK(img_format_of_file("a.Ppm", &f) == 1 && f == IMG_PPM);
     CHECK(img_format_of_file("render", &f) == 0);
-    CHECK(img_format_of_file("a.exr", &f) == -1 && img_format_of_file("a.tiff", &f) == -1);
+    CHECK(img_format_of_file("a.EXR", &f) == 1 && f == IMG_EXR);
+    CHECK(img_format_of_file("a.pfm", &f) == 1 && f == IMG_PFM);
+    CHECK(img_format_of_file("a.hdr", &f) == -1 && img_format_of_file("a.tiff", &f) == -1);
     CHECK(img_format_of_file("a.png.x", &f) == -1 && img_format_of_file("a.", &f) == -1);
     CHECK(img_format_parse("ppm", &f) == 0 && f == IMG_PPM && !strcmp(img_format_name(f), "ppm"));
     CHECK(img_format_parse("png", &f) == 0 && f == IMG_PNG && !strcmp(img_format_name(f), "png"));
     CHECK(img_format_parse("PNG", &f) == -1 && img_format_parse("jpg", &f) == -1);
     char list[128];
     img_format_list(list, sizeof list);
-    CHECK(!strcmp(list, "png or ppm"));
+    CHECK(!strcmp(list, "png, ppm, exr or pfm"));
+    struct rgb8 img = {0};
+    struct err e;
+    CHECK(image_alloc(&img, 1, 1, &e) == 0);
+    CHECK(imgio_write("/nonexistent/x.exr", &img, IMG_EXR, &e) == -1 && strstr(e.msg, "floats"));
+    image_free(&img);
 }
 
 int main(void)

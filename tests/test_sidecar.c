@@ -32,7 +32,7 @@ static struct procs_result *result(void)
 /* Write j's sidecar (with error figures m, may be NULL) to path; 0 or -1. */
 static int write_sidecar(const struct job *j, const struct metrics *m)
 {
-    struct sidecar sc = {j, 4, 3, result(), m, j->output, 0};
+    struct sidecar sc = {j, 4, 3, result(), m, IMG_LINEAR, j->output, 0};
     char *text = sidecar_json(&sc);
     struct err e;
     int rc = text && fileio_write_atomic(path, text, strlen(text), &e) == 0 ? 0 : -1;
@@ -52,7 +52,7 @@ static void test_round_trip(void)
     job_defaults(&j, "jobs/demo.yaml");
     snprintf(j.output, sizeof j.output, "demo.png");
     j.hash = 0x0123456789abcdefULL;
-    struct metrics m = {0.5, sqrt(0.5), 0.125, INFINITY}; /* psnr of equal images: written null */
+    struct metrics m = {0.5, sqrt(0.5), 0.125, 0.0625, INFINITY}; /* psnr of equal images: written null */
     CHECK(write_sidecar(&j, &m) == 0);
     struct sidecar_info in;
     struct err e;
@@ -64,7 +64,9 @@ static void test_round_trip(void)
     CHECK(in.spp_mean == 25);
     CHECK(in.wall_s == 1.5 && in.cpu_s == 2.5 && in.sampler_s == 0.25); /* the job's, not per_process */
     CHECK_NEAR(in.sampling_share, 0.1, 1e-12);                          /* 0.25 s of the 2.5 s of CPU */
-    CHECK(in.has_error && in.mse == 0.5 && in.relmse == 0.125 && isnan(in.psnr));
+    CHECK(in.has_error && in.mse == 0.5 && in.relmse == 0.125 && in.relmse_robust == 0.0625 &&
+          isnan(in.psnr));
+    CHECK(!strcmp(in.error_domain, image_domain_name(IMG_LINEAR)));
     CHECK_NEAR(in.rmse, sqrt(0.5), 1e-9); /* written with 10 digits */
     CHECK(sidecar_matches(path, 0x0123456789abcdefULL) == 1);
     CHECK(sidecar_matches(path, 0x0123456789abcdeeULL) == 0);

@@ -33,6 +33,49 @@ void image_free(struct rgb8 *img)
     img->h = 0;
 }
 
+/* Allocate a zeroed w x h float raster into img; on failure img is zeroed and e filled. */
+int image_f_alloc(struct rgbf *img, int w, int h, struct err *e)
+{
+    img->w = 0;
+    img->h = 0;
+    img->px = NULL;
+    if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
+        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h, IMAGE_MAX_SIDE);
+    float *px = calloc((size_t)w * (size_t)h * 3, sizeof *px);
+    if (!px)
+        return err_set(e, NULL, 0, 0, "out of memory for a %dx%d float image", w, h);
+    img->w = w;
+    img->h = h;
+    img->px = px;
+    return 0;
+}
+
+/* Release img's floats; accepts NULL, a zeroed struct, or one already freed. */
+void image_f_free(struct rgbf *img)
+{
+    if (!img)
+        return;
+    free(img->px);
+    img->px = NULL;
+    img->w = 0;
+    img->h = 0;
+}
+
+int image_f_from_rgb8(const struct rgb8 *img, struct rgbf *out, struct err *e)
+{
+    if (image_f_alloc(out, img->w, img->h, e) < 0)
+        return -1;
+    size_t n = (size_t)img->w * (size_t)img->h * 3;
+    for (size_t i = 0; i < n; i++)
+        out->px[i] = (float)(img->px[i] / 255.0);
+    return 0;
+}
+
+const char *image_domain_name(enum img_domain d)
+{
+    return d == IMG_LINEAR ? "linear" : "8-bit";
+}
+
 /* One channel: NaN and negatives give 0, then gamma 2, clamp below 1, scale to 0..255. */
 static uint8_t float_to_byte(float c)
 {

@@ -13,7 +13,23 @@ struct rgb8 {
     uint8_t *px;
 };
 
-enum img_format { IMG_PNG, IMG_PPM };
+/* Linear float RGB, row 0 at the top; px holds w*h*3 floats, owned by the struct (image_f_free). */
+struct rgbf {
+    int w, h;
+    float *px;
+};
+
+/* PNG and PPM hold 8-bit display values (gamma 2); EXR and PFM linear float radiance. */
+enum img_format { IMG_PNG, IMG_PPM, IMG_EXR, IMG_PFM };
+
+/* What a float image's values are: linear radiance (from EXR, PFM or a framebuffer) or 8-bit
+   display values v / 255 in [0, 1] (from PNG or PPM, not gamma-decoded: see imgio_read_f). */
+enum img_domain { IMG_LINEAR, IMG_DISPLAY8 };
+
+/* One string attribute a float file's header carries (EXR; PFM has nowhere to put them). */
+struct img_attr {
+    const char *key, *value;
+};
 
 /* Largest side any image we read or write may have. */
 #define IMAGE_MAX_SIDE 32768
@@ -23,6 +39,16 @@ enum img_format { IMG_PNG, IMG_PPM };
 /* Allocate a zeroed w x h raster; -1 and e filled on bad size or no memory. */
 int image_alloc(struct rgb8 *img, int w, int h, struct err *e);
 void image_free(struct rgb8 *img);
+
+/* Allocate a zeroed w x h float raster (same limits); -1 and e filled on bad size or no memory. */
+int image_f_alloc(struct rgbf *img, int w, int h, struct err *e);
+void image_f_free(struct rgbf *img);
+
+/* img's 8-bit values as display floats v / 255 into out (w x h, allocated here). 0 or -1. */
+int image_f_from_rgb8(const struct rgb8 *img, struct rgbf *out, struct err *e);
+
+/* The name of a domain for messages and JSON: "linear" or "8-bit". */
+const char *image_domain_name(enum img_domain d);
 
 /* Linear float RGB (w*h*3) to 8 bits: sqrt (gamma 2), clamp to [0, 0.999], times 256. */
 void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out);

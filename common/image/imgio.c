@@ -1,4 +1,4 @@
-/* imgio: reading PNG or PPM files by their magic bytes, writing them atomically. */
+/* imgio: reading image files by their magic bytes (8-bit or float), writing them atomically. */
 #include "imgio.h"
 
 #include <stdint.h>
@@ -8,16 +8,21 @@
 #include <strings.h>
 
 #include "base/fileio.h"
+#include "exr.h"
+#include "pfm.h"
 #include "png.h"
 #include "ppm.h"
 
-/* The formats we write, by name; a new one is a line here (and its encoder in imgio_write). */
+/* The formats we write, by name; a new one is a line here (and its encoder in imgio_write or,
+   for floats, imgio_write_f). */
 static const struct {
     const char *name;
     enum img_format fmt;
 } formats[] = {
     {"png", IMG_PNG},
     {"ppm", IMG_PPM},
+    {"exr", IMG_EXR},
+    {"pfm", IMG_PFM},
 };
 enum { N_FORMATS = sizeof formats / sizeof formats[0] };
 
@@ -85,12 +90,79 @@ int imgio_read(const char *path, struct rgb8 *out, struct err *e)
     return rc;
 }
 
+static int is_exr(const uint8_t *d, size_t len)
+{
+    return len >= 4 && memcmp(d, "\x76\x2f\x31\x01", 4) == 0;
+}
+
+static int is_pfm(const uint8_t *d, size_t len)
+{
+    return len >= 3 && d[0] == 'P' && (d[1] == 'F' || d[1] == 'f') &&
+           (d[2] == '\n' || d[2] == ' ' || d[2] == '\r' || d[2] == '\t');
+}
+
+int imgio_read_f(const char *path, struct rgbf *out, enum img_domain *domain, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    *out = (struct rgbf){0};
+    if (domain)
+        *domain = IMG_LINEAR;
+    if (fileio_read_all(path, EXR_MAX_BYTES, &data, &len, e) < 0)
+        return -1;
+    int rc;
+    if (is_exr(data, len)) {
+        rc = exr_image_decode(data, len, path, out, e);
+    } else if (is_pfm(data, len)) {
+        rc = pfm_decode(data, len, path, out, e);
+    } else if (len >= 4 &&
+               (memcmp(data, "\x89PNG", 4) == 0 || (data[0] == 'P' && data[1] >= '1' && data[1] <= '7'))) {
+        struct rgb8 img = {0};
+        rc = data[0] == 0x89 ? png_decode(data, len, path, &img, e) : ppm_decode(data, len, path, &img, e);
+        if (rc == 0)
+            rc = image_f_from_rgb8(&img, out, e);
+        image_free(&img);
+        if (domain)
+            *domain = IMG_DISPLAY8;
+    } else {
+        rc = err_set(e, path, 0, 0, "unknown image format (expected EXR, PFM, PNG or PPM)");
+    }
+    free(data);
+    return rc;
+}
+
+int imgio_is_float(enum img_format fmt)
+{
+    return fmt == IMG_EXR || fmt == IMG_PFM;
+}
+
+int imgio_write_f(const char *path, const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs,
+                  size_t nattrs, struct err *e)
+{
+    uint8_t *buf;
+    size_t len;
+    int rc = fmt == IMG_EXR   ? exr_image_encode(img, attrs, nattrs, &buf, &len, e)
+             : fmt == IMG_PFM ? pfm_encode(img, &buf, &len, e)
+                              : err_set(e, NULL, 0, 0, "not a float image format");
+    if (rc < 0) {
+        if (e && !e->file[0])
+            snprintf(e->file, sizeof e->file, "%s", path);
+        return -1;
+    }
+    rc = fileio_write_atomic(path, buf, len, e);
+    free(buf);
+    return rc;
+}
+
 /* Encode img as fmt and write it atomically to path. 0, or -1 with e filled. */
 int imgio_write(const char *path, const struct rgb8 *img, enum img_format fmt, struct err *e)
 {
     uint8_t *buf;
     size_t len;
-    int rc = fmt == IMG_PNG ? png_encode(img, &buf, &len, e) : ppm_encode(img, &buf, &len, e);
+    int rc = fmt == IMG_PNG   ? png_encode(img, &buf, &len, e)
+             : fmt == IMG_PPM ? ppm_encode(img, &buf, &len, e)
+                              : err_set(e, NULL, 0, 0, "%s holds floats: write it with imgio_write_f",
+                                        img_format_name(fmt));
     if (rc < 0) {
         if (e && !e->file[0])
             snprintf(e->file, sizeof e->file, "%s", path);

@@ -1,4 +1,5 @@
-/* imgio: image files on disk, their format chosen by magic bytes (read) or by the caller (write). */
+/* imgio: image files on disk (PNG, PPM, EXR, PFM), their format chosen by magic bytes (read) or by
+   the caller (write). */
 #ifndef IMGIO_H
 #define IMGIO_H
 
@@ -27,5 +28,20 @@ void img_format_list(char *buf, size_t n);
 
 /* Encode img in fmt and write it atomically to path. */
 int imgio_write(const char *path, const struct rgb8 *img, enum img_format fmt, struct err *e);
+
+/* Read an EXR, PFM, PNG or PPM file (chosen by its magic bytes) into out as floats, *domain
+   (optional) saying what they are: EXR and PFM give linear radiance as stored (IMG_LINEAR); PNG
+   and PPM give their 8-bit display values as v / 255 (IMG_DISPLAY8), deliberately not decoded
+   through gamma 2: the writer's clamp and 1/255 steps are not invertible, and an error measured
+   on these values is the 8-bit display error, named as such, not a guess at radiance. */
+int imgio_read_f(const char *path, struct rgbf *out, enum img_domain *domain, struct err *e);
+
+/* Write the float image img as an EXR or PFM file (fmt IMG_EXR or IMG_PFM) atomically to path;
+   attrs (nattrs strings) go into an EXR's header. 0, or -1 with e filled. */
+int imgio_write_f(const char *path, const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs,
+                  size_t nattrs, struct err *e);
+
+/* Whether fmt stores linear floats (EXR, PFM) rather than 8-bit display values. */
+int imgio_is_float(enum img_format fmt);
 
 #endif

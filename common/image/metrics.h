@@ -1,23 +1,31 @@
-/* metrics: error of an image against a reference (MSE, RMSE, relMSE as pbrt, PSNR). */
+/* metrics: error of an image against a reference (MSE, RMSE, relMSE as pbrt, its firefly-robust
+   variant, PSNR), on linear radiance or on 8-bit display values. */
 #ifndef METRICS_H
 #define METRICS_H
 
 #include "image.h"
 
+/* All per channel value, averaged over the w*h*3 values: mse = mean (v - r)^2; relmse = mean
+   (v - r)^2 / (r^2 + METRICS_REL_EPS) (pbrt's imgtool); relmse_robust = relmse with the largest
+   METRICS_ROBUST_DROP of the per-pixel terms (a pixel's term: the mean of its three channels')
+   left out, none below 1000 pixels (a few fireflies otherwise decide the figure, as in the path
+   guiding papers); psnr = 10 log10(1 / mse), peak 1 = display white, in dB (inf when equal). */
 struct metrics {
-    double mse, rmse, relmse, psnr; /* on values in [0, 1]; psnr in dB (inf when equal) */
+    double mse, rmse, relmse, relmse_robust, psnr;
 };
 
-/* relMSE epsilon, as pbrt's imgtool: mean of (b - a)^2 / (a^2 + eps). */
 #define METRICS_REL_EPS 0.01
+#define METRICS_ROBUST_DROP 0.001
 
-/* Error of img against ref (same size, else -1 with e filled). */
-int metrics_compare(const struct rgb8 *ref, const struct rgb8 *img, struct metrics *m, struct err *e);
+/* Error of img against ref (same size), both floats of one domain, between the means of
+   block x block tiles (edge tiles clipped; block 1 = per pixel): averaging k pixels divides
+   independent noise's RMSE by about sqrt(k) while a change over a large area keeps its size.
+   -1 with e filled on different sizes, block < 1, a non-finite value or no memory. */
+int metrics_compare_f(const struct rgbf *ref, const struct rgbf *img, int block, struct metrics *m,
+                      struct err *e);
 
-/* The same error between the means of block x block tiles (edge tiles clipped); block 1 is
-   metrics_compare. Averaging k pixels divides independent noise's RMSE by about sqrt(k) while
-   a change over a large area keeps its size. -1 with e filled on different sizes or block < 1. */
-int metrics_compare_blocks(const struct rgb8 *ref, const struct rgb8 *img, int block, struct metrics *m,
-                           struct err *e);
+/* The display metrics: the same figures on two 8-bit images' values v / 255 (what a PNG viewer
+   shows, clipped and gamma-encoded: not radiance). -1 with e filled as metrics_compare_f. */
+int metrics_display_compare(const struct rgb8 *ref, const struct rgb8 *img, struct metrics *m, struct err *e);
 
 #endif

@@ -57,26 +57,41 @@ static int filter_image(const struct rgb8 *img, uint8_t *raw, struct err *e)
     return 0;
 }
 
-/* Write one chunk (length, type, data, CRC over type and data) at p; returns the end. */
+/* Write one chunk (length, type, data, CRC over type and data) at p; returns the end. data NULL:
+   the n bytes are already in place at p + 8. */
 static uint8_t *put_chunk(uint8_t *p, const char *type, const uint8_t *data, uint32_t n)
 {
     put_be32(p, n);
     memcpy(p + 4, type, 4);
-    if (n)
+    if (n && data)
         memcpy(p + 8, data, n);
     uLong crc = crc32(0L, p + 4, 4 + n);
     put_be32(p + 8 + n, (uint32_t)crc);
     return p + 12 + n;
 }
 
-/* Encode img as an 8-bit RGB PNG into a malloc'd buffer *out of *out_len bytes (caller frees).
-   The zlib stream is split over IDAT chunks of at most 1 MiB. 0, or -1 with e filled. */
 int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct err *e)
+{
+    return png_encode_text(img, NULL, 0, out, out_len, e);
+}
+
+/* Encode img as an 8-bit RGB PNG into a malloc'd buffer *out of *out_len bytes (caller frees),
+   with a tEXt chunk per text after IHDR. The zlib stream is split over IDAT chunks of at most
+   1 MiB. 0, or -1 with e filled. */
+int png_encode_text(const struct rgb8 *img, const struct img_attr *texts, size_t ntexts, uint8_t **out,
+                    size_t *out_len, struct err *e)
 {
     *out = NULL;
     *out_len = 0;
     if (!img->px || img->w < 1 || img->h < 1 || img->w > IMAGE_MAX_SIDE || img->h > IMAGE_MAX_SIDE)
         return err_set(e, NULL, 0, 0, "cannot encode PNG: bad image %dx%d", img->w, img->h);
+    size_t text_len = 0;
+    for (size_t i = 0; i < ntexts; i++) {
+        size_t kl = strlen(texts[i].key), vl = strlen(texts[i].value);
+        if (kl < 1 || kl > 79 || vl > 65536) /* spec 11.3.4.3: a keyword is 1 to 79 bytes */
+            return err_set(e, NULL, 0, 0, "cannot encode PNG: text \"%.20s\" too long", texts[i].key);
+        text_len += 12 + kl + 1 + vl;
+    }
     size_t raw_len = (size_t)img->h * ((size_t)img->w * 3 + 1);
     uLong z_len = compressBound((uLong)raw_len);
     uint8_t *raw = malloc(raw_len);
@@ -94,7 +109,7 @@ int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct er
         goto done;
     }
     size_t n_idat = (z_len + PNG_IDAT_MAX - 1) / PNG_IDAT_MAX;
-    size_t total = sizeof png_signature + (12 + 13) + 12 * n_idat + z_len + 12;
+    size_t total = sizeof png_signature + (12 + 13) + text_len + 12 * n_idat + z_len + 12;
     buf = malloc(total);
     if (!buf) {
         err_set(e, NULL, 0, 0, "out of memory encoding PNG");
@@ -106,6 +121,13 @@ int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct er
     uint8_t *p = buf;
     memcpy(p, png_signature, sizeof png_signature);
     p = put_chunk(p + sizeof png_signature, "IHDR", ihdr, sizeof ihdr);
+    for (size_t i = 0; i < ntexts; i++) {
+        /* tEXt: keyword, a zero byte, the text, written in place; put_chunk adds the frame */
+        size_t kl = strlen(texts[i].key), vl = strlen(texts[i].value);
+        memcpy(p + 8, texts[i].key, kl + 1);
+        memcpy(p + 8 + kl + 1, texts[i].value, vl);
+        p = put_chunk(p, "tEXt", NULL, (uint32_t)(kl + 1 + vl));
+    }
     for (size_t off = 0; off < z_len; off += PNG_IDAT_MAX) {
         size_t n = z_len - off < PNG_IDAT_MAX ? z_len - off : PNG_IDAT_MAX;
         p = put_chunk(p, "IDAT", z + off, (uint32_t)n);

@@ -6,7 +6,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "image/exr.h"
 #include "image/image.h"
+#include "image/pfm.h"
 #include "job/job.h"
 #include "image/png.h"
 #include "image/ppm.h"
@@ -56,5 +58,10 @@ int fuzz_image(const uint8_t *data, size_t size)
     struct rgb8 img2 = {0};
     if (ppm_decode(data, size, "fuzz", &img2, &e) == 0)
         image_free(&img2);
+    struct rgbf f = {0};
+    if (pfm_decode(data, size, "fuzz", &f, &e) == 0)
+        image_f_free(&f);
+    if (exr_image_decode(data, size, "fuzz", &f, &e) == 0)
+        image_f_free(&f);
     return 0;
 }

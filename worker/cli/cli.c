@@ -73,7 +73,7 @@ bad:
 
 char **cli_split_equals(int *argc, char **argv)
 {
-    static const char *const diff_values[] = {"--max-rmse", "--block", NULL};
+    static const char *const diff_values[] = {"--max-rmse", "--block", "--map", NULL};
     char **out = calloc((size_t)*argc * 2 + 1, sizeof *out);
     int n = 0, ended = 0;
     if (!out)

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "diff.h"
 #include "study/compare.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
@@ -28,7 +29,8 @@ static const char usage[] =
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
     "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs\n"
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
-    "       worker diff A.png B.png [--max-rmse X] [--block N]  error of B against reference A\n"
+    "       worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N]\n"
+    "                                          error of B against reference A (EXR, PFM, PNG, PPM)\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
     "              [--sets M] [--spectrum F.png] [--radial F.svg] [--stats]  and its spectrum, statistics\n"
     "       worker --help | --version\n"
@@ -43,7 +45,8 @@ static const char help[] =
     "Each job file (YAML) names a scene, a pixel sampler (uniform | jitter | random | poisson)\n"
     "and its threshold (the minimum spacing in a 100x100 domain: 1 gives 10000 samples per\n"
     "pixel for uniform/jitter/random, about 6200 for poisson). Rows are split over forked\n"
-    "processes; the image (PNG or PPM) and a JSON stats sidecar land in OUT/<job name>/.\n"
+    "processes; the image (PNG or PPM: 8-bit display values; EXR or PFM: linear radiance) and a\n"
+    "JSON stats sidecar land in OUT/<job name>/.\n"
     "\n"
     "A compare job is a job file with variants: (and optionally scenes:, sweep:, seeds:): it\n"
     "renders every combination, scores each against a reference render and writes the images,\n"
@@ -51,7 +54,8 @@ static const char help[] =
     "A queue (--queue DIR) is a folder of job files that any number of workers, on one machine\n"
     "or many sharing it, drain: outputs in DIR/done/<name>/, failed jobs in DIR/failed/.\n"
     "--part I/N and merge split one job's rows over machines and join them again.\n"
-    "worker diff scores an image against a reference; worker points prints (or draws, --svg)\n"
+    "worker diff scores an image against a reference (in linear radiance for EXR/PFM, see\n"
+    "docs/formats.md); worker points prints (or draws, --svg)\n"
     "one point set of a sampler.\n"
     "\n"
     "formats: docs/job-format.md, docs/scene-format.md (every key, with examples)\n"
@@ -64,74 +68,6 @@ static void print_err(const struct err *e)
     char buf[2048];
     err_format(e, buf, sizeof buf);
     fprintf(stderr, "%s\n", buf);
-}
-
-/* A finite decimal number (not nan, inf or hex, which strtod takes too). 0, or -1. */
-static int parse_double_arg(const char *s, double *out)
-{
-    char *end;
-    *out = strtod(s, &end);
-    return *s && !*end && isfinite(*out) && strspn(s, "0123456789+-.eE") == strlen(s) ? 0 : -1;
-}
-
-static int diff_main(int argc, char **argv)
-{
-    const char *files[2] = {0};
-    int nfiles = 0;
-    double max_rmse = -1, block = 1;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--block")) {
-            if (i + 1 >= argc || parse_double_arg(argv[++i], &block) < 0 || block != floor(block) ||
-                block < 1 || block > 65536) {
-                err_print("worker diff: --block needs a whole number of pixels in [1, 65536]\n");
-                return 2;
-            }
-        } else if (!strcmp(argv[i], "--max-rmse")) {
-            if (i + 1 >= argc || parse_double_arg(argv[++i], &max_rmse) < 0 || max_rmse < 0) {
-                err_print("worker diff: --max-rmse needs a number >= 0\n");
-                return 2;
-            }
-        } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
-            continue; /* a common option; diff draws no progress anyway */
-        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: worker diff A.png B.png [--max-rmse X] [--block N] [--quiet]\n"
-                   "error metrics of B against reference A; exit 1 when rmse is over X\n");
-            return 0;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            err_print("worker diff: unknown option %s; see worker --help\n", argv[i]);
-            return 2;
-        } else if (nfiles < 2) {
-            files[nfiles++] = argv[i];
-        } else {
-            err_print("worker diff: expected two images, got a third: %s\n", argv[i]);
-            return 2;
-        }
-    }
-    if (nfiles != 2) {
-        err_print("worker diff: expected two images (reference, then image); see worker --help\n");
-        return 2;
-    }
-    struct rgb8 a = {0}, b = {0};
-    struct metrics m;
-    struct err e;
-    int rc = 2;
-    if (imgio_read(files[0], &a, &e) == 0 && imgio_read(files[1], &b, &e) == 0) {
-        if (metrics_compare_blocks(&a, &b, (int)block, &m, &e) == 0) {
-            printf("mse %.9g\nrmse %.9g\nrelmse %.9g\npsnr %.4f\n", m.mse, m.rmse, m.relmse, m.psnr);
-            rc = 0;
-            if (max_rmse >= 0 && m.rmse > max_rmse) {
-                err_print("worker diff: rmse %.6g is over --max-rmse %g\n", m.rmse, max_rmse);
-                rc = 1;
-            }
-        } else {
-            snprintf(e.file, sizeof e.file, "%s", files[1]);
-        }
-    }
-    if (rc == 2)
-        print_err(&e);
-    image_free(&a);
-    image_free(&b);
-    return rc;
 }
 
 static int max_rc(int a, int b)

@@ -102,7 +102,8 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
 {
     char dir[2048], path[2048], missing[512] = "";
     struct procs_result *fr = calloc(1, sizeof *fr);
-    struct rgb8 ref = {0};
+    struct rgbf ref = {0};
+    enum img_domain ref_domain = IMG_LINEAR;
     float *rgb = NULL;
     int rc = 2, w = 0, h = 0, nmissing = 0;
     memset(rr, 0, sizeof *rr);
@@ -143,12 +144,14 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
     }
     rr->width = w;
     rr->height = h;
-    if (run_load_reference(j, w, h, &ref, e) < 0)
+    if (run_load_reference(j, w, h, &ref, &ref_domain, e) < 0)
         goto done;
+    if (ref.px && ref_domain == IMG_DISPLAY8)
+        run_warn_display_reference(j->name, j->reference);
     rr->procs = *fr;
-    rc = run_out_write(j, o, rgb, w, h, fr, &ref, parts, rr, e) < 0 ? 1 : 0;
+    rc = run_out_write(j, o, rgb, w, h, fr, &ref, ref_domain, parts, rr, e) < 0 ? 1 : 0;
 done:
-    image_free(&ref);
+    image_f_free(&ref);
     free(rgb);
     free(fr);
     return rc;

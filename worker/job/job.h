@@ -30,6 +30,8 @@ struct job {
     int nee;            /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
     int dims_all;       /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
     int priority;       /* queue order: higher first (default 0) */
+    int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
+                           image (a compare job's renders, scored in linear radiance) */
     uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;

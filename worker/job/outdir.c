@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "base/rng.h"
+#include "image/imgio.h"
 
 const char *outdir_root(const char *out_dir)
 {
@@ -39,6 +40,16 @@ void outdir_paths(const struct job *j, const char *out_dir, char *dir, char *ima
     outdir_dir(out_dir, j->name, dir, n);
     snprintf(image, n, "%s/%s/%s", outdir_root(out_dir), j->name, j->output);
     snprintf(sidecar, n, "%s/%s/%s.json", outdir_root(out_dir), j->name, stem);
+}
+
+void outdir_float_path(const struct job *j, const char *out_dir, char *path, size_t n)
+{
+    char stem[JOB_NAME_MAX];
+    path[0] = 0;
+    if (!j->float_copy || imgio_is_float(j->format))
+        return;
+    outdir_stem(j->output, stem, sizeof stem);
+    snprintf(path, n, "%s/%s/%s.exr", outdir_root(out_dir), j->name, stem);
 }
 
 void outdir_part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n)

@@ -25,6 +25,10 @@ void outdir_dir(const char *out_dir, const char *name, char *buf, size_t n);
 /* j's folder OUT/<name>, its image OUT/<name>/<output> and sidecar OUT/<name>/<output stem>.json. */
 void outdir_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
 
+/* j's float copy OUT/<name>/<output stem>.exr when j->float_copy and its image is PNG or PPM,
+   else "". */
+void outdir_float_path(const struct job *j, const char *out_dir, char *path, size_t n);
+
 /* The file of part I of N of j: OUT/<name>/<output stem>.part-I-of-N. */
 void outdir_part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n);
 

@@ -52,12 +52,14 @@ static int is_file(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e)
+int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
+                       struct err *e)
 {
-    *ref = (struct rgb8){0};
+    *ref = (struct rgbf){0};
+    *domain = IMG_LINEAR;
     if (!j->reference[0])
         return 0;
-    if (imgio_read(j->reference, ref, e) < 0) {
+    if (imgio_read_f(j->reference, ref, domain, e) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg);
         return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s",
@@ -66,10 +68,17 @@ int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, stru
     if (ref->w != w || ref->h != h) {
         err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
                 "reference: image is %dx%d but the job renders %dx%d", ref->w, ref->h, w, h);
-        image_free(ref);
+        image_f_free(ref);
         return -1;
     }
     return 0;
+}
+
+void run_warn_display_reference(const char *job_name, const char *path)
+{
+    err_print("%s: warning: reference %s is an 8-bit PNG/PPM: the error is measured on 8-bit display "
+              "values (clipped, gamma 2), not on linear radiance; give an EXR or PFM reference\n",
+              job_name, path);
 }
 
 /* Resume: the outputs exist and were made from these very inputs. */
@@ -84,7 +93,9 @@ static int outputs_current(const struct job *j, const struct run_opts *o, struct
         return part_matches(rr->image_path, j, o->part, o->parts);
     }
     outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    return is_file(rr->image_path) && sidecar_matches(rr->sidecar_path, j->hash);
+    outdir_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
+    return is_file(rr->image_path) && (!rr->float_path[0] || is_file(rr->float_path)) &&
+           sidecar_matches(rr->sidecar_path, j->hash);
 }
 
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
@@ -101,7 +112,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     }
     struct scene_file sf = {0};
     struct sampler *pix = NULL, *light = NULL;
-    struct rgb8 ref = {0};
+    struct rgbf ref = {0};
+    enum img_domain ref_domain = o->ref_domain;
     float *rgb = NULL;
     char dir[2048];
     int rc = 2;
@@ -130,8 +142,11 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         goto done;
     }
-    if (run_load_reference(j, w, h, &ref, e) < 0)
+    if (!o->ref && run_load_reference(j, w, h, &ref, &ref_domain, e) < 0)
         goto done;
+    if (o->parts == 0 && !o->ref && ref.px && ref_domain == IMG_DISPLAY8)
+        run_warn_display_reference(j->name, j->reference);
+    const struct rgbf *use_ref = o->ref ? o->ref : &ref;
     if (job_limits_samples(j, w, h, e) < 0)
         goto done;
     if (job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0) {
@@ -176,12 +191,12 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (o->parts > 0) {
         if (run_out_write_part(j, o, rgb, w, h, &rr->procs, rr, e) < 0)
             goto done;
-    } else if (run_out_write(j, o, rgb, w, h, &rr->procs, &ref, 0, rr, e) < 0) {
+    } else if (run_out_write(j, o, rgb, w, h, &rr->procs, use_ref, ref_domain, 0, rr, e) < 0) {
         goto done;
     }
     rc = 0;
 done:
-    image_free(&ref);
+    image_f_free(&ref);
     procs_framebuffer_free(rgb, rr->width, rr->height);
     sampler_free(pix);
     sampler_free(light);

@@ -4,8 +4,9 @@
 
 #include <signal.h>
 
-#include "procs.h"
+#include "image/metrics.h"
 #include "job.h"
+#include "procs.h"
 
 struct run_opts {
     const char *out_dir; /* NULL: OUTDIR_DEFAULT (outdir.h) */
@@ -22,12 +23,17 @@ struct run_opts {
                                           0 = write nothing, fail (a queue claim taken over, the
                                           folder another queued job's) */
     void *tick_arg;
-    double lock_wait_s;           /* > 0: wait no longer for the output folder's lock (a queue: its lease
-                                     timeout); then its holder is stopped or hung, and this render writes
-                                     without it when may_write still says yes */
-    int (*still_held)(void *arg); /* optional: asked (with tick_arg) just before each output is
-                                     renamed into place: 0 = the claim was taken over meanwhile;
-                                     rename nothing more, fail */
+    double lock_wait_s;             /* > 0: wait no longer for the output folder's lock (a queue: its lease
+                                       timeout); then its holder is stopped or hung, and this render writes
+                                       without it when may_write still says yes */
+    int (*still_held)(void *arg);   /* optional: asked (with tick_arg) just before each output is
+                                       renamed into place: 0 = the claim was taken over meanwhile;
+                                       rename nothing more, fail */
+    const struct rgbf *ref;         /* optional: the job's reference, already read (a compare job reads each
+                                       scene's once); NULL: run_job reads j->reference itself */
+    enum img_domain ref_domain;     /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
+    const struct rgb8 *ref_display; /* optional: the reference as 8-bit display values: the PNG or
+                                       PPM image is also scored against it (display_error) */
 };
 
 struct run_result {
@@ -37,6 +43,12 @@ struct run_result {
     int skipped;               /* outputs were current (same job hash): nothing rendered */
     int black;                 /* the image written is entirely black (run_print_warnings) */
     struct procs_result procs; /* on a render failure: child_crashed, child_signal, stopped */
+    int has_error;             /* rendered against a reference: error holds the figures */
+    struct metrics error;
+    int has_display_error;        /* o->ref_display given and the image is PNG or PPM */
+    struct metrics display_error; /* the 8-bit image against o->ref_display */
+    enum img_domain error_domain; /* linear radiance, or 8-bit display values (a PNG/PPM reference) */
+    char float_path[2048];        /* the float copy beside a PNG/PPM image (job.float_copy), else "" */
 };
 
 /* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing
@@ -46,9 +58,15 @@ struct run_result {
    job_load) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
 
-/* Read j's reference into ref and check it is w x h. 0 (ref->px NULL when the job has none),
-   or -1 with e at the job's reference key. */
-int run_load_reference(const struct job *j, int w, int h, struct rgb8 *ref, struct err *e);
+/* Read j's reference (EXR, PFM, PNG or PPM) into ref as floats, *domain saying what they are,
+   and check it is w x h. 0 (ref->px NULL when the job has none), or -1 with e at the job's
+   reference key. */
+int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
+                       struct err *e);
+
+/* The one-line warning on stderr that the error against the reference at path is measured on
+   8-bit display values (a PNG or PPM reference), not on linear radiance. */
+void run_warn_display_reference(const char *job_name, const char *path);
 
 /* A progress line on stderr, printed only when o->progress (a terminal) and not o->quiet. */
 void run_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -56,67 +56,116 @@ int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e)
     return err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
 }
 
-int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                  const struct procs_result *fr, const struct rgb8 *ref, int parts, struct run_result *rr,
-                  struct err *e)
+/* The EXR header's string attributes for j (nothing that depends on the process count or the
+   output folder: the file's bytes do not). texts holds their values. */
+static size_t exr_attrs(const struct job *j, struct img_attr *a, char texts[][160])
 {
-    char dir[2048], staged_image[2100], staged_sidecar[2100];
+    const char *slash = strrchr(j->scene_path, '/');
+    snprintf(texts[0], 160, "%s", slash ? slash + 1 : j->scene_path);
+    snprintf(texts[1], 160, "%s t=%.17g", sampler_kind_name(j->sampler), j->threshold);
+    snprintf(texts[2], 160, "%s t=%.17g", sampler_kind_name(j->light_sampler), j->light_threshold);
+    snprintf(texts[3], 160, "%llu", (unsigned long long)j->seed);
+    snprintf(texts[4], 160, "%d", j->max_depth);
+    snprintf(texts[5], 160, "worker %s", WORKER_VERSION);
+    const struct img_attr list[] = {{"job", j->name},           {"scene", texts[0]}, {"sampler", texts[1]},
+                                    {"lightSampler", texts[2]}, {"seed", texts[3]},  {"maxDepth", texts[4]},
+                                    {"software", texts[5]}};
+    memcpy(a, list, sizeof list);
+    return sizeof list / sizeof *list;
+}
+
+/* Score the framebuffer fb (its 8-bit conversion img when the reference holds 8-bit display
+   values) against ref into rr. 0 or -1 with e filled. */
+static int score(const struct rgbf *fb, const struct rgb8 *img, const struct rgbf *ref,
+                 enum img_domain domain, struct run_result *rr, struct err *e)
+{
+    struct rgbf disp = {0};
+    int rc = domain == IMG_LINEAR                   ? metrics_compare_f(ref, fb, 1, &rr->error, e)
+             : image_f_from_rgb8(img, &disp, e) < 0 ? -1
+                                                    : metrics_compare_f(ref, &disp, 1, &rr->error, e);
+    image_f_free(&disp);
+    rr->has_error = rc == 0;
+    rr->error_domain = domain;
+    return rc;
+}
+
+int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
+                  const struct procs_result *fr, const struct rgbf *ref, enum img_domain ref_domain,
+                  int parts, struct run_result *rr, struct err *e)
+{
+    char dir[2048], staged[3][2100], attr_text[6][160];
+    const char *final[3];
+    struct img_attr attrs[8];
     struct rgb8 img = {0};
+    struct rgbf fb = {w, h, (float *)rgb};
     char *json = NULL;
-    int rc = -1, made_dir = 0, lock = -1;
+    int rc = -1, made_dir = 0, lock = -1, n = 0;
+    int is_float = imgio_is_float(j->format), has_ref = ref && ref->px;
     outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    if (outdir_mkdirs(dir, &made_dir, e) < 0 || image_alloc(&img, w, h, e) < 0)
+    outdir_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
+    if (outdir_mkdirs(dir, &made_dir, e) < 0 ||
+        ((!is_float || (has_ref && ref_domain == IMG_DISPLAY8)) && image_alloc(&img, w, h, e) < 0))
         goto done;
-    outdir_staged_name(rr->image_path, staged_image, sizeof staged_image);
-    outdir_staged_name(rr->sidecar_path, staged_sidecar, sizeof staged_sidecar);
-    const char *outs[] = {rr->image_path, rr->sidecar_path, NULL};
+    final[n++] = rr->image_path;
+    if (rr->float_path[0])
+        final[n++] = rr->float_path;
+    final[n++] = rr->sidecar_path;
+    for (int i = 0; i < n; i++)
+        outdir_staged_name(final[i], staged[i], sizeof staged[i]);
+    const char *outs[] = {final[0], final[1], n > 2 ? final[2] : NULL, NULL};
     if (run_out_lock_outputs(dir, outs, o, &lock, e) < 0)
         goto done;
-    image_float_to_rgb8(rgb, w, h, img.px);
-    struct metrics m;
-    int has_ref = ref && ref->px;
-    if (has_ref && metrics_compare(ref, &img, &m, e) < 0)
+    if (img.px)
+        image_float_to_rgb8(rgb, w, h, img.px);
+    rr->has_error = rr->has_display_error = 0;
+    if (has_ref && score(&fb, &img, ref, ref_domain, rr, e) < 0)
         goto done;
-    struct sidecar sc = {j, w, h, fr, has_ref ? &m : NULL, j->output, parts};
+    if (o->ref_display && img.px) {
+        if (metrics_display_compare(o->ref_display, &img, &rr->display_error, e) < 0)
+            goto done;
+        rr->has_display_error = 1;
+    }
+    struct sidecar sc = {j, w, h, fr, rr->has_error ? &rr->error : NULL, ref_domain, j->output, parts};
     if (!(json = sidecar_json(&sc))) {
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* Both are written whole under staging names first: a failure before the renames (a full disk,
-       a size limit) leaves an earlier image and sidecar as they were. Then the earlier sidecar
-       goes, the image is renamed, the sidecar last: a reader (or a writer killed at any step)
-       sees the earlier pair, an image without a sidecar (not finished: rendered again), or the
-       new pair, never a new image beside an earlier sidecar (issue 21, defect 6). A killed
+    /* All are written whole under staging names first: a failure before the renames (a full disk,
+       a size limit) leaves the earlier outputs as they were. Then the earlier sidecar goes, the
+       image and its float copy are renamed, the sidecar last: a reader (or a writer killed at any
+       step) sees the earlier outputs, images without a sidecar (not finished: rendered again), or
+       the new ones, never a new image beside an earlier sidecar (issue 21, defect 6). A killed
        writer's staged files and their temporaries go under the next one's lock. */
-    if (imgio_write(staged_image, &img, j->format, e) < 0) {
-        name_final(e, staged_image, rr->image_path);
-        goto done;
-    }
-    if (fileio_write_atomic(staged_sidecar, json, strlen(json), e) < 0) {
-        name_final(e, staged_sidecar, rr->sidecar_path);
-        unlink(staged_image);
+    size_t nattrs = exr_attrs(j, attrs, attr_text);
+    int k = 0, wrote = is_float ? imgio_write_f(staged[0], &fb, j->format, attrs, nattrs, e)
+                                : imgio_write(staged[0], &img, j->format, e);
+    if (wrote == 0 && n == 3) /* the float copy */
+        wrote = imgio_write_f(staged[++k], &fb, IMG_EXR, attrs, nattrs, e);
+    if (wrote == 0)
+        wrote = fileio_write_atomic(staged[++k], json, strlen(json), e);
+    if (wrote < 0) {
+        name_final(e, staged[k], final[k]);
+        while (k-- > 0)
+            unlink(staged[k]);
         goto done;
     }
     /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
-    if (run_out_still_held(o, dir, e) < 0) {
-        unlink(staged_image);
-        unlink(staged_sidecar);
-        goto done;
-    }
-    if ((unlink(rr->sidecar_path) < 0 && errno != ENOENT) || rename(staged_image, rr->image_path) < 0) {
-        err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->image_path, strerror(errno));
-        unlink(staged_image);
-        unlink(staged_sidecar);
-        goto done;
-    }
-    if (run_out_still_held(o, dir, e) < 0) { /* the image stays, without a sidecar: not finished */
-        unlink(staged_sidecar);
-        goto done;
-    }
-    if (rename(staged_sidecar, rr->sidecar_path) < 0) {
-        err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->sidecar_path, strerror(errno));
-        unlink(staged_sidecar);
-        unlink(rr->image_path); /* an image without its sidecar is not a finished job */
+    int failed = run_out_still_held(o, dir, e) < 0;
+    if (!failed && unlink(rr->sidecar_path) < 0 && errno != ENOENT)
+        failed = err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->sidecar_path, strerror(errno)) < 0;
+    for (int i = 0; i < n; i++) {
+        /* a claim taken over between renames: what is renamed stays, without a sidecar */
+        if (failed || (i > 0 && run_out_still_held(o, dir, e) < 0)) {
+            for (int r = i; r < n; r++)
+                unlink(staged[r]);
+            goto done;
+        }
+        if (rename(staged[i], final[i]) == 0)
+            continue;
+        /* an image without its sidecar is not a finished job: undo the renames done */
+        err_set(e, NULL, 0, 0, "cannot write %s: %s", final[i], strerror(errno));
+        for (int r = 0; r < n; r++)
+            unlink(r < i ? final[r] : staged[r]);
         goto done;
     }
     rr->black = image_float_black(rgb, w, h);

@@ -83,10 +83,13 @@ char *sidecar_json(const struct sidecar *s)
     if (s->error) {
         json_begin_object(&js, "error");
         json_string(&js, "reference", j->reference);
+        json_string(&js, "domain", image_domain_name(s->error_domain));
         json_number(&js, "mse", s->error->mse);
         json_number(&js, "rmse", s->error->rmse);
         json_number(&js, "relmse", s->error->relmse);
         json_number(&js, "relmse_eps", METRICS_REL_EPS);
+        json_number(&js, "relmse_robust", s->error->relmse_robust);
+        json_number(&js, "relmse_robust_drop", METRICS_ROBUST_DROP);
         json_number(&js, "psnr", s->error->psnr);
         json_end_object(&js);
     }
@@ -206,6 +209,8 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    number_at(d, error, "mse", &out->mse, e) < 0 ||
                    number_at(d, error, "rmse", &out->rmse, e) < 0 ||
                    number_at(d, error, "relmse", &out->relmse, e) < 0 ||
+                   number_at(d, error, "relmse_robust", &out->relmse_robust, e) < 0 ||
+                   string_at(d, error, "domain", out->error_domain, sizeof out->error_domain, e) < 0 ||
                    number_at(d, error, "psnr", &out->psnr, e) < 0
                ? -1
                : 0;

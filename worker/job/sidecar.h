@@ -10,9 +10,10 @@ struct sidecar {
     const struct job *job;
     int width, height;
     const struct procs_result *res;
-    const struct metrics *error; /* NULL when the job has no reference */
-    const char *image;           /* the image file's name */
-    int parts;                   /* > 0: merged from this many --part files (res->proc[i] = part i) */
+    const struct metrics *error;  /* NULL when the job has no reference */
+    enum img_domain error_domain; /* what error was measured on: linear radiance or 8-bit values */
+    const char *image;            /* the image file's name */
+    int parts;                    /* > 0: merged from this many --part files (res->proc[i] = part i) */
 };
 
 /* Largest sidecar sidecar_read reads (one with PROCS_MAX_PROCESSES per_process entries is ~40 kB). */
@@ -31,7 +32,8 @@ struct sidecar_info {
     double spp_mean;                          /* samples.per_pixel_mean */
     double wall_s, cpu_s, sampler_s, sampling_share, ns_per_sample; /* time.* (the job's) */
     int has_error;                                                  /* error.* were there */
-    double mse, rmse, relmse, psnr;
+    char error_domain[16]; /* what the error was measured on: "linear" or "8-bit" */
+    double mse, rmse, relmse, relmse_robust, psnr;
 };
 
 /* Render the sidecar as JSON text into a malloc'd string (caller frees); NULL on no memory. */

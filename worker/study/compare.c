@@ -87,9 +87,34 @@ static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, 
     return 0;
 }
 
+/* A scene's reference, read once: floats to score in (linear, or 8-bit display values for a
+   PNG/PPM reference), and as 8-bit display values for the display figures. */
+struct scene_ref {
+    struct rgbf f;
+    struct rgb8 display;
+};
+
+/* A combination that was current: score its files (its float copy, or its PNG for an 8-bit
+   reference, and its PNG for the display figures). 0 or -1. */
+static int score_files(struct compare_item *it, const struct run_result *rr, const struct scene_ref *ref,
+                       enum img_domain domain, struct err *e)
+{
+    struct rgbf img = {0};
+    struct rgb8 png = {0};
+    int rc = imgio_read_f(domain == IMG_LINEAR ? rr->float_path : rr->image_path, &img, NULL, e) < 0 ||
+                     metrics_compare_f(&ref->f, &img, 1, &it->error, e) < 0 ||
+                     imgio_read(rr->image_path, &png, e) < 0 ||
+                     metrics_display_compare(&ref->display, &png, &it->display_error, e) < 0
+                 ? -1
+                 : 0;
+    image_f_free(&img);
+    image_free(&png);
+    return rc;
+}
+
 /* Render one combination (or take it as it is when current) and measure it against its
    scene's reference (ref may be NULL). */
-static int render_item(struct compare *c, struct compare_item *it, const struct rgb8 *ref,
+static int render_item(struct compare *c, struct compare_item *it, const struct scene_ref *ref,
                        const struct run_opts *o, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[it->scene];
@@ -99,6 +124,9 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     struct run_result rr;
     struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
     quiet_rows.progress = 0;
+    quiet_rows.ref = ref ? &ref->f : NULL; /* scored in memory, on the framebuffer's floats */
+    quiet_rows.ref_domain = cs->ref_domain;
+    quiet_rows.ref_display = ref ? &ref->display : NULL;
     int rc = run_job(&it->job, &quiet_rows, &rr, e);
     if (rc != 0) {
         err_prefix(e, it->job.output);
@@ -117,12 +145,17 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->cpu_s = rr.procs.cpu_s;
         it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
     }
-    if (ref) {
-        struct rgb8 img = {0};
-        rc = imgio_read(rr.image_path, &img, e) < 0 || metrics_compare(ref, &img, &it->error, e) < 0;
-        image_free(&img);
-        if (rc)
+    if (ref && rr.skipped) {
+        if (score_files(it, &rr, ref, cs->ref_domain, e) < 0)
             return 1;
+        it->has_error = 1;
+    } else if (ref) {
+        if (!rr.has_error || !rr.has_display_error) {
+            err_set(e, NULL, 0, 0, "%s: rendered without its error figures", it->job.output);
+            return 1;
+        }
+        it->error = rr.error;
+        it->display_error = rr.display_error;
         it->has_error = 1;
     }
     it->done = 1;
@@ -147,7 +180,7 @@ static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
     sbuf_printf(&b, "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
-                    "sampler_share,mse,rmse,relmse,psnr,image\n");
+                    "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
@@ -155,10 +188,12 @@ static char *summary_csv(const struct compare *c)
         sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
                     (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
-            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.4f,", it->error.mse, it->error.rmse, it->error.relmse,
-                        it->error.psnr);
+            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", it->error.mse, it->error.rmse,
+                        it->error.relmse, it->error.relmse_robust, it->error.psnr,
+                        image_domain_name(c->scenes[it->scene].ref_domain), it->display_error.rmse,
+                        it->display_error.relmse);
         else
-            sbuf_printf(&b, ",,,,");
+            sbuf_printf(&b, ",,,,,,,,");
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
@@ -179,7 +214,7 @@ static int write_text(const char *dir, const char *file, char *text, struct err 
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
     char dir[2048];
-    struct rgb8 *refs = calloc((size_t)c->n_scenes, sizeof *refs);
+    struct scene_ref *refs = calloc((size_t)c->n_scenes, sizeof *refs);
     int rc = 1;
     double t0 = now_s(), total = 0, done = 0;
     if (!refs) {
@@ -196,10 +231,20 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     for (int s = 0; s < c->n_scenes; s++) {
         if ((rc = compare_ref_prepare(c, s, o, e)) != 0)
             goto fail;
-        if (c->scenes[s].ref_kind != COMPARE_REF_NONE && imgio_read(c->scenes[s].ref_path, &refs[s], e) < 0) {
+        struct compare_scene *cs = &c->scenes[s];
+        if (cs->ref_kind == COMPARE_REF_NONE)
+            continue;
+        if (imgio_read_f(cs->ref_path, &refs[s].f, &cs->ref_domain, e) < 0 ||
+            (cs->ref_domain == IMG_DISPLAY8
+                 ? imgio_read(cs->ref_path, &refs[s].display, e)
+                 : image_alloc(&refs[s].display, refs[s].f.w, refs[s].f.h, e)) < 0) {
             rc = 2;
             goto fail;
         }
+        if (cs->ref_domain == IMG_LINEAR)
+            image_float_to_rgb8(refs[s].f.px, refs[s].f.w, refs[s].f.h, refs[s].display.px);
+        else
+            run_warn_display_reference(c->name, cs->ref_path);
     }
     for (int i = 0; i < c->n_items; i++)
         total += cost(c, &c->items[i]);
@@ -244,8 +289,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     outdir_unlock(lock);
     rc = 0;
 fail:
-    for (int s = 0; s < c->n_scenes; s++)
-        image_free(&refs[s]);
+    for (int s = 0; s < c->n_scenes; s++) {
+        image_f_free(&refs[s].f);
+        image_free(&refs[s].display);
+    }
     free(refs);
     return rc;
 }

@@ -22,6 +22,8 @@ struct compare_scene {
     int ref_kind;                 /* COMPARE_REF_NONE | _SETTINGS | _IMAGE */
     struct job ref_job;           /* _SETTINGS: the reference render (output set at run time) */
     char ref_path[JOB_PATH_MAX];  /* the reference image once known (cache or given path) */
+    enum img_domain ref_domain;   /* linear (a float image: the cache's EXR, a given EXR or PFM) or
+                                     8-bit display values (a given PNG or PPM) */
     int ref_reused;               /* the cached reference was reused */
     double ref_wall_s;            /* seconds its render took (now or when it was cached) */
 };
@@ -36,7 +38,8 @@ struct compare_item {
     int skipped; /* its image and sidecar were current (same hash): not rendered again */
     double spp_mean, wall_s, cpu_s, sampler_share;
     uint64_t spp_min, spp_max;
-    struct metrics error;
+    struct metrics error;         /* in the scene's reference's domain (linear unless a PNG/PPM) */
+    struct metrics display_error; /* on the PNG's 8-bit display values, for comparison */
 };
 
 struct compare {
@@ -72,7 +75,8 @@ static inline int compare_index(const struct compare *c, int scene, int variant,
 }
 
 /* Render every reference (or reuse the cache under OUT/.cache/) and every combination, then
-   write summary.csv, chart.svg and report.html under OUT/<name>/. Returns 0, 1 when a render
+   write summary.csv, chart.svg and report.html under OUT/<name>/. Every render keeps its float
+   image (<stem>.exr) beside its PNG; errors are measured on those linear values. Returns 0, 1 when a render
    or write failed, 2 on bad input found late (a reference image); e says why. Prints one
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);

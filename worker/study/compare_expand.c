@@ -26,13 +26,13 @@ int compare_expand_reference(struct compare_loading *L)
                              "e.g. reference: { sampler: jitter, threshold: 0.5 }",
                              c->n_scenes);
         struct job tmp = L->scene_base[0];
-        struct rgb8 img = {0};
+        struct rgbf img = {0};
         if (compare_keys_apply(&tmp, d, "reference", r, L->e) < 0)
             return -1;
-        if (imgio_read(tmp.reference, &img, L->e) < 0)
+        if (imgio_read_f(tmp.reference, &img, &c->scenes[0].ref_domain, L->e) < 0)
             return ydoc_fail(d, r, L->e, "reference: %s: %s", tmp.reference, L->e->msg);
         int w = img.w, h = img.h;
-        image_free(&img);
+        image_f_free(&img);
         if (w != c->scenes[0].width || h != c->scenes[0].height)
             return ydoc_fail(d, r, L->e, "reference: image is %dx%d but the job renders %dx%d", w, h,
                              c->scenes[0].width, c->scenes[0].height);
@@ -115,6 +115,7 @@ static int expand_one(struct compare_loading *L, struct compare_item *it)
         return ydoc_fail(d, var, L->e, "variant: the image name %s-%s-... is too long (shorten its label)",
                          cs->name, c->variants[it->variant]);
     j->has_output = 1;
+    j->float_copy = 1; /* scored, and averaged across seeds, in linear radiance */
     if (job_limits_samples(j, cs->width, cs->height, L->e) < 0)
         return -1;
     yaml_node_t *at = var; /* a clash comes from a repeated sweep value or variant */

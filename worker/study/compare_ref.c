@@ -51,20 +51,25 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         return 2;
     struct job j = cs->ref_job;
     snprintf(j.name, sizeof j.name, ".cache");
-    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.png", cs->name, (unsigned long long)key);
+    /* linear radiance, as every error is measured in */
+    j.format = IMG_EXR;
+    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
     char dir[JOB_PATH_MAX], sidecar[JOB_PATH_MAX];
     outdir_paths(&j, o->out_dir, dir, cs->ref_path, sidecar, sizeof cs->ref_path);
-    struct rgb8 img = {0};
+    cs->ref_domain = IMG_LINEAR;
+    struct rgbf img = {0};
+    enum img_domain domain;
     struct err ignored;
-    if (imgio_read(cs->ref_path, &img, &ignored) == 0 && img.w == cs->width && img.h == cs->height) {
-        image_free(&img);
+    if (imgio_read_f(cs->ref_path, &img, &domain, &ignored) == 0 && img.w == cs->width &&
+        img.h == cs->height) {
+        image_f_free(&img);
         cs->ref_reused = 1;
         cs->ref_wall_s = cached_wall_s(sidecar);
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);
         return 0;
     }
-    image_free(&img);
+    image_f_free(&img);
     run_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
             sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
             cs->ref_path);

@@ -76,7 +76,7 @@ void compare_stats_point_order(const struct compare *c, int s, int v, int *order
 }
 
 int compare_stats_seed_average(const struct compare *c, int s, int v, int p, const char *dir,
-                               const struct rgb8 *ref, double *rel_of_mean, double *mean_rel, struct err *e)
+                               const struct rgbf *ref, double *rel_of_mean, double *mean_rel, struct err *e)
 {
     size_t n = (size_t)ref->w * ref->h * 3;
     double *sum = calloc(n, sizeof *sum);
@@ -87,23 +87,28 @@ int compare_stats_seed_average(const struct compare *c, int s, int v, int p, con
     for (k = 0; k < c->n_seeds; k++) {
         const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
         char path[4096];
-        struct rgb8 img = {0};
-        snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
-        if (imgio_read(path, &img, e) < 0)
+        struct rgbf img = {0};
+        const char *dot = strrchr(it->job.output, '.');
+        int stem = dot ? (int)(dot - it->job.output) : (int)strlen(it->job.output);
+        if (c->scenes[s].ref_domain == IMG_LINEAR)
+            snprintf(path, sizeof path, "%s/%.*s.exr", dir, stem, it->job.output);
+        else
+            snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
+        if (imgio_read_f(path, &img, NULL, e) < 0)
             goto done;
         if (img.w != ref->w || img.h != ref->h) {
-            image_free(&img);
+            image_f_free(&img);
             err_set(e, path, 0, 0, "image is %dx%d, the reference %dx%d", img.w, img.h, ref->w, ref->h);
             goto done;
         }
         for (size_t i = 0; i < n; i++)
             sum[i] += img.px[i];
-        image_free(&img);
+        image_f_free(&img);
         *mean_rel += it->error.relmse / c->n_seeds;
     }
     double rel = 0;
     for (size_t i = 0; i < n; i++) {
-        double a = ref->px[i] / 255.0, d = sum[i] / (255.0 * c->n_seeds) - a;
+        double a = ref->px[i], d = sum[i] / c->n_seeds - a;
         rel += d * d / (a * a + METRICS_REL_EPS);
     }
     *rel_of_mean = rel / n;
@@ -129,7 +134,7 @@ static double slope(const struct compare_agg *a, int n)
     return m >= 2 && den > 0 ? (m * sxy - sx * sy) / den : NAN;
 }
 
-char *compare_stats_stability(const struct compare *c, int s, int v, const char *dir, const struct rgb8 *ref)
+char *compare_stats_stability(const struct compare *c, int s, int v, const char *dir, const struct rgbf *ref)
 {
     int *order = calloc((size_t)c->n_points, sizeof *order);
     struct compare_agg *a = calloc((size_t)c->n_points, sizeof *a);

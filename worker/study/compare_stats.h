@@ -26,16 +26,17 @@ void compare_stats_point_order(const struct compare *c, int scene, int variant, 
 
 /* relMSE of the mean of a point's seed images against ref, and the mean relMSE of the single
    images: noise falls by the seed count when averaged, structured error (the same in every
-   seed) does not. Reads the images from dir. 0, or -1 with e filled. */
+   seed) does not. Reads the images from dir: their float copies (<stem>.exr) when the scene's
+   reference is linear, else the PNGs' display values. 0, or -1 with e filled. */
 int compare_stats_seed_average(const struct compare *c, int scene, int variant, int point, const char *dir,
-                               const struct rgb8 *ref, double *rel_of_mean, double *mean_rel, struct err *e);
+                               const struct rgbf *ref, double *rel_of_mean, double *mean_rel, struct err *e);
 
 /* One line for people on (scene, variant): spread across seeds, the slope of error against
    samples, where error stops falling as the threshold drops, and structured error at each
    point (ref may be NULL: then only what needs no reference). Its length grows with the sweep:
    a malloc'd string (caller frees), NULL when out of memory. */
 char *compare_stats_stability(const struct compare *c, int scene, int variant, const char *dir,
-                              const struct rgb8 *ref);
+                              const struct rgbf *ref);
 
 /* chart.svg: per scene, relMSE against wall time and against samples per pixel. */
 char *compare_stats_chart_svg(const struct compare *c);

@@ -8,6 +8,8 @@
 
 #include "compare_stats.h"
 #include "base/fileio.h"
+#include "image/errmap.h"
+#include "image/imgio.h"
 #include "image/png.h"
 #include "report_image.h"
 #include "base/sbuf.h"
@@ -99,9 +101,44 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
     return 0;
 }
 
-/* Crops and error maps at sweep point p (seed index 0), against the reference. */
+/* The relative-error maps of worker diff --map at sweep point p (seed index 0), from the float
+   copies beside the PNGs against the reference's floats. */
+static int relative_maps(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                         const struct rgbf *ref, struct err *e)
+{
+    sbuf_printf(b, "<h3>Relative error maps at ");
+    sbuf_escape(b, c->points[p]);
+    sbuf_printf(b,
+                ", in linear radiance: each pixel's relMSE term, colour = its log10 from %g (black) to %g "
+                "(pale yellow), as <code>worker diff --map</code> draws them. Fireflies and caustics "
+                "show here; the 8-bit maps above clip them</h3>\n<div class=\"row\">",
+                ERRMAP_LOG10_MIN, ERRMAP_LOG10_MAX);
+    for (int v = 0; v < c->n_variants; v++) {
+        const struct compare_item *it = &c->items[compare_index(c, s, v, p, 0)];
+        const char *dot = strrchr(it->job.output, '.');
+        char path[4096];
+        struct rgbf img = {0};
+        struct rgb8 map = {0};
+        snprintf(path, sizeof path, "%s/%.*s.exr", dir, dot ? (int)(dot - it->job.output) : 0,
+                 it->job.output);
+        int rc = imgio_read_f(path, &img, NULL, e) < 0 || errmap_make(ref, &img, &map, e) < 0 ||
+                 (sbuf_printf(b, "<figure>"), rgb_tag(b, &map, 160, c->variants[v], e)) < 0;
+        image_f_free(&img);
+        image_free(&map);
+        if (rc)
+            return -1;
+        sbuf_printf(b, "<figcaption>");
+        sbuf_escape(b, c->variants[v]);
+        sbuf_printf(b, "</figcaption></figure>\n");
+    }
+    sbuf_printf(b, "</div>\n");
+    return 0;
+}
+
+/* Crops and error maps at sweep point p (seed index 0), against the reference (ref: its 8-bit
+   display image; reff: its floats, for the relative maps when linear, else NULL). */
 static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
-                    const struct rgb8 *ref, struct err *e)
+                    const struct rgb8 *ref, const struct rgbf *reff, struct err *e)
 {
     struct rgb8 *imgs = calloc((size_t)c->n_variants, sizeof *imgs), tmp = {0};
     int rc = -1, w = ref->w, h = ref->h;
@@ -160,6 +197,8 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
         sbuf_printf(b, "</figcaption></figure>\n");
     }
     sbuf_printf(b, "</div>\n");
+    if (reff && relative_maps(b, c, s, p, dir, reff, e) < 0)
+        goto done;
     rc = 0;
 done:
     image_free(&tmp);
@@ -212,17 +251,21 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
 {
     const struct compare_scene *cs = &c->scenes[s];
     struct rgb8 ref = {0};
-    uint8_t *png = NULL;
-    size_t len;
-    int rc = -1, has_ref = cs->ref_kind != COMPARE_REF_NONE;
+    struct rgbf reff = {0};
+    int rc = -1, has_ref = cs->ref_kind != COMPARE_REF_NONE, linear = cs->ref_domain == IMG_LINEAR;
     sbuf_printf(b, "<h2>Scene ");
     sbuf_escape(b, cs->name);
     sbuf_printf(b, " (%dx%d)</h2>\n", cs->width, cs->height);
     if (has_ref) {
-        if (read_png(cs->ref_path, &png, &len, &ref, e) < 0)
+        /* shown as its 8-bit display image (an EXR's floats converted as the PNG writer does) */
+        if (imgio_read_f(cs->ref_path, &reff, NULL, e) < 0 ||
+            (linear ? image_alloc(&ref, reff.w, reff.h, e) : imgio_read(cs->ref_path, &ref, e)) < 0)
             goto done;
+        if (linear)
+            image_float_to_rgb8(reff.px, reff.w, reff.h, ref.px);
         sbuf_printf(b, "<div class=\"row\"><figure>");
-        img_tag(b, png, len, ref.w, 160, "reference");
+        if (rgb_tag(b, &ref, 160, "reference", e) < 0)
+            goto done;
         sbuf_printf(b, "<figcaption><b>reference</b>: ");
         if (cs->ref_kind == COMPARE_REF_SETTINGS)
             sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s",
@@ -246,8 +289,8 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         compare_stats_point_order(c, s, 0, order);
         int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
         free(order);
-        if (closeups(b, c, s, mid, dir, &ref, e) < 0 ||
-            (densest != mid && closeups(b, c, s, densest, dir, &ref, e) < 0))
+        if (closeups(b, c, s, mid, dir, &ref, linear ? &reff : NULL, e) < 0 ||
+            (densest != mid && closeups(b, c, s, densest, dir, &ref, linear ? &reff : NULL, e) < 0))
             goto done;
     }
     if (has_ref && efficiency(b, c, s) < 0) {
@@ -256,7 +299,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
-        char *line = compare_stats_stability(c, s, v, dir, has_ref ? &ref : NULL);
+        char *line = compare_stats_stability(c, s, v, dir, has_ref ? &reff : NULL);
         sbuf_printf(b, "<li><b>");
         sbuf_escape(b, c->variants[v]);
         sbuf_printf(b, "</b>: ");
@@ -267,8 +310,8 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     sbuf_printf(b, "</ul>\n");
     rc = 0;
 done:
-    free(png);
     image_free(&ref);
+    image_f_free(&reff);
     return rc;
 }
 
@@ -347,16 +390,26 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     }
     sbuf_printf(
         &b,
-        " x %d seeds. Error is relMSE (mean of (image - reference)^2 / (reference^2 + 0.01) over 8-bit "
-        "values scaled to [0, 1]) against each scene's reference; lower is better. The reference's own "
-        "noise and 8-bit rounding set a floor under every curve. Wall time is one image's render on "
-        "this machine, so it moves with the machine's load. Every image and its JSON sidecar are "
-        "beside this page (linked from the table at the end), with ",
+        " x %d seeds. Errors are in linear radiance: relMSE is the mean of (image - reference)^2 / "
+        "(reference^2 + 0.01) over the renders' unclipped float values (each PNG's float image is the "
+        ".exr beside it) against each scene's reference; lower is better. Measured on the 8-bit PNGs "
+        "instead, the clip at white would hide the lights, their reflections and fireflies, and the "
+        "gamma curve and 1/255 steps would weight dark pixels more and set a floor (summary.csv keeps "
+        "those figures as relmse_8bit). The reference's own noise sets a floor under every curve. Wall "
+        "time is one image's render on this machine, so it moves with the machine's load. Every image "
+        "and its JSON sidecar are beside this page (linked from the table at the end), with ",
         c->n_seeds);
     file_link(&b, "summary.csv", "summary.csv");
     sbuf_printf(&b, " (the table's figures) and ");
     file_link(&b, "chart.svg", "chart.svg");
     sbuf_printf(&b, ".</p>\n");
+    for (int s = 0; s < c->n_scenes; s++)
+        if (c->scenes[s].ref_kind != COMPARE_REF_NONE && c->scenes[s].ref_domain == IMG_DISPLAY8) {
+            sbuf_printf(&b, "<p class=\"note\"><b>Scene ");
+            sbuf_escape(&b, c->scenes[s].name);
+            sbuf_printf(&b, "'s reference is an 8-bit PNG/PPM: its errors are measured on 8-bit display "
+                            "values, not in linear radiance.</b></p>\n");
+        }
     const char *body = strstr(svg, "<svg"); /* inline: drop the XML declaration */
     sbuf_printf(&b, "<h2>Speed against accuracy</h2>\n%s\n", body ? body : svg);
     free(svg);

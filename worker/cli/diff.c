@@ -1,0 +1,171 @@
+/* diff: `worker diff`: read two images of any supported format, measure B against A in one
+   domain, print the figures (lines or JSON), optionally draw the error map. */
+#include "diff.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/fileio.h"
+#include "image/errmap.h"
+#include "image/imgio.h"
+#include "image/metrics.h"
+#include "image/png.h"
+
+/* A finite decimal number (not nan, inf or hex, which strtod takes too). 0, or -1. */
+static int parse_number(const char *s, double *out)
+{
+    char *end;
+    *out = strtod(s, &end);
+    return *s && !*end && isfinite(*out) && strspn(s, "0123456789+-.eE") == strlen(s) ? 0 : -1;
+}
+
+/* A float image's values as 8-bit display values v / 255 (what its PNG would hold), in place. */
+static int to_display(struct rgbf *img, struct err *e)
+{
+    struct rgb8 b = {0};
+    struct rgbf d = {0};
+    if (image_alloc(&b, img->w, img->h, e) < 0)
+        return -1;
+    image_float_to_rgb8(img->px, img->w, img->h, b.px);
+    int rc = image_f_from_rgb8(&b, &d, e);
+    image_free(&b);
+    if (rc == 0) {
+        image_f_free(img);
+        *img = d;
+    }
+    return rc;
+}
+
+static void print_number(const char *key, double v, const char *after)
+{
+    if (isfinite(v))
+        printf("\"%s\": %.10g%s", key, v, after);
+    else
+        printf("\"%s\": null%s", key, after);
+}
+
+static int write_map(const char *path, const struct rgbf *ref, const struct rgbf *img, struct err *e)
+{
+    struct rgb8 map = {0};
+    uint8_t *png = NULL;
+    size_t len;
+    const struct img_attr text[] = {{ERRMAP_TEXT_KEY, errmap_scale_text()}};
+    int rc = errmap_make(ref, img, &map, e) < 0 || png_encode_text(&map, text, 1, &png, &len, e) < 0 ||
+                     fileio_write_atomic(path, png, len, e) < 0
+                 ? -1
+                 : 0;
+    if (rc < 0 && !e->file[0])
+        snprintf(e->file, sizeof e->file, "%s", path);
+    free(png);
+    image_free(&map);
+    return rc;
+}
+
+/* Measure files[1] against files[0]; fill m and *domain, write the map (when map_path). 0 or -1. */
+static int measure(const char *const files[2], int block, const char *map_path, struct metrics *m,
+                   enum img_domain *domain, struct err *e)
+{
+    struct rgbf img[2] = {{0}, {0}};
+    enum img_domain d[2];
+    int rc = -1;
+    for (int i = 0; i < 2; i++)
+        if (imgio_read_f(files[i], &img[i], &d[i], e) < 0)
+            goto done;
+    *domain = d[0] == IMG_LINEAR && d[1] == IMG_LINEAR ? IMG_LINEAR : IMG_DISPLAY8;
+    for (int i = 0; i < 2; i++)
+        if (d[i] == IMG_LINEAR && *domain == IMG_DISPLAY8) {
+            err_print("worker diff: warning: %s is an 8-bit PNG/PPM: %s is converted to 8-bit display values "
+                      "as the PNG writer does, and the error is measured on those, not on linear radiance\n",
+                      files[1 - i], files[i]);
+            if (to_display(&img[i], e) < 0)
+                goto done;
+        }
+    if (metrics_compare_f(&img[0], &img[1], block, m, e) < 0) {
+        snprintf(e->file, sizeof e->file, "%s", files[1]);
+        goto done;
+    }
+    if (map_path && write_map(map_path, &img[0], &img[1], e) < 0)
+        goto done;
+    rc = 0;
+done:
+    image_f_free(&img[0]);
+    image_f_free(&img[1]);
+    return rc;
+}
+
+int diff_main(int argc, char **argv)
+{
+    const char *files[2] = {0}, *map_path = NULL;
+    int nfiles = 0, json = 0;
+    double max_rmse = -1, block = 1;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--block")) {
+            if (i + 1 >= argc || parse_number(argv[++i], &block) < 0 || block != floor(block) || block < 1 ||
+                block > 65536) {
+                err_print("worker diff: --block needs a whole number of pixels in [1, 65536]\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--max-rmse")) {
+            if (i + 1 >= argc || parse_number(argv[++i], &max_rmse) < 0 || max_rmse < 0) {
+                err_print("worker diff: --max-rmse needs a number >= 0\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--map")) {
+            if (i + 1 >= argc || !argv[i + 1][0]) {
+                err_print("worker diff: --map needs a file name (a PNG is written there)\n");
+                return 2;
+            }
+            map_path = argv[++i];
+        } else if (!strcmp(argv[i], "--json")) {
+            json = 1;
+        } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
+            continue; /* a common option; diff draws no progress anyway */
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N] [--quiet]\n"
+                   "error metrics of B against reference A (EXR, PFM, PNG or PPM): in linear radiance when\n"
+                   "both are float images (EXR, PFM), else on 8-bit display values; exit 1 when rmse is\n"
+                   "over X. --map writes a false-colour PNG of the per-pixel relative error.\n");
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            err_print("worker diff: unknown option %s; see worker --help\n", argv[i]);
+            return 2;
+        } else if (nfiles < 2) {
+            files[nfiles++] = argv[i];
+        } else {
+            err_print("worker diff: expected two images, got a third: %s\n", argv[i]);
+            return 2;
+        }
+    }
+    if (nfiles != 2) {
+        err_print("worker diff: expected two images (reference, then image); see worker --help\n");
+        return 2;
+    }
+    struct metrics m;
+    enum img_domain domain;
+    struct err e = {0};
+    if (measure(files, (int)block, map_path, &m, &domain, &e) < 0) {
+        char buf[2048];
+        err_format(&e, buf, sizeof buf);
+        fprintf(stderr, "%s\n", buf);
+        return 2;
+    }
+    if (json) {
+        printf("{");
+        print_number("mse", m.mse, ", ");
+        print_number("rmse", m.rmse, ", ");
+        print_number("relmse", m.relmse, ", ");
+        print_number("relmse_robust", m.relmse_robust, ", ");
+        print_number("psnr", m.psnr, ", ");
+        printf("\"domain\": \"%s\"}\n", image_domain_name(domain));
+    } else {
+        printf("mse %.9g\nrmse %.9g\nrelmse %.9g\nrelmse_robust %.9g\npsnr %.4f\ndomain %s\n", m.mse, m.rmse,
+               m.relmse, m.relmse_robust, m.psnr, image_domain_name(domain));
+    }
+    if (max_rmse >= 0 && m.rmse > max_rmse) {
+        err_print("worker diff: rmse %.6g is over --max-rmse %g\n", m.rmse, max_rmse);
+        return 1;
+    }
+    return 0;
+}
