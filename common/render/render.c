@@ -61,6 +61,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     if (dims) {
         ctx->px = x, ctx->py = y, ctx->dims_n = n;
         ctx->dims_pixel++;
+        ctx->dims_key = rng_mix64(ctx->rs.seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32 | (uint32_t)y) + 16));
     }
     if (ctx->packet) {
         render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &kept, &nonfinite, &rays);

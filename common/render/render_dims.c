@@ -1,7 +1,9 @@
 /* render_dims: sampler_dims: all. Every 2D decision of a path takes its point from a per-pixel
-   set of the job's pixel sampler, one set per decision and bounce, each drawn when a path of the
-   pixel first needs it and shuffled so that sample s takes a random point of it ("padding":
-   pbrt's stratified and padded samplers, Pharr et al., PBR 3rd ed. 7.3 and 7.4). */
+   set of the job's pixel sampler, one set per decision and bounce, in a random order of its own
+   so that the sets of different decisions are not correlated ("padding": pbrt's stratified and
+   padded samplers, Pharr et al., PBR 3rd ed. 7.3 and 7.4). Grid sets (uniform, jitter, random)
+   make sample s's point alone when it is asked for (render_dims_grid_point); Poisson and Sobol
+   sets are drawn whole when a path of the pixel first needs them, then shuffled. */
 #include <stdlib.h>
 
 #include "render_path.h"
@@ -13,6 +15,12 @@
 
 int render_dims_init(struct render_ctx *ctx, struct err *e)
 {
+    ctx->dims_grid = sampler_grid_of(ctx->pixel);
+    if (sampler_cells(ctx->pixel) > 0) { /* grid sets: nothing stored, every bounce stratified */
+        ctx->dims_grid_sets = 1;
+        ctx->dims_bounces = ctx->rs.max_depth;
+        return 0;
+    }
     const size_t cap = sampler_set_capacity(ctx->pixel);
     /* a fresh Poisson set may hold fewer points than the pixel's: sets are appended until n */
     const size_t per_slot = sampler_cells(ctx->pixel) > 0 ? cap : 2 * cap;

@@ -40,8 +40,8 @@ static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, s
    draws each: the chance of an overlap is below 2^-40). Its light points do: they come from the
    pixel's shared sets (ctx->lp, ctx->light_rng), taken in the order the lanes ask for them. That
    order is fixed by the pixel's own work, so a pixel still depends only on seed and pixel. */
-static inline void path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s,
-                              const struct rng *base, int dims)
+static inline __attribute__((always_inline)) void
+path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s, const struct rng *base, int dims)
 {
     const int w = ctx->rs.width, hgt = ctx->rs.height;
     pt->rng.inc = base->inc;
