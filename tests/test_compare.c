@@ -132,10 +132,10 @@ static struct compare *hand_made(const char *name, const char *yaml)
     return c;
 }
 
-/* compare_stability's line for (scene s, variant v) copied into buf, for strstr. */
+/* compare_stats_stability's line for (scene s, variant v) copied into buf, for strstr. */
 static void stability(const struct compare *c, int s, int v, const struct rgbf *ref, char *buf, size_t n)
 {
-    char *text = compare_stability(c, s, v, dir, ref);
+    char *text = compare_stats_stability(c, s, v, dir, ref);
     snprintf(buf, n, "%s", text ? text : "");
     free(text);
 }
@@ -159,13 +159,13 @@ static void test_stats(void)
                 it->error.relmse = (v == 0 ? 1 / spp : p == 2 ? 0.0095 : 0.4 / spp + 0.005) * (k ? 1.1 : 0.9);
             }
     struct compare_agg a;
-    compare_aggregate(c, 0, 0, 1, &a);
+    compare_stats_aggregate(c, 0, 0, 1, &a);
     CHECK(a.n == 2 && a.spp == 100);
     CHECK_NEAR(a.rel, 0.01, 1e-12);
     CHECK_NEAR(a.rel_lo, 0.009, 1e-12);
     CHECK_NEAR(a.rel_hi, 0.011, 1e-12);
     int order[3];
-    compare_point_order(c, 0, 0, order);
+    compare_stats_point_order(c, 0, 0, order);
     CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
     char line[1024];
     struct rgbf ref = {0};
@@ -177,7 +177,7 @@ static void test_stats(void)
     CHECK(strstr(line, "error stops falling at threshold 5") != NULL);
     stability(c, 0, 1, NULL, line, sizeof line);
     CHECK(strstr(line, "no reference") != NULL);
-    char *svg = compare_chart_svg(c);
+    char *svg = compare_stats_chart_svg(c);
     CHECK(svg && strstr(svg, "checker: error against time") && strstr(svg, ">flat<"));
     free(svg);
     compare_free(c);
@@ -203,7 +203,7 @@ static void test_stats_flat_samples(void)
             it->error.relmse = rel[p];
         }
     int order[3];
-    compare_point_order(c, 0, 0, order);
+    compare_stats_point_order(c, 0, 0, order);
     CHECK(order[0] == 0 && order[1] == 1 && order[2] == 2);
     char line[1024];
     struct rgbf ref = {0};
@@ -229,7 +229,7 @@ static void test_chart_one_seed(void)
         it->wall_s = 0.01 * (p + 1);
         it->error.relmse = 0.1 / it->spp_mean;
     }
-    char *svg = compare_chart_svg(c);
+    char *svg = compare_stats_chart_svg(c);
     CHECK(svg && !strstr(svg, "<path d=\"M") && !strstr(svg, "whisker") && !strstr(svg, "1 seeds"));
     CHECK(svg && strstr(svg, "one seed: no spread across seeds"));
     free(svg);

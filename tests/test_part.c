@@ -7,7 +7,9 @@
 #include "check.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
-#include "farm/part.h"
+#include "farm/merge.h"
+#include "job/part.h"
+#include "job/outdir.h"
 #include "job/run_out.h"
 
 enum { W = 7, H = 11 };
@@ -51,33 +53,33 @@ int main(void)
     fill(rgb);
 
     /* the path names the split; the hash covers the inputs */
-    part_path(&j, dir, 2, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 2, 3, path, sizeof path);
     CHECK(strstr(path, "/merge/merge.part-2-of-3") != NULL);
     struct job other = j;
     other.hash = 0x1235;
     CHECK(part_hash(&j) != part_hash(&other));
 
     /* no parts: refused */
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "no part files") != NULL);
 
     /* write 3 parts, with one missing first */
     char sub[2100];
     snprintf(sub, sizeof sub, "%s/merge", dir);
-    CHECK(run_out_mkdirs(sub, &e) == 0);
+    CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
     struct procs_result fr;
     for (int p = 0; p < 3; p += 2) {
         result(&fr, p);
-        part_path(&j, dir, p, 3, path, sizeof path);
+        outdir_part_path(&j, dir, p, 3, path, sizeof path);
         CHECK(part_write(path, &j, W, H, p, 3, rgb, &fr, &e) == 0);
         CHECK(part_matches(path, &j, p, 3) == 1);
         CHECK(part_matches(path, &other, p, 3) == 0);
         CHECK(part_matches(path, &j, (p + 1) % 3, 3) == 0);
     }
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "missing part 1 of 3") != NULL);
     result(&fr, 1);
-    part_path(&j, dir, 1, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 1, 3, path, sizeof path);
     CHECK(part_write(path, &j, W, H, 1, 3, rgb, &fr, &e) == 0);
 
     /* a part's file holds exactly its rows: header, ceil((11 - 1) / 3) = 4 rows, CRC */
@@ -89,15 +91,15 @@ int main(void)
     free(data);
 
     /* the merge gives the whole image and sums the stats */
-    CHECK(part_merge(&j, &o, &rr, &e) == 0);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 0);
     CHECK(rr.width == W && rr.height == H);
-    CHECK(rr.farm.processes == 3);
-    CHECK(rr.farm.total.pixels == 10 + 11 + 12);
-    CHECK(rr.farm.total.samples == 100 + 101 + 102);
-    CHECK(rr.farm.total.spp_min == 3 && rr.farm.total.spp_max == 11);
-    CHECK_NEAR(rr.farm.cpu_s, 0.75, 1e-12);
-    CHECK(rr.farm.peak_rss_kb == 300);
-    CHECK(rr.farm.proc[1].st.samples == 101);
+    CHECK(rr.procs.processes == 3);
+    CHECK(rr.procs.total.pixels == 10 + 11 + 12);
+    CHECK(rr.procs.total.samples == 100 + 101 + 102);
+    CHECK(rr.procs.total.spp_min == 3 && rr.procs.total.spp_max == 11);
+    CHECK_NEAR(rr.procs.cpu_s, 0.75, 1e-12);
+    CHECK(rr.procs.peak_rss_kb == 300);
+    CHECK(rr.procs.proc[1].st.samples == 101);
     struct rgb8 got, want;
     CHECK(imgio_read(rr.image_path, &got, &e) == 0);
     CHECK(image_alloc(&want, W, H, &e) == 0);
@@ -111,20 +113,20 @@ int main(void)
     free(data);
 
     /* a part from other inputs is refused, naming the file */
-    part_path(&j, dir, 0, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 0, 3, path, sizeof path);
     result(&fr, 0);
     CHECK(part_write(path, &other, W, H, 0, 3, rgb, &fr, &e) == 0);
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.file, "merge.part-0-of-3") != NULL && strstr(e.msg, "other inputs") != NULL);
     CHECK(part_write(path, &j, W, H, 0, 3, rgb, &fr, &e) == 0);
 
     /* a flipped byte in the rows fails the checksum */
-    part_path(&j, dir, 2, 3, path, sizeof path);
+    outdir_part_path(&j, dir, 2, 3, path, sizeof path);
     CHECK(fileio_read_all(path, 1 << 20, &data, &len, &e) == 0);
     data[130] ^= 1;
     CHECK(fileio_write_atomic(path, data, len, &e) == 0);
     free(data);
-    CHECK(part_merge(&j, &o, &rr, &e) == 2);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "checksum") != NULL);
     CHECK(part_matches(path, &j, 2, 3) == 0); /* a damaged part is not current: resume renders it */
 
@@ -138,9 +140,9 @@ int main(void)
             struct job bj = j;
             snprintf(bj.name, sizeof bj.name, "big");
             snprintf(sub, sizeof sub, "%s/big", dir);
-            CHECK(run_out_mkdirs(sub, &e) == 0);
+            CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
             result(&fr, 5);
-            part_path(&bj, dir, 5, BPARTS, path, sizeof path);
+            outdir_part_path(&bj, dir, 5, BPARTS, path, sizeof path);
             CHECK(part_write(path, &bj, BW, BH, 5, BPARTS, big, &fr, &e) == 0);
             CHECK(part_matches(path, &bj, 5, BPARTS) == 1);
             free(big);

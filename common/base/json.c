@@ -62,8 +62,27 @@ static int utf8_len(const unsigned char *c)
     return n;
 }
 
-/* A JSON string: quotes, backslashes and control characters escaped; a byte that is not part of
-   well-formed UTF-8 (a file name in another encoding) becomes U+FFFD, as JSON text must be UTF-8. */
+/* The code point of the well-formed UTF-8 sequence of n bytes at c. */
+static unsigned code_point(const unsigned char *c, int n)
+{
+    unsigned cp = n == 1 ? c[0] : c[0] & (0x7f >> n);
+    for (int i = 1; i < n; i++)
+        cp = cp << 6 | (c[i] & 0x3f);
+    return cp;
+}
+
+/* Characters JSON allows raw but YAML, whose parser reads sidecars back (libyaml), refuses (DEL,
+   the C1 controls, U+FFFE and U+FFFF) or takes for line breaks, folded with the spaces around
+   them (U+0085, U+2028, U+2029). */
+static int yaml_unsafe(unsigned cp)
+{
+    return cp == 0x7f || (cp >= 0x80 && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029 || cp == 0xfffe ||
+           cp == 0xffff;
+}
+
+/* A JSON string: quotes, backslashes, control characters and yaml_unsafe ones escaped; a byte that
+   is not part of well-formed UTF-8 (a file name in another encoding) becomes U+FFFD, as JSON text
+   must be UTF-8. */
 static void put_string(struct json *j, const char *s)
 {
     put(j, "\"");
@@ -73,8 +92,8 @@ static void put_string(struct json *j, const char *s)
             put(j, "\\ufffd");
         else if (*c == '"' || *c == '\\')
             put(j, "\\%c", *c);
-        else if (*c < 0x20)
-            put(j, "\\u%04x", *c);
+        else if (*c < 0x20 || yaml_unsafe(code_point(c, n)))
+            put(j, "\\u%04x", code_point(c, n));
         else
             put(j, "%.*s", n, (const char *)c);
         c += n ? n : 1;
@@ -162,4 +181,23 @@ void json_bool(struct json *j, const char *key, int val)
 {
     member(j, key);
     put(j, "%s", val ? "true" : "false");
+}
+
+int json_string_read_back(const char *s, char *out, size_t n)
+{
+    size_t k = 0;
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int len = utf8_len(c);
+        const char *piece = len ? (const char *)c : "\xef\xbf\xbd";
+        size_t pl = len ? (size_t)len : 3;
+        if (k + pl >= n)
+            return -1;
+        memcpy(out + k, piece, pl);
+        k += pl;
+        c += len ? len : 1;
+    }
+    if (n == 0)
+        return -1;
+    out[k] = 0;
+    return 0;
 }

@@ -24,4 +24,8 @@ void json_number(struct json *j, const char *key, double val); /* non-finite -> 
 void json_uint(struct json *j, const char *key, uint64_t val);
 void json_bool(struct json *j, const char *key, int val);
 
+/* The string a JSON reader gets back for s written by json_string: s with each byte that is not
+   part of well-formed UTF-8 replaced by U+FFFD, into out. 0, or -1 when it does not fit in n. */
+int json_string_read_back(const char *s, char *out, size_t n);
+
 #endif

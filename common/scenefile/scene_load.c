@@ -9,48 +9,13 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "scene_loader.h"
+#include "scene_objects.h"
 #include "yget.h"
-
-int loader_find_name(const struct names *nm, const char *s)
-{
-    for (int i = 0; i < nm->n; i++)
-        if (!strcmp(nm->name[i], s))
-            return i;
-    return -1;
-}
-
-int loader_unknown(struct loader *L, yaml_node_t *v, const char *what, const char *s,
-                   const char *const *names, const char *expected)
-{
-    const char *near = ystr_nearest(s, names, -1);
-    if (near)
-        return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (did you mean \"%s\"?)", what, s, near);
-    return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (expected %s)", what, s, expected);
-}
-
-int loader_no_name(struct loader *L, yaml_node_t *v, const char *key, const char *s, const struct names *nm,
-                   const char *section)
-{
-    const char *near = ystr_nearest(s, nm->name, nm->n);
-    if (near)
-        return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s (did you mean \"%s\"?)", key, key,
-                         s, section, near);
-    return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s", key, key, s, section);
-}
-
-int loader_color(struct loader *L, yaml_node_t *v, const char *key, vec3 *out)
-{
-    if (yget_vec3(&L->d, v, key, out, L->e) < 0)
-        return -1;
-    if (out->x < 0 || out->y < 0 || out->z < 0)
-        return ydoc_fail(&L->d, v, L->e, "%s: colour components must be >= 0", key);
-    return 0;
-}
 
 static const char *const camera_keys[] = {"lookfrom",   "lookat",  "vup",    "vfov", "aperture",
                                           "focus_dist", "shutter", "aspect", NULL};
 
-static int load_camera(struct loader *L, yaml_node_t *n, struct scene_file *out)
+static int load_camera(struct scene_loader *L, yaml_node_t *n, struct scene_file *out)
 {
     struct camera_desc *c = &out->camera;
     *c = (struct camera_desc){.vup = v3(0, 1, 0), .vfov_deg = 40, .focus_dist = 10};
@@ -112,7 +77,7 @@ static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL}
 static const char *const noise_keys[] = {"type", "scale", NULL};
 static const char *const image_keys[] = {"type", "file", NULL};
 
-static int load_checker(struct loader *L, yaml_node_t *n, struct texture *t)
+static int load_checker(struct scene_loader *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
     if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
@@ -123,8 +88,8 @@ static int load_checker(struct loader *L, yaml_node_t *n, struct texture *t)
     for (int i = 0; i < 2; i++)
         if (!ymap_get(&L->d, n, need[i]))
             return ymap_missing(&L->d, n, need[i], L->e, "%s: missing in checker texture", need[i]);
-    if (loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
-        loader_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
+    if (scene_loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
+        scene_loader_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
         return -1;
     if ((v = ymap_get(&L->d, n, "scale"))) {
         if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
@@ -135,7 +100,7 @@ static int load_checker(struct loader *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
-static int load_noise(struct loader *L, yaml_node_t *n, struct texture *t)
+static int load_noise(struct scene_loader *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
     if (ymap_check(&L->d, n, noise_keys, "noise texture", L->e) < 0)
@@ -165,7 +130,7 @@ static void texture_path(const char *scene, const char *file, char *path, size_t
 
 /* An image texture: `file` relative to the scene file, PNG or PPM, at most
    TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
-static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
+static int load_image(struct scene_loader *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
     const char *file;
@@ -201,7 +166,7 @@ static int load_image(struct loader *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
-static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
+static int load_texture(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
 {
     const char *type;
     yaml_node_t *tn = ymap_get(&L->d, n, "type");
@@ -218,8 +183,8 @@ static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     else if (!strcmp(type, "image"))
         rc = load_image(L, n, &t);
     else
-        return loader_unknown(L, tn, "type: unknown texture type", type, texture_types,
-                              "checker, noise or image");
+        return scene_loader_unknown(L, tn, "type: unknown texture type", type, texture_types,
+                                    "checker, noise or image");
     if (rc < 0)
         return -1;
     if (scene_add_texture(L->sc, &t) < 0)
@@ -229,7 +194,7 @@ static int load_texture(struct loader *L, yaml_node_t *k, yaml_node_t *n)
 
 static const char *const material_keys[] = {"type", "albedo", "texture", "fuzz", "ior", "emit", NULL};
 
-static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
+static int load_material(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
 {
     if (ymap_check(&L->d, n, material_keys, "material", L->e) < 0)
         return -1;
@@ -258,8 +223,8 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
         m.type = MAT_ISOTROPIC;
         allowed = "albedo texture";
     } else {
-        return loader_unknown(L, tn, "type: unknown material type", type, material_types,
-                              "lambertian, metal, dielectric, light or isotropic");
+        return scene_loader_unknown(L, tn, "type: unknown material type", type, material_types,
+                                    "lambertian, metal, dielectric, light or isotropic");
     }
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
@@ -268,15 +233,15 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
             return ydoc_fail(&L->d, kk, L->e, "%s: not a key of a %s material (it takes: %s)", name, type,
                              allowed);
     }
-    if ((v = ymap_get(&L->d, n, "albedo")) && loader_color(L, v, "albedo", &m.albedo) < 0)
+    if ((v = ymap_get(&L->d, n, "albedo")) && scene_loader_color(L, v, "albedo", &m.albedo) < 0)
         return -1;
     if ((v = ymap_get(&L->d, n, "texture"))) {
         if (ymap_get(&L->d, n, "albedo"))
             return ydoc_fail(&L->d, v, L->e, "texture: give albedo or texture, not both");
         if (yget_string(&L->d, v, "texture", &s, L->e) < 0)
             return -1;
-        if ((m.texture = loader_find_name(&L->tex, s)) < 0)
-            return loader_no_name(L, v, "texture", s, &L->tex, "textures");
+        if ((m.texture = scene_loader_find_name(&L->tex, s)) < 0)
+            return scene_loader_no_name(L, v, "texture", s, &L->tex, "textures");
     } else if ((m.type == MAT_LAMBERTIAN || m.type == MAT_ISOTROPIC) && !ymap_get(&L->d, n, "albedo")) {
         return ymap_missing(&L->d, n, "albedo", L->e, "albedo: missing in %s material \"%s\"", type,
                             yscalar(k));
@@ -296,7 +261,7 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
     if (m.type == MAT_LIGHT) {
         if (!(v = ymap_get(&L->d, n, "emit")))
             return ymap_missing(&L->d, n, "emit", L->e, "emit: missing in light material \"%s\"", yscalar(k));
-        if (loader_color(L, v, "emit", &m.emit) < 0)
+        if (scene_loader_color(L, v, "emit", &m.emit) < 0)
             return -1;
     }
     if (scene_add_material(L->sc, &m) < 0)
@@ -305,8 +270,8 @@ static int load_material(struct loader *L, yaml_node_t *k, yaml_node_t *n)
 }
 
 /* Load a named mapping section (textures or materials). */
-static int load_section(struct loader *L, yaml_node_t *sec, const char *what, struct names *nm,
-                        int (*one)(struct loader *, yaml_node_t *, yaml_node_t *))
+static int load_section(struct scene_loader *L, yaml_node_t *sec, const char *what, struct names *nm,
+                        int (*one)(struct scene_loader *, yaml_node_t *, yaml_node_t *))
 {
     if (!sec)
         return 0;
@@ -317,7 +282,7 @@ static int load_section(struct loader *L, yaml_node_t *sec, const char *what, st
         const char *name = yscalar(k);
         if (!name || !*name)
             return ydoc_fail(&L->d, k, L->e, "%s: names must be plain strings", what);
-        if (loader_find_name(nm, name) >= 0)
+        if (scene_loader_find_name(nm, name) >= 0)
             return ydoc_fail(&L->d, k, L->e, "%s: duplicate name \"%.40s\"", what, name);
         if (nm->n >= 256)
             return ydoc_fail(&L->d, k, L->e, "%s: more than 256 entries", what);
@@ -334,7 +299,7 @@ static const char *const scene_keys[] = {"camera", "background", "textures", "ma
 
 int scene_load(const char *path, struct scene_file *out, struct err *e)
 {
-    struct loader L = {.e = e};
+    struct scene_loader L = {.e = e};
     memset(out, 0, sizeof *out);
     int rc = -1;
     if (ydoc_load(&L.d, path, e) < 0)
@@ -354,12 +319,13 @@ int scene_load(const char *path, struct scene_file *out, struct err *e)
     if (load_camera(&L, v, out) < 0)
         goto done;
     L.cam = &out->camera;
-    if ((v = ymap_get(&L.d, root, "background")) && loader_color(&L, v, "background", &L.sc->background) < 0)
+    if ((v = ymap_get(&L.d, root, "background")) &&
+        scene_loader_color(&L, v, "background", &L.sc->background) < 0)
         goto done;
     if (load_section(&L, ymap_get(&L.d, root, "textures"), "textures", &L.tex, load_texture) < 0 ||
         load_section(&L, ymap_get(&L.d, root, "materials"), "materials", &L.mat, load_material) < 0)
         goto done;
-    if (load_objects(&L, ymap_get(&L.d, root, "objects"), root) < 0)
+    if (scene_objects_load(&L, ymap_get(&L.d, root, "objects"), root) < 0)
         goto done;
     if (scene_finish(L.sc, e) < 0) {
         e->line = 0;

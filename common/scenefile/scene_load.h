@@ -1,4 +1,4 @@
-/* scene_load: a scene YAML file (SPEC "Scene file") into a struct scene and a camera. */
+/* scene_load: a scene YAML file into a struct scene and a camera. */
 #ifndef SCENE_LOAD_H
 #define SCENE_LOAD_H
 

@@ -2,6 +2,8 @@
 #ifndef YAMLX_H
 #define YAMLX_H
 
+#include <stddef.h>
+#include <stdint.h>
 #include <yaml.h>
 
 #include "base/err.h"
@@ -30,6 +32,10 @@ struct ydoc {
    Free with ydoc_free, even after a failure. */
 int ydoc_load(struct ydoc *d, const char *path, struct err *e);
 void ydoc_free(struct ydoc *d);
+
+/* ydoc_load of len bytes of YAML text at data (not kept), errors naming the file `name`; the
+   caller bounds len. */
+int ydoc_parse(struct ydoc *d, const char *name, const uint8_t *data, size_t len, struct err *e);
 
 /* Expand YAML 1.1 merge keys in place (ydoc_load does it): each mapping's `<<: *a` or
    `<<: [*a, *b]` pairs are replaced by the entries of those mappings that it does not set itself

@@ -7,7 +7,7 @@
 
 #include "base/err.h"
 #include "job/procs.h"
-#include "farm/part.h"
+#include "job/part.h"
 
 int cli_takes_value(const char *a)
 {

@@ -1,4 +1,4 @@
-/* main: the `worker` command line (SPEC "Command line"): parse, dispatch, print, exit. */
+/* main: the `worker` command line: parse, dispatch, print, exit. */
 #include <signal.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,9 +13,10 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job.h"
+#include "job/outdir.h"
 #include "image/metrics.h"
 #include "points.h"
-#include "farm/part.h"
+#include "farm/merge.h"
 #include "farm/queue.h"
 #include "farm/queue_status.h"
 #include "job/run.h"
@@ -128,7 +129,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     struct job j;
     struct err e;
     struct run_result rr;
-    if (compare_is_compare_job(path)) { /* a job with variants: (SPEC "Compare job") */
+    if (compare_is_compare_job(path)) { /* a job with variants: a compare job */
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
             return compare_main(path, o, compare_name_ok, &ns);
@@ -141,7 +142,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     }
     if (name_taken(j.name, path, o, taken, ntaken))
         return 2;
-    int rc = merge ? part_merge(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
+    int rc = merge ? merge_parts(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
     if (rc != 0) {
         if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */
             snprintf(e.file, sizeof e.file, "%s", path);
@@ -155,7 +156,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
         err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
                   rr.image_path);
     } else if (merge) {
-        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.farm.processes, rr.width, rr.height,
+        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.procs.processes, rr.width, rr.height,
                   rr.image_path);
         run_print_warnings(&j, &rr);
     } else {
@@ -194,7 +195,7 @@ static int worker_main(int argc, char **argv)
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
-                           .run = {.out_dir = "out", .progress = isatty(2)}};
+                           .run = {.out_dir = OUTDIR_DEFAULT, .progress = isatty(2)}};
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
     const char **jobs = calloc((size_t)argc, sizeof *jobs);

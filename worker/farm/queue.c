@@ -16,9 +16,10 @@
 #include "queue_inputs.h"
 #include "queue_log.h"
 #include "queue_scan.h"
-#include "job/run_out.h"
+#include "job/outdir.h"
+#include "job/run.h"
 
-/* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the farm. */
+/* The only global state: set by SIGINT/SIGTERM, read by the queue loop and the render in hand. */
 static volatile sig_atomic_t queue_stop;
 
 static void on_signal(int sig)
@@ -125,8 +126,8 @@ static void file_failed(struct queue *q, const char *name, const char *job_name)
 {
     char dir[2048];
     if (job_name[0] && job_name[0] != '.' && !strchr(job_name, '/')) {
-        snprintf(dir, sizeof dir, "%s/%s", q->done, job_name);
-        run_out_remove_temps(dir);
+        outdir_dir(q->done, job_name, dir, sizeof dir);
+        outdir_remove_temps(dir);
     }
     queue_claim_file(q, name, q->failed);
 }
@@ -171,7 +172,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = q;
     char last[2048] = "", log_name[JOB_NAME_MAX];
-    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads (SPEC: <name>.log) */
+    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads: failed/<name>.log */
     int attempts = 0, rc;
     do {
         q->attempt = ++attempts;
@@ -232,7 +233,7 @@ static void process_claim(struct queue *q, const char *name)
     struct err e;
     struct run_result rr;
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
-    snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
+    outdir_stem(name, stem, sizeof stem);
     claim_source(q, from, sizeof from);
     if (compare_is_compare_job(from)) {
         process_compare(q, name, from, as, stem);
@@ -269,7 +270,7 @@ static void process_claim(struct queue *q, const char *name)
     for (;;) {
         q->attempt = ++attempts;
         rc = run_job(&j, &ro, &rr, &e);
-        if (rc != 1 || !rr.farm.child_crashed || attempts > q->o->retries || queue_stop)
+        if (rc != 1 || !rr.procs.child_crashed || attempts > q->o->retries || queue_stop)
             break;
         err_format(&e, msg, sizeof msg);
         queue_log(name, "%s; retrying (attempt %d of %d)\n", msg, attempts + 1, q->o->retries + 1);
@@ -278,7 +279,7 @@ static void process_claim(struct queue *q, const char *name)
         say_lost(q, name);
         return;
     }
-    if (rc == 1 && (rr.farm.stopped || queue_stop)) {
+    if (rc == 1 && (rr.procs.stopped || queue_stop)) {
         give_back(q, name);
         return;
     }
@@ -298,7 +299,7 @@ static void process_claim(struct queue *q, const char *name)
     err_format(&e, msg, sizeof msg);
     queue_log(name, "%s; moved to %s/ after %d attempt%s\n", msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
-    write_log(q, name, j.name, msg, rr.farm.child_signal, attempts);
+    write_log(q, name, j.name, msg, rr.procs.child_signal, attempts);
     file_failed(q, name, j.name);
     note_rc(q, rc);
 }
@@ -341,7 +342,7 @@ static void file_unrunnable(struct queue *q, const char *name)
              unrunnable_kind(from));
     if (rename(from, to) == 0) {
         char stem[256];
-        snprintf(stem, sizeof stem, "%.*s", (int)strlen(name) - 5, name);
+        outdir_stem(name, stem, sizeof stem);
         queue_log(name, "%s; moved to %s/\n", msg, q->failed);
         write_log(q, name, stem, msg, 0, 0);
         note_rc(q, 2);
@@ -400,8 +401,8 @@ int queue_main(const struct queue_opts *qo)
     snprintf(q.running, sizeof q.running, "%s/running", q.dir);
     snprintf(q.done, sizeof q.done, "%s/done", q.dir);
     snprintf(q.failed, sizeof q.failed, "%s/failed", q.dir);
-    if (run_out_mkdirs(q.running, &e) < 0 || run_out_mkdirs(q.done, &e) < 0 ||
-        run_out_mkdirs(q.failed, &e) < 0) {
+    if (outdir_mkdirs(q.running, NULL, &e) < 0 || outdir_mkdirs(q.done, NULL, &e) < 0 ||
+        outdir_mkdirs(q.failed, NULL, &e) < 0) {
         err_print("worker: --queue %s: %s\n", q.dir, e.msg);
         return 2;
     }

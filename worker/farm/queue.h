@@ -1,4 +1,4 @@
-/* queue: drain a queue directory of job files with many workers (SPEC "Queue directory"). */
+/* queue: drain a queue directory of job files with many workers (claims, leases, done/ and failed/). */
 #ifndef QUEUE_H
 #define QUEUE_H
 

@@ -17,6 +17,7 @@
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/json.h"
+#include "job/sidecar.h"
 #include "queue_log.h"
 
 static double since(const struct timespec *t)
@@ -168,7 +169,7 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
     while (!took && (de = readdir(d))) {
         char claim[2048], why[512];
         remove_dead_lease_temp(q, de->d_name);
-        if (!queue_is_job_file(de->d_name))
+        if (!queue_scan_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
         if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
@@ -245,56 +246,13 @@ int queue_claim_gone(struct queue *q)
     return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
-/* The "job_file" string of sidecar text json as written there (its JSON escapes kept) into out; 0,
-   or -1 when none. */
-static int sidecar_job_file(const char *json, char *out, size_t n)
-{
-    const char *key = "\"job_file\": \"", *s = strstr(json, key);
-    size_t k = 0;
-    if (!s || n == 0)
-        return -1;
-    for (s += strlen(key); *s && *s != '"' && k + 2 < n; s++) {
-        if (*s == '\\' && s[1])
-            out[k++] = *s++;
-        out[k++] = *s;
-    }
-    out[k] = 0;
-    return *s == '"' ? 0 : -1;
-}
-
-/* JSON string text (escapes) into out with its escapes undone, for a message. */
-static void json_unescape(const char *text, char *out, size_t n)
-{
-    size_t k = 0;
-    for (const char *s = text; *s && k + 1 < n; s++)
-        out[k++] = *s == '\\' && s[1] ? *++s : *s;
-    if (n)
-        out[k] = 0;
-}
-
-/* name as the sidecar writes a string (json.c: control characters and bytes that are not UTF-8
-   escaped) into out, without its quotes; 0, or -1 when it does not fit. A sidecar's job_file is
-   compared in that form: undoing its escapes made a file named in Latin-1 ("caf\xe9.yaml": its
-   sidecar says "caf\ufffd.yaml") another file than itself, so that re-queued it was "name taken". */
-static int json_escaped(const char *name, char *out, size_t n)
-{
-    struct json js;
-    json_init(&js);
-    json_string(&js, NULL, name);
-    const int ok = !js.oom && js.len >= 2 && js.len - 2 < n;
-    if (ok) {
-        memcpy(out, js.buf + 1, js.len - 2);
-        out[js.len - 2] = 0;
-    }
-    json_free(&js);
-    return ok ? 0 : -1;
-}
-
 int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
 {
+    /* A sidecar's job_file is compared as it reads back: a file named in Latin-1 ("caf\xe9.yaml")
+       is recorded as "caf\ufffd.yaml", and must still be the same file as itself when re-queued. */
     const char *base_name = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
     char mine[2048];
-    if (json_escaped(base_name, mine, sizeof mine) < 0)
+    if (json_string_read_back(base_name, mine, sizeof mine) < 0)
         return 0;
     const char *folder = strrchr(dir, '/') ? strrchr(dir, '/') + 1 : dir;
     if (folder[0] == '.') /* no job's name: DIR/done/.cache/, the references all compare jobs share */
@@ -306,23 +264,19 @@ int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, 
     struct dirent *de;
     while (!taken && (de = readdir(d))) {
         size_t len = strlen(de->d_name);
-        char path[4096], file[2048];
-        uint8_t *text;
-        size_t bytes;
+        char path[4096];
+        struct sidecar_info info;
         struct err e;
         if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
             continue;
         snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (fileio_read_all(path, 1 << 20, &text, &bytes, &e) < 0)
+        if (sidecar_read(path, &info, &e) < 0 || !info.job_file[0])
             continue;
-        if (sidecar_job_file((const char *)text, file, sizeof file) == 0) {
-            const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
-            if (strcmp(base, mine) != 0) {
-                json_unescape(file, owner, n);
-                taken = 1;
-            }
+        const char *base = strrchr(info.job_file, '/') ? strrchr(info.job_file, '/') + 1 : info.job_file;
+        if (strcmp(base, mine) != 0) {
+            snprintf(owner, n, "%s", info.job_file);
+            taken = 1;
         }
-        free(text);
     }
     closedir(d);
     return taken;

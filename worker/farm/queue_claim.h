@@ -35,7 +35,7 @@ struct queue {
    stops, writes nothing, and the worker goes on with the next job. */
 #define QUEUE_STOP_CLAIM_LOST (-1)
 
-/* The farm's progress callback (every 5 ms): about once a second, or four times per
+/* The render's progress callback (run_opts.tick, every 5 ms): about once a second, or four times per
    --lease-timeout when that is shorter, see that the claim is still ours (its file still in
    running/, its lease still ours) and renew the lease with the render's progress; a claim gone (the job file
    removed or moved away: the job was cancelled) or taken over sets q->lost and *q->stop to
@@ -45,7 +45,7 @@ void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s);
 /* Renew the claim in hand's lease from a timer (SIGALRM, SA_RESTART) as often as the tick would,
    whatever the worker is doing: loading a scene (a big texture), encoding and writing an image,
    waiting for its output folder's lock, between a compare job's renders. The tick alone ran only
-   while the farm rendered, so a long load or encode let the lease look dead and another worker
+   while the render processes ran, so a long load or encode let the lease look dead and another worker
    take a live claim. A stopped (SIGSTOP) or dead worker renews nothing. The lease file is held
    open: a lease rewritten by a new holder is a new file that our timer does not touch. */
 void queue_claim_renew_start(struct queue *q);

@@ -40,7 +40,7 @@ int queue_log_host_processes(const char *running, const struct lease *me, const 
         char claim[2048];
         struct lease l;
         double age;
-        if (!queue_is_job_file(de->d_name))
+        if (!queue_scan_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", running, de->d_name);
         if (!strcmp(claim, skip) || lease_read(claim, &l, &age) < 0)

@@ -12,7 +12,7 @@
 #include "base/fileio.h"
 #include "scenefile/yamlx.h"
 
-int queue_is_job_file(const char *s)
+int queue_scan_is_job_file(const char *s)
 {
     size_t n = strlen(s);
     return s[0] != '.' && n > 5 && strcmp(s + n - 5, ".yaml") == 0;
@@ -125,7 +125,7 @@ int queue_scan_waiting(struct queue_scan *q, const char *dir, struct queue_waiti
     while ((de = readdir(d))) {
         char path[2048];
         struct stat st;
-        if (!queue_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof w->name)
+        if (!queue_scan_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof w->name)
             continue;
         snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
         int bad = stat(path, &st) < 0 ? errno : 0;

@@ -28,7 +28,7 @@ struct queue_scan {
 #define QUEUE_SCAN_EMPTY_GRACE_S 10.0
 
 /* 1 when a directory entry's name is a job file's: X.yaml, not hidden (temporaries start with a dot). */
-int queue_is_job_file(const char *name);
+int queue_scan_is_job_file(const char *name);
 
 /* The regular files DIR/X.yaml in claim order into *out (malloc'd, the caller frees it); their
    count, or -1 when dir cannot be read (errno says why). The entries named X.yaml that can never

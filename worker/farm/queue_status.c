@@ -14,6 +14,8 @@
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/json.h"
+#include "job/outdir.h"
+#include "job/sidecar.h"
 #include "lease.h"
 #include "queue_scan.h"
 #include "scenefile/yamlx.h"
@@ -41,7 +43,7 @@ static void job_name_of(const char *path, const char *file, char *out, size_t n)
 {
     struct ydoc d;
     struct err e;
-    snprintf(out, n, "%.*s", (int)strlen(file) - 5, file);
+    outdir_stem(file, out, n);
     if (ydoc_load(&d, path, &e) == 0) {
         yaml_node_t *root = ydoc_root(&d);
         const char *s = root && root->type == YAML_MAPPING_NODE ? yscalar(ymap_get(&d, root, "name")) : NULL;
@@ -51,20 +53,15 @@ static void job_name_of(const char *path, const char *file, char *out, size_t n)
     ydoc_free(&d);
 }
 
-static double ynumber(struct ydoc *d, yaml_node_t *map, const char *key)
-{
-    const char *s = yscalar(ymap_get(d, map, key));
-    char *end;
-    double v = s ? strtod(s, &end) : -1;
-    return s && *s && !*end ? v : -1;
-}
-
 /* Fill x's wall, CPU and samples from the sidecar in done/<name>/ made from x's job file. */
 static void read_sidecar(const char *done, struct entry *x)
 {
     char folder[2048];
     snprintf(folder, sizeof folder, "%s/%s", done, x->name);
     x->wall_s = x->cpu_s = x->samples = -1;
+    char file[1024];
+    if (json_string_read_back(x->file, file, sizeof file) < 0) /* as a sidecar records it */
+        return;
     DIR *dir = opendir(folder);
     if (!dir)
         return;
@@ -74,21 +71,17 @@ static void read_sidecar(const char *done, struct entry *x)
         if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
             continue;
         char path[4096];
-        struct ydoc d;
+        struct sidecar_info info;
         struct err e;
         snprintf(path, sizeof path, "%s/%s", folder, de->d_name);
-        if (ydoc_load(&d, path, &e) == 0) {
-            yaml_node_t *root = ydoc_root(&d);
-            const char *jf = yscalar(ymap_get(&d, root, "job_file"));
-            const char *base = jf && strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
-            if (base && !strcmp(base, x->file)) {
-                yaml_node_t *t = ymap_get(&d, root, "time");
-                x->wall_s = ynumber(&d, t, "wall_s");
-                x->cpu_s = ynumber(&d, t, "cpu_s");
-                x->samples = ynumber(&d, ymap_get(&d, root, "samples"), "total");
+        if (sidecar_read(path, &info, &e) == 0) {
+            const char *jf = info.job_file, *base = strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
+            if (!strcmp(base, file)) {
+                x->wall_s = isfinite(info.wall_s) ? info.wall_s : -1;
+                x->cpu_s = isfinite(info.cpu_s) ? info.cpu_s : -1;
+                x->samples = (double)info.samples_total;
             }
         }
-        ydoc_free(&d);
         if (x->wall_s >= 0)
             break;
     }
@@ -104,7 +97,9 @@ static void read_reason(const char *failed, struct entry *x)
     struct err e;
     snprintf(path, sizeof path, "%s/%s.log", failed, x->name);
     if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0) {
-        snprintf(path, sizeof path, "%s/%.*s.log", failed, (int)strlen(x->file) - 5, x->file);
+        char stem[256];
+        outdir_stem(x->file, stem, sizeof stem);
+        snprintf(path, sizeof path, "%s/%s.log", failed, stem);
         if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
             text = NULL;
     }
@@ -138,7 +133,7 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     while ((de = readdir(d))) {
         char path[2048];
         struct stat st;
-        if (!queue_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof v->file)
+        if (!queue_scan_is_job_file(de->d_name) || strlen(de->d_name) >= sizeof v->file)
             continue;
         snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
         if (lstat(path, &st) < 0)

@@ -12,6 +12,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
+#include "outdir.h"
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
 
@@ -117,11 +118,7 @@ void job_defaults(struct job *j, const char *path)
 {
     memset(j, 0, sizeof *j);
     snprintf(j->path, sizeof j->path, "%s", path);
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    const char *dot = strrchr(base, '.');
-    int len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
-    snprintf(j->name, sizeof j->name, "%.*s", len < JOB_NAME_MAX - 1 ? len : JOB_NAME_MAX - 1, base);
+    outdir_stem(path, j->name, sizeof j->name);
     j->width = 300;
     j->sampler = SAMPLER_RANDOM;
     j->threshold = 5;

@@ -1,13 +1,7 @@
-/* job_limits: up-front checks of job size, memory and the output folder. */
+/* job_limits: up-front checks of job size and memory (the output folder's: outdir_check). */
 #include "job_limits.h"
 
-#include <errno.h>
 #include <stdio.h>
-#include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include "run.h"
 
 int job_limits_samples(const struct job *j, int width, int height, struct err *e)
 {
@@ -42,31 +36,4 @@ int job_limits_memory(const char *what, size_t bytes, struct err *e)
         return 0;
     return err_set(e, NULL, 0, 0, "%s needs %zu MB, over half of the %zu MB of memory available", what,
                    bytes >> 20, avail >> 20);
-}
-
-int job_limits_out_dir(const char *dir, struct err *e)
-{
-    char p[2048];
-    snprintf(p, sizeof p, "%s", dir);
-    for (;;) {
-        struct stat st;
-        if (stat(p, &st) == 0) {
-            if (!S_ISDIR(st.st_mode))
-                return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", p);
-            if (access(p, W_OK | X_OK) < 0)
-                return err_set(e, NULL, 0, 0, "cannot write to output directory %s: %s", p, strerror(errno));
-            return 0;
-        }
-        if ((errno != ENOENT && errno != ENOTDIR) || !strcmp(p, "."))
-            return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", dir, strerror(errno));
-        /* missing, but a name is there: a dangling symbolic link, where mkdir fails (EEXIST) */
-        if (lstat(p, &st) == 0)
-            return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way (%s)", p,
-                           S_ISLNK(st.st_mode) ? "a symbolic link to nothing" : "not a directory");
-        char *slash = strrchr(p, '/');
-        if (!slash)
-            snprintf(p, sizeof p, ".");
-        else
-            slash[slash == p] = '\0'; /* "/x" -> "/", "a/b" -> "a" */
-    }
 }

@@ -18,9 +18,4 @@ int job_limits_samples(const struct job *j, int width, int height, struct err *e
    (MemAvailable in /proc/meminfo; no check where that is unknown). 0 or -1 with e filled. */
 int job_limits_memory(const char *what, size_t bytes, struct err *e);
 
-/* Check, making nothing, that dir is a writable directory or can be made as one (its nearest
-   existing ancestor is a writable directory), so an interrupted render leaves no empty folder
-   behind. 0 or -1 with e filled. */
-int job_limits_out_dir(const char *dir, struct err *e);
-
 #endif

@@ -2,17 +2,18 @@
 #include "run.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job_limits.h"
-#include "farm/part.h"
+#include "part.h"
+#include "outdir.h"
 #include "run_out.h"
 #include "scenefile/scene_load.h"
 #include "sidecar.h"
@@ -43,32 +44,6 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
             eta);
     if (done == rows)
         fprintf(stderr, "\n");
-}
-
-static void stem_of(const char *file, char *out, size_t n)
-{
-    const char *dot = strrchr(file, '.');
-    int len = dot && dot != file ? (int)(dot - file) : (int)strlen(file);
-    snprintf(out, n, "%.*s", len, file);
-}
-
-void run_float_path(const struct job *j, const char *out_dir, char *path, size_t n)
-{
-    char stem[JOB_NAME_MAX];
-    path[0] = 0;
-    if (!j->float_copy || imgio_is_float(j->format))
-        return;
-    stem_of(j->output, stem, sizeof stem);
-    snprintf(path, n, "%s/%s/%s.exr", out_dir ? out_dir : "out", j->name, stem);
-}
-
-void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n)
-{
-    char stem[JOB_NAME_MAX];
-    stem_of(j->output, stem, sizeof stem);
-    snprintf(dir, n, "%s/%s", out_dir ? out_dir : "out", j->name);
-    snprintf(image, n, "%s/%s/%s", out_dir ? out_dir : "out", j->name, j->output);
-    snprintf(sidecar, n, "%s/%s/%s.json", out_dir ? out_dir : "out", j->name, stem);
 }
 
 static int is_file(const char *path)
@@ -113,12 +88,12 @@ static int outputs_current(const struct job *j, const struct run_opts *o, struct
     if (j->hash == 0) /* a job not read from a file (no job_load): nothing to compare with */
         return 0;
     if (o->parts > 0) {
-        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+        outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
         rr->sidecar_path[0] = 0;
         return part_matches(rr->image_path, j, o->part, o->parts);
     }
-    run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    run_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
+    outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
+    outdir_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
     return is_file(rr->image_path) && (!rr->float_path[0] || is_file(rr->float_path)) &&
            sidecar_matches(rr->sidecar_path, j->hash);
 }
@@ -140,8 +115,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct rgbf ref = {0};
     enum img_domain ref_domain = o->ref_domain;
     float *rgb = NULL;
-    char dir[2048], image[2048], sidecar[2048];
-    int rc = 2, made_dir = 0;
+    char dir[2048];
+    int rc = 2;
     memset(rr, 0, sizeof *rr);
     if (!o->force && outputs_current(j, o, rr)) {
         rr->skipped = 1;
@@ -190,8 +165,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
-    run_paths(j, o->out_dir, dir, image, sidecar, sizeof dir);
-    if (job_limits_out_dir(dir, e) < 0)
+    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
+    if (outdir_check(dir, e) < 0)
         goto done;
     rc = 1;
     if (!(rgb = procs_framebuffer_new(w, h, e)))
@@ -208,31 +183,19 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
                            .progress = show_progress,
                            .progress_arg = &prog,
                            .stop = o->stop};
-    if (procs_render(&fj, rgb, &rr->farm, e) < 0) {
+    if (procs_render(&fj, rgb, &rr->procs, e) < 0) {
         if (prog.enabled)
             fprintf(stderr, "\n");
         goto done;
     }
     if (o->parts > 0) {
-        part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
-        rr->sidecar_path[0] = 0;
-        if (run_out_make_dir(dir, &made_dir, e) < 0)
+        if (run_out_write_part(j, o, rgb, w, h, &rr->procs, rr, e) < 0)
             goto done;
-        const char *outs[] = {rr->image_path, NULL};
-        int lock;
-        int wrote = run_out_lock_outputs(dir, outs, o, &lock, e) < 0
-                        ? -1
-                        : part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, &rr->farm, e);
-        run_out_unlock(lock);
-        if (wrote < 0)
-            goto done;
-    } else if (run_out_write(j, o, rgb, w, h, &rr->farm, use_ref, ref_domain, 0, rr, e) < 0) {
+    } else if (run_out_write(j, o, rgb, w, h, &rr->procs, use_ref, ref_domain, 0, rr, e) < 0) {
         goto done;
     }
     rc = 0;
 done:
-    if (rc != 0 && made_dir)
-        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
     image_f_free(&ref);
     procs_framebuffer_free(rgb, rr->width, rr->height);
     sampler_free(pix);
@@ -241,13 +204,23 @@ done:
     return rc;
 }
 
+void run_say(const struct run_opts *o, const char *fmt, ...)
+{
+    if (o->quiet || !o->progress)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+}
+
 void run_format_summary(const struct job *j, const struct run_result *rr, char *buf, size_t n)
 {
-    const struct render_stats *t = &rr->farm.total;
+    const struct render_stats *t = &rr->procs.total;
     snprintf(buf, n, "%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s", j->name, rr->width,
              rr->height, sampler_kind_name(j->sampler), j->threshold,
-             t->pixels ? (double)t->samples / t->pixels : 0.0, rr->farm.processes,
-             rr->farm.processes == 1 ? "" : "es", rr->farm.wall_s, rr->image_path);
+             t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
+             rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->image_path);
 }
 
 int run_format_warning(const struct job *j, const struct run_result *rr, char *buf, size_t n)

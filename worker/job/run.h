@@ -1,4 +1,4 @@
-/* run: render one loaded job end to end (scene, samplers, farm, image, sidecar). */
+/* run: render one loaded job end to end (scene, samplers, forked render processes, image, sidecar). */
 #ifndef RUN_H
 #define RUN_H
 
@@ -9,7 +9,7 @@
 #include "procs.h"
 
 struct run_opts {
-    const char *out_dir; /* default "out" */
+    const char *out_dir; /* NULL: OUTDIR_DEFAULT (outdir.h) */
     int processes;       /* > 0 overrides the job's */
     int quiet;
     int progress;                      /* draw progress on stderr (a terminal, not quiet) */
@@ -40,10 +40,10 @@ struct run_result {
     char image_path[2048];   /* with parts: the part file */
     char sidecar_path[2048]; /* with parts: "" */
     int width, height;
-    int skipped;              /* outputs were current (same job hash): nothing rendered */
-    int black;                /* the image written is entirely black (run_print_warnings) */
-    struct procs_result farm; /* on a render failure: child_crashed, child_signal, stopped */
-    int has_error;            /* rendered against a reference: error holds the figures */
+    int skipped;               /* outputs were current (same job hash): nothing rendered */
+    int black;                 /* the image written is entirely black (run_print_warnings) */
+    struct procs_result procs; /* on a render failure: child_crashed, child_signal, stopped */
+    int has_error;             /* rendered against a reference: error holds the figures */
     struct metrics error;
     int has_display_error;        /* o->ref_display given and the image is PNG or PPM */
     struct metrics display_error; /* the 8-bit image against o->ref_display */
@@ -58,13 +58,6 @@ struct run_result {
    job_load) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
 
-/* The float copy's path OUT/<name>/<stem>.exr when j->float_copy and j's image is PNG or PPM,
-   else "". */
-void run_float_path(const struct job *j, const char *out_dir, char *path, size_t n);
-
-/* The directory OUT/<name>/ and the image and sidecar paths of j (sidecar: image stem + .json). */
-void run_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
-
 /* Read j's reference (EXR, PFM, PNG or PPM) into ref as floats, *domain saying what they are,
    and check it is w x h. 0 (ref->px NULL when the job has none), or -1 with e at the job's
    reference key. */
@@ -74,6 +67,9 @@ int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum
 /* The one-line warning on stderr that the error against the reference at path is measured on
    8-bit display values (a PNG or PPM reference), not on linear radiance. */
 void run_warn_display_reference(const char *job_name, const char *path);
+
+/* A progress line on stderr, printed only when o->progress (a terminal) and not o->quiet. */
+void run_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The one summary line of a rendered job on stderr (size, sampler, spp, processes, time, image),
    then its warnings (run_print_warnings). */

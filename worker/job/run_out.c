@@ -1,198 +1,19 @@
-/* run_out: make, lock and write a job's output folder (image and sidecar, atomically). */
+/* run_out: a job's outputs written into its folder (outdir) under the folder's lock: image and
+   sidecar atomically, or a part file. */
 #include "run_out.h"
 
-#include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "image/metrics.h"
+#include "outdir.h"
+#include "part.h"
 #include "sidecar.h"
-
-/* Make path and its parents; *made (unless NULL): whether path itself was made here. */
-static int mkdirs(const char *path, int *made, struct err *e)
-{
-    char buf[2048];
-    snprintf(buf, sizeof buf, "%s", path);
-    if (made)
-        *made = 0;
-    for (char *p = buf + 1;; p++) {
-        if (*p == '/' || *p == 0) {
-            char c = *p;
-            *p = 0;
-            int ok = mkdir(buf, 0755) == 0;
-            if (!ok && errno != EEXIST)
-                return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", buf, strerror(errno));
-            struct stat st;
-            /* the folder itself is never a symbolic link: outputs would land wherever it points */
-            if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
-                return err_set(e, NULL, 0, 0,
-                               "%s is a symbolic link: outputs are never written through one (make it a "
-                               "folder)",
-                               buf);
-            if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
-                return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", buf);
-            *p = c;
-            if (!c) {
-                if (made)
-                    *made = ok;
-                break;
-            }
-        }
-    }
-    return 0;
-}
-
-int run_out_mkdirs(const char *path, struct err *e)
-{
-    return mkdirs(path, NULL, e);
-}
-
-int run_out_make_dir(const char *dir, int *made, struct err *e)
-{
-    return mkdirs(dir, made, e);
-}
-
-/* Whether n is a temporary of the file named base: fileio_write_atomic's ".<base>.tmp.XXXXXX", or
-   its own temporary of such a staging file, "..<base>.tmp.XXXXXX.tmp.YYYYYY". */
-static int is_temp_of(const char *n, const char *base)
-{
-    size_t bl = strlen(base);
-    if (n[0] != '.')
-        return 0;
-    const char *t = !strncmp(n + 1, base, bl)                  ? n + 1 + bl
-                    : n[1] == '.' && !strncmp(n + 2, base, bl) ? n + 2 + bl
-                                                               : NULL;
-    if (!t || strncmp(t, ".tmp.", 5) != 0)
-        return 0;
-    size_t rest = strlen(t + 5);
-    return t == n + 1 + bl ? rest == 6 : rest == 17 && !strncmp(t + 11, ".tmp.", 5);
-}
-
-/* Remove the temporaries that writers killed half-way left for path beside it (is_temp_of). Only
-   the holder of the folder's lock may call it. */
-static void remove_dead_temps(const char *path)
-{
-    char dir[2048];
-    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
-    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    struct dirent *de;
-    while ((de = readdir(d))) {
-        if (is_temp_of(de->d_name, base)) {
-            char dead[4096];
-            snprintf(dead, sizeof dead, "%s/%s", dir, de->d_name);
-            unlink(dead);
-        }
-    }
-    closedir(d);
-}
-
-/* Whether n is any writer's temporary (is_temp_of, whatever the file): ".<base>.tmp.XXXXXX". */
-static int is_temp(const char *n)
-{
-    size_t len = strlen(n);
-    return n[0] == '.' && len > 12 && !strncmp(n + len - 11, ".tmp.", 5);
-}
-
-void run_out_remove_temps(const char *dir)
-{
-    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), locked = 0;
-    if (fd < 0)
-        return;
-    for (int i = 0; i < 100 && !(locked = flock(fd, LOCK_EX | LOCK_NB) == 0); i++) {
-        struct timespec nap = {0, 10 * 1000 * 1000};
-        nanosleep(&nap, NULL);
-    }
-    DIR *d = locked ? fdopendir(dup(fd)) : NULL;
-    struct dirent *de;
-    while (d && (de = readdir(d)))
-        if (is_temp(de->d_name))
-            (void)unlinkat(fd, de->d_name, 0);
-    if (d)
-        closedir(d);
-    close(fd); /* and the lock with it */
-}
-
-/* flock(fd, LOCK_EX) for at most wait_s seconds (> 0) in 20 ms steps; -1 with errno EWOULDBLOCK
-   when waited out, EINTR when *stop was set meanwhile. */
-static int lock_within(int fd, double wait_s, const volatile sig_atomic_t *stop)
-{
-    struct timespec t0, now, nap = {0, 20 * 1000 * 1000};
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    for (;;) {
-        if (flock(fd, LOCK_EX | LOCK_NB) == 0)
-            return 0;
-        if (errno != EWOULDBLOCK && errno != EINTR)
-            return -1;
-        if (stop && *stop) {
-            errno = EINTR;
-            return -1;
-        }
-        clock_gettime(CLOCK_MONOTONIC, &now);
-        if ((now.tv_sec - t0.tv_sec) + (now.tv_nsec - t0.tv_nsec) * 1e-9 > wait_s) {
-            errno = EWOULDBLOCK;
-            return -1;
-        }
-        nanosleep(&nap, NULL);
-    }
-}
-
-int run_out_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s)
-{
-    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */
-    if (fd < 0)
-        return -1;
-    /* a stop signal interrupts the wait (the queue's handlers have no SA_RESTART): a holder that
-       hangs must not make this writer deaf to it */
-    if (wait_s > 0)
-        rc = lock_within(fd, wait_s, stop);
-    else
-        while ((rc = flock(fd, LOCK_EX)) < 0 && errno == EINTR && !(stop && *stop))
-            ;
-    if (rc < 0) {
-        int why = errno;
-        close(fd);
-        return why == EINTR ? RUN_OUT_STOPPED : why == EWOULDBLOCK ? RUN_OUT_WAITED_OUT : -1;
-    }
-    for (int i = 0; paths && paths[i]; i++)
-        remove_dead_temps(paths[i]);
-    return fd;
-}
-
-void run_out_unlock(int fd)
-{
-    if (fd >= 0)
-        close(fd); /* closing the last descriptor of the open folder releases the flock */
-}
-
-/* A staging name for path, unique to this writer: "<dir>/.<base>.tmp.XXXXXX" with six letters
-   or digits from the pid and the time, shaped as fileio_write_atomic's temporaries so that a
-   writer killed between staging and renaming leaves nothing for good (is_temp_of). */
-static void staged_name(const char *path, char *out, size_t n)
-{
-    static const char alnum[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    uint64_t x = rng_mix64((uint64_t)getpid() << 32 ^ (uint64_t)ts.tv_sec << 30 ^ (uint64_t)ts.tv_nsec);
-    char suffix[7];
-    for (int i = 0; i < 6; i++, x /= 62)
-        suffix[i] = alnum[x % 62];
-    suffix[6] = 0;
-    const char *slash = strrchr(path, '/');
-    int dl = slash ? (int)(slash - path) + 1 : 0;
-    snprintf(out, n, "%.*s.%s.tmp.%s", dl, path, path + dl, suffix);
-}
 
 /* An error about writing the staging file `staged` names the final path instead. */
 static void name_final(struct err *e, const char *staged, const char *final)
@@ -210,14 +31,14 @@ static void name_final(struct err *e, const char *staged, const char *final)
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e)
 {
-    *lock = run_out_lock(dir, paths, o->stop, o->lock_wait_s);
-    if (*lock == RUN_OUT_WAITED_OUT && (!o->may_write || o->may_write(o->tick_arg, dir)))
+    *lock = outdir_lock(dir, paths, o->stop, o->lock_wait_s);
+    if (*lock == OUTDIR_WAITED_OUT && (!o->may_write || o->may_write(o->tick_arg, dir)))
         err_print("%s/: its lock has been held for over %g s (a lease timeout) by a writer that is stopped "
                   "or hung: writing without it\n",
                   dir, o->lock_wait_s);
     if (*lock == -1 && (errno == ELOOP || errno == ENOTDIR))
         return err_set(e, NULL, 0, 0, "%s is a symbolic link: outputs are never written through one", dir);
-    if (*lock == RUN_OUT_STOPPED)
+    if (*lock == OUTDIR_STOPPED)
         return err_set(e, NULL, 0, 0, "stopped while waiting for another writer of %s/: nothing written",
                        dir);
     if (!o->may_write || o->may_write(o->tick_arg, dir))
@@ -280,9 +101,9 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
     char *json = NULL;
     int rc = -1, made_dir = 0, lock = -1, n = 0;
     int is_float = imgio_is_float(j->format), has_ref = ref && ref->px;
-    run_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    run_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
-    if (run_out_make_dir(dir, &made_dir, e) < 0 ||
+    outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
+    outdir_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
+    if (outdir_mkdirs(dir, &made_dir, e) < 0 ||
         ((!is_float || (has_ref && ref_domain == IMG_DISPLAY8)) && image_alloc(&img, w, h, e) < 0))
         goto done;
     final[n++] = rr->image_path;
@@ -290,7 +111,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
         final[n++] = rr->float_path;
     final[n++] = rr->sidecar_path;
     for (int i = 0; i < n; i++)
-        staged_name(final[i], staged[i], sizeof staged[i]);
+        outdir_staged_name(final[i], staged[i], sizeof staged[i]);
     const char *outs[] = {final[0], final[1], n > 2 ? final[2] : NULL, NULL};
     if (run_out_lock_outputs(dir, outs, o, &lock, e) < 0)
         goto done;
@@ -350,10 +171,27 @@ int run_out_write(const struct job *j, const struct run_opts *o, const float *rg
     rr->black = image_float_black(rgb, w, h);
     rc = 0;
 done:
-    run_out_unlock(lock);
+    outdir_unlock(lock);
     if (rc != 0 && made_dir)
         rmdir(dir); /* a failed write leaves no empty folder of ours (it fails when not empty) */
     free(json);
     image_free(&img);
+    return rc;
+}
+
+int run_out_write_part(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
+                       const struct procs_result *fr, struct run_result *rr, struct err *e)
+{
+    char dir[2048];
+    int made_dir = 0, lock = -1, rc = -1;
+    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
+    outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
+    rr->sidecar_path[0] = 0;
+    const char *outs[] = {rr->image_path, NULL};
+    if (outdir_mkdirs(dir, &made_dir, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0)
+        rc = part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, fr, e);
+    outdir_unlock(lock);
+    if (rc != 0 && made_dir)
+        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
     return rc;
 }

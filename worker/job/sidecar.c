@@ -1,13 +1,17 @@
-/* sidecar: job, sampler settings, sample counts, rays, times and error as JSON (SPEC "Stats sidecar"). */
+/* sidecar: the JSON record beside every image (job, sampler settings, sample counts, rays, times,
+   error) written, and read back with the YAML parser (JSON is YAML's flow syntax). */
 #include "sidecar.h"
 
+#include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/fileio.h"
 #include "base/json.h"
+#include "scenefile/yamlx.h"
 
 char *sidecar_json(const struct sidecar *s)
 {
@@ -97,16 +101,140 @@ char *sidecar_json(const struct sidecar *s)
     return js.buf;
 }
 
+/* The scalar text of key in mapping m: NULL when absent; -1 (e filled) when not a scalar. */
+static int scalar_at(struct ydoc *d, yaml_node_t *m, const char *key, const char **out, struct err *e)
+{
+    yaml_node_t *v = ymap_get_raw(d, m, key);
+    *out = NULL;
+    if (!v)
+        return 0;
+    if (!(*out = yscalar(v)))
+        return ydoc_fail(d, v, e, "%s: expected a value, got %s", key, ydoc_node_kind(v));
+    if (strlen(*out) != v->data.scalar.length)
+        return ydoc_fail(d, v, e, "%s: holds a NUL character", key);
+    return 0;
+}
+
+static int string_at(struct ydoc *d, yaml_node_t *m, const char *key, char *out, size_t n, struct err *e)
+{
+    const char *s;
+    if (scalar_at(d, m, key, &s, e) < 0)
+        return -1;
+    if (s && strlen(s) >= n)
+        return ydoc_fail(d, ymap_get_raw(d, m, key), e, "%s: longer than %zu bytes", key, n - 1);
+    snprintf(out, n, "%s", s ? s : "");
+    return 0;
+}
+
+static int number_at(struct ydoc *d, yaml_node_t *m, const char *key, double *out, struct err *e)
+{
+    const char *s;
+    char *end;
+    if (scalar_at(d, m, key, &s, e) < 0)
+        return -1;
+    if (!s)
+        return 0;
+    if (!strcmp(s, "null")) {
+        *out = NAN;
+        return 0;
+    }
+    *out = strtod(s, &end);
+    if (!*s || *end || !isfinite(*out))
+        return ydoc_fail(d, ymap_get_raw(d, m, key), e, "%s: expected a number, got \"%.40s\"", key, s);
+    return 0;
+}
+
+static int count_at(struct ydoc *d, yaml_node_t *m, const char *key, uint64_t *out, struct err *e)
+{
+    const char *s;
+    char *end;
+    if (scalar_at(d, m, key, &s, e) < 0)
+        return -1;
+    if (!s)
+        return 0;
+    errno = 0;
+    *out = strtoull(s, &end, 10);
+    if (!*s || *end || errno || strspn(s, "0123456789") != strlen(s))
+        return ydoc_fail(d, ymap_get_raw(d, m, key), e, "%s: expected a whole number, got \"%.40s\"", key, s);
+    return 0;
+}
+
+/* The hash's 16 hex digits, or has_hash 0. */
+static int hash_at(struct ydoc *d, yaml_node_t *m, struct sidecar_info *out, struct err *e)
+{
+    char hex[32];
+    if (string_at(d, m, "job_hash", hex, sizeof hex, e) < 0)
+        return -1;
+    if (strlen(hex) != 16 || strspn(hex, "0123456789abcdef") != 16)
+        return 0;
+    out->job_hash = strtoull(hex, NULL, 16);
+    out->has_hash = 1;
+    return 0;
+}
+
+static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
+{
+    yaml_node_t *root = ydoc_root(d);
+    if (!root || root->type != YAML_MAPPING_NODE)
+        return ydoc_fail(d, root, e, "a sidecar holds one JSON object, got %s",
+                         root ? ydoc_node_kind(root) : "nothing");
+    yaml_node_t *samples = ymap_get(d, root, "samples"), *time = ymap_get(d, root, "time"),
+                *error = ymap_get(d, root, "error");
+    const struct {
+        const char *key;
+        yaml_node_t *n;
+    } parts[] = {{"samples", samples}, {"time", time}, {"error", error}};
+    for (size_t i = 0; i < sizeof parts / sizeof parts[0]; i++)
+        if (parts[i].n && parts[i].n->type != YAML_MAPPING_NODE)
+            return ydoc_fail(d, parts[i].n, e, "%s: expected an object, got %s", parts[i].key,
+                             ydoc_node_kind(parts[i].n));
+    out->has_error = error != NULL;
+    return string_at(d, root, "job", out->job, sizeof out->job, e) < 0 ||
+                   string_at(d, root, "job_file", out->job_file, sizeof out->job_file, e) < 0 ||
+                   hash_at(d, root, out, e) < 0 ||
+                   string_at(d, root, "image", out->image, sizeof out->image, e) < 0 ||
+                   count_at(d, root, "width", &out->width, e) < 0 ||
+                   count_at(d, root, "height", &out->height, e) < 0 ||
+                   count_at(d, root, "processes", &out->processes, e) < 0 ||
+                   count_at(d, root, "parts", &out->parts, e) < 0 ||
+                   count_at(d, samples, "total", &out->samples_total, e) < 0 ||
+                   number_at(d, samples, "per_pixel_mean", &out->spp_mean, e) < 0 ||
+                   count_at(d, samples, "per_pixel_min", &out->spp_min, e) < 0 ||
+                   count_at(d, samples, "per_pixel_max", &out->spp_max, e) < 0 ||
+                   number_at(d, time, "wall_s", &out->wall_s, e) < 0 ||
+                   number_at(d, time, "cpu_s", &out->cpu_s, e) < 0 ||
+                   number_at(d, time, "sampler_s", &out->sampler_s, e) < 0 ||
+                   number_at(d, time, "sampling_share", &out->sampling_share, e) < 0 ||
+                   number_at(d, time, "ns_per_sample", &out->ns_per_sample, e) < 0 ||
+                   number_at(d, error, "mse", &out->mse, e) < 0 ||
+                   number_at(d, error, "rmse", &out->rmse, e) < 0 ||
+                   number_at(d, error, "relmse", &out->relmse, e) < 0 ||
+                   number_at(d, error, "relmse_robust", &out->relmse_robust, e) < 0 ||
+                   string_at(d, error, "domain", out->error_domain, sizeof out->error_domain, e) < 0 ||
+                   number_at(d, error, "psnr", &out->psnr, e) < 0
+               ? -1
+               : 0;
+}
+
+int sidecar_read(const char *path, struct sidecar_info *out, struct err *e)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    struct ydoc d;
+    memset(out, 0, sizeof *out);
+    if (fileio_read_all(path, SIDECAR_MAX_BYTES, &data, &len, e) < 0)
+        return -1;
+    int rc = ydoc_parse(&d, path, data, len, e);
+    free(data);
+    if (rc == 0)
+        rc = fill(&d, out, e);
+    ydoc_free(&d);
+    return rc;
+}
+
 int sidecar_matches(const char *path, uint64_t hash)
 {
-    uint8_t *data;
-    size_t len;
+    struct sidecar_info info;
     struct err e;
-    if (fileio_read_all(path, 1u << 20, &data, &len, &e) < 0)
-        return 0;
-    char want[64];
-    snprintf(want, sizeof want, SIDECAR_HASH_KEY "%016" PRIx64 "\"", hash);
-    int ok = strstr((const char *)data, want) != NULL;
-    free(data);
-    return ok;
+    return sidecar_read(path, &info, &e) == 0 && info.has_hash && info.job_hash == hash;
 }

@@ -1,4 +1,4 @@
-/* sidecar: the JSON stats file written beside every image. */
+/* sidecar: the JSON stats file written beside every image, and read back. */
 #ifndef SIDECAR_H
 #define SIDECAR_H
 
@@ -16,11 +16,33 @@ struct sidecar {
     int parts;                    /* > 0: merged from this many --part files (res->proc[i] = part i) */
 };
 
-/* The sidecar's record of the job's inputs: "job_hash": "<16 hex digits>". */
-#define SIDECAR_HASH_KEY "\"job_hash\": \""
+/* Largest sidecar sidecar_read reads (one with PROCS_MAX_PROCESSES per_process entries is ~40 kB). */
+#define SIDECAR_MAX_BYTES (1u << 20)
+
+/* What callers read back from a sidecar (sidecar_read). A key the file lacks leaves its field ""
+   or 0; a number written as null (not finite) reads as NaN. */
+struct sidecar_info {
+    char job[JOB_NAME_MAX];
+    char job_file[JOB_PATH_MAX]; /* as written: a byte that was not UTF-8 became U+FFFD */
+    int has_hash;                /* job_hash was there, 16 hex digits */
+    uint64_t job_hash;
+    char image[JOB_NAME_MAX];
+    uint64_t width, height, processes, parts;
+    uint64_t samples_total, spp_min, spp_max; /* samples.total, per_pixel_min, per_pixel_max */
+    double spp_mean;                          /* samples.per_pixel_mean */
+    double wall_s, cpu_s, sampler_s, sampling_share, ns_per_sample; /* time.* (the job's) */
+    int has_error;                                                  /* error.* were there */
+    char error_domain[16]; /* what the error was measured on: "linear" or "8-bit" */
+    double mse, rmse, relmse, relmse_robust, psnr;
+};
 
 /* Render the sidecar as JSON text into a malloc'd string (caller frees); NULL on no memory. */
 char *sidecar_json(const struct sidecar *s);
+
+/* Read the sidecar at path (at most SIDECAR_MAX_BYTES) with the YAML parser, JSON being YAML's
+   flow syntax, into out. 0, or -1 with e filled: unreadable, not JSON, not an object, or a known
+   key of the wrong type (a string too long for its field included). */
+int sidecar_read(const char *path, struct sidecar_info *out, struct err *e);
 
 /* 1 when the sidecar at path exists and records job hash `hash`, else 0 (missing, unreadable,
    written for other inputs). */

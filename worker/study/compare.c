@@ -3,7 +3,6 @@
 #include "compare.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +13,8 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
-#include "job/job_limits.h"
+#include "job/outdir.h"
+#include "job/sidecar.h"
 #include "report.h"
 #include "job/run_out.h"
 #include "base/sbuf.h"
@@ -25,16 +25,6 @@ static double now_s(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-void compare_say(const struct run_opts *o, const char *fmt, ...)
-{
-    if (o->quiet || !o->progress)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
 }
 
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
@@ -82,30 +72,18 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
     return 0;
 }
 
-/* The number after the first "key": in a sidecar's text (0 when absent). */
-static double sidecar_number(const char *text, const char *key)
-{
-    char want[64];
-    snprintf(want, sizeof want, "\"%s\": ", key);
-    const char *p = strstr(text, want);
-    return p ? strtod(p + strlen(want), NULL) : 0;
-}
-
 /* A combination skipped as current: what it measured, from its sidecar. */
 static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, struct err *e)
 {
-    uint8_t *data;
-    size_t len;
-    if (fileio_read_all(sidecar_path, 1u << 20, &data, &len, e) < 0)
+    struct sidecar_info info;
+    if (sidecar_read(sidecar_path, &info, e) < 0)
         return -1;
-    const char *t = (const char *)data;
-    it->spp_mean = sidecar_number(t, "per_pixel_mean");
-    it->spp_min = (uint64_t)sidecar_number(t, "per_pixel_min");
-    it->spp_max = (uint64_t)sidecar_number(t, "per_pixel_max");
-    it->wall_s = sidecar_number(t, "wall_s"); /* the first: the job's, before per_process */
-    it->cpu_s = sidecar_number(t, "cpu_s");
-    it->sampler_share = sidecar_number(t, "sampling_share");
-    free(data);
+    it->spp_mean = info.spp_mean;
+    it->spp_min = info.spp_min;
+    it->spp_max = info.spp_max;
+    it->wall_s = info.wall_s;
+    it->cpu_s = info.cpu_s;
+    it->sampler_share = info.sampling_share;
     return 0;
 }
 
@@ -159,13 +137,13 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         if (item_from_sidecar(it, rr.sidecar_path, e) < 0)
             return 1;
     } else {
-        const struct render_stats *t = &rr.farm.total;
+        const struct render_stats *t = &rr.procs.total;
         it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
         it->spp_min = t->pixels ? t->spp_min : 0;
         it->spp_max = t->spp_max;
-        it->wall_s = rr.farm.wall_s;
-        it->cpu_s = rr.farm.cpu_s;
-        it->sampler_share = procs_sampling_share(&rr.farm); /* the sidecar's sampling_share */
+        it->wall_s = rr.procs.wall_s;
+        it->cpu_s = rr.procs.cpu_s;
+        it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
     }
     if (ref && rr.skipped) {
         if (score_files(it, &rr, ref, cs->ref_domain, e) < 0)
@@ -235,7 +213,6 @@ static int write_text(const char *dir, const char *file, char *text, struct err 
 
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
-    const char *out = o->out_dir ? o->out_dir : "out";
     char dir[2048];
     struct scene_ref *refs = calloc((size_t)c->n_scenes, sizeof *refs);
     int rc = 1;
@@ -244,10 +221,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         err_set(e, NULL, 0, 0, "out of memory");
         return 1;
     }
-    snprintf(dir, sizeof dir, "%s/%s", out, c->name);
+    outdir_dir(o->out_dir, c->name, dir, sizeof dir);
     /* Checked now, made only when the first image or the summary is written: a job stopped or
        failed before that (a reference render cut short by Ctrl-C) leaves no empty folder. */
-    if (job_limits_out_dir(dir, e) < 0) {
+    if (outdir_check(dir, e) < 0) {
         rc = 2;
         goto fail;
     }
@@ -287,10 +264,10 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
-        compare_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
-                    c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
-                    it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
-                    it->skipped ? " (current, not rendered again)" : "", el, eta);
+        run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
+                c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+                it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+                it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     rc = 1;
     e->msg[0] = 0;
@@ -302,14 +279,14 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     snprintf(report, sizeof report, "%s/report.html", dir);
     const char *outs[] = {summary, chart, report, NULL};
     int lock = -1;
-    if (run_out_mkdirs(dir, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
+    if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
         write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
-        write_text(dir, "chart.svg", compare_chart_svg(c), e) < 0 ||
+        write_text(dir, "chart.svg", compare_stats_chart_svg(c), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
-        run_out_unlock(lock);
+        outdir_unlock(lock);
         goto fail;
     }
-    run_out_unlock(lock);
+    outdir_unlock(lock);
     rc = 0;
 fail:
     for (int s = 0; s < c->n_scenes; s++) {
@@ -357,7 +334,7 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
         "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> %s/%s/",
         c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
         plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
-        refs, wall_s, out_dir ? out_dir : "out", c->name);
+        refs, wall_s, outdir_root(out_dir), c->name);
 }
 
 /* compare_main_as, with compare_main's name_ok. */

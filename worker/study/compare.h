@@ -1,5 +1,5 @@
-/* compare: compare jobs (SPEC "Compare job"): scenes x variants x sweep x seeds, each an
-   ordinary render scored against a cached per-scene reference, summarised as CSV, SVG and HTML. */
+/* compare: compare jobs: scenes x variants x sweep x seeds, each an ordinary render scored
+   against a cached per-scene reference, summarised as CSV, SVG and HTML. */
 #ifndef COMPARE_H
 #define COMPARE_H
 
@@ -69,7 +69,10 @@ struct compare *compare_load_as(const char *from, const char *path, struct err *
 void compare_free(struct compare *c);
 
 /* Index of an item in c->items. */
-int compare_index(const struct compare *c, int scene, int variant, int point, int seed);
+static inline int compare_index(const struct compare *c, int scene, int variant, int point, int seed)
+{
+    return ((scene * c->n_variants + variant) * c->n_points + point) * c->n_seeds + seed;
+}
 
 /* Render every reference (or reuse the cache under OUT/.cache/) and every combination, then
    write summary.csv, chart.svg and report.html under OUT/<name>/. Every render keeps its float
@@ -77,9 +80,6 @@ int compare_index(const struct compare *c, int scene, int variant, int point, in
    or write failed, 2 on bad input found late (a reference image); e says why. Prints one
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
-
-/* A progress line on stderr: only on a terminal and without --quiet (SPEC "Command line"). */
-void compare_say(const struct run_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The command line's part: load, run and print one compare job (errors as one line
    "file:line:col: message", then its summary line). name_ok (optional) is asked, with arg, about

@@ -5,36 +5,14 @@
 #include <string.h>
 
 #include "compare.h"
-#include "compare_loading.h"
+#include "compare_expand.h"
+#include "compare_keys.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job_limits.h"
 
-/* Short forms of keys in labels and file names. */
-static const char *short_key(const char *key)
-{
-    static const char *const map[][2] = {
-        {"threshold", "t"}, {"light_threshold", "lt"}, {"poisson_pool", "pool"},  {"max_depth", "depth"},
-        {"processes", "p"}, {"sampler", ""},           {"light_sampler", "light"}};
-    for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
-        if (!strcmp(map[i][0], key))
-            return map[i][1];
-    return key;
-}
-
-/* Append "-<short><value>" (value made file-name safe) to buf. */
-void compare_add_part(char *buf, size_t n, const char *key, const char *val)
-{
-    size_t len = strlen(buf);
-    snprintf(buf + len, n - len, "%s%s%s", len ? "-" : "", short_key(key), val);
-    for (char *p = buf + len; *p; p++)
-        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '.' ||
-              *p == '-' || *p == '_'))
-            *p = '_';
-}
-
 /* reference: settings rendered once per scene, an image path (one scene), or absent. */
-int compare_load_reference(struct loading *L)
+int compare_expand_reference(struct compare_loading *L)
 {
     struct ydoc *d = &L->d;
     struct compare *c = L->c;
@@ -49,7 +27,7 @@ int compare_load_reference(struct loading *L)
                              c->n_scenes);
         struct job tmp = L->scene_base[0];
         struct rgbf img = {0};
-        if (compare_apply(&tmp, d, "reference", r, L->e) < 0)
+        if (compare_keys_apply(&tmp, d, "reference", r, L->e) < 0)
             return -1;
         if (imgio_read_f(tmp.reference, &img, &c->scenes[0].ref_domain, L->e) < 0)
             return ydoc_fail(d, r, L->e, "reference: %s: %s", tmp.reference, L->e->msg);
@@ -66,7 +44,7 @@ int compare_load_reference(struct loading *L)
         return ydoc_fail(
             d, r, L->e,
             "reference: must be an image file or job settings, e.g. { sampler: jitter, threshold: 0.5 }");
-    if (compare_check_keys(L, r, "reference", NULL) < 0)
+    if (compare_keys_check(&L->d, r, "reference", NULL, L->e) < 0)
         return -1;
     for (int s = 0; s < c->n_scenes; s++) {
         struct compare_scene *cs = &c->scenes[s];
@@ -84,17 +62,17 @@ int compare_load_reference(struct loading *L)
 }
 
 /* The image's file name: <scene>-<variant>-t<threshold>[-<swept key><value>...]-s<seed>.png */
-static int file_name(struct loading *L, const struct compare_item *it, char *out, size_t n)
+static int file_name(struct compare_loading *L, const struct compare_item *it, char *out, size_t n)
 {
     struct compare *c = L->c;
     char mid[256] = "", t[32];
     yaml_node_t *k, *v;
     snprintf(t, sizeof t, "%g", it->job.threshold);
-    compare_add_part(mid, sizeof mid, "threshold", t);
+    compare_keys_append(mid, sizeof mid, "threshold", t);
     for (int i = 0; L->sweep && ymap_pair(&L->d, L->sweep, i, &k, &v); i++) {
         const char *val = yscalar(yseq_item(&L->d, v, it->point));
         if (strcmp(yscalar(k), "threshold"))
-            compare_add_part(mid, sizeof mid, yscalar(k), val ? val : "list");
+            compare_keys_append(mid, sizeof mid, yscalar(k), val ? val : "list");
     }
     int len = snprintf(out, n, "%s-%s-%s-s%llu.png", c->scenes[it->scene].name, c->variants[it->variant], mid,
                        (unsigned long long)c->seeds[it->seed]);
@@ -102,7 +80,7 @@ static int file_name(struct loading *L, const struct compare_item *it, char *out
 }
 
 /* The point's label for people: "threshold 5, light_threshold 10" (or "as set" with no sweep). */
-static void point_label(struct loading *L, int p, char *out, size_t n)
+static void point_label(struct compare_loading *L, int p, char *out, size_t n)
 {
     yaml_node_t *k, *v;
     snprintf(out, n, "%s", L->sweep ? "" : "as set");
@@ -114,7 +92,7 @@ static void point_label(struct loading *L, int p, char *out, size_t n)
 }
 
 /* One combination's job: scene base, the variant's keys, the sweep point's values, the seed. */
-static int expand_one(struct loading *L, struct compare_item *it)
+static int expand_one(struct compare_loading *L, struct compare_item *it)
 {
     struct ydoc *d = &L->d;
     struct compare *c = L->c;
@@ -151,7 +129,7 @@ static int expand_one(struct loading *L, struct compare_item *it)
     return 0;
 }
 
-int compare_expand(struct loading *L, yaml_node_t *root)
+int compare_expand_items(struct compare_loading *L, yaml_node_t *root)
 {
     struct compare *c = L->c;
     double n = (double)c->n_scenes * c->n_variants * c->n_points * c->n_seeds;

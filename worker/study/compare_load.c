@@ -1,7 +1,8 @@
 /* compare_load: reading a compare job's keys, scenes, seeds, sweep and variants, with every
    check done before anything renders (compare_expand.c makes the combinations). */
 #include "compare.h"
-#include "compare_loading.h"
+#include "compare_expand.h"
+#include "compare_keys.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -10,13 +11,9 @@
 
 #include "base/fileio.h"
 #include "job/job_limits.h"
+#include "job/outdir.h"
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
-
-int compare_index(const struct compare *c, int scene, int variant, int point, int seed)
-{
-    return ((scene * c->n_variants + variant) * c->n_points + point) * c->n_seeds + seed;
-}
 
 int compare_is_compare_job(const char *path)
 {
@@ -43,74 +40,8 @@ void compare_free(struct compare *c)
     free(c);
 }
 
-/* job_apply reads only the key's text, so a scalar node made here stands in for a key that is
-   not in the file (a scene listed under scenes:, a swept key's value). */
-int compare_apply(struct job *j, struct ydoc *d, const char *key, yaml_node_t *v, struct err *e)
-{
-    char text[COMPARE_LABEL_MAX];
-    snprintf(text, sizeof text, "%s", key);
-    yaml_node_t k;
-    memset(&k, 0, sizeof k);
-    k.type = YAML_SCALAR_NODE;
-    k.data.scalar.value = (yaml_char_t *)text;
-    k.data.scalar.length = strlen(text);
-    return job_apply(j, d, &k, v, e);
-}
-
-/* Why `key` may not be set where `where` says ("top", "variant", "sweep", "reference"), or NULL. */
-static const char *forbidden(const char *key, const char *where)
-{
-    int top = !strcmp(where, "top"), ref = !strcmp(where, "reference");
-    if (!strcmp(key, "output") || !strcmp(key, "format"))
-        return "a compare job names its images itself (<scene>-<variant>-t<threshold>-s<seed>.png)";
-    if (top)
-        return NULL;
-    if (!strcmp(key, "scene"))
-        return "a compare job lists its scenes once, under scenes:";
-    if (!strcmp(key, "width") || !strcmp(key, "height"))
-        return "the size is set once at the top level (every image is scored against one reference)";
-    if (!strcmp(key, "name"))
-        return "the job's name is set once at the top level";
-    if (!strcmp(key, "reference"))
-        return "the reference is set once at the top level";
-    if (!strcmp(key, "seed") && !ref)
-        return "list the seeds once, under seeds:";
-    return NULL;
-}
-
-/* Check the keys of mapping n against job_keys (plus `extra`, may be NULL) and forbidden(). */
-int compare_check_keys(struct loading *L, yaml_node_t *n, const char *where, const char *extra)
-{
-    const char *keys[64];
-    int nk = 0;
-    for (int i = 0; job_keys[i] && nk < 62; i++)
-        keys[nk++] = job_keys[i];
-    if (extra)
-        keys[nk++] = extra;
-    keys[nk] = NULL;
-    if (ymap_check(&L->d, n, keys, where, L->e) < 0)
-        return -1;
-    yaml_node_t *k, *v;
-    for (int i = 0; ymap_pair(&L->d, n, i, &k, &v); i++) {
-        const char *why = forbidden(yscalar(k), where);
-        if (why)
-            return ydoc_fail(&L->d, k, L->e, "%s: not allowed in a %s: %s", yscalar(k), where, why);
-    }
-    return 0;
-}
-
-/* The scene file's stem: "scenes/checker.yaml" -> "checker". */
-static void stem(const char *path, char *out, size_t n)
-{
-    const char *b = strrchr(path, '/');
-    b = b ? b + 1 : path;
-    const char *dot = strrchr(b, '.');
-    int len = dot && dot != b ? (int)(dot - b) : (int)strlen(b);
-    snprintf(out, n, "%.*s", len, b);
-}
-
 /* Scene size: the job's width, height or width / the camera's aspect (as run_job does). */
-static int scene_size(struct loading *L, int s, yaml_node_t *at)
+static int scene_size(struct compare_loading *L, int s, yaml_node_t *at)
 {
     struct compare_scene *cs = &L->c->scenes[s];
     const struct job *j = &L->scene_base[s];
@@ -127,7 +58,7 @@ static int scene_size(struct loading *L, int s, yaml_node_t *at)
     return 0;
 }
 
-static int load_scenes(struct loading *L, yaml_node_t *root)
+static int load_scenes(struct compare_loading *L, yaml_node_t *root)
 {
     struct ydoc *d = &L->d;
     yaml_node_t *list = ymap_get(d, root, "scenes"), *one = ymap_get(d, root, "scene");
@@ -147,9 +78,9 @@ static int load_scenes(struct loading *L, yaml_node_t *root)
     for (int s = 0; s < n; s++) {
         yaml_node_t *item = list ? yseq_item(d, list, s) : one;
         L->scene_base[s] = L->base;
-        if (list && compare_apply(&L->scene_base[s], d, "scene", item, L->e) < 0)
+        if (list && compare_keys_apply(&L->scene_base[s], d, "scene", item, L->e) < 0)
             return -1;
-        stem(L->scene_base[s].scene_path, L->c->scenes[s].name, sizeof L->c->scenes[s].name);
+        outdir_stem(L->scene_base[s].scene_path, L->c->scenes[s].name, sizeof L->c->scenes[s].name);
         for (int t = 0; t < s; t++)
             if (!strcmp(L->c->scenes[t].name, L->c->scenes[s].name))
                 return ydoc_fail(d, item, L->e, "scenes: \"%s\" is listed twice", L->c->scenes[s].name);
@@ -159,7 +90,7 @@ static int load_scenes(struct loading *L, yaml_node_t *root)
     return 0;
 }
 
-static int load_seeds(struct loading *L, yaml_node_t *root)
+static int load_seeds(struct compare_loading *L, yaml_node_t *root)
 {
     struct ydoc *d = &L->d;
     yaml_node_t *list = ymap_get(d, root, "seeds");
@@ -189,7 +120,7 @@ static int load_seeds(struct loading *L, yaml_node_t *root)
     return 0;
 }
 
-static int load_sweep(struct loading *L)
+static int load_sweep(struct compare_loading *L)
 {
     struct ydoc *d = &L->d;
     yaml_node_t *sw = L->sweep, *k, *v;
@@ -200,7 +131,7 @@ static int load_sweep(struct loading *L)
         return ydoc_fail(
             d, sw, L->e,
             "sweep: must map a job key to a list of values, e.g. sweep: { threshold: [20, 10, 5, 2] }");
-    if (compare_check_keys(L, sw, "sweep", NULL) < 0)
+    if (compare_keys_check(&L->d, sw, "sweep", NULL, L->e) < 0)
         return -1;
     int n = -1;
     for (int i = 0; ymap_pair(d, sw, i, &k, &v); i++) {
@@ -222,7 +153,7 @@ static int load_sweep(struct loading *L)
 }
 
 /* A variant's label: its `label:`, else built from its keys ("poisson-pool64"). */
-static int variant_label(struct loading *L, yaml_node_t *var, int index, char *out, size_t n)
+static int variant_label(struct compare_loading *L, yaml_node_t *var, int index, char *out, size_t n)
 {
     struct ydoc *d = &L->d;
     yaml_node_t *lab = ymap_get(d, var, "label"), *k, *v;
@@ -244,18 +175,18 @@ static int variant_label(struct loading *L, yaml_node_t *var, int index, char *o
     const char *pix = yscalar(ymap_get(d, var, "sampler")),
                *light = yscalar(ymap_get(d, var, "light_sampler"));
     if (pix)
-        compare_add_part(out, n, "sampler", pix);
+        compare_keys_append(out, n, "sampler", pix);
     if (light && (!pix || strcmp(pix, light)))
-        compare_add_part(out, n, "light_sampler", light);
+        compare_keys_append(out, n, "light_sampler", light);
     for (int i = 0; ymap_pair(d, var, i, &k, &v); i++)
         if (strcmp(yscalar(k), "sampler") && strcmp(yscalar(k), "light_sampler"))
-            compare_add_part(out, n, yscalar(k), yscalar(v) ? yscalar(v) : "list");
+            compare_keys_append(out, n, yscalar(k), yscalar(v) ? yscalar(v) : "list");
     if (!out[0])
         snprintf(out, n, "variant%d", index + 1);
     return 0;
 }
 
-static int load_variants(struct loading *L)
+static int load_variants(struct compare_loading *L)
 {
     struct ydoc *d = &L->d;
     yaml_node_t *list = L->variants, *k, *v;
@@ -270,7 +201,7 @@ static int load_variants(struct loading *L)
         return err_set(L->e, d->file, 0, 0, "out of memory");
     for (int i = 0; i < n; i++) {
         yaml_node_t *var = yseq_item(d, list, i);
-        if (compare_check_keys(L, var, "variant", "label") < 0)
+        if (compare_keys_check(&L->d, var, "variant", "label", L->e) < 0)
             return -1;
         for (int p = 0; ymap_pair(d, var, p, &k, &v); p++)
             if (L->sweep && ymap_get(d, L->sweep, yscalar(k)))
@@ -294,7 +225,7 @@ struct compare *compare_load(const char *path, struct err *e)
 
 struct compare *compare_load_as(const char *from, const char *path, struct err *e)
 {
-    struct loading L = {.e = e};
+    struct compare_loading L = {.e = e};
     const char *extra[] = {"scenes", "variants", "sweep", "seeds"};
     int ok = 0;
     if (!(L.c = calloc(1, sizeof *L.c))) {
@@ -320,7 +251,7 @@ struct compare *compare_load_as(const char *from, const char *path, struct err *
     if (ymap_check(&L.d, root, keys, "compare job", e) < 0)
         goto done;
     for (int i = 0; ymap_pair(&L.d, root, i, &k, &v); i++) {
-        const char *key = yscalar(k), *why = forbidden(key, "top");
+        const char *key = yscalar(k), *why = compare_keys_forbidden(key, "top");
         if (why) {
             ydoc_fail(&L.d, k, e, "%s: not allowed in a compare job: %s", key, why);
             goto done;
@@ -336,7 +267,7 @@ struct compare *compare_load_as(const char *from, const char *path, struct err *
     }
     snprintf(L.c->name, sizeof L.c->name, "%s", L.base.name);
     if (load_scenes(&L, root) < 0 || load_seeds(&L, root) < 0 || load_sweep(&L) < 0 ||
-        load_variants(&L) < 0 || compare_load_reference(&L) < 0 || compare_expand(&L, root) < 0)
+        load_variants(&L) < 0 || compare_expand_reference(&L) < 0 || compare_expand_items(&L, root) < 0)
         goto done;
     for (int i = 0; i < L.c->n_items; i++) /* every image is scored against its scene's reference */
         L.c->items[i].job.reference[0] = 0;

@@ -1,6 +1,7 @@
 /* compare_ref: render a compare job's references into OUT/.cache/, or reuse the cached ones. */
 #include "compare_ref.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +9,8 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
+#include "job/outdir.h"
+#include "job/sidecar.h"
 #include "scenefile/scene_load.h"
 
 /* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
@@ -31,21 +34,11 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
 }
 
 /* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
-static double cached_wall_s(const char *image_path)
+static double cached_wall_s(const char *sidecar)
 {
-    char json[JOB_PATH_MAX + 8];
-    snprintf(json, sizeof json, "%.*s.json", (int)strlen(image_path) - 4, image_path);
-    uint8_t *data;
-    size_t len;
+    struct sidecar_info info;
     struct err e;
-    double s = 0;
-    if (fileio_read_all(json, 1 << 20, &data, &len, &e) < 0)
-        return 0;
-    const char *p = strstr((const char *)data, "\"wall_s\": ");
-    if (p)
-        s = strtod(p + 10, NULL);
-    free(data);
-    return s;
+    return sidecar_read(sidecar, &info, &e) == 0 && isfinite(info.wall_s) ? info.wall_s : 0;
 }
 
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
@@ -61,7 +54,8 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
     /* linear radiance, as every error is measured in */
     j.format = IMG_EXR;
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
-    snprintf(cs->ref_path, sizeof cs->ref_path, "%s/.cache/%s", o->out_dir ? o->out_dir : "out", j.output);
+    char dir[JOB_PATH_MAX], sidecar[JOB_PATH_MAX];
+    outdir_paths(&j, o->out_dir, dir, cs->ref_path, sidecar, sizeof cs->ref_path);
     cs->ref_domain = IMG_LINEAR;
     struct rgbf img = {0};
     enum img_domain domain;
@@ -70,21 +64,21 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         img.h == cs->height) {
         image_f_free(&img);
         cs->ref_reused = 1;
-        cs->ref_wall_s = cached_wall_s(cs->ref_path);
-        compare_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name,
-                    cs->ref_path, cs->ref_wall_s);
+        cs->ref_wall_s = cached_wall_s(sidecar);
+        run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
+                cs->ref_wall_s);
         return 0;
     }
     image_f_free(&img);
-    compare_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
-                sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler),
-                j.light_threshold, cs->ref_path);
+    run_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
+            sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
+            cs->ref_path);
     struct run_result rr;
     int rc = run_job(&j, o, &rr, e);
     if (rc != 0) {
         err_prefix(e, "reference");
         return rc;
     }
-    cs->ref_wall_s = rr.farm.wall_s;
+    cs->ref_wall_s = rr.procs.wall_s;
     return 0;
 }

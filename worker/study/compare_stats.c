@@ -11,7 +11,7 @@
 #include "image/imgio.h"
 #include "base/sbuf.h"
 
-void compare_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
+void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
 {
     *a = (struct compare_agg){0};
     a->rel_lo = INFINITY;
@@ -44,29 +44,29 @@ void compare_aggregate(const struct compare *c, int s, int v, int p, struct comp
    counts move by a hair from point to point. */
 #define SAMPLES_VARY 1.05
 
-int compare_samples_vary(const struct compare *c, int s, int v)
+int compare_stats_samples_vary(const struct compare *c, int s, int v)
 {
     double lo = INFINITY, hi = 0;
     struct compare_agg a;
     for (int p = 0; p < c->n_points; p++) {
-        compare_aggregate(c, s, v, p, &a);
+        compare_stats_aggregate(c, s, v, p, &a);
         if (a.n > 0)
             lo = fmin(lo, a.spp), hi = fmax(hi, a.spp);
     }
     return hi > lo * SAMPLES_VARY;
 }
 
-void compare_point_order(const struct compare *c, int s, int v, int *order)
+void compare_stats_point_order(const struct compare *c, int s, int v, int *order)
 {
     struct compare_agg a, b;
     for (int p = 0; p < c->n_points; p++)
         order[p] = p;
-    if (!compare_samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
+    if (!compare_stats_samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
         return;
     for (int i = 1; i < c->n_points; i++) /* insertion sort: a handful of points */
         for (int j = i; j > 0; j--) {
-            compare_aggregate(c, s, v, order[j], &a);
-            compare_aggregate(c, s, v, order[j - 1], &b);
+            compare_stats_aggregate(c, s, v, order[j], &a);
+            compare_stats_aggregate(c, s, v, order[j - 1], &b);
             if (!(a.spp < b.spp))
                 break;
             int t = order[j];
@@ -75,8 +75,8 @@ void compare_point_order(const struct compare *c, int s, int v, int *order)
         }
 }
 
-int compare_seed_average(const struct compare *c, int s, int v, int p, const char *dir,
-                         const struct rgbf *ref, double *rel_of_mean, double *mean_rel, struct err *e)
+int compare_stats_seed_average(const struct compare *c, int s, int v, int p, const char *dir,
+                               const struct rgbf *ref, double *rel_of_mean, double *mean_rel, struct err *e)
 {
     size_t n = (size_t)ref->w * ref->h * 3;
     double *sum = calloc(n, sizeof *sum);
@@ -134,16 +134,16 @@ static double slope(const struct compare_agg *a, int n)
     return m >= 2 && den > 0 ? (m * sxy - sx * sy) / den : NAN;
 }
 
-char *compare_stability(const struct compare *c, int s, int v, const char *dir, const struct rgbf *ref)
+char *compare_stats_stability(const struct compare *c, int s, int v, const char *dir, const struct rgbf *ref)
 {
     int *order = calloc((size_t)c->n_points, sizeof *order);
     struct compare_agg *a = calloc((size_t)c->n_points, sizeof *a);
     struct sbuf b = {0};
     if (!order || !a)
         goto done;
-    compare_point_order(c, s, v, order);
+    compare_stats_point_order(c, s, v, order);
     for (int i = 0; i < c->n_points; i++)
-        compare_aggregate(c, s, v, order[i], &a[i]);
+        compare_stats_aggregate(c, s, v, order[i], &a[i]);
     if (!ref || a[0].n == 0) {
         sbuf_printf(&b, "no reference, so no error to judge stability by");
         goto done;
@@ -159,7 +159,7 @@ char *compare_stability(const struct compare *c, int s, int v, const char *dir, 
                     100 * spread, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");
-    if (c->n_points > 1 && !compare_samples_vary(c, s, v)) {
+    if (c->n_points > 1 && !compare_stats_samples_vary(c, s, v)) {
         /* No slope or "stops falling" against samples that do not change: the figures instead. */
         sbuf_printf(&b, "; samples per pixel stay at about %.0f along the sweep, so relMSE point by point: ",
                     a[0].spp);
@@ -195,7 +195,7 @@ char *compare_stability(const struct compare *c, int s, int v, const char *dir, 
         for (int i = 0; i < c->n_points; i++) {
             double rom, mr;
             struct err e;
-            if (compare_seed_average(c, s, v, order[i], dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
+            if (compare_stats_seed_average(c, s, v, order[i], dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
                 continue;
             gain = rom > 0 ? mr / rom : INFINITY;
             share = fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
@@ -215,7 +215,7 @@ done:
     return sbuf_take(&b);
 }
 
-char *compare_chart_svg(const struct compare *c)
+char *compare_stats_chart_svg(const struct compare *c)
 {
     int ns = c->n_variants, np = c->n_points, nsc = c->n_scenes;
     size_t per = (size_t)nsc * ns * np;
@@ -233,10 +233,10 @@ char *compare_chart_svg(const struct compare *c)
         struct chart_series *by_time = ser + (size_t)2 * s * ns, *by_spp = by_time + ns;
         for (int v = 0; v < ns; v++) {
             size_t k0 = ((size_t)s * ns + v) * np;
-            compare_point_order(c, s, v, order);
+            compare_stats_point_order(c, s, v, order);
             for (int i = 0; i < np; i++) {
                 struct compare_agg a;
-                compare_aggregate(c, s, v, order[i], &a);
+                compare_stats_aggregate(c, s, v, order[i], &a);
                 size_t k = k0 + i;
                 wall[k] = a.wall_s, spp[k] = a.spp, rel[k] = a.rel, lo[k] = a.rel_lo, hi[k] = a.rel_hi;
             }

@@ -156,8 +156,8 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
         free(png);
     }
     int x0, y0;
-    report_worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
-    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", REPORT_CROP_ZOOM);
+    report_image_worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
+    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", REPORT_IMAGE_CROP_ZOOM);
     sbuf_escape(b, c->points[p]);
     sbuf_printf(b,
                 ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
@@ -167,7 +167,7 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     for (int v = -1; v < c->n_variants; v++) {
         const struct rgb8 *src = v < 0 ? ref : &imgs[v];
         sbuf_printf(b, "<figure>");
-        if (report_crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
+        if (report_image_crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
             rgb_tag(b, &tmp, 128, v < 0 ? "reference crop" : c->variants[v], e) < 0)
             goto done;
         image_free(&tmp);
@@ -180,7 +180,7 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
     }
     sbuf_printf(b, "</div>\n<h3>Error maps at ");
     sbuf_escape(b, c->points[p]);
-    int gain = report_error_gain(ref, imgs, c->n_variants);
+    int gain = report_image_error_gain(ref, imgs, c->n_variants);
     sbuf_printf(b,
                 ": |image - reference| x %d, the same for every variant (the 99th percentile of their "
                 "errors shows white). Noise looks like grain; structured error (aliasing, a repeated "
@@ -188,7 +188,7 @@ static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const
                 gain);
     for (int v = 0; v < c->n_variants; v++) {
         sbuf_printf(b, "<figure>");
-        if (report_error_map(ref, &imgs[v], gain, &tmp, e) < 0 ||
+        if (report_image_error_map(ref, &imgs[v], gain, &tmp, e) < 0 ||
             rgb_tag(b, &tmp, 160, c->variants[v], e) < 0)
             goto done;
         image_free(&tmp);
@@ -222,9 +222,9 @@ static int efficiency(struct sbuf *b, const struct compare *c, int s)
     int vary = 1;
     for (int v = 0; v < c->n_variants; v++) {
         struct compare_agg a;
-        vary &= compare_samples_vary(c, s, v);
-        compare_point_order(c, s, v, order);
-        compare_aggregate(c, s, v, order[c->n_points - 1], &a);
+        vary &= compare_stats_samples_vary(c, s, v);
+        compare_stats_point_order(c, s, v, order);
+        compare_stats_aggregate(c, s, v, order[c->n_points - 1], &a);
         eff[v] = a.rel > 0 && a.wall_s > 0 ? 1 / (a.rel * a.wall_s) : 0;
         rank[v] = v;
         for (int i = v; i > 0 && eff[rank[i]] > eff[rank[i - 1]]; i--) {
@@ -286,7 +286,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
             err_set(e, NULL, 0, 0, "out of memory");
             goto done;
         }
-        compare_point_order(c, s, 0, order);
+        compare_stats_point_order(c, s, 0, order);
         int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
         free(order);
         if (closeups(b, c, s, mid, dir, &ref, linear ? &reff : NULL, e) < 0 ||
@@ -299,7 +299,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
-        char *line = compare_stability(c, s, v, dir, has_ref ? &reff : NULL);
+        char *line = compare_stats_stability(c, s, v, dir, has_ref ? &reff : NULL);
         sbuf_printf(b, "<li><b>");
         sbuf_escape(b, c->variants[v]);
         sbuf_printf(b, "</b>: ");
@@ -369,7 +369,7 @@ static void table(struct sbuf *b, const struct compare *c)
 char *report_html(const struct compare *c, const char *dir, struct err *e)
 {
     struct sbuf b = {0};
-    char *svg = compare_chart_svg(c);
+    char *svg = compare_stats_chart_svg(c);
     if (!svg) {
         err_set(e, NULL, 0, 0, "out of memory drawing the chart");
         return NULL;

@@ -8,7 +8,8 @@
 
 /* The square window (side `side`) with the largest summed relative squared error of the
    images against ref: where samplers differ most (a soft shadow in our scenes). */
-void report_worst_window(const struct rgb8 *ref, const struct rgb8 *imgs, int n, int side, int *bx, int *by)
+void report_image_worst_window(const struct rgb8 *ref, const struct rgb8 *imgs, int n, int side, int *bx,
+                               int *by)
 {
     int w = ref->w, h = ref->h;
     double *sat = calloc((size_t)(w + 1) * (h + 1), sizeof *sat); /* summed-area table */
@@ -40,15 +41,17 @@ void report_worst_window(const struct rgb8 *ref, const struct rgb8 *imgs, int n,
     free(sat);
 }
 
-/* out = the side x side window of src at (x0, y0), each pixel repeated REPORT_CROP_ZOOM times. */
-int report_crop_zoom(const struct rgb8 *src, int x0, int y0, int side, struct rgb8 *out, struct err *e)
+/* out = the side x side window of src at (x0, y0), each pixel repeated REPORT_IMAGE_CROP_ZOOM times. */
+int report_image_crop_zoom(const struct rgb8 *src, int x0, int y0, int side, struct rgb8 *out, struct err *e)
 {
-    if (image_alloc(out, side * REPORT_CROP_ZOOM, side * REPORT_CROP_ZOOM, e) < 0)
+    if (image_alloc(out, side * REPORT_IMAGE_CROP_ZOOM, side * REPORT_IMAGE_CROP_ZOOM, e) < 0)
         return -1;
     for (int y = 0; y < out->h; y++)
         for (int x = 0; x < out->w; x++)
             memcpy(&out->px[((size_t)y * out->w + x) * 3],
-                   &src->px[((size_t)(y0 + y / REPORT_CROP_ZOOM) * src->w + x0 + x / REPORT_CROP_ZOOM) * 3],
+                   &src->px[((size_t)(y0 + y / REPORT_IMAGE_CROP_ZOOM) * src->w + x0 +
+                             x / REPORT_IMAGE_CROP_ZOOM) *
+                            3],
                    3);
     return 0;
 }
@@ -56,7 +59,7 @@ int report_crop_zoom(const struct rgb8 *src, int x0, int y0, int side, struct rg
 /* The error maps' gain at one sweep point, the same for every variant so they compare: the
    99th percentile of |image - reference| over all their pixels and channels shows white. A
    fixed gain left converged images' maps black, hiding where a method still fails. */
-int report_error_gain(const struct rgb8 *ref, const struct rgb8 *imgs, int n)
+int report_image_error_gain(const struct rgb8 *ref, const struct rgb8 *imgs, int n)
 {
     size_t count[256] = {0}, total = (size_t)ref->w * ref->h * 3 * n, seen = 0;
     for (int i = 0; i < n; i++)
@@ -65,13 +68,13 @@ int report_error_gain(const struct rgb8 *ref, const struct rgb8 *imgs, int n)
     int q = 0;
     while (q < 255 && (seen += count[q]) < total - total / 100)
         q++;
-    int gain = q > 0 ? 255 / q : REPORT_GAIN_MAX;
-    return gain < 1 ? 1 : gain > REPORT_GAIN_MAX ? REPORT_GAIN_MAX : gain;
+    int gain = q > 0 ? 255 / q : REPORT_IMAGE_GAIN_MAX;
+    return gain < 1 ? 1 : gain > REPORT_IMAGE_GAIN_MAX ? REPORT_IMAGE_GAIN_MAX : gain;
 }
 
 /* out = |img - ref| x gain per channel, clamped: structure in the error shows as a pattern. */
-int report_error_map(const struct rgb8 *ref, const struct rgb8 *img, int gain, struct rgb8 *out,
-                     struct err *e)
+int report_image_error_map(const struct rgb8 *ref, const struct rgb8 *img, int gain, struct rgb8 *out,
+                           struct err *e)
 {
     if (image_alloc(out, ref->w, ref->h, e) < 0)
         return -1;

@@ -1,19 +1,16 @@
-/* part: one share of an image (rows with row % N == I) in a small binary file, and the merge. */
+/* part: one share of an image (rows with row % N == I) in a small binary file, written by a
+   `--part I/N` render and read back by the merge (farm/merge.h). */
 #ifndef PART_H
 #define PART_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#include "job/procs.h"
-#include "job/job.h"
-#include "job/run.h"
+#include "procs.h"
+#include "job.h"
 
 #define PART_VERSION 1
 #define PART_MAX PROCS_MAX_PROCESSES /* most parts one image may be split into */
-
-/* The part file of part I of N: OUT/<name>/<output stem>.part-I-of-N. */
-void part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n);
 
 /* What a part must have been rendered from to merge with j's other parts: j->hash (job file and
    scene bytes), the part format and the worker's version. */
@@ -31,10 +28,29 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
  */
 int part_matches(const char *path, const struct job *j, int part, int parts);
 
-/* Merge every part of j found under o->out_dir into the image and a sidecar whose stats sum the
-   parts' (one per_process entry per part). 0 on success; 2 when parts are missing, of different
-   splits, damaged or rendered from other inputs (nothing written, e says which); 1 when writing
-   failed. */
-int part_merge(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
+/* A part file's header: its split, size and the stats of the render that made it. */
+struct part_header {
+    uint32_t version, width, height, part, parts, processes;
+    uint64_t hash;
+    struct render_stats st;
+    double wall_s, cpu_s;
+    uint64_t peak_rss_kb;
+};
+
+/* A part file read whole and checked: its header, and its bytes (owned) holding the rows. */
+struct part_file {
+    struct part_header h;
+    uint8_t *data;
+    size_t len;
+};
+
+/* Read the part file at path into pf and check it: magic, version, a sane split, a length that
+   matches its rows, and its checksum. 0 or -1 with e filled (file = path); part_file_free(pf)
+   either way. */
+int part_read(const char *path, struct part_file *pf, struct err *e);
+void part_file_free(struct part_file *pf);
+
+/* Copy pf's rows (row % parts == part) into rgb, a framebuffer of pf's width x height. */
+void part_rows_into(const struct part_file *pf, float *rgb);
 
 #endif

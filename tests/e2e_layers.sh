@@ -1,0 +1,38 @@
+#!/bin/sh
+# e2e_layers: no two .c files call each other in a circle, no folder does, and calls run down the
+# layers cli -> study/farm -> job -> common/* (tests/check_layers.py over the built objects). The
+# checker is shown to fail on a small bad tree first, so a pass means something.
+. "$(dirname "$0")/lib.sh"
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$(cd "${TEST_BIN_DIR:-$root/build/tests}/.." && pwd)
+if ! command -v python3 >/dev/null 2>&1 || ! command -v nm >/dev/null 2>&1; then
+    no "python3 and nm are needed (ci/run installs python3; nm comes with binutils)"
+    finish
+    exit
+fi
+
+# 1. a bad tree: job/a.c and farm/b.c call each other (a cycle, and job calling the farm), and
+# common/base/c.c calls the program; a stale object (its source gone) is passed over
+mkdir -p "$T/src/worker/job" "$T/src/worker/farm" "$T/src/common/base" "$T/b/worker/job" "$T/b/worker/farm" \
+    "$T/b/common/base"
+printf 'int farm_b(void);\nint job_a(void) { return farm_b(); }\n' >"$T/src/worker/job/a.c"
+printf 'int job_a(void);\nint farm_b(void) { return job_a() + 1; }\n' >"$T/src/worker/farm/b.c"
+printf 'int job_a(void);\nint base_c(void) { return job_a(); }\n' >"$T/src/common/base/c.c"
+for f in worker/job/a worker/farm/b common/base/c; do
+    ${CC:-cc} -c "$T/src/$f.c" -o "$T/b/$f.o" || no "cannot compile $f.c"
+done
+cp "$T/b/worker/job/a.o" "$T/b/worker/job/gone.o"
+python3 "$root/tests/check_layers.py" "$T/b" "$T/src" >"$T/bad.out" 2>&1; rc=$?
+check "a bad tree fails (got $rc)" [ "$rc" -eq 1 ]
+check "a bad tree: the cycle named" grep -q '^cycle: worker/farm/b.c <-> worker/job/a.c' "$T/bad.out"
+check "a bad tree: the symbols of the cycle named" grep -q 'worker/job/a.c -> worker/farm/b.c: farm_b' "$T/bad.out"
+check "a bad tree: job calling the farm named" grep -q '^layer: worker/job/a.c -> worker/farm/b.c' "$T/bad.out"
+check "a bad tree: common calling the program named" grep -q '^layer: common/base/c.c -> worker/job/a.c' "$T/bad.out"
+check "a bad tree: the folders' cycle named" grep -q '^folder cycle: worker/farm <-> worker/job' "$T/bad.out"
+check "a bad tree: a stale object passed over" grep -q '3 files' "$T/bad.out"
+
+# 2. the real build
+python3 "$root/tests/check_layers.py" "$build" "$root" >"$T/real.out" 2>&1; rc=$?
+check "the build has no cycles and keeps its layers (got $rc)" [ "$rc" -eq 0 ]
+[ "$rc" -eq 0 ] || cat "$T/real.out" >&2
+finish

@@ -1,0 +1,74 @@
+/* outdir: a job's output folder OUT/<name>/ and the names in it (image, sidecar, part files, all
+   from the output's stem), made on demand and locked while written; staging names for atomic
+   writes, and the removal of those a killed writer left. */
+#ifndef OUTDIR_H
+#define OUTDIR_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "job.h"
+
+/* The output root when --out is not given. */
+#define OUTDIR_DEFAULT "out"
+
+/* out_dir, or OUTDIR_DEFAULT when it is NULL. */
+const char *outdir_root(const char *out_dir);
+
+/* The stem of the file at path: its name without folders or last extension ("scenes/a.b.yaml" ->
+   "a.b"); a name's leading dot starts no extension (".yaml" stays ".yaml"). */
+void outdir_stem(const char *path, char *out, size_t n);
+
+/* OUT/<name>: the folder of the job, or compare job, named name. */
+void outdir_dir(const char *out_dir, const char *name, char *buf, size_t n);
+
+/* j's folder OUT/<name>, its image OUT/<name>/<output> and sidecar OUT/<name>/<output stem>.json. */
+void outdir_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
+
+/* j's float copy OUT/<name>/<output stem>.exr when j->float_copy and its image is PNG or PPM,
+   else "". */
+void outdir_float_path(const struct job *j, const char *out_dir, char *path, size_t n);
+
+/* The file of part I of N of j: OUT/<name>/<output stem>.part-I-of-N. */
+void outdir_part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n);
+
+/* 1 when file (a name in j's folder) is named as a part file of j, its I and N into *part and
+ *parts; else 0. */
+int outdir_part_name(const struct job *j, const char *file, int *part, int *parts);
+
+/* Check, making nothing, that dir is a writable directory or can be made as one (its nearest
+   existing ancestor is a writable directory), so an interrupted render leaves no empty folder
+   behind. 0 or -1 with e filled. */
+int outdir_check(const char *dir, struct err *e);
+
+/* mkdir -p for path; *made (unless NULL): whether path itself was made here, so a failed write
+   may remove it (a folder that was there already, or that another process made meanwhile, is
+   never ours to remove). path itself must not be a symbolic link. 0 or -1 with e filled. */
+int outdir_mkdirs(const char *path, int *made, struct err *e);
+
+/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
+   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
+   queue claim was taken over, finishing together). Under the lock, the temporary files that a
+   killed writer left for the given paths (NULL-terminated) are removed: a lock holder's own
+   temporary files never outlive its lock. Returns the lock (for outdir_unlock), or -1 when the
+   folder cannot be locked (some network file systems): the writer goes on alone, removing
+   nothing; or when dir cannot be opened (errno ELOOP or ENOTDIR: it is a symbolic link);
+   OUTDIR_STOPPED when *stop (optional) was set by a signal while it waited: write nothing;
+   OUTDIR_WAITED_OUT when wait_s > 0 and the lock was not had within wait_s seconds (its holder
+   is stopped or hung). wait_s 0: wait as long as it takes. */
+#define OUTDIR_STOPPED (-2)
+#define OUTDIR_WAITED_OUT (-3)
+int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s);
+void outdir_unlock(int lock);
+
+/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir, under its lock: for a
+   job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
+   A lock held by another writer for over a second leaves them (they may be that writer's). */
+void outdir_remove_temps(const char *dir);
+
+/* A staging name for path, unique to this writer: "<dir>/.<base>.tmp.XXXXXX", shaped as
+   fileio_write_atomic's temporaries, so that the next holder of the folder's lock removes it when
+   its writer was killed between staging and renaming. */
+void outdir_staged_name(const char *path, char *out, size_t n);
+
+#endif

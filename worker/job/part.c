@@ -1,0 +1,226 @@
+/* part: encoding and decoding the part files of `worker JOB --part I/N` (merged by farm/merge.c). */
+#include "part.h"
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include "base/fileio.h"
+#include "base/hash.h"
+
+#define PART_MAGIC "WPART\r\n\x1a" /* 8 bytes; the CR LF catch text-mode mangling, as PNG's do */
+#define PART_HEADER 120            /* bytes before the rows */
+
+uint64_t part_hash(const struct job *j)
+{
+    uint64_t h = hash_u64(j->hash, PART_VERSION);
+    return hash_bytes(h, WORKER_VERSION, strlen(WORKER_VERSION));
+}
+
+static int part_rows(int h, int part, int parts)
+{
+    return h > part ? (h - part + parts - 1) / parts : 0;
+}
+
+static uint8_t *put_u32(uint8_t *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        *p++ = (uint8_t)(v >> (8 * i));
+    return p;
+}
+
+static uint8_t *put_u64(uint8_t *p, uint64_t v)
+{
+    for (int i = 0; i < 8; i++)
+        *p++ = (uint8_t)(v >> (8 * i));
+    return p;
+}
+
+static uint8_t *put_f64(uint8_t *p, double d)
+{
+    uint64_t v;
+    memcpy(&v, &d, sizeof v);
+    return put_u64(p, v);
+}
+
+static uint32_t get_u32(const uint8_t **p)
+{
+    uint32_t v = 0;
+    for (int i = 0; i < 4; i++)
+        v |= (uint32_t)(*p)[i] << (8 * i);
+    *p += 4;
+    return v;
+}
+
+static uint64_t get_u64(const uint8_t **p)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < 8; i++)
+        v |= (uint64_t)(*p)[i] << (8 * i);
+    *p += 8;
+    return v;
+}
+
+static double get_f64(const uint8_t **p)
+{
+    uint64_t v = get_u64(p);
+    double d;
+    memcpy(&d, &v, sizeof d);
+    return d;
+}
+
+static void encode_header(uint8_t *b, const struct part_header *h)
+{
+    memcpy(b, PART_MAGIC, 8);
+    uint8_t *p = b + 8;
+    p = put_u32(p, h->version);
+    p = put_u32(p, h->width);
+    p = put_u32(p, h->height);
+    p = put_u32(p, h->part);
+    p = put_u32(p, h->parts);
+    p = put_u32(p, h->processes);
+    p = put_u64(p, h->hash);
+    p = put_u64(p, h->st.pixels);
+    p = put_u64(p, h->st.samples);
+    p = put_u64(p, h->st.rays);
+    p = put_u64(p, h->st.light_sets);
+    p = put_u64(p, h->st.nonfinite);
+    p = put_u32(p, h->st.spp_min);
+    p = put_u32(p, h->st.spp_max);
+    p = put_f64(p, h->st.sampler_s);
+    p = put_f64(p, h->wall_s);
+    p = put_f64(p, h->cpu_s);
+    put_u64(p, h->peak_rss_kb);
+}
+
+/* Bytes of the part file whose header is h: header, its rows, CRC. */
+static size_t part_bytes(const struct part_header *h)
+{
+    return PART_HEADER + (size_t)part_rows((int)h->height, (int)h->part, (int)h->parts) * h->width * 12 + 4;
+}
+
+/* Decode and check the header of a part file of len bytes: magic, version, a sane size and
+   split (part_read checks the length against it). 0 or -1 with e filled (file = path). */
+static int decode_header(const uint8_t *b, size_t len, const char *path, struct part_header *h, struct err *e)
+{
+    if (len < PART_HEADER || memcmp(b, PART_MAGIC, 8) != 0)
+        return err_set(e, path, 0, 0, "not a worker part file");
+    const uint8_t *p = b + 8;
+    h->version = get_u32(&p);
+    h->width = get_u32(&p);
+    h->height = get_u32(&p);
+    h->part = get_u32(&p);
+    h->parts = get_u32(&p);
+    h->processes = get_u32(&p);
+    h->hash = get_u64(&p);
+    h->st.pixels = get_u64(&p);
+    h->st.samples = get_u64(&p);
+    h->st.rays = get_u64(&p);
+    h->st.light_sets = get_u64(&p);
+    h->st.nonfinite = get_u64(&p);
+    h->st.spp_min = get_u32(&p);
+    h->st.spp_max = get_u32(&p);
+    h->st.sampler_s = get_f64(&p);
+    h->wall_s = get_f64(&p);
+    h->cpu_s = get_f64(&p);
+    h->peak_rss_kb = get_u64(&p);
+    if (h->version != PART_VERSION)
+        return err_set(e, path, 0, 0, "part file version %u, this worker reads version %d", h->version,
+                       PART_VERSION);
+    /* the sides a render allows, not a decoder's IMAGE_MAX_PIXELS: parts of a 10240x10240 render
+       (1.05e8 pixels) were refused as damaged, and --part resume never saw them as current */
+    if (h->width < 1 || h->width > IMAGE_MAX_SIDE || h->height < 1 || h->height > IMAGE_MAX_SIDE ||
+        h->parts < 1 || h->parts > PART_MAX || h->part >= h->parts)
+        return err_set(e, path, 0, 0, "damaged part file (impossible size or split)");
+    return 0;
+}
+
+int part_write(const char *path, const struct job *j, int w, int h, int part, int parts, const float *rgb,
+               const struct procs_result *fr, struct err *e)
+{
+    size_t rows = (size_t)part_rows(h, part, parts);
+    size_t len = PART_HEADER + rows * (size_t)w * 12 + 4;
+    uint8_t *buf = malloc(len);
+    if (!buf)
+        return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
+    struct part_header hd = {PART_VERSION,
+                             (uint32_t)w,
+                             (uint32_t)h,
+                             (uint32_t)part,
+                             (uint32_t)parts,
+                             (uint32_t)fr->processes,
+                             part_hash(j),
+                             fr->total,
+                             fr->wall_s,
+                             fr->cpu_s,
+                             (uint64_t)(fr->peak_rss_kb > 0 ? fr->peak_rss_kb : 0)};
+    encode_header(buf, &hd);
+    uint8_t *p = buf + PART_HEADER;
+    for (int y = part; y < h; y += parts)
+        for (size_t i = 0; i < (size_t)w * 3; i++) {
+            uint32_t v;
+            memcpy(&v, &rgb[(size_t)y * w * 3 + i], sizeof v);
+            p = put_u32(p, v);
+        }
+    put_u32(p, (uint32_t)crc32(0L, buf, (uInt)(len - 4)));
+    int rc = fileio_write_atomic(path, buf, len, e);
+    free(buf);
+    return rc;
+}
+
+int part_read(const char *path, struct part_file *pf, struct err *e)
+{
+    memset(pf, 0, sizeof *pf);
+    /* the header first: the file may be no longer than the rows it says it holds */
+    uint8_t head[PART_HEADER];
+    struct err ignored;
+    size_t max = PART_HEADER + 4;
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd >= 0) {
+        if (read(fd, head, sizeof head) == (ssize_t)sizeof head &&
+            decode_header(head, sizeof head, path, &pf->h, &ignored) == 0)
+            max = part_bytes(&pf->h);
+        close(fd);
+    }
+    if (fileio_read_all(path, max, &pf->data, &pf->len, e) < 0)
+        return -1;
+    if (decode_header(pf->data, pf->len, path, &pf->h, e) < 0)
+        return -1;
+    if (pf->len != part_bytes(&pf->h))
+        return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", pf->len,
+                       part_bytes(&pf->h));
+    const uint8_t *p = pf->data + pf->len - 4;
+    if (get_u32(&p) != (uint32_t)crc32(0L, pf->data, (uInt)(pf->len - 4)))
+        return err_set(e, path, 0, 0, "damaged part file: checksum mismatch");
+    return 0;
+}
+
+void part_file_free(struct part_file *pf)
+{
+    free(pf->data);
+    pf->data = NULL;
+}
+
+void part_rows_into(const struct part_file *pf, float *rgb)
+{
+    const int w = (int)pf->h.width, h = (int)pf->h.height, parts = (int)pf->h.parts;
+    const uint8_t *p = pf->data + PART_HEADER;
+    for (int y = (int)pf->h.part; y < h; y += parts)
+        for (size_t i = 0; i < (size_t)w * 3; i++) {
+            uint32_t v = get_u32(&p);
+            memcpy(&rgb[(size_t)y * w * 3 + i], &v, sizeof v);
+        }
+}
+
+int part_matches(const char *path, const struct job *j, int part, int parts)
+{
+    struct part_file pf;
+    struct err e;
+    int ok = part_read(path, &pf, &e) == 0 && pf.h.hash == part_hash(j) && (int)pf.h.part == part &&
+             (int)pf.h.parts == parts;
+    part_file_free(&pf);
+    return ok;
+}
