@@ -143,7 +143,7 @@ check "queue: none left running" [ -z "$(ls -A "$Q/running" 2>/dev/null)" ]
 check "queue: 4 task logs" [ "$(ls "$S"/out/worker-queue-*.out 2>/dev/null | wc -l)" -eq 4 ]
 once=0
 for i in $(seq 1 12); do
-    [ "$(cat "$S"/out/worker-queue-*.out | grep -c "^j$i: 16x16")" -eq 1 ] && once=$((once + 1))
+    [ "$(cat "$S"/out/worker-queue-*.out | grep -cE "(^| )j$i: 16x16")" -eq 1 ] && once=$((once + 1))
 done
 check "queue: each job rendered exactly once ($once of 12)" [ "$once" -eq 12 ]
 
