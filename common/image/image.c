@@ -4,21 +4,27 @@
 #include <math.h>
 #include <stdlib.h>
 
+/* A zeroed w x h x 3 raster of `size`-byte values into *px (sides 1..IMAGE_MAX_SIDE); what names
+   it in the error. 0, or -1 with e filled. */
+static int raster_alloc(int w, int h, size_t size, const char *what, void **px, struct err *e)
+{
+    *px = NULL;
+    if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
+        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h, IMAGE_MAX_SIDE);
+    if (!(*px = calloc((size_t)w * (size_t)h * 3, size)))
+        return err_set(e, NULL, 0, 0, "out of memory for a %dx%d %s", w, h, what);
+    return 0;
+}
+
 /* Allocate a zeroed w x h RGB raster into img (sides 1..IMAGE_MAX_SIDE). On failure img is
    zeroed and e filled. The caller releases it with image_free. */
 int image_alloc(struct rgb8 *img, int w, int h, struct err *e)
 {
-    img->w = 0;
-    img->h = 0;
-    img->px = NULL;
-    if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
-        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h, IMAGE_MAX_SIDE);
-    uint8_t *px = calloc((size_t)w * (size_t)h, 3);
-    if (!px)
-        return err_set(e, NULL, 0, 0, "out of memory for a %dx%d image", w, h);
-    img->w = w;
-    img->h = h;
-    img->px = px;
+    void *px;
+    *img = (struct rgb8){0};
+    if (raster_alloc(w, h, 1, "image", &px, e) < 0)
+        return -1;
+    *img = (struct rgb8){w, h, px};
     return 0;
 }
 
@@ -36,17 +42,11 @@ void image_free(struct rgb8 *img)
 /* Allocate a zeroed w x h float raster into img; on failure img is zeroed and e filled. */
 int image_f_alloc(struct rgbf *img, int w, int h, struct err *e)
 {
-    img->w = 0;
-    img->h = 0;
-    img->px = NULL;
-    if (w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE)
-        return err_set(e, NULL, 0, 0, "image size %dx%d out of range (sides 1..%d)", w, h, IMAGE_MAX_SIDE);
-    float *px = calloc((size_t)w * (size_t)h * 3, sizeof *px);
-    if (!px)
-        return err_set(e, NULL, 0, 0, "out of memory for a %dx%d float image", w, h);
-    img->w = w;
-    img->h = h;
-    img->px = px;
+    void *px;
+    *img = (struct rgbf){0};
+    if (raster_alloc(w, h, sizeof(float), "float image", &px, e) < 0)
+        return -1;
+    *img = (struct rgbf){w, h, px};
     return 0;
 }
 

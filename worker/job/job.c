@@ -164,6 +164,19 @@ static void mark(int pos[2], const yaml_node_t *v)
     pos[1] = (int)v->start_mark.column + 1;
 }
 
+/* A key whose value is one of two words: *second = 1 for the second, 0 for the first. */
+static int get_either(struct ydoc *d, yaml_node_t *v, const char *k, const char *first, const char *second,
+                      int *is_second, struct err *e)
+{
+    const char *s;
+    if (yget_string(d, v, k, &s, e) < 0)
+        return -1;
+    if (strcmp(s, first) && strcmp(s, second))
+        return ydoc_fail(d, v, e, "%s: must be %s or %s, got \"%.40s\"", k, first, second, s);
+    *is_second = !strcmp(s, second);
+    return 0;
+}
+
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
 {
     const char *s = yscalar(v);
@@ -264,17 +277,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "light_sampling")) {
         return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "integrator")) {
-        if (yget_string(d, v, k, &s, e) < 0)
-            return -1;
-        if (strcmp(s, "mixture") && strcmp(s, "nee"))
-            return ydoc_fail(d, v, e, "integrator: must be mixture or nee, got \"%.40s\"", s);
-        j->nee = !strcmp(s, "nee");
+        return get_either(d, v, k, "mixture", "nee", &j->nee, e);
     } else if (!strcmp(k, "sampler_dims")) {
-        if (yget_string(d, v, k, &s, e) < 0)
-            return -1;
-        if (strcmp(s, "pixel_light") && strcmp(s, "all"))
-            return ydoc_fail(d, v, e, "sampler_dims: must be pixel_light or all, got \"%.40s\"", s);
-        j->dims_all = !strcmp(s, "all");
+        return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
