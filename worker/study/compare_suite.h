@@ -1,0 +1,51 @@
+/* compare_suite: a compare job made of study files (`studies:`), each an ordinary compare job run
+   into OUT/<suite>/<study>/, with the suite's verdict, summary, chart and report on top. */
+#ifndef COMPARE_SUITE_H
+#define COMPARE_SUITE_H
+
+#include <stddef.h>
+
+#include "compare.h"
+
+/* Most studies one suite may list, and most images all its studies may expand to together. */
+#define COMPARE_SUITE_MAX_STUDIES 16
+#define COMPARE_SUITE_MAX_ITEMS (4 * COMPARE_MAX_ITEMS)
+
+struct compare_suite {
+    char path[JOB_PATH_MAX];
+    char name[JOB_NAME_MAX];
+    int n_studies, n_items;
+    struct compare *studies[COMPARE_SUITE_MAX_STUDIES]; /* owned, in the order listed */
+};
+
+/* 1 when the YAML file at path is a suite (its root mapping has `studies:`), else 0 (also when it
+   cannot be read: the loader then reports why). */
+int compare_suite_is_suite(const char *path);
+
+/* Load the suite at path and every study it lists (paths relative to the suite's file), each
+   fully validated as compare_load does, so a bad study fails before anything renders. NULL with
+   e = "file:line:col: key: message" at the suite's key or inside the study file at fault. */
+struct compare_suite *compare_suite_load(const char *path, struct err *e);
+
+/* compare_suite_load reading the file at `from`, its name and its studies' paths taken as at
+   `path` (a queue's claimed job file, moved into running/). */
+struct compare_suite *compare_suite_load_as(const char *from, const char *path, struct err *e);
+void compare_suite_free(struct compare_suite *s);
+
+/* Run every study with --out OUT/<suite name> (compare_run: images, references cached under
+   OUT/<suite>/.cache/, the study's own files in OUT/<suite>/<study>/), then write the suite's
+   verdict.json, summary.csv, chart.svg and report.html under OUT/<suite>/; nothing at the top
+   when a study fails. Returns compare_run's 0, 1 or 2 with e filled. A progress line per study
+   when o->progress and not o->quiet. */
+int compare_suite_run(struct compare_suite *s, const struct run_opts *o, struct err *e);
+
+/* compare_main for a suite: load, run, then one line on stderr (the error, or the summary with
+   the verdict at equal CPU time) after the verdicts' warnings. name_ok as compare_main's. */
+int compare_suite_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
+                       void *arg);
+
+/* compare_main_as for a suite (a queue's claimed job file): last and name as compare_main_as's. */
+int compare_suite_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
+                          char *name, size_t name_n);
+
+#endif

@@ -1,0 +1,188 @@
+/* compare_suite_out: a suite's summary.csv, chart.svg and report.html, from its studies' own. */
+#include "compare_suite_out.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/fileio.h"
+#include "base/sbuf.h"
+#include "compare_stats.h"
+
+/* Largest study summary.csv read back: 4096 rows of a few hundred bytes each, with room. */
+#define SUITE_CSV_MAX_BYTES (64u << 20)
+
+/* The end of the CSV record starting at p: its line break outside quotes (RFC 4180 fields may
+   hold one, as a scene file's name may), or the text's end. */
+static const char *record_end(const char *p)
+{
+    int quoted = 0;
+    for (; *p; p++)
+        if (*p == '"')
+            quoted = !quoted; /* a doubled quote toggles twice */
+        else if (*p == '\n' && !quoted)
+            return p;
+    return p;
+}
+
+char *compare_suite_csv(const struct compare_suite *s, const char *dir, struct err *e)
+{
+    struct sbuf b = {0};
+    for (int i = 0; i < s->n_studies; i++) {
+        const struct compare *c = s->studies[i];
+        char path[4096];
+        uint8_t *data;
+        size_t len;
+        snprintf(path, sizeof path, "%s/%s/summary.csv", dir, c->name);
+        if (fileio_read_all(path, SUITE_CSV_MAX_BYTES, &data, &len, e) < 0) {
+            sbuf_free(&b);
+            return NULL;
+        }
+        const char *p = (const char *)data, *end = record_end(p);
+        if (i == 0) /* every study's header is the same: compare_run wrote it */
+            sbuf_printf(&b, "study,%.*s\n", (int)(end - p), p);
+        for (p = *end ? end + 1 : end; *p; p = *end ? end + 1 : end) {
+            end = record_end(p);
+            if (end > p) /* study names need no quoting: letters, digits, '-', '_', '.' */
+                sbuf_printf(&b, "%s,%.*s\n", c->name, (int)(end - p), p);
+        }
+        free(data);
+    }
+    char *text = sbuf_take(&b);
+    if (!text)
+        err_set(e, NULL, 0, 0, "out of memory writing the suite's summary.csv");
+    return text;
+}
+
+char *compare_suite_chart_svg(const struct compare_suite *s)
+{
+    struct sbuf body = {0}, b = {0};
+    int w = 0, h = 0;
+    for (int i = 0; i < s->n_studies; i++) {
+        char *svg = compare_stats_chart_svg(s->studies[i]);
+        const char *root = svg ? strstr(svg, "<svg ") : NULL;
+        int sw, sh;
+        if (!root || sscanf(root, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\"", &sw,
+                            &sh) != 2) {
+            free(svg);
+            sbuf_free(&body);
+            return NULL;
+        }
+        /* each study's chart as a nested <svg>, placed below the one before */
+        sbuf_printf(&body, "<svg x=\"0\" y=\"%d\"%s", h, root + 4);
+        h += sh;
+        w = sw > w ? sw : w;
+        free(svg);
+    }
+    sbuf_printf(&b,
+                "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" "
+                "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%d\" height=\"%d\" fill=\"#ffffff\"/>\n",
+                w, h, w, h, w, h);
+    if (body.buf)
+        sbuf_printf(&b, "%s", body.buf);
+    sbuf_printf(&b, "</svg>\n");
+    if (body.oom)
+        sbuf_free(&b);
+    sbuf_free(&body);
+    return sbuf_take(&b);
+}
+
+static const char style[] =
+    "body{font-family:sans-serif;margin:16px;color:#222;max-width:1180px}"
+    "h1{font-size:22px}h2{font-size:19px;border-top:2px solid #ddd;padding-top:10px}h3{font-size:15px}"
+    "svg{max-width:100%;height:auto}"
+    "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
+    "6px;text-align:right}td.l,th.l{text-align:left}"
+    ".note{color:#555;font-size:13px}li{margin-bottom:4px}";
+
+/* <a href> to a path relative to the page, percent-encoded, and its text escaped. */
+static void link(struct sbuf *b, const char *href, const char *text)
+{
+    sbuf_printf(b, "<a href=\"");
+    for (const unsigned char *p = (const unsigned char *)href; *p; p++)
+        if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
+            strchr("-._~/", *p))
+            sbuf_printf(b, "%c", *p);
+        else
+            sbuf_printf(b, "%%%02X", *p);
+    sbuf_printf(b, "\">");
+    sbuf_escape(b, text);
+    sbuf_printf(b, "</a>");
+}
+
+/* "40 images = 2 scenes x 5 variants x 2 sweep points x 2 seeds" */
+static void study_shape(struct sbuf *b, const struct compare *c)
+{
+    sbuf_printf(b, "%d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
+                c->n_variants, c->n_points);
+    if (c->sweep_keys[0]) {
+        sbuf_printf(b, " (sweep: ");
+        sbuf_escape(b, c->sweep_keys);
+        sbuf_printf(b, ")");
+    }
+    sbuf_printf(b, " x %d seeds", c->n_seeds);
+}
+
+/* One study's section: its name, its shape, a link to its report, its chart. */
+static int study_section(struct sbuf *b, const struct compare *c, struct err *e)
+{
+    char href[JOB_NAME_MAX + 16];
+    char *svg = compare_stats_chart_svg(c);
+    if (!svg)
+        return err_set(e, NULL, 0, 0, "out of memory drawing %s's chart", c->name);
+    sbuf_printf(b, "<h2 id=\"study-");
+    sbuf_escape(b, c->name);
+    sbuf_printf(b, "\">");
+    sbuf_escape(b, c->name);
+    sbuf_printf(b, "</h2>\n<p class=\"note\">Study ");
+    sbuf_escape(b, c->path);
+    sbuf_printf(b, ": ");
+    study_shape(b, c);
+    snprintf(href, sizeof href, "%s/report.html", c->name);
+    sbuf_printf(b, ". Its own page, with every image, crops, error maps and the table: ");
+    link(b, href, href);
+    sbuf_printf(b, ".</p>\n");
+    const char *root = strstr(svg, "<svg"); /* inline: drop the XML declaration */
+    sbuf_printf(b, "%s\n", root ? root : svg);
+    free(svg);
+    return 0;
+}
+
+char *compare_suite_report_html(const struct compare_suite *s, const struct verdict_study *v, struct err *e)
+{
+    struct sbuf b = {0};
+    sbuf_printf(&b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
+    sbuf_escape(&b, s->name);
+    sbuf_printf(&b, ": samplers compared in %d studies</title><style>%s</style></head><body>\n<h1>",
+                s->n_studies, style);
+    sbuf_escape(&b, s->name);
+    sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Suite ");
+    sbuf_escape(&b, s->path);
+    sbuf_printf(&b, ": %d images in %d studies, each an ordinary compare job with its own folder and page:",
+                s->n_items, s->n_studies);
+    for (int i = 0; i < s->n_studies; i++) {
+        char href[JOB_NAME_MAX + 16];
+        snprintf(href, sizeof href, "%s/report.html", s->studies[i]->name);
+        sbuf_printf(&b, "%s", i ? ", " : " ");
+        link(&b, href, s->studies[i]->name);
+    }
+    sbuf_printf(&b, ". Every study's figures are in ");
+    link(&b, "summary.csv", "summary.csv");
+    sbuf_printf(&b, " (its first column names the study), their verdict in ");
+    link(&b, "verdict.json", "verdict.json");
+    sbuf_printf(&b, " and their charts in ");
+    link(&b, "chart.svg", "chart.svg");
+    sbuf_printf(&b, ".</p>\n");
+    verdict_html(&b, v, s->n_studies);
+    for (int i = 0; i < s->n_studies; i++)
+        if (study_section(&b, s->studies[i], e) < 0) {
+            sbuf_free(&b);
+            return NULL;
+        }
+    sbuf_printf(&b, "</body></html>\n");
+    char *html = sbuf_take(&b);
+    if (!html)
+        err_set(e, NULL, 0, 0, "out of memory writing the suite's report");
+    return html;
+}
