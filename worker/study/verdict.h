@@ -95,14 +95,6 @@ struct verdict_study {
     struct verdict_scene *scenes;
 };
 
-/* The tie rule: a beats b when a's mean is lower (better) and the gap exceeds the larger of the
-   two variants' min-max ranges across seeds. */
-int verdict_beats(const struct verdict_entry *a, const struct verdict_entry *b);
-
-/* Rank entries (value, lo, hi filled) best first and set their ranks and the status. n_seeds < 2
-   makes any ranking inconclusive. */
-void verdict_rank(struct verdict_ranking *r, int n_seeds);
-
 /* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
 void verdict_scene_free(struct verdict_scene *v);
@@ -110,21 +102,5 @@ void verdict_study_free(struct verdict_study *s);
 
 /* The winner at equal CPU time, for people: "sobol", "jitter = sobol (tie)", "inconclusive". */
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);
-
-/* verdict.json: {"job", "tie_rule", "studies": [{"study", "scenes": [{"scene", "equal_samples",
-   "equal_cpu_time", "slopes", "failures", "warnings", "sentences"}]}]}. Malloc'd, NULL on no
-   memory. */
-char *verdict_json_text(const char *job, const struct verdict_study *s, int n);
-
-/* The verdict as HTML for the top of a report: per study and scene, the sentences, the three
-   rankings with their figures and ties, the failures and the warnings; then the rule. */
-void verdict_html(struct sbuf *b, const struct verdict_study *s, int n);
-
-/* "seed-question: checker jitter, cornell inconclusive; soft-shadows: sobol" (equal CPU time),
-   for the summary line on stderr. */
-void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len);
-
-/* Every warning of every scene, one line each ("verdict: study/scene: ..."), to stderr. */
-void verdict_print_warnings(const struct verdict_study *s, int n);
 
 #endif
