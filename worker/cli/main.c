@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "diff.h"
 #include "study/compare.h"
+#include "study/compare_suite.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job.h"
@@ -129,10 +130,11 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     struct job j;
     struct err e;
     struct run_result rr;
-    if (compare_is_compare_job(path)) { /* a job with variants: a compare job */
+    if (compare_is_compare_job(path)) { /* a job with variants (or studies): a compare job */
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
-            return compare_main(path, o, compare_name_ok, &ns);
+            return compare_suite_is_suite(path) ? compare_suite_main(path, o, compare_name_ok, &ns)
+                                                : compare_main(path, o, compare_name_ok, &ns);
         err_print("%s: a compare job renders whole images: no merge or --part\n", path);
         return 2;
     }

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "study/compare.h"
+#include "study/compare_suite.h"
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"
@@ -176,7 +177,10 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     int attempts = 0, rc;
     do {
         q->attempt = ++attempts;
-        rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
+        rc = compare_suite_is_suite(from) ? compare_suite_main_as(from, as, &ro, last, sizeof last, log_name,
+                                                                  sizeof log_name)
+                                          : compare_main_as(from, as, &ro, last, sizeof last, log_name,
+                                                            sizeof log_name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);

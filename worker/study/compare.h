@@ -58,8 +58,8 @@ struct compare {
     int has_verdict;
 };
 
-/* 1 when the YAML file at path is a compare job (its root mapping has `variants:`), else 0
-   (also when it cannot be read: job_load then reports why). */
+/* 1 when the YAML file at path is a compare job (its root mapping has `variants:`, or `studies:`:
+   a suite, compare_suite.h), else 0 (also when it cannot be read: job_load then reports why). */
 int compare_is_compare_job(const char *path);
 
 /* Load, validate and expand the compare job at path into a new struct compare. Everything a

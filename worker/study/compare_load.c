@@ -22,7 +22,8 @@ int compare_is_compare_job(const char *path)
     int yes = 0;
     if (ydoc_load(&d, path, &e) == 0) {
         yaml_node_t *root = ydoc_root(&d);
-        yes = root && root->type == YAML_MAPPING_NODE && ymap_get_raw(&d, root, "variants") != NULL;
+        yes = root && root->type == YAML_MAPPING_NODE &&
+              (ymap_get_raw(&d, root, "variants") || ymap_get_raw(&d, root, "studies")); /* a suite too */
     }
     ydoc_free(&d);
     return yes;

@@ -11,7 +11,7 @@
 #include "compare_suite_out.h"
 #include "job/outdir.h"
 #include "job/run_out.h"
-#include "verdict.h"
+#include "verdict_out.h"
 
 static double now_s(void)
 {
@@ -122,9 +122,12 @@ static void summary_line(const struct compare_suite *s, double wall_s, const cha
             current += c->items[k].skipped;
     }
     /* a reference another study of the suite rendered a moment ago counts as reused */
-    if (rendered || reused)
+    if (reused)
         snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)%s", rendered,
-                 reused, saved_s, given ? ", and images given" : "");
+                 reused, saved_s, given ? ", images given" : "");
+    else if (rendered)
+        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache%s", rendered,
+                 given ? ", images given" : "");
     else if (given)
         snprintf(refs, sizeof refs, "reference images given");
     if (current)
@@ -160,11 +163,7 @@ static int main_as(const char *from, const char *path, const struct run_opts *o,
         if (rc == 1 && s)
             err_prefix(&e, s->name);
         err_format(&e, line, sizeof line);
-    } else {
-        struct verdict_study *v = suite_verdicts(s);
-        if (v)
-            verdict_print_warnings(v, s->n_studies);
-        free(v);
+    } else { /* each study's verdict warnings were printed as it finished (compare_run) */
         summary_line(s, now_s() - t0, o->out_dir, line, sizeof line);
     }
     if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */

@@ -125,9 +125,11 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
     for (int k = 0; k < c->n_items; k++)
         snprintf(c->items[k].job.path, sizeof c->items[k].job.path, "%s", s->path);
     for (int k = 0; k < i; k++)
-        if (!strcmp(s->studies[k]->name, c->name))
+        if (!strcmp(s->studies[k]->path, c->path))
+            return ydoc_fail(d, item, e, "studies: %s is listed twice", c->path);
+        else if (!strcmp(s->studies[k]->name, c->name))
             return ydoc_fail(d, item, e,
-                             "studies: %s and %s are both named \"%s\": their outputs would share %s/%s/ "
+                             "studies: %s and %s are both named \"%s\": their outputs would share OUT/%s/%s/ "
                              "(give one another name: in its file)",
                              s->studies[k]->path, c->path, c->name, s->name, c->name);
     if (in_list(c->name, top_files))

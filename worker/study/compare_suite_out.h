@@ -4,7 +4,7 @@
 #define COMPARE_SUITE_OUT_H
 
 #include "compare_suite.h"
-#include "verdict.h"
+#include "verdict_out.h"
 
 /* Every study's summary.csv (read back from dir/<study>/) with a leading `study` column, under
    one header. Malloc'd, or NULL with e filled. */
