@@ -39,8 +39,13 @@ static int fit(const struct verdict_figures *f, const double *x, int v, int k, d
     return 0;
 }
 
+/* Reading a seed's figure this far beyond its measured points (as a ratio of x) is flagged: less
+   is one seed's samples or timing a little off the mean the others are read at. */
+#define VERDICT_BEYOND 1.25
+
 /* Seed k's relMSE of variant v at x = at: linear in log-log between the two measured points
-   around it, or along the fitted line beyond them (*beyond set). NAN when nothing is measured. */
+   around it, or along the fitted line beyond them (*beyond set when far beyond). NAN when
+   nothing is measured. */
 static double value_at(const struct verdict_figures *f, const double *x, int v, int k, double at, int *beyond)
 {
     double best_lo = -INFINITY, best_hi = INFINITY, y_lo = NAN, y_hi = NAN;
@@ -48,6 +53,8 @@ static double value_at(const struct verdict_figures *f, const double *x, int v, 
         double xi = x[verdict_at(f, v, p, k)], yi = f->relmse[verdict_at(f, v, p, k)];
         if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)))
             continue;
+        if (fabs(xi - at) <= 1e-9 * at) /* the point itself (at is a mean over seeds: rounding) */
+            xi = at;
         if (xi <= at && xi > best_lo)
             best_lo = xi, y_lo = yi;
         if (xi >= at && xi < best_hi)
@@ -59,8 +66,9 @@ static double value_at(const struct verdict_figures *f, const double *x, int v, 
         double t = log(at / best_lo) / log(best_hi / best_lo);
         return exp(log(y_lo) + t * (log(y_hi) - log(y_lo)));
     }
-    double a, b;
-    *beyond = 1;
+    double a, b, edge = isfinite(best_lo) ? best_lo : best_hi;
+    if (fmax(at / edge, edge / at) > VERDICT_BEYOND) /* far out, not a seed's own timing noise */
+        *beyond = 1;
     if (fit(f, x, v, k, &a, &b) == 0)
         return exp(a + b * log(at));
     return isfinite(best_lo) ? y_lo : y_hi; /* one point only: its own figure */

@@ -94,7 +94,7 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                 append(pairs, "%s%s / %s", n++ ? ", " : "", out->variants[a->variant], out->variants[b->variant]);
         }
         if (n && (w = next_line(out->warnings, &out->n_warnings)))
-            append(w, "%s, the spread across seeds exceeds the difference to the next for %s: tied", ranking_name(out, r),
+            append(w, "%s, the gap to the next is within the seeds' spread for %s: tied", ranking_name(out, r),
                    pairs);
         for (int j = 0; j < r->n; j++)
             if (r->e[j].extrapolated && (w = next_line(out->warnings, &out->n_warnings)))
