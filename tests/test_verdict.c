@@ -79,12 +79,19 @@ static int any_line(char (*lines)[VERDICT_TEXT_MAX], int n, const char *needle)
 static void test_rule(void)
 {
     struct verdict_entry a = {.value = 1.0, .lo = 0.9, .hi = 1.1}, b = {.value = 1.25, .lo = 1.2, .hi = 1.3};
-    CHECK(verdict_beats(&a, &b));  /* gap 0.25 > ranges 0.2, 0.1 */
-    CHECK(!verdict_beats(&b, &a)); /* higher is worse */
+    CHECK(verdict_beats(&a, &b, 0));  /* gap 0.25 > ranges 0.2, 0.1 */
+    CHECK(!verdict_beats(&b, &a, 0)); /* higher is worse */
+    CHECK(verdict_beats(&a, &b, 1));  /* log(1.25) = 0.22 > log(1.1 / 0.9) = 0.20 */
     b.value = 1.15, b.lo = 1.1, b.hi = 1.2;
-    CHECK(!verdict_beats(&a, &b)); /* gap 0.15 < a's range 0.2 */
+    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.15 < a's range 0.2 */
+    CHECK(!verdict_beats(&a, &b, 1));
     b.lo = 0.5, b.hi = 2, b.value = 1.5;
-    CHECK(!verdict_beats(&a, &b)); /* gap 0.5 < b's range 1.5 */
+    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.5 < b's range 1.5 */
+    /* a wide spread at a far larger value: linear ranges would tie them, logarithms do not */
+    struct verdict_entry c = {.value = 0.01, .lo = 0.009, .hi = 0.011}, d = {.value = 4.5, .lo = 1.9, .hi = 8.7};
+    CHECK(!verdict_beats(&c, &d, 0) && verdict_beats(&c, &d, 1));
+    d.unreached = 1, d.value = d.lo = d.hi = 0.001; /* better figures, but not at the common point */
+    CHECK(verdict_beats(&c, &d, 1) && !verdict_beats(&d, &c, 1));
 }
 
 static void test_clear_winner(void)
@@ -204,8 +211,26 @@ static void test_failures_and_guards(void)
     verdict_scene_free(&s);
 }
 
+/* A variant whose cheapest image costs more than the others' densest cannot be had at equal CPU
+   time: ranked behind, whatever its figures, and said so. */
+static void test_unreached(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 2, 0.5}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 50e-3};
+    fake_init(&x, 3, NS, k, slope, cost);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.e[0].variant == 2 && s.by_samples.status == VERDICT_CLEAR); /* best per sample */
+    CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
+    CHECK_NEAR(s.by_cpu.e[2].value, 0.5 / 100, 1e-12); /* its cheapest point's figure */
+    CHECK(any_line(s.warnings, s.n_warnings, "gamma cannot be had"));
+    verdict_scene_free(&s);
+}
+
 int main(void)
 {
+    test_unreached();
     test_rule();
     test_clear_winner();
     test_tie_and_inconclusive();
