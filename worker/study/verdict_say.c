@@ -86,16 +86,11 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     const struct verdict_ranking *rs[] = {&out->by_samples, &out->by_cpu, &out->by_slope};
     for (int i = 0; i < 3 && f->n_seeds > 1; i++) {
         const struct verdict_ranking *r = rs[i];
-        char pairs[VERDICT_TEXT_MAX] = "";
-        int n = 0;
-        for (int j = 0; j + 1 < r->n; j++) {
-            const struct verdict_entry *a = &r->e[j], *b = &r->e[j + 1];
-            if (!verdict_beats(a, b, r->log_scale))
-                append(pairs, "%s%s / %s", n++ ? ", " : "", out->variants[a->variant], out->variants[b->variant]);
-        }
-        if (n && (w = next_line(out->warnings, &out->n_warnings)))
-            append(w, "%s, the gap to the next is within the seeds' spread for %s: tied", ranking_name(out, r),
-                   pairs);
+        char top[VERDICT_TEXT_MAX];
+        group(out, r, 1, top);
+        if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
+            append(w, "%s, %s differ by less than their spread across seeds: %s", ranking_name(out, r), top,
+                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
             if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
                 append(w, "%s, %s cannot be had: its cheapest image costs far more than the %.3g %s every other "
@@ -190,7 +185,8 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
         int pool = verdict_beats(a, b, 1), fresh = verdict_beats(b, a, 1);
         if (pool && b->unreached)
             append(s, "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs more "
-                      "than the %.3g s the pool's densest took.", out->scene, f->variants[u], f->variants[v], out->by_cpu.at);
+                      "than the %.3g s the variants are compared at.", out->scene, f->variants[u], f->variants[v],
+                   out->by_cpu.at);
         else if (pool || fresh)
             append(s, "At equal CPU time on %s, %s (%s) beats %s (%s): relMSE %.3g against %.3g.", out->scene,
                    f->variants[pool ? u : v], pool ? "the pool" : "fresh sets", f->variants[pool ? v : u],
