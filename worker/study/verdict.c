@@ -39,35 +39,64 @@ static int fit(const struct verdict_figures *f, const double *x, int v, int k, d
     return 0;
 }
 
-/* Seed k's relMSE of variant v at x = at: linear in log-log between the two measured points
-   around it, or along the fitted line beyond them (*beyond set). NAN when nothing is measured. */
-static double value_at(const struct verdict_figures *f, const double *x, int v, int k, double at, int *beyond)
+/* A variant whose cheapest point costs this many times the common point or more cannot be had
+   there: it is ranked behind every variant that can. Less is one seed's samples or timing a
+   little off the mean the others are read at. */
+#define VERDICT_BEYOND 1.25
+
+/* The seed's measured point of v nearest to `at` on one side (below: x <= at, else x >= at),
+   skipping x == skip; 0 when there is none. */
+static int nearest(const struct verdict_figures *f, const double *x, int v, int k, double at, int below,
+                   double skip, double *xo, double *yo)
 {
-    double best_lo = -INFINITY, best_hi = INFINITY, y_lo = NAN, y_hi = NAN;
+    int found = 0;
     for (int p = 0; p < f->n_points; p++) {
         double xi = x[verdict_at(f, v, p, k)], yi = f->relmse[verdict_at(f, v, p, k)];
-        if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)))
+        if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)) || xi == skip)
             continue;
-        if (xi <= at && xi > best_lo)
-            best_lo = xi, y_lo = yi;
-        if (xi >= at && xi < best_hi)
-            best_hi = xi, y_hi = yi;
+        if (fabs(xi - at) <= 1e-9 * at) /* the point itself (at is a mean over seeds: rounding) */
+            xi = at;
+        if ((below ? xi <= at : xi >= at) && (!found || fabs(xi - at) < fabs(*xo - at)))
+            *xo = xi, *yo = yi, found = 1;
     }
-    if (isfinite(best_lo) && isfinite(best_hi)) {
-        if (best_hi == best_lo)
-            return y_lo;
-        double t = log(at / best_lo) / log(best_hi / best_lo);
-        return exp(log(y_lo) + t * (log(y_hi) - log(y_lo)));
+    return found;
+}
+
+/* Seed k's relMSE of variant v at x = at: linear in log-log between the measured points around
+   it, or along the segment of the two nearest when it lies just beyond them. NAN: none measured. */
+static double value_at(const struct verdict_figures *f, const double *x, int v, int k, double at)
+{
+    double x0, y0, x1, y1;
+    int lo = nearest(f, x, v, k, at, 1, NAN, &x0, &y0), hi = nearest(f, x, v, k, at, 0, NAN, &x1, &y1);
+    if (lo && hi && x0 == x1)
+        return y0;
+    if (!lo && !hi)
+        return NAN;
+    if (!lo || !hi) { /* extend the end segment: the nearest point and the next on its side */
+        if (!lo)
+            x0 = x1, y0 = y1;
+        if (!nearest(f, x, v, k, at, lo, x0, &x1, &y1))
+            return y0;
     }
-    double a, b;
-    *beyond = 1;
-    if (fit(f, x, v, k, &a, &b) == 0)
-        return exp(a + b * log(at));
-    return isfinite(best_lo) ? y_lo : y_hi; /* one point only: its own figure */
+    double t = log(at / x0) / log(x1 / x0);
+    return exp(log(y0) + t * (log(y1) - log(y0)));
+}
+
+/* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
+static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e)
+{
+    int n = 0;
+    for (int k = 0; k < f->n_seeds; k++) {
+        double y = f->relmse[verdict_at(f, v, p, k)];
+        if (isfinite(y))
+            e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
+    }
+    e->value = n ? e->value / n : NAN;
 }
 
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
-   densest points' means (the cheapest densest point, for CPU time). */
+   densest points' means (the cheapest densest point, for CPU time). A variant whose cheapest
+   point lies far beyond it is unreached, shown with its cheapest point's figures. */
 static void rank_at(const struct verdict_figures *f, const double *x, struct verdict_ranking *r)
 {
     double at = INFINITY;
@@ -79,15 +108,23 @@ static void rank_at(const struct verdict_figures *f, const double *x, struct ver
     }
     r->at = at;
     r->n = f->n_variants;
+    r->log_scale = 1;
     for (int v = 0; v < f->n_variants; v++) {
         struct verdict_entry *e = &r->e[v];
         *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
-        int n = 0;
+        int cheapest = 0, n = 0;
+        for (int p = 1; p < f->n_points; p++)
+            if (mean_x(f, x, v, p) < mean_x(f, x, v, cheapest))
+                cheapest = p;
+        if (mean_x(f, x, v, cheapest) > at * VERDICT_BEYOND) {
+            e->unreached = 1;
+            point_figures(f, v, cheapest, e);
+            continue;
+        }
         for (int k = 0; k < f->n_seeds; k++) {
-            double y = value_at(f, x, v, k, at, &e->extrapolated);
-            if (!isfinite(y))
-                continue;
-            e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
+            double y = value_at(f, x, v, k, at);
+            if (isfinite(y))
+                e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
         }
         if (n)
             e->value /= n;

@@ -55,14 +55,16 @@ enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
 struct verdict_entry {
     int variant;
     double value, lo, hi;
-    int rank;         /* 1 + the number of variants that beat it (verdict_beats) */
-    int extrapolated; /* read beyond the variant's measured points, along its fitted line */
+    int rank;      /* 1 + the number of variants that beat it (verdict_beats) */
+    int unreached; /* its cheapest point costs far more than the common point: it cannot be had
+                      there (value, lo, hi: its cheapest point's) */
 };
 
 /* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
    variant is beaten, INCONCLUSIVE when none beats another (or there is one seed: no spread). */
 struct verdict_ranking {
-    double at; /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
+    double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
+    int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
     enum verdict_status status;
     int n;
     struct verdict_entry *e;

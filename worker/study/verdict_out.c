@@ -8,10 +8,11 @@
 
 #define TIE_RULE                                                                                               \
     "Two variants are ranked apart only when the gap between their means over the seeds exceeds the "         \
-    "larger of their two min-max ranges across seeds; a variant's rank is 1 + the number of variants "        \
-    "ahead of it by that rule. Equal samples and equal CPU time are each the largest that every variant "     \
-    "reached (its densest point; for CPU time the cheapest densest point), each seed's relMSE read there "    \
-    "in log-log between its measured points (beyond them, along its fitted line). A ranking is clear when "   \
+    "larger of their two min-max ranges across seeds (for relMSE on its logarithm: ratios count); a "         \
+    "variant's rank is 1 + the number of variants ahead of it by that rule. Equal samples and equal CPU "     \
+    "time are each the largest that every variant reached (the smallest of the variants' densest points), "  \
+    "each seed's relMSE read there in log-log between its measured points; a variant whose cheapest point "   \
+    "costs over 1.25x that is not reached and ranks behind those that are. A ranking is clear when "           \
     "one variant alone ranks 1, a tie when several do but some variant is behind, inconclusive when none "    \
     "is ahead of another or there is only one seed."
 
@@ -48,7 +49,7 @@ static void json_ranking(struct json *j, const char *key, const char *at_key, co
         json_number(j, value_key, e->value);
         json_number(j, "min", e->lo);
         json_number(j, "max", e->hi);
-        json_bool(j, "extrapolated", e->extrapolated);
+        json_bool(j, "reached", !e->unreached);
         json_end_object(j);
     }
     json_end_array(j);
@@ -126,7 +127,7 @@ static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, co
         sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
                     e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
                     e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
-                    e->extrapolated ? " extrapolated" : "");
+                    e->unreached ? " not reached: its cheapest point" : "");
         return;
     }
     sbuf_printf(b, "<td></td>");

@@ -86,20 +86,17 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     const struct verdict_ranking *rs[] = {&out->by_samples, &out->by_cpu, &out->by_slope};
     for (int i = 0; i < 3 && f->n_seeds > 1; i++) {
         const struct verdict_ranking *r = rs[i];
-        char pairs[VERDICT_TEXT_MAX] = "";
-        int n = 0;
-        for (int j = 0; j + 1 < r->n; j++) {
-            const struct verdict_entry *a = &r->e[j], *b = &r->e[j + 1];
-            if (!verdict_beats(a, b))
-                append(pairs, "%s%s / %s", n++ ? ", " : "", out->variants[a->variant], out->variants[b->variant]);
-        }
-        if (n && (w = next_line(out->warnings, &out->n_warnings)))
-            append(w, "%s, the spread across seeds exceeds the difference to the next for %s: tied", ranking_name(out, r),
-                   pairs);
+        char top[VERDICT_TEXT_MAX];
+        group(out, r, 1, top);
+        if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
+            append(w, "%s, %s differ by less than their spread across seeds: %s", ranking_name(out, r), top,
+                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
-            if (r->e[j].extrapolated && (w = next_line(out->warnings, &out->n_warnings)))
-                append(w, "%s, %s's figure is read beyond its measured points, along its fitted line",
-                       ranking_name(out, r), out->variants[r->e[j].variant]);
+            if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
+                append(w, "%s, %s cannot be had: its cheapest image costs far more than the %.3g %s every other "
+                          "variant reached, so it ranks behind them",
+                       ranking_name(out, r), out->variants[r->e[j].variant], r->at,
+                       r == &out->by_cpu ? "CPU seconds" : "samples per pixel");
     }
 }
 
@@ -171,9 +168,9 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
             const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
             append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
                    per_sample(f, v) / per_sample(f, j), f->variants[j]);
-            if (verdict_beats(a, b))
+            if (verdict_beats(a, b, 1))
                 append(s, "%.2fx lower relMSE at equal samples.", b->value / a->value);
-            else if (verdict_beats(b, a))
+            else if (verdict_beats(b, a, 1))
                 append(s, "nothing at equal samples (its relMSE is %.2fx %s's).", a->value / b->value,
                        f->variants[j]);
             else
@@ -185,11 +182,15 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
         if (strcmp(f->samplers[u], "poisson") || f->pools[u] == 0 || !(s = next_line(out->sentences, &out->n_sentences)))
             continue;
         const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
-        if (verdict_beats(a, b) || verdict_beats(b, a))
+        int pool = verdict_beats(a, b, 1), fresh = verdict_beats(b, a, 1);
+        if (pool && b->unreached)
+            append(s, "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs more "
+                      "than the %.3g s the variants are compared at.", out->scene, f->variants[u], f->variants[v],
+                   out->by_cpu.at);
+        else if (pool || fresh)
             append(s, "At equal CPU time on %s, %s (%s) beats %s (%s): relMSE %.3g against %.3g.", out->scene,
-                   f->variants[verdict_beats(a, b) ? u : v], verdict_beats(a, b) ? "the pool" : "fresh sets",
-                   f->variants[verdict_beats(a, b) ? v : u], verdict_beats(a, b) ? "fresh sets" : "the pool",
-                   fmin(a->value, b->value), fmax(a->value, b->value));
+                   f->variants[pool ? u : v], pool ? "the pool" : "fresh sets", f->variants[pool ? v : u],
+                   pool ? "fresh sets" : "the pool", fmin(a->value, b->value), fmax(a->value, b->value));
         else
             append(s, "At equal CPU time on %s, the pool %s and the fresh sets %s tie within their seeds' spread.",
                    out->scene, f->variants[u], f->variants[v]);
