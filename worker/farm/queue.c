@@ -159,8 +159,9 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
     note_rc(q, 2);
 }
 
-/* A compare job: its combinations render into done/<name>/ as one job; a retry after a crash
-   renders only the combinations still missing (they resume by hash). Invalid: failed/. */
+/* A compare job: its combinations render into done/<name>/ as one job (a suite: each study into
+   done/<name>/<study>/); a retry after a crash renders only the combinations still missing (they
+   resume by hash). Invalid: failed/. */
 static void process_compare(struct queue *q, const char *name, const char *from, const char *as,
                             const char *stem)
 {
@@ -177,10 +178,10 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     int attempts = 0, rc;
     do {
         q->attempt = ++attempts;
-        rc = compare_suite_is_suite(from) ? compare_suite_main_as(from, as, &ro, last, sizeof last, log_name,
-                                                                  sizeof log_name)
-                                          : compare_main_as(from, as, &ro, last, sizeof last, log_name,
-                                                            sizeof log_name);
+        if (compare_suite_is_suite(from)) /* a compare job made of study files */
+            rc = compare_suite_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
+        else
+            rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);

@@ -123,8 +123,8 @@ static void summary_line(const struct compare_suite *s, double wall_s, const cha
     }
     /* a reference another study of the suite rendered a moment ago counts as reused */
     if (reused)
-        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)%s", rendered,
-                 reused, saved_s, given ? ", images given" : "");
+        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)%s",
+                 rendered, reused, saved_s, given ? ", images given" : "");
     else if (rendered)
         snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache%s", rendered,
                  given ? ", images given" : "");
@@ -137,9 +137,9 @@ static void summary_line(const struct compare_suite *s, double wall_s, const cha
     if (v)
         verdict_summary(v, s->n_studies, verdict, sizeof verdict);
     free(v);
-    snprintf(buf, n, "%s: %d image%s in %d stud%s (%s)%s, %s, %.2f s -> %s/%s/; at equal CPU time: %s", s->name,
-             s->n_items, plural(s->n_items), s->n_studies, s->n_studies == 1 ? "y" : "ies", studies, resumed,
-             refs, wall_s, outdir_root(out_dir), s->name, verdict[0] ? verdict : "no verdict");
+    snprintf(buf, n, "%s: %d image%s in %d stud%s (%s)%s, %s, %.2f s -> %s/%s/; at equal CPU time: %s",
+             s->name, s->n_items, plural(s->n_items), s->n_studies, s->n_studies == 1 ? "y" : "ies", studies,
+             resumed, refs, wall_s, outdir_root(out_dir), s->name, verdict[0] ? verdict : "no verdict");
 }
 
 /* compare_suite_main_as, with compare_suite_main's name_ok. */
@@ -174,8 +174,8 @@ static int main_as(const char *from, const char *path, const struct run_opts *o,
     return rc;
 }
 
-int compare_suite_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
-                       void *arg)
+int compare_suite_main(const char *path, const struct run_opts *o,
+                       int (*name_ok)(const char *name, void *arg), void *arg)
 {
     return main_as(path, path, o, NULL, 0, NULL, 0, name_ok, arg);
 }

@@ -133,11 +133,13 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
                              "(give one another name: in its file)",
                              s->studies[k]->path, c->path, c->name, s->name, c->name);
     if (in_list(c->name, top_files))
-        return ydoc_fail(d, item, e, "studies: %s is named \"%s\", as the suite's own %s/%s (rename the study)",
-                         c->path, c->name, s->name, c->name);
+        return ydoc_fail(d, item, e,
+                         "studies: %s is named \"%s\", as the suite's own %s/%s (rename the study)", c->path,
+                         c->name, s->name, c->name);
     s->n_items += c->n_items;
     if (s->n_items > COMPARE_SUITE_MAX_ITEMS)
-        return ydoc_fail(d, item, e, "studies: the studies so far expand to %d images (a suite's limit is %d)",
+        return ydoc_fail(d, item, e,
+                         "studies: the studies so far expand to %d images (a suite's limit is %d)",
                          s->n_items, COMPARE_SUITE_MAX_ITEMS);
     return 0;
 }
@@ -175,7 +177,8 @@ struct compare_suite *compare_suite_load_as(const char *from, const char *path, 
     }
     int n = yseq_len(list);
     if (n < 1) {
-        ydoc_fail(&d, list, e, "studies: must be a non-empty list of study files, e.g. studies: [a.yaml, b.yaml]");
+        ydoc_fail(&d, list, e,
+                  "studies: must be a non-empty list of study files, e.g. studies: [a.yaml, b.yaml]");
         goto done;
     }
     if (n > COMPARE_SUITE_MAX_STUDIES) {

@@ -74,11 +74,12 @@ char *compare_suite_chart_svg(const struct compare_suite *s)
         w = sw > w ? sw : w;
         free(svg);
     }
-    sbuf_printf(&b,
-                "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" "
-                "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%d\" height=\"%d\" fill=\"#ffffff\"/>\n",
-                w, h, w, h, w, h);
+    sbuf_printf(
+        &b,
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" "
+        "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%d\" height=\"%d\" fill=\"#ffffff\"/>\n",
+        w, h, w, h, w, h);
     if (body.buf)
         sbuf_printf(&b, "%s", body.buf);
     sbuf_printf(&b, "</svg>\n");
@@ -157,7 +158,8 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
     sbuf_printf(&b, ": samplers compared in %d studies</title><style>%s</style></head><body>\n<h1>",
                 s->n_studies, style);
     sbuf_escape(&b, s->name);
-    sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Suite ");
+    sbuf_printf(&b,
+                ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Suite ");
     sbuf_escape(&b, s->path);
     sbuf_printf(&b, ": %d images in %d studies, each an ordinary compare job with its own folder and page:",
                 s->n_items, s->n_studies);
