@@ -79,6 +79,7 @@ place() {
     case $1 in
     job_keys) echo "$1	job-format.md	Keys	keys" ;;
     extra) echo "$1	compare.md	Keys	keys" ;;
+    suite_keys) echo "$1	compare.md	Suites	keys" ;;
     scene_keys) echo "$1	scene-format.md	Top level	keys" ;;
     material_keys) echo "$1	scene-format.md	Materials	keys" ;;
     material_types) echo "$1	scene-format.md	Materials	types" ;;
@@ -154,7 +155,8 @@ extract() { # extract DIR FILE...
 }
 
 # one.sh BLOCK: run one block; print one line per fault. A job (scene: or scenes:) or compare job
-# (variants:) runs as written but at 6x4 pixels and with one process; a scene (camera:, objects:,
+# (variants:) runs as written but at 6x4 pixels and with one process, a suite (studies:) with
+# the shipped study files it names (jobs/<path>) shrunk alike; a scene (camera:, objects:,
 # materials: or textures: at the top) loads and renders through a tiny job beside it, a camera
 # added when it has none. "# expect-error: TEXT" in a block: it must fail, exit 2, with TEXT on
 # stderr. A block the same as an earlier one but for comments and blanks (README.md repeats a
@@ -166,7 +168,16 @@ mkdir -p "$w"
 ln -s "$root/scenes" "$w/scenes"
 expect=$(sed -n 's/^# expect-error: //p' "$y" | head -n 1)
 top=$(sed -n 's/^\([a-z_]*\):.*/\1/p' "$y")
-if echo "$top" | grep -qxE 'variants|scenes?'; then
+if echo "$top" | grep -qx studies; then
+    # a suite: the study files it names are the shipped ones (the block read as jobs/compare.yaml
+    # is), copied beside it at 6x4 pixels
+    cp "$y" "$w/job.yaml"
+    for p in $(sed -n 's/^studies: *\[\(.*\)\].*/\1/p' "$y" | tr ',' ' '); do
+        [ -f "$root/jobs/$p" ] || continue
+        mkdir -p "$w/$(dirname "$p")"
+        { grep -vE '^(width|height):' "$root/jobs/$p"; printf 'width: 6\nheight: 4\n'; } >"$w/$p"
+    done
+elif echo "$top" | grep -qxE 'variants|scenes?'; then
     if [ -n "$expect" ]; then cp "$y" "$w/job.yaml"; else
         grep -vE '^(width|height):' "$y" >"$w/job.yaml"
         printf 'width: 6\nheight: 4\n' >>"$w/job.yaml"
@@ -230,12 +241,18 @@ threshold: abc
 ```yaml
 sweep: { threshold: [20, 10] }
 ```
+
+```yaml
+name: s
+studies: [studies/none.yaml]
+```
 EOF
 extract "$T/ex2" "$T/bad2.md"
 check_examples "$T/ex2" >"$T/ex2.out"
 check "a broken example is found" grep -q 'bad2.md:1: exit 2: .*material: no material named "whte"' "$T/ex2.out"
 check "a wrong expected error is found" grep -q 'bad2.md:8: expected exit 2' "$T/ex2.out"
 check "a block that is not a job or scene is found" grep -q 'bad2.md:14: a yaml block that is neither' "$T/ex2.out"
+check "a suite naming a study file that is not there is found" grep -q 'bad2.md:18: exit 2: .*no study file at studies/none.yaml' "$T/ex2.out"
 
 # --- 3. the pictures: docs/img/SAMPLER-tT.svg is `worker points SAMPLER T --seed 1 --svg F` ---------
 n_img=0
