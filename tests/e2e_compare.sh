@@ -93,7 +93,7 @@ else
 fi
 check "chart: 20 lines (2 scenes x 2 panels x 5 variants)" [ "$(grep -c '<polyline' "$svg")" -eq 20 ]
 check "chart: 4 panels" [ "$(grep -c 'error against' "$svg")" -eq 4 ]
-check "chart: time axis with unit" grep -q 'wall time per image (s, log)' "$svg"
+check "chart: time axis with unit" grep -q 'CPU time per image (s, log)' "$svg"
 check "chart: samples axis" grep -q 'samples per pixel (mean, log)' "$svg"
 check "chart: relMSE axis" grep -q 'relMSE (eps 0.01, log)' "$svg"
 check "chart: dotted guide slopes" grep -q 'stroke-dasharray' "$svg"
