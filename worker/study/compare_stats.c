@@ -245,7 +245,7 @@ char *compare_stats_chart_svg(const struct compare *c)
             by_time[v] = (struct chart_series){c->variants[v], np, cpu + k0, rel + k0, l, h};
             by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, l, h};
         }
-        snprintf(titles[2 * s], sizeof titles[0], "%s: error against time", c->scenes[s].name);
+        snprintf(titles[2 * s], sizeof titles[0], "%s: error against CPU time", c->scenes[s].name);
         snprintf(titles[2 * s + 1], sizeof titles[0], "%s: error against samples", c->scenes[s].name);
         const char *note =
             c->scenes[s].ref_kind == COMPARE_REF_NONE ? "no reference given: no error to chart" : NULL;
