@@ -42,9 +42,9 @@ static const char usage[] =
 static const char help[] =
     "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
     "\n"
-    "Each job file (YAML) names a scene, a pixel sampler (uniform | jitter | random | poisson)\n"
-    "and its threshold (the minimum spacing in a 100x100 domain: 1 gives 10000 samples per\n"
-    "pixel for uniform/jitter/random, about 6200 for poisson). Rows are split over forked\n"
+    "Each job file (YAML) names a scene, a pixel sampler (uniform | jitter | random | poisson |\n"
+    "sobol) and its threshold (the minimum spacing in a 100x100 domain: 1 gives 10000 samples\n"
+    "per pixel for uniform/jitter/random/sobol, about 6200 for poisson). Rows are split over forked\n"
     "processes; the image (PNG or PPM: 8-bit display values; EXR or PFM: linear radiance) and a\n"
     "JSON stats sidecar land in OUT/<job name>/.\n"
     "\n"
