@@ -150,7 +150,7 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
                    "slope: relMSE ~ spp^s [min, max]</th></tr>\n",
                 v->by_samples.at, v->by_cpu.at);
     for (int k = 0; k < v->n_variants; k++) {
-        sbuf_printf(b, "<tr><td class=\"l\">");
+        sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
         sbuf_escape(b, v->variants[k]);
         sbuf_printf(b, "</td>");
         html_cell(b, &v->by_samples, k, "%.3g");
