@@ -8,6 +8,7 @@
 #include "base/fileio.h"
 #include "base/sbuf.h"
 #include "compare_stats.h"
+#include "report.h"
 
 /* Largest study summary.csv read back: 4096 rows of a few hundred bytes each, with room. */
 #define SUITE_CSV_MAX_BYTES (64u << 20)
@@ -89,14 +90,6 @@ char *compare_suite_chart_svg(const struct compare_suite *s)
     return sbuf_take(&b);
 }
 
-static const char style[] =
-    "body{font-family:sans-serif;margin:16px;color:#222;max-width:1180px}"
-    "h1{font-size:22px}h2{font-size:19px;border-top:2px solid #ddd;padding-top:10px}h3{font-size:15px}"
-    "svg{max-width:100%;height:auto}"
-    "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
-    "6px;text-align:right}td.l,th.l{text-align:left}"
-    ".note{color:#555;font-size:13px}li{margin-bottom:4px}";
-
 /* <a href> to a path relative to the page, percent-encoded, and its text escaped. */
 static void link(struct sbuf *b, const char *href, const char *text)
 {
@@ -112,17 +105,24 @@ static void link(struct sbuf *b, const char *href, const char *text)
     sbuf_printf(b, "</a>");
 }
 
-/* "40 images = 2 scenes x 5 variants x 2 sweep points x 2 seeds" */
+/* "s" after a count other than one */
+static const char *plural(int n)
+{
+    return n == 1 ? "" : "s";
+}
+
+/* "40 images = 2 scenes x 5 variants x 2 sweep points (sweep: threshold) x 2 seeds" */
 static void study_shape(struct sbuf *b, const struct compare *c)
 {
-    sbuf_printf(b, "%d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
-                c->n_variants, c->n_points);
+    sbuf_printf(b, "%d image%s = %d scene%s x %d variant%s x %d sweep point%s", c->n_items,
+                plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants, plural(c->n_variants),
+                c->n_points, plural(c->n_points));
     if (c->sweep_keys[0]) {
         sbuf_printf(b, " (sweep: ");
         sbuf_escape(b, c->sweep_keys);
         sbuf_printf(b, ")");
     }
-    sbuf_printf(b, " x %d seeds", c->n_seeds);
+    sbuf_printf(b, " x %d seed%s", c->n_seeds, plural(c->n_seeds));
 }
 
 /* One study's section: its name, its shape, a link to its report, its chart. */
@@ -156,7 +156,7 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
     sbuf_printf(&b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
     sbuf_escape(&b, s->name);
     sbuf_printf(&b, ": samplers compared in %d studies</title><style>%s</style></head><body>\n<h1>",
-                s->n_studies, style);
+                s->n_studies, report_style);
     sbuf_escape(&b, s->name);
     sbuf_printf(&b,
                 ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Suite ");

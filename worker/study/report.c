@@ -17,7 +17,7 @@
 
 #define REPORT_MAX_PNG_BYTES (256u << 20)
 
-static const char style[] =
+const char report_style[] =
     "body{font-family:sans-serif;margin:16px;color:#222;max-width:1180px}"
     "h1{font-size:22px}h2{font-size:19px;border-top:2px solid #ddd;padding-top:10px}h3{font-size:15px}"
     ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}"
@@ -335,7 +335,7 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     }
     sbuf_printf(&b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
     sbuf_escape(&b, c->name);
-    sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", style);
+    sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", report_style);
     sbuf_escape(&b, c->name);
     sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n");
     if (c->has_verdict)

@@ -11,4 +11,7 @@
    Returns a malloc'd string (caller frees), or NULL with e filled. */
 char *report_html(const struct compare *c, const char *dir, struct err *e);
 
+/* The page's CSS, for the other pages of a study (a suite's report.html). */
+extern const char report_style[];
+
 #endif
