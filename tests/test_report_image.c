@@ -45,11 +45,11 @@ static void test_worst_window(void)
 
 static void test_zoom(void)
 {
-    CHECK(report_image_zoom(64, 256) == 4);   /* exactly 256 */
-    CHECK(report_image_zoom(100, 256) == 3);  /* the smallest reaching 256: 300 */
-    CHECK(report_image_zoom(300, 256) == 2);  /* never below 2, however large */
+    CHECK(report_image_zoom(64, 256) == 4);  /* exactly 256 */
+    CHECK(report_image_zoom(100, 256) == 3); /* the smallest reaching 256: 300 */
+    CHECK(report_image_zoom(300, 256) == 2); /* never below 2, however large */
     CHECK(report_image_zoom(4000, 256) == 2);
-    CHECK(report_image_zoom(12, 160) == 14);  /* a crop: 168 */
+    CHECK(report_image_zoom(12, 160) == 14); /* a crop: 168 */
     CHECK(report_image_zoom(1, 256) == 256);
 }
 
@@ -77,8 +77,9 @@ static void test_errmap_bar(void)
     struct err e = {0};
     CHECK(report_image_errmap_bar(60, &bar, &e) == 0);
     CHECK(bar.w == 60 && bar.h == 1);
-    CHECK(bar.px[0] < 10 && bar.px[2] < 20);                                 /* near {0, 0, 4} */
-    CHECK(bar.px[59 * 3] > 245 && bar.px[59 * 3 + 1] > 245 && bar.px[59 * 3 + 2] > 150); /* near {252, 255, 164} */
+    CHECK(bar.px[0] < 10 && bar.px[2] < 20); /* near {0, 0, 4} */
+    CHECK(bar.px[59 * 3] > 245 && bar.px[59 * 3 + 1] > 245 &&
+          bar.px[59 * 3 + 2] > 150); /* near {252, 255, 164} */
     int rising = 1;
     for (int i = 1; i < 60; i++) {
         int a = bar.px[(i - 1) * 3] + bar.px[(i - 1) * 3 + 1] + bar.px[(i - 1) * 3 + 2];

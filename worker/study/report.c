@@ -49,7 +49,8 @@ static int grid_figure(struct sbuf *b, const struct compare *c, int s, int v, in
     sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, it->spp_mean);
     if (it->has_error)
         sbuf_printf(b, ", relMSE %.3g", it->error.relmse);
-    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", it->wall_s, (unsigned long long)c->seeds[k]);
+    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", it->wall_s,
+                (unsigned long long)c->seeds[k]);
     return 0;
 }
 

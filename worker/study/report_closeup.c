@@ -23,7 +23,8 @@ static void point_free(struct point_imgs *pi)
     free(pi->imgs);
 }
 
-static int point_load(const struct compare *c, int s, int p, const char *dir, struct point_imgs *pi, struct err *e)
+static int point_load(const struct compare *c, int s, int p, const char *dir, struct point_imgs *pi,
+                      struct err *e)
 {
     pi->n = 0;
     pi->imgs = calloc((size_t)c->n_variants * c->n_seeds, sizeof *pi->imgs);
@@ -70,7 +71,8 @@ static int crop_row(struct sbuf *b, const struct compare *c, int s, int p, const
         view = (struct report_view_img){zoom, NULL, id, c->variants[v]};
         snprintf(slot, sizeof slot, "c%dv%d", p, v);
         report_view_figure(b, k, slot);
-        if (report_image_crop(&pi->imgs[i], x0, y0, side, &tmp, e) < 0 || report_view_rgb(b, &tmp, &view, e) < 0)
+        if (report_image_crop(&pi->imgs[i], x0, y0, side, &tmp, e) < 0 ||
+            report_view_rgb(b, &tmp, &view, e) < 0)
             goto fail;
         image_free(&tmp);
         caption(b, c, v, k);
@@ -91,17 +93,18 @@ static int crops(struct sbuf *b, const struct compare *c, int s, int p, const st
     report_image_worst_window(ref, pi->imgs, pi->n, side, &x0, &y0);
     sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", report_image_zoom(side, REPORT_IMAGE_CROP_PX));
     sbuf_escape(b, c->points[p]);
-    sbuf_printf(b,
-                ": pixels %d..%d x %d..%d, the window where the images (every seed's) differ most from the "
-                "reference (by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n",
-                x0, x0 + side - 1, y0, y0 + side - 1);
+    sbuf_printf(
+        b,
+        ": pixels %d..%d x %d..%d, the window where the images (every seed's) differ most from the "
+        "reference (by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n",
+        x0, x0 + side - 1, y0, y0 + side - 1);
     return crop_row(b, c, s, p, ref, pi, x0, y0, side, e);
 }
 
 /* One image's floats for its map: the float copy beside its PNG (linear), or the PNG's own
    display values v / 255 (img8) when the reference is an 8-bit image. */
-static int map_floats(const char *dir, const char *output, const struct rgb8 *img8, int linear, struct rgbf *out,
-                      struct err *e)
+static int map_floats(const char *dir, const char *output, const struct rgb8 *img8, int linear,
+                      struct rgbf *out, struct err *e)
 {
     if (!linear)
         return image_f_from_rgb8(img8, out, e);
@@ -115,19 +118,20 @@ static void maps_heading(struct sbuf *b, const struct compare *c, int p, int lin
 {
     sbuf_printf(b, "<h3>Error maps at ");
     sbuf_escape(b, c->points[p]);
-    sbuf_printf(b,
-                ", at %dx: each pixel's relative error against the reference %s, its relMSE term (the mean over "
-                "R, G, B of (v - r)^2 / (r^2 + 0.01)), coloured by its log10 on one fixed scale for every "
-                "map (as <code>worker diff --map</code> draws them). Noise looks like grain; structured error "
-                "(aliasing, a repeated pattern, a bias) like a pattern; fireflies as bright dots</h3>\n",
-                zoom,
-                linear ? "in linear radiance (the float images)"
-                       : "on 8-bit display values v / 255 (this scene's reference is an 8-bit image), not "
-                         "linear radiance");
+    sbuf_printf(
+        b,
+        ", at %dx: each pixel's relative error against the reference %s, its relMSE term (the mean over "
+        "R, G, B of (v - r)^2 / (r^2 + 0.01)), coloured by its log10 on one fixed scale for every "
+        "map (as <code>worker diff --map</code> draws them). Noise looks like grain; structured error "
+        "(aliasing, a repeated pattern, a bias) like a pattern; fireflies as bright dots</h3>\n",
+        zoom,
+        linear ? "in linear radiance (the float images)"
+               : "on 8-bit display values v / 255 (this scene's reference is an 8-bit image), not "
+                 "linear radiance");
 }
 
-static int maps(struct sbuf *b, const struct compare *c, int s, int p, const char *dir, const struct rgbf *reff,
-                int linear, const struct point_imgs *pi, struct err *e)
+static int maps(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                const struct rgbf *reff, int linear, const struct point_imgs *pi, struct err *e)
 {
     int zoom = report_image_zoom(reff->w, REPORT_IMAGE_SHOW_PX);
     maps_heading(b, c, p, linear, zoom);
@@ -142,8 +146,8 @@ static int maps(struct sbuf *b, const struct compare *c, int s, int p, const cha
         char slot[32];
         snprintf(slot, sizeof slot, "m%dv%d", p, v);
         report_view_figure(b, k, slot);
-        int rc = map_floats(dir, c->items[compare_index(c, s, v, p, k)].job.output, &pi->imgs[i], linear, &img,
-                            e) < 0 ||
+        int rc = map_floats(dir, c->items[compare_index(c, s, v, p, k)].job.output, &pi->imgs[i], linear,
+                            &img, e) < 0 ||
                  errmap_make(reff, &img, &map, e) < 0 || report_view_rgb(b, &map, &view, e) < 0;
         image_f_free(&img);
         image_free(&map);
@@ -155,8 +159,8 @@ static int maps(struct sbuf *b, const struct compare *c, int s, int p, const cha
     return 0;
 }
 
-int report_closeup(struct sbuf *b, const struct compare *c, int s, int p, const char *dir, const struct rgb8 *ref,
-                   const struct rgbf *reff, struct err *e)
+int report_closeup(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                   const struct rgb8 *ref, const struct rgbf *reff, struct err *e)
 {
     struct point_imgs pi = {0};
     struct rgbf ref_display = {0};

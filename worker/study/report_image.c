@@ -54,7 +54,8 @@ int report_image_crop(const struct rgb8 *src, int x0, int y0, int side, struct r
     if (image_alloc(out, side, side, e) < 0)
         return -1;
     for (int y = 0; y < side; y++)
-        memcpy(&out->px[(size_t)y * side * 3], &src->px[((size_t)(y0 + y) * src->w + x0) * 3], (size_t)side * 3);
+        memcpy(&out->px[(size_t)y * side * 3], &src->px[((size_t)(y0 + y) * src->w + x0) * 3],
+               (size_t)side * 3);
     return 0;
 }
 

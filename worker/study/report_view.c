@@ -40,9 +40,11 @@ static const char script[] =
     "if(n>=0&&n<all.length)open(all[n]);}"
     "function seed(s,k){if(!s.querySelector('button[data-seed=\"'+k+'\"]'))return;"
     "s.querySelectorAll('.sd').forEach(function(f){f.hidden=f.dataset.seed!=k;});"
-    "s.querySelectorAll('button[data-seed]').forEach(function(b){b.classList.toggle('on',b.dataset.seed==k);});"
+    "s.querySelectorAll('button[data-seed]').forEach(function(b){b.classList.toggle('on',b.dataset.seed==k);}"
+    ");"
     "var f=cur&&s.contains(cur)?cur.closest('[data-slot]'):null;"
-    "if(f){var n=s.querySelector('[data-slot=\"'+f.dataset.slot+'\"][data-seed=\"'+k+'\"] img');if(n)open(n);}}"
+    "if(f){var n=s.querySelector('[data-slot=\"'+f.dataset.slot+'\"][data-seed=\"'+k+'\"] "
+    "img');if(n)open(n);}}"
     "document.addEventListener('click',function(ev){var t=ev.target;"
     "if(ov&&ov.contains(t))close();"
     "else if(t.matches('button[data-seed]'))seed(t.closest('section'),t.dataset.seed);"
@@ -50,12 +52,14 @@ static const char script[] =
     "addEventListener('keydown',function(ev){var k=ev.key;if(ev.ctrlKey||ev.metaKey||ev.altKey)return;"
     "if(k==='r'||k==='R')swap(true);else if(k==='Escape')close();"
     "else if(cur&&(k==='ArrowLeft'||k==='ArrowRight')){ev.preventDefault();step(k==='ArrowLeft'?-1:1);}"
-    "else if(/^[1-9]$/.test(k))document.querySelectorAll('section.scene').forEach(function(s){seed(s,k-1);});});"
+    "else "
+    "if(/^[1-9]$/.test(k))document.querySelectorAll('section.scene').forEach(function(s){seed(s,k-1);});});"
     "addEventListener('keyup',function(ev){if(ev.key==='r'||ev.key==='R')swap(false);});"
     "addEventListener('blur',function(){swap(false);});"
     "document.querySelectorAll('button.ab').forEach(function(b){"
     "b.addEventListener('pointerdown',function(ev){ev.preventDefault();swap(true);});"
-    "['pointerup','pointerleave','pointercancel'].forEach(function(n){b.addEventListener(n,function(){swap(false);});});});"
+    "['pointerup','pointerleave','pointercancel'].forEach(function(n){b.addEventListener(n,function(){swap("
+    "false);});});});"
     "})();";
 
 const char *report_view_script(void)
@@ -75,7 +79,8 @@ int report_view_read_png(const char *path, uint8_t **bytes, size_t *len, struct 
     return 0;
 }
 
-void report_view_png(struct sbuf *b, const uint8_t *png, size_t len, int w, int h, const struct report_view_img *v)
+void report_view_png(struct sbuf *b, const uint8_t *png, size_t len, int w, int h,
+                     const struct report_view_img *v)
 {
     sbuf_printf(b, "<img class=\"z\"");
     if (v->id)
@@ -102,7 +107,8 @@ int report_view_rgb(struct sbuf *b, const struct rgb8 *img, const struct report_
 
 void report_view_figure(struct sbuf *b, int seed, const char *slot)
 {
-    sbuf_printf(b, "<figure class=\"sd\" data-seed=\"%d\" data-slot=\"%s\"%s>", seed, slot, seed ? " hidden" : "");
+    sbuf_printf(b, "<figure class=\"sd\" data-seed=\"%d\" data-slot=\"%s\"%s>", seed, slot,
+                seed ? " hidden" : "");
 }
 
 void report_view_controls(struct sbuf *b, const struct compare *c, int zoom, int has_ref)
@@ -144,9 +150,10 @@ int report_view_scale(struct sbuf *b, struct err *e)
         sbuf_printf(b, "<span style=\"left:%.1f%%\">1e%d<br>%.2g%s</span>", 100 * at, l,
                     rel < 1 ? 100 * rel : rel, rel < 1 ? "%" : "x");
     }
-    sbuf_printf(b, "</div><div>Colour: the log10 of a pixel's relMSE term, from %g (black) to %g (pale yellow); "
-                   "an exact match is black, terms past the ends take the end colours. Below each: the "
-                   "relative error it stands for, |v - r| / r where r is well above 0.1.</div></div>\n",
+    sbuf_printf(b,
+                "</div><div>Colour: the log10 of a pixel's relMSE term, from %g (black) to %g (pale yellow); "
+                "an exact match is black, terms past the ends take the end colours. Below each: the "
+                "relative error it stands for, |v - r| / r where r is well above 0.1.</div></div>\n",
                 ERRMAP_LOG10_MIN, ERRMAP_LOG10_MAX);
     return 0;
 }

@@ -13,19 +13,19 @@
 
 /* The page's CSS for what this module writes (a string literal, to join the page's style). */
 #define REPORT_VIEW_CSS                                                                                      \
-    "img.z{image-rendering:pixelated;cursor:zoom-in}[hidden]{display:none!important}"                       \
+    "img.z{image-rendering:pixelated;cursor:zoom-in}[hidden]{display:none!important}"                        \
     ".bar{position:sticky;top:0;z-index:2;background:#fff;border-bottom:1px solid #ddd;padding:6px "         \
     "0;font-size:13px}.bar button{font:inherit;padding:2px 10px;margin-right:4px;border:1px solid "          \
-    "#888;border-radius:3px;background:#f4f4f4;cursor:pointer}.bar button.on{background:#246;color:#fff}"   \
-    ".bar button.ab{background:#fff3e0;border-color:#e80;margin-left:12px;user-select:none}"               \
-    "body.ab img[data-ab]{outline:3px solid #e80}body.ab::after{content:'showing the reference';"           \
-    "position:fixed;bottom:12px;right:12px;z-index:10;background:#e80;color:#fff;padding:4px 12px;"             \
-    "font-weight:bold}#ov{position:fixed;inset:0;z-index:9;background:rgba(0,0,0,.88);display:flex;"       \
-    "flex-direction:column;align-items:center;justify-content:center;color:#eee;font-size:13px;"           \
-    "cursor:zoom-out}#ov img{image-rendering:pixelated;border:0}"                                          \
-    ".scale{display:flex;gap:24px;align-items:flex-start;font-size:12px;color:#555;margin:2px 0 8px 12px}" \
-    ".cbar{position:relative;flex:none;width:360px;height:44px;font-size:11px;color:#222}"                \
-    ".cbar img{width:360px;height:14px}.cbar span{position:absolute;top:17px;transform:translateX(-50%);"  \
+    "#888;border-radius:3px;background:#f4f4f4;cursor:pointer}.bar button.on{background:#246;color:#fff}"    \
+    ".bar button.ab{background:#fff3e0;border-color:#e80;margin-left:12px;user-select:none}"                 \
+    "body.ab img[data-ab]{outline:3px solid #e80}body.ab::after{content:'showing the reference';"            \
+    "position:fixed;bottom:12px;right:12px;z-index:10;background:#e80;color:#fff;padding:4px 12px;"          \
+    "font-weight:bold}#ov{position:fixed;inset:0;z-index:9;background:rgba(0,0,0,.88);display:flex;"         \
+    "flex-direction:column;align-items:center;justify-content:center;color:#eee;font-size:13px;"             \
+    "cursor:zoom-out}#ov img{image-rendering:pixelated;border:0}"                                            \
+    ".scale{display:flex;gap:24px;align-items:flex-start;font-size:12px;color:#555;margin:2px 0 8px 12px}"   \
+    ".cbar{position:relative;flex:none;width:360px;height:44px;font-size:11px;color:#222}"                   \
+    ".cbar img{width:360px;height:14px}.cbar span{position:absolute;top:17px;transform:translateX(-50%);"    \
     "text-align:center;line-height:12px}"
 
 /* The page's script (no network): click an image to enlarge it, arrows step, Esc closes; hold
@@ -45,7 +45,8 @@ struct report_view_img {
 int report_view_read_png(const char *path, uint8_t **bytes, size_t *len, struct rgb8 *img, struct err *e);
 
 /* An <img> of the w x h PNG's bytes (a data URI). */
-void report_view_png(struct sbuf *b, const uint8_t *png, size_t len, int w, int h, const struct report_view_img *v);
+void report_view_png(struct sbuf *b, const uint8_t *png, size_t len, int w, int h,
+                     const struct report_view_img *v);
 
 /* An <img> of img, encoded as PNG here. 0, or -1 with e filled. */
 int report_view_rgb(struct sbuf *b, const struct rgb8 *img, const struct report_view_img *v, struct err *e);
