@@ -13,6 +13,7 @@
 #include "report_image.h"
 #include "report_view.h"
 #include "base/sbuf.h"
+#include "verdict_out.h"
 
 static const char style[] =
     "body{font-family:sans-serif;margin:16px;color:#222}p,ul,h3{max-width:1180px}"
@@ -24,7 +25,9 @@ static const char style[] =
     "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
     "6px;text-align:right}"
     "td.l,th.l{text-align:left}.pt{font-weight:bold;font-size:13px;flex-basis:100%}"
-    ".note{color:#555;font-size:13px}li{margin-bottom:4px}" REPORT_VIEW_CSS;
+    ".note{color:#555;font-size:13px}li{margin-bottom:4px}"
+    ".warn{color:#8a4b00;background:#fff4e0;padding:4px "
+    "8px;font-size:13px}ul.verdict{font-size:15px}" REPORT_VIEW_CSS;
 
 /* One render of the grid (variant v, sweep point p, seed index k) as a figure with its caption;
    ab: the id of the reference the A/B toggle shows in its place, or NULL. */
@@ -75,45 +78,6 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
                     return -1;
         sbuf_printf(b, "</div>\n");
     }
-    return 0;
-}
-
-/* Variants ranked by Monte Carlo efficiency, 1 / (relMSE x wall s), at their densest point (the
-   sweep's last point when the sweep leaves samples per pixel alone). */
-static int efficiency(struct sbuf *b, const struct compare *c, int s)
-{
-    int *order = calloc((size_t)c->n_points, sizeof *order),
-        *rank = calloc((size_t)c->n_variants, sizeof *rank);
-    double *eff = calloc((size_t)c->n_variants, sizeof *eff);
-    if (!order || !rank || !eff) {
-        free(order), free(rank), free(eff);
-        return -1;
-    }
-    int vary = 1;
-    for (int v = 0; v < c->n_variants; v++) {
-        struct compare_agg a;
-        vary &= compare_stats_samples_vary(c, s, v);
-        compare_stats_point_order(c, s, v, order);
-        compare_stats_aggregate(c, s, v, order[c->n_points - 1], &a);
-        eff[v] = a.rel > 0 && a.wall_s > 0 ? 1 / (a.rel * a.wall_s) : 0;
-        rank[v] = v;
-        for (int i = v; i > 0 && eff[rank[i]] > eff[rank[i - 1]]; i--) {
-            int t = rank[i];
-            rank[i] = rank[i - 1];
-            rank[i - 1] = t;
-        }
-    }
-    sbuf_printf(b,
-                "<p><b>For the time spent</b> (efficiency 1 / (relMSE x wall s) at each variant's %s, higher "
-                "is better): ",
-                vary ? "densest point" : "last point of the sweep");
-    for (int i = 0; i < c->n_variants; i++) {
-        sbuf_printf(b, "%s<b>", i ? ", " : "");
-        sbuf_escape(b, c->variants[rank[i]]);
-        sbuf_printf(b, "</b> %.3g", eff[rank[i]]);
-    }
-    sbuf_printf(b, ".</p>\n");
-    free(order), free(rank), free(eff);
     return 0;
 }
 
@@ -175,10 +139,6 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         if (report_closeup(b, c, s, mid, dir, &ref, linear ? &reff : NULL, e) < 0 ||
             (densest != mid && report_closeup(b, c, s, densest, dir, &ref, linear ? &reff : NULL, e) < 0))
             goto done;
-    }
-    if (has_ref && efficiency(b, c, s) < 0) {
-        err_set(e, NULL, 0, 0, "out of memory");
-        goto done;
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
@@ -261,8 +221,10 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     sbuf_escape(&b, c->name);
     sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", style);
     sbuf_escape(&b, c->name);
-    sbuf_printf(&b,
-                ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Job ");
+    sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n");
+    if (c->has_verdict)
+        verdict_html(&b, &c->verdict, 1);
+    sbuf_printf(&b, "<h2>What was measured</h2>\n<p class=\"note\">Job ");
     sbuf_escape(&b, c->path);
     sbuf_printf(&b, ": %d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
                 c->n_variants, c->n_points);
