@@ -24,6 +24,7 @@
     "flex-direction:column;align-items:center;justify-content:center;color:#eee;font-size:13px;"             \
     "cursor:zoom-out}#ov img{image-rendering:pixelated;border:0}"                                            \
     ".scale{display:flex;gap:24px;align-items:flex-start;font-size:12px;color:#555;margin:2px 0 8px 12px}"   \
+    ".scale>div+div{max-width:560px}"                                                                        \
     ".cbar{position:relative;flex:none;width:360px;height:44px;font-size:11px;color:#222}"                   \
     ".cbar img{width:360px;height:14px}.cbar span{position:absolute;top:17px;transform:translateX(-50%);"    \
     "text-align:center;line-height:12px}"
