@@ -25,16 +25,28 @@ struct fake {
 
 static const double seed_factor[NS] = {0.95, 1.0, 1.05}; /* a 10% min-max range */
 
-static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope, const double *cost)
+static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope,
+                      const double *cost)
 {
     static const char *const names[NV] = {"alpha", "beta", "gamma", "delta"};
     static const double spp[NP] = {100, 400, 1600};
     memset(x, 0, sizeof *x);
-    x->f = (struct verdict_figures){.study = "study", .scene = "board", .n_variants = nv, .n_points = NP,
-                                    .n_seeds = ns, .variants = x->variants, .samplers = x->samplers,
-                                    .pools = x->pools, .points = x->points, .spp = x->spp, .cpu_s = x->cpu,
-                                    .relmse = x->rel, .sampler_share = x->share, .nonfinite = x->nonfinite,
-                                    .repeat_share = x->repeat, .ref_spp = 10000};
+    x->f = (struct verdict_figures){.study = "study",
+                                    .scene = "board",
+                                    .n_variants = nv,
+                                    .n_points = NP,
+                                    .n_seeds = ns,
+                                    .variants = x->variants,
+                                    .samplers = x->samplers,
+                                    .pools = x->pools,
+                                    .points = x->points,
+                                    .spp = x->spp,
+                                    .cpu_s = x->cpu,
+                                    .relmse = x->rel,
+                                    .sampler_share = x->share,
+                                    .nonfinite = x->nonfinite,
+                                    .repeat_share = x->repeat,
+                                    .ref_spp = 10000};
     x->points[0] = "threshold 10", x->points[1] = "threshold 5", x->points[2] = "threshold 2.5";
     for (int v = 0; v < nv; v++) {
         x->variants[v] = names[v];
@@ -88,7 +100,8 @@ static void test_rule(void)
     b.lo = 0.5, b.hi = 2, b.value = 1.5;
     CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.5 < b's range 1.5 */
     /* a wide spread at a far larger value: linear ranges would tie them, logarithms do not */
-    struct verdict_entry c = {.value = 0.01, .lo = 0.009, .hi = 0.011}, d = {.value = 4.5, .lo = 1.9, .hi = 8.7};
+    struct verdict_entry c = {.value = 0.01, .lo = 0.009, .hi = 0.011},
+                         d = {.value = 4.5, .lo = 1.9, .hi = 8.7};
     CHECK(!verdict_beats(&c, &d, 0) && verdict_beats(&c, &d, 1));
     d.unreached = 1, d.value = d.lo = d.hi = 0.001; /* better figures, but not at the common point */
     CHECK(verdict_beats(&c, &d, 1) && !verdict_beats(&d, &c, 1));
@@ -116,7 +129,8 @@ static void test_clear_winner(void)
     CHECK(s.by_slope.status == VERDICT_INCONCLUSIVE); /* every slope is -1 */
     CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
     CHECK(s.n_failures == 0);
-    CHECK(s.n_warnings == 1 && strstr(s.warnings[0], "by slope, ") && strstr(s.warnings[0], "differ by less than their spread"));
+    CHECK(s.n_warnings == 1 && strstr(s.warnings[0], "by slope, ") &&
+          strstr(s.warnings[0], "differ by less than their spread"));
     CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
     char w[64];
     verdict_winner(&s, w, sizeof w);
@@ -135,8 +149,9 @@ static void test_tie_and_inconclusive(void)
     CHECK(s.by_samples.status == VERDICT_TIE); /* alpha and beta 5% apart, each with a 10% range */
     CHECK(rank_of(&s.by_samples, 0) == 1 && rank_of(&s.by_samples, 1) == 1 && rank_of(&s.by_samples, 2) == 3);
     CHECK(any_line(s.sentences, s.n_sentences, "alpha, beta tie"));
-    CHECK(any_line(s.warnings, s.n_warnings, "at equal samples, alpha, beta differ by less than their spread "
-                                             "across seeds: tied, no single winner"));
+    CHECK(any_line(s.warnings, s.n_warnings,
+                   "at equal samples, alpha, beta differ by less than their spread "
+                   "across seeds: tied, no single winner"));
     char w[64];
     verdict_winner(&s, w, sizeof w);
     CHECK(!strcmp(w, "alpha = beta (tie)"));
@@ -188,7 +203,7 @@ static void test_failures_and_guards(void)
     x.samplers[2] = "poisson";
     for (int p = 0; p < NP; p++)
         for (int k2 = 0; k2 < NS; k2++) {
-            x.share[verdict_at(&x.f, 2, p, k2)] = 0.7;                       /* Bridson's sets dominate */
+            x.share[verdict_at(&x.f, 2, p, k2)] = 0.7; /* Bridson's sets dominate */
             x.rel[verdict_at(&x.f, 3, p, k2)] = 0.002 * (p ? 0.95 : 1) * seed_factor[k2]; /* stalls */
         }
     x.nonfinite[verdict_at(&x.f, 3, 1, 0)] = 3;
@@ -199,11 +214,13 @@ static void test_failures_and_guards(void)
     CHECK(has_failure(&s, VERDICT_STALLS, 3) && !has_failure(&s, VERDICT_STALLS, 0));
     CHECK(has_failure(&s, VERDICT_NONFINITE, 3) && !has_failure(&s, VERDICT_NONFINITE, 1));
     CHECK(any_line(s.sentences, s.n_sentences, "beta aliases on board: 90% of its error at threshold 10"));
-    CHECK(any_line(s.sentences, s.n_sentences, "gamma costs 3.0x alpha's CPU time per sample and buys nothing"));
+    CHECK(any_line(s.sentences, s.n_sentences,
+                   "gamma costs 3.0x alpha's CPU time per sample and buys nothing"));
     CHECK(any_line(s.warnings, s.n_warnings, "the reference has 3000 samples per pixel"));
     char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
-    CHECK(json && strstr(json, "\"kind\": \"structured_error\"") && strstr(json, "\"kind\": \"sampler_share\"") &&
-          strstr(json, "\"equal_cpu_time\"") && strstr(json, "\"tie_rule\""));
+    CHECK(json && strstr(json, "\"kind\": \"structured_error\"") &&
+          strstr(json, "\"kind\": \"sampler_share\"") && strstr(json, "\"equal_cpu_time\"") &&
+          strstr(json, "\"tie_rule\""));
     free(json);
     verdict_scene_free(&s);
     x.f.ref_spp = 6400; /* exactly 4x: no warning */

@@ -342,12 +342,12 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
     char winners[1024] = "";
     if (c->has_verdict)
         verdict_summary(&c->verdict, 1, winners, sizeof winners);
-    snprintf(
-        buf, n,
-        "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> %s/%s/%s%s",
-        c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
-        plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
-        refs, wall_s, outdir_root(out_dir), c->name, winners[0] ? "; at equal CPU time: " : "", winners);
+    snprintf(buf, n,
+             "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> "
+             "%s/%s/%s%s",
+             c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
+             plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
+             refs, wall_s, outdir_root(out_dir), c->name, winners[0] ? "; at equal CPU time: " : "", winners);
 }
 
 /* compare_main_as, with compare_main's name_ok. */

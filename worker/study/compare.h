@@ -40,8 +40,8 @@ struct compare_item {
     int skipped; /* its image and sidecar were current (same hash): not rendered again */
     double spp_mean, wall_s, cpu_s, sampler_share;
     uint64_t spp_min, spp_max, nonfinite; /* nonfinite: samples dropped as NaN or infinite */
-    struct metrics error;         /* in the scene's reference's domain (linear unless a PNG/PPM) */
-    struct metrics display_error; /* on the PNG's 8-bit display values, for comparison */
+    struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
+    struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
 };
 
 struct compare {
@@ -53,7 +53,7 @@ struct compare {
     char (*points)[COMPARE_LABEL_MAX];      /* sweep point labels: "threshold 5" */
     char sweep_keys[COMPARE_LABEL_MAX * 2]; /* "threshold" or "threshold, light_threshold"; "" */
     uint64_t *seeds;
-    struct compare_item *items; /* index compare_index(c, scene, variant, point, seed) */
+    struct compare_item *items;   /* index compare_index(c, scene, variant, point, seed) */
     struct verdict_study verdict; /* filled by compare_run once every image is scored */
     int has_verdict;
 };

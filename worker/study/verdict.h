@@ -31,17 +31,17 @@
 struct verdict_figures {
     const char *study, *scene;
     int n_variants, n_points, n_seeds;
-    const char *const *variants;  /* labels */
-    const char *const *samplers;  /* per variant: its pixel sampler's name ("poisson") */
-    const int *pools;             /* per variant: poisson_pool (0: fresh sets) */
-    const char *const *points;    /* sweep point labels ("threshold 5") */
-    const double *spp;            /* samples per pixel (mean over the image) */
-    const double *cpu_s;          /* the render's CPU seconds */
-    const double *relmse;         /* against the reference; NAN when not measured */
-    const double *sampler_share;  /* fraction of CPU time drawing point sets */
-    const uint64_t *nonfinite;    /* samples dropped as NaN or infinite */
-    const double *repeat_share;   /* per (variant, point): error share repeating in every seed, NAN unknown */
-    double ref_spp;               /* the reference's samples per pixel, 0 when unknown */
+    const char *const *variants; /* labels */
+    const char *const *samplers; /* per variant: its pixel sampler's name ("poisson") */
+    const int *pools;            /* per variant: poisson_pool (0: fresh sets) */
+    const char *const *points;   /* sweep point labels ("threshold 5") */
+    const double *spp;           /* samples per pixel (mean over the image) */
+    const double *cpu_s;         /* the render's CPU seconds */
+    const double *relmse;        /* against the reference; NAN when not measured */
+    const double *sampler_share; /* fraction of CPU time drawing point sets */
+    const uint64_t *nonfinite;   /* samples dropped as NaN or infinite */
+    const double *repeat_share;  /* per (variant, point): error share repeating in every seed, NAN unknown */
+    double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
 };
 
 static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)

@@ -25,7 +25,8 @@ static void mem_free(struct figures_mem *m)
 
 /* The share of (v, p)'s error that repeats in every seed, from the seeds' images averaged: noise
    falls by the seed count, structure stays. NAN when it cannot be told. */
-static double repeat_share(const struct compare *c, int s, int v, int p, const char *dir, const struct rgbf *ref)
+static double repeat_share(const struct compare *c, int s, int v, int p, const char *dir,
+                           const struct rgbf *ref)
 {
     double rom, mr;
     struct err e;
@@ -34,23 +35,35 @@ static double repeat_share(const struct compare *c, int s, int v, int p, const c
     return fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
 }
 
-static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref, struct figures_mem *m)
+static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
+                  struct figures_mem *m)
 {
     size_t nv = (size_t)c->n_variants, n = nv * c->n_points * c->n_seeds;
     m->variants = calloc(nv, sizeof *m->variants), m->samplers = calloc(nv, sizeof *m->samplers);
     m->points = calloc((size_t)c->n_points, sizeof *m->points), m->pools = calloc(nv, sizeof *m->pools);
-    m->spp = calloc(n, sizeof *m->spp), m->cpu = calloc(n, sizeof *m->cpu), m->rel = calloc(n, sizeof *m->rel);
+    m->spp = calloc(n, sizeof *m->spp), m->cpu = calloc(n, sizeof *m->cpu),
+    m->rel = calloc(n, sizeof *m->rel);
     m->share = calloc(n, sizeof *m->share), m->nonfinite = calloc(n, sizeof *m->nonfinite);
     m->repeat = calloc(nv * c->n_points, sizeof *m->repeat);
-    if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel || !m->share ||
-        !m->nonfinite || !m->repeat)
+    if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
+        !m->share || !m->nonfinite || !m->repeat)
         return -1;
     struct verdict_figures *f = &m->f;
-    *f = (struct verdict_figures){.study = c->name, .scene = c->scenes[s].name, .n_variants = c->n_variants,
-                                  .n_points = c->n_points, .n_seeds = c->n_seeds, .variants = m->variants,
-                                  .samplers = m->samplers, .pools = m->pools, .points = m->points, .spp = m->spp,
-                                  .cpu_s = m->cpu, .relmse = m->rel, .sampler_share = m->share,
-                                  .nonfinite = m->nonfinite, .repeat_share = m->repeat,
+    *f = (struct verdict_figures){.study = c->name,
+                                  .scene = c->scenes[s].name,
+                                  .n_variants = c->n_variants,
+                                  .n_points = c->n_points,
+                                  .n_seeds = c->n_seeds,
+                                  .variants = m->variants,
+                                  .samplers = m->samplers,
+                                  .pools = m->pools,
+                                  .points = m->points,
+                                  .spp = m->spp,
+                                  .cpu_s = m->cpu,
+                                  .relmse = m->rel,
+                                  .sampler_share = m->share,
+                                  .nonfinite = m->nonfinite,
+                                  .repeat_share = m->repeat,
                                   .ref_spp = c->scenes[s].ref_spp};
     for (int p = 0; p < c->n_points; p++)
         m->points[p] = c->points[p];
@@ -86,8 +99,9 @@ int verdict_from_compare(const struct compare *c, const char *dir, struct verdic
         struct figures_mem m = {0};
         int has_ref = cs->ref_kind != COMPARE_REF_NONE;
         int rc = (has_ref && imgio_read_f(cs->ref_path, &ref, NULL, e) < 0) ? -1
-                 : gather(c, s, dir, has_ref ? &ref : NULL, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory")
-                                                                    : verdict_scene_compute(&m.f, &out->scenes[s], e);
+                 : gather(c, s, dir, has_ref ? &ref : NULL, &m) < 0
+                     ? err_set(e, NULL, 0, 0, "out of memory")
+                     : verdict_scene_compute(&m.f, &out->scenes[s], e);
         mem_free(&m);
         image_f_free(&ref);
         if (rc < 0) {

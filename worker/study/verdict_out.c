@@ -6,14 +6,14 @@
 
 #include "verdict_out.h"
 
-#define TIE_RULE                                                                                               \
-    "Two variants are ranked apart only when the gap between their means over the seeds exceeds the "         \
-    "larger of their two min-max ranges across seeds (for relMSE on its logarithm: ratios count); a "         \
-    "variant's rank is 1 + the number of variants ahead of it by that rule. Equal samples and equal CPU "     \
+#define TIE_RULE                                                                                             \
+    "Two variants are ranked apart only when the gap between their means over the seeds exceeds the "        \
+    "larger of their two min-max ranges across seeds (for relMSE on its logarithm: ratios count); a "        \
+    "variant's rank is 1 + the number of variants ahead of it by that rule. Equal samples and equal CPU "    \
     "time are each the largest that every variant reached (the smallest of the variants' densest points), "  \
-    "each seed's relMSE read there in log-log between its measured points; a variant whose cheapest point "   \
-    "costs over 1.25x that is not reached and ranks behind those that are. A ranking is clear when "           \
-    "one variant alone ranks 1, a tie when several do but some variant is behind, inconclusive when none "    \
+    "each seed's relMSE read there in log-log between its measured points; a variant whose cheapest point "  \
+    "costs over 1.25x that is not reached and ranks behind those that are. A ranking is clear when "         \
+    "one variant alone ranks 1, a tie when several do but some variant is behind, inconclusive when none "   \
     "is ahead of another or there is only one seed."
 
 static const char *status_name(enum verdict_status s)
@@ -145,9 +145,10 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
         sbuf_escape(b, v->sentences[i]);
         sbuf_printf(b, "</li>\n");
     }
-    sbuf_printf(b, "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
-                   "[min, max]</th><th>rank at equal CPU time (%.3g s): relMSE [min, max]</th><th>rank by "
-                   "slope: relMSE ~ spp^s [min, max]</th></tr>\n",
+    sbuf_printf(b,
+                "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
+                "[min, max]</th><th>rank at equal CPU time (%.3g s): relMSE [min, max]</th><th>rank by "
+                "slope: relMSE ~ spp^s [min, max]</th></tr>\n",
                 v->by_samples.at, v->by_cpu.at);
     for (int k = 0; k < v->n_variants; k++) {
         sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
@@ -158,8 +159,9 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
         html_cell(b, &v->by_slope, k, "%.2f");
         sbuf_printf(b, "</tr>\n");
     }
-    sbuf_printf(b, "</table>\n<p class=\"note\">Rankings: at equal samples %s, at equal CPU time %s, by slope %s.",
-                status_name(v->by_samples.status), status_name(v->by_cpu.status), status_name(v->by_slope.status));
+    sbuf_printf(
+        b, "</table>\n<p class=\"note\">Rankings: at equal samples %s, at equal CPU time %s, by slope %s.",
+        status_name(v->by_samples.status), status_name(v->by_cpu.status), status_name(v->by_slope.status));
     for (int i = 0; i < v->n_failures; i++) {
         sbuf_printf(b, "%s", i ? "; " : " <b>Failures</b>: ");
         sbuf_escape(b, v->failures[i].text);
@@ -180,11 +182,13 @@ void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
             html_scene(b, &s[i].scenes[k]);
     sbuf_printf(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ");
     sbuf_escape(b, TIE_RULE);
-    sbuf_printf(b, " Failure modes: more than %.0f%% of the error repeating in every seed (structured: averaging "
-                   "the seeds' images leaves it); a step along the sweep whose local slope is above %.1f (error "
-                   "stops falling); any non-finite sample; a sampler taking more than %.0f%% of the CPU time. "
-                   "The same verdict is in <a href=\"verdict.json\">verdict.json</a>.</p></section>\n",
-                100 * VERDICT_STRUCTURED_SHARE, VERDICT_STALL_SLOPE, 100 * VERDICT_SAMPLER_SHARE);
+    sbuf_printf(
+        b,
+        " Failure modes: more than %.0f%% of the error repeating in every seed (structured: averaging "
+        "the seeds' images leaves it); a step along the sweep whose local slope is above %.1f (error "
+        "stops falling); any non-finite sample; a sampler taking more than %.0f%% of the CPU time. "
+        "The same verdict is in <a href=\"verdict.json\">verdict.json</a>.</p></section>\n",
+        100 * VERDICT_STRUCTURED_SHARE, VERDICT_STALL_SLOPE, 100 * VERDICT_SAMPLER_SHARE);
 }
 
 void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len)
@@ -209,5 +213,6 @@ void verdict_print_warnings(const struct verdict_study *s, int n)
     for (int i = 0; i < n; i++)
         for (int k = 0; k < s[i].n_scenes; k++)
             for (int w = 0; w < s[i].scenes[k].n_warnings; w++)
-                err_print("%s: warning: %s: %s\n", s[i].name, s[i].scenes[k].scene, s[i].scenes[k].warnings[w]);
+                err_print("%s: warning: %s: %s\n", s[i].name, s[i].scenes[k].scene,
+                          s[i].scenes[k].warnings[w]);
 }

@@ -39,8 +39,8 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
     x->text[0] = 0;
     switch (x->kind) {
     case VERDICT_STRUCTURED:
-        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed (aliasing, a pattern or a bias)", v,
-               100 * x->value, at);
+        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed (aliasing, a pattern or a bias)",
+               v, 100 * x->value, at);
         break;
     case VERDICT_STALLS:
         append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
@@ -49,7 +49,8 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
         append(x->text, "%s: %.0f non-finite samples dropped", v, x->value);
         break;
     case VERDICT_SHARE:
-        append(x->text, "%s: drawing its point sets takes %.0f%% of its CPU time at %s", v, 100 * x->value, at);
+        append(x->text, "%s: drawing its point sets takes %.0f%% of its CPU time at %s", v, 100 * x->value,
+               at);
         break;
     }
 }
@@ -93,21 +94,24 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                    r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
             if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
-                append(w, "%s, %s cannot be had: its cheapest image costs far more than the %.3g %s every other "
-                          "variant reached, so it ranks behind them",
+                append(w,
+                       "%s, %s cannot be had: its cheapest image costs far more than the %.3g %s every other "
+                       "variant reached, so it ranks behind them",
                        ranking_name(out, r), out->variants[r->e[j].variant], r->at,
                        r == &out->by_cpu ? "CPU seconds" : "samples per pixel");
     }
 }
 
 /* "At equal CPU time (0.21 s per image), use jitter: ..." for one ranking. */
-static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at, char *s)
+static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at,
+                        char *s)
 {
     char top[VERDICT_TEXT_MAX], rest[VERDICT_TEXT_MAX];
     if (r->n < 2)
         return;
     if (r->status == VERDICT_INCONCLUSIVE) {
-        append(s, "%s on %s, the variants differ by less than their seeds' spread: inconclusive", at, out->scene);
+        append(s, "%s on %s, the variants differ by less than their seeds' spread: inconclusive", at,
+               out->scene);
         append(s, out->n_seeds < 2 ? " (one seed)." : " (more seeds or samples would tell).");
         return;
     }
@@ -117,8 +121,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
         if (r->e[i].rank > 1)
             next = &r->e[i];
     if (r->status == VERDICT_CLEAR)
-        append(s, "%s on %s, use %s: relMSE %.3g, %.2fx lower than the next, %s.", at, out->scene, top, b->value,
-               next->value / b->value, out->variants[next->variant]);
+        append(s, "%s on %s, use %s: relMSE %.3g, %.2fx lower than the next, %s.", at, out->scene, top,
+               b->value, next->value / b->value, out->variants[next->variant]);
     else {
         group(out, r, next->rank, rest);
         append(s, "%s on %s, %s tie within their seeds' spread, ahead of %s.", at, out->scene, top, rest);
@@ -133,8 +137,9 @@ static void say_slopes(const struct verdict_scene *out, char *s)
     char top[VERDICT_TEXT_MAX];
     group(out, r, 1, top);
     const struct verdict_entry *b = &r->e[0], *w = &r->e[r->n - 1];
-    append(s, "Error falls fastest with %s (relMSE ~ spp^%.2f, seeds %.2f to %.2f) and slowest with %s (%.2f).", top,
-           b->value, b->lo, b->hi, out->variants[w->variant], w->value);
+    append(s,
+           "Error falls fastest with %s (relMSE ~ spp^%.2f, seeds %.2f to %.2f) and slowest with %s (%.2f).",
+           top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
 }
 
 static const struct verdict_entry *entry_of(const struct verdict_ranking *r, int v)
@@ -179,21 +184,26 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
         }
     }
     for (int u = 0; u < f->n_variants; u++) {
-        if (strcmp(f->samplers[u], "poisson") || f->pools[u] == 0 || !(s = next_line(out->sentences, &out->n_sentences)))
+        if (strcmp(f->samplers[u], "poisson") || f->pools[u] == 0 ||
+            !(s = next_line(out->sentences, &out->n_sentences)))
             continue;
         const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
         int pool = verdict_beats(a, b, 1), fresh = verdict_beats(b, a, 1);
         if (pool && b->unreached)
-            append(s, "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs more "
-                      "than the %.3g s the variants are compared at.", out->scene, f->variants[u], f->variants[v],
-                   out->by_cpu.at);
+            append(s,
+                   "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs "
+                   "more "
+                   "than the %.3g s the variants are compared at.",
+                   out->scene, f->variants[u], f->variants[v], out->by_cpu.at);
         else if (pool || fresh)
             append(s, "At equal CPU time on %s, %s (%s) beats %s (%s): relMSE %.3g against %.3g.", out->scene,
                    f->variants[pool ? u : v], pool ? "the pool" : "fresh sets", f->variants[pool ? v : u],
                    pool ? "fresh sets" : "the pool", fmin(a->value, b->value), fmax(a->value, b->value));
         else
-            append(s, "At equal CPU time on %s, the pool %s and the fresh sets %s tie within their seeds' spread.",
-                   out->scene, f->variants[u], f->variants[v]);
+            append(
+                s,
+                "At equal CPU time on %s, the pool %s and the fresh sets %s tie within their seeds' spread.",
+                out->scene, f->variants[u], f->variants[v]);
     }
 }
 
@@ -218,12 +228,15 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
         if (x->kind == VERDICT_SHARE || !(s = next_line(out->sentences, &out->n_sentences)))
             continue; /* the sampler's share is said with Poisson's cost */
         if (x->kind == VERDICT_STRUCTURED)
-            append(s, "%s %s on %s: %.0f%% of its error at %s repeats in every seed, so no number of seeds "
-                      "averages it away.", v, strcmp(f->samplers[x->variant], "uniform") ? "has structured error" : "aliases",
+            append(s,
+                   "%s %s on %s: %.0f%% of its error at %s repeats in every seed, so no number of seeds "
+                   "averages it away.",
+                   v, strcmp(f->samplers[x->variant], "uniform") ? "has structured error" : "aliases",
                    out->scene, 100 * x->value, at);
         else if (x->kind == VERDICT_STALLS)
-            append(s, "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.", v, at,
-                   out->scene, x->value);
+            append(s,
+                   "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.",
+                   v, at, out->scene, x->value);
         else
             append(s, "%s dropped %.0f non-finite samples on %s.", v, x->value, out->scene);
     }
