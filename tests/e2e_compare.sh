@@ -268,7 +268,7 @@ done <"$T/maps.b64"
 check "error maps: none nearly black (RMS brightness > 0.1)" [ "$n" -eq 3 -a "$dark" -eq 0 ]
 
 # 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
-for j in jobs/compare.yaml jobs/seed-experiment.yaml; do
+for j in jobs/compare.yaml jobs/seed-experiment.yaml jobs/studies/*.yaml; do
     n=$(basename "$j" .yaml)
     sed -e 's/^width:.*/width: 8/' -e 's/^height:.*/height: 8/' -e "s/^name:.*/name: $n/" \
         -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$j" >"$T/jobs-$n.yaml"
