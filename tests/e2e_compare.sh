@@ -30,7 +30,7 @@ EOF
 check "compare job exits 0 (got $rc: $(tail -n 1 "$T/run1.err"))" [ "$rc" -eq 0 ]
 cdir=$T/out/cmp
 check "40 images" [ "$(ls "$cdir"/*.png 2>/dev/null | wc -l)" -eq 40 ]
-check "40 sidecars" [ "$(ls "$cdir"/*.json 2>/dev/null | wc -l)" -eq 40 ]
+check "40 sidecars" [ "$(ls "$cdir"/*.json 2>/dev/null | grep -vc '/verdict\.json$')" -eq 40 ]
 for f in checker-jitter-t25-s2 checker-poisson-t50-s1 board-uniform-t25-s1 board-poisson-pool16-t50-s2; do
     check "image and sidecar $f" test -s "$cdir/$f.png" -a -s "$cdir/$f.json"
 done
@@ -93,7 +93,7 @@ else
 fi
 check "chart: 20 lines (2 scenes x 2 panels x 5 variants)" [ "$(grep -c '<polyline' "$svg")" -eq 20 ]
 check "chart: 4 panels" [ "$(grep -c 'error against' "$svg")" -eq 4 ]
-check "chart: time axis with unit" grep -q 'wall time per image (s, log)' "$svg"
+check "chart: time axis with unit" grep -q 'CPU time per image (s, log)' "$svg"
 check "chart: samples axis" grep -q 'samples per pixel (mean, log)' "$svg"
 check "chart: relMSE axis" grep -q 'relMSE (eps 0.01, log)' "$svg"
 check "chart: dotted guide slopes" grep -q 'stroke-dasharray' "$svg"
@@ -109,17 +109,48 @@ check "report: the chart shrinks to the page's width (a long label widens its le
 check "report: images as data URIs" [ "$(grep -o 'src="data:image/png;base64,' "$html" | wc -l)" -ge 40 ]
 check "report: nothing from the network" sh -c "! grep -Eqi '(src|href)=\"(https?:)?//|url\\(|@import' '$html'"
 check "report: sample counts side by side" grep -q '</b> t=25: 16 spp' "$html"
-check "report: 4x crops" grep -q '4x nearest-neighbour crops' "$html"
+check "report: zoomed crops (32x24 images: 24-pixel windows at 7x)" grep -q '7x nearest-neighbour crops' "$html"
 check "report: error maps" grep -q 'Error maps at' "$html"
+# Images a person can judge: every render at an integer zoom >= 2 (32 px wide: 8x), pixelated,
+# the reference at the same size; every seed's render on the page, behind a seed button
+check "report: renders at 8x, 256x192" [ "$(grep -c '<figure class="sd" data-seed="[0-9]" data-slot="g[0-9]*v[0-9]*"[^>]*><img class="z" data-ab="ref[01]" src="data:image/png;base64,[^"]*" width="256" height="192"' "$html")" -eq 40 ]
+check "report: the references at the renders' size" [ "$(grep -c '<img class="z" id="ref[01]" src="data:image/png;base64,[^"]*" width="256" height="192"' "$html")" -eq 2 ]
+check "report: pixelated" grep -q 'img.z{image-rendering:pixelated' "$html"
+missing=$(tail -n +2 "$csv" | awk -F, '{print $NF}' | while read -r f; do grep -q "alt=\"[^\"]* $f\"" "$html" || echo "$f"; done)
+check "report: every seed's render on the page (missing: $missing)" [ -z "$missing" ]
+check "report: a seed button per seed and scene" [ "$(grep -o '<button data-seed="[01]"' "$html" | wc -l)" -eq 4 ]
+check "report: seed index 1 hidden until chosen" \
+    [ "$(grep -c 'data-seed="1" data-slot="[^"]*" hidden>' "$html")" -eq "$(grep -c 'data-seed="1" data-slot=' "$html")" ]
+check "report: seed index 0 shown" sh -c "! grep -q 'data-seed=\"0\" data-slot=\"[^\"]*\" hidden>' '$html'"
+check "report: the A/B toggle, explained" sh -c "grep -q '<button class=\"ab\">' '$html' && grep -q 'Hold R, or hold the A/B button' '$html'"
+check "report: crops swap to the reference's crop" grep -q 'data-ab="ref0c[0-9]"' "$html"
+check "report: click to enlarge, the script inline" sh -c "grep -q 'Click an image to enlarge it' '$html' && grep -q '<script>(function(){' '$html'"
+check "report: the error maps' scale drawn, with its numbers" \
+    sh -c "grep -q '<div class=\"cbar\"><img src=\"data:image/png;base64,' '$html' && grep -q 'from -4 (black) to 2 (pale yellow)' '$html' && grep -q '>1e-2<br>10%<' '$html'"
+check "report: the error maps in linear radiance" grep -q 'Error maps at .*in linear radiance (the float images)' "$html"
+check "report: no 8-bit |diff| maps" sh -c "! grep -q 'image - reference| x' '$html'"
 check "report: one stability line per variant and scene" [ "$(grep -c '^<li><b>' "$html")" -eq 10 ]
 check "report: stability names the seed spread" grep -q 'spread across 2 seeds' "$html"
-check "report: variants ranked by efficiency per scene" [ "$(grep -c '<b>For the time spent</b>' "$html")" -eq 2 ]
+check "report: opens with the verdict" sh -c "sed -n '/<h1>/,\$p' '$html' | grep -m1 -o '<h2>[^<]*' | grep -qx '<h2>Verdict'"
+check "report: a verdict per scene" [ "$(grep -c '<h3>cmp / ' "$html")" -eq 2 ]
+check "report: the rule is stated" grep -q 'How it is decided' "$html"
+check "verdict.json beside the report" python3 -c "
+import json, sys
+d = json.load(open('$cdir/verdict.json'))
+s = d['studies'][0]
+assert d['job'] == 'cmp' and s['study'] == 'cmp' and [x['scene'] for x in s['scenes']] == ['checker', 'board']
+for x in s['scenes']:
+    for k in ('equal_samples', 'equal_cpu_time', 'slopes'):
+        assert x[k]['status'] in ('clear', 'tie', 'inconclusive') and len(x[k]['ranking']) == 5, x[k]
+        assert sorted(e['rank'] for e in x[k]['ranking'])[0] == 1, x[k]
+    assert isinstance(x['failures'], list) and isinstance(x['warnings'], list) and x['sentences']
+"
 check "report: the table has every image" [ "$(grep -c '^<tr><td class="l">' "$html")" -eq 40 ]
 # Links: relative, and each resolves from the report's folder (the page may be opened anywhere)
 grep -o 'href="[^"]*"' "$html" | sed 's/^href="//; s/"$//' >"$T/links"
 check "report: links to summary.csv and chart.svg" sh -c "grep -qx summary.csv '$T/links' && grep -qx chart.svg '$T/links'"
 check "report: every image and sidecar linked from the table" \
-    [ "$(grep -c '\.png$' "$T/links")" -eq 40 -a "$(grep -c '\.json$' "$T/links")" -eq 40 ]
+    [ "$(grep -c '\.png$' "$T/links")" -eq 40 -a "$(grep -v '^verdict\.json$' "$T/links" | grep -c '\.json$')" -eq 40 ]
 unresolved=$(while read -r l; do [ -e "$cdir/$l" ] || echo "$l"; done <"$T/links")
 check "report: every link resolves (unresolved: $unresolved)" [ -z "$unresolved" ]
 
@@ -135,14 +166,17 @@ printf 'name: given\nscene: checker\nwidth: 16\nreference: given.png\nvariants:\
 "$WORKER" --quiet --out "$T/out" "$T/given.yaml" 2>/dev/null; rc=$?
 check "reference image file: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "reference image file: scored" [ "$(awk -F, 'NR == 2 && $12 > 0' "$T/out/given/summary.csv" | wc -l)" -eq 1 ]
+check "reference image file: its error maps on 8-bit display values, and say so" \
+    grep -q 'Error maps at .*on 8-bit display values v / 255' "$T/out/given/report.html"
 # a light_threshold sweep leaves samples per pixel alone: efficiency is read at the sweep's last
 # point, and the report says so instead of "densest"
 printf 'name: lts\nscene: checker\nwidth: 8\nreference: { sampler: jitter, threshold: 20 }\nsweep: { light_threshold: [50, 25] }\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/lts.yaml"
 "$WORKER" --quiet --out "$T/out" "$T/lts.yaml" 2>/dev/null; rc=$?
 check "light_threshold sweep: exit 0 (got $rc)" [ "$rc" -eq 0 ]
-check "light_threshold sweep: efficiency at the last point of the sweep" \
-    grep -q "at each variant's last point of the sweep" "$T/out/lts/report.html"
-check "threshold sweep: efficiency at the densest point" grep -q "at each variant's densest point" "$html"
+check "light_threshold sweep: no slope to rank by" python3 -c "
+import json
+x = json.load(open('$T/out/lts/verdict.json'))['studies'][0]['scenes'][0]
+assert x['slopes']['ranking'] == [] and x['equal_samples']['ranking'][0]['variant'] == 'jitter-t50', x"
 # a long sweep: the stability line names every point and ends with its note, however long
 printf 'name: ltl\nscene: checker\nwidth: 4\nreference: { sampler: jitter, threshold: 50 }\nseeds: [1, 2]\nsweep: { light_threshold: [90, 85, 80, 75, 70, 65, 60, 55, 50, 45, 40, 35, 30, 25, 20, 15, 12, 11] }\nvariants:\n  - { sampler: jitter, threshold: 50 }\n' >"$T/ltl.yaml"
 "$WORKER" --quiet --out "$T/out" "$T/ltl.yaml" 2>/dev/null; rc=$?
@@ -164,13 +198,13 @@ before=$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.exr)
 "$WORKER" --out "$T/out" "$T/cmp.yaml" 2>"$T/run2.err"; rc=$?
 check "second run exits 0" [ "$rc" -eq 0 ]
 check "second run summary: 0 rendered, 2 reused" grep -q "references: 0 rendered, 2 reused from cache (saving [0-9.]* s)" "$T/run2.err"
-check "not a terminal: only the summary line" [ "$(wc -l <"$T/run2.err")" -eq 1 ]
+check "not a terminal: only the summary line (and the verdict's warnings)" [ "$(grep -vc ': warning: ' "$T/run2.err")" -eq 1 ]
 check "cached references not rewritten" [ "$before" = "$(ls -li --time-style=full-iso "$T"/out/.cache/ref-*.exr)" ]
 # a changed scene file is a new cache key: only its reference renders again
 echo "# changed" >>"$T/board.yaml"
 "$WORKER" --quiet --out "$T/out" "$T/cmp.yaml" 2>"$T/run3.err"
 check "changed scene: 1 rendered, 1 reused" grep -q "references: 1 rendered, 1 reused from cache" "$T/run3.err"
-check "--quiet: only the summary line" [ "$(wc -l <"$T/run3.err")" -eq 1 ]
+check "--quiet: only the summary line (and the verdict's warnings)" [ "$(grep -vc ': warning: ' "$T/run3.err")" -eq 1 ]
 
 # 3. progress: one line per combination on a terminal (script(1) gives it one)
 if command -v script >/dev/null 2>&1; then
@@ -209,6 +243,34 @@ if [ -n "$chromium" ]; then
     var=$(awk -v w="$(cat "$T/white.mse")" -v b="$(cat "$T/black.mse")" 'BEGIN { m = (1 + b - w) / 2; printf "%.5f", b - m * m }')
     echo "screenshot: pixel variance $var (a blank page: 0)"
     check "screenshot is not blank (variance $var > 0.01)" awk -v v="$var" 'BEGIN { exit !(v > 0.01) }'
+    # The page's script at work: seed 2's button shows seed 2's 20 figures of the first scene (10
+    # renders, 5 crops, 5 maps) and hides seed 1's; holding R puts the reference in each of its 20
+    # renders' place and letting go restores them; a click enlarges an image by a whole factor.
+    cat >"$T/drive.js" <<'EOF'
+addEventListener('load', function () {
+    var s = document.querySelector('section.scene');
+    s.querySelector('button[data-seed="1"]').click();
+    dispatchEvent(new KeyboardEvent('keydown', {key: 'r'}));
+    var vis = function (k) { return s.querySelectorAll('figure[data-seed="' + k + '"]:not([hidden])').length; };
+    var r = document.getElementById('ref0').src, sw = 0, all = 0, back = 0;
+    s.querySelectorAll('img[data-ab="ref0"]').forEach(function (i) { all++; if (i.src === r) sw++; });
+    dispatchEvent(new KeyboardEvent('keyup', {key: 'r'}));
+    s.querySelectorAll('img[data-ab="ref0"]').forEach(function (i) { if (i.src !== r) back++; });
+    var im = s.querySelector('figure[data-seed="1"] img.z');
+    im.click();
+    var o = document.querySelector('#ov img'), k = o.width / im.naturalWidth;
+    document.title = 'seeds ' + vis(0) + ' ' + vis(1) + ' swapped ' + sw + '/' + all + ' back ' + back +
+        ' enlarged ' + (k === Math.floor(k) && k > 8 ? 'whole' : k);
+});
+EOF
+    { sed 's#</body></html>##' "$html"; printf '<script>'; cat "$T/drive.js"; printf '</script></body></html>\n'; } >"$cdir/drive.html"
+    timeout 120 "$chromium" --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+        --disable-background-networking --disable-component-update --disable-sync \
+        --user-data-dir="$T/profile" --window-size=1200,2000 --dump-dom "file://$cdir/drive.html" >"$T/dom.html" 2>"$T/chromium.log"
+    rm -f "$cdir/drive.html"
+    got=$(sed -n 's/.*<title>\(seeds [^<]*\)<\/title>.*/\1/p' "$T/dom.html")
+    check "the page's script: seeds, A/B and enlarging work (got: $got)" \
+        [ "$got" = "seeds 0 20 swapped 20/20 back 20 enlarged whole" ]
 else
     echo "note: chromium missing and not installed (not root, no apt-get, or NO_INSTALL set): screenshot not checked"
 fi
@@ -248,24 +310,29 @@ order() { # order VARIANT: VARIANT's mean relMSE is below random's by > 2 standa
 }
 check "jitter below random at equal samples" order jitter-t5
 check "poisson below random at equal samples" order poisson-t4
-# The error maps of these converged images (400 spp) are visible: their gain comes from the
-# errors themselves. RMS brightness of each map, from `worker diff` against an all-black image.
+# The error maps of these converged images (400 spp) still show their error: on the fixed log
+# scale a relMSE term of 1e-3 is dark purple, not black. Seed 1's map of each variant: the
+# renders' size, and its RMS brightness from `worker diff` against an all-black image.
 ohtml=$T/out/order/report.html
-check "error maps: the gain is stated" grep -q 'Error maps at .*|image - reference| x [0-9]*' "$ohtml"
-sed -n '/<h3>Error maps at/,/^<\/div>/p' "$ohtml" | grep -o 'base64,[^"]*' | head -n 3 | sed 's/^base64,//' >"$T/maps.b64"
+check "error maps: the scale is stated" grep -q 'Error maps at .*coloured by its log10 on one fixed scale' "$ohtml"
+grep 'data-seed="0" data-slot="m0v[0-9]*"' "$ohtml" | grep -o 'base64,[^"]*' | sed 's/^base64,//' >"$T/maps.b64"
 check "error maps: three maps" [ "$(wc -l <"$T/maps.b64")" -eq 3 ]
-dark=0; n=0
+dark=0; n=0; sizes=""
 while read -r b64; do
     n=$((n + 1))
     echo "$b64" | base64 -d >"$T/map$n.png"
     set -- $(od -An -tu1 -j16 -N8 "$T/map$n.png") 0 0 0 0 0 0 0 0
     w=$(( ($1 << 24) + ($2 << 16) + ($3 << 8) + $4 )); h=$(( ($5 << 24) + ($6 << 16) + ($7 << 8) + $8 ))
+    sizes="$sizes ${w}x$h"
     { printf 'P6\n%d %d\n255\n' "$w" "$h"; head -c $((w * h * 3)) /dev/zero; } >"$T/mapblack.ppm"
     rms=$("$WORKER" diff "$T/mapblack.ppm" "$T/map$n.png" | awk '$1 == "rmse" {print $2}')
     echo "error map $n: RMS brightness $rms"
     awk -v r="$rms" 'BEGIN { exit !(r > 0.1) }' || dark=$((dark + 1))
 done <"$T/maps.b64"
+check "error maps: the renders' size (got$sizes)" [ "$sizes" = " 64x48 64x48 64x48" ]
 check "error maps: none nearly black (RMS brightness > 0.1)" [ "$n" -eq 3 -a "$dark" -eq 0 ]
+check "error maps: shown at the renders' zoom (64 px: 4x)" \
+    [ "$(grep -c 'data-slot="m0v[0-9]*"[^>]*><img class="z" src="data:image/png;base64,[^"]*" width="256" height="192"' "$ohtml")" -eq 15 ]
 
 # 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
 for j in jobs/compare.yaml jobs/seed-experiment.yaml jobs/studies/*.yaml; do

@@ -169,7 +169,9 @@ sed -i -e 's/^width: 200/width: 6  /; s/threshold: 0.5 }/threshold: 25 }/; s/\[2
     "$T/jobs/compare.yaml"
 (cd "$T/jobs" && "$WORKER" --out "$T/o8" compare.yaml 2>"$T/e8"); rc=$?
 check "SPEC compare job: exit 0 (got $rc: $(head -n 1 "$T/e8"))" [ "$rc" -eq 0 ]
-check "SPEC compare job: one summary line" [ "$(wc -l <"$T/e8")" -eq 1 ]
+check "SPEC compare job: one summary line (and the verdict's warnings)" [ "$(grep -vc ': warning: ' "$T/e8")" -eq 1 ]
+check "SPEC compare job: the summary names the winner at equal CPU time" grep -q '; at equal CPU time: compare: ' "$T/e8"
+check "SPEC compare job: verdict.json beside report.html" [ -s "$T/o8/compare/verdict.json" -a -s "$T/o8/compare/report.html" ]
 n=$(ls "$T/o8/compare" | grep -c '\.png$')
 check "SPEC compare job: 2 scenes x 4 variants x 2 thresholds x 3 seeds = 48 images (got $n)" [ "$n" -eq 48 ]
 for f in summary.csv chart.svg report.html checker-poisson-t50-s1.json cornell-random-t34-s3.png; do

@@ -178,7 +178,7 @@ static void test_stats(void)
     stability(c, 0, 1, NULL, line, sizeof line);
     CHECK(strstr(line, "no reference") != NULL);
     char *svg = compare_stats_chart_svg(c);
-    CHECK(svg && strstr(svg, "checker: error against time") && strstr(svg, ">flat<"));
+    CHECK(svg && strstr(svg, "checker: error against CPU time") && strstr(svg, ">flat<"));
     free(svg);
     compare_free(c);
 }

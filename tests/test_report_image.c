@@ -1,8 +1,11 @@
-/* test_report_image: the compare report's image analysis: the worst window finds where images
-   differ from the reference, crops zoom the right pixels, error maps' gain and clamping. */
+/* test_report_image: the compare report's image analysis: the zoom is an integer of at least 2,
+   the worst window finds where images differ from the reference, crops take the right pixels,
+   the colour bar is the error maps' own scale. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
+#include "image/errmap.h"
 #include "study/report_image.h"
 
 /* An image of w x h pixels, every channel v. */
@@ -40,53 +43,69 @@ static void test_worst_window(void)
     image_free(&ref);
 }
 
-static void test_crop_zoom(void)
+static void test_zoom(void)
+{
+    CHECK(report_image_zoom(64, 256) == 4);  /* exactly 256 */
+    CHECK(report_image_zoom(100, 256) == 3); /* the smallest reaching 256: 300 */
+    CHECK(report_image_zoom(300, 256) == 2); /* never below 2, however large */
+    CHECK(report_image_zoom(4000, 256) == 2);
+    CHECK(report_image_zoom(12, 160) == 14); /* a crop: 168 */
+    CHECK(report_image_zoom(1, 256) == 256);
+}
+
+static void test_crop(void)
 {
     struct rgb8 src, out;
     struct err e = {0};
     flat(&src, 10, 10, 0);
     set_px(&src, 5, 6, 77);
-    CHECK(report_image_crop_zoom(&src, 4, 6, 3, &out, &e) == 0);
-    CHECK(out.w == 3 * REPORT_IMAGE_CROP_ZOOM && out.h == 3 * REPORT_IMAGE_CROP_ZOOM);
-    int lit = 0;
+    CHECK(report_image_crop(&src, 4, 6, 3, &out, &e) == 0);
+    CHECK(out.w == 3 && out.h == 3);
     for (int y = 0; y < out.h; y++)
-        for (int x = 0; x < out.w; x++) {
-            int v = out.px[((size_t)y * out.w + x) * 3 + 1];
-            int want = x / REPORT_IMAGE_CROP_ZOOM == 1 && y / REPORT_IMAGE_CROP_ZOOM == 0 ? 77 : 0;
-            lit += v == 77;
-            CHECK(v == want);
-        }
-    CHECK(lit == REPORT_IMAGE_CROP_ZOOM * REPORT_IMAGE_CROP_ZOOM);
+        for (int x = 0; x < out.w; x++)
+            CHECK(out.px[((size_t)y * out.w + x) * 3 + 1] == (x == 1 && y == 0 ? 77 : 0));
     image_free(&out);
     image_free(&src);
 }
 
-static void test_error_maps(void)
+/* The colour bar is errmap_make's own colouring: black-purple at the low end, pale yellow at the
+   high end, brighter all the way; a map pixel of term 10^L matches the bar's column for L. */
+static void test_errmap_bar(void)
 {
-    struct rgb8 ref, img, map;
+    struct rgb8 bar, map;
+    struct rgbf ref, img;
     struct err e = {0};
-    flat(&ref, 10, 10, 50);
-    CHECK(report_image_error_gain(&ref, &ref, 1) == REPORT_IMAGE_GAIN_MAX); /* no error at all */
-    flat(&img, 10, 10, 55);
-    CHECK(report_image_error_gain(&ref, &img, 1) == 51); /* every difference 5: 255 / 5 */
-    set_px(&img, 0, 0, 250);                             /* 1% of the pixels far off: over the 99th */
-    CHECK(report_image_error_gain(&ref, &img, 1) == 51);
-    set_px(&img, 1, 0, 250); /* 2%: now the 99th percentile is 200 */
-    CHECK(report_image_error_gain(&ref, &img, 1) == 1);
-    set_px(&img, 2, 0, 47);
-    CHECK(report_image_error_map(&ref, &img, 51, &map, &e) == 0);
-    CHECK(map.px[0] == 255);        /* 200 x 51, clamped */
-    CHECK(map.px[2 * 3] == 3 * 51); /* |47 - 50| x 51: below the reference counts too */
-    CHECK(map.px[5 * 3] == 255);    /* 5 x 51 */
+    CHECK(report_image_errmap_bar(60, &bar, &e) == 0);
+    CHECK(bar.w == 60 && bar.h == 1);
+    CHECK(bar.px[0] < 10 && bar.px[2] < 20); /* near {0, 0, 4} */
+    CHECK(bar.px[59 * 3] > 245 && bar.px[59 * 3 + 1] > 245 &&
+          bar.px[59 * 3 + 2] > 150); /* near {252, 255, 164} */
+    int rising = 1;
+    for (int i = 1; i < 60; i++) {
+        int a = bar.px[(i - 1) * 3] + bar.px[(i - 1) * 3 + 1] + bar.px[(i - 1) * 3 + 2];
+        int b = bar.px[i * 3] + bar.px[i * 3 + 1] + bar.px[i * 3 + 2];
+        rising &= b >= a;
+    }
+    CHECK(rising);
+    /* column 29 is L = -4 + 6 x 29.5 / 60 = -1.05: a grey 0.1 against a reference of 0.3 has a term
+       0.01 / (0.09 + 0.01) = 0.1 (L = -1), within a column of it */
+    CHECK(image_f_alloc(&ref, 1, 1, &e) == 0 && image_f_alloc(&img, 1, 1, &e) == 0);
+    for (int c = 0; c < 3; c++)
+        ref.px[c] = 0.3f, img.px[c] = 0.4f;
+    CHECK(errmap_make(&ref, &img, &map, &e) == 0);
+    for (int c = 0; c < 3; c++)
+        CHECK(abs((int)map.px[c] - (int)bar.px[29 * 3 + c]) <= 6);
     image_free(&map);
-    image_free(&img);
-    image_free(&ref);
+    image_f_free(&ref);
+    image_f_free(&img);
+    image_free(&bar);
 }
 
 int main(void)
 {
     test_worst_window();
-    test_crop_zoom();
-    test_error_maps();
+    test_zoom();
+    test_crop();
+    test_errmap_bar();
     return check_report("test_report_image");
 }

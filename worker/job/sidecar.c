@@ -197,6 +197,7 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||
                    count_at(d, root, "parts", &out->parts, e) < 0 ||
+                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 ||
                    count_at(d, samples, "total", &out->samples_total, e) < 0 ||
                    number_at(d, samples, "per_pixel_mean", &out->spp_mean, e) < 0 ||
                    count_at(d, samples, "per_pixel_min", &out->spp_min, e) < 0 ||

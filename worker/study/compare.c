@@ -16,6 +16,8 @@
 #include "job/outdir.h"
 #include "job/sidecar.h"
 #include "report.h"
+#include "verdict_from.h"
+#include "verdict_out.h"
 #include "job/run_out.h"
 #include "base/sbuf.h"
 #include "scenefile/scene_load.h"
@@ -84,6 +86,7 @@ static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, 
     it->wall_s = info.wall_s;
     it->cpu_s = info.cpu_s;
     it->sampler_share = info.sampling_share;
+    it->nonfinite = info.nonfinite;
     return 0;
 }
 
@@ -141,6 +144,7 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
         it->spp_min = t->pixels ? t->spp_min : 0;
         it->spp_max = t->spp_max;
+        it->nonfinite = t->nonfinite;
         it->wall_s = rr.procs.wall_s;
         it->cpu_s = rr.procs.cpu_s;
         it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
@@ -273,15 +277,21 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     e->msg[0] = 0;
     /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
        of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
-    char summary[2100], chart[2100], report[2100];
+    char summary[2100], chart[2100], report[2100], verdict[2100];
     snprintf(summary, sizeof summary, "%s/summary.csv", dir);
     snprintf(chart, sizeof chart, "%s/chart.svg", dir);
     snprintf(report, sizeof report, "%s/report.html", dir);
-    const char *outs[] = {summary, chart, report, NULL};
+    snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
+    const char *outs[] = {summary, chart, report, verdict, NULL};
     int lock = -1;
+    verdict_study_free(&c->verdict);
+    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0)
+        goto fail;
+    verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
         write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
         write_text(dir, "chart.svg", compare_stats_chart_svg(c), e) < 0 ||
+        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
         outdir_unlock(lock);
         goto fail;
@@ -329,12 +339,15 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
     if (current)
         snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
                  current);
-    snprintf(
-        buf, n,
-        "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> %s/%s/",
-        c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
-        plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
-        refs, wall_s, outdir_root(out_dir), c->name);
+    char winners[1024] = "";
+    if (c->has_verdict)
+        verdict_summary(&c->verdict, 1, winners, sizeof winners);
+    snprintf(buf, n,
+             "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> "
+             "%s/%s/%s%s",
+             c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
+             plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
+             refs, wall_s, outdir_root(out_dir), c->name, winners[0] ? "; at equal CPU time: " : "", winners);
 }
 
 /* compare_main_as, with compare_main's name_ok. */

@@ -8,6 +8,7 @@
 #include "job/job.h"
 #include "image/metrics.h"
 #include "job/run.h"
+#include "verdict.h"
 
 /* Most images one compare job may expand to. */
 #define COMPARE_MAX_ITEMS 4096
@@ -26,6 +27,7 @@ struct compare_scene {
                                      8-bit display values (a given PNG or PPM) */
     int ref_reused;               /* the cached reference was reused */
     double ref_wall_s;            /* seconds its render took (now or when it was cached) */
+    double ref_spp;               /* its samples per pixel (from its render or sidecar), 0 unknown */
 };
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
@@ -37,9 +39,9 @@ struct compare_item {
     int done, has_error;
     int skipped; /* its image and sidecar were current (same hash): not rendered again */
     double spp_mean, wall_s, cpu_s, sampler_share;
-    uint64_t spp_min, spp_max;
-    struct metrics error;         /* in the scene's reference's domain (linear unless a PNG/PPM) */
-    struct metrics display_error; /* on the PNG's 8-bit display values, for comparison */
+    uint64_t spp_min, spp_max, nonfinite; /* nonfinite: samples dropped as NaN or infinite */
+    struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
+    struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
 };
 
 struct compare {
@@ -51,7 +53,9 @@ struct compare {
     char (*points)[COMPARE_LABEL_MAX];      /* sweep point labels: "threshold 5" */
     char sweep_keys[COMPARE_LABEL_MAX * 2]; /* "threshold" or "threshold, light_threshold"; "" */
     uint64_t *seeds;
-    struct compare_item *items; /* index compare_index(c, scene, variant, point, seed) */
+    struct compare_item *items;   /* index compare_index(c, scene, variant, point, seed) */
+    struct verdict_study verdict; /* filled by compare_run once every image is scored */
+    int has_verdict;
 };
 
 /* 1 when the YAML file at path is a compare job (its root mapping has `variants:`), else 0

@@ -37,6 +37,7 @@ void compare_free(struct compare *c)
     free(c->points);
     free(c->seeds);
     free(c->items);
+    verdict_study_free(&c->verdict);
     free(c);
 }
 

@@ -25,21 +25,25 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
     if (scene_hash_inputs(j->scene_path, &h, e) < 0)
         return -1;
     char text[512];
-    int n = snprintf(text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s",
-                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
-                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
-                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
-                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "");
+    int n =
+        snprintf(text, sizeof text,
+                 "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s", cs->width,
+                 cs->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
+                 j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool,
+                 j->light_sampling, WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "");
     *key = hash_bytes(h, text, (size_t)n);
     return 0;
 }
 
-/* Seconds a cached reference took to render, from its sidecar (0 when unknown). */
-static double cached_wall_s(const char *sidecar)
+/* The seconds a cached reference took to render and its samples per pixel, from its sidecar (0
+   when unknown). */
+static void cached_figures(const char *sidecar, struct compare_scene *cs)
 {
     struct sidecar_info info;
     struct err e;
-    return sidecar_read(sidecar, &info, &e) == 0 && isfinite(info.wall_s) ? info.wall_s : 0;
+    int ok = sidecar_read(sidecar, &info, &e) == 0;
+    cs->ref_wall_s = ok && isfinite(info.wall_s) ? info.wall_s : 0;
+    cs->ref_spp = ok && isfinite(info.spp_mean) ? info.spp_mean : 0;
 }
 
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
@@ -65,7 +69,7 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         img.h == cs->height) {
         image_f_free(&img);
         cs->ref_reused = 1;
-        cs->ref_wall_s = cached_wall_s(sidecar);
+        cached_figures(sidecar, cs);
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);
         return 0;
@@ -81,5 +85,6 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         return rc;
     }
     cs->ref_wall_s = rr.procs.wall_s;
+    cs->ref_spp = rr.procs.total.pixels ? (double)rr.procs.total.samples / rr.procs.total.pixels : 0;
     return 0;
 }

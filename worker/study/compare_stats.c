@@ -228,7 +228,7 @@ char *compare_stats_chart_svg(const struct compare *c)
     char *svg = NULL, title[256];
     if (!mem || !order || !ser || !pan || !titles)
         goto done;
-    double *wall = mem, *spp = mem + per, *rel = mem + 2 * per, *lo = mem + 3 * per, *hi = mem + 4 * per;
+    double *cpu = mem, *spp = mem + per, *rel = mem + 2 * per, *lo = mem + 3 * per, *hi = mem + 4 * per;
     for (int s = 0; s < nsc; s++) {
         struct chart_series *by_time = ser + (size_t)2 * s * ns, *by_spp = by_time + ns;
         for (int v = 0; v < ns; v++) {
@@ -238,19 +238,19 @@ char *compare_stats_chart_svg(const struct compare *c)
                 struct compare_agg a;
                 compare_stats_aggregate(c, s, v, order[i], &a);
                 size_t k = k0 + i;
-                wall[k] = a.wall_s, spp[k] = a.spp, rel[k] = a.rel, lo[k] = a.rel_lo, hi[k] = a.rel_hi;
+                cpu[k] = a.cpu_s, spp[k] = a.spp, rel[k] = a.rel, lo[k] = a.rel_lo, hi[k] = a.rel_hi;
             }
             /* One seed has no spread: a whisker would be a dot claiming one. */
             const double *l = c->n_seeds > 1 ? lo + k0 : NULL, *h = c->n_seeds > 1 ? hi + k0 : NULL;
-            by_time[v] = (struct chart_series){c->variants[v], np, wall + k0, rel + k0, l, h};
+            by_time[v] = (struct chart_series){c->variants[v], np, cpu + k0, rel + k0, l, h};
             by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, l, h};
         }
-        snprintf(titles[2 * s], sizeof titles[0], "%s: error against time", c->scenes[s].name);
+        snprintf(titles[2 * s], sizeof titles[0], "%s: error against CPU time", c->scenes[s].name);
         snprintf(titles[2 * s + 1], sizeof titles[0], "%s: error against samples", c->scenes[s].name);
         const char *note =
             c->scenes[s].ref_kind == COMPARE_REF_NONE ? "no reference given: no error to chart" : NULL;
         pan[2 * s] = (struct chart_panel){titles[2 * s],
-                                          "wall time per image (s, log)",
+                                          "CPU time per image (s, log)",
                                           "relMSE (eps 0.01, log)",
                                           note,
                                           by_time,
@@ -268,12 +268,12 @@ char *compare_stats_chart_svg(const struct compare *c)
     }
     if (c->n_seeds > 1)
         snprintf(title, sizeof title,
-                 "%s: relMSE against wall time and samples per pixel (mean of %d seeds; whiskers: "
+                 "%s: relMSE against CPU time and samples per pixel (mean of %d seeds; whiskers: "
                  "min to max)",
                  c->name, c->n_seeds);
     else
         snprintf(title, sizeof title,
-                 "%s: relMSE against wall time and samples per pixel (one seed: no spread across "
+                 "%s: relMSE against CPU time and samples per pixel (one seed: no spread across "
                  "seeds measured)",
                  c->name);
     svg = chart_svg(title, pan, 2 * nsc, 2);

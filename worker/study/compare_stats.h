@@ -38,7 +38,7 @@ int compare_stats_seed_average(const struct compare *c, int scene, int variant, 
 char *compare_stats_stability(const struct compare *c, int scene, int variant, const char *dir,
                               const struct rgbf *ref);
 
-/* chart.svg: per scene, relMSE against wall time and against samples per pixel. */
+/* chart.svg: per scene, relMSE against CPU time and against samples per pixel. */
 char *compare_stats_chart_svg(const struct compare *c);
 
 #endif

@@ -8,242 +8,106 @@
 
 #include "compare_stats.h"
 #include "base/fileio.h"
-#include "image/errmap.h"
 #include "image/imgio.h"
-#include "image/png.h"
+#include "report_closeup.h"
 #include "report_image.h"
+#include "report_view.h"
 #include "base/sbuf.h"
-
-#define REPORT_MAX_PNG_BYTES (256u << 20)
+#include "verdict_out.h"
 
 static const char style[] =
-    "body{font-family:sans-serif;margin:16px;color:#222;max-width:1180px}"
+    "body{font-family:sans-serif;margin:16px;color:#222}p,ul,h3{max-width:1180px}"
     "h1{font-size:22px}h2{font-size:19px;border-top:2px solid #ddd;padding-top:10px}h3{font-size:15px}"
-    ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start}"
+    ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start;margin-bottom:8px}"
     "figure{margin:0;font-size:12px;width:min-content}figcaption{min-width:120px}"
-    "img{display:block;border:1px solid #ccc}img.px{image-rendering:pixelated}"
+    "img{display:block;border:1px solid #ccc}"
     "svg{max-width:100%;height:auto}" /* a long label's legend makes the chart wider than the page */
     "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px "
     "6px;text-align:right}"
-    "td.l,th.l{text-align:left}.pt{font-weight:bold;font-size:13px;min-width:90px}"
-    ".note{color:#555;font-size:13px}li{margin-bottom:4px}";
+    "td.l,th.l{text-align:left}.pt{font-weight:bold;font-size:13px;flex-basis:100%}"
+    ".note{color:#555;font-size:13px}li{margin-bottom:4px}"
+    ".warn{color:#8a4b00;background:#fff4e0;padding:4px "
+    "8px;font-size:13px}ul.verdict{font-size:15px}" REPORT_VIEW_CSS;
 
-/* Read a PNG file's bytes (for a data URI) and, when img is not NULL, decode it too. */
-static int read_png(const char *path, uint8_t **bytes, size_t *len, struct rgb8 *img, struct err *e)
+/* One render of the grid (variant v, sweep point p, seed index k) as a figure with its caption;
+   ab: the id of the reference the A/B toggle shows in its place, or NULL. */
+static int grid_figure(struct sbuf *b, const struct compare *c, int s, int v, int p, int k, const char *dir,
+                       int zoom, const char *ab, struct err *e)
 {
-    if (fileio_read_all(path, REPORT_MAX_PNG_BYTES, bytes, len, e) < 0)
-        return -1;
-    if (img && png_decode(*bytes, *len, path, img, e) < 0) {
-        free(*bytes);
-        *bytes = NULL;
-        return -1;
-    }
-    return 0;
-}
-
-/* <img> of PNG bytes, shown at least min_w pixels wide (small images scaled up, pixelated). */
-static void img_tag(struct sbuf *b, const uint8_t *png, size_t len, int w, int min_w, const char *alt)
-{
-    sbuf_printf(b, "<img%s src=\"data:image/png;base64,", w < min_w ? " class=\"px\"" : "");
-    sbuf_base64(b, png, len);
-    sbuf_printf(b, "\" width=\"%d\" alt=\"", w < min_w ? min_w : w);
-    sbuf_escape(b, alt);
-    sbuf_printf(b, "\">");
-}
-
-static int rgb_tag(struct sbuf *b, const struct rgb8 *img, int min_w, const char *alt, struct err *e)
-{
+    const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+    char path[4096], alt[256], slot[32];
     uint8_t *png;
     size_t len;
-    if (png_encode(img, &png, &len, e) < 0)
+    snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
+    if (report_view_read_png(path, &png, &len, NULL, e) < 0)
         return -1;
-    img_tag(b, png, len, img->w, min_w, alt);
+    snprintf(alt, sizeof alt, "%s %s", c->variants[v], it->job.output);
+    snprintf(slot, sizeof slot, "g%dv%d", p, v);
+    struct report_view_img view = {zoom, NULL, ab, alt};
+    report_view_figure(b, k, slot);
+    report_view_png(b, png, len, c->scenes[s].width, c->scenes[s].height, &view);
     free(png);
+    sbuf_printf(b, "<figcaption><b>");
+    sbuf_escape(b, c->variants[v]);
+    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, it->spp_mean);
+    if (it->has_error)
+        sbuf_printf(b, ", relMSE %.3g", it->error.relmse);
+    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", it->wall_s,
+                (unsigned long long)c->seeds[k]);
     return 0;
 }
 
-static const char *image_path(const struct compare *c, const struct compare_item *it, const char *dir,
-                              char *buf, size_t n)
+/* Rows of images: one row per sweep point, the variants side by side, every seed (seed index 0
+   shown; the scene's bar switches). */
+static int image_grid(struct sbuf *b, const struct compare *c, int s, const char *dir, int zoom, int has_ref,
+                      struct err *e)
 {
-    (void)c;
-    snprintf(buf, n, "%s/%s", dir, it->job.output);
-    return buf;
-}
-
-/* Rows of images: one row per sweep point, the variants side by side (seed index 0). */
-static int image_grid(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
-{
-    int shown_w = c->scenes[s].width < 160 ? 160 : c->scenes[s].width;
+    char ab[32];
+    snprintf(ab, sizeof ab, "ref%d", s);
     for (int p = 0; p < c->n_points; p++) {
         sbuf_printf(b, "<div class=\"row\"><div class=\"pt\">");
         sbuf_escape(b, c->points[p]);
-        sbuf_printf(b, "<br>seed %llu</div>\n", (unsigned long long)c->seeds[0]);
-        for (int v = 0; v < c->n_variants; v++) {
-            const struct compare_item *it = &c->items[compare_index(c, s, v, p, 0)];
-            char path[4096], alt[256];
-            uint8_t *png;
-            size_t len;
-            if (read_png(image_path(c, it, dir, path, sizeof path), &png, &len, NULL, e) < 0)
-                return -1;
-            snprintf(alt, sizeof alt, "%s %s", c->variants[v], it->job.output);
-            sbuf_printf(b, "<figure>");
-            img_tag(b, png, len, c->scenes[s].width, shown_w, alt);
-            free(png);
-            sbuf_printf(b, "<figcaption><b>");
-            sbuf_escape(b, c->variants[v]);
-            sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, it->spp_mean);
-            if (it->has_error)
-                sbuf_printf(b, ", relMSE %.3g", it->error.relmse);
-            sbuf_printf(b, ", %.2f s</figcaption></figure>\n", it->wall_s);
-        }
+        sbuf_printf(b, ", ");
+        for (int k = 0; k < c->n_seeds; k++)
+            sbuf_printf(b, "<span class=\"sd\" data-seed=\"%d\"%s>seed %llu</span>", k, k ? " hidden" : "",
+                        (unsigned long long)c->seeds[k]);
+        sbuf_printf(b, "</div>\n");
+        for (int v = 0; v < c->n_variants; v++)
+            for (int k = 0; k < c->n_seeds; k++)
+                if (grid_figure(b, c, s, v, p, k, dir, zoom, has_ref ? ab : NULL, e) < 0)
+                    return -1;
         sbuf_printf(b, "</div>\n");
     }
     return 0;
 }
 
-/* The relative-error maps of worker diff --map at sweep point p (seed index 0), from the float
-   copies beside the PNGs against the reference's floats. */
-static int relative_maps(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
-                         const struct rgbf *ref, struct err *e)
+/* The scene's reference, at the renders' zoom, with id ref<s> (what the A/B toggle shows): ref
+   and reff filled with its 8-bit display image and its floats. */
+static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int s, int zoom, struct rgb8 *ref,
+                            struct rgbf *reff, struct err *e)
 {
-    sbuf_printf(b, "<h3>Relative error maps at ");
-    sbuf_escape(b, c->points[p]);
-    sbuf_printf(b,
-                ", in linear radiance: each pixel's relMSE term, colour = its log10 from %g (black) to %g "
-                "(pale yellow), as <code>worker diff --map</code> draws them. Fireflies and caustics "
-                "show here; the 8-bit maps above clip them</h3>\n<div class=\"row\">",
-                ERRMAP_LOG10_MIN, ERRMAP_LOG10_MAX);
-    for (int v = 0; v < c->n_variants; v++) {
-        const struct compare_item *it = &c->items[compare_index(c, s, v, p, 0)];
-        const char *dot = strrchr(it->job.output, '.');
-        char path[4096];
-        struct rgbf img = {0};
-        struct rgb8 map = {0};
-        snprintf(path, sizeof path, "%s/%.*s.exr", dir, dot ? (int)(dot - it->job.output) : 0,
-                 it->job.output);
-        int rc = imgio_read_f(path, &img, NULL, e) < 0 || errmap_make(ref, &img, &map, e) < 0 ||
-                 (sbuf_printf(b, "<figure>"), rgb_tag(b, &map, 160, c->variants[v], e)) < 0;
-        image_f_free(&img);
-        image_free(&map);
-        if (rc)
-            return -1;
-        sbuf_printf(b, "<figcaption>");
-        sbuf_escape(b, c->variants[v]);
-        sbuf_printf(b, "</figcaption></figure>\n");
-    }
-    sbuf_printf(b, "</div>\n");
-    return 0;
-}
-
-/* Crops and error maps at sweep point p (seed index 0), against the reference (ref: its 8-bit
-   display image; reff: its floats, for the relative maps when linear, else NULL). */
-static int closeups(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
-                    const struct rgb8 *ref, const struct rgbf *reff, struct err *e)
-{
-    struct rgb8 *imgs = calloc((size_t)c->n_variants, sizeof *imgs), tmp = {0};
-    int rc = -1, w = ref->w, h = ref->h;
-    int side = (w < h ? w : h) / 5;
-    side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
-    if (!imgs)
-        return err_set(e, NULL, 0, 0, "out of memory");
-    for (int v = 0; v < c->n_variants; v++) {
-        char path[4096];
-        uint8_t *png;
-        size_t len;
-        if (read_png(image_path(c, &c->items[compare_index(c, s, v, p, 0)], dir, path, sizeof path), &png,
-                     &len, &imgs[v], e) < 0)
-            goto done;
-        free(png);
-    }
-    int x0, y0;
-    report_image_worst_window(ref, imgs, c->n_variants, side, &x0, &y0);
-    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", REPORT_IMAGE_CROP_ZOOM);
-    sbuf_escape(b, c->points[p]);
-    sbuf_printf(b,
-                ": pixels %d..%d x %d..%d, the window where the images differ most from the reference "
-                "(by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n<div "
-                "class=\"row\">",
-                x0, x0 + side - 1, y0, y0 + side - 1);
-    for (int v = -1; v < c->n_variants; v++) {
-        const struct rgb8 *src = v < 0 ? ref : &imgs[v];
-        sbuf_printf(b, "<figure>");
-        if (report_image_crop_zoom(src, x0, y0, side, &tmp, e) < 0 ||
-            rgb_tag(b, &tmp, 128, v < 0 ? "reference crop" : c->variants[v], e) < 0)
-            goto done;
-        image_free(&tmp);
-        sbuf_printf(b, "<figcaption>");
-        if (v < 0)
-            sbuf_printf(b, "reference");
-        else
-            sbuf_escape(b, c->variants[v]);
-        sbuf_printf(b, "</figcaption></figure>\n");
-    }
-    sbuf_printf(b, "</div>\n<h3>Error maps at ");
-    sbuf_escape(b, c->points[p]);
-    int gain = report_image_error_gain(ref, imgs, c->n_variants);
-    sbuf_printf(b,
-                ": |image - reference| x %d, the same for every variant (the 99th percentile of their "
-                "errors shows white). Noise looks like grain; structured error (aliasing, a repeated "
-                "pattern, bright spots) looks like a pattern</h3>\n<div class=\"row\">",
-                gain);
-    for (int v = 0; v < c->n_variants; v++) {
-        sbuf_printf(b, "<figure>");
-        if (report_image_error_map(ref, &imgs[v], gain, &tmp, e) < 0 ||
-            rgb_tag(b, &tmp, 160, c->variants[v], e) < 0)
-            goto done;
-        image_free(&tmp);
-        sbuf_printf(b, "<figcaption>");
-        sbuf_escape(b, c->variants[v]);
-        sbuf_printf(b, "</figcaption></figure>\n");
-    }
-    sbuf_printf(b, "</div>\n");
-    if (reff && relative_maps(b, c, s, p, dir, reff, e) < 0)
-        goto done;
-    rc = 0;
-done:
-    image_free(&tmp);
-    for (int v = 0; v < c->n_variants; v++)
-        image_free(&imgs[v]);
-    free(imgs);
-    return rc;
-}
-
-/* Variants ranked by Monte Carlo efficiency, 1 / (relMSE x wall s), at their densest point (the
-   sweep's last point when the sweep leaves samples per pixel alone). */
-static int efficiency(struct sbuf *b, const struct compare *c, int s)
-{
-    int *order = calloc((size_t)c->n_points, sizeof *order),
-        *rank = calloc((size_t)c->n_variants, sizeof *rank);
-    double *eff = calloc((size_t)c->n_variants, sizeof *eff);
-    if (!order || !rank || !eff) {
-        free(order), free(rank), free(eff);
+    int linear = cs->ref_domain == IMG_LINEAR;
+    char id[32];
+    snprintf(id, sizeof id, "ref%d", s);
+    struct report_view_img view = {zoom, id, NULL, "reference"};
+    /* shown as its 8-bit display image (an EXR's floats converted as the PNG writer does) */
+    if (imgio_read_f(cs->ref_path, reff, NULL, e) < 0 ||
+        (linear ? image_alloc(ref, reff->w, reff->h, e) : imgio_read(cs->ref_path, ref, e)) < 0)
         return -1;
-    }
-    int vary = 1;
-    for (int v = 0; v < c->n_variants; v++) {
-        struct compare_agg a;
-        vary &= compare_stats_samples_vary(c, s, v);
-        compare_stats_point_order(c, s, v, order);
-        compare_stats_aggregate(c, s, v, order[c->n_points - 1], &a);
-        eff[v] = a.rel > 0 && a.wall_s > 0 ? 1 / (a.rel * a.wall_s) : 0;
-        rank[v] = v;
-        for (int i = v; i > 0 && eff[rank[i]] > eff[rank[i - 1]]; i--) {
-            int t = rank[i];
-            rank[i] = rank[i - 1];
-            rank[i - 1] = t;
-        }
-    }
-    sbuf_printf(b,
-                "<p><b>For the time spent</b> (efficiency 1 / (relMSE x wall s) at each variant's %s, higher "
-                "is better): ",
-                vary ? "densest point" : "last point of the sweep");
-    for (int i = 0; i < c->n_variants; i++) {
-        sbuf_printf(b, "%s<b>", i ? ", " : "");
-        sbuf_escape(b, c->variants[rank[i]]);
-        sbuf_printf(b, "</b> %.3g", eff[rank[i]]);
-    }
-    sbuf_printf(b, ".</p>\n");
-    free(order), free(rank), free(eff);
+    if (linear)
+        image_float_to_rgb8(reff->px, reff->w, reff->h, ref->px);
+    sbuf_printf(b, "<div class=\"row\"><figure>");
+    if (report_view_rgb(b, ref, &view, e) < 0)
+        return -1;
+    sbuf_printf(b, "<figcaption><b>reference</b>: ");
+    if (cs->ref_kind == COMPARE_REF_SETTINGS)
+        sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
+                    cs->ref_job.threshold, sampler_kind_name(cs->ref_job.light_sampler),
+                    cs->ref_job.light_threshold, (unsigned long long)cs->ref_job.seed,
+                    cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
+    else
+        sbuf_escape(b, cs->ref_path);
+    sbuf_printf(b, "</figcaption></figure></div>\n");
     return 0;
 }
 
@@ -253,32 +117,15 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     struct rgb8 ref = {0};
     struct rgbf reff = {0};
     int rc = -1, has_ref = cs->ref_kind != COMPARE_REF_NONE, linear = cs->ref_domain == IMG_LINEAR;
-    sbuf_printf(b, "<h2>Scene ");
+    int zoom = report_image_zoom(cs->width, REPORT_IMAGE_SHOW_PX);
+    sbuf_printf(b, "<section class=\"scene\"><h2>Scene ");
     sbuf_escape(b, cs->name);
     sbuf_printf(b, " (%dx%d)</h2>\n", cs->width, cs->height);
-    if (has_ref) {
-        /* shown as its 8-bit display image (an EXR's floats converted as the PNG writer does) */
-        if (imgio_read_f(cs->ref_path, &reff, NULL, e) < 0 ||
-            (linear ? image_alloc(&ref, reff.w, reff.h, e) : imgio_read(cs->ref_path, &ref, e)) < 0)
-            goto done;
-        if (linear)
-            image_float_to_rgb8(reff.px, reff.w, reff.h, ref.px);
-        sbuf_printf(b, "<div class=\"row\"><figure>");
-        if (rgb_tag(b, &ref, 160, "reference", e) < 0)
-            goto done;
-        sbuf_printf(b, "<figcaption><b>reference</b>: ");
-        if (cs->ref_kind == COMPARE_REF_SETTINGS)
-            sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s",
-                        sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
-                        sampler_kind_name(cs->ref_job.light_sampler), cs->ref_job.light_threshold,
-                        (unsigned long long)cs->ref_job.seed,
-                        cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
-        else
-            sbuf_escape(b, cs->ref_path);
-        sbuf_printf(b, "</figcaption></figure></div>\n");
-    }
+    report_view_controls(b, c, zoom, has_ref);
+    if (has_ref && reference_figure(b, cs, s, zoom, &ref, &reff, e) < 0)
+        goto done;
     sbuf_printf(b, "<h3>Side by side at each sweep point, with samples per pixel</h3>\n");
-    if (image_grid(b, c, s, dir, e) < 0)
+    if (image_grid(b, c, s, dir, zoom, has_ref, e) < 0)
         goto done;
     if (has_ref) {
         int *order = calloc((size_t)c->n_points, sizeof *order);
@@ -289,13 +136,9 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         compare_stats_point_order(c, s, 0, order);
         int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
         free(order);
-        if (closeups(b, c, s, mid, dir, &ref, linear ? &reff : NULL, e) < 0 ||
-            (densest != mid && closeups(b, c, s, densest, dir, &ref, linear ? &reff : NULL, e) < 0))
+        if (report_closeup(b, c, s, mid, dir, &ref, linear ? &reff : NULL, e) < 0 ||
+            (densest != mid && report_closeup(b, c, s, densest, dir, &ref, linear ? &reff : NULL, e) < 0))
             goto done;
-    }
-    if (has_ref && efficiency(b, c, s) < 0) {
-        err_set(e, NULL, 0, 0, "out of memory");
-        goto done;
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
@@ -307,7 +150,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         sbuf_printf(b, "</li>\n");
         free(line);
     }
-    sbuf_printf(b, "</ul>\n");
+    sbuf_printf(b, "</ul>\n</section>\n");
     rc = 0;
 done:
     image_free(&ref);
@@ -378,8 +221,10 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     sbuf_escape(&b, c->name);
     sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", style);
     sbuf_escape(&b, c->name);
-    sbuf_printf(&b,
-                ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Job ");
+    sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n");
+    if (c->has_verdict)
+        verdict_html(&b, &c->verdict, 1);
+    sbuf_printf(&b, "<h2>What was measured</h2>\n<p class=\"note\">Job ");
     sbuf_escape(&b, c->path);
     sbuf_printf(&b, ": %d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
                 c->n_variants, c->n_points);
@@ -420,7 +265,7 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         }
     sbuf_printf(&b, "<h2>Every image</h2>\n");
     table(&b, c);
-    sbuf_printf(&b, "</body></html>\n");
+    sbuf_printf(&b, "<script>%s</script>\n</body></html>\n", report_view_script());
     char *html = sbuf_take(&b);
     if (!html)
         err_set(e, NULL, 0, 0, "out of memory writing the report");

@@ -5,9 +5,11 @@
 #include "compare.h"
 
 /* The page for a finished compare job whose images are in dir (OUT/<name>/): the chart, per
-   scene the images side by side at each sweep point with their sample counts, 4x crops of the
-   region with the largest relative error (a soft shadow in our scenes), error maps, one
-   stability line per variant, and the table. Reads the images and references from disk.
+   scene the reference and the images side by side at each sweep point with their sample counts,
+   zoomed crops of the region with the largest relative error (a soft shadow in our scenes),
+   relative error maps with their colour bar, one stability line per variant, and the table. Every
+   seed's images are on the page, at an integer zoom, with a seed selector, an A/B toggle against
+   the reference and click to enlarge (report_view). Reads the images and references from disk.
    Returns a malloc'd string (caller frees), or NULL with e filled. */
 char *report_html(const struct compare *c, const char *dir, struct err *e);
 

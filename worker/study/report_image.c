@@ -1,10 +1,18 @@
-/* report_image: the compare report's image analysis (worst window, zoomed crops, error maps). */
+/* report_image: the compare report's image analysis (zoom, worst window, crops, colour bar). */
 #include "report_image.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "image/errmap.h"
 #include "image/metrics.h"
+
+int report_image_zoom(int w, int target_px)
+{
+    int zoom = w > 0 ? (target_px + w - 1) / w : 2;
+    return zoom < 2 ? 2 : zoom;
+}
 
 /* The square window (side `side`) with the largest summed relative squared error of the
    images against ref: where samplers differ most (a soft shadow in our scenes). */
@@ -41,46 +49,31 @@ void report_image_worst_window(const struct rgb8 *ref, const struct rgb8 *imgs, 
     free(sat);
 }
 
-/* out = the side x side window of src at (x0, y0), each pixel repeated REPORT_IMAGE_CROP_ZOOM times. */
-int report_image_crop_zoom(const struct rgb8 *src, int x0, int y0, int side, struct rgb8 *out, struct err *e)
+int report_image_crop(const struct rgb8 *src, int x0, int y0, int side, struct rgb8 *out, struct err *e)
 {
-    if (image_alloc(out, side * REPORT_IMAGE_CROP_ZOOM, side * REPORT_IMAGE_CROP_ZOOM, e) < 0)
+    if (image_alloc(out, side, side, e) < 0)
         return -1;
-    for (int y = 0; y < out->h; y++)
-        for (int x = 0; x < out->w; x++)
-            memcpy(&out->px[((size_t)y * out->w + x) * 3],
-                   &src->px[((size_t)(y0 + y / REPORT_IMAGE_CROP_ZOOM) * src->w + x0 +
-                             x / REPORT_IMAGE_CROP_ZOOM) *
-                            3],
-                   3);
+    for (int y = 0; y < side; y++)
+        memcpy(&out->px[(size_t)y * side * 3], &src->px[((size_t)(y0 + y) * src->w + x0) * 3],
+               (size_t)side * 3);
     return 0;
 }
 
-/* The error maps' gain at one sweep point, the same for every variant so they compare: the
-   99th percentile of |image - reference| over all their pixels and channels shows white. A
-   fixed gain left converged images' maps black, hiding where a method still fails. */
-int report_image_error_gain(const struct rgb8 *ref, const struct rgb8 *imgs, int n)
+/* Against a black reference the term of a grey value v is v^2 / METRICS_REL_EPS, so
+   v = sqrt(eps 10^L) gives exactly 10^L. */
+int report_image_errmap_bar(int w, struct rgb8 *out, struct err *e)
 {
-    size_t count[256] = {0}, total = (size_t)ref->w * ref->h * 3 * n, seen = 0;
-    for (int i = 0; i < n; i++)
-        for (size_t k = 0; k < (size_t)ref->w * ref->h * 3; k++)
-            count[abs((int)imgs[i].px[k] - (int)ref->px[k])]++;
-    int q = 0;
-    while (q < 255 && (seen += count[q]) < total - total / 100)
-        q++;
-    int gain = q > 0 ? 255 / q : REPORT_IMAGE_GAIN_MAX;
-    return gain < 1 ? 1 : gain > REPORT_IMAGE_GAIN_MAX ? REPORT_IMAGE_GAIN_MAX : gain;
-}
-
-/* out = |img - ref| x gain per channel, clamped: structure in the error shows as a pattern. */
-int report_image_error_map(const struct rgb8 *ref, const struct rgb8 *img, int gain, struct rgb8 *out,
-                           struct err *e)
-{
-    if (image_alloc(out, ref->w, ref->h, e) < 0)
-        return -1;
-    for (size_t k = 0; k < (size_t)ref->w * ref->h * 3; k++) {
-        int d = abs((int)img->px[k] - (int)ref->px[k]) * gain;
-        out->px[k] = (uint8_t)(d > 255 ? 255 : d);
+    struct rgbf ref = {0}, img = {0};
+    int rc = -1;
+    if (image_f_alloc(&ref, w, 1, e) < 0 || image_f_alloc(&img, w, 1, e) < 0)
+        goto done;
+    for (int i = 0; i < w; i++) {
+        double l = ERRMAP_LOG10_MIN + (ERRMAP_LOG10_MAX - ERRMAP_LOG10_MIN) * (i + 0.5) / w;
+        img.px[3 * i] = img.px[3 * i + 1] = img.px[3 * i + 2] = (float)sqrt(METRICS_REL_EPS * pow(10, l));
     }
-    return 0;
+    rc = errmap_make(&ref, &img, out, e);
+done:
+    image_f_free(&ref);
+    image_f_free(&img);
+    return rc;
 }

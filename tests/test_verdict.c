@@ -1,0 +1,258 @@
+/* test_verdict: the verdict's rules on constructed figures: a clear winner, a tie within the
+   seeds' spread, an inconclusive ranking, slopes, each failure mode, the guards, and the JSON. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "study/verdict.h"
+#include "study/verdict_out.h"
+#include "study/verdict_rank.h"
+
+#define NV 4
+#define NP 3
+#define NS 3
+
+/* Figures built by hand: relMSE = k[v] / spp^-slope[v] x the seed's factor, CPU = spp x cost[v]. */
+struct fake {
+    struct verdict_figures f;
+    const char *variants[NV], *samplers[NV], *points[NP];
+    int pools[NV];
+    double spp[NV * NP * NS], cpu[NV * NP * NS], rel[NV * NP * NS], share[NV * NP * NS], repeat[NV * NP];
+    uint64_t nonfinite[NV * NP * NS];
+};
+
+static const double seed_factor[NS] = {0.95, 1.0, 1.05}; /* a 10% min-max range */
+
+static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope,
+                      const double *cost)
+{
+    static const char *const names[NV] = {"alpha", "beta", "gamma", "delta"};
+    static const double spp[NP] = {100, 400, 1600};
+    memset(x, 0, sizeof *x);
+    x->f = (struct verdict_figures){.study = "study",
+                                    .scene = "board",
+                                    .n_variants = nv,
+                                    .n_points = NP,
+                                    .n_seeds = ns,
+                                    .variants = x->variants,
+                                    .samplers = x->samplers,
+                                    .pools = x->pools,
+                                    .points = x->points,
+                                    .spp = x->spp,
+                                    .cpu_s = x->cpu,
+                                    .relmse = x->rel,
+                                    .sampler_share = x->share,
+                                    .nonfinite = x->nonfinite,
+                                    .repeat_share = x->repeat,
+                                    .ref_spp = 10000};
+    x->points[0] = "threshold 10", x->points[1] = "threshold 5", x->points[2] = "threshold 2.5";
+    for (int v = 0; v < nv; v++) {
+        x->variants[v] = names[v];
+        x->samplers[v] = "jitter";
+        for (int p = 0; p < NP; p++) {
+            x->repeat[v * NP + p] = 0.1;
+            for (int s = 0; s < ns; s++) {
+                int i = verdict_at(&x->f, v, p, s);
+                x->spp[i] = spp[p];
+                x->cpu[i] = spp[p] * cost[v];
+                x->rel[i] = k[v] * pow(spp[p], slope[v]) * (ns > 1 ? seed_factor[s] : 1);
+            }
+        }
+    }
+}
+
+static int rank_of(const struct verdict_ranking *r, int v)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->e[i].variant == v)
+            return r->e[i].rank;
+    return -1;
+}
+
+static int has_failure(const struct verdict_scene *s, enum verdict_failure_kind kind, int v)
+{
+    for (int i = 0; i < s->n_failures; i++)
+        if (s->failures[i].kind == kind && s->failures[i].variant == v)
+            return 1;
+    return 0;
+}
+
+static int any_line(char (*lines)[VERDICT_TEXT_MAX], int n, const char *needle)
+{
+    for (int i = 0; i < n; i++)
+        if (strstr(lines[i], needle))
+            return 1;
+    return 0;
+}
+
+/* The tie rule alone: a gap beyond the larger range wins; within it, neither wins. */
+static void test_rule(void)
+{
+    struct verdict_entry a = {.value = 1.0, .lo = 0.9, .hi = 1.1}, b = {.value = 1.25, .lo = 1.2, .hi = 1.3};
+    CHECK(verdict_beats(&a, &b, 0));  /* gap 0.25 > ranges 0.2, 0.1 */
+    CHECK(!verdict_beats(&b, &a, 0)); /* higher is worse */
+    CHECK(verdict_beats(&a, &b, 1));  /* log(1.25) = 0.22 > log(1.1 / 0.9) = 0.20 */
+    b.value = 1.15, b.lo = 1.1, b.hi = 1.2;
+    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.15 < a's range 0.2 */
+    CHECK(!verdict_beats(&a, &b, 1));
+    b.lo = 0.5, b.hi = 2, b.value = 1.5;
+    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.5 < b's range 1.5 */
+    /* a wide spread at a far larger value: linear ranges would tie them, logarithms do not */
+    struct verdict_entry c = {.value = 0.01, .lo = 0.009, .hi = 0.011},
+                         d = {.value = 4.5, .lo = 1.9, .hi = 8.7};
+    CHECK(!verdict_beats(&c, &d, 0) && verdict_beats(&c, &d, 1));
+    d.unreached = 1, d.value = d.lo = d.hi = 0.001; /* better figures, but not at the common point */
+    CHECK(verdict_beats(&c, &d, 1) && !verdict_beats(&d, &c, 1));
+}
+
+static void test_clear_winner(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 2, 4}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 4e-3};
+    fake_init(&x, 3, NS, k, slope, cost);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_CLEAR);
+    CHECK_NEAR(s.by_samples.at, 1600, 1e-9);
+    CHECK(s.by_samples.e[0].variant == 0 && rank_of(&s.by_samples, 0) == 1);
+    CHECK(rank_of(&s.by_samples, 1) == 2 && rank_of(&s.by_samples, 2) == 3);
+    CHECK_NEAR(s.by_samples.e[0].value, 1.0 / 1600, 1e-12);
+    CHECK_NEAR(s.by_samples.e[0].hi - s.by_samples.e[0].lo, 0.1 / 1600, 1e-12);
+    /* equal CPU time: the cheapest densest point, 1.6 s; gamma (4x the cost per sample) is read at
+       its 400-spp point there */
+    CHECK(s.by_cpu.status == VERDICT_CLEAR);
+    CHECK_NEAR(s.by_cpu.at, 1.6, 1e-9);
+    CHECK_NEAR(s.by_cpu.e[2].value, 4.0 / 400, 1e-9);
+    CHECK(s.by_slope.status == VERDICT_INCONCLUSIVE); /* every slope is -1 */
+    CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
+    CHECK(s.n_failures == 0);
+    CHECK(s.n_warnings == 1 && strstr(s.warnings[0], "by slope, ") &&
+          strstr(s.warnings[0], "differ by less than their spread"));
+    CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
+    char w[64];
+    verdict_winner(&s, w, sizeof w);
+    CHECK(!strcmp(w, "alpha"));
+    verdict_scene_free(&s);
+}
+
+static void test_tie_and_inconclusive(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 1.05, 4}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 1e-3};
+    fake_init(&x, 3, NS, k, slope, cost);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_TIE); /* alpha and beta 5% apart, each with a 10% range */
+    CHECK(rank_of(&s.by_samples, 0) == 1 && rank_of(&s.by_samples, 1) == 1 && rank_of(&s.by_samples, 2) == 3);
+    CHECK(any_line(s.sentences, s.n_sentences, "alpha, beta tie"));
+    CHECK(any_line(s.warnings, s.n_warnings,
+                   "at equal samples, alpha, beta differ by less than their spread "
+                   "across seeds: tied, no single winner"));
+    char w[64];
+    verdict_winner(&s, w, sizeof w);
+    CHECK(!strcmp(w, "alpha = beta (tie)"));
+    verdict_scene_free(&s);
+
+    fake_init(&x, 2, NS, k, slope, cost); /* only the two close ones: nobody is ahead */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE && s.by_cpu.status == VERDICT_INCONCLUSIVE);
+    CHECK(any_line(s.sentences, s.n_sentences, "inconclusive"));
+    verdict_winner(&s, w, sizeof w);
+    CHECK(!strcmp(w, "inconclusive"));
+    verdict_scene_free(&s);
+
+    const double far[] = {1, 4, 4};
+    fake_init(&x, 3, 1, far, slope, cost); /* one seed: no spread, so no ranking */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE);
+    CHECK(any_line(s.warnings, s.n_warnings, "one seed"));
+    verdict_scene_free(&s);
+}
+
+static void test_slopes(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 1, 1}, slope[] = {-1, -1.3, -1.02}, cost[] = {1e-3, 1e-3, 1e-3};
+    fake_init(&x, 3, NS, k, slope, cost);
+    for (int p = 0; p < NP; p++) /* per-seed slopes that differ a little: seed 2 steeper */
+        x.rel[verdict_at(&x.f, 1, p, 2)] *= pow(1.0 + p, -0.05);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_slope.status == VERDICT_CLEAR && s.by_slope.e[0].variant == 1);
+    CHECK(s.by_slope.e[0].lo < s.by_slope.e[0].hi); /* the spread across seeds */
+    /* alpha's and gamma's seeds agree exactly (no spread), so even -1.02 against -1 counts */
+    CHECK(rank_of(&s.by_slope, 2) == 2 && rank_of(&s.by_slope, 0) == 3);
+    CHECK(any_line(s.sentences, s.n_sentences, "Error falls fastest with beta"));
+    verdict_scene_free(&s);
+}
+
+static void test_failures_and_guards(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 1.5, 3, 2}, slope[] = {-1, -1, -1, -1}, cost[] = {1e-3, 1e-3, 3e-3, 1e-3};
+    fake_init(&x, 4, NS, k, slope, cost);
+    x.samplers[1] = "uniform";
+    x.repeat[1 * NP + 0] = 0.9; /* uniform: most of its error repeats at the sparsest point */
+    x.samplers[2] = "poisson";
+    for (int p = 0; p < NP; p++)
+        for (int k2 = 0; k2 < NS; k2++) {
+            x.share[verdict_at(&x.f, 2, p, k2)] = 0.7; /* Bridson's sets dominate */
+            x.rel[verdict_at(&x.f, 3, p, k2)] = 0.002 * (p ? 0.95 : 1) * seed_factor[k2]; /* stalls */
+        }
+    x.nonfinite[verdict_at(&x.f, 3, 1, 0)] = 3;
+    x.f.ref_spp = 3000; /* under 4x the densest point's 1600 */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(has_failure(&s, VERDICT_STRUCTURED, 1) && !has_failure(&s, VERDICT_STRUCTURED, 0));
+    CHECK(has_failure(&s, VERDICT_SHARE, 2) && !has_failure(&s, VERDICT_SHARE, 0));
+    CHECK(has_failure(&s, VERDICT_STALLS, 3) && !has_failure(&s, VERDICT_STALLS, 0));
+    CHECK(has_failure(&s, VERDICT_NONFINITE, 3) && !has_failure(&s, VERDICT_NONFINITE, 1));
+    CHECK(any_line(s.sentences, s.n_sentences, "beta aliases on board: 90% of its error at threshold 10"));
+    CHECK(any_line(s.sentences, s.n_sentences,
+                   "gamma costs 3.0x alpha's CPU time per sample and buys nothing"));
+    CHECK(any_line(s.warnings, s.n_warnings, "the reference has 3000 samples per pixel"));
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    CHECK(json && strstr(json, "\"kind\": \"structured_error\"") &&
+          strstr(json, "\"kind\": \"sampler_share\"") && strstr(json, "\"equal_cpu_time\"") &&
+          strstr(json, "\"tie_rule\""));
+    free(json);
+    verdict_scene_free(&s);
+    x.f.ref_spp = 6400; /* exactly 4x: no warning */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(!any_line(s.warnings, s.n_warnings, "the reference has"));
+    verdict_scene_free(&s);
+}
+
+/* A variant whose cheapest image costs more than the others' densest cannot be had at equal CPU
+   time: ranked behind, whatever its figures, and said so. */
+static void test_unreached(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 2, 0.5}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 50e-3};
+    fake_init(&x, 3, NS, k, slope, cost);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.e[0].variant == 2 && s.by_samples.status == VERDICT_CLEAR); /* best per sample */
+    CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
+    CHECK_NEAR(s.by_cpu.e[2].value, 0.5 / 100, 1e-12); /* its cheapest point's figure */
+    CHECK(any_line(s.warnings, s.n_warnings, "gamma cannot be had"));
+    verdict_scene_free(&s);
+}
+
+int main(void)
+{
+    test_unreached();
+    test_rule();
+    test_clear_winner();
+    test_tie_and_inconclusive();
+    test_slopes();
+    test_failures_and_guards();
+    return check_report("test_verdict");
+}

@@ -1,0 +1,177 @@
+/* report_closeup: crops and relative error maps at one sweep point, for every variant and seed. */
+#include "report_closeup.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image/errmap.h"
+#include "image/imgio.h"
+#include "report_image.h"
+#include "report_view.h"
+
+/* The images of one sweep point, decoded: imgs[v * n_seeds + k]. */
+struct point_imgs {
+    int n;
+    struct rgb8 *imgs;
+};
+
+static void point_free(struct point_imgs *pi)
+{
+    for (int i = 0; i < pi->n; i++)
+        image_free(&pi->imgs[i]);
+    free(pi->imgs);
+}
+
+static int point_load(const struct compare *c, int s, int p, const char *dir, struct point_imgs *pi,
+                      struct err *e)
+{
+    pi->n = 0;
+    pi->imgs = calloc((size_t)c->n_variants * c->n_seeds, sizeof *pi->imgs);
+    if (!pi->imgs)
+        return err_set(e, NULL, 0, 0, "out of memory");
+    for (int v = 0; v < c->n_variants; v++)
+        for (int k = 0; k < c->n_seeds; k++) {
+            char path[4096];
+            uint8_t *png;
+            size_t len;
+            snprintf(path, sizeof path, "%s/%s", dir, c->items[compare_index(c, s, v, p, k)].job.output);
+            if (report_view_read_png(path, &png, &len, &pi->imgs[pi->n], e) < 0)
+                return -1;
+            free(png);
+            pi->n++;
+        }
+    return 0;
+}
+
+static void caption(struct sbuf *b, const struct compare *c, int v, int k)
+{
+    sbuf_printf(b, "<figcaption><b>");
+    sbuf_escape(b, c->variants[v]);
+    sbuf_printf(b, "</b>, seed %llu</figcaption></figure>\n", (unsigned long long)c->seeds[k]);
+}
+
+/* The reference's crop (id ref<s>c<p>, which the A/B toggle shows in the crops' place) and every
+   variant's and seed's crop of the window at (x0, y0), all at one zoom. */
+static int crop_row(struct sbuf *b, const struct compare *c, int s, int p, const struct rgb8 *ref,
+                    const struct point_imgs *pi, int x0, int y0, int side, struct err *e)
+{
+    int zoom = report_image_zoom(side, REPORT_IMAGE_CROP_PX);
+    char id[32], slot[32];
+    struct rgb8 tmp = {0};
+    snprintf(id, sizeof id, "ref%dc%d", s, p);
+    struct report_view_img view = {zoom, id, NULL, "reference crop"};
+    sbuf_printf(b, "<div class=\"row\"><figure>");
+    if (report_image_crop(ref, x0, y0, side, &tmp, e) < 0 || report_view_rgb(b, &tmp, &view, e) < 0)
+        goto fail;
+    image_free(&tmp);
+    sbuf_printf(b, "<figcaption><b>reference</b></figcaption></figure>\n");
+    for (int i = 0; i < pi->n; i++) {
+        int v = i / c->n_seeds, k = i % c->n_seeds;
+        view = (struct report_view_img){zoom, NULL, id, c->variants[v]};
+        snprintf(slot, sizeof slot, "c%dv%d", p, v);
+        report_view_figure(b, k, slot);
+        if (report_image_crop(&pi->imgs[i], x0, y0, side, &tmp, e) < 0 ||
+            report_view_rgb(b, &tmp, &view, e) < 0)
+            goto fail;
+        image_free(&tmp);
+        caption(b, c, v, k);
+    }
+    sbuf_printf(b, "</div>\n");
+    return 0;
+fail:
+    image_free(&tmp);
+    return -1;
+}
+
+static int crops(struct sbuf *b, const struct compare *c, int s, int p, const struct rgb8 *ref,
+                 const struct point_imgs *pi, struct err *e)
+{
+    int w = ref->w, h = ref->h, x0, y0;
+    int side = (w < h ? w : h) / 5;
+    side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
+    report_image_worst_window(ref, pi->imgs, pi->n, side, &x0, &y0);
+    sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", report_image_zoom(side, REPORT_IMAGE_CROP_PX));
+    sbuf_escape(b, c->points[p]);
+    sbuf_printf(
+        b,
+        ": pixels %d..%d x %d..%d, the window where the images (every seed's) differ most from the "
+        "reference (by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n",
+        x0, x0 + side - 1, y0, y0 + side - 1);
+    return crop_row(b, c, s, p, ref, pi, x0, y0, side, e);
+}
+
+/* One image's floats for its map: the float copy beside its PNG (linear), or the PNG's own
+   display values v / 255 (img8) when the reference is an 8-bit image. */
+static int map_floats(const char *dir, const char *output, const struct rgb8 *img8, int linear,
+                      struct rgbf *out, struct err *e)
+{
+    if (!linear)
+        return image_f_from_rgb8(img8, out, e);
+    const char *dot = strrchr(output, '.');
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%.*s.exr", dir, dot ? (int)(dot - output) : 0, output);
+    return imgio_read_f(path, out, NULL, e);
+}
+
+static void maps_heading(struct sbuf *b, const struct compare *c, int p, int linear, int zoom)
+{
+    sbuf_printf(b, "<h3>Error maps at ");
+    sbuf_escape(b, c->points[p]);
+    sbuf_printf(
+        b,
+        ", at %dx: each pixel's relative error against the reference %s, its relMSE term (the mean over "
+        "R, G, B of (v - r)^2 / (r^2 + 0.01)), coloured by its log10 on one fixed scale for every "
+        "map (as <code>worker diff --map</code> draws them). Noise looks like grain; structured error "
+        "(aliasing, a repeated pattern, a bias) like a pattern; fireflies as bright dots</h3>\n",
+        zoom,
+        linear ? "in linear radiance (the float images)"
+               : "on 8-bit display values v / 255 (this scene's reference is an 8-bit image), not "
+                 "linear radiance");
+}
+
+static int maps(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                const struct rgbf *reff, int linear, const struct point_imgs *pi, struct err *e)
+{
+    int zoom = report_image_zoom(reff->w, REPORT_IMAGE_SHOW_PX);
+    maps_heading(b, c, p, linear, zoom);
+    if (report_view_scale(b, e) < 0)
+        return -1;
+    sbuf_printf(b, "<div class=\"row\">");
+    for (int i = 0; i < pi->n; i++) {
+        int v = i / c->n_seeds, k = i % c->n_seeds;
+        struct rgbf img = {0};
+        struct rgb8 map = {0};
+        struct report_view_img view = {zoom, NULL, NULL, c->variants[v]};
+        char slot[32];
+        snprintf(slot, sizeof slot, "m%dv%d", p, v);
+        report_view_figure(b, k, slot);
+        int rc = map_floats(dir, c->items[compare_index(c, s, v, p, k)].job.output, &pi->imgs[i], linear,
+                            &img, e) < 0 ||
+                 errmap_make(reff, &img, &map, e) < 0 || report_view_rgb(b, &map, &view, e) < 0;
+        image_f_free(&img);
+        image_free(&map);
+        if (rc)
+            return -1;
+        caption(b, c, v, k);
+    }
+    sbuf_printf(b, "</div>\n");
+    return 0;
+}
+
+int report_closeup(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
+                   const struct rgb8 *ref, const struct rgbf *reff, struct err *e)
+{
+    struct point_imgs pi = {0};
+    struct rgbf ref_display = {0};
+    int rc = -1;
+    if (point_load(c, s, p, dir, &pi, e) < 0 || crops(b, c, s, p, ref, &pi, e) < 0)
+        goto done;
+    if (!reff && image_f_from_rgb8(ref, &ref_display, e) < 0)
+        goto done;
+    rc = maps(b, c, s, p, dir, reff ? reff : &ref_display, reff != NULL, &pi, e);
+done:
+    image_f_free(&ref_display);
+    point_free(&pi);
+    return rc;
+}

@@ -1,0 +1,302 @@
+/* verdict: rankings with ties, slopes, failure modes and guards from one scene's figures. */
+#include "verdict.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "verdict_rank.h"
+#include "verdict_say.h"
+
+/* The mean over seeds of point p's figure x (spp or CPU seconds) for variant v. */
+static double mean_x(const struct verdict_figures *f, const double *x, int v, int p)
+{
+    double s = 0;
+    for (int k = 0; k < f->n_seeds; k++)
+        s += x[verdict_at(f, v, p, k)];
+    return s / f->n_seeds;
+}
+
+/* Least-squares line of log y against log x over seed k's points of v: y = exp(a + b log x). */
+static int fit(const struct verdict_figures *f, const double *x, int v, int k, double *a, double *b)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int m = 0;
+    for (int p = 0; p < f->n_points; p++) {
+        double xi = x[verdict_at(f, v, p, k)], yi = f->relmse[verdict_at(f, v, p, k)];
+        if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)))
+            continue;
+        double lx = log(xi), ly = log(yi);
+        sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+        m++;
+    }
+    double den = m * sxx - sx * sx;
+    if (m < 2 || !(den > 1e-12))
+        return -1;
+    *b = (m * sxy - sx * sy) / den;
+    *a = (sy - *b * sx) / m;
+    return 0;
+}
+
+/* A variant whose cheapest point costs this many times the common point or more cannot be had
+   there: it is ranked behind every variant that can. Less is one seed's samples or timing a
+   little off the mean the others are read at. */
+#define VERDICT_BEYOND 1.25
+
+/* The seed's measured point of v nearest to `at` on one side (below: x <= at, else x >= at),
+   skipping x == skip; 0 when there is none. */
+static int nearest(const struct verdict_figures *f, const double *x, int v, int k, double at, int below,
+                   double skip, double *xo, double *yo)
+{
+    int found = 0;
+    for (int p = 0; p < f->n_points; p++) {
+        double xi = x[verdict_at(f, v, p, k)], yi = f->relmse[verdict_at(f, v, p, k)];
+        if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)) || xi == skip)
+            continue;
+        if (fabs(xi - at) <= 1e-9 * at) /* the point itself (at is a mean over seeds: rounding) */
+            xi = at;
+        if ((below ? xi <= at : xi >= at) && (!found || fabs(xi - at) < fabs(*xo - at)))
+            *xo = xi, *yo = yi, found = 1;
+    }
+    return found;
+}
+
+/* Seed k's relMSE of variant v at x = at: linear in log-log between the measured points around
+   it, or along the segment of the two nearest when it lies just beyond them. NAN: none measured. */
+static double value_at(const struct verdict_figures *f, const double *x, int v, int k, double at)
+{
+    double x0, y0, x1, y1;
+    int lo = nearest(f, x, v, k, at, 1, NAN, &x0, &y0), hi = nearest(f, x, v, k, at, 0, NAN, &x1, &y1);
+    if (lo && hi && x0 == x1)
+        return y0;
+    if (!lo && !hi)
+        return NAN;
+    if (!lo || !hi) { /* extend the end segment: the nearest point and the next on its side */
+        if (!lo)
+            x0 = x1, y0 = y1;
+        if (!nearest(f, x, v, k, at, lo, x0, &x1, &y1))
+            return y0;
+    }
+    double t = log(at / x0) / log(x1 / x0);
+    return exp(log(y0) + t * (log(y1) - log(y0)));
+}
+
+/* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
+static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e)
+{
+    int n = 0;
+    for (int k = 0; k < f->n_seeds; k++) {
+        double y = f->relmse[verdict_at(f, v, p, k)];
+        if (isfinite(y))
+            e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
+    }
+    e->value = n ? e->value / n : NAN;
+}
+
+/* Rank every variant by relMSE at the x that every variant reached: the smallest of their
+   densest points' means (the cheapest densest point, for CPU time). A variant whose cheapest
+   point lies far beyond it is unreached, shown with its cheapest point's figures. */
+static void rank_at(const struct verdict_figures *f, const double *x, struct verdict_ranking *r)
+{
+    double at = INFINITY;
+    for (int v = 0; v < f->n_variants; v++) {
+        double most = 0;
+        for (int p = 0; p < f->n_points; p++)
+            most = fmax(most, mean_x(f, x, v, p));
+        at = fmin(at, most);
+    }
+    r->at = at;
+    r->n = f->n_variants;
+    r->log_scale = 1;
+    for (int v = 0; v < f->n_variants; v++) {
+        struct verdict_entry *e = &r->e[v];
+        *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
+        int cheapest = 0, n = 0;
+        for (int p = 1; p < f->n_points; p++)
+            if (mean_x(f, x, v, p) < mean_x(f, x, v, cheapest))
+                cheapest = p;
+        if (mean_x(f, x, v, cheapest) > at * VERDICT_BEYOND) {
+            e->unreached = 1;
+            point_figures(f, v, cheapest, e);
+            continue;
+        }
+        for (int k = 0; k < f->n_seeds; k++) {
+            double y = value_at(f, x, v, k, at);
+            if (isfinite(y))
+                e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
+        }
+        if (n)
+            e->value /= n;
+        else
+            e->value = e->lo = e->hi = NAN;
+    }
+    verdict_rank(r, f->n_seeds);
+}
+
+/* Whether v's points change its samples per pixel by more than 5% (a slope needs them to). */
+static int samples_vary(const struct verdict_figures *f, int v)
+{
+    double lo = INFINITY, hi = 0;
+    for (int p = 0; p < f->n_points; p++)
+        lo = fmin(lo, mean_x(f, f->spp, v, p)), hi = fmax(hi, mean_x(f, f->spp, v, p));
+    return hi > lo * 1.05;
+}
+
+/* Each variant's slope of log relMSE against log samples per pixel, fitted per seed. */
+static void rank_slopes(const struct verdict_figures *f, struct verdict_ranking *r)
+{
+    r->at = NAN;
+    r->n = 0;
+    for (int v = 0; v < f->n_variants; v++) {
+        if (!samples_vary(f, v))
+            continue;
+        struct verdict_entry *e = &r->e[r->n];
+        *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
+        int n = 0;
+        double a, b;
+        for (int k = 0; k < f->n_seeds; k++)
+            if (fit(f, f->spp, v, k, &a, &b) == 0)
+                e->value += b, e->lo = fmin(e->lo, b), e->hi = fmax(e->hi, b), n++;
+        if (n) {
+            e->value /= n;
+            r->n++;
+        }
+    }
+    verdict_rank(r, f->n_seeds);
+}
+
+static struct verdict_failure *add_failure(struct verdict_scene *out, enum verdict_failure_kind kind, int v,
+                                           int p, double value)
+{
+    struct verdict_failure *x = &out->failures[out->n_failures++];
+    *x = (struct verdict_failure){.kind = kind, .variant = v, .point = p, .value = value};
+    return x;
+}
+
+/* The points of v in order of mean samples per pixel. */
+static void by_samples(const struct verdict_figures *f, int v, int *order)
+{
+    for (int p = 0; p < f->n_points; p++)
+        order[p] = p;
+    for (int i = 1; i < f->n_points; i++)
+        for (int j = i; j > 0 && mean_x(f, f->spp, v, order[j]) < mean_x(f, f->spp, v, order[j - 1]); j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+}
+
+static double mean_rel(const struct verdict_figures *f, int v, int p)
+{
+    return mean_x(f, f->relmse, v, p);
+}
+
+/* The failure modes of variant v: structured error, error that stops falling, non-finite samples
+   and a sampler's CPU share, each at the point where it shows most. */
+static void failures_of(const struct verdict_figures *f, int v, int *order, struct verdict_scene *out)
+{
+    int at = -1;
+    double most = 0;
+    for (int p = 0; f->repeat_share && p < f->n_points; p++) {
+        double s = f->repeat_share[v * f->n_points + p];
+        if (isfinite(s) && s > most)
+            most = s, at = p;
+    }
+    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE)
+        verdict_say_failure(f, add_failure(out, VERDICT_STRUCTURED, v, at, most));
+    if (samples_vary(f, v)) {
+        by_samples(f, v, order);
+        for (int i = 1; i < f->n_points; i++) {
+            double r0 = mean_rel(f, v, order[i - 1]), r1 = mean_rel(f, v, order[i]);
+            double s0 = mean_x(f, f->spp, v, order[i - 1]), s1 = mean_x(f, f->spp, v, order[i]);
+            if (!(r0 > 0 && r1 > 0 && s1 > s0 * 1.05))
+                continue;
+            double local = log(r1 / r0) / log(s1 / s0);
+            if (local > VERDICT_STALL_SLOPE) {
+                verdict_say_failure(f, add_failure(out, VERDICT_STALLS, v, order[i], local));
+                break;
+            }
+        }
+    }
+    uint64_t dropped = 0;
+    for (int p = 0; p < f->n_points; p++)
+        for (int k = 0; k < f->n_seeds; k++)
+            dropped += f->nonfinite[verdict_at(f, v, p, k)];
+    if (dropped)
+        verdict_say_failure(f, add_failure(out, VERDICT_NONFINITE, v, -1, (double)dropped));
+    at = -1, most = 0;
+    for (int p = 0; p < f->n_points; p++)
+        if (mean_x(f, f->sampler_share, v, p) > most)
+            most = mean_x(f, f->sampler_share, v, p), at = p;
+    if (most > VERDICT_SAMPLER_SHARE)
+        verdict_say_failure(f, add_failure(out, VERDICT_SHARE, v, at, most));
+}
+
+int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e)
+{
+    int nv = f->n_variants;
+    *out = (struct verdict_scene){.n_variants = nv, .n_seeds = f->n_seeds};
+    snprintf(out->study, sizeof out->study, "%s", f->study);
+    snprintf(out->scene, sizeof out->scene, "%s", f->scene);
+    out->variants = calloc((size_t)nv, sizeof *out->variants);
+    out->by_samples.e = calloc((size_t)nv, sizeof *out->by_samples.e);
+    out->by_cpu.e = calloc((size_t)nv, sizeof *out->by_cpu.e);
+    out->by_slope.e = calloc((size_t)nv, sizeof *out->by_slope.e);
+    out->failures = calloc((size_t)nv * 4, sizeof *out->failures);
+    out->warnings = calloc((size_t)VERDICT_SAY_MAX, sizeof *out->warnings);
+    out->sentences = calloc((size_t)VERDICT_SAY_MAX, sizeof *out->sentences);
+    int *order = calloc((size_t)f->n_points, sizeof *order);
+    if (!out->variants || !out->by_samples.e || !out->by_cpu.e || !out->by_slope.e || !out->failures ||
+        !out->warnings || !out->sentences || !order) {
+        free(order);
+        verdict_scene_free(out);
+        return err_set(e, NULL, 0, 0, "out of memory");
+    }
+    for (int v = 0; v < nv; v++)
+        snprintf(out->variants[v], sizeof out->variants[v], "%s", f->variants[v]);
+    rank_at(f, f->spp, &out->by_samples);
+    rank_at(f, f->cpu_s, &out->by_cpu);
+    rank_slopes(f, &out->by_slope);
+    for (int v = 0; v < nv; v++)
+        failures_of(f, v, order, out);
+    free(order);
+    verdict_say_warnings(f, out);
+    verdict_say_sentences(f, out);
+    return 0;
+}
+
+void verdict_scene_free(struct verdict_scene *v)
+{
+    free(v->variants);
+    free(v->by_samples.e);
+    free(v->by_cpu.e);
+    free(v->by_slope.e);
+    free(v->failures);
+    free(v->warnings);
+    free(v->sentences);
+    *v = (struct verdict_scene){0};
+}
+
+void verdict_study_free(struct verdict_study *s)
+{
+    for (int i = 0; s->scenes && i < s->n_scenes; i++)
+        verdict_scene_free(&s->scenes[i]);
+    free(s->scenes);
+    *s = (struct verdict_study){0};
+}
+
+void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)
+{
+    const struct verdict_ranking *r = &v->by_cpu;
+    if (r->n == 0 || r->status == VERDICT_INCONCLUSIVE) {
+        snprintf(buf, n, "inconclusive");
+        return;
+    }
+    size_t len = 0;
+    buf[0] = 0;
+    for (int i = 0; i < r->n && r->e[i].rank == 1 && len < n; i++)
+        len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? " = " : "", v->variants[r->e[i].variant]);
+    if (r->status == VERDICT_TIE && len < n)
+        snprintf(buf + len, n - len, " (tie)");
+}

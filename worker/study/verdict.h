@@ -1,0 +1,108 @@
+/* verdict: what a compare job's figures conclude, per study and scene: the ranking at equal
+   samples, at equal CPU time and by slope, with ties where variants differ by less than their
+   seeds' spread; the failure modes found; guards; and plain sentences. Pure arithmetic on the
+   figures (verdict_from.c gathers them from a finished compare job), so the rules are testable on
+   constructed figures. */
+#ifndef VERDICT_H
+#define VERDICT_H
+
+#include <stdint.h>
+
+#include "base/err.h"
+#include "base/json.h"
+#include "base/sbuf.h"
+
+/* A share of the error that repeats in every seed above this is structured (aliasing, a pattern,
+   a bias): pure noise averages away across seeds. */
+#define VERDICT_STRUCTURED_SHARE 0.5
+/* Error "stops falling" at a step whose local slope of log relMSE against log samples is above
+   this (noise alone falls as spp^-1). */
+#define VERDICT_STALL_SLOPE (-0.3)
+/* A sampler's share of its render's CPU time above this is a failure: drawing the points costs
+   more than tracing them. */
+#define VERDICT_SAMPLER_SHARE 0.5
+/* A reference with fewer than this many times the densest point's samples per pixel is too noisy
+   to rank the densest points by. */
+#define VERDICT_REF_FACTOR 4
+#define VERDICT_LABEL_MAX 64
+#define VERDICT_TEXT_MAX 400
+
+/* One scene of one study, every (variant, point, seed) at verdict_at(). Arrays are the caller's. */
+struct verdict_figures {
+    const char *study, *scene;
+    int n_variants, n_points, n_seeds;
+    const char *const *variants; /* labels */
+    const char *const *samplers; /* per variant: its pixel sampler's name ("poisson") */
+    const int *pools;            /* per variant: poisson_pool (0: fresh sets) */
+    const char *const *points;   /* sweep point labels ("threshold 5") */
+    const double *spp;           /* samples per pixel (mean over the image) */
+    const double *cpu_s;         /* the render's CPU seconds */
+    const double *relmse;        /* against the reference; NAN when not measured */
+    const double *sampler_share; /* fraction of CPU time drawing point sets */
+    const uint64_t *nonfinite;   /* samples dropped as NaN or infinite */
+    const double *repeat_share;  /* per (variant, point): error share repeating in every seed, NAN unknown */
+    double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
+};
+
+static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)
+{
+    return (v * f->n_points + p) * f->n_seeds + k;
+}
+
+enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
+
+/* One variant in a ranking: its figure's mean over seeds and the seeds' min and max. */
+struct verdict_entry {
+    int variant;
+    double value, lo, hi;
+    int rank;      /* 1 + the number of variants that beat it (verdict_beats) */
+    int unreached; /* its cheapest point costs far more than the common point: it cannot be had
+                      there (value, lo, hi: its cheapest point's) */
+};
+
+/* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
+   variant is beaten, INCONCLUSIVE when none beats another (or there is one seed: no spread). */
+struct verdict_ranking {
+    double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
+    int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
+    enum verdict_status status;
+    int n;
+    struct verdict_entry *e;
+};
+
+enum verdict_failure_kind { VERDICT_STRUCTURED, VERDICT_STALLS, VERDICT_NONFINITE, VERDICT_SHARE };
+
+struct verdict_failure {
+    enum verdict_failure_kind kind;
+    int variant, point; /* point: where it shows most (-1: throughout) */
+    double value;       /* the repeated share, the local slope, the samples dropped, the CPU share */
+    char text[VERDICT_TEXT_MAX];
+};
+
+struct verdict_scene {
+    char study[VERDICT_LABEL_MAX], scene[VERDICT_LABEL_MAX];
+    int n_variants, n_seeds;
+    char (*variants)[VERDICT_LABEL_MAX];
+    struct verdict_ranking by_samples, by_cpu, by_slope;
+    int n_failures, n_warnings, n_sentences;
+    struct verdict_failure *failures;
+    char (*warnings)[VERDICT_TEXT_MAX];
+    char (*sentences)[VERDICT_TEXT_MAX];
+};
+
+/* One study: its scenes' verdicts. */
+struct verdict_study {
+    char name[VERDICT_LABEL_MAX];
+    int n_scenes;
+    struct verdict_scene *scenes;
+};
+
+/* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */
+int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
+void verdict_scene_free(struct verdict_scene *v);
+void verdict_study_free(struct verdict_study *s);
+
+/* The winner at equal CPU time, for people: "sobol", "jitter = sobol (tie)", "inconclusive". */
+void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);
+
+#endif

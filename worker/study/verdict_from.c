@@ -1,0 +1,113 @@
+/* verdict_from: a compare job's figures, per scene, handed to verdict_scene_compute. */
+#include "verdict_from.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "compare_stats.h"
+#include "image/imgio.h"
+
+/* The arrays of one scene's figures (one allocation each, freed together). */
+struct figures_mem {
+    struct verdict_figures f;
+    const char **variants, **samplers, **points;
+    int *pools;
+    double *spp, *cpu, *rel, *share, *repeat;
+    uint64_t *nonfinite;
+};
+
+static void mem_free(struct figures_mem *m)
+{
+    free(m->variants), free(m->samplers), free(m->points), free(m->pools);
+    free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->repeat), free(m->nonfinite);
+}
+
+/* The share of (v, p)'s error that repeats in every seed, from the seeds' images averaged: noise
+   falls by the seed count, structure stays. NAN when it cannot be told. */
+static double repeat_share(const struct compare *c, int s, int v, int p, const char *dir,
+                           const struct rgbf *ref)
+{
+    double rom, mr;
+    struct err e;
+    if (c->n_seeds < 2 || compare_stats_seed_average(c, s, v, p, dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
+        return NAN;
+    return fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
+}
+
+static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
+                  struct figures_mem *m)
+{
+    size_t nv = (size_t)c->n_variants, n = nv * c->n_points * c->n_seeds;
+    m->variants = calloc(nv, sizeof *m->variants), m->samplers = calloc(nv, sizeof *m->samplers);
+    m->points = calloc((size_t)c->n_points, sizeof *m->points), m->pools = calloc(nv, sizeof *m->pools);
+    m->spp = calloc(n, sizeof *m->spp), m->cpu = calloc(n, sizeof *m->cpu),
+    m->rel = calloc(n, sizeof *m->rel);
+    m->share = calloc(n, sizeof *m->share), m->nonfinite = calloc(n, sizeof *m->nonfinite);
+    m->repeat = calloc(nv * c->n_points, sizeof *m->repeat);
+    if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
+        !m->share || !m->nonfinite || !m->repeat)
+        return -1;
+    struct verdict_figures *f = &m->f;
+    *f = (struct verdict_figures){.study = c->name,
+                                  .scene = c->scenes[s].name,
+                                  .n_variants = c->n_variants,
+                                  .n_points = c->n_points,
+                                  .n_seeds = c->n_seeds,
+                                  .variants = m->variants,
+                                  .samplers = m->samplers,
+                                  .pools = m->pools,
+                                  .points = m->points,
+                                  .spp = m->spp,
+                                  .cpu_s = m->cpu,
+                                  .relmse = m->rel,
+                                  .sampler_share = m->share,
+                                  .nonfinite = m->nonfinite,
+                                  .repeat_share = m->repeat,
+                                  .ref_spp = c->scenes[s].ref_spp};
+    for (int p = 0; p < c->n_points; p++)
+        m->points[p] = c->points[p];
+    for (int v = 0; v < c->n_variants; v++) {
+        const struct job *j = &c->items[compare_index(c, s, v, 0, 0)].job;
+        m->variants[v] = c->variants[v];
+        m->samplers[v] = sampler_kind_name(j->sampler);
+        m->pools[v] = j->poisson_pool;
+        for (int p = 0; p < c->n_points; p++) {
+            m->repeat[v * c->n_points + p] = ref ? repeat_share(c, s, v, p, dir, ref) : NAN;
+            for (int k = 0; k < c->n_seeds; k++) {
+                const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+                int i = verdict_at(f, v, p, k);
+                m->spp[i] = it->spp_mean, m->cpu[i] = it->cpu_s, m->share[i] = it->sampler_share;
+                m->rel[i] = it->has_error ? it->error.relmse : NAN;
+                m->nonfinite[i] = it->nonfinite;
+            }
+        }
+    }
+    return 0;
+}
+
+int verdict_from_compare(const struct compare *c, const char *dir, struct verdict_study *out, struct err *e)
+{
+    *out = (struct verdict_study){.n_scenes = c->n_scenes};
+    snprintf(out->name, sizeof out->name, "%s", c->name);
+    out->scenes = calloc((size_t)c->n_scenes, sizeof *out->scenes);
+    if (!out->scenes)
+        return err_set(e, NULL, 0, 0, "out of memory");
+    for (int s = 0; s < c->n_scenes; s++) {
+        const struct compare_scene *cs = &c->scenes[s];
+        struct rgbf ref = {0};
+        struct figures_mem m = {0};
+        int has_ref = cs->ref_kind != COMPARE_REF_NONE;
+        int rc = (has_ref && imgio_read_f(cs->ref_path, &ref, NULL, e) < 0) ? -1
+                 : gather(c, s, dir, has_ref ? &ref : NULL, &m) < 0
+                     ? err_set(e, NULL, 0, 0, "out of memory")
+                     : verdict_scene_compute(&m.f, &out->scenes[s], e);
+        mem_free(&m);
+        image_f_free(&ref);
+        if (rc < 0) {
+            verdict_study_free(out);
+            return -1;
+        }
+    }
+    return 0;
+}

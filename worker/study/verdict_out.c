@@ -1,0 +1,218 @@
+/* verdict_out: the verdict as verdict.json, as the report's opening HTML, and as the stderr
+   summary. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "verdict_out.h"
+
+#define TIE_RULE                                                                                             \
+    "Two variants are ranked apart only when the gap between their means over the seeds exceeds the "        \
+    "larger of their two min-max ranges across seeds (for relMSE on its logarithm: ratios count); a "        \
+    "variant's rank is 1 + the number of variants ahead of it by that rule. Equal samples and equal CPU "    \
+    "time are each the largest that every variant reached (the smallest of the variants' densest points), "  \
+    "each seed's relMSE read there in log-log between its measured points; a variant whose cheapest point "  \
+    "costs over 1.25x that is not reached and ranks behind those that are. A ranking is clear when "         \
+    "one variant alone ranks 1, a tie when several do but some variant is behind, inconclusive when none "   \
+    "is ahead of another or there is only one seed."
+
+static const char *status_name(enum verdict_status s)
+{
+    return s == VERDICT_CLEAR ? "clear" : s == VERDICT_TIE ? "tie" : "inconclusive";
+}
+
+static const char *kind_name(enum verdict_failure_kind k)
+{
+    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share"};
+    return names[k];
+}
+
+static void json_ranking(struct json *j, const char *key, const char *at_key, const char *value_key,
+                         const struct verdict_scene *v, const struct verdict_ranking *r)
+{
+    char winner[256];
+    json_begin_object(j, key);
+    if (at_key)
+        json_number(j, at_key, r->at);
+    json_string(j, "status", status_name(r->status));
+    winner[0] = 0;
+    for (int i = 0; i < r->n && r->status != VERDICT_INCONCLUSIVE && r->e[i].rank == 1; i++)
+        snprintf(winner + strlen(winner), sizeof winner - strlen(winner), "%s%s", i ? " = " : "",
+                 v->variants[r->e[i].variant]);
+    json_string(j, "winner", r->status == VERDICT_INCONCLUSIVE ? "inconclusive" : winner);
+    json_begin_array(j, "ranking");
+    for (int i = 0; i < r->n; i++) {
+        const struct verdict_entry *e = &r->e[i];
+        json_begin_object(j, NULL);
+        json_string(j, "variant", v->variants[e->variant]);
+        json_uint(j, "rank", (uint64_t)e->rank);
+        json_number(j, value_key, e->value);
+        json_number(j, "min", e->lo);
+        json_number(j, "max", e->hi);
+        json_bool(j, "reached", !e->unreached);
+        json_end_object(j);
+    }
+    json_end_array(j);
+    json_end_object(j);
+}
+
+static void json_scene(struct json *j, const struct verdict_scene *v)
+{
+    json_begin_object(j, NULL);
+    json_string(j, "scene", v->scene);
+    json_uint(j, "seeds", (uint64_t)v->n_seeds);
+    json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
+    json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
+    json_ranking(j, "slopes", NULL, "slope", v, &v->by_slope);
+    json_begin_array(j, "failures");
+    for (int i = 0; i < v->n_failures; i++) {
+        const struct verdict_failure *x = &v->failures[i];
+        json_begin_object(j, NULL);
+        json_string(j, "variant", v->variants[x->variant]);
+        json_string(j, "kind", kind_name(x->kind));
+        json_number(j, "value", x->value);
+        json_string(j, "text", x->text);
+        json_end_object(j);
+    }
+    json_end_array(j);
+    json_begin_array(j, "warnings");
+    for (int i = 0; i < v->n_warnings; i++)
+        json_string(j, NULL, v->warnings[i]);
+    json_end_array(j);
+    json_begin_array(j, "sentences");
+    for (int i = 0; i < v->n_sentences; i++)
+        json_string(j, NULL, v->sentences[i]);
+    json_end_array(j);
+    json_end_object(j);
+}
+
+char *verdict_json_text(const char *job, const struct verdict_study *s, int n)
+{
+    struct json j;
+    json_init(&j);
+    json_begin_object(&j, NULL);
+    json_string(&j, "job", job);
+    json_string(&j, "error", "relMSE in linear radiance against each scene's reference, mean over seeds");
+    json_string(&j, "tie_rule", TIE_RULE);
+    json_begin_array(&j, "studies");
+    for (int i = 0; i < n; i++) {
+        json_begin_object(&j, NULL);
+        json_string(&j, "study", s[i].name);
+        json_begin_array(&j, "scenes");
+        for (int k = 0; k < s[i].n_scenes; k++)
+            json_scene(&j, &s[i].scenes[k]);
+        json_end_array(&j);
+        json_end_object(&j);
+    }
+    json_end_array(&j);
+    json_end_object(&j);
+    if (j.oom) {
+        json_free(&j);
+        return NULL;
+    }
+    return j.buf; /* the writer's buffer, handed over */
+}
+
+/* One cell: "2. 1.3e-3 [1.1e-3, 1.5e-3]", the rank bold when 1. */
+static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, const char *fmt)
+{
+    for (int i = 0; i < r->n; i++) {
+        const struct verdict_entry *e = &r->e[i];
+        if (e->variant != v)
+            continue;
+        char val[32], lo[32], hi[32];
+        snprintf(val, sizeof val, fmt, e->value);
+        snprintf(lo, sizeof lo, fmt, e->lo);
+        snprintf(hi, sizeof hi, fmt, e->hi);
+        sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
+                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
+                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
+                    e->unreached ? " not reached: its cheapest point" : "");
+        return;
+    }
+    sbuf_printf(b, "<td></td>");
+}
+
+static void html_scene(struct sbuf *b, const struct verdict_scene *v)
+{
+    sbuf_printf(b, "<h3>");
+    sbuf_escape(b, v->study);
+    sbuf_printf(b, " / ");
+    sbuf_escape(b, v->scene);
+    sbuf_printf(b, "</h3>\n<ul class=\"verdict\">\n");
+    for (int i = 0; i < v->n_sentences; i++) {
+        sbuf_printf(b, "<li>");
+        sbuf_escape(b, v->sentences[i]);
+        sbuf_printf(b, "</li>\n");
+    }
+    sbuf_printf(b,
+                "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
+                "[min, max]</th><th>rank at equal CPU time (%.3g s): relMSE [min, max]</th><th>rank by "
+                "slope: relMSE ~ spp^s [min, max]</th></tr>\n",
+                v->by_samples.at, v->by_cpu.at);
+    for (int k = 0; k < v->n_variants; k++) {
+        sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
+        sbuf_escape(b, v->variants[k]);
+        sbuf_printf(b, "</td>");
+        html_cell(b, &v->by_samples, k, "%.3g");
+        html_cell(b, &v->by_cpu, k, "%.3g");
+        html_cell(b, &v->by_slope, k, "%.2f");
+        sbuf_printf(b, "</tr>\n");
+    }
+    sbuf_printf(
+        b, "</table>\n<p class=\"note\">Rankings: at equal samples %s, at equal CPU time %s, by slope %s.",
+        status_name(v->by_samples.status), status_name(v->by_cpu.status), status_name(v->by_slope.status));
+    for (int i = 0; i < v->n_failures; i++) {
+        sbuf_printf(b, "%s", i ? "; " : " <b>Failures</b>: ");
+        sbuf_escape(b, v->failures[i].text);
+    }
+    sbuf_printf(b, "%s</p>\n", v->n_failures ? "." : " No failure mode detected.");
+    for (int i = 0; i < v->n_warnings; i++) {
+        sbuf_printf(b, "<p class=\"warn\">Warning: ");
+        sbuf_escape(b, v->warnings[i]);
+        sbuf_printf(b, "</p>\n");
+    }
+}
+
+void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
+{
+    sbuf_printf(b, "<section id=\"verdict\"><h2>Verdict</h2>\n");
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < s[i].n_scenes; k++)
+            html_scene(b, &s[i].scenes[k]);
+    sbuf_printf(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ");
+    sbuf_escape(b, TIE_RULE);
+    sbuf_printf(
+        b,
+        " Failure modes: more than %.0f%% of the error repeating in every seed (structured: averaging "
+        "the seeds' images leaves it); a step along the sweep whose local slope is above %.1f (error "
+        "stops falling); any non-finite sample; a sampler taking more than %.0f%% of the CPU time. "
+        "The same verdict is in <a href=\"verdict.json\">verdict.json</a>.</p></section>\n",
+        100 * VERDICT_STRUCTURED_SHARE, VERDICT_STALL_SLOPE, 100 * VERDICT_SAMPLER_SHARE);
+}
+
+void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len)
+{
+    size_t at = 0;
+    buf[0] = 0;
+    for (int i = 0; i < n && at < len; i++) {
+        at += (size_t)snprintf(buf + at, len - at, "%s%s:", i ? "; " : "", s[i].name);
+        for (int k = 0; k < s[i].n_scenes && at < len; k++) {
+            char w[256];
+            verdict_winner(&s[i].scenes[k], w, sizeof w);
+            if (s[i].n_scenes == 1)
+                at += (size_t)snprintf(buf + at, len - at, " %s", w);
+            else
+                at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
+        }
+    }
+}
+
+void verdict_print_warnings(const struct verdict_study *s, int n)
+{
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < s[i].n_scenes; k++)
+            for (int w = 0; w < s[i].scenes[k].n_warnings; w++)
+                err_print("%s: warning: %s: %s\n", s[i].name, s[i].scenes[k].scene,
+                          s[i].scenes[k].warnings[w]);
+}

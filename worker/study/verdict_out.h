@@ -1,0 +1,27 @@
+/* verdict_out: a verdict as verdict.json, as the HTML that opens a report, and as the summary
+   and warnings on stderr. */
+#ifndef VERDICT_OUT_H
+#define VERDICT_OUT_H
+
+#include <stddef.h>
+
+#include "base/sbuf.h"
+#include "verdict.h"
+
+/* verdict.json: {"job", "tie_rule", "studies": [{"study", "scenes": [{"scene", "equal_samples",
+   "equal_cpu_time", "slopes", "failures", "warnings", "sentences"}]}]}. Malloc'd, NULL on no
+   memory. */
+char *verdict_json_text(const char *job, const struct verdict_study *s, int n);
+
+/* The verdict as HTML for the top of a report: per study and scene, the sentences, the three
+   rankings with their figures and ties, the failures and the warnings; then the rule. */
+void verdict_html(struct sbuf *b, const struct verdict_study *s, int n);
+
+/* "seed-question: checker jitter, cornell inconclusive; soft-shadows: sobol" (equal CPU time),
+   for the summary line on stderr. */
+void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len);
+
+/* Every warning of every scene, one line each ("soft-shadows: warning: checker: ..."), to stderr. */
+void verdict_print_warnings(const struct verdict_study *s, int n);
+
+#endif

@@ -1,0 +1,251 @@
+/* verdict_say: the words of a scene's verdict. */
+#include "verdict_say.h"
+
+#include "verdict_rank.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Append printf text to buf (of VERDICT_TEXT_MAX bytes), truncating. */
+static void __attribute__((format(printf, 2, 3))) append(char *buf, const char *fmt, ...)
+{
+    size_t len = strlen(buf);
+    if (len + 1 >= VERDICT_TEXT_MAX)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf + len, VERDICT_TEXT_MAX - len, fmt, ap);
+    va_end(ap);
+}
+
+static char *next_line(char (*lines)[VERDICT_TEXT_MAX], int *n)
+{
+    if (*n >= VERDICT_SAY_MAX)
+        return NULL;
+    lines[*n][0] = 0;
+    return lines[(*n)++];
+}
+
+static const char *point_name(const struct verdict_figures *f, int p)
+{
+    return p >= 0 && p < f->n_points && f->points ? f->points[p] : "every point";
+}
+
+void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x)
+{
+    const char *v = f->variants[x->variant], *at = point_name(f, x->point);
+    x->text[0] = 0;
+    switch (x->kind) {
+    case VERDICT_STRUCTURED:
+        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed (aliasing, a pattern or a bias)",
+               v, 100 * x->value, at);
+        break;
+    case VERDICT_STALLS:
+        append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
+        break;
+    case VERDICT_NONFINITE:
+        append(x->text, "%s: %.0f non-finite samples dropped", v, x->value);
+        break;
+    case VERDICT_SHARE:
+        append(x->text, "%s: drawing its point sets takes %.0f%% of its CPU time at %s", v, 100 * x->value,
+               at);
+        break;
+    }
+}
+
+static const char *ranking_name(const struct verdict_scene *out, const struct verdict_ranking *r)
+{
+    return r == &out->by_cpu ? "at equal CPU time" : r == &out->by_samples ? "at equal samples" : "by slope";
+}
+
+/* The labels of the variants of rank `rank` in r, joined: "jitter, sobol". */
+static void group(const struct verdict_scene *out, const struct verdict_ranking *r, int rank, char *buf)
+{
+    int shown = 0;
+    buf[0] = 0;
+    for (int i = 0; i < r->n; i++)
+        if (r->e[i].rank == rank)
+            append(buf, "%s%s", shown++ ? ", " : "", out->variants[r->e[i].variant]);
+}
+
+void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene *out)
+{
+    char *w;
+    if (f->n_seeds < 2 && (w = next_line(out->warnings, &out->n_warnings)))
+        append(w, "one seed: no spread across seeds to judge a difference by, so nothing is ranked");
+    double densest = 0;
+    for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds; i++)
+        densest = fmax(densest, f->spp[i]);
+    if (f->ref_spp > 0 && f->ref_spp < VERDICT_REF_FACTOR * densest &&
+        (w = next_line(out->warnings, &out->n_warnings)))
+        append(w,
+               "the reference has %.0f samples per pixel, fewer than %dx the densest point's %.0f: its own "
+               "noise is a large part of the error measured there",
+               f->ref_spp, VERDICT_REF_FACTOR, densest);
+    const struct verdict_ranking *rs[] = {&out->by_samples, &out->by_cpu, &out->by_slope};
+    for (int i = 0; i < 3 && f->n_seeds > 1; i++) {
+        const struct verdict_ranking *r = rs[i];
+        char top[VERDICT_TEXT_MAX];
+        group(out, r, 1, top);
+        if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
+            append(w, "%s, %s differ by less than their spread across seeds: %s", ranking_name(out, r), top,
+                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
+        for (int j = 0; j < r->n; j++)
+            if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
+                append(w,
+                       "%s, %s cannot be had: its cheapest image costs far more than the %.3g %s every other "
+                       "variant reached, so it ranks behind them",
+                       ranking_name(out, r), out->variants[r->e[j].variant], r->at,
+                       r == &out->by_cpu ? "CPU seconds" : "samples per pixel");
+    }
+}
+
+/* "At equal CPU time (0.21 s per image), use jitter: ..." for one ranking. */
+static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at,
+                        char *s)
+{
+    char top[VERDICT_TEXT_MAX], rest[VERDICT_TEXT_MAX];
+    if (r->n < 2)
+        return;
+    if (r->status == VERDICT_INCONCLUSIVE) {
+        append(s, "%s on %s, the variants differ by less than their seeds' spread: inconclusive", at,
+               out->scene);
+        append(s, out->n_seeds < 2 ? " (one seed)." : " (more seeds or samples would tell).");
+        return;
+    }
+    group(out, r, 1, top);
+    const struct verdict_entry *b = &r->e[0], *next = NULL;
+    for (int i = 1; i < r->n && !next; i++)
+        if (r->e[i].rank > 1)
+            next = &r->e[i];
+    if (r->status == VERDICT_CLEAR)
+        append(s, "%s on %s, use %s: relMSE %.3g, %.2fx lower than the next, %s.", at, out->scene, top,
+               b->value, next->value / b->value, out->variants[next->variant]);
+    else {
+        group(out, r, next->rank, rest);
+        append(s, "%s on %s, %s tie within their seeds' spread, ahead of %s.", at, out->scene, top, rest);
+    }
+}
+
+static void say_slopes(const struct verdict_scene *out, char *s)
+{
+    const struct verdict_ranking *r = &out->by_slope;
+    if (r->n < 2 || r->status == VERDICT_INCONCLUSIVE)
+        return;
+    char top[VERDICT_TEXT_MAX];
+    group(out, r, 1, top);
+    const struct verdict_entry *b = &r->e[0], *w = &r->e[r->n - 1];
+    append(s,
+           "Error falls fastest with %s (relMSE ~ spp^%.2f, seeds %.2f to %.2f) and slowest with %s (%.2f).",
+           top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
+}
+
+static const struct verdict_entry *entry_of(const struct verdict_ranking *r, int v)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->e[i].variant == v)
+            return &r->e[i];
+    return NULL;
+}
+
+/* CPU seconds per sample at v's densest point, over its seeds. */
+static double per_sample(const struct verdict_figures *f, int v)
+{
+    double best = 0, cost = NAN;
+    for (int p = 0; p < f->n_points; p++) {
+        double spp = 0, cpu = 0;
+        for (int k = 0; k < f->n_seeds; k++)
+            spp += f->spp[verdict_at(f, v, p, k)], cpu += f->cpu_s[verdict_at(f, v, p, k)];
+        if (spp > best)
+            best = spp, cost = cpu / spp;
+    }
+    return cost;
+}
+
+/* What Bridson's fresh sets cost against jitter per sample, and against the pool at equal time. */
+static void say_poisson(const struct verdict_figures *f, struct verdict_scene *out, int v)
+{
+    char *s;
+    for (int j = 0; j < f->n_variants; j++) {
+        if (!strcmp(f->samplers[j], "jitter") && (s = next_line(out->sentences, &out->n_sentences))) {
+            const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
+            append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
+                   per_sample(f, v) / per_sample(f, j), f->variants[j]);
+            if (verdict_beats(a, b, 1))
+                append(s, "%.2fx lower relMSE at equal samples.", b->value / a->value);
+            else if (verdict_beats(b, a, 1))
+                append(s, "nothing at equal samples (its relMSE is %.2fx %s's).", a->value / b->value,
+                       f->variants[j]);
+            else
+                append(s, "nothing measurable at equal samples (within the seeds' spread).");
+            break;
+        }
+    }
+    for (int u = 0; u < f->n_variants; u++) {
+        if (strcmp(f->samplers[u], "poisson") || f->pools[u] == 0 ||
+            !(s = next_line(out->sentences, &out->n_sentences)))
+            continue;
+        const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
+        int pool = verdict_beats(a, b, 1), fresh = verdict_beats(b, a, 1);
+        if (pool && b->unreached)
+            append(s,
+                   "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs "
+                   "more "
+                   "than the %.3g s the variants are compared at.",
+                   out->scene, f->variants[u], f->variants[v], out->by_cpu.at);
+        else if (pool || fresh)
+            append(s, "At equal CPU time on %s, %s (%s) beats %s (%s): relMSE %.3g against %.3g.", out->scene,
+                   f->variants[pool ? u : v], pool ? "the pool" : "fresh sets", f->variants[pool ? v : u],
+                   pool ? "fresh sets" : "the pool", fmin(a->value, b->value), fmax(a->value, b->value));
+        else
+            append(
+                s,
+                "At equal CPU time on %s, the pool %s and the fresh sets %s tie within their seeds' spread.",
+                out->scene, f->variants[u], f->variants[v]);
+    }
+}
+
+void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene *out)
+{
+    char *s;
+    if ((s = next_line(out->sentences, &out->n_sentences))) {
+        char at[96];
+        snprintf(at, sizeof at, "At equal CPU time (%.3g s per image)", out->by_cpu.at);
+        say_ranking(out, &out->by_cpu, at, s);
+    }
+    if ((s = next_line(out->sentences, &out->n_sentences))) {
+        char at[96];
+        snprintf(at, sizeof at, "At equal samples (%.0f per pixel)", out->by_samples.at);
+        say_ranking(out, &out->by_samples, at, s);
+    }
+    if ((s = next_line(out->sentences, &out->n_sentences)))
+        say_slopes(out, s);
+    for (int i = 0; i < out->n_failures; i++) {
+        const struct verdict_failure *x = &out->failures[i];
+        const char *v = f->variants[x->variant], *at = point_name(f, x->point);
+        if (x->kind == VERDICT_SHARE || !(s = next_line(out->sentences, &out->n_sentences)))
+            continue; /* the sampler's share is said with Poisson's cost */
+        if (x->kind == VERDICT_STRUCTURED)
+            append(s,
+                   "%s %s on %s: %.0f%% of its error at %s repeats in every seed, so no number of seeds "
+                   "averages it away.",
+                   v, strcmp(f->samplers[x->variant], "uniform") ? "has structured error" : "aliases",
+                   out->scene, 100 * x->value, at);
+        else if (x->kind == VERDICT_STALLS)
+            append(s,
+                   "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.",
+                   v, at, out->scene, x->value);
+        else
+            append(s, "%s dropped %.0f non-finite samples on %s.", v, x->value, out->scene);
+    }
+    for (int v = 0; v < f->n_variants; v++)
+        if (!strcmp(f->samplers[v], "poisson") && f->pools[v] == 0)
+            say_poisson(f, out, v);
+    int kept = 0; /* a ranking with fewer than two variants said nothing */
+    for (int i = 0; i < out->n_sentences; i++)
+        if (out->sentences[i][0])
+            memmove(out->sentences[kept++], out->sentences[i], VERDICT_TEXT_MAX);
+    out->n_sentences = kept;
+}

@@ -1,0 +1,22 @@
+/* verdict_say: a scene verdict's words: each failure's line, the warnings (guards) and the plain
+   sentences a reader can act on, from its figures and rankings. Internal to verdict.c. */
+#ifndef VERDICT_SAY_H
+#define VERDICT_SAY_H
+
+#include "verdict.h"
+
+/* Room for warnings and sentences per scene; more are left out. */
+#define VERDICT_SAY_MAX 16
+
+/* x->text for a failure just found. */
+void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x);
+
+/* out->warnings: one seed, a reference with too few samples, rankings whose neighbours differ by
+   less than their spread, figures read beyond the measured points. */
+void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene *out);
+
+/* out->sentences: the winner at equal CPU time and at equal samples, the slopes, and what each
+   failure and Poisson's cost mean for a user. */
+void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene *out);
+
+#endif
