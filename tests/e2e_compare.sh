@@ -335,7 +335,7 @@ check "error maps: shown at the renders' zoom (64 px: 4x)" \
     [ "$(grep -c 'data-slot="m0v[0-9]*"[^>]*><img class="z" src="data:image/png;base64,[^"]*" width="256" height="192"' "$ohtml")" -eq 15 ]
 
 # 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
-for j in jobs/compare.yaml jobs/seed-experiment.yaml jobs/studies/*.yaml; do
+for j in jobs/compare.yaml jobs/seed-experiment.yaml; do
     n=$(basename "$j" .yaml)
     sed -e 's/^width:.*/width: 8/' -e 's/^height:.*/height: 8/' -e "s/^name:.*/name: $n/" \
         -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$j" >"$T/jobs-$n.yaml"
