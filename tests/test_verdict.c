@@ -107,6 +107,21 @@ static void test_rule(void)
     CHECK(verdict_beats(&c, &d, 1) && !verdict_beats(&d, &c, 1));
 }
 
+/* Ties are not transitive: a wide spread at a worse mean is beaten by none, while a narrow one
+   between them is beaten; the ranking stays best first by rank (found in e2e_studies' tiny runs). */
+static void test_rank_order(void)
+{
+    struct verdict_entry e[3] = {{.variant = 0, .value = 1.0, .lo = 0.99, .hi = 1.01},
+                                 {.variant = 1, .value = 1.2, .lo = 0.5, .hi = 2.0},
+                                 {.variant = 2, .value = 1.1, .lo = 1.09, .hi = 1.11}};
+    struct verdict_ranking r = {.log_scale = 1, .n = 3, .e = e};
+    verdict_rank(&r, 3);
+    CHECK(e[0].variant == 0 && e[0].rank == 1);
+    CHECK(e[1].variant == 1 && e[1].rank == 1); /* nobody beats the wide spread */
+    CHECK(e[2].variant == 2 && e[2].rank == 2); /* variant 0 beats it */
+    CHECK(r.status == VERDICT_TIE);
+}
+
 static void test_clear_winner(void)
 {
     struct fake x;
@@ -250,6 +265,7 @@ int main(void)
 {
     test_unreached();
     test_rule();
+    test_rank_order();
     test_clear_winner();
     test_tie_and_inconclusive();
     test_slopes();

@@ -32,6 +32,15 @@ void verdict_rank(struct verdict_ranking *r, int n_seeds)
             r->e[i].rank += n_seeds > 1 && verdict_beats(&r->e[j], &r->e[i], r->log_scale);
         first += r->e[i].rank == 1;
     }
+    /* The tie rule is not transitive: a variant with a wide spread may be beaten by none though
+       its mean is worse than one that is beaten (ranks 1, 2, 1 by value). Best first is by rank,
+       then value: a stable insertion sort keeps the value order within a rank. */
+    for (int i = 1; i < r->n; i++)
+        for (int j = i; j > 0 && r->e[j].rank < r->e[j - 1].rank; j--) {
+            struct verdict_entry t = r->e[j];
+            r->e[j] = r->e[j - 1];
+            r->e[j - 1] = t;
+        }
     r->status = n_seeds < 2 || first == r->n ? VERDICT_INCONCLUSIVE
                 : first == 1                 ? VERDICT_CLEAR
                                              : VERDICT_TIE;
