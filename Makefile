@@ -136,7 +136,8 @@ asan:
 test-slurm: all
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) bash ci/slurm/test-local.sh
 
-# The headline study: every sampler on every scene, charted (out/compare/report.html).
+# The headline study: a suite of four studies (jobs/studies/), one verdict over them all
+# (out/compare/report.html).
 run: all
 	$(WORKER_BIN) jobs/compare.yaml
 

@@ -335,10 +335,13 @@ check "error maps: shown at the renders' zoom (64 px: 4x)" \
     [ "$(grep -c 'data-slot="m0v[0-9]*"[^>]*><img class="z" src="data:image/png;base64,[^"]*" width="256" height="192"' "$ohtml")" -eq 15 ]
 
 # 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
-for j in jobs/compare.yaml jobs/seed-experiment.yaml; do
+shrink() { # shrink FILE: FILE at 8x8 pixels, thresholds 50 and 25, a reference at threshold 20
+    sed -e 's/^width:.*/width: 8/' -e 's/^height:.*/height: 8/' \
+        -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$1"
+}
+for j in jobs/seed-experiment.yaml; do
     n=$(basename "$j" .yaml)
-    sed -e 's/^width:.*/width: 8/' -e 's/^height:.*/height: 8/' -e "s/^name:.*/name: $n/" \
-        -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$j" >"$T/jobs-$n.yaml"
+    shrink "$j" | sed "s/^name:.*/name: $n/" >"$T/jobs-$n.yaml"
     "$WORKER" --quiet --out "$T/shipped" "$T/jobs-$n.yaml" 2>"$T/$n.err"; rc=$? # bare scene names: ./scenes
     images=$(awk -F, 'NR > 1' "$T/shipped/$n/summary.csv" 2>/dev/null | wc -l)
     variants=$(grep -c '^  - {' "$j"); scenes=$(sed -n 's/^scenes: \[\(.*\)\]/\1/p' "$j" | tr ',' '\n' | wc -l)
@@ -348,9 +351,18 @@ for j in jobs/compare.yaml jobs/seed-experiment.yaml; do
         [ "$images" -eq $((scenes * variants * 2 * seeds)) ]
     check "$j: report written" [ -s "$T/shipped/$n/report.html" ]
 done
-check "jobs/compare.yaml: checker and cornell" grep -q '^scenes: \[checker, cornell\]' jobs/compare.yaml
-check "jobs/compare.yaml: a sweep of at least 4 thresholds" \
-    [ "$(sed -n 's/^sweep: { threshold: \[\(.*\)\] }.*/\1/p' jobs/compare.yaml | tr ',' '\n' | wc -l)" -ge 4 ]
+# the headline job is a suite of the shipped studies (each of which e2e_studies runs alone): it
+# runs with them shrunk alike, into a folder per study, with the suite's verdict on top
+check "jobs/compare.yaml: a suite of the four shipped studies" grep -qx \
+    'studies: \[studies/seed-question.yaml, studies/soft-shadows.yaml, studies/aliasing.yaml, studies/cost.yaml\]' jobs/compare.yaml
+mkdir -p "$T/suite/studies"
+cp jobs/compare.yaml "$T/suite/compare.yaml"
+for f in jobs/studies/*.yaml; do shrink "$f" >"$T/suite/studies/$(basename "$f")"; done
+"$WORKER" --quiet --out "$T/shipped" "$T/suite/compare.yaml" 2>"$T/suite.err"; rc=$? # bare scene names: ./scenes
+check "jobs/compare.yaml runs, its studies shrunk (exit $rc: $(tail -n 1 "$T/suite.err"))" [ "$rc" -eq 0 ]
+check "jobs/compare.yaml: each study's report, the suite's report and verdict" sh -c \
+    "[ \$(ls '$T'/shipped/compare/*/report.html | wc -l) -eq 4 ] && [ -s '$T/shipped/compare/report.html' ] && [ -s '$T/shipped/compare/verdict.json' ]"
+check "jobs/compare.yaml's studies: checker and cornell" grep -q '^scenes: \[checker, cornell\]' jobs/studies/seed-question.yaml
 
 # 7. bad compare jobs: exit 2, file:line:col, nothing rendered
 bad() { # bad NAME EXPECTED-REGEX (job in $T/NAME.yaml)
