@@ -21,7 +21,7 @@ check "final.yaml has 1000 cluster spheres" [ "$(grep -c 'rotate_y: 15' scenes/f
 # 2. every job in jobs/ renders (shrunk to 24x24 and a few samples) and every scene has a job.
 for j in jobs/*.yaml; do
     n=$(basename "$j" .yaml)
-    grep -q '^variants:' "$j" && continue # compare jobs: tests/e2e_compare.sh renders them shrunk
+    grep -qE '^(variants|studies):' "$j" && continue # compare jobs and suites: e2e_compare renders them shrunk
     sed -e 's/^width:.*/width: 24/' -e 's/^height:.*/height: 24/' -e 's/^threshold:.*/threshold: 50/' \
         -e 's/^light_threshold:.*/light_threshold: 50/' -e "s|^scene: \(.*\)|scene: $root/scenes/\1.yaml|" \
         "$j" >"$T/$n.yaml"

@@ -94,6 +94,7 @@ int compare_suite_run(struct compare_suite *s, const struct run_opts *o, struct 
     return write_top(s, dir, o, e) < 0 ? 1 : 0;
 }
 
+/* "s" after a count other than one */
 static const char *plural(int n)
 {
     return n == 1 ? "" : "s";
@@ -121,7 +122,7 @@ static void summary_line(const struct compare_suite *s, double wall_s, const cha
         for (int k = 0; k < c->n_items; k++)
             current += c->items[k].skipped;
     }
-    /* a reference another study of the suite rendered a moment ago counts as reused */
+    /* a reference that an earlier study of this run rendered counts as reused, its time as saved */
     if (reused)
         snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)%s",
                  rendered, reused, saved_s, given ? ", images given" : "");
