@@ -59,7 +59,7 @@ LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
 .SECONDARY:
-.PHONY: all test stress test-big unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
+.PHONY: all build-parallel test stress test-big unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
 # Set-up: when libyaml, zlib or OpenEXR headers are missing, root on Debian installs them
@@ -111,8 +111,16 @@ scenes: $(TOOL_BIN)
 golden: all
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) GOLDEN_UPDATE=1 sh tests/e2e_golden.sh
 
+# `make run` and `make test` compile with one job per core (a plain `make` is serial), once the
+# dependencies are in place.
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+build-parallel:
+	$(Q)$(MAKE) --no-print-directory deps
+	$(Q)$(MAKE) --no-print-directory -j$(JOBS) $(BUILD_GOALS)
+
 # Unit binaries, then the end-to-end scripts; the runner prints "N passed, N failed".
-test: all $(TEST_BIN) $(TOOL_BIN)
+test:
+	$(Q)$(MAKE) --no-print-directory build-parallel BUILD_GOALS='all $(TEST_BIN) $(TOOL_BIN)'
 	$(Q)WORKER=$(abspath $(WORKER_BIN)) TEST_BIN_DIR=$(abspath $(BUILD)/tests) \
 	  TOOLS_DIR=$(abspath $(BUILD)/tools) sh tests/run.sh
 
@@ -138,7 +146,8 @@ test-slurm: all
 
 # The headline study: a suite of four studies (jobs/studies/), one verdict over them all
 # (out/compare/report.html).
-run: all
+run:
+	$(Q)$(MAKE) --no-print-directory build-parallel BUILD_GOALS=all
 	$(WORKER_BIN) jobs/compare.yaml
 
 install: all
