@@ -127,7 +127,8 @@ static void test_nets(void)
 }
 
 /* The sampler: n = floor(100 / t)^2 points, all in [0, 1), a net when n is a power of two,
-   drawn whole (no cells), the same set for the same rng state and another for another. */
+   drawn whole (no cells) or point by point (sampler_sobol_set, sobol_point), the same set for
+   the same rng state and another for another. */
 static void test_sampler(void)
 {
     enum sampler_kind kind;
@@ -156,6 +157,16 @@ static void test_sampler(void)
             CHECK(is_net(a, n, (int)round(log2((double)n))));
         sampler_draw(s, &r3, b);
         CHECK(n == 1 || memcmp(a, b, n * sizeof *a) != 0);
+        /* the set point by point (a light's sets): the same count, rng draws and points, bit for bit */
+        struct sobol_seeds seeds;
+        rng_seed(&r3, 3, 9);
+        CHECK(sampler_sobol_set(s, &r3, &seeds) == n && r3.state == r1.state);
+        int same = 1;
+        for (size_t i = n; i-- > 0;) {
+            const struct pt2 q = sobol_point(seeds, (uint32_t)i);
+            same &= memcmp(&q, &a[i], sizeof q) == 0;
+        }
+        CHECK(same);
         sampler_free(s);
     }
     free(a);

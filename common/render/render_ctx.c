@@ -93,9 +93,10 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
             render_ctx_free(ctx);
             return NULL;
         }
-        size_t cells = sampler_cells(light) > 0   ? sampler_cells(light)
-                       : sampler_is_pooled(light) ? sampler_set_capacity(light)
-                                                  : 0;
+        size_t cells = sampler_cells(light) > 0 ? sampler_cells(light)
+                       : sampler_is_pooled(light) || ctx->light_kind == SAMPLER_SOBOL
+                           ? sampler_set_capacity(light)
+                           : 0;
         if (cells > 0) {
             ctx->lp[i].cells = malloc(cells * sizeof *ctx->lp[i].cells);
             if (!ctx->identity) {

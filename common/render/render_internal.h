@@ -6,15 +6,18 @@
 #include "geom/packet.h"
 #include "render.h"
 #include "base/rng.h"
+#include "sample/sobol.h"
 
 /* A light's current point set within the pixel, taken in a random order, then redrawn: the
    points themselves (fresh poisson), the indices of a pool set's points, shifted when taken
-   (pooled poisson), or the cells whose points are made when taken (the others). */
+   (pooled poisson), the indices of a sobol set's points, made when taken, or the cells whose
+   points are made when taken (the others). */
 struct light_points {
     struct pt2 *pts;
     uint32_t *cells;
     const struct pool_point *pool; /* pooled: the set and its shift */
     double ox, oy, cos_oy, sin_oy;
+    struct sobol_seeds sobol; /* sobol: the set's seeds */
     size_t n, next;
     int uses_points; /* shape_light_uses_points of the light, looked up once */
 };

@@ -175,12 +175,14 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
             out[count++] = (struct pt2){u, v};
         }
         return count;
-    case SAMPLER_SOBOL:
+    case SAMPLER_SOBOL: {
         /* the first n * n points of a sequence scrambled for this set: a (0,2)-net when n * n is a
            power of two, a net's prefix otherwise (sobol.h) */
-        count = (size_t)n * (size_t)n;
-        sobol_fill(sobol_seeds_draw(rng), count, out);
+        struct sobol_seeds seeds;
+        count = sampler_sobol_set(s, rng, &seeds);
+        sobol_fill(seeds, count, out);
         return count;
+    }
     case SAMPLER_POISSON:
         break;
     }
@@ -193,6 +195,14 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
     for (size_t k = 0; k < count; k++)
         out[k] = sampler_shift(src[k].p, ox, oy);
     return count;
+}
+
+size_t sampler_sobol_set(const struct sampler *s, struct rng *rng, struct sobol_seeds *seeds)
+{
+    if (s->kind != SAMPLER_SOBOL)
+        return 0;
+    *seeds = sobol_seeds_draw(rng);
+    return (size_t)s->grid_n * (size_t)s->grid_n;
 }
 
 int sampler_is_pooled(const struct sampler *s)

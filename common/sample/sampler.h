@@ -131,6 +131,13 @@ static inline struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
     return (struct pt2){sampler_shift_unit(p.x, ox), sampler_shift_unit(p.y, oy)};
 }
 
+/* A sobol set without drawing it (s sobol, else 0): the set sampler_draw would return for this
+   rng is sobol_point(*seeds, k) for k in [0, count) (sobol.h); returns count and consumes rng
+   exactly as sampler_draw does. For a caller that takes a few points of a set (a light's within
+   one pixel): each point then costs only when taken. */
+struct sobol_seeds;
+size_t sampler_sobol_set(const struct sampler *s, struct rng *rng, struct sobol_seeds *seeds);
+
 /* Draw one set into out, consuming rng; returns the count (>= 1). Allocates nothing: the
    sampler's workspace is reused, so one sampler serves one thread at a time. With a pool,
    the set is one of the pool's, picked by rng and shifted by an rng offset modulo 1

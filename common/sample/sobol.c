@@ -74,12 +74,21 @@ struct sobol_seeds sobol_seeds_draw(struct rng *rng)
    block of 2^m Sobol indices, itself a (0,m,2)-net), then x = owen(sobol_x(i)) and y =
    owen(sobol_y(i)), each with its own seed; Owen scrambling keeps a net a net. Both coordinates
    are bit reversals of a reversed value, so each costs one reversal. */
+static inline struct pt2 point_of(struct sobol_seeds s, uint32_t k)
+{
+    const uint32_t i = sobol_owen(k, s.index);
+    const uint32_t x = bit_reverse(owen_reversed(i, s.x));
+    const uint32_t y = bit_reverse(owen_reversed(sobol_y_reversed(i), s.y));
+    return (struct pt2){x * 0x1.0p-32, y * 0x1.0p-32};
+}
+
+struct pt2 sobol_point(struct sobol_seeds s, uint32_t k)
+{
+    return point_of(s, k);
+}
+
 void sobol_fill(struct sobol_seeds s, size_t n, struct pt2 *out)
 {
-    for (size_t k = 0; k < n; k++) {
-        const uint32_t i = sobol_owen((uint32_t)k, s.index);
-        const uint32_t x = bit_reverse(owen_reversed(i, s.x));
-        const uint32_t y = bit_reverse(owen_reversed(sobol_y_reversed(i), s.y));
-        out[k] = (struct pt2){x * 0x1.0p-32, y * 0x1.0p-32};
-    }
+    for (size_t k = 0; k < n; k++)
+        out[k] = point_of(s, (uint32_t)k);
 }

@@ -31,4 +31,8 @@ uint32_t sobol_owen(uint32_t v, uint32_t seed);
    power of two below n. Allocates nothing; cannot fail. */
 void sobol_fill(struct sobol_seeds s, size_t n, struct pt2 *out);
 
+/* Point k alone of the scrambled sequence for seeds s: sobol_fill's out[k], bit for bit (for a
+   caller that takes a few points of a large set, in any order). Cannot fail. */
+struct pt2 sobol_point(struct sobol_seeds s, uint32_t k);
+
 #endif
