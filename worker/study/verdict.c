@@ -286,17 +286,22 @@ void verdict_study_free(struct verdict_study *s)
     *s = (struct verdict_study){0};
 }
 
-void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)
+void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
+                            char *buf, size_t n)
 {
-    const struct verdict_ranking *r = &v->by_cpu;
+    size_t len = 0;
+    buf[0] = 0;
     if (r->n == 0 || r->status == VERDICT_INCONCLUSIVE) {
         snprintf(buf, n, "inconclusive");
         return;
     }
-    size_t len = 0;
-    buf[0] = 0;
     for (int i = 0; i < r->n && r->e[i].rank == 1 && len < n; i++)
         len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? " = " : "", v->variants[r->e[i].variant]);
-    if (r->status == VERDICT_TIE && len < n)
+    if (tie_note && r->status == VERDICT_TIE && len < n)
         snprintf(buf + len, n - len, " (tie)");
+}
+
+void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)
+{
+    verdict_ranking_winner(v, &v->by_cpu, 1, buf, n);
 }

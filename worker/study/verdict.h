@@ -6,6 +6,7 @@
 #ifndef VERDICT_H
 #define VERDICT_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "base/err.h"
@@ -101,6 +102,11 @@ struct verdict_study {
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
 void verdict_scene_free(struct verdict_scene *v);
 void verdict_study_free(struct verdict_study *s);
+
+/* The variants at rank 1 of r joined by " = ", then " (tie)" when tie_note and they tie; or
+   "inconclusive". */
+void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
+                            char *buf, size_t n);
 
 /* The winner at equal CPU time, for people: "sobol", "jitter = sobol (tie)", "inconclusive". */
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);

@@ -35,11 +35,8 @@ static void json_ranking(struct json *j, const char *key, const char *at_key, co
     if (at_key)
         json_number(j, at_key, r->at);
     json_string(j, "status", status_name(r->status));
-    winner[0] = 0;
-    for (int i = 0; i < r->n && r->status != VERDICT_INCONCLUSIVE && r->e[i].rank == 1; i++)
-        snprintf(winner + strlen(winner), sizeof winner - strlen(winner), "%s%s", i ? " = " : "",
-                 v->variants[r->e[i].variant]);
-    json_string(j, "winner", r->status == VERDICT_INCONCLUSIVE ? "inconclusive" : winner);
+    verdict_ranking_winner(v, r, 0, winner, sizeof winner);
+    json_string(j, "winner", winner);
     json_begin_array(j, "ranking");
     for (int i = 0; i < r->n; i++) {
         const struct verdict_entry *e = &r->e[i];
@@ -174,9 +171,43 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
     }
 }
 
+/* One line per study and scene: the three winners and the failures' kinds, at a glance. */
+static void html_overview(struct sbuf *b, const struct verdict_study *s, int n)
+{
+    sbuf_printf(b, "<table><tr><th class=\"l\">study / scene</th><th class=\"l\">best at equal CPU time</th>"
+                   "<th class=\"l\">best at equal samples</th><th class=\"l\">fastest slope</th>"
+                   "<th class=\"l\">failures found</th></tr>\n");
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < s[i].n_scenes; k++) {
+            const struct verdict_scene *v = &s[i].scenes[k];
+            const struct verdict_ranking *rs[] = {&v->by_cpu, &v->by_samples, &v->by_slope};
+            char w[512];
+            sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
+            sbuf_escape(b, v->study);
+            sbuf_printf(b, " / ");
+            sbuf_escape(b, v->scene);
+            sbuf_printf(b, "</td>");
+            for (int r = 0; r < 3; r++) {
+                verdict_ranking_winner(v, rs[r], 1, w, sizeof w);
+                sbuf_printf(b, "<td class=\"l\">%s", r == 0 ? "<b>" : "");
+                sbuf_escape(b, w);
+                sbuf_printf(b, "%s</td>", r == 0 ? "</b>" : "");
+            }
+            sbuf_printf(b, "<td class=\"l\">");
+            for (int f = 0; f < v->n_failures; f++) {
+                sbuf_printf(b, "%s", f ? "; " : "");
+                sbuf_escape(b, v->variants[v->failures[f].variant]);
+                sbuf_printf(b, ": %s", kind_name(v->failures[f].kind));
+            }
+            sbuf_printf(b, "%s</td></tr>\n", v->n_failures ? "" : "none");
+        }
+    sbuf_printf(b, "</table>\n");
+}
+
 void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
 {
     sbuf_printf(b, "<section id=\"verdict\"><h2>Verdict</h2>\n");
+    html_overview(b, s, n);
     for (int i = 0; i < n; i++)
         for (int k = 0; k < s[i].n_scenes; k++)
             html_scene(b, &s[i].scenes[k]);
