@@ -337,7 +337,7 @@ check "error maps: shown at the renders' zoom (64 px: 4x)" \
 # 6. the shipped compare jobs run, shrunk to 8x8 pixels, two thresholds and a coarse reference
 shrink() { # shrink FILE: FILE at 8x8 pixels, thresholds 50 and 25, a reference at threshold 20
     sed -e 's/^width:.*/width: 8/' -e 's/^height:.*/height: 8/' \
-        -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$1"
+        -e 's/threshold: \[[^]]*\]/threshold: [50, 25]/g' -e 's/threshold: [0-9.]* }/threshold: 20 }/' "$1"
 }
 for j in jobs/seed-experiment.yaml; do
     n=$(basename "$j" .yaml)

@@ -118,6 +118,18 @@ done:
     return rc;
 }
 
+double compare_stats_repeat_share(const struct compare *c, int s, int v, int p, const char *dir,
+                                  const struct rgbf *ref, double *gain)
+{
+    double rom, mr;
+    struct err e;
+    if (c->n_seeds < 2 || compare_stats_seed_average(c, s, v, p, dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
+        return NAN;
+    if (gain)
+        *gain = rom > 0 ? mr / rom : INFINITY;
+    return fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
+}
+
 /* Least-squares slope of log relMSE against log samples per pixel over the given points. */
 static double slope(const struct compare_agg *a, int n)
 {
@@ -193,12 +205,10 @@ char *compare_stats_stability(const struct compare *c, int s, int v, const char 
         double gain = 0, share = 0;
         int shown = 0, last = 0;
         for (int i = 0; i < c->n_points; i++) {
-            double rom, mr;
-            struct err e;
-            if (compare_stats_seed_average(c, s, v, order[i], dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
+            double here = compare_stats_repeat_share(c, s, v, order[i], dir, ref, &gain);
+            if (!isfinite(here))
                 continue;
-            gain = rom > 0 ? mr / rom : INFINITY;
-            share = fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
+            share = here;
             last = order[i];
             sbuf_printf(&b, "%s%.0f%% at %s",
                         shown++ ? ", " : "; the share of the error that repeats in every seed: ", 100 * share,
@@ -207,7 +217,9 @@ char *compare_stats_stability(const struct compare *c, int s, int v, const char 
         if (shown)
             sbuf_printf(&b, " (averaging the %d seeds divides relMSE by %.2f at %s, pure noise by %d)%s",
                         c->n_seeds, gain, c->points[last], c->n_seeds,
-                        share > 0.5 ? ": structured error (aliasing, a pattern, or a bias)" : "");
+                        share > VERDICT_STRUCTURED_SHARE
+                            ? ": structured error (aliasing, a pattern, or a bias)"
+                            : "");
     }
 done:
     free(order);

@@ -31,6 +31,13 @@ void compare_stats_point_order(const struct compare *c, int scene, int variant, 
 int compare_stats_seed_average(const struct compare *c, int scene, int variant, int point, const char *dir,
                                const struct rgbf *ref, double *rel_of_mean, double *mean_rel, struct err *e);
 
+/* The share of (scene, variant, point)'s error that repeats in every seed, in [0, 1], from
+   compare_stats_seed_average: 0 for pure noise, 1 for error every seed makes alike. *gain
+   (optional): the mean relMSE over the relMSE of the mean. NAN when it cannot be told (one seed,
+   an image unreadable). */
+double compare_stats_repeat_share(const struct compare *c, int scene, int variant, int point, const char *dir,
+                                  const struct rgbf *ref, double *gain);
+
 /* One line for people on (scene, variant): spread across seeds, the slope of error against
    samples, where error stops falling as the threshold drops, and structured error at each
    point (ref may be NULL: then only what needs no reference). Its length grows with the sweep:

@@ -23,18 +23,6 @@ static void mem_free(struct figures_mem *m)
     free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->repeat), free(m->nonfinite);
 }
 
-/* The share of (v, p)'s error that repeats in every seed, from the seeds' images averaged: noise
-   falls by the seed count, structure stays. NAN when it cannot be told. */
-static double repeat_share(const struct compare *c, int s, int v, int p, const char *dir,
-                           const struct rgbf *ref)
-{
-    double rom, mr;
-    struct err e;
-    if (c->n_seeds < 2 || compare_stats_seed_average(c, s, v, p, dir, ref, &rom, &mr, &e) < 0 || !(mr > 0))
-        return NAN;
-    return fmin(1, fmax(0, (c->n_seeds * rom / mr - 1) / (c->n_seeds - 1)));
-}
-
 static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
                   struct figures_mem *m)
 {
@@ -73,7 +61,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
         m->samplers[v] = sampler_kind_name(j->sampler);
         m->pools[v] = j->poisson_pool;
         for (int p = 0; p < c->n_points; p++) {
-            m->repeat[v * c->n_points + p] = ref ? repeat_share(c, s, v, p, dir, ref) : NAN;
+            m->repeat[v * c->n_points + p] =
+                ref ? compare_stats_repeat_share(c, s, v, p, dir, ref, NULL) : NAN;
             for (int k = 0; k < c->n_seeds; k++) {
                 const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);
