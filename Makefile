@@ -182,12 +182,18 @@ FUZZ_CC     ?= clang
 SECONDS     ?= 30
 FUZZ_TARGETS ?= job scene image
 FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -ffp-contract=off -Wno-psabi
-FUZZ_SRC    := $(COMMON_SRC) $(WORKER_SRC) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c
+FUZZ_OBJ    := $(patsubst %.c,build/fuzz/obj/%.o,$(COMMON_SRC) $(WORKER_SRC))
+# The library once, in parallel; each target links it with its own entry point.
+build/fuzz/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(Q)$(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker $(FUZZ_FLAGS) -c $< -o $@
+build/fuzz/fuzz_%: $(FUZZ_OBJ) tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c tests/fuzz/fuzz_targets.h
+	$(Q)$(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -Itests/fuzz $(FUZZ_FLAGS) \
+	  -DFUZZ_TARGET=fuzz_$* tests/fuzz/fuzz_targets.c tests/fuzz/fuzz_main.c $(FUZZ_OBJ) -o $@ $(PKG_LIBS) -lm
 fuzz: deps
 	@mkdir -p build/fuzz
+	$(Q)$(MAKE) --no-print-directory -j$(JOBS) $(FUZZ_TARGETS:%=build/fuzz/fuzz_%)
 	$(Q)set -e; for t in $(FUZZ_TARGETS); do \
-	  $(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker -Itests/fuzz $(FUZZ_FLAGS) \
-	    -DFUZZ_TARGET=fuzz_$$t $(FUZZ_SRC) -o build/fuzz/fuzz_$$t $(PKG_LIBS) -lm; \
 	  mkdir -p build/fuzz/corpus-$$t; \
 	  echo "fuzz_$$t: $(SECONDS) s"; \
 	  build/fuzz/fuzz_$$t -max_total_time=$(SECONDS) -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
