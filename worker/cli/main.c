@@ -10,7 +10,7 @@
 #include "cli.h"
 #include "diff.h"
 #include "study/compare.h"
-#include "study/compare_suite.h"
+#include "study/study_main.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job.h"
@@ -112,7 +112,7 @@ static int name_taken(const char *name, const char *path, const struct run_opts 
     return 0;
 }
 
-/* A compare job's name against the command line's others (compare_main's name_ok). */
+/* A compare job's name against the command line's others (study_main's name_ok). */
 struct names_seen {
     const char *path;
     const struct run_opts *o;
@@ -136,8 +136,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     if (compare_is_compare_job(path)) { /* a job with variants (or studies): a compare job */
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
-            return compare_suite_is_suite(path) ? compare_suite_main(path, o, compare_name_ok, &ns)
-                                                : compare_main(path, o, compare_name_ok, &ns);
+            return study_main(path, o, compare_name_ok, &ns);
         err_print("%s: a compare job renders whole images: no merge or --part\n", path);
         return 2;
     }

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "study/compare.h"
-#include "study/compare_suite.h"
+#include "study/study_main.h"
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"
@@ -178,10 +178,7 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     int attempts = 0, rc;
     do {
         q->attempt = ++attempts;
-        if (compare_suite_is_suite(from)) /* a compare job made of study files */
-            rc = compare_suite_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
-        else
-            rc = compare_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
+        rc = study_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);

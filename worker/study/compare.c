@@ -313,8 +313,7 @@ static const char *plural(int n)
     return n == 1 ? "" : "s";
 }
 
-/* "compare: 120 images (2 scenes x ...), references: 1 rendered, 1 reused from cache, 41 s -> ..." */
-static void summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
+void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
 {
     int reused = 0, rendered = 0;
     double saved_s = 0;
@@ -348,51 +347,4 @@ static void summary_line(const struct compare *c, double wall_s, const char *out
              c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
              plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
              refs, wall_s, outdir_root(out_dir), c->name, winners[0] ? "; at equal CPU time: " : "", winners);
-}
-
-/* compare_main_as, with compare_main's name_ok. */
-static int main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                   char *name, size_t name_n, int (*name_ok)(const char *name, void *arg), void *arg)
-{
-    struct err e = {0};
-    char line[2048];
-    double t0 = now_s();
-    struct compare *c = compare_load_as(from, path, &e);
-    int rc = 2;
-    if (c && name)
-        snprintf(name, name_n, "%s", c->name);
-    if (c && name_ok && !name_ok(c->name, arg)) {
-        compare_free(c);
-        return 2;
-    }
-    if (c)
-        rc = compare_run(c, o, &e);
-    if (rc != 0) {
-        if (rc == 1 && c) { /* a render failure names the job; bad input names its file */
-            char why[sizeof e.msg];
-            snprintf(why, sizeof why, "%s", e.msg);
-            snprintf(e.msg, sizeof e.msg, "%s: %s", c->name, why);
-        }
-        err_format(&e, line, sizeof line);
-    } else {
-        summary_line(c, now_s() - t0, o->out_dir, line, sizeof line);
-    }
-    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
-        fprintf(stderr, "%s\n", line);
-    if (last)
-        snprintf(last, n, "%s", line);
-    compare_free(c);
-    return rc;
-}
-
-int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
-                 void *arg)
-{
-    return main_as(path, path, o, NULL, 0, NULL, 0, name_ok, arg);
-}
-
-int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                    char *name, size_t name_n)
-{
-    return main_as(from, path, o, last, n, name, name_n, NULL, NULL);
 }

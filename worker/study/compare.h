@@ -85,17 +85,9 @@ static inline int compare_index(const struct compare *c, int scene, int variant,
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
 
-/* The command line's part: load, run and print one compare job (errors as one line
-   "file:line:col: message", then its summary line). name_ok (optional) is asked, with arg, about
-   the loaded job's name before anything renders: 0 refuses the job (name_ok said why on stderr),
-   exit status 2. Returns the exit status: 0, 1 or 2. */
-int compare_main(const char *path, const struct run_opts *o, int (*name_ok)(const char *name, void *arg),
-                 void *arg);
-
-/* compare_main for a job file read from `from` as if at `path`; the line printed last (the error
-   or the summary) is also copied into last (when not NULL), and the job's name, once it loaded,
-   into name (when not NULL; left as it is when the job is invalid). */
-int compare_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                    char *name, size_t name_n);
+/* The line that ends a compare job's run: its images, references, time, output folder and the
+   verdict at equal CPU time ("compare: 120 images (2 scenes x ...), references: 1 rendered, ...,
+   41 s -> out/compare/; at equal CPU time: ..."). */
+void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n);
 
 #endif

@@ -13,13 +13,6 @@
 #include "job/run_out.h"
 #include "verdict_out.h"
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 /* The studies' verdicts side by side, as verdict.h's calls take them: shallow copies (each
    study's compare owns its verdict's arrays); a study without one has no scenes. Free the array
    alone. NULL on no memory. */
@@ -102,8 +95,8 @@ static const char *plural(int n)
 
 /* "compare: 480 images in 4 studies (seed-question 120, ...), references: ..., 41.2 s -> out/compare/;
    at equal CPU time: seed-question: checker jitter, ..." */
-static void summary_line(const struct compare_suite *s, double wall_s, const char *out_dir, char *buf,
-                         size_t n)
+void compare_suite_summary_line(const struct compare_suite *s, double wall_s, const char *out_dir, char *buf,
+                                size_t n)
 {
     char studies[1024] = "", refs[160] = "no reference", resumed[96] = "", verdict[1024] = "";
     int rendered = 0, reused = 0, given = 0, current = 0;
@@ -141,48 +134,4 @@ static void summary_line(const struct compare_suite *s, double wall_s, const cha
     snprintf(buf, n, "%s: %d image%s in %d stud%s (%s)%s, %s, %.2f s -> %s/%s/; at equal CPU time: %s",
              s->name, s->n_items, plural(s->n_items), s->n_studies, s->n_studies == 1 ? "y" : "ies", studies,
              resumed, refs, wall_s, outdir_root(out_dir), s->name, verdict[0] ? verdict : "no verdict");
-}
-
-/* compare_suite_main_as, with compare_suite_main's name_ok. */
-static int main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                   char *name, size_t name_n, int (*name_ok)(const char *name, void *arg), void *arg)
-{
-    struct err e = {0};
-    char line[4096];
-    double t0 = now_s();
-    struct compare_suite *s = compare_suite_load_as(from, path, &e);
-    int rc = 2;
-    if (s && name)
-        snprintf(name, name_n, "%s", s->name);
-    if (s && name_ok && !name_ok(s->name, arg)) {
-        compare_suite_free(s);
-        return 2;
-    }
-    if (s)
-        rc = compare_suite_run(s, o, &e);
-    if (rc != 0) {
-        if (rc == 1 && s)
-            err_prefix(&e, s->name);
-        err_format(&e, line, sizeof line);
-    } else { /* each study's verdict warnings were printed as it finished (compare_run) */
-        summary_line(s, now_s() - t0, o->out_dir, line, sizeof line);
-    }
-    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
-        fprintf(stderr, "%s\n", line);
-    if (last)
-        snprintf(last, n, "%s", line);
-    compare_suite_free(s);
-    return rc;
-}
-
-int compare_suite_main(const char *path, const struct run_opts *o,
-                       int (*name_ok)(const char *name, void *arg), void *arg)
-{
-    return main_as(path, path, o, NULL, 0, NULL, 0, name_ok, arg);
-}
-
-int compare_suite_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                          char *name, size_t name_n)
-{
-    return main_as(from, path, o, last, n, name, name_n, NULL, NULL);
 }

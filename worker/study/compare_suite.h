@@ -39,13 +39,9 @@ void compare_suite_free(struct compare_suite *s);
    when o->progress and not o->quiet. */
 int compare_suite_run(struct compare_suite *s, const struct run_opts *o, struct err *e);
 
-/* compare_main for a suite: load, run, then one line on stderr (the error, or the summary with
-   the verdict at equal CPU time) after the verdicts' warnings. name_ok as compare_main's. */
-int compare_suite_main(const char *path, const struct run_opts *o,
-                       int (*name_ok)(const char *name, void *arg), void *arg);
-
-/* compare_main_as for a suite (a queue's claimed job file): last and name as compare_main_as's. */
-int compare_suite_main_as(const char *from, const char *path, const struct run_opts *o, char *last, size_t n,
-                          char *name, size_t name_n);
+/* The line that ends a suite's run: its images per study, references, time, output folder and
+   the verdict at equal CPU time per study. */
+void compare_suite_summary_line(const struct compare_suite *s, double wall_s, const char *out_dir, char *buf,
+                                size_t n);
 
 #endif
