@@ -90,21 +90,6 @@ char *compare_suite_chart_svg(const struct compare_suite *s)
     return sbuf_take(&b);
 }
 
-/* <a href> to a path relative to the page, percent-encoded, and its text escaped. */
-static void link(struct sbuf *b, const char *href, const char *text)
-{
-    sbuf_printf(b, "<a href=\"");
-    for (const unsigned char *p = (const unsigned char *)href; *p; p++)
-        if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-            strchr("-._~/", *p))
-            sbuf_printf(b, "%c", *p);
-        else
-            sbuf_printf(b, "%%%02X", *p);
-    sbuf_printf(b, "\">");
-    sbuf_escape(b, text);
-    sbuf_printf(b, "</a>");
-}
-
 /* "s" after a count other than one */
 static const char *plural(int n)
 {
@@ -142,7 +127,7 @@ static int study_section(struct sbuf *b, const struct compare *c, struct err *e)
     study_shape(b, c);
     snprintf(href, sizeof href, "%s/report.html", c->name);
     sbuf_printf(b, ". Its own page, with every image, crops, error maps and the table: ");
-    link(b, href, href);
+    report_link(b, href, href);
     sbuf_printf(b, ".</p>\n");
     const char *root = strstr(svg, "<svg"); /* inline: drop the XML declaration */
     sbuf_printf(b, "%s\n", root ? root : svg);
@@ -167,14 +152,14 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
         char href[JOB_NAME_MAX + 16];
         snprintf(href, sizeof href, "%s/report.html", s->studies[i]->name);
         sbuf_printf(&b, "%s", i ? ", " : " ");
-        link(&b, href, s->studies[i]->name);
+        report_link(&b, href, s->studies[i]->name);
     }
     sbuf_printf(&b, ". Every study's figures are in ");
-    link(&b, "summary.csv", "summary.csv");
+    report_link(&b, "summary.csv", "summary.csv");
     sbuf_printf(&b, " (its first column names the study), their verdict in ");
-    link(&b, "verdict.json", "verdict.json");
+    report_link(&b, "verdict.json", "verdict.json");
     sbuf_printf(&b, " and their charts in ");
-    link(&b, "chart.svg", "chart.svg");
+    report_link(&b, "chart.svg", "chart.svg");
     sbuf_printf(&b, ".</p>\n");
     verdict_html(&b, v, s->n_studies);
     for (int i = 0; i < s->n_studies; i++)

@@ -158,14 +158,14 @@ done:
     return rc;
 }
 
-/* A relative link to a file beside the page: href="name" with every byte but letters, digits and
-   "-._~" percent-encoded, so a scene file's name with a quote, '#' or '%' still resolves. */
-static void file_link(struct sbuf *b, const char *name, const char *text)
+/* A relative link from the page: href with every byte but letters, digits and "-._~/"
+   percent-encoded, so a scene file's name with a quote, '#' or '%' still resolves. */
+void report_link(struct sbuf *b, const char *href, const char *text)
 {
     sbuf_printf(b, "<a href=\"");
-    for (const unsigned char *p = (const unsigned char *)name; *p; p++)
+    for (const unsigned char *p = (const unsigned char *)href; *p; p++)
         if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-            strchr("-._~", *p))
+            strchr("-._~/", *p))
             sbuf_printf(b, "%c", *p);
         else
             sbuf_printf(b, "%%%02X", *p);
@@ -201,9 +201,9 @@ static void table(struct sbuf *b, const struct compare *c)
         char sidecar[JOB_PATH_MAX + 8];
         snprintf(sidecar, sizeof sidecar, "%.*s.json", (int)strlen(it->job.output) - 4, it->job.output);
         sbuf_printf(b, "<td class=\"l\">");
-        file_link(b, it->job.output, it->job.output);
+        report_link(b, it->job.output, it->job.output);
         sbuf_printf(b, ", ");
-        file_link(b, sidecar, "json");
+        report_link(b, sidecar, "json");
         sbuf_printf(b, "</td></tr>\n");
     }
     sbuf_printf(b, "</table>\n");
@@ -244,9 +244,9 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         "time is one image's render on this machine, so it moves with the machine's load. Every image "
         "and its JSON sidecar are beside this page (linked from the table at the end), with ",
         c->n_seeds);
-    file_link(&b, "summary.csv", "summary.csv");
+    report_link(&b, "summary.csv", "summary.csv");
     sbuf_printf(&b, " (the table's figures) and ");
-    file_link(&b, "chart.svg", "chart.svg");
+    report_link(&b, "chart.svg", "chart.svg");
     sbuf_printf(&b, ".</p>\n");
     for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_kind != COMPARE_REF_NONE && c->scenes[s].ref_domain == IMG_DISPLAY8) {

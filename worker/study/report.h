@@ -3,6 +3,7 @@
 #define REPORT_H
 
 #include "compare.h"
+#include "base/sbuf.h"
 
 /* The page for a finished compare job whose images are in dir (OUT/<name>/): the chart, per
    scene the reference and the images side by side at each sweep point with their sample counts,
@@ -15,5 +16,9 @@ char *report_html(const struct compare *c, const char *dir, struct err *e);
 
 /* The page's CSS, for the other pages of a study (a suite's report.html). */
 extern const char report_style[];
+
+/* <a href="href">text</a>, href relative to the page with every byte but letters, digits and
+   "-._~/" percent-encoded (a file name with a quote, '#' or '%' still resolves), text escaped. */
+void report_link(struct sbuf *b, const char *href, const char *text);
 
 #endif
