@@ -59,9 +59,8 @@ static inline __attribute__((always_inline)) void prefetch_next_points(const str
    a cell's point when it is taken; a random set's points are independent, so any order of them
    is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
    point when it is taken; a sobol set shuffles indices and makes its point k when it is taken
-   (sobol_point: the point sampler_draw's whole set holds at k; drawing all 400 points of a
-   light_threshold 5 set for the few a pixel takes was 90% of a sobol render's sampling). Only a
-   fresh Poisson set is drawn whole. */
+   (sobol_point: the point sampler_draw's whole set holds at k; a pixel takes few of a light's
+   set, BENCH.md "Sobol points"). Only a fresh Poisson set is drawn whole. */
 static __attribute__((noinline, unused)) void refill_light_points(struct render_ctx *ctx,
                                                                   struct light_points *lp)
 {
