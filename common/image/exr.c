@@ -87,10 +87,29 @@ static int rgb_index(const char *name)
     return !strcmp(name, "R") ? 0 : !strcmp(name, "G") ? 1 : !strcmp(name, "B") ? 2 : -1;
 }
 
-/* Scanlines y .. y + chunk height of img through an encode pipeline (first: set it up). */
-static exr_result_t encode_chunk(exr_context_t ctx, int part, const struct rgbf *img, int y,
-                                 exr_encode_pipeline_t *enc, int first)
+/* The library's own compressor, called by compress_stored_if_equal. */
+struct exr_compressor {
+    exr_result_t (*compress)(exr_encode_pipeline_t *enc);
+};
+
+/* OpenEXRCore 3.1.5 keeps a deflated chunk exactly as long as the raw one, which every reader takes
+   for an uncompressed chunk (OpenEXR issue 2306): rows of garbage. Store such a chunk raw. */
+static exr_result_t compress_stored_if_equal(exr_encode_pipeline_t *enc)
 {
+    const struct exr_compressor *c = enc->encoding_user_data;
+    exr_result_t r = c->compress(enc);
+    if (r == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes && enc->compressed_buffer &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
+    return r;
+}
+
+/* Scanlines y .. y + chunk height of img through an encode pipeline (first: set it up, with c
+   wrapping the library's compressor). */
+static exr_result_t encode_chunk(exr_context_t ctx, int part, const struct rgbf *img, int y,
+                                 exr_encode_pipeline_t *enc, struct exr_compressor *comp)
+{
+    int first = !comp->compress;
     exr_chunk_info_t ci;
     exr_result_t r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
     if (r == EXR_ERR_SUCCESS)
@@ -106,8 +125,15 @@ static exr_result_t encode_chunk(exr_context_t ctx, int part, const struct rgbf 
         ch->user_data_type = EXR_PIXEL_FLOAT;
         ch->user_bytes_per_element = sizeof(float);
     }
-    if (first && (r = exr_encoding_choose_default_routines(ctx, part, enc)) != EXR_ERR_SUCCESS)
-        return r;
+    if (first) {
+        if ((r = exr_encoding_choose_default_routines(ctx, part, enc)) != EXR_ERR_SUCCESS)
+            return r;
+        if (!enc->compress_fn)
+            return EXR_ERR_INVALID_ARGUMENT;
+        comp->compress = enc->compress_fn;
+        enc->compress_fn = compress_stored_if_equal;
+        enc->encoding_user_data = comp;
+    }
     return exr_encoding_run(ctx, part, enc);
 }
 
@@ -119,7 +145,8 @@ int exr_image_encode(const struct rgbf *img, const struct img_attr *attrs, size_
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    int part = 0, spc = 0, started = 0, rc = -1;
+    struct exr_compressor comp = {0};
+    int part = 0, spc = 0, rc = -1;
     const char *what = "cannot start";
     exr_result_t r;
     *out = NULL;
@@ -150,9 +177,8 @@ int exr_image_encode(const struct rgbf *img, const struct img_attr *attrs, size_
         (r = exr_get_scanlines_per_chunk(ctx, part, &spc)) != EXR_ERR_SUCCESS)
         goto fail;
     for (int y = 0; y < img->h; y += spc) {
-        if ((r = encode_chunk(ctx, part, img, y, &enc, !started)) != EXR_ERR_SUCCESS)
+        if ((r = encode_chunk(ctx, part, img, y, &enc, &comp)) != EXR_ERR_SUCCESS)
             goto fail;
-        started = 1;
     }
     exr_encoding_destroy(ctx, &enc);
     r = exr_finish(&ctx); /* writes the chunk offset table */
