@@ -118,9 +118,11 @@ static int64_t raw_write(exr_const_context_t c, void *ud, const void *buf, uint6
     return (int64_t)sz;
 }
 
-/* An EXR made here with OpenEXR directly: channels `names` of type t, 4 x 3, value v everywhere. */
-static struct buf other_exr(const char *const *names, int n, exr_pixel_type_t t, float v)
+/* An EXR made here with OpenEXR directly: `parts` parts, each with channels `names` of type t,
+   4 x 3, value v everywhere. */
+static struct buf other_exr_parts(const char *const *names, int n, exr_pixel_type_t t, float v, int parts)
 {
+    static const char *const part_names[] = {"one", "two"};
     struct buf b = {0};
     exr_context_t ctx;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -132,28 +134,80 @@ static struct buf other_exr(const char *const *names, int n, exr_pixel_type_t t,
     for (int i = 0; i < 12; i++)
         fl[i] = v;
     exr_start_write(&ctx, "o.exr", EXR_WRITE_FILE_DIRECTLY, &init);
-    exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
-    exr_initialize_required_attr_simple(ctx, part, 4, 3, EXR_COMPRESSION_PIZ);
-    for (int c = 0; c < n; c++)
-        exr_add_channel(ctx, part, names[c], t, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
-    exr_write_header(ctx);
-    exr_get_scanlines_per_chunk(ctx, part, &spc);
-    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
-    exr_chunk_info_t ci;
-    exr_write_scanline_chunk_info(ctx, part, 0, &ci);
-    exr_encoding_initialize(ctx, part, &ci, &enc);
-    for (int c = 0; c < enc.channel_count; c++) {
-        enc.channels[c].encode_from_ptr = t == EXR_PIXEL_HALF ? (const uint8_t *)&half : (const uint8_t *)fl;
-        enc.channels[c].user_pixel_stride = 0;
-        enc.channels[c].user_line_stride = 0;
-        enc.channels[c].user_data_type = (uint16_t)t;
-        enc.channels[c].user_bytes_per_element = t == EXR_PIXEL_HALF ? 2 : 4;
+    for (int p = 0; p < parts; p++) {
+        exr_add_part(ctx, parts > 1 ? part_names[p] : NULL, EXR_STORAGE_SCANLINE, &part);
+        exr_initialize_required_attr_simple(ctx, part, 4, 3, EXR_COMPRESSION_PIZ);
+        for (int c = 0; c < n; c++)
+            exr_add_channel(ctx, part, names[c], t, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     }
-    exr_encoding_choose_default_routines(ctx, part, &enc);
-    exr_encoding_run(ctx, part, &enc);
-    exr_encoding_destroy(ctx, &enc);
+    exr_write_header(ctx);
+    for (part = 0; part < parts; part++) {
+        exr_get_scanlines_per_chunk(ctx, part, &spc);
+        exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+        exr_chunk_info_t ci;
+        exr_write_scanline_chunk_info(ctx, part, 0, &ci);
+        exr_encoding_initialize(ctx, part, &ci, &enc);
+        for (int c = 0; c < enc.channel_count; c++) {
+            enc.channels[c].encode_from_ptr =
+                t == EXR_PIXEL_HALF ? (const uint8_t *)&half : (const uint8_t *)fl;
+            enc.channels[c].user_pixel_stride = 0;
+            enc.channels[c].user_line_stride = 0;
+            enc.channels[c].user_data_type = (uint16_t)t;
+            enc.channels[c].user_bytes_per_element = t == EXR_PIXEL_HALF ? 2 : 4;
+        }
+        exr_encoding_choose_default_routines(ctx, part, &enc);
+        exr_encoding_run(ctx, part, &enc);
+        exr_encoding_destroy(ctx, &enc);
+    }
     exr_finish(&ctx);
     return b;
+}
+
+static struct buf other_exr(const char *const *names, int n, exr_pixel_type_t t, float v)
+{
+    return other_exr_parts(names, n, t, v, 1);
+}
+
+/* Issue 27: a multipart file is refused, not read as its first part; a header of more attributes
+   than EXR_MAX_ATTRIBUTES is refused before the library's quadratic parse, fewer are read. */
+static void test_exr_parts_and_attributes(void)
+{
+    struct err e = {0};
+    struct rgbf back = {0}, img = fpattern(4, 3);
+    static const char *const rgb[] = {"B", "G", "R"};
+    struct buf b = other_exr_parts(rgb, 3, EXR_PIXEL_FLOAT, 1, 2);
+    CHECK(exr_image_decode(b.p, b.n, "m.exr", &back, &e) == -1 && has(&e, "multipart file (2 parts)"));
+    free(b.p);
+    enum { MANY = 2000 };
+    struct img_attr *attrs = calloc(MANY, sizeof *attrs);
+    char(*keys)[16] = calloc(MANY, sizeof *keys);
+    for (int i = 0; i < MANY; i++) {
+        snprintf(keys[i], sizeof keys[i], "k%d", i);
+        attrs[i] = (struct img_attr){keys[i], "v"};
+    }
+    uint8_t *a = NULL;
+    size_t al = 0;
+    CHECK(exr_image_encode(&img, attrs, MANY, &a, &al, &e) == 0);
+    CHECK(exr_image_decode(a, al, "a.exr", &back, &e) == 0 && same_f(&img, &back));
+    image_f_free(&back);
+    /* EXR_MAX_ATTRIBUTES + 1 more spliced in after the version field */
+    struct buf many = {0};
+    buf_add(&many, a, 8);
+    for (int i = 0; i <= EXR_MAX_ATTRIBUTES; i++) {
+        char attr[32];
+        int n = snprintf(attr, sizeof attr, "x%d%cstring%c", i, 0, 0);
+        static const uint8_t one[5] = {1, 0, 0, 0, 'v'};
+        buf_add(&many, attr, (size_t)n);
+        buf_add(&many, one, sizeof one);
+    }
+    buf_add(&many, a + 8, al - 8);
+    CHECK(exr_image_decode(many.p, many.n, "many.exr", &back, &e) == -1 && has(&e, "header attributes") &&
+          back.px == NULL);
+    free(many.p);
+    free(a);
+    free(attrs);
+    free(keys);
+    image_f_free(&img);
 }
 
 static void test_exr_other_files(void)
@@ -293,6 +347,7 @@ int main(void)
 {
     test_exr_round_trip();
     test_exr_zip_equal_size_chunks();
+    test_exr_parts_and_attributes();
     test_exr_corrupt();
     test_exr_other_files();
     test_pfm();
