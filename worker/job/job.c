@@ -271,6 +271,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         j->priority = (int)n;
     } else if (!strcmp(k, "poisson_pool")) {
+        mark(j->pos_poisson_pool, v);
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;

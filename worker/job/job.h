@@ -36,7 +36,7 @@ struct job {
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2], pos_format[2],
-        pos_output[2], pos_name[2], pos_width[2];
+        pos_output[2], pos_name[2], pos_width[2], pos_poisson_pool[2];
 };
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
