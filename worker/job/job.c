@@ -347,6 +347,14 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
                    job_smallest_threshold(k));
 }
 
+int job_height(const struct job *j, double aspect)
+{
+    if (j->height)
+        return j->height;
+    int h = (int)lround(j->width / aspect); /* the aspect is at least 0.01: within an int */
+    return h < 1 ? 1 : h;
+}
+
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
 {
     (void)d;

@@ -53,6 +53,10 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
 /* Hash of the bytes of the file at path, continued from h; -1 when it cannot be read. */
 int job_hash_file(const char *path, uint64_t *h, struct err *e);
 
+/* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
+   least 1 (the caller checks it against IMAGE_MAX_SIDE). */
+int job_height(const struct job *j, double aspect);
+
 /* Set defaults (name from the file's stem). */
 void job_defaults(struct job *j, const char *path);
 

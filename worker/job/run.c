@@ -125,9 +125,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (scene_load(j->scene_path, &sf, e) < 0)
         goto done;
     int w = j->width;
-    int h = j->height ? j->height : (int)lround(w / sf.aspect);
-    if (h < 1)
-        h = 1;
+    int h = job_height(j, sf.aspect);
     if (h > IMAGE_MAX_SIDE) {
         /* only a given width can get here (300 / the smallest aspect, 0.01, is within the limit) */
         err_set(e, j->path, j->pos_width[0], j->pos_width[1],
