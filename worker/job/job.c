@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
+#include "job_hint.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "outdir.h"
@@ -112,6 +113,32 @@ static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
     }
     resolve(j->path, val, j->scene_path, sizeof j->scene_path);
     return is_file(j->scene_path) ? 0 : -1;
+}
+
+/* " (did you mean X?)" for scene value val that names no file, when a file near it exists where
+   it was looked for (buf holds it), else "". */
+static const char *scene_hint(const struct job *j, const char *val, char *buf, size_t n)
+{
+    char near[256], dir[JOB_PATH_MAX];
+    const char *slash = strrchr(j->scene_path, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - j->scene_path) : 1, slash ? j->scene_path : ".");
+    if (!strchr(val, '/') && !strchr(val, '.')) { /* a bare name: the shipped scenes' stems */
+        if (!job_hint_nearest(dir, val, 1, near, sizeof near)) {
+            char shipped[2][JOB_PATH_MAX];
+            for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns && !near[0]; k++)
+                job_hint_nearest(shipped[k], val, 1, near, sizeof near);
+        }
+        if (!near[0])
+            return "";
+        snprintf(buf, n, " (did you mean \"%s\"?)", near);
+        return buf;
+    }
+    const char *base = strrchr(val, '/');
+    base = base ? base + 1 : val;
+    if (!job_hint_nearest(dir, base, 0, near, sizeof near))
+        return "";
+    snprintf(buf, n, " (did you mean %.*s%s?)", (int)(base - val), val, near);
+    return buf;
 }
 
 void job_defaults(struct job *j, const char *path)
@@ -234,9 +261,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_scene, v);
-        char tried[4 * JOB_PATH_MAX + 32];
+        char tried[4 * JOB_PATH_MAX + 32], hint[JOB_PATH_MAX + 32];
         if (resolve_scene(j, s, tried, sizeof tried) < 0)
-            return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
+            return ydoc_fail(d, v, e, "scene: no scene file at %s%s%s", j->scene_path, tried,
+                             scene_hint(j, s, hint, sizeof hint));
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
