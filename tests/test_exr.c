@@ -272,19 +272,35 @@ static void test_pfm(void)
     uint8_t extra[] = "PF\n1 1\n-1\n000011112222X";
     CHECK(pfm_decode(extra, sizeof extra - 1, "x.pfm", &back, &e) == -1 && has(&e, "after the raster"));
     /* issue 27: the scale's magnitude multiplies the values (as pbrt reads them); a header with
-       CR LF line ends is read (it was "1 bytes after the raster") */
-    uint8_t scaled[] = "PF\n1 1\n-4.0\n\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x00\x3f";
-    CHECK(pfm_decode(scaled, sizeof scaled - 1, "s.pfm", &back, &e) == 0 && back.px[0] == 4.0f &&
-          back.px[1] == 8.0f && back.px[2] == 2.0f);
-    image_f_free(&back);
-    uint8_t crlf[] = "PF\r\n1 1\r\n-1.0\r\n\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x00\x3f";
-    CHECK(pfm_decode(crlf, sizeof crlf - 1, "crlf.pfm", &back, &e) == 0 && back.px[0] == 1.0f &&
-          back.px[1] == 2.0f && back.px[2] == 0.5f);
-    image_f_free(&back);
-    /* a lone CR ends the header when the raster then starts with a 0x0a byte */
-    uint8_t cr[] = "PF\n1 1\n-1.0\r\n\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x00\x3f";
-    CHECK(pfm_decode(cr, sizeof cr - 1, "cr.pfm", &back, &e) == 0 && back.px[1] == 2.0f);
-    image_f_free(&back);
+       CR LF line ends is read (it was "1 bytes after the raster"), and a lone CR ends the header
+       when the raster then starts with a 0x0a byte (its first value 0x3f80000a, just above 1). */
+    static const struct {
+        const char *bytes;
+        size_t len;
+        float want[3];
+    } read[] = {
+#define PFM_CASE(s, r, g, b)                                                                                 \
+    {                                                                                                        \
+        s, sizeof s - 1,                                                                                     \
+        {                                                                                                    \
+            r, g, b                                                                                          \
+        }                                                                                                    \
+    }
+        PFM_CASE("PF\n1 1\n-4.0\n\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x00\x3f", 4, 8, 2),
+        PFM_CASE("PF\r\n1 1\r\n-1.0\r\n\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x00\x3f", 1, 2, 0.5f),
+        PFM_CASE("PF\n1 1\n-1.0\r\n\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x00\x3f", 1.0f + 0x0a / 8388608.0f, 2,
+                 0.5f),
+#undef PFM_CASE
+    };
+    for (size_t i = 0; i < sizeof read / sizeof *read; i++) {
+        int ok = pfm_decode((const uint8_t *)read[i].bytes, read[i].len, "r.pfm", &back, &e) == 0;
+        for (int c = 0; ok && c < 3; c++)
+            ok = back.px[c] == read[i].want[c];
+        if (!ok)
+            fprintf(stderr, "PFM %zu read wrong\n", i);
+        CHECK(ok);
+        image_f_free(&back);
+    }
     image_f_free(&img);
 }
 
