@@ -79,6 +79,8 @@ static int merge_one(const struct job *j, const char *path, int part, int parts,
         err_set(e, path, 0, 0, "is %ux%u but the job renders %dx%d", hd->width, hd->height, img->w, img->h);
         goto done;
     }
+    if (part_check_contents(&pf, path, e) < 0)
+        goto done;
     part_rows_into(&pf, img->rgb);
     fr->proc[part] = (struct procs_proc){hd->st, hd->wall_s, hd->cpu_s, 1};
     render_stats_add(&fr->total, &hd->st);

@@ -176,10 +176,7 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
 /* Counters within 2^56, so that the sum of PART_MAX parts cannot wrap. */
 #define PART_MAX_COUNT ((uint64_t)1 << 56)
 
-/* What a render can have written into a part's header and rows: one pixel per stored pixel,
-   per-pixel sample counts between spp min and max, counters that cannot wrap when summed, finite
-   non-negative times, a sampling share within the CPU time, finite pixels. 0 or -1 with e filled. */
-static int check_contents(const struct part_file *pf, const char *path, struct err *e)
+int part_check_contents(const struct part_file *pf, const char *path, struct err *e)
 {
     const struct part_header *h = &pf->h;
     const struct render_stats *st = &h->st;
@@ -238,7 +235,7 @@ int part_read(const char *path, struct part_file *pf, struct err *e)
     const uint8_t *p = pf->data + pf->len - 4;
     if (get_u32(&p) != (uint32_t)crc32(0L, pf->data, (uInt)(pf->len - 4)))
         return err_set(e, path, 0, 0, "damaged part file: checksum mismatch");
-    return check_contents(pf, path, e);
+    return 0;
 }
 
 void part_file_free(struct part_file *pf)
@@ -263,7 +260,7 @@ int part_matches(const char *path, const struct job *j, int part, int parts)
     struct part_file pf;
     struct err e;
     int ok = part_read(path, &pf, &e) == 0 && pf.h.hash == part_hash(j) && (int)pf.h.part == part &&
-             (int)pf.h.parts == parts;
+             (int)pf.h.parts == parts && part_check_contents(&pf, path, &e) == 0;
     part_file_free(&pf);
     return ok;
 }
