@@ -6,7 +6,7 @@
 root=$(cd "$(dirname "$0")/.." && pwd)
 
 if [ "${ASAN_FAST:-0}" = 1 ]; then
-    echo "determinism: checked by the plain make test (the sanitizer pass builds no other compilers)"
+    skip "determinism: checked by the plain make test (the sanitizer pass builds no other compilers)"
     finish
     exit $?
 fi
@@ -22,7 +22,7 @@ builds="default"
 if command -v clang >/dev/null; then
     build clang CC=clang && builds="$builds clang"
 else
-    echo "no clang: the clang build's comparison skipped"
+    skip "no clang: the clang build's comparison"
 fi
 build scalar OPT=-O0 SIMD=0 && builds="$builds scalar"
 

@@ -109,6 +109,6 @@ if command -v flock >/dev/null; then
     check "folder lock: exit 0 once it is free (got $rc)" [ "$rc" -eq 0 ]
     check "folder lock: written once it is free" [ -s "$T/o6/big/big.png" ]
 else
-    echo "no flock(1): folder lock check skipped"
+    skip "folder lock: no flock(1) here"
 fi
 finish

@@ -374,7 +374,7 @@ if [ -n "$ro" ]; then
     check "read-only queue: the job still waits" [ -f "$Q/stuck.yaml" ]
     if [ "$ro" = "$Q" ]; then chmod 755 "$Q" "$Q/running"; else umount "$ro"; fi
 else
-    echo "read-only queue: no read-only mount possible here, skipped"
+    skip "read-only queue: no read-only mount possible here"
 fi
 
 # 10. usage errors

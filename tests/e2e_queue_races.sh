@@ -17,7 +17,7 @@ fake_lease() { # fake_lease CLAIM PID: the lease of a worker on this host with t
 
 if ! $CC -shared -fPIC -o "$T/arrive.so" tests/shim/arrive.c -ldl 2>"$T/cc.log"; then
     cat "$T/cc.log"
-    echo "no C compiler for the shim: race tests skipped"
+    skip "no C compiler for the shim: race tests"
     finish
     exit $?
 fi

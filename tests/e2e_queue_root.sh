@@ -28,6 +28,6 @@ if [ "$(id -u)" = 0 ] && command -v chroot >/dev/null && command -v ldd >/dev/nu
     check "--queue /q: exit 0 (got $rc: $(cat "$T/err"))" [ "$rc" -eq 0 ]
     check "--queue /q: its folders made" [ -d "$R/q/running" ]
 else
-    echo "skipped: the root cases need root, chroot and a build without sanitizers"
+    skip "the root cases need root, chroot and a build without sanitizers"
 fi
 finish

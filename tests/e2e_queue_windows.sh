@@ -14,7 +14,7 @@ temps() { find "$1" -name '.*.tmp.*' | wc -l; }
 
 if ! $CC -shared -fPIC -o "$T/race.so" tests/shim/race.c -ldl 2>"$T/cc.log"; then
     cat "$T/cc.log"
-    echo "no C compiler for the shim: race tests skipped"
+    skip "no C compiler for the shim: race tests"
     finish
     exit $?
 fi
