@@ -2,12 +2,13 @@
 # Golden images: every scene in scenes/ re-rendered small (64x64, seed 1) with each pixel
 # sampler must stay within a measured RMSE of tests/golden/<scene>-<sampler>.png, and renders
 # of deliberately broken scenes (a wall removed, a light turned around) must be rejected.
-# GOLDEN_UPDATE=1 rewrites the goldens (`make golden`); GOLDEN_MEASURE=1 prints the RMSE
+# GOLDEN_UPDATE=1 rewrites the goldens (`make golden`; GOLDEN_SAMPLERS="sobol" limits a run to
+# some samplers, and then SEGMENTS holds only theirs: merge the other lines back by hand); GOLDEN_MEASURE=1 prints the RMSE
 # between seeds 1, 2 and 3 that the tolerances in tests/golden/TOLERANCE are derived from.
 . tests/lib.sh
 root=$(pwd)
 G=$root/tests/golden
-samplers="uniform jitter random poisson"
+samplers=${GOLDEN_SAMPLERS:-"uniform jitter random poisson sobol"} # GOLDEN_SAMPLERS: a subset (make golden writes all)
 BLOCK=8 # compare 8x8 block means: noise averages out, a wrong wall or light does not
 # Under ASan the suite runs every scene with one sampler only (same images, same bounds).
 [ "${ASAN_FAST:-0}" = 1 ] && [ "${GOLDEN_UPDATE:-0}" != 1 ] && samplers="jitter"
