@@ -70,7 +70,7 @@ check "6: then the pair agrees" grep -q '"seed": 2' "$O/z/z.json"
 # writes nothing
 Q=$T/q3; mkdir -p "$Q"
 tiny "$Q/s.yaml" 16
-SHIM_STOP_TO=.json.tmp. LD_PRELOAD=$T/race.so "$WORKER" --queue "$Q" --once --lease-timeout 2 \
+SHIM_STOP_STAGE=.json.tmp. LD_PRELOAD=$T/race.so "$WORKER" --queue "$Q" --once --lease-timeout 2 \
     2>"$T/q3a.log" & a=$!
 for _ in $(seq 1 500); do
     [ "$(ps -o stat= -p "$a" | cut -c1)" = T ] && break

@@ -5,6 +5,7 @@
 
 #include "check.h"
 #include "job/job.h"
+#include "job/jobfile.h"
 
 static char dir[64], scene[1024];
 
@@ -18,7 +19,10 @@ static int load(const char *name, const char *text, struct job *j, struct err *e
         return -2;
     fprintf(f, "scene: %s\n%s", scene, text);
     fclose(f);
-    int rc = job_load(path, j, e);
+    struct jobfile jf;
+    int rc = jobfile_open(&jf, path, path, e);
+    *j = jf.job;
+    jobfile_close(&jf);
     unlink(path);
     return rc;
 }

@@ -45,11 +45,25 @@ static void test_names(void)
     struct job j;
     job_defaults(&j, "jobs/demo.yaml");
     snprintf(j.output, sizeof j.output, "pic.v1.png");
-    char dir[256], image[256], sidecar[256], part[256];
-    outdir_paths(&j, NULL, dir, image, sidecar, sizeof dir);
-    CHECK(!strcmp(dir, "out/demo"));
-    CHECK(!strcmp(image, "out/demo/pic.v1.png"));
-    CHECK(!strcmp(sidecar, "out/demo/pic.v1.json"));
+    char dir[256], part[256];
+    struct outdir_files f;
+    outdir_files(&j, NULL, &f);
+    CHECK(!strcmp(f.dir, "out/demo"));
+    CHECK(f.n_images == 1 && !strcmp(f.image[0], "out/demo/pic.v1.png") && f.float_copy == -1);
+    CHECK(!strcmp(f.sidecar, "out/demo/pic.v1.json"));
+    /* output: [pic.v1.png, pic.v1.exr], and a compare combination's float copy */
+    j.n_more = 1;
+    snprintf(j.more_output[0], sizeof j.more_output[0], "pic.v1.exr");
+    j.more_format[0] = IMG_EXR;
+    j.float_copy = 1;
+    outdir_files(&j, "o", &f);
+    CHECK(f.n_images == 2 && !strcmp(f.image[1], "o/demo/pic.v1.exr") && f.format[1] == IMG_EXR);
+    CHECK(f.float_copy == -1); /* an EXR is listed: no second float image */
+    j.n_more = 0;
+    outdir_files(&j, "o", &f);
+    CHECK(f.n_images == 2 && f.float_copy == 1 && !strcmp(f.image[1], "o/demo/pic.v1.exr"));
+    CHECK(!strcmp(f.sidecar, "o/demo/pic.v1.json"));
+    j.float_copy = 0;
     outdir_dir("o", "cmp", dir, sizeof dir);
     CHECK(!strcmp(dir, "o/cmp"));
     outdir_part_path(&j, "o", 2, 3, part, sizeof part);
@@ -81,12 +95,11 @@ static void test_folder(const char *root)
 
 static void test_lock(const char *root)
 {
-    char img[512], staged[600], dead[600], other[600], live[600];
+    char img[512], dead[600], old[600], other[600], live[600];
     snprintf(img, sizeof img, "%s/a/img.png", root);
-    outdir_staged_name(img, staged, sizeof staged);
-    char want[600];
-    snprintf(want, sizeof want, "%s/a/.img.png.tmp.", root);
-    CHECK(!strncmp(staged, want, strlen(want)) && strlen(staged) == strlen(want) + 6);
+    snprintf(old, sizeof old, "%s/a/..img.png.tmp.St4g3d.tmp.Zx8Cv7",
+             root); /* staged twice (before issue 29) */
+    touch(old);
 
     snprintf(dead, sizeof dead, "%s/a/.img.png.tmp.AbC123", root);
     snprintf(other, sizeof other, "%s/a/.other.png.tmp.AbC123", root);
@@ -100,6 +113,7 @@ static void test_lock(const char *root)
     int lock = outdir_lock(dir, paths, NULL, 0);
     CHECK(lock >= 0);
     CHECK(!exists(dead)); /* a killed writer's temporary of img.png: removed under the lock */
+    CHECK(!exists(old));
     CHECK(exists(other)); /* another file's: kept */
     CHECK(exists(live));  /* the output itself: kept */
     outdir_unlock(lock);

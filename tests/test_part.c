@@ -168,13 +168,13 @@ int main(void)
     CHECK(rr.procs.peak_rss_kb == 300);
     CHECK(rr.procs.proc[1].st.samples == 4 * W * 6);
     struct rgb8 got, want;
-    CHECK(imgio_read(rr.image_path, &got, &e) == 0);
+    CHECK(imgio_read(rr.out.image[0], &got, &e) == 0);
     CHECK(image_alloc(&want, W, H, &e) == 0);
     image_float_to_rgb8(rgb, W, H, want.px);
     CHECK(got.w == W && got.h == H && memcmp(got.px, want.px, (size_t)W * H * 3) == 0);
     image_free(&got);
     image_free(&want);
-    CHECK(fileio_read_all(rr.sidecar_path, 1 << 20, &data, &len, &e) == 0);
+    CHECK(fileio_read_all(rr.out.sidecar, 1 << 20, &data, &len, &e) == 0);
     CHECK(strstr((char *)data, "\"parts\": 3") != NULL);
     CHECK(strstr((char *)data, "\"job_hash\": \"0000000000001234\"") != NULL);
     free(data);

@@ -123,9 +123,6 @@ static void sync_dir(const char *path, size_t dlen)
     free(dir);
 }
 
-/* Write data to path through "<dir>/.<base>.tmp.XXXXXX": write all, fsync, close, mode 0644,
-   rename() over path. On any failure the temporary file is removed, path is untouched, and e
-   says "cannot write <path>: <reason>". */
 int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e)
 {
     uint8_t *data;
@@ -137,41 +134,54 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e)
     return 0;
 }
 
-int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e)
+/* Stage data for path in "<dir>/.<base>.tmp.XXXXXX": write all, fsync, close, mode 0644. On any
+   failure the temporary file is removed and e says "cannot write <path>: <reason>". */
+int fileio_stage(const char *path, const void *data, size_t len, char *staged, size_t n, struct err *e)
 {
     size_t dlen = dir_len(path);
     const char *base = path + dlen;
     if (!*base)
         return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(EISDIR));
-    size_t tmp_size = dlen + strlen(base) + sizeof "..tmp.XXXXXX";
-    char *tmp = malloc(tmp_size);
-    if (!tmp)
-        return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
-    snprintf(tmp, tmp_size, "%.*s.%s.tmp.XXXXXX", (int)dlen, path, base);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
-        free(tmp);
-        return -1;
-    }
+    if ((size_t)snprintf(staged, n, "%.*s.%s.tmp.XXXXXX", (int)dlen, path, base) >= n)
+        return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(ENAMETOOLONG));
+    int fd = mkstemp(staged);
+    if (fd < 0)
+        return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
     if (fchmod(fd, 0644) < 0 || write_full(fd, data, len) < 0 || fsync(fd) < 0)
         goto fail;
     int closing = fd;
     fd = -1;
     if (close(closing) < 0)
         goto fail;
-    if (rename(tmp, path) < 0)
-        goto fail;
-    sync_dir(path, dlen);
-    free(tmp);
     return 0;
 fail:
     err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
     if (fd >= 0)
         close(fd);
-    unlink(tmp);
-    free(tmp);
+    unlink(staged);
     return -1;
+}
+
+int fileio_commit(const char *staged, const char *path, struct err *e)
+{
+    if (rename(staged, path) < 0) {
+        err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+        unlink(staged);
+        return -1;
+    }
+    sync_dir(path, dir_len(path));
+    return 0;
+}
+
+int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e)
+{
+    size_t n = strlen(path) + sizeof "..tmp.XXXXXX";
+    char *staged = malloc(n);
+    if (!staged)
+        return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
+    int rc = fileio_stage(path, data, len, staged, n, e) < 0 ? -1 : fileio_commit(staged, path, e);
+    free(staged);
+    return rc;
 }
 
 int fileio_output_ok(const char *path, const char *const *inputs, size_t n, struct err *e)

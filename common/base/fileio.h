@@ -14,8 +14,8 @@ int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *
 /* Fold the bytes of path (at most max_bytes) into the FNV-1a hash *h. 0, or -1 with e filled. */
 int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e);
 
-/* Write data to path atomically: a temporary file in the same directory, fsync, rename().
-   On any failure (full disk, unwritable folder) no file is left behind and e is filled. */
+/* Write data to path atomically: fileio_stage, then fileio_commit. On any failure (full disk,
+   unwritable folder) no file is left behind and e is filled. */
 int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
 
 /* Whether a file the user named may be written at path (by fileio_write_atomic): path is absent,
@@ -23,6 +23,14 @@ int fileio_write_atomic(const char *path, const void *data, size_t len, struct e
    inputs[0 .. n) (compared by device and inode; an input that cannot be stat'ed is skipped).
    0, or -1 with e's message saying what path is and that it is not replaced. */
 int fileio_output_ok(const char *path, const char *const *inputs, size_t n, struct err *e);
+/* The first half of an atomic write: data written whole to a temporary file beside path,
+   "<dir>/.<base>.tmp.XXXXXX" (its name into staged, n bytes: strlen(path) + 13 suffice), and
+   fsynced. 0, or -1 with e = "cannot write <path>: <reason>" and nothing left behind. */
+int fileio_stage(const char *path, const void *data, size_t len, char *staged, size_t n, struct err *e);
+
+/* The second half: rename the staged file to path (its one rename) and sync the folder. 0, or -1
+   with e = "cannot write <path>: <reason>" and the staged file removed. */
+int fileio_commit(const char *staged, const char *path, struct err *e);
 
 /* rename(from, to) that never replaces an existing `to` (renameat2 RENAME_NOREPLACE, or link +
    unlink where the file system lacks it): 0, or -1 with errno (EEXIST when `to` exists). */

@@ -136,14 +136,26 @@ int imgio_is_float(enum img_format fmt)
     return fmt == IMG_EXR || fmt == IMG_PFM;
 }
 
-int imgio_write_f(const char *path, const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs,
-                  size_t nattrs, struct err *e)
+int imgio_encode_f(const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs, size_t nattrs,
+                   uint8_t **buf, size_t *len, struct err *e)
 {
-    uint8_t *buf;
-    size_t len;
-    int rc = fmt == IMG_EXR   ? exr_image_encode(img, attrs, nattrs, &buf, &len, e)
-             : fmt == IMG_PFM ? pfm_encode(img, &buf, &len, e)
-                              : err_set(e, NULL, 0, 0, "not a float image format");
+    return fmt == IMG_EXR   ? exr_image_encode(img, attrs, nattrs, buf, len, e)
+           : fmt == IMG_PFM ? pfm_encode(img, buf, len, e)
+                            : err_set(e, NULL, 0, 0, "not a float image format");
+}
+
+int imgio_encode(const struct rgb8 *img, enum img_format fmt, uint8_t **buf, size_t *len, struct err *e)
+{
+    return fmt == IMG_PNG ? png_encode(img, buf, len, e)
+           : fmt == IMG_PPM
+               ? ppm_encode(img, buf, len, e)
+               : err_set(e, NULL, 0, 0, "%s holds floats: write it with imgio_write_f", img_format_name(fmt));
+}
+
+/* The encoded bytes buf (rc 0; freed here) written atomically to path; an encoding failure (rc
+   -1) names path when e names no file. */
+static int write_encoded(const char *path, int rc, uint8_t *buf, size_t len, struct err *e)
+{
     if (rc < 0) {
         if (e && !e->file[0])
             snprintf(e->file, sizeof e->file, "%s", path);
@@ -154,21 +166,19 @@ int imgio_write_f(const char *path, const struct rgbf *img, enum img_format fmt,
     return rc;
 }
 
-/* Encode img as fmt and write it atomically to path. 0, or -1 with e filled. */
+int imgio_write_f(const char *path, const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs,
+                  size_t nattrs, struct err *e)
+{
+    uint8_t *buf = NULL;
+    size_t len = 0;
+    int rc = imgio_encode_f(img, fmt, attrs, nattrs, &buf, &len, e);
+    return write_encoded(path, rc, buf, len, e);
+}
+
 int imgio_write(const char *path, const struct rgb8 *img, enum img_format fmt, struct err *e)
 {
-    uint8_t *buf;
-    size_t len;
-    int rc = fmt == IMG_PNG   ? png_encode(img, &buf, &len, e)
-             : fmt == IMG_PPM ? ppm_encode(img, &buf, &len, e)
-                              : err_set(e, NULL, 0, 0, "%s holds floats: write it with imgio_write_f",
-                                        img_format_name(fmt));
-    if (rc < 0) {
-        if (e && !e->file[0])
-            snprintf(e->file, sizeof e->file, "%s", path);
-        return -1;
-    }
-    rc = fileio_write_atomic(path, buf, len, e);
-    free(buf);
-    return rc;
+    uint8_t *buf = NULL;
+    size_t len = 0;
+    int rc = imgio_encode(img, fmt, &buf, &len, e);
+    return write_encoded(path, rc, buf, len, e);
 }

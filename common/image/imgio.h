@@ -3,6 +3,9 @@
 #ifndef IMGIO_H
 #define IMGIO_H
 
+#include <stddef.h>
+#include <stdint.h>
+
 #include "base/err.h"
 #include "image.h"
 
@@ -40,6 +43,13 @@ int imgio_read_f(const char *path, struct rgbf *out, enum img_domain *domain, st
    attrs (nattrs strings) go into an EXR's header. 0, or -1 with e filled. */
 int imgio_write_f(const char *path, const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs,
                   size_t nattrs, struct err *e);
+
+/* imgio_write's and imgio_write_f's encoding alone: the file's bytes into a malloc'd *buf (*len
+   bytes; the caller frees it), for a writer that stages several files before renaming them.
+   0, or -1 with e filled. */
+int imgio_encode(const struct rgb8 *img, enum img_format fmt, uint8_t **buf, size_t *len, struct err *e);
+int imgio_encode_f(const struct rgbf *img, enum img_format fmt, const struct img_attr *attrs, size_t nattrs,
+                   uint8_t **buf, size_t *len, struct err *e);
 
 /* Whether fmt stores linear floats (EXR, PFM) rather than 8-bit display values. */
 int imgio_is_float(enum img_format fmt);

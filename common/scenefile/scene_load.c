@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "base/fileio.h"
+#include "base/hash.h"
 #include "image/imgio.h"
 #include "scene_loader.h"
 #include "scene_objects.h"
@@ -297,13 +298,17 @@ static int load_section(struct scene_loader *L, yaml_node_t *sec, const char *wh
 
 static const char *const scene_keys[] = {"camera", "background", "textures", "materials", "objects", NULL};
 
-int scene_load(const char *path, struct scene_file *out, struct err *e)
+int scene_load_src(const struct scene_src *src, struct scene_file *out, struct err *e)
 {
-    struct scene_loader L = {.e = e};
+    if (!src->parsed) {
+        *e = src->parse_err;
+        return -1;
+    }
+    /* the parsed document borrowed (read, never freed here): a retried render loads it again */
+    struct scene_loader L = {.d = src->doc, .e = e};
+    const char *path = src->doc.file;
     memset(out, 0, sizeof *out);
     int rc = -1;
-    if (ydoc_load(&L.d, path, e) < 0)
-        goto done;
     L.d.max_abs = SCENE_MAX_ABS;
     if (!(L.sc = scene_new())) {
         err_set(e, path, 0, 0, "out of memory");
@@ -339,7 +344,16 @@ int scene_load(const char *path, struct scene_file *out, struct err *e)
 done:
     free(L.light_pos);
     scene_free(L.sc);
-    ydoc_free(&L.d);
+    return rc;
+}
+
+int scene_load(const char *path, struct scene_file *out, struct err *e)
+{
+    struct scene_src src;
+    uint64_t h = 0;
+    memset(out, 0, sizeof *out);
+    int rc = scene_src_read(path, &src, &h, e) < 0 ? -1 : scene_load_src(&src, out, e);
+    scene_src_free(&src);
     return rc;
 }
 
@@ -349,24 +363,40 @@ void scene_file_free(struct scene_file *sf)
     sf->scene = NULL;
 }
 
-int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
+int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct err *e)
 {
-    if (fileio_hash(path, YDOC_MAX_BYTES, h, e) < 0)
+    uint8_t *data;
+    size_t len;
+    memset(src, 0, sizeof *src);
+    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
-    struct ydoc d;
-    struct err ignored; /* a scene that does not parse is scene_load's to report */
-    if (ydoc_load(&d, path, &ignored) < 0)
-        return 0;
-    yaml_node_t *textures = ymap_get(&d, ydoc_root(&d), "textures"), *k, *v;
-    for (int i = 0; textures && ymap_pair(&d, textures, i, &k, &v); i++) {
-        yaml_node_t *type = ymap_get(&d, v, "type"), *file = ymap_get(&d, v, "file");
+    *h = hash_bytes(*h, data, len);
+    src->parsed = ydoc_parse(&src->doc, path, data, len, &src->parse_err) == 0;
+    free(data);
+    yaml_node_t *textures = src->parsed ? ymap_get(&src->doc, ydoc_root(&src->doc), "textures") : NULL, *k,
+                *v;
+    for (int i = 0; textures && ymap_pair(&src->doc, textures, i, &k, &v); i++) {
+        yaml_node_t *type = ymap_get(&src->doc, v, "type"), *file = ymap_get(&src->doc, v, "file");
         const char *t = type ? yscalar(type) : NULL, *f = file ? yscalar(file) : NULL;
         if (!t || !f || strcmp(t, "image") != 0)
             continue;
         char tpath[1024];
+        struct err ignored;
         texture_path(path, f, tpath, sizeof tpath);
-        fileio_hash(tpath, TEXTURE_MAX_BYTES, h, &ignored); /* unreadable: scene_load says so */
+        fileio_hash(tpath, TEXTURE_MAX_BYTES, h, &ignored); /* unreadable: scene_load_src says so */
     }
-    ydoc_free(&d);
     return 0;
+}
+
+void scene_src_free(struct scene_src *src)
+{
+    ydoc_free(&src->doc);
+}
+
+int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
+{
+    struct scene_src src;
+    int rc = scene_src_read(path, &src, h, e);
+    scene_src_free(&src);
+    return rc;
 }

@@ -10,6 +10,7 @@
 #include "image/image.h"
 #include "image/pfm.h"
 #include "job/job.h"
+#include "job/jobfile.h"
 #include "image/png.h"
 #include "image/ppm.h"
 #include "scenefile/scene_load.h"
@@ -30,10 +31,12 @@ static int with_file(const uint8_t *data, size_t size, char *path, size_t n)
 int fuzz_job(const uint8_t *data, size_t size)
 {
     char path[256];
-    struct job j;
+    struct jobfile f;
     struct err e;
-    if (with_file(data, size, path, sizeof path) == 0)
-        job_load(path, &j, &e);
+    if (with_file(data, size, path, sizeof path) == 0) {
+        jobfile_open(&f, path, path, &e);
+        jobfile_close(&f);
+    }
     unlink(path);
     return 0;
 }

@@ -4,6 +4,8 @@
                          the process kills itself (SIGKILL) just before that rename;
    SHIM_STOP_TO=TEXT     the first rename to a path containing TEXT: the process stops itself
                          (SIGSTOP) just before it, until a SIGCONT;
+   SHIM_STOP_STAGE=TEXT  the first temporary file made (mkstemp) whose name contains TEXT: the
+                         process stops itself just before making it (an output being staged);
    SHIM_REQUEUE=LEASE    the first claim filed (.../running/X.yaml renamed out of running/): just
                          after, another worker claims a re-queued X.yaml, as if it had been that
                          quick: running/X.yaml appears again, with the lease file LEASE copied
@@ -79,4 +81,17 @@ int renameat2(int fromfd, const char *from, int tofd, const char *to, unsigned f
     int rc = real(fromfd, from, tofd, to, flags);
     after(from, to, rc);
     return rc;
+}
+
+int mkstemp(char *template)
+{
+    static int (*real)(char *);
+    const char *stop_stage = getenv("SHIM_STOP_STAGE");
+    if (!real)
+        real = (int (*)(char *))dlsym(RTLD_NEXT, "mkstemp");
+    if (stop_stage && !stopped && strstr(template, stop_stage)) {
+        stopped = 1;
+        raise(SIGSTOP);
+    }
+    return real(template);
 }

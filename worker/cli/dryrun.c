@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "job/job_estimate.h"
+#include "job/jobfile.h"
 #include "study/compare.h"
 #include "study/compare_suite.h"
 #include "study/verdict.h"
@@ -73,16 +74,23 @@ static void print_cpu(double cpu_s, int processes, const char *how)
            duration(wall_of(cpu_s, processes), b, sizeof b), processes, processes == 1 ? "" : "es", cores);
 }
 
-static int plain(const char *path, const struct run_opts *o)
+static int plain(const struct jobfile *f, const struct run_opts *o)
 {
-    struct job j;
+    const struct job *jp = &f->job;
     struct job_estimate est;
+    struct scene_file sf = {0};
     struct err e = {0};
-    if (job_load(path, &j, &e) < 0 ||
-        job_estimate(&j, NULL, o->processes, DRYRUN_JOB_BUDGET_S, &est, &e) < 0) {
+    /* the scene as jobfile_open read it: built here, not read again */
+    int rc = scene_load_src(&f->scene, &sf, &e) < 0 ||
+                     job_estimate(jp, &sf, o->processes, DRYRUN_JOB_BUDGET_S, &est, &e) < 0
+                 ? 2
+                 : 0;
+    scene_file_free(&sf);
+    if (rc) {
         err_print_e(&e);
         return 2;
     }
+    const struct job j = *jp;
     printf("%s: dry run: nothing rendered, nothing written\n", j.name);
     printf("  image     %dx%d, %s t=%g, light %s t=%g -> %s/%s/%s\n", est.width, est.height,
            sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
@@ -181,13 +189,13 @@ done:
     return rc;
 }
 
-static int compare_job(const char *path, const struct run_opts *o)
+static int compare_job(const struct jobfile *f, const struct run_opts *o)
 {
     struct err e = {0};
     struct compare_suite *suite = NULL;
     struct compare *one = NULL;
-    if (compare_suite_is_suite(path) ? !(suite = compare_suite_load(path, &e))
-                                     : !(one = compare_load(path, &e))) {
+    if (f->kind == JOBFILE_SUITE ? !(suite = compare_suite_load_doc(&f->doc, f->path, &e))
+                                 : !(one = compare_load_doc(&f->doc, f->path, &e))) {
         err_print_e(&e);
         return 2;
     }
@@ -222,5 +230,13 @@ static int compare_job(const char *path, const struct run_opts *o)
 
 int dryrun_main(const char *path, const struct run_opts *o)
 {
-    return compare_is_compare_job(path) ? compare_job(path, o) : plain(path, o);
+    struct jobfile f;
+    struct err e = {0};
+    int rc = 2;
+    if (jobfile_open(&f, path, path, &e) < 0)
+        err_print_e(&e);
+    else
+        rc = f.kind == JOBFILE_PLAIN ? plain(&f, o) : compare_job(&f, o);
+    jobfile_close(&f);
+    return rc;
 }

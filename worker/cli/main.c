@@ -10,11 +10,11 @@
 #include "cli.h"
 #include "diff.h"
 #include "dryrun.h"
-#include "study/compare.h"
-#include "study/study_main.h"
+#include "study/jobfile_run.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "job/job.h"
+#include "job/jobfile.h"
 #include "job/outdir.h"
 #include "image/metrics.h"
 #include "points.h"
@@ -117,7 +117,7 @@ static int name_taken(const char *name, const char *path, const struct run_opts 
     return 0;
 }
 
-/* A compare job's name against the command line's others (study_main's name_ok). */
+/* A job's name against the command line's others (jobfile_run's name_ok). */
 struct names_seen {
     const char *path;
     const struct run_opts *o;
@@ -125,52 +125,60 @@ struct names_seen {
     int *ntaken;
 };
 
-static int compare_name_ok(const char *name, void *arg)
+static int name_ok(const char *name, void *arg)
 {
     struct names_seen *ns = arg;
     return !name_taken(name, ns->path, ns->o, ns->taken, ns->ntaken);
 }
 
-/* Render (or, with merge, merge the parts of) one job file; its exit status. taken: the jobs of
-   this command line so far (name_taken), compare jobs included. */
+/* What a plain job's run or merge ended with, on stderr. */
+static void print_outcome(const struct job *j, int merge, int rc, struct run_result *rr, struct err *e)
+{
+    if (rc != 0) {
+        if (rc == 2 && !e->file[0]) /* bad input found while rendering (memory, --out): whose */
+            snprintf(e->file, sizeof e->file, "%s", j->path);
+        if (rc == 1) { /* a render failure names the job; bad input names its file */
+            char why[sizeof e->msg];
+            snprintf(why, sizeof why, "%s", e->msg);
+            snprintf(e->msg, sizeof e->msg, "%s: %s; nothing written", j->name, why);
+        }
+        print_err(e);
+    } else if (rr->skipped) {
+        err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j->name,
+                  rr->out.image[0]);
+    } else if (merge) {
+        err_print("%s: merged %d parts, %dx%d -> %s\n", j->name, rr->procs.processes, rr->width, rr->height,
+                  rr->out.image[0]);
+        run_print_warnings(j, rr);
+    } else {
+        run_print_summary(j, rr);
+    }
+}
+
+/* Render (or, with merge, merge the parts of) one job file, read once; its exit status. taken:
+   the jobs of this command line so far (name_taken), compare jobs included. */
 static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
 {
-    struct job j;
+    struct jobfile f;
+    struct jobfile_outcome out = {0};
     struct err e;
-    struct run_result rr;
-    if (compare_is_compare_job(path)) { /* a job with variants (or studies): a compare job */
-        struct names_seen ns = {path, o, taken, ntaken};
-        if (!merge && !o->parts)
-            return study_main(path, o, compare_name_ok, &ns);
+    struct names_seen ns = {path, o, taken, ntaken};
+    int rc = 2;
+    if (jobfile_open(&f, path, path, &e) < 0) {
+        print_err(&e);
+    } else if (f.kind != JOBFILE_PLAIN && (merge || o->parts)) {
         err_print("%s: a compare job renders whole images: no merge or --part\n", path);
-        return 2;
-    }
-    if (job_load(path, &j, &e) < 0) {
-        print_err(&e);
-        return 2;
-    }
-    if (name_taken(j.name, path, o, taken, ntaken))
-        return 2;
-    int rc = merge ? merge_parts(&j, o, &rr, &e) : run_job(&j, o, &rr, &e);
-    if (rc != 0) {
-        if (rc == 2 && !e.file[0]) /* bad input found while rendering (memory, --out): whose */
-            snprintf(e.file, sizeof e.file, "%s", path);
-        if (rc == 1) { /* a render failure names the job; bad input names its file */
-            char why[sizeof e.msg];
-            snprintf(why, sizeof why, "%s", e.msg);
-            snprintf(e.msg, sizeof e.msg, "%s: %s; nothing written", j.name, why);
-        }
-        print_err(&e);
-    } else if (rr.skipped) {
-        err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j.name,
-                  rr.image_path);
     } else if (merge) {
-        err_print("%s: merged %d parts, %dx%d -> %s\n", j.name, rr.procs.processes, rr.width, rr.height,
-                  rr.image_path);
-        run_print_warnings(&j, &rr);
+        if (name_ok(f.job.name, &ns)) {
+            rc = merge_parts(&f.job, o, &out.rr, &out.e);
+            print_outcome(&f.job, 1, rc, &out.rr, &out.e);
+        }
     } else {
-        run_print_summary(&j, &rr);
+        rc = jobfile_run(&f, o, name_ok, &ns, &out);
+        if (f.kind == JOBFILE_PLAIN && !(rc == 2 && !out.e.msg[0])) /* not refused by name_ok */
+            print_outcome(&f.job, 0, rc, &out.rr, &out.e);
     }
+    jobfile_close(&f);
     return rc;
 }
 

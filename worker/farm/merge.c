@@ -117,7 +117,7 @@ static int merge_image_new(const struct job *j, struct merge_image *img, struct 
 
 int merge_parts(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
 {
-    char dir[2048], path[2048], missing[512] = "";
+    char path[2048], missing[512] = "";
     struct procs_result *fr = calloc(1, sizeof *fr);
     struct rgbf ref = {0};
     enum img_domain ref_domain = IMG_LINEAR;
@@ -128,7 +128,8 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
         err_set(e, NULL, 0, 0, "out of memory");
         return 1;
     }
-    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
+    outdir_files(j, o->out_dir, &rr->out);
+    const char *dir = rr->out.dir;
     int parts = find_split(j, dir, e);
     if (parts < 0)
         goto done;
@@ -168,7 +169,8 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
     if (ref.px && ref_domain == IMG_DISPLAY8)
         run_warn_display_reference(j->name, j->reference);
     rr->procs = *fr;
-    rc = run_out_write(j, o, img.rgb, img.w, img.h, fr, &ref, ref_domain, parts, rr, e) < 0 ? 1 : 0;
+    struct run_frame frame = {img.rgb, img.w, img.h, fr, &ref, ref_domain, parts};
+    rc = run_out_write(j, o, &frame, rr, e) < 0 ? 1 : 0;
 done:
     image_f_free(&ref);
     free(img.rgb);

@@ -9,8 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "study/compare.h"
-#include "study/study_main.h"
+#include "study/jobfile_run.h"
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"
@@ -162,8 +161,7 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
 /* A compare job: its combinations render into done/<name>/ as one job (a suite: each study into
    done/<name>/<study>/); a retry after a crash renders only the combinations still missing (they
    resume by hash). Invalid: failed/. */
-static void process_compare(struct queue *q, const char *name, const char *from, const char *as,
-                            const char *stem)
+static void process_compare(struct queue *q, const char *name, const struct jobfile *f, const char *stem)
 {
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
@@ -173,13 +171,17 @@ static void process_compare(struct queue *q, const char *name, const char *from,
     ro.still_held = queue_claim_still_held;
     ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = q;
-    char last[2048] = "", log_name[JOB_NAME_MAX];
+    struct jobfile_outcome out;
+    char log_name[JOB_NAME_MAX];
     snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads: failed/<name>.log */
     int attempts = 0, rc;
     do {
         q->attempt = ++attempts;
-        rc = study_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
+        rc = jobfile_run(f, &ro, NULL, NULL, &out);
+        if (out.name[0])
+            snprintf(log_name, sizeof log_name, "%s", out.name);
     } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
+    const char *last = out.line;
     if (q->lost || !queue_claim_still_ours(q)) {
         say_lost(q, name);
         return;
@@ -227,22 +229,16 @@ static void log_summary(const char *name, const struct job *j, const struct run_
         queue_log(name, "%s", line);
 }
 
-/* Load, render (retrying crashed renders) and file the claimed job DIR/running/name. */
-static void process_claim(struct queue *q, const char *name)
+/* Render (retrying crashed renders) and file the claimed plain job DIR/running/name, read into f
+   (invalid when open_rc < 0, e saying why). */
+static void process_job(struct queue *q, const char *name, const struct jobfile *f, int open_rc, struct err e)
 {
-    char as[2048], from[4096], msg[2048], stem[256];
-    struct job j;
-    struct err e;
-    struct run_result rr;
-    snprintf(as, sizeof as, "%s/%s", q->dir, name);
+    char msg[2048], stem[256];
+    const struct job j = f->job;
+    struct jobfile_outcome out;
+    struct run_result *rr = &out.rr;
     outdir_stem(name, stem, sizeof stem);
-    claim_source(q, from, sizeof from);
-    if (compare_is_compare_job(from)) {
-        process_compare(q, name, from, as, stem);
-        return;
-    }
-    if (job_load_as(from, as, &j, &e) < 0 ||
-        queue_inputs_check(q->dir, &j, &e) < 0) { /* invalid: never retried */
+    if (open_rc < 0 || queue_inputs_check(q->dir, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
         queue_log(name, "%s", msg);
         queue_log(name, "invalid job, moved to %s/", q->failed);
@@ -271,8 +267,9 @@ static void process_claim(struct queue *q, const char *name)
     int attempts = 0, rc;
     for (;;) {
         q->attempt = ++attempts;
-        rc = run_job(&j, &ro, &rr, &e);
-        if (rc != 1 || !rr.procs.child_crashed || attempts > q->o->retries || queue_stop)
+        rc = jobfile_run(f, &ro, NULL, NULL, &out);
+        e = out.e;
+        if (rc != 1 || !rr->procs.child_crashed || attempts > q->o->retries || queue_stop)
             break;
         err_format(&e, msg, sizeof msg);
         queue_log(name, "%s; retrying (attempt %d of %d)\n", msg, attempts + 1, q->o->retries + 1);
@@ -281,16 +278,16 @@ static void process_claim(struct queue *q, const char *name)
         say_lost(q, name);
         return;
     }
-    if (rc == 1 && (rr.procs.stopped || queue_stop)) {
+    if (rc == 1 && (rr->procs.stopped || queue_stop)) {
         give_back(q, name);
         return;
     }
     if (rc == 0) {
-        if (rr.skipped)
+        if (rr->skipped)
             queue_log(name, "up to date in %s/%s/ (same job hash), skipped; --force renders it again\n",
                       q->done, j.name);
         else
-            log_summary(name, &j, &rr);
+            log_summary(name, &j, rr);
         queue_claim_file(q, name, q->done);
         return;
     }
@@ -301,9 +298,26 @@ static void process_claim(struct queue *q, const char *name)
     err_format(&e, msg, sizeof msg);
     queue_log(name, "%s; moved to %s/ after %d attempt%s\n", msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
-    write_log(q, name, j.name, msg, rr.procs.child_signal, attempts);
+    write_log(q, name, j.name, msg, rr->procs.child_signal, attempts);
     file_failed(q, name, j.name);
     note_rc(q, rc);
+}
+
+/* Read the claimed job DIR/running/name once, then render and file it. */
+static void process_claim(struct queue *q, const char *name)
+{
+    char as[2048], from[4096], stem[256];
+    struct jobfile f;
+    struct err e = {0};
+    snprintf(as, sizeof as, "%s/%s", q->dir, name);
+    outdir_stem(name, stem, sizeof stem);
+    claim_source(q, from, sizeof from);
+    int rc = jobfile_open(&f, from, as, &e);
+    if (rc == 0 && f.kind != JOBFILE_PLAIN)
+        process_compare(q, name, &f, stem);
+    else
+        process_job(q, name, &f, rc, e);
+    jobfile_close(&f);
 }
 
 /* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */

@@ -9,12 +9,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "base/fileio.h"
 #include "job_path.h"
 #include "image/imgio.h"
-#include "base/hash.h"
 #include "outdir.h"
-#include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
 
 const char *const job_keys[] = {"name",      "scene",      "width",         "height",
@@ -123,6 +120,56 @@ static int check_output_ext(struct ydoc *d, yaml_node_t *v, const char *out, str
                      strrchr(out, '.'), list);
 }
 
+/* One output name at v into out: a plain file name whose extension names a format (in a list,
+   it must have one: each image's format is its own). */
+static int get_output(struct ydoc *d, yaml_node_t *v, int in_list, char *out, enum img_format *fmt,
+                      struct err *e)
+{
+    const char *s;
+    if (yget_string(d, v, "output", &s, e) < 0)
+        return -1;
+    if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
+        return ydoc_fail(d, v, e,
+                         "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
+                         "most %d, not starting with '.'), got \"%.40s\"",
+                         JOB_NAME_MAX - 1, s);
+    if (check_output_ext(d, v, s, e) < 0)
+        return -1;
+    if (in_list && img_format_of_file(s, fmt) <= 0)
+        return ydoc_fail(d, v, e, "output: %s: in a list each image needs its format's extension", s);
+    snprintf(out, JOB_NAME_MAX, "%s", s);
+    return 0;
+}
+
+/* output: one name, or a list of names of distinct formats (the first names the sidecar). */
+static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err *e)
+{
+    enum img_format fmt;
+    j->has_output = 1;
+    mark(j->pos_output, v);
+    if (v->type != YAML_SEQUENCE_NODE)
+        return get_output(d, v, 0, j->output, &fmt, e);
+    int n = yseq_len(v);
+    if (n < 1 || n > JOB_OUTPUTS_MAX)
+        return ydoc_fail(d, v, e, "output: a list holds 1 to %d image names (one per format), got %d",
+                         JOB_OUTPUTS_MAX, n);
+    enum img_format seen[JOB_OUTPUTS_MAX];
+    for (int i = 0; i < n; i++) {
+        yaml_node_t *item = yseq_item(d, v, i);
+        char *out = i == 0 ? j->output : j->more_output[i - 1];
+        if (get_output(d, item, 1, out, &seen[i], e) < 0)
+            return -1;
+        for (int k = 0; k < i; k++)
+            if (seen[k] == seen[i])
+                return ydoc_fail(d, item, e, "output: two %s images in one list (one per format)",
+                                 img_format_name(seen[i]));
+        if (i > 0)
+            j->more_format[i - 1] = seen[i];
+    }
+    j->n_more = n - 1;
+    return 0;
+}
+
 int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, struct err *e)
 {
     const char *k = yscalar(key);
@@ -202,18 +249,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         j->has_format = 1;
         mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
-        if (yget_string(d, v, k, &s, e) < 0)
-            return -1;
-        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(d, v, e,
-                             "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
-                             "most %d, not starting with '.'), got \"%.40s\"",
-                             JOB_NAME_MAX - 1, s);
-        if (check_output_ext(d, v, s, e) < 0)
-            return -1;
-        snprintf(j->output, sizeof j->output, "%s", s);
-        j->has_output = 1;
-        mark(j->pos_output, v);
+        return get_outputs(j, d, v, e);
     } else if (!strcmp(k, "reference")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -295,50 +331,16 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     return 0;
 }
 
-int job_hash_file(const char *path, uint64_t *h, struct err *e)
+int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e)
 {
-    return fileio_hash(path, YDOC_MAX_BYTES, h, e);
-}
-
-int job_load(const char *path, struct job *j, struct err *e)
-{
-    return job_load_as(path, path, j, e);
-}
-
-int job_load_as(const char *from, const char *path, struct job *j, struct err *e)
-{
-    struct ydoc d;
-    int rc = -1;
     job_defaults(j, path);
-    if (ydoc_load(&d, from, e) < 0) {
-        if (strcmp(e->file, from) == 0)
-            snprintf(e->file, sizeof e->file, "%s", path);
-        goto done;
-    }
-    snprintf(d.file, sizeof d.file, "%s", path);
-    yaml_node_t *root = ydoc_root(&d);
-    if (ymap_check(&d, root, job_keys, "job", e) < 0)
-        goto done;
-    yaml_node_t *k, *v;
-    for (int i = 0; ymap_pair(&d, root, i, &k, &v); i++)
-        if (job_apply(j, &d, k, v, e) < 0)
-            goto done;
-    if (!ymap_get(&d, root, "scene")) {
-        ymap_missing(&d, root, "scene", e, "scene: missing (name a scene file, e.g. scene: checker)");
-        goto done;
-    }
-    if (job_finish(j, &d, e) < 0)
-        goto done;
-    j->hash = HASH_FNV_OFFSET;
-    if (job_hash_file(from, &j->hash, e) < 0 || scene_hash_inputs(j->scene_path, &j->hash, e) < 0)
-        goto done;
-    /* The reference's bytes too: a replaced reference must not leave a sidecar's old error figures
-       current. Unreadable: run_load_reference says so. */
-    struct err ignored;
-    if (j->reference[0])
-        fileio_hash(j->reference, IMGIO_MAX_BYTES, &j->hash, &ignored);
-    rc = 0;
-done:
-    ydoc_free(&d);
-    return rc;
+    yaml_node_t *root = ydoc_root(d), *k, *v;
+    if (ymap_check(d, root, job_keys, "job", e) < 0)
+        return -1;
+    for (int i = 0; ymap_pair(d, root, i, &k, &v); i++)
+        if (job_apply(j, d, k, v, e) < 0)
+            return -1;
+    if (!ymap_get(d, root, "scene"))
+        return ymap_missing(d, root, "scene", e, "scene: missing (name a scene file, e.g. scene: checker)");
+    return job_finish(j, d, e);
 }

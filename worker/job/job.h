@@ -11,6 +11,7 @@
 
 #define JOB_PATH_MAX 1024
 #define JOB_NAME_MAX 128
+#define JOB_OUTPUTS_MAX 4 /* images one job writes: one per format */
 
 struct job {
     char path[JOB_PATH_MAX]; /* the job file */
@@ -23,7 +24,11 @@ struct job {
     uint64_t seed;
     int processes;
     enum img_format format;
-    char output[JOB_NAME_MAX];    /* file name under --out DIR/<name>/ */
+    char output[JOB_NAME_MAX]; /* the image's file name under --out DIR/<name>/ (a list's first): its
+                                  stem names the sidecar and the part files */
+    int n_more;                /* output: [a.png, a.exr]: the images written beside it, one per format */
+    char more_output[JOB_OUTPUTS_MAX - 1][JOB_NAME_MAX];
+    enum img_format more_format[JOB_OUTPUTS_MAX - 1];
     char reference[JOB_PATH_MAX]; /* resolved; "" when none */
     int poisson_pool;
     int light_sampling; /* 0: no importance sampling of lights (default 1) */
@@ -39,19 +44,13 @@ struct job {
         pos_output[2], pos_name[2], pos_width[2], pos_poisson_pool[2];
 };
 
-/* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
 /* The smallest threshold sampler kind k takes (its sets stay within SAMPLER_MAX_POINTS). */
 double job_smallest_threshold(enum sampler_kind k);
 
-int job_load(const char *path, struct job *j, struct err *e);
-
-/* Like job_load, but read the bytes from `from` while treating the file as if it were at `path`:
-   relative scene and reference paths resolve beside `path`, messages and j->path name `path`
-   (a queue job claimed into DIR/running/ still belongs to DIR). */
-int job_load_as(const char *from, const char *path, struct job *j, struct err *e);
-
-/* Hash of the bytes of the file at path, continued from h; -1 when it cannot be read. */
-int job_hash_file(const char *path, uint64_t *h, struct err *e);
+/* Read the job in the parsed document d of the job file at path (relative scene and reference
+   paths resolve beside path) into j: every key checked, defaults filled; j->hash left 0 (the
+   job file's reader, jobfile_open, sets it). 0, or -1 with e = "file:line:col: key: message". */
+int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e);
 
 /* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
    least 1 (the caller checks it against IMAGE_MAX_SIDE). */

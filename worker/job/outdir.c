@@ -11,7 +11,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "base/rng.h"
 #include "image/imgio.h"
 
 const char *outdir_root(const char *out_dir)
@@ -33,23 +32,38 @@ void outdir_dir(const char *out_dir, const char *name, char *buf, size_t n)
     snprintf(buf, n, "%s/%s", outdir_root(out_dir), name);
 }
 
-void outdir_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n)
+void outdir_files(const struct job *j, const char *out_dir, struct outdir_files *f)
 {
-    char stem[JOB_NAME_MAX];
+    char stem[JOB_NAME_MAX], dir[sizeof f->dir];
+    int has_float = imgio_is_float(j->format);
     outdir_stem(j->output, stem, sizeof stem);
-    outdir_dir(out_dir, j->name, dir, n);
-    snprintf(image, n, "%s/%s/%s", outdir_root(out_dir), j->name, j->output);
-    snprintf(sidecar, n, "%s/%s/%s.json", outdir_root(out_dir), j->name, stem);
+    outdir_dir(out_dir, j->name, dir, sizeof dir);
+    snprintf(f->dir, sizeof f->dir, "%s", dir);
+    snprintf(f->image[0], sizeof f->image[0], "%s/%s", dir, j->output);
+    f->format[0] = j->format;
+    f->n_images = 1;
+    for (int i = 0; i < j->n_more; i++, f->n_images++) {
+        snprintf(f->image[f->n_images], sizeof f->image[0], "%s/%s", dir, j->more_output[i]);
+        f->format[f->n_images] = j->more_format[i];
+        has_float |= imgio_is_float(j->more_format[i]);
+    }
+    f->float_copy = -1;
+    if (j->float_copy && !has_float) {
+        f->float_copy = f->n_images++;
+        snprintf(f->image[f->float_copy], sizeof f->image[0], "%s/%s.exr", dir, stem);
+        f->format[f->float_copy] = IMG_EXR;
+    }
+    snprintf(f->sidecar, sizeof f->sidecar, "%s/%s.json", dir, stem);
 }
 
-void outdir_float_path(const struct job *j, const char *out_dir, char *path, size_t n)
+void outdir_part_files(const struct job *j, const char *out_dir, int part, int parts, struct outdir_files *f)
 {
-    char stem[JOB_NAME_MAX];
-    path[0] = 0;
-    if (!j->float_copy || imgio_is_float(j->format))
-        return;
-    outdir_stem(j->output, stem, sizeof stem);
-    snprintf(path, n, "%s/%s/%s.exr", outdir_root(out_dir), j->name, stem);
+    outdir_dir(out_dir, j->name, f->dir, sizeof f->dir);
+    outdir_part_path(j, out_dir, part, parts, f->image[0], sizeof f->image[0]);
+    f->format[0] = j->format;
+    f->n_images = 1;
+    f->float_copy = -1;
+    f->sidecar[0] = 0;
 }
 
 void outdir_part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n)
@@ -130,8 +144,8 @@ int outdir_mkdirs(const char *path, int *made, struct err *e)
     return 0;
 }
 
-/* Whether n is a temporary of the file named base: fileio_write_atomic's ".<base>.tmp.XXXXXX", or
-   its own temporary of such a staging file, "..<base>.tmp.XXXXXX.tmp.YYYYYY". */
+/* Whether n is a temporary of the file named base: fileio_stage's ".<base>.tmp.XXXXXX", or what
+   writers before issue 29 left, which staged twice: "..<base>.tmp.XXXXXX.tmp.YYYYYY". */
 static int is_temp_of(const char *n, const char *base)
 {
     size_t bl = strlen(base);
@@ -243,19 +257,4 @@ void outdir_unlock(int fd)
 {
     if (fd >= 0)
         close(fd); /* closing the last descriptor of the open folder releases the flock */
-}
-
-void outdir_staged_name(const char *path, char *out, size_t n)
-{
-    static const char alnum[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    uint64_t x = rng_mix64((uint64_t)getpid() << 32 ^ (uint64_t)ts.tv_sec << 30 ^ (uint64_t)ts.tv_nsec);
-    char suffix[7];
-    for (int i = 0; i < 6; i++, x /= 62)
-        suffix[i] = alnum[x % 62];
-    suffix[6] = 0;
-    const char *slash = strrchr(path, '/');
-    int dl = slash ? (int)(slash - path) + 1 : 0;
-    snprintf(out, n, "%.*s.%s.tmp.%s", dl, path, path + dl, suffix);
 }

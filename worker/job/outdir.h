@@ -1,12 +1,13 @@
 /* outdir: a job's output folder OUT/<name>/ and the names in it (image, sidecar, part files, all
-   from the output's stem), made on demand and locked while written; staging names for atomic
-   writes, and the removal of those a killed writer left. */
+   from the output's stem), made on demand and locked while written; the removal of the temporary
+   files a killed writer left. */
 #ifndef OUTDIR_H
 #define OUTDIR_H
 
 #include <signal.h>
 #include <stddef.h>
 
+#include "image/image.h"
 #include "job.h"
 
 /* The output root when --out is not given. */
@@ -22,12 +23,24 @@ void outdir_stem(const char *path, char *out, size_t n);
 /* OUT/<name>: the folder of the job, or compare job, named name. */
 void outdir_dir(const char *out_dir, const char *name, char *buf, size_t n);
 
-/* j's folder OUT/<name>, its image OUT/<name>/<output> and sidecar OUT/<name>/<output stem>.json. */
-void outdir_paths(const struct job *j, const char *out_dir, char *dir, char *image, char *sidecar, size_t n);
+/* Every file a job writes, its paths computed once (outdir_files) and passed along: resume checks
+   them, run_out writes them, the caller prints them. */
+#define OUTDIR_IMAGES_MAX (JOB_OUTPUTS_MAX + 1) /* + a compare combination's float copy */
+struct outdir_files {
+    char dir[2048];                      /* OUT/<name> */
+    int n_images;                        /* >= 1 */
+    char image[OUTDIR_IMAGES_MAX][2048]; /* image[0]: OUT/<name>/<output>; a part: the part file */
+    enum img_format format[OUTDIR_IMAGES_MAX];
+    int float_copy;     /* the index of the float copy (job.float_copy), else -1 */
+    char sidecar[2048]; /* OUT/<name>/<output stem>.json; a part: "" */
+};
 
-/* j's float copy OUT/<name>/<output stem>.exr when j->float_copy and its image is PNG or PPM,
-   else "". */
-void outdir_float_path(const struct job *j, const char *out_dir, char *path, size_t n);
+/* j's files under out_dir: its folder, each image of output: (and the float copy OUT/<name>/<output
+   stem>.exr when j->float_copy and no float image is listed) and the sidecar. */
+void outdir_files(const struct job *j, const char *out_dir, struct outdir_files *f);
+
+/* The files of part I of N of j: its folder and the part file alone (outdir_part_path). */
+void outdir_part_files(const struct job *j, const char *out_dir, int part, int parts, struct outdir_files *f);
 
 /* The file of part I of N of j: OUT/<name>/<output stem>.part-I-of-N. */
 void outdir_part_path(const struct job *j, const char *out_dir, int part, int parts, char *buf, size_t n);
@@ -65,10 +78,5 @@ void outdir_unlock(int lock);
    job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
    A lock held by another writer for over a second leaves them (they may be that writer's). */
 void outdir_remove_temps(const char *dir);
-
-/* A staging name for path, unique to this writer: "<dir>/.<base>.tmp.XXXXXX", shaped as
-   fileio_write_atomic's temporaries, so that the next holder of the folder's lock removes it when
-   its writer was killed between staging and renaming. */
-void outdir_staged_name(const char *path, char *out, size_t n);
 
 #endif

@@ -81,21 +81,17 @@ void run_warn_display_reference(const char *job_name, const char *path)
               job_name, path);
 }
 
-/* Resume: the outputs exist and were made from these very inputs. */
-static int outputs_current(const struct job *j, const struct run_opts *o, struct run_result *rr)
+/* Resume: the outputs (rr->out) exist and were made from these very inputs. */
+static int outputs_current(const struct job *j, const struct run_opts *o, const struct run_result *rr)
 {
-    char dir[2048];
-    if (j->hash == 0) /* a job not read from a file (no job_load): nothing to compare with */
+    if (j->hash == 0) /* a job not read from a file (no jobfile_open): nothing to compare with */
         return 0;
-    if (o->parts > 0) {
-        outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
-        rr->sidecar_path[0] = 0;
-        return part_matches(rr->image_path, j, o->part, o->parts);
-    }
-    outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    outdir_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
-    return is_file(rr->image_path) && (!rr->float_path[0] || is_file(rr->float_path)) &&
-           sidecar_matches(rr->sidecar_path, j->hash);
+    if (o->parts > 0)
+        return part_matches(rr->out.image[0], j, o->part, o->parts);
+    for (int i = 0; i < rr->out.n_images; i++)
+        if (!is_file(rr->out.image[i]))
+            return 0;
+    return sidecar_matches(rr->out.sidecar, j->hash);
 }
 
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
@@ -115,14 +111,17 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct rgbf ref = {0};
     enum img_domain ref_domain = o->ref_domain;
     float *rgb = NULL;
-    char dir[2048];
     int rc = 2;
     memset(rr, 0, sizeof *rr);
+    if (o->parts > 0)
+        outdir_part_files(j, o->out_dir, o->part, o->parts, &rr->out);
+    else
+        outdir_files(j, o->out_dir, &rr->out);
     if (!o->force && outputs_current(j, o, rr)) {
         rr->skipped = 1;
         return 0;
     }
-    if (scene_load(j->scene_path, &sf, e) < 0)
+    if ((o->scene ? scene_load_src(o->scene, &sf, e) : scene_load(j->scene_path, &sf, e)) < 0)
         goto done;
     snprintf(rr->scene_warning, sizeof rr->scene_warning, "%s", sf.warning);
     int w = j->width;
@@ -164,8 +163,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
-    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
-    if (outdir_check(dir, e) < 0)
+    if (outdir_check(rr->out.dir, e) < 0)
         goto done;
     rc = 1;
     if (!(rgb = procs_framebuffer_new(w, h, e)))
@@ -187,12 +185,9 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
             fprintf(stderr, "\n");
         goto done;
     }
-    if (o->parts > 0) {
-        if (run_out_write_part(j, o, rgb, w, h, &rr->procs, rr, e) < 0)
-            goto done;
-    } else if (run_out_write(j, o, rgb, w, h, &rr->procs, use_ref, ref_domain, 0, rr, e) < 0) {
+    struct run_frame frame = {rgb, w, h, &rr->procs, use_ref, ref_domain, 0};
+    if ((o->parts > 0 ? run_out_write_part(j, o, &frame, rr, e) : run_out_write(j, o, &frame, rr, e)) < 0)
         goto done;
-    }
     rc = 0;
 done:
     image_f_free(&ref);
@@ -216,10 +211,14 @@ void run_say(const struct run_opts *o, const char *fmt, ...)
 void run_format_summary(const struct job *j, const struct run_result *rr, char *buf, size_t n)
 {
     const struct render_stats *t = &rr->procs.total;
-    snprintf(buf, n, "%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s", j->name, rr->width,
-             rr->height, sampler_kind_name(j->sampler), j->threshold,
-             t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
-             rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->image_path);
+    int len = snprintf(buf, n, "%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s", j->name,
+                       rr->width, rr->height, sampler_kind_name(j->sampler), j->threshold,
+                       t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
+                       rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->out.image[0]);
+    for (int i = 1; i <= j->n_more && len > 0 && (size_t)len < n; i++) { /* output: [a.png, a.exr] */
+        const char *slash = strrchr(rr->out.image[i], '/');
+        len += snprintf(buf + len, n - (size_t)len, ", %s", slash ? slash + 1 : rr->out.image[i]);
+    }
 }
 
 int run_format_warning(const struct job *j, const struct run_result *rr, char *buf, size_t n)

@@ -6,7 +6,9 @@
 
 #include "image/metrics.h"
 #include "job.h"
+#include "outdir.h"
 #include "procs.h"
+#include "scenefile/scene_load.h"
 
 struct run_opts {
     const char *out_dir; /* NULL: OUTDIR_DEFAULT (outdir.h) */
@@ -29,6 +31,8 @@ struct run_opts {
     int (*still_held)(void *arg);   /* optional: asked (with tick_arg) just before each output is
                                        renamed into place: 0 = the claim was taken over meanwhile;
                                        rename nothing more, fail */
+    const struct scene_src *scene;  /* optional: the job's scene, already read and parsed (jobfile_open);
+                                       NULL: run_job reads j->scene_path itself */
     const struct rgbf *ref;         /* optional: the job's reference, already read (a compare job reads each
                                        scene's once); NULL: run_job reads j->reference itself */
     enum img_domain ref_domain;     /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
@@ -37,8 +41,7 @@ struct run_opts {
 };
 
 struct run_result {
-    char image_path[2048];   /* with parts: the part file */
-    char sidecar_path[2048]; /* with parts: "" */
+    struct outdir_files out; /* what the job writes (with parts: the part file), computed once */
     int width, height;
     int skipped;               /* outputs were current (same job hash): nothing rendered */
     int black;                 /* the image written is entirely black (run_print_warnings) */
@@ -49,14 +52,13 @@ struct run_result {
     int has_display_error;        /* o->ref_display given and the image is PNG or PPM */
     struct metrics display_error; /* the 8-bit image against o->ref_display */
     enum img_domain error_domain; /* linear radiance, or 8-bit display values (a PNG/PPM reference) */
-    char float_path[2048];        /* the float copy beside a PNG/PPM image (job.float_copy), else "" */
 };
 
 /* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing
    rendered), 1 when rendering or writing failed; e says why. No output file exists unless the
-   render completed: image and sidecar are written atomically. Unless o->force, a job whose
-   image and sidecar (or part file) exist and record j->hash (non-zero: the job was read by
-   job_load) is not rendered: 0, rr->skipped. */
+   render completed: images and sidecar are written atomically. rr->out: the files' paths,
+   computed once here. Unless o->force, a job whose images and sidecar (or part file) exist and
+   record j->hash (non-zero: the job was read by jobfile_open) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
 
 /* Read j's reference (EXR, PFM, PNG or PPM) into ref as floats, *domain saying what they are,

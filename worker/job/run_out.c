@@ -15,19 +15,6 @@
 #include "part.h"
 #include "sidecar.h"
 
-/* An error about writing the staging file `staged` names the final path instead. */
-static void name_final(struct err *e, const char *staged, const char *final)
-{
-    char *at = strstr(e->msg, staged);
-    if (!at)
-        return;
-    char msg[sizeof e->msg];
-    snprintf(msg, sizeof msg, "%.*s%s%s", (int)(at - e->msg), e->msg, final, at + strlen(staged));
-    snprintf(e->msg, sizeof e->msg, "%s", msg);
-    if (!strcmp(e->file, staged))
-        snprintf(e->file, sizeof e->file, "%s", final);
-}
-
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e)
 {
@@ -89,109 +76,134 @@ static int score(const struct rgbf *fb, const struct rgb8 *img, const struct rgb
     return rc;
 }
 
-int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                  const struct procs_result *fr, const struct rgbf *ref, enum img_domain ref_domain,
-                  int parts, struct run_result *rr, struct err *e)
+/* Encode image i of rr->out from the framebuffer fb (or its 8-bit conversion img) and stage it
+   under a temporary name into staged. 0 or -1 with e filled. */
+static int stage_image(const struct job *j, const struct run_result *rr, int i, const struct rgbf *fb,
+                       const struct rgb8 *img, char *staged, size_t n, struct err *e)
 {
-    char dir[2048], staged[3][2100], attr_text[6][160];
-    const char *final[3];
+    char attr_text[6][160];
     struct img_attr attrs[8];
+    uint8_t *buf = NULL;
+    size_t len = 0;
+    enum img_format fmt = rr->out.format[i];
+    int rc = imgio_is_float(fmt)
+                 ? imgio_encode_f(fb, fmt, attrs, exr_attrs(j, attrs, attr_text), &buf, &len, e)
+                 : imgio_encode(img, fmt, &buf, &len, e);
+    if (rc == 0)
+        rc = fileio_stage(rr->out.image[i], buf, len, staged, n, e);
+    else if (!e->file[0])
+        snprintf(e->file, sizeof e->file, "%s", rr->out.image[i]);
+    free(buf);
+    return rc;
+}
+
+/* Rename the n staged files to their final names, each once, in order (the sidecar last), asking
+   before each after the first whether the claim is still held. 0, or -1 with e filled and nothing
+   of this writer's left: what was renamed is removed again (an image without its sidecar is not a
+   finished job) and what was not is unlinked. */
+static int commit_all(const struct run_opts *o, const char *dir, char staged[][2100],
+                      const char *const *final, int n, struct err *e)
+{
+    for (int i = 0; i < n; i++) {
+        /* a claim taken over between renames: what is renamed stays, without a sidecar */
+        if (i > 0 && run_out_still_held(o, dir, e) < 0) {
+            for (int r = i; r < n; r++)
+                unlink(staged[r]);
+            return -1;
+        }
+        if (fileio_commit(staged[i], final[i], e) == 0)
+            continue;
+        for (int r = 0; r < n; r++)
+            if (r != i)
+                unlink(r < i ? final[r] : staged[r]);
+        return -1;
+    }
+    return 0;
+}
+
+int run_out_write(const struct job *j, const struct run_opts *o, const struct run_frame *f,
+                  struct run_result *rr, struct err *e)
+{
+    const struct outdir_files *out = &rr->out;
+    char staged[OUTDIR_IMAGES_MAX + 1][2100];
+    const char *final[OUTDIR_IMAGES_MAX + 2];
     struct rgb8 img = {0};
-    struct rgbf fb = {w, h, (float *)rgb};
+    struct rgbf fb = {f->w, f->h, (float *)f->rgb};
     char *json = NULL;
-    int rc = -1, made_dir = 0, lock = -1, n = 0;
-    int is_float = imgio_is_float(j->format), has_ref = ref && ref->px;
-    outdir_paths(j, o->out_dir, dir, rr->image_path, rr->sidecar_path, sizeof rr->image_path);
-    outdir_float_path(j, o->out_dir, rr->float_path, sizeof rr->float_path);
-    if (outdir_mkdirs(dir, &made_dir, e) < 0 ||
-        ((!is_float || (has_ref && ref_domain == IMG_DISPLAY8)) && image_alloc(&img, w, h, e) < 0))
+    int rc = -1, made_dir = 0, lock = -1, n = 0, k = 0,
+        need8 = f->ref && f->ref->px && f->ref_domain == IMG_DISPLAY8;
+    for (int i = 0; i < out->n_images; i++) {
+        final[n++] = out->image[i];
+        need8 |= !imgio_is_float(out->format[i]);
+    }
+    final[n++] = out->sidecar;
+    final[n] = NULL;
+    if (outdir_mkdirs(out->dir, &made_dir, e) < 0 || (need8 && image_alloc(&img, f->w, f->h, e) < 0))
         goto done;
-    final[n++] = rr->image_path;
-    if (rr->float_path[0])
-        final[n++] = rr->float_path;
-    final[n++] = rr->sidecar_path;
-    for (int i = 0; i < n; i++)
-        outdir_staged_name(final[i], staged[i], sizeof staged[i]);
-    const char *outs[] = {final[0], final[1], n > 2 ? final[2] : NULL, NULL};
-    if (run_out_lock_outputs(dir, outs, o, &lock, e) < 0)
+    if (run_out_lock_outputs(out->dir, final, o, &lock, e) < 0)
         goto done;
     if (img.px)
-        image_float_to_rgb8(rgb, w, h, img.px);
+        image_float_to_rgb8(f->rgb, f->w, f->h, img.px);
     rr->has_error = rr->has_display_error = 0;
-    if (has_ref && score(&fb, &img, ref, ref_domain, rr, e) < 0)
+    if (f->ref && f->ref->px && score(&fb, &img, f->ref, f->ref_domain, rr, e) < 0)
         goto done;
     if (o->ref_display && img.px) {
         if (metrics_display_compare(o->ref_display, &img, &rr->display_error, e) < 0)
             goto done;
         rr->has_display_error = 1;
     }
-    struct sidecar sc = {j, w, h, fr, rr->has_error ? &rr->error : NULL, ref_domain, j->output, parts};
+    struct sidecar sc = {j,         f->w,    f->h, f->procs, rr->has_error ? &rr->error : NULL, f->ref_domain,
+                         j->output, f->parts};
     if (!(json = sidecar_json(&sc))) {
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* All are written whole under staging names first: a failure before the renames (a full disk,
-       a size limit) leaves the earlier outputs as they were. Then the earlier sidecar goes, the
-       image and its float copy are renamed, the sidecar last: a reader (or a writer killed at any
-       step) sees the earlier outputs, images without a sidecar (not finished: rendered again), or
-       the new ones, never a new image beside an earlier sidecar (issue 21, defect 6). A killed
-       writer's staged files and their temporaries go under the next one's lock. */
-    size_t nattrs = exr_attrs(j, attrs, attr_text);
-    int k = 0, wrote = is_float ? imgio_write_f(staged[0], &fb, j->format, attrs, nattrs, e)
-                                : imgio_write(staged[0], &img, j->format, e);
-    if (wrote == 0 && n == 3) /* the float copy */
-        wrote = imgio_write_f(staged[++k], &fb, IMG_EXR, attrs, nattrs, e);
-    if (wrote == 0)
-        wrote = fileio_write_atomic(staged[++k], json, strlen(json), e);
-    if (wrote < 0) {
-        name_final(e, staged[k], final[k]);
+    /* All are staged whole first: a failure before the renames (a full disk, a size limit) leaves
+       the earlier outputs as they were. Then the earlier sidecar goes, the images are renamed, the
+       sidecar last: a reader (or a writer killed at any step) sees the earlier outputs, images
+       without a sidecar (not finished: rendered again), or the new ones, never a new image beside
+       an earlier sidecar (issue 21, defect 6). A killed writer's staged files go under the next
+       one's lock. */
+    for (k = 0; k < n - 1; k++)
+        if (stage_image(j, rr, k, &fb, &img, staged[k], sizeof staged[k], e) < 0)
+            break;
+    if (k < n - 1 || fileio_stage(out->sidecar, json, strlen(json), staged[k], sizeof staged[k], e) < 0) {
         while (k-- > 0)
             unlink(staged[k]);
         goto done;
     }
     /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
-    int failed = run_out_still_held(o, dir, e) < 0;
-    if (!failed && unlink(rr->sidecar_path) < 0 && errno != ENOENT)
-        failed = err_set(e, NULL, 0, 0, "cannot write %s: %s", rr->sidecar_path, strerror(errno)) < 0;
-    for (int i = 0; i < n; i++) {
-        /* a claim taken over between renames: what is renamed stays, without a sidecar */
-        if (failed || (i > 0 && run_out_still_held(o, dir, e) < 0)) {
-            for (int r = i; r < n; r++)
-                unlink(staged[r]);
-            goto done;
-        }
-        if (rename(staged[i], final[i]) == 0)
-            continue;
-        /* an image without its sidecar is not a finished job: undo the renames done */
-        err_set(e, NULL, 0, 0, "cannot write %s: %s", final[i], strerror(errno));
+    int failed = run_out_still_held(o, out->dir, e) < 0;
+    if (!failed && unlink(out->sidecar) < 0 && errno != ENOENT)
+        failed = err_set(e, NULL, 0, 0, "cannot write %s: %s", out->sidecar, strerror(errno)) < 0;
+    if (failed) {
         for (int r = 0; r < n; r++)
-            unlink(r < i ? final[r] : staged[r]);
+            unlink(staged[r]);
         goto done;
     }
-    rr->black = image_float_black(rgb, w, h);
+    if (commit_all(o, out->dir, staged, final, n, e) < 0)
+        goto done;
+    rr->black = image_float_black(f->rgb, f->w, f->h);
     rc = 0;
 done:
     outdir_unlock(lock);
     if (rc != 0 && made_dir)
-        rmdir(dir); /* a failed write leaves no empty folder of ours (it fails when not empty) */
+        rmdir(out->dir); /* a failed write leaves no empty folder of ours (it fails when not empty) */
     free(json);
     image_free(&img);
     return rc;
 }
 
-int run_out_write_part(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                       const struct procs_result *fr, struct run_result *rr, struct err *e)
+int run_out_write_part(const struct job *j, const struct run_opts *o, const struct run_frame *f,
+                       struct run_result *rr, struct err *e)
 {
-    char dir[2048];
     int made_dir = 0, lock = -1, rc = -1;
-    outdir_dir(o->out_dir, j->name, dir, sizeof dir);
-    outdir_part_path(j, o->out_dir, o->part, o->parts, rr->image_path, sizeof rr->image_path);
-    rr->sidecar_path[0] = 0;
-    const char *outs[] = {rr->image_path, NULL};
-    if (outdir_mkdirs(dir, &made_dir, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0)
-        rc = part_write(rr->image_path, j, w, h, o->part, o->parts, rgb, fr, e);
+    const char *outs[] = {rr->out.image[0], NULL};
+    if (outdir_mkdirs(rr->out.dir, &made_dir, e) == 0 &&
+        run_out_lock_outputs(rr->out.dir, outs, o, &lock, e) == 0)
+        rc = part_write(rr->out.image[0], j, f->w, f->h, o->part, o->parts, f->rgb, f->procs, e);
     outdir_unlock(lock);
     if (rc != 0 && made_dir)
-        rmdir(dir); /* a part that failed to write leaves no empty folder of ours */
+        rmdir(rr->out.dir); /* a part that failed to write leaves no empty folder of ours */
     return rc;
 }

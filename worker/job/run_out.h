@@ -20,20 +20,30 @@ int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e)
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e);
 
-/* Write the linear framebuffer rgb (w x h) as the job's image (PNG/PPM: converted to 8 bits;
-   EXR/PFM: the floats as they are), with its float copy (j->float_copy) and sidecar (paths from
-   outdir_paths under o->out_dir, into rr), all atomically. With a reference (ref not NULL, ref->px
-   set) score it into rr->error: on the linear floats when ref_domain is IMG_LINEAR, else on the
-   8-bit image's display values. parts > 0 marks a merge of that many part files; rr->black: the
-   image is entirely black. 0 or -1 with e filled (nothing left behind). */
-int run_out_write(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                  const struct procs_result *fr, const struct rgbf *ref, enum img_domain ref_domain,
-                  int parts, struct run_result *rr, struct err *e);
+/* A rendered (or merged) framebuffer on its way to disk. */
+struct run_frame {
+    const float *rgb; /* linear radiance, w x h x 3 */
+    int w, h;
+    const struct procs_result *procs;
+    const struct rgbf *ref;     /* optional: the reference (ref->px NULL: none) */
+    enum img_domain ref_domain; /* what ref holds */
+    int parts;                  /* > 0: merged from that many part files */
+};
 
-/* Write rows o->part of o->parts of the framebuffer rgb (w x h) into j's part file (its path into
-   rr->image_path; rr->sidecar_path ""), under the folder's lock as run_out_write. 0 or -1 with e
-   filled (nothing left behind). */
-int run_out_write_part(const struct job *j, const struct run_opts *o, const float *rgb, int w, int h,
-                       const struct procs_result *fr, struct run_result *rr, struct err *e);
+/* Write frame f as j's files rr->out (outdir_files under o->out_dir, computed by the caller):
+   each image in its format (PNG/PPM: converted to 8 bits; EXR/PFM: the floats as they are), then
+   the sidecar. Each file is staged once under a temporary name (fileio_stage) and, when all are
+   staged, renamed once to its final name, the sidecar last. With a reference score f into
+   rr->error: on the linear floats when f->ref_domain is IMG_LINEAR, else on the 8-bit image's
+   display values. rr->black: the image is entirely black. 0 or -1 with e filled (nothing left
+   behind). */
+int run_out_write(const struct job *j, const struct run_opts *o, const struct run_frame *f,
+                  struct run_result *rr, struct err *e);
+
+/* Write rows o->part of o->parts of frame f into j's part file rr->out.image[0]
+   (outdir_part_files), under the folder's lock as run_out_write. 0 or -1 with e filled (nothing
+   left behind). */
+int run_out_write_part(const struct job *j, const struct run_opts *o, const struct run_frame *f,
+                       struct run_result *rr, struct err *e);
 
 #endif

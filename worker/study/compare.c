@@ -104,9 +104,11 @@ static int score_files(struct compare_item *it, const struct run_result *rr, con
 {
     struct rgbf img = {0};
     struct rgb8 png = {0};
-    int rc = imgio_read_f(domain == IMG_LINEAR ? rr->float_path : rr->image_path, &img, NULL, e) < 0 ||
+    const struct outdir_files *out = &rr->out;
+    int linear = domain == IMG_LINEAR && out->float_copy >= 0;
+    int rc = imgio_read_f(out->image[linear ? out->float_copy : 0], &img, NULL, e) < 0 ||
                      metrics_compare_f(&ref->f, &img, 1, &it->error, e) < 0 ||
-                     imgio_read(rr->image_path, &png, e) < 0 ||
+                     imgio_read(out->image[0], &png, e) < 0 ||
                      metrics_display_compare(&ref->display, &png, &it->display_error, e) < 0
                  ? -1
                  : 0;
@@ -137,7 +139,7 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     }
     it->skipped = rr.skipped;
     if (rr.skipped) {
-        if (item_from_sidecar(it, rr.sidecar_path, e) < 0)
+        if (item_from_sidecar(it, rr.out.sidecar, e) < 0)
             return 1;
     } else {
         const struct render_stats *t = &rr.procs.total;

@@ -58,18 +58,14 @@ struct compare {
     int has_verdict;
 };
 
-/* 1 when the YAML file at path is a compare job (its root mapping has `variants:`, or `studies:`:
-   a suite, compare_suite.h), else 0 (also when it cannot be read: job_load then reports why). */
-int compare_is_compare_job(const char *path);
-
 /* Load, validate and expand the compare job at path into a new struct compare. Everything a
    render needs is checked here (keys, values, scenes, reference images, set sizes), so a bad
    job fails before anything renders. NULL with e = "file:line:col: key: message". */
 struct compare *compare_load(const char *path, struct err *e);
 
-/* compare_load reading the file at `from` but naming and resolving relative paths as if it were
-   at `path` (a queue's claimed job file, moved into running/). */
-struct compare *compare_load_as(const char *from, const char *path, struct err *e);
+/* compare_load of the job file at path already parsed into d (jobfile_open), which is read, not
+   kept. */
+struct compare *compare_load_doc(const struct ydoc *d, const char *path, struct err *e);
 void compare_free(struct compare *c);
 
 /* Index of an item in c->items. */

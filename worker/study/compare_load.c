@@ -15,20 +15,6 @@
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
 
-int compare_is_compare_job(const char *path)
-{
-    struct ydoc d;
-    struct err e;
-    int yes = 0;
-    if (ydoc_load(&d, path, &e) == 0) {
-        yaml_node_t *root = ydoc_root(&d);
-        yes = root && root->type == YAML_MAPPING_NODE &&
-              (ymap_get_raw(&d, root, "variants") || ymap_get_raw(&d, root, "studies")); /* a suite too */
-    }
-    ydoc_free(&d);
-    return yes;
-}
-
 void compare_free(struct compare *c)
 {
     if (!c)
@@ -199,7 +185,7 @@ static int load_variants(struct compare_loading *L)
     struct ydoc *d = &L->d;
     yaml_node_t *list = L->variants, *k, *v;
     int n = yseq_len(list);
-    if (!list) /* written, as compare_is_compare_job saw, but null */
+    if (!list) /* written, as jobfile_open saw, but null */
         return ymap_missing(d, ydoc_root(d), "variants", L->e, "variants: missing");
     if (n < 1)
         return ydoc_fail(d, list, L->e,
@@ -228,12 +214,16 @@ static int load_variants(struct compare_loading *L)
 
 struct compare *compare_load(const char *path, struct err *e)
 {
-    return compare_load_as(path, path, e);
+    struct ydoc d;
+    struct compare *c = ydoc_load(&d, path, e) < 0 ? NULL : compare_load_doc(&d, path, e);
+    ydoc_free(&d);
+    return c;
 }
 
-struct compare *compare_load_as(const char *from, const char *path, struct err *e)
+struct compare *compare_load_doc(const struct ydoc *doc, const char *path, struct err *e)
 {
-    struct compare_loading L = {.e = e};
+    /* the document borrowed: read through L.d, freed by its owner */
+    struct compare_loading L = {.d = *doc, .e = e};
     const char *extra[] = {"scenes", "variants", "sweep", "seeds"};
     int ok = 0;
     if (!(L.c = calloc(1, sizeof *L.c))) {
@@ -242,12 +232,6 @@ struct compare *compare_load_as(const char *from, const char *path, struct err *
     }
     snprintf(L.c->path, sizeof L.c->path, "%s", path);
     job_defaults(&L.base, path);
-    if (ydoc_load(&L.d, from, e) < 0) {
-        if (strcmp(e->file, from) == 0)
-            snprintf(e->file, sizeof e->file, "%s", path);
-        goto done;
-    }
-    snprintf(L.d.file, sizeof L.d.file, "%s", path); /* messages and relative paths as at path */
     yaml_node_t *root = ydoc_root(&L.d), *k, *v;
     const char *keys[64];
     int nk = 0;
@@ -282,7 +266,6 @@ struct compare *compare_load_as(const char *from, const char *path, struct err *
     ok = 1;
 done:
     free(L.scene_base);
-    ydoc_free(&L.d);
     if (!ok) {
         compare_free(L.c);
         return NULL;

@@ -59,8 +59,9 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
     /* linear radiance, as every error is measured in */
     j.format = IMG_EXR;
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
-    char dir[JOB_PATH_MAX], sidecar[JOB_PATH_MAX];
-    outdir_paths(&j, o->out_dir, dir, cs->ref_path, sidecar, sizeof cs->ref_path);
+    struct outdir_files files;
+    outdir_files(&j, o->out_dir, &files);
+    snprintf(cs->ref_path, sizeof cs->ref_path, "%s", files.image[0]);
     cs->ref_domain = IMG_LINEAR;
     struct rgbf img = {0};
     enum img_domain domain;
@@ -69,7 +70,7 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         img.h == cs->height) {
         image_f_free(&img);
         cs->ref_reused = 1;
-        cached_figures(sidecar, cs);
+        cached_figures(files.sidecar, cs);
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);
         return 0;

@@ -18,18 +18,14 @@ struct compare_suite {
     struct compare *studies[COMPARE_SUITE_MAX_STUDIES]; /* owned, in the order listed */
 };
 
-/* 1 when the YAML file at path is a suite (its root mapping has `studies:`), else 0 (also when it
-   cannot be read: the loader then reports why). */
-int compare_suite_is_suite(const char *path);
-
 /* Load the suite at path and every study it lists (paths relative to the suite's file), each
    fully validated as compare_load does, so a bad study fails before anything renders. NULL with
    e = "file:line:col: key: message" at the suite's key or inside the study file at fault. */
 struct compare_suite *compare_suite_load(const char *path, struct err *e);
 
-/* compare_suite_load reading the file at `from`, its name and its studies' paths taken as at
-   `path` (a queue's claimed job file, moved into running/). */
-struct compare_suite *compare_suite_load_as(const char *from, const char *path, struct err *e);
+/* compare_suite_load of the suite at path already parsed into d (jobfile_open), which is read,
+   not kept. */
+struct compare_suite *compare_suite_load_doc(const struct ydoc *d, const char *path, struct err *e);
 void compare_suite_free(struct compare_suite *s);
 
 /* Run every study with --out OUT/<suite name> (compare_run: images, references cached under

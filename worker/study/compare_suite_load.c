@@ -21,19 +21,6 @@ static const char *const study_only[] = {"scenes", "variants", "sweep", "seeds",
    the file's place). */
 static const char *const top_files[] = {"summary.csv", "chart.svg", "report.html", "verdict.json", NULL};
 
-int compare_suite_is_suite(const char *path)
-{
-    struct ydoc d;
-    struct err e;
-    int yes = 0;
-    if (ydoc_load(&d, path, &e) == 0) {
-        yaml_node_t *root = ydoc_root(&d);
-        yes = root && root->type == YAML_MAPPING_NODE && ymap_get_raw(&d, root, "studies") != NULL;
-    }
-    ydoc_free(&d);
-    return yes;
-}
-
 void compare_suite_free(struct compare_suite *s)
 {
     if (!s)
@@ -82,23 +69,17 @@ static void resolve(const char *path, const char *rel, char *out, size_t n)
         snprintf(out, n, "%.*s/%s", (int)(slash - path), path, rel);
 }
 
-/* A study that lists studies itself: suites do not nest. 0, or -1 with e inside the study file
-   (an unreadable or malformed file passes: compare_load says why). */
-static int check_not_nested(const char *study, struct err *e)
+/* A study (parsed into sd) that lists studies itself: suites do not nest. 0, or -1 with e inside
+   the study file. */
+static int check_not_nested(struct ydoc *sd, struct err *e)
 {
-    struct ydoc sd;
-    struct err ignored;
-    int rc = 0;
-    if (ydoc_load(&sd, study, &ignored) == 0) {
-        yaml_node_t *root = ydoc_root(&sd), *k, *v;
-        for (int i = 0; root && root->type == YAML_MAPPING_NODE && ymap_pair(&sd, root, i, &k, &v); i++)
-            if (yscalar(k) && !strcmp(yscalar(k), "studies"))
-                rc = ydoc_fail(&sd, k, e,
-                               "studies: a study cannot list studies itself (suites do not nest): list "
-                               "them in the suite instead");
-    }
-    ydoc_free(&sd);
-    return rc;
+    yaml_node_t *root = ydoc_root(sd), *k, *v;
+    for (int i = 0; root && root->type == YAML_MAPPING_NODE && ymap_pair(sd, root, i, &k, &v); i++)
+        if (yscalar(k) && !strcmp(yscalar(k), "studies"))
+            return ydoc_fail(sd, k, e,
+                             "studies: a study cannot list studies itself (suites do not nest): list "
+                             "them in the suite instead");
+    return 0;
 }
 
 /* Study i, listed at node item: loaded, checked against the ones before it, owned by s. */
@@ -117,9 +98,10 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
         return ydoc_fail(d, item, e, "studies: no study file at %s (%s)", study, strerror(errno));
     if (!S_ISREG(st.st_mode))
         return ydoc_fail(d, item, e, "studies: %s is not a file", study);
-    if (check_not_nested(study, e) < 0)
-        return -1;
-    struct compare *c = compare_load(study, e);
+    struct ydoc sd; /* the study file read once: checked, then loaded */
+    struct compare *c =
+        ydoc_load(&sd, study, e) < 0 || check_not_nested(&sd, e) < 0 ? NULL : compare_load_doc(&sd, study, e);
+    ydoc_free(&sd);
     if (!c)
         return -1;
     s->studies[s->n_studies++] = c;
@@ -149,13 +131,16 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
 
 struct compare_suite *compare_suite_load(const char *path, struct err *e)
 {
-    return compare_suite_load_as(path, path, e);
+    struct ydoc d;
+    struct compare_suite *s = ydoc_load(&d, path, e) < 0 ? NULL : compare_suite_load_doc(&d, path, e);
+    ydoc_free(&d);
+    return s;
 }
 
-struct compare_suite *compare_suite_load_as(const char *from, const char *path, struct err *e)
+struct compare_suite *compare_suite_load_doc(const struct ydoc *doc, const char *path, struct err *e)
 {
     struct compare_suite *s = calloc(1, sizeof *s);
-    struct ydoc d;
+    struct ydoc d = *doc; /* borrowed: read, freed by its owner */
     struct job base;
     int ok = 0;
     if (!s) {
@@ -164,12 +149,6 @@ struct compare_suite *compare_suite_load_as(const char *from, const char *path, 
     }
     snprintf(s->path, sizeof s->path, "%s", path);
     job_defaults(&base, path);
-    if (ydoc_load(&d, from, e) < 0) {
-        if (strcmp(e->file, from) == 0)
-            snprintf(e->file, sizeof e->file, "%s", path);
-        goto done;
-    }
-    snprintf(d.file, sizeof d.file, "%s", path); /* messages as at path */
     yaml_node_t *root = ydoc_root(&d), *list;
     if (check_top(&d, root, &base, e) < 0)
         goto done;
@@ -193,7 +172,6 @@ struct compare_suite *compare_suite_load_as(const char *from, const char *path, 
             goto done;
     ok = 1;
 done:
-    ydoc_free(&d);
     if (!ok) {
         compare_suite_free(s);
         return NULL;

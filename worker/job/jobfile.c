@@ -1,0 +1,62 @@
+/* jobfile: one read and one parse of a job file, and what is derived from it. */
+#include "jobfile.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/fileio.h"
+#include "base/hash.h"
+#include "image/imgio.h"
+
+/* Which kind the parsed document is: a mapping with studies: is a suite, with variants: a compare
+   job (either written null still says which kind was meant); anything else a plain job, whose
+   reader says what is wrong with it. */
+static enum jobfile_kind kind_of(struct ydoc *d)
+{
+    yaml_node_t *root = ydoc_root(d);
+    if (!root || root->type != YAML_MAPPING_NODE)
+        return JOBFILE_PLAIN;
+    return ymap_get_raw(d, root, "studies")    ? JOBFILE_SUITE
+           : ymap_get_raw(d, root, "variants") ? JOBFILE_COMPARE
+                                               : JOBFILE_PLAIN;
+}
+
+int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e)
+{
+    uint8_t *data;
+    size_t len;
+    memset(f, 0, sizeof *f);
+    snprintf(f->path, sizeof f->path, "%s", path);
+    if (fileio_read_all(from, YDOC_MAX_BYTES, &data, &len, e) < 0) {
+        if (strcmp(e->file, from) == 0)
+            snprintf(e->file, sizeof e->file, "%s", path);
+        return -1;
+    }
+    f->hash = hash_bytes(HASH_FNV_OFFSET, data, len);
+    int rc = ydoc_parse(&f->doc, path, data, len, e);
+    free(data);
+    if (rc < 0)
+        return -1;
+    f->kind = kind_of(&f->doc);
+    if (f->kind != JOBFILE_PLAIN)
+        return 0;
+    struct job *j = &f->job;
+    if (job_from_doc(&f->doc, path, j, e) < 0)
+        return -1;
+    j->hash = f->hash;
+    if (scene_src_read(j->scene_path, &f->scene, &j->hash, e) < 0)
+        return -1;
+    /* The reference's bytes too: a replaced reference must not leave a sidecar's old error figures
+       current. Unreadable: run_load_reference says so. */
+    struct err ignored;
+    if (j->reference[0])
+        fileio_hash(j->reference, IMGIO_MAX_BYTES, &j->hash, &ignored);
+    return 0;
+}
+
+void jobfile_close(struct jobfile *f)
+{
+    ydoc_free(&f->doc);
+    scene_src_free(&f->scene);
+}

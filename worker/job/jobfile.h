@@ -1,0 +1,34 @@
+/* jobfile: a job file read and parsed once: its kind (a plain job, a compare job, a suite), the
+   parsed document and its hash; for a plain job also its settings and its scene, read once. */
+#ifndef JOBFILE_H
+#define JOBFILE_H
+
+#include <stdint.h>
+
+#include "job.h"
+#include "scenefile/scene_load.h"
+
+enum jobfile_kind {
+    JOBFILE_PLAIN,   /* one render */
+    JOBFILE_COMPARE, /* variants: (a compare job, worker/study/) */
+    JOBFILE_SUITE    /* studies: (compare jobs run as one) */
+};
+
+struct jobfile {
+    char path[JOB_PATH_MAX]; /* where it belongs: messages and relative paths name it */
+    enum jobfile_kind kind;
+    struct ydoc doc;        /* the file parsed (doc.file = path); a compare or suite loader reads it */
+    uint64_t hash;          /* FNV-1a of the file's bytes */
+    struct job job;         /* JOBFILE_PLAIN: its settings, job.hash complete (file, scene, textures,
+                               reference) */
+    struct scene_src scene; /* JOBFILE_PLAIN: its scene file, read and parsed once (run_opts.scene) */
+};
+
+/* Read the job file at `from` once (at most YDOC_MAX_BYTES), hash and parse it, as if it were at
+   `path` (a queue's claimed file still belongs to the queue's folder; the command line gives the
+   same path twice). A plain job is checked key by key and its scene read and hashed. 0, or -1
+   with e = "file:line:col: key: message" (naming path). jobfile_close after either. */
+int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e);
+void jobfile_close(struct jobfile *f);
+
+#endif
