@@ -21,6 +21,8 @@ fi
 echo "full disk via $how"
 check "full disk: exit 1 (got $rc)" [ "$rc" -eq 1 ]
 check "full disk: the error says why" grep -Eq 'No space left|File too large' "$T/err1"
+check "full disk: the error names the output, not a temporary name: $(cat "$T/err1")" \
+    sh -c "grep -q 'cannot write $T/full/big/big\.[a-z]*: ' '$T/err1' && ! grep -q '\.tmp\.' '$T/err1'"
 check "full disk: no image, no sidecar, no temporary file" [ "$(leftovers "$T/full")" -eq 0 ]
 [ -n "$umount_later" ] && umount "$umount_later"
 
@@ -111,4 +113,24 @@ if command -v flock >/dev/null; then
 else
     skip "folder lock: no flock(1) here"
 fi
+# 7. output: [a list]: one render, each image in its format, the same bytes as a job writing that
+#    image alone; the sidecar named for the first; the summary line names them all.
+printf 'scene: %s/scenes/checker.yaml\nname: l\nwidth: 16\nheight: 12\nthreshold: 50\nprocesses: 1\n' "$root" >"$T/l0"
+{ cat "$T/l0"; echo "output: [pic.png, pic.exr, pic.pfm]"; } >"$T/list.yaml"
+{ cat "$T/l0"; echo "output: pic.png"; } >"$T/png.yaml"
+{ cat "$T/l0"; echo "output: pic.exr"; } >"$T/exr.yaml"
+{ cat "$T/l0"; echo "output: pic.pfm"; } >"$T/pfm.yaml"
+"$WORKER" --out "$T/o7" "$T/list.yaml" 2>"$T/err7"; rc=$?
+check "output list: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "output list: the summary names every image: $(cat "$T/err7")" grep -q 'l/pic.png, pic.exr, pic.pfm$' "$T/err7"
+check "output list: one sidecar, named for the first" sh -c "[ -s '$T/o7/l/pic.json' ] && [ \$(ls '$T/o7/l' | wc -l) -eq 4 ]"
+for f in png exr pfm; do
+    "$WORKER" --quiet --out "$T/o7$f" "$T/$f.yaml"
+    check "output list: pic.$f is the bytes a job writing it alone writes" cmp -s "$T/o7/l/pic.$f" "$T/o7$f/l/pic.$f"
+done
+"$WORKER" --out "$T/o7" "$T/list.yaml" 2>"$T/err7b"
+check "output list: current when all are there" grep -q 'up to date' "$T/err7b"
+rm "$T/o7/l/pic.pfm"
+"$WORKER" --out "$T/o7" "$T/list.yaml" 2>"$T/err7c"
+check "output list: one missing renders again" sh -c "! grep -q 'up to date' '$T/err7c' && [ -s '$T/o7/l/pic.pfm' ]"
 finish
