@@ -160,22 +160,23 @@ static int is_temp_of(const char *n, const char *base)
     return t == n + 1 + bl ? rest == 6 : rest == 17 && !strncmp(t + 11, ".tmp.", 5);
 }
 
-/* Remove the temporaries that writers killed half-way left for path beside it (is_temp_of). Only
-   the holder of the folder's lock may call it. */
-static void remove_dead_temps(const char *path)
+/* Remove, in one pass over dir, the temporaries that writers killed half-way left for the given
+   paths in it (is_temp_of). Only the holder of the folder's lock may call it. */
+static void remove_dead_temps(const char *dir, const char *const *paths)
 {
-    char dir[2048];
-    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
-    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
-    DIR *d = opendir(dir);
+    DIR *d = paths && paths[0] ? opendir(dir) : NULL;
     if (!d)
         return;
     struct dirent *de;
     while ((de = readdir(d))) {
-        if (is_temp_of(de->d_name, base)) {
+        for (int i = 0; paths[i]; i++) {
+            const char *slash = strrchr(paths[i], '/');
+            if (!is_temp_of(de->d_name, slash ? slash + 1 : paths[i]))
+                continue;
             char dead[4096];
             snprintf(dead, sizeof dead, "%s/%s", dir, de->d_name);
             unlink(dead);
+            break;
         }
     }
     closedir(d);
@@ -248,8 +249,7 @@ int outdir_lock(const char *dir, const char *const *paths, const volatile sig_at
         close(fd);
         return why == EINTR ? OUTDIR_STOPPED : why == EWOULDBLOCK ? OUTDIR_WAITED_OUT : -1;
     }
-    for (int i = 0; paths && paths[i]; i++)
-        remove_dead_temps(paths[i]);
+    remove_dead_temps(dir, paths);
     return fd;
 }
 
