@@ -10,7 +10,6 @@
 #include "study/compare_stats.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
-#include "job/jobfile.h"
 
 static char dir[256], scene[1024];
 
@@ -36,16 +35,6 @@ static const struct compare_item *item(const struct compare *c, int s, int v, in
     return &c->items[compare_index(c, s, v, p, k)];
 }
 
-/* The kind jobfile_open reads path as; -1 when it does not open. */
-static int kind_of(const char *path)
-{
-    struct jobfile f;
-    struct err e;
-    int kind = jobfile_open(&f, path, path, &e) == 0 ? (int)f.kind : -1;
-    jobfile_close(&f);
-    return kind;
-}
-
 static void test_expand(void)
 {
     struct err e;
@@ -55,7 +44,6 @@ static void test_expand(void)
                                              "  - { sampler: poisson, poisson_pool: 64 }\n"
                                              "  - { sampler: jitter, light_sampler: random }\n"
                                              "  - { label: grid, sampler: uniform, max_depth: 4 }\n");
-    CHECK(kind_of(path) == JOBFILE_COMPARE);
     struct compare *c = compare_load(path, &e);
     CHECK(c != NULL);
     if (!c) {
@@ -108,8 +96,6 @@ static void test_two_keys_no_sweep(void)
     CHECK(c && c->n_points == 1 && strcmp(c->points[0], "as set") == 0);
     CHECK(c && strcmp(c->items[0].job.output, "checker-jitter-t4-t4-s9.png") == 0);
     compare_free(c);
-    CHECK(kind_of(job_file("single.yaml", "scene: SCENE\n")) == JOBFILE_PLAIN);
-    CHECK(kind_of(job_file("broken.yaml", "variants: [\n")) == -1); /* a YAML error: not opened */
 }
 
 static void test_errors(void)
