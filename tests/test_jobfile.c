@@ -33,6 +33,15 @@ static int kind_of(const char *text, struct err *e)
     return kind;
 }
 
+/* Write "scene: <the checker scene>\n" + extra as DIR/name (its path into path) and open it. */
+static int open_job(const char *name, const char *extra, char *path, struct jobfile *f, struct err *e)
+{
+    char text[1200];
+    snprintf(text, sizeof text, "scene: %s\n%s", scene, extra);
+    put(name, text, path, 128);
+    return jobfile_open(f, path, path, e);
+}
+
 static void test_kinds(void)
 {
     struct err e;
@@ -54,9 +63,8 @@ static void test_hash_and_scene(void)
     char path[128], text[1200];
     struct jobfile f;
     struct err e;
+    CHECK(open_job("h.yaml", "width: 8\n", path, &f, &e) == 0);
     snprintf(text, sizeof text, "scene: %s\nwidth: 8\n", scene);
-    put("h.yaml", text, path, sizeof path);
-    CHECK(jobfile_open(&f, path, path, &e) == 0);
     CHECK(f.hash == hash_bytes(HASH_FNV_OFFSET, text, strlen(text)));
     uint64_t want = f.hash;
     CHECK(scene_hash_inputs(scene, &want, &e) == 0);
@@ -91,12 +99,10 @@ static void test_hash_and_scene(void)
 
 static void test_output_list(void)
 {
-    char path[128], text[1200];
+    char path[128];
     struct jobfile f;
     struct err e;
-    snprintf(text, sizeof text, "scene: %s\noutput: [a.png, b.exr, c.PFM]\n", scene);
-    put("o.yaml", text, path, sizeof path);
-    CHECK(jobfile_open(&f, path, path, &e) == 0);
+    CHECK(open_job("o.yaml", "output: [a.png, b.exr, c.PFM]\n", path, &f, &e) == 0);
     CHECK(!strcmp(f.job.output, "a.png") && f.job.format == IMG_PNG && f.job.n_more == 2);
     CHECK(!strcmp(f.job.more_output[0], "b.exr") && f.job.more_format[0] == IMG_EXR);
     CHECK(!strcmp(f.job.more_output[1], "c.PFM") && f.job.more_format[1] == IMG_PFM);
