@@ -119,14 +119,15 @@ static int load_noise(struct scene_loader *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
-/* Where an image texture's `file` is: relative to the scene file's directory unless absolute. */
-static void texture_path(const char *scene, const char *file, char *path, size_t n)
+/* path, set to where an image texture's `file` is: beside the scene file unless absolute. */
+static const char *texture_path(const char *scene, const char *file, char *path, size_t n)
 {
     const char *slash = strrchr(scene, '/');
     if (file[0] == '/' || !slash)
         snprintf(path, n, "%s", file);
     else
         snprintf(path, n, "%.*s/%s", (int)(slash - scene), scene, file);
+    return path;
 }
 
 /* An image texture: `file` relative to the scene file, PNG or PPM, at most
@@ -373,17 +374,14 @@ int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct 
     *h = hash_bytes(*h, data, len);
     src->parsed = ydoc_parse(&src->doc, path, data, len, &src->parse_err) == 0;
     free(data);
-    yaml_node_t *textures = src->parsed ? ymap_get(&src->doc, ydoc_root(&src->doc), "textures") : NULL, *k,
-                *v;
-    for (int i = 0; textures && ymap_pair(&src->doc, textures, i, &k, &v); i++) {
-        yaml_node_t *type = ymap_get(&src->doc, v, "type"), *file = ymap_get(&src->doc, v, "file");
-        const char *t = type ? yscalar(type) : NULL, *f = file ? yscalar(file) : NULL;
-        if (!t || !f || strcmp(t, "image") != 0)
-            continue;
+    struct ydoc *d = &src->doc;
+    yaml_node_t *textures = src->parsed ? ymap_get(d, ydoc_root(d), "textures") : NULL, *k, *v;
+    for (int i = 0; textures && ymap_pair(d, textures, i, &k, &v); i++) {
+        const char *t = yscalar(ymap_get(d, v, "type")), *f = yscalar(ymap_get(d, v, "file"));
         char tpath[1024];
-        struct err ignored;
-        texture_path(path, f, tpath, sizeof tpath);
-        fileio_hash(tpath, TEXTURE_MAX_BYTES, h, &ignored); /* unreadable: scene_load_src says so */
+        struct err ignored; /* unreadable: scene_load_src says so */
+        if (t && f && !strcmp(t, "image"))
+            fileio_hash(texture_path(path, f, tpath, sizeof tpath), TEXTURE_MAX_BYTES, h, &ignored);
     }
     return 0;
 }
