@@ -250,7 +250,9 @@ int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, 
 {
     /* A sidecar's job_file is compared as it reads back: a file named in Latin-1 ("caf\xe9.yaml")
        is recorded as "caf\ufffd.yaml", and must still be the same file as itself when re-queued. */
-    const char *base_name = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    const char *base_name = q->as_name[0]            ? q->as_name
+                            : strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1
+                                                     : q->claim;
     char mine[2048];
     if (json_string_read_back(base_name, mine, sizeof mine) < 0)
         return 0;

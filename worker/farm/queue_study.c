@@ -1,0 +1,438 @@
+/* queue_study: a compare job spread over a queue's workers as one entry per render, gathered once. */
+#define _GNU_SOURCE /* nftw's FTW_DEPTH and FTW_PHYS */
+#include "queue_study.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <ftw.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "base/fileio.h"
+#include "job/outdir.h"
+#include "queue_file.h"
+#include "queue_log.h"
+#include "scenefile/yamlx.h"
+#include "study/study_fan.h"
+#include "study/study_main.h"
+
+static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st;
+    (void)ftw;
+    return flag == FTW_DP ? rmdir(path) : unlink(path);
+}
+
+/* Remove the folder tree at path (a study's, never followed through a link). */
+static void remove_tree(const char *path)
+{
+    nftw(path, remove_one, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* Take the study folder at sd out of sight at once (a rename to a hidden name), then remove it. */
+static void discard(const struct queue *q, const char *sd, const char *stem)
+{
+    char gone[2048];
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    snprintf(gone, sizeof gone, "%s/%s/.%s.gone.%ld.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid(),
+             (long)ts.tv_nsec);
+    if (rename(sd, gone) == 0)
+        remove_tree(gone);
+}
+
+static int exists(const char *dir, const char *file)
+{
+    char path[2600];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    return lstat(path, &st) == 0;
+}
+
+/* 1 when folder dir holds any entry but . and .. (0 also when it cannot be read). */
+static int has_entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    int any = 0;
+    while (d && !any && (de = readdir(d)))
+        any = strcmp(de->d_name, ".") && strcmp(de->d_name, "..");
+    if (d)
+        closedir(d);
+    return any;
+}
+
+static int write_entry(const char *dir, const char *entry, const char *what, struct err *e)
+{
+    char path[2600], text[512];
+    snprintf(path, sizeof path, "%s/%s", dir, entry);
+    int n = snprintf(text, sizeof text, "# %s (a render of a study spread over the queue)\n", what);
+    return fileio_write_atomic(path, text, (size_t)n, e);
+}
+
+/* Build the study folder of f beside its final place, then rename it there. 0 or -1 with e. */
+static int build(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
+                 const uint8_t *job, size_t len, struct err *e)
+{
+    char tmp[2048], sub[2200], entry[64], what[256];
+    snprintf(tmp, sizeof tmp, "%s/%s/.%s.new.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid());
+    remove_tree(tmp);
+    const char *subs[] = {"job", "running", "done", "failed"};
+    if (outdir_mkdirs(tmp, NULL, e) < 0)
+        return -1;
+    for (int i = 0; i < 4; i++) {
+        snprintf(sub, sizeof sub, "%s/%s", tmp, subs[i]);
+        if (outdir_mkdirs(sub, NULL, e) < 0)
+            goto fail;
+    }
+    snprintf(sub, sizeof sub, "%s/study.job", tmp);
+    if (fileio_write_atomic(sub, job, len, e) < 0)
+        goto fail;
+    for (int k = 0; k < study_fan_studies(f); k++) {
+        const struct compare *c = study_fan_study(f, k);
+        for (int s = 0; s < c->n_scenes; s++) {
+            snprintf(entry, sizeof entry, "a-ref-%d-%d.yaml", k, s);
+            snprintf(what, sizeof what, "%s: the reference of %s", c->name, c->scenes[s].name);
+            if (study_fan_has_reference(f, k, s) && write_entry(tmp, entry, what, e) < 0)
+                goto fail;
+        }
+        for (int i = 0; i < c->n_items; i++) {
+            snprintf(entry, sizeof entry, "b-img-%d-%05d.yaml", k, i);
+            snprintf(what, sizeof what, "%s: %s", c->name, c->items[i].job.output);
+            if (write_entry(tmp, entry, what, e) < 0)
+                goto fail;
+        }
+    }
+    if (write_entry(tmp, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", e) < 0)
+        goto fail;
+    if (rename(tmp, sd) == 0)
+        return 0;
+    err_set(e, NULL, 0, 0, "cannot make %s: %s", sd, strerror(errno));
+fail:
+    remove_tree(tmp);
+    return -1;
+}
+
+/* The study folder sd for the job bytes: made, or the one a killed worker left (same bytes, not
+   finished) taken on. 0, 1 when another study of this file name is in progress, -1 with e. */
+static int prepare(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
+                   const uint8_t *job, size_t len, struct err *e)
+{
+    char sub[2200];
+    struct stat st;
+    if (lstat(sd, &st) == 0) {
+        snprintf(sub, sizeof sub, "%s/job", sd);
+        if (has_entries(sub))
+            return 1;
+        uint8_t *old = NULL;
+        size_t old_len = 0;
+        struct err ignored;
+        snprintf(sub, sizeof sub, "%s/study.job", sd);
+        int same = fileio_read_all(sub, YDOC_MAX_BYTES, &old, &old_len, &ignored) == 0 && old_len == len &&
+                   !memcmp(old, job, len);
+        free(old);
+        snprintf(sub, sizeof sub, "%s/done", sd);
+        if (same && !exists(sub, QUEUE_STUDY_GATHER))
+            return 0; /* its expanding worker died before filing the job there: carry on */
+        discard(q, sd, stem);
+    }
+    return build(q, f, sd, stem, job, len, e);
+}
+
+/* The claim in hand cannot be spread: failed/ with its log, as an invalid job. */
+static void refuse(struct queue *q, const char *name, const char *log_name, const char *msg)
+{
+    queue_log(name, "%s\n", msg);
+    queue_log(name, "invalid compare job, moved to %s/\n", q->failed);
+    queue_file_log(q, name, log_name, msg, 0, 0);
+    queue_file_failed(q, name, log_name);
+    queue_file_note_rc(q, 2);
+}
+
+void queue_study_expand(struct queue *q, const char *name, const char *from, const char *as, const char *stem)
+{
+    struct study_fan f;
+    struct err e = {0};
+    char msg[2600], out[2048], sd[2048], jobdir[2100];
+    uint8_t *job = NULL;
+    size_t len = 0;
+    if (study_fan_load(from, as, &f, &e) < 0) {
+        err_format(&e, msg, sizeof msg);
+        refuse(q, name, stem, msg);
+        return;
+    }
+    outdir_dir(q->done, study_fan_name(&f), out, sizeof out);
+    if (queue_claim_name_owner(q, out, q->name_owner, sizeof q->name_owner)) {
+        snprintf(
+            msg, sizeof msg,
+            "%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or remove "
+            "that folder to replace them)",
+            as, study_fan_name(&f), out, q->name_owner);
+        refuse(q, name, stem, msg);
+        study_fan_free(&f);
+        return;
+    }
+    snprintf(sd, sizeof sd, "%s/%s/%s", q->dir, QUEUE_STUDY_DIR, stem);
+    snprintf(jobdir, sizeof jobdir, "%s/job", sd);
+    snprintf(msg, sizeof msg, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    int rc = outdir_check(out, &e) < 0 || fileio_read_all(from, YDOC_MAX_BYTES, &job, &len, &e) < 0 ||
+                     outdir_mkdirs(msg, NULL, &e) < 0
+                 ? -1
+                 : prepare(q, &f, sd, stem, job, len, &e);
+    if (rc < 0) {
+        err_prefix(&e, study_fan_name(&f));
+        err_format(&e, msg, sizeof msg);
+        refuse(q, name, study_fan_name(&f), msg);
+    } else if (rc == 1) {
+        snprintf(msg, sizeof msg,
+                 "%s: a study of this file name is in progress in %s/; queue it again when it is done", as,
+                 sd);
+        refuse(q, name, stem, msg);
+    } else {
+        int refs = 0, images = 0;
+        for (int k = 0; k < study_fan_studies(&f); k++) {
+            const struct compare *c = study_fan_study(&f, k);
+            images += c->n_items;
+            for (int s = 0; s < c->n_scenes; s++)
+                refs += study_fan_has_reference(&f, k, s);
+        }
+        queue_claim_file(q, name, jobdir);
+        queue_log(name,
+                  "spread over the queue: %d reference%s and %d image%s to render, then the gather, in %s/\n",
+                  refs, refs == 1 ? "" : "s", images, images == 1 ? "" : "s", sd);
+    }
+    free(job);
+    study_fan_free(&f);
+}
+
+/* The earliest kind ('a', 'b', 'c') of the entries of folder dir; '~' when there is none. */
+static char earliest_in(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    char first = '~';
+    while (d && (de = readdir(d)))
+        if (queue_scan_is_job_file(de->d_name) && de->d_name[0] < first)
+            first = de->d_name[0];
+    if (d)
+        closedir(d);
+    return first;
+}
+
+/* 1 when the entry may be claimed, 0 when it waits for entries of an earlier kind waiting or
+   running, -1 when one of them failed (the study waits for a requeue). */
+static int gate(const char *sd, const char *ticket)
+{
+    char sub[2200];
+    snprintf(sub, sizeof sub, "%s/failed", sd);
+    char failed = earliest_in(sub);
+    snprintf(sub, sizeof sub, "%s/running", sd);
+    char running = earliest_in(sub), waiting = earliest_in(sd);
+    char first = running < waiting ? running : waiting;
+    if (failed < ticket[0] && failed <= first)
+        return -1;
+    return ticket[0] <= first ? 1 : 0;
+}
+
+int queue_study_claimable(const char *study_dir, const char *ticket)
+{
+    return gate(study_dir, ticket) == 1;
+}
+
+/* The run options of a render of the study in hand (sq): outputs into DIR/done, the claim's tick. */
+static struct run_opts claim_opts(struct queue *q, struct queue *sq)
+{
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = q->stop;
+    ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
+    ro.tick_arg = sq;
+    return ro;
+}
+
+/* What entry `ticket` of f rendered, for the log. */
+static void describe(const struct study_fan *f, int k, enum study_fan_kind kind, int index, char *buf,
+                     size_t n)
+{
+    const struct compare *c = study_fan_study(f, k);
+    if (kind == STUDY_FAN_REFERENCE) {
+        snprintf(buf, n, "%s: reference of %s in %s", c->name, c->scenes[index].name,
+                 c->scenes[index].ref_path);
+        return;
+    }
+    const struct compare_item *it = &c->items[index];
+    snprintf(buf, n, "%s: image %d of %d, %s t=%g seed %llu: %.0f spp, %.2f s%s", c->name, index + 1,
+             c->n_items, c->variants[it->variant], it->job.threshold, (unsigned long long)it->job.seed,
+             it->spp_mean, it->wall_s, it->skipped ? " (current, not rendered again)" : "");
+}
+
+/* Render entry `ticket` (kind and indices in its name) of the study loaded as f. */
+static int render(struct queue *q, struct queue *sq, struct study_fan *f, const char *ticket, char *msg,
+                  size_t n)
+{
+    int k = -1, index = -1, attempts = 0, rc;
+    enum study_fan_kind kind = ticket[0] == 'a' ? STUDY_FAN_REFERENCE : STUDY_FAN_IMAGE;
+    struct err e = {0};
+    if (sscanf(ticket, kind == STUDY_FAN_REFERENCE ? "a-ref-%d-%d.yaml" : "b-img-%d-%d.yaml", &k, &index) !=
+        2)
+        k = -1;
+    struct run_opts ro = claim_opts(q, sq);
+    do {
+        sq->attempt = ++attempts;
+        rc = study_fan_render(f, k, kind, index, &ro, &e);
+    } while (rc == 1 && !*q->stop && attempts <= q->o->retries);
+    if (rc == 0)
+        describe(f, k, kind, index, msg, n);
+    else
+        err_format(&e, msg, n);
+    return rc;
+}
+
+/* The gather: the whole job run with every render current, which writes its summary, chart, report
+   and verdict; then its job file goes from the study's job/ to DIR/done/. */
+static int gather(struct queue *q, struct queue *sq, const char *sd, const char *stem, char *msg, size_t n)
+{
+    char from[2200], as[2200], job[2300], to[2300], name[JOB_NAME_MAX];
+    snprintf(from, sizeof from, "%s/study.job", sd);
+    snprintf(as, sizeof as, "%s/%s.yaml", q->dir, stem);
+    snprintf(job, sizeof job, "%s/job/%s.yaml", sd, stem);
+    snprintf(to, sizeof to, "%s/%s.yaml", q->done, stem);
+    struct stat st;
+    if (lstat(job, &st) < 0) { /* gathered by a worker killed before it filed this entry */
+        snprintf(msg, n, "already gathered");
+        return 0;
+    }
+    struct run_opts ro = claim_opts(q, sq);
+    ro.force = 0; /* every render is current: --force would render them all again here */
+    name[0] = 0;
+    int rc = study_main_as(from, as, &ro, msg, n, name, sizeof name); /* prints its summary line */
+    if (rc != 0 || !queue_claim_still_ours(sq))
+        return rc;
+    if (rename(job, to) < 0) {
+        snprintf(msg, n, "cannot move %s to %s: %s", job, to, strerror(errno));
+        return 1;
+    }
+    snprintf(msg, n,
+             "gathered into %s/%s/ (summary.csv, chart.svg, report.html, verdict.json); %s.yaml moved to %s/",
+             q->done, name, stem, q->done);
+    return 0;
+}
+
+/* Process the claimed entry `ticket` of the study in sd (its queue sq). */
+static void process_entry(struct queue *q, struct queue *sq, const char *sd, const char *stem,
+                          const char *ticket)
+{
+    char label[2600], from[2200], as[2200], msg[4096], log_name[300];
+    struct study_fan f = {0};
+    struct err e = {0};
+    int rc;
+    snprintf(label, sizeof label, "%s/%s/%s", QUEUE_STUDY_DIR, stem, ticket);
+    snprintf(from, sizeof from, "%s/study.job", sd);
+    snprintf(as, sizeof as, "%s/%s.yaml", q->dir, stem);
+    outdir_stem(ticket, log_name, sizeof log_name);
+    sq->lost = 0;
+    sq->processes = 0;
+    sq->name_owner[0] = 0;
+    queue_claim_renew_start(sq);
+    if (!strcmp(ticket, QUEUE_STUDY_GATHER)) {
+        rc = gather(q, sq, sd, stem, msg, sizeof msg);
+    } else if (study_fan_load(from, as, &f, &e) < 0) {
+        err_format(&e, msg, sizeof msg);
+        rc = 2;
+    } else {
+        rc = render(q, sq, &f, ticket, msg, sizeof msg);
+    }
+    study_fan_free(&f);
+    if ((sq->lost || !queue_claim_still_ours(sq)) && !exists(sd, "study.job"))
+        queue_log(label,
+                  "the study's folder %s/ was removed while it rendered (cancelled): render stopped, "
+                  "nothing written\n",
+                  sd);
+    else if (sq->lost || !queue_claim_still_ours(sq))
+        queue_file_say_lost(sq, label);
+    else if (rc == 1 && *q->stop)
+        queue_file_give_back(sq, label);
+    else if (rc == 0) {
+        queue_log(label, "%s\n", msg);
+        queue_claim_file(sq, ticket, sq->done);
+    } else {
+        queue_log(label, "%s; moved to %s/\n", msg, sq->failed);
+        queue_file_log(sq, ticket, log_name, msg, 0, sq->attempt);
+        queue_file_failed(sq, ticket, "");
+        queue_file_note_rc(q, rc);
+    }
+    queue_claim_renew_stop();
+    queue_file_clear_lost_stop(sq);
+}
+
+/* One entry of the study in sd taken and processed: 1; 2 none yet (behind renders running
+   elsewhere); 0 none. */
+static int work_on(struct queue *q, const char *sd, const char *stem)
+{
+    struct queue sq;
+    memset(&sq, 0, sizeof sq);
+    sq.o = q->o;
+    sq.stop = q->stop;
+    snprintf(sq.dir, sizeof sq.dir, "%s", sd);
+    snprintf(sq.running, sizeof sq.running, "%s/running", sd);
+    snprintf(sq.done, sizeof sq.done, "%s/done", sd);
+    snprintf(sq.failed, sizeof sq.failed, "%s/failed", sd);
+    snprintf(sq.as_name, sizeof sq.as_name, "%s.yaml", stem);
+    char adopted[256];
+    int result = 0;
+    if (queue_claim_recover(&sq, adopted, sizeof adopted)) {
+        process_entry(q, &sq, sd, stem, adopted);
+        return 1;
+    }
+    struct queue_waiting *w;
+    int n = queue_scan_waiting(&sq.scan, sd, &w);
+    for (int i = 0; i < n && result != 1 && !*q->stop; i++) {
+        int g = gate(sd, w[i].name);
+        if (g == 0)
+            result = 2;
+        if (g == 1 && queue_claim_take(&sq, w[i].name) == 0) {
+            process_entry(q, &sq, sd, stem, w[i].name);
+            result = 1;
+        }
+    }
+    if (n >= 0)
+        free(w);
+    queue_scan_free(&sq.scan);
+    return result;
+}
+
+int queue_study_work(struct queue *q)
+{
+    char top[1200], sd[2400];
+    snprintf(top, sizeof top, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    DIR *d = opendir(top);
+    struct dirent *de;
+    struct stat st;
+    int result = 0;
+    while (d && result != 1 && (de = readdir(d))) {
+        snprintf(sd, sizeof sd, "%s/%s", top, de->d_name);
+        if (de->d_name[0] == '.') {
+            if (strstr(de->d_name, ".gone."))
+                remove_tree(sd); /* a discarded study whose remover was killed */
+            continue;
+        }
+        if (lstat(sd, &st) < 0 || !S_ISDIR(st.st_mode) || !exists(sd, "study.job"))
+            continue;
+        snprintf(sd + strlen(sd), sizeof sd - strlen(sd), "/done");
+        int finished = exists(sd, QUEUE_STUDY_GATHER);
+        sd[strlen(sd) - 5] = 0;
+        int r = finished ? 0 : work_on(q, sd, de->d_name);
+        result = r > result ? r : result;
+    }
+    if (d)
+        closedir(d);
+    return result;
+}
