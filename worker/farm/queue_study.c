@@ -296,6 +296,32 @@ static int render(struct queue *q, struct queue *sq, struct study_fan *f, const 
     return rc;
 }
 
+/* The recovery locks and leases that workers killed at the wrong moment left in the study's running/
+   (their claims filed meanwhile), removed once the study is gathered: nothing can claim there any more
+   but the gather itself (keep). */
+static void sweep_running(const char *sd, const char *keep)
+{
+    char dir[2200], path[2600], claim[2600];
+    struct stat st;
+    snprintf(dir, sizeof dir, "%s/running", sd);
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    while (d && (de = readdir(d))) {
+        size_t len = strlen(de->d_name);
+        size_t cut = len > 5 && !strcmp(de->d_name + len - 5, ".lock")    ? 5
+                     : len > 6 && !strcmp(de->d_name + len - 6, ".lease") ? 6
+                                                                           : 0;
+        if (!cut || !strncmp(de->d_name, keep, strlen(keep)))
+            continue;
+        snprintf(claim, sizeof claim, "%s/%.*s", dir, (int)(len - cut), de->d_name);
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (lstat(claim, &st) < 0)
+            unlink(path);
+    }
+    if (d)
+        closedir(d);
+}
+
 /* The gather: the whole job run with every render current, which writes its summary, chart, report
    and verdict; then its job file goes from the study's job/ to DIR/done/. */
 static int gather(struct queue *q, struct queue *sq, const char *sd, const char *stem, char *msg, size_t n)
@@ -320,6 +346,7 @@ static int gather(struct queue *q, struct queue *sq, const char *sd, const char 
         snprintf(msg, n, "cannot move %s to %s: %s", job, to, strerror(errno));
         return 1;
     }
+    sweep_running(sd, QUEUE_STUDY_GATHER);
     snprintf(msg, n,
              "gathered into %s/%s/ (summary.csv, chart.svg, report.html, verdict.json); %s.yaml moved to %s/",
              q->done, name, stem, q->done);
