@@ -87,4 +87,25 @@ check "status: one study line: $(cat "$T/status.txt")" grep -Eq '^  spread.yaml 
 check "status --json: the study's progress" python3 -c 'import json,sys
 s=json.load(open(sys.argv[1]))["studies"][0]
 assert s["file"] == "spread.yaml" and s["renders"] == 62 and 0 < s["done"] < 62 and s["failed"] == 0, s' "$T/status.json"
+
+# a render that fails (its render process killed, no retries) leaves the study waiting: status
+# counts it, `requeue DIR X` puts the study's failed renders back, and the study then completes
+Q3=$T/q3; mkdir -p "$Q3"
+printf 'name: slow\nscenes: [%s/scenes/cornell.yaml]\nwidth: 32\nprocesses: 1\nseeds: [1, 2]\nvariants: [{ sampler: jitter, threshold: 2 }]\n' "$root" >"$Q3/slow.yaml"
+"$WORKER" --queue "$Q3" --once --quiet --retries 0 >/dev/null 2>"$T/w3.log" & w=$!
+child=$(render_child "$w")
+kill -9 "$child"
+wait "$w"; rc=$?
+check "a study with a failed render: the worker exits 1 (got $rc)" [ "$rc" -eq 1 ]
+check "... the study waits, not gathered" [ ! -f "$Q3/done/slow.yaml" ] && [ -f "$Q3/study/slow/job/slow.yaml" ]
+"$WORKER" status "$Q3" >"$T/status3.txt" 2>&1
+check "status: 1/2 done, 1 failed: $(cat "$T/status3.txt")" grep -q 'slow.yaml  study slow  1/2 renders done, 1 failed' "$T/status3.txt"
+"$WORKER" requeue "$Q3" slow >"$T/rq.txt" 2>&1; rc=$?
+check "requeue of the study: exit 0 (got $rc), its failed render put back: $(cat "$T/rq.txt")" grep -q '1 failed render of the study requeued' "$T/rq.txt"
+check "... its log removed too" [ -z "$(ls "$Q3/study/slow/failed")" ]
+"$WORKER" --queue "$Q3" --once --quiet >/dev/null 2>"$T/w4.log"; rc=$?
+check "the study then completes (exit $rc)" [ "$rc" -eq 0 ] && [ -f "$Q3/done/slow.yaml" ] && [ -s "$Q3/done/slow/summary.csv" ]
+"$WORKER" --queue "$Q3" --once >/dev/null 2>"$T/w5.log"
+check "a --once worker on an empty queue says so in one line: $(cat "$T/w5.log")" \
+    [ "$(grep -c 'no job waiting, nothing to do' "$T/w5.log")" -eq 1 ] && [ "$(grep -c . "$T/w5.log")" -eq 1 ]
 finish

@@ -18,6 +18,8 @@
 #include "job/sidecar.h"
 #include "lease.h"
 #include "queue_scan.h"
+#include "queue_studies.h"
+#include "queue_study.h"
 #include "scenefile/yamlx.h"
 
 /* One job file of done/ or failed/ (or running/), with what status says about it. */
@@ -128,7 +130,7 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     int n = 0;
     *out = NULL;
     if (!d)
-        return 0;
+        return errno == ENOENT ? 0 : -1;
     struct dirent *de;
     while ((de = readdir(d))) {
         char path[2048];
@@ -161,6 +163,14 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     return n;
 }
 
+/* Everything one status call shows. */
+struct view {
+    const struct queue_waiting *w;
+    const struct entry *r, *dn, *f;
+    int nw, nr, nd, nf, ns;
+    const struct queue_studies_entry *studies;
+};
+
 /* Elapsed seconds of a running entry (since its claim) and its ETA (-1: unknown). */
 static void running_times(const struct entry *x, double *elapsed, double *eta)
 {
@@ -175,11 +185,16 @@ static double percent(const struct entry *x)
     return x->lease.rows > 0 ? 100.0 * x->lease.rows_done / x->lease.rows : 0;
 }
 
-static void print_text(const char *dir, const struct queue_waiting *w, int nw, const struct entry *r, int nr,
-                       const struct entry *dn, int nd, const struct entry *f, int nf)
+static void print_text(const char *dir, const struct view *v)
 {
     char when[64];
-    printf("queue %s: %d waiting, %d running, %d done, %d failed\n", dir, nw, nr, nd, nf);
+    const struct queue_waiting *w = v->w;
+    const struct entry *r = v->r, *dn = v->dn, *f = v->f;
+    int nw = v->nw, nr = v->nr, nd = v->nd, nf = v->nf;
+    printf("queue %s: %d waiting, %d running, %d done, %d failed", dir, nw, nr, nd, nf);
+    if (v->ns)
+        printf(", %d stud%s spread over it", v->ns, v->ns == 1 ? "y" : "ies");
+    printf("\n");
     if (nw)
         printf("waiting (in claim order):\n");
     for (int i = 0; i < nw; i++) {
@@ -202,6 +217,7 @@ static void print_text(const char *dir, const struct queue_waiting *w, int nw, c
                r[i].lease.host, r[i].lease.pid, r[i].lease.attempt, percent(&r[i]), r[i].lease.rows_done,
                r[i].lease.rows, elapsed, eta_s);
     }
+    queue_studies_print(v->studies, v->ns);
     if (nd)
         printf("done:\n");
     for (int i = 0; i < nd; i++) {
@@ -223,11 +239,13 @@ static void json_maybe(struct json *js, const char *key, double v)
     json_number(js, key, v < 0 ? (double)NAN : v); /* non-finite: null (unknown) */
 }
 
-static void print_json(const char *dir, const struct queue_waiting *w, int nw, const struct entry *r, int nr,
-                       const struct entry *dn, int nd, const struct entry *f, int nf)
+static void print_json(const char *dir, const struct view *v)
 {
     struct json js;
     char when[64];
+    const struct queue_waiting *w = v->w;
+    const struct entry *r = v->r, *dn = v->dn, *f = v->f;
+    int nw = v->nw, nr = v->nr, nd = v->nd, nf = v->nf;
     json_init(&js);
     json_begin_object(&js, NULL);
     json_string(&js, "queue", dir);
@@ -261,6 +279,7 @@ static void print_json(const char *dir, const struct queue_waiting *w, int nw, c
         json_end_object(&js);
     }
     json_end_array(&js);
+    queue_studies_json(&js, v->studies, v->ns);
     json_begin_array(&js, "done");
     for (int i = 0; i < nd; i++) {
         json_begin_object(&js, NULL);
@@ -331,28 +350,62 @@ int queue_status_main(int argc, char **argv)
     if (queue_dir("status", dir_arg, dir, sizeof dir))
         return 2;
     struct queue_scan scan = {0};
-    struct queue_waiting *w;
-    struct entry *r, *dn, *f;
-    int nw = queue_scan_waiting(&scan, dir, &w);
+    struct queue_waiting *w = NULL;
+    struct entry *r = NULL, *dn = NULL, *f = NULL;
+    struct queue_studies_entry *studies = NULL;
+    int nw = queue_scan_waiting(&scan, dir, &w), rc = 0;
     char done[1100];
     snprintf(done, sizeof done, "%s/done", dir);
     snprintf(sub, sizeof sub, "%s/running", dir);
+    const char *bad = nw < 0 && errno != ENOENT ? "." : NULL;
+    int bad_errno = errno;
     int nr = list_folder(sub, "running", done, &r);
+    if (nr < 0)
+        bad = "running", bad_errno = errno;
     int nd = list_folder(done, "done", done, &dn);
+    if (nd < 0)
+        bad = "done", bad_errno = errno;
     snprintf(sub, sizeof sub, "%s/failed", dir);
     int nf = list_folder(sub, "failed", done, &f);
-    if (nw < 0)
-        nw = 0;
-    if (json)
-        print_json(dir, w, nw, r, nr, dn, nd, f, nf);
-    else
-        print_text(dir, w, nw, r, nr, dn, nd, f, nf);
+    if (nf < 0)
+        bad = "failed", bad_errno = errno;
+    int ns = queue_studies_list(dir, &studies);
+    if (ns < 0)
+        bad = QUEUE_STUDY_DIR, bad_errno = errno;
+    if (bad) { /* a folder that cannot be read is no empty one: "0 failed" would be a lie */
+        err_print("worker status: %s/%s: cannot be read: %s\n", dir, bad, strerror(bad_errno));
+        rc = 2;
+    } else {
+        struct view v = {w, r, dn, f, nw < 0 ? 0 : nw, nr, nd, nf, ns < 0 ? 0 : ns, studies};
+        if (json)
+            print_json(dir, &v);
+        else
+            print_text(dir, &v);
+    }
     free(w);
     free(r);
     free(dn);
     free(f);
+    free(studies);
     queue_scan_free(&scan);
-    return 0;
+    return rc;
+}
+
+/* Remove DIR/failed/<log_name>.log when it is the log of job file `file` (its "job:" line names it). */
+static void remove_log(const char *dir, const char *log_name, const char *file)
+{
+    char path[2048];
+    uint8_t *text = NULL;
+    size_t len;
+    struct err e;
+    snprintf(path, sizeof path, "%s/failed/%s.log", dir, log_name);
+    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
+        return;
+    size_t line = strcspn((const char *)text, "\n"), flen = strlen(file);
+    if (!strncmp((const char *)text, "job: ", 5) && line > flen && text[line - flen - 1] == '/' &&
+        !memcmp(text + line - flen, file, flen))
+        unlink(path);
+    free(text);
 }
 
 /* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
@@ -369,14 +422,17 @@ static int requeue_one(const char *dir, const char *from, const char *file)
     }
     if (fileio_rename_noreplace(src, dst) < 0) {
         err_print("worker requeue: %s: %s\n", file,
-                  errno == EEXIST ? "a job of that file name waits in the queue already" : strerror(errno));
+                  errno == EEXIST   ? "a job of that file name waits in the queue already"
+                  : errno == ENOENT ? "no longer there: moved meanwhile (another requeue, or a worker)"
+                                    : strerror(errno));
         return -1;
     }
     if (!strcmp(from, "failed")) { /* its log goes with it: it is no longer a failed job */
-        char name[256], log[2048];
+        char name[256], stem[256];
         job_name_of(dst, file, name, sizeof name);
-        snprintf(log, sizeof log, "%s/failed/%s.log", dir, name);
-        unlink(log);
+        outdir_stem(file, stem, sizeof stem);
+        remove_log(dir, name, file);
+        remove_log(dir, stem, file); /* the log of a file that did not load, or whose name was taken */
     }
     err_print("%s: requeued from %s/\n", file, from);
     return 0;
@@ -411,11 +467,21 @@ int queue_requeue_main(int argc, char **argv)
     snprintf(done, sizeof done, "%s/done", dir);
     if (all_failed) {
         struct entry *f;
+        struct queue_studies_entry *studies;
         int nf = list_folder(failed, "failed", done, &f);
+        if (nf < 0) {
+            err_print("worker requeue: %s: cannot be read: %s\n", failed, strerror(errno));
+            return 2;
+        }
         for (int i = 0; i < nf; i++)
             if (requeue_one(dir, "failed", f[i].file) < 0)
                 rc = 2;
         free(f);
+        int ns = queue_studies_list(dir, &studies);
+        for (int i = 0; i < ns; i++)
+            if (studies[i].failed && queue_studies_requeue(dir, studies[i].file) == -2)
+                rc = 2;
+        free(studies);
         return rc;
     }
     for (int i = 1, seen_dir = 0; i < argc; i++) {
@@ -433,6 +499,11 @@ int queue_requeue_main(int argc, char **argv)
         }
         snprintf(file, sizeof file, "%s%s", argv[i],
                  len > 5 && !strcmp(argv[i] + len - 5, ".yaml") ? "" : ".yaml");
+        int study = queue_studies_requeue(dir, file); /* a study in progress: its failed renders */
+        if (study != -1) {
+            rc = study == -2 ? 2 : rc;
+            continue;
+        }
         const char *from = NULL;
         snprintf(path, sizeof path, "%s/%s", failed, file);
         if (lstat(path, &st) == 0)

@@ -75,13 +75,31 @@ static int write_entry(const char *dir, const char *entry, const char *what, str
     return fileio_write_atomic(path, text, (size_t)n, e);
 }
 
+/* Remove the half-built study folders of job file stem that expanding workers killed before they
+   renamed them left: we hold its claim, so no other worker is building one now. */
+static void remove_unfinished(const struct queue *q, const char *stem)
+{
+    char top[1200], prefix[300], path[1600];
+    snprintf(top, sizeof top, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    int n = snprintf(prefix, sizeof prefix, ".%s.new.", stem);
+    DIR *d = opendir(top);
+    struct dirent *de;
+    while (d && (de = readdir(d)))
+        if (!strncmp(de->d_name, prefix, (size_t)n)) {
+            snprintf(path, sizeof path, "%s/%s", top, de->d_name);
+            remove_tree(path);
+        }
+    if (d)
+        closedir(d);
+}
+
 /* Build the study folder of f beside its final place, then rename it there. 0 or -1 with e. */
 static int build(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
                  const uint8_t *job, size_t len, struct err *e)
 {
     char tmp[2048], sub[2200], entry[64], what[256];
     snprintf(tmp, sizeof tmp, "%s/%s/.%s.new.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid());
-    remove_tree(tmp);
+    remove_unfinished(q, stem);
     const char *subs[] = {"job", "running", "done", "failed"};
     if (outdir_mkdirs(tmp, NULL, e) < 0)
         return -1;
@@ -310,7 +328,7 @@ static void sweep_running(const char *sd, const char *keep)
         size_t len = strlen(de->d_name);
         size_t cut = len > 5 && !strcmp(de->d_name + len - 5, ".lock")    ? 5
                      : len > 6 && !strcmp(de->d_name + len - 6, ".lease") ? 6
-                                                                           : 0;
+                                                                          : 0;
         if (!cut || !strncmp(de->d_name, keep, strlen(keep)))
             continue;
         snprintf(claim, sizeof claim, "%s/%.*s", dir, (int)(len - cut), de->d_name);
