@@ -67,7 +67,13 @@ void queue_claim_renew_start(struct queue *q)
     char path[2100];
     snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
     queue_claim_renew_stop();
-    int fd = open(path, O_RDWR | O_CLOEXEC);
+    /* a lease is a regular file: a FIFO or device put in its place must not block or feed us */
+    int fd = open(path, O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    struct stat st;
+    if (fd >= 0 && (fstat(fd, &st) < 0 || !S_ISREG(st.st_mode))) {
+        close(fd);
+        fd = -1;
+    }
     if (fd < 0)
         return; /* no lease to renew: the tick's check finds the claim lost */
     struct sigaction sa;

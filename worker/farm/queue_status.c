@@ -174,7 +174,9 @@ struct view {
 /* Elapsed seconds of a running entry (since its claim) and its ETA (-1: unknown). */
 static void running_times(const struct entry *x, double *elapsed, double *eta)
 {
-    *elapsed = x->age_s >= 0 && x->lease.start > 0 ? (double)(time(NULL) - x->lease.start) : -1;
+    *elapsed = x->age_s >= 0 && x->lease.start > 0 && time(NULL) >= x->lease.start
+                   ? (double)(time(NULL) - x->lease.start)
+                   : -1;
     *eta = -1;
     if (x->lease.rows > 0 && x->lease.rows_done > 0)
         *eta = x->lease.render_s * (x->lease.rows - x->lease.rows_done) / x->lease.rows_done;
@@ -210,12 +212,14 @@ static void print_text(const char *dir, const struct view *v)
             printf("  %s  (no lease yet)\n", r[i].file);
             continue;
         }
-        char eta_s[32] = "--";
+        char eta_s[32] = "--", elapsed_s[32] = "--";
         if (eta >= 0)
             snprintf(eta_s, sizeof eta_s, "%.0f s", eta);
-        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %.0f s  ETA %s\n", r[i].file,
+        if (elapsed >= 0)
+            snprintf(elapsed_s, sizeof elapsed_s, "%.0f s", elapsed);
+        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %s  ETA %s\n", r[i].file,
                r[i].lease.host, r[i].lease.pid, r[i].lease.attempt, percent(&r[i]), r[i].lease.rows_done,
-               r[i].lease.rows, elapsed, eta_s);
+               r[i].lease.rows, elapsed_s, eta_s);
     }
     queue_studies_print(v->studies, v->ns);
     if (nd)
