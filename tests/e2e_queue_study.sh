@@ -72,6 +72,17 @@ for st in v["studies"]:
 }
 check "the same verdict at equal samples and for the slopes" \
     [ "$(rankings "$T/plain/spread/verdict.json")" = "$(rankings "$Q/done/spread/verdict.json")" ]
+check "sidecars record host and CPU model" grep -q '"cpu_model": "..*"' "$Q/done/spread/checker-jitter-t50-s1.json"
+check "one CPU model: equal CPU time not marked" [ -z "$(grep mixes_machines "$Q/done/spread/verdict.json")" ]
+# images of another CPU model (their sidecars say so): the equal-CPU-time ranking is marked as
+# mixing machines in verdict.json and the report; the equal-samples and slope rankings are unchanged
+for f in "$T"/plain/spread/*-s1.json; do sed -i 's/"cpu_model": "[^"]*"/"cpu_model": "Other CPU 9000"/' "$f"; done
+"$WORKER" --quiet --out "$T/plain" "$T/spread.yaml" 2>"$T/mixed.log"
+check "mixed CPU models: verdict.json marks equal CPU time" grep -q '"equal_cpu_time_mixes_machines": true' "$T/plain/spread/verdict.json"
+check "... and names the models" grep -q '"cpu_models": ".*Other CPU 9000' "$T/plain/spread/verdict.json"
+check "... the report says so" grep -q 'equal CPU time mixes machines' "$T/plain/spread/report.html"
+check "... equal samples and slopes unchanged" \
+    [ "$(rankings "$T/plain/spread/verdict.json")" = "$(rankings "$Q/done/spread/verdict.json")" ]
 check "no temporary, lease or lock file left: $(find "$Q" -name ".*tmp*" -o -name "*.lease" -o -name "*.lock")" [ -z "$(find "$Q" -name '.*tmp*' -o -name '*.lease' -o -name '*.lock')" ]
 
 # worker status on a study in progress shows it as one line: renders done/total, failed, ETA

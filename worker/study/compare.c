@@ -16,6 +16,7 @@
 #include "job/outdir.h"
 #include "job/sidecar.h"
 #include "report.h"
+#include "study_machines.h"
 #include "verdict_from.h"
 #include "verdict_out.h"
 #include "job/run_out.h"
@@ -307,7 +308,8 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     const char *outs[] = {summary, chart, report, verdict, NULL};
     int lock = -1;
     verdict_study_free(&c->verdict);
-    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0)
+    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
+        study_machines_mark(c, o->out_dir, e) < 0)
         goto fail;
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
