@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "diff.h"
 #include "study/compare.h"
+#include "study/study_fan.h"
 #include "study/study_main.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
@@ -137,7 +138,9 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
             return study_main(path, o, compare_name_ok, &ns);
-        err_print("%s: a compare job renders whole images: no merge or --part\n", path);
+        if (!merge) /* a batch task's share of the study's renders */
+            return study_fan_share(path, o);
+        err_print("%s: a compare job renders whole images: no merge\n", path);
         return 2;
     }
     if (job_load(path, &j, &e) < 0) {

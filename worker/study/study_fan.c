@@ -1,10 +1,14 @@
 /* study_fan: one render of a compare job or suite at a time. */
 #include "study_fan.h"
 
+#include <fcntl.h>
 #include <stdio.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include "compare_ref.h"
 #include "job/outdir.h"
+#include "job/run.h"
 
 int study_fan_load(const char *from, const char *path, struct study_fan *f, struct err *e)
 {
@@ -69,5 +73,70 @@ int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int i
                                          : compare_run_item(c, index, &in, e);
     if (rc == 1)
         err_prefix(e, c->name);
+    return rc;
+}
+
+/* Scene s of study k's reference rendered or reused under its lock, so that the tasks of one array
+   render it once. 0, 1 or 2. */
+static int reference_locked(struct study_fan *f, int k, int s, const struct run_opts *o, struct err *e)
+{
+    char cache[2048], lock[2400];
+    if (f->s) {
+        char suite[2048];
+        outdir_dir(o->out_dir, f->s->name, suite, sizeof suite);
+        outdir_dir(suite, ".cache", cache, sizeof cache);
+    } else
+        outdir_dir(o->out_dir, ".cache", cache, sizeof cache);
+    if (outdir_mkdirs(cache, NULL, e) < 0)
+        return 2;
+    snprintf(lock, sizeof lock, "%s/.ref-%s.lock", cache, study_fan_study(f, k)->scenes[s].name);
+    int fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd >= 0)
+        (void)flock(fd, LOCK_EX); /* released by close, or by the holder's death */
+    int rc = study_fan_render(f, k, STUDY_FAN_REFERENCE, s, o, e);
+    if (fd >= 0)
+        close(fd);
+    return rc;
+}
+
+int study_fan_share(const char *path, const struct run_opts *o)
+{
+    struct study_fan f;
+    struct err e = {0};
+    char line[4096];
+    int rc = 0, rendered = 0, current = 0, index = 0;
+    if (study_fan_load(path, path, &f, &e) < 0) {
+        err_format(&e, line, sizeof line);
+        err_print("%s\n", line);
+        return 2;
+    }
+    struct run_opts whole = *o; /* each image renders whole: the share is of the study, not of rows */
+    whole.part = whole.parts = 0;
+    for (int k = 0; k < study_fan_studies(&f) && rc == 0; k++) {
+        struct compare *c = study_fan_study(&f, k);
+        int ready[COMPARE_MAX_ITEMS] = {0}; /* per scene: its reference prepared */
+        for (int i = 0; i < c->n_items && rc == 0; i++, index++) {
+            int s = c->items[i].scene;
+            if (index % o->parts != o->part)
+                continue;
+            if (!ready[s] && study_fan_has_reference(&f, k, s))
+                rc = reference_locked(&f, k, s, &whole, &e);
+            ready[s] = 1;
+            if (rc == 0)
+                rc = study_fan_render(&f, k, STUDY_FAN_IMAGE, i, &whole, &e);
+            rendered += rc == 0 && !c->items[i].skipped;
+            current += rc == 0 && c->items[i].skipped;
+        }
+    }
+    if (rc != 0) {
+        err_format(&e, line, sizeof line);
+        err_print("%s\n", line);
+    } else
+        err_print(
+            "%s: part %d/%d: %d image%s rendered, %d current (not rendered again) -> %s/%s/; gather with "
+            "worker %s --out %s\n",
+            study_fan_name(&f), o->part, o->parts, rendered, rendered == 1 ? "" : "s", current,
+            outdir_root(o->out_dir), study_fan_name(&f), path, outdir_root(o->out_dir));
+    study_fan_free(&f);
     return rc;
 }

@@ -35,4 +35,12 @@ int study_fan_has_reference(const struct study_fan *f, int k, int s);
 int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int index,
                      const struct run_opts *o, struct err *e);
 
+/* `worker STUDY.yaml --out OUT --part I/N`: a batch system's task I of N renders the images with
+   index % N == I (over all studies of a suite), each after its scene's reference, which the first
+   task to need it renders under a lock (OUT/.cache/.ref-<scene>.lock) while the others wait and
+   then reuse it. Images already current are skipped (resume by job hash). No summary: the gather
+   is the whole job run afterwards (`worker STUDY.yaml --out OUT`), every render then current.
+   One line at the end; returns the exit status 0, 1 or 2. */
+int study_fan_share(const char *path, const struct run_opts *o);
+
 #endif
