@@ -27,7 +27,8 @@ struct entry {
     char file[256];
     char name[256]; /* the job's name: its `name:`, else the file's stem */
     struct timespec when;
-    double wall_s, cpu_s, samples; /* done: from the sidecar; < 0 unknown */
+    double wall_s, cpu_s, samples; /* done: from the sidecar (a compare job's: summed); < 0 unknown */
+    int images;                    /* done: sidecars summed */
     char reason[512];              /* failed: the log's error, first line */
     struct lease lease;            /* running */
     double age_s;                  /* running: seconds since the lease was renewed; < 0 no lease */
@@ -76,16 +77,15 @@ static void read_sidecar(const char *done, struct entry *x)
         struct sidecar_info info;
         struct err e;
         snprintf(path, sizeof path, "%s/%s", folder, de->d_name);
-        if (sidecar_read(path, &info, &e) == 0) {
+        if (sidecar_read(path, &info, &e) == 0) { /* a compare job's images: summed */
             const char *jf = info.job_file, *base = strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
-            if (!strcmp(base, file)) {
-                x->wall_s = isfinite(info.wall_s) ? info.wall_s : -1;
-                x->cpu_s = isfinite(info.cpu_s) ? info.cpu_s : -1;
-                x->samples = (double)info.samples_total;
+            if (!strcmp(base, file) && isfinite(info.wall_s) && isfinite(info.cpu_s)) {
+                x->wall_s = (x->images ? x->wall_s : 0) + info.wall_s;
+                x->cpu_s = (x->images ? x->cpu_s : 0) + info.cpu_s;
+                x->samples = (x->images ? x->samples : 0) + (double)info.samples_total;
+                x->images++;
             }
         }
-        if (x->wall_s >= 0)
-            break;
     }
     closedir(dir);
 }
@@ -228,6 +228,9 @@ static void print_text(const char *dir, const struct view *v)
         iso8601(dn[i].when.tv_sec, when, sizeof when);
         if (dn[i].wall_s < 0)
             printf("  %s  finished %s  (no sidecar)\n", dn[i].file, when);
+        else if (dn[i].images > 1) /* a compare job: its images' figures summed */
+            printf("  %s  finished %s  %d images  wall (sum) %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file,
+                   when, dn[i].images, dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
         else
             printf("  %s  finished %s  wall %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file, when,
                    dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
@@ -294,6 +297,7 @@ static void print_json(const char *dir, const struct view *v)
         json_maybe(&js, "wall_s", dn[i].wall_s);
         json_maybe(&js, "cpu_s", dn[i].cpu_s);
         json_maybe(&js, "samples", dn[i].samples);
+        json_number(&js, "images", dn[i].images);
         json_end_object(&js);
     }
     json_end_array(&js);
