@@ -99,6 +99,16 @@ check "status --json: the study's progress" python3 -c 'import json,sys
 s=json.load(open(sys.argv[1]))["studies"][0]
 assert s["file"] == "spread.yaml" and s["renders"] == 62 and 0 < s["done"] < 62 and s["failed"] == 0, s' "$T/status.json"
 
+# SIGTERM (a Slurm pre-emption) while a study's render runs: that render goes back to the study's
+# waiting entries, and the worker exits 0
+Q4=$T/q4; mkdir -p "$Q4"
+printf 'name: slow\nscenes: [%s/scenes/cornell.yaml]\nwidth: 32\nprocesses: 1\nvariants: [{ sampler: jitter, threshold: 2 }]\n' "$root" >"$Q4/slow.yaml"
+"$WORKER" --queue "$Q4" --once --quiet >/dev/null 2>"$T/w6.log" & w=$!
+child=$(render_child "$w")
+kill -TERM "$w"; wait "$w"; rc=$?
+check "SIGTERM: exit 0 (got $rc): $(cat "$T/w6.log")" [ "$rc" -eq 0 ]
+check "... the render is waiting again in the study" [ -f "$Q4/study/slow/b-img-0-00000.yaml" ] && [ -z "$(ls "$Q4/study/slow/running")" ]
+
 # a render that fails (its render process killed, no retries) leaves the study waiting: status
 # counts it, `requeue DIR X` puts the study's failed renders back, and the study then completes
 Q3=$T/q3; mkdir -p "$Q3"
