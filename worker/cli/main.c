@@ -20,6 +20,7 @@
 #include "points.h"
 #include "farm/merge.h"
 #include "farm/queue.h"
+#include "farm/queue_requeue.h"
 #include "farm/queue_status.h"
 #include "job/run.h"
 

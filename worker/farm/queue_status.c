@@ -1,4 +1,4 @@
-/* queue_status: what a queue holds (status) and moving finished jobs back into it (requeue). */
+/* queue_status: what a queue holds (status). */
 #include "queue_status.h"
 
 #include <dirent.h>
@@ -41,8 +41,7 @@ static void iso8601(time_t t, char *out, size_t n)
     strftime(out, n, "%Y-%m-%dT%H:%M:%SZ", &tm);
 }
 
-/* The job name of the job file at path: its `name:` when it has a valid-looking one, else stem. */
-static void job_name_of(const char *path, const char *file, char *out, size_t n)
+void queue_status_job_name(const char *path, const char *file, char *out, size_t n)
 {
     struct ydoc d;
     struct err e;
@@ -148,7 +147,7 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
         memset(x, 0, sizeof *x);
         snprintf(x->file, sizeof x->file, "%s", de->d_name);
         x->when = st.st_ctim; /* the rename into this folder */
-        job_name_of(path, x->file, x->name, sizeof x->name);
+        queue_status_job_name(path, x->file, x->name, sizeof x->name);
         if (!strcmp(kind, "done"))
             read_sidecar(done, x);
         else if (!strcmp(kind, "failed"))
@@ -318,8 +317,7 @@ static void print_json(const char *dir, const struct view *v)
     json_free(&js);
 }
 
-/* DIR without trailing slashes into out; 0, or 2 after one line when it is no queue directory. */
-static int queue_dir(const char *cmd, const char *arg, char *out, size_t n)
+int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
 {
     struct stat st;
     snprintf(out, n, "%s", arg);
@@ -355,7 +353,7 @@ int queue_status_main(int argc, char **argv)
         err_print("worker status: expected a queue directory; usage: worker status DIR [--json]\n");
         return 2;
     }
-    if (queue_dir("status", dir_arg, dir, sizeof dir))
+    if (queue_status_dir("status", dir_arg, dir, sizeof dir))
         return 2;
     struct queue_scan scan = {0};
     struct queue_waiting *w = NULL;
@@ -396,134 +394,5 @@ int queue_status_main(int argc, char **argv)
     free(f);
     free(studies);
     queue_scan_free(&scan);
-    return rc;
-}
-
-/* Remove DIR/failed/<log_name>.log when it is the log of job file `file` (its "job:" line names it). */
-static void remove_log(const char *dir, const char *log_name, const char *file)
-{
-    char path[2048];
-    uint8_t *text = NULL;
-    size_t len;
-    struct err e;
-    snprintf(path, sizeof path, "%s/failed/%s.log", dir, log_name);
-    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
-        return;
-    size_t line = strcspn((const char *)text, "\n"), flen = strlen(file);
-    if (!strncmp((const char *)text, "job: ", 5) && line > flen && text[line - flen - 1] == '/' &&
-        !memcmp(text + line - flen, file, flen))
-        unlink(path);
-    free(text);
-}
-
-/* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
-static int requeue_one(const char *dir, const char *from, const char *file)
-{
-    char src[2048], dst[2048], running[2048];
-    struct stat st;
-    snprintf(src, sizeof src, "%s/%s/%s", dir, from, file);
-    snprintf(dst, sizeof dst, "%s/%s", dir, file);
-    snprintf(running, sizeof running, "%s/running/%s", dir, file);
-    if (lstat(running, &st) == 0) {
-        err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
-        return -1;
-    }
-    if (fileio_rename_noreplace(src, dst) < 0) {
-        err_print("worker requeue: %s: %s\n", file,
-                  errno == EEXIST   ? "a job of that file name waits in the queue already"
-                  : errno == ENOENT ? "no longer there: moved meanwhile (another requeue, or a worker)"
-                                    : strerror(errno));
-        return -1;
-    }
-    if (!strcmp(from, "failed")) { /* its log goes with it: it is no longer a failed job */
-        char name[256], stem[256];
-        job_name_of(dst, file, name, sizeof name);
-        outdir_stem(file, stem, sizeof stem);
-        remove_log(dir, name, file);
-        remove_log(dir, stem, file); /* the log of a file that did not load, or whose name was taken */
-    }
-    err_print("%s: requeued from %s/\n", file, from);
-    return 0;
-}
-
-int queue_requeue_main(int argc, char **argv)
-{
-    const char *dir_arg = NULL;
-    int all_failed = 0, nnames = 0, rc = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--failed"))
-            all_failed = 1;
-        else if (!strcmp(argv[i], "--quiet"))
-            continue;
-        else if (argv[i][0] == '-' && argv[i][1]) {
-            err_print("worker requeue: unknown option %s; usage: worker requeue DIR NAME... | --failed\n",
-                      argv[i]);
-            return 2;
-        } else if (!dir_arg)
-            dir_arg = argv[i];
-        else
-            nnames++;
-    }
-    if (!dir_arg || (nnames == 0) == !all_failed) {
-        err_print("worker requeue: usage: worker requeue DIR NAME... | --failed\n");
-        return 2;
-    }
-    char dir[1024], failed[1100], done[1100];
-    if (queue_dir("requeue", dir_arg, dir, sizeof dir))
-        return 2;
-    snprintf(failed, sizeof failed, "%s/failed", dir);
-    snprintf(done, sizeof done, "%s/done", dir);
-    if (all_failed) {
-        struct entry *f;
-        struct queue_studies_entry *studies;
-        int nf = list_folder(failed, "failed", done, &f);
-        if (nf < 0) {
-            err_print("worker requeue: %s: cannot be read: %s\n", failed, strerror(errno));
-            return 2;
-        }
-        for (int i = 0; i < nf; i++)
-            if (requeue_one(dir, "failed", f[i].file) < 0)
-                rc = 2;
-        free(f);
-        int ns = queue_studies_list(dir, &studies);
-        for (int i = 0; i < ns; i++)
-            if (studies[i].failed && queue_studies_requeue(dir, studies[i].file) == -2)
-                rc = 2;
-        free(studies);
-        return rc;
-    }
-    for (int i = 1, seen_dir = 0; i < argc; i++) {
-        if (argv[i][0] == '-' && argv[i][1])
-            continue;
-        if (!seen_dir++)
-            continue;
-        char file[256], path[2048];
-        struct stat st;
-        size_t len = strlen(argv[i]);
-        if (strchr(argv[i], '/') || len == 0 || len > 200) {
-            err_print("worker requeue: %s: give a job file's name (X or X.yaml), not a path\n", argv[i]);
-            rc = 2;
-            continue;
-        }
-        snprintf(file, sizeof file, "%s%s", argv[i],
-                 len > 5 && !strcmp(argv[i] + len - 5, ".yaml") ? "" : ".yaml");
-        int study = queue_studies_requeue(dir, file); /* a study in progress: its failed renders */
-        if (study != -1) {
-            rc = study == -2 ? 2 : rc;
-            continue;
-        }
-        const char *from = NULL;
-        snprintf(path, sizeof path, "%s/%s", failed, file);
-        if (lstat(path, &st) == 0)
-            from = "failed";
-        snprintf(path, sizeof path, "%s/%s", done, file);
-        if (!from && lstat(path, &st) == 0)
-            from = "done";
-        if (!from) {
-            err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
-            rc = 2;
-        } else if (requeue_one(dir, from, file) < 0)
-            rc = 2;
-    }
     return rc;
 }
