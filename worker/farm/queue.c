@@ -17,6 +17,7 @@
 #include "queue_inputs.h"
 #include "queue_log.h"
 #include "queue_scan.h"
+#include "queue_drain.h"
 #include "queue_study.h"
 #include "job/outdir.h"
 #include "job/run.h"
@@ -301,7 +302,7 @@ int queue_main(const struct queue_opts *qo)
             q.worst = 2;
             break;
         }
-        int study = took ? 1 : queue_study_work(&q);
+        int study = took ? 1 : queue_drain_work(&q);
         q.took += study == 1;
         if (study == 1)
             continue;

@@ -3,7 +3,7 @@
    own: running/, done/, failed/, with the same claims, leases, retries and recovery) and files the
    job there (job/<X>.yaml); workers drain those entries, references first; the entry claimed last
    gathers summary.csv, chart, report and verdict into done/<name>/, then files the job file in
-   done/. */
+   done/ (queue_drain.h). This module makes the study's folder. */
 #ifndef QUEUE_STUDY_H
 #define QUEUE_STUDY_H
 
@@ -21,13 +21,10 @@
 void queue_study_expand(struct queue *q, const char *name, const char *from, const char *as,
                         const char *stem);
 
-/* Take and process one render entry of a study in progress. 1 when one was processed; 2 when none
-   can be taken now but one will once the renders of an earlier kind running elsewhere are filed;
-   0 when there is none. */
-int queue_study_work(struct queue *q);
+/* Remove the folder tree at path (never following a link). */
+void queue_study_remove_tree(const char *path);
 
-/* 1 when the study folder's entry `ticket` may be claimed: no entry of an earlier kind is waiting,
-   running or failed. */
-int queue_study_claimable(const char *study_dir, const char *ticket);
+/* 1 when dir/file exists (as any kind of entry). */
+int queue_study_has(const char *dir, const char *file);
 
 #endif
