@@ -19,7 +19,6 @@
 #include "queue_log.h"
 #include "scenefile/yamlx.h"
 #include "study/study_fan.h"
-#include "study/study_main.h"
 
 static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
 {
