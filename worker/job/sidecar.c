@@ -30,7 +30,7 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "job_hash", hash);
     json_string(&js, "scene", j->scene_path);
     json_string(&js, "image", s->image);
-    struct machine m; /* where it ran: CPU times of different models do not compare */
+    struct machine m = {0}; /* where it ran: CPU times of different models do not compare */
     machine_describe(&m);
     json_string(&js, "host", m.host);
     json_string(&js, "cpu_model", m.cpu_model);
