@@ -46,4 +46,20 @@ printf 'name: named\nwidth: oops\n' >"$Q/s.yaml"
 check "the invalid job's log is failed/s.log" [ -f "$Q/failed/s.log" ]
 "$WORKER" requeue "$Q" s 2>/dev/null
 check "requeue removed failed/s.log" [ ! -f "$Q/failed/s.log" ] && [ -f "$Q/s.yaml" ]
+# two requeues racing for one failed file: the first stops (SIGSTOP, by the shim) just before its
+# rename, the second moves the file; the first, continued, names what happened
+CC=${CC:-cc}
+if $CC -shared -fPIC -o "$T/race.so" tests/shim/race.c -ldl 2>/dev/null; then
+    export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
+    Q=$T/q-race; mkdir -p "$Q"
+    printf 'width: oops\n' >"$Q/r.yaml"
+    "$WORKER" --queue "$Q" --once --quiet 2>/dev/null
+    SHIM_STOP_TO="$Q/r.yaml" LD_PRELOAD=$T/race.so "$WORKER" requeue "$Q" r 2>"$T/race-a.txt" & a=$!
+    for _ in $(seq 1 500); do [ "$(ps -o stat= -p "$a" | cut -c1)" = T ] && break; sleep 0.02; done
+    "$WORKER" requeue "$Q" r 2>"$T/race-b.txt"; rcb=$?
+    kill -CONT "$a"; wait "$a"; rca=$?
+    check "racing requeues: the second moved it (rc $rcb)" [ "$rcb" -eq 0 ] && [ -f "$Q/r.yaml" ]
+    check "racing requeues: the loser exits 2 and says why: $(cat "$T/race-a.txt")" \
+        sh -c "[ $rca -eq 2 ] && grep -q 'no longer there: moved meanwhile' '$T/race-a.txt'"
+fi
 finish

@@ -72,6 +72,9 @@ for st in v["studies"]:
 }
 check "the same verdict at equal samples and for the slopes" \
     [ "$(rankings "$T/plain/spread/verdict.json")" = "$(rankings "$Q/done/spread/verdict.json")" ]
+"$WORKER" status "$Q" >"$T/status-done.txt" 2>&1
+check "status: the done study shows its 60 images' figures summed: $(grep spread "$T/status-done.txt")" \
+    grep -q '^  spread.yaml  finished .*  60 images  wall (sum) ' "$T/status-done.txt"
 check "sidecars record host and CPU model" grep -q '"cpu_model": "..*"' "$Q/done/spread/checker-jitter-t50-s1.json"
 check "one CPU model: equal CPU time not marked" [ -z "$(grep mixes_machines "$Q/done/spread/verdict.json")" ]
 # images of another CPU model (their sidecars say so): the equal-CPU-time ranking is marked as
