@@ -27,10 +27,11 @@
 static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
+    "                                          (a compare job: its images with index % N == I)\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
-    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs\n"
+    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs, studies\n"
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
     "       worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N]\n"
     "                                          error of B against reference A (EXR, PFM, PNG, PPM)\n"
