@@ -40,14 +40,14 @@ for how in rm mv; do
     check "$how: the next job rendered" [ -s "$Q/done/next/next.png" ]
 done
 
-# a compare job in a queue is spread over it as renders (DIR/study/<stem>/): removing that folder
+# a compare job in a queue is spread over it as renders (DIR/spread/<stem>/): removing that folder
 # while one renders cancels the study: the render stops, one line says so, nothing is written
 Q=$T/q-cmp; mkdir -p "$Q"
 printf 'scenes: [%s/scenes/cornell.yaml]\nwidth: 300\nvariants: [{ sampler: jitter, threshold: 1 }]\n' "$root" >"$Q/cmp.yaml"
 "$WORKER" --queue "$Q" --once --quiet --lease-timeout 2 2>"$T/cmp.log" & wpid=$!
 child=$(render_child "$wpid")
-check "compare: its render runs from the study's folder" [ -f "$Q/study/cmp/running/b-img-0-00000.yaml" ]
-rm -r "$Q/study/cmp"
+check "compare: its render runs from the study's folder" [ -f "$Q/spread/cmp/running/b-img-0-00000.yaml" ]
+rm -r "$Q/spread/cmp"
 ended "$wpid"
 wait "$wpid"; rc=$?
 check "compare: exit 0 (got $rc)" [ "$rc" -eq 0 ]

@@ -48,7 +48,7 @@ done
 for p in $pids; do while kill -0 "$p" 2>/dev/null; do sleep 0.1; done; done
 echo "study: $kills kills"
 check "the study was gathered ($kills workers killed): $(tail -n 3 "$T/workers.log")" [ -f "$Q/done/spread.yaml" ]
-S=$Q/study/spread
+S=$Q/spread/spread
 check "every render filed in the study's done/ exactly once: 62 + the gather" [ "$(ls "$S/done" | grep -c 'yaml$')" -eq 63 ]
 check "none failed, none waiting or running" [ -z "$(ls "$S/failed" "$S/running" "$S" | grep 'yaml')" ]
 check "the gather ran exactly once" [ "$(grep -c 'c-gather.yaml: gathered into' "$T/workers.log")" -eq 1 ]
@@ -92,7 +92,7 @@ check "no temporary, lease or lock file left: $(find "$Q" -name ".*tmp*" -o -nam
 Q2=$T/q2; mkdir -p "$Q2"
 study >"$Q2/spread.yaml"
 "$WORKER" --queue "$Q2" --once --quiet >/dev/null 2>"$T/w2.log" & w=$!
-for _ in $(seq 1 200); do [ -n "$(ls "$Q2/study/spread/done" 2>/dev/null | grep b-img)" ] && break; sleep 0.05; done
+for _ in $(seq 1 200); do [ -n "$(ls "$Q2/spread/spread/done" 2>/dev/null | grep b-img)" ] && break; sleep 0.05; done
 kill -STOP "$w"
 "$WORKER" status "$Q2" >"$T/status.txt" 2>&1
 "$WORKER" status "$Q2" --json >"$T/status.json" 2>&1
@@ -110,7 +110,7 @@ printf 'name: slow\nscenes: [%s/scenes/cornell.yaml]\nwidth: 32\nprocesses: 1\nv
 child=$(render_child "$w")
 kill -TERM "$w"; wait "$w"; rc=$?
 check "SIGTERM: exit 0 (got $rc): $(cat "$T/w6.log")" [ "$rc" -eq 0 ]
-check "... the render is waiting again in the study" [ -f "$Q4/study/slow/b-img-0-00000.yaml" ] && [ -z "$(ls "$Q4/study/slow/running")" ]
+check "... the render is waiting again in the study" [ -f "$Q4/spread/slow/b-img-0-00000.yaml" ] && [ -z "$(ls "$Q4/spread/slow/running")" ]
 
 # a render that fails (its render process killed, no retries) leaves the study waiting: status
 # counts it, `requeue DIR X` puts the study's failed renders back, and the study then completes
@@ -121,12 +121,12 @@ child=$(render_child "$w")
 kill -9 "$child"
 wait "$w"; rc=$?
 check "a study with a failed render: the worker exits 1 (got $rc)" [ "$rc" -eq 1 ]
-check "... the study waits, not gathered" [ ! -f "$Q3/done/slow.yaml" ] && [ -f "$Q3/study/slow/job/slow.yaml" ]
+check "... the study waits, not gathered" [ ! -f "$Q3/done/slow.yaml" ] && [ -f "$Q3/spread/slow/job/slow.yaml" ]
 "$WORKER" status "$Q3" >"$T/status3.txt" 2>&1
 check "status: 1/2 done, 1 failed: $(cat "$T/status3.txt")" grep -q 'slow.yaml  study slow  1/2 renders done, 1 failed' "$T/status3.txt"
 "$WORKER" requeue "$Q3" slow >"$T/rq.txt" 2>&1; rc=$?
 check "requeue of the study: exit 0 (got $rc), its failed render put back: $(cat "$T/rq.txt")" grep -q '1 failed render of the study requeued' "$T/rq.txt"
-check "... its log removed too" [ -z "$(ls "$Q3/study/slow/failed")" ]
+check "... its log removed too" [ -z "$(ls "$Q3/spread/slow/failed")" ]
 "$WORKER" --queue "$Q3" --once --quiet >/dev/null 2>"$T/w4.log"; rc=$?
 check "the study then completes (exit $rc)" [ "$rc" -eq 0 ] && [ -f "$Q3/done/slow.yaml" ] && [ -s "$Q3/done/slow/summary.csv" ]
 "$WORKER" --queue "$Q3" --once >/dev/null 2>"$T/w5.log"

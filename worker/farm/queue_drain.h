@@ -1,5 +1,5 @@
 /* queue_drain: a worker draining the studies spread over its queue (queue_study.h): each study's
-   folder DIR/study/<stem>/ is a queue of its own whose entries are taken with the same claims,
+   folder DIR/spread/<stem>/ is a queue of its own whose entries are taken with the same claims,
    leases, retries and recovery, references first, images next, the gather last. */
 #ifndef QUEUE_DRAIN_H
 #define QUEUE_DRAIN_H

@@ -1,4 +1,4 @@
-/* queue_studies: the studies in progress in a queue (DIR/study/<stem>/, queue_study.h) as status and
+/* queue_studies: the studies in progress in a queue (DIR/spread/<stem>/, queue_study.h) as status and
    requeue see them: one line each with its renders done of all, failed, and an ETA. */
 #ifndef QUEUE_STUDIES_H
 #define QUEUE_STUDIES_H
@@ -13,8 +13,8 @@ struct queue_studies_entry {
     double elapsed_s, eta_s;            /* since it was spread; ETA from the pace so far (< 0 unknown) */
 };
 
-/* The studies in progress under dir/study/ into *out (malloc'd), by name; their count, or -1 when
-   dir/study/ exists but cannot be read (errno). */
+/* The studies in progress under dir/spread/ into *out (malloc'd), by name; their count, or -1 when
+   dir/spread/ exists but cannot be read (errno). */
 int queue_studies_list(const char *dir, struct queue_studies_entry **out);
 
 /* One line per study, under a "studies:" heading (nothing when n is 0). */

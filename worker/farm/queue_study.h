@@ -1,5 +1,5 @@
 /* queue_study: a compare job or suite in a queue spread over its workers. The worker that claims
-   it writes one render entry per reference and per image into DIR/study/<stem>/ (a queue of its
+   it writes one render entry per reference and per image into DIR/spread/<stem>/ (a queue of its
    own: running/, done/, failed/, with the same claims, leases, retries and recovery) and files the
    job there (job/<X>.yaml); workers drain those entries, references first; the entry claimed last
    gathers summary.csv, chart, report and verdict into done/<name>/, then files the job file in
@@ -10,7 +10,7 @@
 #include "queue_claim.h"
 
 /* The folder below DIR that holds the studies in progress. */
-#define QUEUE_STUDY_DIR "study"
+#define QUEUE_STUDY_DIR "spread"
 
 /* The three kinds of entry, named so that claim order is their order: a-ref-K-S.yaml (study K's
    reference of scene S), b-img-K-I.yaml (its image I), c-gather.yaml. */
