@@ -242,9 +242,11 @@ int queue_drain_work(struct queue *q)
 {
     char top[1200], sd[2400];
     snprintf(top, sizeof top, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    struct stat st;
+    if (lstat(top, &st) < 0 || !S_ISDIR(st.st_mode)) /* never through a link (expansion refuses one) */
+        return 0;
     DIR *d = opendir(top);
     struct dirent *de;
-    struct stat st;
     int result = 0;
     while (d && result != 1 && (de = readdir(d))) {
         snprintf(sd, sizeof sd, "%s/%s", top, de->d_name);
