@@ -232,7 +232,7 @@ static void test_failures_and_guards(void)
     CHECK(any_line(s.sentences, s.n_sentences,
                    "gamma costs 3.0x alpha's CPU time per sample and buys nothing"));
     CHECK(any_line(s.warnings, s.n_warnings, "the reference has 3000 samples per pixel"));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s, ""}, 1);
     CHECK(json && strstr(json, "\"kind\": \"structured_error\"") &&
           strstr(json, "\"kind\": \"sampler_share\"") && strstr(json, "\"equal_cpu_time\"") &&
           strstr(json, "\"tie_rule\""));

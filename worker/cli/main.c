@@ -11,6 +11,7 @@
 #include "diff.h"
 #include "dryrun.h"
 #include "study/compare.h"
+#include "study/study_fan.h"
 #include "study/study_main.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
@@ -20,18 +21,20 @@
 #include "points.h"
 #include "farm/merge.h"
 #include "farm/queue.h"
+#include "farm/queue_requeue.h"
 #include "farm/queue_status.h"
 #include "job/run.h"
 
 static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
+    "                                          (a compare job: its images with index % N == I)\n"
     "       worker JOB.yaml --dry-run          samples, memory and CPU time from a short pilot;\n"
     "                                          renders nothing, writes nothing\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
-    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs\n"
+    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs, studies\n"
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
     "       worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N]\n"
     "                                          error of B against reference A (EXR, PFM, PNG, PPM)\n"
@@ -142,7 +145,9 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
             return study_main(path, o, compare_name_ok, &ns);
-        err_print("%s: a compare job renders whole images: no merge or --part\n", path);
+        if (!merge) /* a batch task's share of the study's renders */
+            return study_fan_share(path, o);
+        err_print("%s: a compare job renders whole images: no merge\n", path);
         return 2;
     }
     if (job_load(path, &j, &e) < 0) {

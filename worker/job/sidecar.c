@@ -11,6 +11,7 @@
 
 #include "base/fileio.h"
 #include "base/json.h"
+#include "machine.h"
 #include "scenefile/yamlx.h"
 
 char *sidecar_json(const struct sidecar *s)
@@ -29,6 +30,10 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "job_hash", hash);
     json_string(&js, "scene", j->scene_path);
     json_string(&js, "image", s->image);
+    struct machine m = {0}; /* where it ran: CPU times of different models do not compare */
+    machine_describe(&m);
+    json_string(&js, "host", m.host);
+    json_string(&js, "cpu_model", m.cpu_model);
     json_uint(&js, "width", (uint64_t)s->width);
     json_uint(&js, "height", (uint64_t)s->height);
     json_begin_array(&js, "size");
@@ -193,6 +198,8 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    string_at(d, root, "job_file", out->job_file, sizeof out->job_file, e) < 0 ||
                    hash_at(d, root, out, e) < 0 ||
                    string_at(d, root, "image", out->image, sizeof out->image, e) < 0 ||
+                   string_at(d, root, "host", out->host, sizeof out->host, e) < 0 ||
+                   string_at(d, root, "cpu_model", out->cpu_model, sizeof out->cpu_model, e) < 0 ||
                    count_at(d, root, "width", &out->width, e) < 0 ||
                    count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||

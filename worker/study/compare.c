@@ -16,6 +16,7 @@
 #include "job/outdir.h"
 #include "job/sidecar.h"
 #include "report.h"
+#include "study_machines.h"
 #include "verdict_from.h"
 #include "verdict_out.h"
 #include "job/run_out.h"
@@ -215,6 +216,33 @@ static int write_text(const char *dir, const char *file, char *text, struct err 
     return rc;
 }
 
+/* Read scene cs's prepared reference into r (floats, and 8-bit display values). 0 or -1. */
+static int ref_read(struct compare_scene *cs, struct scene_ref *r, struct err *e)
+{
+    if (imgio_read_f(cs->ref_path, &r->f, &cs->ref_domain, e) < 0 ||
+        (cs->ref_domain == IMG_DISPLAY8 ? imgio_read(cs->ref_path, &r->display, e)
+                                        : image_alloc(&r->display, r->f.w, r->f.h, e)) < 0)
+        return -1;
+    if (cs->ref_domain == IMG_LINEAR)
+        image_float_to_rgb8(r->f.px, r->f.w, r->f.h, r->display.px);
+    return 0;
+}
+
+int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e)
+{
+    struct compare_item *it = &c->items[i];
+    struct compare_scene *cs = &c->scenes[it->scene];
+    struct scene_ref ref = {0};
+    int rc = compare_ref_prepare(c, it->scene, o, e);
+    if (rc == 0 && cs->ref_kind != COMPARE_REF_NONE && ref_read(cs, &ref, e) < 0)
+        rc = 2;
+    if (rc == 0)
+        rc = render_item(c, it, cs->ref_kind != COMPARE_REF_NONE ? &ref : NULL, o, e);
+    image_f_free(&ref.f);
+    image_free(&ref.display);
+    return rc;
+}
+
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
     char dir[2048];
@@ -238,16 +266,11 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         struct compare_scene *cs = &c->scenes[s];
         if (cs->ref_kind == COMPARE_REF_NONE)
             continue;
-        if (imgio_read_f(cs->ref_path, &refs[s].f, &cs->ref_domain, e) < 0 ||
-            (cs->ref_domain == IMG_DISPLAY8
-                 ? imgio_read(cs->ref_path, &refs[s].display, e)
-                 : image_alloc(&refs[s].display, refs[s].f.w, refs[s].f.h, e)) < 0) {
+        if (ref_read(cs, &refs[s], e) < 0) {
             rc = 2;
             goto fail;
         }
-        if (cs->ref_domain == IMG_LINEAR)
-            image_float_to_rgb8(refs[s].f.px, refs[s].f.w, refs[s].f.h, refs[s].display.px);
-        else
+        if (cs->ref_domain != IMG_LINEAR)
             run_warn_display_reference(c->name, cs->ref_path);
     }
     for (int i = 0; i < c->n_items; i++)
@@ -285,7 +308,8 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     const char *outs[] = {summary, chart, report, verdict, NULL};
     int lock = -1;
     verdict_study_free(&c->verdict);
-    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0)
+    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
+        study_machines_mark(c, o->out_dir, e) < 0)
         goto fail;
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||

@@ -85,6 +85,10 @@ static inline int compare_index(const struct compare *c, int scene, int variant,
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
 
+/* Render combination i alone (the queue's fan-out: one render per queue entry), its scene's
+   reference prepared first (reused from the cache when there). 0, 1 or 2 as compare_run. */
+int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e);
+
 /* The line that ends a compare job's run: its images, references, time, output folder and the
    verdict at equal CPU time ("compare: 120 images (2 scenes x ...), references: 1 rendered, ...,
    41 s -> out/compare/; at equal CPU time: ..."). */

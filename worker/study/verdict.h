@@ -96,6 +96,8 @@ struct verdict_study {
     char name[VERDICT_LABEL_MAX];
     int n_scenes;
     struct verdict_scene *scenes;
+    char machines[VERDICT_TEXT_MAX]; /* the CPU models its images were rendered on, "; "-joined, when
+                                        more than one (study_machines.h): equal CPU time mixes them */
 };
 
 /* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */

@@ -95,6 +95,10 @@ char *verdict_json_text(const char *job, const struct verdict_study *s, int n)
     for (int i = 0; i < n; i++) {
         json_begin_object(&j, NULL);
         json_string(&j, "study", s[i].name);
+        if (s[i].machines[0]) { /* its equal-CPU-time rankings mix CPU models (study_machines.h) */
+            json_bool(&j, "equal_cpu_time_mixes_machines", 1);
+            json_string(&j, "cpu_models", s[i].machines);
+        }
         json_begin_array(&j, "scenes");
         for (int k = 0; k < s[i].n_scenes; k++)
             json_scene(&j, &s[i].scenes[k]);
