@@ -24,6 +24,8 @@ struct fake {
 };
 
 static const double seed_factor[NS] = {0.95, 1.0, 1.05}; /* a 10% min-max range */
+/* their geometric mean: what a ranking's value is */
+#define GM cbrt(0.95 * 1.05)
 
 static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope,
                       const double *cost)
@@ -87,37 +89,46 @@ static int any_line(char (*lines)[VERDICT_TEXT_MAX], int n, const char *needle)
     return 0;
 }
 
-/* The tie rule alone: a gap beyond the larger range wins; within it, neither wins. */
+/* The rule on entries built from seeds: a gap far beyond the seeds' spread separates, one within
+   it does not, on logarithms for relMSE; reaching the common point comes first. */
 static void test_rule(void)
 {
-    struct verdict_entry a = {.value = 1.0, .lo = 0.9, .hi = 1.1}, b = {.value = 1.25, .lo = 1.2, .hi = 1.3};
-    CHECK(verdict_beats(&a, &b, 0));  /* gap 0.25 > ranges 0.2, 0.1 */
-    CHECK(!verdict_beats(&b, &a, 0)); /* higher is worse */
-    CHECK(verdict_beats(&a, &b, 1));  /* log(1.25) = 0.22 > log(1.1 / 0.9) = 0.20 */
-    b.value = 1.15, b.lo = 1.1, b.hi = 1.2;
-    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.15 < a's range 0.2 */
-    CHECK(!verdict_beats(&a, &b, 1));
-    b.lo = 0.5, b.hi = 2, b.value = 1.5;
-    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.5 < b's range 1.5 */
-    /* a wide spread at a far larger value: linear ranges would tie them, logarithms do not */
-    struct verdict_entry c = {.value = 0.01, .lo = 0.009, .hi = 0.011},
-                         d = {.value = 4.5, .lo = 1.9, .hi = 8.7};
-    CHECK(!verdict_beats(&c, &d, 0) && verdict_beats(&c, &d, 1));
-    d.unreached = 1, d.value = d.lo = d.hi = 0.001; /* better figures, but not at the common point */
-    CHECK(verdict_beats(&c, &d, 1) && !verdict_beats(&d, &c, 1));
+    struct verdict_entry e[2];
+    const double a[3] = {0.9, 1.0, 1.1}, b[3] = {1.9, 2.0, 2.1}, c[3] = {0.5, 1.5, 3};
+    verdict_entry_start(&e[0], 0), verdict_entry_start(&e[1], 1);
+    for (int k = 0; k < 3; k++)
+        verdict_entry_add(&e[0], a[k], 1), verdict_entry_add(&e[1], b[k], 1);
+    verdict_entry_add(&e[0], -1, 1); /* not a relMSE: left out */
+    verdict_entry_end(&e[0], 1), verdict_entry_end(&e[1], 1);
+    CHECK(e[0].n == 3 && e[0].lo == 0.9 && e[0].hi == 1.1);
+    CHECK_NEAR(e[0].value, exp((log(0.9) + log(1.1)) / 3), 1e-12); /* the geometric mean */
+    struct verdict_ranking r = {.log_scale = 1, .n = 2, .e = e};
+    verdict_rank(&r);
+    CHECK(r.status == VERDICT_CLEAR && e[0].variant == 0 && verdict_beats(&r, &e[0], &e[1]));
+    CHECK(!verdict_beats(&r, &e[1], &e[0])); /* higher is worse */
+    verdict_entry_start(&e[1], 1);
+    for (int k = 0; k < 3; k++)
+        verdict_entry_add(&e[1], c[k], 1); /* a wide spread around a close mean */
+    verdict_entry_end(&e[1], 1);
+    verdict_rank(&r);
+    CHECK(r.status == VERDICT_INCONCLUSIVE && !verdict_beats(&r, &e[0], &e[1]));
+    e[0].unreached = 1; /* better figures, but not at the common point */
+    verdict_rank(&r);
+    CHECK(e[0].variant == 1 && e[1].variant == 0 && e[1].rank == 2);
 }
 
-/* Ties are not transitive: a wide spread at a worse mean is beaten by none, while a narrow one
-   between them is beaten; the ranking stays best first by rank (found in e2e_studies' tiny runs). */
+/* Separation is not transitive: a wide spread at a worse mean is beaten by none, while a narrow
+   one between them is beaten; the ranking stays best first by rank (found in e2e_studies' tiny
+   runs with the rule before). */
 static void test_rank_order(void)
 {
-    struct verdict_entry e[3] = {{.variant = 0, .value = 1.0, .lo = 0.99, .hi = 1.01},
-                                 {.variant = 1, .value = 1.2, .lo = 0.5, .hi = 2.0},
-                                 {.variant = 2, .value = 1.1, .lo = 1.09, .hi = 1.11}};
+    struct verdict_entry e[3] = {{.variant = 0, .n = 8, .mean = 0.0, .se = 0.01},
+                                 {.variant = 1, .n = 8, .mean = 0.2, .se = 0.5},
+                                 {.variant = 2, .n = 8, .mean = 0.1, .se = 0.01}};
     struct verdict_ranking r = {.log_scale = 1, .n = 3, .e = e};
-    verdict_rank(&r, 3);
+    verdict_rank(&r);
     CHECK(e[0].variant == 0 && e[0].rank == 1);
-    CHECK(e[1].variant == 1 && e[1].rank == 1); /* nobody beats the wide spread */
+    CHECK(e[1].variant == 1 && e[1].rank == 1); /* nobody tells the wide spread apart */
     CHECK(e[2].variant == 2 && e[2].rank == 2); /* variant 0 beats it */
     CHECK(r.status == VERDICT_TIE);
 }
@@ -134,18 +145,19 @@ static void test_clear_winner(void)
     CHECK_NEAR(s.by_samples.at, 1600, 1e-9);
     CHECK(s.by_samples.e[0].variant == 0 && rank_of(&s.by_samples, 0) == 1);
     CHECK(rank_of(&s.by_samples, 1) == 2 && rank_of(&s.by_samples, 2) == 3);
-    CHECK_NEAR(s.by_samples.e[0].value, 1.0 / 1600, 1e-12);
+    CHECK_NEAR(s.by_samples.e[0].value, GM * 1.0 / 1600, 1e-12);
     CHECK_NEAR(s.by_samples.e[0].hi - s.by_samples.e[0].lo, 0.1 / 1600, 1e-12);
     /* equal CPU time: the cheapest densest point, 1.6 s; gamma (4x the cost per sample) is read at
        its 400-spp point there */
     CHECK(s.by_cpu.status == VERDICT_CLEAR);
     CHECK_NEAR(s.by_cpu.at, 1.6, 1e-9);
-    CHECK_NEAR(s.by_cpu.e[2].value, 4.0 / 400, 1e-9);
+    CHECK_NEAR(s.by_cpu.e[2].value, GM * 4.0 / 400, 1e-9);
     CHECK(s.by_slope.status == VERDICT_INCONCLUSIVE); /* every slope is -1 */
     CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
     CHECK(s.n_failures == 0);
     CHECK(s.n_warnings == 1 && strstr(s.warnings[0], "by slope, ") &&
-          strstr(s.warnings[0], "differ by less than their spread"));
+          strstr(s.warnings[0],
+                 "are not told apart by their seeds (Welch's t test, Holm-corrected, alpha 0.05)"));
     CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
     char w[64];
     verdict_winner(&s, w, sizeof w);
@@ -165,8 +177,8 @@ static void test_tie_and_inconclusive(void)
     CHECK(rank_of(&s.by_samples, 0) == 1 && rank_of(&s.by_samples, 1) == 1 && rank_of(&s.by_samples, 2) == 3);
     CHECK(any_line(s.sentences, s.n_sentences, "alpha, beta tie"));
     CHECK(any_line(s.warnings, s.n_warnings,
-                   "at equal samples, alpha, beta differ by less than their spread "
-                   "across seeds: tied, no single winner"));
+                   "at equal samples, alpha, beta are not told apart by their seeds "
+                   "(Welch's t test, Holm-corrected, alpha 0.05): tied, no single winner"));
     char w[64];
     verdict_winner(&s, w, sizeof w);
     CHECK(!strcmp(w, "alpha = beta (tie)"));
@@ -256,7 +268,7 @@ static void test_unreached(void)
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_samples.e[0].variant == 2 && s.by_samples.status == VERDICT_CLEAR); /* best per sample */
     CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
-    CHECK_NEAR(s.by_cpu.e[2].value, 0.5 / 100, 1e-12); /* its cheapest point's figure */
+    CHECK_NEAR(s.by_cpu.e[2].value, GM * 0.5 / 100, 1e-12); /* its cheapest point's figure */
     CHECK(any_line(s.warnings, s.n_warnings, "gamma cannot be had"));
     verdict_scene_free(&s);
 }

@@ -85,13 +85,8 @@ static double value_at(const struct verdict_figures *f, const double *x, int v, 
 /* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
 static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e)
 {
-    int n = 0;
-    for (int k = 0; k < f->n_seeds; k++) {
-        double y = f->relmse[verdict_at(f, v, p, k)];
-        if (isfinite(y))
-            e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
-    }
-    e->value = n ? e->value / n : NAN;
+    for (int k = 0; k < f->n_seeds; k++)
+        verdict_entry_add(e, f->relmse[verdict_at(f, v, p, k)], 1);
 }
 
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
@@ -111,27 +106,20 @@ static void rank_at(const struct verdict_figures *f, const double *x, struct ver
     r->log_scale = 1;
     for (int v = 0; v < f->n_variants; v++) {
         struct verdict_entry *e = &r->e[v];
-        *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
-        int cheapest = 0, n = 0;
+        verdict_entry_start(e, v);
+        int cheapest = 0;
         for (int p = 1; p < f->n_points; p++)
             if (mean_x(f, x, v, p) < mean_x(f, x, v, cheapest))
                 cheapest = p;
         if (mean_x(f, x, v, cheapest) > at * VERDICT_BEYOND) {
             e->unreached = 1;
             point_figures(f, v, cheapest, e);
-            continue;
-        }
-        for (int k = 0; k < f->n_seeds; k++) {
-            double y = value_at(f, x, v, k, at);
-            if (isfinite(y))
-                e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
-        }
-        if (n)
-            e->value /= n;
-        else
-            e->value = e->lo = e->hi = NAN;
+        } else
+            for (int k = 0; k < f->n_seeds; k++)
+                verdict_entry_add(e, value_at(f, x, v, k, at), 1);
+        verdict_entry_end(e, 1);
     }
-    verdict_rank(r, f->n_seeds);
+    verdict_rank(r);
 }
 
 /* Whether v's points change its samples per pixel by more than 5% (a slope needs them to). */
@@ -152,18 +140,15 @@ static void rank_slopes(const struct verdict_figures *f, struct verdict_ranking 
         if (!samples_vary(f, v))
             continue;
         struct verdict_entry *e = &r->e[r->n];
-        *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
-        int n = 0;
+        verdict_entry_start(e, v);
         double a, b;
         for (int k = 0; k < f->n_seeds; k++)
             if (fit(f, f->spp, v, k, &a, &b) == 0)
-                e->value += b, e->lo = fmin(e->lo, b), e->hi = fmax(e->hi, b), n++;
-        if (n) {
-            e->value /= n;
-            r->n++;
-        }
+                verdict_entry_add(e, b, 0);
+        verdict_entry_end(e, 0);
+        r->n += e->n > 0;
     }
-    verdict_rank(r, f->n_seeds);
+    verdict_rank(r);
 }
 
 static struct verdict_failure *add_failure(struct verdict_scene *out, enum verdict_failure_kind kind, int v,

@@ -52,13 +52,16 @@ static inline int verdict_at(const struct verdict_figures *f, int v, int p, int 
 
 enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
 
-/* One variant in a ranking: its figure's mean over seeds and the seeds' min and max. */
+/* One variant in a ranking (verdict_rank.h fills it): its figure over the seeds. */
 struct verdict_entry {
     int variant;
-    double value, lo, hi;
-    int rank;      /* 1 + the number of variants that beat it (verdict_beats) */
-    int unreached; /* its cheapest point costs far more than the common point: it cannot be had
-                      there (value, lo, hi: its cheapest point's) */
+    double value, lo, hi; /* relMSE: the geometric mean over seeds, else the mean; the seeds' min, max */
+    double mean, se;      /* the ranked figure (log relMSE, or the slope): mean and standard error */
+    double m2;            /* sum of squared deviations from mean (while adding seeds) */
+    int n;                /* seeds measured */
+    int rank;             /* 1 + the number of variants that beat it (verdict_beats) */
+    int unreached;        /* its cheapest point costs far more than the common point: it cannot be had
+                             there (value, lo, hi: its cheapest point's) */
 };
 
 /* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
@@ -67,6 +70,8 @@ struct verdict_ranking {
     double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
     int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
     enum verdict_status status;
+    double p_cut; /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
+                     separated; -1 when none is */
     int n;
     struct verdict_entry *e;
 };

@@ -5,16 +5,19 @@
 #include <string.h>
 
 #include "verdict_out.h"
+#include "verdict_rank.h"
 
 #define TIE_RULE                                                                                             \
-    "Two variants are ranked apart only when the gap between their means over the seeds exceeds the "        \
-    "larger of their two min-max ranges across seeds (for relMSE on its logarithm: ratios count); a "        \
-    "variant's rank is 1 + the number of variants ahead of it by that rule. Equal samples and equal CPU "    \
-    "time are each the largest that every variant reached (the smallest of the variants' densest points), "  \
-    "each seed's relMSE read there in log-log between its measured points; a variant whose cheapest point "  \
-    "costs over 1.25x that is not reached and ranks behind those that are. A ranking is clear when "         \
-    "one variant alone ranks 1, a tie when several do but some variant is behind, inconclusive when none "   \
-    "is ahead of another or there is only one seed."
+    "Each variant's figure is its seeds' mean of log relMSE at the common point (for slopes: the mean of "   \
+    "its per-seed log-log fits), with its standard error. Two variants are ranked apart only when Welch's "  \
+    "t test rejects equal means, Holm-corrected across every pair of the ranking, at alpha 0.05: the "       \
+    "chance of separating any pair of truly equal variants is at most about 5%. A variant's rank is 1 + "    \
+    "the number of variants ranked apart ahead of it; best first by rank, then mean. Equal samples and "     \
+    "equal CPU time are each the largest that every variant reached (the smallest of the variants' "         \
+    "densest points), each seed's relMSE read there in log-log between its measured points; a variant "      \
+    "whose cheapest point costs over 1.25x that is not reached and ranks behind those that are. A ranking "  \
+    "is clear when one variant alone ranks 1, a tie when several do but some variant is behind, "            \
+    "inconclusive when none is ahead of another or there is only one seed."
 
 static const char *status_name(enum verdict_status s)
 {
@@ -44,6 +47,7 @@ static void json_ranking(struct json *j, const char *key, const char *at_key, co
         json_string(j, "variant", v->variants[e->variant]);
         json_uint(j, "rank", (uint64_t)e->rank);
         json_number(j, value_key, e->value);
+        json_number(j, "standard_error", e->se);
         json_number(j, "min", e->lo);
         json_number(j, "max", e->hi);
         json_bool(j, "reached", !e->unreached);
@@ -89,7 +93,10 @@ char *verdict_json_text(const char *job, const struct verdict_study *s, int n)
     json_init(&j);
     json_begin_object(&j, NULL);
     json_string(&j, "job", job);
-    json_string(&j, "error", "relMSE in linear radiance against each scene's reference, mean over seeds");
+    json_string(&j, "error",
+                "relMSE in linear radiance against each scene's reference: mean over pixels and channels of "
+                "(v - r)^2 / (r^2 + 0.01); ranked on its mean log over seeds (value: the geometric mean)");
+    json_number(&j, "alpha", VERDICT_ALPHA);
     json_string(&j, "tie_rule", TIE_RULE);
     json_begin_array(&j, "studies");
     for (int i = 0; i < n; i++) {

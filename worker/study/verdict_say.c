@@ -90,8 +90,11 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
         char top[VERDICT_TEXT_MAX];
         group(out, r, 1, top);
         if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
-            append(w, "%s, %s differ by less than their spread across seeds: %s", ranking_name(out, r), top,
-                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
+            append(
+                w,
+                "%s, %s are not told apart by their seeds (Welch's t test, Holm-corrected, alpha %.2g): %s",
+                ranking_name(out, r), top, VERDICT_ALPHA,
+                r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
             if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
                 append(w,
@@ -110,8 +113,7 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
     if (r->n < 2)
         return;
     if (r->status == VERDICT_INCONCLUSIVE) {
-        append(s, "%s on %s, the variants differ by less than their seeds' spread: inconclusive", at,
-               out->scene);
+        append(s, "%s on %s, no two variants are told apart by their seeds: inconclusive", at, out->scene);
         append(s, out->n_seeds < 2 ? " (one seed)." : " (more seeds or samples would tell).");
         return;
     }
@@ -125,7 +127,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
                b->value, next->value / b->value, out->variants[next->variant]);
     else {
         group(out, r, next->rank, rest);
-        append(s, "%s on %s, %s tie within their seeds' spread, ahead of %s.", at, out->scene, top, rest);
+        append(s, "%s on %s, %s tie (not told apart by their seeds), ahead of %s.", at, out->scene, top,
+               rest);
     }
 }
 
@@ -173,13 +176,13 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
             const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
             append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
                    per_sample(f, v) / per_sample(f, j), f->variants[j]);
-            if (verdict_beats(a, b, 1))
+            if (verdict_beats(&out->by_samples, a, b))
                 append(s, "%.2fx lower relMSE at equal samples.", b->value / a->value);
-            else if (verdict_beats(b, a, 1))
+            else if (verdict_beats(&out->by_samples, b, a))
                 append(s, "nothing at equal samples (its relMSE is %.2fx %s's).", a->value / b->value,
                        f->variants[j]);
             else
-                append(s, "nothing measurable at equal samples (within the seeds' spread).");
+                append(s, "nothing measurable at equal samples (not told apart by the seeds).");
             break;
         }
     }
@@ -188,7 +191,7 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
             !(s = next_line(out->sentences, &out->n_sentences)))
             continue;
         const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
-        int pool = verdict_beats(a, b, 1), fresh = verdict_beats(b, a, 1);
+        int pool = verdict_beats(&out->by_cpu, a, b), fresh = verdict_beats(&out->by_cpu, b, a);
         if (pool && b->unreached)
             append(s,
                    "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs "
@@ -200,10 +203,10 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
                    f->variants[pool ? u : v], pool ? "the pool" : "fresh sets", f->variants[pool ? v : u],
                    pool ? "fresh sets" : "the pool", fmin(a->value, b->value), fmax(a->value, b->value));
         else
-            append(
-                s,
-                "At equal CPU time on %s, the pool %s and the fresh sets %s tie within their seeds' spread.",
-                out->scene, f->variants[u], f->variants[v]);
+            append(s,
+                   "At equal CPU time on %s, the pool %s and the fresh sets %s tie (not told apart by their "
+                   "seeds).",
+                   out->scene, f->variants[u], f->variants[v]);
     }
 }
 
