@@ -38,7 +38,8 @@ check "sidecar scores against the cached reference" grep -q '"reference": ".*/.c
 check "sidecar has relmse" grep -q '"relmse": [0-9]' "$cdir/checker-jitter-t25-s2.json"
 check "sidecar threshold 25" grep -q '"threshold": 25,' "$cdir/checker-jitter-t25-s2.json"
 check "sidecar seed 2" grep -q '"seed": 2,' "$cdir/checker-jitter-t25-s2.json"
-check "one cached reference per scene, a float image" [ "$(ls "$T"/out/.cache/ref-*.exr 2>/dev/null | wc -l)" -eq 2 ]
+check "one cached reference per scene, a float image" [ "$(ls "$T"/out/.cache/ref-*[0-9a-f][0-9a-f].exr 2>/dev/null | wc -l)" -eq 2 ]
+check "each the mean of two cached halves" [ "$(ls "$T"/out/.cache/ref-*-[ab].exr 2>/dev/null | wc -l)" -eq 4 ]
 check "no 8-bit cached reference" [ "$(ls "$T"/out/.cache/ref-*.png 2>/dev/null | wc -l)" -eq 0 ]
 check "every render keeps its float image beside its PNG" \
     [ "$(ls "$cdir"/*.exr | wc -l)" -eq 40 ] && [ -s "$cdir/checker-jitter-t25-s2.exr" ]
@@ -55,7 +56,7 @@ check "every row has 18 fields, a relmse, a robust one no larger, linear, and 8-
     [ "$(awk -F, 'NR > 1 && NF == 18 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
 # the row's relmse is its sidecar's and worker diff's of the float images (to the CSV's 6 digits)
 row=$(grep ',checker-jitter-t25-s2.png$' "$csv")
-ref=$(ls "$T"/out/.cache/ref-checker-*.exr)
+ref=$(ls "$T"/out/.cache/ref-checker-*[0-9a-f][0-9a-f].exr)
 drel=$("$WORKER" diff "$ref" "$cdir/checker-jitter-t25-s2.exr" | awk '$1 == "relmse" {print $2}')
 srel=$(sed -n 's/.*"relmse": \([0-9.e+-]*\).*/\1/p' "$cdir/checker-jitter-t25-s2.json")
 check "summary.csv relmse = the sidecar's = worker diff's on the EXRs ($row; $srel; $drel)" \

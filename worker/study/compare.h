@@ -28,6 +28,10 @@ struct compare_scene {
     int ref_reused;               /* the cached reference was reused */
     double ref_wall_s;            /* seconds its render took (now or when it was cached) */
     double ref_spp;               /* its samples per pixel (from its render or sidecar), 0 unknown */
+    /* A settings reference is the mean of two independent halves (compare_ref.c); from their
+       difference: its own relMSE, its mean radiance and that mean's standard error. NAN: unknown
+       (an image reference: its mean radiance is read at the verdict, its noise is not known). */
+    double ref_relmse, ref_radiance, ref_radiance_se;
 };
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
