@@ -19,13 +19,25 @@ struct fake {
     struct verdict_figures f;
     const char *variants[NV], *samplers[NV], *points[NP];
     int pools[NV];
-    double spp[NV * NP * NS], cpu[NV * NP * NS], rel[NV * NP * NS], share[NV * NP * NS], repeat[NV * NP];
+    double spp[NV * NP * NS], cpu[NV * NP * NS], rel[NV * NP * NS], share[NV * NP * NS];
+    double rel_of_mean[NV * NP], bias_rel[NV * NP], radiance[NV * NP * NS];
     uint64_t nonfinite[NV * NP * NS];
 };
 
 static const double seed_factor[NS] = {0.95, 1.0, 1.05}; /* a 10% min-max range */
 /* their geometric mean: what a ranking's value is */
 #define GM cbrt(0.95 * 1.05)
+
+/* The seeds' mean image's relMSE at (v, p) that makes `share` of the error repeat in every seed:
+   share = (n rel_of_mean / mean_rel - 1) / (n - 1). */
+static void set_share(struct fake *x, int v, int p, double share)
+{
+    int n = x->f.n_seeds;
+    double mr = 0;
+    for (int k = 0; k < n; k++)
+        mr += x->rel[verdict_at(&x->f, v, p, k)] / n;
+    x->rel_of_mean[v * NP + p] = mr * (1 + share * (n - 1)) / n;
+}
 
 static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope,
                       const double *cost)
@@ -47,22 +59,31 @@ static void fake_init(struct fake *x, int nv, int ns, const double *k, const dou
                                     .relmse = x->rel,
                                     .sampler_share = x->share,
                                     .nonfinite = x->nonfinite,
-                                    .repeat_share = x->repeat,
-                                    .ref_spp = 10000};
+                                    .rel_of_mean = x->rel_of_mean,
+                                    .bias_rel = x->bias_rel,
+                                    .radiance = x->radiance,
+                                    .ref_spp = 10000,
+                                    .ref_relmse = NAN,
+                                    .ref_radiance = NAN,
+                                    .ref_radiance_se = NAN};
     x->points[0] = "threshold 10", x->points[1] = "threshold 5", x->points[2] = "threshold 2.5";
     for (int v = 0; v < nv; v++) {
         x->variants[v] = names[v];
         x->samplers[v] = "jitter";
         for (int p = 0; p < NP; p++) {
-            x->repeat[v * NP + p] = 0.1;
+            x->bias_rel[v * NP + p] = 0;
             for (int s = 0; s < ns; s++) {
                 int i = verdict_at(&x->f, v, p, s);
                 x->spp[i] = spp[p];
                 x->cpu[i] = spp[p] * cost[v];
                 x->rel[i] = k[v] * pow(spp[p], slope[v]) * (ns > 1 ? seed_factor[s] : 1);
+                x->radiance[i] = 1;
             }
         }
     }
+    for (int v = 0; v < nv; v++)
+        for (int p = 0; p < NP; p++)
+            set_share(x, v, p, 0.1);
 }
 
 static int rank_of(const struct verdict_ranking *r, int v)
@@ -226,7 +247,7 @@ static void test_failures_and_guards(void)
     const double k[] = {1, 1.5, 3, 2}, slope[] = {-1, -1, -1, -1}, cost[] = {1e-3, 1e-3, 3e-3, 1e-3};
     fake_init(&x, 4, NS, k, slope, cost);
     x.samplers[1] = "uniform";
-    x.repeat[1 * NP + 0] = 0.9; /* uniform: most of its error repeats at the sparsest point */
+    set_share(&x, 1, 0, 0.9); /* uniform: most of its error repeats at the sparsest point */
     x.samplers[2] = "poisson";
     for (int p = 0; p < NP; p++)
         for (int k2 = 0; k2 < NS; k2++) {
@@ -273,8 +294,84 @@ static void test_unreached(void)
     verdict_scene_free(&s);
 }
 
+/* A synthetic study where beta's seeds' mean radiance sits 2% above the reference's (a biased
+   sampler, like the seed's square-domain Poisson sets): flagged `biased` with the percentage;
+   alpha, off by a fraction of a standard error, is not; and the repeated share splits into bias
+   and pattern. */
+static void test_biased(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 1, 1}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 1e-3};
+    static const double noise[NS] = {-0.004, 0.001, 0.003};
+    fake_init(&x, 3, NS, k, slope, cost);
+    for (int p = 0; p < NP; p++)
+        for (int k2 = 0; k2 < NS; k2++) {
+            x.radiance[verdict_at(&x.f, 0, p, k2)] = 1.0 + noise[k2];
+            x.radiance[verdict_at(&x.f, 1, p, k2)] = 1.02 + noise[k2];
+            x.radiance[verdict_at(&x.f, 2, p, k2)] =
+                1.0 + 4 * noise[k2] + (p == 2 ? 0.004 : 0); /* within 4 SE */
+        }
+    x.f.ref_radiance = 1.0, x.f.ref_radiance_se = 0.001;
+    set_share(&x, 1, 2, 0.8);
+    x.bias_rel[1 * NP + 2] = 0.6 * x.rel[verdict_at(&x.f, 1, 2, 1)]; /* 0.6 of the mean relMSE */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(has_failure(&s, VERDICT_BIASED, 1) && !has_failure(&s, VERDICT_BIASED, 0) &&
+          !has_failure(&s, VERDICT_BIASED, 2));
+    for (int i = 0; i < s.n_failures; i++)
+        if (s.failures[i].kind == VERDICT_BIASED) {
+            CHECK_NEAR(s.failures[i].value, 2.0, 1e-9); /* percent */
+            CHECK(s.failures[i].detail > 4);
+            CHECK(strstr(s.failures[i].text,
+                         "beta: biased: its seeds' mean radiance at threshold 10 is +2.00% off"));
+        }
+    CHECK(any_line(s.sentences, s.n_sentences, "beta is biased on board"));
+    CHECK_NEAR(s.repeat[1 * NP + 2], 0.8, 1e-9);
+    CHECK(s.repeat_bias[1 * NP + 2] > 0.59 && s.repeat_bias[1 * NP + 2] < 0.61);
+    for (int i = 0; i < s.n_failures; i++)
+        if (s.failures[i].kind == VERDICT_STRUCTURED)
+            CHECK(strstr(s.failures[i].text,
+                         "80% of its error at threshold 2.5 repeats in every seed (60% a bias"));
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    CHECK(json && strstr(json, "\"kind\": \"biased\"") && strstr(json, "\"bias_share\""));
+    free(json);
+    verdict_scene_free(&s);
+}
+
+/* The reference's own relMSE is subtracted before ranking and fitting, and a point within 2x of it
+   is warned: alpha's relMSE k / spp plus a reference floor of 1e-3 fits its true slope -1. */
+static void test_reference_noise(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 2}, slope[] = {-1, -1}, cost[] = {1e-3, 1e-3};
+    fake_init(&x, 2, NS, k, slope, cost);
+    for (int i = 0; i < 2 * NP * NS; i++)
+        x.rel[i] += 1e-3;
+    x.f.ref_relmse = 1e-3;
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
+    CHECK_NEAR(s.by_samples.e[0].value, GM / 1600, 1e-12);
+    CHECK_NEAR(s.ref_relmse, 1e-3, 1e-15);
+    CHECK(any_line(s.warnings, s.n_warnings,
+                   "alpha's relMSE is within 2x of the reference's own 0.001 at threshold 2.5"));
+    CHECK(!any_line(s.warnings, s.n_warnings, "at threshold 5 ("));
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    CHECK(json && strstr(json, "\"reference_relmse\": 0.001"));
+    free(json);
+    verdict_scene_free(&s);
+    x.f.ref_relmse = NAN; /* unknown: the floor stays in, the slope flattens */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_slope.e[0].value > -0.9);
+    verdict_scene_free(&s);
+}
+
 int main(void)
 {
+    test_biased();
+    test_reference_noise();
     test_unreached();
     test_rule();
     test_rank_order();

@@ -10,6 +10,7 @@
 
 #include "compare_ref.h"
 #include "compare_stats.h"
+#include "report_chart.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
@@ -290,7 +291,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
         write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
-        write_text(dir, "chart.svg", compare_stats_chart_svg(c), e) < 0 ||
+        write_text(dir, "chart.svg", report_chart_svg(c), e) < 0 ||
         write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
         outdir_unlock(lock);

@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "compare_stats.h"
+#include "report_chart.h"
+#include "report_stability.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "report_closeup.h"
@@ -142,7 +144,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
-        char *line = compare_stats_stability(c, s, v, dir, has_ref ? &reff : NULL);
+        char *line = report_stability(c, s, v);
         sbuf_printf(b, "<li><b>");
         sbuf_escape(b, c->variants[v]);
         sbuf_printf(b, "</b>: ");
@@ -212,7 +214,7 @@ static void table(struct sbuf *b, const struct compare *c)
 char *report_html(const struct compare *c, const char *dir, struct err *e)
 {
     struct sbuf b = {0};
-    char *svg = compare_stats_chart_svg(c);
+    char *svg = report_chart_svg(c);
     if (!svg) {
         err_set(e, NULL, 0, 0, "out of memory drawing the chart");
         return NULL;

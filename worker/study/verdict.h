@@ -16,6 +16,19 @@
 /* A share of the error that repeats in every seed above this is structured (aliasing, a pattern,
    a bias): pure noise averages away across seeds. */
 #define VERDICT_STRUCTURED_SHARE 0.5
+/* A variant whose seeds' mean radiance is more standard errors than this off the reference's (the
+   seeds' spread and the reference's noise together) is biased. */
+#define VERDICT_BIAS_SE 4
+/* The bias check needs this many seeds: with fewer, their spread is itself too uncertain (4
+   standard errors from 2 seeds happen by chance 16% of the time, from 8 seeds 0.5%). */
+#define VERDICT_BIAS_SEEDS 4
+/* A point's relMSE within this factor of the reference's own is dominated by the reference's
+   noise: warned. */
+#define VERDICT_REF_NOISE 2
+/* A sweep "changes the samples" when its points' mean samples per pixel span more than this ratio:
+   a light_threshold, max_depth or poisson_pool sweep does not, though a poisson pixel sampler's
+   counts move by a hair from point to point. */
+#define VERDICT_SAMPLES_VARY 1.05
 /* Error "stops falling" at a step whose local slope of log relMSE against log samples is above
    this (noise alone falls as spp^-1). */
 #define VERDICT_STALL_SLOPE (-0.3)
@@ -41,8 +54,16 @@ struct verdict_figures {
     const double *relmse;        /* against the reference; NAN when not measured */
     const double *sampler_share; /* fraction of CPU time drawing point sets */
     const uint64_t *nonfinite;   /* samples dropped as NaN or infinite */
-    const double *repeat_share;  /* per (variant, point): error share repeating in every seed, NAN unknown */
+    const double *rel_of_mean;   /* per (variant, point): relMSE of the seeds' mean image; NAN unknown */
+    const double *bias_rel;      /* per (variant, point): the relMSE the mean image's offset in mean
+                                    radiance alone gives (the reference scaled by it); NAN unknown */
+    const double *radiance;      /* per (variant, point, seed): the image's mean radiance; NAN unknown */
     double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
+    double ref_relmse;           /* the reference's own relMSE (from its halves), NAN unknown */
+    double ref_radiance;         /* the reference's mean radiance, NAN unknown */
+    double ref_radiance_se;      /* its standard error (from its halves), NAN unknown */
+    int reference_unread;        /* the reference's pixels could not be read: no checks on images */
+    int images_unread;           /* (variant, point)s whose seed images could not be read */
 };
 
 static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)
@@ -76,18 +97,31 @@ struct verdict_ranking {
     struct verdict_entry *e;
 };
 
-enum verdict_failure_kind { VERDICT_STRUCTURED, VERDICT_STALLS, VERDICT_NONFINITE, VERDICT_SHARE };
+enum verdict_failure_kind {
+    VERDICT_STRUCTURED,
+    VERDICT_STALLS,
+    VERDICT_NONFINITE,
+    VERDICT_SHARE,
+    VERDICT_BIASED
+};
+#define VERDICT_FAILURE_KINDS 5
 
 struct verdict_failure {
     enum verdict_failure_kind kind;
     int variant, point; /* point: where it shows most (-1: throughout) */
-    double value;       /* the repeated share, the local slope, the samples dropped, the CPU share */
+    double value;       /* the repeated share, the local slope, the samples dropped, the CPU share, the
+                           bias in percent of the reference's mean radiance */
+    double detail;      /* structured: the share of the error that is bias; biased: standard errors */
     char text[VERDICT_TEXT_MAX];
 };
 
 struct verdict_scene {
     char study[VERDICT_LABEL_MAX], scene[VERDICT_LABEL_MAX];
-    int n_variants, n_seeds;
+    int n_variants, n_points, n_seeds;
+    double ref_relmse;   /* the reference's own relMSE, subtracted from every relMSE ranked; NAN unknown */
+    double *repeat;      /* per (variant, point): the share of the error repeating in every seed, NAN */
+    double *repeat_bias; /* per (variant, point): the part of that share a bias in mean radiance makes */
+    int *samples_vary;   /* per variant: verdict_samples_vary over its points */
     char (*variants)[VERDICT_LABEL_MAX];
     struct verdict_ranking by_samples, by_cpu, by_slope;
     int n_failures, n_warnings, n_sentences;
@@ -102,6 +136,10 @@ struct verdict_study {
     int n_scenes;
     struct verdict_scene *scenes;
 };
+
+/* Whether a sweep whose points' mean samples per pixel run from lo to hi changes the samples (by
+   more than VERDICT_SAMPLES_VARY): a slope and "stops falling" need it to. */
+int verdict_samples_vary(double lo, double hi);
 
 /* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);

@@ -26,7 +26,8 @@ static const char *status_name(enum verdict_status s)
 
 static const char *kind_name(enum verdict_failure_kind k)
 {
-    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share"};
+    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
+                                        "biased"};
     return names[k];
 }
 
@@ -62,6 +63,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_begin_object(j, NULL);
     json_string(j, "scene", v->scene);
     json_uint(j, "seeds", (uint64_t)v->n_seeds);
+    json_number(j, "reference_relmse", v->ref_relmse);
     json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
     json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
     json_ranking(j, "slopes", NULL, "slope", v, &v->by_slope);
@@ -72,6 +74,8 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         json_string(j, "variant", v->variants[x->variant]);
         json_string(j, "kind", kind_name(x->kind));
         json_number(j, "value", x->value);
+        if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
+            json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
         json_string(j, "text", x->text);
         json_end_object(j);
     }

@@ -39,8 +39,18 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
     x->text[0] = 0;
     switch (x->kind) {
     case VERDICT_STRUCTURED:
-        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed (aliasing, a pattern or a bias)",
-               v, 100 * x->value, at);
+        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed", v, 100 * x->value, at);
+        if (isfinite(x->detail))
+            append(x->text, " (%.0f%% a bias in mean radiance, %.0f%% a pattern: aliasing or structure)",
+                   100 * x->detail, 100 * (x->value - x->detail));
+        else
+            append(x->text, " (aliasing, a pattern or a bias)");
+        break;
+    case VERDICT_BIASED:
+        append(x->text,
+               "%s: biased: its seeds' mean radiance at %s is %+.2f%% off the reference's (%.1f standard "
+               "errors)",
+               v, at, x->value, x->detail);
         break;
     case VERDICT_STALLS:
         append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
@@ -84,6 +94,29 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                "the reference has %.0f samples per pixel, fewer than %dx the densest point's %.0f: its own "
                "noise is a large part of the error measured there",
                f->ref_spp, VERDICT_REF_FACTOR, densest);
+    if ((f->reference_unread || f->images_unread) && (w = next_line(out->warnings, &out->n_warnings)))
+        append(w,
+               "skipped: the share of the error that repeats in every seed, its split into bias and pattern, "
+               "and the bias check %s (%s)",
+               f->reference_unread ? "everywhere" : "where images are missing",
+               f->reference_unread ? "the reference image could not be read"
+                                   : "some seed images could not be read");
+    for (int v = 0; v < f->n_variants && f->ref_relmse > 0; v++) {
+        char near[VERDICT_TEXT_MAX] = "";
+        for (int p = 0; p < f->n_points; p++) {
+            double sum = 0;
+            for (int k = 0; k < f->n_seeds; k++)
+                sum += f->relmse[verdict_at(f, v, p, k)];
+            if (sum / f->n_seeds < VERDICT_REF_NOISE * f->ref_relmse)
+                append(near, "%s%s (%.3g)", near[0] ? ", " : "", point_name(f, p), sum / f->n_seeds);
+        }
+        if (near[0] && (w = next_line(out->warnings, &out->n_warnings)))
+            append(
+                w,
+                "%s's relMSE is within %dx of the reference's own %.3g at %s: the reference's noise is most "
+                "of it there (it is subtracted; a denser reference would tell more)",
+                f->variants[v], VERDICT_REF_NOISE, f->ref_relmse, near);
+    }
     const struct verdict_ranking *rs[] = {&out->by_samples, &out->by_cpu, &out->by_slope};
     for (int i = 0; i < 3 && f->n_seeds > 1; i++) {
         const struct verdict_ranking *r = rs[i];
@@ -236,6 +269,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                    "averages it away.",
                    v, strcmp(f->samplers[x->variant], "uniform") ? "has structured error" : "aliases",
                    out->scene, 100 * x->value, at);
+        else if (x->kind == VERDICT_BIASED)
+            append(
+                s,
+                "%s is biased on %s: its mean radiance at %s is %+.2f%% off the reference's (%.1f standard "
+                "errors), so more samples or seeds will not bring it to the reference.",
+                v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_STALLS)
             append(s,
                    "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.",
