@@ -107,6 +107,29 @@ static void mean_of_halves(struct compare_scene *cs, struct rgbf *a, const struc
     cs->ref_radiance_se = sqrt(var) / (double)n;
 }
 
+void compare_ref_measure(struct compare_scene *cs)
+{
+    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
+    const char *dot = strrchr(cs->ref_path, '.');
+    int stem = dot ? (int)(dot - cs->ref_path) : (int)strlen(cs->ref_path);
+    char path[JOB_PATH_MAX + 8];
+    struct rgbf a = {0}, b = {0};
+    struct err ignored;
+    double wall_s, spp;
+    cs->ref_spp = 0;
+    for (int h = 0; h < 2; h++) {
+        snprintf(path, sizeof path, "%.*s-%c.json", stem, cs->ref_path, "ab"[h]);
+        half_figures(path, &wall_s, &spp);
+        cs->ref_spp += spp;
+        snprintf(path, sizeof path, "%.*s-%c.exr", stem, cs->ref_path, "ab"[h]);
+        if (imgio_read_f(path, h ? &b : &a, NULL, &ignored) < 0)
+            break;
+    }
+    if (a.px && b.px && a.w == b.w && a.h == b.h)
+        mean_of_halves(cs, &a, &b);
+    image_f_free(&a), image_f_free(&b);
+}
+
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
 {
     struct compare_scene *cs = &c->scenes[s];

@@ -39,6 +39,8 @@
    to rank the densest points by. */
 #define VERDICT_REF_FACTOR 4
 #define VERDICT_LABEL_MAX 64
+/* Room for warnings and sentences per scene (verdict_scene's arrays); more are left out. */
+#define VERDICT_SAY_MAX 16
 #define VERDICT_TEXT_MAX 400
 
 /* One scene of one study, every (variant, point, seed) at verdict_at(). Arrays are the caller's. */
