@@ -242,10 +242,7 @@ void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len
         for (int k = 0; k < s[i].n_scenes && at < len; k++) {
             char w[256];
             verdict_winner(&s[i].scenes[k], w, sizeof w);
-            if (s[i].n_scenes == 1)
-                at += (size_t)snprintf(buf + at, len - at, " %s", w);
-            else
-                at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
+            at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
         }
     }
 }
