@@ -118,6 +118,20 @@ static void test_errors(void)
     CHECK(e.line == 4 && strstr(e.msg, "two variants are labelled \"a\""));
     CHECK(!compare_load(job_file("e4.yaml", "scenes: []\nvariants:\n  - { sampler: jitter }\n"), &e));
     CHECK(e.line == 1 && e.col == 9 && strstr(e.msg, "scenes: must be a non-empty list"));
+    { /* a reference image with a NaN: refused at load, at its line:col, before any render */
+        struct rgbf img = {0};
+        char path[1100];
+        CHECK(image_f_alloc(&img, 4, 4, &e) == 0);
+        for (int i = 0; i < 4 * 4 * 3; i++)
+            img.px[i] = i == 7 ? NAN : 0.5f;
+        snprintf(path, sizeof path, "%s/nan.exr", dir);
+        CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
+        image_f_free(&img);
+        CHECK(!compare_load(job_file("e6.yaml", "scene: SCENE\nwidth: 4\nheight: 4\nreference: nan.exr\n"
+                                                "variants:\n  - { label: a }\n"),
+                            &e));
+        CHECK(e.line == 4 && e.col == 12 && strstr(e.msg, "1 of its 48 values are NaN or infinite"));
+    }
     CHECK(!compare_load(
         job_file("e5.yaml", "scenes: [SCENE]\nreference: nowhere.png\nvariants:\n  - { label: a }\n"), &e));
     CHECK(e.line == 2 && e.col == 12 && strstr(e.msg, "reference: no image file at"));
