@@ -206,6 +206,20 @@ echo "# changed" >>"$T/board.yaml"
 "$WORKER" --quiet --out "$T/out" "$T/cmp.yaml" 2>"$T/run3.err"
 check "changed scene: 1 rendered, 1 reused" grep -q "references: 1 rendered, 1 reused from cache" "$T/run3.err"
 check "--quiet: only the summary line (and the verdict's warnings)" [ "$(grep -vc ': warning: ' "$T/run3.err")" -eq 1 ]
+# a cached half that is not the one its record names (another scene's put at its name, a PFM
+# renamed .exr) is rendered again, to the same bytes, and the reference with it
+ref=$(sed -n 's/.*"reference": "\(.*\)\.exr".*/\1/p' "$cdir/checker-jitter-t25-s2.json")
+ha=$ref-a.exr hb=$ref-b.exr
+good=$(cksum <"$ha")
+cp "$(ls -t "$T"/out/.cache/ref-board-*-a.exr | head -n 1)" "$ha"
+"$WORKER" --out "$T/out" "$T/cmp.yaml" 2>"$T/run4.err"
+check "another scene's half at its name: rendered again" grep -q "references: 1 rendered, 1 reused from cache" "$T/run4.err"
+check "... to the same bytes" [ "$(cksum <"$ha")" = "$good" ]
+good=$(cksum <"$hb")
+printf 'PF\n1 1\n-1.0\n' >"$hb" && head -c 12 /dev/zero >>"$hb"
+"$WORKER" --quiet --out "$T/out" "$T/cmp.yaml" 2>"$T/run5.err"
+check "a PFM renamed .exr: rendered again" grep -q "references: 1 rendered, 1 reused from cache" "$T/run5.err"
+check "... to the same bytes" [ "$(cksum <"$hb")" = "$good" ]
 
 # 3. progress: one line per combination on a terminal (script(1) gives it one)
 if command -v script >/dev/null 2>&1; then

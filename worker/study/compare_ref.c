@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/fileio.h"
 #include "image/imgio.h"
@@ -46,6 +47,34 @@ static void half_figures(const char *sidecar, double *wall_s, double *spp)
     *spp = ok && isfinite(info.spp_mean) ? info.spp_mean : 0;
 }
 
+/* The record beside a cached half (<stem>.key): its cache key and a hash of the EXR's bytes as
+   rendered, so a file of another scene or settings put at its name, a PFM or PNG renamed .exr, or
+   a damaged one no longer matches and is rendered again. */
+static int record_text(const char *exr, uint64_t key, char *buf, size_t n)
+{
+    uint64_t h = HASH_FNV_OFFSET;
+    struct err ignored;
+    if (fileio_hash(exr, 1u << 30, &h, &ignored) < 0)
+        return -1;
+    snprintf(buf, n, "worker reference half: key %016llx, exr %016llx\n", (unsigned long long)key,
+             (unsigned long long)h);
+    return 0;
+}
+
+/* Whether the cached half at exr (of key) is the one its record names: 1, else 0. */
+static int record_ok(const char *exr, const char *record, uint64_t key)
+{
+    char want[128];
+    uint8_t *have = NULL;
+    size_t len;
+    struct err ignored;
+    int ok = record_text(exr, key, want, sizeof want) == 0 &&
+             fileio_read_all(record, 256, &have, &len, &ignored) == 0 && len == strlen(want) &&
+             !memcmp(have, want, len);
+    free(have);
+    return ok;
+}
+
 /* Half h (0 or 1) of the reference: its settings with half the samples (the thresholds, a spacing,
    times sqrt 2) and its own seed, into OUT/.cache/ref-<scene>-<key>-<a|b>.exr, rendered unless the
    cache holds it at the right size. *img is its pixels. */
@@ -59,27 +88,37 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
     j.light_threshold = fmin(100, j.light_threshold * sqrt(2));
     j.seed = h ? rng_mix64(j.seed) : j.seed; /* independent of the other half and of the study's seeds */
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx-%c.exr", cs->name, (unsigned long long)key, "ab"[h]);
-    char dir[JOB_PATH_MAX], path[JOB_PATH_MAX], sidecar[JOB_PATH_MAX];
+    char dir[JOB_PATH_MAX], path[JOB_PATH_MAX], sidecar[JOB_PATH_MAX], record[JOB_PATH_MAX + 8], text[128];
     outdir_paths(&j, o->out_dir, dir, path, sidecar, sizeof path);
+    snprintf(record, sizeof record, "%.*s.key", (int)(strlen(path) - 4), path);
     struct err ignored;
     double wall_s = 0, spp = 0;
-    if (imgio_read_f(path, img, NULL, &ignored) == 0 && img->w == cs->width && img->h == cs->height) {
+    if (record_ok(path, record, key) && imgio_read_f(path, img, NULL, &ignored) == 0 && img->w == cs->width &&
+        img->h == cs->height) {
         half_figures(sidecar, &wall_s, &spp);
     } else {
+        if (access(path, F_OK) == 0)
+            run_say(o,
+                    "%s: the cached half %s is not the one its record names (damaged, replaced or of an "
+                    "older worker): rendering it again\n",
+                    cs->name, path);
         image_f_free(img);
         cs->ref_reused = 0;
         run_say(o, "%s: rendering the reference's half %c (%s t=%g, light %s t=%g, seed %llu) into %s\n",
                 cs->name, "ab"[h], sampler_kind_name(j.sampler), j.threshold,
                 sampler_kind_name(j.light_sampler), j.light_threshold, (unsigned long long)j.seed, path);
         struct run_result rr;
-        int rc = run_job(&j, o, &rr, e);
+        struct run_opts forced = *o;
+        forced.force = 1; /* its sidecar may call a damaged image current */
+        int rc = run_job(&j, &forced, &rr, e);
         if (rc != 0) {
             err_prefix(e, "reference");
             return rc;
         }
         wall_s = rr.procs.wall_s;
         spp = rr.procs.total.pixels ? (double)rr.procs.total.samples / rr.procs.total.pixels : 0;
-        if (imgio_read_f(path, img, NULL, e) < 0)
+        if (imgio_read_f(path, img, NULL, e) < 0 || record_text(path, key, text, sizeof text) < 0 ||
+            fileio_write_atomic(record, text, strlen(text), e) < 0)
             return 1;
     }
     cs->ref_wall_s += wall_s;
