@@ -30,6 +30,13 @@ assert -40 < biased['depth2']['value'] < -5 and biased['depth2']['standard_error
 assert 'off the reference' in biased['depth2']['text'], biased
 assert 0 < x['reference_relmse'] < 0.1, x['reference_relmse']
 PY
+check "bias study: a reproducibility block in verdict.json and the report" python3 - "$T/out/bias/verdict.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))['reproducibility']
+assert 'bias.yaml' in r['command'] and r['version'] and len(r['program_hash']) == 16, r
+assert r['compiler'] and r['cores'] >= 1 and len(r['load_average']) == 3, r
+PY
+check "... and in the report" grep -q 'Command <code>.*bias.yaml</code>.*load average' "$T/out/bias/report.html"
 check "bias study: the report's stability line says it" grep -q 'biased: mean radiance -[0-9.]*% off the reference' "$T/out/bias/report.html"
 
 # worker verdict: the same verdict from the folder (figures to summary.csv's 6 digits)

@@ -265,7 +265,7 @@ static void test_failures_and_guards(void)
     CHECK(any_line(s.sentences, s.n_sentences,
                    "gamma costs 3.0x alpha's CPU time per sample and buys nothing"));
     CHECK(any_line(s.warnings, s.n_warnings, "the reference has 3000 samples per pixel"));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1, NULL);
     CHECK(json && strstr(json, "\"kind\": \"structured_error\"") &&
           strstr(json, "\"kind\": \"sampler_share\"") && strstr(json, "\"equal_cpu_time\"") &&
           strstr(json, "\"tie_rule\""));
@@ -333,7 +333,7 @@ static void test_biased(void)
         if (s.failures[i].kind == VERDICT_STRUCTURED)
             CHECK(strstr(s.failures[i].text,
                          "80% of its error at threshold 2.5 repeats in every seed (60% a bias"));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1, NULL);
     CHECK(json && strstr(json, "\"kind\": \"biased\"") && strstr(json, "\"bias_share\""));
     free(json);
     verdict_scene_free(&s);
@@ -358,7 +358,7 @@ static void test_reference_noise(void)
     CHECK(any_line(s.warnings, s.n_warnings,
                    "alpha's relMSE is within 2x of the reference's own 0.001 at threshold 2.5"));
     CHECK(!any_line(s.warnings, s.n_warnings, "at threshold 5 ("));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1, NULL);
     CHECK(json && strstr(json, "\"reference_relmse\": 0.001"));
     free(json);
     verdict_scene_free(&s);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "study/verdict_load.h"
+#include "study/study_env.h"
 #include "study/verdict_out.h"
 
 /* Per study and scene: its sentences and failures, one line each. */
@@ -57,7 +58,9 @@ int rejudge_main(int argc, char **argv)
         fprintf(stderr, "worker verdict: %s\n", buf);
         rc = 2;
     } else if (json) {
-        char *text = verdict_json_text(job, s, n);
+        struct study_env env;
+        study_env_read(&env); /* of this judging, not of the renders */
+        char *text = verdict_json_text(job, s, n, &env);
         if (text)
             fputs(text, stdout);
         else

@@ -286,13 +286,14 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     const char *outs[] = {summary, chart, report, verdict, NULL};
     int lock = -1;
     verdict_study_free(&c->verdict);
+    study_env_read(&c->env);
     if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0)
         goto fail;
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
         write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
         write_text(dir, "chart.svg", report_chart_svg(c), e) < 0 ||
-        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1), e) < 0 ||
+        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) < 0 ||
         write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
         outdir_unlock(lock);
         goto fail;

@@ -8,6 +8,7 @@
 #include "job/job.h"
 #include "image/metrics.h"
 #include "job/run.h"
+#include "study_env.h"
 #include "verdict.h"
 
 /* Most images one compare job may expand to. */
@@ -59,6 +60,7 @@ struct compare {
     uint64_t *seeds;
     struct compare_item *items;   /* index compare_index(c, scene, variant, point, seed) */
     struct verdict_study verdict; /* filled by compare_run once every image is scored */
+    struct study_env env;         /* the command, program, compiler, CPU and load, at that time */
     int has_verdict;
 };
 

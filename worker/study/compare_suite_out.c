@@ -167,6 +167,8 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
             sbuf_free(&b);
             return NULL;
         }
+    if (s->n_studies > 0)
+        study_env_html(&b, &s->studies[0]->env);
     sbuf_printf(&b, "</body></html>\n");
     char *html = sbuf_take(&b);
     if (!html)

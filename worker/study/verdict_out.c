@@ -91,7 +91,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_end_object(j);
 }
 
-char *verdict_json_text(const char *job, const struct verdict_study *s, int n)
+char *verdict_json_text(const char *job, const struct verdict_study *s, int n, const struct study_env *env)
 {
     struct json j;
     json_init(&j);
@@ -101,6 +101,8 @@ char *verdict_json_text(const char *job, const struct verdict_study *s, int n)
                 "relMSE in linear radiance against each scene's reference: mean over pixels and channels of "
                 "(v - r)^2 / (r^2 + 0.01); ranked on its mean log over seeds (value: the geometric mean)");
     json_number(&j, "alpha", VERDICT_ALPHA);
+    if (env)
+        study_env_json(&j, "reproducibility", env);
     json_string(&j, "tie_rule", TIE_RULE);
     json_begin_array(&j, "studies");
     for (int i = 0; i < n; i++) {
