@@ -91,6 +91,13 @@ static inline int compare_index(const struct compare *c, int scene, int variant,
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
 
+/* From a finished study (every item's figures filled, its images and float copies in dir, each
+   settings reference's ref_path and noise known: compare_ref_prepare or compare_ref_measure): the
+   verdict (verdict_from_compare, into c->verdict), then summary.csv, chart.svg (report_chart_svg),
+   verdict.json (verdict_json_text) and report.html (report_html) under dir's lock. The gather of a
+   study spread over a queue calls this as compare_run does. 0, or -1 with e filled. */
+int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e);
+
 /* The line that ends a compare job's run: its images, references, time, output folder and the
    verdict at equal CPU time ("compare: 120 images (2 scenes x ...), references: 1 rendered, ...,
    41 s -> out/compare/; at equal CPU time: ..."). */
