@@ -138,6 +138,15 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     }
 }
 
+/* Variant v's rank in r, 0 when it is not ranked there. */
+static int rank_of_variant(const struct verdict_ranking *r, int v)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->e[i].variant == v)
+            return r->e[i].rank;
+    return 0;
+}
+
 /* "At equal CPU time (0.21 s per image), use jitter: ..." for one ranking. */
 static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at,
                         char *s)
@@ -163,6 +172,12 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
         append(s, "%s on %s, %s tie (not told apart by their seeds), ahead of %s.", at, out->scene, top,
                rest);
     }
+    for (int i = 0; i < out->n_failures; i++) /* a low error now, but not the reference's picture */
+        if (out->failures[i].kind == VERDICT_BIASED && rank_of_variant(r, out->failures[i].variant) == 1)
+            append(s,
+                   " But %s is biased (%+.2f%% in mean radiance): more samples will not bring it to the "
+                   "reference.",
+                   out->variants[out->failures[i].variant], out->failures[i].value);
 }
 
 static void say_slopes(const struct verdict_scene *out, char *s)
