@@ -91,4 +91,14 @@ check "no folder: exit 2 (got $rc)" [ "$rc" -eq 2 ] && grep -q 'usage: worker ve
 "$WORKER" verdict "$T/s" 2>"$T/e2"; rc=$?
 check "no summary.csv: exit 2 (got $rc), one line" [ "$rc" -eq 2 ] && [ "$(wc -l <"$T/e2")" -eq 1 ] &&
     grep -q 'summary.csv' "$T/e2"
+# a malformed summary.csv: file:line and the reason, exit 2; rows ended by CR alone still parse
+mkdir -p "$T/m"
+head -n 1 "$T/out/bias/summary.csv" >"$T/m/summary.csv"
+printf 'cornell,full,25\n' >>"$T/m/summary.csv"
+"$WORKER" verdict "$T/m" 2>"$T/e3"; rc=$?
+check "a short row: exit 2 (got $rc) naming file:line" [ "$rc" -eq 2 ] &&
+    grep -q 'm/summary.csv:2:1: 3 fields, the header has 18' "$T/e3"
+tr '\n' '\r' <"$T/out/bias/summary.csv" >"$T/m/summary.csv"
+"$WORKER" verdict "$T/m" >/dev/null 2>"$T/e4"; rc=$?
+check "CR line ends: exit 0 (got $rc: $(tail -n 1 "$T/e4"))" [ "$rc" -eq 0 ]
 finish

@@ -49,7 +49,7 @@ static int csv_parse(struct csv *t, char *text, size_t len, const char *path, st
 {
     size_t lines = 1;
     for (size_t i = 0; i < len; i++)
-        lines += text[i] == '\n';
+        lines += text[i] == '\n' || text[i] == '\r'; /* a row ends at either (CR alone too) */
     t->text = text;
     t->rows = calloc(lines, sizeof *t->rows);
     if (!t->rows)
@@ -80,8 +80,7 @@ static int csv_parse(struct csv *t, char *text, size_t len, const char *path, st
         if (t->n_rows == 0)
             t->n_fields = nf;
         if (nf != t->n_fields || nf > CSV_FIELDS)
-            return err_set(e, path, t->n_rows + 1, 0, "summary.csv: %d fields, the header has %d", nf,
-                           t->n_fields);
+            return err_set(e, path, t->n_rows + 1, 0, "%d fields, the header has %d", nf, t->n_fields);
         t->n_rows++;
     }
     return 0;
@@ -329,7 +328,7 @@ int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *
             if (!strcmp(t.rows[0][f], col_names[k]))
                 col[k] = f;
         if (col[k] < 0 && k != C_STUDY) {
-            err_set(e, path, 1, 0, "summary.csv: no column %s", col_names[k]);
+            err_set(e, path, 1, 0, "no column %s", col_names[k]);
             goto done;
         }
     }
