@@ -15,6 +15,10 @@
 
 #define CSV_MAX_BYTES (64u << 20)
 #define CSV_FIELDS 20
+/* Most rows read: a suite of up to 64 studies of COMPARE_MAX_ITEMS images each (the work below
+   grows with their square per study). */
+#define CSV_MAX_ROWS (64 * COMPARE_MAX_ITEMS)
+#define KEY_MAX 512
 
 /* summary.csv parsed: rows of field pointers into one buffer of unquoted, NUL-ended fields. */
 struct csv {
@@ -79,6 +83,8 @@ static int csv_parse(struct csv *t, char *text, size_t len, const char *path, st
         }
         if (t->n_rows == 0)
             t->n_fields = nf;
+        if (t->n_rows > CSV_MAX_ROWS)
+            return err_set(e, path, t->n_rows + 1, 0, "more than %d rows", CSV_MAX_ROWS);
         if (nf != t->n_fields || nf > CSV_FIELDS)
             return err_set(e, path, t->n_rows + 1, 0, "%d fields, the header has %d", nf, t->n_fields);
         t->n_rows++;
@@ -202,6 +208,11 @@ static struct compare *build(const struct csv *t, const int *col, const char *st
         x[2] = intern(c->variants, &c->n_variants, f[col[C_VARIANT]]);
         x[3] = intern(seeds, &c->n_seeds, f[col[C_SEED]]);
     }
+    if (m > COMPARE_MAX_ITEMS) {
+        err_set(e, dir, 0, 0, "summary.csv: study %s has %d rows, more than a compare job's %d", study, m,
+                COMPARE_MAX_ITEMS);
+        goto fail;
+    }
     for (int k = 0; k < c->n_seeds; k++)
         c->seeds[k] = strtoull(seeds[k], NULL, 10);
     /* points: each (scene, variant)'s keys in order; labelled by the first variant's thresholds */
@@ -211,11 +222,11 @@ static struct compare *build(const struct csv *t, const int *col, const char *st
         goto fail;
     }
     for (int i = 0; i < m; i++) {
-        char key[COMPARE_LABEL_MAX];
+        char key[KEY_MAX];
         point_key(t->rows[rows[4 * i]][col[C_IMAGE]], key, sizeof key);
         int p = 0, seen = 0;
         for (int j = 0; j < i && !seen; j++) { /* the same key earlier: its point */
-            char other[COMPARE_LABEL_MAX];
+            char other[KEY_MAX];
             point_key(t->rows[rows[4 * j]][col[C_IMAGE]], other, sizeof other);
             if (!strcmp(other, key))
                 p = point[j], seen = 1;
@@ -340,8 +351,13 @@ int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *
     }
     if (col[C_STUDY] < 0)
         intern(studies, &n_studies, job);
-    for (int r = 1; col[C_STUDY] >= 0 && r < t.n_rows; r++)
+    for (int r = 1; col[C_STUDY] >= 0 && r < t.n_rows && n_studies <= 64; r++)
         intern(studies, &n_studies, t.rows[r][col[C_STUDY]]);
+    if (n_studies > 64) {
+        free(studies);
+        err_set(e, path, 0, 0, "more than 64 studies");
+        goto done;
+    }
     *out = calloc((size_t)(n_studies ? n_studies : 1), sizeof **out);
     rc = *out ? 0 : err_set(e, path, 0, 0, "out of memory");
     for (int i = 0; rc == 0 && i < n_studies; i++) {
