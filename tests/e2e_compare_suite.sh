@@ -36,7 +36,7 @@ for st in grid scatter; do
     done
 done
 check "one reference for both studies (same scene, settings, size), in suite/.cache/" \
-    [ "$(ls "$s"/.cache/ref-*.exr 2>/dev/null | wc -l)" -eq 1 ]
+    [ "$(ls "$s"/.cache/ref-*[0-9a-f][0-9a-f].exr 2>/dev/null | wc -l)" -eq 1 ]
 check "the second study reused the first's reference" grep -q "references: 1 rendered, 1 reused from cache" "$T/run1.err"
 check "the summary line counts images and studies" grep -q "^suite: 16 images in 2 studies (grid 8, scatter 8)" "$T/run1.err"
 check "the summary line ends with the verdict at equal CPU time" \

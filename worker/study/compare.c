@@ -10,6 +10,7 @@
 
 #include "compare_ref.h"
 #include "compare_stats.h"
+#include "report_chart.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
@@ -243,6 +244,34 @@ int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct 
     return rc;
 }
 
+int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
+{
+    e->msg[0] = 0;
+    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
+       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
+    char summary[2100], chart[2100], report[2100], verdict[2100];
+    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
+    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
+    snprintf(report, sizeof report, "%s/report.html", dir);
+    snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
+    const char *outs[] = {summary, chart, report, verdict, NULL};
+    int lock = -1, rc = -1;
+    verdict_study_free(&c->verdict);
+    study_env_read(&c->env);
+    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
+        study_machines_mark(c, o->out_dir, e) < 0)
+        return -1;
+    verdict_print_warnings(&c->verdict, 1);
+    if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
+        write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
+        write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
+        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
+        write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
+        rc = 0;
+    outdir_unlock(lock);
+    return rc;
+}
+
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
     char dir[2048];
@@ -296,32 +325,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
                 it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
                 it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
-    rc = 1;
-    e->msg[0] = 0;
-    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
-       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
-    char summary[2100], chart[2100], report[2100], verdict[2100];
-    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
-    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
-    snprintf(report, sizeof report, "%s/report.html", dir);
-    snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
-    const char *outs[] = {summary, chart, report, verdict, NULL};
-    int lock = -1;
-    verdict_study_free(&c->verdict);
-    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
-        study_machines_mark(c, o->out_dir, e) < 0)
-        goto fail;
-    verdict_print_warnings(&c->verdict, 1);
-    if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
-        write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
-        write_text(dir, "chart.svg", compare_stats_chart_svg(c), e) < 0 ||
-        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1), e) < 0 ||
-        write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
-        outdir_unlock(lock);
-        goto fail;
-    }
-    outdir_unlock(lock);
-    rc = 0;
+    rc = compare_write_outputs(c, dir, o, e) < 0;
 fail:
     for (int s = 0; s < c->n_scenes; s++) {
         image_f_free(&refs[s].f);
