@@ -338,7 +338,7 @@ static void test_biased(void)
         if (s.failures[i].kind == VERDICT_STRUCTURED)
             CHECK(strstr(s.failures[i].text,
                          "80% of its error at threshold 2.5 repeats in every seed (60% a bias"));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1, NULL);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s, ""}, 1, NULL);
     CHECK(json && strstr(json, "\"kind\": \"biased\"") && strstr(json, "\"bias_share\""));
     free(json);
     verdict_scene_free(&s);
@@ -363,7 +363,7 @@ static void test_reference_noise(void)
     CHECK(any_line(s.warnings, s.n_warnings,
                    "alpha's relMSE is within 2x of the reference's own 0.001 at threshold 2.5"));
     CHECK(!any_line(s.warnings, s.n_warnings, "at threshold 5 ("));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1, NULL);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s, ""}, 1, NULL);
     CHECK(json && strstr(json, "\"reference_relmse\": 0.001"));
     free(json);
     verdict_scene_free(&s);
