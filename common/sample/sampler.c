@@ -17,9 +17,10 @@
 struct sampler {
     enum sampler_kind kind;
     double threshold;
-    int grid_n;       /* uniform/jitter/random: n x n cells */
-    uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (sampler_grid_point) */
-    size_t capacity;  /* sampler_capacity(kind, threshold) */
+    int grid_n;                 /* uniform/jitter/random: n x n cells */
+    uint64_t n_recip;           /* 2^42 / n + 1: cell / n as a multiply and shift (sampler_grid_point) */
+    size_t capacity;            /* sampler_capacity(kind, threshold) */
+    enum poisson_domain domain; /* fresh Poisson sets: torus (shifted) or square */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
 
@@ -54,6 +55,28 @@ const char *sampler_kind_name(enum sampler_kind kind)
 const char *const *sampler_kind_names(void)
 {
     return kind_names;
+}
+
+static const char *const domain_names[] = {"torus", "square"};
+
+int poisson_domain_parse(const char *name, enum poisson_domain *out)
+{
+    for (int i = 0; i < 2; i++)
+        if (name && strcmp(name, domain_names[i]) == 0) {
+            *out = (enum poisson_domain)i;
+            return 0;
+        }
+    return -1;
+}
+
+const char *poisson_domain_name(enum poisson_domain d)
+{
+    return d == POISSON_SQUARE ? domain_names[1] : domain_names[0];
+}
+
+void sampler_set_domain(struct sampler *s, enum poisson_domain d)
+{
+    s->domain = d;
 }
 
 static int threshold_valid(double threshold)
@@ -186,8 +209,16 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
     case SAMPLER_POISSON:
         break;
     }
-    if (s->pool_size <= 0)
+    if (s->pool_size <= 0 && s->domain == POISSON_SQUARE)
         return poisson_draw(&s->bridson, rng, out, 0);
+    if (s->pool_size <= 0) {
+        /* a toroidal set shifted modulo 1 stays Poisson-disk and makes every point uniform */
+        count = poisson_draw(&s->bridson, rng, out, 1);
+        const double ox = rng_uniform(rng), oy = rng_uniform(rng);
+        for (size_t k = 0; k < count; k++)
+            out[k] = sampler_shift(out[k], ox, oy);
+        return count;
+    }
 
     const struct pool_point *src;
     double ox, oy;

@@ -16,6 +16,16 @@ struct pt2 {
 
 enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON, SAMPLER_SOBOL };
 
+/* Where a fresh Poisson set is drawn (job key poisson_domain): on the unit torus, distances
+   measured with wrap-around, then shifted by a random offset modulo 1 (Cranley-Patterson): every
+   point uniform, unbiased; or in the unit square without wrap-around, the seed's sets, whose
+   density piles up along the edges (docs/samplers.md): kept to reproduce the seed, biased. */
+enum poisson_domain { POISSON_TORUS, POISSON_SQUARE };
+
+/* Name <-> domain. parse returns 0, or -1 for an unknown name. */
+int poisson_domain_parse(const char *name, enum poisson_domain *out);
+const char *poisson_domain_name(enum poisson_domain d);
+
 /* Largest set a job may ask for, per pixel or per light draw. */
 #define SAMPLER_MAX_POINTS 4000000
 
@@ -41,6 +51,10 @@ struct sampler;
 struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
                             struct err *e);
 void sampler_free(struct sampler *s);
+
+/* Draw s's fresh Poisson sets in domain d from now on (default POISSON_TORUS). Pools and the
+   other kinds ignore it: a pool's sets are toroidal and shifted in either domain. */
+void sampler_set_domain(struct sampler *s, enum poisson_domain d);
 
 /* Capacity an `out` array passed to sampler_draw must have. */
 size_t sampler_set_capacity(const struct sampler *s);

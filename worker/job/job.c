@@ -20,7 +20,8 @@ const char *const job_keys[] = {"name",      "scene",      "width",         "hei
                                 "sampler",   "threshold",  "light_sampler", "light_threshold",
                                 "max_depth", "seed",       "processes",     "format",
                                 "output",    "reference",  "poisson_pool",  "light_sampling",
-                                "priority",  "integrator", "sampler_dims",  NULL};
+                                "priority",  "integrator", "sampler_dims",  "poisson_domain",
+                                NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
 {
@@ -274,6 +275,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "poisson_domain")) {
+        int square = 0;
+        if (get_either(d, v, k, "torus", "square", &square, e) < 0)
+            return -1;
+        j->poisson_domain = square ? POISSON_SQUARE : POISSON_TORUS;
     } else if (!strcmp(k, "light_sampling")) {
         return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "integrator")) {
@@ -374,6 +380,16 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     if (!j->has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
+}
+
+const char *job_sets_tag(const struct job *j)
+{
+    const int poisson = j->sampler == SAMPLER_POISSON || j->light_sampler == SAMPLER_POISSON;
+    if (!poisson)
+        return j->dims_all ? " padded uniformly" : "";
+    if (j->poisson_domain == POISSON_SQUARE)
+        return j->dims_all ? " poisson square padded uniformly" : " poisson square";
+    return j->dims_all ? " poisson torus padded uniformly" : " poisson torus";
 }
 
 int job_hash_file(const char *path, uint64_t *h, struct err *e)
