@@ -59,9 +59,8 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     const int nee = lights && ctx->rs.nee, mix = lights && !nee, dims = ctx->rs.dims_all;
     if (dims) {
-        ctx->px = x, ctx->py = y, ctx->dims_n = n;
-        ctx->dims_pixel++;
-        ctx->dims_key = rng_mix64(ctx->rs.seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32 | (uint32_t)y) + 16));
+        padding_pixel(&ctx->pad, ctx->rs.seed, x, y, n);
+        ctx->pad.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     }
     if (ctx->packet) {
         render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &kept, &nonfinite, &rays);

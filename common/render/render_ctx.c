@@ -36,6 +36,23 @@ void render_stats_finish(struct render_stats *st, double cpu_s)
     st->sampler_s = cpu_s > 0 ? render_stats_draw_share(st) * cpu_s : 0;
 }
 
+/* sampler_dims: all's sets, at most this many bytes of them; past it fewer bounces are padded. */
+#define DIMS_MAX_BYTES ((size_t)256 << 20)
+/* Bounces with sets of their own; the decisions of later ones draw from the path's rng. */
+#define DIMS_MAX_BOUNCES 16
+
+/* The padded sets of sampler_dims: all for ctx->rs. 0, or -1 with e filled. */
+static int dims_init(struct render_ctx *ctx, struct err *e)
+{
+    const size_t per_slot = padding_slot_points(ctx->pixel);
+    int bounces = ctx->rs.max_depth < DIMS_MAX_BOUNCES ? ctx->rs.max_depth : DIMS_MAX_BOUNCES;
+    while (bounces > 1 &&
+           (size_t)(DIMS_CAMERA + DIMS_PER_BOUNCE * bounces) * per_slot * sizeof(struct pt2) > DIMS_MAX_BYTES)
+        bounces--;
+    ctx->dims_bounces = bounces;
+    return padding_init(&ctx->pad, ctx->pixel, DIMS_CAMERA + DIMS_PER_BOUNCE * bounces, e);
+}
+
 void render_ctx_free(struct render_ctx *ctx)
 {
     if (!ctx)
@@ -50,8 +67,7 @@ void render_ctx_free(struct render_ctx *ctx)
     free(ctx->prim_material);
     packet_scene_free(ctx->packet);
     free(ctx->pixel_pts);
-    free(ctx->dims_pts);
-    free(ctx->dims_gen);
+    padding_release(&ctx->pad);
     free(ctx);
 }
 
@@ -74,7 +90,7 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
         goto fail;
     if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
         goto fail;
-    if (rs->dims_all && render_dims_init(ctx, e) < 0) {
+    if (rs->dims_all && dims_init(ctx, e) < 0) {
         render_ctx_free(ctx);
         return NULL;
     }

@@ -244,7 +244,7 @@ static inline __attribute__((always_inline)) struct pt2 path_decide(struct rende
                                                                     struct path_at at, int k)
 {
     if (at.depth < ctx->dims_bounces)
-        return render_dims_point(ctx, DIMS_CAMERA + DIMS_PER_BOUNCE * at.depth + k, at.sample);
+        return padding_point(&ctx->pad, DIMS_CAMERA + DIMS_PER_BOUNCE * at.depth + k, at.sample);
     struct pt2 p;
     p.x = rng_uniform32(rng);
     p.y = rng_uniform32(rng);
@@ -259,9 +259,9 @@ static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct r
     const struct camera *cam = ctx->cam;
     struct pt2 lens = {0, 0}, time = {0, 0};
     if (cam->lens_radius > 0)
-        lens = render_dims_point(ctx, 0, s);
+        lens = padding_point(&ctx->pad, 0, s);
     if (cam->time0 != cam->time1)
-        time = render_dims_point(ctx, 1, s);
+        time = padding_point(&ctx->pad, 1, s);
     return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
 }
 

@@ -1,5 +1,6 @@
 /* points: `worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] [--spectrum F.png]
-   [--radial F.svg] [--stats]`: one sample set as CSV / SVG, and its spectrum and statistics. */
+   [--radial F.svg] [--stats] [--padded K]`: one sample set as CSV / SVG, its spectrum and
+   statistics, or a pixel's padded dimensions. */
 #include "points.h"
 
 #include <errno.h>
@@ -15,21 +16,26 @@
 #include "base/fileio.h"
 #include "base/rng.h"
 #include "points_analysis.h"
+#include "sample/padding.h"
 #include "sample/sampler.h"
 #include "scenefile/yamlx.h"
 
 static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] "
                                    "[--spectrum F.png] [--radial F.svg] "
-                                   "[--stats]\n";
+                                   "[--stats] [--padded K]\n";
 
 /* Most sets --sets may average (the work limits bound them further). */
 #define POINTS_MAX_SETS 100000
+/* Most dimensions --padded prints: the pixel's own and 63 padded (lens, shutter and 20 bounces'
+   three decisions under sampler_dims: all; the render pads 16 bounces). */
+#define POINTS_MAX_PADDED 64
 
 struct points_args {
     enum sampler_kind kind;
     double threshold;
     uint64_t seed;
     const char *svg_path; /* NULL: no picture */
+    int padded;           /* --padded K: K dimensions per sample (0: none) */
     struct points_analysis an;
 };
 
@@ -94,6 +100,7 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     *done = 0;
     a->seed = 1;
     a->svg_path = NULL;
+    a->padded = 0;
     a->an = (struct points_analysis){NULL, NULL, 0, 1, 1, 0};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -136,6 +143,19 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                                 : !strncmp(arg, "--spectrum", len) ? &a->an.spectrum_path
                                                                    : &a->an.radial_path;
             *slot = v;
+        } else if (!strcmp(arg, "--padded") || !strncmp(arg, "--padded=", 9)) {
+            const char *v = arg[8] == '=' ? arg + 9 : (i + 1 < argc ? argv[++i] : NULL);
+            uint64_t k;
+            if (!v) {
+                err_print("worker points: --padded needs a value; %s", points_usage);
+                return 2;
+            }
+            if (parse_seed(v, &k) < 0 || k < 1 || k > POINTS_MAX_PADDED) {
+                err_print("worker points: --padded: must be a whole number in [1, %d], got \"%.40s\"\n",
+                          POINTS_MAX_PADDED, v);
+                return 2;
+            }
+            a->padded = (int)k;
         } else if (!strcmp(arg, "--stats")) {
             a->an.stats = 1;
         } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
@@ -178,6 +198,11 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     if (a->seed > UINT64_MAX - (uint64_t)(a->an.sets - 1)) {
         err_print("worker points: --seed %llu with --sets %d runs past the largest seed\n",
                   (unsigned long long)a->seed, a->an.sets);
+        return 2;
+    }
+    if (a->padded && (a->svg_path || points_analysis_wanted(&a->an) || a->an.sets != 1)) {
+        err_print("worker points: --padded prints dimensions as CSV; it takes no --svg, --sets, --spectrum, "
+                  "--radial or --stats\n");
         return 2;
     }
     a->an.seed = a->seed;
@@ -233,6 +258,37 @@ static int write_svg(const char *path, const struct points_args *a, const struct
     return rc;
 }
 
+/* --padded K: the pixel (0, 0) of a job with seed a->seed under sampler_dims: all, one row per
+   camera sample s: dimension 0 its point of the pixel's set, dimensions 1 .. K-1 its points of
+   padded slots 0 .. K-2 (lens, shutter, then per bounce direction, light point, choice). */
+static int print_padded(const struct points_args *a, struct sampler *s, struct pt2 *p)
+{
+    struct rng rng;
+    struct err e;
+    struct padding pad;
+    rng_pixel(&rng, a->seed, 0, 0, 0); /* the render's pixel stream */
+    size_t n = sampler_draw(s, &rng, p);
+    if (padding_init(&pad, s, a->padded, &e) < 0) {
+        err_print("worker points: %s\n", e.msg);
+        return 1;
+    }
+    padding_pixel(&pad, a->seed, 0, 0, n);
+    for (size_t k = 0; k < n; k++) {
+        printf("%.17g,%.17g", p[k].x, p[k].y);
+        for (int d = 1; d < a->padded; d++) {
+            struct pt2 q = padding_point(&pad, d - 1, (uint32_t)k);
+            printf(",%.17g,%.17g", q.x, q.y);
+        }
+        putchar('\n');
+    }
+    padding_release(&pad);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        err_print("worker points: writing the points: %s\n", strerror(errno));
+        return 1;
+    }
+    return 0;
+}
+
 int points_main(int argc, char **argv)
 {
     struct points_args a;
@@ -252,6 +308,12 @@ int points_main(int argc, char **argv)
         err_print("worker points: out of memory for %zu points\n", sampler_set_capacity(s));
         sampler_free(s);
         return 1;
+    }
+    if (a.padded) {
+        rc = print_padded(&a, s, p);
+        sampler_free(s);
+        free(p);
+        return rc;
     }
     struct rng rng;
     rng_seed(&rng, a.seed, 0);
