@@ -7,7 +7,11 @@ check "jitter t=3 prints 1089 points" [ "$(count jitter 3)" -eq 1089 ]
 check "random t=1 prints 10000 points" [ "$(count random 1)" -eq 10000 ]
 n=$(count poisson 1 --seed 4)
 check "poisson t=1 prints 6000..6700 points (got $n)" [ "$n" -ge 6000 ] && [ "$n" -le 6700 ]
-check "every line is x,y with two numbers" sh -c "'$WORKER' points poisson 10 | awk -F, 'NF != 2 || \$1 !~ /^0\\.[0-9]+$/ || \$2 !~ /^0\\.[0-9]+$/ {bad = 1} END {exit bad}'"
+num='/^(0|0\.[0-9]+|[1-9](\.[0-9]+)?e-[0-9]+)$/'
+check "every line is x,y with two numbers" sh -c "'$WORKER' points poisson 10 | awk -F, 'NF != 2 || \$1 !~ $num || \$2 !~ $num {bad = 1} END {exit bad}'"
+# 17 significant digits: every point of a 200 x 200 jitter set reads back in its own cell (with 6
+# decimals about 8 points within 5e-7 below a boundary were printed in the next cell)
+check "jitter t=0.5: every point read back lands in its own cell, one per cell" sh -c "'$WORKER' points jitter 0.5 --seed 5 | awk -F, '{c[int(\$1 * 200) * 200 + int(\$2 * 200)]++} END {for (i = 0; i < 40000; i++) if (c[i] != 1) exit 1}'"
 "$WORKER" points poisson 5 --seed 2 >"$T/a.csv"
 "$WORKER" points poisson 5 --seed 2 >"$T/b.csv"
 "$WORKER" points poisson 5 --seed 3 >"$T/c.csv"

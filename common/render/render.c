@@ -54,7 +54,6 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
         st->timed_draw_ns += now_ns() - t0;
 
     double sum[3] = {0, 0, 0};
-    size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
     const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     const int nee = lights && ctx->rs.nee, mix = lights && !nee, dims = ctx->rs.dims_all;
@@ -63,7 +62,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
         ctx->pad.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     }
     if (ctx->packet) {
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &kept, &nonfinite, &rays);
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &nonfinite, &rays);
     } else {
         /* nee and dims constants in the default loop: the mixture's inlined trace holds none of
            their code */
@@ -79,10 +78,10 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
                 ray r = camera_ray(ctx->cam, u, v, &path_rng);
                 c = trace(ctx, &r, &path_rng, &rays, mix, 0, 0, 0, last);
             }
-            add_estimate(c, sum, &kept, &nonfinite);
+            add_estimate(c, sum, &nonfinite);
         }
     }
-    double inv = kept ? 1.0 / kept : 0;
+    double inv = n ? 1.0 / n : 0; /* non-finite samples count as zero */
     for (int k = 0; k < 3; k++)
         rgb[k] = (float)(sum[k] * inv);
     if (timed)

@@ -54,11 +54,10 @@ struct render_ctx {
 /* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
    time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started from the
    pixel's path stream *base; mix: the scene's lights are sampled by the mixture, nee: by
-   next-event estimation; dims: sampler_dims: all; last: max_depth - 1. Their
-   estimates go into sum and kept (add_estimate), the dropped ones into *nonfinite, their
-   segments into *rays. */
+   next-event estimation; dims: sampler_dims: all; last: max_depth - 1. Their finite estimates
+   go into sum (add_estimate), the count of the others into *nonfinite, their segments into
+   *rays. */
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int dims, int last, double sum[3], size_t *kept, uint64_t *nonfinite,
-                         uint64_t *rays);
+                         int nee, int dims, int last, double sum[3], uint64_t *nonfinite, uint64_t *rays);
 
 #endif

@@ -251,6 +251,15 @@ static inline __attribute__((always_inline)) struct pt2 path_decide(struct rende
     return p;
 }
 
+/* A uniform point in the unit ball from the vertex's sets (sampler_dims: all; what
+   random_in_unit_sphere draws by rejection): its direction from the direction's point, its
+   radius cbrt(u) from the choice's x (a metal vertex makes no other use of either). */
+static __attribute__((unused)) vec3 in_unit_ball(struct render_ctx *ctx, struct rng *rng, struct path_at at)
+{
+    const struct pt2 d = path_decide(ctx, rng, at, DIM_DIR), c = path_decide(ctx, rng, at, DIM_CHOICE);
+    return v3_scale(uniform_sphere_direction_uv(d.x, d.y), cbrt(c.x));
+}
+
 /* camera_ray under sampler_dims: all: the lens point and the shutter time of sample s from the
    pixel's sets (each drawn only where the camera uses it). */
 static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct render_ctx *ctx, double u,
@@ -265,15 +274,15 @@ static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct r
     return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
 }
 
-/* A camera sample's estimate c into the pixel's sums: kept when finite, else counted as dropped. */
-static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *nonfinite)
+/* A camera sample's estimate c into the pixel's sums when finite; a NaN or infinite one counts
+   as zero (pbrt's rule: the pixel still divides by all its samples) and in *nonfinite. */
+static inline void add_estimate(vec3 c, double sum[3], uint64_t *nonfinite)
 {
     if (!v3_finite(c)) {
         ++*nonfinite;
         return;
     }
     sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
-    ++*kept;
 }
 
 /* Next-event estimation at a scattering vertex h (diffuse surface or medium), before its own
@@ -407,7 +416,8 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
         }
         return 0;
     case MAT_METAL:
-        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
+        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n),
+                     at.dims ? in_unit_ball(ctx, rng, at) : random_in_unit_sphere(rng), m->fuzz);
         if (v3_dot(dir, h->n) <= 0)
             return 0;
         *beta = v3_mul(*beta, m->albedo);

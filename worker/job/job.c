@@ -248,6 +248,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         return get_sampler(d, v, k, &j->sampler, e);
     } else if (!strcmp(k, "light_sampler")) {
         j->has_light_sampler = 1;
+        mark(j->pos_light_sampler, v);
         return get_sampler(d, v, k, &j->light_sampler, e);
     } else if (!strcmp(k, "threshold")) {
         mark(j->pos_threshold, v);
@@ -285,6 +286,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "integrator")) {
         return get_either(d, v, k, "mixture", "nee", &j->nee, e);
     } else if (!strcmp(k, "sampler_dims")) {
+        mark(j->pos_dims, v);
         return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
@@ -362,6 +364,14 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
                        "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
                        "give the job a name:",
                        j->name);
+    /* under sampler_dims: all every light point comes from the pixel sampler's sets: a light
+       sampler or threshold would be silently ignored */
+    const int *light_pos = j->has_light_sampler ? j->pos_light_sampler : j->pos_light_threshold;
+    if (j->dims_all && light_pos[0])
+        return err_set(e, j->path, light_pos[0], light_pos[1],
+                       "%s: has no effect with sampler_dims: all (line %d), whose light points come from the "
+                       "pixel sampler's sets; remove it or use sampler_dims: pixel_light",
+                       j->has_light_sampler ? "light_sampler" : "light_threshold", j->pos_dims[0]);
     if (!j->has_light_sampler)
         j->light_sampler = j->sampler;
     if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||

@@ -36,8 +36,8 @@ struct job {
     uint64_t hash;  /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
-    int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2], pos_format[2],
-        pos_output[2], pos_name[2], pos_width[2];
+    int pos_threshold[2], pos_light_threshold[2], pos_light_sampler[2], pos_dims[2], pos_reference[2],
+        pos_scene[2], pos_format[2], pos_output[2], pos_name[2], pos_width[2];
 };
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */

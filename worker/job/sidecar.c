@@ -80,7 +80,7 @@ char *sidecar_json(const struct sidecar *s)
     json_end_array(&js);
     json_end_object(&js);
     json_uint(&js, "peak_rss_kb", (uint64_t)r->peak_rss_kb);
-    json_uint(&js, "nonfinite_dropped", t->nonfinite);
+    json_uint(&js, "nonfinite_samples", t->nonfinite); /* counted as zero, not dropped */
     if (s->error) {
         json_begin_object(&js, "error");
         json_string(&js, "reference", j->reference);
@@ -198,7 +198,8 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||
                    count_at(d, root, "parts", &out->parts, e) < 0 ||
-                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 ||
+                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 || /* before issue 26 */
+                   count_at(d, root, "nonfinite_samples", &out->nonfinite, e) < 0 ||
                    count_at(d, samples, "total", &out->samples_total, e) < 0 ||
                    number_at(d, samples, "per_pixel_mean", &out->spp_mean, e) < 0 ||
                    count_at(d, samples, "per_pixel_min", &out->spp_min, e) < 0 ||
