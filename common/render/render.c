@@ -45,9 +45,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     rng_pixel(&ctx->light_rng, ctx->rs.seed, x, y, 1);
     rng_pixel(&path_rng, ctx->rs.seed, x, y, 2);
     for (int i = 0; i < ctx->sc->n_lights; i++)
-        ctx->lp[i].n = ctx->lp[i].next = 0;
+        stream_restart(&ctx->lp[i]);
 
     const int timed = ctx->timed = sampler_timed(st->pixels);
+    ctx->light_source.sets = &st->light_sets;
+    ctx->light_source.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     const uint64_t t0 = timed ? now_ns() : 0;
     size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
     if (timed)

@@ -58,12 +58,11 @@ void render_ctx_free(struct render_ctx *ctx)
     if (!ctx)
         return;
     if (ctx->lp)
-        for (int i = 0; i < ctx->sc->n_lights; i++) {
-            free(ctx->lp[i].pts);
-            free(ctx->lp[i].cells);
-        }
+        for (int i = 0; i < ctx->sc->n_lights; i++)
+            stream_release(&ctx->lp[i]);
     free(ctx->lp);
-    free(ctx->identity);
+    free(ctx->uses_points);
+    stream_source_release(&ctx->light_source);
     free(ctx->prim_material);
     packet_scene_free(ctx->packet);
     free(ctx->pixel_pts);
@@ -85,10 +84,11 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->light = light;
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
+    ctx->uses_points = calloc((size_t)sc->n_lights + 1, sizeof *ctx->uses_points);
     ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
     if (packet_usable(sc) && !(ctx->packet = packet_scene_new(sc)))
         goto fail;
-    if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
+    if (!ctx->pixel_pts || !ctx->lp || !ctx->uses_points || !ctx->prim_material)
         goto fail;
     if (rs->dims_all && dims_init(ctx, e) < 0) {
         render_ctx_free(ctx);
@@ -96,36 +96,20 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     }
     for (int i = 0; i < sc->n_prims; i++)
         ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
-    if (light) {
-        ctx->light_kind = sampler_kind_of(light);
-        ctx->light_grid = sampler_grid_of(light);
+    if (light && stream_source_init(&ctx->light_source, light, e) < 0) {
+        render_ctx_free(ctx);
+        return NULL;
     }
     for (int i = 0; i < sc->n_lights; i++) {
-        ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
-        if (rs->light_sampling_off || !ctx->lp[i].uses_points)
+        ctx->uses_points[i] = shape_light_uses_points(&sc->prims[sc->lights[i]]);
+        if (rs->light_sampling_off || !ctx->uses_points[i])
             continue;
         if (!light) {
             err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
             render_ctx_free(ctx);
             return NULL;
         }
-        size_t cells = sampler_cells(light) > 0 ? sampler_cells(light)
-                       : sampler_is_pooled(light) || ctx->light_kind == SAMPLER_SOBOL
-                           ? sampler_set_capacity(light)
-                           : 0;
-        if (cells > 0) {
-            ctx->lp[i].cells = malloc(cells * sizeof *ctx->lp[i].cells);
-            if (!ctx->identity) {
-                ctx->identity = malloc(cells * sizeof *ctx->identity);
-                if (!ctx->identity)
-                    goto fail;
-                for (size_t c = 0; c < cells; c++)
-                    ctx->identity[c] = (uint32_t)c;
-            }
-        } else {
-            ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
-        }
-        if (!ctx->lp[i].pts && !ctx->lp[i].cells)
+        if (stream_init(&ctx->lp[i], &ctx->light_source) < 0)
             goto fail;
     }
     return ctx;

@@ -7,21 +7,7 @@
 #include "render.h"
 #include "base/rng.h"
 #include "sample/padding.h"
-#include "sample/sobol.h"
-
-/* A light's current point set within the pixel, taken in a random order, then redrawn: the
-   points themselves (fresh poisson), the indices of a pool set's points, shifted when taken
-   (pooled poisson), the indices of a sobol set's points, made when taken, or the cells whose
-   points are made when taken (the others). */
-struct light_points {
-    struct pt2 *pts;
-    uint32_t *cells;
-    const struct pool_point *pool; /* pooled: the set and its shift */
-    double ox, oy, cos_oy, sin_oy;
-    struct sobol_seeds sobol; /* sobol: the set's seeds */
-    size_t n, next;
-    int uses_points; /* shape_light_uses_points of the light, looked up once */
-};
+#include "sample/stream.h"
 
 /* sampler_dims: all: the sets' slots. Two for the camera (lens point; shutter time in x), then
    per bounce the scatter direction, the light point and (the mixture's or glass's coin in x,
@@ -35,11 +21,10 @@ struct render_ctx {
     const struct camera *cam;
     struct render_settings rs;
     struct sampler *pixel, *light;
-    enum sampler_kind light_kind;
-    struct sampler_grid light_grid; /* the light sampler's grid (uniform, jitter, random) */
     struct pt2 *pixel_pts;
-    struct light_points *lp;               /* one per scene light */
-    uint32_t *identity;                    /* 0, 1, 2, ...: a fresh shuffle's start, copied */
+    struct stream_source light_source;     /* the light sampler's, shared by the lights' streams */
+    struct stream *lp;                     /* one per scene light: its points (sample/stream.h) */
+    int *uses_points;                      /* per light: shape_light_uses_points, looked up once */
     const struct material **prim_material; /* each prim's material: one load after a hit */
     struct rng light_rng;
     struct render_stats *st;
