@@ -13,7 +13,10 @@ static uint64_t padding_now_ns(void)
 
 size_t padding_slot_points(const struct sampler *s)
 {
-    return (sampler_kind_of(s) == SAMPLER_POISSON ? 2 : 1) * sampler_set_capacity(s);
+    /* a set whose count varies (Poisson's, fresh or pooled, and any sampler drawn whole) may fall
+   short of the pixel's: room for two */
+    const enum sampler_walk w = sampler_walk_of(s);
+    return (w == SAMPLER_WALK_WHOLE || w == SAMPLER_WALK_POOL ? 2 : 1) * sampler_set_capacity(s);
 }
 
 int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)

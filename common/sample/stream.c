@@ -18,18 +18,14 @@ static uint64_t stream_now_ns(void)
    points (by index); 0 for a fresh Poisson set, whose points are drawn and shuffled whole. */
 static size_t shuffled_indices(const struct sampler *s)
 {
-    if (sampler_cells(s) > 0)
-        return sampler_cells(s);
-    if (sampler_is_pooled(s) || sampler_kind_of(s) == SAMPLER_SOBOL)
-        return sampler_set_capacity(s);
-    return 0;
+    return sampler_walk_of(s) == SAMPLER_WALK_WHOLE ? 0 : sampler_set_capacity(s);
 }
 
 int stream_source_init(struct stream_source *src, struct sampler *s, struct err *e)
 {
     *src = (struct stream_source){0};
     src->sampler = s;
-    src->kind = sampler_kind_of(s);
+    src->walk = sampler_walk_of(s);
     src->grid = sampler_grid_of(s);
     src->cells = shuffled_indices(s);
     if (src->cells == 0)
@@ -68,15 +64,15 @@ void stream_release(struct stream *st)
 
 void stream_refill(const struct stream_source *src, struct stream *st, struct rng *rng)
 {
-    const enum sampler_kind kind = src->kind;
+    const enum sampler_walk walk = src->walk;
     const uint64_t t0 = src->timed_draw_ns ? stream_now_ns() : 0;
     if (st->cells) {
-        st->n = kind == SAMPLER_POISSON ? sampler_pool_set(src->sampler, rng, &st->pool, &st->ox, &st->oy)
-                : kind == SAMPLER_SOBOL ? sampler_sobol_set(src->sampler, rng, &st->sobol)
-                                        : sampler_cells(src->sampler);
-        if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
+        st->n = walk == SAMPLER_WALK_POOL ? sampler_pool_set(src->sampler, rng, &st->pool, &st->ox, &st->oy)
+                : walk == SAMPLER_WALK_SOBOL ? sampler_sobol_set(src->sampler, rng, &st->sobol)
+                                             : sampler_cells(src->sampler);
+        if (walk != SAMPLER_WALK_FREE) /* a set per pixel and light, a few dozen points used */
             memcpy(st->cells, src->identity, st->n * sizeof *st->cells);
-        if (kind == SAMPLER_POISSON)
+        if (walk == SAMPLER_WALK_POOL)
             v3_sincos_turn(st->oy, &st->sin_oy, &st->cos_oy);
     } else {
         st->n = sampler_draw(src->sampler, rng, st->pts);

@@ -14,8 +14,8 @@
 
 /* What the streams of one render share: the sampler and its kind's constants, the counters. */
 struct stream_source {
-    struct sampler *sampler; /* the light sampler (not owned) */
-    enum sampler_kind kind;
+    struct sampler *sampler;  /* the light sampler (not owned) */
+    enum sampler_walk walk;   /* how its sets are taken point by point */
     struct sampler_grid grid; /* uniform, jitter, random: the cell points' grid */
     size_t cells;             /* indices a set shuffles (0: its points are shuffled whole) */
     uint32_t *identity;       /* 0, 1, 2, ... cells - 1: a fresh shuffle's start, copied */
@@ -70,25 +70,25 @@ static inline __attribute__((always_inline)) struct pt2 stream_next(const struct
                                                                     struct stream *st, struct rng *rng,
                                                                     struct pt2 *turn, int *turned)
 {
-    const enum sampler_kind kind = src->kind;
+    const enum sampler_walk walk = src->walk;
     if (st->next >= st->n)
         stream_refill(src, st, rng);
     size_t k = st->next++;
-    if (kind == SAMPLER_RANDOM)
+    if (walk == SAMPLER_WALK_FREE)
         return sampler_grid_point(&src->grid, 0, rng);
     size_t j = k + rng_below(rng, (uint32_t)(st->n - k));
     if (st->cells) {
         uint32_t cell = st->cells[j];
         st->cells[j] = st->cells[k];
         st->cells[k] = cell;
-        if (kind == SAMPLER_POISSON) {
+        if (walk == SAMPLER_WALK_POOL) {
             /* the shifted point's angle 2 pi (y + oy): the point's own turned by the shift's */
             const struct pt2 t = st->pool[cell].turn;
             *turn = (struct pt2){t.x * st->cos_oy - t.y * st->sin_oy, t.y * st->cos_oy + t.x * st->sin_oy};
             *turned = 1;
             return sampler_shift(st->pool[cell].p, st->ox, st->oy);
         }
-        if (kind == SAMPLER_SOBOL)
+        if (walk == SAMPLER_WALK_SOBOL)
             return sobol_point(st->sobol, cell);
         return sampler_grid_point(&src->grid, cell, rng);
     }
@@ -106,7 +106,7 @@ static inline __attribute__((always_inline)) void stream_prefetch(const struct s
                                                                   const struct stream *streams, int count,
                                                                   const struct rng *rng)
 {
-    if (src->kind != SAMPLER_POISSON || !src->cells)
+    if (src->walk != SAMPLER_WALK_POOL)
         return;
     const uint64_t u = rng_peek_u32(rng);
     for (int i = 0; i < count; i++) {
