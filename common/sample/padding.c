@@ -2,14 +2,6 @@
 #include "padding.h"
 
 #include <stdlib.h>
-#include <time.h>
-
-static uint64_t padding_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
 
 size_t padding_slot_points(const struct sampler *s)
 {
@@ -55,7 +47,7 @@ void padding_fill(struct padding *p, int slot)
 {
     struct pt2 *pts = p->pts + (size_t)slot * p->slot_cap;
     const size_t n = p->n, cap = sampler_set_capacity(p->sampler);
-    const uint64_t t0 = p->timed_draw_ns ? padding_now_ns() : 0;
+    const uint64_t t0 = p->timed_draw_ns ? sampler_clock_ns() : 0;
     struct rng r;
     rng_pixel(&r, p->seed, p->px, p->py, 16 + (uint64_t)slot);
     size_t have = 0;
@@ -74,5 +66,5 @@ void padding_fill(struct padding *p, int slot)
     }
     p->gen[slot] = p->pixel;
     if (p->timed_draw_ns)
-        *p->timed_draw_ns += padding_now_ns() - t0;
+        *p->timed_draw_ns += sampler_clock_ns() - t0;
 }

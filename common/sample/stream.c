@@ -3,16 +3,8 @@
 
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/vec3.h"
-
-static uint64_t stream_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
 
 /* Indices a set of s shuffles: a grid's cells (made when taken), a pool set's or a sobol set's
    points (by index); 0 for a fresh Poisson set, whose points are drawn and shuffled whole. */
@@ -65,7 +57,7 @@ void stream_release(struct stream *st)
 void stream_refill(const struct stream_source *src, struct stream *st, struct rng *rng)
 {
     const enum sampler_walk walk = src->walk;
-    const uint64_t t0 = src->timed_draw_ns ? stream_now_ns() : 0;
+    const uint64_t t0 = src->timed_draw_ns ? sampler_clock_ns() : 0;
     if (st->cells) {
         st->n = walk == SAMPLER_WALK_POOL ? sampler_pool_set(src->sampler, rng, &st->pool, &st->ox, &st->oy)
                 : walk == SAMPLER_WALK_SOBOL ? sampler_sobol_set(src->sampler, rng, &st->sobol)
@@ -79,7 +71,7 @@ void stream_refill(const struct stream_source *src, struct stream *st, struct rn
     }
     st->next = 0;
     if (src->timed_draw_ns)
-        *src->timed_draw_ns += stream_now_ns() - t0;
+        *src->timed_draw_ns += sampler_clock_ns() - t0;
     if (src->sets)
         ++*src->sets;
 }
