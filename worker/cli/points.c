@@ -91,6 +91,27 @@ static int file_option(const char *arg, const char *name)
     return !strncmp(arg, name, len) && (arg[len] == '\0' || arg[len] == '=');
 }
 
+/* The value of option argv[*i] (`--name V` or `--name=V`, advancing *i past V), a whole number
+   in [1, limit]: 0, or 2 after one line on stderr. */
+static int count_option(int argc, char **argv, int *i, int limit, int *out)
+{
+    const char *arg = argv[*i];
+    const size_t len = strcspn(arg, "=");
+    const char *v = arg[len] == '=' ? arg + len + 1 : (*i + 1 < argc ? argv[++*i] : NULL);
+    uint64_t m;
+    if (!v) {
+        err_print("worker points: %.*s needs a value; %s", (int)len, arg, points_usage);
+        return 2;
+    }
+    if (parse_seed(v, &m) < 0 || m < 1 || m > (uint64_t)limit) {
+        err_print("worker points: %.*s: must be a whole number in [1, %d], got \"%.40s\"\n", (int)len, arg,
+                  limit, v);
+        return 2;
+    }
+    *out = (int)m;
+    return 0;
+}
+
 /* Fill a from argv. Returns 0, or the exit status after one line on stderr; --help prints the
    usage, sets done and returns 0. */
 static int points_parse(int argc, char **argv, struct points_args *a, int *done)
@@ -118,19 +139,12 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                 err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
                 return 2;
             }
-        } else if (!strcmp(arg, "--sets") || !strncmp(arg, "--sets=", 7)) {
-            const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
-            uint64_t m;
-            if (!v) {
-                err_print("worker points: --sets needs a value; %s", points_usage);
+        } else if (file_option(arg, "--sets") || file_option(arg, "--padded")) {
+            const int sets = arg[2] == 's', limit = sets ? POINTS_MAX_SETS : POINTS_MAX_PADDED;
+            int v;
+            if (count_option(argc, argv, &i, limit, &v) != 0)
                 return 2;
-            }
-            if (parse_seed(v, &m) < 0 || m < 1 || m > POINTS_MAX_SETS) {
-                err_print("worker points: --sets: must be a whole number in [1, %d], got \"%.40s\"\n",
-                          POINTS_MAX_SETS, v);
-                return 2;
-            }
-            a->an.sets = (int)m;
+            *(sets ? &a->an.sets : &a->padded) = v;
         } else if (file_option(arg, "--svg") || file_option(arg, "--spectrum") ||
                    file_option(arg, "--radial")) {
             const size_t len = strcspn(arg, "=");
@@ -143,19 +157,6 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                                 : !strncmp(arg, "--spectrum", len) ? &a->an.spectrum_path
                                                                    : &a->an.radial_path;
             *slot = v;
-        } else if (!strcmp(arg, "--padded") || !strncmp(arg, "--padded=", 9)) {
-            const char *v = arg[8] == '=' ? arg + 9 : (i + 1 < argc ? argv[++i] : NULL);
-            uint64_t k;
-            if (!v) {
-                err_print("worker points: --padded needs a value; %s", points_usage);
-                return 2;
-            }
-            if (parse_seed(v, &k) < 0 || k < 1 || k > POINTS_MAX_PADDED) {
-                err_print("worker points: --padded: must be a whole number in [1, %d], got \"%.40s\"\n",
-                          POINTS_MAX_PADDED, v);
-                return 2;
-            }
-            a->padded = (int)k;
         } else if (!strcmp(arg, "--stats")) {
             a->an.stats = 1;
         } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
