@@ -48,6 +48,7 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "integrator", j->nee ? "nee" : "mixture");
     json_string(&js, "sampler_dims", j->dims_all ? "all" : "pixel_light");
     json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);
+    json_string(&js, "poisson_domain", poisson_domain_name(j->poisson_domain));
     json_uint(&js, "max_depth", (uint64_t)j->max_depth);
     json_uint(&js, "seed", j->seed);
     json_uint(&js, "processes", (uint64_t)r->processes);
@@ -84,7 +85,7 @@ char *sidecar_json(const struct sidecar *s)
     json_end_array(&js);
     json_end_object(&js);
     json_uint(&js, "peak_rss_kb", (uint64_t)r->peak_rss_kb);
-    json_uint(&js, "nonfinite_dropped", t->nonfinite);
+    json_uint(&js, "nonfinite_samples", t->nonfinite); /* counted as zero, not dropped */
     if (s->error) {
         json_begin_object(&js, "error");
         json_string(&js, "reference", j->reference);
@@ -204,7 +205,8 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||
                    count_at(d, root, "parts", &out->parts, e) < 0 ||
-                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 ||
+                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 || /* before issue 26 */
+                   count_at(d, root, "nonfinite_samples", &out->nonfinite, e) < 0 ||
                    count_at(d, samples, "total", &out->samples_total, e) < 0 ||
                    number_at(d, samples, "per_pixel_mean", &out->spp_mean, e) < 0 ||
                    count_at(d, samples, "per_pixel_min", &out->spp_min, e) < 0 ||
