@@ -4,6 +4,8 @@
 # the reference's own relMSE, measured from its halves, is in verdict.json. `worker verdict DIR`
 # judges the folder again from its summary.csv: the same verdict, for a study and a suite, and
 # the checks it skipped named when images or sidecars are gone.
+# And the seed's square-domain Poisson light sets on a near-field light are flagged biased, the
+# toroidal ones and random not.
 . tests/lib.sh
 root=$(pwd)
 ln -s "$root/scenes" "$T/scenes"
@@ -101,4 +103,32 @@ check "a short row: exit 2 (got $rc) naming file:line" [ "$rc" -eq 2 ] &&
 tr '\n' '\r' <"$T/out/bias/summary.csv" >"$T/m/summary.csv"
 "$WORKER" verdict "$T/m" >/dev/null 2>"$T/e4"; rc=$?
 check "CR line ends: exit 0 (got $rc: $(tail -n 1 "$T/e4"))" [ "$rc" -eq 0 ]
+# The seed's square-domain Poisson sets as light sampler on a near-field light are biased (issue 26):
+# the verdict of a small study flags them `biased`; the toroidal default and random are not.
+cp tests/data/near-light.yaml "$T/near-light.yaml"
+cat >"$T/poisson.yaml" <<'YAML'
+name: poissonbias
+scenes: [near-light.yaml]
+width: 24
+max_depth: 2
+integrator: nee
+sampler: jitter
+threshold: 25
+reference: { sampler: jitter, threshold: 5, light_sampler: jitter, light_threshold: 5 }
+seeds: [1, 2, 3, 4, 5, 6, 7, 8]
+sweep: { light_threshold: [20] }
+variants:
+  - { label: torus, light_sampler: poisson }
+  - { label: square, light_sampler: poisson, poisson_domain: square }
+  - { label: random, light_sampler: random }
+YAML
+"$WORKER" --quiet --out "$T/out" "$T/poisson.yaml" 2>"$T/poisson.err"; rc=$?
+check "poisson bias study: exit 0 (got $rc: $(tail -n 1 "$T/poisson.err"))" [ "$rc" -eq 0 ]
+check "poisson bias study: square is flagged biased, torus and random are not" python3 - "$T/out/poissonbias/verdict.json" <<'PY'
+import json, sys
+x = json.load(open(sys.argv[1]))['studies'][0]['scenes'][0]
+biased = {f['variant']: f for f in x['failures'] if f['kind'] == 'biased'}
+assert list(biased) == ['square'], x['failures']
+assert biased['square']['value'] < -1 and biased['square']['standard_errors'] < -4, biased
+PY
 finish
