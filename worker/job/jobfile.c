@@ -33,10 +33,10 @@ int jobfile_open(struct jobfile *f, const char *from, const char *path, struct e
             snprintf(e->file, sizeof e->file, "%s", path);
         return -1;
     }
+    f->bytes = data;
+    f->len = len;
     f->hash = hash_bytes(HASH_FNV_OFFSET, data, len);
-    int rc = ydoc_parse(&f->doc, path, data, len, e);
-    free(data);
-    if (rc < 0)
+    if (ydoc_parse(&f->doc, path, data, len, e) < 0)
         return -1;
     f->kind = kind_of(&f->doc);
     if (f->kind != JOBFILE_PLAIN)
@@ -57,6 +57,8 @@ int jobfile_open(struct jobfile *f, const char *from, const char *path, struct e
 
 void jobfile_close(struct jobfile *f)
 {
+    free(f->bytes);
+    f->bytes = NULL;
     ydoc_free(&f->doc);
     scene_src_free(&f->scene);
 }

@@ -3,6 +3,7 @@
 #ifndef JOBFILE_H
 #define JOBFILE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "job.h"
@@ -17,7 +18,10 @@ enum jobfile_kind {
 struct jobfile {
     char path[JOB_PATH_MAX]; /* where it belongs: messages and relative paths name it */
     enum jobfile_kind kind;
-    struct ydoc doc;        /* the file parsed (doc.file = path); a compare or suite loader reads it */
+    struct ydoc doc; /* the file parsed (doc.file = path); a compare or suite loader reads it */
+    uint8_t *bytes;  /* the file's bytes as read (a queue copies a compare job's into the
+                        study's folder) */
+    size_t len;
     uint64_t hash;          /* FNV-1a of the file's bytes */
     struct job job;         /* JOBFILE_PLAIN: its settings, job.hash complete (file, scene, textures,
                                reference) */

@@ -162,6 +162,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
+    sampler_set_domain(pix, j->poisson_domain);
+    sampler_set_domain(light, j->poisson_domain);
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
     if (outdir_check(rr->out.dir, e) < 0)
         goto done;
