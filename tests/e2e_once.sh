@@ -71,4 +71,18 @@ printf 'scenes: [%s]\nwidth: 8\nheight: 8\nthreshold: 50\nlight_threshold: 50\nr
 traced cmp --out "$T/out" "$T/cmp.yaml"
 once cmp "its job file" "$T/cmp.yaml"
 renamed_once cmp "$T/out/cmp" scene-jitter-t50-s1.png scene-jitter-t50-s1.exr scene-jitter-t50-s1.json summary.csv
+
+# 5. a batch task's share of a study (--part I/N): its job file opened once
+traced share --out "$T/share" --part 0/1 "$T/cmp.yaml"
+once share "its job file" "$T/cmp.yaml"
+
+# 6. a compare job in a queue, spread: the claimed file opened once (its bytes, as read, become
+#    the study's study.job), then study.job once per entry: the reference, the image, the gather
+Q2=$T/q2; mkdir -p "$Q2"
+cp "$T/cmp.yaml" "$Q2/cq.yaml"
+traced spread --queue "$Q2" --once
+once spread "the claimed compare job" "$Q2/running/cq.yaml"
+got=$(opens "$T/spread.log" "$Q2/spread/cq/study.job")
+check "spread: study.job opened once per entry, 3 entries (got $got)" [ "$got" -eq 3 ]
+renamed_once spread "$Q2/done/cq" scene-jitter-t50-s1.png summary.csv verdict.json
 finish
