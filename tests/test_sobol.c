@@ -3,6 +3,8 @@
    determinism, and its error's convergence rate. */
 #include "sample/sobol.h"
 
+#include "sample/pointstat.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,26 +81,9 @@ static void test_owen_tree(void)
     free(seen);
 }
 
-/* Every elementary interval [i / 2^a, (i + 1) / 2^a) x [j / 2^b, (j + 1) / 2^b) with a + b = m
-   holds exactly one of the 2^m points. */
 static int is_net(const struct pt2 *p, size_t n, int m)
 {
-    if (n != (size_t)1 << m)
-        return 0;
-    unsigned char *count = calloc(n, 1);
-    int ok = count != NULL;
-    for (int a = 0; ok && a <= m; a++) {
-        const int b = m - a;
-        memset(count, 0, n);
-        for (size_t k = 0; k < n; k++) {
-            size_t i = (size_t)(p[k].x * (double)((size_t)1 << a)),
-                   j = (size_t)(p[k].y * (double)((size_t)1 << b));
-            if (i >> a || j >> b || count[(i << b) | j]++)
-                ok = 0;
-        }
-    }
-    free(count);
-    return ok;
+    return n == (size_t)1 << m && pointstat_is_net(p, n) == 1;
 }
 
 static void test_nets(void)

@@ -1,9 +1,12 @@
 /* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk, Owen-scrambled
-   Sobol). */
+   Sobol, Owen-scrambled Halton, pmj02bn, Z-Sobol). */
 #include "sampler.h"
 
+#include "halton.h"
+#include "pmj02.h"
 #include "poisson.h"
 #include "sobol.h"
+#include "zsobol.h"
 #include "base/vec3.h"
 
 #include <math.h>
@@ -22,6 +25,8 @@ struct sampler {
     size_t capacity;  /* sampler_capacity(kind, threshold) */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
+    struct pmj02 pmj;       /* pmj02bn workspace, likewise */
+    int log2_count;         /* pmj02bn, zsobol: capacity = 2^log2_count */
 
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
     int pool_size;
@@ -30,7 +35,8 @@ struct sampler {
     size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
 };
 
-static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson", "sobol", NULL};
+static const char *const kind_names[] = {"uniform", "jitter",  "random", "poisson", "sobol",
+                                         "halton",  "pmj02bn", "zsobol", NULL};
 #define KIND_COUNT ((int)(sizeof kind_names / sizeof kind_names[0]) - 1)
 
 int sampler_kind_parse(const char *name, enum sampler_kind *out)
@@ -96,7 +102,13 @@ size_t sampler_capacity(enum sampler_kind kind, double threshold)
         return 0;
     if (kind == SAMPLER_POISSON)
         return side_squared(poisson_side_real(threshold));
-    return side_squared(grid_side_real(threshold));
+    size_t n = side_squared(grid_side_real(threshold));
+    if (kind != SAMPLER_PMJ02BN && kind != SAMPLER_ZSOBOL)
+        return n;
+    size_t pow2 = 1; /* their constructions are nets at powers of two: n rounded up to one */
+    while (pow2 < n && pow2 <= SIZE_MAX / 2)
+        pow2 *= 2;
+    return pow2 < n ? SIZE_MAX : pow2;
 }
 
 size_t sampler_set_capacity(const struct sampler *s)
@@ -109,6 +121,7 @@ void sampler_free(struct sampler *s)
     if (!s)
         return;
     poisson_release(&s->bridson);
+    pmj02_release(&s->pmj);
     free(s->pool_pts);
     free(s->pool);
     free(s->pool_start);
@@ -133,7 +146,7 @@ enum sampler_kind sampler_kind_of(const struct sampler *s)
 
 uint32_t sampler_cells(const struct sampler *s)
 {
-    return s->kind == SAMPLER_POISSON || s->kind == SAMPLER_SOBOL ? 0 : (uint32_t)s->capacity;
+    return s->kind <= SAMPLER_RANDOM ? (uint32_t)s->capacity : 0;
 }
 
 struct sampler_grid sampler_grid_of(const struct sampler *s)
@@ -145,6 +158,22 @@ struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng
 {
     const struct sampler_grid g = sampler_grid_of(s);
     return sampler_grid_point(&g, cell, rng);
+}
+
+size_t sampler_draw_at(struct sampler *s, struct rng *rng, const struct sampler_at *at, struct pt2 *out)
+{
+    switch (s->kind) {
+    case SAMPLER_HALTON:
+        halton_fill((struct halton_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y},
+                    (uint32_t)s->capacity, out);
+        return s->capacity;
+    case SAMPLER_ZSOBOL:
+        zsobol_fill((struct zsobol_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y, s->log2_count},
+                    out);
+        return s->capacity;
+    default:
+        return sampler_draw(s, rng, out);
+    }
 }
 
 size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
@@ -182,6 +211,15 @@ size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
         count = sampler_sobol_set(s, rng, &seeds);
         sobol_fill(seeds, count, out);
         return count;
+    }
+    case SAMPLER_PMJ02BN:
+        pmj02_draw(&s->pmj, rng, s->capacity, out);
+        return s->capacity;
+    case SAMPLER_HALTON:
+    case SAMPLER_ZSOBOL: {
+        uint64_t seed = rng_u32(rng);
+        const struct sampler_at at = {seed << 32 | rng_u32(rng), 0, 0, 0};
+        return sampler_draw_at(s, rng, &at, out);
     }
     case SAMPLER_POISSON:
         break;
@@ -270,7 +308,7 @@ fail:
 struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
                             struct err *e)
 {
-    if ((int)kind < SAMPLER_UNIFORM || (int)kind > SAMPLER_SOBOL) {
+    if ((int)kind < SAMPLER_UNIFORM || (int)kind >= KIND_COUNT) {
         err_set(e, NULL, 0, 0, "sampler: unknown kind %d", (int)kind);
         return NULL;
     }
@@ -297,6 +335,10 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
     s->grid_n = sampler_grid_side(threshold);
     s->n_recip = ((uint64_t)1 << 42) / (uint64_t)s->grid_n + 1;
     s->capacity = capacity;
+    while (((size_t)1 << s->log2_count) < capacity)
+        s->log2_count++;
+    if (kind == SAMPLER_PMJ02BN && pmj02_init(&s->pmj, capacity) < 0)
+        goto oom;
     if (kind != SAMPLER_POISSON)
         return s;
 

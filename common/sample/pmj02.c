@@ -1,0 +1,195 @@
+/* pmj02: progressive multi-jittered (0,2) sequences with best-candidate choice (pmj02.h). Each
+   doubling of the sequence first puts a point in the subquadrant diagonally opposite each earlier
+   point, then the next doubling fills the other two subquadrants of each quadrant, one of each
+   pair chosen at random (Christensen et al. 2018, sec. 3 and 5). Inside its subquadrant a new point
+   must avoid every elementary interval already occupied at the new level: its valid x strata
+   depend only on the intervals finer in x than the subquadrant, its valid y strata only on those
+   finer in y, so both lists are found by descending the interval shapes (Pharr 2019) and any pair
+   of them is valid. */
+#include "pmj02.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* The top `bits` bits of v (0 for none). */
+static inline uint32_t top(uint32_t v, int bits)
+{
+    return bits ? v >> (32 - bits) : 0;
+}
+
+int pmj02_init(struct pmj02 *w, size_t cap)
+{
+    int m = 0;
+    while (((size_t)1 << m) < cap)
+        m++;
+    memset(w, 0, sizeof *w);
+    w->cap = cap;
+    w->x = malloc(cap * sizeof *w->x);
+    w->y = malloc(cap * sizeof *w->y);
+    w->occupied = malloc(((size_t)m + 1) * cap);
+    w->xs = malloc(cap * sizeof *w->xs);
+    w->ys = malloc(cap * sizeof *w->ys);
+    w->grid = malloc(2 * cap * sizeof *w->grid);
+    w->order = malloc(cap * sizeof *w->order);
+    if (!w->x || !w->y || !w->occupied || !w->xs || !w->ys || !w->grid || !w->order) {
+        pmj02_release(w);
+        return -1;
+    }
+    return 0;
+}
+
+void pmj02_release(struct pmj02 *w)
+{
+    free(w->x);
+    free(w->y);
+    free(w->occupied);
+    free(w->xs);
+    free(w->ys);
+    free(w->grid);
+    free(w->order);
+    memset(w, 0, sizeof *w);
+}
+
+/* One placement: level m (2^m points when done), subquadrant (cx, cy) of the 2^g x 2^g grid. */
+struct level {
+    int m, g;
+};
+
+/* Shape k of level m: 2^k columns by 2^(m - k) rows; the flag of the interval holding (x, y). */
+static inline uint8_t *interval(const struct pmj02 *w, int m, int k, uint32_t col, uint32_t row)
+{
+    return w->occupied + ((size_t)k << m) + ((size_t)row << k) + col;
+}
+
+static void mark(struct pmj02 *w, int m, uint32_t x, uint32_t y)
+{
+    for (int k = 0; k <= m; k++)
+        *interval(w, m, k, top(x, k), top(y, m - k)) = 1;
+}
+
+/* Clear level m's intervals and the g-grid, then enter points [0, count). */
+static void relevel(struct pmj02 *w, struct level lv, size_t count)
+{
+    memset(w->occupied, 0, ((size_t)lv.m + 1) << lv.m);
+    memset(w->grid, 0, ((size_t)1 << 2 * lv.g) * sizeof *w->grid);
+    for (size_t i = 0; i < count; i++) {
+        mark(w, lv.m, w->x[i], w->y[i]);
+        w->grid[(size_t)top(w->y[i], lv.g) << lv.g | top(w->x[i], lv.g)] = (uint32_t)i + 1;
+    }
+}
+
+/* Valid x strata below prefix (k bits of x, k >= g) in row cy's band: shape k's interval at
+   (prefix, cy's top m - k bits) must be free, and so on down to single columns (k = m). */
+static size_t x_strata(const struct pmj02 *w, struct level lv, uint32_t prefix, int k, uint32_t cy, size_t n)
+{
+    if (*interval(w, lv.m, k, prefix, cy >> (lv.g - (lv.m - k))))
+        return n;
+    if (k == lv.m) {
+        w->xs[n] = prefix;
+        return n + 1;
+    }
+    n = x_strata(w, lv, prefix << 1, k + 1, cy, n);
+    return x_strata(w, lv, prefix << 1 | 1, k + 1, cy, n);
+}
+
+/* The same in y: l bits of y, shape m - l, column cx's top m - l bits. */
+static size_t y_strata(const struct pmj02 *w, struct level lv, uint32_t prefix, int l, uint32_t cx, size_t n)
+{
+    const int k = lv.m - l;
+    if (*interval(w, lv.m, k, cx >> (lv.g - k), prefix))
+        return n;
+    if (l == lv.m) {
+        w->ys[n] = prefix;
+        return n + 1;
+    }
+    n = y_strata(w, lv, prefix << 1, l + 1, cx, n);
+    return y_strata(w, lv, prefix << 1 | 1, l + 1, cx, n);
+}
+
+/* Squared toroidal distance, in units of 2^-64, from (x, y) to the nearest point in the 5 x 5
+   cells of the g-grid around it, or all of a grid of 4 x 4 or less (UINT64_MAX if none): unsigned
+   differences read as signed are the shortest way round. */
+static uint64_t nearest(const struct pmj02 *w, int g, uint32_t x, uint32_t y)
+{
+    const uint32_t side = (uint32_t)1 << g, mask = side - 1;
+    const uint32_t width = side <= 4 ? side : 5, cx = side <= 4 ? 0 : top(x, g) - 2,
+                   cy = side <= 4 ? 0 : top(y, g) - 2;
+    uint64_t best = UINT64_MAX;
+    for (uint32_t j = 0; j < width; j++)
+        for (uint32_t i = 0; i < width; i++) {
+            const uint32_t at = w->grid[(size_t)((cy + j) & mask) << g | ((cx + i) & mask)];
+            if (!at)
+                continue;
+            const int64_t ex = (int32_t)(x - w->x[at - 1]), ey = (int32_t)(y - w->y[at - 1]);
+            const uint64_t d = (uint64_t)(ex * ex) + (uint64_t)(ey * ey);
+            best = d < best ? d : best;
+        }
+    return best;
+}
+
+/* Point i in subquadrant (cx, cy) of the 2^g grid at level lv: the best valid candidate. */
+static void place(struct pmj02 *w, struct rng *rng, struct level lv, size_t i, uint32_t cx, uint32_t cy)
+{
+    const size_t nx = x_strata(w, lv, cx, lv.g, cy, 0), ny = y_strata(w, lv, cy, lv.g, cx, 0);
+    uint64_t best = 0;
+    for (int c = 0; c < PMJ02_CANDIDATES; c++) {
+        /* nx, ny >= 1 for the pmj02 construction (Pharr 2019); a stratum, then uniform in it */
+        const uint32_t sx = w->xs[rng_below(rng, (uint32_t)nx)], sy = w->ys[rng_below(rng, (uint32_t)ny)];
+        const uint32_t x = sx << (32 - lv.m) | rng_u32(rng) >> lv.m,
+                       y = sy << (32 - lv.m) | rng_u32(rng) >> lv.m;
+        const uint64_t d = nearest(w, lv.g, x, y);
+        if (c == 0 || d > best) {
+            best = d;
+            w->x[i] = x;
+            w->y[i] = y;
+        }
+    }
+    mark(w, lv.m, w->x[i], w->y[i]);
+    w->grid[(size_t)top(w->y[i], lv.g) << lv.g | top(w->x[i], lv.g)] = (uint32_t)i + 1;
+}
+
+/* The first n points, in w->x and w->y. */
+static void generate(struct pmj02 *w, struct rng *rng, size_t n)
+{
+    w->x[0] = rng_u32(rng);
+    w->y[0] = rng_u32(rng);
+    /* from 4^h points to 2 * 4^h and then 4 * 4^h; the grid of subquadrants is 2^(h+1) square */
+    for (int h = 0; ((size_t)1 << 2 * h) < n; h++) {
+        const size_t prev = (size_t)1 << 2 * h;
+        const int g = h + 1;
+        struct level lv = {2 * h + 1, g};
+        relevel(w, lv, prev);
+        for (size_t i = 0; i < prev; i++)
+            w->order[i] = (uint32_t)i;
+        for (size_t i = 0; i < prev && prev + i < n; i++) {
+            /* the earlier points in a random order: diagonally opposite subquadrants */
+            const size_t j = i + rng_below(rng, (uint32_t)(prev - i));
+            const uint32_t t = w->order[j];
+            w->order[j] = w->order[i];
+            w->order[i] = t;
+            place(w, rng, lv, prev + i, top(w->x[t], g) ^ 1u, top(w->y[t], g) ^ 1u);
+        }
+        if (2 * prev >= n)
+            break;
+        lv.m++;
+        relevel(w, lv, 2 * prev);
+        /* point i's quadrant still has two subquadrants free, beside it in x and in y: one of them
+           for point 2 prev + i, chosen at random, then the other for point 3 prev + i */
+        for (size_t i = 0; i < prev && 2 * prev + i < n; i++) {
+            const uint32_t flip = rng_u32(rng) >> 31;
+            w->order[i] = flip;
+            place(w, rng, lv, 2 * prev + i, top(w->x[i], g) ^ flip, top(w->y[i], g) ^ (flip ^ 1u));
+        }
+        for (size_t i = 0; i < prev && 3 * prev + i < n; i++) {
+            const uint32_t flip = w->order[i];
+            place(w, rng, lv, 3 * prev + i, top(w->x[i], g) ^ (flip ^ 1u), top(w->y[i], g) ^ flip);
+        }
+    }
+}
+
+void pmj02_draw(struct pmj02 *w, struct rng *rng, size_t n, struct pt2 *out)
+{
+    generate(w, rng, n);
+    for (size_t i = 0; i < n; i++)
+        out[i] = (struct pt2){w->x[i] * 0x1.0p-32, w->y[i] * 0x1.0p-32};
+}
