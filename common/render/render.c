@@ -45,11 +45,13 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     rng_pixel(&ctx->light_rng, ctx->rs.seed, x, y, 1);
     rng_pixel(&path_rng, ctx->rs.seed, x, y, 2);
     for (int i = 0; i < ctx->sc->n_lights; i++)
-        ctx->lp[i].n = ctx->lp[i].next = 0;
+        ctx->lp[i].n = ctx->lp[i].next = ctx->lp[i].sets = 0;
+    ctx->px = x, ctx->py = y;
 
     const int timed = ctx->timed = sampler_timed(st->pixels);
     const uint64_t t0 = timed ? now_ns() : 0;
-    size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
+    const struct sampler_at at = {ctx->rs.seed, x, y, 0};
+    size_t n = sampler_draw_at(ctx->pixel, &pix_rng, &at, ctx->pixel_pts);
     if (timed)
         st->timed_draw_ns += now_ns() - t0;
 
@@ -59,7 +61,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     const int nee = lights && ctx->rs.nee, mix = lights && !nee, dims = ctx->rs.dims_all;
     if (dims) {
-        ctx->px = x, ctx->py = y, ctx->dims_n = n;
+        ctx->dims_n = n;
         ctx->dims_pixel++;
         ctx->dims_key = rng_mix64(ctx->rs.seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32 | (uint32_t)y) + 16));
     }

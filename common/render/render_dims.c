@@ -48,8 +48,10 @@ void render_dims_fill(struct render_ctx *ctx, int slot)
     struct rng r;
     rng_pixel(&r, ctx->rs.seed, ctx->px, ctx->py, 16 + (uint64_t)slot);
     size_t have = 0;
+    struct sampler_at at = {ctx->rs.seed, ctx->px, ctx->py, 1 + (uint32_t)slot};
     while (have < n && have + cap <= ctx->dims_slot_cap) {
-        have += sampler_draw(ctx->pixel, &r, pts + have);
+        have += sampler_draw_at(ctx->pixel, &r, &at, pts + have);
+        at.dim += (uint32_t)ctx->dims_slots;
     }
     /* the first n places of a Fisher-Yates shuffle: sample s takes a uniformly random point */
     for (size_t k = 0; k < n && k < have; k++) {

@@ -19,6 +19,7 @@ struct light_points {
     double ox, oy, cos_oy, sin_oy;
     struct sobol_seeds sobol; /* sobol: the set's seeds */
     size_t n, next;
+    uint32_t sets;   /* sets drawn in this pixel: the dimension of a halton or zsobol set */
     int uses_points; /* shape_light_uses_points of the light, looked up once */
 };
 
@@ -26,6 +27,8 @@ struct light_points {
    per bounce the scatter direction, the light point and (the mixture's or glass's coin in x,
    the light's choice in y). */
 #define DIMS_CAMERA 2
+/* The first dimension (struct sampler_at) of the light sets' points: above every pixel set's. */
+#define RENDER_LIGHT_DIM (1u << 20)
 #define DIMS_PER_BOUNCE 3
 enum { DIM_DIR, DIM_LIGHT, DIM_CHOICE };
 

@@ -77,7 +77,11 @@ static __attribute__((noinline, unused)) void refill_light_points(struct render_
             v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
         }
     } else {
-        lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
+        /* halton, zsobol: light i's j-th set of the pixel is a dimension of its own, above the
+           pixel sampler's (0 and sampler_dims' slots) */
+        const struct sampler_at at = {ctx->rs.seed, ctx->px, ctx->py,
+                                      RENDER_LIGHT_DIM + ((uint32_t)(lp - ctx->lp) << 16) + lp->sets++};
+        lp->n = sampler_draw_at(ctx->light, &ctx->light_rng, &at, lp->pts);
     }
     lp->next = 0;
     if (ctx->timed)

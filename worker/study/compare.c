@@ -32,10 +32,9 @@ static double now_s(void)
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
 {
-    double n = sampler_grid_side(it->job.threshold);
     double spp = it->job.sampler == SAMPLER_POISSON
                      ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
-                     : n * n;
+                     : (double)sampler_capacity(it->job.sampler, it->job.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
