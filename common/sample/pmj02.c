@@ -24,6 +24,7 @@ int pmj02_init(struct pmj02 *w, size_t cap)
         m++;
     memset(w, 0, sizeof *w);
     w->cap = cap;
+    w->candidates = PMJ02_CANDIDATES;
     w->x = malloc(cap * sizeof *w->x);
     w->y = malloc(cap * sizeof *w->y);
     w->occupied = malloc(((size_t)m + 1) * cap);
@@ -127,30 +128,56 @@ static uint64_t nearest(const struct pmj02 *w, int g, uint32_t x, uint32_t y)
     return best;
 }
 
-/* Point i in subquadrant (cx, cy) of the 2^g grid at level lv: the best valid candidate. */
-static void place(struct pmj02 *w, struct rng *rng, struct level lv, size_t i, uint32_t cx, uint32_t cy)
+/* The best of PMJ02_CANDIDATES points in subquadrant (cx, cy) of the 2^g grid at level lv, into
+   *x, *y; returns its squared distance to the nearest point so far, or 0 with no valid stratum.
+   The valid strata are one x and one y stratum of width 2^-m (Pharr 2019: at each shape the
+   earlier net's point takes one of two halves), so the candidates differ in their jitter. */
+static uint64_t candidate(const struct pmj02 *w, struct rng *rng, struct level lv, uint32_t cx, uint32_t cy,
+                          uint32_t *x, uint32_t *y)
 {
     const size_t nx = x_strata(w, lv, cx, lv.g, cy, 0), ny = y_strata(w, lv, cy, lv.g, cx, 0);
+    if (!nx || !ny) { /* never seen (test_pmj02 counts them): uniform in the subquadrant */
+        *x = cx << (32 - lv.g) | rng_u32(rng) >> lv.g;
+        *y = cy << (32 - lv.g) | rng_u32(rng) >> lv.g;
+        return 0;
+    }
     uint64_t best = 0;
-    for (int c = 0; c < PMJ02_CANDIDATES; c++) {
-        /* nx, ny >= 1 for the pmj02 construction (Pharr 2019); a stratum, then uniform in it */
+    for (int c = 0; c < w->candidates; c++) {
         const uint32_t sx = w->xs[rng_below(rng, (uint32_t)nx)], sy = w->ys[rng_below(rng, (uint32_t)ny)];
-        const uint32_t x = sx << (32 - lv.m) | rng_u32(rng) >> lv.m,
-                       y = sy << (32 - lv.m) | rng_u32(rng) >> lv.m;
-        const uint64_t d = nearest(w, lv.g, x, y);
+        const uint32_t px = sx << (32 - lv.m) | rng_u32(rng) >> lv.m,
+                       py = sy << (32 - lv.m) | rng_u32(rng) >> lv.m;
+        const uint64_t d = nearest(w, lv.g, px, py);
         if (c == 0 || d > best) {
-            best = d;
-            w->x[i] = x;
-            w->y[i] = y;
+            best = d | 1; /* nonzero: found */
+            *x = px;
+            *y = py;
         }
     }
-    mark(w, lv.m, w->x[i], w->y[i]);
-    w->grid[(size_t)top(w->y[i], lv.g) << lv.g | top(w->x[i], lv.g)] = (uint32_t)i + 1;
+    return best;
 }
 
-/* The first n points, in w->x and w->y. */
-static void generate(struct pmj02 *w, struct rng *rng, size_t n)
+/* Enter point i at (x, y). */
+static void add(struct pmj02 *w, struct level lv, size_t i, uint32_t x, uint32_t y)
 {
+    w->x[i] = x;
+    w->y[i] = y;
+    mark(w, lv.m, x, y);
+    w->grid[(size_t)top(y, lv.g) << lv.g | top(x, lv.g)] = (uint32_t)i + 1;
+}
+
+/* Point i in subquadrant (cx, cy); returns 0, or -1 if it has no valid stratum. */
+static int place(struct pmj02 *w, struct rng *rng, struct level lv, size_t i, uint32_t cx, uint32_t cy)
+{
+    uint32_t x, y;
+    const int found = candidate(w, rng, lv, cx, cy, &x, &y) != 0;
+    add(w, lv, i, x, y);
+    return found - 1;
+}
+
+/* The first n points, in w->x and w->y; returns minus the number of points with no valid stratum. */
+static int generate(struct pmj02 *w, struct rng *rng, size_t n)
+{
+    int dead = 0;
     w->x[0] = rng_u32(rng);
     w->y[0] = rng_u32(rng);
     /* from 4^h points to 2 * 4^h and then 4 * 4^h; the grid of subquadrants is 2^(h+1) square */
@@ -167,29 +194,38 @@ static void generate(struct pmj02 *w, struct rng *rng, size_t n)
             const uint32_t t = w->order[j];
             w->order[j] = w->order[i];
             w->order[i] = t;
-            place(w, rng, lv, prev + i, top(w->x[t], g) ^ 1u, top(w->y[t], g) ^ 1u);
+            dead += place(w, rng, lv, prev + i, top(w->x[t], g) ^ 1u, top(w->y[t], g) ^ 1u);
         }
         if (2 * prev >= n)
             break;
         lv.m++;
         relevel(w, lv, 2 * prev);
-        /* point i's quadrant still has two subquadrants free, beside it in x and in y: one of them
-           for point 2 prev + i, chosen at random, then the other for point 3 prev + i */
+        /* point i's quadrant still has two subquadrants free, beside it in x and in y: point
+           2 prev + i takes the one where its best candidate lies farther from the points so far
+           (Christensen et al. choose at random; the (0,2) strata hold either way), then point
+           3 prev + i the other */
         for (size_t i = 0; i < prev && 2 * prev + i < n; i++) {
-            const uint32_t flip = rng_u32(rng) >> 31;
-            w->order[i] = flip;
-            place(w, rng, lv, 2 * prev + i, top(w->x[i], g) ^ flip, top(w->y[i], g) ^ (flip ^ 1u));
+            const uint32_t cx = top(w->x[i], g), cy = top(w->y[i], g);
+            uint32_t x[2], y[2];
+            const uint64_t d0 = candidate(w, rng, lv, cx ^ 1u, cy, &x[0], &y[0]),
+                           d1 = candidate(w, rng, lv, cx, cy ^ 1u, &x[1], &y[1]);
+            const uint32_t pick = d1 > d0;
+            dead -= !(d0 | d1);
+            w->order[i] = pick;
+            add(w, lv, 2 * prev + i, x[pick], y[pick]);
         }
         for (size_t i = 0; i < prev && 3 * prev + i < n; i++) {
-            const uint32_t flip = w->order[i];
-            place(w, rng, lv, 3 * prev + i, top(w->x[i], g) ^ (flip ^ 1u), top(w->y[i], g) ^ flip);
+            const uint32_t beside_x = w->order[i] == 1; /* the other one */
+            dead += place(w, rng, lv, 3 * prev + i, top(w->x[i], g) ^ beside_x, top(w->y[i], g) ^ !beside_x);
         }
     }
+    return dead;
 }
 
-void pmj02_draw(struct pmj02 *w, struct rng *rng, size_t n, struct pt2 *out)
+int pmj02_draw(struct pmj02 *w, struct rng *rng, size_t n, struct pt2 *out)
 {
-    generate(w, rng, n);
+    const int dead = generate(w, rng, n);
     for (size_t i = 0; i < n; i++)
         out[i] = (struct pt2){w->x[i] * 0x1.0p-32, w->y[i] * 0x1.0p-32};
+    return -dead;
 }

@@ -17,6 +17,7 @@
 /* The workspace of sequences of up to cap points (cap a power of two, <= 2^24). */
 struct pmj02 {
     size_t cap;
+    int candidates;    /* PMJ02_CANDIDATES; 1 is plain pmj02 (for comparison) */
     uint32_t *x, *y;   /* the points as 32-bit binary fractions */
     uint8_t *occupied; /* (m + 1) * 2^m flags: elementary intervals of every shape at level m */
     uint32_t *xs, *ys; /* the valid x and y strata of the point being placed */
@@ -30,7 +31,9 @@ void pmj02_release(struct pmj02 *w);
 
 /* The first n points (1 <= n <= cap) of a fresh sequence drawn from rng, into out: every prefix of
    2^m points is a (0,m,2)-net (each elementary interval of area 2^-m holds one point), and each
-   point is the best of PMJ02_CANDIDATES valid candidates. Allocates nothing; cannot fail. */
-void pmj02_draw(struct pmj02 *w, struct rng *rng, size_t n, struct pt2 *out);
+   point is the best of w->candidates valid candidates. Returns the number of points that found no
+   valid stratum and were placed uniformly in their subquadrant instead (0 in every test: the
+   construction always leaves one). Allocates nothing; cannot fail. */
+int pmj02_draw(struct pmj02 *w, struct rng *rng, size_t n, struct pt2 *out);
 
 #endif
