@@ -79,32 +79,23 @@ static void relevel(struct pmj02 *w, struct level lv, size_t count)
     }
 }
 
-/* Valid x strata below prefix (k bits of x, k >= g) in row cy's band: shape k's interval at
-   (prefix, cy's top m - k bits) must be free, and so on down to single columns (k = m). */
-static size_t x_strata(const struct pmj02 *w, struct level lv, uint32_t prefix, int k, uint32_t cy, size_t n)
+/* The valid strata of one axis (0 x, 1 y) below prefix (its first `bits` bits, bits >= g) in the
+   band of the other axis's subquadrant index `other`: the interval of the shape with `bits` bits on
+   this axis and m - bits on the other must be free, and so on down to single strata (bits = m),
+   which are appended to out. Returns the count so far. */
+static size_t strata(const struct pmj02 *w, struct level lv, int axis, uint32_t prefix, int bits,
+                     uint32_t other, uint32_t *out, size_t n)
 {
-    if (*interval(w, lv.m, k, prefix, cy >> (lv.g - (lv.m - k))))
+    const uint32_t band = other >> (lv.g - (lv.m - bits));
+    const int k = axis ? lv.m - bits : bits; /* the shape's column bits */
+    if (*interval(w, lv.m, k, axis ? band : prefix, axis ? prefix : band))
         return n;
-    if (k == lv.m) {
-        w->xs[n] = prefix;
+    if (bits == lv.m) {
+        out[n] = prefix;
         return n + 1;
     }
-    n = x_strata(w, lv, prefix << 1, k + 1, cy, n);
-    return x_strata(w, lv, prefix << 1 | 1, k + 1, cy, n);
-}
-
-/* The same in y: l bits of y, shape m - l, column cx's top m - l bits. */
-static size_t y_strata(const struct pmj02 *w, struct level lv, uint32_t prefix, int l, uint32_t cx, size_t n)
-{
-    const int k = lv.m - l;
-    if (*interval(w, lv.m, k, cx >> (lv.g - k), prefix))
-        return n;
-    if (l == lv.m) {
-        w->ys[n] = prefix;
-        return n + 1;
-    }
-    n = y_strata(w, lv, prefix << 1, l + 1, cx, n);
-    return y_strata(w, lv, prefix << 1 | 1, l + 1, cx, n);
+    n = strata(w, lv, axis, prefix << 1, bits + 1, other, out, n);
+    return strata(w, lv, axis, prefix << 1 | 1, bits + 1, other, out, n);
 }
 
 /* Squared toroidal distance, in units of 2^-64, from (x, y) to the nearest point in the 5 x 5
@@ -135,7 +126,7 @@ static uint64_t nearest(const struct pmj02 *w, int g, uint32_t x, uint32_t y)
 static uint64_t candidate(const struct pmj02 *w, struct rng *rng, struct level lv, uint32_t cx, uint32_t cy,
                           uint32_t *x, uint32_t *y)
 {
-    const size_t nx = x_strata(w, lv, cx, lv.g, cy, 0), ny = y_strata(w, lv, cy, lv.g, cx, 0);
+    const size_t nx = strata(w, lv, 0, cx, lv.g, cy, w->xs, 0), ny = strata(w, lv, 1, cy, lv.g, cx, w->ys, 0);
     if (!nx || !ny) { /* never seen (test_pmj02 counts them): uniform in the subquadrant */
         *x = cx << (32 - lv.g) | rng_u32(rng) >> lv.g;
         *y = cy << (32 - lv.g) | rng_u32(rng) >> lv.g;
