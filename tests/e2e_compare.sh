@@ -390,6 +390,10 @@ printf 'name: x\nscene: checker\nwidth: 17\nreference: given.png\nvariants:\n  -
 bad refsize '4:12: reference: image is 16x16 but the job renders 17x17'
 printf 'scenes: [checker]\nseeds: [1, 2, 1]\nvariants:\n  - { sampler: jitter }\n' >"$T/seeds.yaml"
 bad seeds '2:15: seeds: 1 is listed twice'
+# two scene files sharing a stem: named, not "listed twice" (issue 27)
+mkdir -p "$T/sa" "$T/sb"; cp scenes/checker.yaml "$T/sa/"; cp scenes/checker.yaml "$T/sb/"
+printf 'scenes: [sa/checker.yaml, sb/checker.yaml]\nvariants:\n  - { sampler: jitter }\n' >"$T/stems.yaml"
+bad stems "1:27: scenes: $T/sa/checker.yaml and $T/sb/checker.yaml are both named \"checker\" .*rename one of the files"
 printf 'scenes: [checker]\nsweep: { threshold: [5, 0] }\nvariants:\n  - { sampler: jitter }\n' >"$T/zero.yaml"
 bad zero '2:25: threshold: must be a number in \(0, 100\]'
 # A compare job stopped by Ctrl-C while its reference renders (nothing written yet) leaves no empty

@@ -89,6 +89,8 @@ for s in uniform jitter random poisson sobol; do
     check "$s: --spectrum --radial --stats exit 0 (got $rc: $(head -c 200 "$T/$s.err"))" [ "$rc" -eq 0 ]
     check "$s: the spectrum is a PNG" sh -c "head -c 8 '$T/$s.png' | od -An -c | grep -q 'P   N   G'"
     check "$s: the radial chart is an SVG with two panels" sh -c "grep -q '<svg' '$T/$s.svg' && grep -q 'radial mean power' '$T/$s.svg' && grep -q 'anisotropy' '$T/$s.svg'"
+    check "$s: the radial chart's title names the seeds' whole range (it was cut: \"seeds 1..\")" \
+        grep -q "radial spectrum over 4 sets, seeds 1\.\.4</text>" "$T/$s.svg"
     for k in count min_distance min_distance_toroidal star_discrepancy_l2 low_frequency_power; do
         check "$s: --stats prints $k" sh -c "[ -n \"\$(awk '\$1 == \"$k\" {print \$2}' '$T/$s.stats')\" ]"
     done

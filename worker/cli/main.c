@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "diff.h"
+#include "dryrun.h"
 #include "study/compare.h"
 #include "study/study_main.h"
 #include "base/fileio.h"
@@ -25,6 +26,8 @@
 static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
+    "       worker JOB.yaml --dry-run          samples, memory and CPU time from a short pilot;\n"
+    "                                          renders nothing, writes nothing\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
@@ -59,6 +62,8 @@ static const char help[] =
     "A queue (--queue DIR) is a folder of job files that any number of workers, on one machine\n"
     "or many sharing it, drain: outputs in DIR/done/<name>/, failed jobs in DIR/failed/.\n"
     "--part I/N and merge split one job's rows over machines and join them again.\n"
+    "--dry-run prints a job's (or compare job's) samples, memory and CPU time from a short\n"
+    "pilot, and a compare job's too-weak reference, rendering and writing nothing.\n"
     "worker diff scores an image against a reference (in linear radiance for EXR/PFM, see\n"
     "docs/formats.md); worker points prints (or draws, --svg)\n"
     "one point set of a sampler.\n"
@@ -204,7 +209,7 @@ static int worker_main(int argc, char **argv)
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
     const char **jobs = calloc((size_t)argc, sizeof *jobs);
-    int njobs = 0, worst = 0, out_given = 0;
+    int njobs = 0, worst = 0, out_given = 0, dry_run = 0;
     const char *queue_only = NULL; /* the first option that only a queue uses */
     if (!jobs)
         return 2;
@@ -234,6 +239,8 @@ static int worker_main(int argc, char **argv)
             q.once = 1;
         } else if (!strcmp(a, "--force")) {
             o->force = 1;
+        } else if (!strcmp(a, "--dry-run")) {
+            dry_run = 1;
         } else if (cli_takes_value(a)) {
             if (cli_option_value(a, i + 1 < argc ? argv[++i] : NULL, &q) < 0) {
                 worst = 2;
@@ -258,7 +265,16 @@ static int worker_main(int argc, char **argv)
         err_print("worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);
     if (!q.dir && queue_only)
         err_print("worker: %s is ignored without --queue\n", queue_only);
-    if (q.dir && (njobs || merge || o->parts)) {
+    if (dry_run && (q.dir || merge || o->parts)) {
+        err_print("worker: --dry-run estimates job files: no --queue, merge or --part; see worker --help\n");
+        worst = 2;
+    } else if (dry_run && njobs == 0) {
+        err_print("worker: --dry-run needs a job file; see worker --help\n");
+        worst = 2;
+    } else if (dry_run) {
+        for (int i = 0; i < njobs; i++)
+            worst = max_rc(worst, dryrun_main(jobs[i], o));
+    } else if (q.dir && (njobs || merge || o->parts)) {
         err_print("worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;
     } else if (q.dir) {

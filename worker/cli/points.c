@@ -63,8 +63,9 @@ static int place_ok(const char *opt, const char *path)
     else
         snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
     struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        err_print("worker points: %s %s: is a directory\n", opt, path);
+    struct err e = {0};
+    if (fileio_output_ok(path, NULL, 0, &e) < 0) {
+        err_print("worker points: %s %s\n", opt, e.msg);
         return 2;
     }
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {

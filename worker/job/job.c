@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
+#include "job_path.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "outdir.h"
@@ -21,98 +22,6 @@ const char *const job_keys[] = {"name",      "scene",      "width",         "hei
                                 "max_depth", "seed",       "processes",     "format",
                                 "output",    "reference",  "poisson_pool",  "light_sampling",
                                 "priority",  "integrator", "sampler_dims",  NULL};
-
-static void dir_of(const char *path, char *out, size_t n)
-{
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        snprintf(out, n, ".");
-    else if (slash == path)
-        snprintf(out, n, "/");
-    else
-        snprintf(out, n, "%.*s", (int)(slash - path), path);
-}
-
-/* path relative to the directory of `base` (absolute paths are kept). */
-static void resolve(const char *base, const char *rel, char *out, size_t n)
-{
-    if (rel[0] == '/') {
-        snprintf(out, n, "%s", rel);
-        return;
-    }
-    char dir[JOB_PATH_MAX];
-    dir_of(base, dir, sizeof dir);
-    if (strcmp(dir, ".") == 0)
-        snprintf(out, n, "%s", rel);
-    else
-        snprintf(out, n, "%s/%s", dir, rel);
-}
-
-static int is_file(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
-}
-
-/* The scenes shipped with the program, for a bare name in a job file anywhere: ../scenes beside
-   the binary (bin/worker in a checkout) and ../share/worker/scenes (`make install`). n: how many
-   of the two were found (0 when /proc/self/exe cannot be read). */
-static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
-{
-    char exe[JOB_PATH_MAX];
-    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (len <= 0 || len >= (ssize_t)sizeof exe - 1)
-        return 0;
-    exe[len] = 0;
-    char bin[JOB_PATH_MAX], top[JOB_PATH_MAX];
-    dir_of(exe, bin, sizeof bin);
-    dir_of(bin, top, sizeof top);
-    const char *sep = strcmp(top, "/") ? "/" : "";
-    snprintf(dirs[0], JOB_PATH_MAX, "%.*s%sscenes", JOB_PATH_MAX - 32, top, sep);
-    snprintf(dirs[1], JOB_PATH_MAX, "%.*s%sshare/worker/scenes", JOB_PATH_MAX - 32, top, sep);
-    return 2;
-}
-
-/* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
-   beside the job file, in the job file's parent (jobs/ and scenes/ are siblings), then among the
-   scenes shipped with the program. On failure *tried lists the places after the first. */
-static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
-{
-    tried[0] = 0;
-    if (!strchr(val, '/') && !strchr(val, '.')) {
-        enum { N_CAND = 5 };
-        char cand[N_CAND][JOB_PATH_MAX], rel[JOB_PATH_MAX], shipped[2][JOB_PATH_MAX];
-        int nc = 0;
-        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
-        snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
-        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
-        snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
-        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
-        for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
-            snprintf(cand[nc++], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, shipped[k], val);
-        for (int i = 0; i < nc; i++)
-            if (is_file(cand[i])) {
-                snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[i]);
-                return 0;
-            }
-        snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
-        /* the other places looked in, each once */
-        size_t used = 0;
-        for (int i = 1; i < nc && used < n; i++) {
-            int seen = 0;
-            for (int k = 0; k < i; k++)
-                seen |= strcmp(cand[k], cand[i]) == 0;
-            if (!seen)
-                used +=
-                    (size_t)snprintf(tried + used, n - used, "%s%s", used ? " or " : " (nor at ", cand[i]);
-        }
-        if (used && used < n)
-            snprintf(tried + used, n - used, ")");
-        return -1;
-    }
-    resolve(j->path, val, j->scene_path, sizeof j->scene_path);
-    return is_file(j->scene_path) ? 0 : -1;
-}
 
 void job_defaults(struct job *j, const char *path)
 {
@@ -235,9 +144,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_scene, v);
-        char tried[4 * JOB_PATH_MAX + 32];
-        if (resolve_scene(j, s, tried, sizeof tried) < 0)
-            return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
+        char tried[4 * JOB_PATH_MAX + 32], hint[JOB_PATH_MAX + 32];
+        if (job_path_scene(j, s, tried, sizeof tried) < 0)
+            return ydoc_fail(d, v, e, "scene: no scene file at %s%s%s", j->scene_path, tried,
+                             job_path_scene_hint(j, s, hint, sizeof hint));
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
@@ -272,6 +182,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         j->priority = (int)n;
     } else if (!strcmp(k, "poisson_pool")) {
+        mark(j->pos_poisson_pool, v);
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;
@@ -308,8 +219,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_reference, v);
-        resolve(j->path, s, j->reference, sizeof j->reference);
-        if (!is_file(j->reference))
+        job_path_resolve(j->path, s, j->reference, sizeof j->reference);
+        if (!job_path_is_file(j->reference))
             return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
     }
     return 0;
@@ -347,6 +258,14 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
                    "the smallest %s %s is %g",
                    key, t, count, what, sampler_kind_name(k), SAMPLER_MAX_POINTS, sampler_kind_name(k), key,
                    job_smallest_threshold(k));
+}
+
+int job_height(const struct job *j, double aspect)
+{
+    if (j->height)
+        return j->height;
+    int h = (int)lround(j->width / aspect); /* the aspect is at least 0.01: within an int */
+    return h < 1 ? 1 : h;
 }
 
 int job_finish(struct job *j, struct ydoc *d, struct err *e)

@@ -36,7 +36,7 @@ struct job {
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2], pos_format[2],
-        pos_output[2], pos_name[2], pos_width[2];
+        pos_output[2], pos_name[2], pos_width[2], pos_poisson_pool[2];
 };
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
@@ -52,6 +52,10 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
 
 /* Hash of the bytes of the file at path, continued from h; -1 when it cannot be read. */
 int job_hash_file(const char *path, uint64_t *h, struct err *e);
+
+/* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
+   least 1 (the caller checks it against IMAGE_MAX_SIDE). */
+int job_height(const struct job *j, double aspect);
 
 /* Set defaults (name from the file's stem). */
 void job_defaults(struct job *j, const char *path);
