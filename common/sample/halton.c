@@ -1,6 +1,8 @@
 /* halton: Owen-scrambled Halton points with pbrt-v4's per-pixel indexing (halton.h). */
 #include "halton.h"
 
+#include "sobol.h"
+
 static const uint32_t primes[2 * HALTON_DIMS] = {
     2,   3,   5,   7,   11,  13,  17,  19,  23,  29,  31,  37,  41,  43,  47,  53,
     59,  61,  67,  71,  73,  79,  83,  89,  97,  101, 103, 107, 109, 113, 127, 131,
@@ -20,6 +22,9 @@ static uint32_t permute_digit(uint32_t digit, uint32_t b, uint64_t h)
 
 double halton_radical_inverse(uint32_t base, uint64_t index, uint64_t seed)
 {
+    if (base == 2) /* the first 32 binary digits are the low 32 index bits reversed: sobol.c's
+                      Owen scramble of them is the nested uniform one, a hash per point */
+        return sobol_owen(sobol_x((uint32_t)index), (uint32_t)rng_mix64(seed)) * 0x1.0p-32;
     /* digits until base^count >= 2^32; the value is numerator / base^count, one correctly rounded
        division of two exact integers (base^count < 2^41), the same bits everywhere */
     uint64_t numerator = 0, scale = 1, prefix = rng_mix64(seed ^ base);
