@@ -1,13 +1,16 @@
 /* test_zsobol: a pixel's Z-Sobol set is one aligned block of the Sobol sequence's indices and a
    (0,m,2)-net; four pixels of one Morton quad together form the next net (the hierarchy that
-   spreads the error as blue noise); sets are deterministic and differ between dimensions and seeds
-   (test_sobol checks the 64-bit index's second coordinate). */
+   spreads the error as blue noise, measured on an integrand that varies slowly across pixels); sets
+   are deterministic and differ between dimensions and seeds (test_sobol checks the 64-bit index's
+   second coordinate). */
 #include "sample/zsobol.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "check.h"
 #include "sample/pointstat.h"
+#include "sample/sobol.h"
 
 static void test_blocks_and_nets(void)
 {
@@ -71,9 +74,82 @@ static void test_keys(void)
     CHECK(pointstat_is_net(c, 128) == 1);
 }
 
+#define SIDE 32
+
+/* A pixel's integrand over its sample square: a smooth bump whose centre drifts across the image. */
+static double bump(struct pt2 p, int x, int y)
+{
+    const double c = 0.5 + 0.3 * sin(x * 0.1) + 0.2 * cos(y * 0.13);
+    return exp(-4 * (p.x - c) * (p.x - c) - p.y * p.y);
+}
+
+/* The error image's power within 1/4 of the Nyquist frequency (|k| <= SIDE / 8, DC left out) as a
+   share of its total, over white noise's share (the share of frequencies there): 1 for white. */
+static double low_share(const double *err)
+{
+    double mean = 0, low = 0, total = 0;
+    int n_low = 0, n_all = 0;
+    for (int i = 0; i < SIDE * SIDE; i++)
+        mean += err[i] / (SIDE * SIDE);
+    for (int ky = -SIDE / 2; ky < SIDE / 2; ky++)
+        for (int kx = -SIDE / 2; kx < SIDE / 2; kx++) {
+            if (!kx && !ky)
+                continue;
+            double re = 0, im = 0;
+            for (int y = 0; y < SIDE; y++)
+                for (int x = 0; x < SIDE; x++) {
+                    const double phase = -2 * M_PI * (kx * x + ky * y) / SIDE, e = err[y * SIDE + x] - mean;
+                    re += e * cos(phase);
+                    im += e * sin(phase);
+                }
+            const int is_low = kx * kx + ky * ky <= (SIDE / 8) * (SIDE / 8);
+            total += re * re + im * im;
+            low += is_low ? re * re + im * im : 0;
+            n_low += is_low;
+            n_all++;
+        }
+    return low / total / ((double)n_low / n_all);
+}
+
+/* Ahmed and Wonka's claim: each pixel's estimate of a slowly varying integrand from its 16 zsobol
+   points errs against its neighbours' (a Morton block's points form a larger net), so the error
+   image's low frequencies are nearly empty; Owen-scrambled Sobol sets drawn per pixel give white
+   error. Over 4 seeds: measured 0.16 against 1.05. */
+static void test_blue_error(void)
+{
+    static double err[SIDE * SIDE];
+    struct pt2 p[16];
+    double z = 0, w = 0;
+    for (uint64_t seed = 1; seed <= 4; seed++)
+        for (int kind = 0; kind < 2; kind++) {
+            struct rng rng;
+            rng_seed(&rng, seed, 5);
+            for (int y = 0; y < SIDE; y++)
+                for (int x = 0; x < SIDE; x++) {
+                    if (kind == 0)
+                        zsobol_fill((struct zsobol_key){seed, 2, (uint32_t)x, (uint32_t)y, 4}, p);
+                    else
+                        sobol_fill(sobol_seeds_draw(&rng), 16, p);
+                    double est = 0, exact = 0;
+                    for (int i = 0; i < 16; i++)
+                        est += bump(p[i], x, y) / 16;
+                    for (int i = 0; i < 64 * 64; i++)
+                        exact +=
+                            bump((struct pt2){(i % 64 + 0.5) / 64, (i / 64 + 0.5) / 64}, x, y) / (64 * 64);
+                    err[y * SIDE + x] = est - exact;
+                }
+            *(kind == 0 ? &z : &w) += low_share(err) / 4;
+        }
+    printf("error_lowfreq of a smooth integrand, 16 points a pixel: zsobol %.3f, sobol per pixel %.3f\n", z,
+           w);
+    CHECK(z < 0.3);
+    CHECK(w > 0.6 && w < 1.6);
+}
+
 int main(void)
 {
     test_blocks_and_nets();
     test_keys();
+    test_blue_error();
     return check_report("test_zsobol");
 }
