@@ -44,11 +44,15 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     rng_pixel(&pix_rng, ctx->rs.seed, x, y, 0);
     rng_pixel(&ctx->light_rng, ctx->rs.seed, x, y, 1);
     rng_pixel(&path_rng, ctx->rs.seed, x, y, 2);
-    for (int i = 0; i < ctx->sc->n_lights; i++)
-        ctx->lp[i].n = ctx->lp[i].next = ctx->lp[i].sets = 0;
-    ctx->px = x, ctx->py = y;
+    for (int i = 0; i < ctx->sc->n_lights; i++) {
+        stream_restart(&ctx->lp[i]);
+        /* halton, zsobol: light i's sets in this pixel are dimensions of their own (sampler_at) */
+        ctx->lp[i].at = (struct sampler_at){ctx->rs.seed, x, y, STREAM_LIGHT_DIM + ((uint32_t)i << 16)};
+    }
 
     const int timed = ctx->timed = sampler_timed(st->pixels);
+    ctx->light_source.sets = &st->light_sets;
+    ctx->light_source.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     const uint64_t t0 = timed ? now_ns() : 0;
     const struct sampler_at at = {ctx->rs.seed, x, y, 0};
     size_t n = sampler_draw_at(ctx->pixel, &pix_rng, &at, ctx->pixel_pts);
@@ -56,17 +60,15 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
         st->timed_draw_ns += now_ns() - t0;
 
     double sum[3] = {0, 0, 0};
-    size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
     const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     const int nee = lights && ctx->rs.nee, mix = lights && !nee, dims = ctx->rs.dims_all;
     if (dims) {
-        ctx->dims_n = n;
-        ctx->dims_pixel++;
-        ctx->dims_key = rng_mix64(ctx->rs.seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32 | (uint32_t)y) + 16));
+        padding_pixel(&ctx->pad, ctx->rs.seed, x, y, n);
+        ctx->pad.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     }
     if (ctx->packet) {
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &kept, &nonfinite, &rays);
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &nonfinite, &rays);
     } else {
         /* nee and dims constants in the default loop: the mixture's inlined trace holds none of
            their code */
@@ -82,10 +84,10 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
                 ray r = camera_ray(ctx->cam, u, v, &path_rng);
                 c = trace(ctx, &r, &path_rng, &rays, mix, 0, 0, 0, last);
             }
-            add_estimate(c, sum, &kept, &nonfinite);
+            add_estimate(c, sum, &nonfinite);
         }
     }
-    double inv = kept ? 1.0 / kept : 0;
+    double inv = n ? 1.0 / n : 0; /* non-finite samples count as zero */
     for (int k = 0; k < 3; k++)
         rgb[k] = (float)(sum[k] * inv);
     if (timed)

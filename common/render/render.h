@@ -23,7 +23,7 @@ struct render_stats {
     uint64_t samples;    /* camera samples = camera rays */
     uint64_t rays;       /* path segments traced (camera rays included) */
     uint64_t light_sets; /* light point sets drawn */
-    uint64_t nonfinite;  /* samples dropped for NaN/inf */
+    uint64_t nonfinite;  /* samples whose estimate was NaN or infinite, counted as zero */
     uint32_t spp_min, spp_max;
     /* One pixel in SAMPLER_TIME_EVERY is timed whole, and every point-set draw in it: their
        monotonic nanoseconds. Draws lie inside their pixel, so draw_ns <= pixel_ns always. */

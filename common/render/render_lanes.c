@@ -61,13 +61,12 @@ path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s, cons
    none of theirs. */
 static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
                                                             const struct rng *base, int mix, int nee,
-                                                            int dims, int last, double sum[3], size_t *kept,
+                                                            int dims, int last, double sum[3],
                                                             uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES];
     double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
-    size_t acc_kept = 0;
     uint64_t acc_rays = 0, acc_nonfinite = 0;
     int lanes = 0;
     size_t next = 0;
@@ -99,7 +98,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             ++acc_rays;
             if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, dims, last, &acc_rays))
                 continue;
-            add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
+            add_estimate(pt[i].L, acc, &acc_nonfinite);
             if (next < n)
                 path_start(ctx, &pt[i], x, y, next++, base, dims);
             else
@@ -108,7 +107,6 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     }
     for (int k = 0; k < 3; k++)
         sum[k] += acc[k];
-    *kept += acc_kept;
     *nonfinite += acc_nonfinite;
     *rays += acc_rays;
 }
@@ -116,18 +114,17 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
 /* nee or sampler_dims: all (runtime values), out of line from the default's loop. */
 static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
                                                   const struct rng *base, int mix, int nee, int dims,
-                                                  int last, double sum[3], size_t *kept, uint64_t *nonfinite,
+                                                  int last, double sum[3], uint64_t *nonfinite,
                                                   uint64_t *rays)
 {
-    lanes_run(ctx, x, y, n, base, mix, nee, dims, last, sum, kept, nonfinite, rays);
+    lanes_run(ctx, x, y, n, base, mix, nee, dims, last, sum, nonfinite, rays);
 }
 
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int dims, int last, double sum[3], size_t *kept, uint64_t *nonfinite,
-                         uint64_t *rays)
+                         int nee, int dims, int last, double sum[3], uint64_t *nonfinite, uint64_t *rays)
 {
     if (nee || dims)
-        lanes_other(ctx, x, y, n, base, mix, nee, dims, last, sum, kept, nonfinite, rays);
+        lanes_other(ctx, x, y, n, base, mix, nee, dims, last, sum, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, 0, last, sum, kept, nonfinite, rays);
+        lanes_run(ctx, x, y, n, base, mix, 0, 0, last, sum, nonfinite, rays);
 }

@@ -21,7 +21,8 @@ const char *const job_keys[] = {"name",      "scene",      "width",         "hei
                                 "sampler",   "threshold",  "light_sampler", "light_threshold",
                                 "max_depth", "seed",       "processes",     "format",
                                 "output",    "reference",  "poisson_pool",  "light_sampling",
-                                "priority",  "integrator", "sampler_dims",  NULL};
+                                "priority",  "integrator", "sampler_dims",  "poisson_domain",
+                                NULL};
 
 void job_defaults(struct job *j, const char *path)
 {
@@ -158,6 +159,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         return get_sampler(d, v, k, &j->sampler, e);
     } else if (!strcmp(k, "light_sampler")) {
         j->has_light_sampler = 1;
+        mark(j->pos_light_sampler, v);
         return get_sampler(d, v, k, &j->light_sampler, e);
     } else if (!strcmp(k, "threshold")) {
         mark(j->pos_threshold, v);
@@ -186,11 +188,17 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "poisson_domain")) {
+        int square = 0;
+        if (get_either(d, v, k, "torus", "square", &square, e) < 0)
+            return -1;
+        j->poisson_domain = square ? POISSON_SQUARE : POISSON_TORUS;
     } else if (!strcmp(k, "light_sampling")) {
         return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "integrator")) {
         return get_either(d, v, k, "mixture", "nee", &j->nee, e);
     } else if (!strcmp(k, "sampler_dims")) {
+        mark(j->pos_dims, v);
         return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
@@ -278,6 +286,14 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
                        "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
                        "give the job a name:",
                        j->name);
+    /* under sampler_dims: all every light point comes from the pixel sampler's sets: a light
+       sampler or threshold would be silently ignored */
+    const int *light_pos = j->has_light_sampler ? j->pos_light_sampler : j->pos_light_threshold;
+    if (j->dims_all && light_pos[0])
+        return err_set(e, j->path, light_pos[0], light_pos[1],
+                       "%s: has no effect with sampler_dims: all (line %d), whose light points come from the "
+                       "pixel sampler's sets; remove it or use sampler_dims: pixel_light",
+                       j->has_light_sampler ? "light_sampler" : "light_threshold", j->pos_dims[0]);
     if (!j->has_light_sampler)
         j->light_sampler = j->sampler;
     if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
@@ -296,6 +312,16 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     if (!j->has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
+}
+
+const char *job_sets_tag(const struct job *j)
+{
+    const int poisson = j->sampler == SAMPLER_POISSON || j->light_sampler == SAMPLER_POISSON;
+    if (!poisson)
+        return j->dims_all ? " padded uniformly" : "";
+    if (j->poisson_domain == POISSON_SQUARE)
+        return j->dims_all ? " poisson square padded uniformly" : " poisson square";
+    return j->dims_all ? " poisson torus padded uniformly" : " poisson torus";
 }
 
 int job_hash_file(const char *path, uint64_t *h, struct err *e)

@@ -163,6 +163,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
+    sampler_set_domain(pix, j->poisson_domain);
+    sampler_set_domain(light, j->poisson_domain);
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
     outdir_dir(o->out_dir, j->name, dir, sizeof dir);
     if (outdir_check(dir, e) < 0)
