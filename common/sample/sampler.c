@@ -54,7 +54,7 @@ static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct p
    (docs/architecture.md, "How to add a sampler"); its sets then serve pixels, lights and
    sampler_dims: all. A kind whose points are an image-wide sequence's (halton, zsobol) also has
    an `at` function: the set at (seed, pixel, dimension), consuming nothing (sampler_draw_at). */
-static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson", "sobol",
+static const char *const kind_names[] = {"uniform", "jitter",  "random", "poisson", "sobol",
                                          "halton",  "pmj02bn", "zsobol", NULL};
 static const struct kind_row {
     size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
@@ -249,8 +249,8 @@ static size_t draw_pmj02bn(struct sampler *s, struct rng *rng, struct pt2 *out)
 
 static size_t at_halton(struct sampler *s, const struct sampler_at *at, struct pt2 *out)
 {
-    halton_fill((struct halton_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y}, (uint32_t)s->capacity,
-                out);
+    halton_fill((struct halton_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y},
+                (uint32_t)s->capacity, out);
     return s->capacity;
 }
 
