@@ -69,8 +69,8 @@ printf 'scene: checker\nwidth: [10\n' >"$T/syntax.yaml"
 bad syntax 'syntax.yaml:[0-9]+:[0-9]+: YAML syntax error'
 job "$T/zero.yaml" "threshold: 0"
 bad zero 'zero.yaml:2:12: threshold: must be a number in \(0, 100\]'
-job "$T/sampler.yaml" "sampler: halton"
-bad sampler 'sampler.yaml:2:10: sampler: unknown sampler "halton"'
+job "$T/sampler.yaml" "sampler: stratified"
+bad sampler 'sampler.yaml:2:10: sampler: unknown sampler "stratified"'
 job "$T/type.yaml" "width: wide"
 bad type 'type.yaml:2:8: width: must be a whole number'
 : >"$T/empty.yaml"

@@ -21,9 +21,9 @@ check "all points in [0,1)" awk -F, '($1 < 0 || $1 >= 1 || $2 < 0 || $2 >= 1) {b
 "$WORKER" points jitter 20 --svg "$T/p.svg" >/dev/null
 check "svg written" grep -q '<svg' "$T/p.svg"
 check "svg draws 25 points" [ "$(grep -o '<circle' "$T/p.svg" | wc -l)" -eq 25 ]
-"$WORKER" points halton 5 >/dev/null 2>"$T/e1"; rc=$?
+"$WORKER" points stratified 5 >/dev/null 2>"$T/e1"; rc=$?
 check "unknown sampler exits 2" [ "$rc" -eq 2 ]
-check "unknown sampler message" grep -q 'unknown sampler "halton"' "$T/e1"
+check "unknown sampler message" grep -q 'unknown sampler "stratified"' "$T/e1"
 "$WORKER" points Uniform 5 >/dev/null 2>"$T/e6"; rc=$?
 check "a near miss gets a did you mean (exit $rc)" sh -c "[ $rc -eq 2 ] && grep -q 'did you mean \"uniform\"' '$T/e6'"
 "$WORKER" points uniform abc >/dev/null 2>"$T/e2"; rc=$?

@@ -120,7 +120,7 @@ fi
 Q="$T/q"; mkdir -p "$Q"
 printf 'name: named\nscene: ../scenes/cornell.yaml\nwidth: 8\nthreshold: 50\nlight_threshold: 50\n' >"$Q/a.yaml"
 printf 'scene: cornell\nthreshold: abc\n' >"$Q/bad.yaml"
-printf 'name: cmp\nscene: cornell\nwidth: 4\nvariants:\n  - { sampler: halton }\n' >"$Q/badcmp.yaml"
+printf 'name: cmp\nscene: cornell\nwidth: 4\nvariants:\n  - { sampler: stratified }\n' >"$Q/badcmp.yaml"
 (cd "$T" && "$WORKER" --queue q --once 2>"$T/q.err"); rc=$?
 check "queue: exit 2 with an invalid job among them (got $rc)" [ "$rc" -eq 2 ]
 check "queue: DIR/done/<name>/ holds the image and sidecar" sh -c "[ -s '$Q/done/named/named.png' ] && [ -s '$Q/done/named/named.json' ]"

@@ -198,16 +198,21 @@ static double discrepancy_slope(enum sampler_kind kind)
 }
 
 /* L2 star discrepancy falls as N^-1/2 for random points, N^-3/4 for jittered ones and about N^-1
-   (times logs) for scrambled nets: sobol's and jitter's fitted slopes at least 0.15 steeper. */
+   (times logs) for scrambled nets and Halton points: the low-discrepancy kinds' fitted slopes at
+   least 0.15 steeper than random's, the nets' steeper than jitter's. */
 static void test_discrepancy_rates(void)
 {
     const double random = discrepancy_slope(SAMPLER_RANDOM), jitter = discrepancy_slope(SAMPLER_JITTER),
-                 sobol = discrepancy_slope(SAMPLER_SOBOL);
-    printf("discrepancy slopes: random %.3f jitter %.3f sobol %.3f\n", random, jitter, sobol);
+                 sobol = discrepancy_slope(SAMPLER_SOBOL), halton = discrepancy_slope(SAMPLER_HALTON),
+                 pmj = discrepancy_slope(SAMPLER_PMJ02BN), zsobol = discrepancy_slope(SAMPLER_ZSOBOL);
+    printf("discrepancy slopes: random %.3f jitter %.3f sobol %.3f halton %.3f pmj02bn %.3f zsobol %.3f\n",
+           random, jitter, sobol, halton, pmj, zsobol);
     CHECK_NEAR(random, -0.5, 0.1);
     CHECK(jitter < random - 0.15);
     CHECK(sobol < random - 0.15);
     CHECK(sobol < jitter);
+    CHECK(halton < random - 0.15);
+    CHECK(pmj < jitter && zsobol < jitter);
 }
 
 int main(void)

@@ -81,14 +81,17 @@ static double max_gap(const struct pt2 *p, size_t n, int probes, int torus)
 
 static void test_names_and_sizes(void)
 {
-    const char *names[] = {"uniform", "jitter", "random", "poisson", "sobol"};
-    for (int k = 0; k < 5; k++) {
+    const char *names[] = {"uniform", "jitter", "random", "poisson", "sobol", "halton", "pmj02bn", "zsobol"};
+    for (int k = 0; k < 8; k++) {
         enum sampler_kind kind;
         CHECK(sampler_kind_parse(names[k], &kind) == 0 && (int)kind == k);
         CHECK(strcmp(sampler_kind_name(kind), names[k]) == 0);
         CHECK(strcmp(sampler_kind_names()[k], names[k]) == 0);
     }
-    CHECK(sampler_kind_names()[5] == NULL);
+    CHECK(sampler_kind_names()[8] == NULL);
+    /* halton: n * n; pmj02bn and zsobol: n * n rounded up to a power of two */
+    CHECK(sampler_capacity(SAMPLER_HALTON, 10) == 100 && sampler_capacity(SAMPLER_PMJ02BN, 10) == 128);
+    CHECK(sampler_capacity(SAMPLER_ZSOBOL, 6.25) == 256 && sampler_capacity(SAMPLER_ZSOBOL, 100) == 1);
     enum sampler_kind kind = SAMPLER_RANDOM;
     CHECK(sampler_kind_parse("foo", &kind) == -1 && kind == SAMPLER_RANDOM);
     CHECK(sampler_kind_parse("Poisson", &kind) == -1);

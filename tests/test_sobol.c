@@ -3,6 +3,8 @@
    determinism, and its error's convergence rate. */
 #include "sample/sobol.h"
 
+#include "sample/pointstat.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,7 +13,7 @@
 
 /* Sobol's second dimension the long way: direction numbers v_1 = 1/2, v_(k+1) = v_k xor v_k / 2
    (primitive polynomial x + 1), xored for each set bit of i. */
-static uint32_t sobol_y_textbook(uint32_t i)
+static uint32_t sobol_y_textbook(uint64_t i)
 {
     uint32_t v = 0x80000000u, r = 0;
     for (; i; i >>= 1, v ^= v >> 1)
@@ -49,6 +51,20 @@ static void test_generators(void)
     CHECK(sobol_x(3) == 0xc0000000u && sobol_y(3) == 0x40000000u);
 }
 
+/* A 64-bit index (zsobol's): the second coordinate of lo + 2^32 hi is sobol_y(lo) ^ sobol_y(hi), as
+   Pascal's matrix's columns 32.. repeat its columns 0.. in the first 32 digits. */
+static void test_high_index(void)
+{
+    struct rng rng;
+    rng_seed(&rng, 8, 0);
+    int same = 1;
+    for (int k = 0; k < 20000; k++) {
+        const uint64_t i = (uint64_t)rng_u32(&rng) << 24 ^ rng_u32(&rng);
+        same &= (sobol_y((uint32_t)i) ^ sobol_y((uint32_t)(i >> 32))) == sobol_y_textbook(i);
+    }
+    CHECK(same);
+}
+
 /* Owen's scramble is a tree of flips: two values that share their first d digits still share
    them after it, and their digit d + 1 differs after it iff it differed before. */
 static void test_owen_tree(void)
@@ -79,26 +95,9 @@ static void test_owen_tree(void)
     free(seen);
 }
 
-/* Every elementary interval [i / 2^a, (i + 1) / 2^a) x [j / 2^b, (j + 1) / 2^b) with a + b = m
-   holds exactly one of the 2^m points. */
 static int is_net(const struct pt2 *p, size_t n, int m)
 {
-    if (n != (size_t)1 << m)
-        return 0;
-    unsigned char *count = calloc(n, 1);
-    int ok = count != NULL;
-    for (int a = 0; ok && a <= m; a++) {
-        const int b = m - a;
-        memset(count, 0, n);
-        for (size_t k = 0; k < n; k++) {
-            size_t i = (size_t)(p[k].x * (double)((size_t)1 << a)),
-                   j = (size_t)(p[k].y * (double)((size_t)1 << b));
-            if (i >> a || j >> b || count[(i << b) | j]++)
-                ok = 0;
-        }
-    }
-    free(count);
-    return ok;
+    return n == (size_t)1 << m && pointstat_is_net(p, n) == 1;
 }
 
 static void test_nets(void)
@@ -217,6 +216,7 @@ static void test_convergence(void)
 int main(void)
 {
     test_generators();
+    test_high_index();
     test_owen_tree();
     test_nets();
     test_sampler();

@@ -1,5 +1,6 @@
-/* No sampler biases the image: checker renders with each of the four samplers (pixels and
-   lights) at matching sample counts agree with a high-sample reference within noise. */
+/* No sampler biases the image: checker renders (a disk light close over the board) with each
+   sampler (pixels and lights, and the newer kinds also under sampler_dims: all) at matching
+   sample counts agree with a high-sample reference within noise. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -13,7 +14,7 @@
 
 /* Mean linear radiance over the whole image and over its lower half (ground: where the
    soft shadow falls), for one sampler setup and seed. */
-static int render_means(const struct scene_file *sf, enum sampler_kind kind, double t, int pool,
+static int render_means(const struct scene_file *sf, enum sampler_kind kind, double t, int pool, int dims,
                         uint64_t seed, double out[2])
 {
     struct err e;
@@ -22,7 +23,7 @@ static int render_means(const struct scene_file *sf, enum sampler_kind kind, dou
         return -1;
     struct sampler *pix = sampler_new(kind, t, pool, seed * 7 + 1, &e);
     struct sampler *light = sampler_new(kind, 5, pool, seed * 7 + 2, &e);
-    struct render_settings rs = {W, H, 50, seed, 0, 0, 0};
+    struct render_settings rs = {W, H, 50, seed, 0, 0, dims};
     struct render_ctx *ctx = pix && light ? render_ctx_new(sf->scene, &cam, &rs, pix, light, &e) : NULL;
     int rc = -1;
     if (ctx) {
@@ -61,24 +62,28 @@ int main(void)
     double ref[2] = {0, 0};
     for (int s = 0; s < 2; s++) {
         double m[2];
-        CHECK(render_means(&sf, SAMPLER_RANDOM, 2, 0, 1000 + s, m) == 0);
+        CHECK(render_means(&sf, SAMPLER_RANDOM, 2, 0, 0, 1000 + s, m) == 0);
         ref[0] += m[0] / 2;
         ref[1] += m[1] / 2;
     }
-    /* ~100 samples per pixel each: grids at t=10; poisson at t=8 gives ~100 points. */
+    /* ~100 samples per pixel each: grids at t=10; poisson at t=8 gives ~100 points; pmj02bn and
+       zsobol at t=11 have 81 rounded up to 128. */
     struct {
         const char *name;
         enum sampler_kind kind;
         double t;
-        int pool;
-    } cfg[] = {{"uniform", SAMPLER_UNIFORM, 10, 0},      {"jitter", SAMPLER_JITTER, 10, 0},
-               {"random", SAMPLER_RANDOM, 10, 0},        {"poisson", SAMPLER_POISSON, 8, 0},
-               {"poisson+pool", SAMPLER_POISSON, 8, 16}, {"sobol", SAMPLER_SOBOL, 10, 0}};
+        int pool, dims;
+    } cfg[] = {{"uniform", SAMPLER_UNIFORM, 10, 0, 0},      {"jitter", SAMPLER_JITTER, 10, 0, 0},
+               {"random", SAMPLER_RANDOM, 10, 0, 0},        {"poisson", SAMPLER_POISSON, 8, 0, 0},
+               {"poisson+pool", SAMPLER_POISSON, 8, 16, 0}, {"sobol", SAMPLER_SOBOL, 10, 0, 0},
+               {"halton", SAMPLER_HALTON, 10, 0, 0},        {"pmj02bn", SAMPLER_PMJ02BN, 11, 0, 0},
+               {"zsobol", SAMPLER_ZSOBOL, 11, 0, 0},        {"halton+dims", SAMPLER_HALTON, 10, 0, 1},
+               {"pmj02bn+dims", SAMPLER_PMJ02BN, 11, 0, 1}, {"zsobol+dims", SAMPLER_ZSOBOL, 11, 0, 1}};
     for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; c++) {
         double sum[2] = {0, 0}, sum2[2] = {0, 0};
         for (int s = 0; s < SEEDS; s++) {
             double m[2] = {0, 0};
-            CHECK(render_means(&sf, cfg[c].kind, cfg[c].t, cfg[c].pool, 1 + s, m) == 0);
+            CHECK(render_means(&sf, cfg[c].kind, cfg[c].t, cfg[c].pool, cfg[c].dims, 1 + s, m) == 0);
             for (int k = 0; k < 2; k++) {
                 sum[k] += m[k];
                 sum2[k] += m[k] * m[k];

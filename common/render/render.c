@@ -44,14 +44,18 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     rng_pixel(&pix_rng, ctx->rs.seed, x, y, 0);
     rng_pixel(&ctx->light_rng, ctx->rs.seed, x, y, 1);
     rng_pixel(&path_rng, ctx->rs.seed, x, y, 2);
-    for (int i = 0; i < ctx->sc->n_lights; i++)
+    for (int i = 0; i < ctx->sc->n_lights; i++) {
         stream_restart(&ctx->lp[i]);
+        /* halton, zsobol: light i's sets in this pixel are dimensions of their own (sampler_at) */
+        ctx->lp[i].at = (struct sampler_at){ctx->rs.seed, x, y, STREAM_LIGHT_DIM + ((uint32_t)i << 16)};
+    }
 
     const int timed = ctx->timed = sampler_timed(st->pixels);
     ctx->light_source.sets = &st->light_sets;
     ctx->light_source.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     const uint64_t t0 = timed ? now_ns() : 0;
-    size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
+    const struct sampler_at at = {ctx->rs.seed, x, y, 0};
+    size_t n = sampler_draw_at(ctx->pixel, &pix_rng, &at, ctx->pixel_pts);
     if (timed)
         st->timed_draw_ns += now_ns() - t0;
 

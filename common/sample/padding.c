@@ -51,8 +51,12 @@ void padding_fill(struct padding *p, int slot)
     struct rng r;
     rng_pixel(&r, p->seed, p->px, p->py, 16 + (uint64_t)slot);
     size_t have = 0;
-    while (have < n && have + cap <= p->slot_cap)
-        have += sampler_draw(p->sampler, &r, pts + have);
+    /* halton, zsobol: slot s is dimension 1 + s of the pixel (0 its camera points) */
+    struct sampler_at at = {p->seed, p->px, p->py, 1 + (uint32_t)slot};
+    while (have < n && have + cap <= p->slot_cap) {
+        have += sampler_draw_at(p->sampler, &r, &at, pts + have);
+        at.dim += (uint32_t)p->slots;
+    }
     /* the first n places of a Fisher-Yates shuffle: sample s takes a uniformly random point */
     for (size_t k = 0; k < n && k < have; k++) {
         size_t j = k + rng_below(&r, (uint32_t)(have - k));

@@ -1,9 +1,12 @@
 /* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk, Owen-scrambled
-   Sobol). */
+   Sobol, Owen-scrambled Halton, pmj02bn, Z-Sobol). */
 #include "sampler.h"
 
+#include "halton.h"
+#include "pmj02.h"
 #include "poisson.h"
 #include "sobol.h"
+#include "zsobol.h"
 #include "base/vec3.h"
 
 #include <math.h>
@@ -24,6 +27,8 @@ struct sampler {
     enum poisson_domain domain; /* fresh Poisson sets: torus (shifted) or square */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
+    struct pmj02 pmj;       /* pmj02bn workspace, likewise */
+    int log2_count;         /* capacity = 2^log2_count for pmj02bn and zsobol */
 
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
     int pool_size;
@@ -37,19 +42,29 @@ static size_t draw_jitter(struct sampler *s, struct rng *rng, struct pt2 *out);
 static size_t draw_random(struct sampler *s, struct rng *rng, struct pt2 *out);
 static size_t draw_poisson(struct sampler *s, struct rng *rng, struct pt2 *out);
 static size_t draw_sobol(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_pmj02bn(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_halton(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_zsobol(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t at_halton(struct sampler *s, const struct sampler_at *at, struct pt2 *out);
+static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct pt2 *out);
 
 /* The samplers, in enum sampler_kind's order: the name, how a set is drawn (into out, consuming
    rng, at most sampler_capacity points, at least 1), how it is taken point by point. A new
    sampler is a draw function in a file of its own, an enum value, its name and a row here
    (docs/architecture.md, "How to add a sampler"); its sets then serve pixels, lights and
-   sampler_dims: all. */
-static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson", "sobol", NULL};
+   sampler_dims: all. A kind whose points are an image-wide sequence's (halton, zsobol) also has
+   an `at` function: the set at (seed, pixel, dimension), consuming nothing (sampler_draw_at). */
+static const char *const kind_names[] = {"uniform", "jitter",  "random", "poisson", "sobol",
+                                         "halton",  "pmj02bn", "zsobol", NULL};
 static const struct kind_row {
     size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
     enum sampler_walk walk;
+    size_t (*at)(struct sampler *s, const struct sampler_at *at, struct pt2 *out); /* NULL: draw */
 } kind_rows[] = {
-    {draw_uniform, SAMPLER_WALK_CELLS}, {draw_jitter, SAMPLER_WALK_CELLS}, {draw_random, SAMPLER_WALK_FREE},
-    {draw_poisson, SAMPLER_WALK_WHOLE}, {draw_sobol, SAMPLER_WALK_SOBOL},
+    {draw_uniform, SAMPLER_WALK_CELLS, NULL}, {draw_jitter, SAMPLER_WALK_CELLS, NULL},
+    {draw_random, SAMPLER_WALK_FREE, NULL},   {draw_poisson, SAMPLER_WALK_WHOLE, NULL},
+    {draw_sobol, SAMPLER_WALK_SOBOL, NULL},   {draw_halton, SAMPLER_WALK_WHOLE, at_halton},
+    {draw_pmj02bn, SAMPLER_WALK_WHOLE, NULL}, {draw_zsobol, SAMPLER_WALK_WHOLE, at_zsobol},
 };
 #define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
 _Static_assert(sizeof kind_names / sizeof kind_names[0] == KIND_COUNT + 1, "a name per row");
@@ -139,7 +154,13 @@ size_t sampler_capacity(enum sampler_kind kind, double threshold)
         return 0;
     if (kind == SAMPLER_POISSON)
         return side_squared(poisson_side_real(threshold));
-    return side_squared(grid_side_real(threshold));
+    size_t n = side_squared(grid_side_real(threshold));
+    if (kind != SAMPLER_PMJ02BN && kind != SAMPLER_ZSOBOL)
+        return n;
+    size_t pow2 = 1; /* their constructions are nets at powers of two: n rounded up to one */
+    while (pow2 < n && pow2 <= SIZE_MAX / 2)
+        pow2 *= 2;
+    return pow2 < n ? SIZE_MAX : pow2;
 }
 
 size_t sampler_set_capacity(const struct sampler *s)
@@ -152,6 +173,7 @@ void sampler_free(struct sampler *s)
     if (!s)
         return;
     poisson_release(&s->bridson);
+    pmj02_release(&s->pmj);
     free(s->pool_pts);
     free(s->pool);
     free(s->pool_start);
@@ -211,6 +233,50 @@ double sampler_threshold_of(const struct sampler *s)
 size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
 {
     return kind_rows[s->kind].draw(s, rng, out);
+}
+
+size_t sampler_draw_at(struct sampler *s, struct rng *rng, const struct sampler_at *at, struct pt2 *out)
+{
+    const struct kind_row *row = &kind_rows[s->kind];
+    return row->at ? row->at(s, at, out) : row->draw(s, rng, out);
+}
+
+static size_t draw_pmj02bn(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    pmj02_draw(&s->pmj, rng, s->capacity, out);
+    return s->capacity;
+}
+
+static size_t at_halton(struct sampler *s, const struct sampler_at *at, struct pt2 *out)
+{
+    halton_fill((struct halton_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y},
+                (uint32_t)s->capacity, out);
+    return s->capacity;
+}
+
+static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct pt2 *out)
+{
+    zsobol_fill((struct zsobol_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y, s->log2_count}, out);
+    return s->capacity;
+}
+
+/* Without a place (worker points, a caller with a stream only): pixel (0, 0), dimension 0, for a
+   seed of two draws of rng. */
+static size_t at_drawn(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    uint64_t seed = rng_u32(rng);
+    const struct sampler_at at = {seed << 32 | rng_u32(rng), 0, 0, 0};
+    return kind_rows[s->kind].at(s, &at, out);
+}
+
+static size_t draw_halton(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    return at_drawn(s, rng, out);
+}
+
+static size_t draw_zsobol(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    return at_drawn(s, rng, out);
 }
 
 static size_t draw_uniform(struct sampler *s, struct rng *rng, struct pt2 *out)
@@ -383,6 +449,10 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
     s->grid_n = sampler_grid_side(threshold);
     s->n_recip = ((uint64_t)1 << 42) / (uint64_t)s->grid_n + 1;
     s->capacity = capacity;
+    while (((size_t)1 << s->log2_count) < capacity)
+        s->log2_count++;
+    if (kind == SAMPLER_PMJ02BN && pmj02_init(&s->pmj, capacity) < 0)
+        goto oom;
     if (kind != SAMPLER_POISSON)
         return s;
 

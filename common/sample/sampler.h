@@ -1,5 +1,5 @@
 /* sampler: 2D point sets in [0,1)^2 (uniform grid, jitter, random, Bridson Poisson-disk, Owen-scrambled
-   Sobol). */
+   Sobol, Owen-scrambled Halton, pmj02bn, Z-Sobol). */
 #ifndef SAMPLER_H
 #define SAMPLER_H
 
@@ -14,7 +14,16 @@ struct pt2 {
     double x, y;
 };
 
-enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON, SAMPLER_SOBOL };
+enum sampler_kind {
+    SAMPLER_UNIFORM,
+    SAMPLER_JITTER,
+    SAMPLER_RANDOM,
+    SAMPLER_POISSON,
+    SAMPLER_SOBOL,
+    SAMPLER_HALTON,
+    SAMPLER_PMJ02BN,
+    SAMPLER_ZSOBOL
+};
 
 /* Where a fresh Poisson set is drawn (job key poisson_domain): on the unit torus, distances
    measured with wrap-around, then shifted by a random offset modulo 1 (Cranley-Patterson): every
@@ -48,12 +57,13 @@ const char *sampler_kind_name(enum sampler_kind kind);
 /* Every kind's name in enum order, then NULL (for "did you mean" and usage lines). */
 const char *const *sampler_kind_names(void);
 
-/* n = floor(100 / threshold): the grid side of uniform/jitter/random; sobol draws n * n points. */
+/* n = floor(100 / threshold): the grid side of uniform/jitter/random; sobol and halton draw n * n
+   points, pmj02bn and zsobol n * n rounded up to a power of two. */
 int sampler_grid_side(double threshold);
 
-/* Upper bound on the size of one set of (kind, threshold): n*n for the grid kinds, the
-   background-grid cell count for poisson, n*n points for sobol. Fits in size_t for any threshold in (0, 100].
- */
+/* Upper bound on the size of one set of (kind, threshold): n*n for the grid kinds, sobol and halton,
+   the background-grid cell count for poisson, the power of two at or above n*n for pmj02bn and
+   zsobol. Fits in size_t for any threshold in (0, 100]. */
 size_t sampler_capacity(enum sampler_kind kind, double threshold);
 
 struct sampler;
@@ -175,7 +185,22 @@ static inline struct pt2 sampler_shift(struct pt2 p, double ox, double oy)
 struct sobol_seeds;
 size_t sampler_sobol_set(const struct sampler *s, struct rng *rng, struct sobol_seeds *seeds);
 
-/* Draw one set into out, consuming rng; returns the count (>= 1). Allocates nothing: the
+/* Where a set is drawn, for the kinds whose points depend on it (halton, zsobol): the job's seed,
+   the pixel and the 2D dimension (0 the pixel's camera points, every further set of the pixel a
+   dimension of its own). Other kinds ignore it. */
+struct sampler_at {
+    uint64_t seed;
+    int x, y;
+    uint32_t dim;
+};
+
+/* sampler_draw for the set at `at`: the same for kinds that ignore it; halton and zsobol take
+   their points from (at, the point's index) alone and consume nothing of rng, so a pixel's
+   point sets are one image-wide sequence's. */
+size_t sampler_draw_at(struct sampler *s, struct rng *rng, const struct sampler_at *at, struct pt2 *out);
+
+/* Draw one set into out, consuming rng; returns the count (>= 1). halton and zsobol: the set of
+   pixel (0, 0), dimension 0, for a seed drawn from rng (two draws). Allocates nothing: the
    sampler's workspace is reused, so one sampler serves one thread at a time. With a pool,
    the set is one of the pool's, picked by rng and shifted by an rng offset modulo 1
    (Cranley-Patterson rotation). */

@@ -67,7 +67,8 @@ void stream_refill(const struct stream_source *src, struct stream *st, struct rn
         if (walk == SAMPLER_WALK_POOL)
             v3_sincos_turn(st->oy, &st->sin_oy, &st->cos_oy);
     } else {
-        st->n = sampler_draw(src->sampler, rng, st->pts);
+        st->n = sampler_draw_at(src->sampler, rng, &st->at, st->pts);
+        st->at.dim++; /* halton, zsobol: the pixel's next set of this light, a dimension of its own */
     }
     st->next = 0;
     if (src->timed_draw_ns)

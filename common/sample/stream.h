@@ -33,7 +33,12 @@ struct stream {
     double ox, oy, cos_oy, sin_oy;
     struct sobol_seeds sobol; /* sobol: the set's seeds */
     size_t n, next;
+    struct sampler_at at; /* where the next set is drawn (halton, zsobol; set per pixel by the caller) */
 };
+
+/* The first dimension of the light sets' points (struct sampler_at): light i's j-th set of a
+   pixel is STREAM_LIGHT_DIM + 2^16 i + j, above every pixel set's (0 and the padded slots). */
+#define STREAM_LIGHT_DIM (1u << 20)
 
 /* A source over light sampler s (which must outlive it). 0, or -1 with e filled (no memory).
    Release with stream_source_release. */

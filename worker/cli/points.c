@@ -182,9 +182,9 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
-        err_print(
-            "worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson or sobol)\n",
-            positional[0]);
+        err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson, "
+                  "sobol, halton, pmj02bn or zsobol)\n",
+                  positional[0]);
         return 2;
     }
     char *end;

@@ -60,7 +60,8 @@ static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sam
         return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
     if (sampler_kind_parse(s, out) < 0)
         return ydoc_fail(d, v, e,
-                         "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson or sobol)",
+                         "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson, sobol, "
+                         "halton, pmj02bn or zsobol)",
                          key, s);
     return 0;
 }
@@ -271,7 +272,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
 
 double job_smallest_threshold(enum sampler_kind k)
 {
-    double side = floor(sqrt((double)SAMPLER_MAX_POINTS));
+    /* pmj02bn and zsobol round n * n up to a power of two: n * n <= the largest power of two in the limit */
+    double most = k == SAMPLER_PMJ02BN || k == SAMPLER_ZSOBOL ? 2097152.0 : (double)SAMPLER_MAX_POINTS;
+    double side = floor(sqrt(most));
     /* grid kinds: n = floor(100 / t) <= side; poisson: Bridson's grid side ceil(sqrt(2) 100 / t) <= side */
     double t = k == SAMPLER_POISSON ? sqrt(2.0) * 100.0 / side : 100.0 / (side + 1.0);
     return ceil(t * (1.0 + 1e-9) * 1e4) / 1e4;

@@ -12,6 +12,7 @@
 #include "compare_stats.h"
 #include "report_chart.h"
 #include "base/fileio.h"
+#include "image/errspec.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
@@ -34,10 +35,9 @@ static double now_s(void)
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
 {
-    double n = sampler_grid_side(it->job.threshold);
     double spp = it->job.sampler == SAMPLER_POISSON
                      ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
-                     : n * n;
+                     : (double)sampler_capacity(it->job.sampler, it->job.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
@@ -119,6 +119,20 @@ static int score_files(struct compare_item *it, const struct run_result *rr, con
     return rc;
 }
 
+/* How the combination's error looks (errspec.h), from its float copy (or its PNG for an 8-bit
+   reference). 0 or -1. */
+static int score_look(struct compare_item *it, const struct run_result *rr, const struct scene_ref *ref,
+                      enum img_domain domain, struct err *e)
+{
+    struct rgbf img = {0};
+    int rc = imgio_read_f(domain == IMG_LINEAR ? rr->float_path : rr->image_path, &img, NULL, e) < 0 ||
+                     errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0
+                 ? -1
+                 : 0;
+    image_f_free(&img);
+    return rc;
+}
+
 /* Render one combination (or take it as it is when current) and measure it against its
    scene's reference (ref may be NULL). */
 static int render_item(struct compare *c, struct compare_item *it, const struct scene_ref *ref,
@@ -166,6 +180,8 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->display_error = rr.display_error;
         it->has_error = 1;
     }
+    if (ref && score_look(it, &rr, ref, cs->ref_domain, e) < 0)
+        return 1;
     it->done = 1;
     return 0;
 }
@@ -187,8 +203,10 @@ static void csv_field(struct sbuf *b, const char *text, const char *after)
 static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
-    sbuf_printf(&b, "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
-                    "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,image\n");
+    sbuf_printf(&b,
+                "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
+                "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
+                "image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
@@ -202,6 +220,10 @@ static char *summary_csv(const struct compare *c)
                         it->display_error.relmse);
         else
             sbuf_printf(&b, ",,,,,,,,");
+        if (it->has_error && isfinite(it->error_lowfreq))
+            sbuf_printf(&b, "%.4f,", it->error_lowfreq);
+        else
+            sbuf_printf(&b, ",");
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);

@@ -47,6 +47,7 @@ struct compare_item {
     uint64_t spp_min, spp_max, nonfinite; /* nonfinite: samples dropped as NaN or infinite */
     struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
     struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
+    double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
 };
 
 struct compare {

@@ -1,0 +1,124 @@
+/* test_pmj02: pmj02bn sequences are (0,m,2)-nets at every power of two and every power-of-two
+   prefix (several seeds), every point finds a valid stratum, the sets are deterministic, and the
+   best-candidate choice spreads points further than plain pmj02 (one candidate) does. */
+#include "sample/pmj02.h"
+
+#include <stdlib.h>
+
+#include "check.h"
+#include "sample/pointstat.h"
+#include "sample/sobol.h"
+
+static void test_nets(void)
+{
+    const size_t cap = (size_t)1 << 12;
+    struct pmj02 w;
+    struct pt2 *p = malloc(cap * sizeof *p);
+    CHECK(p && pmj02_init(&w, cap) == 0);
+    int nets = 1, prefixes = 1, inside = 1, dead = 0;
+    for (uint64_t seed = 0; seed < 24; seed++) {
+        struct rng rng;
+        rng_seed(&rng, seed, 11);
+        const int m = (int)(seed % 13); /* sequences of 1 .. 4096 points */
+        dead += pmj02_draw(&w, &rng, (size_t)1 << m, p);
+        nets &= pointstat_is_net(p, (size_t)1 << m) == 1;
+        for (int k = 0; k < m; k++)
+            prefixes &= pointstat_is_net(p, (size_t)1 << k) == 1;
+        for (size_t i = 0; i < ((size_t)1 << m); i++)
+            inside &= p[i].x >= 0 && p[i].x < 1 && p[i].y >= 0 && p[i].y < 1;
+    }
+    CHECK(nets);
+    CHECK(prefixes);
+    CHECK(inside);
+    CHECK(dead == 0);
+    /* not a power of two: every power-of-two prefix still a net */
+    struct rng rng;
+    rng_seed(&rng, 99, 11);
+    CHECK(pmj02_draw(&w, &rng, 100, p) == 0);
+    CHECK(pointstat_is_net(p, 64) == 1 && pointstat_is_net(p, 100) == 0);
+    /* the check can fail: two points in one column */
+    pmj02_draw(&w, &rng, 256, p);
+    p[3].x = p[200].x;
+    CHECK(pointstat_is_net(p, 256) == 0);
+    pmj02_release(&w);
+    free(p);
+}
+
+/* The same rng state gives the same set, bit for bit; another state another set. */
+static void test_deterministic(void)
+{
+    struct pmj02 w;
+    struct pt2 a[256], b[256];
+    CHECK(pmj02_init(&w, 256) == 0);
+    struct rng r1, r2;
+    rng_seed(&r1, 5, 1);
+    rng_seed(&r2, 5, 1);
+    pmj02_draw(&w, &r1, 256, a);
+    pmj02_draw(&w, &r2, 256, b);
+    int same = 1;
+    for (int i = 0; i < 256; i++)
+        same &= a[i].x == b[i].x && a[i].y == b[i].y;
+    CHECK(same);
+    pmj02_draw(&w, &r2, 256, b);
+    CHECK(a[0].x != b[0].x);
+    pmj02_release(&w);
+}
+
+/* Mean toroidal distance from each of the n points to its nearest other. */
+static double mean_nearest(const struct pt2 *p, int n)
+{
+    double sum = 0;
+    for (int i = 0; i < n; i++) {
+        double best = 1;
+        for (int j = 0; j < n; j++) {
+            double dx = fabs(p[i].x - p[j].x), dy = fabs(p[i].y - p[j].y);
+            dx = fmin(dx, 1 - dx);
+            dy = fmin(dy, 1 - dy);
+            if (j != i)
+                best = fmin(best, dx * dx + dy * dy);
+        }
+        sum += sqrt(best);
+    }
+    return sum / n;
+}
+
+/* Blue noise: over 40 sets of 256 points, pmj02bn's mean nearest-neighbour distance exceeds plain
+   pmj02's (one candidate) by 1% and its smallest distance by 8% (measured with two seeds: 1.7-1.8%
+   and 14-16%; Owen-scrambled Sobol's are printed alongside: pmj02bn's mean is about 1% above,
+   its smallest distance level with it). */
+static void test_spread(void)
+{
+    struct pmj02 w;
+    struct pt2 p[256];
+    CHECK(pmj02_init(&w, 256) == 0);
+    double mean[3] = {0, 0, 0}, least[3] = {0, 0, 0};
+    struct rng rng;
+    rng_seed(&rng, 21, 3);
+    for (int s = 0; s < 40; s++)
+        for (int kind = 0; kind < 3; kind++) {
+            w.candidates = kind == 1 ? 1 : PMJ02_CANDIDATES;
+            if (kind < 2)
+                pmj02_draw(&w, &rng, 256, p);
+            else
+                sobol_fill(sobol_seeds_draw(&rng), 256, p);
+            mean[kind] += mean_nearest(p, 256) / 40;
+            double plain, torus, discrepancy;
+            pointstat_pairs(p, 256, &plain, &torus, &discrepancy);
+            least[kind] += torus / 40;
+        }
+    printf("mean nearest-neighbour distance (256 points): pmj02bn %.5f pmj02 %.5f sobol %.5f\n", mean[0],
+           mean[1], mean[2]);
+    printf("minimum distance (256 points): pmj02bn %.5f pmj02 %.5f sobol %.5f\n", least[0], least[1],
+           least[2]);
+    CHECK(mean[0] > 1.01 * mean[1]);
+    CHECK(least[0] > 1.08 * least[1]);
+    pmj02_release(&w);
+}
+
+int main(void)
+{
+    test_nets();
+    test_deterministic();
+    test_spread();
+    return check_report("test_pmj02");
+}
