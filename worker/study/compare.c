@@ -99,17 +99,24 @@ struct scene_ref {
     struct rgb8 display;
 };
 
-/* A combination that was current: score its files (its float copy, or its PNG for an 8-bit
-   reference, and its PNG for the display figures). 0 or -1. */
+/* The file a combination is scored and looked at in: its float copy, or its PNG for an 8-bit
+   reference. */
+static const char *scored_file(const struct outdir_files *out, enum img_domain domain)
+{
+    return out->image[domain == IMG_LINEAR && out->float_copy >= 0 ? out->float_copy : 0];
+}
+
+/* A combination that was current: score its files (scored_file, read once for its error and its
+   look, and its PNG for the display figures). 0 or -1. */
 static int score_files(struct compare_item *it, const struct run_result *rr, const struct scene_ref *ref,
                        enum img_domain domain, struct err *e)
 {
     struct rgbf img = {0};
     struct rgb8 png = {0};
     const struct outdir_files *out = &rr->out;
-    int linear = domain == IMG_LINEAR && out->float_copy >= 0;
-    int rc = imgio_read_f(out->image[linear ? out->float_copy : 0], &img, NULL, e) < 0 ||
+    int rc = imgio_read_f(scored_file(out, domain), &img, NULL, e) < 0 ||
                      metrics_compare_f(&ref->f, &img, 1, &it->error, e) < 0 ||
+                     errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0 ||
                      imgio_read(out->image[0], &png, e) < 0 ||
                      metrics_display_compare(&ref->display, &png, &it->display_error, e) < 0
                  ? -1
@@ -119,13 +126,13 @@ static int score_files(struct compare_item *it, const struct run_result *rr, con
     return rc;
 }
 
-/* How the combination's error looks (errspec.h), from its float copy (or its PNG for an 8-bit
-   reference). 0 or -1. */
+/* How a fresh combination's error looks (errspec.h), from scored_file (the framebuffer was
+   scored in memory; its look is measured on the file as written). 0 or -1. */
 static int score_look(struct compare_item *it, const struct run_result *rr, const struct scene_ref *ref,
                       enum img_domain domain, struct err *e)
 {
     struct rgbf img = {0};
-    int rc = imgio_read_f(domain == IMG_LINEAR ? rr->float_path : rr->image_path, &img, NULL, e) < 0 ||
+    int rc = imgio_read_f(scored_file(&rr->out, domain), &img, NULL, e) < 0 ||
                      errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0
                  ? -1
                  : 0;
@@ -179,9 +186,9 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->error = rr.error;
         it->display_error = rr.display_error;
         it->has_error = 1;
+        if (score_look(it, &rr, ref, cs->ref_domain, e) < 0)
+            return 1;
     }
-    if (ref && score_look(it, &rr, ref, cs->ref_domain, e) < 0)
-        return 1;
     it->done = 1;
     return 0;
 }
