@@ -49,8 +49,9 @@ check "light_sampling: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
 check "light_sampling error names file:line:col" grep -q "ls.yaml:3:17: light_sampling: must be" "$T/ls.err"
 check "light_sampling error writes nothing" [ ! -e "$T/bad" ]
 
-# 3b. integrator: nee renders, is recorded, traces shadow rays (more segments than the mixture's
-# for the same samples), differs from the mixture; bad values fail with file:line:col.
+# 3b. integrator: nee renders, is recorded, traces shadow rays (without roulette, more segments
+# than the mixture's for the same samples), differs from the mixture; bad values fail with
+# file:line:col.
 for integ in mixture nee; do
     job "name: $integ" "width: 16" "threshold: 25" "integrator: $integ"
     "$WORKER" --quiet --out "$T/integ" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
@@ -58,9 +59,25 @@ for integ in mixture nee; do
     check "sidecar records integrator $integ" grep -q "\"integrator\": \"$integ\"" "$T/integ/$integ/$integ.json"
 done
 segs() { sed -n '/"rays"/,/}/s/.*"total": \([0-9]*\).*/\1/p' "$1" | head -n 1; }
-check "nee traces more segments than the mixture ($(segs "$T/integ/nee/nee.json") vs $(segs "$T/integ/mixture/mixture.json"))" \
-    [ "$(segs "$T/integ/nee/nee.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
 check "nee's image differs from the mixture's" sh -c "! cmp -s '$T/integ/nee/nee.png' '$T/integ/mixture/mixture.png'"
+# russian_roulette: on by default with nee, off with the mixture; off, nee's paths run longer
+check "sidecar records russian_roulette on with nee" grep -q '"russian_roulette": "on"' "$T/integ/nee/nee.json"
+check "sidecar records russian_roulette off with the mixture" \
+    grep -q '"russian_roulette": "off"' "$T/integ/mixture/mixture.json"
+job "name: nee-rroff" "width: 16" "threshold: 25" "integrator: nee" "russian_roulette: off"
+"$WORKER" --quiet --out "$T/integ" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "russian_roulette: off renders (exit $rc)" [ "$rc" -eq 0 ]
+check "sidecar records russian_roulette off" grep -q '"russian_roulette": "off"' "$T/integ/nee-rroff/nee-rroff.json"
+check "nee without roulette traces more segments than the mixture ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/mixture/mixture.json"))" \
+    [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
+check "nee without roulette traces more segments ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/nee/nee.json"))" \
+    [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/nee/nee.json")" ]
+job "width: 16" "russian_roulette: maybe"
+rm -rf "$T/bad"
+"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "russian_roulette: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
+check "russian_roulette error names file:line:col" grep -q "ls.yaml:3:19: russian_roulette: must be off or on" "$T/ls.err"
+check "russian_roulette error writes nothing" [ ! -e "$T/bad" ]
 for dims in pixel_light all; do
     job "name: d-$dims" "width: 16" "threshold: 25" "sampler: jitter" "sampler_dims: $dims"
     "$WORKER" --quiet --out "$T/dims" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?

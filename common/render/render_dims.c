@@ -25,11 +25,12 @@ int render_dims_init(struct render_ctx *ctx, struct err *e)
     /* a fresh Poisson set may hold fewer points than the pixel's: sets are appended until n */
     const size_t per_slot = sampler_cells(ctx->pixel) > 0 ? cap : 2 * cap;
     int bounces = ctx->rs.max_depth < DIMS_MAX_BOUNCES ? ctx->rs.max_depth : DIMS_MAX_BOUNCES;
+    const int per_bounce = DIMS_PER_BOUNCE + (ctx->rs.russian_roulette != 0); /* + DIM_ROULETTE's */
     while (bounces > 1 &&
-           (size_t)(DIMS_CAMERA + DIMS_PER_BOUNCE * bounces) * per_slot * sizeof(struct pt2) > DIMS_MAX_BYTES)
+           (size_t)(DIMS_CAMERA + per_bounce * bounces) * per_slot * sizeof(struct pt2) > DIMS_MAX_BYTES)
         bounces--;
     ctx->dims_bounces = bounces;
-    ctx->dims_slots = DIMS_CAMERA + DIMS_PER_BOUNCE * bounces;
+    ctx->dims_slots = DIMS_CAMERA + per_bounce * bounces;
     ctx->dims_slot_cap = per_slot;
     ctx->dims_pts = malloc((size_t)ctx->dims_slots * per_slot * sizeof *ctx->dims_pts);
     ctx->dims_gen = calloc((size_t)ctx->dims_slots, sizeof *ctx->dims_gen);

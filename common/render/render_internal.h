@@ -24,10 +24,10 @@ struct light_points {
 
 /* sampler_dims: all: the sets' slots. Two for the camera (lens point; shutter time in x), then
    per bounce the scatter direction, the light point and (the mixture's or glass's coin in x,
-   the light's choice in y). */
+   the light's choice in y); with Russian roulette, then one more per bounce: its coin (x). */
 #define DIMS_CAMERA 2
 #define DIMS_PER_BOUNCE 3
-enum { DIM_DIR, DIM_LIGHT, DIM_CHOICE };
+enum { DIM_DIR, DIM_LIGHT, DIM_CHOICE, DIM_ROULETTE };
 
 struct render_ctx {
     const struct scene *sc;
@@ -56,15 +56,24 @@ struct render_ctx {
     int dims_slots, dims_bounces, px, py;
 };
 
+/* Where a vertex's decisions come from: under sampler_dims: all (dims) sample's points of the
+   pixel's sets for the vertex's bounce (depth), while that bounce has sets; else the path's rng.
+   roulette: Russian roulette may end the path after the vertex (render_path.h's path_survives). */
+struct path_at {
+    int dims, depth;
+    uint32_t sample;
+    int roulette;
+};
+
 /* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
    time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started from the
    pixel's path stream *base; mix: the scene's lights are sampled by the mixture, nee: by
-   next-event estimation; dims: sampler_dims: all; last: max_depth - 1. Their
-   estimates go into sum and kept (add_estimate), the dropped ones into *nonfinite, their
-   segments into *rays. */
+   next-event estimation; how: sampler_dims: all (dims) and Russian roulette (roulette); last:
+   max_depth - 1. Their estimates go into sum and kept (add_estimate), the dropped ones into
+   *nonfinite, their segments into *rays. */
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int dims, int last, double sum[3], size_t *kept, uint64_t *nonfinite,
-                         uint64_t *rays);
+                         int nee, struct path_at how, int last, double sum[3], size_t *kept,
+                         uint64_t *nonfinite, uint64_t *rays);
 
 /* Allocate the sets of sampler_dims: all (ctx->rs.dims_all). 0, or -1 with e filled. */
 int render_dims_init(struct render_ctx *ctx, struct err *e);
@@ -91,6 +100,15 @@ static inline uint32_t render_dims_permute(uint32_t i, uint32_t n, uint64_t key)
         i ^= i >> 5;
     } while (i >= n);
     return i;
+}
+
+/* The slot of decision k of bounce depth (< ctx->dims_bounces): the roulette coins' slots follow
+   every bounce's other three, so that a render without roulette keeps the slots (and the images)
+   it had before roulette. */
+static inline int render_dims_slot(const struct render_ctx *ctx, int depth, int k)
+{
+    return k == DIM_ROULETTE ? DIMS_CAMERA + DIMS_PER_BOUNCE * ctx->dims_bounces + depth
+                             : DIMS_CAMERA + DIMS_PER_BOUNCE * depth + k;
 }
 
 /* Sample s's point of grid set `slot`: the cell a keyed permutation gives s, the point in it from

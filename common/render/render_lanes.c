@@ -19,19 +19,21 @@ struct path {
 
 /* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
    with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
-   scene has lights sampled (nee: by next-event estimation; dims: sampler_dims: all); last: the last segment's
-   depth (max_depth - 1). trace's loop body: both are path_scatter (render_path.h). */
+   scene has lights sampled (nee: by next-event estimation); how: sampler_dims: all (dims) and
+   Russian roulette (roulette); last: the last segment's depth (max_depth - 1). trace's loop body:
+   both are path_scatter then path_survives (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       struct hit *h, int mix, int nee, int dims, int last,
-                                                       uint64_t *rays)
+                                                       struct hit *h, int mix, int nee, struct path_at how,
+                                                       int last, uint64_t *rays)
 {
     if (!got) {
         pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
         return 0;
     }
-    const struct path_at at = {dims, pt->depth, pt->s};
+    const struct path_at at = {how.dims, pt->depth, pt->s, how.roulette};
     return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix, nee,
-                        &pt->mis_pdf, rays, at);
+                        &pt->mis_pdf, rays, at) &&
+           path_survives(ctx, &pt->beta, &pt->rng, at);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
@@ -57,12 +59,12 @@ path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s, cons
 }
 
 /* render_pixel's samples four paths at a time, their rays traced together (packet_hit). Inline
-   into the two callers below, nee and dims constants in the default's: the mixture's code holds
-   none of theirs. */
+   into the two callers below, nee, dims and roulette constants in the default's: the mixture's
+   code holds none of theirs. */
 static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
                                                             const struct rng *base, int mix, int nee,
-                                                            int dims, int last, double sum[3], size_t *kept,
-                                                            uint64_t *nonfinite, uint64_t *rays)
+                                                            struct path_at how, int last, double sum[3],
+                                                            size_t *kept, uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES];
@@ -74,7 +76,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     for (int i = 0; i < PACKET_LANES; i++) {
         rp[i] = &pt[i].r;
         if (next < n) {
-            path_start(ctx, &pt[i], x, y, next++, base, dims);
+            path_start(ctx, &pt[i], x, y, next++, base, how.dims);
             lanes |= 1 << i;
         }
     }
@@ -97,11 +99,11 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, dims, last, &acc_rays))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, how, last, &acc_rays))
                 continue;
             add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
             if (next < n)
-                path_start(ctx, &pt[i], x, y, next++, base, dims);
+                path_start(ctx, &pt[i], x, y, next++, base, how.dims);
             else
                 lanes &= ~(1 << i);
         }
@@ -113,21 +115,21 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     *rays += acc_rays;
 }
 
-/* nee or sampler_dims: all (runtime values), out of line from the default's loop. */
+/* nee, sampler_dims: all or roulette (runtime values), out of line from the default's loop. */
 static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
-                                                  const struct rng *base, int mix, int nee, int dims,
-                                                  int last, double sum[3], size_t *kept, uint64_t *nonfinite,
-                                                  uint64_t *rays)
+                                                  const struct rng *base, int mix, int nee,
+                                                  struct path_at how, int last, double sum[3], size_t *kept,
+                                                  uint64_t *nonfinite, uint64_t *rays)
 {
-    lanes_run(ctx, x, y, n, base, mix, nee, dims, last, sum, kept, nonfinite, rays);
+    lanes_run(ctx, x, y, n, base, mix, nee, how, last, sum, kept, nonfinite, rays);
 }
 
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int dims, int last, double sum[3], size_t *kept, uint64_t *nonfinite,
-                         uint64_t *rays)
+                         int nee, struct path_at how, int last, double sum[3], size_t *kept,
+                         uint64_t *nonfinite, uint64_t *rays)
 {
-    if (nee || dims)
-        lanes_other(ctx, x, y, n, base, mix, nee, dims, last, sum, kept, nonfinite, rays);
+    if (nee || how.dims || how.roulette)
+        lanes_other(ctx, x, y, n, base, mix, nee, how, last, sum, kept, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, 0, last, sum, kept, nonfinite, rays);
+        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0}, last, sum, kept, nonfinite, rays);
 }

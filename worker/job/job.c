@@ -20,7 +20,8 @@ const char *const job_keys[] = {"name",      "scene",      "width",         "hei
                                 "sampler",   "threshold",  "light_sampler", "light_threshold",
                                 "max_depth", "seed",       "processes",     "format",
                                 "output",    "reference",  "poisson_pool",  "light_sampling",
-                                "priority",  "integrator", "sampler_dims",  NULL};
+                                "priority",  "integrator", "sampler_dims",  "russian_roulette",
+                                NULL};
 
 static void dir_of(const char *path, char *out, size_t n)
 {
@@ -129,6 +130,12 @@ void job_defaults(struct job *j, const char *path)
     j->processes = 2;
     j->format = IMG_PNG;
     j->light_sampling = 1;
+    j->roulette = -1;
+}
+
+int job_roulette(const struct job *j)
+{
+    return j->roulette < 0 ? j->nee : j->roulette;
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
@@ -280,6 +287,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         return get_either(d, v, k, "mixture", "nee", &j->nee, e);
     } else if (!strcmp(k, "sampler_dims")) {
         return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
+    } else if (!strcmp(k, "russian_roulette")) {
+        return get_either(d, v, k, "off", "on", &j->roulette, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
