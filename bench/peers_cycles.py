@@ -125,6 +125,7 @@ def main():
     cy.light_sampling_threshold = 0
     cy.blur_glossy = 0
     cy.caustics_reflective = cy.caustics_refractive = True
+    cy.sampling_pattern = "SOBOL"  # Sobol-Burley in 3.4
     cy.seed, cy.use_animated_seed = seed, False
     sc.view_settings.view_transform = "Standard"
     r.image_settings.file_format = "OPEN_EXR"
