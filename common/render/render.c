@@ -30,7 +30,7 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        const struct path_at at = {path.dims, depth, path.sample, path.roulette};
+        const struct path_at at = {path.dims, depth, path.sample, path.roulette, NULL};
         if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, at, 1) ||
             !path_survives(ctx, &beta, rng, at))
             break;
@@ -69,7 +69,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
         ctx->dims_key = rng_mix64(ctx->rs.seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32 | (uint32_t)y) + 16));
     }
     if (ctx->packet) {
-        const struct path_at how = {dims, 0, 0, rr};
+        const struct path_at how = {dims, 0, 0, rr, NULL};
         render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, how, last, sum, &kept, &nonfinite, &rays);
     } else {
         /* nee, dims and roulette constants in the default loop: the mixture's inlined trace holds
@@ -81,11 +81,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
             if (nee || dims || rr) {
                 ray r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s)
                              : camera_ray(ctx->cam, u, v, &path_rng);
-                const struct path_at path = {dims, 0, (uint32_t)s, rr};
+                const struct path_at path = {dims, 0, (uint32_t)s, rr, NULL};
                 c = trace(ctx, &r, &path_rng, &rays, mix, nee, path, last);
             } else {
                 ray r = camera_ray(ctx->cam, u, v, &path_rng);
-                c = trace(ctx, &r, &path_rng, &rays, mix, 0, (struct path_at){0, 0, 0, 0}, last);
+                c = trace(ctx, &r, &path_rng, &rays, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last);
             }
             add_estimate(c, sum, &kept, &nonfinite);
         }

@@ -56,13 +56,24 @@ struct render_ctx {
     int dims_slots, dims_bounces, px, py;
 };
 
+/* A shadow ray of next-event estimation not traced yet, and what an emitter it reaches first
+   adds: weight x its emission x scale (render_path.h's path_shadow_add); pending until then. */
+struct path_shadow {
+    ray r;
+    vec3 weight;
+    double scale;
+    int pending;
+};
+
 /* Where a vertex's decisions come from: under sampler_dims: all (dims) sample's points of the
    pixel's sets for the vertex's bounce (depth), while that bounce has sets; else the path's rng.
-   roulette: Russian roulette may end the path after the vertex (render_path.h's path_survives). */
+   roulette: Russian roulette may end the path after the vertex (render_path.h's path_survives).
+   shadow: NULL, or where next-event estimation leaves its shadow ray for the caller to trace. */
 struct path_at {
     int dims, depth;
     uint32_t sample;
     int roulette;
+    struct path_shadow *shadow;
 };
 
 /* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a

@@ -272,6 +272,20 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
     ++*kept;
 }
 
+/* A shadow ray's emission (got: it hit something, hit its nearest hit) into *L: an emitter's front
+   reached first counts, weighted by sh's weight and scale; sh is then done. */
+static inline __attribute__((always_inline)) void
+path_shadow_add(const struct render_ctx *ctx, struct path_shadow *sh, int got, const struct hit *hit, vec3 *L)
+{
+    sh->pending = 0;
+    if (!got)
+        return;
+    const struct material *lm = ctx->prim_material[hit->prim];
+    if (lm->type != MAT_LIGHT || !hit->front)
+        return;
+    *L = v3_add(*L, v3_mul(sh->weight, v3_scale(lm->emit, sh->scale)));
+}
+
 /* Next-event estimation at a scattering vertex h (diffuse surface or medium), before its own
    scatter: one light point from the light sampler's sets, a shadow ray toward it, and the
    emission it reaches weighted by the power heuristic against the material's own sampling
@@ -280,7 +294,9 @@ static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *n
    lambertian (cosine / pi) when phase is 0, else the isotropic phase. The light point comes from
    an emitter (light_set_emitters: a sample: true object that does not emit is the mixture's
    alone), chosen uniformly; the light strategy's pdf is the emitters' mixture, so an emitter the
-   shadow ray reaches first counts whichever one was chosen. */
+   shadow ray reaches first counts whichever one was chosen. When at.shadow is set the shadow ray
+   is left there for the caller to trace (the lanes trace four at a time), path_shadow_add then
+   adding what it reaches; else it is traced here. */
 static inline __attribute__((always_inline)) void
 path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct rng *rng,
                 const struct hit *h, vec3 albedo, double phase, uint64_t *rays, struct path_at at)
@@ -309,16 +325,15 @@ path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct
     double pl = lights_pdf_in(sc, emitters, h->p, dir, light, light_pdf);
     if (!(pl > 0))
         return;
-    ray shadow = {h->p, dir, r->time};
-    struct hit sh;
-    ++*rays;
-    if (!bvh_hit(sc, &shadow, HIT_EPS, DBL_MAX, &sh))
-        return;
-    const struct material *lm = ctx->prim_material[sh.prim];
-    if (lm->type != MAT_LIGHT || !sh.front)
-        return;
     double w = pl * pl / (pl * pl + f_pdf * f_pdf);
-    *L = v3_add(*L, v3_mul(v3_mul(beta, albedo), v3_scale(lm->emit, f_pdf * w / pl)));
+    struct path_shadow sh = {{h->p, dir, r->time}, v3_mul(beta, albedo), f_pdf * w / pl, 1};
+    ++*rays;
+    if (at.shadow) {
+        *at.shadow = sh;
+        return;
+    }
+    struct hit hit;
+    path_shadow_add(ctx, &sh, bvh_hit(sc, &sh.r, HIT_EPS, DBL_MAX, &hit), &hit, L);
 }
 
 /* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
