@@ -42,12 +42,15 @@ job "width: 16" "threshold: 50" "light_sampling: false"
 check "light_sampling: false renders (exit $rc)" [ "$rc" -eq 0 ]
 check "sidecar records light_sampling false" grep -q '"light_sampling": false' "$T/off/ls/ls.json"
 check "no light sample sets drawn with light sampling off" grep -q '"light_sample_sets": 0' "$T/off/ls/ls.json"
-job "width: 16" "light_sampling: maybe"
-rm -rf "$T/bad"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "light_sampling: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "light_sampling error names file:line:col" grep -q "ls.yaml:3:17: light_sampling: must be" "$T/ls.err"
-check "light_sampling error writes nothing" [ ! -e "$T/bad" ]
+rejects() { # rejects KEY VALUE MESSAGE: a job with KEY: VALUE exits 2, says MESSAGE, writes nothing
+    job "width: 16" "$1: $2"
+    rm -rf "$T/bad"
+    "$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+    check "$1: $2 exits 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "$1 error names file:line:col ($3)" grep -q "$3" "$T/ls.err"
+    check "$1 error writes nothing" [ ! -e "$T/bad" ]
+}
+rejects light_sampling maybe "ls.yaml:3:17: light_sampling: must be"
 
 # 3b. integrator: nee renders, is recorded, traces shadow rays (without roulette, more segments
 # than the mixture's for the same samples), differs from the mixture; bad values fail with
@@ -72,12 +75,7 @@ check "nee without roulette traces more segments than the mixture ($(segs "$T/in
     [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
 check "nee without roulette traces more segments ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/nee/nee.json"))" \
     [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/nee/nee.json")" ]
-job "width: 16" "russian_roulette: maybe"
-rm -rf "$T/bad"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "russian_roulette: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "russian_roulette error names file:line:col" grep -q "ls.yaml:3:19: russian_roulette: must be off or on" "$T/ls.err"
-check "russian_roulette error writes nothing" [ ! -e "$T/bad" ]
+rejects russian_roulette maybe "ls.yaml:3:19: russian_roulette: must be off or on"
 for dims in pixel_light all; do
     job "name: d-$dims" "width: 16" "threshold: 25" "sampler: jitter" "sampler_dims: $dims"
     "$WORKER" --quiet --out "$T/dims" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
@@ -86,16 +84,8 @@ for dims in pixel_light all; do
 done
 check "sampler_dims: all's image differs from pixel_light's" \
     sh -c "! cmp -s '$T/dims/d-all/d-all.png' '$T/dims/d-pixel_light/d-pixel_light.png'"
-job "width: 16" "sampler_dims: every"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "sampler_dims: every exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "sampler_dims error names file:line:col" grep -q "ls.yaml:3:15: sampler_dims: must be pixel_light or all" "$T/ls.err"
-job "width: 16" "integrator: path"
-rm -rf "$T/bad"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "integrator: path exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "integrator error names file:line:col" grep -q "ls.yaml:3:13: integrator: must be mixture or nee" "$T/ls.err"
-check "integrator error writes nothing" [ ! -e "$T/bad" ]
+rejects sampler_dims every "ls.yaml:3:15: sampler_dims: must be pixel_light or all"
+rejects integrator path "ls.yaml:3:13: integrator: must be mixture or nee"
 
 # 4. An image texture resolves beside its scene file wherever the job runs from.
 mkdir -p "$T/elsewhere/scenes/textures" "$T/cwd"
