@@ -76,6 +76,16 @@ check "nee without roulette traces more segments than the mixture ($(segs "$T/in
 check "nee without roulette traces more segments ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/nee/nee.json"))" \
     [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/nee/nee.json")" ]
 rejects russian_roulette maybe "ls.yaml:3:19: russian_roulette: must be off or on"
+# a compare variant takes russian_roulette too: its images named for it, each sidecar as applied
+printf '%s\n' "name: rr" "scenes: [$root/scenes/cornell-book3.yaml]" "width: 8" "integrator: nee" \
+    "reference: { sampler: jitter, threshold: 25 }" "seeds: [1]" "sweep: { threshold: [50] }" "variants:" \
+    "  - { sampler: jitter }" "  - { sampler: jitter, russian_roulette: off }" >"$T/rr.yaml"
+"$WORKER" --quiet --out "$T/rr" "$T/rr.yaml" 2>"$T/rr.err"; rc=$?
+check "a compare job with a russian_roulette variant runs (exit $rc)" [ "$rc" -eq 0 ]
+check "the variant's sidecar records russian_roulette off" \
+    grep -q '"russian_roulette": "off"' "$T/rr/rr/cornell-book3-jitter-rouletteoff-t50-s1.json"
+check "nee's default variant records russian_roulette on" \
+    grep -q '"russian_roulette": "on"' "$T/rr/rr/cornell-book3-jitter-t50-s1.json"
 for dims in pixel_light all; do
     job "name: d-$dims" "width: 16" "threshold: 25" "sampler: jitter" "sampler_dims: $dims"
     "$WORKER" --quiet --out "$T/dims" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
