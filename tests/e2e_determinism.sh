@@ -33,9 +33,13 @@ samplers="uniform jitter random poisson sobol sobol-nee poisson-nee"
 for scene in checker cornell cornell-book3 final; do
     for s in $samplers; do
         j=$scene-$s
-        printf 'name: %s\nscene: %s/scenes/%s.yaml\nwidth: 20\nheight: 20\nsampler: %s\nthreshold: 25\nlight_threshold: 20\n' \
+        printf 'name: %s\nscene: %s/scenes/%s.yaml\nwidth: 20\nheight: 20\nsampler: %s\nthreshold: 25\n' \
             "$j" "$root" "$scene" "${s%-nee}" >"$T/$j.yaml"
-        case $s in *-nee) printf 'integrator: nee\nsampler_dims: all\n' >>"$T/$j.yaml" ;; esac
+        # sampler_dims: all takes light points from the pixel sets: a light_threshold is an error there
+        case $s in
+        *-nee) printf 'integrator: nee\nsampler_dims: all\n' >>"$T/$j.yaml" ;;
+        *) printf 'light_threshold: 20\n' >>"$T/$j.yaml" ;;
+        esac
         for b in $builds; do
             for n in 1 3; do
                 [ "$b" != default ] && [ "$n" = 3 ] && [ "$b" != clang ] && continue

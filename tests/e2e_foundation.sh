@@ -16,7 +16,7 @@ check "small render exits 0" [ "$rc" -eq 0 ]
 check "image written" [ -s "$T/out/small/small.png" ]
 check "sidecar written" [ -s "$T/out/small/small.json" ]
 check "png signature" sh -c "head -c 8 '$T/out/small/small.png' | od -An -tx1 | tr -d ' \n' | grep -q 89504e470d0a1a0a"
-for key in '"job": "small"' '"sampler": "random"' '"per_pixel_mean": 16' '"total"' '"wall_s"' '"cpu_s"' '"nonfinite_dropped"' '"processes": 2' '"light_sample_sets"'; do
+for key in '"job": "small"' '"sampler": "random"' '"per_pixel_mean": 16' '"total"' '"wall_s"' '"cpu_s"' '"nonfinite_samples"' '"processes": 2' '"light_sample_sets"'; do
     check "sidecar has $key" grep -q "$key" "$T/out/small/small.json"
 done
 check "summary line names the job" grep -q "small: 48x32" "$T/err"

@@ -7,7 +7,11 @@ check "jitter t=3 prints 1089 points" [ "$(count jitter 3)" -eq 1089 ]
 check "random t=1 prints 10000 points" [ "$(count random 1)" -eq 10000 ]
 n=$(count poisson 1 --seed 4)
 check "poisson t=1 prints 6000..6700 points (got $n)" [ "$n" -ge 6000 ] && [ "$n" -le 6700 ]
-check "every line is x,y with two numbers" sh -c "'$WORKER' points poisson 10 | awk -F, 'NF != 2 || \$1 !~ /^0\\.[0-9]+$/ || \$2 !~ /^0\\.[0-9]+$/ {bad = 1} END {exit bad}'"
+num='/^(0|0\.[0-9]+|[1-9](\.[0-9]+)?e-[0-9]+)$/'
+check "every line is x,y with two numbers" sh -c "'$WORKER' points poisson 10 | awk -F, 'NF != 2 || \$1 !~ $num || \$2 !~ $num {bad = 1} END {exit bad}'"
+# 17 significant digits: every point of a 200 x 200 jitter set reads back in its own cell (with 6
+# decimals about 8 points within 5e-7 below a boundary were printed in the next cell)
+check "jitter t=0.5: every point read back lands in its own cell, one per cell" sh -c "'$WORKER' points jitter 0.5 --seed 5 | awk -F, '{c[int(\$1 * 200) * 200 + int(\$2 * 200)]++} END {for (i = 0; i < 40000; i++) if (c[i] != 1) exit 1}'"
 "$WORKER" points poisson 5 --seed 2 >"$T/a.csv"
 "$WORKER" points poisson 5 --seed 2 >"$T/b.csv"
 "$WORKER" points poisson 5 --seed 3 >"$T/c.csv"
@@ -89,6 +93,8 @@ for s in uniform jitter random poisson sobol; do
     check "$s: --spectrum --radial --stats exit 0 (got $rc: $(head -c 200 "$T/$s.err"))" [ "$rc" -eq 0 ]
     check "$s: the spectrum is a PNG" sh -c "head -c 8 '$T/$s.png' | od -An -c | grep -q 'P   N   G'"
     check "$s: the radial chart is an SVG with two panels" sh -c "grep -q '<svg' '$T/$s.svg' && grep -q 'radial mean power' '$T/$s.svg' && grep -q 'anisotropy' '$T/$s.svg'"
+    check "$s: the radial chart's title names the seeds' whole range (it was cut: \"seeds 1..\")" \
+        grep -q "radial spectrum over 4 sets, seeds 1\.\.4</text>" "$T/$s.svg"
     for k in count min_distance min_distance_toroidal star_discrepancy_l2 low_frequency_power; do
         check "$s: --stats prints $k" sh -c "[ -n \"\$(awk '\$1 == \"$k\" {print \$2}' '$T/$s.stats')\" ]"
     done
@@ -124,4 +130,22 @@ for v in 0 -1 x 100001; do
 done
 "$WORKER" points random 5 --spectrum "$T/nodir/x.png" >/dev/null 2>"$T/nd.err"; rc=$?
 check "--spectrum into a missing folder: exit 2" sh -c "[ $rc -eq 2 ] && grep -q 'no folder' '$T/nd.err'"
+# --padded K: K dimensions per sample of pixel (0, 0), the pixel's own set then the padded slots
+"$WORKER" points jitter 25 --padded 4 --seed 3 >"$T/pad.csv"; rc=$?
+check "--padded 4 exits 0 (got $rc)" [ "$rc" -eq 0 ]
+check "--padded 4 on a 4x4 grid: 16 rows of 8 numbers" sh -c "[ \$(wc -l <'$T/pad.csv') -eq 16 ] && awk -F, 'NF != 8 {bad = 1} END {exit bad}' '$T/pad.csv'"
+for d in 0 1 2 3; do
+    check "--padded: dimension $d puts one sample in each of the 16 cells" sh -c "awk -F, -v d=$d '{c[int(\$(2*d+1)*4) + 4*int(\$(2*d+2)*4)]++} END {for (i = 0; i < 16; i++) if (c[i] != 1) exit 1}' '$T/pad.csv'"
+done
+check "--padded: the padded dimensions are in other orders than the pixel's" sh -c "awk -F, '{if (int(\$1*4) == int(\$3*4) && int(\$2*4) == int(\$4*4)) same++} END {exit same == 16}' '$T/pad.csv'"
+"$WORKER" points jitter 25 --padded 4 --seed 3 >"$T/pad2.csv"
+"$WORKER" points jitter 25 --padded 4 --seed 4 >"$T/pad3.csv"
+check "--padded: same seed, same rows" cmp -s "$T/pad.csv" "$T/pad2.csv"
+check "--padded: other seed, other rows" sh -c "! cmp -s '$T/pad.csv' '$T/pad3.csv'"
+n=$("$WORKER" points sobol 10 --padded 2 | wc -l)
+check "--padded with sobol t=10: 100 rows (got $n)" [ "$n" -eq 100 ]
+"$WORKER" points jitter 25 --padded 0 >/dev/null 2>"$T/pad.err"; rc=$?
+check "--padded 0: exit 2" sh -c "[ $rc -eq 2 ] && grep -q -- '--padded: must be a whole number' '$T/pad.err'"
+"$WORKER" points jitter 25 --padded 2 --stats >/dev/null 2>"$T/pad.err"; rc=$?
+check "--padded with --stats: exit 2" sh -c "[ $rc -eq 2 ] && grep -q -- '--padded prints' '$T/pad.err'"
 finish

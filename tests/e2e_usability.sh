@@ -43,6 +43,32 @@ printf 'scene: %s/away.yaml\nwidth: 8\nthreshold: 50\n' "$T" >"$T/q/qdark.yaml"
 check "black queue job: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "black queue job: the warning ($(cat "$T/q.err"))" sh -c "grep -E '^$TS qdark\.yaml: qdark: warning: ' '$T/q.err' | grep -qF '$warning'"
 
+# 1b. Issue 27: with another light lighting the scene (so the image is not black), a disk light
+#     facing away from everything is named (its material, its line:col); turned around, nothing.
+cat >"$T/two.yaml" <<'EOF'
+camera: { lookfrom: [0, 2, -8], lookat: [0, 1, 0], vfov: 40 }
+materials:
+  white: { type: lambertian, albedo: [0.73, 0.73, 0.73] }
+  lamp:  { type: light, emit: [15, 15, 15] }
+  up:    { type: light, emit: [15, 15, 15] }
+objects:
+  - { type: rect, plane: xz, min: [-10, -10], max: [10, 10], at: 0, material: white }
+  - { type: sphere, center: [0, 1, 0], radius: 1, material: white }
+  - { type: disk, center: [0, 5, 0], toward: [0, 0, 0], radius: 1, material: lamp }
+  - { type: disk, center: [0, 6, 0], toward: [0, 10, 0], radius: 1, material: up }
+EOF
+sed 's/toward: \[0, 10, 0\]/toward: [0, 0, 0]/' "$T/two.yaml" >"$T/two-lit.yaml"
+printf 'scene: two.yaml\nwidth: 16\nthreshold: 20\n' >"$T/twoaway.yaml"
+printf 'scene: two-lit.yaml\nwidth: 16\nthreshold: 20\n' >"$T/twolit.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/twoaway.yaml" 2>"$T/two.err"; rc=$?
+check "a disk facing away, another lighting: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "a disk facing away: named by material and line:col ($(cat "$T/two.err"))" \
+    grep -qF "twoaway: warning: $T/two.yaml:10:5: the disk light (material \"up\") faces away from everything in the scene" "$T/two.err"
+check "a disk facing away: not called black" sh -c "! grep -q 'entirely black' '$T/two.err'"
+check "a disk facing away: the summary line and the warning" [ "$(grep -c . "$T/two.err")" -eq 2 ]
+"$WORKER" --quiet --out "$T/out" "$T/twolit.yaml" 2>"$T/twolit.err"; rc=$?
+check "both disks lighting: no warning ($(cat "$T/twolit.err"))" sh -c "[ $rc -eq 0 ] && ! grep -q warning '$T/twolit.err'"
+
 # 4. --help says what a compare job is (a job with variants:), names the queue, diff and points,
 #    and where the job and scene formats are written down.
 "$WORKER" --help >"$T/help.out" 2>"$T/help.err"; rc=$?

@@ -56,6 +56,25 @@ int main(void)
     CHECK(svg2 && strstr(svg2, "points=\"") && strstr(strstr(svg2, "points=\""), " 269.0,"));
     CHECK(svg2 && !strstr(svg2, "whisker")); /* no whiskers drawn: none in the legend */
     CHECK(strstr(chart_color(0), "#") && strcmp(chart_color(1), chart_color(9)) == 0);
+    /* a variant keeps its colour whatever the other series of its chart (two studies on a page) */
+    {
+        struct chart_series a[2] = {{"jitter", 3, xs, ys, NULL, NULL}, {"sobol", 3, xs, ys, NULL, NULL}};
+        struct chart_series b[2] = {{"sobol", 3, xs, ys, NULL, NULL}, {"random", 3, xs, ys, NULL, NULL}};
+        struct chart_panel pa = {"a", "x", "y", NULL, a, 2, NULL, 0},
+                           pb = {"b", "x", "y", NULL, b, 2, NULL, 0};
+        char *sa = chart_svg("a", &pa, 1, 1), *sb = chart_svg("b", &pb, 1, 1);
+        const char *ca = sa ? strstr(sa, "stroke=\"#") : NULL, *cb = sb ? strstr(sb, "stroke=\"#") : NULL;
+        /* the first polyline of a is jitter's, of b sobol's: find sobol's in a (the second) */
+        if (ca)
+            ca = strstr(strstr(ca, "<polyline") + 1, "<polyline");
+        if (ca)
+            ca = strstr(ca, "stroke=\"#");
+        if (cb)
+            cb = strstr(strstr(sb, "<polyline"), "stroke=\"#");
+        CHECK(ca && cb && strncmp(ca, cb, 15) == 0);
+        free(sa);
+        free(sb);
+    }
     /* a long label (up to 63 characters) fits inside the legend box and the drawing */
     struct chart_series longer = {
         "poisson-lightjitter-pool64-depth8-a-label-as-long-as-allowed-xy", 3, xs, ys, NULL, NULL};

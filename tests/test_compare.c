@@ -8,6 +8,9 @@
 #include "check.h"
 #include "study/compare.h"
 #include "study/compare_stats.h"
+#include "study/report_chart.h"
+#include "study/report_stability.h"
+#include "study/verdict_from.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 
@@ -115,6 +118,20 @@ static void test_errors(void)
     CHECK(e.line == 4 && strstr(e.msg, "two variants are labelled \"a\""));
     CHECK(!compare_load(job_file("e4.yaml", "scenes: []\nvariants:\n  - { sampler: jitter }\n"), &e));
     CHECK(e.line == 1 && e.col == 9 && strstr(e.msg, "scenes: must be a non-empty list"));
+    { /* a reference image with a NaN: refused at load, at its line:col, before any render */
+        struct rgbf img = {0};
+        char path[1100];
+        CHECK(image_f_alloc(&img, 4, 4, &e) == 0);
+        for (int i = 0; i < 4 * 4 * 3; i++)
+            img.px[i] = i == 7 ? NAN : 0.5f;
+        snprintf(path, sizeof path, "%s/nan.exr", dir);
+        CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
+        image_f_free(&img);
+        CHECK(!compare_load(job_file("e6.yaml", "scene: SCENE\nwidth: 4\nheight: 4\nreference: nan.exr\n"
+                                                "variants:\n  - { label: a }\n"),
+                            &e));
+        CHECK(e.line == 4 && e.col == 12 && strstr(e.msg, "1 of its 48 values are NaN or infinite"));
+    }
     CHECK(!compare_load(
         job_file("e5.yaml", "scenes: [SCENE]\nreference: nowhere.png\nvariants:\n  - { label: a }\n"), &e));
     CHECK(e.line == 2 && e.col == 12 && strstr(e.msg, "reference: no image file at"));
@@ -132,12 +149,21 @@ static struct compare *hand_made(const char *name, const char *yaml)
     return c;
 }
 
-/* compare_stats_stability's line for (scene s, variant v) copied into buf, for strstr. */
-static void stability(const struct compare *c, int s, int v, const struct rgbf *ref, char *buf, size_t n)
+/* report_stability's line for (scene s, variant v) copied into buf, for strstr: the verdict of
+   c's figures (and images in dir) printed; ref NULL: as if the job had no reference. */
+static void stability(struct compare *c, int s, int v, const struct rgbf *ref, char *buf, size_t n)
 {
-    char *text = compare_stats_stability(c, s, v, dir, ref);
+    struct err e;
+    int kind = c->scenes[s].ref_kind;
+    if (!ref)
+        c->scenes[s].ref_kind = COMPARE_REF_NONE;
+    verdict_study_free(&c->verdict);
+    c->has_verdict = verdict_from_compare(c, dir, &c->verdict, &e) == 0;
+    CHECK(c->has_verdict);
+    char *text = report_stability(c, s, v);
     snprintf(buf, n, "%s", text ? text : "");
     free(text);
+    c->scenes[s].ref_kind = kind;
 }
 
 /* Hand-made results: relMSE falls as 1/spp for "noise", flattens for "flat". */
@@ -177,7 +203,7 @@ static void test_stats(void)
     CHECK(strstr(line, "error stops falling at threshold 5") != NULL);
     stability(c, 0, 1, NULL, line, sizeof line);
     CHECK(strstr(line, "no reference") != NULL);
-    char *svg = compare_stats_chart_svg(c);
+    char *svg = report_chart_svg(c);
     CHECK(svg && strstr(svg, "checker: error against CPU time") && strstr(svg, ">flat<"));
     free(svg);
     compare_free(c);
@@ -229,7 +255,7 @@ static void test_chart_one_seed(void)
         it->wall_s = 0.01 * (p + 1);
         it->error.relmse = 0.1 / it->spp_mean;
     }
-    char *svg = compare_stats_chart_svg(c);
+    char *svg = report_chart_svg(c);
     CHECK(svg && !strstr(svg, "<path d=\"M") && !strstr(svg, "whisker") && !strstr(svg, "1 seeds"));
     CHECK(svg && strstr(svg, "one seed: no spread across seeds"));
     free(svg);
@@ -253,6 +279,8 @@ static void test_repeated_error(void)
     CHECK(image_f_alloc(&ref, 4, 4, &e) == 0 && image_f_alloc(&img, 4, 4, &e) == 0);
     for (int i = 0; i < 4 * 4 * 3; i++)
         ref.px[i] = 0.4f;
+    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/ref.exr", dir);
+    CHECK(imgio_write_f(c->scenes[0].ref_path, &ref, IMG_EXR, NULL, 0, &e) == 0);
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
             for (int k = 0; k < 2; k++) {
@@ -270,7 +298,8 @@ static void test_repeated_error(void)
             }
     char line[2048];
     stability(c, 0, 0, &ref, line, sizeof line);
-    CHECK(strstr(line, "repeats in every seed: 100% at threshold 20, 100% at threshold 10") != NULL);
+    CHECK(strstr(line, "repeats in every seed: 100% at threshold 20 (bias 100%, pattern 0%), 100% at "
+                       "threshold 10 (bias 100%, pattern 0%)") != NULL);
     stability(c, 0, 1, &ref, line, sizeof line);
     CHECK(strstr(line, "repeats in every seed: 0% at threshold 20, 0% at threshold 10") != NULL);
     image_f_free(&ref);

@@ -103,6 +103,7 @@ static void test_errors(void)
     refused("e9.yaml", "studies: []\n", "e9.yaml", 1, 10, "non-empty list");
     refused("e10.yaml", "studies: studies/a.yaml\n", "e10.yaml", 1, 10, "non-empty list");
     refused("e11.yaml", "name: x\nstudies:\n", "e11.yaml", 2, 9, "needs a value");
+    refused("e13.yaml", "studies: [~]\n", "e13.yaml", 1, 11, "studies: an empty entry (null)");
     char many[2048] = "studies: [";
     for (int i = 0; i <= COMPARE_SUITE_MAX_STUDIES; i++)
         strcat(many, i ? ", studies/a.yaml" : "studies/a.yaml");

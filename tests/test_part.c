@@ -2,7 +2,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "check.h"
 #include "base/fileio.h"
@@ -21,19 +23,84 @@ static void fill(float *rgb)
         rgb[i] = (float)(i % 97) / 96.0f;
 }
 
-static void result(struct procs_result *fr, int part)
+/* Stats a render of part `part` of `parts` of a w x h image could have: its pixels, 5 + part
+   samples each (within spp 3 + part .. 9 + part), more rays than samples. */
+static void result(struct procs_result *fr, int w, int h, int part, int parts)
 {
     memset(fr, 0, sizeof *fr);
     render_stats_init(&fr->total);
-    fr->total.pixels = 10 + part;
-    fr->total.samples = 100 + part;
-    fr->total.rays = 1000;
+    fr->total.pixels = (uint64_t)w * ((h - part + parts - 1) / parts);
+    fr->total.samples = fr->total.pixels * (uint64_t)(5 + part);
+    fr->total.rays = 100000000;
     fr->total.spp_min = 3 + part;
     fr->total.spp_max = 9 + part;
     fr->processes = 1;
     fr->wall_s = 0.5;
     fr->cpu_s = 0.25;
     fr->peak_rss_kb = 100 * (part + 1);
+}
+
+/* Rewrite n bytes at off of the part file at path and make its checksum again (a forgery). */
+static void forge(const char *path, size_t off, const void *bytes, size_t n)
+{
+    uint8_t *data;
+    size_t len;
+    struct err e;
+    CHECK(fileio_read_all(path, 1 << 20, &data, &len, &e) == 0);
+    memcpy(data + off, bytes, n);
+    uLong crc = crc32(0L, data, (uInt)(len - 4));
+    for (int i = 0; i < 4; i++)
+        data[len - 4 + i] = (uint8_t)(crc >> (8 * i));
+    CHECK(fileio_write_atomic(path, data, len, &e) == 0);
+    free(data);
+}
+
+/* Issue 27: part files forged whole (checksum made again) are refused: a size the job does not
+   render (its height from the camera's aspect), another version (said so), non-finite rows,
+   counters that would wrap, spp min over max. */
+static void test_forged(const char *dir, const struct job *j0, const float *rgb0)
+{
+    struct job j = *j0;
+    struct run_opts o = {.out_dir = dir};
+    struct run_result rr;
+    struct procs_result fr;
+    struct err e;
+    char path[2048], sub[2100];
+    snprintf(j.name, sizeof j.name, "forged");
+    snprintf(sub, sizeof sub, "%s/forged", dir);
+    CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
+    outdir_part_path(&j, dir, 0, 1, path, sizeof path);
+    /* no height: the camera's aspect gives it; a part 1 row high is not this job's */
+    j.height = 0;
+    snprintf(j.scene_path, sizeof j.scene_path, "scenes/checker.yaml");
+    result(&fr, W, 1, 0, 1);
+    CHECK(part_write(path, &j, W, 1, 0, 1, rgb0, &fr, &e) == 0);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "is 7x1 but the job renders 7x") != NULL);
+    j.height = H;
+    result(&fr, W, H, 0, 1);
+    CHECK(part_write(path, &j, W, H, 0, 1, rgb0, &fr, &e) == 0);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 0);
+    /* another version says so (it said "file too large") */
+    const uint32_t v2 = 2;
+    forge(path, 8, &v2, 4);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2 &&
+          strstr(e.msg, "another worker version (part format 2") != NULL);
+    /* wrapped counters: 2^64 - 2 samples; spp min over max */
+    CHECK(part_write(path, &j, W, H, 0, 1, rgb0, &fr, &e) == 0);
+    const uint64_t wrap = UINT64_MAX - 1;
+    forge(path, 48, &wrap, 8);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "impossible counts") != NULL);
+    CHECK(part_write(path, &j, W, H, 0, 1, rgb0, &fr, &e) == 0);
+    const uint32_t spp[2] = {9, 3};
+    forge(path, 80, spp, 8);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "impossible counts") != NULL);
+    /* a NaN pixel in row 4 */
+    static float nan_rows[W * H * 3];
+    memcpy(nan_rows, rgb0, sizeof nan_rows);
+    nan_rows[4 * W * 3 + 5] = NAN;
+    CHECK(part_write(path, &j, W, H, 0, 1, nan_rows, &fr, &e) == 0);
+    CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "non-finite pixel in row 4") != NULL);
+    CHECK(part_matches(path, &j, 0, 1) == 0);
 }
 
 int main(void)
@@ -69,7 +136,7 @@ int main(void)
     CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
     struct procs_result fr;
     for (int p = 0; p < 3; p += 2) {
-        result(&fr, p);
+        result(&fr, W, H, p, 3);
         outdir_part_path(&j, dir, p, 3, path, sizeof path);
         CHECK(part_write(path, &j, W, H, p, 3, rgb, &fr, &e) == 0);
         CHECK(part_matches(path, &j, p, 3) == 1);
@@ -78,7 +145,7 @@ int main(void)
     }
     CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.msg, "missing part 1 of 3") != NULL);
-    result(&fr, 1);
+    result(&fr, W, H, 1, 3);
     outdir_part_path(&j, dir, 1, 3, path, sizeof path);
     CHECK(part_write(path, &j, W, H, 1, 3, rgb, &fr, &e) == 0);
 
@@ -94,12 +161,12 @@ int main(void)
     CHECK(merge_parts(&j, &o, &rr, &e) == 0);
     CHECK(rr.width == W && rr.height == H);
     CHECK(rr.procs.processes == 3);
-    CHECK(rr.procs.total.pixels == 10 + 11 + 12);
-    CHECK(rr.procs.total.samples == 100 + 101 + 102);
+    CHECK(rr.procs.total.pixels == W * H);
+    CHECK(rr.procs.total.samples == 4 * W * 5 + 4 * W * 6 + 3 * W * 7);
     CHECK(rr.procs.total.spp_min == 3 && rr.procs.total.spp_max == 11);
     CHECK_NEAR(rr.procs.cpu_s, 0.75, 1e-12);
     CHECK(rr.procs.peak_rss_kb == 300);
-    CHECK(rr.procs.proc[1].st.samples == 101);
+    CHECK(rr.procs.proc[1].st.samples == 4 * W * 6);
     struct rgb8 got, want;
     CHECK(imgio_read(rr.image_path, &got, &e) == 0);
     CHECK(image_alloc(&want, W, H, &e) == 0);
@@ -114,7 +181,7 @@ int main(void)
 
     /* a part from other inputs is refused, naming the file */
     outdir_part_path(&j, dir, 0, 3, path, sizeof path);
-    result(&fr, 0);
+    result(&fr, W, H, 0, 3);
     CHECK(part_write(path, &other, W, H, 0, 3, rgb, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.file, "merge.part-0-of-3") != NULL && strstr(e.msg, "other inputs") != NULL);
@@ -141,7 +208,7 @@ int main(void)
             snprintf(bj.name, sizeof bj.name, "big");
             snprintf(sub, sizeof sub, "%s/big", dir);
             CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
-            result(&fr, 5);
+            result(&fr, BW, BH, 5, BPARTS);
             outdir_part_path(&bj, dir, 5, BPARTS, path, sizeof path);
             CHECK(part_write(path, &bj, BW, BH, 5, BPARTS, big, &fr, &e) == 0);
             CHECK(part_matches(path, &bj, 5, BPARTS) == 1);
@@ -149,6 +216,7 @@ int main(void)
         }
     }
 
+    test_forged(dir, &j, rgb);
     char cmd[2200];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0);

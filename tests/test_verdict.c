@@ -12,18 +12,32 @@
 
 #define NV 4
 #define NP 3
-#define NS 3
+#define NS 4
 
 /* Figures built by hand: relMSE = k[v] / spp^-slope[v] x the seed's factor, CPU = spp x cost[v]. */
 struct fake {
     struct verdict_figures f;
     const char *variants[NV], *samplers[NV], *points[NP];
     int pools[NV];
-    double spp[NV * NP * NS], cpu[NV * NP * NS], rel[NV * NP * NS], share[NV * NP * NS], repeat[NV * NP];
+    double spp[NV * NP * NS], cpu[NV * NP * NS], rel[NV * NP * NS], share[NV * NP * NS];
+    double rel_of_mean[NV * NP], bias_rel[NV * NP], radiance[NV * NP * NS];
     uint64_t nonfinite[NV * NP * NS];
 };
 
-static const double seed_factor[NS] = {0.95, 1.0, 1.05}; /* a 10% min-max range */
+static const double seed_factor[NS] = {0.95, 1.0, 1.0, 1.05}; /* a 10% min-max range */
+/* their geometric mean: what a ranking's value is */
+#define GM pow(0.95 * 1.05, 0.25)
+
+/* The seeds' mean image's relMSE at (v, p) that makes `share` of the error repeat in every seed:
+   share = (n rel_of_mean / mean_rel - 1) / (n - 1). */
+static void set_share(struct fake *x, int v, int p, double share)
+{
+    int n = x->f.n_seeds;
+    double mr = 0;
+    for (int k = 0; k < n; k++)
+        mr += x->rel[verdict_at(&x->f, v, p, k)] / n;
+    x->rel_of_mean[v * NP + p] = mr * (1 + share * (n - 1)) / n;
+}
 
 static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope,
                       const double *cost)
@@ -45,22 +59,31 @@ static void fake_init(struct fake *x, int nv, int ns, const double *k, const dou
                                     .relmse = x->rel,
                                     .sampler_share = x->share,
                                     .nonfinite = x->nonfinite,
-                                    .repeat_share = x->repeat,
-                                    .ref_spp = 10000};
+                                    .rel_of_mean = x->rel_of_mean,
+                                    .bias_rel = x->bias_rel,
+                                    .radiance = x->radiance,
+                                    .ref_spp = 10000,
+                                    .ref_relmse = NAN,
+                                    .ref_radiance = NAN,
+                                    .ref_radiance_se = NAN};
     x->points[0] = "threshold 10", x->points[1] = "threshold 5", x->points[2] = "threshold 2.5";
     for (int v = 0; v < nv; v++) {
         x->variants[v] = names[v];
         x->samplers[v] = "jitter";
         for (int p = 0; p < NP; p++) {
-            x->repeat[v * NP + p] = 0.1;
+            x->bias_rel[v * NP + p] = 0;
             for (int s = 0; s < ns; s++) {
                 int i = verdict_at(&x->f, v, p, s);
                 x->spp[i] = spp[p];
                 x->cpu[i] = spp[p] * cost[v];
                 x->rel[i] = k[v] * pow(spp[p], slope[v]) * (ns > 1 ? seed_factor[s] : 1);
+                x->radiance[i] = 1;
             }
         }
     }
+    for (int v = 0; v < nv; v++)
+        for (int p = 0; p < NP; p++)
+            set_share(x, v, p, 0.1);
 }
 
 static int rank_of(const struct verdict_ranking *r, int v)
@@ -87,37 +110,46 @@ static int any_line(char (*lines)[VERDICT_TEXT_MAX], int n, const char *needle)
     return 0;
 }
 
-/* The tie rule alone: a gap beyond the larger range wins; within it, neither wins. */
+/* The rule on entries built from seeds: a gap far beyond the seeds' spread separates, one within
+   it does not, on logarithms for relMSE; reaching the common point comes first. */
 static void test_rule(void)
 {
-    struct verdict_entry a = {.value = 1.0, .lo = 0.9, .hi = 1.1}, b = {.value = 1.25, .lo = 1.2, .hi = 1.3};
-    CHECK(verdict_beats(&a, &b, 0));  /* gap 0.25 > ranges 0.2, 0.1 */
-    CHECK(!verdict_beats(&b, &a, 0)); /* higher is worse */
-    CHECK(verdict_beats(&a, &b, 1));  /* log(1.25) = 0.22 > log(1.1 / 0.9) = 0.20 */
-    b.value = 1.15, b.lo = 1.1, b.hi = 1.2;
-    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.15 < a's range 0.2 */
-    CHECK(!verdict_beats(&a, &b, 1));
-    b.lo = 0.5, b.hi = 2, b.value = 1.5;
-    CHECK(!verdict_beats(&a, &b, 0)); /* gap 0.5 < b's range 1.5 */
-    /* a wide spread at a far larger value: linear ranges would tie them, logarithms do not */
-    struct verdict_entry c = {.value = 0.01, .lo = 0.009, .hi = 0.011},
-                         d = {.value = 4.5, .lo = 1.9, .hi = 8.7};
-    CHECK(!verdict_beats(&c, &d, 0) && verdict_beats(&c, &d, 1));
-    d.unreached = 1, d.value = d.lo = d.hi = 0.001; /* better figures, but not at the common point */
-    CHECK(verdict_beats(&c, &d, 1) && !verdict_beats(&d, &c, 1));
+    struct verdict_entry e[2];
+    const double a[3] = {0.9, 1.0, 1.1}, b[3] = {1.9, 2.0, 2.1}, c[3] = {0.5, 1.5, 3};
+    verdict_entry_start(&e[0], 0), verdict_entry_start(&e[1], 1);
+    for (int k = 0; k < 3; k++)
+        verdict_entry_add(&e[0], a[k], 1), verdict_entry_add(&e[1], b[k], 1);
+    verdict_entry_add(&e[0], -1, 1); /* not a relMSE: left out */
+    verdict_entry_end(&e[0], 1), verdict_entry_end(&e[1], 1);
+    CHECK(e[0].n == 3 && e[0].lo == 0.9 && e[0].hi == 1.1);
+    CHECK_NEAR(e[0].value, exp((log(0.9) + log(1.1)) / 3), 1e-12); /* the geometric mean */
+    struct verdict_ranking r = {.log_scale = 1, .n = 2, .e = e};
+    verdict_rank(&r);
+    CHECK(r.status == VERDICT_CLEAR && e[0].variant == 0 && verdict_beats(&r, &e[0], &e[1]));
+    CHECK(!verdict_beats(&r, &e[1], &e[0])); /* higher is worse */
+    verdict_entry_start(&e[1], 1);
+    for (int k = 0; k < 3; k++)
+        verdict_entry_add(&e[1], c[k], 1); /* a wide spread around a close mean */
+    verdict_entry_end(&e[1], 1);
+    verdict_rank(&r);
+    CHECK(r.status == VERDICT_INCONCLUSIVE && !verdict_beats(&r, &e[0], &e[1]));
+    e[0].unreached = 1; /* better figures, but not at the common point */
+    verdict_rank(&r);
+    CHECK(e[0].variant == 1 && e[1].variant == 0 && e[1].rank == 2);
 }
 
-/* Ties are not transitive: a wide spread at a worse mean is beaten by none, while a narrow one
-   between them is beaten; the ranking stays best first by rank (found in e2e_studies' tiny runs). */
+/* Separation is not transitive: a wide spread at a worse mean is beaten by none, while a narrow
+   one between them is beaten; the ranking stays best first by rank (found in e2e_studies' tiny
+   runs with the rule before). */
 static void test_rank_order(void)
 {
-    struct verdict_entry e[3] = {{.variant = 0, .value = 1.0, .lo = 0.99, .hi = 1.01},
-                                 {.variant = 1, .value = 1.2, .lo = 0.5, .hi = 2.0},
-                                 {.variant = 2, .value = 1.1, .lo = 1.09, .hi = 1.11}};
+    struct verdict_entry e[3] = {{.variant = 0, .n = 8, .mean = 0.0, .se = 0.01},
+                                 {.variant = 1, .n = 8, .mean = 0.2, .se = 0.5},
+                                 {.variant = 2, .n = 8, .mean = 0.1, .se = 0.01}};
     struct verdict_ranking r = {.log_scale = 1, .n = 3, .e = e};
-    verdict_rank(&r, 3);
+    verdict_rank(&r);
     CHECK(e[0].variant == 0 && e[0].rank == 1);
-    CHECK(e[1].variant == 1 && e[1].rank == 1); /* nobody beats the wide spread */
+    CHECK(e[1].variant == 1 && e[1].rank == 1); /* nobody tells the wide spread apart */
     CHECK(e[2].variant == 2 && e[2].rank == 2); /* variant 0 beats it */
     CHECK(r.status == VERDICT_TIE);
 }
@@ -134,18 +166,19 @@ static void test_clear_winner(void)
     CHECK_NEAR(s.by_samples.at, 1600, 1e-9);
     CHECK(s.by_samples.e[0].variant == 0 && rank_of(&s.by_samples, 0) == 1);
     CHECK(rank_of(&s.by_samples, 1) == 2 && rank_of(&s.by_samples, 2) == 3);
-    CHECK_NEAR(s.by_samples.e[0].value, 1.0 / 1600, 1e-12);
+    CHECK_NEAR(s.by_samples.e[0].value, GM * 1.0 / 1600, 1e-12);
     CHECK_NEAR(s.by_samples.e[0].hi - s.by_samples.e[0].lo, 0.1 / 1600, 1e-12);
     /* equal CPU time: the cheapest densest point, 1.6 s; gamma (4x the cost per sample) is read at
        its 400-spp point there */
     CHECK(s.by_cpu.status == VERDICT_CLEAR);
     CHECK_NEAR(s.by_cpu.at, 1.6, 1e-9);
-    CHECK_NEAR(s.by_cpu.e[2].value, 4.0 / 400, 1e-9);
+    CHECK_NEAR(s.by_cpu.e[2].value, GM * 4.0 / 400, 1e-9);
     CHECK(s.by_slope.status == VERDICT_INCONCLUSIVE); /* every slope is -1 */
     CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
     CHECK(s.n_failures == 0);
     CHECK(s.n_warnings == 1 && strstr(s.warnings[0], "by slope, ") &&
-          strstr(s.warnings[0], "differ by less than their spread"));
+          strstr(s.warnings[0],
+                 "are not told apart by their seeds (Welch's t test, Holm-corrected, alpha 0.05)"));
     CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
     char w[64];
     verdict_winner(&s, w, sizeof w);
@@ -165,8 +198,8 @@ static void test_tie_and_inconclusive(void)
     CHECK(rank_of(&s.by_samples, 0) == 1 && rank_of(&s.by_samples, 1) == 1 && rank_of(&s.by_samples, 2) == 3);
     CHECK(any_line(s.sentences, s.n_sentences, "alpha, beta tie"));
     CHECK(any_line(s.warnings, s.n_warnings,
-                   "at equal samples, alpha, beta differ by less than their spread "
-                   "across seeds: tied, no single winner"));
+                   "at equal samples, alpha, beta are not told apart by their seeds "
+                   "(Welch's t test, Holm-corrected, alpha 0.05): tied, no single winner"));
     char w[64];
     verdict_winner(&s, w, sizeof w);
     CHECK(!strcmp(w, "alpha = beta (tie)"));
@@ -214,7 +247,7 @@ static void test_failures_and_guards(void)
     const double k[] = {1, 1.5, 3, 2}, slope[] = {-1, -1, -1, -1}, cost[] = {1e-3, 1e-3, 3e-3, 1e-3};
     fake_init(&x, 4, NS, k, slope, cost);
     x.samplers[1] = "uniform";
-    x.repeat[1 * NP + 0] = 0.9; /* uniform: most of its error repeats at the sparsest point */
+    set_share(&x, 1, 0, 0.9); /* uniform: most of its error repeats at the sparsest point */
     x.samplers[2] = "poisson";
     for (int p = 0; p < NP; p++)
         for (int k2 = 0; k2 < NS; k2++) {
@@ -232,7 +265,7 @@ static void test_failures_and_guards(void)
     CHECK(any_line(s.sentences, s.n_sentences,
                    "gamma costs 3.0x alpha's CPU time per sample and buys nothing"));
     CHECK(any_line(s.warnings, s.n_warnings, "the reference has 3000 samples per pixel"));
-    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s}, 1);
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s, ""}, 1, NULL);
     CHECK(json && strstr(json, "\"kind\": \"structured_error\"") &&
           strstr(json, "\"kind\": \"sampler_share\"") && strstr(json, "\"equal_cpu_time\"") &&
           strstr(json, "\"tie_rule\""));
@@ -256,13 +289,94 @@ static void test_unreached(void)
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_samples.e[0].variant == 2 && s.by_samples.status == VERDICT_CLEAR); /* best per sample */
     CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
-    CHECK_NEAR(s.by_cpu.e[2].value, 0.5 / 100, 1e-12); /* its cheapest point's figure */
+    CHECK_NEAR(s.by_cpu.e[2].value, GM * 0.5 / 100, 1e-12); /* its cheapest point's figure */
     CHECK(any_line(s.warnings, s.n_warnings, "gamma cannot be had"));
+    verdict_scene_free(&s);
+}
+
+/* A synthetic study where beta's seeds' mean radiance sits 2% above the reference's (a biased
+   sampler, like the seed's square-domain Poisson sets): flagged `biased` with the percentage;
+   alpha, off by a fraction of a standard error, is not; and the repeated share splits into bias
+   and pattern. */
+static void test_biased(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 0.5, 1}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 1e-3};
+    static const double noise[NS] = {-0.004, 0.001, 0.002, 0.001};
+    fake_init(&x, 3, NS, k, slope, cost);
+    for (int p = 0; p < NP; p++)
+        for (int k2 = 0; k2 < NS; k2++) {
+            x.radiance[verdict_at(&x.f, 0, p, k2)] = 1.0 + noise[k2];
+            x.radiance[verdict_at(&x.f, 1, p, k2)] = 1.02 + noise[k2];
+            x.radiance[verdict_at(&x.f, 2, p, k2)] =
+                1.0 + 4 * noise[k2] + (p == 2 ? 0.004 : 0); /* within 4 SE */
+        }
+    x.f.ref_radiance = 1.0, x.f.ref_radiance_se = 0.001;
+    set_share(&x, 1, 2, 0.8);
+    x.bias_rel[1 * NP + 2] = 0.6 * x.rel[verdict_at(&x.f, 1, 2, 1)]; /* 0.6 of the mean relMSE */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(has_failure(&s, VERDICT_BIASED, 1) && !has_failure(&s, VERDICT_BIASED, 0) &&
+          !has_failure(&s, VERDICT_BIASED, 2));
+    for (int i = 0; i < s.n_failures; i++)
+        if (s.failures[i].kind == VERDICT_BIASED) {
+            CHECK_NEAR(s.failures[i].value, 2.0, 1e-9); /* percent */
+            CHECK(s.failures[i].detail > 4);
+            CHECK(strstr(s.failures[i].text,
+                         "beta: biased: its seeds' mean radiance at threshold 10 is +2.00% off"));
+        }
+    CHECK(any_line(s.sentences, s.n_sentences, "beta is biased on board"));
+    /* beta's error is the lowest now: the sentence that names it says it is biased */
+    CHECK(any_line(s.sentences, s.n_sentences, "use beta: relMSE"));
+    CHECK(any_line(
+        s.sentences, s.n_sentences,
+        "But beta is biased (+2.00% in mean radiance): more samples will not bring it to the reference."));
+    CHECK_NEAR(s.repeat[1 * NP + 2], 0.8, 1e-9);
+    CHECK(s.repeat_bias[1 * NP + 2] > 0.59 && s.repeat_bias[1 * NP + 2] < 0.61);
+    for (int i = 0; i < s.n_failures; i++)
+        if (s.failures[i].kind == VERDICT_STRUCTURED)
+            CHECK(strstr(s.failures[i].text,
+                         "80% of its error at threshold 2.5 repeats in every seed (60% a bias"));
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s, ""}, 1, NULL);
+    CHECK(json && strstr(json, "\"kind\": \"biased\"") && strstr(json, "\"bias_share\""));
+    free(json);
+    verdict_scene_free(&s);
+}
+
+/* The reference's own relMSE is subtracted before ranking and fitting, and a point within 2x of it
+   is warned: alpha's relMSE k / spp plus a reference floor of 1e-3 fits its true slope -1. */
+static void test_reference_noise(void)
+{
+    struct fake x;
+    struct verdict_scene s;
+    struct err e = {0};
+    const double k[] = {1, 2}, slope[] = {-1, -1}, cost[] = {1e-3, 1e-3};
+    fake_init(&x, 2, NS, k, slope, cost);
+    for (int i = 0; i < 2 * NP * NS; i++)
+        x.rel[i] += 1e-3;
+    x.f.ref_relmse = 1e-3;
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
+    CHECK_NEAR(s.by_samples.e[0].value, GM / 1600, 1e-12);
+    CHECK_NEAR(s.ref_relmse, 1e-3, 1e-15);
+    CHECK(any_line(s.warnings, s.n_warnings,
+                   "alpha's relMSE is within 2x of the reference's own 0.001 at threshold 2.5"));
+    CHECK(!any_line(s.warnings, s.n_warnings, "at threshold 5 ("));
+    char *json = verdict_json_text("job", &(struct verdict_study){"study", 1, &s, ""}, 1, NULL);
+    CHECK(json && strstr(json, "\"reference_relmse\": 0.001"));
+    free(json);
+    verdict_scene_free(&s);
+    x.f.ref_relmse = NAN; /* unknown: the floor stays in, the slope flattens */
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_slope.e[0].value > -0.9);
     verdict_scene_free(&s);
 }
 
 int main(void)
 {
+    test_biased();
+    test_reference_noise();
     test_unreached();
     test_rule();
     test_rank_order();

@@ -163,6 +163,47 @@ check "parts: the merge step ran after the parts" grep -q "split: merged 4 parts
 check "parts: 4 part files" [ "$(ls "$S"/parts/split/split.part-*-of-4 2>/dev/null | wc -l)" -eq 4 ]
 check "parts: merged image == plain render" cmp -s "$S/plain/split/split.png" "$S/parts/split/split.png"
 check "parts: sidecar records 4 parts" grep -q '"parts": 4' "$S/parts/split/split.json"
+# 3. a study spread over a 3-task array (each --part I/3 of its images), gathered by a dependent
+#    job: the one-process run's images and verdict; each image rendered once; a resubmission
+#    renders nothing again (sidecars' job hash)
+cat >"$S/study.yaml" <<YAML
+name: study
+scenes: [$root/scenes/checker.yaml, $root/scenes/cornell.yaml]
+width: 10
+height: 8
+processes: 1
+light_threshold: 50
+reference: { sampler: jitter, threshold: 10 }
+seeds: [1, 2, 3]
+sweep: { threshold: [50, 25] }
+variants:
+  - { sampler: jitter }
+  - { sampler: random }
+YAML
+"$WORKER" --quiet --out "$S/plain-study" "$S/study.yaml" 2>/dev/null || true
+for round in 1 2; do
+    set +e
+    out=$(cd "$S/out" && WORKER=$WORKER "$here/submit-study.sh" "$S/study.yaml" "$S/studies" 3 --wait)
+    rc=$?
+    set -e
+    jobs+=("$out")
+    say "study round $round: render array + dependent gather job $out finished (sbatch --wait exit $rc)"
+    check "study $round: gather exits 0 (got $rc)" [ "$rc" -eq 0 ]
+    check "study $round: the gather ran after the renders" grep -q "^study: 24 images" "$S/out/worker-gather-$out.out"
+    rendered=$(cat "$S"/out/worker-part-*.out | grep "^study: part " | sed 's/.*: part [0-9]*\/3: \([0-9]*\) image.*/\1/' | awk '{s += $1} END {print s + 0}')
+    want=24; [ "$round" -eq 2 ] && want=0
+    check "study $round: $want images rendered by the array in all (got $rendered)" [ "$rendered" -eq "$want" ]
+    rm -f "$S"/out/worker-part-*.out
+done
+same=0
+for f in "$S"/plain-study/study/*.png; do cmp -s "$f" "$S/studies/study/$(basename "$f")" && same=$((same + 1)); done
+check "study: 24 images == the one-process run's ($same)" [ "$same" -eq 24 ]
+check "study: summary, chart, report, verdict" [ -s "$S/studies/study/summary.csv" ] && [ -s "$S/studies/study/chart.svg" ] && [ -s "$S/studies/study/report.html" ]
+ranks() { python3 -c 'import json,sys
+for st in json.load(open(sys.argv[1]))["studies"]:
+    for sc in st["scenes"]:
+        print(sc["scene"], [(k, sc[k]["status"], [(x["variant"], x["rank"]) for x in sc[k]["ranking"]]) for k in ("equal_samples", "slopes")])' "$1"; }
+check "study: the same verdict at equal samples and by slope" [ "$(ranks "$S/plain-study/study/verdict.json")" = "$(ranks "$S/studies/study/verdict.json")" ]
 say "done"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -174,6 +174,26 @@ fail:
     return -1;
 }
 
+int fileio_output_ok(const char *path, const char *const *inputs, size_t n, struct err *e)
+{
+    struct stat st, in;
+    if (lstat(path, &st) < 0)
+        return errno == ENOENT ? 0 : err_set(e, NULL, 0, 0, "%s: %s", path, strerror(errno));
+    const char *what = S_ISLNK(st.st_mode)                          ? "a symbolic link"
+                       : S_ISDIR(st.st_mode)                        ? "a folder"
+                       : S_ISFIFO(st.st_mode)                       ? "a FIFO"
+                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                       : !S_ISREG(st.st_mode)                       ? "not a regular file"
+                                                                    : NULL;
+    if (what)
+        return err_set(e, NULL, 0, 0, "%s: is %s, not replaced (only a new or a regular file is written)",
+                       path, what);
+    for (size_t i = 0; i < n; i++)
+        if (inputs[i] && stat(inputs[i], &in) == 0 && in.st_dev == st.st_dev && in.st_ino == st.st_ino)
+            return err_set(e, NULL, 0, 0, "%s: is the input %s, not replaced", path, inputs[i]);
+    return 0;
+}
+
 int fileio_rename_noreplace(const char *from, const char *to)
 {
     if (renameat2(AT_FDCWD, from, AT_FDCWD, to, RENAME_NOREPLACE) == 0)

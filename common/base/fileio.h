@@ -18,6 +18,12 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e);
    On any failure (full disk, unwritable folder) no file is left behind and e is filled. */
 int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
 
+/* Whether a file the user named may be written at path (by fileio_write_atomic): path is absent,
+   or a regular file (not a symbolic link, FIFO, device, socket or folder) that is none of
+   inputs[0 .. n) (compared by device and inode; an input that cannot be stat'ed is skipped).
+   0, or -1 with e's message saying what path is and that it is not replaced. */
+int fileio_output_ok(const char *path, const char *const *inputs, size_t n, struct err *e);
+
 /* rename(from, to) that never replaces an existing `to` (renameat2 RENAME_NOREPLACE, or link +
    unlink where the file system lacks it): 0, or -1 with errno (EEXIST when `to` exists). */
 int fileio_rename_noreplace(const char *from, const char *to);

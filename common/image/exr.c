@@ -87,10 +87,29 @@ static int rgb_index(const char *name)
     return !strcmp(name, "R") ? 0 : !strcmp(name, "G") ? 1 : !strcmp(name, "B") ? 2 : -1;
 }
 
-/* Scanlines y .. y + chunk height of img through an encode pipeline (first: set it up). */
-static exr_result_t encode_chunk(exr_context_t ctx, int part, const struct rgbf *img, int y,
-                                 exr_encode_pipeline_t *enc, int first)
+/* The library's own compressor, called by compress_stored_if_equal. */
+struct exr_compressor {
+    exr_result_t (*compress)(exr_encode_pipeline_t *enc);
+};
+
+/* OpenEXRCore 3.1.5 keeps a deflated chunk exactly as long as the raw one, which every reader takes
+   for an uncompressed chunk (OpenEXR issue 2306): rows of garbage. Store such a chunk raw. */
+static exr_result_t compress_stored_if_equal(exr_encode_pipeline_t *enc)
 {
+    const struct exr_compressor *c = enc->encoding_user_data;
+    exr_result_t r = c->compress(enc);
+    if (r == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes && enc->compressed_buffer &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
+    return r;
+}
+
+/* Scanlines y .. y + chunk height of img through an encode pipeline (first: set it up, with c
+   wrapping the library's compressor). */
+static exr_result_t encode_chunk(exr_context_t ctx, int part, const struct rgbf *img, int y,
+                                 exr_encode_pipeline_t *enc, struct exr_compressor *comp)
+{
+    int first = !comp->compress;
     exr_chunk_info_t ci;
     exr_result_t r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
     if (r == EXR_ERR_SUCCESS)
@@ -106,8 +125,15 @@ static exr_result_t encode_chunk(exr_context_t ctx, int part, const struct rgbf 
         ch->user_data_type = EXR_PIXEL_FLOAT;
         ch->user_bytes_per_element = sizeof(float);
     }
-    if (first && (r = exr_encoding_choose_default_routines(ctx, part, enc)) != EXR_ERR_SUCCESS)
-        return r;
+    if (first) {
+        if ((r = exr_encoding_choose_default_routines(ctx, part, enc)) != EXR_ERR_SUCCESS)
+            return r;
+        if (!enc->compress_fn)
+            return EXR_ERR_INVALID_ARGUMENT;
+        comp->compress = enc->compress_fn;
+        enc->compress_fn = compress_stored_if_equal;
+        enc->encoding_user_data = comp;
+    }
     return exr_encoding_run(ctx, part, enc);
 }
 
@@ -119,7 +145,8 @@ int exr_image_encode(const struct rgbf *img, const struct img_attr *attrs, size_
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    int part = 0, spc = 0, started = 0, rc = -1;
+    struct exr_compressor comp = {0};
+    int part = 0, spc = 0, rc = -1;
     const char *what = "cannot start";
     exr_result_t r;
     *out = NULL;
@@ -150,9 +177,8 @@ int exr_image_encode(const struct rgbf *img, const struct img_attr *attrs, size_
         (r = exr_get_scanlines_per_chunk(ctx, part, &spc)) != EXR_ERR_SUCCESS)
         goto fail;
     for (int y = 0; y < img->h; y += spc) {
-        if ((r = encode_chunk(ctx, part, img, y, &enc, !started)) != EXR_ERR_SUCCESS)
+        if ((r = encode_chunk(ctx, part, img, y, &enc, &comp)) != EXR_ERR_SUCCESS)
             goto fail;
-        started = 1;
     }
     exr_encoding_destroy(ctx, &enc);
     r = exr_finish(&ctx); /* writes the chunk offset table */
@@ -171,6 +197,40 @@ fail:
     return rc;
 }
 
+/* Attributes in all of data's headers, counted in one pass before the library parses them
+   (OpenEXRCore 3.1 takes time quadratic in their number: 320,000 took 140 s). 0 within
+   EXR_MAX_ATTRIBUTES, else -1 with e filled; a header this walk cannot follow is left to the
+   library to refuse. */
+static int check_attribute_count(const uint8_t *d, size_t len, const char *name, struct err *e)
+{
+    int multipart = len >= 8 && (d[5] & 0x10); /* version flag bit 12 */
+    size_t pos = 8, n = 0;
+    while (pos < len) {
+        if (d[pos] == 0) { /* a header's end; a second one in a row ends a multipart file's */
+            if (!multipart || ++pos >= len || d[pos] == 0)
+                return 0;
+            continue;
+        }
+        for (int field = 0; field < 2; field++) { /* the attribute's name and type */
+            const uint8_t *z = memchr(d + pos, 0, len - pos);
+            if (!z)
+                return 0;
+            pos = (size_t)(z - d) + 1;
+        }
+        if (len - pos < 4)
+            return 0;
+        size_t size =
+            (size_t)d[pos] | (size_t)d[pos + 1] << 8 | (size_t)d[pos + 2] << 16 | (size_t)d[pos + 3] << 24;
+        pos += 4;
+        if (size > len - pos)
+            return 0;
+        pos += size;
+        if (++n > EXR_MAX_ATTRIBUTES)
+            return err_set(e, name, 0, 0, "EXR: more than %d header attributes", EXR_MAX_ATTRIBUTES);
+    }
+    return 0;
+}
+
 /* The data window's w x h within our limits, and channels R, G, B (half or float, unsampled). */
 static int check_header(exr_context_t ctx, const char *name, const struct exr_mem *m, exr_attr_box2i_t *dw,
                         int *w, int *h, struct err *e)
@@ -178,6 +238,12 @@ static int check_header(exr_context_t ctx, const char *name, const struct exr_me
     exr_storage_t st;
     exr_result_t r;
     const exr_attr_chlist_t *chl;
+    int parts = 0;
+    if ((r = exr_get_count(ctx, &parts)) != EXR_ERR_SUCCESS)
+        return exr_fail(e, name, m, "corrupt header", r);
+    if (parts != 1)
+        return err_set(e, name, 0, 0,
+                       "EXR: a multipart file (%d parts) is not read: save the one image alone", parts);
     if ((r = exr_get_storage(ctx, 0, &st)) != EXR_ERR_SUCCESS || (r = exr_get_data_window(ctx, 0, dw)) ||
         (r = exr_get_channels(ctx, 0, &chl)) != EXR_ERR_SUCCESS)
         return exr_fail(e, name, m, "corrupt header", r);
@@ -247,6 +313,8 @@ int exr_image_decode(const uint8_t *data, size_t len, const char *name, struct r
     *out = (struct rgbf){0};
     if (len < 4 || memcmp(data, "\x76\x2f\x31\x01", 4) != 0)
         return err_set(e, name, 0, 0, "EXR: not an OpenEXR file (bad magic number)");
+    if (check_attribute_count(data, len, name, e) < 0)
+        return -1;
     init.error_handler_fn = on_error;
     init.user_data = &m;
     init.read_fn = mem_read;

@@ -6,9 +6,9 @@
 #include "image.h"
 
 /* All per channel value, averaged over the w*h*3 values: mse = mean (v - r)^2; relmse = mean
-   (v - r)^2 / (r^2 + METRICS_REL_EPS) (pbrt's imgtool); relmse_robust = relmse with the largest
-   METRICS_ROBUST_DROP of the per-pixel terms (a pixel's term: the mean of its three channels')
-   left out, none below 1000 pixels (a few fireflies otherwise decide the figure, as in the path
+   (v - r)^2 / (r^2 + METRICS_REL_EPS) (not pbrt-v4's MRSE, which divides by (r + eps)^2); relmse_robust =
+   relmse with the largest METRICS_ROBUST_DROP of the per-pixel terms (a pixel's term: the mean of its three
+   channels') left out, none below 1000 pixels (a few fireflies otherwise decide the figure, as in the path
    guiding papers); psnr = 10 log10(1 / mse), peak 1 = display white, in dB (inf when equal). */
 struct metrics {
     double mse, rmse, relmse, relmse_robust, psnr;

@@ -102,11 +102,12 @@ int pfm_decode(const uint8_t *data, size_t len, const char *name, struct rgbf *o
     double scale = strtod(tok, &end);
     if (*end || !isfinite(scale) || scale == 0)
         return err_set(e, name, 0, 0, "corrupt PFM: scale must be a non-zero number, got \"%s\"", tok);
-    /* exactly one whitespace character ends the header, then the raster */
+    /* exactly one whitespace character ends the header, then the raster; or a CR LF (a header
+       written with Windows line ends), when the raster's length says so */
     if (pos >= len || (data[pos] != '\n' && data[pos] != ' ' && data[pos] != '\r' && data[pos] != '\t'))
         return err_set(e, name, 0, 0, "truncated PFM: no raster after the header");
-    pos++;
     size_t row = (size_t)w * (size_t)channels * 4, need = row * (size_t)h;
+    pos += data[pos] == '\r' && len - pos >= 2 && data[pos + 1] == '\n' && len - pos - 2 == need ? 2 : 1;
     if (len - pos < need)
         return err_set(e, name, 0, 0, "truncated PFM: %zu bytes of raster, %dx%d needs %zu", len - pos, w, h,
                        need);
@@ -127,5 +128,9 @@ int pfm_decode(const uint8_t *data, size_t len, const char *name, struct rgbf *o
                 memcpy(&dst[(size_t)x * 3 + c], &u, 4);
             }
     }
+    /* the scale's magnitude multiplies the values, as pbrt reads a PFM */
+    const float mag = (float)fabs(scale);
+    for (size_t i = 0; mag != 1.0f && i < (size_t)w * h * 3; i++)
+        out->px[i] *= mag;
     return 0;
 }

@@ -47,16 +47,17 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     rng_pixel(&ctx->light_rng, ctx->rs.seed, x, y, 1);
     rng_pixel(&path_rng, ctx->rs.seed, x, y, 2);
     for (int i = 0; i < ctx->sc->n_lights; i++)
-        ctx->lp[i].n = ctx->lp[i].next = 0;
+        stream_restart(&ctx->lp[i]);
 
     const int timed = ctx->timed = sampler_timed(st->pixels);
+    ctx->light_source.sets = &st->light_sets;
+    ctx->light_source.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     const uint64_t t0 = timed ? now_ns() : 0;
     size_t n = sampler_draw(ctx->pixel, &pix_rng, ctx->pixel_pts);
     if (timed)
         st->timed_draw_ns += now_ns() - t0;
 
     double sum[3] = {0, 0, 0};
-    size_t kept = 0;
     uint64_t rays = 0, nonfinite = 0;
     /* nee samples the emitters alone: without any, only the material's own sampling is left */
     const int lights = !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
@@ -64,13 +65,12 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     const int mix = lights && !ctx->rs.nee && ctx->sc->n_lights > 0, dims = ctx->rs.dims_all;
     const int rr = ctx->rs.russian_roulette;
     if (dims) {
-        ctx->px = x, ctx->py = y, ctx->dims_n = n;
-        ctx->dims_pixel++;
-        ctx->dims_key = rng_mix64(ctx->rs.seed ^ rng_mix64(((uint64_t)(uint32_t)x << 32 | (uint32_t)y) + 16));
+        padding_pixel(&ctx->pad, ctx->rs.seed, x, y, n);
+        ctx->pad.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     }
     if (ctx->packet) {
         const struct path_at how = {dims, 0, 0, rr, NULL};
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, how, last, sum, &kept, &nonfinite, &rays);
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, how, last, sum, &nonfinite, &rays);
     } else {
         /* nee, dims and roulette constants in the default loop: the mixture's inlined trace holds
            none of their code */
@@ -87,10 +87,10 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
                 ray r = camera_ray(ctx->cam, u, v, &path_rng);
                 c = trace(ctx, &r, &path_rng, &rays, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last);
             }
-            add_estimate(c, sum, &kept, &nonfinite);
+            add_estimate(c, sum, &nonfinite);
         }
     }
-    double inv = kept ? 1.0 / kept : 0;
+    double inv = n ? 1.0 / n : 0; /* non-finite samples count as zero */
     for (int k = 0; k < 3; k++)
         rgb[k] = (float)(sum[k] * inv);
     if (timed)

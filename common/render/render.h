@@ -14,7 +14,7 @@ struct render_settings {
     uint64_t seed;
     int light_sampling_off; /* 1: scatter by the material alone (cosine / phase); lights still emit */
     int nee; /* 1: next-event estimation with MIS at every diffuse or medium vertex; 0: the books' mixture */
-    int dims_all;         /* 1: every 2D decision of a path from the pixel sampler's sets (render_dims.c) */
+    int dims_all;         /* 1: every 2D decision of a path from the pixel sampler's sets (sample/padding.h) */
     int russian_roulette; /* 1: a path may end after its second scatter (render_path.h's path_survives) */
 };
 
@@ -24,7 +24,7 @@ struct render_stats {
     uint64_t samples;    /* camera samples = camera rays */
     uint64_t rays;       /* path segments traced (camera rays included) */
     uint64_t light_sets; /* light point sets drawn */
-    uint64_t nonfinite;  /* samples dropped for NaN/inf */
+    uint64_t nonfinite;  /* samples whose estimate was NaN or infinite, counted as zero */
     uint32_t spp_min, spp_max;
     /* One pixel in SAMPLER_TIME_EVERY is timed whole, and every point-set draw in it: their
        monotonic nanoseconds. Draws lie inside their pixel, so draw_ns <= pixel_ns always. */

@@ -36,22 +36,38 @@ void render_stats_finish(struct render_stats *st, double cpu_s)
     st->sampler_s = cpu_s > 0 ? render_stats_draw_share(st) * cpu_s : 0;
 }
 
+/* sampler_dims: all's sets, at most this many bytes of them; past it fewer bounces are padded. */
+#define DIMS_MAX_BYTES ((size_t)256 << 20)
+/* Bounces with sets of their own; the decisions of later ones draw from the path's rng. */
+#define DIMS_MAX_BOUNCES 16
+
+/* The padded sets of sampler_dims: all for ctx->rs. 0, or -1 with e filled. */
+static int dims_init(struct render_ctx *ctx, struct err *e)
+{
+    const size_t per_slot = padding_slot_points(ctx->pixel);
+    int bounces = ctx->rs.max_depth < DIMS_MAX_BOUNCES ? ctx->rs.max_depth : DIMS_MAX_BOUNCES;
+    const int per_bounce = DIMS_PER_BOUNCE + (ctx->rs.russian_roulette != 0); /* + DIM_ROULETTE's */
+    while (bounces > 1 &&
+           (size_t)(DIMS_CAMERA + per_bounce * bounces) * per_slot * sizeof(struct pt2) > DIMS_MAX_BYTES)
+        bounces--;
+    ctx->dims_bounces = bounces;
+    return padding_init(&ctx->pad, ctx->pixel, DIMS_CAMERA + per_bounce * bounces, e);
+}
+
 void render_ctx_free(struct render_ctx *ctx)
 {
     if (!ctx)
         return;
     if (ctx->lp)
-        for (int i = 0; i < ctx->sc->n_lights; i++) {
-            free(ctx->lp[i].pts);
-            free(ctx->lp[i].cells);
-        }
+        for (int i = 0; i < ctx->sc->n_lights; i++)
+            stream_release(&ctx->lp[i]);
     free(ctx->lp);
-    free(ctx->identity);
+    free(ctx->uses_points);
+    stream_source_release(&ctx->light_source);
     free(ctx->prim_material);
     packet_scene_free(ctx->packet);
     free(ctx->pixel_pts);
-    free(ctx->dims_pts);
-    free(ctx->dims_gen);
+    padding_release(&ctx->pad);
     free(ctx);
 }
 
@@ -69,47 +85,32 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->light = light;
     ctx->pixel_pts = malloc(sampler_set_capacity(pixel) * sizeof *ctx->pixel_pts);
     ctx->lp = calloc((size_t)sc->n_lights + 1, sizeof *ctx->lp);
+    ctx->uses_points = calloc((size_t)sc->n_lights + 1, sizeof *ctx->uses_points);
     ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
     if (packet_usable(sc) && !(ctx->packet = packet_scene_new(sc)))
         goto fail;
-    if (!ctx->pixel_pts || !ctx->lp || !ctx->prim_material)
+    if (!ctx->pixel_pts || !ctx->lp || !ctx->uses_points || !ctx->prim_material)
         goto fail;
-    if (rs->dims_all && render_dims_init(ctx, e) < 0) {
+    if (rs->dims_all && dims_init(ctx, e) < 0) {
         render_ctx_free(ctx);
         return NULL;
     }
     for (int i = 0; i < sc->n_prims; i++)
         ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
-    if (light) {
-        ctx->light_kind = sampler_kind_of(light);
-        ctx->light_grid = sampler_grid_of(light);
+    if (light && stream_source_init(&ctx->light_source, light, e) < 0) {
+        render_ctx_free(ctx);
+        return NULL;
     }
     for (int i = 0; i < sc->n_lights; i++) {
-        ctx->lp[i].uses_points = shape_light_uses_points(&sc->prims[sc->lights[i]]);
-        if (rs->light_sampling_off || !ctx->lp[i].uses_points)
+        ctx->uses_points[i] = shape_light_uses_points(&sc->prims[sc->lights[i]]);
+        if (rs->light_sampling_off || !ctx->uses_points[i])
             continue;
         if (!light) {
             err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
             render_ctx_free(ctx);
             return NULL;
         }
-        size_t cells = sampler_cells(light) > 0 ? sampler_cells(light)
-                       : sampler_is_pooled(light) || ctx->light_kind == SAMPLER_SOBOL
-                           ? sampler_set_capacity(light)
-                           : 0;
-        if (cells > 0) {
-            ctx->lp[i].cells = malloc(cells * sizeof *ctx->lp[i].cells);
-            if (!ctx->identity) {
-                ctx->identity = malloc(cells * sizeof *ctx->identity);
-                if (!ctx->identity)
-                    goto fail;
-                for (size_t c = 0; c < cells; c++)
-                    ctx->identity[c] = (uint32_t)c;
-            }
-        } else {
-            ctx->lp[i].pts = malloc(sampler_set_capacity(light) * sizeof *ctx->lp[i].pts);
-        }
-        if (!ctx->lp[i].pts && !ctx->lp[i].cells)
+        if (stream_init(&ctx->lp[i], &ctx->light_source) < 0)
             goto fail;
     }
     return ctx;

@@ -92,12 +92,11 @@ lanes_hit(const struct render_ctx *ctx, const ray *const r[PACKET_LANES], int ma
 static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
                                                             const struct rng *base, int mix, int nee,
                                                             struct path_at how, int last, double sum[3],
-                                                            size_t *kept, uint64_t *nonfinite, uint64_t *rays)
+                                                            uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES], *shadow_rp[PACKET_LANES];
     double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
-    size_t acc_kept = 0;
     uint64_t acc_rays = 0, acc_nonfinite = 0;
     int lanes = 0;
     size_t next = 0;
@@ -125,7 +124,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
                 ended |= 1 << i;
                 continue;
             }
-            add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
+            add_estimate(pt[i].L, acc, &acc_nonfinite);
             if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
@@ -144,14 +143,13 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
         for (int i = 0; i < PACKET_LANES; i++) {
             if (!(ended >> i & 1))
                 continue;
-            add_estimate(pt[i].L, acc, &acc_kept, &acc_nonfinite);
+            add_estimate(pt[i].L, acc, &acc_nonfinite);
             if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
     }
     for (int k = 0; k < 3; k++)
         sum[k] += acc[k];
-    *kept += acc_kept;
     *nonfinite += acc_nonfinite;
     *rays += acc_rays;
 }
@@ -159,22 +157,22 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
 /* nee, sampler_dims: all or roulette (runtime values), out of line from the default's loop. */
 static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
                                                   const struct rng *base, int mix, int nee,
-                                                  struct path_at how, int last, double sum[3], size_t *kept,
+                                                  struct path_at how, int last, double sum[3],
                                                   uint64_t *nonfinite, uint64_t *rays)
 {
     if (nee) /* a constant in its copy: the shadow rays' pass and none of the mixture's code */
-        lanes_run(ctx, x, y, n, base, 0, 1, how, last, sum, kept, nonfinite, rays);
+        lanes_run(ctx, x, y, n, base, 0, 1, how, last, sum, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, how, last, sum, kept, nonfinite, rays);
+        lanes_run(ctx, x, y, n, base, mix, 0, how, last, sum, nonfinite, rays);
 }
 
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, struct path_at how, int last, double sum[3], size_t *kept,
+                         int nee, struct path_at how, int last, double sum[3],
                          uint64_t *nonfinite, uint64_t *rays)
 {
     if (nee || how.dims || how.roulette)
-        lanes_other(ctx, x, y, n, base, mix, nee, how, last, sum, kept, nonfinite, rays);
+        lanes_other(ctx, x, y, n, base, mix, nee, how, last, sum, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last, sum, kept, nonfinite,
+        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last, sum, nonfinite,
                   rays);
 }

@@ -33,92 +33,6 @@ static inline int sampler_timed(uint64_t pixels)
     return pixels % SAMPLER_TIME_EVERY == 0;
 }
 
-/* Pooled sets: the pool point each light would take next if it were the next light sampled
-   (the light rng's next draw picks it), fetched into the cache now. One of them is the next
-   point taken unless its set runs out first; without this its load, an L2 hit at the head of
-   the path's dependency chain, was about half of light_direction's time. */
-static inline __attribute__((always_inline)) void prefetch_next_points(const struct render_ctx *ctx)
-{
-    const uint64_t u = rng_peek_u32(&ctx->light_rng);
-    for (int i = 0; i < ctx->sc->n_lights; i++) {
-        const struct light_points *lp = &ctx->lp[i];
-        if (lp->next < lp->n) {
-            size_t j = lp->next + (size_t)((u * (uint32_t)(lp->n - lp->next)) >> 32);
-            __builtin_prefetch(&lp->pool[lp->cells[j]]);
-        }
-    }
-}
-
-/* Light i's points: next_light_point takes the next point of its current set, and
-   refill_light_points draws a fresh set when it runs out (out of line: once per set). A pixel uses
-   only part of a set, in order; a grid or Poisson set in generation order would then cover
-   only part of the light (a grid's first rows, a Poisson blob around its first point) and
-   bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle done lazily,
-   one swap per point taken. Every point consumed is then uniform over the light, and the set
-   still stratifies what is consumed of it. Uniform and jitter sets shuffle their cells and make
-   a cell's point when it is taken; a random set's points are independent, so any order of them
-   is just the next point; a pooled Poisson set shuffles indices into the pool and shifts a
-   point when it is taken; a sobol set shuffles indices and makes its point k when it is taken
-   (sobol_point: the point sampler_draw's whole set holds at k; a pixel takes few of a light's
-   set, BENCH.md "Sobol points"). Only a fresh Poisson set is drawn whole. */
-static __attribute__((noinline, unused)) void refill_light_points(struct render_ctx *ctx,
-                                                                  struct light_points *lp)
-{
-    const enum sampler_kind kind = ctx->light_kind;
-    const uint64_t t0 = ctx->timed ? now_ns() : 0;
-    if (lp->cells) {
-        lp->n = kind == SAMPLER_POISSON
-                    ? sampler_pool_set(ctx->light, &ctx->light_rng, &lp->pool, &lp->ox, &lp->oy)
-                : kind == SAMPLER_SOBOL ? sampler_sobol_set(ctx->light, &ctx->light_rng, &lp->sobol)
-                                        : sampler_cells(ctx->light);
-        if (kind != SAMPLER_RANDOM) /* a set per pixel and light, a few dozen points used */
-            memcpy(lp->cells, ctx->identity, lp->n * sizeof *lp->cells);
-        if (kind == SAMPLER_POISSON) {
-            v3_sincos_turn(lp->oy, &lp->sin_oy, &lp->cos_oy);
-        }
-    } else {
-        lp->n = sampler_draw(ctx->light, &ctx->light_rng, lp->pts);
-    }
-    lp->next = 0;
-    if (ctx->timed)
-        ctx->st->timed_draw_ns += now_ns() - t0;
-    ctx->st->light_sets++;
-}
-
-/* Inline with the grid kinds' cell point (sampler_grid_point): a light point costs no call. */
-static inline __attribute__((always_inline)) struct pt2 next_light_point(struct render_ctx *ctx, int i,
-                                                                         struct pt2 *turn, int *turned)
-{
-    struct light_points *lp = &ctx->lp[i];
-    const enum sampler_kind kind = ctx->light_kind;
-    if (lp->next >= lp->n)
-        refill_light_points(ctx, lp);
-    size_t k = lp->next++;
-    if (kind == SAMPLER_RANDOM)
-        return sampler_grid_point(&ctx->light_grid, 0, &ctx->light_rng);
-    size_t j = k + rng_below(&ctx->light_rng, (uint32_t)(lp->n - k));
-    if (lp->cells) {
-        uint32_t cell = lp->cells[j];
-        lp->cells[j] = lp->cells[k];
-        lp->cells[k] = cell;
-        if (kind == SAMPLER_POISSON) {
-            /* the shifted point's angle 2 pi (y + oy): the point's own turned by the shift's */
-            const struct pt2 t = lp->pool[cell].turn;
-            *turn = (struct pt2){t.x * lp->cos_oy - t.y * lp->sin_oy, t.y * lp->cos_oy + t.x * lp->sin_oy};
-            *turned = 1;
-            prefetch_next_points(ctx);
-            return sampler_shift(lp->pool[cell].p, lp->ox, lp->oy);
-        }
-        if (kind == SAMPLER_SOBOL)
-            return sobol_point(lp->sobol, cell);
-        return sampler_grid_point(&ctx->light_grid, cell, &ctx->light_rng);
-    }
-    struct pt2 chosen = lp->pts[j];
-    lp->pts[j] = lp->pts[k];
-    lp->pts[k] = chosen;
-    return chosen;
-}
-
 static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
 {
     for (;;) {
@@ -202,8 +116,8 @@ static __attribute__((unused)) double reflectance(double cosine, double ref_idx)
 
 /* A unit direction toward one of ls's lights, chosen uniformly (slots: each one's index in the
    scene's lights, NULL when ls is every light); disk and rect lights take their next point from
-   the light sampler, a sphere its cone sample from rng. *light is the chosen light's index in ls
-   and *pdf its density for the direction. */
+   their stream of the light sampler's points, a sphere its cone sample from rng. *light is the
+   chosen light's index in ls and *pdf its density for the direction. */
 static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, struct light_set ls,
                                                                   const int *slots, vec3 o, struct rng *rng,
                                                                   int *light, double *pdf)
@@ -213,8 +127,10 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     const struct prim *lp = &sc->prims[ls.prims[j]];
     struct pt2 s, turn = {0, 0};
     int turned = 0;
-    if (ctx->lp[i].uses_points) {
-        s = next_light_point(ctx, i, &turn, &turned);
+    if (ctx->uses_points[i]) {
+        s = stream_next(&ctx->light_source, &ctx->lp[i], &ctx->light_rng, &turn, &turned);
+        if (turned)
+            stream_prefetch(&ctx->light_source, ctx->lp, sc->n_lights, &ctx->light_rng);
     } else {
         s.x = rng_uniform32(rng);
         s.y = rng_uniform32(rng);
@@ -240,11 +156,20 @@ static inline __attribute__((always_inline)) struct pt2 path_decide(struct rende
                                                                     struct path_at at, int k)
 {
     if (at.depth < ctx->dims_bounces)
-        return render_dims_point(ctx, render_dims_slot(ctx, at.depth, k), at.sample);
+        return padding_point(&ctx->pad, render_dims_slot(ctx, at.depth, k), at.sample);
     struct pt2 p;
     p.x = rng_uniform32(rng);
     p.y = rng_uniform32(rng);
     return p;
+}
+
+/* A uniform point in the unit ball from the vertex's sets (sampler_dims: all; what
+   random_in_unit_sphere draws by rejection): its direction from the direction's point, its
+   radius cbrt(u) from the choice's x (a metal vertex makes no other use of either). */
+static __attribute__((unused)) vec3 in_unit_ball(struct render_ctx *ctx, struct rng *rng, struct path_at at)
+{
+    const struct pt2 d = path_decide(ctx, rng, at, DIM_DIR), c = path_decide(ctx, rng, at, DIM_CHOICE);
+    return v3_scale(uniform_sphere_direction_uv(d.x, d.y), cbrt(c.x));
 }
 
 /* camera_ray under sampler_dims: all: the lens point and the shutter time of sample s from the
@@ -255,21 +180,21 @@ static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct r
     const struct camera *cam = ctx->cam;
     struct pt2 lens = {0, 0}, time = {0, 0};
     if (cam->lens_radius > 0)
-        lens = render_dims_point(ctx, 0, s);
+        lens = padding_point(&ctx->pad, 0, s);
     if (cam->time0 != cam->time1)
-        time = render_dims_point(ctx, 1, s);
+        time = padding_point(&ctx->pad, 1, s);
     return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
 }
 
-/* A camera sample's estimate c into the pixel's sums: kept when finite, else counted as dropped. */
-static inline void add_estimate(vec3 c, double sum[3], size_t *kept, uint64_t *nonfinite)
+/* A camera sample's estimate c into the pixel's sums when finite; a NaN or infinite one counts
+   as zero (pbrt's rule: the pixel still divides by all its samples) and in *nonfinite. */
+static inline void add_estimate(vec3 c, double sum[3], uint64_t *nonfinite)
 {
     if (!v3_finite(c)) {
         ++*nonfinite;
         return;
     }
     sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
-    ++*kept;
 }
 
 /* A shadow ray's emission (got: it hit something, hit its nearest hit) into *L: an emitter's front
@@ -421,7 +346,8 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
         }
         return 0;
     case MAT_METAL:
-        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n), random_in_unit_sphere(rng), m->fuzz);
+        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n),
+                     at.dims ? in_unit_ball(ctx, rng, at) : random_in_unit_sphere(rng), m->fuzz);
         if (v3_dot(dir, h->n) <= 0)
             return 0;
         *beta = v3_mul(*beta, m->albedo);

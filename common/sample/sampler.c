@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define SAMPLER_SQRT2 1.41421356237309504880
 /* The pool's own rng stream, so pool sets never correlate with the caller's draws. */
@@ -17,9 +18,10 @@
 struct sampler {
     enum sampler_kind kind;
     double threshold;
-    int grid_n;       /* uniform/jitter/random: n x n cells */
-    uint64_t n_recip; /* 2^42 / n + 1: cell / n as a multiply and shift (sampler_grid_point) */
-    size_t capacity;  /* sampler_capacity(kind, threshold) */
+    int grid_n;                 /* uniform/jitter/random: n x n cells */
+    uint64_t n_recip;           /* 2^42 / n + 1: cell / n as a multiply and shift (sampler_grid_point) */
+    size_t capacity;            /* sampler_capacity(kind, threshold) */
+    enum poisson_domain domain; /* fresh Poisson sets: torus (shifted) or square */
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
 
@@ -30,8 +32,27 @@ struct sampler {
     size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
 };
 
+static size_t draw_uniform(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_jitter(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_random(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_poisson(struct sampler *s, struct rng *rng, struct pt2 *out);
+static size_t draw_sobol(struct sampler *s, struct rng *rng, struct pt2 *out);
+
+/* The samplers, in enum sampler_kind's order: the name, how a set is drawn (into out, consuming
+   rng, at most sampler_capacity points, at least 1), how it is taken point by point. A new
+   sampler is a draw function in a file of its own, an enum value, its name and a row here
+   (docs/architecture.md, "How to add a sampler"); its sets then serve pixels, lights and
+   sampler_dims: all. */
 static const char *const kind_names[] = {"uniform", "jitter", "random", "poisson", "sobol", NULL};
-#define KIND_COUNT ((int)(sizeof kind_names / sizeof kind_names[0]) - 1)
+static const struct kind_row {
+    size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
+    enum sampler_walk walk;
+} kind_rows[] = {
+    {draw_uniform, SAMPLER_WALK_CELLS}, {draw_jitter, SAMPLER_WALK_CELLS}, {draw_random, SAMPLER_WALK_FREE},
+    {draw_poisson, SAMPLER_WALK_WHOLE}, {draw_sobol, SAMPLER_WALK_SOBOL},
+};
+#define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
+_Static_assert(sizeof kind_names / sizeof kind_names[0] == KIND_COUNT + 1, "a name per row");
 
 int sampler_kind_parse(const char *name, enum sampler_kind *out)
 {
@@ -54,6 +75,28 @@ const char *sampler_kind_name(enum sampler_kind kind)
 const char *const *sampler_kind_names(void)
 {
     return kind_names;
+}
+
+static const char *const domain_names[] = {"torus", "square"};
+
+int poisson_domain_parse(const char *name, enum poisson_domain *out)
+{
+    for (int i = 0; i < 2; i++)
+        if (name && strcmp(name, domain_names[i]) == 0) {
+            *out = (enum poisson_domain)i;
+            return 0;
+        }
+    return -1;
+}
+
+const char *poisson_domain_name(enum poisson_domain d)
+{
+    return d == POISSON_SQUARE ? domain_names[1] : domain_names[0];
+}
+
+void sampler_set_domain(struct sampler *s, enum poisson_domain d)
+{
+    s->domain = d;
 }
 
 static int threshold_valid(double threshold)
@@ -133,7 +176,8 @@ enum sampler_kind sampler_kind_of(const struct sampler *s)
 
 uint32_t sampler_cells(const struct sampler *s)
 {
-    return s->kind == SAMPLER_POISSON || s->kind == SAMPLER_SOBOL ? 0 : (uint32_t)s->capacity;
+    const enum sampler_walk w = kind_rows[s->kind].walk;
+    return w == SAMPLER_WALK_CELLS || w == SAMPLER_WALK_FREE ? (uint32_t)s->capacity : 0;
 }
 
 struct sampler_grid sampler_grid_of(const struct sampler *s)
@@ -147,47 +191,89 @@ struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng
     return sampler_grid_point(&g, cell, rng);
 }
 
+enum sampler_walk sampler_walk_of(const struct sampler *s)
+{
+    return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : kind_rows[s->kind].walk;
+}
+
+uint64_t sampler_clock_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+double sampler_threshold_of(const struct sampler *s)
+{
+    return s->threshold;
+}
+
 size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    return kind_rows[s->kind].draw(s, rng, out);
+}
+
+static size_t draw_uniform(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    (void)rng;
+    const int n = s->grid_n;
+    size_t count = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            out[count++] = (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
+    return count;
+}
+
+static size_t draw_jitter(struct sampler *s, struct rng *rng, struct pt2 *out)
 {
     const int n = s->grid_n;
     size_t count = 0;
-    switch (s->kind) {
-    case SAMPLER_UNIFORM:
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++)
-                out[count++] = (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
-        return count;
-    case SAMPLER_JITTER: {
-        struct rng r = *rng; /* a local state: out may alias *rng, so GCC stored it per point */
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++) {
-                double u, v;
-                rng_uniform_pair(&r, &u, &v);
-                out[count++] = (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
-            }
-        *rng = r;
-        return count;
-    }
-    case SAMPLER_RANDOM:
-        for (size_t k = 0; k < (size_t)n * (size_t)n; k++) {
+    struct rng r = *rng; /* a local state: out may alias *rng, so GCC stored it per point */
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
             double u, v;
-            rng_uniform_pair(rng, &u, &v);
-            out[count++] = (struct pt2){u, v};
+            rng_uniform_pair(&r, &u, &v);
+            out[count++] = (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
         }
-        return count;
-    case SAMPLER_SOBOL: {
-        /* the first n * n points of a sequence scrambled for this set: a (0,2)-net when n * n is a
-           power of two, a net's prefix otherwise (sobol.h) */
-        struct sobol_seeds seeds;
-        count = sampler_sobol_set(s, rng, &seeds);
-        sobol_fill(seeds, count, out);
-        return count;
+    *rng = r;
+    return count;
+}
+
+static size_t draw_random(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    const int n = s->grid_n;
+    size_t count = 0;
+    for (size_t k = 0; k < (size_t)n * (size_t)n; k++) {
+        double u, v;
+        rng_uniform_pair(rng, &u, &v);
+        out[count++] = (struct pt2){u, v};
     }
-    case SAMPLER_POISSON:
-        break;
-    }
-    if (s->pool_size <= 0)
+    return count;
+}
+
+/* the first n * n points of a sequence scrambled for this set: a (0,2)-net when n * n is a power
+   of two, a net's prefix otherwise (sobol.h) */
+static size_t draw_sobol(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    struct sobol_seeds seeds;
+    size_t count = sampler_sobol_set(s, rng, &seeds);
+    sobol_fill(seeds, count, out);
+    return count;
+}
+
+static size_t draw_poisson(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    size_t count;
+    if (s->pool_size <= 0 && s->domain == POISSON_SQUARE)
         return poisson_draw(&s->bridson, rng, out, 0);
+    if (s->pool_size <= 0) {
+        /* a toroidal set shifted modulo 1 stays Poisson-disk and makes every point uniform */
+        count = poisson_draw(&s->bridson, rng, out, 1);
+        const double ox = rng_uniform(rng), oy = rng_uniform(rng);
+        for (size_t k = 0; k < count; k++)
+            out[k] = sampler_shift(out[k], ox, oy);
+        return count;
+    }
 
     const struct pool_point *src;
     double ox, oy;
@@ -270,7 +356,7 @@ fail:
 struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_size, uint64_t pool_seed,
                             struct err *e)
 {
-    if ((int)kind < SAMPLER_UNIFORM || (int)kind > SAMPLER_SOBOL) {
+    if ((int)kind < 0 || (int)kind >= KIND_COUNT) {
         err_set(e, NULL, 0, 0, "sampler: unknown kind %d", (int)kind);
         return NULL;
     }

@@ -16,8 +16,31 @@ struct pt2 {
 
 enum sampler_kind { SAMPLER_UNIFORM, SAMPLER_JITTER, SAMPLER_RANDOM, SAMPLER_POISSON, SAMPLER_SOBOL };
 
+/* Where a fresh Poisson set is drawn (job key poisson_domain): on the unit torus, distances
+   measured with wrap-around, then shifted by a random offset modulo 1 (Cranley-Patterson): every
+   point uniform, unbiased; or in the unit square without wrap-around, the seed's sets, whose
+   density piles up along the edges (docs/samplers.md): kept to reproduce the seed, biased. */
+enum poisson_domain { POISSON_TORUS, POISSON_SQUARE };
+
+/* Name <-> domain. parse returns 0, or -1 for an unknown name. */
+int poisson_domain_parse(const char *name, enum poisson_domain *out);
+const char *poisson_domain_name(enum poisson_domain d);
+
 /* Largest set a job may ask for, per pixel or per light draw. */
 #define SAMPLER_MAX_POINTS 4000000
+
+/* How a set is taken point by point (sample/stream.h): drawn whole and its points shuffled
+   (any sampler; a fresh Poisson set), or a cheaper walk a kind knows: its cells shuffled and a
+   cell's point made when taken (uniform, jitter), independent points (random), a pool set's
+   indices shuffled and a point shifted when taken (pooled Poisson), a set's indices shuffled and
+   point k made when taken (sobol). */
+enum sampler_walk {
+    SAMPLER_WALK_WHOLE,
+    SAMPLER_WALK_CELLS,
+    SAMPLER_WALK_FREE,
+    SAMPLER_WALK_POOL,
+    SAMPLER_WALK_SOBOL
+};
 
 /* Name <-> kind. parse returns 0, or -1 for an unknown name. */
 int sampler_kind_parse(const char *name, enum sampler_kind *out);
@@ -42,11 +65,25 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
                             struct err *e);
 void sampler_free(struct sampler *s);
 
+/* Draw s's fresh Poisson sets in domain d from now on (default POISSON_TORUS). Pools and the
+   other kinds ignore it: a pool's sets are toroidal and shifted in either domain. */
+void sampler_set_domain(struct sampler *s, enum poisson_domain d);
+
 /* Capacity an `out` array passed to sampler_draw must have. */
 size_t sampler_set_capacity(const struct sampler *s);
 
 /* The kind s was made with. */
 enum sampler_kind sampler_kind_of(const struct sampler *s);
+
+/* How s's sets are taken point by point (the kind's row of the table in sampler.c; pooled
+   Poisson walks its pool). */
+enum sampler_walk sampler_walk_of(const struct sampler *s);
+
+/* A monotonic clock in nanoseconds, for the set draws' timing (the sidecar's sampler_s). */
+uint64_t sampler_clock_ns(void);
+
+/* What a kind's draw function reads of its sampler: its threshold and grid side n. */
+double sampler_threshold_of(const struct sampler *s);
 
 /* Sets point by point, for a caller that consumes a set in random order and often only part
    of it (a light's points within one pixel). A uniform, jitter or random set has one point per

@@ -332,10 +332,12 @@ int scene_load(const char *path, struct scene_file *out, struct err *e)
         snprintf(e->file, sizeof e->file, "%s", path);
         goto done;
     }
+    scene_loader_facing_away(&L, out->warning, sizeof out->warning);
     out->scene = L.sc;
     L.sc = NULL;
     rc = 0;
 done:
+    free(L.light_pos);
     scene_free(L.sc);
     ydoc_free(&L.d);
     return rc;

@@ -23,7 +23,15 @@ struct scene_loader {
     struct names tex, mat;
     struct err *e;
     const struct camera_desc *cam; /* loaded before the objects (a moving sphere's shutter) */
+    int (*light_pos)[2];           /* per sc->lights entry: its object's line, col (1-based) */
+    int light_pos_cap;
 };
+
+/* After scene_finish (lights baked into world space): the first rect or disk light of L->sc whose
+   front face sees neither the camera nor any part of a non-emitting object's bounds, so that it
+   lights nothing, into buf as "file:line:col: the disk light (material \"lamp\") faces away ...";
+   "" when there is none. */
+void scene_loader_facing_away(const struct scene_loader *L, char *buf, size_t n);
 
 /* Index of s in nm, or -1. */
 int scene_loader_find_name(const struct names *nm, const char *s);

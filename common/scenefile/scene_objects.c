@@ -1,5 +1,6 @@
 /* scene_objects: the `objects:` list of a scene file, one primitive (or a few) per entry. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "scene_load.h"
@@ -325,6 +326,23 @@ static int check_placement(struct scene_loader *L, yaml_node_t *n, const struct 
     return 0;
 }
 
+/* The place of the object just added to sc->lights (for scene_loader_facing_away). 0 or -1. */
+static int note_light(struct scene_loader *L, const yaml_node_t *n)
+{
+    int k = L->sc->n_lights - 1;
+    if (k >= L->light_pos_cap) {
+        int cap = L->light_pos_cap ? 2 * L->light_pos_cap : 16;
+        int(*grown)[2] = realloc(L->light_pos, (size_t)cap * sizeof *grown);
+        if (!grown)
+            return -1;
+        L->light_pos = grown;
+        L->light_pos_cap = cap;
+    }
+    L->light_pos[k][0] = (int)n->start_mark.line + 1;
+    L->light_pos[k][1] = (int)n->start_mark.column + 1;
+    return 0;
+}
+
 static int load_object(struct scene_loader *L, yaml_node_t *n)
 {
     struct prim p[OBJECT_MAX_PRIMS] = {{0}};
@@ -358,7 +376,7 @@ static int load_object(struct scene_loader *L, yaml_node_t *n)
             p[i].cos_y = p[0].cos_y, p[i].sin_y = p[0].sin_y, p[i].offset = p[0].offset;
         }
         int idx = scene_add_prim(L->sc, &p[i]);
-        if (idx < 0 || ((is_light || sample) && scene_add_light(L->sc, idx) < 0))
+        if (idx < 0 || ((is_light || sample) && (scene_add_light(L->sc, idx) < 0 || note_light(L, n) < 0)))
             return ydoc_fail(&L->d, n, L->e, "out of memory");
     }
     return 0;

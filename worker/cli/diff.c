@@ -145,6 +145,10 @@ int diff_main(int argc, char **argv)
     struct metrics m;
     enum img_domain domain;
     struct err e = {0};
+    if (map_path && fileio_output_ok(map_path, files, 2, &e) < 0) {
+        err_print("worker diff: --map %s\n", e.msg);
+        return 2;
+    }
     if (measure(files, (int)block, map_path, &m, &domain, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);

@@ -9,7 +9,10 @@
 
 #include "cli.h"
 #include "diff.h"
+#include "dryrun.h"
+#include "rejudge.h"
 #include "study/compare.h"
+#include "study/study_fan.h"
 #include "study/study_main.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
@@ -19,19 +22,24 @@
 #include "points.h"
 #include "farm/merge.h"
 #include "farm/queue.h"
+#include "farm/queue_requeue.h"
 #include "farm/queue_status.h"
 #include "job/run.h"
 
 static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
+    "                                          (a compare job: its images with index % N == I)\n"
+    "       worker JOB.yaml --dry-run          samples, memory and CPU time from a short pilot;\n"
+    "                                          renders nothing, writes nothing\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
-    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs\n"
+    "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs, studies\n"
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
     "       worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N]\n"
     "                                          error of B against reference A (EXR, PFM, PNG, PPM)\n"
+    "       worker verdict DIR [--json]        judge a compare output folder again from its summary.csv\n"
     "       worker points SAMPLER THRESHOLD [--seed S] [--svg F]  print a point set as CSV\n"
     "              [--sets M] [--spectrum F.png] [--radial F.svg] [--stats]  and its spectrum, statistics\n"
     "       worker --help | --version\n"
@@ -52,12 +60,17 @@ static const char help[] =
     "A compare job is a job file with variants: (and optionally scenes:, sweep:, seeds:): it\n"
     "renders every combination, scores each against a reference render and writes the images,\n"
     "summary.csv, chart.svg (error against CPU time), report.html (opening with the verdict:\n"
-    "rankings at equal samples and CPU time, ties within the seeds' spread, failure modes) and\n"
+    "rankings at equal samples and CPU time, ties unless Welch's t test, Holm-corrected at 0.05,\n"
+    "tells the seeds apart; failure modes, bias among them) and\n"
     "verdict.json in OUT/<name>/; docs/compare.md. A job file with studies: [a.yaml, ...] (a\n"
     "suite) runs those compare jobs as one, each into OUT/<name>/<study>/, with one verdict.\n"
     "A queue (--queue DIR) is a folder of job files that any number of workers, on one machine\n"
     "or many sharing it, drain: outputs in DIR/done/<name>/, failed jobs in DIR/failed/.\n"
     "--part I/N and merge split one job's rows over machines and join them again.\n"
+    "--dry-run prints a job's (or compare job's) samples, memory and CPU time from a short\n"
+    "pilot, and a compare job's too-weak reference, rendering and writing nothing.\n"
+    "worker verdict DIR re-judges a compare job's or suite's output folder from its summary.csv\n"
+    "(images where present; it names the checks it skipped; --json: verdict.json's text).\n"
     "worker diff scores an image against a reference (in linear radiance for EXR/PFM, see\n"
     "docs/formats.md); worker points prints (or draws, --svg)\n"
     "one point set of a sampler.\n"
@@ -137,7 +150,9 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
         struct names_seen ns = {path, o, taken, ntaken};
         if (!merge && !o->parts)
             return study_main(path, o, compare_name_ok, &ns);
-        err_print("%s: a compare job renders whole images: no merge or --part\n", path);
+        if (!merge) /* a batch task's share of the study's renders */
+            return study_fan_share(path, o);
+        err_print("%s: a compare job renders whole images: no merge\n", path);
         return 2;
     }
     if (job_load(path, &j, &e) < 0) {
@@ -192,6 +207,8 @@ static int worker_main(int argc, char **argv)
         return points_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "diff"))
         return diff_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "verdict"))
+        return rejudge_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "status"))
         return queue_status_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "requeue"))
@@ -203,7 +220,7 @@ static int worker_main(int argc, char **argv)
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
     const char **jobs = calloc((size_t)argc, sizeof *jobs);
-    int njobs = 0, worst = 0, out_given = 0;
+    int njobs = 0, worst = 0, out_given = 0, dry_run = 0;
     const char *queue_only = NULL; /* the first option that only a queue uses */
     if (!jobs)
         return 2;
@@ -233,6 +250,8 @@ static int worker_main(int argc, char **argv)
             q.once = 1;
         } else if (!strcmp(a, "--force")) {
             o->force = 1;
+        } else if (!strcmp(a, "--dry-run")) {
+            dry_run = 1;
         } else if (cli_takes_value(a)) {
             if (cli_option_value(a, i + 1 < argc ? argv[++i] : NULL, &q) < 0) {
                 worst = 2;
@@ -257,7 +276,16 @@ static int worker_main(int argc, char **argv)
         err_print("worker: --out is ignored with --queue: outputs go to %s/done/<name>/\n", q.dir);
     if (!q.dir && queue_only)
         err_print("worker: %s is ignored without --queue\n", queue_only);
-    if (q.dir && (njobs || merge || o->parts)) {
+    if (dry_run && (q.dir || merge || o->parts)) {
+        err_print("worker: --dry-run estimates job files: no --queue, merge or --part; see worker --help\n");
+        worst = 2;
+    } else if (dry_run && njobs == 0) {
+        err_print("worker: --dry-run needs a job file; see worker --help\n");
+        worst = 2;
+    } else if (dry_run) {
+        for (int i = 0; i < njobs; i++)
+            worst = max_rc(worst, dryrun_main(jobs[i], o));
+    } else if (q.dir && (njobs || merge || o->parts)) {
         err_print("worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;
     } else if (q.dir) {

@@ -1,5 +1,6 @@
 /* points: `worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] [--spectrum F.png]
-   [--radial F.svg] [--stats]`: one sample set as CSV / SVG, and its spectrum and statistics. */
+   [--radial F.svg] [--stats] [--padded K]`: one sample set as CSV / SVG, its spectrum and
+   statistics, or a pixel's padded dimensions. */
 #include "points.h"
 
 #include <errno.h>
@@ -15,21 +16,26 @@
 #include "base/fileio.h"
 #include "base/rng.h"
 #include "points_analysis.h"
+#include "sample/padding.h"
 #include "sample/sampler.h"
 #include "scenefile/yamlx.h"
 
 static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] "
                                    "[--spectrum F.png] [--radial F.svg] "
-                                   "[--stats]\n";
+                                   "[--stats] [--padded K]\n";
 
 /* Most sets --sets may average (the work limits bound them further). */
 #define POINTS_MAX_SETS 100000
+/* Most dimensions --padded prints: the pixel's own and 63 padded (lens, shutter and 20 bounces'
+   three decisions under sampler_dims: all; the render pads 16 bounces). */
+#define POINTS_MAX_PADDED 64
 
 struct points_args {
     enum sampler_kind kind;
     double threshold;
     uint64_t seed;
     const char *svg_path; /* NULL: no picture */
+    int padded;           /* --padded K: K dimensions per sample (0: none) */
     struct points_analysis an;
 };
 
@@ -63,8 +69,9 @@ static int place_ok(const char *opt, const char *path)
     else
         snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
     struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        err_print("worker points: %s %s: is a directory\n", opt, path);
+    struct err e = {0};
+    if (fileio_output_ok(path, NULL, 0, &e) < 0) {
+        err_print("worker points: %s %s\n", opt, e.msg);
         return 2;
     }
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
@@ -85,6 +92,27 @@ static int file_option(const char *arg, const char *name)
     return !strncmp(arg, name, len) && (arg[len] == '\0' || arg[len] == '=');
 }
 
+/* The value of option argv[*i] (`--name V` or `--name=V`, advancing *i past V), a whole number
+   in [1, limit]: 0, or 2 after one line on stderr. */
+static int count_option(int argc, char **argv, int *i, int limit, int *out)
+{
+    const char *arg = argv[*i];
+    const size_t len = strcspn(arg, "=");
+    const char *v = arg[len] == '=' ? arg + len + 1 : (*i + 1 < argc ? argv[++*i] : NULL);
+    uint64_t m;
+    if (!v) {
+        err_print("worker points: %.*s needs a value; %s", (int)len, arg, points_usage);
+        return 2;
+    }
+    if (parse_seed(v, &m) < 0 || m < 1 || m > (uint64_t)limit) {
+        err_print("worker points: %.*s: must be a whole number in [1, %d], got \"%.40s\"\n", (int)len, arg,
+                  limit, v);
+        return 2;
+    }
+    *out = (int)m;
+    return 0;
+}
+
 /* Fill a from argv. Returns 0, or the exit status after one line on stderr; --help prints the
    usage, sets done and returns 0. */
 static int points_parse(int argc, char **argv, struct points_args *a, int *done)
@@ -94,6 +122,7 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     *done = 0;
     a->seed = 1;
     a->svg_path = NULL;
+    a->padded = 0;
     a->an = (struct points_analysis){NULL, NULL, 0, 1, 1, 0};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -111,19 +140,12 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                 err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
                 return 2;
             }
-        } else if (!strcmp(arg, "--sets") || !strncmp(arg, "--sets=", 7)) {
-            const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
-            uint64_t m;
-            if (!v) {
-                err_print("worker points: --sets needs a value; %s", points_usage);
+        } else if (file_option(arg, "--sets") || file_option(arg, "--padded")) {
+            const int sets = arg[2] == 's', limit = sets ? POINTS_MAX_SETS : POINTS_MAX_PADDED;
+            int v;
+            if (count_option(argc, argv, &i, limit, &v) != 0)
                 return 2;
-            }
-            if (parse_seed(v, &m) < 0 || m < 1 || m > POINTS_MAX_SETS) {
-                err_print("worker points: --sets: must be a whole number in [1, %d], got \"%.40s\"\n",
-                          POINTS_MAX_SETS, v);
-                return 2;
-            }
-            a->an.sets = (int)m;
+            *(sets ? &a->an.sets : &a->padded) = v;
         } else if (file_option(arg, "--svg") || file_option(arg, "--spectrum") ||
                    file_option(arg, "--radial")) {
             const size_t len = strcspn(arg, "=");
@@ -180,6 +202,11 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
                   (unsigned long long)a->seed, a->an.sets);
         return 2;
     }
+    if (a->padded && (a->svg_path || points_analysis_wanted(&a->an) || a->an.sets != 1)) {
+        err_print("worker points: --padded prints dimensions as CSV; it takes no --svg, --sets, --spectrum, "
+                  "--radial or --stats\n");
+        return 2;
+    }
     a->an.seed = a->seed;
     a->an.threshold = a->threshold;
     int rc = 0;
@@ -190,12 +217,6 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     if (!rc && a->an.radial_path)
         rc = place_ok("--radial", a->an.radial_path);
     return rc;
-}
-
-/* %.6f of v in [0, 1), never rounded up to "1.000000". */
-static double shown(double v)
-{
-    return v < 0.9999995 ? v : 0.999999;
 }
 
 /* The set as an SVG picture: the unit square (y up) and a dot per point, written atomically. */
@@ -233,6 +254,37 @@ static int write_svg(const char *path, const struct points_args *a, const struct
     return rc;
 }
 
+/* --padded K: the pixel (0, 0) of a job with seed a->seed under sampler_dims: all, one row per
+   camera sample s: dimension 0 its point of the pixel's set, dimensions 1 .. K-1 its points of
+   padded slots 0 .. K-2 (lens, shutter, then per bounce direction, light point, choice). */
+static int print_padded(const struct points_args *a, struct sampler *s, struct pt2 *p)
+{
+    struct rng rng;
+    struct err e;
+    struct padding pad;
+    rng_pixel(&rng, a->seed, 0, 0, 0); /* the render's pixel stream */
+    size_t n = sampler_draw(s, &rng, p);
+    if (padding_init(&pad, s, a->padded, &e) < 0) {
+        err_print("worker points: %s\n", e.msg);
+        return 1;
+    }
+    padding_pixel(&pad, a->seed, 0, 0, n);
+    for (size_t k = 0; k < n; k++) {
+        printf("%.17g,%.17g", p[k].x, p[k].y);
+        for (int d = 1; d < a->padded; d++) {
+            struct pt2 q = padding_point(&pad, d - 1, (uint32_t)k);
+            printf(",%.17g,%.17g", q.x, q.y);
+        }
+        putchar('\n');
+    }
+    padding_release(&pad);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        err_print("worker points: writing the points: %s\n", strerror(errno));
+        return 1;
+    }
+    return 0;
+}
+
 int points_main(int argc, char **argv)
 {
     struct points_args a;
@@ -253,6 +305,12 @@ int points_main(int argc, char **argv)
         sampler_free(s);
         return 1;
     }
+    if (a.padded) {
+        rc = print_padded(&a, s, p);
+        sampler_free(s);
+        free(p);
+        return rc;
+    }
     struct rng rng;
     rng_seed(&rng, a.seed, 0);
     size_t n = sampler_draw(s, &rng, p);
@@ -265,8 +323,10 @@ int points_main(int argc, char **argv)
         rc = 1;
     }
     if (rc == 0 && !a.an.stats) { /* one "x,y" line per point, nothing else: a line count is the set's size */
+        /* %.17g: each double read back exactly, so every point lands in its cell (6 decimals put
+           points within 1e-6 of a boundary into the next cell) */
         for (size_t k = 0; k < n; k++)
-            printf("%.6f,%.6f\n", shown(p[k].x), shown(p[k].y));
+            printf("%.17g,%.17g\n", p[k].x, p[k].y);
         if (fflush(stdout) != 0 || ferror(stdout)) {
             err_print("worker points: writing the points: %s\n", strerror(errno));
             rc = 1;

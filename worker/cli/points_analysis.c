@@ -121,8 +121,13 @@ static int write_radial(const char *path, const struct points_analysis *a, const
                                            "mean periodogram", "no power", pw, 2, NULL, 0},
                                           {"anisotropy", "frequency |k| (cycles per unit)",
                                            "variance / mean^2 in the annulus", "no power", an, 2, NULL, 0}};
-    snprintf(title, sizeof title, "%s, threshold %g: radial spectrum over %d set(s), seeds %llu..", name,
-             a->threshold, a->sets, (unsigned long long)a->seed);
+    char seeds[64]; /* the whole range: the title said "seeds 1.." */
+    if (a->sets == 1)
+        snprintf(seeds, sizeof seeds, "1 set, seed %llu", (unsigned long long)a->seed);
+    else
+        snprintf(seeds, sizeof seeds, "%d sets, seeds %llu..%llu", a->sets, (unsigned long long)a->seed,
+                 (unsigned long long)(a->seed + (uint64_t)(a->sets - 1)));
+    snprintf(title, sizeof title, "%s, threshold %g: radial spectrum over %s", name, a->threshold, seeds);
     char *svg = chart_svg(title, panels, 2, 2);
     free(f);
     if (!svg)

@@ -104,18 +104,56 @@ int lease_write(const char *claim, const struct lease *l, struct err *e)
     return fileio_write_atomic(path, text, (size_t)n, e);
 }
 
+/* Printable ASCII only: a lease's words are shown on terminals (status), so escapes become '?'. */
+static void printable(char *s)
+{
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x21 || (unsigned char)*s > 0x7e)
+            *s = '?';
+}
+
+/* A lease's numbers within what a live worker writes; anything else is shown as unknown (0). */
+static void sane(struct lease *l)
+{
+    printable(l->host);
+    printable(l->token);
+    printable(l->pids);
+    if (l->rows < 0 || l->rows > LEASE_MAX_ROWS)
+        l->rows = 0;
+    if (l->rows_done < 0 || l->rows_done > l->rows)
+        l->rows_done = 0;
+    if (!(l->render_s >= 0 && l->render_s <= 1e10))
+        l->render_s = 0;
+    if (l->attempt < 0 || l->attempt > 1000)
+        l->attempt = 0;
+    if (l->processes < 0 || l->processes > 4096)
+        l->processes = 0;
+    if (l->start < 0 || (double)l->start > now_s() + 86400.0)
+        l->start = 0;
+}
+
 int lease_read(const char *claim, struct lease *l, double *age_s)
 {
-    char path[2048];
+    char path[2048], text[LEASE_MAX_BYTES + 1];
     side_path(claim, ".lease", path, sizeof path);
     memset(l, 0, sizeof *l);
-    FILE *f = fopen(path, "r");
-    if (!f)
+    /* never blocks (a FIFO), never follows a link (to /dev/zero), never reads more than a lease holds */
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0)
         return -1;
     struct stat st;
+    ssize_t n = 0;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size <= LEASE_MAX_BYTES)
+        n = read(fd, text, LEASE_MAX_BYTES);
+    close(fd);
+    if (n <= 0)
+        return -1;
+    text[n] = 0;
     int fields = 0;
-    char line[512];
-    while (fgets(line, sizeof line, f)) {
+    for (char *line = text, *next; line && *line; line = next) {
+        next = strchr(line, '\n');
+        if (next)
+            *next++ = 0;
         fields += sscanf(line, "host %255s", l->host) == 1;
         fields += sscanf(line, "pid %ld", &l->pid) == 1;
         fields += sscanf(line, "start %lld", &l->start) == 1;
@@ -124,10 +162,9 @@ int lease_read(const char *claim, struct lease *l, double *age_s)
         (void)sscanf(line, "progress %d %d %lf %d %d", &l->rows_done, &l->rows, &l->render_s, &l->attempt,
                      &l->processes);
     }
-    int ok = fstat(fileno(f), &st) == 0 && fields == 4;
-    fclose(f);
-    if (!ok)
+    if (fields != 4)
         return -1;
+    sane(l);
     *age_s = now_s() - mtime_s(&st);
     return 0;
 }

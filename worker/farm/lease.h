@@ -20,6 +20,10 @@ struct lease {
     double render_s;
 };
 
+/* Most bytes a lease file may hold (one is larger: not a lease), and most rows it may count. */
+#define LEASE_MAX_BYTES 4096
+#define LEASE_MAX_ROWS 32768
+
 /* Bytes of the lease's last line, "progress ...\n" (lease_progress rewrites it). */
 #define LEASE_PROGRESS_LEN 56
 
@@ -32,7 +36,9 @@ void lease_init(struct lease *l);
 int lease_write(const char *claim, const struct lease *l, struct err *e);
 
 /* Read the lease of claim into l and its age (seconds since its mtime). 0, or -1 when it is
-   missing or unreadable. */
+   missing, unreadable or no regular file of at most LEASE_MAX_BYTES (a FIFO or a link to a device
+   is never opened for reading: it would block or never end). Its words are printable ASCII ('?'
+   for anything else) and its numbers within a live worker's range (else 0, unknown). */
 int lease_read(const char *claim, struct lease *l, double *age_s);
 
 /* Rewrite the progress line of the lease open as fd (O_RDWR, as lease_write wrote it) in place,

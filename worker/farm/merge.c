@@ -11,6 +11,7 @@
 #include "job/outdir.h"
 #include "job/part.h"
 #include "job/run_out.h"
+#include "scenefile/scene_load.h"
 
 /* The split N of the part files of j in dir: -1 with e filled when there are none or parts of
    several splits lie side by side. */
@@ -45,9 +46,15 @@ static int find_split(const struct job *j, const char *dir, struct err *e)
     return split;
 }
 
-/* Read part `part` of `parts` for j into rgb (allocated on the first part, w x h from it) and
-   its stats into fr->proc[part]. 0 or -1 with e filled. */
-static int merge_one(const struct job *j, const char *path, int part, int parts, float **rgb, int *w, int *h,
+/* The image the parts are merged into: the size the job renders, and its framebuffer. */
+struct merge_image {
+    int w, h;
+    float *rgb;
+};
+
+/* Read part `part` of `parts` for j into img (its size the job's) and its stats into
+   fr->proc[part]. 0 or -1 with e filled. */
+static int merge_one(const struct job *j, const char *path, int part, int parts, struct merge_image *img,
                      struct procs_result *fr, struct err *e)
 {
     struct part_file pf;
@@ -67,25 +74,14 @@ static int merge_one(const struct job *j, const char *path, int part, int parts,
         goto done;
     }
     /* the hash says the inputs are the job's; the size must be too (a part rewritten whole, its
-       checksum made again, was merged at its own size) */
-    if ((int)hd->width != j->width || (j->height && (int)hd->height != j->height)) {
-        char want[32];
-        snprintf(want, sizeof want, j->height ? "%dx%d" : "%d pixels wide", j->width, j->height);
-        err_set(e, path, 0, 0, "is %ux%u but the job renders %s", hd->width, hd->height, want);
+       checksum made again, was merged at its own size: a 16x1 image) */
+    if ((int)hd->width != img->w || (int)hd->height != img->h) {
+        err_set(e, path, 0, 0, "is %ux%u but the job renders %dx%d", hd->width, hd->height, img->w, img->h);
         goto done;
     }
-    if (!*rgb) {
-        *w = (int)hd->width;
-        *h = (int)hd->height;
-        if (!(*rgb = calloc((size_t)*w * *h * 3, sizeof **rgb))) {
-            err_set(e, NULL, 0, 0, "out of memory merging %dx%d parts", *w, *h);
-            goto done;
-        }
-    } else if ((int)hd->width != *w || (int)hd->height != *h) {
-        err_set(e, path, 0, 0, "is %ux%u but the other parts are %dx%d", hd->width, hd->height, *w, *h);
+    if (part_check_contents(&pf, path, e) < 0)
         goto done;
-    }
-    part_rows_into(&pf, *rgb);
+    part_rows_into(&pf, img->rgb);
     fr->proc[part] = (struct procs_proc){hd->st, hd->wall_s, hd->cpu_s, 1};
     render_stats_add(&fr->total, &hd->st);
     fr->wall_s += hd->wall_s;
@@ -98,14 +94,35 @@ done:
     return rc;
 }
 
+/* img's size: the job's width and height (from the camera's aspect when it gives none), and its
+   framebuffer. 0 or -1 with e filled. */
+static int merge_image_new(const struct job *j, struct merge_image *img, struct err *e)
+{
+    struct scene_file sf = {0};
+    img->w = j->width;
+    img->h = j->height;
+    if (!img->h) {
+        if (scene_load(j->scene_path, &sf, e) < 0)
+            return -1;
+        img->h = job_height(j, sf.aspect);
+        scene_file_free(&sf);
+    }
+    if (img->h > IMAGE_MAX_SIDE)
+        return err_set(e, j->path, 0, 0, "the job renders %dx%d, over the limit of %d a side", img->w, img->h,
+                       IMAGE_MAX_SIDE);
+    if (!(img->rgb = calloc((size_t)img->w * img->h * 3, sizeof *img->rgb)))
+        return err_set(e, NULL, 0, 0, "out of memory merging %dx%d parts", img->w, img->h);
+    return 0;
+}
+
 int merge_parts(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
 {
     char dir[2048], path[2048], missing[512] = "";
     struct procs_result *fr = calloc(1, sizeof *fr);
     struct rgbf ref = {0};
     enum img_domain ref_domain = IMG_LINEAR;
-    float *rgb = NULL;
-    int rc = 2, w = 0, h = 0, nmissing = 0;
+    struct merge_image img = {0};
+    int rc = 2, nmissing = 0;
     memset(rr, 0, sizeof *rr);
     if (!fr) {
         err_set(e, NULL, 0, 0, "out of memory");
@@ -135,24 +152,26 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
                 missing, parts, dir);
         goto done;
     }
+    if (merge_image_new(j, &img, e) < 0)
+        goto done;
     render_stats_init(&fr->total);
     fr->processes = parts;
     for (int i = 0; i < parts; i++) {
         outdir_part_path(j, o->out_dir, i, parts, path, sizeof path);
-        if (merge_one(j, path, i, parts, &rgb, &w, &h, fr, e) < 0)
+        if (merge_one(j, path, i, parts, &img, fr, e) < 0)
             goto done;
     }
-    rr->width = w;
-    rr->height = h;
-    if (run_load_reference(j, w, h, &ref, &ref_domain, e) < 0)
+    rr->width = img.w;
+    rr->height = img.h;
+    if (run_load_reference(j, img.w, img.h, &ref, &ref_domain, e) < 0)
         goto done;
     if (ref.px && ref_domain == IMG_DISPLAY8)
         run_warn_display_reference(j->name, j->reference);
     rr->procs = *fr;
-    rc = run_out_write(j, o, rgb, w, h, fr, &ref, ref_domain, parts, rr, e) < 0 ? 1 : 0;
+    rc = run_out_write(j, o, img.rgb, img.w, img.h, fr, &ref, ref_domain, parts, rr, e) < 0 ? 1 : 0;
 done:
     image_f_free(&ref);
-    free(rgb);
+    free(img.rgb);
     free(fr);
     return rc;
 }

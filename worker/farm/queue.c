@@ -10,13 +10,15 @@
 #include <unistd.h>
 
 #include "study/compare.h"
-#include "study/study_main.h"
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"
+#include "queue_file.h"
 #include "queue_inputs.h"
 #include "queue_log.h"
 #include "queue_scan.h"
+#include "queue_drain.h"
+#include "queue_study.h"
 #include "job/outdir.h"
 #include "job/run.h"
 
@@ -43,102 +45,6 @@ void queue_signals_install(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
-/* failed/<name>.log: what went wrong, the signal, the attempts. */
-static void write_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
-                      int attempts)
-{
-    char path[2048], text[8192];
-    int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
-    if (sig)
-        n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
-    time_t t = time(NULL);
-    char when[64];
-    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&t));
-    n += snprintf(text + n, sizeof text - n, "attempts: %d\nworker: pid %ld on %s\ntime: %s\n", attempts,
-                  q->lease.pid, q->lease.host, when);
-    snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
-    struct err e;
-    if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
-        queue_log(name, "%s", e.msg);
-}
-
-/* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
-   while it is still ours. */
-static void give_back(struct queue *q, const char *name)
-{
-    if (queue_claim_lock(q) <
-        0) { /* another worker is recovering it (our lease looked dead): the claim is its now */
-        queue_log(name, "stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
-                  (int)queue_stop, q->running);
-        return;
-    }
-    if (!queue_claim_still_ours(q))
-        ;
-    else if (queue_claim_name_waiting(q, name))
-        queue_log(name,
-                  "stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
-                  "next worker\n",
-                  (int)queue_stop, name, q->running);
-    else if (queue_claim_return(q, q->claim, name) == 0)
-        queue_log(name, "stopped by signal %d, returned to the queue\n", (int)queue_stop);
-    else
-        queue_log(name,
-                  "stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
-                  "next worker\n",
-                  (int)queue_stop, errno == EEXIST ? "a newer one of its name arrived" : strerror(errno),
-                  q->running);
-    lease_unlock(q->claim);
-}
-
-/* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
-   One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
-   of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
-   removes our lease first, then returns the claim to the queue or adopts it). */
-static void say_lost(struct queue *q, const char *name)
-{
-    struct lease l;
-    double age;
-    if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
-        queue_log(name, "the claim was taken over (our lease was judged dead); leaving the job to it\n");
-        return;
-    }
-    lease_remove(q->claim);
-    queue_log(name, "%s was removed or moved away while it rendered: render stopped, nothing written\n",
-              q->claim);
-}
-
-/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
-   that came meanwhile is kept). */
-static void clear_lost_stop(void)
-{
-    sigset_t block, old;
-    sigemptyset(&block);
-    sigaddset(&block, SIGINT);
-    sigaddset(&block, SIGTERM);
-    sigprocmask(SIG_BLOCK, &block, &old);
-    if (queue_stop == QUEUE_STOP_CLAIM_LOST)
-        queue_stop = 0;
-    sigprocmask(SIG_SETMASK, &old, NULL);
-}
-
-/* File the claim in hand in failed/: the temporaries a killed writer of an earlier attempt left in
-   its output folder done/<job_name>/ go first (nothing else would remove them). */
-static void file_failed(struct queue *q, const char *name, const char *job_name)
-{
-    char dir[2048];
-    if (job_name[0] && job_name[0] != '.' && !strchr(job_name, '/')) {
-        outdir_dir(q->done, job_name, dir, sizeof dir);
-        outdir_remove_temps(dir);
-    }
-    queue_claim_file(q, name, q->failed);
-}
-
-static void note_rc(struct queue *q, int rc)
-{
-    if (rc > q->worst)
-        q->worst = rc;
-}
-
 /* The claim's output folder holds the outputs of another job file of the queue with the same name
    (q->name_owner): filed in failed/ as invalid, the log naming that file; the folder is left as it
    is. The same file re-queued (edited or not) renders again: only another file name conflicts. */
@@ -154,52 +60,9 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
              q->dir, name, at, job_name, q->name_dir, q->name_owner);
     queue_log(name, "%s\n", msg);
     queue_log(name, "name taken, moved to %s/\n", q->failed);
-    write_log(q, name, log_name, msg, 0, 0);
+    queue_file_log(q, name, log_name, msg, 0, 0);
     queue_claim_file(q, name, q->failed);
-    note_rc(q, 2);
-}
-
-/* A compare job: its combinations render into done/<name>/ as one job (a suite: each study into
-   done/<name>/<study>/); a retry after a crash renders only the combinations still missing (they
-   resume by hash). Invalid: failed/. */
-static void process_compare(struct queue *q, const char *name, const char *from, const char *as,
-                            const char *stem)
-{
-    struct run_opts ro = q->o->run;
-    ro.out_dir = q->done;
-    ro.stop = &queue_stop;
-    ro.tick = queue_claim_tick;
-    ro.may_write = queue_claim_held;
-    ro.still_held = queue_claim_still_held;
-    ro.lock_wait_s = q->o->lease_timeout_s;
-    ro.tick_arg = q;
-    char last[2048] = "", log_name[JOB_NAME_MAX];
-    snprintf(log_name, sizeof log_name, "%s", stem); /* the job's name once it loads: failed/<name>.log */
-    int attempts = 0, rc;
-    do {
-        q->attempt = ++attempts;
-        rc = study_main_as(from, as, &ro, last, sizeof last, log_name, sizeof log_name);
-    } while (rc == 1 && !queue_stop && !q->name_owner[0] && attempts <= q->o->retries);
-    if (q->lost || !queue_claim_still_ours(q)) {
-        say_lost(q, name);
-        return;
-    }
-    if (rc == 1 && queue_stop) {
-        give_back(q, name);
-        return;
-    }
-    if (rc == 0) {
-        queue_claim_file(q, name, q->done);
-        return;
-    }
-    if (q->name_owner[0]) {
-        name_taken(q, name, stem, NULL); /* <name>.log would be the other file's log name */
-        return;
-    }
-    queue_log(name, "%s compare job, moved to %s/\n", rc == 2 ? "invalid" : "failed", q->failed);
-    write_log(q, name, log_name, last, 0, rc == 2 ? 0 : attempts); /* invalid: checked, never rendered */
-    file_failed(q, name, log_name);
-    note_rc(q, rc);
+    queue_file_note_rc(q, 2);
 }
 
 /* The file to read the claimed job from: the claim itself, or, when the job was a symbolic link
@@ -237,8 +100,8 @@ static void process_claim(struct queue *q, const char *name)
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
     outdir_stem(name, stem, sizeof stem);
     claim_source(q, from, sizeof from);
-    if (compare_is_compare_job(from)) {
-        process_compare(q, name, from, as, stem);
+    if (compare_is_compare_job(from)) { /* spread over the queue as its renders */
+        queue_study_expand(q, name, from, as, stem);
         return;
     }
     if (job_load_as(from, as, &j, &e) < 0 ||
@@ -246,9 +109,9 @@ static void process_claim(struct queue *q, const char *name)
         err_format(&e, msg, sizeof msg);
         queue_log(name, "%s", msg);
         queue_log(name, "invalid job, moved to %s/", q->failed);
-        write_log(q, name, stem, msg, 0, 0);
-        file_failed(q, name, stem);
-        note_rc(q, 2);
+        queue_file_log(q, name, stem, msg, 0, 0);
+        queue_file_failed(q, name, stem);
+        queue_file_note_rc(q, 2);
         return;
     }
     char folder[2048];
@@ -278,11 +141,11 @@ static void process_claim(struct queue *q, const char *name)
         queue_log(name, "%s; retrying (attempt %d of %d)\n", msg, attempts + 1, q->o->retries + 1);
     }
     if (q->lost || !queue_claim_still_ours(q)) {
-        say_lost(q, name);
+        queue_file_say_lost(q, name);
         return;
     }
     if (rc == 1 && (rr.procs.stopped || queue_stop)) {
-        give_back(q, name);
+        queue_file_give_back(q, name);
         return;
     }
     if (rc == 0) {
@@ -301,9 +164,9 @@ static void process_claim(struct queue *q, const char *name)
     err_format(&e, msg, sizeof msg);
     queue_log(name, "%s; moved to %s/ after %d attempt%s\n", msg, q->failed, attempts,
               attempts > 1 ? "s" : "");
-    write_log(q, name, j.name, msg, rr.procs.child_signal, attempts);
-    file_failed(q, name, j.name);
-    note_rc(q, rc);
+    queue_file_log(q, name, j.name, msg, rr.procs.child_signal, attempts);
+    queue_file_failed(q, name, j.name);
+    queue_file_note_rc(q, rc);
 }
 
 /* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */
@@ -315,7 +178,7 @@ static void process(struct queue *q, const char *name)
     queue_claim_renew_start(q);
     process_claim(q, name);
     queue_claim_renew_stop();
-    clear_lost_stop();
+    queue_file_clear_lost_stop(q);
 }
 
 /* What the unrunnable entry at path is, for messages. */
@@ -346,8 +209,8 @@ static void file_unrunnable(struct queue *q, const char *name)
         char stem[256];
         outdir_stem(name, stem, sizeof stem);
         queue_log(name, "%s; moved to %s/\n", msg, q->failed);
-        write_log(q, name, stem, msg, 0, 0);
-        note_rc(q, 2);
+        queue_file_log(q, name, stem, msg, 0, 0);
+        queue_file_note_rc(q, 2);
         return;
     }
     if (errno == ENOENT) /* another worker filed it */
@@ -358,7 +221,7 @@ static void file_unrunnable(struct queue *q, const char *name)
     if (q->nreported < (int)(sizeof q->reported / sizeof q->reported[0]))
         snprintf(q->reported[q->nreported++], sizeof q->reported[0], "%s", name);
     queue_log(name, "%s; cannot move it to %s/: %s\n", msg, q->failed, strerror(errno));
-    note_rc(q, 2);
+    queue_file_note_rc(q, 2);
 }
 
 /* Sleep up to s seconds; a signal ends it early. */
@@ -411,6 +274,7 @@ int queue_main(const struct queue_opts *qo)
     while (!queue_stop) {
         char adopted[256];
         if (queue_claim_recover(&q, adopted, sizeof adopted)) {
+            q.took++;
             process(&q, adopted);
             continue;
         }
@@ -428,6 +292,7 @@ int queue_main(const struct queue_opts *qo)
             int got = queue_claim_take(&q, w[i].name);
             unusable = got < 0;
             if (got == 0) {
+                q.took++;
                 process(&q, w[i].name);
                 took = 1;
             }
@@ -437,10 +302,15 @@ int queue_main(const struct queue_opts *qo)
             q.worst = 2;
             break;
         }
-        if (took)
+        int study = took ? 1 : queue_drain_work(&q);
+        q.took += study == 1;
+        if (study == 1)
             continue;
-        if (qo->once)
+        if (qo->once && study != 2) {
+            if (!q.took && !qo->run.quiet) /* a batch task with nothing to do says so */
+                err_print("worker: --queue %s: no job waiting, nothing to do\n", q.dir);
             break;
+        }
         nap(qo->poll_s);
     }
     queue_scan_free(&q.scan);

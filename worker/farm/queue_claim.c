@@ -67,7 +67,13 @@ void queue_claim_renew_start(struct queue *q)
     char path[2100];
     snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
     queue_claim_renew_stop();
-    int fd = open(path, O_RDWR | O_CLOEXEC);
+    /* a lease is a regular file: a FIFO or device put in its place must not block or feed us */
+    int fd = open(path, O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    struct stat st;
+    if (fd >= 0 && (fstat(fd, &st) < 0 || !S_ISREG(st.st_mode))) {
+        close(fd);
+        fd = -1;
+    }
     if (fd < 0)
         return; /* no lease to renew: the tick's check finds the claim lost */
     struct sigaction sa;
@@ -250,7 +256,9 @@ int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, 
 {
     /* A sidecar's job_file is compared as it reads back: a file named in Latin-1 ("caf\xe9.yaml")
        is recorded as "caf\ufffd.yaml", and must still be the same file as itself when re-queued. */
-    const char *base_name = strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1 : q->claim;
+    const char *base_name = q->as_name[0]            ? q->as_name
+                            : strrchr(q->claim, '/') ? strrchr(q->claim, '/') + 1
+                                                     : q->claim;
     char mine[2048];
     if (json_string_read_back(base_name, mine, sizeof mine) < 0)
         return 0;

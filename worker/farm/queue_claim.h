@@ -20,6 +20,9 @@ struct queue {
     char claim[2048];   /* DIR/running/X.yaml while a job is held */
     struct timespec last_touch;
     int worst;
+    int took;                    /* claims processed (a --once worker that took none says so) */
+    char as_name[256];           /* the job file name whose outputs the claims may write ("": the claim's own;
+                                    a study's render entries: the study's job file) */
     struct queue_scan scan;      /* the waiting jobs seen by the last scan */
     volatile sig_atomic_t *stop; /* the queue's stop flag, which also stops the render in hand */
     int lost;                    /* the claim in hand was found gone or taken over (tick) */

@@ -1,4 +1,4 @@
-/* queue_status: what a queue holds (status) and moving finished jobs back into it (requeue). */
+/* queue_status: what a queue holds (status). */
 #include "queue_status.h"
 
 #include <dirent.h>
@@ -18,6 +18,8 @@
 #include "job/sidecar.h"
 #include "lease.h"
 #include "queue_scan.h"
+#include "queue_studies.h"
+#include "queue_study.h"
 #include "scenefile/yamlx.h"
 
 /* One job file of done/ or failed/ (or running/), with what status says about it. */
@@ -25,7 +27,8 @@ struct entry {
     char file[256];
     char name[256]; /* the job's name: its `name:`, else the file's stem */
     struct timespec when;
-    double wall_s, cpu_s, samples; /* done: from the sidecar; < 0 unknown */
+    double wall_s, cpu_s, samples; /* done: from the sidecar (a compare job's: summed); < 0 unknown */
+    int images;                    /* done: sidecars summed */
     char reason[512];              /* failed: the log's error, first line */
     struct lease lease;            /* running */
     double age_s;                  /* running: seconds since the lease was renewed; < 0 no lease */
@@ -38,8 +41,7 @@ static void iso8601(time_t t, char *out, size_t n)
     strftime(out, n, "%Y-%m-%dT%H:%M:%SZ", &tm);
 }
 
-/* The job name of the job file at path: its `name:` when it has a valid-looking one, else stem. */
-static void job_name_of(const char *path, const char *file, char *out, size_t n)
+void queue_status_job_name(const char *path, const char *file, char *out, size_t n)
 {
     struct ydoc d;
     struct err e;
@@ -74,16 +76,15 @@ static void read_sidecar(const char *done, struct entry *x)
         struct sidecar_info info;
         struct err e;
         snprintf(path, sizeof path, "%s/%s", folder, de->d_name);
-        if (sidecar_read(path, &info, &e) == 0) {
+        if (sidecar_read(path, &info, &e) == 0) { /* a compare job's images: summed */
             const char *jf = info.job_file, *base = strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
-            if (!strcmp(base, file)) {
-                x->wall_s = isfinite(info.wall_s) ? info.wall_s : -1;
-                x->cpu_s = isfinite(info.cpu_s) ? info.cpu_s : -1;
-                x->samples = (double)info.samples_total;
+            if (!strcmp(base, file) && isfinite(info.wall_s) && isfinite(info.cpu_s)) {
+                x->wall_s = (x->images ? x->wall_s : 0) + info.wall_s;
+                x->cpu_s = (x->images ? x->cpu_s : 0) + info.cpu_s;
+                x->samples = (x->images ? x->samples : 0) + (double)info.samples_total;
+                x->images++;
             }
         }
-        if (x->wall_s >= 0)
-            break;
     }
     closedir(dir);
 }
@@ -128,7 +129,7 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     int n = 0;
     *out = NULL;
     if (!d)
-        return 0;
+        return errno == ENOENT ? 0 : -1;
     struct dirent *de;
     while ((de = readdir(d))) {
         char path[2048];
@@ -146,7 +147,7 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
         memset(x, 0, sizeof *x);
         snprintf(x->file, sizeof x->file, "%s", de->d_name);
         x->when = st.st_ctim; /* the rename into this folder */
-        job_name_of(path, x->file, x->name, sizeof x->name);
+        queue_status_job_name(path, x->file, x->name, sizeof x->name);
         if (!strcmp(kind, "done"))
             read_sidecar(done, x);
         else if (!strcmp(kind, "failed"))
@@ -161,10 +162,20 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     return n;
 }
 
+/* Everything one status call shows. */
+struct view {
+    const struct queue_waiting *w;
+    const struct entry *r, *dn, *f;
+    int nw, nr, nd, nf, ns;
+    const struct queue_studies_entry *studies;
+};
+
 /* Elapsed seconds of a running entry (since its claim) and its ETA (-1: unknown). */
 static void running_times(const struct entry *x, double *elapsed, double *eta)
 {
-    *elapsed = x->age_s >= 0 && x->lease.start > 0 ? (double)(time(NULL) - x->lease.start) : -1;
+    *elapsed = x->age_s >= 0 && x->lease.start > 0 && time(NULL) >= x->lease.start
+                   ? (double)(time(NULL) - x->lease.start)
+                   : -1;
     *eta = -1;
     if (x->lease.rows > 0 && x->lease.rows_done > 0)
         *eta = x->lease.render_s * (x->lease.rows - x->lease.rows_done) / x->lease.rows_done;
@@ -175,11 +186,16 @@ static double percent(const struct entry *x)
     return x->lease.rows > 0 ? 100.0 * x->lease.rows_done / x->lease.rows : 0;
 }
 
-static void print_text(const char *dir, const struct queue_waiting *w, int nw, const struct entry *r, int nr,
-                       const struct entry *dn, int nd, const struct entry *f, int nf)
+static void print_text(const char *dir, const struct view *v)
 {
     char when[64];
-    printf("queue %s: %d waiting, %d running, %d done, %d failed\n", dir, nw, nr, nd, nf);
+    const struct queue_waiting *w = v->w;
+    const struct entry *r = v->r, *dn = v->dn, *f = v->f;
+    int nw = v->nw, nr = v->nr, nd = v->nd, nf = v->nf;
+    printf("queue %s: %d waiting, %d running, %d done, %d failed", dir, nw, nr, nd, nf);
+    if (v->ns)
+        printf(", %d stud%s spread over it", v->ns, v->ns == 1 ? "y" : "ies");
+    printf("\n");
     if (nw)
         printf("waiting (in claim order):\n");
     for (int i = 0; i < nw; i++) {
@@ -195,19 +211,25 @@ static void print_text(const char *dir, const struct queue_waiting *w, int nw, c
             printf("  %s  (no lease yet)\n", r[i].file);
             continue;
         }
-        char eta_s[32] = "--";
+        char eta_s[32] = "--", elapsed_s[32] = "--";
         if (eta >= 0)
             snprintf(eta_s, sizeof eta_s, "%.0f s", eta);
-        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %.0f s  ETA %s\n", r[i].file,
+        if (elapsed >= 0)
+            snprintf(elapsed_s, sizeof elapsed_s, "%.0f s", elapsed);
+        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %s  ETA %s\n", r[i].file,
                r[i].lease.host, r[i].lease.pid, r[i].lease.attempt, percent(&r[i]), r[i].lease.rows_done,
-               r[i].lease.rows, elapsed, eta_s);
+               r[i].lease.rows, elapsed_s, eta_s);
     }
+    queue_studies_print(v->studies, v->ns);
     if (nd)
         printf("done:\n");
     for (int i = 0; i < nd; i++) {
         iso8601(dn[i].when.tv_sec, when, sizeof when);
         if (dn[i].wall_s < 0)
             printf("  %s  finished %s  (no sidecar)\n", dn[i].file, when);
+        else if (dn[i].images > 1) /* a compare job: its images' figures summed */
+            printf("  %s  finished %s  %d images  wall (sum) %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file,
+                   when, dn[i].images, dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
         else
             printf("  %s  finished %s  wall %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file, when,
                    dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
@@ -223,11 +245,13 @@ static void json_maybe(struct json *js, const char *key, double v)
     json_number(js, key, v < 0 ? (double)NAN : v); /* non-finite: null (unknown) */
 }
 
-static void print_json(const char *dir, const struct queue_waiting *w, int nw, const struct entry *r, int nr,
-                       const struct entry *dn, int nd, const struct entry *f, int nf)
+static void print_json(const char *dir, const struct view *v)
 {
     struct json js;
     char when[64];
+    const struct queue_waiting *w = v->w;
+    const struct entry *r = v->r, *dn = v->dn, *f = v->f;
+    int nw = v->nw, nr = v->nr, nd = v->nd, nf = v->nf;
     json_init(&js);
     json_begin_object(&js, NULL);
     json_string(&js, "queue", dir);
@@ -261,6 +285,7 @@ static void print_json(const char *dir, const struct queue_waiting *w, int nw, c
         json_end_object(&js);
     }
     json_end_array(&js);
+    queue_studies_json(&js, v->studies, v->ns);
     json_begin_array(&js, "done");
     for (int i = 0; i < nd; i++) {
         json_begin_object(&js, NULL);
@@ -271,6 +296,7 @@ static void print_json(const char *dir, const struct queue_waiting *w, int nw, c
         json_maybe(&js, "wall_s", dn[i].wall_s);
         json_maybe(&js, "cpu_s", dn[i].cpu_s);
         json_maybe(&js, "samples", dn[i].samples);
+        json_number(&js, "images", dn[i].images);
         json_end_object(&js);
     }
     json_end_array(&js);
@@ -291,8 +317,7 @@ static void print_json(const char *dir, const struct queue_waiting *w, int nw, c
     json_free(&js);
 }
 
-/* DIR without trailing slashes into out; 0, or 2 after one line when it is no queue directory. */
-static int queue_dir(const char *cmd, const char *arg, char *out, size_t n)
+int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
 {
     struct stat st;
     snprintf(out, n, "%s", arg);
@@ -328,123 +353,46 @@ int queue_status_main(int argc, char **argv)
         err_print("worker status: expected a queue directory; usage: worker status DIR [--json]\n");
         return 2;
     }
-    if (queue_dir("status", dir_arg, dir, sizeof dir))
+    if (queue_status_dir("status", dir_arg, dir, sizeof dir))
         return 2;
     struct queue_scan scan = {0};
-    struct queue_waiting *w;
-    struct entry *r, *dn, *f;
-    int nw = queue_scan_waiting(&scan, dir, &w);
+    struct queue_waiting *w = NULL;
+    struct entry *r = NULL, *dn = NULL, *f = NULL;
+    struct queue_studies_entry *studies = NULL;
+    int nw = queue_scan_waiting(&scan, dir, &w), rc = 0;
     char done[1100];
     snprintf(done, sizeof done, "%s/done", dir);
     snprintf(sub, sizeof sub, "%s/running", dir);
+    const char *bad = nw < 0 && errno != ENOENT ? "." : NULL;
+    int bad_errno = errno;
     int nr = list_folder(sub, "running", done, &r);
+    if (nr < 0)
+        bad = "running", bad_errno = errno;
     int nd = list_folder(done, "done", done, &dn);
+    if (nd < 0)
+        bad = "done", bad_errno = errno;
     snprintf(sub, sizeof sub, "%s/failed", dir);
     int nf = list_folder(sub, "failed", done, &f);
-    if (nw < 0)
-        nw = 0;
-    if (json)
-        print_json(dir, w, nw, r, nr, dn, nd, f, nf);
-    else
-        print_text(dir, w, nw, r, nr, dn, nd, f, nf);
+    if (nf < 0)
+        bad = "failed", bad_errno = errno;
+    int ns = queue_studies_list(dir, &studies);
+    if (ns < 0)
+        bad = QUEUE_STUDY_DIR, bad_errno = errno;
+    if (bad) { /* a folder that cannot be read is no empty one: "0 failed" would be a lie */
+        err_print("worker status: %s/%s: cannot be read: %s\n", dir, bad, strerror(bad_errno));
+        rc = 2;
+    } else {
+        struct view v = {w, r, dn, f, nw < 0 ? 0 : nw, nr, nd, nf, ns < 0 ? 0 : ns, studies};
+        if (json)
+            print_json(dir, &v);
+        else
+            print_text(dir, &v);
+    }
     free(w);
     free(r);
     free(dn);
     free(f);
+    free(studies);
     queue_scan_free(&scan);
-    return 0;
-}
-
-/* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
-static int requeue_one(const char *dir, const char *from, const char *file)
-{
-    char src[2048], dst[2048], running[2048];
-    struct stat st;
-    snprintf(src, sizeof src, "%s/%s/%s", dir, from, file);
-    snprintf(dst, sizeof dst, "%s/%s", dir, file);
-    snprintf(running, sizeof running, "%s/running/%s", dir, file);
-    if (lstat(running, &st) == 0) {
-        err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
-        return -1;
-    }
-    if (fileio_rename_noreplace(src, dst) < 0) {
-        err_print("worker requeue: %s: %s\n", file,
-                  errno == EEXIST ? "a job of that file name waits in the queue already" : strerror(errno));
-        return -1;
-    }
-    if (!strcmp(from, "failed")) { /* its log goes with it: it is no longer a failed job */
-        char name[256], log[2048];
-        job_name_of(dst, file, name, sizeof name);
-        snprintf(log, sizeof log, "%s/failed/%s.log", dir, name);
-        unlink(log);
-    }
-    err_print("%s: requeued from %s/\n", file, from);
-    return 0;
-}
-
-int queue_requeue_main(int argc, char **argv)
-{
-    const char *dir_arg = NULL;
-    int all_failed = 0, nnames = 0, rc = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--failed"))
-            all_failed = 1;
-        else if (!strcmp(argv[i], "--quiet"))
-            continue;
-        else if (argv[i][0] == '-' && argv[i][1]) {
-            err_print("worker requeue: unknown option %s; usage: worker requeue DIR NAME... | --failed\n",
-                      argv[i]);
-            return 2;
-        } else if (!dir_arg)
-            dir_arg = argv[i];
-        else
-            nnames++;
-    }
-    if (!dir_arg || (nnames == 0) == !all_failed) {
-        err_print("worker requeue: usage: worker requeue DIR NAME... | --failed\n");
-        return 2;
-    }
-    char dir[1024], failed[1100], done[1100];
-    if (queue_dir("requeue", dir_arg, dir, sizeof dir))
-        return 2;
-    snprintf(failed, sizeof failed, "%s/failed", dir);
-    snprintf(done, sizeof done, "%s/done", dir);
-    if (all_failed) {
-        struct entry *f;
-        int nf = list_folder(failed, "failed", done, &f);
-        for (int i = 0; i < nf; i++)
-            if (requeue_one(dir, "failed", f[i].file) < 0)
-                rc = 2;
-        free(f);
-        return rc;
-    }
-    for (int i = 1, seen_dir = 0; i < argc; i++) {
-        if (argv[i][0] == '-' && argv[i][1])
-            continue;
-        if (!seen_dir++)
-            continue;
-        char file[256], path[2048];
-        struct stat st;
-        size_t len = strlen(argv[i]);
-        if (strchr(argv[i], '/') || len == 0 || len > 200) {
-            err_print("worker requeue: %s: give a job file's name (X or X.yaml), not a path\n", argv[i]);
-            rc = 2;
-            continue;
-        }
-        snprintf(file, sizeof file, "%s%s", argv[i],
-                 len > 5 && !strcmp(argv[i] + len - 5, ".yaml") ? "" : ".yaml");
-        const char *from = NULL;
-        snprintf(path, sizeof path, "%s/%s", failed, file);
-        if (lstat(path, &st) == 0)
-            from = "failed";
-        snprintf(path, sizeof path, "%s/%s", done, file);
-        if (!from && lstat(path, &st) == 0)
-            from = "done";
-        if (!from) {
-            err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
-            rc = 2;
-        } else if (requeue_one(dir, from, file) < 0)
-            rc = 2;
-    }
     return rc;
 }

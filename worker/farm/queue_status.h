@@ -4,6 +4,8 @@
 #ifndef QUEUE_STATUS_H
 #define QUEUE_STATUS_H
 
+#include <stddef.h>
+
 /* worker status DIR [--json], with argv[0] = "status": waiting jobs in claim order (priority,
    age), running ones with host, pid, attempt, percent of rows, elapsed and ETA from their lease,
    done ones with finish time, wall and CPU seconds and samples from their sidecar, failed ones
@@ -11,10 +13,12 @@
    queue: one line on stderr). */
 int queue_status_main(int argc, char **argv);
 
-/* worker requeue DIR NAME... | --failed, with argv[0] = "requeue": move the job files NAME (X or
-   X.yaml) from failed/ (or done/) back to DIR, never over a job waiting or running under that
-   name; --failed moves every failed job. One line per job on stderr. Exit 0 every one moved, 2
-   bad usage or one could not be moved. */
-int queue_requeue_main(int argc, char **argv);
+/* The job name of the job file at path (file: its name in its folder): its `name:` when it has a
+   valid-looking one, else the file's stem. */
+void queue_status_job_name(const char *path, const char *file, char *out, size_t n);
+
+/* DIR (arg) without trailing slashes into out; 0, or 2 after one line ("worker CMD: ...") when it
+   is no directory. */
+int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n);
 
 #endif

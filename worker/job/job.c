@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
+#include "job_path.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "outdir.h"
@@ -20,100 +21,8 @@ const char *const job_keys[] = {"name",      "scene",      "width",         "hei
                                 "sampler",   "threshold",  "light_sampler", "light_threshold",
                                 "max_depth", "seed",       "processes",     "format",
                                 "output",    "reference",  "poisson_pool",  "light_sampling",
-                                "priority",  "integrator", "sampler_dims",  "russian_roulette",
-                                NULL};
-
-static void dir_of(const char *path, char *out, size_t n)
-{
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        snprintf(out, n, ".");
-    else if (slash == path)
-        snprintf(out, n, "/");
-    else
-        snprintf(out, n, "%.*s", (int)(slash - path), path);
-}
-
-/* path relative to the directory of `base` (absolute paths are kept). */
-static void resolve(const char *base, const char *rel, char *out, size_t n)
-{
-    if (rel[0] == '/') {
-        snprintf(out, n, "%s", rel);
-        return;
-    }
-    char dir[JOB_PATH_MAX];
-    dir_of(base, dir, sizeof dir);
-    if (strcmp(dir, ".") == 0)
-        snprintf(out, n, "%s", rel);
-    else
-        snprintf(out, n, "%s/%s", dir, rel);
-}
-
-static int is_file(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
-}
-
-/* The scenes shipped with the program, for a bare name in a job file anywhere: ../scenes beside
-   the binary (bin/worker in a checkout) and ../share/worker/scenes (`make install`). n: how many
-   of the two were found (0 when /proc/self/exe cannot be read). */
-static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
-{
-    char exe[JOB_PATH_MAX];
-    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (len <= 0 || len >= (ssize_t)sizeof exe - 1)
-        return 0;
-    exe[len] = 0;
-    char bin[JOB_PATH_MAX], top[JOB_PATH_MAX];
-    dir_of(exe, bin, sizeof bin);
-    dir_of(bin, top, sizeof top);
-    const char *sep = strcmp(top, "/") ? "/" : "";
-    snprintf(dirs[0], JOB_PATH_MAX, "%.*s%sscenes", JOB_PATH_MAX - 32, top, sep);
-    snprintf(dirs[1], JOB_PATH_MAX, "%.*s%sshare/worker/scenes", JOB_PATH_MAX - 32, top, sep);
-    return 2;
-}
-
-/* A bare scene name (no '/', no extension) means scenes/NAME.yaml: looked up in ./scenes,
-   beside the job file, in the job file's parent (jobs/ and scenes/ are siblings), then among the
-   scenes shipped with the program. On failure *tried lists the places after the first. */
-static int resolve_scene(struct job *j, const char *val, char *tried, size_t n)
-{
-    tried[0] = 0;
-    if (!strchr(val, '/') && !strchr(val, '.')) {
-        enum { N_CAND = 5 };
-        char cand[N_CAND][JOB_PATH_MAX], rel[JOB_PATH_MAX], shipped[2][JOB_PATH_MAX];
-        int nc = 0;
-        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
-        snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
-        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
-        snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
-        resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
-        for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
-            snprintf(cand[nc++], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, shipped[k], val);
-        for (int i = 0; i < nc; i++)
-            if (is_file(cand[i])) {
-                snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[i]);
-                return 0;
-            }
-        snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[0]);
-        /* the other places looked in, each once */
-        size_t used = 0;
-        for (int i = 1; i < nc && used < n; i++) {
-            int seen = 0;
-            for (int k = 0; k < i; k++)
-                seen |= strcmp(cand[k], cand[i]) == 0;
-            if (!seen)
-                used +=
-                    (size_t)snprintf(tried + used, n - used, "%s%s", used ? " or " : " (nor at ", cand[i]);
-        }
-        if (used && used < n)
-            snprintf(tried + used, n - used, ")");
-        return -1;
-    }
-    resolve(j->path, val, j->scene_path, sizeof j->scene_path);
-    return is_file(j->scene_path) ? 0 : -1;
-}
+                                "priority",  "integrator", "sampler_dims",  "poisson_domain",
+                                "russian_roulette", NULL};
 
 void job_defaults(struct job *j, const char *path)
 {
@@ -241,9 +150,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_scene, v);
-        char tried[4 * JOB_PATH_MAX + 32];
-        if (resolve_scene(j, s, tried, sizeof tried) < 0)
-            return ydoc_fail(d, v, e, "scene: no scene file at %s%s", j->scene_path, tried);
+        char tried[4 * JOB_PATH_MAX + 32], hint[JOB_PATH_MAX + 32];
+        if (job_path_scene(j, s, tried, sizeof tried) < 0)
+            return ydoc_fail(d, v, e, "scene: no scene file at %s%s%s", j->scene_path, tried,
+                             job_path_scene_hint(j, s, hint, sizeof hint));
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
@@ -254,6 +164,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         return get_sampler(d, v, k, &j->sampler, e);
     } else if (!strcmp(k, "light_sampler")) {
         j->has_light_sampler = 1;
+        mark(j->pos_light_sampler, v);
         return get_sampler(d, v, k, &j->light_sampler, e);
     } else if (!strcmp(k, "threshold")) {
         mark(j->pos_threshold, v);
@@ -278,14 +189,21 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         j->priority = (int)n;
     } else if (!strcmp(k, "poisson_pool")) {
+        mark(j->pos_poisson_pool, v);
         if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
             return -1;
         j->poisson_pool = (int)n;
+    } else if (!strcmp(k, "poisson_domain")) {
+        int square = 0;
+        if (get_either(d, v, k, "torus", "square", &square, e) < 0)
+            return -1;
+        j->poisson_domain = square ? POISSON_SQUARE : POISSON_TORUS;
     } else if (!strcmp(k, "light_sampling")) {
         return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "integrator")) {
         return get_either(d, v, k, "mixture", "nee", &j->nee, e);
     } else if (!strcmp(k, "sampler_dims")) {
+        mark(j->pos_dims, v);
         return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
     } else if (!strcmp(k, "russian_roulette")) {
         return get_either(d, v, k, "off", "on", &j->roulette, e);
@@ -316,8 +234,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
         mark(j->pos_reference, v);
-        resolve(j->path, s, j->reference, sizeof j->reference);
-        if (!is_file(j->reference))
+        job_path_resolve(j->path, s, j->reference, sizeof j->reference);
+        if (!job_path_is_file(j->reference))
             return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
     }
     return 0;
@@ -355,6 +273,14 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
                    job_smallest_threshold(k));
 }
 
+int job_height(const struct job *j, double aspect)
+{
+    if (j->height)
+        return j->height;
+    int h = (int)lround(j->width / aspect); /* the aspect is at least 0.01: within an int */
+    return h < 1 ? 1 : h;
+}
+
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
 {
     (void)d;
@@ -365,6 +291,14 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
                        "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
                        "give the job a name:",
                        j->name);
+    /* under sampler_dims: all every light point comes from the pixel sampler's sets: a light
+       sampler or threshold would be silently ignored */
+    const int *light_pos = j->has_light_sampler ? j->pos_light_sampler : j->pos_light_threshold;
+    if (j->dims_all && light_pos[0])
+        return err_set(e, j->path, light_pos[0], light_pos[1],
+                       "%s: has no effect with sampler_dims: all (line %d), whose light points come from the "
+                       "pixel sampler's sets; remove it or use sampler_dims: pixel_light",
+                       j->has_light_sampler ? "light_sampler" : "light_threshold", j->pos_dims[0]);
     if (!j->has_light_sampler)
         j->light_sampler = j->sampler;
     if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
@@ -383,6 +317,16 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     if (!j->has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
+}
+
+const char *job_sets_tag(const struct job *j)
+{
+    const int poisson = j->sampler == SAMPLER_POISSON || j->light_sampler == SAMPLER_POISSON;
+    if (!poisson)
+        return j->dims_all ? " padded uniformly" : "";
+    if (j->poisson_domain == POISSON_SQUARE)
+        return j->dims_all ? " poisson square padded uniformly" : " poisson square";
+    return j->dims_all ? " poisson torus padded uniformly" : " poisson torus";
 }
 
 int job_hash_file(const char *path, uint64_t *h, struct err *e)

@@ -26,18 +26,19 @@ struct job {
     char output[JOB_NAME_MAX];    /* file name under --out DIR/<name>/ */
     char reference[JOB_PATH_MAX]; /* resolved; "" when none */
     int poisson_pool;
-    int light_sampling; /* 0: no importance sampling of lights (default 1) */
-    int nee;            /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
-    int dims_all;       /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
-    int roulette;       /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: on with nee) */
-    int priority;       /* queue order: higher first (default 0) */
-    int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
-                           image (a compare job's renders, scored in linear radiance) */
-    uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
+    enum poisson_domain poisson_domain; /* fresh Poisson sets: torus (default, unbiased) or square */
+    int light_sampling;                 /* 0: no importance sampling of lights (default 1) */
+    int nee;        /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
+    int dims_all;   /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
+    int roulette;   /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: on with nee) */
+    int priority;   /* queue order: higher first (default 0) */
+    int float_copy; /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
+                       image (a compare job's renders, scored in linear radiance) */
+    uint64_t hash;  /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
-    int pos_threshold[2], pos_light_threshold[2], pos_reference[2], pos_scene[2], pos_format[2],
-        pos_output[2], pos_name[2], pos_width[2];
+    int pos_threshold[2], pos_light_threshold[2], pos_light_sampler[2], pos_dims[2], pos_reference[2],
+        pos_scene[2], pos_format[2], pos_output[2], pos_name[2], pos_width[2], pos_poisson_pool[2];
 };
 
 /* Load and validate the job file at path. 0, or -1 with e = "file:line:col: key: message". */
@@ -58,6 +59,10 @@ int job_hash_file(const char *path, uint64_t *h, struct err *e);
    integrator: nee and off with the mixture (whose images stay the books'). */
 int job_roulette(const struct job *j);
 
+/* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
+   least 1 (the caller checks it against IMAGE_MAX_SIDE). */
+int job_height(const struct job *j, double aspect);
+
 /* Set defaults (name from the file's stem). */
 void job_defaults(struct job *j, const char *path);
 
@@ -66,6 +71,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *val,
 
 /* Derive what depends on several keys (light sampler default, format, output name). */
 int job_finish(struct job *j, struct ydoc *d, struct err *e);
+
+/* What a cache key must add for the sets j's samplers make beyond the keys it prints: the Poisson
+   domain when a sampler is poisson, the padding's version under sampler_dims: all ("" else), so
+   an image rendered by an earlier rule is never found current. */
+const char *job_sets_tag(const struct job *j);
 
 /* The keys a job file may hold, NULL-terminated. */
 extern const char *const job_keys[];

@@ -128,8 +128,10 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     h->cpu_s = get_f64(&p);
     h->peak_rss_kb = get_u64(&p);
     if (h->version != PART_VERSION)
-        return err_set(e, path, 0, 0, "part file version %u, this worker reads version %d", h->version,
-                       PART_VERSION);
+        return err_set(e, path, 0, 0,
+                       "a part file of another worker version (part format %u; this worker reads format %d): "
+                       "render this part again with this worker",
+                       h->version, PART_VERSION);
     /* the sides a render allows, not a decoder's IMAGE_MAX_PIXELS: parts of a 10240x10240 render
        (1.05e8 pixels) were refused as damaged, and --part resume never saw them as current */
     if (h->width < 1 || h->width > IMAGE_MAX_SIDE || h->height < 1 || h->height > IMAGE_MAX_SIDE ||
@@ -171,6 +173,41 @@ int part_write(const char *path, const struct job *j, int w, int h, int part, in
     return rc;
 }
 
+/* Counters within 2^56, so that the sum of PART_MAX parts cannot wrap. */
+#define PART_MAX_COUNT ((uint64_t)1 << 56)
+
+int part_check_contents(const struct part_file *pf, const char *path, struct err *e)
+{
+    const struct part_header *h = &pf->h;
+    const struct render_stats *st = &h->st;
+    uint64_t rows = (uint64_t)part_rows((int)h->height, (int)h->part, (int)h->parts);
+    if (h->processes < 1 || h->processes > PROCS_MAX_PROCESSES)
+        return err_set(e, path, 0, 0, "damaged part file: %u processes", h->processes);
+    if (st->pixels != rows * h->width)
+        return err_set(e, path, 0, 0, "damaged part file: counts %llu pixels but holds %llu",
+                       (unsigned long long)st->pixels, (unsigned long long)(rows * h->width));
+    if (st->samples >= PART_MAX_COUNT || st->rays >= PART_MAX_COUNT || st->light_sets >= PART_MAX_COUNT ||
+        st->nonfinite > st->samples || (st->pixels > 0 && st->spp_min > st->spp_max) ||
+        st->samples < st->pixels * (uint64_t)st->spp_min ||
+        st->samples > st->pixels * (uint64_t)st->spp_max || st->rays < st->samples)
+        return err_set(e, path, 0, 0,
+                       "damaged part file: impossible counts (%llu samples, %u to %u per pixel, %llu rays)",
+                       (unsigned long long)st->samples, st->spp_min, st->spp_max,
+                       (unsigned long long)st->rays);
+    if (!(h->wall_s >= 0 && h->wall_s < 1e12 && h->cpu_s >= 0 && h->cpu_s < 1e12 && st->sampler_s >= 0 &&
+          st->sampler_s <= h->cpu_s) ||
+        h->peak_rss_kb >= PART_MAX_COUNT)
+        return err_set(e, path, 0, 0, "damaged part file: impossible times or memory");
+    const uint8_t *p = pf->data + PART_HEADER;
+    for (uint64_t i = 0; i < rows * h->width * 3; i++) {
+        uint32_t v = get_u32(&p);
+        if ((v & 0x7f800000u) == 0x7f800000u) /* all exponent bits: inf or NaN */
+            return err_set(e, path, 0, 0, "damaged part file: a non-finite pixel in row %llu of the image",
+                           (unsigned long long)(h->part + i / (h->width * 3) * h->parts));
+    }
+    return 0;
+}
+
 int part_read(const char *path, struct part_file *pf, struct err *e)
 {
     memset(pf, 0, sizeof *pf);
@@ -178,13 +215,16 @@ int part_read(const char *path, struct part_file *pf, struct err *e)
     uint8_t head[PART_HEADER];
     struct err ignored;
     size_t max = PART_HEADER + 4;
-    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK), whole = 0;
     if (fd >= 0) {
-        if (read(fd, head, sizeof head) == (ssize_t)sizeof head &&
-            decode_header(head, sizeof head, path, &pf->h, &ignored) == 0)
-            max = part_bytes(&pf->h);
+        whole = read(fd, head, sizeof head) == (ssize_t)sizeof head;
         close(fd);
     }
+    /* a header of another version (or a damaged one) says so, not "file too large" */
+    if (whole && memcmp(head, PART_MAGIC, 8) == 0 && decode_header(head, sizeof head, path, &pf->h, e) < 0)
+        return -1;
+    if (whole && decode_header(head, sizeof head, path, &pf->h, &ignored) == 0)
+        max = part_bytes(&pf->h);
     if (fileio_read_all(path, max, &pf->data, &pf->len, e) < 0)
         return -1;
     if (decode_header(pf->data, pf->len, path, &pf->h, e) < 0)
@@ -220,7 +260,7 @@ int part_matches(const char *path, const struct job *j, int part, int parts)
     struct part_file pf;
     struct err e;
     int ok = part_read(path, &pf, &e) == 0 && pf.h.hash == part_hash(j) && (int)pf.h.part == part &&
-             (int)pf.h.parts == parts;
+             (int)pf.h.parts == parts && part_check_contents(&pf, path, &e) == 0;
     part_file_free(&pf);
     return ok;
 }

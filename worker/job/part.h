@@ -50,6 +50,12 @@ struct part_file {
 int part_read(const char *path, struct part_file *pf, struct err *e);
 void part_file_free(struct part_file *pf);
 
+/* What a render can have written into pf (read by part_read): one pixel counted per stored
+   pixel, samples between pixels x spp min and x spp max, counters that cannot wrap when PART_MAX
+   parts are summed, finite non-negative times, a sampling share within the CPU time, finite
+   pixels. 0 or -1 with e filled (file = path). */
+int part_check_contents(const struct part_file *pf, const char *path, struct err *e);
+
 /* Copy pf's rows (row % parts == part) into rgb, a framebuffer of pf's width x height. */
 void part_rows_into(const struct part_file *pf, float *rgb);
 

@@ -124,10 +124,9 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     }
     if (scene_load(j->scene_path, &sf, e) < 0)
         goto done;
+    snprintf(rr->scene_warning, sizeof rr->scene_warning, "%s", sf.warning);
     int w = j->width;
-    int h = j->height ? j->height : (int)lround(w / sf.aspect);
-    if (h < 1)
-        h = 1;
+    int h = job_height(j, sf.aspect);
     if (h > IMAGE_MAX_SIDE) {
         /* only a given width can get here (300 / the smallest aspect, 0.01, is within the limit) */
         err_set(e, j->path, j->pos_width[0], j->pos_width[1],
@@ -164,6 +163,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
+    sampler_set_domain(pix, j->poisson_domain);
+    sampler_set_domain(light, j->poisson_domain);
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
     outdir_dir(o->out_dir, j->name, dir, sizeof dir);
     if (outdir_check(dir, e) < 0)
@@ -226,12 +227,17 @@ void run_format_summary(const struct job *j, const struct run_result *rr, char *
 
 int run_format_warning(const struct job *j, const struct run_result *rr, char *buf, size_t n)
 {
-    if (!rr->black)
+    if (!rr->black && !rr->scene_warning[0])
         return 0;
-    snprintf(buf, n,
-             "%s: warning: the image is entirely black (no light reaches the camera? a light emits from its "
-             "front face only: a rect's flip:, a disk's toward:)",
-             j->name);
+    /* the scene's warning names the light, which the black image's warning only guesses at */
+    if (!rr->black)
+        snprintf(buf, n, "%s: warning: %s", j->name, rr->scene_warning);
+    else
+        snprintf(
+            buf, n,
+            "%s: warning: the image is entirely black (no light reaches the camera? a light emits from its "
+            "front face only: a rect's flip:, a disk's toward:)%s%s",
+            j->name, rr->scene_warning[0] ? "; " : "", rr->scene_warning);
     return 1;
 }
 
@@ -245,7 +251,7 @@ void run_print_summary(const struct job *j, const struct run_result *rr)
 
 void run_print_warnings(const struct job *j, const struct run_result *rr)
 {
-    char line[600];
+    char line[1024];
     if (run_format_warning(j, rr, line, sizeof line))
         err_print("%s\n", line);
 }

@@ -42,6 +42,7 @@ struct run_result {
     int width, height;
     int skipped;               /* outputs were current (same job hash): nothing rendered */
     int black;                 /* the image written is entirely black (run_print_warnings) */
+    char scene_warning[600];   /* the scene's warning (scene_file.warning), run_print_warnings's */
     struct procs_result procs; /* on a render failure: child_crashed, child_signal, stopped */
     int has_error;             /* rendered against a reference: error holds the figures */
     struct metrics error;

@@ -11,6 +11,7 @@
 
 #include "base/fileio.h"
 #include "base/json.h"
+#include "machine.h"
 #include "scenefile/yamlx.h"
 
 char *sidecar_json(const struct sidecar *s)
@@ -29,6 +30,10 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "job_hash", hash);
     json_string(&js, "scene", j->scene_path);
     json_string(&js, "image", s->image);
+    struct machine m = {0}; /* where it ran: CPU times of different models do not compare */
+    machine_describe(&m);
+    json_string(&js, "host", m.host);
+    json_string(&js, "cpu_model", m.cpu_model);
     json_uint(&js, "width", (uint64_t)s->width);
     json_uint(&js, "height", (uint64_t)s->height);
     json_begin_array(&js, "size");
@@ -44,6 +49,7 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "sampler_dims", j->dims_all ? "all" : "pixel_light");
     json_string(&js, "russian_roulette", job_roulette(j) ? "on" : "off");
     json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);
+    json_string(&js, "poisson_domain", poisson_domain_name(j->poisson_domain));
     json_uint(&js, "max_depth", (uint64_t)j->max_depth);
     json_uint(&js, "seed", j->seed);
     json_uint(&js, "processes", (uint64_t)r->processes);
@@ -80,7 +86,7 @@ char *sidecar_json(const struct sidecar *s)
     json_end_array(&js);
     json_end_object(&js);
     json_uint(&js, "peak_rss_kb", (uint64_t)r->peak_rss_kb);
-    json_uint(&js, "nonfinite_dropped", t->nonfinite);
+    json_uint(&js, "nonfinite_samples", t->nonfinite); /* counted as zero, not dropped */
     if (s->error) {
         json_begin_object(&js, "error");
         json_string(&js, "reference", j->reference);
@@ -194,11 +200,14 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    string_at(d, root, "job_file", out->job_file, sizeof out->job_file, e) < 0 ||
                    hash_at(d, root, out, e) < 0 ||
                    string_at(d, root, "image", out->image, sizeof out->image, e) < 0 ||
+                   string_at(d, root, "host", out->host, sizeof out->host, e) < 0 ||
+                   string_at(d, root, "cpu_model", out->cpu_model, sizeof out->cpu_model, e) < 0 ||
                    count_at(d, root, "width", &out->width, e) < 0 ||
                    count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||
                    count_at(d, root, "parts", &out->parts, e) < 0 ||
-                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 ||
+                   count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 || /* before issue 26 */
+                   count_at(d, root, "nonfinite_samples", &out->nonfinite, e) < 0 ||
                    count_at(d, samples, "total", &out->samples_total, e) < 0 ||
                    number_at(d, samples, "per_pixel_mean", &out->spp_mean, e) < 0 ||
                    count_at(d, samples, "per_pixel_min", &out->spp_min, e) < 0 ||

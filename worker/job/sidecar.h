@@ -27,9 +27,10 @@ struct sidecar_info {
     int has_hash;                /* job_hash was there, 16 hex digits */
     uint64_t job_hash;
     char image[JOB_NAME_MAX];
+    char host[128], cpu_model[128]; /* where it was rendered ("" in sidecars of earlier versions) */
     uint64_t width, height, processes, parts;
     uint64_t samples_total, spp_min, spp_max; /* samples.total, per_pixel_min, per_pixel_max */
-    uint64_t nonfinite;                       /* nonfinite_dropped */
+    uint64_t nonfinite;                       /* nonfinite_samples (nonfinite_dropped before) */
     double spp_mean;                          /* samples.per_pixel_mean */
     double wall_s, cpu_s, sampler_s, sampling_share, ns_per_sample; /* time.* (the job's) */
     int has_error;                                                  /* error.* were there */

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "base/hash.h"
 #include "base/sbuf.h"
 
 #define PANEL_W 480
@@ -19,11 +20,29 @@
 #define CHAR_W 7         /* a generous width of one character at 12 px sans-serif */
 #define WHISKER_NOTE "whisker: seed min-max"
 
+#define PALETTE 8
+
 const char *chart_color(int i)
 {
-    static const char *const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                          "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-    return palette[(i < 0 ? -i : i) % 8];
+    static const char *const palette[PALETTE] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                                 "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+    return palette[(i < 0 ? -i : i) % PALETTE];
+}
+
+/* Series s's colour in panel p: the palette slot its name hashes to, so a variant keeps its colour
+   across the studies on one page; on a clash within the panel the next free slot (by series
+   order, so every panel of one study agrees). */
+static const char *series_color(const struct chart_panel *p, int s)
+{
+    int used[PALETTE] = {0}, slot = 0;
+    for (int i = 0; i <= s; i++) {
+        const char *name = p->series[i].name ? p->series[i].name : "";
+        slot = (int)(hash_bytes(HASH_FNV_OFFSET, name, strlen(name)) % PALETTE);
+        for (int k = 0; k < PALETTE && used[slot]; k++)
+            slot = (slot + 1) % PALETTE;
+        used[slot] = 1;
+    }
+    return chart_color(slot);
 }
 
 /* The data range of a panel in log10 units; 0 when nothing is drawable. */
@@ -238,7 +257,7 @@ static void legend(struct sbuf *b, double x, double y, int legend_w, const struc
         double ly = y + 18 + 18 * s;
         sbuf_printf(
             b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"3\"/>\n",
-            x + 8, ly - 4, x + 28, ly - 4, chart_color(s));
+            x + 8, ly - 4, x + 28, ly - 4, series_color(p, s));
         sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\">", x + LEGEND_TEXT_X, ly);
         sbuf_escape(b, p->series[s].name);
         sbuf_printf(b, "</text>\n");
@@ -282,7 +301,7 @@ static void panel(struct sbuf *b, const struct chart_panel *p, double ox, double
     axes(b, &f, p);
     guides(b, &f, p);
     for (int s = 0; s < p->n_series; s++)
-        series(b, &f, &p->series[s], chart_color(s));
+        series(b, &f, &p->series[s], series_color(p, s));
     sbuf_printf(b, "</g>\n");
 }
 

@@ -21,7 +21,8 @@ struct chart_panel {
 };
 
 /* An SVG document (UTF-8, valid XML) with `title` above n panels laid out in `columns`
-   columns. Series colours follow the series index, so they match across panels. Returns a
+   columns. A series' colour follows its name (a hash into the palette, the next free slot on
+   a clash), so a variant keeps its colour across panels and studies. Returns a
    malloc'd string (caller frees), NULL on no memory. */
 char *chart_svg(const char *title, const struct chart_panel *panels, int n, int columns);
 

@@ -10,12 +10,14 @@
 
 #include "compare_ref.h"
 #include "compare_stats.h"
+#include "report_chart.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
 #include "job/sidecar.h"
 #include "report.h"
+#include "study_machines.h"
 #include "verdict_from.h"
 #include "verdict_out.h"
 #include "job/run_out.h"
@@ -65,11 +67,11 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
         fileio_hash(j->reference, IMGIO_MAX_BYTES, &h, &ignored);
     char text[JOB_PATH_MAX + 512];
     int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s",
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s",
                      j->width, j->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
-                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "",
+                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
                      job_roulette(j) ? " roulette" : "");
     *hash = hash_bytes(h, text, (size_t)n);
     return 0;
@@ -216,6 +218,61 @@ static int write_text(const char *dir, const char *file, char *text, struct err 
     return rc;
 }
 
+/* Read scene cs's prepared reference into r (floats, and 8-bit display values). 0 or -1. */
+static int ref_read(struct compare_scene *cs, struct scene_ref *r, struct err *e)
+{
+    if (imgio_read_f(cs->ref_path, &r->f, &cs->ref_domain, e) < 0 ||
+        (cs->ref_domain == IMG_DISPLAY8 ? imgio_read(cs->ref_path, &r->display, e)
+                                        : image_alloc(&r->display, r->f.w, r->f.h, e)) < 0)
+        return -1;
+    if (cs->ref_domain == IMG_LINEAR)
+        image_float_to_rgb8(r->f.px, r->f.w, r->f.h, r->display.px);
+    return 0;
+}
+
+int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e)
+{
+    struct compare_item *it = &c->items[i];
+    struct compare_scene *cs = &c->scenes[it->scene];
+    struct scene_ref ref = {0};
+    int rc = compare_ref_prepare(c, it->scene, o, e);
+    if (rc == 0 && cs->ref_kind != COMPARE_REF_NONE && ref_read(cs, &ref, e) < 0)
+        rc = 2;
+    if (rc == 0)
+        rc = render_item(c, it, cs->ref_kind != COMPARE_REF_NONE ? &ref : NULL, o, e);
+    image_f_free(&ref.f);
+    image_free(&ref.display);
+    return rc;
+}
+
+int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
+{
+    e->msg[0] = 0;
+    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
+       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
+    char summary[2100], chart[2100], report[2100], verdict[2100];
+    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
+    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
+    snprintf(report, sizeof report, "%s/report.html", dir);
+    snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
+    const char *outs[] = {summary, chart, report, verdict, NULL};
+    int lock = -1, rc = -1;
+    verdict_study_free(&c->verdict);
+    study_env_read(&c->env);
+    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
+        study_machines_mark(c, o->out_dir, e) < 0)
+        return -1;
+    verdict_print_warnings(&c->verdict, 1);
+    if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
+        write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
+        write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
+        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
+        write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
+        rc = 0;
+    outdir_unlock(lock);
+    return rc;
+}
+
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
     char dir[2048];
@@ -239,16 +296,11 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         struct compare_scene *cs = &c->scenes[s];
         if (cs->ref_kind == COMPARE_REF_NONE)
             continue;
-        if (imgio_read_f(cs->ref_path, &refs[s].f, &cs->ref_domain, e) < 0 ||
-            (cs->ref_domain == IMG_DISPLAY8
-                 ? imgio_read(cs->ref_path, &refs[s].display, e)
-                 : image_alloc(&refs[s].display, refs[s].f.w, refs[s].f.h, e)) < 0) {
+        if (ref_read(cs, &refs[s], e) < 0) {
             rc = 2;
             goto fail;
         }
-        if (cs->ref_domain == IMG_LINEAR)
-            image_float_to_rgb8(refs[s].f.px, refs[s].f.w, refs[s].f.h, refs[s].display.px);
-        else
+        if (cs->ref_domain != IMG_LINEAR)
             run_warn_display_reference(c->name, cs->ref_path);
     }
     for (int i = 0; i < c->n_items; i++)
@@ -274,31 +326,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
                 it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
                 it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
-    rc = 1;
-    e->msg[0] = 0;
-    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
-       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
-    char summary[2100], chart[2100], report[2100], verdict[2100];
-    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
-    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
-    snprintf(report, sizeof report, "%s/report.html", dir);
-    snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
-    const char *outs[] = {summary, chart, report, verdict, NULL};
-    int lock = -1;
-    verdict_study_free(&c->verdict);
-    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0)
-        goto fail;
-    verdict_print_warnings(&c->verdict, 1);
-    if (outdir_mkdirs(dir, NULL, e) < 0 || run_out_lock_outputs(dir, outs, o, &lock, e) < 0 ||
-        write_text(dir, "summary.csv", summary_csv(c), e) < 0 ||
-        write_text(dir, "chart.svg", compare_stats_chart_svg(c), e) < 0 ||
-        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1), e) < 0 ||
-        write_text(dir, "report.html", report_html(c, dir, e), e) < 0) {
-        outdir_unlock(lock);
-        goto fail;
-    }
-    outdir_unlock(lock);
-    rc = 0;
+    rc = compare_write_outputs(c, dir, o, e) < 0;
 fail:
     for (int s = 0; s < c->n_scenes; s++) {
         image_f_free(&refs[s].f);

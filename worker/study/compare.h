@@ -8,6 +8,7 @@
 #include "job/job.h"
 #include "image/metrics.h"
 #include "job/run.h"
+#include "study_env.h"
 #include "verdict.h"
 
 /* Most images one compare job may expand to. */
@@ -28,6 +29,10 @@ struct compare_scene {
     int ref_reused;               /* the cached reference was reused */
     double ref_wall_s;            /* seconds its render took (now or when it was cached) */
     double ref_spp;               /* its samples per pixel (from its render or sidecar), 0 unknown */
+    /* A settings reference is the mean of two independent halves (compare_ref.c); from their
+       difference: its own relMSE, its mean radiance and that mean's standard error. NAN: unknown
+       (an image reference: its mean radiance is read at the verdict, its noise is not known). */
+    double ref_relmse, ref_radiance, ref_radiance_se;
 };
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
@@ -55,6 +60,7 @@ struct compare {
     uint64_t *seeds;
     struct compare_item *items;   /* index compare_index(c, scene, variant, point, seed) */
     struct verdict_study verdict; /* filled by compare_run once every image is scored */
+    struct study_env env;         /* the command, program, compiler, CPU and load, at that time */
     int has_verdict;
 };
 
@@ -84,6 +90,17 @@ static inline int compare_index(const struct compare *c, int scene, int variant,
    or write failed, 2 on bad input found late (a reference image); e says why. Prints one
    progress line per combination when o->progress and not o->quiet. */
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
+
+/* Render combination i alone (the queue's fan-out: one render per queue entry), its scene's
+   reference prepared first (reused from the cache when there). 0, 1 or 2 as compare_run. */
+int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e);
+
+/* From a finished study (every item's figures filled, its images and float copies in dir, each
+   settings reference's ref_path and noise known: compare_ref_prepare or compare_ref_measure): the
+   verdict (verdict_from_compare, into c->verdict), then summary.csv, chart.svg (report_chart_svg),
+   verdict.json (verdict_json_text) and report.html (report_html) under dir's lock. The gather of a
+   study spread over a queue calls this as compare_run does. 0, or -1 with e filled. */
+int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e);
 
 /* The line that ends a compare job's run: its images, references, time, output folder and the
    verdict at equal CPU time ("compare: 120 images (2 scenes x ...), references: 1 rendered, ...,

@@ -1,5 +1,6 @@
 /* compare_expand: a compare job's reference and its combinations as ordinary jobs, with
    clear, stable image names. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,7 +33,13 @@ int compare_expand_reference(struct compare_loading *L)
         if (imgio_read_f(tmp.reference, &img, &c->scenes[0].ref_domain, L->e) < 0)
             return ydoc_fail(d, r, L->e, "reference: %s: %s", tmp.reference, L->e->msg);
         int w = img.w, h = img.h;
+        size_t bad = 0, n = (size_t)w * h * 3;
+        for (size_t i = 0; i < n; i++)
+            bad += !isfinite(img.px[i]);
         image_f_free(&img);
+        if (bad) /* every error against it would be NaN: found now, not after the renders */
+            return ydoc_fail(d, r, L->e, "reference: %s: %zu of its %zu values are NaN or infinite",
+                             tmp.reference, bad, n);
         if (w != c->scenes[0].width || h != c->scenes[0].height)
             return ydoc_fail(d, r, L->e, "reference: image is %dx%d but the job renders %dx%d", w, h,
                              c->scenes[0].width, c->scenes[0].height);

@@ -85,7 +85,13 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
         outdir_stem(L->scene_base[s].scene_path, L->c->scenes[s].name, sizeof L->c->scenes[s].name);
         for (int t = 0; t < s; t++)
             if (!strcmp(L->c->scenes[t].name, L->c->scenes[s].name))
-                return ydoc_fail(d, item, L->e, "scenes: \"%s\" is listed twice", L->c->scenes[s].name);
+                return strcmp(L->scene_base[t].scene_path, L->scene_base[s].scene_path)
+                           ? ydoc_fail(d, item, L->e,
+                                       "scenes: %s and %s are both named \"%s\" (a scene is named by its "
+                                       "file's stem, and so are its outputs): rename one of the files",
+                                       L->scene_base[t].scene_path, L->scene_base[s].scene_path,
+                                       L->c->scenes[s].name)
+                           : ydoc_fail(d, item, L->e, "scenes: \"%s\" is listed twice", L->c->scenes[s].name);
         if (scene_size(L, s, item) < 0)
             return -1;
     }

@@ -5,10 +5,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
+#include "base/rng.h"
 #include "job/outdir.h"
 #include "job/sidecar.h"
 #include "scenefile/scene_load.h"
@@ -25,30 +27,153 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
     if (scene_hash_inputs(j->scene_path, &h, e) < 0)
         return -1;
     char text[512];
-    int n = snprintf(
-        text, sizeof text, "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s",
-        cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
-        sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth, (unsigned long long)j->seed,
-        j->poisson_pool, j->light_sampling, WORKER_VERSION, j->nee ? " nee" : "",
-        j->dims_all ? " dims all" : "", job_roulette(j) ? " roulette" : "");
+    int n = snprintf(text, sizeof text,
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s%s halves",
+                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
+                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
+                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
+                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
+                     job_roulette(j) ? " roulette" : "");
     *key = hash_bytes(h, text, (size_t)n);
     return 0;
 }
 
-/* The seconds a cached reference took to render and its samples per pixel, from its sidecar (0
-   when unknown). */
-static void cached_figures(const char *sidecar, struct compare_scene *cs)
+/* The seconds a half took to render and its samples per pixel, from its sidecar (0 when unknown). */
+static void half_figures(const char *sidecar, double *wall_s, double *spp)
 {
     struct sidecar_info info;
     struct err e;
     int ok = sidecar_read(sidecar, &info, &e) == 0;
-    cs->ref_wall_s = ok && isfinite(info.wall_s) ? info.wall_s : 0;
-    cs->ref_spp = ok && isfinite(info.spp_mean) ? info.spp_mean : 0;
+    *wall_s = ok && isfinite(info.wall_s) ? info.wall_s : 0;
+    *spp = ok && isfinite(info.spp_mean) ? info.spp_mean : 0;
+}
+
+/* The record beside a cached half (<stem>.key): its cache key and a hash of the EXR's bytes as
+   rendered, so a file of another scene or settings put at its name, a PFM or PNG renamed .exr, or
+   a damaged one no longer matches and is rendered again. */
+static int record_text(const char *exr, uint64_t key, char *buf, size_t n)
+{
+    uint64_t h = HASH_FNV_OFFSET;
+    struct err ignored;
+    if (fileio_hash(exr, 1u << 30, &h, &ignored) < 0)
+        return -1;
+    snprintf(buf, n, "worker reference half: key %016llx, exr %016llx\n", (unsigned long long)key,
+             (unsigned long long)h);
+    return 0;
+}
+
+/* Whether the cached half at exr (of key) is the one its record names: 1, else 0. */
+static int record_ok(const char *exr, const char *record, uint64_t key)
+{
+    char want[128];
+    uint8_t *have = NULL;
+    size_t len;
+    struct err ignored;
+    int ok = record_text(exr, key, want, sizeof want) == 0 &&
+             fileio_read_all(record, 256, &have, &len, &ignored) == 0 && len == strlen(want) &&
+             !memcmp(have, want, len);
+    free(have);
+    return ok;
+}
+
+/* Half h (0 or 1) of the reference: its settings with half the samples (the thresholds, a spacing,
+   times sqrt 2) and its own seed, into OUT/.cache/ref-<scene>-<key>-<a|b>.exr, rendered unless the
+   cache holds it at the right size. *img is its pixels. */
+static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o, struct rgbf *img,
+                struct err *e)
+{
+    struct job j = cs->ref_job;
+    snprintf(j.name, sizeof j.name, ".cache");
+    j.format = IMG_EXR; /* linear radiance, as every error is measured in */
+    j.threshold = fmin(100, j.threshold * sqrt(2));
+    j.light_threshold = fmin(100, j.light_threshold * sqrt(2));
+    j.seed = h ? rng_mix64(j.seed) : j.seed; /* independent of the other half and of the study's seeds */
+    snprintf(j.output, sizeof j.output, "ref-%s-%016llx-%c.exr", cs->name, (unsigned long long)key, "ab"[h]);
+    char dir[JOB_PATH_MAX], path[JOB_PATH_MAX], sidecar[JOB_PATH_MAX], record[JOB_PATH_MAX + 8], text[128];
+    outdir_paths(&j, o->out_dir, dir, path, sidecar, sizeof path);
+    snprintf(record, sizeof record, "%.*s.key", (int)(strlen(path) - 4), path);
+    struct err ignored;
+    double wall_s = 0, spp = 0;
+    if (record_ok(path, record, key) && imgio_read_f(path, img, NULL, &ignored) == 0 && img->w == cs->width &&
+        img->h == cs->height) {
+        half_figures(sidecar, &wall_s, &spp);
+    } else {
+        if (access(path, F_OK) == 0)
+            run_say(o,
+                    "%s: the cached half %s is not the one its record names (damaged, replaced or of an "
+                    "older worker): rendering it again\n",
+                    cs->name, path);
+        image_f_free(img);
+        cs->ref_reused = 0;
+        run_say(o, "%s: rendering the reference's half %c (%s t=%g, light %s t=%g, seed %llu) into %s\n",
+                cs->name, "ab"[h], sampler_kind_name(j.sampler), j.threshold,
+                sampler_kind_name(j.light_sampler), j.light_threshold, (unsigned long long)j.seed, path);
+        struct run_result rr;
+        struct run_opts forced = *o;
+        forced.force = 1; /* its sidecar may call a damaged image current */
+        int rc = run_job(&j, &forced, &rr, e);
+        if (rc != 0) {
+            err_prefix(e, "reference");
+            return rc;
+        }
+        wall_s = rr.procs.wall_s;
+        spp = rr.procs.total.pixels ? (double)rr.procs.total.samples / rr.procs.total.pixels : 0;
+        if (imgio_read_f(path, img, NULL, e) < 0 || record_text(path, key, text, sizeof text) < 0 ||
+            fileio_write_atomic(record, text, strlen(text), e) < 0)
+            return 1;
+    }
+    cs->ref_wall_s += wall_s;
+    cs->ref_spp += spp;
+    return 0;
+}
+
+/* The reference = the mean of its halves a and b (into a), and its own noise from their
+   difference: each half has variance s2 per value, their mean s2 / 2 and a - b 2 s2, so the mean's
+   relMSE is the mean of (a - b)^2 / 4 / (m^2 + 0.01), and its mean radiance's variance the sum of
+   (a - b)^2 / 4 over the N values, over N^2 (values independent: per-pixel seeds). */
+static void mean_of_halves(struct compare_scene *cs, struct rgbf *a, const struct rgbf *b)
+{
+    size_t n = (size_t)a->w * a->h * 3;
+    double rel = 0, sum = 0, var = 0;
+    for (size_t i = 0; i < n; i++) {
+        double m = 0.5 * ((double)a->px[i] + b->px[i]), d = (double)a->px[i] - b->px[i];
+        rel += d * d / 4 / (m * m + METRICS_REL_EPS);
+        var += d * d / 4;
+        sum += m;
+        a->px[i] = (float)m;
+    }
+    cs->ref_relmse = rel / (double)n;
+    cs->ref_radiance = sum / (double)n;
+    cs->ref_radiance_se = sqrt(var) / (double)n;
+}
+
+void compare_ref_measure(struct compare_scene *cs)
+{
+    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
+    const char *dot = strrchr(cs->ref_path, '.');
+    int stem = dot ? (int)(dot - cs->ref_path) : (int)strlen(cs->ref_path);
+    char path[JOB_PATH_MAX + 8];
+    struct rgbf a = {0}, b = {0};
+    struct err ignored;
+    double wall_s, spp;
+    cs->ref_spp = 0;
+    for (int h = 0; h < 2; h++) {
+        snprintf(path, sizeof path, "%.*s-%c.json", stem, cs->ref_path, "ab"[h]);
+        half_figures(path, &wall_s, &spp);
+        cs->ref_spp += spp;
+        snprintf(path, sizeof path, "%.*s-%c.exr", stem, cs->ref_path, "ab"[h]);
+        if (imgio_read_f(path, h ? &b : &a, NULL, &ignored) < 0)
+            break;
+    }
+    if (a.px && b.px && a.w == b.w && a.h == b.h)
+        mean_of_halves(cs, &a, &b);
+    image_f_free(&a), image_f_free(&b);
 }
 
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
 {
     struct compare_scene *cs = &c->scenes[s];
+    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
     if (cs->ref_kind != COMPARE_REF_SETTINGS)
         return 0;
     uint64_t key;
@@ -56,35 +181,26 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         return 2;
     struct job j = cs->ref_job;
     snprintf(j.name, sizeof j.name, ".cache");
-    /* linear radiance, as every error is measured in */
-    j.format = IMG_EXR;
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
     char dir[JOB_PATH_MAX], sidecar[JOB_PATH_MAX];
     outdir_paths(&j, o->out_dir, dir, cs->ref_path, sidecar, sizeof cs->ref_path);
     cs->ref_domain = IMG_LINEAR;
-    struct rgbf img = {0};
-    enum img_domain domain;
-    struct err ignored;
-    if (imgio_read_f(cs->ref_path, &img, &domain, &ignored) == 0 && img.w == cs->width &&
-        img.h == cs->height) {
-        image_f_free(&img);
-        cs->ref_reused = 1;
-        cached_figures(sidecar, cs);
+    cs->ref_reused = 1, cs->ref_wall_s = 0, cs->ref_spp = 0;
+    struct rgbf a = {0}, b = {0}, m = {0};
+    int rc = half(cs, 0, key, o, &a, e);
+    if (rc == 0)
+        rc = half(cs, 1, key, o, &b, e);
+    if (rc == 0) {
+        mean_of_halves(cs, &a, &b);
+        struct err ignored;
+        int current = cs->ref_reused && imgio_read_f(cs->ref_path, &m, NULL, &ignored) == 0 && m.w == a.w &&
+                      m.h == a.h && !memcmp(m.px, a.px, sizeof *a.px * 3 * (size_t)a.w * a.h);
+        if (!current && imgio_write_f(cs->ref_path, &a, IMG_EXR, NULL, 0, e) < 0)
+            rc = 1;
+    }
+    if (rc == 0 && cs->ref_reused)
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);
-        return 0;
-    }
-    image_f_free(&img);
-    run_say(o, "%s: rendering the reference (%s t=%g, light %s t=%g) into %s\n", cs->name,
-            sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
-            cs->ref_path);
-    struct run_result rr;
-    int rc = run_job(&j, o, &rr, e);
-    if (rc != 0) {
-        err_prefix(e, "reference");
-        return rc;
-    }
-    cs->ref_wall_s = rr.procs.wall_s;
-    cs->ref_spp = rr.procs.total.pixels ? (double)rr.procs.total.samples / rr.procs.total.pixels : 0;
-    return 0;
+    image_f_free(&a), image_f_free(&b), image_f_free(&m);
+    return rc;
 }

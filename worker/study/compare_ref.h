@@ -8,4 +8,9 @@
 /* Render scene s's reference into OUT/.cache/, or reuse it when the cache holds one. */
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e);
 
+/* The noise of the settings reference at cs->ref_path measured again from its halves beside it
+   (<stem>-a.exr, -b.exr): ref_relmse, ref_radiance, ref_radiance_se (NAN without them) and
+   ref_spp (their sidecars'; 0 without). For a finished study re-judged. */
+void compare_ref_measure(struct compare_scene *cs);
+
 #endif

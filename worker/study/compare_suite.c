@@ -57,7 +57,8 @@ static int write_top(const struct compare_suite *s, const char *dir, const struc
         return -1;
     }
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
-        write_text(dir, "verdict.json", verdict_json_text(s->name, v, s->n_studies), e) == 0 &&
+        write_text(dir, "verdict.json", verdict_json_text(s->name, v, s->n_studies, &s->studies[0]->env),
+                   e) == 0 &&
         write_text(dir, "summary.csv", compare_suite_csv(s, dir, e), e) == 0 &&
         write_text(dir, "chart.svg", compare_suite_chart_svg(s), e) == 0 &&
         write_text(dir, "report.html", compare_suite_report_html(s, v, e), e) == 0)

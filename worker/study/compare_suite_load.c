@@ -107,6 +107,9 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
     const char *rel;
     char study[JOB_PATH_MAX];
     struct stat st;
+    if (ynull(item))
+        return ydoc_fail(d, item, e,
+                         "studies: an empty entry (null); give a study file, e.g. studies: [cost.yaml]");
     if (yget_string(d, item, "studies", &rel, e) < 0)
         return -1;
     resolve(s->path, rel, study, sizeof study);

@@ -7,7 +7,7 @@
 
 #include "base/fileio.h"
 #include "base/sbuf.h"
-#include "compare_stats.h"
+#include "report_chart.h"
 #include "report.h"
 
 /* Largest study summary.csv read back: 4096 rows of a few hundred bytes each, with room. */
@@ -60,7 +60,7 @@ char *compare_suite_chart_svg(const struct compare_suite *s)
     struct sbuf body = {0}, b = {0};
     int w = 0, h = 0;
     for (int i = 0; i < s->n_studies; i++) {
-        char *svg = compare_stats_chart_svg(s->studies[i]);
+        char *svg = report_chart_svg(s->studies[i]);
         const char *root = svg ? strstr(svg, "<svg ") : NULL;
         int sw, sh;
         if (!root || sscanf(root, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\"", &sw,
@@ -114,7 +114,7 @@ static void study_shape(struct sbuf *b, const struct compare *c)
 static int study_section(struct sbuf *b, const struct compare *c, struct err *e)
 {
     char href[JOB_NAME_MAX + 16];
-    char *svg = compare_stats_chart_svg(c);
+    char *svg = report_chart_svg(c);
     if (!svg)
         return err_set(e, NULL, 0, 0, "out of memory drawing %s's chart", c->name);
     sbuf_printf(b, "<h2 id=\"study-");
@@ -167,6 +167,8 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
             sbuf_free(&b);
             return NULL;
         }
+    if (s->n_studies > 0)
+        study_env_html(&b, &s->studies[0]->env);
     sbuf_printf(&b, "</body></html>\n");
     char *html = sbuf_take(&b);
     if (!html)

@@ -10,7 +10,7 @@
    one header. Malloc'd, or NULL with e filled. */
 char *compare_suite_csv(const struct compare_suite *s, const char *dir, struct err *e);
 
-/* Every study's chart (compare_stats_chart_svg) stacked in one SVG document. Malloc'd, NULL on no
+/* Every study's chart (report_chart_svg) stacked in one SVG document. Malloc'd, NULL on no
    memory. */
 char *compare_suite_chart_svg(const struct compare_suite *s);
 

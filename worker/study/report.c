@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "compare_stats.h"
+#include "report_chart.h"
+#include "report_stability.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "report_closeup.h"
@@ -142,7 +144,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
-        char *line = compare_stats_stability(c, s, v, dir, has_ref ? &reff : NULL);
+        char *line = report_stability(c, s, v);
         sbuf_printf(b, "<li><b>");
         sbuf_escape(b, c->variants[v]);
         sbuf_printf(b, "</b>: ");
@@ -212,7 +214,7 @@ static void table(struct sbuf *b, const struct compare *c)
 char *report_html(const struct compare *c, const char *dir, struct err *e)
 {
     struct sbuf b = {0};
-    char *svg = compare_stats_chart_svg(c);
+    char *svg = report_chart_svg(c);
     if (!svg) {
         err_set(e, NULL, 0, 0, "out of memory drawing the chart");
         return NULL;
@@ -226,8 +228,9 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         verdict_html(&b, &c->verdict, 1);
     sbuf_printf(&b, "<h2>What was measured</h2>\n<p class=\"note\">Job ");
     sbuf_escape(&b, c->path);
-    sbuf_printf(&b, ": %d images = %d scenes x %d variants x %d sweep points", c->n_items, c->n_scenes,
-                c->n_variants, c->n_points);
+    sbuf_printf(&b, ": %d image%s = %d scene%s x %d variant%s x %d sweep point%s", c->n_items,
+                c->n_items == 1 ? "" : "s", c->n_scenes, c->n_scenes == 1 ? "" : "s", c->n_variants,
+                c->n_variants == 1 ? "" : "s", c->n_points, c->n_points == 1 ? "" : "s");
     if (c->sweep_keys[0]) {
         sbuf_printf(&b, " (sweep: ");
         sbuf_escape(&b, c->sweep_keys);
@@ -235,15 +238,17 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     }
     sbuf_printf(
         &b,
-        " x %d seeds. Errors are in linear radiance: relMSE is the mean of (image - reference)^2 / "
+        " x %d seed%s. Errors are in linear radiance: relMSE is the mean of (image - reference)^2 / "
         "(reference^2 + 0.01) over the renders' unclipped float values (each PNG's float image is the "
         ".exr beside it) against each scene's reference; lower is better. Measured on the 8-bit PNGs "
         "instead, the clip at white would hide the lights, their reflections and fireflies, and the "
         "gamma curve and 1/255 steps would weight dark pixels more and set a floor (summary.csv keeps "
-        "those figures as relmse_8bit). The reference's own noise sets a floor under every curve. Wall "
+        "those figures as relmse_8bit). The reference's own noise sets a floor under every curve (the "
+        "verdict measures it from the "
+        "reference's two halves and takes it out: reference_relmse). Wall "
         "time is one image's render on this machine, so it moves with the machine's load. Every image "
         "and its JSON sidecar are beside this page (linked from the table at the end), with ",
-        c->n_seeds);
+        c->n_seeds, c->n_seeds == 1 ? "" : "s");
     report_link(&b, "summary.csv", "summary.csv");
     sbuf_printf(&b, " (the table's figures) and ");
     report_link(&b, "chart.svg", "chart.svg");
@@ -265,6 +270,7 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         }
     sbuf_printf(&b, "<h2>Every image</h2>\n");
     table(&b, c);
+    study_env_html(&b, &c->env);
     sbuf_printf(&b, "<script>%s</script>\n</body></html>\n", report_view_script());
     char *html = sbuf_take(&b);
     if (!html)

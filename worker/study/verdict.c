@@ -18,13 +18,22 @@ static double mean_x(const struct verdict_figures *f, const double *x, int v, in
     return s / f->n_seeds;
 }
 
+/* Figure i's relMSE with the reference's own noise taken out: the two add (their noise is
+   independent), so the difference is the variant's own. Floored at 1% of the measured value, so a
+   point drowned in the reference's noise (warned) still has a logarithm. */
+static double rel(const struct verdict_figures *f, int i)
+{
+    double y = f->relmse[i];
+    return f->ref_relmse > 0 && isfinite(y) ? fmax(y - f->ref_relmse, 0.01 * y) : y;
+}
+
 /* Least-squares line of log y against log x over seed k's points of v: y = exp(a + b log x). */
 static int fit(const struct verdict_figures *f, const double *x, int v, int k, double *a, double *b)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int m = 0;
     for (int p = 0; p < f->n_points; p++) {
-        double xi = x[verdict_at(f, v, p, k)], yi = f->relmse[verdict_at(f, v, p, k)];
+        double xi = x[verdict_at(f, v, p, k)], yi = rel(f, verdict_at(f, v, p, k));
         if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)))
             continue;
         double lx = log(xi), ly = log(yi);
@@ -51,7 +60,7 @@ static int nearest(const struct verdict_figures *f, const double *x, int v, int 
 {
     int found = 0;
     for (int p = 0; p < f->n_points; p++) {
-        double xi = x[verdict_at(f, v, p, k)], yi = f->relmse[verdict_at(f, v, p, k)];
+        double xi = x[verdict_at(f, v, p, k)], yi = rel(f, verdict_at(f, v, p, k));
         if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)) || xi == skip)
             continue;
         if (fabs(xi - at) <= 1e-9 * at) /* the point itself (at is a mean over seeds: rounding) */
@@ -85,13 +94,8 @@ static double value_at(const struct verdict_figures *f, const double *x, int v, 
 /* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
 static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e)
 {
-    int n = 0;
-    for (int k = 0; k < f->n_seeds; k++) {
-        double y = f->relmse[verdict_at(f, v, p, k)];
-        if (isfinite(y))
-            e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
-    }
-    e->value = n ? e->value / n : NAN;
+    for (int k = 0; k < f->n_seeds; k++)
+        verdict_entry_add(e, rel(f, verdict_at(f, v, p, k)), 1);
 }
 
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
@@ -111,36 +115,34 @@ static void rank_at(const struct verdict_figures *f, const double *x, struct ver
     r->log_scale = 1;
     for (int v = 0; v < f->n_variants; v++) {
         struct verdict_entry *e = &r->e[v];
-        *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
-        int cheapest = 0, n = 0;
+        verdict_entry_start(e, v);
+        int cheapest = 0;
         for (int p = 1; p < f->n_points; p++)
             if (mean_x(f, x, v, p) < mean_x(f, x, v, cheapest))
                 cheapest = p;
         if (mean_x(f, x, v, cheapest) > at * VERDICT_BEYOND) {
             e->unreached = 1;
             point_figures(f, v, cheapest, e);
-            continue;
-        }
-        for (int k = 0; k < f->n_seeds; k++) {
-            double y = value_at(f, x, v, k, at);
-            if (isfinite(y))
-                e->value += y, e->lo = fmin(e->lo, y), e->hi = fmax(e->hi, y), n++;
-        }
-        if (n)
-            e->value /= n;
-        else
-            e->value = e->lo = e->hi = NAN;
+        } else
+            for (int k = 0; k < f->n_seeds; k++)
+                verdict_entry_add(e, value_at(f, x, v, k, at), 1);
+        verdict_entry_end(e, 1);
     }
-    verdict_rank(r, f->n_seeds);
+    verdict_rank(r);
 }
 
-/* Whether v's points change its samples per pixel by more than 5% (a slope needs them to). */
+int verdict_samples_vary(double lo, double hi)
+{
+    return hi > lo * VERDICT_SAMPLES_VARY;
+}
+
+/* Whether v's points change its samples per pixel (a slope needs them to). */
 static int samples_vary(const struct verdict_figures *f, int v)
 {
     double lo = INFINITY, hi = 0;
     for (int p = 0; p < f->n_points; p++)
         lo = fmin(lo, mean_x(f, f->spp, v, p)), hi = fmax(hi, mean_x(f, f->spp, v, p));
-    return hi > lo * 1.05;
+    return verdict_samples_vary(lo, hi);
 }
 
 /* Each variant's slope of log relMSE against log samples per pixel, fitted per seed. */
@@ -152,18 +154,15 @@ static void rank_slopes(const struct verdict_figures *f, struct verdict_ranking 
         if (!samples_vary(f, v))
             continue;
         struct verdict_entry *e = &r->e[r->n];
-        *e = (struct verdict_entry){.variant = v, .lo = INFINITY, .hi = -INFINITY};
-        int n = 0;
+        verdict_entry_start(e, v);
         double a, b;
         for (int k = 0; k < f->n_seeds; k++)
             if (fit(f, f->spp, v, k, &a, &b) == 0)
-                e->value += b, e->lo = fmin(e->lo, b), e->hi = fmax(e->hi, b), n++;
-        if (n) {
-            e->value /= n;
-            r->n++;
-        }
+                verdict_entry_add(e, b, 0);
+        verdict_entry_end(e, 0);
+        r->n += e->n > 0;
     }
-    verdict_rank(r, f->n_seeds);
+    verdict_rank(r);
 }
 
 static struct verdict_failure *add_failure(struct verdict_scene *out, enum verdict_failure_kind kind, int v,
@@ -189,28 +188,79 @@ static void by_samples(const struct verdict_figures *f, int v, int *order)
 
 static double mean_rel(const struct verdict_figures *f, int v, int p)
 {
-    return mean_x(f, f->relmse, v, p);
+    double sum = 0;
+    for (int k = 0; k < f->n_seeds; k++)
+        sum += rel(f, verdict_at(f, v, p, k));
+    return sum / f->n_seeds;
 }
 
-/* The failure modes of variant v: structured error, error that stops falling, non-finite samples
-   and a sampler's CPU share, each at the point where it shows most. */
+/* The share of each (v, p)'s error that repeats in every seed, and the part of it a bias in mean
+   radiance makes: averaging n seeds' images divides noise by n and leaves structure, so with the
+   reference's own relMSE taken out of both, share = (n rel_of_mean / mean_rel - 1) / (n - 1). */
+static void repeat_shares(const struct verdict_figures *f, struct verdict_scene *out)
+{
+    int n = f->n_seeds, np = f->n_points;
+    double ref = f->ref_relmse > 0 ? f->ref_relmse : 0;
+    for (int v = 0; v < f->n_variants; v++)
+        for (int p = 0; p < np; p++) {
+            double rom = f->rel_of_mean ? f->rel_of_mean[v * np + p] - ref : NAN;
+            double mr = mean_x(f, f->relmse, v, p) - ref, share = NAN, bias = NAN;
+            if (n > 1 && isfinite(rom) && mr > 0) {
+                share = fmin(1, fmax(0, (n * rom / mr - 1) / (n - 1)));
+                if (f->bias_rel && isfinite(f->bias_rel[v * np + p]))
+                    bias = fmin(share, fmax(0, f->bias_rel[v * np + p] / mr));
+            }
+            out->repeat[v * np + p] = share, out->repeat_bias[v * np + p] = bias;
+        }
+}
+
+/* A bias: v's seeds' mean radiance at the point where it is most standard errors (the seeds'
+   spread and the reference's noise) off the reference's, when that is over VERDICT_BIAS_SE. */
+static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene *out)
+{
+    if (!f->radiance || !(f->ref_radiance > 0) || f->n_seeds < VERDICT_BIAS_SEEDS)
+        return;
+    double ref_se = isfinite(f->ref_radiance_se) ? f->ref_radiance_se : 0, worst = 0, pct = 0;
+    int at = -1;
+    for (int p = 0; p < f->n_points; p++) {
+        struct verdict_entry e;
+        verdict_entry_start(&e, v);
+        for (int k = 0; k < f->n_seeds; k++)
+            verdict_entry_add(&e, f->radiance[verdict_at(f, v, p, k)], 0);
+        verdict_entry_end(&e, 0);
+        double se = sqrt(e.se * e.se + ref_se * ref_se), z = (e.mean - f->ref_radiance) / se;
+        if (e.n > 1 && se > 0 && fabs(z) > fabs(worst))
+            worst = z, at = p, pct = 100 * (e.mean / f->ref_radiance - 1);
+    }
+    if (fabs(worst) > VERDICT_BIAS_SE) {
+        struct verdict_failure *x = add_failure(out, VERDICT_BIASED, v, at, pct);
+        x->detail = worst;
+        verdict_say_failure(f, x);
+    }
+}
+
+/* The failure modes of variant v: structured error, error that stops falling, non-finite samples,
+   a sampler's CPU share and a bias, each at the point where it shows most. */
 static void failures_of(const struct verdict_figures *f, int v, int *order, struct verdict_scene *out)
 {
     int at = -1;
     double most = 0;
-    for (int p = 0; f->repeat_share && p < f->n_points; p++) {
-        double s = f->repeat_share[v * f->n_points + p];
+    for (int p = 0; p < f->n_points; p++) {
+        double s = out->repeat[v * f->n_points + p];
         if (isfinite(s) && s > most)
             most = s, at = p;
     }
-    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE)
-        verdict_say_failure(f, add_failure(out, VERDICT_STRUCTURED, v, at, most));
-    if (samples_vary(f, v)) {
+    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE) {
+        struct verdict_failure *x = add_failure(out, VERDICT_STRUCTURED, v, at, most);
+        x->detail = out->repeat_bias[v * f->n_points + at];
+        verdict_say_failure(f, x);
+    }
+    if (out->samples_vary[v]) {
         by_samples(f, v, order);
         for (int i = 1; i < f->n_points; i++) {
             double r0 = mean_rel(f, v, order[i - 1]), r1 = mean_rel(f, v, order[i]);
             double s0 = mean_x(f, f->spp, v, order[i - 1]), s1 = mean_x(f, f->spp, v, order[i]);
-            if (!(r0 > 0 && r1 > 0 && s1 > s0 * 1.05))
+            if (!(r0 > 0 && r1 > 0 && s1 > s0 * VERDICT_SAMPLES_VARY))
                 continue;
             double local = log(r1 / r0) / log(s1 / s0);
             if (local > VERDICT_STALL_SLOPE) {
@@ -231,30 +281,39 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
             most = mean_x(f, f->sampler_share, v, p), at = p;
     if (most > VERDICT_SAMPLER_SHARE)
         verdict_say_failure(f, add_failure(out, VERDICT_SHARE, v, at, most));
+    bias_of(f, v, out);
 }
 
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e)
 {
     int nv = f->n_variants;
-    *out = (struct verdict_scene){.n_variants = nv, .n_seeds = f->n_seeds};
+    size_t per = (size_t)nv * f->n_points;
+    *out = (struct verdict_scene){
+        .n_variants = nv, .n_points = f->n_points, .n_seeds = f->n_seeds, .ref_relmse = f->ref_relmse};
     snprintf(out->study, sizeof out->study, "%s", f->study);
     snprintf(out->scene, sizeof out->scene, "%s", f->scene);
     out->variants = calloc((size_t)nv, sizeof *out->variants);
     out->by_samples.e = calloc((size_t)nv, sizeof *out->by_samples.e);
     out->by_cpu.e = calloc((size_t)nv, sizeof *out->by_cpu.e);
     out->by_slope.e = calloc((size_t)nv, sizeof *out->by_slope.e);
-    out->failures = calloc((size_t)nv * 4, sizeof *out->failures);
+    out->failures = calloc((size_t)nv * VERDICT_FAILURE_KINDS, sizeof *out->failures);
+    out->repeat = calloc(per, sizeof *out->repeat), out->repeat_bias = calloc(per, sizeof *out->repeat_bias);
+    out->samples_vary = calloc((size_t)nv, sizeof *out->samples_vary);
     out->warnings = calloc((size_t)VERDICT_SAY_MAX, sizeof *out->warnings);
     out->sentences = calloc((size_t)VERDICT_SAY_MAX, sizeof *out->sentences);
     int *order = calloc((size_t)f->n_points, sizeof *order);
     if (!out->variants || !out->by_samples.e || !out->by_cpu.e || !out->by_slope.e || !out->failures ||
-        !out->warnings || !out->sentences || !order) {
+        !out->warnings || !out->sentences || !order || !out->repeat || !out->repeat_bias ||
+        !out->samples_vary) {
         free(order);
         verdict_scene_free(out);
         return err_set(e, NULL, 0, 0, "out of memory");
     }
-    for (int v = 0; v < nv; v++)
+    for (int v = 0; v < nv; v++) {
         snprintf(out->variants[v], sizeof out->variants[v], "%s", f->variants[v]);
+        out->samples_vary[v] = samples_vary(f, v);
+    }
+    repeat_shares(f, out);
     rank_at(f, f->spp, &out->by_samples);
     rank_at(f, f->cpu_s, &out->by_cpu);
     rank_slopes(f, &out->by_slope);
@@ -273,6 +332,9 @@ void verdict_scene_free(struct verdict_scene *v)
     free(v->by_cpu.e);
     free(v->by_slope.e);
     free(v->failures);
+    free(v->repeat);
+    free(v->repeat_bias);
+    free(v->samples_vary);
     free(v->warnings);
     free(v->sentences);
     *v = (struct verdict_scene){0};

@@ -13,14 +13,15 @@ struct figures_mem {
     struct verdict_figures f;
     const char **variants, **samplers, **points;
     int *pools;
-    double *spp, *cpu, *rel, *share, *repeat;
+    double *spp, *cpu, *rel, *share, *rel_of_mean, *bias_rel, *radiance;
     uint64_t *nonfinite;
 };
 
 static void mem_free(struct figures_mem *m)
 {
     free(m->variants), free(m->samplers), free(m->points), free(m->pools);
-    free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->repeat), free(m->nonfinite);
+    free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->nonfinite);
+    free(m->rel_of_mean), free(m->bias_rel), free(m->radiance);
 }
 
 static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
@@ -32,9 +33,10 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->spp = calloc(n, sizeof *m->spp), m->cpu = calloc(n, sizeof *m->cpu),
     m->rel = calloc(n, sizeof *m->rel);
     m->share = calloc(n, sizeof *m->share), m->nonfinite = calloc(n, sizeof *m->nonfinite);
-    m->repeat = calloc(nv * c->n_points, sizeof *m->repeat);
+    m->rel_of_mean = calloc(nv * c->n_points, sizeof *m->rel_of_mean);
+    m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
-        !m->share || !m->nonfinite || !m->repeat)
+        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance)
         return -1;
     struct verdict_figures *f = &m->f;
     *f = (struct verdict_figures){.study = c->name,
@@ -51,8 +53,15 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .relmse = m->rel,
                                   .sampler_share = m->share,
                                   .nonfinite = m->nonfinite,
-                                  .repeat_share = m->repeat,
-                                  .ref_spp = c->scenes[s].ref_spp};
+                                  .rel_of_mean = m->rel_of_mean,
+                                  .bias_rel = m->bias_rel,
+                                  .radiance = m->radiance,
+                                  .ref_spp = c->scenes[s].ref_spp,
+                                  .ref_relmse = c->scenes[s].ref_relmse,
+                                  .ref_radiance = c->scenes[s].ref_radiance,
+                                  .ref_radiance_se = c->scenes[s].ref_radiance_se};
+    if (ref && !(f->ref_radiance > 0))
+        f->ref_radiance = compare_stats_mean_radiance(ref); /* an image reference: its noise unknown */
     for (int p = 0; p < c->n_points; p++)
         m->points[p] = c->points[p];
     for (int v = 0; v < c->n_variants; v++) {
@@ -61,8 +70,16 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
         m->samplers[v] = sampler_kind_name(j->sampler);
         m->pools[v] = j->poisson_pool;
         for (int p = 0; p < c->n_points; p++) {
-            m->repeat[v * c->n_points + p] =
-                ref ? compare_stats_repeat_share(c, s, v, p, dir, ref, NULL) : NAN;
+            struct compare_seed_stats st = {.radiance = m->radiance + verdict_at(f, v, p, 0)};
+            struct err ignored;
+            int vp = v * c->n_points + p;
+            m->rel_of_mean[vp] = m->bias_rel[vp] = NAN;
+            for (int k = 0; k < c->n_seeds; k++)
+                st.radiance[k] = NAN;
+            if (ref && compare_stats_seed_images(c, s, v, p, dir, ref, &st, &ignored) == 0)
+                m->rel_of_mean[vp] = st.rel_of_mean, m->bias_rel[vp] = st.bias_rel;
+            else
+                f->images_unread += ref != NULL;
             for (int k = 0; k < c->n_seeds; k++) {
                 const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);
@@ -86,11 +103,16 @@ int verdict_from_compare(const struct compare *c, const char *dir, struct verdic
         const struct compare_scene *cs = &c->scenes[s];
         struct rgbf ref = {0};
         struct figures_mem m = {0};
-        int has_ref = cs->ref_kind != COMPARE_REF_NONE;
-        int rc = (has_ref && imgio_read_f(cs->ref_path, &ref, NULL, e) < 0) ? -1
-                 : gather(c, s, dir, has_ref ? &ref : NULL, &m) < 0
-                     ? err_set(e, NULL, 0, 0, "out of memory")
-                     : verdict_scene_compute(&m.f, &out->scenes[s], e);
+        struct err unread;
+        /* without the reference's pixels the checks on images are skipped (the verdict says so) */
+        int has_ref =
+            cs->ref_kind != COMPARE_REF_NONE && imgio_read_f(cs->ref_path, &ref, NULL, &unread) == 0;
+        int rc =
+            gather(c, s, dir, has_ref ? &ref : NULL, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
+        if (rc == 0) {
+            m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !has_ref;
+            rc = verdict_scene_compute(&m.f, &out->scenes[s], e);
+        }
         mem_free(&m);
         image_f_free(&ref);
         if (rc < 0) {

@@ -5,16 +5,19 @@
 #include <string.h>
 
 #include "verdict_out.h"
+#include "verdict_rank.h"
 
 #define TIE_RULE                                                                                             \
-    "Two variants are ranked apart only when the gap between their means over the seeds exceeds the "        \
-    "larger of their two min-max ranges across seeds (for relMSE on its logarithm: ratios count); a "        \
-    "variant's rank is 1 + the number of variants ahead of it by that rule. Equal samples and equal CPU "    \
-    "time are each the largest that every variant reached (the smallest of the variants' densest points), "  \
-    "each seed's relMSE read there in log-log between its measured points; a variant whose cheapest point "  \
-    "costs over 1.25x that is not reached and ranks behind those that are. A ranking is clear when "         \
-    "one variant alone ranks 1, a tie when several do but some variant is behind, inconclusive when none "   \
-    "is ahead of another or there is only one seed."
+    "Each variant's figure is its seeds' mean of log relMSE at the common point (for slopes: the mean of "   \
+    "its per-seed log-log fits), with its standard error. Two variants are ranked apart only when Welch's "  \
+    "t test rejects equal means, Holm-corrected across every pair of the ranking, at alpha 0.05: the "       \
+    "chance of separating any pair of truly equal variants is at most about 5%. A variant's rank is 1 + "    \
+    "the number of variants ranked apart ahead of it; best first by rank, then mean. Equal samples and "     \
+    "equal CPU time are each the largest that every variant reached (the smallest of the variants' "         \
+    "densest points), each seed's relMSE read there in log-log between its measured points; a variant "      \
+    "whose cheapest point costs over 1.25x that is not reached and ranks behind those that are. A ranking "  \
+    "is clear when one variant alone ranks 1, a tie when several do but some variant is behind, "            \
+    "inconclusive when none is ahead of another or there is only one seed."
 
 static const char *status_name(enum verdict_status s)
 {
@@ -23,7 +26,8 @@ static const char *status_name(enum verdict_status s)
 
 static const char *kind_name(enum verdict_failure_kind k)
 {
-    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share"};
+    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
+                                        "biased"};
     return names[k];
 }
 
@@ -44,6 +48,7 @@ static void json_ranking(struct json *j, const char *key, const char *at_key, co
         json_string(j, "variant", v->variants[e->variant]);
         json_uint(j, "rank", (uint64_t)e->rank);
         json_number(j, value_key, e->value);
+        json_number(j, "standard_error", e->se);
         json_number(j, "min", e->lo);
         json_number(j, "max", e->hi);
         json_bool(j, "reached", !e->unreached);
@@ -58,6 +63,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_begin_object(j, NULL);
     json_string(j, "scene", v->scene);
     json_uint(j, "seeds", (uint64_t)v->n_seeds);
+    json_number(j, "reference_relmse", v->ref_relmse);
     json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
     json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
     json_ranking(j, "slopes", NULL, "slope", v, &v->by_slope);
@@ -68,6 +74,8 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         json_string(j, "variant", v->variants[x->variant]);
         json_string(j, "kind", kind_name(x->kind));
         json_number(j, "value", x->value);
+        if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
+            json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
         json_string(j, "text", x->text);
         json_end_object(j);
     }
@@ -83,18 +91,27 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_end_object(j);
 }
 
-char *verdict_json_text(const char *job, const struct verdict_study *s, int n)
+char *verdict_json_text(const char *job, const struct verdict_study *s, int n, const struct study_env *env)
 {
     struct json j;
     json_init(&j);
     json_begin_object(&j, NULL);
     json_string(&j, "job", job);
-    json_string(&j, "error", "relMSE in linear radiance against each scene's reference, mean over seeds");
+    json_string(&j, "error",
+                "relMSE in linear radiance against each scene's reference: mean over pixels and channels of "
+                "(v - r)^2 / (r^2 + 0.01); ranked on its mean log over seeds (value: the geometric mean)");
+    json_number(&j, "alpha", VERDICT_ALPHA);
+    if (env)
+        study_env_json(&j, "reproducibility", env);
     json_string(&j, "tie_rule", TIE_RULE);
     json_begin_array(&j, "studies");
     for (int i = 0; i < n; i++) {
         json_begin_object(&j, NULL);
         json_string(&j, "study", s[i].name);
+        if (s[i].machines[0]) { /* its equal-CPU-time rankings mix CPU models (study_machines.h) */
+            json_bool(&j, "equal_cpu_time_mixes_machines", 1);
+            json_string(&j, "cpu_models", s[i].machines);
+        }
         json_begin_array(&j, "scenes");
         for (int k = 0; k < s[i].n_scenes; k++)
             json_scene(&j, &s[i].scenes[k]);
@@ -231,10 +248,7 @@ void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len
         for (int k = 0; k < s[i].n_scenes && at < len; k++) {
             char w[256];
             verdict_winner(&s[i].scenes[k], w, sizeof w);
-            if (s[i].n_scenes == 1)
-                at += (size_t)snprintf(buf + at, len - at, " %s", w);
-            else
-                at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
+            at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
         }
     }
 }

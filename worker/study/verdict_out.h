@@ -6,12 +6,14 @@
 #include <stddef.h>
 
 #include "base/sbuf.h"
+#include "study_env.h"
 #include "verdict.h"
 
-/* verdict.json: {"job", "tie_rule", "studies": [{"study", "scenes": [{"scene", "equal_samples",
+/* verdict.json: {"job", "error", "alpha", "tie_rule", "reproducibility" (env's, when not NULL),
+   "studies": [{"study", "scenes": [{"scene", "seeds", "reference_relmse", "equal_samples",
    "equal_cpu_time", "slopes", "failures", "warnings", "sentences"}]}]}. Malloc'd, NULL on no
    memory. */
-char *verdict_json_text(const char *job, const struct verdict_study *s, int n);
+char *verdict_json_text(const char *job, const struct verdict_study *s, int n, const struct study_env *env);
 
 /* The verdict as HTML for the top of a report: per study and scene, the sentences, the three
    rankings with their figures and ties, the failures and the warnings; then the rule. */

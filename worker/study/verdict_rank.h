@@ -1,16 +1,39 @@
-/* verdict_rank: the tie rule and the ranking built on it. */
+/* verdict_rank: the separation rule and the ranking built on it. Two variants are ranked apart
+   when Welch's t test on their seeds' figures rejects equal means, Holm-corrected across every
+   pair of the ranking, at VERDICT_ALPHA: the chance that a ranking separates any two variants
+   that are in truth alike is at most about alpha, whatever the number of variants (docs/compare.md
+   gives the measured rates). */
 #ifndef VERDICT_RANK_H
 #define VERDICT_RANK_H
 
 #include "verdict.h"
 
-/* The tie rule: a beats b when a's mean is lower (better) and the gap exceeds the larger of the
-   two variants' min-max ranges across seeds, both measured on logarithms when log_scale (relMSE,
-   where a ratio is what counts). A variant that reaches the common point beats one that does not. */
-int verdict_beats(const struct verdict_entry *a, const struct verdict_entry *b, int log_scale);
+/* The family-wise error rate of a ranking: the chance of separating any two equal variants. */
+#define VERDICT_ALPHA 0.05
 
-/* Rank entries (value, lo, hi filled) best first and set their ranks and the status. n_seeds < 2
-   makes any ranking inconclusive. */
-void verdict_rank(struct verdict_ranking *r, int n_seeds);
+/* Start an entry for variant v (its figures empty). */
+void verdict_entry_start(struct verdict_entry *e, int v);
+
+/* Add one seed's figure y to e: relMSE when log_scale (ranked on log y; y <= 0 or not finite is
+   left out), a slope otherwise. */
+void verdict_entry_add(struct verdict_entry *e, double y, int log_scale);
+
+/* Finish e: value (relMSE: the geometric mean, exp of the mean log; else the mean), lo, hi (the
+   seeds' min and max), mean and se (the ranked figure's mean and its standard error). NAN when no
+   seed was added. */
+void verdict_entry_end(struct verdict_entry *e, int log_scale);
+
+/* Two-sided p-value of Welch's t test for equal means of a and b; 1 when either has fewer than
+   two seeds, 0 or 1 when both have no spread (by whether their means differ). */
+double verdict_welch_p(const struct verdict_entry *a, const struct verdict_entry *b);
+
+/* Whether a is ranked ahead of b in r: a reaches the common point and b does not, or both do (or
+   neither) and Holm's procedure over r's pairs separates them with a's mean lower. */
+int verdict_beats(const struct verdict_ranking *r, const struct verdict_entry *a,
+                  const struct verdict_entry *b);
+
+/* Separate r's entries (filled by verdict_entry_end) pair by pair, set each rank to 1 + the number
+   of variants ahead of it, order them best first (by rank, then mean) and set the status. */
+void verdict_rank(struct verdict_ranking *r);
 
 #endif

@@ -39,8 +39,18 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
     x->text[0] = 0;
     switch (x->kind) {
     case VERDICT_STRUCTURED:
-        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed (aliasing, a pattern or a bias)",
-               v, 100 * x->value, at);
+        append(x->text, "%s: %.0f%% of its error at %s repeats in every seed", v, 100 * x->value, at);
+        if (isfinite(x->detail))
+            append(x->text, " (%.0f%% a bias in mean radiance, %.0f%% a pattern: aliasing or structure)",
+                   100 * x->detail, 100 * (x->value - x->detail));
+        else
+            append(x->text, " (aliasing, a pattern or a bias)");
+        break;
+    case VERDICT_BIASED:
+        append(x->text,
+               "%s: biased: its seeds' mean radiance at %s is %+.2f%% off the reference's (%.1f standard "
+               "errors)",
+               v, at, x->value, x->detail);
         break;
     case VERDICT_STALLS:
         append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
@@ -84,14 +94,40 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                "the reference has %.0f samples per pixel, fewer than %dx the densest point's %.0f: its own "
                "noise is a large part of the error measured there",
                f->ref_spp, VERDICT_REF_FACTOR, densest);
+    if ((f->reference_unread || f->images_unread) && (w = next_line(out->warnings, &out->n_warnings)))
+        append(w,
+               "skipped: the share of the error that repeats in every seed, its split into bias and pattern, "
+               "and the bias check %s (%s)",
+               f->reference_unread ? "everywhere" : "where images are missing",
+               f->reference_unread ? "the reference image could not be read"
+                                   : "some seed images could not be read");
+    for (int v = 0; v < f->n_variants && f->ref_relmse > 0; v++) {
+        char near[VERDICT_TEXT_MAX] = "";
+        for (int p = 0; p < f->n_points; p++) {
+            double sum = 0;
+            for (int k = 0; k < f->n_seeds; k++)
+                sum += f->relmse[verdict_at(f, v, p, k)];
+            if (sum / f->n_seeds < VERDICT_REF_NOISE * f->ref_relmse)
+                append(near, "%s%s (%.3g)", near[0] ? ", " : "", point_name(f, p), sum / f->n_seeds);
+        }
+        if (near[0] && (w = next_line(out->warnings, &out->n_warnings)))
+            append(
+                w,
+                "%s's relMSE is within %dx of the reference's own %.3g at %s: the reference's noise is most "
+                "of it there (it is subtracted; a denser reference would tell more)",
+                f->variants[v], VERDICT_REF_NOISE, f->ref_relmse, near);
+    }
     const struct verdict_ranking *rs[] = {&out->by_samples, &out->by_cpu, &out->by_slope};
     for (int i = 0; i < 3 && f->n_seeds > 1; i++) {
         const struct verdict_ranking *r = rs[i];
         char top[VERDICT_TEXT_MAX];
         group(out, r, 1, top);
         if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
-            append(w, "%s, %s differ by less than their spread across seeds: %s", ranking_name(out, r), top,
-                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
+            append(
+                w,
+                "%s, %s are not told apart by their seeds (Welch's t test, Holm-corrected, alpha %.2g): %s",
+                ranking_name(out, r), top, VERDICT_ALPHA,
+                r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
             if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
                 append(w,
@@ -102,6 +138,15 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     }
 }
 
+/* Variant v's rank in r, 0 when it is not ranked there. */
+static int rank_of_variant(const struct verdict_ranking *r, int v)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->e[i].variant == v)
+            return r->e[i].rank;
+    return 0;
+}
+
 /* "At equal CPU time (0.21 s per image), use jitter: ..." for one ranking. */
 static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at,
                         char *s)
@@ -110,8 +155,7 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
     if (r->n < 2)
         return;
     if (r->status == VERDICT_INCONCLUSIVE) {
-        append(s, "%s on %s, the variants differ by less than their seeds' spread: inconclusive", at,
-               out->scene);
+        append(s, "%s on %s, no two variants are told apart by their seeds: inconclusive", at, out->scene);
         append(s, out->n_seeds < 2 ? " (one seed)." : " (more seeds or samples would tell).");
         return;
     }
@@ -125,8 +169,15 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
                b->value, next->value / b->value, out->variants[next->variant]);
     else {
         group(out, r, next->rank, rest);
-        append(s, "%s on %s, %s tie within their seeds' spread, ahead of %s.", at, out->scene, top, rest);
+        append(s, "%s on %s, %s tie (not told apart by their seeds), ahead of %s.", at, out->scene, top,
+               rest);
     }
+    for (int i = 0; i < out->n_failures; i++) /* a low error now, but not the reference's picture */
+        if (out->failures[i].kind == VERDICT_BIASED && rank_of_variant(r, out->failures[i].variant) == 1)
+            append(s,
+                   " But %s is biased (%+.2f%% in mean radiance): more samples will not bring it to the "
+                   "reference.",
+                   out->variants[out->failures[i].variant], out->failures[i].value);
 }
 
 static void say_slopes(const struct verdict_scene *out, char *s)
@@ -173,13 +224,13 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
             const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
             append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
                    per_sample(f, v) / per_sample(f, j), f->variants[j]);
-            if (verdict_beats(a, b, 1))
+            if (verdict_beats(&out->by_samples, a, b))
                 append(s, "%.2fx lower relMSE at equal samples.", b->value / a->value);
-            else if (verdict_beats(b, a, 1))
+            else if (verdict_beats(&out->by_samples, b, a))
                 append(s, "nothing at equal samples (its relMSE is %.2fx %s's).", a->value / b->value,
                        f->variants[j]);
             else
-                append(s, "nothing measurable at equal samples (within the seeds' spread).");
+                append(s, "nothing measurable at equal samples (not told apart by the seeds).");
             break;
         }
     }
@@ -188,7 +239,7 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
             !(s = next_line(out->sentences, &out->n_sentences)))
             continue;
         const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
-        int pool = verdict_beats(a, b, 1), fresh = verdict_beats(b, a, 1);
+        int pool = verdict_beats(&out->by_cpu, a, b), fresh = verdict_beats(&out->by_cpu, b, a);
         if (pool && b->unreached)
             append(s,
                    "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs "
@@ -200,10 +251,10 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
                    f->variants[pool ? u : v], pool ? "the pool" : "fresh sets", f->variants[pool ? v : u],
                    pool ? "fresh sets" : "the pool", fmin(a->value, b->value), fmax(a->value, b->value));
         else
-            append(
-                s,
-                "At equal CPU time on %s, the pool %s and the fresh sets %s tie within their seeds' spread.",
-                out->scene, f->variants[u], f->variants[v]);
+            append(s,
+                   "At equal CPU time on %s, the pool %s and the fresh sets %s tie (not told apart by their "
+                   "seeds).",
+                   out->scene, f->variants[u], f->variants[v]);
     }
 }
 
@@ -233,6 +284,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                    "averages it away.",
                    v, strcmp(f->samplers[x->variant], "uniform") ? "has structured error" : "aliases",
                    out->scene, 100 * x->value, at);
+        else if (x->kind == VERDICT_BIASED)
+            append(
+                s,
+                "%s is biased on %s: its mean radiance at %s is %+.2f%% off the reference's (%.1f standard "
+                "errors), so more samples or seeds will not bring it to the reference.",
+                v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_STALLS)
             append(s,
                    "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.",

@@ -5,9 +5,6 @@
 
 #include "verdict.h"
 
-/* Room for warnings and sentences per scene; more are left out. */
-#define VERDICT_SAY_MAX 16
-
 /* x->text for a failure just found. */
 void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x);
 

@@ -1,0 +1,70 @@
+/* padding: sampler_dims: all's per-pixel sets (padding.h). */
+#include "padding.h"
+
+#include <stdlib.h>
+
+size_t padding_slot_points(const struct sampler *s)
+{
+    /* a set whose count varies (Poisson's, fresh or pooled, and any sampler drawn whole) may fall
+   short of the pixel's: room for two */
+    const enum sampler_walk w = sampler_walk_of(s);
+    return (w == SAMPLER_WALK_WHOLE || w == SAMPLER_WALK_POOL ? 2 : 1) * sampler_set_capacity(s);
+}
+
+int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
+{
+    *p = (struct padding){0};
+    p->sampler = s;
+    p->slots = slots;
+    p->slot_cap = padding_slot_points(s);
+    p->pts = malloc((size_t)slots * p->slot_cap * sizeof *p->pts);
+    p->gen = calloc((size_t)slots, sizeof *p->gen);
+    if (!p->pts || !p->gen) {
+        padding_release(p);
+        return err_set(e, NULL, 0, 0,
+                       "out of memory for sampler_dims: all's point sets (%d of them, %zu points each)",
+                       slots, padding_slot_points(s));
+    }
+    return 0;
+}
+
+void padding_release(struct padding *p)
+{
+    free(p->pts);
+    free(p->gen);
+    p->pts = NULL;
+    p->gen = NULL;
+}
+
+void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n)
+{
+    p->seed = seed;
+    p->px = px, p->py = py, p->n = n;
+    p->pixel++;
+}
+
+void padding_fill(struct padding *p, int slot)
+{
+    struct pt2 *pts = p->pts + (size_t)slot * p->slot_cap;
+    const size_t n = p->n, cap = sampler_set_capacity(p->sampler);
+    const uint64_t t0 = p->timed_draw_ns ? sampler_clock_ns() : 0;
+    struct rng r;
+    rng_pixel(&r, p->seed, p->px, p->py, 16 + (uint64_t)slot);
+    size_t have = 0;
+    while (have < n && have + cap <= p->slot_cap)
+        have += sampler_draw(p->sampler, &r, pts + have);
+    /* the first n places of a Fisher-Yates shuffle: sample s takes a uniformly random point */
+    for (size_t k = 0; k < n && k < have; k++) {
+        size_t j = k + rng_below(&r, (uint32_t)(have - k));
+        struct pt2 t = pts[k];
+        pts[k] = pts[j];
+        pts[j] = t;
+    }
+    for (size_t k = have; k < n; k++) { /* unreachable for the shipped samplers: a set is never empty */
+        pts[k].x = rng_uniform(&r);
+        pts[k].y = rng_uniform(&r);
+    }
+    p->gen[slot] = p->pixel;
+    if (p->timed_draw_ns)
+        *p->timed_draw_ns += sampler_clock_ns() - t0;
+}

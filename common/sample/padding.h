@@ -1,0 +1,55 @@
+/* padding: sampler_dims: all's per-pixel sets, one per 2D decision ("slot"), each in a random
+   order of its own so that the sets of different decisions are not correlated (pbrt's padded
+   samplers, Pharr et al., PBR 3rd ed. 7.3 and 7.4). Sample s of a pixel takes point s of each
+   slot's set. */
+#ifndef PADDING_H
+#define PADDING_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "base/err.h"
+#include "sampler.h"
+
+/* The sets of one pixel at a time: a slot's set is drawn whole when a sample of the pixel first
+   asks for it (from the pixel's own stream for that slot), then shuffled by Fisher-Yates, so
+   that sample s takes a uniformly random point of it: a uniform random permutation per pixel and
+   slot, whatever the sampler. */
+struct padding {
+    struct sampler *sampler; /* the pixel sampler (not owned) */
+    int slots;               /* slots 0 .. slots - 1 */
+    size_t slot_cap;         /* points stored per slot */
+    struct pt2 *pts;         /* slots x slot_cap */
+    uint64_t *gen;           /* slot k is current when gen[k] == pixel */
+    uint64_t pixel;          /* bumped by padding_pixel */
+    uint64_t seed;           /* the job's seed */
+    int px, py;
+    size_t n;                /* the pixel's sample count */
+    uint64_t *timed_draw_ns; /* non-NULL: every whole-set draw adds its nanoseconds here */
+};
+
+/* Points a slot stores for sampler s: a grid's or Sobol's set size; twice a Poisson set's
+   capacity, for a fresh Poisson set may hold fewer points than the pixel's and sets are then
+   appended until the pixel's count. */
+size_t padding_slot_points(const struct sampler *s);
+
+/* Sets up p for `slots` slots (>= 1) of sampler s, which must outlive it.
+   0, or -1 with e filled (no memory). Release with padding_release. */
+int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e);
+void padding_release(struct padding *p);
+
+/* Start pixel (px, py) of a job with seed `seed`, whose pixel set holds n points. */
+void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n);
+
+/* Draw slot's whole set for the current pixel (out of line: once per pixel and slot). */
+void padding_fill(struct padding *p, int slot);
+
+/* Sample s's point of set `slot` (< p->slots) of the current pixel (s < its count n). */
+static inline struct pt2 padding_point(struct padding *p, int slot, uint32_t s)
+{
+    if (p->gen[slot] != p->pixel)
+        padding_fill(p, slot);
+    return p->pts[(size_t)slot * p->slot_cap + s];
+}
+
+#endif

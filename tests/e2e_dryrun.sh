@@ -1,0 +1,53 @@
+#!/bin/sh
+# e2e_dryrun: `worker JOB --dry-run` prints samples, memory and CPU time (from a pilot of a few
+# pixels) for a job, a compare job (with the reference-too-weak guard) and a suite, exits 0, and
+# writes nothing anywhere; bad input is refused as a render would refuse it (issue 27).
+. "$(dirname "$0")/lib.sh"
+root=$(pwd)
+mkdir -p "$T/w/st"
+cd "$T/w" || exit 1
+printf 'scene: %s/scenes/checker.yaml\nwidth: 16\nheight: 16\nsampler: uniform\nthreshold: 10\n' "$root" >job.yaml
+cat >cmp.yaml <<EOT
+name: cmp
+scenes: [$root/scenes/checker.yaml]
+width: 16
+reference: { sampler: jitter, threshold: 10 }
+seeds: [1, 2]
+variants:
+  - { sampler: uniform, threshold: 10 }
+  - { sampler: jitter, threshold: 20 }
+EOT
+sed 's/reference: { sampler: jitter, threshold: 10 }/reference: { sampler: jitter, threshold: 2 }/' cmp.yaml >st/strong.yaml
+printf 'name: suite\nstudies: [cmp.yaml, st/strong.yaml]\n' >suite.yaml
+sed 's/^name: cmp/name: strong/' st/strong.yaml >st/s.yaml && mv st/s.yaml st/strong.yaml
+ls -lAR >"$T/before"
+"$WORKER" job.yaml --dry-run >"$T/job.out" 2>"$T/job.err"; rc=$?
+check "job: exit 0 (got $rc: $(cat "$T/job.err"))" [ "$rc" -eq 0 ]
+check "job: the samples, exact for a grid ($(cat "$T/job.out"))" grep -q "^  samples   25600 (100 per pixel)$" "$T/job.out"
+check "job: memory" grep -Eq "^  memory    about [0-9.e+]+ MB \(framebuffer [0-9.e+-]+ MB \+ 2 processes x [0-9.e+]+ MB\)$" "$T/job.out"
+check "job: CPU time from a pilot" grep -Eq "^  CPU time  about [0-9.]+ (ms|s|min|h) \([0-9.e+]+ ns per sample, from a pilot of 64 pixels\); wall about" "$T/job.out"
+check "job: says nothing is written" grep -q "^job: dry run: nothing rendered, nothing written$" "$T/job.out"
+"$WORKER" cmp.yaml --dry-run --processes 1 >"$T/cmp.out" 2>"$T/cmp.err"; rc=$?
+check "compare: exit 0 (got $rc: $(cat "$T/cmp.err"))" [ "$rc" -eq 0 ]
+check "compare: its images ($(cat "$T/cmp.out"))" grep -q "^  images    4 (1 scene x 2 variants x 1 point x 2 seeds): 64000 samples (25 to 100 per pixel)" "$T/cmp.out"
+check "compare: the reference" grep -q "^  reference checker: 16x16 jitter t=10: 25600 samples (100 per pixel)" "$T/cmp.out"
+check "compare: the reference-too-weak guard, before rendering" grep -q "^  warning: checker: the reference would have 100 samples per pixel, fewer than 4x the densest point's 100" "$T/cmp.out"
+check "compare: the total on 1 process" grep -q "^  CPU time  about .* in all (references .* of it, unless cached).* on 1 process$" "$T/cmp.out"
+"$WORKER" --dry-run suite.yaml >"$T/suite.out" 2>"$T/suite.err"; rc=$?
+check "suite: exit 0 (got $rc: $(cat "$T/suite.err"))" [ "$rc" -eq 0 ]
+check "suite: both studies ($(cat "$T/suite.out"))" sh -c "grep -q '^ study cmp$' '$T/suite.out' && grep -q '^ study strong$' '$T/suite.out'"
+check "suite: a strong reference is not warned about" [ "$(grep -c 'warning:' "$T/suite.out")" -eq 1 ]
+# bad input: refused at its line:col, as a render would be
+printf 'scene: %s/scenes/checker.yaml\nwidth: 1\nsampler: poisson\nthreshold: 1\npoisson_pool: 60000\n' "$root" >big.yaml
+"$WORKER" big.yaml --dry-run >"$T/big.out" 2>"$T/big.err"; rc=$?
+check "too big: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "too big: at poisson_pool's line:col ($(cat "$T/big.err"))" grep -q "^big.yaml:5:15: poisson_pool:" "$T/big.err"
+"$WORKER" --queue "$T/q" --dry-run >/dev/null 2>"$T/q.err"; rc=$?
+check "--dry-run with --queue: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+rm big.yaml
+ls -lAR >"$T/after"
+check "nothing written anywhere: $(diff "$T/before" "$T/after" | head -5)" cmp -s "$T/before" "$T/after"
+check "no out/ folder" [ ! -e out ]
+check "no queue folder" [ ! -e "$T/q" ]
+cd "$root" || exit 1
+finish

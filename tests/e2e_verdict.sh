@@ -1,0 +1,104 @@
+#!/bin/sh
+# The verdict on a tiny real study: a variant that leaves out indirect light (max_depth 2 against a
+# max_depth 6 reference) is biased and flagged `biased` with its percentage, the full one is not;
+# the reference's own relMSE, measured from its halves, is in verdict.json. `worker verdict DIR`
+# judges the folder again from its summary.csv: the same verdict, for a study and a suite, and
+# the checks it skipped named when images or sidecars are gone.
+. tests/lib.sh
+root=$(pwd)
+ln -s "$root/scenes" "$T/scenes"
+cat >"$T/bias.yaml" <<'YAML'
+name: bias
+scenes: [cornell]
+width: 8
+max_depth: 6
+reference: { sampler: jitter, threshold: 4 }
+seeds: [1, 2, 3, 4, 5, 6]
+sweep: { threshold: [25, 20] }
+variants:
+  - { label: full, sampler: jitter }
+  - { label: depth2, sampler: jitter, max_depth: 2 }
+YAML
+"$WORKER" --quiet --out "$T/out" "$T/bias.yaml" 2>"$T/bias.err"; rc=$?
+check "bias study: exit 0 (got $rc: $(tail -n 1 "$T/bias.err"))" [ "$rc" -eq 0 ]
+check "bias study: depth2 is biased, full is not; reference_relmse measured" python3 - "$T/out/bias/verdict.json" <<'PY'
+import json, sys
+x = json.load(open(sys.argv[1]))['studies'][0]['scenes'][0]
+biased = {f['variant']: f for f in x['failures'] if f['kind'] == 'biased'}
+assert list(biased) == ['depth2'], x['failures']
+assert -40 < biased['depth2']['value'] < -5 and biased['depth2']['standard_errors'] < -4, biased
+assert 'off the reference' in biased['depth2']['text'], biased
+assert 0 < x['reference_relmse'] < 0.1, x['reference_relmse']
+PY
+check "bias study: a reproducibility block in verdict.json and the report" python3 - "$T/out/bias/verdict.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))['reproducibility']
+assert 'bias.yaml' in r['command'] and r['version'] and len(r['program_hash']) == 16, r
+assert r['compiler'] and r['cores'] >= 1 and len(r['load_average']) == 3, r
+PY
+check "... and in the report" grep -q 'Command <code>.*bias.yaml</code>.*load average' "$T/out/bias/report.html"
+check "bias study: the report's stability line says it" grep -q 'biased: mean radiance -[0-9.]*% off the reference' "$T/out/bias/report.html"
+
+# worker verdict: the same verdict from the folder (figures to summary.csv's 6 digits)
+same_verdict() { # same_verdict A.json B.json: statuses, ranks and failure kinds agree
+    python3 - "$1" "$2" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+def shape(d):
+    return [(s['study'], x['scene'], [(k, x[k]['status'], [(e['variant'], e['rank']) for e in x[k]['ranking']])
+                                      for k in ('equal_samples', 'equal_cpu_time', 'slopes')],
+             sorted((f['variant'], f['kind']) for f in x['failures']), round(x['reference_relmse'] or 0, 8))
+            for s in d['studies'] for x in s['scenes']]
+assert shape(a) == shape(b), (shape(a), shape(b))
+PY
+}
+"$WORKER" verdict "$T/out/bias" --json >"$T/again.json" 2>"$T/again.err"; rc=$?
+check "worker verdict --json: exit 0 (got $rc: $(cat "$T/again.err"))" [ "$rc" -eq 0 ]
+check "worker verdict --json: the verdict the run wrote" same_verdict "$T/out/bias/verdict.json" "$T/again.json"
+"$WORKER" verdict "$T/out/bias" >"$T/again.txt" 2>"$T/again.err"; rc=$?
+check "worker verdict: sentences, failures and the winner (exit $rc)" \
+    grep -q '^bias: cornell: failure: depth2: biased: ' "$T/again.txt"
+check "worker verdict: the summary line" grep -q '^bias: at equal CPU time: bias: ' "$T/again.txt"
+check "worker verdict: nothing written" [ ! -e "$T/out/bias/verdict.json.tmp" ]
+# without the float images and sidecars: the checks on them are skipped, and said so
+cp -r "$T/out" "$T/bare"
+rm "$T"/bare/bias/*.exr "$T"/bare/bias/*-s[0-9].json
+"$WORKER" verdict "$T/bare/bias" --json >"$T/bare.json" 2>"$T/bare.err"; rc=$?
+check "images gone: exit 0 (got $rc: $(cat "$T/bare.err"))" [ "$rc" -eq 0 ]
+check "images gone: the skipped checks are named" python3 - "$T/bare.json" <<'PY'
+import json, sys
+x = json.load(open(sys.argv[1]))['studies'][0]['scenes'][0]
+w = ' '.join(x['warnings'])
+assert 'skipped: the share of the error that repeats in every seed' in w and 'bias check' in w, w
+assert 'skipped: non-finite samples' in w, w
+assert not any(f['kind'] in ('biased', 'structured_error') for f in x['failures']), x['failures']
+assert x['equal_samples']['ranking'] and x['slopes']['status'], x
+PY
+# a suite: its summary.csv's study column finds each study's folder
+mkdir -p "$T/s"
+ln -s "$root/scenes" "$T/s/scenes"
+sed 's/^name: bias$/name: one/; s/width: 8/width: 4/' "$T/bias.yaml" >"$T/s/one.yaml"
+sed 's/^name: bias$/name: two/; s/width: 8/width: 4/; s/seeds: .*/seeds: [1, 2, 3, 4]/' "$T/bias.yaml" >"$T/s/two.yaml"
+printf 'name: suite\nstudies: [one.yaml, two.yaml]\n' >"$T/s/suite.yaml"
+"$WORKER" --quiet --out "$T/out" "$T/s/suite.yaml" 2>"$T/suite.err"; rc=$?
+check "suite: exit 0 (got $rc: $(tail -n 1 "$T/suite.err"))" [ "$rc" -eq 0 ]
+"$WORKER" verdict "$T/out/suite" --json >"$T/suite.json" 2>"$T/suite.err"; rc=$?
+check "worker verdict on a suite: exit 0 (got $rc: $(cat "$T/suite.err"))" [ "$rc" -eq 0 ]
+check "worker verdict on a suite: the suite's verdict" same_verdict "$T/out/suite/verdict.json" "$T/suite.json"
+# bad usage and a folder that is not a compare output
+"$WORKER" verdict 2>"$T/e1"; rc=$?
+check "no folder: exit 2 (got $rc)" [ "$rc" -eq 2 ] && grep -q 'usage: worker verdict DIR' "$T/e1"
+"$WORKER" verdict "$T/s" 2>"$T/e2"; rc=$?
+check "no summary.csv: exit 2 (got $rc), one line" [ "$rc" -eq 2 ] && [ "$(wc -l <"$T/e2")" -eq 1 ] &&
+    grep -q 'summary.csv' "$T/e2"
+# a malformed summary.csv: file:line and the reason, exit 2; rows ended by CR alone still parse
+mkdir -p "$T/m"
+head -n 1 "$T/out/bias/summary.csv" >"$T/m/summary.csv"
+printf 'cornell,full,25\n' >>"$T/m/summary.csv"
+"$WORKER" verdict "$T/m" 2>"$T/e3"; rc=$?
+check "a short row: exit 2 (got $rc) naming file:line" [ "$rc" -eq 2 ] &&
+    grep -q 'm/summary.csv:2:1: 3 fields, the header has 18' "$T/e3"
+tr '\n' '\r' <"$T/out/bias/summary.csv" >"$T/m/summary.csv"
+"$WORKER" verdict "$T/m" >/dev/null 2>"$T/e4"; rc=$?
+check "CR line ends: exit 0 (got $rc: $(tail -n 1 "$T/e4"))" [ "$rc" -eq 0 ]
+finish

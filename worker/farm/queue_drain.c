@@ -1,0 +1,269 @@
+/* queue_drain: a queue worker's part in the studies spread over its queue: take a study's render
+   entry, render it or gather, and file it. */
+#include "queue_drain.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "job/outdir.h"
+#include "queue_file.h"
+#include "queue_log.h"
+#include "queue_study.h"
+#include "study/study_fan.h"
+#include "study/study_main.h"
+
+/* The earliest kind ('a', 'b', 'c') of the entries of folder dir; '~' when there is none. */
+static char earliest_in(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    char first = '~';
+    while (d && (de = readdir(d)))
+        if (queue_scan_is_job_file(de->d_name) && de->d_name[0] < first)
+            first = de->d_name[0];
+    if (d)
+        closedir(d);
+    return first;
+}
+
+/* 1 when the entry may be claimed, 0 when it waits for entries of an earlier kind waiting or
+   running, -1 when one of them failed (the study waits for a requeue). */
+static int gate(const char *sd, const char *ticket)
+{
+    char sub[2200];
+    snprintf(sub, sizeof sub, "%s/failed", sd);
+    char failed = earliest_in(sub);
+    snprintf(sub, sizeof sub, "%s/running", sd);
+    char running = earliest_in(sub), waiting = earliest_in(sd);
+    char first = running < waiting ? running : waiting;
+    if (failed < ticket[0] && failed <= first)
+        return -1;
+    return ticket[0] <= first ? 1 : 0;
+}
+
+/* The run options of a render of the study in hand (sq): outputs into DIR/done, the claim's tick. */
+static struct run_opts claim_opts(struct queue *q, struct queue *sq)
+{
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = q->stop;
+    ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
+    ro.tick_arg = sq;
+    return ro;
+}
+
+/* What entry `ticket` of f rendered, for the log. */
+static void describe(const struct study_fan *f, int k, enum study_fan_kind kind, int index, char *buf,
+                     size_t n)
+{
+    const struct compare *c = study_fan_study(f, k);
+    if (kind == STUDY_FAN_REFERENCE) {
+        snprintf(buf, n, "%s: reference of %s in %s", c->name, c->scenes[index].name,
+                 c->scenes[index].ref_path);
+        return;
+    }
+    const struct compare_item *it = &c->items[index];
+    snprintf(buf, n, "%s: image %d of %d, %s t=%g seed %llu: %.0f spp, %.2f s%s", c->name, index + 1,
+             c->n_items, c->variants[it->variant], it->job.threshold, (unsigned long long)it->job.seed,
+             it->spp_mean, it->wall_s, it->skipped ? " (current, not rendered again)" : "");
+}
+
+/* Render entry `ticket` (kind and indices in its name) of the study loaded as f. */
+static int render(struct queue *q, struct queue *sq, struct study_fan *f, const char *ticket, char *msg,
+                  size_t n)
+{
+    int k = -1, index = -1, attempts = 0, rc;
+    enum study_fan_kind kind = ticket[0] == 'a' ? STUDY_FAN_REFERENCE : STUDY_FAN_IMAGE;
+    struct err e = {0};
+    if (sscanf(ticket, kind == STUDY_FAN_REFERENCE ? "a-ref-%d-%d.yaml" : "b-img-%d-%d.yaml", &k, &index) !=
+        2)
+        k = -1;
+    struct run_opts ro = claim_opts(q, sq);
+    do {
+        sq->attempt = ++attempts;
+        rc = study_fan_render(f, k, kind, index, &ro, &e);
+    } while (rc == 1 && !*q->stop && attempts <= q->o->retries);
+    if (rc == 0)
+        describe(f, k, kind, index, msg, n);
+    else
+        err_format(&e, msg, n);
+    return rc;
+}
+
+/* The recovery locks and leases that workers killed at the wrong moment left in the study's running/
+   (their claims filed meanwhile), removed once the study is gathered: nothing can claim there any more
+   but the gather itself (keep). */
+static void sweep_running(const char *sd, const char *keep)
+{
+    char dir[2200], path[2600], claim[2600];
+    struct stat st;
+    snprintf(dir, sizeof dir, "%s/running", sd);
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    while (d && (de = readdir(d))) {
+        size_t len = strlen(de->d_name);
+        size_t cut = len > 5 && !strcmp(de->d_name + len - 5, ".lock")    ? 5
+                     : len > 6 && !strcmp(de->d_name + len - 6, ".lease") ? 6
+                                                                          : 0;
+        if (!cut || !strncmp(de->d_name, keep, strlen(keep)))
+            continue;
+        snprintf(claim, sizeof claim, "%s/%.*s", dir, (int)(len - cut), de->d_name);
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        if (lstat(claim, &st) < 0)
+            unlink(path);
+    }
+    if (d)
+        closedir(d);
+}
+
+/* The gather: the whole job run with every render current, which writes its summary, chart, report
+   and verdict; then its job file goes from the study's job/ to DIR/done/. */
+static int gather(struct queue *q, struct queue *sq, const char *sd, const char *stem, char *msg, size_t n)
+{
+    char from[2200], as[2200], job[2300], to[2300], name[JOB_NAME_MAX];
+    snprintf(from, sizeof from, "%s/study.job", sd);
+    snprintf(as, sizeof as, "%s/%s.yaml", q->dir, stem);
+    snprintf(job, sizeof job, "%s/job/%s.yaml", sd, stem);
+    snprintf(to, sizeof to, "%s/%s.yaml", q->done, stem);
+    struct stat st;
+    if (lstat(job, &st) < 0) { /* gathered by a worker killed before it filed this entry */
+        snprintf(msg, n, "already gathered");
+        return 0;
+    }
+    struct run_opts ro = claim_opts(q, sq);
+    ro.force = 0; /* every render is current: --force would render them all again here */
+    name[0] = 0;
+    int rc = study_main_as(from, as, &ro, msg, n, name, sizeof name); /* prints its summary line */
+    if (rc != 0 || !queue_claim_still_ours(sq))
+        return rc;
+    if (rename(job, to) < 0) {
+        snprintf(msg, n, "cannot move %s to %s: %s", job, to, strerror(errno));
+        return 1;
+    }
+    sweep_running(sd, QUEUE_STUDY_GATHER);
+    snprintf(msg, n,
+             "gathered into %s/%s/ (summary.csv, chart.svg, report.html, verdict.json); %s.yaml moved to %s/",
+             q->done, name, stem, q->done);
+    return 0;
+}
+
+/* Process the claimed entry `ticket` of the study in sd (its queue sq). */
+static void process_entry(struct queue *q, struct queue *sq, const char *sd, const char *stem,
+                          const char *ticket)
+{
+    char label[2600], from[2200], as[2200], msg[4096], log_name[300];
+    struct study_fan f = {0};
+    struct err e = {0};
+    int rc;
+    snprintf(label, sizeof label, "%s/%s/%s", QUEUE_STUDY_DIR, stem, ticket);
+    snprintf(from, sizeof from, "%s/study.job", sd);
+    snprintf(as, sizeof as, "%s/%s.yaml", q->dir, stem);
+    outdir_stem(ticket, log_name, sizeof log_name);
+    sq->lost = 0;
+    sq->processes = 0;
+    sq->name_owner[0] = 0;
+    queue_claim_renew_start(sq);
+    if (!strcmp(ticket, QUEUE_STUDY_GATHER)) {
+        rc = gather(q, sq, sd, stem, msg, sizeof msg);
+    } else if (study_fan_load(from, as, &f, &e) < 0) {
+        err_format(&e, msg, sizeof msg);
+        rc = 2;
+    } else {
+        rc = render(q, sq, &f, ticket, msg, sizeof msg);
+    }
+    study_fan_free(&f);
+    if ((sq->lost || !queue_claim_still_ours(sq)) && !queue_study_has(sd, "study.job"))
+        queue_log(label,
+                  "the study's folder %s/ was removed while it rendered (cancelled): render stopped, "
+                  "nothing written\n",
+                  sd);
+    else if (sq->lost || !queue_claim_still_ours(sq))
+        queue_file_say_lost(sq, label);
+    else if (rc == 1 && *q->stop)
+        queue_file_give_back(sq, ticket);
+    else if (rc == 0) {
+        queue_log(label, "%s\n", msg);
+        queue_claim_file(sq, ticket, sq->done);
+    } else {
+        queue_log(label, "%s; moved to %s/\n", msg, sq->failed);
+        queue_file_log(sq, ticket, log_name, msg, 0, sq->attempt);
+        queue_file_failed(sq, ticket, "");
+        queue_file_note_rc(q, rc);
+    }
+    queue_claim_renew_stop();
+    queue_file_clear_lost_stop(sq);
+}
+
+/* One entry of the study in sd taken and processed: 1; 2 none yet (behind renders running
+   elsewhere); 0 none. */
+static int work_on(struct queue *q, const char *sd, const char *stem)
+{
+    struct queue sq;
+    memset(&sq, 0, sizeof sq);
+    sq.o = q->o;
+    sq.stop = q->stop;
+    snprintf(sq.dir, sizeof sq.dir, "%s", sd);
+    snprintf(sq.running, sizeof sq.running, "%s/running", sd);
+    snprintf(sq.done, sizeof sq.done, "%s/done", sd);
+    snprintf(sq.failed, sizeof sq.failed, "%s/failed", sd);
+    snprintf(sq.as_name, sizeof sq.as_name, "%s.yaml", stem);
+    char adopted[256];
+    int result = 0;
+    if (queue_claim_recover(&sq, adopted, sizeof adopted)) {
+        process_entry(q, &sq, sd, stem, adopted);
+        return 1;
+    }
+    struct queue_waiting *w;
+    int n = queue_scan_waiting(&sq.scan, sd, &w);
+    for (int i = 0; i < n && result != 1 && !*q->stop; i++) {
+        int g = gate(sd, w[i].name);
+        if (g == 0)
+            result = 2;
+        if (g == 1 && queue_claim_take(&sq, w[i].name) == 0) {
+            process_entry(q, &sq, sd, stem, w[i].name);
+            result = 1;
+        }
+    }
+    if (n >= 0)
+        free(w);
+    queue_scan_free(&sq.scan);
+    return result;
+}
+
+int queue_drain_work(struct queue *q)
+{
+    char top[1200], sd[2400];
+    snprintf(top, sizeof top, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    struct stat st;
+    if (lstat(top, &st) < 0 || !S_ISDIR(st.st_mode)) /* never through a link (expansion refuses one) */
+        return 0;
+    DIR *d = opendir(top);
+    struct dirent *de;
+    int result = 0;
+    while (d && result != 1 && (de = readdir(d))) {
+        snprintf(sd, sizeof sd, "%s/%s", top, de->d_name);
+        if (de->d_name[0] == '.') {
+            if (strstr(de->d_name, ".gone."))
+                queue_study_remove_tree(sd); /* a discarded study whose remover was killed */
+            continue;
+        }
+        if (lstat(sd, &st) < 0 || !S_ISDIR(st.st_mode) || !queue_study_has(sd, "study.job"))
+            continue;
+        snprintf(sd + strlen(sd), sizeof sd - strlen(sd), "/done");
+        int finished = queue_study_has(sd, QUEUE_STUDY_GATHER);
+        sd[strlen(sd) - 5] = 0;
+        int r = finished ? 0 : work_on(q, sd, de->d_name);
+        result = r > result ? r : result;
+    }
+    if (d)
+        closedir(d);
+    return result;
+}

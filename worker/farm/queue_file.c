@@ -1,0 +1,109 @@
+/* queue_file: filing a claim that ends (failed/ and its log, back to the queue, lost). */
+#include "queue_file.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "base/fileio.h"
+#include "job/outdir.h"
+#include "lease.h"
+#include "queue_log.h"
+
+/* failed/<name>.log: what went wrong, the signal, the attempts. */
+void queue_file_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
+                    int attempts)
+{
+    char path[2048], text[8192];
+    int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
+    if (sig)
+        n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
+    time_t t = time(NULL);
+    char when[64];
+    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&t));
+    n += snprintf(text + n, sizeof text - n, "attempts: %d\nworker: pid %ld on %s\ntime: %s\n", attempts,
+                  q->lease.pid, q->lease.host, when);
+    snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
+    struct err e;
+    if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
+        queue_log(name, "%s", e.msg);
+}
+
+/* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
+   while it is still ours. */
+void queue_file_give_back(struct queue *q, const char *name)
+{
+    if (queue_claim_lock(q) <
+        0) { /* another worker is recovering it (our lease looked dead): the claim is its now */
+        queue_log(name, "stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
+                  (int)*q->stop, q->running);
+        return;
+    }
+    if (!queue_claim_still_ours(q))
+        ;
+    else if (queue_claim_name_waiting(q, name))
+        queue_log(name,
+                  "stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
+                  "next worker\n",
+                  (int)*q->stop, name, q->running);
+    else if (queue_claim_return(q, q->claim, name) == 0)
+        queue_log(name, "stopped by signal %d, returned to the queue\n", (int)*q->stop);
+    else
+        queue_log(name,
+                  "stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
+                  "next worker\n",
+                  (int)*q->stop, errno == EEXIST ? "a newer one of its name arrived" : strerror(errno),
+                  q->running);
+    lease_unlock(q->claim);
+}
+
+/* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
+   One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
+   of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
+   removes our lease first, then returns the claim to the queue or adopts it). */
+void queue_file_say_lost(struct queue *q, const char *name)
+{
+    struct lease l;
+    double age;
+    if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
+        queue_log(name, "the claim was taken over (our lease was judged dead); leaving the job to it\n");
+        return;
+    }
+    lease_remove(q->claim);
+    queue_log(name, "%s was removed or moved away while it rendered: render stopped, nothing written\n",
+              q->claim);
+}
+
+/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
+   that came meanwhile is kept). */
+void queue_file_clear_lost_stop(struct queue *q)
+{
+    sigset_t block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigprocmask(SIG_BLOCK, &block, &old);
+    if (*q->stop == QUEUE_STOP_CLAIM_LOST)
+        *q->stop = 0;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+}
+
+/* File the claim in hand in failed/: the temporaries a killed writer of an earlier attempt left in
+   its output folder done/<job_name>/ go first (nothing else would remove them). */
+void queue_file_failed(struct queue *q, const char *name, const char *job_name)
+{
+    char dir[2048];
+    if (job_name[0] && job_name[0] != '.' && !strchr(job_name, '/')) {
+        outdir_dir(q->done, job_name, dir, sizeof dir);
+        outdir_remove_temps(dir);
+    }
+    queue_claim_file(q, name, q->failed);
+}
+
+void queue_file_note_rc(struct queue *q, int rc)
+{
+    if (rc > q->worst)
+        q->worst = rc;
+}

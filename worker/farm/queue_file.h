@@ -1,0 +1,30 @@
+/* queue_file: filing a queue claim that ends: in failed/ with its log, back to the queue on a stop
+   signal, or left to whoever took it over; shared by a worker's jobs and a study's renders. */
+#ifndef QUEUE_FILE_H
+#define QUEUE_FILE_H
+
+#include "queue_claim.h"
+
+/* failed/<job_name>.log: what went wrong (error), the signal (0: none), the attempts. */
+void queue_file_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
+                    int attempts);
+
+/* Hand the claim in hand (file `name`) back to the queue after a stop signal: under its recovery
+   lock, and only while it is still ours. One log line. */
+void queue_file_give_back(struct queue *q, const char *name);
+
+/* The claim in hand is no longer ours (cancelled, or taken over): one log line; a cancel's lease
+   goes too. */
+void queue_file_say_lost(struct queue *q, const char *name);
+
+/* The tick's "claim lost" stop is over once its job is left: *q->stop is the queue's again. */
+void queue_file_clear_lost_stop(struct queue *q);
+
+/* File the claim in hand in failed/, removing the temporaries a killed writer left in the
+   output folder done/<job_name>/ first. */
+void queue_file_failed(struct queue *q, const char *name, const char *job_name);
+
+/* Keep the worst exit status seen (q->worst). */
+void queue_file_note_rc(struct queue *q, int rc);
+
+#endif

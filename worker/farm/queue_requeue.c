@@ -1,0 +1,185 @@
+/* queue_requeue: `worker requeue DIR NAME... | --failed`: failed (or done) job files moved back into
+   the queue, and a study's failed renders back to its waiting entries. */
+#include "queue_requeue.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/err.h"
+#include "base/fileio.h"
+#include "job/outdir.h"
+#include "queue_scan.h"
+#include "queue_status.h"
+#include "queue_studies.h"
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The job files X.yaml in folder dir (malloc'd names, by name) into *out; their count, or -1 when
+   dir exists but cannot be read (errno). */
+static int failed_files(const char *dir, char ***out)
+{
+    DIR *d = opendir(dir);
+    *out = NULL;
+    if (!d)
+        return errno == ENOENT ? 0 : -1;
+    struct dirent *de;
+    int n = 0;
+    while ((de = readdir(d))) {
+        if (!queue_scan_is_job_file(de->d_name))
+            continue;
+        char **g = realloc(*out, (size_t)(n + 1) * sizeof *g);
+        char *name = strdup(de->d_name);
+        if (!g || !name) {
+            free(name);
+            if (g)
+                *out = g;
+            break;
+        }
+        *out = g;
+        g[n++] = name;
+    }
+    closedir(d);
+    if (n > 1)
+        qsort(*out, (size_t)n, sizeof **out, by_name);
+    return n;
+}
+
+/* Remove DIR/failed/<log_name>.log when it is the log of job file `file` (its "job:" line names it). */
+static void remove_log(const char *dir, const char *log_name, const char *file)
+{
+    char path[2048];
+    uint8_t *text = NULL;
+    size_t len;
+    struct err e;
+    snprintf(path, sizeof path, "%s/failed/%s.log", dir, log_name);
+    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
+        return;
+    size_t line = strcspn((const char *)text, "\n"), flen = strlen(file);
+    if (!strncmp((const char *)text, "job: ", 5) && line > flen && text[line - flen - 1] == '/' &&
+        !memcmp(text + line - flen, file, flen))
+        unlink(path);
+    free(text);
+}
+
+/* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
+static int requeue_one(const char *dir, const char *from, const char *file)
+{
+    char src[2048], dst[2048], running[2048];
+    struct stat st;
+    snprintf(src, sizeof src, "%s/%s/%s", dir, from, file);
+    snprintf(dst, sizeof dst, "%s/%s", dir, file);
+    snprintf(running, sizeof running, "%s/running/%s", dir, file);
+    if (lstat(running, &st) == 0) {
+        err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
+        return -1;
+    }
+    if (fileio_rename_noreplace(src, dst) < 0) {
+        err_print("worker requeue: %s: %s\n", file,
+                  errno == EEXIST   ? "a job of that file name waits in the queue already"
+                  : errno == ENOENT ? "no longer there: moved meanwhile (another requeue, or a worker)"
+                                    : strerror(errno));
+        return -1;
+    }
+    if (!strcmp(from, "failed")) { /* its log goes with it: it is no longer a failed job */
+        char name[256], stem[256];
+        queue_status_job_name(dst, file, name, sizeof name);
+        outdir_stem(file, stem, sizeof stem);
+        remove_log(dir, name, file);
+        remove_log(dir, stem, file); /* the log of a file that did not load, or whose name was taken */
+    }
+    err_print("%s: requeued from %s/\n", file, from);
+    return 0;
+}
+
+int queue_requeue_main(int argc, char **argv)
+{
+    const char *dir_arg = NULL;
+    int all_failed = 0, nnames = 0, rc = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--failed"))
+            all_failed = 1;
+        else if (!strcmp(argv[i], "--quiet"))
+            continue;
+        else if (argv[i][0] == '-' && argv[i][1]) {
+            err_print("worker requeue: unknown option %s; usage: worker requeue DIR NAME... | --failed\n",
+                      argv[i]);
+            return 2;
+        } else if (!dir_arg)
+            dir_arg = argv[i];
+        else
+            nnames++;
+    }
+    if (!dir_arg || (nnames == 0) == !all_failed) {
+        err_print("worker requeue: usage: worker requeue DIR NAME... | --failed\n");
+        return 2;
+    }
+    char dir[1024], failed[1100], done[1100];
+    if (queue_status_dir("requeue", dir_arg, dir, sizeof dir))
+        return 2;
+    snprintf(failed, sizeof failed, "%s/failed", dir);
+    snprintf(done, sizeof done, "%s/done", dir);
+    if (all_failed) {
+        struct queue_studies_entry *studies;
+        char **files = NULL;
+        int nf = failed_files(failed, &files);
+        if (nf < 0) {
+            err_print("worker requeue: %s: cannot be read: %s\n", failed, strerror(errno));
+            return 2;
+        }
+        for (int i = 0; i < nf; i++) {
+            if (requeue_one(dir, "failed", files[i]) < 0)
+                rc = 2;
+            free(files[i]);
+        }
+        free(files);
+        int ns = queue_studies_list(dir, &studies);
+        for (int i = 0; i < ns; i++)
+            if (studies[i].failed && queue_studies_requeue(dir, studies[i].file) == -2)
+                rc = 2;
+        free(studies);
+        return rc;
+    }
+    for (int i = 1, seen_dir = 0; i < argc; i++) {
+        if (argv[i][0] == '-' && argv[i][1])
+            continue;
+        if (!seen_dir++)
+            continue;
+        char file[256], path[2048];
+        struct stat st;
+        size_t len = strlen(argv[i]);
+        if (strchr(argv[i], '/') || len == 0 || len > 200) {
+            err_print("worker requeue: %s: give a job file's name (X or X.yaml), not a path\n", argv[i]);
+            rc = 2;
+            continue;
+        }
+        snprintf(file, sizeof file, "%s%s", argv[i],
+                 len > 5 && !strcmp(argv[i] + len - 5, ".yaml") ? "" : ".yaml");
+        int study = queue_studies_requeue(dir, file); /* a study in progress: its failed renders */
+        if (study != -1) {
+            rc = study == -2 ? 2 : rc;
+            continue;
+        }
+        const char *from = NULL;
+        snprintf(path, sizeof path, "%s/%s", failed, file);
+        if (lstat(path, &st) == 0)
+            from = "failed";
+        snprintf(path, sizeof path, "%s/%s", done, file);
+        if (!from && lstat(path, &st) == 0)
+            from = "done";
+        if (!from) {
+            err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
+            rc = 2;
+        } else if (requeue_one(dir, from, file) < 0)
+            rc = 2;
+    }
+    return rc;
+}

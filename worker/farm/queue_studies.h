@@ -1,0 +1,31 @@
+/* queue_studies: the studies in progress in a queue (DIR/spread/<stem>/, queue_study.h) as status and
+   requeue see them: one line each with its renders done of all, failed, and an ETA. */
+#ifndef QUEUE_STUDIES_H
+#define QUEUE_STUDIES_H
+
+#include "base/json.h"
+
+struct queue_studies_entry {
+    char file[256];                     /* the job file, X.yaml */
+    char name[256];                     /* the study's folder name: the file's stem */
+    int renders, done, failed, running; /* render entries (references and images; not the gather) */
+    int gathering;                      /* its gather entry is claimed */
+    double elapsed_s, eta_s;            /* since it was spread; ETA from the pace so far (< 0 unknown) */
+};
+
+/* The studies in progress under dir/spread/ into *out (malloc'd), by name; their count, or -1 when
+   dir/spread/ exists but cannot be read (errno). */
+int queue_studies_list(const char *dir, struct queue_studies_entry **out);
+
+/* One line per study, under a "studies:" heading (nothing when n is 0). */
+void queue_studies_print(const struct queue_studies_entry *s, int n);
+
+/* The "studies" array of status --json. */
+void queue_studies_json(struct json *js, const struct queue_studies_entry *s, int n);
+
+/* Move the failed render entries of the study of job file `file` (X.yaml) back to its waiting
+   entries, their logs removed. The number moved; -1 when no study of that file is in progress;
+   -2 when one could not be moved (said on stderr). */
+int queue_studies_requeue(const char *dir, const char *file);
+
+#endif

@@ -1,0 +1,227 @@
+/* queue_study: a compare job spread over a queue's workers as one entry per render, gathered once. */
+#define _GNU_SOURCE /* nftw's FTW_DEPTH and FTW_PHYS */
+#include "queue_study.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <ftw.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "base/fileio.h"
+#include "job/outdir.h"
+#include "queue_file.h"
+#include "queue_log.h"
+#include "scenefile/yamlx.h"
+#include "study/study_fan.h"
+
+static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st;
+    (void)ftw;
+    return flag == FTW_DP ? rmdir(path) : unlink(path);
+}
+
+void queue_study_remove_tree(const char *path)
+{
+    nftw(path, remove_one, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* Take the study folder at sd out of sight at once (a rename to a hidden name), then remove it. */
+static void discard(const struct queue *q, const char *sd, const char *stem)
+{
+    char gone[2048];
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    snprintf(gone, sizeof gone, "%s/%s/.%s.gone.%ld.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid(),
+             (long)ts.tv_nsec);
+    if (rename(sd, gone) == 0)
+        queue_study_remove_tree(gone);
+}
+
+int queue_study_has(const char *dir, const char *file)
+{
+    char path[2600];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    return lstat(path, &st) == 0;
+}
+
+/* 1 when folder dir holds any entry but . and .. (0 also when it cannot be read). */
+static int has_entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    int any = 0;
+    while (d && !any && (de = readdir(d)))
+        any = strcmp(de->d_name, ".") && strcmp(de->d_name, "..");
+    if (d)
+        closedir(d);
+    return any;
+}
+
+static int write_entry(const char *dir, const char *entry, const char *what, struct err *e)
+{
+    char path[2600], text[512];
+    snprintf(path, sizeof path, "%s/%s", dir, entry);
+    int n = snprintf(text, sizeof text, "# %s (a render of a study spread over the queue)\n", what);
+    return fileio_write_atomic(path, text, (size_t)n, e);
+}
+
+/* Remove the half-built study folders of job file stem that expanding workers killed before they
+   renamed them left: we hold its claim, so no other worker is building one now. */
+static void remove_unfinished(const struct queue *q, const char *stem)
+{
+    char top[1200], prefix[300], path[1600];
+    snprintf(top, sizeof top, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    int n = snprintf(prefix, sizeof prefix, ".%s.new.", stem);
+    DIR *d = opendir(top);
+    struct dirent *de;
+    while (d && (de = readdir(d)))
+        if (!strncmp(de->d_name, prefix, (size_t)n)) {
+            snprintf(path, sizeof path, "%s/%s", top, de->d_name);
+            queue_study_remove_tree(path);
+        }
+    if (d)
+        closedir(d);
+}
+
+/* Build the study folder of f beside its final place, then rename it there. 0 or -1 with e. */
+static int build(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
+                 const uint8_t *job, size_t len, struct err *e)
+{
+    char tmp[2048], sub[2200], entry[64], what[256];
+    snprintf(tmp, sizeof tmp, "%s/%s/.%s.new.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid());
+    remove_unfinished(q, stem);
+    const char *subs[] = {"job", "running", "done", "failed"};
+    if (outdir_mkdirs(tmp, NULL, e) < 0)
+        return -1;
+    for (int i = 0; i < 4; i++) {
+        snprintf(sub, sizeof sub, "%s/%s", tmp, subs[i]);
+        if (outdir_mkdirs(sub, NULL, e) < 0)
+            goto fail;
+    }
+    snprintf(sub, sizeof sub, "%s/study.job", tmp);
+    if (fileio_write_atomic(sub, job, len, e) < 0)
+        goto fail;
+    for (int k = 0; k < study_fan_studies(f); k++) {
+        const struct compare *c = study_fan_study(f, k);
+        for (int s = 0; s < c->n_scenes; s++) {
+            snprintf(entry, sizeof entry, "a-ref-%d-%d.yaml", k, s);
+            snprintf(what, sizeof what, "%s: the reference of %s", c->name, c->scenes[s].name);
+            if (study_fan_has_reference(f, k, s) && write_entry(tmp, entry, what, e) < 0)
+                goto fail;
+        }
+        for (int i = 0; i < c->n_items; i++) {
+            snprintf(entry, sizeof entry, "b-img-%d-%05d.yaml", k, i);
+            snprintf(what, sizeof what, "%s: %s", c->name, c->items[i].job.output);
+            if (write_entry(tmp, entry, what, e) < 0)
+                goto fail;
+        }
+    }
+    if (write_entry(tmp, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", e) < 0)
+        goto fail;
+    if (rename(tmp, sd) == 0)
+        return 0;
+    err_set(e, NULL, 0, 0, "cannot make %s: %s", sd, strerror(errno));
+fail:
+    queue_study_remove_tree(tmp);
+    return -1;
+}
+
+/* The study folder sd for the job bytes: made, or the one a killed worker left (same bytes, not
+   finished) taken on. 0, 1 when another study of this file name is in progress, -1 with e. */
+static int prepare(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
+                   const uint8_t *job, size_t len, struct err *e)
+{
+    char sub[2200];
+    struct stat st;
+    if (lstat(sd, &st) == 0) {
+        snprintf(sub, sizeof sub, "%s/job", sd);
+        if (has_entries(sub))
+            return 1;
+        uint8_t *old = NULL;
+        size_t old_len = 0;
+        struct err ignored;
+        snprintf(sub, sizeof sub, "%s/study.job", sd);
+        int same = fileio_read_all(sub, YDOC_MAX_BYTES, &old, &old_len, &ignored) == 0 && old_len == len &&
+                   !memcmp(old, job, len);
+        free(old);
+        snprintf(sub, sizeof sub, "%s/done", sd);
+        if (same && !queue_study_has(sub, QUEUE_STUDY_GATHER))
+            return 0; /* its expanding worker died before filing the job there: carry on */
+        discard(q, sd, stem);
+    }
+    return build(q, f, sd, stem, job, len, e);
+}
+
+/* The claim in hand cannot be spread: failed/ with its log, as an invalid job. */
+static void refuse(struct queue *q, const char *name, const char *log_name, const char *msg)
+{
+    queue_log(name, "%s\n", msg);
+    queue_log(name, "invalid compare job, moved to %s/\n", q->failed);
+    queue_file_log(q, name, log_name, msg, 0, 0);
+    queue_file_failed(q, name, log_name);
+    queue_file_note_rc(q, 2);
+}
+
+void queue_study_expand(struct queue *q, const char *name, const char *from, const char *as, const char *stem)
+{
+    struct study_fan f;
+    struct err e = {0};
+    char msg[2600], out[2048], sd[2048], jobdir[2100];
+    uint8_t *job = NULL;
+    size_t len = 0;
+    if (study_fan_load(from, as, &f, &e) < 0) {
+        err_format(&e, msg, sizeof msg);
+        refuse(q, name, stem, msg);
+        return;
+    }
+    outdir_dir(q->done, study_fan_name(&f), out, sizeof out);
+    if (queue_claim_name_owner(q, out, q->name_owner, sizeof q->name_owner)) {
+        snprintf(
+            msg, sizeof msg,
+            "%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or remove "
+            "that folder to replace them)",
+            as, study_fan_name(&f), out, q->name_owner);
+        refuse(q, name, stem, msg);
+        study_fan_free(&f);
+        return;
+    }
+    snprintf(sd, sizeof sd, "%s/%s/%s", q->dir, QUEUE_STUDY_DIR, stem);
+    snprintf(jobdir, sizeof jobdir, "%s/job", sd);
+    snprintf(msg, sizeof msg, "%s/%s", q->dir, QUEUE_STUDY_DIR);
+    int rc = outdir_check(out, &e) < 0 || fileio_read_all(from, YDOC_MAX_BYTES, &job, &len, &e) < 0 ||
+                     outdir_mkdirs(msg, NULL, &e) < 0
+                 ? -1
+                 : prepare(q, &f, sd, stem, job, len, &e);
+    if (rc < 0) {
+        err_prefix(&e, study_fan_name(&f));
+        err_format(&e, msg, sizeof msg);
+        refuse(q, name, study_fan_name(&f), msg);
+    } else if (rc == 1) {
+        snprintf(msg, sizeof msg,
+                 "%s: a study of this file name is in progress in %s/; queue it again when it is done", as,
+                 sd);
+        refuse(q, name, stem, msg);
+    } else {
+        int refs = 0, images = 0;
+        for (int k = 0; k < study_fan_studies(&f); k++) {
+            const struct compare *c = study_fan_study(&f, k);
+            images += c->n_items;
+            for (int s = 0; s < c->n_scenes; s++)
+                refs += study_fan_has_reference(&f, k, s);
+        }
+        queue_claim_file(q, name, jobdir);
+        queue_log(name,
+                  "spread over the queue: %d reference%s and %d image%s to render, then the gather, in %s/\n",
+                  refs, refs == 1 ? "" : "s", images, images == 1 ? "" : "s", sd);
+    }
+    free(job);
+    study_fan_free(&f);
+}

@@ -1,0 +1,118 @@
+/* job_estimate: a job's cost from a pilot of a few pixels (worker JOB --dry-run). */
+#include "job_estimate.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "base/rng.h"
+#include "job_limits.h"
+#include "render/render.h"
+
+static double cpu_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* This process's resident set in bytes (/proc/self/statm), 0 when unknown. */
+static double resident_bytes(void)
+{
+    FILE *f = fopen("/proc/self/statm", "r");
+    unsigned long long size = 0, resident = 0;
+    if (!f)
+        return 0;
+    int ok = fscanf(f, "%llu %llu", &size, &resident) == 2;
+    fclose(f);
+    return ok ? (double)resident * (double)sysconf(_SC_PAGESIZE) : 0;
+}
+
+/* Pixels k of n of a w x h image, spread over it: one per band of rows, at golden-ratio steps
+   across (a pixel's cost depends on what it sees). */
+static void pilot_pixel(int k, int n, int w, int h, int *x, int *y)
+{
+    *y = (int)((k + 0.5) * h / n);
+    *x = (int)(fmod((k + 0.5) * 0.6180339887498949, 1.0) * w);
+}
+
+/* Render the pilot pixels of est's image with the samplers; fill est's per-sample figures. */
+static int pilot(const struct job *j, const struct scene_file *sf, double budget_s, struct job_estimate *est,
+                 struct err *e)
+{
+    struct camera cam;
+    struct sampler *pix = NULL, *light = NULL;
+    struct render_ctx *ctx = NULL;
+    int rc = -1;
+    if (camera_init(&cam, &sf->camera, (double)est->width / est->height, e) < 0) {
+        snprintf(e->file, sizeof e->file, "%s", j->scene_path);
+        return -1;
+    }
+    uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL); /* run_job's: the same pools */
+    const struct render_settings rs = {est->width, est->height,      j->max_depth, j->seed, !j->light_sampling,
+                                       j->nee,     j->dims_all, job_roulette(j)};
+    if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
+        !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
+        snprintf(e->file, sizeof e->file, "%s", j->path);
+        goto done;
+    }
+    if (!(ctx = render_ctx_new(sf->scene, &cam, &rs, pix, light, e)))
+        goto done;
+    struct render_stats st;
+    render_stats_init(&st);
+    long pixels = (long)est->width * est->height;
+    int n = pixels < JOB_ESTIMATE_PILOT_PIXELS ? (int)pixels : JOB_ESTIMATE_PILOT_PIXELS, k = 0;
+    double t0 = cpu_now_s(), spent = 0;
+    while (k < n && (k == 0 || spent < budget_s)) {
+        int x, y;
+        float rgb[3];
+        pilot_pixel(k++, n, est->width, est->height, &x, &y);
+        render_pixel(ctx, x, y, rgb, &st);
+        spent = cpu_now_s() - t0;
+    }
+    est->pilot_pixels = k;
+    est->process_bytes = resident_bytes();
+    est->spp_mean = (double)st.samples / k;
+    est->samples = est->spp_mean * (double)pixels;
+    est->ns_per_sample = st.samples ? spent * 1e9 / (double)st.samples : 0;
+    est->cpu_s = spent / k * (double)pixels;
+    rc = 0;
+done:
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    sampler_free(light);
+    return rc;
+}
+
+int job_estimate(const struct job *j, const struct scene_file *sf, int processes, double budget_s,
+                 struct job_estimate *out, struct err *e)
+{
+    struct scene_file own = {0};
+    memset(out, 0, sizeof *out);
+    if (!sf) {
+        if (scene_load(j->scene_path, &own, e) < 0)
+            return -1;
+        sf = &own;
+    }
+    int rc = -1;
+    out->width = j->width;
+    out->height = job_height(j, sf->aspect);
+    out->processes = processes > 0 ? processes : j->processes;
+    if (out->height > IMAGE_MAX_SIDE)
+        err_set(e, j->path, j->pos_width[0], j->pos_width[1],
+                "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", j->width,
+                sf->aspect, out->height, IMAGE_MAX_SIDE);
+    else if (job_limits_samples(j, out->width, out->height, e) == 0) {
+        out->framebuffer_bytes = (double)out->width * out->height * (3 * sizeof(float) + 3);
+        rc = pilot(j, sf, budget_s, out, e);
+    }
+    scene_file_free(&own);
+    return rc;
+}
+
+double job_estimate_memory(const struct job_estimate *est)
+{
+    return est->framebuffer_bytes + est->processes * est->process_bytes;
+}

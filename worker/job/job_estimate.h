@@ -1,0 +1,35 @@
+/* job_estimate: what a job's render would cost, found without rendering it (`--dry-run`): its
+   samples, memory and CPU time, from a short pilot of a few pixels rendered in this process. */
+#ifndef JOB_ESTIMATE_H
+#define JOB_ESTIMATE_H
+
+#include <stddef.h>
+
+#include "job.h"
+#include "scenefile/scene_load.h"
+
+/* Most pixels one pilot renders. */
+#define JOB_ESTIMATE_PILOT_PIXELS 64
+
+struct job_estimate {
+    int width, height, processes;
+    double spp_mean;      /* camera samples per pixel, the pilot's mean (exact for the grid kinds) */
+    double samples;       /* spp_mean x width x height */
+    double ns_per_sample; /* the pilot's CPU nanoseconds per camera sample */
+    double cpu_s;         /* the whole render's CPU seconds, at the pilot's cost per pixel */
+    double framebuffer_bytes, process_bytes; /* the shared image; one render process's resident set */
+    int pilot_pixels;
+};
+
+/* Estimate j's render with `processes` processes (0: the job's) and write nothing: the scene
+   (sf, or loaded from j->scene_path when NULL), the size and the limits as run_job checks them,
+   then a pilot of up to JOB_ESTIMATE_PILOT_PIXELS pixels spread over the image, rendered here
+   until budget_s CPU seconds are spent (at least one pixel). 0, or -1 with e filled (bad input,
+   at the key's line:col as a render would say). */
+int job_estimate(const struct job *j, const struct scene_file *sf, int processes, double budget_s,
+                 struct job_estimate *out, struct err *e);
+
+/* The estimate's memory: the framebuffer and every process's resident set. */
+double job_estimate_memory(const struct job_estimate *est);
+
+#endif
