@@ -167,12 +167,11 @@ static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x,
 }
 
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, struct path_at how, int last, double sum[3],
-                         uint64_t *nonfinite, uint64_t *rays)
+                         int nee, struct path_at how, int last, double sum[3], uint64_t *nonfinite,
+                         uint64_t *rays)
 {
     if (nee || how.dims || how.roulette)
         lanes_other(ctx, x, y, n, base, mix, nee, how, last, sum, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last, sum, nonfinite,
-                  rays);
+        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last, sum, nonfinite, rays);
 }

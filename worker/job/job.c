@@ -17,12 +17,12 @@
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
 
-const char *const job_keys[] = {"name",      "scene",      "width",         "height",
-                                "sampler",   "threshold",  "light_sampler", "light_threshold",
-                                "max_depth", "seed",       "processes",     "format",
-                                "output",    "reference",  "poisson_pool",  "light_sampling",
-                                "priority",  "integrator", "sampler_dims",  "poisson_domain",
-                                "russian_roulette", NULL};
+const char *const job_keys[] = {"name",           "scene",      "width",         "height",
+                                "sampler",        "threshold",  "light_sampler", "light_threshold",
+                                "max_depth",      "seed",       "processes",     "format",
+                                "output",         "reference",  "poisson_pool",  "light_sampling",
+                                "priority",       "integrator", "sampler_dims",  "russian_roulette",
+                                "poisson_domain", NULL};
 
 void job_defaults(struct job *j, const char *path)
 {
