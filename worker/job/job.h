@@ -30,6 +30,7 @@ struct job {
     int light_sampling;                 /* 0: no importance sampling of lights (default 1) */
     int nee;        /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
     int dims_all;   /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
+    int roulette;   /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: on with nee) */
     int priority;   /* queue order: higher first (default 0) */
     int float_copy; /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
                        image (a compare job's renders, scored in linear radiance) */
@@ -53,6 +54,10 @@ int job_load_as(const char *from, const char *path, struct job *j, struct err *e
 
 /* Hash of the bytes of the file at path, continued from h; -1 when it cannot be read. */
 int job_hash_file(const char *path, uint64_t *h, struct err *e);
+
+/* Whether the job's paths may end by Russian roulette: russian_roulette when given, else on with
+   integrator: nee and off with the mixture (whose images stay the books'). */
+int job_roulette(const struct job *j);
 
 /* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
    least 1 (the caller checks it against IMAGE_MAX_SIDE). */
