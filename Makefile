@@ -59,7 +59,7 @@ LIBWORKER  := $(BUILD)/libworker.a
 WORKER_BIN := $(BIN)/worker
 
 .SECONDARY:
-.PHONY: all build-parallel test stress test-big unit run install uninstall clean asan deps golden bench lint scenes fuzz valgrind test-slurm
+.PHONY: all build-parallel test stress test-big unit run install uninstall clean asan deps golden bench bench-peers lint scenes fuzz valgrind test-slurm
 all: deps $(WORKER_BIN)
 
 # Set-up: when libyaml, zlib or OpenEXR headers are missing, root on Debian installs them
@@ -175,6 +175,11 @@ build/bench_bridson: bench/bench_bridson.c $(LIBCOMMON)
 	$(Q)$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBCOMMON) $(LDLIBS_ALL)
 bench: all build/bench_bridson
 	$(Q)sh bench/bench.sh
+
+# Our renderer against Blender's Cycles at equal error on the book-3 Cornell box (installs
+# Debian's blender when missing; not part of make test or CI; see BENCH.md).
+bench-peers: all
+	$(Q)WORKER=$(abspath $(WORKER_BIN)) sh bench/peers.sh
 
 # Fuzzing (libFuzzer, clang): each target for SECONDS; new crashes land in tests/fuzz/regress/,
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.

@@ -42,15 +42,19 @@ job "width: 16" "threshold: 50" "light_sampling: false"
 check "light_sampling: false renders (exit $rc)" [ "$rc" -eq 0 ]
 check "sidecar records light_sampling false" grep -q '"light_sampling": false' "$T/off/ls/ls.json"
 check "no light sample sets drawn with light sampling off" grep -q '"light_sample_sets": 0' "$T/off/ls/ls.json"
-job "width: 16" "light_sampling: maybe"
-rm -rf "$T/bad"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "light_sampling: maybe exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "light_sampling error names file:line:col" grep -q "ls.yaml:3:17: light_sampling: must be" "$T/ls.err"
-check "light_sampling error writes nothing" [ ! -e "$T/bad" ]
+rejects() { # rejects KEY VALUE MESSAGE: a job with KEY: VALUE exits 2, says MESSAGE, writes nothing
+    job "width: 16" "$1: $2"
+    rm -rf "$T/bad"
+    "$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+    check "$1: $2 exits 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "$1 error names file:line:col ($3)" grep -q "$3" "$T/ls.err"
+    check "$1 error writes nothing" [ ! -e "$T/bad" ]
+}
+rejects light_sampling maybe "ls.yaml:3:17: light_sampling: must be"
 
-# 3b. integrator: nee renders, is recorded, traces shadow rays (more segments than the mixture's
-# for the same samples), differs from the mixture; bad values fail with file:line:col.
+# 3b. integrator: nee renders, is recorded, traces shadow rays (without roulette, more segments
+# than the mixture's for the same samples), differs from the mixture; bad values fail with
+# file:line:col.
 for integ in mixture nee; do
     job "name: $integ" "width: 16" "threshold: 25" "integrator: $integ"
     "$WORKER" --quiet --out "$T/integ" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
@@ -58,9 +62,30 @@ for integ in mixture nee; do
     check "sidecar records integrator $integ" grep -q "\"integrator\": \"$integ\"" "$T/integ/$integ/$integ.json"
 done
 segs() { sed -n '/"rays"/,/}/s/.*"total": \([0-9]*\).*/\1/p' "$1" | head -n 1; }
-check "nee traces more segments than the mixture ($(segs "$T/integ/nee/nee.json") vs $(segs "$T/integ/mixture/mixture.json"))" \
-    [ "$(segs "$T/integ/nee/nee.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
 check "nee's image differs from the mixture's" sh -c "! cmp -s '$T/integ/nee/nee.png' '$T/integ/mixture/mixture.png'"
+# russian_roulette: on by default with nee, off with the mixture; off, nee's paths run longer
+check "sidecar records russian_roulette on with nee" grep -q '"russian_roulette": "on"' "$T/integ/nee/nee.json"
+check "sidecar records russian_roulette off with the mixture" \
+    grep -q '"russian_roulette": "off"' "$T/integ/mixture/mixture.json"
+job "name: nee-rroff" "width: 16" "threshold: 25" "integrator: nee" "russian_roulette: off"
+"$WORKER" --quiet --out "$T/integ" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
+check "russian_roulette: off renders (exit $rc)" [ "$rc" -eq 0 ]
+check "sidecar records russian_roulette off" grep -q '"russian_roulette": "off"' "$T/integ/nee-rroff/nee-rroff.json"
+check "nee without roulette traces more segments than the mixture ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/mixture/mixture.json"))" \
+    [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/mixture/mixture.json")" ]
+check "nee without roulette traces more segments ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/nee/nee.json"))" \
+    [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/nee/nee.json")" ]
+rejects russian_roulette maybe "ls.yaml:3:19: russian_roulette: must be off or on"
+# a compare variant takes russian_roulette too: its images named for it, each sidecar as applied
+printf '%s\n' "name: rr" "scenes: [$root/scenes/cornell-book3.yaml]" "width: 8" "integrator: nee" \
+    "reference: { sampler: jitter, threshold: 25 }" "seeds: [1]" "sweep: { threshold: [50] }" "variants:" \
+    "  - { sampler: jitter }" "  - { sampler: jitter, russian_roulette: off }" >"$T/rr.yaml"
+"$WORKER" --quiet --out "$T/rr" "$T/rr.yaml" 2>"$T/rr.err"; rc=$?
+check "a compare job with a russian_roulette variant runs (exit $rc)" [ "$rc" -eq 0 ]
+check "the variant's sidecar records russian_roulette off" \
+    grep -q '"russian_roulette": "off"' "$T/rr/rr/cornell-book3-jitter-rouletteoff-t50-s1.json"
+check "nee's default variant records russian_roulette on" \
+    grep -q '"russian_roulette": "on"' "$T/rr/rr/cornell-book3-jitter-t50-s1.json"
 for dims in pixel_light all; do
     job "name: d-$dims" "width: 16" "threshold: 25" "sampler: jitter" "sampler_dims: $dims"
     "$WORKER" --quiet --out "$T/dims" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
@@ -69,16 +94,8 @@ for dims in pixel_light all; do
 done
 check "sampler_dims: all's image differs from pixel_light's" \
     sh -c "! cmp -s '$T/dims/d-all/d-all.png' '$T/dims/d-pixel_light/d-pixel_light.png'"
-job "width: 16" "sampler_dims: every"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "sampler_dims: every exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "sampler_dims error names file:line:col" grep -q "ls.yaml:3:15: sampler_dims: must be pixel_light or all" "$T/ls.err"
-job "width: 16" "integrator: path"
-rm -rf "$T/bad"
-"$WORKER" --quiet --out "$T/bad" "$T/ls.yaml" 2>"$T/ls.err"; rc=$?
-check "integrator: path exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "integrator error names file:line:col" grep -q "ls.yaml:3:13: integrator: must be mixture or nee" "$T/ls.err"
-check "integrator error writes nothing" [ ! -e "$T/bad" ]
+rejects sampler_dims every "ls.yaml:3:15: sampler_dims: must be pixel_light or all"
+rejects integrator path "ls.yaml:3:13: integrator: must be mixture or nee"
 
 # 4. An image texture resolves beside its scene file wherever the job runs from.
 mkdir -p "$T/elsewhere/scenes/textures" "$T/cwd"

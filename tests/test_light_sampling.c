@@ -1,8 +1,9 @@
-/* Unbiasedness of the light-sampling mixture and of next-event estimation: cornell-book3
-   rendered with light sampling on (rect light + cone toward the sample: true glass sphere) and
-   off (pure cosine / BRDF) must converge to the same image, and every shipped scene rendered
-   with the mixture and with nee likewise. Compared region by region with a noise bound measured from
-   independent renders; a 10% change of the light's emission must break the same bound. */
+/* Unbiasedness of the light-sampling mixture, of next-event estimation and of Russian roulette:
+   cornell-book3 rendered with light sampling on (rect light + cone toward the sample: true glass
+   sphere) and off (pure cosine / BRDF) must converge to the same image, and every shipped scene
+   rendered with the mixture, with nee, with nee and roulette and with the mixture and roulette
+   likewise. Compared region by region with a noise bound measured from independent renders; a
+   10% change of the light's emission must break the same bound. */
 #include <stdlib.h>
 
 #include "check.h"
@@ -19,10 +20,11 @@ struct region_stats {
     double mean[NREG][NREG][3], se[NREG][NREG][3];
 };
 
-/* Render the scene SIDE x SIDE RUNS times (seeds seed0, seed0 + 1, ...; 64 random samples per
-   pixel, one process) and reduce it to region means over all runs and their standard errors
-   (the spread of the per-run region means over sqrt(RUNS)). */
-static int render_regions_as(const struct scene_file *sf, int light_sampling_off, int nee, int dims_all,
+/* Render the scene SIDE x SIDE RUNS times (seeds seed0, seed0 + 1, ...; 64 samples per pixel,
+   one process) with how's light_sampling_off, nee, dims_all and russian_roulette, and reduce it to
+   region means over all runs and their standard errors (the spread of the per-run region means
+   over sqrt(RUNS)). */
+static int render_regions_as(const struct scene_file *sf, struct render_settings how,
                              enum sampler_kind pixel_kind, uint64_t seed0, struct region_stats *out)
 {
     struct err e;
@@ -36,7 +38,10 @@ static int render_regions_as(const struct scene_file *sf, int light_sampling_off
     if (!pix || !light || !img || camera_init(&cam, &sf->camera, 1.0, &e) < 0)
         goto done;
     for (int k = 0; k < RUNS; k++) {
-        struct render_settings rs = {SIDE, SIDE, 50, seed0 + (uint64_t)k, light_sampling_off, nee, dims_all};
+        struct render_settings rs = how;
+        rs.width = rs.height = SIDE;
+        rs.max_depth = 50;
+        rs.seed = seed0 + (uint64_t)k;
         render_ctx_free(ctx);
         if (!(ctx = render_ctx_new(sf->scene, &cam, &rs, pix, light, &e)))
             goto done;
@@ -76,10 +81,26 @@ done:
     return rc;
 }
 
-static int render_regions(const struct scene_file *sf, int light_sampling_off, int nee, uint64_t seed0,
-                          struct region_stats *out)
+static int regions_apart(const struct region_stats *a, const struct region_stats *b, double *worst);
+
+/* render_regions_as with random pixel sets and every decision from the path's rng. */
+static int render_regions(const struct scene_file *sf, int light_sampling_off, int nee, int roulette,
+                          uint64_t seed0, struct region_stats *out)
 {
-    return render_regions_as(sf, light_sampling_off, nee, 0, SAMPLER_RANDOM, seed0, out);
+    const struct render_settings how = {
+        .light_sampling_off = light_sampling_off, .nee = nee, .russian_roulette = roulette};
+    return render_regions_as(sf, how, SAMPLER_RANDOM, seed0, out);
+}
+
+/* a and b's regions apart (regions_apart): printed as "scene: what: ...", and checked to be none */
+static void check_agree(const char *scene, const char *what, const struct region_stats *a,
+                        const struct region_stats *b)
+{
+    double worst;
+    int apart = regions_apart(a, b, &worst);
+    printf("%s: %s: %d of %d region-channels over %g sigma, worst %.2f sigma\n", scene, what, apart,
+           NREG * NREG * 3, K_SIGMA, worst);
+    CHECK(apart == 0);
 }
 
 /* Regions (of NREG^2 x 3 channels) whose means differ by more than K_SIGMA combined errors;
@@ -111,8 +132,8 @@ int main(void)
         return check_report("test_light_sampling");
     }
     CHECK(sf.scene->n_lights == 2); /* the rect light and the glass sphere */
-    CHECK(render_regions(&sf, 0, 0, 1, &on) == 0);
-    CHECK(render_regions(&sf, 1, 0, 1000, &off) == 0);
+    CHECK(render_regions(&sf, 0, 0, 0, 1, &on) == 0);
+    CHECK(render_regions(&sf, 1, 0, 0, 1000, &off) == 0);
     double worst;
     int apart = regions_apart(&on, &off, &worst);
     printf("light sampling on vs off: %d of %d region-channels over %g sigma, worst %.2f sigma\n", apart,
@@ -122,7 +143,7 @@ int main(void)
     for (int i = 0; i < sf.scene->n_materials; i++)
         if (sf.scene->materials[i].type == MAT_LIGHT)
             sf.scene->materials[i].emit = v3_scale(sf.scene->materials[i].emit, 0.9);
-    CHECK(render_regions(&sf, 0, 0, 2000, &dim) == 0);
+    CHECK(render_regions(&sf, 0, 0, 0, 2000, &dim) == 0);
     int dim_apart = regions_apart(&on, &dim, &worst);
     printf("light 10%% dimmer: %d of %d region-channels over %g sigma, worst %.2f sigma\n", dim_apart,
            NREG * NREG * 3, K_SIGMA, worst);
@@ -138,22 +159,26 @@ int main(void)
             CHECK(0);
             continue;
         }
-        static struct region_stats mix, nee, all;
-        CHECK(render_regions(&sf, 0, 0, 3000, &mix) == 0);
-        CHECK(render_regions(&sf, 0, 1, 4000, &nee) == 0);
-        apart = regions_apart(&mix, &nee, &worst);
-        printf("%s: mixture vs nee: %d of %d region-channels over %g sigma, worst %.2f sigma\n", scenes[i],
-               apart, NREG * NREG * 3, K_SIGMA, worst);
-        CHECK(apart == 0);
-        /* sampler_dims: all, every decision from jittered sets, with either integrator */
+        static struct region_stats mix, nee, nee_rr, mix_rr, all;
+        CHECK(render_regions(&sf, 0, 0, 0, 3000, &mix) == 0);
+        CHECK(render_regions(&sf, 0, 1, 0, 4000, &nee) == 0);
+        check_agree(scenes[i], "mixture vs nee", &mix, &nee);
+        /* Russian roulette with nee (its default) against the mixture and nee without it, and
+           with the mixture */
+        CHECK(render_regions(&sf, 0, 1, 1, 7000, &nee_rr) == 0);
+        check_agree(scenes[i], "mixture vs nee + roulette", &mix, &nee_rr);
+        check_agree(scenes[i], "nee vs nee + roulette", &nee, &nee_rr);
+        CHECK(render_regions(&sf, 0, 0, 1, 8000, &mix_rr) == 0);
+        check_agree(scenes[i], "mixture vs mixture + roulette", &mix, &mix_rr);
+        /* sampler_dims: all, every decision from jittered sets, with either integrator (nee
+           with roulette: its coin from the sets too) */
         for (int integ = 0; integ < 2; integ++) {
-            CHECK(render_regions_as(&sf, 0, integ, 1, SAMPLER_JITTER, 5000 + 1000 * (uint64_t)integ, &all) ==
-                  0);
-            apart = regions_apart(&mix, &all, &worst);
-            printf("%s: mixture vs %s, sampler_dims all: %d of %d region-channels over %g sigma, worst %.2f "
-                   "sigma\n",
-                   scenes[i], integ ? "nee" : "mixture", apart, NREG * NREG * 3, K_SIGMA, worst);
-            CHECK(apart == 0);
+            const struct render_settings how = {.nee = integ, .dims_all = 1, .russian_roulette = integ};
+            CHECK(render_regions_as(&sf, how, SAMPLER_JITTER, 5000 + 1000 * (uint64_t)integ, &all) == 0);
+            check_agree(scenes[i],
+                        integ ? "mixture vs nee + roulette, sampler_dims all"
+                              : "mixture vs mixture, sampler_dims all",
+                        &mix, &all);
         }
         scene_file_free(&sf);
     }

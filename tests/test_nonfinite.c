@@ -24,7 +24,7 @@ int main(void)
     struct camera cam;
     CHECK(camera_init(&cam, &sf.camera, 1.0, &e) == 0);
     struct sampler *pix = sampler_new(SAMPLER_JITTER, 10, 0, 0, &e); /* 100 samples a pixel */
-    struct render_settings rs = {SIDE, SIDE, 50, 1, 1, 0, 0};        /* light sampling off */
+    struct render_settings rs = {SIDE, SIDE, 50, 1, 1, 0, 0, 0};     /* light sampling off */
     struct render_ctx *ctx = pix ? render_ctx_new(sf.scene, &cam, &rs, pix, NULL, &e) : NULL;
     CHECK(ctx != NULL);
     int finite = 1, whole = 1, mixed = 0;

@@ -326,7 +326,7 @@ static void test_integrator(void)
         scene_free(sc);
         return;
     }
-    struct render_settings rs = {4, 4, 10, 1, 0, 0, 0};
+    struct render_settings rs = {4, 4, 10, 1, 0, 0, 0, 0};
     struct render_ctx *ctx = render_ctx_new(sc, &cam, &rs, pix, NULL, &e);
     CHECK(ctx != NULL);
     struct render_stats st;
@@ -359,7 +359,7 @@ static struct render_stats pixel_of(struct scene *sc, const struct camera_desc *
     camera_init(&cam, d, 1, &e);
     struct sampler *pix = sampler_new(SAMPLER_JITTER, pixel_t, 0, 0, &e);
     struct sampler *lsm = light_t > 0 ? sampler_new(SAMPLER_JITTER, light_t, 0, 0, &e) : NULL;
-    struct render_settings rs = {4, 4, depth, 1, 0, 0, 0};
+    struct render_settings rs = {4, 4, depth, 1, 0, 0, 0, 0};
     struct render_ctx *ctx =
         pix && (lsm || light_t <= 0) ? render_ctx_new(sc, &cam, &rs, pix, lsm, &e) : NULL;
     CHECK(ctx != NULL);
@@ -497,7 +497,7 @@ static double sampler_share_of_render(int pixels, int *bounded)
     struct camera_desc d = {v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 60, 0, 1, 0, 0};
     camera_init(&cam, &d, 1, &e);
     struct sampler *pix = sampler_new(SAMPLER_POISSON, 5, 0, 0, &e);
-    struct render_settings rs = {16, 16, 4, 1, 0, 0, 0};
+    struct render_settings rs = {16, 16, 4, 1, 0, 0, 0, 0};
     struct render_ctx *ctx = finished && pix ? render_ctx_new(sc, &cam, &rs, pix, NULL, &e) : NULL;
     struct render_stats st;
     render_stats_init(&st);

@@ -87,6 +87,8 @@ static void test_book3_and_final(void)
         const struct prim *glass = &sc->prims[sc->lights[1]];
         CHECK(lamp->type == PRIM_RECT && lamp->flip && lamp->g.rect.k == 554);
         CHECK(glass->type == PRIM_SPHERE && sc->materials[glass->material].type == MAT_DIELECTRIC);
+        /* next-event estimation's set: the lamp alone, not the sample: true glass */
+        CHECK(sc->n_emitters == 1 && sc->emitters[0] == sc->lights[0] && sc->emitter_lights[0] == 0);
         scene_file_free(&sf);
     }
     CHECK(load("scenes/final.yaml", &sf) == 0);

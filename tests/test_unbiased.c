@@ -23,7 +23,7 @@ static int render_means(const struct scene_file *sf, enum sampler_kind kind, dou
         return -1;
     struct sampler *pix = sampler_new(kind, t, pool, seed * 7 + 1, &e);
     struct sampler *light = sampler_new(kind, 5, pool, seed * 7 + 2, &e);
-    struct render_settings rs = {W, H, 50, seed, 0, 0, dims};
+    struct render_settings rs = {W, H, 50, seed, 0, 0, dims, 0};
     struct render_ctx *ctx = pix && light ? render_ctx_new(sf->scene, &cam, &rs, pix, light, &e) : NULL;
     int rc = -1;
     if (ctx) {

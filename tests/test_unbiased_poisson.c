@@ -30,7 +30,7 @@ static double render_mean(const struct scene_file *sf, const struct setup *u, ui
     /* random t=25: 16 points; poisson t=20: about 15 */
     struct sampler *pix = sampler_new(u->pixel, u->pixel == SAMPLER_POISSON ? 20 : 25, 0, 0, &e);
     struct sampler *light = sampler_new(u->light, 20, 0, 0, &e);
-    struct render_settings rs = {SIDE, SIDE, 2, seed, 0, 1, u->dims};
+    struct render_settings rs = {SIDE, SIDE, 2, seed, 0, 1, u->dims, 0};
     struct render_ctx *ctx = NULL;
     double mean = NAN;
     if (pix && light) {

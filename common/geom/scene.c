@@ -21,6 +21,8 @@ void scene_free(struct scene *sc)
     free(sc->materials);
     free(sc->prims);
     free(sc->lights);
+    free(sc->emitters);
+    free(sc->emitter_lights);
     free(sc->nodes);
     free(sc->prim_order);
     for (int i = 0; i < sc->n_images; i++)
@@ -111,5 +113,21 @@ int scene_finish(struct scene *sc, struct err *e)
             err_set(e, NULL, 0, 0, "internal: light %d keeps a transform shape_bake cannot fold", i);
             return -1;
         }
+    free(sc->emitters);
+    free(sc->emitter_lights);
+    sc->emitters = malloc(((size_t)sc->n_lights + 1) * sizeof *sc->emitters);
+    sc->emitter_lights = malloc(((size_t)sc->n_lights + 1) * sizeof *sc->emitter_lights);
+    sc->n_emitters = 0;
+    if (!sc->emitters || !sc->emitter_lights) {
+        err_set(e, NULL, 0, 0, "out of memory for the scene's list of emitters");
+        return -1;
+    }
+    for (int i = 0; i < sc->n_lights; i++) {
+        const int m = sc->prims[sc->lights[i]].material;
+        if (m >= 0 && m < sc->n_materials && sc->materials[m].type == MAT_LIGHT) {
+            sc->emitters[sc->n_emitters] = sc->lights[i];
+            sc->emitter_lights[sc->n_emitters++] = i;
+        }
+    }
     return bvh_build(sc, e);
 }

@@ -125,8 +125,12 @@ struct scene {
     int n_materials;
     struct prim *prims;
     int n_prims;
-    int *lights; /* prims importance-sampled by the light pdf */
+    int *lights; /* prims importance-sampled by the light pdf (the mixture's: emitters and sample: true) */
     int n_lights;
+    /* built by scene_finish: the lights whose material emits, next-event estimation's set: their
+       prims and their indices in lights */
+    int *emitters, *emitter_lights;
+    int n_emitters;
     vec3 background;
     struct rgb8 *images; /* decoded image textures */
     int n_images;

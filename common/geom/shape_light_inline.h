@@ -207,28 +207,50 @@ static inline double lights_mean(double sum, int n)
     return n == 1 ? sum : n == 2 ? sum * 0.5 : sum / n;
 }
 
-/* shape_lights_pdf from light i on, sum holding the lights before it, light i a disk or rect
-   whose cone holds dir (so only its plane hit is left to test). Out of line: reached by a tail
-   call only for the few directions inside a planar light's cone. */
-static __attribute__((noinline, unused)) double
-lights_pdf_from(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf, int i, double sum)
+/* A set of lights a strategy samples, each chosen with probability 1 / n: prims[j] is the j-th's
+   prim. The mixture's set is every light (light_set_all), next-event estimation's the emitters
+   alone (light_set_emitters; scene.h's emitter_lights maps them to their light points): a shadow
+   ray toward a non-emitting sample: true object cannot carry light. Two words: passed in
+   registers. */
+struct light_set {
+    const int *prims;
+    int n;
+};
+
+static inline struct light_set light_set_all(const struct scene *sc)
 {
-    const struct prim *lp = &sc->prims[sc->lights[i]];
-    sum += lp->type == PRIM_DISK ? disk_pdf_hit(lp, o, dir) : rect_pdf_hit(lp, o, dir);
-    for (i++; i < sc->n_lights; i++) {
-        const struct prim *p = &sc->prims[sc->lights[i]];
-        sum += i == known ? known_pdf : light_pdf(p, o, dir);
-    }
-    return lights_mean(sum, sc->n_lights);
+    return (struct light_set){sc->lights, sc->n_lights};
 }
 
-/* shape_lights_pdf (shape.h) */
-static inline __attribute__((always_inline)) double lights_pdf(const struct scene *sc, vec3 o, vec3 dir,
-                                                               int known, double known_pdf)
+static inline struct light_set light_set_emitters(const struct scene *sc)
+{
+    return (struct light_set){sc->emitters, sc->n_emitters};
+}
+
+/* lights_pdf_in from light i of ls on, sum holding the lights before it, light i a disk or rect
+   whose cone holds dir (so only its plane hit is left to test). Out of line: reached by a tail
+   call only for the few directions inside a planar light's cone. */
+static __attribute__((noinline, unused)) double lights_pdf_from(const struct scene *sc, struct light_set ls,
+                                                                vec3 o, vec3 dir, int known, double known_pdf,
+                                                                int i, double sum)
+{
+    const struct prim *lp = &sc->prims[ls.prims[i]];
+    sum += lp->type == PRIM_DISK ? disk_pdf_hit(lp, o, dir) : rect_pdf_hit(lp, o, dir);
+    for (i++; i < ls.n; i++) {
+        const struct prim *p = &sc->prims[ls.prims[i]];
+        sum += i == known ? known_pdf : light_pdf(p, o, dir);
+    }
+    return lights_mean(sum, ls.n);
+}
+
+/* The density of ls's strategy (a light chosen uniformly, then its sample) for dir from o: the mean
+   of its lights' pdfs, the known-th's given as known_pdf (-1: none known). */
+static inline __attribute__((always_inline)) double
+lights_pdf_in(const struct scene *sc, struct light_set ls, vec3 o, vec3 dir, int known, double known_pdf)
 {
     double sum = 0;
-    for (int i = 0; i < sc->n_lights; i++) {
-        const struct prim *p = &sc->prims[sc->lights[i]];
+    for (int i = 0; i < ls.n; i++) {
+        const struct prim *p = &sc->prims[ls.prims[i]];
         int in_cone;
         if (i == known) {
             sum += known_pdf;
@@ -245,9 +267,16 @@ static inline __attribute__((always_inline)) double lights_pdf(const struct scen
            return here, the loop keeps its values in registers (a light outside its cone adds 0:
            sum is unchanged) */
         if (in_cone)
-            return lights_pdf_from(sc, o, dir, known, known_pdf, i, sum);
+            return lights_pdf_from(sc, ls, o, dir, known, known_pdf, i, sum);
     }
-    return lights_mean(sum, sc->n_lights);
+    return lights_mean(sum, ls.n);
+}
+
+/* shape_lights_pdf (shape.h): every light's */
+static inline __attribute__((always_inline)) double lights_pdf(const struct scene *sc, vec3 o, vec3 dir,
+                                                               int known, double known_pdf)
+{
+    return lights_pdf_in(sc, light_set_all(sc), o, dir, known, known_pdf);
 }
 
 #endif

@@ -13,11 +13,12 @@
    isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
    Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
    follow their one direction. Scattered directions are unit vectors. Each segment's
-   interaction is path_scatter (render_path.h), which the packet's lanes (render_lanes.c) share;
-   inline, with mix and last made once per pixel. */
+   interaction is path_scatter (render_path.h), which the packet's lanes (render_lanes.c) share,
+   then Russian roulette (path_survives) when path.roulette; inline, with mix and last made once
+   per pixel. path: the camera sample's decisions (its depth is the loop's). */
 static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng,
-                                                        uint64_t *rays, int mix, int nee, int dims,
-                                                        uint32_t sample, int last)
+                                                        uint64_t *rays, int mix, int nee, struct path_at path,
+                                                        int last)
 {
     const struct scene *sc = ctx->sc;
     vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
@@ -29,8 +30,9 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
             L = v3_add(L, v3_mul(beta, sc->background));
             break;
         }
-        const struct path_at at = {dims, depth, sample};
-        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, at, 1))
+        const struct path_at at = {path.dims, depth, path.sample, path.roulette, NULL};
+        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, at, 1) ||
+            !path_survives(ctx, &beta, rng, at))
             break;
     }
     return L;
@@ -61,28 +63,33 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
 
     double sum[3] = {0, 0, 0};
     uint64_t rays = 0, nonfinite = 0;
-    const int lights = ctx->sc->n_lights > 0 && !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
-    const int nee = lights && ctx->rs.nee, mix = lights && !nee, dims = ctx->rs.dims_all;
+    /* nee samples the emitters alone: without any, only the material's own sampling is left */
+    const int lights = !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
+    const int nee = lights && ctx->rs.nee && ctx->sc->n_emitters > 0;
+    const int mix = lights && !ctx->rs.nee && ctx->sc->n_lights > 0, dims = ctx->rs.dims_all;
+    const int rr = ctx->rs.russian_roulette;
     if (dims) {
         padding_pixel(&ctx->pad, ctx->rs.seed, x, y, n);
         ctx->pad.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     }
     if (ctx->packet) {
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, dims, last, sum, &nonfinite, &rays);
+        const struct path_at how = {dims, 0, 0, rr, NULL};
+        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, how, last, sum, &nonfinite, &rays);
     } else {
-        /* nee and dims constants in the default loop: the mixture's inlined trace holds none of
-           their code */
+        /* nee, dims and roulette constants in the default loop: the mixture's inlined trace holds
+           none of their code */
         for (size_t s = 0; s < n; s++) {
             struct pt2 p = ctx->pixel_pts[s];
             const double u = (x + p.x) / w, v = (hgt - y - p.y) / hgt;
             vec3 c;
-            if (nee || dims) {
+            if (nee || dims || rr) {
                 ray r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s)
                              : camera_ray(ctx->cam, u, v, &path_rng);
-                c = trace(ctx, &r, &path_rng, &rays, mix, nee, dims, (uint32_t)s, last);
+                const struct path_at path = {dims, 0, (uint32_t)s, rr, NULL};
+                c = trace(ctx, &r, &path_rng, &rays, mix, nee, path, last);
             } else {
                 ray r = camera_ray(ctx->cam, u, v, &path_rng);
-                c = trace(ctx, &r, &path_rng, &rays, mix, 0, 0, 0, last);
+                c = trace(ctx, &r, &path_rng, &rays, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last);
             }
             add_estimate(c, sum, &nonfinite);
         }

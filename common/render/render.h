@@ -14,7 +14,8 @@ struct render_settings {
     uint64_t seed;
     int light_sampling_off; /* 1: scatter by the material alone (cosine / phase); lights still emit */
     int nee; /* 1: next-event estimation with MIS at every diffuse or medium vertex; 0: the books' mixture */
-    int dims_all; /* 1: every 2D decision of a path from the pixel sampler's sets (render_dims.c) */
+    int dims_all; /* 1: every 2D decision of a path from the pixel sampler's sets (sample/padding.h) */
+    int russian_roulette; /* 1: a path may end after its second scatter (render_path.h's path_survives) */
 };
 
 /* Counters one process accumulates; summed by the parent. */

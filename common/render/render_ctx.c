@@ -46,11 +46,12 @@ static int dims_init(struct render_ctx *ctx, struct err *e)
 {
     const size_t per_slot = padding_slot_points(ctx->pixel);
     int bounces = ctx->rs.max_depth < DIMS_MAX_BOUNCES ? ctx->rs.max_depth : DIMS_MAX_BOUNCES;
+    const int per_bounce = DIMS_PER_BOUNCE + (ctx->rs.russian_roulette != 0); /* + DIM_ROULETTE's */
     while (bounces > 1 &&
-           (size_t)(DIMS_CAMERA + DIMS_PER_BOUNCE * bounces) * per_slot * sizeof(struct pt2) > DIMS_MAX_BYTES)
+           (size_t)(DIMS_CAMERA + per_bounce * bounces) * per_slot * sizeof(struct pt2) > DIMS_MAX_BYTES)
         bounces--;
     ctx->dims_bounces = bounces;
-    return padding_init(&ctx->pad, ctx->pixel, DIMS_CAMERA + DIMS_PER_BOUNCE * bounces, e);
+    return padding_init(&ctx->pad, ctx->pixel, DIMS_CAMERA + per_bounce * bounces, e);
 }
 
 void render_ctx_free(struct render_ctx *ctx)

@@ -11,7 +11,8 @@
 struct path {
     ray r;
     vec3 beta, L;
-    double mis_pdf; /* next-event estimation's: the last scatter's pdf (path_scatter_as) */
+    double mis_pdf;            /* next-event estimation's: the last scatter's pdf (path_scatter_as) */
+    struct path_shadow shadow; /* next-event estimation's shadow ray, traced with the other lanes' */
     int depth;
     uint32_t s; /* its camera sample's index in the pixel */
     struct rng rng;
@@ -19,19 +20,21 @@ struct path {
 
 /* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
    with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
-   scene has lights sampled (nee: by next-event estimation; dims: sampler_dims: all); last: the last segment's
-   depth (max_depth - 1). trace's loop body: both are path_scatter (render_path.h). */
+   scene has lights sampled (nee: by next-event estimation); how: sampler_dims: all (dims) and
+   Russian roulette (roulette); last: the last segment's depth (max_depth - 1). trace's loop body:
+   both are path_scatter then path_survives (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       struct hit *h, int mix, int nee, int dims, int last,
-                                                       uint64_t *rays)
+                                                       struct hit *h, int mix, int nee, struct path_at how,
+                                                       int last, uint64_t *rays)
 {
     if (!got) {
         pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
         return 0;
     }
-    const struct path_at at = {dims, pt->depth, pt->s};
+    const struct path_at at = {how.dims, pt->depth, pt->s, how.roulette, &pt->shadow};
     return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix, nee,
-                        &pt->mis_pdf, rays, at);
+                        &pt->mis_pdf, rays, at) &&
+           path_survives(ctx, &pt->beta, &pt->rng, at);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
@@ -56,39 +59,58 @@ path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s, cons
     pt->depth = 0;
 }
 
+/* An ended lane's next camera sample, *next, if any is left of the pixel's n: 1 when pt took it. */
+static inline __attribute__((always_inline)) int path_next(struct render_ctx *ctx, struct path *pt, int x,
+                                                           int y, size_t n, const struct rng *base, int dims,
+                                                           size_t *next)
+{
+    if (*next >= n)
+        return 0;
+    path_start(ctx, pt, x, y, (*next)++, base, dims);
+    return 1;
+}
+
+/* The nearest hits of the rays *r[i] of the lanes in mask, into ph: bit i of the result set when
+   lane i's ray hits. Four at a time by packet_hit, or (one lane, or no vector back-end) each
+   alone by the scalar traversal: the same hits, packet_hit returns the scalar tests' answers bit
+   for bit. */
+static inline __attribute__((always_inline)) int
+lanes_hit(const struct render_ctx *ctx, const ray *const r[PACKET_LANES], int mask, struct packet_hits *ph)
+{
+    if (SIMD_LANES && (mask & (mask - 1)))
+        return packet_hit(ctx->packet, r, HIT_EPS, DBL_MAX, ph);
+    int got = 0;
+    for (int i = 0; i < PACKET_LANES; i++)
+        if (mask >> i & 1)
+            got |= bvh_hit_node(ctx->sc, r[i], HIT_EPS, DBL_MAX, &ph->h[i]) << i;
+    return got;
+}
+
 /* render_pixel's samples four paths at a time, their rays traced together (packet_hit). Inline
-   into the two callers below, nee and dims constants in the default's: the mixture's code holds
-   none of theirs. */
+   into the two callers below, nee, dims and roulette constants in the default's: the mixture's
+   code holds none of theirs. */
 static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
                                                             const struct rng *base, int mix, int nee,
-                                                            int dims, int last, double sum[3],
+                                                            struct path_at how, int last, double sum[3],
                                                             uint64_t *nonfinite, uint64_t *rays)
 {
     struct path pt[PACKET_LANES] = {0};
-    const ray *rp[PACKET_LANES];
+    const ray *rp[PACKET_LANES], *shadow_rp[PACKET_LANES];
     double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
     uint64_t acc_rays = 0, acc_nonfinite = 0;
     int lanes = 0;
     size_t next = 0;
     for (int i = 0; i < PACKET_LANES; i++) {
         rp[i] = &pt[i].r;
+        shadow_rp[i] = &pt[i].shadow.r;
         if (next < n) {
-            path_start(ctx, &pt[i], x, y, next++, base, dims);
+            path_start(ctx, &pt[i], x, y, next++, base, how.dims);
             lanes |= 1 << i;
         }
     }
     while (lanes) {
         struct packet_hits ph;
-        int got;
-        if (SIMD_LANES && (lanes & (lanes - 1))) {
-            got = packet_hit(ctx->packet, rp, HIT_EPS, DBL_MAX, &ph);
-        } else { /* one lane left, or no vector back-end: each ray alone by the scalar traversal
-                    (the same hits: packet_hit returns the scalar tests' answers bit for bit) */
-            got = 0;
-            for (int i = 0; i < PACKET_LANES; i++)
-                if (lanes >> i & 1)
-                    got |= bvh_hit_node(ctx->sc, rp[i], HIT_EPS, DBL_MAX, &ph.h[i]) << i;
-        }
+        int got = lanes_hit(ctx, rp, lanes, &ph), ended = 0;
         /* unrolled: each lane's path and hit record at a fixed place in the frame, no index
            arithmetic in shade's loads and stores (one copy of shade per lane) */
 #pragma GCC unroll 4
@@ -96,12 +118,33 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, dims, last, &acc_rays))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, how, last, &acc_rays))
+                continue;
+            if (nee) { /* ended, once its shadow ray is traced below */
+                ended |= 1 << i;
+                continue;
+            }
+            add_estimate(pt[i].L, acc, &acc_nonfinite);
+            if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
+                lanes &= ~(1 << i);
+        }
+        if (nee) { /* the shadow rays shade left, traced together; each adds to its path's L as it
+                      would have at once (nothing else adds to L in between) */
+            int pending = 0;
+            for (int i = 0; i < PACKET_LANES; i++)
+                pending |= pt[i].shadow.pending << i;
+            if (pending) {
+                int shadow_got = lanes_hit(ctx, shadow_rp, pending, &ph);
+                for (int i = 0; i < PACKET_LANES; i++)
+                    if (pending >> i & 1)
+                        path_shadow_add(ctx, &pt[i].shadow, shadow_got >> i & 1, &ph.h[i], &pt[i].L);
+            }
+        }
+        for (int i = 0; i < PACKET_LANES; i++) {
+            if (!(ended >> i & 1))
                 continue;
             add_estimate(pt[i].L, acc, &acc_nonfinite);
-            if (next < n)
-                path_start(ctx, &pt[i], x, y, next++, base, dims);
-            else
+            if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
     }
@@ -111,20 +154,24 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     *rays += acc_rays;
 }
 
-/* nee or sampler_dims: all (runtime values), out of line from the default's loop. */
+/* nee, sampler_dims: all or roulette (runtime values), out of line from the default's loop. */
 static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
-                                                  const struct rng *base, int mix, int nee, int dims,
-                                                  int last, double sum[3], uint64_t *nonfinite,
-                                                  uint64_t *rays)
+                                                  const struct rng *base, int mix, int nee,
+                                                  struct path_at how, int last, double sum[3],
+                                                  uint64_t *nonfinite, uint64_t *rays)
 {
-    lanes_run(ctx, x, y, n, base, mix, nee, dims, last, sum, nonfinite, rays);
+    if (nee) /* a constant in its copy: the shadow rays' pass and none of the mixture's code */
+        lanes_run(ctx, x, y, n, base, 0, 1, how, last, sum, nonfinite, rays);
+    else
+        lanes_run(ctx, x, y, n, base, mix, 0, how, last, sum, nonfinite, rays);
 }
 
 void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, int dims, int last, double sum[3], uint64_t *nonfinite, uint64_t *rays)
+                         int nee, struct path_at how, int last, double sum[3], uint64_t *nonfinite,
+                         uint64_t *rays)
 {
-    if (nee || dims)
-        lanes_other(ctx, x, y, n, base, mix, nee, dims, last, sum, nonfinite, rays);
+    if (nee || how.dims || how.roulette)
+        lanes_other(ctx, x, y, n, base, mix, nee, how, last, sum, nonfinite, rays);
     else
-        lanes_run(ctx, x, y, n, base, mix, 0, 0, last, sum, nonfinite, rays);
+        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last, sum, nonfinite, rays);
 }

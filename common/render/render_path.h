@@ -114,16 +114,17 @@ static __attribute__((unused)) double reflectance(double cosine, double ref_idx)
     return r0 + (1 - r0) * (x2 * x2 * x);
 }
 
-/* A unit direction toward one of the scene's lights, chosen uniformly; disk and rect lights
-   take their next point from their stream of the light sampler's points, a sphere its cone
-   sample from rng. *light is
-   the chosen light's index and *pdf its density for the direction. */
-static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, vec3 o,
-                                                                  struct rng *rng, int *light, double *pdf)
+/* A unit direction toward one of ls's lights, chosen uniformly (slots: each one's index in the
+   scene's lights, NULL when ls is every light); disk and rect lights take their next point from
+   their stream of the light sampler's points, a sphere its cone sample from rng. *light is the
+   chosen light's index in ls and *pdf its density for the direction. */
+static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, struct light_set ls,
+                                                                  const int *slots, vec3 o, struct rng *rng,
+                                                                  int *light, double *pdf)
 {
     const struct scene *sc = ctx->sc;
-    int i = (int)rng_below(rng, (uint32_t)sc->n_lights);
-    const struct prim *lp = &sc->prims[sc->lights[i]];
+    const int j = (int)rng_below(rng, (uint32_t)ls.n), i = slots ? slots[j] : j;
+    const struct prim *lp = &sc->prims[ls.prims[j]];
     struct pt2 s, turn = {0, 0};
     int turned = 0;
     if (ctx->uses_points[i]) {
@@ -134,34 +135,28 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
         s.x = rng_uniform32(rng);
         s.y = rng_uniform32(rng);
     }
-    *light = i;
+    *light = j;
     return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
 }
 
-/* light_direction under sampler_dims: all: the light chosen by choice in [0, 1), its point s. */
-static inline __attribute__((always_inline)) vec3
-light_direction_at(struct render_ctx *ctx, vec3 o, double choice, struct pt2 s, int *light, double *pdf)
+/* light_direction under sampler_dims: all: ls's light chosen by choice in [0, 1), its point s. */
+static inline __attribute__((always_inline)) vec3 light_direction_at(struct render_ctx *ctx,
+                                                                     struct light_set ls, vec3 o,
+                                                                     double choice, struct pt2 s, int *light,
+                                                                     double *pdf)
 {
-    const struct scene *sc = ctx->sc;
-    int i = (int)(choice * sc->n_lights);
-    i = i < sc->n_lights ? i : sc->n_lights - 1;
+    int i = (int)(choice * ls.n);
+    i = i < ls.n ? i : ls.n - 1;
     *light = i;
-    return light_sample(&sc->prims[sc->lights[i]], o, s, pdf);
+    return light_sample(&ctx->sc->prims[ls.prims[i]], o, s, pdf);
 }
 
-/* Where a vertex's decisions come from: under sampler_dims: all (dims) sample's points of the
-   pixel's sets for the vertex's bounce (depth), while that bounce has sets; else the path's rng. */
-struct path_at {
-    int dims, depth;
-    uint32_t sample;
-};
-
-/* Decision k (DIM_DIR, DIM_LIGHT, DIM_CHOICE) of the vertex at->depth: two uniforms. */
+/* Decision k (DIM_DIR, DIM_LIGHT, DIM_CHOICE, DIM_ROULETTE) of the vertex at->depth: two uniforms. */
 static inline __attribute__((always_inline)) struct pt2 path_decide(struct render_ctx *ctx, struct rng *rng,
                                                                     struct path_at at, int k)
 {
     if (at.depth < ctx->dims_bounces)
-        return padding_point(&ctx->pad, DIMS_CAMERA + DIMS_PER_BOUNCE * at.depth + k, at.sample);
+        return padding_point(&ctx->pad, render_dims_slot(ctx, at.depth, k), at.sample);
     struct pt2 p;
     p.x = rng_uniform32(rng);
     p.y = rng_uniform32(rng);
@@ -202,27 +197,46 @@ static inline void add_estimate(vec3 c, double sum[3], uint64_t *nonfinite)
     sum[0] += c.x, sum[1] += c.y, sum[2] += c.z;
 }
 
+/* A shadow ray's emission (got: it hit something, hit its nearest hit) into *L: an emitter's front
+   reached first counts, weighted by sh's weight and scale; sh is then done. */
+static inline __attribute__((always_inline)) void
+path_shadow_add(const struct render_ctx *ctx, struct path_shadow *sh, int got, const struct hit *hit, vec3 *L)
+{
+    sh->pending = 0;
+    if (!got)
+        return;
+    const struct material *lm = ctx->prim_material[hit->prim];
+    if (lm->type != MAT_LIGHT || !hit->front)
+        return;
+    *L = v3_add(*L, v3_mul(sh->weight, v3_scale(lm->emit, sh->scale)));
+}
+
 /* Next-event estimation at a scattering vertex h (diffuse surface or medium), before its own
    scatter: one light point from the light sampler's sets, a shadow ray toward it, and the
    emission it reaches weighted by the power heuristic against the material's own sampling
    (Veach 1997, ch. 9). f is the scattering function times the cosine (or the phase), bsdf_pdf
    the material's pdf for that direction; both per the direction, so given as closures over h:
-   lambertian (cosine / pi) when phase is 0, else the isotropic phase. The light strategy's pdf
-   is the lights' mixture (every light chosen alike), so an emitter the shadow ray reaches first
-   counts whichever light was chosen. */
+   lambertian (cosine / pi) when phase is 0, else the isotropic phase. The light point comes from
+   an emitter (light_set_emitters: a sample: true object that does not emit is the mixture's
+   alone), chosen uniformly; the light strategy's pdf is the emitters' mixture, so an emitter the
+   shadow ray reaches first counts whichever one was chosen. When at.shadow is set the shadow ray
+   is left there for the caller to trace (the lanes trace four at a time), path_shadow_add then
+   adding what it reaches; else it is traced here. */
 static inline __attribute__((always_inline)) void
 path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct rng *rng,
                 const struct hit *h, vec3 albedo, double phase, uint64_t *rays, struct path_at at)
 {
     const struct scene *sc = ctx->sc;
+    const struct light_set emitters = light_set_emitters(sc);
     int light = -1;
     double light_pdf = 0;
     vec3 dir;
     if (at.dims) {
         struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
-        dir = light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf);
+        dir = light_direction_at(ctx, emitters, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light,
+                                 &light_pdf);
     } else {
-        dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+        dir = light_direction(ctx, emitters, sc->emitter_lights, h->p, rng, &light, &light_pdf);
     }
     double f_pdf; /* the material's pdf for dir, which is also its f times cosine / albedo */
     if (phase > 0) {
@@ -233,19 +247,18 @@ path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct
             return;
         f_pdf = cosine / PI;
     }
-    double pl = lights_pdf(sc, h->p, dir, light, light_pdf);
+    double pl = lights_pdf_in(sc, emitters, h->p, dir, light, light_pdf);
     if (!(pl > 0))
         return;
-    ray shadow = {h->p, dir, r->time};
-    struct hit sh;
-    ++*rays;
-    if (!bvh_hit(sc, &shadow, HIT_EPS, DBL_MAX, &sh))
-        return;
-    const struct material *lm = ctx->prim_material[sh.prim];
-    if (lm->type != MAT_LIGHT || !sh.front)
-        return;
     double w = pl * pl / (pl * pl + f_pdf * f_pdf);
-    *L = v3_add(*L, v3_mul(v3_mul(beta, albedo), v3_scale(lm->emit, f_pdf * w / pl)));
+    struct path_shadow sh = {{h->p, dir, r->time}, v3_mul(beta, albedo), f_pdf * w / pl, 1};
+    ++*rays;
+    if (at.shadow) {
+        *at.shadow = sh;
+        return;
+    }
+    struct hit hit;
+    path_shadow_add(ctx, &sh, bvh_hit(sc, &sh.r, HIT_EPS, DBL_MAX, &hit), &hit, L);
 }
 
 /* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
@@ -296,15 +309,15 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
         if (at.dims) {
             struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
             if (mix && c.x < 0.5) {
-                dir = light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light,
-                                         &light_pdf);
+                dir = light_direction_at(ctx, light_set_all(sc), h->p, c.y,
+                                         path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf);
             } else {
                 onb frame = onb_from_w(h->n);
                 struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
                 dir = cosine_direction_uv(&frame, u.x, u.y);
             }
         } else if (mix && rng_u32(rng) >> 31) {
-            dir = light_direction(ctx, h->p, rng, &light, &light_pdf);
+            dir = light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf);
         } else {
             onb frame = onb_from_w(h->n);
             dir = cosine_direction(&frame, rng);
@@ -326,7 +339,7 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
         if (!h->front)
             return 0;
         if (nee && *mis_pdf > 0) { /* reached by a scatter that next-event estimation also sampled */
-            double pl = lights_pdf(sc, r->orig, r->dir, -1, 0), pb = *mis_pdf;
+            double pl = lights_pdf_in(sc, light_set_emitters(sc), r->orig, r->dir, -1, 0), pb = *mis_pdf;
             *L = v3_add(*L, v3_mul(*beta, v3_scale(m->emit, pb * pb / (pb * pb + pl * pl))));
         } else {
             *L = v3_add(*L, v3_mul(*beta, m->emit));
@@ -376,13 +389,14 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
             int light = -1;
             double light_pdf = 0;
             if (at.dims)
-                dir = c.x < 0.5 ? light_direction_at(ctx, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT),
-                                                     &light, &light_pdf)
+                dir = c.x < 0.5 ? light_direction_at(ctx, light_set_all(sc), h->p, c.y,
+                                                     path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf)
                                 : uniform_sphere_direction_uv(u.x, u.y);
             else
-                dir = rng_u32(rng) >> 31 ? light_direction(ctx, h->p, rng, &light, &light_pdf)
-                      : media_inline     ? uniform_sphere_direction_inline(rng)
-                                         : uniform_sphere_direction(rng);
+                dir = rng_u32(rng) >> 31
+                          ? light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf)
+                      : media_inline ? uniform_sphere_direction_inline(rng)
+                                     : uniform_sphere_direction(rng);
             pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
                                       : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
                   0.5 * phase;
@@ -396,6 +410,27 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
         return 1;
     }
     }
+}
+
+/* Russian roulette after the scatter at vertex at (pbrt-v4's path integrator; Arvo and Kirk,
+   "Particle Transport and Image Synthesis", SIGGRAPH 1990), when at.roulette: from the second
+   scatter on, a path whose throughput's largest channel m is below 1 goes on with probability m,
+   its throughput divided by m, so that its expectation is unchanged. The coin is the vertex's
+   decision DIM_ROULETTE (x) under sampler_dims: all, else the path's rng. 1: the path goes on. */
+#define ROULETTE_FROM_DEPTH 1
+static inline __attribute__((always_inline)) int path_survives(struct render_ctx *ctx, vec3 *beta,
+                                                               struct rng *rng, struct path_at at)
+{
+    if (!at.roulette || at.depth < ROULETTE_FROM_DEPTH)
+        return 1;
+    const double m = d_max(beta->x, d_max(beta->y, beta->z));
+    if (!(m < 1))
+        return 1;
+    const double coin = at.dims ? path_decide(ctx, rng, at, DIM_ROULETTE).x : rng_uniform32(rng);
+    if (!(coin < m))
+        return 0;
+    *beta = v3_scale(*beta, 1 / m);
+    return 1;
 }
 
 /* path_scatter_as with a medium's scatter through calls. */

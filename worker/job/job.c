@@ -14,12 +14,12 @@
 #include "outdir.h"
 #include "scenefile/yget.h"
 
-const char *const job_keys[] = {"name",      "scene",      "width",         "height",
-                                "sampler",   "threshold",  "light_sampler", "light_threshold",
-                                "max_depth", "seed",       "processes",     "format",
-                                "output",    "reference",  "poisson_pool",  "light_sampling",
-                                "priority",  "integrator", "sampler_dims",  "poisson_domain",
-                                NULL};
+const char *const job_keys[] = {"name",           "scene",      "width",         "height",
+                                "sampler",        "threshold",  "light_sampler", "light_threshold",
+                                "max_depth",      "seed",       "processes",     "format",
+                                "output",         "reference",  "poisson_pool",  "light_sampling",
+                                "priority",       "integrator", "sampler_dims",  "russian_roulette",
+                                "poisson_domain", NULL};
 
 void job_defaults(struct job *j, const char *path)
 {
@@ -36,6 +36,12 @@ void job_defaults(struct job *j, const char *path)
     j->processes = 2;
     j->format = IMG_PNG;
     j->light_sampling = 1;
+    j->roulette = -1;
+}
+
+int job_roulette(const struct job *j)
+{
+    return j->roulette < 0 ? j->nee : j->roulette;
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
@@ -247,6 +253,8 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "sampler_dims")) {
         mark(j->pos_dims, v);
         return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
+    } else if (!strcmp(k, "russian_roulette")) {
+        return get_either(d, v, k, "off", "on", &j->roulette, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;

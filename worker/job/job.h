@@ -35,6 +35,7 @@ struct job {
     int light_sampling;                 /* 0: no importance sampling of lights (default 1) */
     int nee;        /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
     int dims_all;   /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
+    int roulette;   /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: on with nee) */
     int priority;   /* queue order: higher first (default 0) */
     int float_copy; /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
                        image (a compare job's renders, scored in linear radiance) */
@@ -52,6 +53,10 @@ double job_smallest_threshold(enum sampler_kind k);
    paths resolve beside path) into j: every key checked, defaults filled; j->hash left 0 (the
    job file's reader, jobfile_open, sets it). 0, or -1 with e = "file:line:col: key: message". */
 int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e);
+
+/* Whether the job's paths may end by Russian roulette: russian_roulette when given, else on with
+   integrator: nee and off with the mixture (whose images stay the books'). */
+int job_roulette(const struct job *j);
 
 /* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
    least 1 (the caller checks it against IMAGE_MAX_SIDE). */

@@ -52,7 +52,7 @@ static int pilot(const struct job *j, const struct scene_file *sf, double budget
     }
     uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL); /* run_job's: the same pools */
     const struct render_settings rs = {est->width,         est->height, j->max_depth, j->seed,
-                                       !j->light_sampling, j->nee,      j->dims_all};
+                                       !j->light_sampling, j->nee,      j->dims_all,  job_roulette(j)};
     if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
         !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
         snprintf(e->file, sizeof e->file, "%s", j->path);

@@ -171,17 +171,18 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (!(rgb = procs_framebuffer_new(w, h, e)))
         goto done;
     struct progress prog = {j->name, o->progress && !o->quiet, -1, o->tick, o->tick_arg};
-    struct procs_job fj = {.scene = sf.scene,
-                           .camera = &cam,
-                           .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->nee, j->dims_all},
-                           .pixel = pix,
-                           .light = light,
-                           .processes = o->processes > 0 ? o->processes : j->processes,
-                           .row_part = o->parts > 0 ? o->part : 0,
-                           .row_parts = o->parts > 0 ? o->parts : 1,
-                           .progress = show_progress,
-                           .progress_arg = &prog,
-                           .stop = o->stop};
+    struct procs_job fj = {
+        .scene = sf.scene,
+        .camera = &cam,
+        .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->nee, j->dims_all, job_roulette(j)},
+        .pixel = pix,
+        .light = light,
+        .processes = o->processes > 0 ? o->processes : j->processes,
+        .row_part = o->parts > 0 ? o->part : 0,
+        .row_parts = o->parts > 0 ? o->parts : 1,
+        .progress = show_progress,
+        .progress_arg = &prog,
+        .stop = o->stop};
     if (procs_render(&fj, rgb, &rr->procs, e) < 0) {
         if (prog.enabled)
             fprintf(stderr, "\n");

@@ -47,6 +47,7 @@ char *sidecar_json(const struct sidecar *s)
     json_bool(&js, "light_sampling", j->light_sampling);
     json_string(&js, "integrator", j->nee ? "nee" : "mixture");
     json_string(&js, "sampler_dims", j->dims_all ? "all" : "pixel_light");
+    json_string(&js, "russian_roulette", job_roulette(j) ? "on" : "off");
     json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);
     json_string(&js, "poisson_domain", poisson_domain_name(j->poisson_domain));
     json_uint(&js, "max_depth", (uint64_t)j->max_depth);

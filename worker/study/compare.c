@@ -67,11 +67,12 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
         fileio_hash(j->reference, IMGIO_MAX_BYTES, &h, &ignored);
     char text[JOB_PATH_MAX + 512];
     int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s",
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s",
                      j->width, j->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
-                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j));
+                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
+                     job_roulette(j) ? " roulette" : "");
     *hash = hash_bytes(h, text, (size_t)n);
     return 0;
 }

@@ -60,9 +60,10 @@ int compare_keys_check(struct ydoc *d, yaml_node_t *n, const char *where, const 
 /* Short forms of keys in labels and file names. */
 static const char *short_key(const char *key)
 {
-    static const char *const map[][2] = {
-        {"threshold", "t"}, {"light_threshold", "lt"}, {"poisson_pool", "pool"},  {"max_depth", "depth"},
-        {"processes", "p"}, {"sampler", ""},           {"light_sampler", "light"}};
+    static const char *const map[][2] = {{"threshold", "t"},         {"light_threshold", "lt"},
+                                         {"poisson_pool", "pool"},   {"max_depth", "depth"},
+                                         {"processes", "p"},         {"sampler", ""},
+                                         {"light_sampler", "light"}, {"russian_roulette", "roulette"}};
     for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
         if (!strcmp(map[i][0], key))
             return map[i][1];

@@ -28,11 +28,12 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
         return -1;
     char text[512];
     int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s halves",
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s%s halves",
                      cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
-                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j));
+                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
+                     job_roulette(j) ? " roulette" : "");
     *key = hash_bytes(h, text, (size_t)n);
     return 0;
 }

@@ -1,0 +1,69 @@
+#!/bin/sh
+# bench/peers.sh (`make bench-peers`): our renderer against Blender's Cycles at equal error. The
+# scene (default the book-3 Cornell box) is converted from our own scene file (bench/peers.py),
+# rendered by Cycles (bench/peers_cycles.py: one thread, unbiased settings, EXR out) and by us
+# (the mixture, nee, nee + sampler_dims: all + sobol; one process), two seeds each, Cycles and
+# ours interleaved so that load on the machine hits both alike; then bench/peers.py prints ns
+# per sample, the MSE between the two seeds' images, the image means (within 3% of Cycles') and
+# the equal-error efficiency 1 / (MSE x seconds per image) against Cycles'. Installs Debian's
+# blender with apt-get when it is missing and we are root (not part of make test or CI).
+# Env: WORKER, PEERS_SCENE, PEERS_SIZE (200), PEERS_THRESHOLD (12.5: 64 spp), PEERS_OUT.
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+WORKER=${WORKER:-$root/bin/worker}
+SCENE=${PEERS_SCENE:-$root/scenes/cornell-book3.yaml}
+SIZE=${PEERS_SIZE:-200}
+THRESHOLD=${PEERS_THRESHOLD:-12.5}
+OUT=${PEERS_OUT:-$root/build/peers}
+SPP=$(awk -v t="$THRESHOLD" 'BEGIN { n = int(100 / t); print n * n }')
+
+if ! command -v blender >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "bench-peers: installing blender (apt-get)" >&2
+        { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends blender; } \
+            >"${TMPDIR:-/tmp}/bench-peers-apt.log" 2>&1 || true
+    fi
+    command -v blender >/dev/null 2>&1 || { echo "bench-peers: no blender: apt-get install blender" >&2; exit 1; }
+fi
+python3 -c 'import yaml' 2>/dev/null || { echo "bench-peers: python3 needs PyYAML: apt-get install python3-yaml" >&2; exit 1; }
+
+rm -rf "$OUT" && mkdir -p "$OUT"
+python3 "$root/bench/peers.py" scene "$SCENE" "$OUT/scene.json"
+# name, then the job keys that make it
+variants="mixture:integrator=mixture nee:integrator=nee nee-sobol-all:integrator=nee,sampler_dims=all,sampler=sobol"
+job() { # job NAME SEED KEYS -> $OUT/NAME-sSEED.yaml
+    f=$OUT/$1-s$2.yaml
+    printf 'name: %s-s%s\nscene: %s\nwidth: %s\nheight: %s\nsampler: jitter\nthreshold: %s\nlight_sampler: jitter\nlight_threshold: 5\nseed: %s\nprocesses: 1\noutput: %s-s%s.pfm\n' \
+        "$1" "$2" "$SCENE" "$SIZE" "$SIZE" "$THRESHOLD" "$2" "$1" "$2" >"$f"
+    echo "$3" | tr ',' '\n' | while IFS='=' read -r k v; do
+        if grep -q "^$k:" "$f"; then sed -i "s/^$k:.*/$k: $v/" "$f"; else echo "$k: $v" >>"$f"; fi
+    done
+}
+cpu_s() { sed -n 's/^ *"cpu_s": \([0-9.e+-]*\),*$/\1/p' "$1" | head -n 1; }
+res=$OUT/results.tsv
+: >"$res"
+echo "bench-peers: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -n 1)," \
+    "load average $(cut -d' ' -f1-3 /proc/loadavg) at start; $(basename "$SCENE") ${SIZE}x$SIZE, $SPP spp"
+for seed in 1 2; do
+    blender -b --factory-startup -P "$root/bench/peers_cycles.py" -- "$OUT/scene.json" "$OUT/cycles-s$seed" \
+        "$seed" "$SPP" "$SIZE" "$SIZE" >"$OUT/cycles-s$seed.log" 2>&1 ||
+        { echo "bench-peers: blender failed: $OUT/cycles-s$seed.log" >&2; exit 1; }
+    printf 'cycles\t%s\t%s\t%s\t%s\n' "$seed" "$(cut -f1 "$OUT/cycles-s$seed.tsv")" "$OUT/cycles-s$seed.pfm" \
+        "$((SIZE * SIZE * SPP))" >>"$res"
+    for v in $variants; do
+        name=${v%%:*}
+        job "$name" "$seed" "${v#*:}"
+        "$WORKER" --quiet --out "$OUT" "$OUT/$name-s$seed.yaml"
+        j=$OUT/$name-s$seed/$name-s$seed
+        printf 'ours-%s\t%s\t%s\t%s\t%s\n' "$name" "$seed" "$(cpu_s "$j.json")" "$j.pfm" \
+            "$(sed -n '/"samples"/,/}/s/.*"total": \([0-9]*\).*/\1/p' "$j.json" | head -n 1)" >>"$res"
+    done
+done
+mse() { "$WORKER" diff "$1" "$2" --json | sed 's/.*"mse": \([0-9.e+-]*\),.*/\1/'; }
+printf 'mse\tcycles\t%s\n' "$(mse "$OUT/cycles-s1.exr" "$OUT/cycles-s2.exr")" >>"$res"
+for v in $variants; do
+    name=${v%%:*}
+    printf 'mse\tours-%s\t%s\n' "$name" "$(mse "$OUT/$name-s1/$name-s1.pfm" "$OUT/$name-s2/$name-s2.pfm")" >>"$res"
+done
+echo "load average $(cut -d' ' -f1-3 /proc/loadavg) at the end"
+python3 "$root/bench/peers.py" table "$res"
