@@ -231,6 +231,11 @@ if command -v script >/dev/null 2>&1; then
     check "progress: a line per combination" [ "$(grep -c '^\[[ 0-9]*/40\] .* spp, .* ETA' "$T/tty.out")" -eq 40 ]
     check "progress: names scene, variant, threshold, seed" grep -q '\[ 1/40\] checker poisson t=50 seed 1: ' "$T/tty.out"
     check "progress: says each reference was reused" [ "$(grep -c 'reference reused from cache .*(it took' "$T/tty.out")" -eq 2 ]
+    # a reference rendered on a terminal: its progress names the scene and the half, not ".cache"
+    sed 's/^name: cmp$/name: cmpref/; s/^seeds: .*/seeds: [1]/' "$T/cmp.yaml" >"$T/cmpref.yaml"
+    script -qec "'$WORKER' --out '$T/outref' '$T/cmpref.yaml'" /dev/null >"$T/ttyref.out" 2>&1
+    check "progress: a reference's half is named by its scene" grep -q 'checker reference a' "$T/ttyref.out"
+    check "progress: ... never as .cache" sh -c "! grep -q '\.cache: ' '$T/ttyref.out'"
 else
     echo "note: script(1) missing, progress lines not checked"
 fi

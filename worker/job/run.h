@@ -36,6 +36,8 @@ struct run_opts {
     const struct rgbf *ref;         /* optional: the job's reference, already read (a compare job reads each
                                        scene's once); NULL: run_job reads j->reference itself */
     enum img_domain ref_domain;     /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
+    const char *label;              /* optional: the progress line's name; NULL: the job's name (a
+                                       compare reference's name is its folder, ".cache") */
     const struct rgb8 *ref_display; /* optional: the reference as 8-bit display values: the PNG or
                                        PPM image is also scored against it (display_error) */
 };

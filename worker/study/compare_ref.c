@@ -114,6 +114,9 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
         struct run_result rr;
         struct run_opts forced = *o;
         forced.force = 1; /* its sidecar may call a damaged image current */
+        char label[JOB_NAME_MAX + 32];
+        snprintf(label, sizeof label, "%s reference %c", cs->name, "ab"[h]);
+        forced.label = label;
         int rc = run_job(&j, &forced, &rr, e);
         if (rc != 0) {
             err_prefix(e, "reference");
