@@ -170,7 +170,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     rc = 1;
     if (!(rgb = procs_framebuffer_new(w, h, e)))
         goto done;
-    struct progress prog = {o->label ? o->label : j->name, o->progress && !o->quiet, -1, o->tick, o->tick_arg};
+    struct progress prog = {o->label ? o->label : j->name, o->progress && !o->quiet, -1, o->tick,
+                            o->tick_arg};
     struct procs_job fj = {
         .scene = sf.scene,
         .camera = &cam,
