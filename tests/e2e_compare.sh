@@ -387,15 +387,15 @@ for j in jobs/seed-experiment.yaml; do
 done
 # the headline job is a suite of the shipped studies (each of which e2e_studies runs alone): it
 # runs with them shrunk alike, into a folder per study, with the suite's verdict on top
-check "jobs/compare.yaml: a suite of the four shipped studies" grep -qx \
-    'studies: \[studies/seed-question.yaml, studies/soft-shadows.yaml, studies/aliasing.yaml, studies/cost.yaml\]' jobs/compare.yaml
+check "jobs/compare.yaml: a suite of the five shipped studies" grep -qx \
+    'studies: \[studies/seed-question.yaml, studies/soft-shadows.yaml, studies/aliasing.yaml, studies/error-look.yaml, studies/cost.yaml\]' jobs/compare.yaml
 mkdir -p "$T/suite/studies"
 cp jobs/compare.yaml "$T/suite/compare.yaml"
 for f in jobs/studies/*.yaml; do shrink "$f" >"$T/suite/studies/$(basename "$f")"; done
 "$WORKER" --quiet --out "$T/shipped" "$T/suite/compare.yaml" 2>"$T/suite.err"; rc=$? # bare scene names: ./scenes
 check "jobs/compare.yaml runs, its studies shrunk (exit $rc: $(tail -n 1 "$T/suite.err"))" [ "$rc" -eq 0 ]
 check "jobs/compare.yaml: each study's report, the suite's report and verdict" sh -c \
-    "[ \$(ls '$T'/shipped/compare/*/report.html | wc -l) -eq 4 ] && [ -s '$T/shipped/compare/report.html' ] && [ -s '$T/shipped/compare/verdict.json' ]"
+    "[ \$(ls '$T'/shipped/compare/*/report.html | wc -l) -eq 5 ] && [ -s '$T/shipped/compare/report.html' ] && [ -s '$T/shipped/compare/verdict.json' ]"
 check "jobs/compare.yaml's studies: checker and cornell" grep -q '^scenes: \[checker, cornell\]' jobs/studies/seed-question.yaml
 
 # 7. bad compare jobs: exit 2, file:line:col, nothing rendered
