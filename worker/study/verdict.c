@@ -19,14 +19,6 @@ static double mean_x(const struct verdict_figures *f, const double *x, int v, in
     return s / f->n_seeds;
 }
 
-/* The two add (their noise is independent), so the difference is the variant's own. Floored at 1%
-   of the measured value, so a point drowned in the reference's noise (warned) still has a logarithm. */
-double verdict_rel(const struct verdict_figures *f, int i)
-{
-    double y = f->relmse[i];
-    return f->ref_relmse > 0 && isfinite(y) ? fmax(y - f->ref_relmse, 0.01 * y) : y;
-}
-
 /* Least-squares line of log y against log x over seed k's points of v: y = exp(a + b log x). */
 static int fit(const struct verdict_figures *f, const double *x, int v, int k, double *a, double *b)
 {
@@ -351,21 +343,6 @@ void verdict_study_free(struct verdict_study *s)
         verdict_scene_free(&s->scenes[i]);
     free(s->scenes);
     *s = (struct verdict_study){0};
-}
-
-void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
-                            char *buf, size_t n)
-{
-    size_t len = 0;
-    buf[0] = 0;
-    if (r->n == 0 || r->status == VERDICT_INCONCLUSIVE) {
-        snprintf(buf, n, "inconclusive");
-        return;
-    }
-    for (int i = 0; i < r->n && r->e[i].rank == 1 && len < n; i++)
-        len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? " = " : "", v->variants[r->e[i].variant]);
-    if (tie_note && r->status == VERDICT_TIE && len < n)
-        snprintf(buf + len, n - len, " (tie)");
 }
 
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)

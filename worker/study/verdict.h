@@ -161,18 +161,10 @@ struct verdict_study {
    more than VERDICT_SAMPLES_VARY): a slope and "stops falling" need it to. */
 int verdict_samples_vary(double lo, double hi);
 
-/* Figure i's relMSE with the reference's own noise (f->ref_relmse) taken out. */
-double verdict_rel(const struct verdict_figures *f, int i);
-
 /* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
 void verdict_scene_free(struct verdict_scene *v);
 void verdict_study_free(struct verdict_study *s);
-
-/* The variants at rank 1 of r joined by " = ", then " (tie)" when tie_note and they tie; or
-   "inconclusive". */
-void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
-                            char *buf, size_t n);
 
 /* The winner at equal CPU time, for people: "sobol", "jitter = sobol (tie)", "inconclusive". */
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);
