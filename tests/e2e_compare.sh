@@ -150,6 +150,21 @@ for x in s['scenes']:
         assert sorted(e['rank'] for e in x[k]['ranking'])[0] == 1, x[k]
     assert isinstance(x['failures'], list) and isinstance(x['warnings'], list) and x['sentences']
 "
+# how the error looks: error_lowfreq per variant in verdict.json, a plot per study in the report,
+# and the same figures when the folder's summary.csv is read back (worker verdict)
+"$WORKER" verdict "$cdir" --json >"$T/look.json" 2>/dev/null
+check "verdict.json: error_lowfreq per variant, the bluest at equal relMSE, and again from summary.csv" python3 -c "
+import json, math
+d, again = (json.load(open(p)) for p in ('$cdir/verdict.json', '$T/look.json'))
+for s, t in zip(d['studies'][0]['scenes'], again['studies'][0]['scenes']):
+    x = s['error_look']
+    assert x['at_samples_per_pixel'] > 0 and len(x['variants']) == 5, x
+    assert all(v['error_lowfreq'] > 0 and v['standard_error'] >= 0 for v in x['variants']), x
+    assert x['bluest']['status'] in ('clear', 'tie', 'inconclusive') and x['bluest']['ranking'], x
+    for v, w in zip(x['variants'], t['error_look']['variants']):
+        assert math.isclose(v['error_lowfreq'], w['error_lowfreq'], rel_tol=1e-3), (v, w)
+"
+check "report: the study's error_lowfreq plot" grep -q 'checker: how the error looks' "$html"
 check "report: the table has every image" [ "$(grep -c '^<tr><td class="l">' "$html")" -eq 40 ]
 # Links: relative, and each resolves from the report's folder (the page may be opened anywhere)
 grep -o 'href="[^"]*"' "$html" | sed 's/^href="//; s/"$//' >"$T/links"
@@ -377,15 +392,15 @@ for j in jobs/seed-experiment.yaml; do
 done
 # the headline job is a suite of the shipped studies (each of which e2e_studies runs alone): it
 # runs with them shrunk alike, into a folder per study, with the suite's verdict on top
-check "jobs/compare.yaml: a suite of the four shipped studies" grep -qx \
-    'studies: \[studies/seed-question.yaml, studies/soft-shadows.yaml, studies/aliasing.yaml, studies/cost.yaml\]' jobs/compare.yaml
+check "jobs/compare.yaml: a suite of the five shipped studies" grep -qx \
+    'studies: \[studies/seed-question.yaml, studies/soft-shadows.yaml, studies/aliasing.yaml, studies/error-look.yaml, studies/cost.yaml\]' jobs/compare.yaml
 mkdir -p "$T/suite/studies"
 cp jobs/compare.yaml "$T/suite/compare.yaml"
 for f in jobs/studies/*.yaml; do shrink "$f" >"$T/suite/studies/$(basename "$f")"; done
 "$WORKER" --quiet --out "$T/shipped" "$T/suite/compare.yaml" 2>"$T/suite.err"; rc=$? # bare scene names: ./scenes
 check "jobs/compare.yaml runs, its studies shrunk (exit $rc: $(tail -n 1 "$T/suite.err"))" [ "$rc" -eq 0 ]
 check "jobs/compare.yaml: each study's report, the suite's report and verdict" sh -c \
-    "[ \$(ls '$T'/shipped/compare/*/report.html | wc -l) -eq 4 ] && [ -s '$T/shipped/compare/report.html' ] && [ -s '$T/shipped/compare/verdict.json' ]"
+    "[ \$(ls '$T'/shipped/compare/*/report.html | wc -l) -eq 5 ] && [ -s '$T/shipped/compare/report.html' ] && [ -s '$T/shipped/compare/verdict.json' ]"
 check "jobs/compare.yaml's studies: checker and cornell" grep -q '^scenes: \[checker, cornell\]' jobs/studies/seed-question.yaml
 
 # 7. bad compare jobs: exit 2, file:line:col, nothing rendered

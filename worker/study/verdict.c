@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "verdict_look.h"
 #include "verdict_rank.h"
 #include "verdict_say.h"
 
@@ -18,22 +19,13 @@ static double mean_x(const struct verdict_figures *f, const double *x, int v, in
     return s / f->n_seeds;
 }
 
-/* Figure i's relMSE with the reference's own noise taken out: the two add (their noise is
-   independent), so the difference is the variant's own. Floored at 1% of the measured value, so a
-   point drowned in the reference's noise (warned) still has a logarithm. */
-static double rel(const struct verdict_figures *f, int i)
-{
-    double y = f->relmse[i];
-    return f->ref_relmse > 0 && isfinite(y) ? fmax(y - f->ref_relmse, 0.01 * y) : y;
-}
-
 /* Least-squares line of log y against log x over seed k's points of v: y = exp(a + b log x). */
 static int fit(const struct verdict_figures *f, const double *x, int v, int k, double *a, double *b)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int m = 0;
     for (int p = 0; p < f->n_points; p++) {
-        double xi = x[verdict_at(f, v, p, k)], yi = rel(f, verdict_at(f, v, p, k));
+        double xi = x[verdict_at(f, v, p, k)], yi = verdict_rel(f, verdict_at(f, v, p, k));
         if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)))
             continue;
         double lx = log(xi), ly = log(yi);
@@ -60,7 +52,7 @@ static int nearest(const struct verdict_figures *f, const double *x, int v, int 
 {
     int found = 0;
     for (int p = 0; p < f->n_points; p++) {
-        double xi = x[verdict_at(f, v, p, k)], yi = rel(f, verdict_at(f, v, p, k));
+        double xi = x[verdict_at(f, v, p, k)], yi = verdict_rel(f, verdict_at(f, v, p, k));
         if (!(xi > 0 && yi > 0 && isfinite(xi) && isfinite(yi)) || xi == skip)
             continue;
         if (fabs(xi - at) <= 1e-9 * at) /* the point itself (at is a mean over seeds: rounding) */
@@ -95,7 +87,7 @@ static double value_at(const struct verdict_figures *f, const double *x, int v, 
 static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e)
 {
     for (int k = 0; k < f->n_seeds; k++)
-        verdict_entry_add(e, rel(f, verdict_at(f, v, p, k)), 1);
+        verdict_entry_add(e, verdict_rel(f, verdict_at(f, v, p, k)), 1);
 }
 
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
@@ -190,7 +182,7 @@ static double mean_rel(const struct verdict_figures *f, int v, int p)
 {
     double sum = 0;
     for (int k = 0; k < f->n_seeds; k++)
-        sum += rel(f, verdict_at(f, v, p, k));
+        sum += verdict_rel(f, verdict_at(f, v, p, k));
     return sum / f->n_seeds;
 }
 
@@ -322,6 +314,10 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
     free(order);
     verdict_say_warnings(f, out);
     verdict_say_sentences(f, out);
+    if (verdict_look_compute(f, out) < 0) {
+        verdict_scene_free(out);
+        return err_set(e, NULL, 0, 0, "out of memory");
+    }
     return 0;
 }
 
@@ -337,6 +333,7 @@ void verdict_scene_free(struct verdict_scene *v)
     free(v->samples_vary);
     free(v->warnings);
     free(v->sentences);
+    verdict_look_free(&v->look);
     *v = (struct verdict_scene){0};
 }
 
@@ -346,21 +343,6 @@ void verdict_study_free(struct verdict_study *s)
         verdict_scene_free(&s->scenes[i]);
     free(s->scenes);
     *s = (struct verdict_study){0};
-}
-
-void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
-                            char *buf, size_t n)
-{
-    size_t len = 0;
-    buf[0] = 0;
-    if (r->n == 0 || r->status == VERDICT_INCONCLUSIVE) {
-        snprintf(buf, n, "inconclusive");
-        return;
-    }
-    for (int i = 0; i < r->n && r->e[i].rank == 1 && len < n; i++)
-        len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? " = " : "", v->variants[r->e[i].variant]);
-    if (tie_note && r->status == VERDICT_TIE && len < n)
-        snprintf(buf + len, n - len, " (tie)");
 }
 
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)

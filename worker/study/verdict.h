@@ -60,6 +60,8 @@ struct verdict_figures {
     const double *bias_rel;      /* per (variant, point): the relMSE the mean image's offset in mean
                                     radiance alone gives (the reference scaled by it); NAN unknown */
     const double *radiance;      /* per (variant, point, seed): the image's mean radiance; NAN unknown */
+    const double *lowfreq;       /* per (variant, point, seed): error_lowfreq (errspec.h); NAN unknown;
+                                    NULL: none measured */
     double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
     double ref_relmse;           /* the reference's own relMSE (from its halves), NAN unknown */
     double ref_radiance;         /* the reference's mean radiance, NAN unknown */
@@ -117,6 +119,19 @@ struct verdict_failure {
     char text[VERDICT_TEXT_MAX];
 };
 
+/* How the error looks (verdict_look.h): error_lowfreq, the error's low-frequency energy share over
+   white noise's (1: white, below 1: bluer), per variant at the sparsest samples per pixel that every
+   variant has, where the look shows most. */
+struct verdict_look {
+    double at;                        /* that samples per pixel (mean); NAN without points */
+    int *point;                       /* per variant: its point nearest `at` (in log spp) */
+    double *mean, *se;                /* per (variant, point): error_lowfreq's mean over seeds, its SE */
+    double *rel;                      /* per (variant, point): relMSE's geometric mean over seeds */
+    struct verdict_ranking by_relmse; /* at `point`: log relMSE, as by_samples ranks it */
+    struct verdict_ranking by_look;   /* the variants by_relmse ranks first (equal relMSE): mean
+                                         error_lowfreq, lowest (bluest) first; n 0 when unmeasured */
+};
+
 struct verdict_scene {
     char study[VERDICT_LABEL_MAX], scene[VERDICT_LABEL_MAX];
     int n_variants, n_points, n_seeds;
@@ -126,6 +141,7 @@ struct verdict_scene {
     int *samples_vary;   /* per variant: verdict_samples_vary over its points */
     char (*variants)[VERDICT_LABEL_MAX];
     struct verdict_ranking by_samples, by_cpu, by_slope;
+    struct verdict_look look;
     int n_failures, n_warnings, n_sentences;
     struct verdict_failure *failures;
     char (*warnings)[VERDICT_TEXT_MAX];
@@ -149,11 +165,6 @@ int verdict_samples_vary(double lo, double hi);
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
 void verdict_scene_free(struct verdict_scene *v);
 void verdict_study_free(struct verdict_study *s);
-
-/* The variants at rank 1 of r joined by " = ", then " (tie)" when tie_note and they tie; or
-   "inconclusive". */
-void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
-                            char *buf, size_t n);
 
 /* The winner at equal CPU time, for people: "sobol", "jitter = sobol (tie)", "inconclusive". */
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);

@@ -13,7 +13,7 @@ struct figures_mem {
     struct verdict_figures f;
     const char **variants, **samplers, **points;
     int *pools;
-    double *spp, *cpu, *rel, *share, *rel_of_mean, *bias_rel, *radiance;
+    double *spp, *cpu, *rel, *share, *rel_of_mean, *bias_rel, *radiance, *lowfreq;
     uint64_t *nonfinite;
 };
 
@@ -21,7 +21,7 @@ static void mem_free(struct figures_mem *m)
 {
     free(m->variants), free(m->samplers), free(m->points), free(m->pools);
     free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->nonfinite);
-    free(m->rel_of_mean), free(m->bias_rel), free(m->radiance);
+    free(m->rel_of_mean), free(m->bias_rel), free(m->radiance), free(m->lowfreq);
 }
 
 static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
@@ -35,8 +35,9 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->share = calloc(n, sizeof *m->share), m->nonfinite = calloc(n, sizeof *m->nonfinite);
     m->rel_of_mean = calloc(nv * c->n_points, sizeof *m->rel_of_mean);
     m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
+    m->lowfreq = calloc(n, sizeof *m->lowfreq);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
-        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance)
+        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq)
         return -1;
     struct verdict_figures *f = &m->f;
     *f = (struct verdict_figures){.study = c->name,
@@ -56,6 +57,7 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .rel_of_mean = m->rel_of_mean,
                                   .bias_rel = m->bias_rel,
                                   .radiance = m->radiance,
+                                  .lowfreq = m->lowfreq,
                                   .ref_spp = c->scenes[s].ref_spp,
                                   .ref_relmse = c->scenes[s].ref_relmse,
                                   .ref_radiance = c->scenes[s].ref_radiance,
@@ -85,6 +87,7 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                 int i = verdict_at(f, v, p, k);
                 m->spp[i] = it->spp_mean, m->cpu[i] = it->cpu_s, m->share[i] = it->sampler_share;
                 m->rel[i] = it->has_error ? it->error.relmse : NAN;
+                m->lowfreq[i] = it->has_error ? it->error_lowfreq : NAN;
                 m->nonfinite[i] = it->nonfinite;
             }
         }

@@ -42,11 +42,12 @@ enum {
     C_RELMSE,
     C_DOMAIN,
     C_IMAGE,
+    C_LOWFREQ, /* optional: a summary.csv from before it was written has none */
     N_COLS
 };
 static const char *const col_names[N_COLS] = {
-    "study",  "scene", "variant",       "threshold", "light_threshold", "seed", "samples_per_pixel_mean",
-    "wall_s", "cpu_s", "sampler_share", "relmse",    "domain",          "image"};
+    "study",  "scene", "variant",       "threshold", "light_threshold", "seed",  "samples_per_pixel_mean",
+    "wall_s", "cpu_s", "sampler_share", "relmse",    "domain",          "image", "error_lowfreq"};
 
 /* Parse RFC 4180 text in place: a quoted field's "" is one quote. -1 on a row of another width. */
 static int csv_parse(struct csv *t, char *text, size_t len, const char *path, struct err *e)
@@ -273,6 +274,7 @@ static struct compare *build(const struct csv *t, const int *col, const char *st
         it->cpu_s = atof(f[col[C_CPU]]), it->sampler_share = atof(f[col[C_SHARE]]);
         it->has_error = f[col[C_RELMSE]][0] != 0;
         it->error.relmse = it->has_error ? atof(f[col[C_RELMSE]]) : NAN;
+        it->error_lowfreq = col[C_LOWFREQ] >= 0 && f[col[C_LOWFREQ]][0] ? atof(f[col[C_LOWFREQ]]) : NAN;
         if (it->has_error) {
             c->scenes[s].ref_kind = COMPARE_REF_SETTINGS;
             if (!strcmp(f[col[C_DOMAIN]], "linear"))
@@ -338,7 +340,7 @@ int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *
         for (int f = 0; t.n_rows && f < t.n_fields; f++)
             if (!strcmp(t.rows[0][f], col_names[k]))
                 col[k] = f;
-        if (col[k] < 0 && k != C_STUDY) {
+        if (col[k] < 0 && k != C_STUDY && k != C_LOWFREQ) {
             err_set(e, path, 1, 0, "no column %s", col_names[k]);
             goto done;
         }

@@ -2,8 +2,10 @@
    summary. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "verdict_look.h"
 #include "verdict_out.h"
 #include "verdict_rank.h"
 
@@ -58,6 +60,38 @@ static void json_ranking(struct json *j, const char *key, const char *at_key, co
     json_end_object(j);
 }
 
+/* "error_look": the rule's common point, each variant's error_lowfreq there and along the sweep,
+   the comparison among the variants equal in relMSE, and the bluest. */
+static void json_look(struct json *j, const struct verdict_scene *v)
+{
+    const struct verdict_look *l = &v->look;
+    json_begin_object(j, "error_look");
+    json_number(j, "at_samples_per_pixel", l->at);
+    json_begin_array(j, "variants");
+    for (int k = 0; k < v->n_variants; k++) {
+        int p = l->point[k], o = k * v->n_points;
+        json_begin_object(j, NULL);
+        json_string(j, "variant", v->variants[k]);
+        json_number(j, "error_lowfreq", l->mean[o + p]);
+        json_number(j, "standard_error", l->se[o + p]);
+        json_number(j, "relmse", l->rel[o + p]);
+        json_begin_array(j, "along_sweep");
+        for (int q = 0; q < v->n_points; q++) {
+            json_begin_object(j, NULL);
+            json_number(j, "error_lowfreq", l->mean[o + q]);
+            json_number(j, "standard_error", l->se[o + q]);
+            json_number(j, "relmse", l->rel[o + q]);
+            json_end_object(j);
+        }
+        json_end_array(j);
+        json_end_object(j);
+    }
+    json_end_array(j);
+    json_ranking(j, "equal_relmse", NULL, "relmse", v, &l->by_relmse);
+    json_ranking(j, "bluest", NULL, "error_lowfreq", v, &l->by_look);
+    json_end_object(j);
+}
+
 static void json_scene(struct json *j, const struct verdict_scene *v)
 {
     json_begin_object(j, NULL);
@@ -67,6 +101,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
     json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
     json_ranking(j, "slopes", NULL, "slope", v, &v->by_slope);
+    json_look(j, v);
     json_begin_array(j, "failures");
     for (int i = 0; i < v->n_failures; i++) {
         const struct verdict_failure *x = &v->failures[i];
@@ -221,13 +256,29 @@ static void html_overview(struct sbuf *b, const struct verdict_study *s, int n)
     sbuf_printf(b, "</table>\n");
 }
 
+/* The study's error_lowfreq plot, inline, when any was measured. */
+static void html_look(struct sbuf *b, const struct verdict_study *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->n_scenes; k++)
+        for (int i = 0; i < s->scenes[k].n_variants * s->scenes[k].n_points; i++)
+            any |= isfinite(s->scenes[k].look.mean[i]);
+    char *svg = any ? verdict_look_svg(s) : NULL;
+    const char *root = svg ? strstr(svg, "<svg") : NULL; /* inline: drop the XML declaration */
+    if (root)
+        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
+    free(svg);
+}
+
 void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
 {
     sbuf_printf(b, "<section id=\"verdict\"><h2>Verdict</h2>\n");
     html_overview(b, s, n);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         for (int k = 0; k < s[i].n_scenes; k++)
             html_scene(b, &s[i].scenes[k]);
+        html_look(b, &s[i]);
+    }
     sbuf_printf(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ");
     sbuf_escape(b, TIE_RULE);
     sbuf_printf(

@@ -3,6 +3,7 @@
 #include "verdict_rank.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 void verdict_entry_start(struct verdict_entry *e, int v)
@@ -145,4 +146,27 @@ void verdict_rank(struct verdict_ranking *r)
             r->e[j - 1] = t;
         }
     r->status = first == r->n ? VERDICT_INCONCLUSIVE : first == 1 ? VERDICT_CLEAR : VERDICT_TIE;
+}
+
+/* The two add (their noise is independent), so the difference is the variant's own. Floored at 1%
+   of the measured value, so a point drowned in the reference's noise (warned) still has a logarithm. */
+double verdict_rel(const struct verdict_figures *f, int i)
+{
+    double y = f->relmse[i];
+    return f->ref_relmse > 0 && isfinite(y) ? fmax(y - f->ref_relmse, 0.01 * y) : y;
+}
+
+void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,
+                            char *buf, size_t n)
+{
+    size_t len = 0;
+    buf[0] = 0;
+    if (r->n == 0 || r->status == VERDICT_INCONCLUSIVE) {
+        snprintf(buf, n, "inconclusive");
+        return;
+    }
+    for (int i = 0; i < r->n && r->e[i].rank == 1 && len < n; i++)
+        len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? " = " : "", v->variants[r->e[i].variant]);
+    if (tie_note && r->status == VERDICT_TIE && len < n)
+        snprintf(buf + len, n - len, " (tie)");
 }
