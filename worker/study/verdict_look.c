@@ -55,9 +55,9 @@ static void say(const struct verdict_scene *out, const struct verdict_look *l, c
 {
     char winner[256];
     size_t len = (size_t)snprintf(buf, n,
-                                  "How the error looks at %.3g samples per pixel (error_lowfreq: 1 is white "
+                                  "How the error looks at %.3g sample%s per pixel (error_lowfreq: 1 is white "
                                   "noise, lower is bluer), among the variants equal in relMSE there:",
-                                  l->at);
+                                  l->at, l->at == 1 ? "" : "s");
     for (int i = 0; i < l->by_look.n && len < n; i++) {
         const struct verdict_entry *e = &l->by_look.e[i];
         len += (size_t)snprintf(buf + len, n - len, "%s %s %.2f +- %.2f", i ? "," : "",
