@@ -1,190 +1,21 @@
-/* render_path: the integrator's steps that trace (render.c) and the packet's lanes
-   (render_lanes.c) share: the light points, the scattered directions, albedo and Schlick's
-   reflectance. Internal to common/; static, so each of the two keeps its own inlined copies. */
+/* render_path: the integrator, written once for the paths that trace (render.c) and the packet's
+   lanes (render_lanes.c): next-event estimation, a segment's scatter at each material, Russian
+   roulette and a sample's estimate into its pixel. Its parts: render_light.h (light choice and
+   points), render_dir.h (directions), render_material.h (albedo, Schlick), render_decide.h
+   (sampler_dims: all's decisions), render_time.h (the sampler's timing). Internal to common/;
+   static, so each of the two keeps its own inlined copies. */
 #ifndef RENDER_PATH_H
 #define RENDER_PATH_H
 
-#include <string.h>
-#include <time.h>
+#include <float.h>
 
+#include "render_decide.h"
+#include "render_dir.h"
 #include "render_internal.h"
+#include "render_light.h"
+#include "render_material.h"
+#include "render_time.h"
 #include "geom/bvh.h"
-#include "geom/shape_light_inline.h"
-#include "geom/texture.h"
-
-static __attribute__((unused)) uint64_t now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
-
-/* The sidecar's sampler_s: one pixel in SAMPLER_TIME_EVERY (by st->pixels) is timed whole, and
-   every point-set draw inside it, in integer nanoseconds of one monotonic clock; the draws' share
-   of those pixels' time, times the process's CPU time, estimates the CPU time spent drawing
-   (render_stats_finish). The draws are intervals inside their pixel's, so the share cannot
-   exceed 1. Timing one draw in eight and counting it for the next seven made the share 2.1 and
-   more: a time slice lost in a timed draw counted eight times, and on a busy machine a wall
-   clock runs on while a process waits. Timing every draw cost two clock reads per set, ~0.8% of
-   final's time, more than drawing a jitter set. */
-#define SAMPLER_TIME_EVERY 8
-static inline int sampler_timed(uint64_t pixels)
-{
-    return pixels % SAMPLER_TIME_EVERY == 0;
-}
-
-static __attribute__((unused)) vec3 random_in_unit_sphere(struct rng *r)
-{
-    for (;;) {
-        /* one draw a declarator: a call's arguments have no order in C (gcc took them last
-           first, clang first first); z, y, x keeps the images gcc made */
-        double z = 2 * rng_uniform32(r) - 1, y = 2 * rng_uniform32(r) - 1, x = 2 * rng_uniform32(r) - 1;
-        vec3 p = v3(x, y, z);
-        if (v3_len2(p) < 1)
-            return p;
-    }
-}
-
-/* Cosine-weighted direction about n (Malley's method) from two uniforms: u2 the radius squared,
-   a the angle in turns. */
-static inline __attribute__((always_inline, unused)) vec3 cosine_direction_uv(const onb *frame, double u2,
-                                                                              double a)
-{
-    double s = sqrt(u2), sin_phi, cos_phi;
-    v3_sincos_turn(a, &sin_phi, &cos_phi);
-    return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
-}
-
-/* cosine_direction_uv from r. Always inline: with nee's call beside the mixture's GCC kept it
-   out of line, +2% of cornell-book3's instructions. */
-static inline __attribute__((always_inline, unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
-{
-    double u2 = rng_uniform32(r);
-    return cosine_direction_uv(frame, u2, rng_uniform32(r));
-}
-
-/* A uniform direction from two uniforms (z from u, the angle in turns from a). */
-static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_uv(double u, double a)
-{
-    double z = 1 - 2 * u, s = sqrt(d_max(0, 1 - z * z)), sin_phi, cos_phi;
-    v3_sincos_turn(a, &sin_phi, &cos_phi);
-    return v3(cos_phi * s, sin_phi * s, z);
-}
-
-/* A uniform direction: inline where trace scatters in a medium (path_scatter's media_inline),
-   a call elsewhere (GCC's choice; inline in the lanes it cost cornell-book3 7 instructions). */
-static inline __attribute__((always_inline, unused)) vec3 uniform_sphere_direction_inline(struct rng *r)
-{
-    double u = rng_uniform32(r);
-    return uniform_sphere_direction_uv(u, rng_uniform32(r));
-}
-
-static __attribute__((unused)) vec3 uniform_sphere_direction(struct rng *r)
-{
-    return uniform_sphere_direction_inline(r);
-}
-
-static __attribute__((noinline, unused)) vec3 texture_albedo(const struct scene *sc, const struct material *m,
-                                                             struct hit *h)
-{
-    const struct texture *t = &sc->textures[m->texture];
-    if (texture_needs_uv(t))
-        shape_uv(&sc->prims[h->prim], h);
-    return texture_value(sc, t, h->u, h->v, h->p);
-}
-
-/* A plain material's albedo inline, a texture's lookup out of line (the call and its frame cost
-   every untextured diffuse bounce ~20 instructions), on a copy of h, which the lookup fills with
-   the uv: h itself then stays in the caller's registers. */
-static inline __attribute__((always_inline)) vec3
-surface_albedo(const struct scene *sc, const struct material *m, const struct hit *h)
-{
-    if (m->texture < 0)
-        return m->albedo;
-    struct hit copy = *h;
-    return texture_albedo(sc, m, &copy);
-}
-
-static __attribute__((unused)) double reflectance(double cosine, double ref_idx)
-{
-    /* Schlick's approximation. */
-    double r0 = (1 - ref_idx) / (1 + ref_idx);
-    r0 *= r0;
-    double x = 1 - cosine, x2 = x * x;
-    return r0 + (1 - r0) * (x2 * x2 * x);
-}
-
-/* A unit direction toward one of ls's lights, chosen uniformly (slots: each one's index in the
-   scene's lights, NULL when ls is every light); disk and rect lights take their next point from
-   their stream of the light sampler's points, a sphere its cone sample from rng. *light is the
-   chosen light's index in ls and *pdf its density for the direction. */
-static inline __attribute__((always_inline)) vec3 light_direction(struct render_ctx *ctx, struct light_set ls,
-                                                                  const int *slots, vec3 o, struct rng *rng,
-                                                                  int *light, double *pdf)
-{
-    const struct scene *sc = ctx->sc;
-    const int j = (int)rng_below(rng, (uint32_t)ls.n), i = slots ? slots[j] : j;
-    const struct prim *lp = &sc->prims[ls.prims[j]];
-    struct pt2 s, turn = {0, 0};
-    int turned = 0;
-    if (ctx->uses_points[i]) {
-        s = stream_next(&ctx->light_source, &ctx->lp[i], &ctx->light_rng, &turn, &turned);
-        if (turned)
-            stream_prefetch(&ctx->light_source, ctx->lp, sc->n_lights, &ctx->light_rng);
-    } else {
-        s.x = rng_uniform32(rng);
-        s.y = rng_uniform32(rng);
-    }
-    *light = j;
-    return turned ? light_sample_turn(lp, o, s, turn.x, turn.y, pdf) : light_sample(lp, o, s, pdf);
-}
-
-/* light_direction under sampler_dims: all: ls's light chosen by choice in [0, 1), its point s. */
-static inline __attribute__((always_inline)) vec3 light_direction_at(struct render_ctx *ctx,
-                                                                     struct light_set ls, vec3 o,
-                                                                     double choice, struct pt2 s, int *light,
-                                                                     double *pdf)
-{
-    int i = (int)(choice * ls.n);
-    i = i < ls.n ? i : ls.n - 1;
-    *light = i;
-    return light_sample(&ctx->sc->prims[ls.prims[i]], o, s, pdf);
-}
-
-/* Decision k (DIM_DIR, DIM_LIGHT, DIM_CHOICE, DIM_ROULETTE) of the vertex at->depth: two uniforms. */
-static inline __attribute__((always_inline)) struct pt2 path_decide(struct render_ctx *ctx, struct rng *rng,
-                                                                    struct path_at at, int k)
-{
-    if (at.depth < ctx->dims_bounces)
-        return padding_point(&ctx->pad, render_dims_slot(ctx, at.depth, k), at.sample);
-    struct pt2 p;
-    p.x = rng_uniform32(rng);
-    p.y = rng_uniform32(rng);
-    return p;
-}
-
-/* A uniform point in the unit ball from the vertex's sets (sampler_dims: all; what
-   random_in_unit_sphere draws by rejection): its direction from the direction's point, its
-   radius cbrt(u) from the choice's x (a metal vertex makes no other use of either). */
-static __attribute__((unused)) vec3 in_unit_ball(struct render_ctx *ctx, struct rng *rng, struct path_at at)
-{
-    const struct pt2 d = path_decide(ctx, rng, at, DIM_DIR), c = path_decide(ctx, rng, at, DIM_CHOICE);
-    return v3_scale(uniform_sphere_direction_uv(d.x, d.y), cbrt(c.x));
-}
-
-/* camera_ray under sampler_dims: all: the lens point and the shutter time of sample s from the
-   pixel's sets (each drawn only where the camera uses it). */
-static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct render_ctx *ctx, double u,
-                                                                        double v, uint32_t s)
-{
-    const struct camera *cam = ctx->cam;
-    struct pt2 lens = {0, 0}, time = {0, 0};
-    if (cam->lens_radius > 0)
-        lens = padding_point(&ctx->pad, 0, s);
-    if (cam->time0 != cam->time1)
-        time = padding_point(&ctx->pad, 1, s);
-    return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
-}
 
 /* A camera sample's estimate c into the pixel's sums when finite; a NaN or infinite one counts
    as zero (pbrt's rule: the pixel still divides by all its samples) and in *nonfinite. */
