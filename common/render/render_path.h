@@ -54,8 +54,8 @@ path_shadow_add(const struct render_ctx *ctx, struct path_shadow *sh, int got, c
    is left there for the caller to trace (the lanes trace four at a time), path_shadow_add then
    adding what it reaches; else it is traced here. */
 static inline __attribute__((always_inline)) void
-path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct rng *rng,
-                const struct hit *h, vec3 albedo, double phase, uint64_t *rays, struct path_at at)
+path_next_event(struct render_ctx *ctx, struct path_state *p, struct rng *rng, const struct hit *h,
+                vec3 albedo, double phase, uint64_t *rays, struct path_at at)
 {
     const struct scene *sc = ctx->sc;
     const struct light_set emitters = light_set_emitters(sc);
@@ -82,44 +82,41 @@ path_next_event(struct render_ctx *ctx, const ray *r, vec3 beta, vec3 *L, struct
     if (!(pl > 0))
         return;
     double w = pl * pl / (pl * pl + f_pdf * f_pdf);
-    struct path_shadow sh = {{h->p, dir, r->time}, v3_mul(beta, albedo), f_pdf * w / pl, 1};
+    struct path_shadow sh = {{h->p, dir, p->r.time}, v3_mul(p->beta, albedo), f_pdf * w / pl, 1};
     ++*rays;
     if (at.shadow) {
         *at.shadow = sh;
         return;
     }
     struct hit hit;
-    path_shadow_add(ctx, &sh, bvh_hit(sc, &sh.r, HIT_EPS, DBL_MAX, &hit), &hit, L);
+    path_shadow_add(ctx, &sh, bvh_hit(sc, &sh.r, HIT_EPS, DBL_MAX, &hit), &hit, &p->L);
 }
 
-/* One path segment's interaction at h, the nearest hit of *r (trace's loop body and the packet
-   lanes' shade, written once): 1 with *r and *beta set for the next segment, 0 when the path ends
-   (*L is then its estimate). at_last: this is the last segment, where only a light's emission
-   counts (a scattered ray would never be traced, so no direction, light point or pdf is drawn);
-   mix: the scene's lights are sampled by the books' pdf mixture; nee (instead of mix): by
-   next-event estimation with MIS, *mis_pdf carrying the last scatter's pdf (0 after the camera
-   or a mirror or glass: its emission then counts whole) and *rays counting the shadow rays;
-   media_inline: a medium's scatter (its uniform direction and mixture pdf) inline, as a
-   surface's (path_scatter_as from trace: final's fog scatters on most paths), else through calls
-   (path_scatter, for the lanes, whose scenes hold no media: inline in the lanes it cost checker
-   ~1% and cornell-book3 7 instructions a sample by the code it moved). Always inline: the
-   caller's ray, weight and radiance stay in its registers (a texture's lookup reads h through a
-   copy). */
-static inline __attribute__((always_inline)) int path_scatter_as(struct render_ctx *ctx, ray *r, vec3 *beta,
-                                                                 vec3 *L, struct rng *rng,
-                                                                 const struct hit *h, int at_last, int mix,
-                                                                 int nee, double *mis_pdf, uint64_t *rays,
-                                                                 struct path_at at, int media_inline)
+/* One path segment's interaction at h, the nearest hit of p->r (trace's loop body and the packet
+   lanes' shade, written once): 1 with p's ray and throughput set for the next segment, 0 when the
+   path ends (p->L is then its estimate). On the last segment (at.depth == at.last) only a light's
+   emission counts (a scattered ray would never be traced, so no direction, light point or pdf is
+   drawn). at.lights: with the mixture the scene's lights are sampled by the books' pdf mixture;
+   with nee by next-event estimation with MIS, p->mis_pdf carrying the last scatter's pdf and
+   *rays counting the shadow rays. at.medium_inline: a medium's scatter (its uniform direction and
+   mixture pdf) inline, as a surface's (trace: final's fog scatters on most paths), else through
+   calls (the lanes, whose scenes hold no media: inline there it cost checker ~1% and
+   cornell-book3 7 instructions a sample by the code it moved). Always inline: the caller's ray,
+   weight and radiance stay in its registers (a texture's lookup reads h through a copy). */
+static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, struct path_state *p,
+                                                              struct rng *rng, const struct hit *h,
+                                                              uint64_t *rays, struct path_at at)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
-    if (at_last && m->type != MAT_LIGHT)
+    if (at.depth == at.last && m->type != MAT_LIGHT)
         return 0;
+    const int nee = at.lights == LIGHTS_NEE, mix = at.lights == LIGHTS_MIXTURE;
     vec3 dir;
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
         if (nee) {
-            path_next_event(ctx, r, *beta, L, rng, h, albedo, 0, rays, at);
+            path_next_event(ctx, p, rng, h, albedo, 0, rays, at);
             onb frame = onb_from_w(h->n);
             if (at.dims) {
                 struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
@@ -130,9 +127,9 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
             double cosine = v3_dot(dir, h->n);
             if (!(cosine > 0))
                 return 0;
-            *mis_pdf = cosine / PI;
-            *beta = v3_mul(*beta, albedo);
-            *r = (ray){h->p, dir, r->time};
+            p->mis_pdf = cosine / PI;
+            p->beta = v3_mul(p->beta, albedo);
+            p->r = (ray){h->p, dir, p->r.time};
             return 1;
         }
         int light = -1;
@@ -161,33 +158,34 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
         double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
         if (!(pdf > 0))
             return 0;
-        *beta = v3_mul(*beta, v3_scale(albedo, cosine_pdf / pdf));
-        *r = (ray){h->p, dir, r->time};
+        p->beta = v3_mul(p->beta, v3_scale(albedo, cosine_pdf / pdf));
+        p->r = (ray){h->p, dir, p->r.time};
         return 1;
     }
     switch (m->type) {
     case MAT_LIGHT:
         if (!h->front)
             return 0;
-        if (nee && *mis_pdf > 0) { /* reached by a scatter that next-event estimation also sampled */
-            double pl = lights_pdf_in(sc, light_set_emitters(sc), r->orig, r->dir, -1, 0), pb = *mis_pdf;
-            *L = v3_add(*L, v3_mul(*beta, v3_scale(m->emit, pb * pb / (pb * pb + pl * pl))));
+        if (nee && p->mis_pdf > 0) { /* reached by a scatter that next-event estimation also sampled */
+            double pl = lights_pdf_in(sc, light_set_emitters(sc), p->r.orig, p->r.dir, -1, 0),
+                   pb = p->mis_pdf;
+            p->L = v3_add(p->L, v3_mul(p->beta, v3_scale(m->emit, pb * pb / (pb * pb + pl * pl))));
         } else {
-            *L = v3_add(*L, v3_mul(*beta, m->emit));
+            p->L = v3_add(p->L, v3_mul(p->beta, m->emit));
         }
         return 0;
     case MAT_METAL:
-        dir = v3_fma(v3_reflect(v3_unit(r->dir), h->n),
+        dir = v3_fma(v3_reflect(v3_unit(p->r.dir), h->n),
                      at.dims ? in_unit_ball(ctx, rng, at) : random_in_unit_sphere(rng), m->fuzz);
         if (v3_dot(dir, h->n) <= 0)
             return 0;
-        *beta = v3_mul(*beta, m->albedo);
-        *r = (ray){h->p, dir, r->time};
+        p->beta = v3_mul(p->beta, m->albedo);
+        p->r = (ray){h->p, dir, p->r.time};
         if (nee) /* a specular bounce: the emission it reaches counts whole */
-            *mis_pdf = 0;
+            p->mis_pdf = 0;
         return 1;
     case MAT_DIELECTRIC: {
-        vec3 unit_dir = v3_unit(r->dir);
+        vec3 unit_dir = v3_unit(p->r.dir);
         double ratio = h->front ? 1.0 / m->ior : m->ior;
         double cos_t = d_min(v3_dot(v3_neg(unit_dir), h->n), 1.0);
         double sin_t = sqrt(1 - cos_t * cos_t);
@@ -196,9 +194,9 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
                    (at.dims ? path_decide(ctx, rng, at, DIM_CHOICE).x : rng_uniform32(rng)))
                   ? v3_reflect(unit_dir, h->n)
                   : v3_refract(unit_dir, h->n, ratio);
-        *r = (ray){h->p, dir, r->time};
+        p->r = (ray){h->p, dir, p->r.time};
         if (nee) /* a specular bounce: the emission it reaches counts whole */
-            *mis_pdf = 0;
+            p->mis_pdf = 0;
         return 1;
     }
     default: { /* MAT_ISOTROPIC */
@@ -211,11 +209,11 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
             c = path_decide(ctx, rng, at, DIM_CHOICE);
         }
         if (nee) {
-            path_next_event(ctx, r, *beta, L, rng, h, albedo, phase, rays, at);
-            dir = at.dims        ? uniform_sphere_direction_uv(u.x, u.y)
-                  : media_inline ? uniform_sphere_direction_inline(rng)
-                                 : uniform_sphere_direction(rng);
-            *mis_pdf = phase;
+            path_next_event(ctx, p, rng, h, albedo, phase, rays, at);
+            dir = at.dims            ? uniform_sphere_direction_uv(u.x, u.y)
+                  : at.medium_inline ? uniform_sphere_direction_inline(rng)
+                                     : uniform_sphere_direction(rng);
+            p->mis_pdf = phase;
         } else if (mix) {
             int light = -1;
             double light_pdf = 0;
@@ -226,18 +224,18 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
             else
                 dir = rng_u32(rng) >> 31
                           ? light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf)
-                      : media_inline ? uniform_sphere_direction_inline(rng)
-                                     : uniform_sphere_direction(rng);
-            pdf = 0.5 * (media_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
-                                      : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
+                      : at.medium_inline ? uniform_sphere_direction_inline(rng)
+                                         : uniform_sphere_direction(rng);
+            pdf = 0.5 * (at.medium_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
+                                          : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
                   0.5 * phase;
         } else {
-            dir = at.dims        ? uniform_sphere_direction_uv(u.x, u.y)
-                  : media_inline ? uniform_sphere_direction_inline(rng)
-                                 : uniform_sphere_direction(rng);
+            dir = at.dims            ? uniform_sphere_direction_uv(u.x, u.y)
+                  : at.medium_inline ? uniform_sphere_direction_inline(rng)
+                                     : uniform_sphere_direction(rng);
         }
-        *beta = v3_mul(*beta, v3_scale(albedo, phase / pdf));
-        *r = (ray){h->p, dir, r->time};
+        p->beta = v3_mul(p->beta, v3_scale(albedo, phase / pdf));
+        p->r = (ray){h->p, dir, p->r.time};
         return 1;
     }
     }
@@ -249,28 +247,19 @@ static inline __attribute__((always_inline)) int path_scatter_as(struct render_c
    its throughput divided by m, so that its expectation is unchanged. The coin is the vertex's
    decision DIM_ROULETTE (x) under sampler_dims: all, else the path's rng. 1: the path goes on. */
 #define ROULETTE_FROM_DEPTH 1
-static inline __attribute__((always_inline)) int path_survives(struct render_ctx *ctx, vec3 *beta,
+static inline __attribute__((always_inline)) int path_survives(struct render_ctx *ctx, struct path_state *p,
                                                                struct rng *rng, struct path_at at)
 {
     if (!at.roulette || at.depth < ROULETTE_FROM_DEPTH)
         return 1;
-    const double m = d_max(beta->x, d_max(beta->y, beta->z));
+    const double m = d_max(p->beta.x, d_max(p->beta.y, p->beta.z));
     if (!(m < 1))
         return 1;
     const double coin = at.dims ? path_decide(ctx, rng, at, DIM_ROULETTE).x : rng_uniform32(rng);
     if (!(coin < m))
         return 0;
-    *beta = v3_scale(*beta, 1 / m);
+    p->beta = v3_scale(p->beta, 1 / m);
     return 1;
-}
-
-/* path_scatter_as with a medium's scatter through calls. */
-static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, ray *r, vec3 *beta,
-                                                              vec3 *L, struct rng *rng, const struct hit *h,
-                                                              int at_last, int mix, int nee, double *mis_pdf,
-                                                              uint64_t *rays, struct path_at at)
-{
-    return path_scatter_as(ctx, r, beta, L, rng, h, at_last, mix, nee, mis_pdf, rays, at, 0);
 }
 
 #endif
