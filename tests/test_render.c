@@ -9,6 +9,7 @@
 #include "render/render.h"
 #include "base/rng.h"
 #include "geom/shape.h"
+#include "geom/shape_light_inline.h"
 
 static void test_rng(void)
 {
@@ -245,7 +246,7 @@ static void test_shapes(void)
     struct rng g;
     rng_seed(&g, 3, 3);
     for (int i = 0; i < 10000; i++) {
-        vec3 p = shape_light_point(&dk, (struct pt2){rng_uniform(&g), rng_uniform(&g)});
+        vec3 p = light_point(&dk, (struct pt2){rng_uniform(&g), rng_uniform(&g)});
         double rr = v3_len(v3_sub(p, dk.g.disk.center));
         on_disk &= rr <= 3 + 1e-9 && fabs(p.z + 2) < 1e-9;
         maxr = rr > maxr ? rr : maxr;
@@ -255,9 +256,9 @@ static void test_shapes(void)
     CHECK(maxr > 2.9); /* the seed's bug sampled a radius-1 spot only */
     CHECK_NEAR(inner / 10000.0, 0.25, 0.02);
     /* Solid-angle pdf of a small disk seen head-on from far: dist^2 / area. */
-    double pdf = shape_light_pdf(&dk, v3(0, 0, 8), v3(0, 0, -1), 0);
+    double pdf = light_pdf(&dk, v3(0, 0, 8), v3(0, 0, -1));
     CHECK_NEAR(pdf, 100 / (PI * 9), 1e-9);
-    CHECK(shape_light_pdf(&dk, v3(0, 0, 8), v3(0, 1, 0), 0) == 0);
+    CHECK(light_pdf(&dk, v3(0, 0, 8), v3(0, 1, 0)) == 0);
 
     /* Transform: a unit sphere translated to x=10. */
     struct prim t = s;

@@ -376,14 +376,12 @@ static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *wh
     int sample_same = 1;
     for (int i = 0; i < n; i++) {
         struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
-        vec3 d = shape_light_dir(p, o, sp);
-        double pdf = shape_light_pdf(p, o, d, 0), pdf_sample;
-        /* shape_light_sample: the same direction made unit (a sphere's cone direction is one
-           by construction, to rounding, and is not normalised again), the same density up to
-           rounding */
-        vec3 ds = shape_light_sample(p, o, sp, &pdf_sample);
-        sample_same &= v3_len2(v3_sub(ds, p->type == PRIM_SPHERE ? d : v3_unit(d))) == 0 &&
-                       fabs(v3_len2(ds) - 1) < 1e-14 && fabs(pdf_sample - pdf) <= 1e-9 * pdf;
+        double pdf_sample;
+        /* light_sample: a unit direction (a sphere's cone direction is one by construction, to
+           rounding, and is not normalised again), its density light_pdf's up to rounding */
+        vec3 d = light_sample(p, o, sp, &pdf_sample);
+        double pdf = light_pdf(p, o, d);
+        sample_same &= fabs(v3_len2(d) - 1) < 1e-14 && fabs(pdf_sample - pdf) <= 1e-9 * pdf;
         ray r = {o, d, 0};
         all_hit &= pdf > 0 && shape_hit(p, &r, 1e-9, DBL_MAX, &h);
         inv_sum += pdf > 0 ? 1 / pdf : 0;
@@ -392,7 +390,7 @@ static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *wh
         vec3 u = v3(cos(phi) * s, sin(phi) * s, z);
         ray ru = {o, u, 0};
         covered += shape_hit(p, &ru, 1e-9, DBL_MAX, &h);
-        double pu = shape_light_pdf(p, o, u, 0);
+        double pu = light_pdf(p, o, u);
         pdf_sum += pu;
         g_uniform += (1 - v3_dot(u, to_c)) * pu;
     }
@@ -401,7 +399,7 @@ static void check_light_pdf(const struct prim *p, vec3 o, vec3 c, const char *wh
         printf("%s: a sampled direction missed the light\n", what);
     CHECK(all_hit);
     if (!sample_same)
-        printf("%s: shape_light_sample differs from shape_light_dir / shape_light_pdf\n", what);
+        printf("%s: light_sample differs from light_pdf\n", what);
     CHECK(sample_same);
     CHECK_NEAR(inv_sum / n / omega, 1, 0.03);
     CHECK_NEAR(pdf_sum / n * 4 * PI, 1, 0.03);
@@ -419,7 +417,7 @@ static void test_light_pdfs(void)
     struct prim far = s;
     far.g.sphere.center = v3(0, 0, -1e7);
     far.g.sphere.radius = 1;
-    double pdf = shape_light_pdf(&far, v3(0, 0, 0), v3(0, 0, -1), 0);
+    double pdf = light_pdf(&far, v3(0, 0, 0), v3(0, 0, -1));
     CHECK(isfinite(pdf) && pdf > 0);
     CHECK_NEAR(pdf * PI * 1e-14, 1, 1e-6); /* 1 / (2 pi (1 - cos)) with 1 - cos = r^2 / 2d^2 */
 
@@ -445,8 +443,7 @@ static void test_light_pdfs(void)
         v3_sincos_turn(sp.y, &sn, &cs);
         const struct prim *lp = i % 2 ? &dk : &q;
         vec3 o = v3(4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2);
-        vec3 d = shape_light_sample(lp, o, sp, &pdf_plain),
-             dt = shape_light_sample_turn(lp, o, sp, cs, sn, &pdf_turn);
+        vec3 d = light_sample(lp, o, sp, &pdf_plain), dt = light_sample_turn(lp, o, sp, cs, sn, &pdf_turn);
         worst = fmax(worst, v3_len(v3_sub(d, dt)));
         worst = fmax(worst, fabs(pdf_plain - pdf_turn) / (pdf_plain + 1e-300));
     }
@@ -455,18 +452,25 @@ static void test_light_pdfs(void)
 }
 
 /* One case of a planar light's pre-test check: a direction from o toward `at` (scaled by a random
-   power of two) or, every third case, anywhere; the pdf through shape_light_pdf (pre-test, then
+   power of two) or, every third case, anywhere; the pdf through light_pdf (pre-test, then
    the plane hit) must equal the plane hit's alone (hit: shape_light_inline.h's disk_pdf_hit or
-   rect_pdf_hit), bit for bit. */
+   rect_pdf_hit), bit for bit, and be positive exactly where shape_hit hits. */
 static void check_pretest_case(const struct prim *p, vec3 o, vec3 at, int i, struct rng *g,
                                double (*hit)(const struct prim *, vec3, vec3), int *same, int *hits)
 {
     vec3 dir = v3_scale(v3_sub(at, o), ldexp(1, (int)(10 * rng_uniform(g)) - 15));
     if (i % 3 == 2)
         dir = v3(2 * rng_uniform(g) - 1, 2 * rng_uniform(g) - 1, 2 * rng_uniform(g) - 1);
-    double want = hit(p, o, dir), got = shape_light_pdf(p, o, dir, 0);
+    double want = hit(p, o, dir), got = light_pdf(p, o, dir);
     *hits += want > 0;
     *same &= memcmp(&want, &got, sizeof want) == 0;
+    /* the pdf's plane test is shape_hit's (rect_plane, disk_plane): a positive pdf where the ray
+       hits, 0 where it misses (or grazes: planar_pdf's 0 within 1e-12 of the plane) */
+    struct hit h;
+    const ray r = {o, dir, 0};
+    const int hit_ok = shape_hit(p, &r, HIT_EPS, DBL_MAX, &h);
+    const vec3 n = p->type == PRIM_DISK ? p->g.disk.normal : p->g.rect.n;
+    *same &= want > 0 ? hit_ok : !hit_ok || planar_pdf(p, h.t, v3_dot(dir, n), dir) == 0;
 }
 
 /* The pre-test only rejects directions the exact test rejects: the same value, bit for bit, for
@@ -595,7 +599,7 @@ static void test_sphere_pdf_cone(void)
             dir = v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
         }
         dir = v3_scale(dir, ldexp(1, (int)(10 * rng_uniform(&g)) - 5));
-        double want = sphere_pdf_two_tests(&b, o, dir), got = shape_light_pdf(&b, o, dir, 0);
+        double want = sphere_pdf_two_tests(&b, o, dir), got = light_pdf(&b, o, dir);
         hits += want > 0;
         misses_behind += want == 0 && v3_dot(dir, to_c) <= 0;
         same &= memcmp(&want, &got, sizeof want) == 0;
@@ -649,13 +653,13 @@ static void test_lights_pdf_sum(void)
             const struct prim *lp = &sc->prims[sc->lights[aim]];
             struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
             dir = v3_unit(lp->type == PRIM_SPHERE ? v3_sub(lp->g.sphere.center, o)
-                                                  : v3_sub(shape_light_point(lp, sp), o));
+                                                  : v3_sub(light_point(lp, sp), o));
         } else {
             dir = v3_unit(v3(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1));
         }
         double known_pdf = 0.25 + rng_uniform(&g), sum = 0;
         for (int k = 0; k < sc->n_lights; k++) {
-            double one = k == known ? known_pdf : shape_light_pdf(&sc->prims[sc->lights[k]], o, dir, 0);
+            double one = k == known ? known_pdf : light_pdf(&sc->prims[sc->lights[k]], o, dir);
             inside += k != known && one > 0 && sc->prims[sc->lights[k]].type == PRIM_DISK;
             sum += one;
         }
@@ -696,12 +700,12 @@ static void test_lights_pdf_mean(void)
             const struct prim *aim = &sc->prims[sc->lights[rng_below(&g, (uint32_t)lights)]];
             double pdf;
             struct pt2 sp = {rng_uniform(&g), rng_uniform(&g)};
-            vec3 dir = shape_light_sample(aim, o, sp, &pdf);
+            vec3 dir = light_sample(aim, o, sp, &pdf);
             if (aim->type == PRIM_SPHERE)
                 unit &= fabs(v3_len2(dir) - 1) < 1e-14;
             double known_pdf = 0.25 + rng_uniform(&g), sum = 0;
             for (int k = 0; k < lights; k++)
-                sum += k == known ? known_pdf : shape_light_pdf(&sc->prims[sc->lights[k]], o, dir, 0);
+                sum += k == known ? known_pdf : light_pdf(&sc->prims[sc->lights[k]], o, dir);
             double want = sum / lights, got = shape_lights_pdf(sc, o, dir, known, known_pdf);
             positive += got > 0;
             same &= memcmp(&want, &got, sizeof want) == 0;

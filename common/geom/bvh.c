@@ -251,12 +251,27 @@ static inline __attribute__((always_inline)) void take_hit(struct leaf_run *lr, 
     lr->got = 1;
 }
 
-/* Test the prims of node n's leaf lanes m (entry distances tn) against r, as met. */
-static inline __attribute__((always_inline)) void
-test_leaves(const struct scene *sc, const struct bvh_node *n, int m, const float *tn, const ray *r,
-            double t_min, struct hit *h, struct leaf_run *lr, struct media_met *mm, int media_inline,
-            float grow)
+/* What test_leaves reads of its traversal: the scene, the ray and its t_min, whether a medium's
+   flight is inline (the tree's) or a call (the one node's), and the float bound's growth after a
+   hit (NODE_GROW, BVH_GROW). Passed by value: constants in each inlined copy. */
+struct leaf_args {
+    const struct scene *sc;
+    const ray *r;
+    double t_min;
+    int media_inline;
+    float grow;
+};
+
+/* Test the prims of node n's leaf lanes m (entry distances tn) against a.r, as met. */
+static inline __attribute__((always_inline)) void test_leaves(struct leaf_args a, const struct bvh_node *n,
+                                                              int m, const float *tn, struct hit *h,
+                                                              struct leaf_run *lr, struct media_met *mm)
 {
+    const struct scene *sc = a.sc;
+    const ray *r = a.r;
+    const double t_min = a.t_min;
+    const int media_inline = a.media_inline;
+    const float grow = a.grow;
     for (; m; m &= m - 1) {
         int c = __builtin_ctz((unsigned)m);
         if (tn[c] > lr->t_hi)
@@ -326,7 +341,7 @@ int bvh_hit_node(const struct scene *sc, const ray *r, double t_min, double t_ma
     const struct bvh_node *n = &sc->nodes[0];
     float tn[BVH_WIDTH];
     int hit = node_test(&fr, (const char *)n, n->quads, t_lo, lr.t_hi, tn, NODE_GROW);
-    test_leaves(sc, n, hit, tn, r, t_min, h, &lr, &mm, 0, NODE_GROW);
+    test_leaves((struct leaf_args){sc, r, t_min, 0, NODE_GROW}, n, hit, tn, h, &lr, &mm);
     return finish(sc, r, t_min, h, &lr, &mm);
 }
 
@@ -357,7 +372,7 @@ static inline __attribute__((always_inline)) int visit(const struct scene *sc, c
     float tn[BVH_WIDTH];
     int hit = node_test8(&w->fr, (const char *)n, w->t_lo, w->lr.t_hi, tn);
     /* Leaf children first, as met: their hits shorten the ray for the other children. */
-    test_leaves(sc, n, hit & n->leaves, tn, r, t_min, h, &w->lr, &w->mm, 1, BVH_GROW);
+    test_leaves((struct leaf_args){sc, r, t_min, 1, BVH_GROW}, n, hit & n->leaves, tn, h, &w->lr, &w->mm);
     /* Then the nearest interior child next, the others pushed farthest first; one alone (a
        third of final's visits, half have none) goes next without the pushes' bookkeeping. */
     int inner = hit & ~n->leaves;

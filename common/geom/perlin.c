@@ -53,15 +53,22 @@ static unsigned perlin_cell(double f)
     return (unsigned)fabs(fmod(f, PERLIN_N)); /* 0: such f are multiples of 1024 */
 }
 
+/* A cell's two z sides (dk = 0, 1), shared by its four (di, dj): their permutation indices, their
+   weights and the offsets from them. */
+struct cell_z {
+    unsigned pz0, pz1;
+    perlin_d2 wz, dz;
+};
+
 /* The two corners (dk = 0, 1) of one (di, dj) of a cell side by side in one vector of two
    doubles: weight wxy wz times the gradient's dot with the corner's offset, each rounded as the
    book rounds it. */
-static inline perlin_d2 corner_pair(const struct perlin *p, unsigned pxy, unsigned pz0, unsigned pz1,
-                                    double wxy, perlin_d2 wz, double dx, double dy, perlin_d2 dz)
+static inline perlin_d2 corner_pair(const struct perlin *p, unsigned pxy, struct cell_z z, double wxy,
+                                    double dx, double dy)
 {
-    const double *g0 = p->grad + (pxy ^ pz0), *g1 = p->grad + (pxy ^ pz1);
+    const double *g0 = p->grad + (pxy ^ z.pz0), *g1 = p->grad + (pxy ^ z.pz1);
     const perlin_d2 gx = {g0[0], g1[0]}, gy = {g0[1], g1[1]}, gz = {g0[2], g1[2]};
-    return wxy * wz * (gx * dx + gy * dy + gz * dz);
+    return wxy * z.wz * (gx * dx + gy * dy + gz * z.dz);
 }
 
 /* The eight corners' sum of the cell whose permutation indices are (i, j, k) (already reduced
@@ -76,17 +83,17 @@ static inline __attribute__((always_inline)) double cell_sum(const struct perlin
     const unsigned px0 = p->off_x[i], px1 = p->off_x[i + 1], py0 = p->off_y[j], py1 = p->off_y[j + 1],
                    pz0 = p->off_z[k], pz1 = p->off_z[k + 1];
     const double wx0 = 1 - uu, wy0 = 1 - vv, dx1 = u - 1, dy1 = v - 1;
-    const perlin_d2 wz = {1 - ww, ww}, dz = {w, w - 1};
-    perlin_d2 t = corner_pair(p, px0 ^ py0, pz0, pz1, wx0 * wy0, wz, u, v, dz);
+    const struct cell_z z = {pz0, pz1, {1 - ww, ww}, {w, w - 1}};
+    perlin_d2 t = corner_pair(p, px0 ^ py0, z, wx0 * wy0, u, v);
     double accum = t[0];
     accum += t[1];
-    t = corner_pair(p, px0 ^ py1, pz0, pz1, wx0 * vv, wz, u, dy1, dz);
+    t = corner_pair(p, px0 ^ py1, z, wx0 * vv, u, dy1);
     accum += t[0];
     accum += t[1];
-    t = corner_pair(p, px1 ^ py0, pz0, pz1, uu * wy0, wz, dx1, v, dz);
+    t = corner_pair(p, px1 ^ py0, z, uu * wy0, dx1, v);
     accum += t[0];
     accum += t[1];
-    t = corner_pair(p, px1 ^ py1, pz0, pz1, uu * vv, wz, dx1, dy1, dz);
+    t = corner_pair(p, px1 ^ py1, z, uu * vv, dx1, dy1);
     accum += t[0];
     accum += t[1];
     return accum;

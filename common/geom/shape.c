@@ -33,21 +33,12 @@ static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1
 
 static int hit_disk(const struct prim *p, const ray *r, double t_min, double t_max, struct hit *h)
 {
-    vec3 n = p->g.disk.normal;
-    double dn = v3_dot(r->dir, n);
-    if (dn == 0)
-        return 0;
-    double t = v3_dot(v3_sub(p->g.disk.center, r->orig), n) / dn;
-    if (!(t > t_min && t < t_max))
-        return 0;
-    vec3 q = ray_at(r, t);
-    vec3 d = v3_sub(q, p->g.disk.center);
-    double rad = p->g.disk.radius;
-    if (v3_len2(d) > rad * rad)
+    double t, dn;
+    if (!disk_plane(p, r->orig, r->dir, t_min, t_max, &t, &dn))
         return 0;
     h->t = t;
-    h->p = q;
-    set_face(h, r, n);
+    h->p = ray_at(r, t);
+    set_face(h, r, p->g.disk.normal);
     return 1;
 }
 

@@ -61,30 +61,7 @@ double shape_area(const struct prim *p);
    samples its cone of directions from the path's rng instead. */
 int shape_light_uses_points(const struct prim *p);
 
-/* The point on a disk or rect light for a sample point s in [0,1)^2 (area-uniform map). */
-vec3 shape_light_point(const struct prim *p, struct pt2 s);
-
-/* A direction from o toward light p (not normalised) for s in [0,1)^2: toward an area-uniform
-   point of a disk or rect, or uniform in the cone a sphere subtends (RTOW "The Rest of Your
-   Life", ch. 12; uniform over all directions when o is inside the sphere). */
-vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s);
-
-/* Density, per solid angle, of shape_light_dir choosing direction dir from o: 0 when the
-   ray misses p. */
-double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time);
-
-/* The unit direction of shape_light_dir and, in *pdf, shape_light_pdf's density for it, from
-   what the sampling knows (the chosen point's distance, the cone) instead of intersecting the
-   ray with p again; it may differ from shape_light_pdf's by rounding. */
-vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf);
-
-/* shape_light_sample for a disk or rect light whose sample point s comes with cos_t and sin_t
-   of 2 pi s.y (as a pooled set's turns give them): a disk takes its angle from them instead of
-   computing it (the same direction up to rounding); a rect ignores them. */
-vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t,
-                             double *pdf);
-
-/* The mean of shape_light_pdf over the scene's lights (the mixture's light side), taking
+/* The mean of light_pdf (shape_light_inline.h) over the scene's lights (the mixture's light side), taking
    known_pdf for light index known (-1: none); the scene has at least one light. */
 double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf);
 

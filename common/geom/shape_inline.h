@@ -90,24 +90,49 @@ static inline __attribute__((always_inline)) void rect_record(const struct prim 
     set_face(h, r, p->flip ? v3_neg(p->g.rect.n) : p->g.rect.n);
 }
 
-/* The plane's distance and the hit's in-plane coordinates read the ray's components on the
-   rect's axes by their offsets: no branch on the axis, and the same values the dot products
-   with the unit axes give (x 1 + y 0 + z 0 is x up to the sign of a zero, which no comparison
-   sees). A direction parallel to the plane gives t = +-inf or NaN, which the range test turns
-   down. */
+/* The rect's plane test, written once for hit_rect and a rect light's pdf (shape_light_inline.h's
+   rect_pdf_hit; packet.c's rect4 is its vector form, tested bit for bit against hit_rect): 1 when
+   the line o + t dir meets the rect at *t in (t_min, t_max). The plane's distance and the hit's
+   in-plane coordinates read the components on the rect's axes by their offsets: no branch on the
+   axis, and the same values the dot products with the unit axes give (x 1 + y 0 + z 0 is x up to
+   the sign of a zero, which no comparison sees). A direction parallel to the plane gives t = +-inf
+   or NaN, which the range test turns down. */
+static inline __attribute__((always_inline)) int
+rect_plane(const struct prim *p, const vec3 *o, const vec3 *dir, double t_min, double t_max, double *t)
+{
+    const long on = p->g.rect.on, oa = p->g.rect.oa, ob = p->g.rect.ob;
+    const double tt = (p->g.rect.k - v3_at_offset(o, on)) / v3_at_offset(dir, on);
+    *t = tt;
+    if (!(tt > t_min && tt < t_max))
+        return 0;
+    double pa = v3_at_offset(o, oa) + v3_at_offset(dir, oa) * tt;
+    double pb = v3_at_offset(o, ob) + v3_at_offset(dir, ob) * tt;
+    return !(pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1);
+}
+
 static inline __attribute__((always_inline)) int hit_rect(const struct prim *p, const ray *r, double t_min,
                                                           double t_max, struct hit *h)
 {
-    const long on = p->g.rect.on, oa = p->g.rect.oa, ob = p->g.rect.ob;
-    double t = (p->g.rect.k - v3_at_offset(&r->orig, on)) / v3_at_offset(&r->dir, on);
-    if (!(t > t_min && t < t_max))
-        return 0;
-    double pa = v3_at_offset(&r->orig, oa) + v3_at_offset(&r->dir, oa) * t;
-    double pb = v3_at_offset(&r->orig, ob) + v3_at_offset(&r->dir, ob) * t;
-    if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
+    double t;
+    if (!rect_plane(p, &r->orig, &r->dir, t_min, t_max, &t))
         return 0;
     rect_record(p, r, t, h);
     return 1;
+}
+
+/* The disk's plane test, written once for shape.c's hit_disk and a disk light's pdf
+   (disk_pdf_hit; packet.c's disk4 is its vector form): 1 when the line o + t dir meets the disk
+   at *t in (t_min, t_max), *dn = dir . normal. A direction parallel to the plane (dn 0) gives
+   t = +-inf or NaN, which the range test turns down. */
+static inline __attribute__((always_inline)) int disk_plane(const struct prim *p, vec3 o, vec3 dir,
+                                                            double t_min, double t_max, double *t, double *dn)
+{
+    const vec3 n = p->g.disk.normal;
+    const double d_n = v3_dot(dir, n), tt = v3_dot(v3_sub(p->g.disk.center, o), n) / d_n;
+    *t = tt, *dn = d_n;
+    if (!(tt > t_min && tt < t_max))
+        return 0;
+    return !(v3_len2(v3_sub(v3_fma(o, dir, tt), p->g.disk.center)) > p->g.disk.r2);
 }
 
 /* A uniform number in (0, 1] from the ray's bits and the medium's: the same ray always gets

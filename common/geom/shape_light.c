@@ -154,36 +154,6 @@ int shape_light_uses_points(const struct prim *p)
     return p->type == PRIM_DISK || p->type == PRIM_RECT;
 }
 
-vec3 shape_light_point(const struct prim *p, struct pt2 s)
-{
-    return light_point(p, s);
-}
-
-vec3 shape_light_dir(const struct prim *p, vec3 o, struct pt2 s)
-{
-    double omc;
-    if (p->type != PRIM_SPHERE)
-        return v3_sub(shape_light_point(p, s), o);
-    return sphere_cone_dir(p, o, s, &omc);
-}
-
-double shape_light_pdf(const struct prim *p, vec3 o, vec3 dir, double time)
-{
-    (void)time;
-    return light_pdf(p, o, dir);
-}
-
-vec3 shape_light_sample(const struct prim *p, vec3 o, struct pt2 s, double *pdf)
-{
-    return light_sample(p, o, s, pdf);
-}
-
-vec3 shape_light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t,
-                             double *pdf)
-{
-    return light_sample_turn(p, o, s, cos_t, sin_t, pdf);
-}
-
 double shape_lights_pdf(const struct scene *sc, vec3 o, vec3 dir, int known, double known_pdf)
 {
     return lights_pdf(sc, o, dir, known, known_pdf);

@@ -9,6 +9,7 @@
 #include <float.h>
 
 #include "scene.h"
+#include "shape_inline.h"
 
 /* The point of light p for s: a disk's at angle 2 pi s.y, whose cos and sin are given. */
 static inline vec3 light_point_turn(const struct prim *p, struct pt2 s, double cos_t, double sin_t)
@@ -73,7 +74,11 @@ static inline vec3 planar_sample(const struct prim *p, vec3 o, vec3 q, double *p
     return dir;
 }
 
-/* shape_light_sample (shape.h) */
+/* A unit direction from o toward light p for s in [0,1)^2 (toward an area-uniform point of a disk
+   or rect, or uniform in the cone a sphere subtends: RTOW "The Rest of Your Life", ch. 12;
+   uniform over all directions when o is inside the sphere) and, in *pdf, light_pdf's density for
+   it, from what the sampling knows (the chosen point's distance, the cone) instead of
+   intersecting the ray with p again; it may differ from light_pdf's by rounding. */
 static inline __attribute__((always_inline)) vec3 light_sample(const struct prim *p, vec3 o, struct pt2 s,
                                                                double *pdf)
 {
@@ -88,7 +93,9 @@ static inline __attribute__((always_inline)) vec3 light_sample(const struct prim
     return planar_sample(p, o, light_point(p, s), pdf);
 }
 
-/* shape_light_sample_turn (shape.h) */
+/* light_sample for a disk or rect light whose sample point s comes with cos_t and sin_t of
+   2 pi s.y (as a pooled set's turns give them): a disk takes its angle from them instead of
+   computing it (the same direction up to rounding); a rect ignores them. */
 static inline vec3 light_sample_turn(const struct prim *p, vec3 o, struct pt2 s, double cos_t, double sin_t,
                                      double *pdf)
 {
@@ -121,18 +128,13 @@ static inline double sphere_pdf(const struct prim *p, vec3 o, vec3 dir)
     return 1 / (2 * PI * sphere_one_minus_cos(p, o));
 }
 
-/* shape_hit's rect test, minus the hit record */
+/* A rect light's pdf by its plane hit (shape_inline.h's rect_plane, hit_rect's test). */
 static inline double rect_pdf_hit(const struct prim *p, vec3 o, vec3 dir)
 {
-    const vec3 n = p->g.rect.n;
-    double dn = v3_dot(dir, n), t = (p->g.rect.k - v3_dot(o, n)) / dn;
-    if (!(t > HIT_EPS && t < DBL_MAX))
+    double t;
+    if (!rect_plane(p, &o, &dir, HIT_EPS, DBL_MAX, &t))
         return 0;
-    vec3 q = v3_fma(o, dir, t);
-    double pa = v3_dot(q, p->g.rect.ea), pb = v3_dot(q, p->g.rect.eb);
-    if (pa < p->g.rect.a0 || pa > p->g.rect.a1 || pb < p->g.rect.b0 || pb > p->g.rect.b1)
-        return 0;
-    return planar_pdf(p, t, dn, dir);
+    return planar_pdf(p, t, v3_at_offset(&dir, p->g.rect.on), dir);
 }
 
 /* Most directions miss a planar light: reject those outside the cone of its bounding ball c, r2
@@ -166,15 +168,11 @@ static inline double rect_pdf(const struct prim *p, vec3 o, vec3 dir)
     return rect_in_cone(p, o, dir) ? rect_pdf_hit(p, o, dir) : 0;
 }
 
-/* A disk light's pdf by its plane hit. */
+/* A disk light's pdf by its plane hit (shape_inline.h's disk_plane, hit_disk's test). */
 static inline double disk_pdf_hit(const struct prim *p, vec3 o, vec3 dir)
 {
-    const vec3 n = p->g.disk.normal, to_c = v3_sub(p->g.disk.center, o);
-    double dn = v3_dot(dir, n), t = v3_dot(to_c, n) / dn;
-    if (!(t > HIT_EPS && t < DBL_MAX))
-        return 0;
-    vec3 d = v3_sub(v3_fma(o, dir, t), p->g.disk.center);
-    if (v3_len2(d) > p->g.disk.r2)
+    double t, dn;
+    if (!disk_plane(p, o, dir, HIT_EPS, DBL_MAX, &t, &dn))
         return 0;
     return planar_pdf(p, t, dn, dir);
 }

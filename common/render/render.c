@@ -9,33 +9,31 @@
 #include "geom/bvh.h"
 #include "render_path.h"
 
-/* One camera path; returns its radiance estimate and adds its segments to *rays. Diffuse and
-   isotropic scattering draw from the mixture of the light pdf and their own (RTOW "The Rest of
-   Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and glass
-   follow their one direction. Scattered directions are unit vectors. Each segment's
+/* One camera path from the ray r; returns its radiance estimate and adds its segments to *rays.
+   Diffuse and isotropic scattering draw from the mixture of the light pdf and their own (RTOW
+   "The Rest of Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and
+   glass follow their one direction. Scattered directions are unit vectors. Each segment's
    interaction is path_scatter (render_path.h), which the packet's lanes (render_lanes.c) share,
-   then Russian roulette (path_survives) when path.roulette; inline, with mix and last made once
-   per pixel. path: the camera sample's decisions (its depth is the loop's). */
-static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray *r, struct rng *rng,
-                                                        uint64_t *rays, int mix, int nee, struct path_at path,
-                                                        int last)
+   then Russian roulette (path_survives) when how.roulette; inline, with the light strategy and
+   last made once per pixel. how: the render's part of path_at and the camera sample's index. */
+static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng,
+                                                        uint64_t *rays, struct path_at how)
 {
     const struct scene *sc = ctx->sc;
-    vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);
-    double mis_pdf = 0;
-    for (int depth = 0; depth <= last; depth++) {
+    struct path_state p = {r, v3(1, 1, 1), v3(0, 0, 0), 0};
+    for (int depth = 0; depth <= how.last; depth++) {
         struct hit h;
         ++*rays;
-        if (!bvh_hit(sc, r, HIT_EPS, DBL_MAX, &h)) {
-            L = v3_add(L, v3_mul(beta, sc->background));
+        if (!bvh_hit(sc, &p.r, HIT_EPS, DBL_MAX, &h)) {
+            p.L = v3_add(p.L, v3_mul(p.beta, sc->background));
             break;
         }
-        const struct path_at at = {path.dims, depth, path.sample, path.roulette, NULL};
-        if (!path_scatter_as(ctx, r, &beta, &L, rng, &h, depth == last, mix, nee, &mis_pdf, rays, at, 1) ||
-            !path_survives(ctx, &beta, rng, at))
+        struct path_at at = how;
+        at.depth = depth;
+        if (!path_scatter(ctx, &p, rng, &h, rays, at) || !path_survives(ctx, &p, rng, at))
             break;
     }
-    return L;
+    return p.L;
 }
 
 void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st)
@@ -61,20 +59,22 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     if (timed)
         st->timed_draw_ns += now_ns() - t0;
 
-    double sum[3] = {0, 0, 0};
-    uint64_t rays = 0, nonfinite = 0;
+    struct pixel_sums ps = {{0, 0, 0}, 0, 0};
     /* nee samples the emitters alone: without any, only the material's own sampling is left */
     const int lights = !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     const int nee = lights && ctx->rs.nee && ctx->sc->n_emitters > 0;
     const int mix = lights && !ctx->rs.nee && ctx->sc->n_lights > 0, dims = ctx->rs.dims_all;
     const int rr = ctx->rs.russian_roulette;
+    /* the mixture or none: a runtime value in the default loops, in which nee is a constant 0 */
+    const enum path_lights mix_or_none = mix ? LIGHTS_MIXTURE : LIGHTS_NONE;
     if (dims) {
         padding_pixel(&ctx->pad, ctx->rs.seed, x, y, n);
         ctx->pad.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     }
     if (ctx->packet) {
-        const struct path_at how = {dims, 0, 0, rr, NULL};
-        render_pixel_packet(ctx, x, y, n, &path_rng, mix, nee, how, last, sum, &nonfinite, &rays);
+        const struct path_at how = {
+            .lights = nee ? LIGHTS_NEE : mix_or_none, .dims = dims, .roulette = rr, .last = last};
+        render_pixel_packet(ctx, x, y, n, &path_rng, how, &ps);
     } else {
         /* nee, dims and roulette constants in the default loop: the mixture's inlined trace holds
            none of their code */
@@ -85,24 +85,29 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
             if (nee || dims || rr) {
                 ray r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s)
                              : camera_ray(ctx->cam, u, v, &path_rng);
-                const struct path_at path = {dims, 0, (uint32_t)s, rr, NULL};
-                c = trace(ctx, &r, &path_rng, &rays, mix, nee, path, last);
+                const struct path_at how = {.lights = nee ? LIGHTS_NEE : mix_or_none,
+                                            .dims = dims,
+                                            .roulette = rr,
+                                            .last = last,
+                                            .medium_inline = 1,
+                                            .sample = (uint32_t)s};
+                c = trace(ctx, r, &path_rng, &ps.rays, how);
             } else {
-                ray r = camera_ray(ctx->cam, u, v, &path_rng);
-                c = trace(ctx, &r, &path_rng, &rays, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last);
+                const struct path_at how = {.lights = mix_or_none, .last = last, .medium_inline = 1};
+                c = trace(ctx, camera_ray(ctx->cam, u, v, &path_rng), &path_rng, &ps.rays, how);
             }
-            add_estimate(c, sum, &nonfinite);
+            add_estimate(c, ps.sum, &ps.nonfinite);
         }
     }
     double inv = n ? 1.0 / n : 0; /* non-finite samples count as zero */
     for (int k = 0; k < 3; k++)
-        rgb[k] = (float)(sum[k] * inv);
+        rgb[k] = (float)(ps.sum[k] * inv);
     if (timed)
         st->timed_pixel_ns += now_ns() - t0;
     st->pixels++;
     st->samples += n;
-    st->rays += rays;
-    st->nonfinite += nonfinite;
+    st->rays += ps.rays;
+    st->nonfinite += ps.nonfinite;
     if (n < st->spp_min)
         st->spp_min = (uint32_t)n;
     if (n > st->spp_max)

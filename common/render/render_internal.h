@@ -46,15 +46,40 @@ struct path_shadow {
     int pending;
 };
 
-/* Where a vertex's decisions come from: under sampler_dims: all (dims) sample's points of the
-   pixel's sets for the vertex's bounce (depth), while that bounce has sets; else the path's rng.
-   roulette: Russian roulette may end the path after the vertex (render_path.h's path_survives).
-   shadow: NULL, or where next-event estimation leaves its shadow ray for the caller to trace. */
+/* The render's light strategy: none (light_sampling: off, or a scene without lights: the
+   material's own sampling alone), the books' pdf mixture, or next-event estimation with MIS. */
+enum path_lights { LIGHTS_NONE, LIGHTS_MIXTURE, LIGHTS_NEE };
+
+/* A camera path between segments: its ray, its throughput (beta), its radiance so far (L) and,
+   for next-event estimation, the last scatter's pdf (0 after the camera or a mirror or glass: the
+   emission it reaches then counts whole). trace's locals, a lane's struct path (render_lanes.c). */
+struct path_state {
+    ray r;
+    vec3 beta, L;
+    double mis_pdf;
+};
+
+/* How a vertex is handled. The render's: its light strategy (lights), sampler_dims: all (dims),
+   Russian roulette (roulette: it may end the path after the vertex, render_path.h's
+   path_survives), the last segment's depth (last: max_depth - 1) and whether a medium's scatter
+   is inlined (medium_inline: trace's, where final's fog scatters on most paths; the lanes' scenes
+   hold no media and call out). The vertex's: its bounce (depth), its camera sample's index in the
+   pixel (sample: under dims the vertex's decisions are that sample's points of the pixel's sets
+   while the bounce has sets, else the path's rng draws them) and shadow: NULL, or where
+   next-event estimation leaves its shadow ray for the caller to trace. */
 struct path_at {
-    int dims, depth;
+    enum path_lights lights;
+    int dims, roulette, last, medium_inline;
+    int depth;
     uint32_t sample;
-    int roulette;
     struct path_shadow *shadow;
+};
+
+/* A pixel's sums over its camera samples: the finite estimates (add_estimate), the count of the
+   others (nonfinite) and the path segments traced (rays). */
+struct pixel_sums {
+    double sum[3];
+    uint64_t nonfinite, rays;
 };
 
 /* The padded set of decision k of bounce depth (< ctx->dims_bounces): the roulette coins' sets
@@ -68,12 +93,9 @@ static inline int render_dims_slot(const struct render_ctx *ctx, int depth, int 
 
 /* render_pixel's samples (n of them, the pixel's points in ctx->pixel_pts) four paths at a
    time through packet_hit (render_lanes.c; ctx->packet set), each sample's rng started from the
-   pixel's path stream *base; mix: the scene's lights are sampled by the mixture, nee: by
-   next-event estimation; how: sampler_dims: all (dims) and Russian roulette (roulette); last:
-   max_depth - 1. Their finite estimates go into sum (add_estimate), the count of the others
-   into *nonfinite, their segments into *rays. */
-void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, struct path_at how, int last, double sum[3], uint64_t *nonfinite,
-                         uint64_t *rays);
+   pixel's path stream *base; how: the render's part of path_at (its depth, sample and shadow are
+   the lanes'). Their estimates and segments are added to *ps. */
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base,
+                         struct path_at how, struct pixel_sums *ps);
 
 #endif

@@ -7,11 +7,9 @@
 #include "geom/packet.h"
 #include "render_path.h"
 
-/* A camera path in flight: its ray, weight, radiance so far, segments traced and its rng. */
+/* A camera path in flight: its ray, weight, radiance so far (st), its depth and its rng. */
 struct path {
-    ray r;
-    vec3 beta, L;
-    double mis_pdf;            /* next-event estimation's: the last scatter's pdf (path_scatter_as) */
+    struct path_state st;
     struct path_shadow shadow; /* next-event estimation's shadow ray, traced with the other lanes' */
     int depth;
     uint32_t s; /* its camera sample's index in the pixel */
@@ -19,22 +17,25 @@ struct path {
 };
 
 /* One segment of a camera path pt whose ray's nearest hit is h (got: whether there is one): 1
-   with pt's next ray set, 0 when the path ends (pt->L is then its radiance estimate); mix: the
-   scene has lights sampled (nee: by next-event estimation); how: sampler_dims: all (dims) and
-   Russian roulette (roulette); last: the last segment's depth (max_depth - 1). trace's loop body:
-   both are path_scatter then path_survives (render_path.h). */
+   with pt's next ray set, 0 when the path ends (pt->st.L is then its radiance estimate); how: the
+   render's part of path_at. trace's loop body: both are path_scatter then path_survives
+   (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       struct hit *h, int mix, int nee, struct path_at how,
-                                                       int last, uint64_t *rays)
+                                                       struct hit *h, struct path_at how, uint64_t *rays)
 {
     if (!got) {
-        pt->L = v3_add(pt->L, v3_mul(pt->beta, ctx->sc->background));
+        pt->st.L = v3_add(pt->st.L, v3_mul(pt->st.beta, ctx->sc->background));
         return 0;
     }
-    const struct path_at at = {how.dims, pt->depth, pt->s, how.roulette, &pt->shadow};
-    return path_scatter(ctx, &pt->r, &pt->beta, &pt->L, &pt->rng, h, pt->depth++ == last, mix, nee,
-                        &pt->mis_pdf, rays, at) &&
-           path_survives(ctx, &pt->beta, &pt->rng, at);
+    /* medium_inline 0: the lanes' scenes hold no media (packet_usable) */
+    const struct path_at at = {.lights = how.lights,
+                               .dims = how.dims,
+                               .roulette = how.roulette,
+                               .last = how.last,
+                               .depth = pt->depth++,
+                               .sample = pt->s,
+                               .shadow = &pt->shadow};
+    return path_scatter(ctx, &pt->st, &pt->rng, h, rays, at) && path_survives(ctx, &pt->st, &pt->rng, at);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
@@ -51,11 +52,11 @@ path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s, cons
     pt->rng.state = rng_mix64(base->state + s);
     struct pt2 p = ctx->pixel_pts[s];
     const double u = (x + p.x) / w, v = (hgt - y - p.y) / hgt;
-    pt->r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s) : camera_ray(ctx->cam, u, v, &pt->rng);
+    pt->st.r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s) : camera_ray(ctx->cam, u, v, &pt->rng);
     pt->s = (uint32_t)s;
-    pt->beta = v3(1, 1, 1);
-    pt->L = v3(0, 0, 0);
-    pt->mis_pdf = 0;
+    pt->st.beta = v3(1, 1, 1);
+    pt->st.L = v3(0, 0, 0);
+    pt->st.mis_pdf = 0;
     pt->depth = 0;
 }
 
@@ -86,22 +87,22 @@ lanes_hit(const struct render_ctx *ctx, const ray *const r[PACKET_LANES], int ma
     return got;
 }
 
-/* render_pixel's samples four paths at a time, their rays traced together (packet_hit). Inline
-   into the two callers below, nee, dims and roulette constants in the default's: the mixture's
-   code holds none of theirs. */
+/* render_pixel's samples four paths at a time, their rays traced together (packet_hit), into
+   *ps. Inline into the two callers below, the light strategy, dims and roulette constants in the
+   default's: the mixture's code holds none of theirs. */
 static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *ctx, int x, int y, size_t n,
-                                                            const struct rng *base, int mix, int nee,
-                                                            struct path_at how, int last, double sum[3],
-                                                            uint64_t *nonfinite, uint64_t *rays)
+                                                            const struct rng *base, struct path_at how,
+                                                            struct pixel_sums *ps)
 {
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES], *shadow_rp[PACKET_LANES];
     double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
     uint64_t acc_rays = 0, acc_nonfinite = 0;
+    const int nee = how.lights == LIGHTS_NEE;
     int lanes = 0;
     size_t next = 0;
     for (int i = 0; i < PACKET_LANES; i++) {
-        rp[i] = &pt[i].r;
+        rp[i] = &pt[i].st.r;
         shadow_rp[i] = &pt[i].shadow.r;
         if (next < n) {
             path_start(ctx, &pt[i], x, y, next++, base, how.dims);
@@ -118,13 +119,13 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], mix, nee, how, last, &acc_rays))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], how, &acc_rays))
                 continue;
             if (nee) { /* ended, once its shadow ray is traced below */
                 ended |= 1 << i;
                 continue;
             }
-            add_estimate(pt[i].L, acc, &acc_nonfinite);
+            add_estimate(pt[i].st.L, acc, &acc_nonfinite);
             if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
@@ -137,41 +138,46 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
                 int shadow_got = lanes_hit(ctx, shadow_rp, pending, &ph);
                 for (int i = 0; i < PACKET_LANES; i++)
                     if (pending >> i & 1)
-                        path_shadow_add(ctx, &pt[i].shadow, shadow_got >> i & 1, &ph.h[i], &pt[i].L);
+                        path_shadow_add(ctx, &pt[i].shadow, shadow_got >> i & 1, &ph.h[i], &pt[i].st.L);
             }
         }
         for (int i = 0; i < PACKET_LANES; i++) {
             if (!(ended >> i & 1))
                 continue;
-            add_estimate(pt[i].L, acc, &acc_nonfinite);
+            add_estimate(pt[i].st.L, acc, &acc_nonfinite);
             if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
     }
     for (int k = 0; k < 3; k++)
-        sum[k] += acc[k];
-    *nonfinite += acc_nonfinite;
-    *rays += acc_rays;
+        ps->sum[k] += acc[k];
+    ps->nonfinite += acc_nonfinite;
+    ps->rays += acc_rays;
 }
 
 /* nee, sampler_dims: all or roulette (runtime values), out of line from the default's loop. */
 static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
-                                                  const struct rng *base, int mix, int nee,
-                                                  struct path_at how, int last, double sum[3],
-                                                  uint64_t *nonfinite, uint64_t *rays)
+                                                  const struct rng *base, struct path_at how,
+                                                  struct pixel_sums *ps)
 {
-    if (nee) /* a constant in its copy: the shadow rays' pass and none of the mixture's code */
-        lanes_run(ctx, x, y, n, base, 0, 1, how, last, sum, nonfinite, rays);
-    else
-        lanes_run(ctx, x, y, n, base, mix, 0, how, last, sum, nonfinite, rays);
+    /* nee a constant in each copy: nee's holds the shadow rays' pass and none of the mixture's
+       code, the other none of nee's */
+    if (how.lights == LIGHTS_NEE) {
+        how.lights = LIGHTS_NEE;
+        lanes_run(ctx, x, y, n, base, how, ps);
+    } else {
+        how.lights = how.lights == LIGHTS_MIXTURE ? LIGHTS_MIXTURE : LIGHTS_NONE;
+        lanes_run(ctx, x, y, n, base, how, ps);
+    }
 }
 
-void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base, int mix,
-                         int nee, struct path_at how, int last, double sum[3], uint64_t *nonfinite,
-                         uint64_t *rays)
+void render_pixel_packet(struct render_ctx *ctx, int x, int y, size_t n, const struct rng *base,
+                         struct path_at how, struct pixel_sums *ps)
 {
-    if (nee || how.dims || how.roulette)
-        lanes_other(ctx, x, y, n, base, mix, nee, how, last, sum, nonfinite, rays);
-    else
-        lanes_run(ctx, x, y, n, base, mix, 0, (struct path_at){0, 0, 0, 0, NULL}, last, sum, nonfinite, rays);
+    if (how.lights == LIGHTS_NEE || how.dims || how.roulette)
+        lanes_other(ctx, x, y, n, base, how, ps);
+    else {
+        const enum path_lights mix_or_none = how.lights == LIGHTS_MIXTURE ? LIGHTS_MIXTURE : LIGHTS_NONE;
+        lanes_run(ctx, x, y, n, base, (struct path_at){.lights = mix_or_none, .last = how.last}, ps);
+    }
 }

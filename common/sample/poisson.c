@@ -111,9 +111,20 @@ struct poisson_lanes {
     uint32_t cuv[4];
 };
 
-static inline void poisson_lanes(const struct poisson_frame *f, const float *ox, const float *oy, float bu,
-                                 float bv, int bi, int bj, int32_t base_at, struct poisson_lanes *L)
+/* A base in cell widths: its cell (bi, bj), its offset (bu, bv) inside it and the cell's index in
+   the frame's grid (at). */
+struct poisson_base {
+    int bi, bj;
+    float bu, bv;
+    int32_t at;
+};
+
+static inline void poisson_lanes(const struct poisson_frame *f, const float *ox, const float *oy,
+                                 struct poisson_base b, struct poisson_lanes *L)
 {
+    const int bi = b.bi, bj = b.bj;
+    const float bu = b.bu, bv = b.bv;
+    const int32_t base_at = b.at;
     poisson_f4 dx, dy;
     memcpy(&dx, ox, sizeof dx);
     memcpy(&dy, oy, sizeof dy);
@@ -298,7 +309,7 @@ draw_window(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const in
         const double bx = base.x * side, by = base.y * side;
         const int bi = (int)bx, bj = (int)by;
         const float bu = (float)(bx - bi), bv = (float)(by - bj);
-        const int32_t base_at = bj * (int32_t)frame.stride + bi;
+        const struct poisson_base cell = {bi, bj, bu, bv, bj * (int32_t)frame.stride + bi};
         int found = 0;
         /* Candidates four at a time, in order: the first acceptable one is kept and the rest of
            its four forgotten, the same law as one by one. */
@@ -308,7 +319,7 @@ draw_window(struct poisson *s, struct rng *caller_rng, struct pt2 *out, const in
                 next = 0;
             }
             struct poisson_lanes L;
-            poisson_lanes(&frame, s->off_x + next, s->off_y + next, bu, bv, bi, bj, base_at, &L);
+            poisson_lanes(&frame, s->off_x + next, s->off_y + next, cell, &L);
             next += 4;
             const int lanes = POISSON_TRIES - k < 4 ? POISSON_TRIES - k : 4;
             for (int b = 0; b < lanes; b++) {

@@ -3,7 +3,7 @@
 #include <stdio.h>
 
 #include "geom/shape.h"
-#include "scene_loader.h"
+#include "scene_parse.h"
 
 /* Whether any corner of the box lo..hi lies in front of the plane through c with normal nf,
    beyond a margin relative to the box's size (a box touching the plane from behind is behind). */
@@ -43,7 +43,7 @@ static int lights_something(const struct scene *sc, const struct prim *p, vec3 e
     return 0;
 }
 
-void scene_loader_facing_away(const struct scene_loader *L, char *buf, size_t n)
+void scene_parse_facing_away(const struct scene_parse *L, char *buf, size_t n)
 {
     const struct scene *sc = L->sc;
     buf[0] = 0;

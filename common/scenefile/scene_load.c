@@ -9,14 +9,14 @@
 #include "base/fileio.h"
 #include "base/hash.h"
 #include "image/imgio.h"
-#include "scene_loader.h"
+#include "scene_parse.h"
 #include "scene_objects.h"
 #include "yget.h"
 
 static const char *const camera_keys[] = {"lookfrom",   "lookat",  "vup",    "vfov", "aperture",
                                           "focus_dist", "shutter", "aspect", NULL};
 
-static int load_camera(struct scene_loader *L, yaml_node_t *n, struct scene_file *out)
+static int load_camera(struct scene_parse *L, yaml_node_t *n, struct scene_file *out)
 {
     struct camera_desc *c = &out->camera;
     *c = (struct camera_desc){.vup = v3(0, 1, 0), .vfov_deg = 40, .focus_dist = 10};
@@ -78,7 +78,7 @@ static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL}
 static const char *const noise_keys[] = {"type", "scale", NULL};
 static const char *const image_keys[] = {"type", "file", NULL};
 
-static int load_checker(struct scene_loader *L, yaml_node_t *n, struct texture *t)
+static int load_checker(struct scene_parse *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
     if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
@@ -89,8 +89,8 @@ static int load_checker(struct scene_loader *L, yaml_node_t *n, struct texture *
     for (int i = 0; i < 2; i++)
         if (!ymap_get(&L->d, n, need[i]))
             return ymap_missing(&L->d, n, need[i], L->e, "%s: missing in checker texture", need[i]);
-    if (scene_loader_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
-        scene_loader_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
+    if (scene_parse_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
+        scene_parse_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
         return -1;
     if ((v = ymap_get(&L->d, n, "scale"))) {
         if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
@@ -101,7 +101,7 @@ static int load_checker(struct scene_loader *L, yaml_node_t *n, struct texture *
     return 0;
 }
 
-static int load_noise(struct scene_loader *L, yaml_node_t *n, struct texture *t)
+static int load_noise(struct scene_parse *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
     if (ymap_check(&L->d, n, noise_keys, "noise texture", L->e) < 0)
@@ -132,7 +132,7 @@ static const char *texture_path(const char *scene, const char *file, char *path,
 
 /* An image texture: `file` relative to the scene file, PNG or PPM, at most
    TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
-static int load_image(struct scene_loader *L, yaml_node_t *n, struct texture *t)
+static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
     const char *file;
@@ -168,7 +168,7 @@ static int load_image(struct scene_loader *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
-static int load_texture(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
+static int load_texture(struct scene_parse *L, yaml_node_t *k, yaml_node_t *n)
 {
     const char *type;
     yaml_node_t *tn = ymap_get(&L->d, n, "type");
@@ -185,8 +185,8 @@ static int load_texture(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
     else if (!strcmp(type, "image"))
         rc = load_image(L, n, &t);
     else
-        return scene_loader_unknown(L, tn, "type: unknown texture type", type, texture_types,
-                                    "checker, noise or image");
+        return scene_parse_unknown(L, tn, "type: unknown texture type", type, texture_types,
+                                   "checker, noise or image");
     if (rc < 0)
         return -1;
     if (scene_add_texture(L->sc, &t) < 0)
@@ -196,7 +196,7 @@ static int load_texture(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
 
 static const char *const material_keys[] = {"type", "albedo", "texture", "fuzz", "ior", "emit", NULL};
 
-static int load_material(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
+static int load_material(struct scene_parse *L, yaml_node_t *k, yaml_node_t *n)
 {
     if (ymap_check(&L->d, n, material_keys, "material", L->e) < 0)
         return -1;
@@ -225,8 +225,8 @@ static int load_material(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
         m.type = MAT_ISOTROPIC;
         allowed = "albedo texture";
     } else {
-        return scene_loader_unknown(L, tn, "type: unknown material type", type, material_types,
-                                    "lambertian, metal, dielectric, light or isotropic");
+        return scene_parse_unknown(L, tn, "type: unknown material type", type, material_types,
+                                   "lambertian, metal, dielectric, light or isotropic");
     }
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
@@ -235,15 +235,15 @@ static int load_material(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
             return ydoc_fail(&L->d, kk, L->e, "%s: not a key of a %s material (it takes: %s)", name, type,
                              allowed);
     }
-    if ((v = ymap_get(&L->d, n, "albedo")) && scene_loader_color(L, v, "albedo", &m.albedo) < 0)
+    if ((v = ymap_get(&L->d, n, "albedo")) && scene_parse_color(L, v, "albedo", &m.albedo) < 0)
         return -1;
     if ((v = ymap_get(&L->d, n, "texture"))) {
         if (ymap_get(&L->d, n, "albedo"))
             return ydoc_fail(&L->d, v, L->e, "texture: give albedo or texture, not both");
         if (yget_string(&L->d, v, "texture", &s, L->e) < 0)
             return -1;
-        if ((m.texture = scene_loader_find_name(&L->tex, s)) < 0)
-            return scene_loader_no_name(L, v, "texture", s, &L->tex, "textures");
+        if ((m.texture = scene_parse_find_name(&L->tex, s)) < 0)
+            return scene_parse_no_name(L, v, "texture", s, &L->tex, "textures");
     } else if ((m.type == MAT_LAMBERTIAN || m.type == MAT_ISOTROPIC) && !ymap_get(&L->d, n, "albedo")) {
         return ymap_missing(&L->d, n, "albedo", L->e, "albedo: missing in %s material \"%s\"", type,
                             yscalar(k));
@@ -263,7 +263,7 @@ static int load_material(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
     if (m.type == MAT_LIGHT) {
         if (!(v = ymap_get(&L->d, n, "emit")))
             return ymap_missing(&L->d, n, "emit", L->e, "emit: missing in light material \"%s\"", yscalar(k));
-        if (scene_loader_color(L, v, "emit", &m.emit) < 0)
+        if (scene_parse_color(L, v, "emit", &m.emit) < 0)
             return -1;
     }
     if (scene_add_material(L->sc, &m) < 0)
@@ -272,8 +272,8 @@ static int load_material(struct scene_loader *L, yaml_node_t *k, yaml_node_t *n)
 }
 
 /* Load a named mapping section (textures or materials). */
-static int load_section(struct scene_loader *L, yaml_node_t *sec, const char *what, struct names *nm,
-                        int (*one)(struct scene_loader *, yaml_node_t *, yaml_node_t *))
+static int load_section(struct scene_parse *L, yaml_node_t *sec, const char *what, struct names *nm,
+                        int (*one)(struct scene_parse *, yaml_node_t *, yaml_node_t *))
 {
     if (!sec)
         return 0;
@@ -284,7 +284,7 @@ static int load_section(struct scene_loader *L, yaml_node_t *sec, const char *wh
         const char *name = yscalar(k);
         if (!name || !*name)
             return ydoc_fail(&L->d, k, L->e, "%s: names must be plain strings", what);
-        if (scene_loader_find_name(nm, name) >= 0)
+        if (scene_parse_find_name(nm, name) >= 0)
             return ydoc_fail(&L->d, k, L->e, "%s: duplicate name \"%.40s\"", what, name);
         if (nm->n >= 256)
             return ydoc_fail(&L->d, k, L->e, "%s: more than 256 entries", what);
@@ -306,7 +306,7 @@ int scene_load_src(const struct scene_src *src, struct scene_file *out, struct e
         return -1;
     }
     /* the parsed document borrowed (read, never freed here): a retried render loads it again */
-    struct scene_loader L = {.d = src->doc, .e = e};
+    struct scene_parse L = {.d = src->doc, .e = e};
     const char *path = src->doc.file;
     memset(out, 0, sizeof *out);
     int rc = -1;
@@ -326,7 +326,7 @@ int scene_load_src(const struct scene_src *src, struct scene_file *out, struct e
         goto done;
     L.cam = &out->camera;
     if ((v = ymap_get(&L.d, root, "background")) &&
-        scene_loader_color(&L, v, "background", &L.sc->background) < 0)
+        scene_parse_color(&L, v, "background", &L.sc->background) < 0)
         goto done;
     if (load_section(&L, ymap_get(&L.d, root, "textures"), "textures", &L.tex, load_texture) < 0 ||
         load_section(&L, ymap_get(&L.d, root, "materials"), "materials", &L.mat, load_material) < 0)
@@ -338,7 +338,7 @@ int scene_load_src(const struct scene_src *src, struct scene_file *out, struct e
         snprintf(e->file, sizeof e->file, "%s", path);
         goto done;
     }
-    scene_loader_facing_away(&L, out->warning, sizeof out->warning);
+    scene_parse_facing_away(&L, out->warning, sizeof out->warning);
     out->scene = L.sc;
     L.sc = NULL;
     rc = 0;

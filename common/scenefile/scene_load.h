@@ -12,7 +12,7 @@ struct scene_file {
     struct scene *scene; /* owned */
     struct camera_desc camera;
     double aspect;     /* camera aspect (width / height), default 1 */
-    char warning[600]; /* "" or one line: a light that lights nothing (scene_loader_facing_away) */
+    char warning[600]; /* "" or one line: a light that lights nothing (scene_parse_facing_away) */
 };
 
 /* Every number in a scene lies within [-SCENE_MAX_ABS, SCENE_MAX_ABS], and every radius is at least

@@ -26,14 +26,14 @@ static const char *const medium_keys[] = {"type",     "material", "rotate_y", "t
                                           "boundary", "density",  NULL};
 static const char *const boundary_keys[] = {"type", "center", "radius", NULL};
 
-static int need(struct scene_loader *L, yaml_node_t *n, const char *key, const char *type, yaml_node_t **out)
+static int need(struct scene_parse *L, yaml_node_t *n, const char *key, const char *type, yaml_node_t **out)
 {
     if (!(*out = ymap_get(&L->d, n, key)))
         return ymap_missing(&L->d, n, key, L->e, "%s: missing in %s", key, type);
     return 0;
 }
 
-static int positive(struct scene_loader *L, yaml_node_t *n, const char *key, const char *type, double *out)
+static int positive(struct scene_parse *L, yaml_node_t *n, const char *key, const char *type, double *out)
 {
     yaml_node_t *v;
     if (need(L, n, key, type, &v) < 0 || yget_double(&L->d, v, key, out, L->e) < 0)
@@ -46,7 +46,7 @@ static int positive(struct scene_loader *L, yaml_node_t *n, const char *key, con
     return 0;
 }
 
-static int point(struct scene_loader *L, yaml_node_t *n, const char *key, const char *type, vec3 *out)
+static int point(struct scene_parse *L, yaml_node_t *n, const char *key, const char *type, vec3 *out)
 {
     yaml_node_t *v;
     if (need(L, n, key, type, &v) < 0)
@@ -55,8 +55,8 @@ static int point(struct scene_loader *L, yaml_node_t *n, const char *key, const 
 }
 
 /* A list of exactly three points under key. */
-static int three_points(struct scene_loader *L, yaml_node_t *n, const char *key, const char *type,
-                        vec3 out[3], yaml_node_t **node)
+static int three_points(struct scene_parse *L, yaml_node_t *n, const char *key, const char *type, vec3 out[3],
+                        yaml_node_t **node)
 {
     if (need(L, n, key, type, node) < 0)
         return -1;
@@ -83,7 +83,7 @@ static int make_triangle(struct prim *p, vec3 a, vec3 b, vec3 c)
     return 0;
 }
 
-static int load_sphere(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_sphere(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     p->type = PRIM_SPHERE;
     if (point(L, n, "center", "sphere", &p->g.sphere.center) < 0 ||
@@ -92,7 +92,7 @@ static int load_sphere(struct scene_loader *L, yaml_node_t *n, struct prim *p)
     return 1;
 }
 
-static int load_moving_sphere(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_moving_sphere(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     vec3 c1;
     p->type = PRIM_MOVING_SPHERE;
@@ -106,7 +106,7 @@ static int load_moving_sphere(struct scene_loader *L, yaml_node_t *n, struct pri
     return 1;
 }
 
-static int load_rect(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_rect(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     yaml_node_t *v;
     const char *plane;
@@ -136,7 +136,7 @@ static int load_rect(struct scene_loader *L, yaml_node_t *n, struct prim *p)
     return 1;
 }
 
-static int load_disk(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_disk(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     vec3 toward;
     p->type = PRIM_DISK;
@@ -153,7 +153,7 @@ static int load_disk(struct scene_loader *L, yaml_node_t *n, struct prim *p)
     return 1;
 }
 
-static int load_box(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_box(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     yaml_node_t *mx;
     p->type = PRIM_BOX;
@@ -166,7 +166,7 @@ static int load_box(struct scene_loader *L, yaml_node_t *n, struct prim *p)
     return 1;
 }
 
-static int load_cylinder(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_cylinder(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     vec3 top;
     p->type = PRIM_CYLINDER;
@@ -182,7 +182,7 @@ static int load_cylinder(struct scene_loader *L, yaml_node_t *n, struct prim *p)
     return 1;
 }
 
-static int load_triangle(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_triangle(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     vec3 v[3];
     yaml_node_t *vn;
@@ -194,7 +194,7 @@ static int load_triangle(struct scene_loader *L, yaml_node_t *n, struct prim *p)
 }
 
 /* A pyramid: the base triangle and three sides to the apex. */
-static int load_pyramid(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_pyramid(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     vec3 apex, b[3];
     yaml_node_t *bn;
@@ -213,7 +213,7 @@ static int load_pyramid(struct scene_loader *L, yaml_node_t *n, struct prim *p)
 }
 
 /* A constant medium filling a sphere boundary. */
-static int load_medium(struct scene_loader *L, yaml_node_t *n, struct prim *p)
+static int load_medium(struct scene_parse *L, yaml_node_t *n, struct prim *p)
 {
     yaml_node_t *bn, *tn, *v;
     const char *type;
@@ -241,14 +241,14 @@ static int load_medium(struct scene_loader *L, yaml_node_t *n, struct prim *p)
 }
 
 /* material, rotate_y, translate and sample: the keys any object takes. */
-static int load_common(struct scene_loader *L, yaml_node_t *n, struct prim *p, int *sample)
+static int load_common(struct scene_parse *L, yaml_node_t *n, struct prim *p, int *sample)
 {
     yaml_node_t *v;
     const char *s;
     if (need(L, n, "material", "object", &v) < 0 || yget_string(&L->d, v, "material", &s, L->e) < 0)
         return -1;
-    if ((p->material = scene_loader_find_name(&L->mat, s)) < 0)
-        return scene_loader_no_name(L, v, "material", s, &L->mat, "materials");
+    if ((p->material = scene_parse_find_name(&L->mat, s)) < 0)
+        return scene_parse_no_name(L, v, "material", s, &L->mat, "materials");
     double deg = 0;
     if ((v = ymap_get(&L->d, n, "rotate_y")) && yget_double(&L->d, v, "rotate_y", &deg, L->e) < 0)
         return -1;
@@ -272,7 +272,7 @@ static int load_common(struct scene_loader *L, yaml_node_t *n, struct prim *p, i
 static const struct object_type {
     const char *name;
     const char *const *keys;
-    int (*load)(struct scene_loader *, yaml_node_t *, struct prim *);
+    int (*load)(struct scene_parse *, yaml_node_t *, struct prim *);
     int samplable;
 } object_types[] = {
     {"sphere", sphere_keys, load_sphere, 1},
@@ -290,7 +290,7 @@ static const struct object_type {
 /* Which materials an object may carry: media take isotropic only and only media do; image
    textures need surface coordinates, which spheres, rects and disks have; lights and sampled
    objects must be samplable and untransformed. */
-static int check_placement(struct scene_loader *L, yaml_node_t *n, const struct object_type *ot,
+static int check_placement(struct scene_parse *L, yaml_node_t *n, const struct object_type *ot,
                            const struct prim *p, int sample)
 {
     const struct material *m = &L->sc->materials[p->material];
@@ -326,8 +326,8 @@ static int check_placement(struct scene_loader *L, yaml_node_t *n, const struct 
     return 0;
 }
 
-/* The place of the object just added to sc->lights (for scene_loader_facing_away). 0 or -1. */
-static int note_light(struct scene_loader *L, const yaml_node_t *n)
+/* The place of the object just added to sc->lights (for scene_parse_facing_away). 0 or -1. */
+static int note_light(struct scene_parse *L, const yaml_node_t *n)
 {
     int k = L->sc->n_lights - 1;
     if (k >= L->light_pos_cap) {
@@ -343,7 +343,7 @@ static int note_light(struct scene_loader *L, const yaml_node_t *n)
     return 0;
 }
 
-static int load_object(struct scene_loader *L, yaml_node_t *n)
+static int load_object(struct scene_parse *L, yaml_node_t *n)
 {
     struct prim p[OBJECT_MAX_PRIMS] = {{0}};
     yaml_node_t *tn;
@@ -360,7 +360,7 @@ static int load_object(struct scene_loader *L, yaml_node_t *n)
         const char *names[N_OBJECT_TYPES + 1] = {NULL};
         for (int i = 0; i < N_OBJECT_TYPES; i++)
             names[i] = object_types[i].name;
-        return scene_loader_unknown(
+        return scene_parse_unknown(
             L, tn, "type: unknown object type", type, names,
             "sphere, moving_sphere, rect, disk, box, cylinder, triangle, pyramid or medium");
     }
@@ -382,7 +382,7 @@ static int load_object(struct scene_loader *L, yaml_node_t *n)
     return 0;
 }
 
-int scene_objects_load(struct scene_loader *L, yaml_node_t *list, yaml_node_t *root)
+int scene_objects_load(struct scene_parse *L, yaml_node_t *list, yaml_node_t *root)
 {
     if (!list)
         return ymap_missing(&L->d, root, "objects", L->e, "objects: missing in scene");

@@ -1,7 +1,7 @@
-/* scene_loader: the state and checks shared by the scene loader's parts (scene_load.c: camera,
+/* scene_parse: the state and checks shared by the scene loader's parts (scene_load.c: camera,
    textures, materials; scene_objects.c: objects). Internal. */
-#ifndef SCENE_LOADER_H
-#define SCENE_LOADER_H
+#ifndef SCENE_PARSE_H
+#define SCENE_PARSE_H
 
 #include "geom/camera.h"
 #include "geom/scene.h"
@@ -17,7 +17,7 @@ struct names {
 #define TEXTURE_MAX_BYTES (64 << 20)
 #define TEXTURE_MAX_PIXELS (4096L * 4096L)
 
-struct scene_loader {
+struct scene_parse {
     struct ydoc d;
     struct scene *sc;
     struct names tex, mat;
@@ -31,21 +31,21 @@ struct scene_loader {
    front face sees neither the camera nor any part of a non-emitting object's bounds, so that it
    lights nothing, into buf as "file:line:col: the disk light (material \"lamp\") faces away ...";
    "" when there is none. */
-void scene_loader_facing_away(const struct scene_loader *L, char *buf, size_t n);
+void scene_parse_facing_away(const struct scene_parse *L, char *buf, size_t n);
 
 /* Index of s in nm, or -1. */
-int scene_loader_find_name(const struct names *nm, const char *s);
+int scene_parse_find_name(const struct names *nm, const char *s);
 
 /* Fail at v with "<what> \"s\"" and a "did you mean" among names (NULL-terminated) when one is
    near, else the expected list. Always -1. */
-int scene_loader_unknown(struct scene_loader *L, yaml_node_t *v, const char *what, const char *s,
-                         const char *const *names, const char *expected);
+int scene_parse_unknown(struct scene_parse *L, yaml_node_t *v, const char *what, const char *s,
+                        const char *const *names, const char *expected);
 
 /* Fail at v: key names s, which is not in nm (the section's names), with a "did you mean". -1. */
-int scene_loader_no_name(struct scene_loader *L, yaml_node_t *v, const char *key, const char *s,
-                         const struct names *nm, const char *section);
+int scene_parse_no_name(struct scene_parse *L, yaml_node_t *v, const char *key, const char *s,
+                        const struct names *nm, const char *section);
 
 /* Read a colour (three numbers >= 0). */
-int scene_loader_color(struct scene_loader *L, yaml_node_t *v, const char *key, vec3 *out);
+int scene_parse_color(struct scene_parse *L, yaml_node_t *v, const char *key, vec3 *out);
 
 #endif

@@ -1,11 +1,11 @@
-/* scene_loader: the scene loader's shared checks: names looked up with a "did you mean", colours. */
-#include "scene_loader.h"
+/* scene_parse: the scene loader's shared checks: names looked up with a "did you mean", colours. */
+#include "scene_parse.h"
 
 #include <string.h>
 
 #include "yget.h"
 
-int scene_loader_find_name(const struct names *nm, const char *s)
+int scene_parse_find_name(const struct names *nm, const char *s)
 {
     for (int i = 0; i < nm->n; i++)
         if (!strcmp(nm->name[i], s))
@@ -13,8 +13,8 @@ int scene_loader_find_name(const struct names *nm, const char *s)
     return -1;
 }
 
-int scene_loader_unknown(struct scene_loader *L, yaml_node_t *v, const char *what, const char *s,
-                         const char *const *names, const char *expected)
+int scene_parse_unknown(struct scene_parse *L, yaml_node_t *v, const char *what, const char *s,
+                        const char *const *names, const char *expected)
 {
     const char *near = ystr_nearest(s, names, -1);
     if (near)
@@ -22,8 +22,8 @@ int scene_loader_unknown(struct scene_loader *L, yaml_node_t *v, const char *wha
     return ydoc_fail(&L->d, v, L->e, "%s \"%.40s\" (expected %s)", what, s, expected);
 }
 
-int scene_loader_no_name(struct scene_loader *L, yaml_node_t *v, const char *key, const char *s,
-                         const struct names *nm, const char *section)
+int scene_parse_no_name(struct scene_parse *L, yaml_node_t *v, const char *key, const char *s,
+                        const struct names *nm, const char *section)
 {
     const char *near = ystr_nearest(s, nm->name, nm->n);
     if (near)
@@ -32,7 +32,7 @@ int scene_loader_no_name(struct scene_loader *L, yaml_node_t *v, const char *key
     return ydoc_fail(&L->d, v, L->e, "%s: no %s named \"%.40s\" in %s", key, key, s, section);
 }
 
-int scene_loader_color(struct scene_loader *L, yaml_node_t *v, const char *key, vec3 *out)
+int scene_parse_color(struct scene_parse *L, yaml_node_t *v, const char *key, vec3 *out)
 {
     if (yget_vec3(&L->d, v, key, out, L->e) < 0)
         return -1;
