@@ -74,11 +74,11 @@ static void test_forged(const char *dir, const struct job *j0, const float *rgb0
     j.height = 0;
     snprintf(j.scene_path, sizeof j.scene_path, "scenes/checker.yaml");
     result(&fr, W, 1, 0, 1);
-    CHECK(part_write(path, &j, W, 1, 0, 1, rgb0, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, 1, rgb0}, 0, 1, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "is 7x1 but the job renders 7x") != NULL);
     j.height = H;
     result(&fr, W, H, 0, 1);
-    CHECK(part_write(path, &j, W, H, 0, 1, rgb0, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb0}, 0, 1, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 0);
     /* another version says so (it said "file too large") */
     const uint32_t v2 = 2;
@@ -86,11 +86,11 @@ static void test_forged(const char *dir, const struct job *j0, const float *rgb0
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 &&
           strstr(e.msg, "another worker version (part format 2") != NULL);
     /* wrapped counters: 2^64 - 2 samples; spp min over max */
-    CHECK(part_write(path, &j, W, H, 0, 1, rgb0, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb0}, 0, 1, &fr, &e) == 0);
     const uint64_t wrap = UINT64_MAX - 1;
     forge(path, 48, &wrap, 8);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "impossible counts") != NULL);
-    CHECK(part_write(path, &j, W, H, 0, 1, rgb0, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb0}, 0, 1, &fr, &e) == 0);
     const uint32_t spp[2] = {9, 3};
     forge(path, 80, spp, 8);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "impossible counts") != NULL);
@@ -98,7 +98,7 @@ static void test_forged(const char *dir, const struct job *j0, const float *rgb0
     static float nan_rows[W * H * 3];
     memcpy(nan_rows, rgb0, sizeof nan_rows);
     nan_rows[4 * W * 3 + 5] = NAN;
-    CHECK(part_write(path, &j, W, H, 0, 1, nan_rows, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, H, nan_rows}, 0, 1, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "non-finite pixel in row 4") != NULL);
     CHECK(part_matches(path, &j, 0, 1) == 0);
 }
@@ -138,7 +138,7 @@ int main(void)
     for (int p = 0; p < 3; p += 2) {
         result(&fr, W, H, p, 3);
         outdir_part_path(&j, dir, p, 3, path, sizeof path);
-        CHECK(part_write(path, &j, W, H, p, 3, rgb, &fr, &e) == 0);
+        CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb}, p, 3, &fr, &e) == 0);
         CHECK(part_matches(path, &j, p, 3) == 1);
         CHECK(part_matches(path, &other, p, 3) == 0);
         CHECK(part_matches(path, &j, (p + 1) % 3, 3) == 0);
@@ -147,7 +147,7 @@ int main(void)
     CHECK(strstr(e.msg, "missing part 1 of 3") != NULL);
     result(&fr, W, H, 1, 3);
     outdir_part_path(&j, dir, 1, 3, path, sizeof path);
-    CHECK(part_write(path, &j, W, H, 1, 3, rgb, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb}, 1, 3, &fr, &e) == 0);
 
     /* a part's file holds exactly its rows: header, ceil((11 - 1) / 3) = 4 rows, CRC */
     uint8_t *data;
@@ -182,10 +182,10 @@ int main(void)
     /* a part from other inputs is refused, naming the file */
     outdir_part_path(&j, dir, 0, 3, path, sizeof path);
     result(&fr, W, H, 0, 3);
-    CHECK(part_write(path, &other, W, H, 0, 3, rgb, &fr, &e) == 0);
+    CHECK(part_write(path, &other, &(struct part_frame){W, H, rgb}, 0, 3, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2);
     CHECK(strstr(e.file, "merge.part-0-of-3") != NULL && strstr(e.msg, "other inputs") != NULL);
-    CHECK(part_write(path, &j, W, H, 0, 3, rgb, &fr, &e) == 0);
+    CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb}, 0, 3, &fr, &e) == 0);
 
     /* a flipped byte in the rows fails the checksum */
     outdir_part_path(&j, dir, 2, 3, path, sizeof path);
@@ -210,7 +210,7 @@ int main(void)
             CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
             result(&fr, BW, BH, 5, BPARTS);
             outdir_part_path(&bj, dir, 5, BPARTS, path, sizeof path);
-            CHECK(part_write(path, &bj, BW, BH, 5, BPARTS, big, &fr, &e) == 0);
+            CHECK(part_write(path, &bj, &(struct part_frame){BW, BH, big}, 5, BPARTS, &fr, &e) == 0);
             CHECK(part_matches(path, &bj, 5, BPARTS) == 1);
             free(big);
         }

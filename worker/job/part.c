@@ -140,9 +140,11 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     return 0;
 }
 
-int part_write(const char *path, const struct job *j, int w, int h, int part, int parts, const float *rgb,
+int part_write(const char *path, const struct job *j, const struct part_frame *fb, int part, int parts,
                const struct procs_result *fr, struct err *e)
 {
+    int w = fb->w, h = fb->h;
+    const float *rgb = fb->rgb;
     size_t rows = (size_t)part_rows(h, part, parts);
     size_t len = PART_HEADER + rows * (size_t)w * 12 + 4;
     uint8_t *buf = malloc(len);

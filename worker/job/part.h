@@ -16,12 +16,18 @@
    scene bytes), the part format and the worker's version. */
 uint64_t part_hash(const struct job *j);
 
-/* Write part I of N of a w x h render (rgb: the whole framebuffer; only the part's rows are
-   stored) with fr's stats, atomically. Layout, little-endian: "WPART\r\n\x1a", u32 version,
+/* A whole w x h framebuffer of rgb floats, which a part is cut from. */
+struct part_frame {
+    int w, h;
+    const float *rgb;
+};
+
+/* Write part I of N of the render fb (only the part's rows are stored) with fr's stats,
+   atomically. Layout, little-endian: "WPART\r\n\x1a", u32 version,
    width, height, part, parts, processes, u64 hash, u64 pixels, samples, rays, light sets,
    non-finite, u32 spp min, max, f64 sampler_s, wall_s, cpu_s, u64 peak RSS (kB); then the part's rows in
    order, width * 3 f32 each; then a u32 CRC-32 of everything before. 0 or -1 with e filled. */
-int part_write(const char *path, const struct job *j, int w, int h, int part, int parts, const float *rgb,
+int part_write(const char *path, const struct job *j, const struct part_frame *fb, int part, int parts,
                const struct procs_result *fr, struct err *e);
 
 /* 1 when the part file at path is whole (length, checksum) and was rendered as part I of N from j's inputs.

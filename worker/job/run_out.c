@@ -199,9 +199,10 @@ int run_out_write_part(const struct job *j, const struct run_opts *o, const stru
 {
     int made_dir = 0, lock = -1, rc = -1;
     const char *outs[] = {rr->out.image[0], NULL};
+    const struct part_frame fb = {f->w, f->h, f->rgb};
     if (outdir_mkdirs(rr->out.dir, &made_dir, e) == 0 &&
         run_out_lock_outputs(rr->out.dir, outs, o, &lock, e) == 0)
-        rc = part_write(rr->out.image[0], j, f->w, f->h, o->part, o->parts, f->rgb, f->procs, e);
+        rc = part_write(rr->out.image[0], j, &fb, o->part, o->parts, f->procs, e);
     outdir_unlock(lock);
     if (rc != 0 && made_dir)
         rmdir(rr->out.dir); /* a part that failed to write leaves no empty folder of ours */

@@ -31,11 +31,22 @@ const char report_style[] =
     ".warn{color:#8a4b00;background:#fff4e0;padding:4px "
     "8px;font-size:13px}ul.verdict{font-size:15px}" REPORT_VIEW_CSS;
 
-/* One render of the grid (variant v, sweep point p, seed index k) as a figure with its caption;
-   ab: the id of the reference the A/B toggle shows in its place, or NULL. */
-static int grid_figure(struct sbuf *b, const struct compare *c, int s, int v, int p, int k, const char *dir,
-                       int zoom, const char *ab, struct err *e)
+/* What every figure of scene s's image grid shares: renders read from dir, shown at zoom; ab: the
+   id of the reference the A/B toggle shows in a render's place, or NULL. */
+struct grid {
+    const struct compare *c;
+    int s;
+    const char *dir;
+    int zoom;
+    const char *ab;
+};
+
+/* One render of the grid (variant v, sweep point p, seed index k) as a figure with its caption. */
+static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k, struct err *e)
 {
+    const struct compare *c = g->c;
+    int s = g->s, zoom = g->zoom;
+    const char *dir = g->dir, *ab = g->ab;
     const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
     char path[4096], alt[256], slot[32];
     uint8_t *png;
@@ -66,6 +77,7 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
 {
     char ab[32];
     snprintf(ab, sizeof ab, "ref%d", s);
+    const struct grid g = {c, s, dir, zoom, has_ref ? ab : NULL};
     for (int p = 0; p < c->n_points; p++) {
         sbuf_printf(b, "<div class=\"row\"><div class=\"pt\">");
         sbuf_escape(b, c->points[p]);
@@ -76,7 +88,7 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
         sbuf_printf(b, "</div>\n");
         for (int v = 0; v < c->n_variants; v++)
             for (int k = 0; k < c->n_seeds; k++)
-                if (grid_figure(b, c, s, v, p, k, dir, zoom, has_ref ? ab : NULL, e) < 0)
+                if (grid_figure(b, &g, v, p, k, e) < 0)
                     return -1;
         sbuf_printf(b, "</div>\n");
     }

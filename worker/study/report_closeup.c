@@ -10,8 +10,12 @@
 #include "report_image.h"
 #include "report_view.h"
 
-/* The images of one sweep point, decoded: imgs[v * n_seeds + k]. */
+/* Sweep point p of scene s of c, its renders read from dir, and their images decoded:
+   imgs[v * n_seeds + k]. */
 struct point_imgs {
+    const struct compare *c;
+    int s, p;
+    const char *dir;
     int n;
     struct rgb8 *imgs;
 };
@@ -23,9 +27,11 @@ static void point_free(struct point_imgs *pi)
     free(pi->imgs);
 }
 
-static int point_load(const struct compare *c, int s, int p, const char *dir, struct point_imgs *pi,
-                      struct err *e)
+static int point_load(struct point_imgs *pi, struct err *e)
 {
+    const struct compare *c = pi->c;
+    int s = pi->s, p = pi->p;
+    const char *dir = pi->dir;
     pi->n = 0;
     pi->imgs = calloc((size_t)c->n_variants * c->n_seeds, sizeof *pi->imgs);
     if (!pi->imgs)
@@ -53,9 +59,11 @@ static void caption(struct sbuf *b, const struct compare *c, int v, int k)
 
 /* The reference's crop (id ref<s>c<p>, which the A/B toggle shows in the crops' place) and every
    variant's and seed's crop of the window at (x0, y0), all at one zoom. */
-static int crop_row(struct sbuf *b, const struct compare *c, int s, int p, const struct rgb8 *ref,
-                    const struct point_imgs *pi, int x0, int y0, int side, struct err *e)
+static int crop_row(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 *ref, int x0, int y0,
+                    int side, struct err *e)
 {
+    const struct compare *c = pi->c;
+    int s = pi->s, p = pi->p;
     int zoom = report_image_zoom(side, REPORT_IMAGE_CROP_PX);
     char id[32], slot[32];
     struct rgb8 tmp = {0};
@@ -84,9 +92,10 @@ fail:
     return -1;
 }
 
-static int crops(struct sbuf *b, const struct compare *c, int s, int p, const struct rgb8 *ref,
-                 const struct point_imgs *pi, struct err *e)
+static int crops(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 *ref, struct err *e)
 {
+    const struct compare *c = pi->c;
+    int p = pi->p;
     int w = ref->w, h = ref->h, x0, y0;
     int side = (w < h ? w : h) / 5;
     side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
@@ -98,7 +107,7 @@ static int crops(struct sbuf *b, const struct compare *c, int s, int p, const st
         ": pixels %d..%d x %d..%d, the window where the images (every seed's) differ most from the "
         "reference (by relative error: usually a soft shadow, dark and lit by part of a light)</h3>\n",
         x0, x0 + side - 1, y0, y0 + side - 1);
-    return crop_row(b, c, s, p, ref, pi, x0, y0, side, e);
+    return crop_row(b, pi, ref, x0, y0, side, e);
 }
 
 /* One image's floats for its map: the float copy beside its PNG (linear), or the PNG's own
@@ -130,9 +139,12 @@ static void maps_heading(struct sbuf *b, const struct compare *c, int p, int lin
                  "linear radiance");
 }
 
-static int maps(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
-                const struct rgbf *reff, int linear, const struct point_imgs *pi, struct err *e)
+static int maps(struct sbuf *b, const struct point_imgs *pi, const struct rgbf *reff, int linear,
+                struct err *e)
 {
+    const struct compare *c = pi->c;
+    int s = pi->s, p = pi->p;
+    const char *dir = pi->dir;
     int zoom = report_image_zoom(reff->w, REPORT_IMAGE_SHOW_PX);
     maps_heading(b, c, p, linear, zoom);
     if (report_view_scale(b, e) < 0)
@@ -162,14 +174,14 @@ static int maps(struct sbuf *b, const struct compare *c, int s, int p, const cha
 int report_closeup(struct sbuf *b, const struct compare *c, int s, int p, const char *dir,
                    const struct rgb8 *ref, const struct rgbf *reff, struct err *e)
 {
-    struct point_imgs pi = {0};
+    struct point_imgs pi = {c, s, p, dir, 0, NULL};
     struct rgbf ref_display = {0};
     int rc = -1;
-    if (point_load(c, s, p, dir, &pi, e) < 0 || crops(b, c, s, p, ref, &pi, e) < 0)
+    if (point_load(&pi, e) < 0 || crops(b, &pi, ref, e) < 0)
         goto done;
     if (!reff && image_f_from_rgb8(ref, &ref_display, e) < 0)
         goto done;
-    rc = maps(b, c, s, p, dir, reff ? reff : &ref_display, reff != NULL, &pi, e);
+    rc = maps(b, &pi, reff ? reff : &ref_display, reff != NULL, e);
 done:
     image_f_free(&ref_display);
     point_free(&pi);

@@ -45,10 +45,15 @@ static int fit(const struct verdict_figures *f, const double *x, int v, int k, d
    little off the mean the others are read at. */
 #define VERDICT_BEYOND 1.25
 
+/* A measured point: its x (spp or time) and its relMSE y. */
+struct xy {
+    double x, y;
+};
+
 /* The seed's measured point of v nearest to `at` on one side (below: x <= at, else x >= at),
-   skipping x == skip; 0 when there is none. */
+   skipping x == skip, into o; 0 when there is none. */
 static int nearest(const struct verdict_figures *f, const double *x, int v, int k, double at, int below,
-                   double skip, double *xo, double *yo)
+                   double skip, struct xy *o)
 {
     int found = 0;
     for (int p = 0; p < f->n_points; p++) {
@@ -57,8 +62,8 @@ static int nearest(const struct verdict_figures *f, const double *x, int v, int 
             continue;
         if (fabs(xi - at) <= 1e-9 * at) /* the point itself (at is a mean over seeds: rounding) */
             xi = at;
-        if ((below ? xi <= at : xi >= at) && (!found || fabs(xi - at) < fabs(*xo - at)))
-            *xo = xi, *yo = yi, found = 1;
+        if ((below ? xi <= at : xi >= at) && (!found || fabs(xi - at) < fabs(o->x - at)))
+            o->x = xi, o->y = yi, found = 1;
     }
     return found;
 }
@@ -67,20 +72,20 @@ static int nearest(const struct verdict_figures *f, const double *x, int v, int 
    it, or along the segment of the two nearest when it lies just beyond them. NAN: none measured. */
 static double value_at(const struct verdict_figures *f, const double *x, int v, int k, double at)
 {
-    double x0, y0, x1, y1;
-    int lo = nearest(f, x, v, k, at, 1, NAN, &x0, &y0), hi = nearest(f, x, v, k, at, 0, NAN, &x1, &y1);
-    if (lo && hi && x0 == x1)
-        return y0;
+    struct xy a, b;
+    int lo = nearest(f, x, v, k, at, 1, NAN, &a), hi = nearest(f, x, v, k, at, 0, NAN, &b);
+    if (lo && hi && a.x == b.x)
+        return a.y;
     if (!lo && !hi)
         return NAN;
     if (!lo || !hi) { /* extend the end segment: the nearest point and the next on its side */
         if (!lo)
-            x0 = x1, y0 = y1;
-        if (!nearest(f, x, v, k, at, lo, x0, &x1, &y1))
-            return y0;
+            a = b;
+        if (!nearest(f, x, v, k, at, lo, a.x, &b))
+            return a.y;
     }
-    double t = log(at / x0) / log(x1 / x0);
-    return exp(log(y0) + t * (log(y1) - log(y0)));
+    double t = log(at / a.x) / log(b.x / a.x);
+    return exp(log(a.y) + t * (log(b.y) - log(a.y)));
 }
 
 /* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
