@@ -184,6 +184,17 @@ int fileio_write_atomic(const char *path, const void *data, size_t len, struct e
     return rc;
 }
 
+int fileio_write_text(const char *dir, const char *file, char *text, struct err *e)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    if (!text)
+        return e->msg[0] ? -1 : err_set(e, NULL, 0, 0, "out of memory writing %s", path);
+    int rc = fileio_write_atomic(path, text, strlen(text), e);
+    free(text);
+    return rc;
+}
+
 int fileio_output_ok(const char *path, const char *const *inputs, size_t n, struct err *e)
 {
     struct stat st, in;

@@ -18,6 +18,10 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e);
    unwritable folder) no file is left behind and e is filled. */
 int fileio_write_atomic(const char *path, const void *data, size_t len, struct err *e);
 
+/* Write text (taken and freed; NULL: its maker failed and filled e, or ran out of memory) to
+   dir/file atomically. 0, or -1 with e filled. */
+int fileio_write_text(const char *dir, const char *file, char *text, struct err *e);
+
 /* Whether a file the user named may be written at path (by fileio_write_atomic): path is absent,
    or a regular file (not a symbolic link, FIFO, device, socket or folder) that is none of
    inputs[0 .. n) (compared by device and inode; an input that cannot be stat'ed is skipped).

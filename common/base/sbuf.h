@@ -28,4 +28,10 @@ char *sbuf_take(struct sbuf *b);
 /* Release b's memory (accepts a zeroed or taken buffer). */
 void sbuf_free(struct sbuf *b);
 
+/* "s" after a count other than one */
+static inline const char *sbuf_plural(int n)
+{
+    return n == 1 ? "" : "s";
+}
+
 #endif

@@ -11,18 +11,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "base/fileio.h"
 
 static void side_path(const char *claim, const char *suffix, char *out, size_t n)
 {
     snprintf(out, n, "%s%s", claim, suffix);
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
 static double mtime_s(const struct stat *st)
@@ -128,7 +122,7 @@ static void sane(struct lease *l)
         l->attempt = 0;
     if (l->processes < 0 || l->processes > 4096)
         l->processes = 0;
-    if (l->start < 0 || (double)l->start > now_s() + 86400.0)
+    if (l->start < 0 || (double)l->start > clock_s(CLOCK_REALTIME) + 86400.0)
         l->start = 0;
 }
 
@@ -165,7 +159,7 @@ int lease_read(const char *claim, struct lease *l, double *age_s)
     if (fields != 4)
         return -1;
     sane(l);
-    *age_s = now_s() - mtime_s(&st);
+    *age_s = clock_s(CLOCK_REALTIME) - mtime_s(&st);
     return 0;
 }
 
@@ -192,7 +186,7 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
     double age;
     if (lease_read(claim, &l, &age) < 0) {
         /* rename() sets the claim's ctime: the time it was claimed */
-        double claimed = now_s() - (cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9);
+        double claimed = clock_s(CLOCK_REALTIME) - (cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9);
         snprintf(why, n, "claimed %.0f s ago and no lease was written", claimed);
         return claimed > timeout_s;
     }
@@ -220,7 +214,7 @@ int lease_lock(const char *claim, double timeout_s)
         return 0;
     }
     struct stat st;
-    if (errno == EEXIST && stat(path, &st) == 0 && now_s() - mtime_s(&st) > timeout_s)
+    if (errno == EEXIST && stat(path, &st) == 0 && clock_s(CLOCK_REALTIME) - mtime_s(&st) > timeout_s)
         unlink(path); /* its holder died mid-recovery; the next scan takes it */
     return -1;
 }

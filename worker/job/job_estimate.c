@@ -7,16 +7,10 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "base/rng.h"
 #include "job_limits.h"
 #include "render/render.h"
-
-static double cpu_now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* This process's resident set in bytes (/proc/self/statm), 0 when unknown. */
 static double resident_bytes(void)
@@ -64,13 +58,13 @@ static int pilot(const struct job *j, const struct scene_file *sf, double budget
     render_stats_init(&st);
     long pixels = (long)est->width * est->height;
     int n = pixels < JOB_ESTIMATE_PILOT_PIXELS ? (int)pixels : JOB_ESTIMATE_PILOT_PIXELS, k = 0;
-    double t0 = cpu_now_s(), spent = 0;
+    double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID), spent = 0;
     while (k < n && (k == 0 || spent < budget_s)) {
         int x, y;
         float rgb[3];
         pilot_pixel(k++, n, est->width, est->height, &x, &y);
         render_pixel(ctx, x, y, rgb, &st);
-        spent = cpu_now_s() - t0;
+        spent = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
     }
     est->pilot_pixels = k;
     est->process_bytes = resident_bytes();

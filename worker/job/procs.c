@@ -15,17 +15,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
+
 struct shared {
     atomic_int rows_done;
     struct procs_proc proc[PROCS_MAX_PROCESSES];
 };
-
-static double clock_s(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* The child's whole life: render its rows into the mapping, write its stats, _exit. */
 static void child_main(const struct procs_job *fj, int index, int nproc, float *rgb, struct shared *sh,

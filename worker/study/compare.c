@@ -11,6 +11,7 @@
 #include "compare_ref.h"
 #include "compare_stats.h"
 #include "report_chart.h"
+#include "base/clock.h"
 #include "base/fileio.h"
 #include "image/errspec.h"
 #include "image/imgio.h"
@@ -24,13 +25,6 @@
 #include "job/run_out.h"
 #include "base/sbuf.h"
 #include "scenefile/scene_load.h"
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
@@ -237,18 +231,6 @@ static char *summary_csv(const struct compare *c)
     return sbuf_take(&b);
 }
 
-/* Write text (taken; NULL: its maker failed and filled e, or ran out of memory) to dir/file. */
-static int write_text(const char *dir, const char *file, char *text, struct err *e)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    if (!text)
-        return e->msg[0] ? -1 : err_set(e, NULL, 0, 0, "out of memory writing %s", path);
-    int rc = fileio_write_atomic(path, text, strlen(text), e);
-    free(text);
-    return rc;
-}
-
 /* Read scene cs's prepared reference into r (floats, and 8-bit display values). 0 or -1. */
 static int ref_read(struct compare_scene *cs, struct scene_ref *r, struct err *e)
 {
@@ -295,10 +277,10 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
         return -1;
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
-        write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
-        write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
-        write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
-        write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
+        fileio_write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
+        fileio_write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
+        fileio_write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
+        fileio_write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
         rc = 0;
     outdir_unlock(lock);
     return rc;
@@ -309,7 +291,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     char dir[2048];
     struct scene_ref *refs = calloc((size_t)c->n_scenes, sizeof *refs);
     int rc = 1;
-    double t0 = now_s(), total = 0, done = 0;
+    double t0 = clock_s(CLOCK_MONOTONIC), total = 0, done = 0;
     if (!refs) {
         err_set(e, NULL, 0, 0, "out of memory");
         return 1;
@@ -336,7 +318,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     }
     for (int i = 0; i < c->n_items; i++)
         total += cost(c, &c->items[i]);
-    double t1 = now_s();
+    double t1 = clock_s(CLOCK_MONOTONIC);
     for (int i = 0; i < c->n_items; i++) {
         struct compare_item *it = &c->items[i];
         const struct compare_scene *cs = &c->scenes[it->scene];
@@ -346,9 +328,9 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
             total -= cost(c, it);
         else
             done += cost(c, it);
-        double elapsed = now_s() - t1;
+        double elapsed = clock_s(CLOCK_MONOTONIC) - t1;
         char el[32], eta[32], err_text[48] = "";
-        fmt_duration(now_s() - t0, el, sizeof el);
+        fmt_duration(clock_s(CLOCK_MONOTONIC) - t0, el, sizeof el);
         fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
@@ -365,12 +347,6 @@ fail:
     }
     free(refs);
     return rc;
-}
-
-/* "s" after a count other than one */
-static const char *plural(int n)
-{
-    return n == 1 ? "" : "s";
 }
 
 void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
@@ -404,7 +380,8 @@ void compare_summary_line(const struct compare *c, double wall_s, const char *ou
     snprintf(buf, n,
              "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> "
              "%s/%s/%s%s",
-             c->name, c->n_items, plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants,
-             plural(c->n_variants), c->n_points, plural(c->n_points), c->n_seeds, plural(c->n_seeds), resumed,
-             refs, wall_s, outdir_root(out_dir), c->name, winners[0] ? "; at equal CPU time: " : "", winners);
+             c->name, c->n_items, sbuf_plural(c->n_items), c->n_scenes, sbuf_plural(c->n_scenes),
+             c->n_variants, sbuf_plural(c->n_variants), c->n_points, sbuf_plural(c->n_points), c->n_seeds,
+             sbuf_plural(c->n_seeds), resumed, refs, wall_s, outdir_root(out_dir), c->name,
+             winners[0] ? "; at equal CPU time: " : "", winners);
 }

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "base/fileio.h"
+#include "base/sbuf.h"
 #include "compare_suite_out.h"
 #include "job/outdir.h"
 #include "job/run_out.h"
@@ -25,18 +26,6 @@ static struct verdict_study *suite_verdicts(const struct compare_suite *s)
         else
             snprintf(v[i].name, sizeof v[i].name, "%s", s->studies[i]->name);
     return v;
-}
-
-/* Write text (taken; NULL: its maker failed and filled e, or ran out of memory) to dir/file. */
-static int write_text(const char *dir, const char *file, char *text, struct err *e)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    if (!text)
-        return e->msg[0] ? -1 : err_set(e, NULL, 0, 0, "out of memory writing %s", path);
-    int rc = fileio_write_atomic(path, text, strlen(text), e);
-    free(text);
-    return rc;
 }
 
 /* The suite's own files, under the folder's lock as compare_run writes a study's. 0 or -1. */
@@ -57,11 +46,11 @@ static int write_top(const struct compare_suite *s, const char *dir, const struc
         return -1;
     }
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
-        write_text(dir, "verdict.json", verdict_json_text(s->name, v, s->n_studies, &s->studies[0]->env),
-                   e) == 0 &&
-        write_text(dir, "summary.csv", compare_suite_csv(s, dir, e), e) == 0 &&
-        write_text(dir, "chart.svg", compare_suite_chart_svg(s), e) == 0 &&
-        write_text(dir, "report.html", compare_suite_report_html(s, v, e), e) == 0)
+        fileio_write_text(dir, "verdict.json",
+                          verdict_json_text(s->name, v, s->n_studies, &s->studies[0]->env), e) == 0 &&
+        fileio_write_text(dir, "summary.csv", compare_suite_csv(s, dir, e), e) == 0 &&
+        fileio_write_text(dir, "chart.svg", compare_suite_chart_svg(s), e) == 0 &&
+        fileio_write_text(dir, "report.html", compare_suite_report_html(s, v, e), e) == 0)
         rc = 0;
     outdir_unlock(lock);
     free(v);
@@ -86,12 +75,6 @@ int compare_suite_run(struct compare_suite *s, const struct run_opts *o, struct 
             return rc;
     }
     return write_top(s, dir, o, e) < 0 ? 1 : 0;
-}
-
-/* "s" after a count other than one */
-static const char *plural(int n)
-{
-    return n == 1 ? "" : "s";
 }
 
 /* "compare: 480 images in 4 studies (seed-question 120, ...), references: ..., 41.2 s -> out/compare/;
@@ -133,6 +116,7 @@ void compare_suite_summary_line(const struct compare_suite *s, double wall_s, co
         verdict_summary(v, s->n_studies, verdict, sizeof verdict);
     free(v);
     snprintf(buf, n, "%s: %d image%s in %d stud%s (%s)%s, %s, %.2f s -> %s/%s/; at equal CPU time: %s",
-             s->name, s->n_items, plural(s->n_items), s->n_studies, s->n_studies == 1 ? "y" : "ies", studies,
-             resumed, refs, wall_s, outdir_root(out_dir), s->name, verdict[0] ? verdict : "no verdict");
+             s->name, s->n_items, sbuf_plural(s->n_items), s->n_studies, s->n_studies == 1 ? "y" : "ies",
+             studies, resumed, refs, wall_s, outdir_root(out_dir), s->name,
+             verdict[0] ? verdict : "no verdict");
 }

@@ -90,24 +90,18 @@ char *compare_suite_chart_svg(const struct compare_suite *s)
     return sbuf_take(&b);
 }
 
-/* "s" after a count other than one */
-static const char *plural(int n)
-{
-    return n == 1 ? "" : "s";
-}
-
 /* "40 images = 2 scenes x 5 variants x 2 sweep points (sweep: threshold) x 2 seeds" */
 static void study_shape(struct sbuf *b, const struct compare *c)
 {
     sbuf_printf(b, "%d image%s = %d scene%s x %d variant%s x %d sweep point%s", c->n_items,
-                plural(c->n_items), c->n_scenes, plural(c->n_scenes), c->n_variants, plural(c->n_variants),
-                c->n_points, plural(c->n_points));
+                sbuf_plural(c->n_items), c->n_scenes, sbuf_plural(c->n_scenes), c->n_variants,
+                sbuf_plural(c->n_variants), c->n_points, sbuf_plural(c->n_points));
     if (c->sweep_keys[0]) {
         sbuf_printf(b, " (sweep: ");
         sbuf_escape(b, c->sweep_keys);
         sbuf_printf(b, ")");
     }
-    sbuf_printf(b, " x %d seed%s", c->n_seeds, plural(c->n_seeds));
+    sbuf_printf(b, " x %d seed%s", c->n_seeds, sbuf_plural(c->n_seeds));
 }
 
 /* One study's section: its name, its shape, a link to its report, its chart. */

@@ -5,15 +5,9 @@
 #include <string.h>
 #include <time.h>
 
+#include "base/clock.h"
 #include "compare.h"
 #include "compare_suite.h"
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* A compare job (c) or a suite (s), loaded from the parsed job file, run, and its line printed. */
 static int run_study(const struct jobfile *f, const struct run_opts *o,
@@ -21,7 +15,7 @@ static int run_study(const struct jobfile *f, const struct run_opts *o,
 {
     struct compare *c = NULL;
     struct compare_suite *s = NULL;
-    double t0 = now_s();
+    double t0 = clock_s(CLOCK_MONOTONIC);
     int rc = 2;
     if (f->kind == JOBFILE_SUITE)
         s = compare_suite_load_doc(&f->doc, f->path, &out->e);
@@ -39,9 +33,9 @@ static int run_study(const struct jobfile *f, const struct run_opts *o,
             err_prefix(&out->e, name);
         err_format(&out->e, out->line, sizeof out->line);
     } else if (s) { /* each study's verdict warnings were printed as it finished (compare_run) */
-        compare_suite_summary_line(s, now_s() - t0, o->out_dir, out->line, sizeof out->line);
+        compare_suite_summary_line(s, clock_s(CLOCK_MONOTONIC) - t0, o->out_dir, out->line, sizeof out->line);
     } else {
-        compare_summary_line(c, now_s() - t0, o->out_dir, out->line, sizeof out->line);
+        compare_summary_line(c, clock_s(CLOCK_MONOTONIC) - t0, o->out_dir, out->line, sizeof out->line);
     }
     if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
         fprintf(stderr, "%s\n", out->line);
