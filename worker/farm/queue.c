@@ -115,14 +115,7 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
         name_taken(q, name, stem, j.pos_name);
         return;
     }
-    struct run_opts ro = q->o->run;
-    ro.out_dir = q->done;
-    ro.stop = &queue_stop;
-    ro.tick = queue_claim_tick;
-    ro.may_write = queue_claim_held;
-    ro.still_held = queue_claim_still_held;
-    ro.lock_wait_s = q->o->lease_timeout_s;
-    ro.tick_arg = q;
+    struct run_opts ro = queue_claim_run_opts(q, q); /* q->stop is &queue_stop */
     q->processes = ro.processes > 0 ? ro.processes : j.processes;
     queue_log_check_cores(q->running, &q->lease, q->claim, name, q->processes);
     int attempts = 0, rc;

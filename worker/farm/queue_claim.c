@@ -252,6 +252,19 @@ int queue_claim_gone(struct queue *q)
     return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
+struct run_opts queue_claim_run_opts(const struct queue *q, struct queue *held)
+{
+    struct run_opts ro = q->o->run;
+    ro.out_dir = q->done;
+    ro.stop = q->stop;
+    ro.tick = queue_claim_tick;
+    ro.may_write = queue_claim_held;
+    ro.still_held = queue_claim_still_held;
+    ro.lock_wait_s = q->o->lease_timeout_s;
+    ro.tick_arg = held;
+    return ro;
+}
+
 int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, size_t n)
 {
     /* A sidecar's job_file is compared as it reads back: a file named in Latin-1 ("caf\xe9.yaml")

@@ -88,6 +88,11 @@ int queue_claim_gone(struct queue *q);
    `name:` (q->name_owner says which). */
 int queue_claim_held(void *arg, const char *dir);
 
+/* The run options of a render of the claim in hand: the worker's --run options, outputs into
+   DIR/done, q's stop flag, and the claim's tick, may_write and still_held on held (q itself, or
+   the study queue whose render entry is held). */
+struct run_opts queue_claim_run_opts(const struct queue *q, struct queue *held);
+
 /* The job file (its file name) whose outputs output folder `dir` holds, when that is not the claim
    in hand's file name: its path (a sidecar's "job_file") into owner, and 1. 0 when the folder is
    empty, absent or the claim's own (the same file re-queued, edited or not). */

@@ -46,20 +46,6 @@ static int gate(const char *sd, const char *ticket)
     return ticket[0] <= first ? 1 : 0;
 }
 
-/* The run options of a render of the study in hand (sq): outputs into DIR/done, the claim's tick. */
-static struct run_opts claim_opts(struct queue *q, struct queue *sq)
-{
-    struct run_opts ro = q->o->run;
-    ro.out_dir = q->done;
-    ro.stop = q->stop;
-    ro.tick = queue_claim_tick;
-    ro.may_write = queue_claim_held;
-    ro.still_held = queue_claim_still_held;
-    ro.lock_wait_s = q->o->lease_timeout_s;
-    ro.tick_arg = sq;
-    return ro;
-}
-
 /* What entry `ticket` of f rendered, for the log. */
 static void describe(const struct study_fan *f, int k, enum study_fan_kind kind, int index, char *buf,
                      size_t n)
@@ -86,7 +72,7 @@ static int render(struct queue *q, struct queue *sq, struct study_fan *f, const 
     if (sscanf(ticket, kind == STUDY_FAN_REFERENCE ? "a-ref-%d-%d.yaml" : "b-img-%d-%d.yaml", &k, &index) !=
         2)
         k = -1;
-    struct run_opts ro = claim_opts(q, sq);
+    struct run_opts ro = queue_claim_run_opts(q, sq);
     do {
         sq->attempt = ++attempts;
         rc = study_fan_render(f, k, kind, index, &ro, &e);
@@ -141,7 +127,7 @@ static int gather(struct queue *q, struct queue *sq, const char *from, const cha
         snprintf(msg, n, "already gathered");
         return 0;
     }
-    struct run_opts ro = claim_opts(q, sq);
+    struct run_opts ro = queue_claim_run_opts(q, sq);
     ro.force = 0; /* every render is current: --force would render them all again here */
     int rc = 2;
     if (jobfile_open(&jf, from, as, &e) < 0 || jf.kind == JOBFILE_PLAIN) { /* not the compare job it was */
