@@ -137,7 +137,7 @@ def table(path):
         for line in f:
             p = line.rstrip("\n").split("\t")
             if p[0] == "mse":
-                mse[p[1]] = float(p[2])
+                mse.setdefault(p[1], []).append(float(p[2]))
                 continue
             name, seed, cpu_s, image, samples = p[0], p[1], float(p[2]), p[3], int(p[4])
             if name not in runs:
@@ -149,26 +149,28 @@ def table(path):
     def figures(name):
         r = runs[name]
         s = sum(x[1] for x in r) / len(r)
-        return s, mse[name], 1 / (mse[name] * s), sum(x[2] for x in r) / len(r)
+        m = sum(mse[name]) / len(mse[name])
+        return s, m, 1 / (m * s), sum(x[2] for x in r) / len(r)
 
     b_s, b_mse, b_eff, b_mean = figures(base)
     second_ns = 1e9 * figures(order[1])[0] / runs[order[1]][0][3] if len(order) > 1 else 0
-    print("%-24s %7s %7s %11s %10s %8s %8s %8s %8s" % ("renderer", "ns/smp", "vs 2nd", "s/image", "MSE pair", "mean",
+    print("%-24s %7s %7s %11s %10s %8s %8s %8s %8s" % ("renderer", "ns/smp", "vs 2nd", "s/image", "MSE pairs", "mean",
                                                         "vs 1st", "eff", "eff/1st"))
     ok = True
     for name in order:
         s, m, eff, mean = figures(name)
         r = runs[name]
         ns = 1e9 * s / r[0][3]
-        seeds = "/".join("%.2f" % x[1] for x in r)
+        seeds = "%.2f-%.2f" % (min(x[1] for x in r), max(x[1] for x in r))
         dev = mean / b_mean - 1
         ok = ok and abs(dev) <= 0.03
         print("%-24s %7.0f %6.2fx %11s %10.3e %8.5f %+7.2f%% %8.1f %7.2fx" % (
             name, ns, ns / second_ns if second_ns else 0, seeds, m, mean, 100 * dev, eff, eff / b_eff))
     print("ns/smp: CPU seconds per image x 1e9 / camera samples (mean of the seeds); vs 2nd: against %s's;"
           % order[1] if len(order) > 1 else "")
-    print("s/image: CPU seconds of each seed's render; MSE pair: worker diff's mse between the two seeds' images")
-    print("(linear); eff = 1 / (MSE pair x mean s/image); eff/1st: against %s's" % base)
+    print("s/image: least-most CPU seconds of a seed's render; MSE pairs: mean over the seed pairs (1,2), (3,4), ...")
+    print("of worker diff's mse between a pair's images (linear), each pair's in results.tsv; eff = 1 / (MSE pairs")
+    print("x mean s/image); eff/1st: against %s's" % base)
     print("means within 3%% of %s's: %s" % (base, "yes" if ok else "NO"))
     return 0 if ok else 1
 

@@ -2,12 +2,14 @@
 # bench/peers.sh (`make bench-peers`): our renderer against Blender's Cycles at equal error. The
 # scene (default the book-3 Cornell box) is converted from our own scene file (bench/peers.py),
 # rendered by Cycles (bench/peers_cycles.py: one thread, unbiased settings, EXR out) and by us
-# (the mixture, nee, nee + sampler_dims: all + sobol; one process), two seeds each, Cycles and
-# ours interleaved so that load on the machine hits both alike; then bench/peers.py prints ns
-# per sample, the MSE between the two seeds' images, the image means (within 3% of Cycles') and
+# (the mixture, nee with jitter pixels as the book's job, nee with sobol pixels as Cycles' Sobol,
+# nee + sampler_dims: all + sobol; one process), PEERS_SEEDS seeds each (6: three pairs), Cycles
+# and ours interleaved so that load on the machine hits both alike; then bench/peers.py prints ns
+# per sample, the mean over seed pairs (1,2), (3,4), ... of the MSE between a pair's images, the image means (within 3% of Cycles') and
 # the equal-error efficiency 1 / (MSE x seconds per image) against Cycles'. Installs Debian's
 # blender with apt-get when it is missing and we are root (not part of make test or CI).
-# Env: WORKER, PEERS_SCENE, PEERS_SIZE (200), PEERS_THRESHOLD (12.5: 64 spp), PEERS_OUT.
+# Env: WORKER, PEERS_SCENE, PEERS_SIZE (200), PEERS_THRESHOLD (12.5: 64 spp), PEERS_SEEDS (6, even),
+# PEERS_OUT.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 WORKER=${WORKER:-$root/bin/worker}
@@ -15,6 +17,9 @@ SCENE=${PEERS_SCENE:-$root/scenes/cornell-book3.yaml}
 SIZE=${PEERS_SIZE:-200}
 THRESHOLD=${PEERS_THRESHOLD:-12.5}
 OUT=${PEERS_OUT:-$root/build/peers}
+SEEDS=${PEERS_SEEDS:-6}
+case $SEEDS in *[!0-9]* | "" | 0) echo "bench-peers: PEERS_SEEDS must be an even count >= 2" >&2; exit 2 ;; esac
+[ $((SEEDS % 2)) = 0 ] || { echo "bench-peers: PEERS_SEEDS must be an even count >= 2" >&2; exit 2; }
 SPP=$(awk -v t="$THRESHOLD" 'BEGIN { n = int(100 / t); print n * n }')
 
 if ! command -v blender >/dev/null 2>&1; then
@@ -29,14 +34,15 @@ python3 -c 'import yaml' 2>/dev/null || { echo "bench-peers: python3 needs PyYAM
 
 rm -rf "$OUT" && mkdir -p "$OUT"
 python3 "$root/bench/peers.py" scene "$SCENE" "$OUT/scene.json"
-# name, then the job keys that make it
-variants="mixture:integrator=mixture nee:integrator=nee nee-sobol-all:integrator=nee,sampler_dims=all,sampler=sobol"
+# name, then the job keys that make it (KEY=- leaves KEY out: sampler_dims: all refuses light_*)
+variants="mixture:integrator=mixture nee:integrator=nee nee-sobol:integrator=nee,sampler=sobol nee-sobol-all:integrator=nee,sampler_dims=all,sampler=sobol,light_sampler=-,light_threshold=-"
 job() { # job NAME SEED KEYS -> $OUT/NAME-sSEED.yaml
     f=$OUT/$1-s$2.yaml
     printf 'name: %s-s%s\nscene: %s\nwidth: %s\nheight: %s\nsampler: jitter\nthreshold: %s\nlight_sampler: jitter\nlight_threshold: 5\nseed: %s\nprocesses: 1\noutput: %s-s%s.pfm\n' \
         "$1" "$2" "$SCENE" "$SIZE" "$SIZE" "$THRESHOLD" "$2" "$1" "$2" >"$f"
     echo "$3" | tr ',' '\n' | while IFS='=' read -r k v; do
-        if grep -q "^$k:" "$f"; then sed -i "s/^$k:.*/$k: $v/" "$f"; else echo "$k: $v" >>"$f"; fi
+        if [ "$v" = - ]; then sed -i "/^$k:/d" "$f"; # "-": the key left out
+        elif grep -q "^$k:" "$f"; then sed -i "s/^$k:.*/$k: $v/" "$f"; else echo "$k: $v" >>"$f"; fi
     done
 }
 cpu_s() { sed -n 's/^ *"cpu_s": \([0-9.e+-]*\),*$/\1/p' "$1" | head -n 1; }
@@ -44,7 +50,7 @@ res=$OUT/results.tsv
 : >"$res"
 echo "bench-peers: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -n 1)," \
     "load average $(cut -d' ' -f1-3 /proc/loadavg) at start; $(basename "$SCENE") ${SIZE}x$SIZE, $SPP spp"
-for seed in 1 2; do
+for seed in $(seq 1 "$SEEDS"); do
     blender -b --factory-startup -P "$root/bench/peers_cycles.py" -- "$OUT/scene.json" "$OUT/cycles-s$seed" \
         "$seed" "$SPP" "$SIZE" "$SIZE" >"$OUT/cycles-s$seed.log" 2>&1 ||
         { echo "bench-peers: blender failed: $OUT/cycles-s$seed.log" >&2; exit 1; }
@@ -60,10 +66,13 @@ for seed in 1 2; do
     done
 done
 mse() { "$WORKER" diff "$1" "$2" --json | sed 's/.*"mse": \([0-9.e+-]*\),.*/\1/'; }
-printf 'mse\tcycles\t%s\n' "$(mse "$OUT/cycles-s1.exr" "$OUT/cycles-s2.exr")" >>"$res"
-for v in $variants; do
-    name=${v%%:*}
-    printf 'mse\tours-%s\t%s\n' "$name" "$(mse "$OUT/$name-s1/$name-s1.pfm" "$OUT/$name-s2/$name-s2.pfm")" >>"$res"
+for a in $(seq 1 2 "$SEEDS"); do
+    b=$((a + 1))
+    printf 'mse\tcycles\t%s\n' "$(mse "$OUT/cycles-s$a.exr" "$OUT/cycles-s$b.exr")" >>"$res"
+    for v in $variants; do
+        name=${v%%:*}
+        printf 'mse\tours-%s\t%s\n' "$name" "$(mse "$OUT/$name-s$a/$name-s$a.pfm" "$OUT/$name-s$b/$name-s$b.pfm")" >>"$res"
+    done
 done
 echo "load average $(cut -d' ' -f1-3 /proc/loadavg) at the end"
 python3 "$root/bench/peers.py" table "$res"

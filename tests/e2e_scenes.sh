@@ -76,6 +76,23 @@ check "nee without roulette traces more segments than the mixture ($(segs "$T/in
 check "nee without roulette traces more segments ($(segs "$T/integ/nee-rroff/nee-rroff.json") vs $(segs "$T/integ/nee/nee.json"))" \
     [ "$(segs "$T/integ/nee-rroff/nee-rroff.json")" -gt "$(segs "$T/integ/nee/nee.json")" ]
 rejects russian_roulette maybe "ls.yaml:3:19: russian_roulette: must be off or on"
+# The roulette is a weight window at 1/2: inside a closed white sphere (no light: only the path
+# lengths count) with max_depth 3, the one roulette (after the second scatter) meets a throughput
+# of albedo^2: 0.75^2 >= 1/2 never dies (the same segments as without roulette); 0.7^2 < 1/2 may.
+for a in 0.75 0.7; do
+    printf '%s\n' "camera: { lookfrom: [0, 0, 0], lookat: [0, 0, -1], vup: [0, 1, 0], vfov: 60, aperture: 0, focus_dist: 1 }" \
+        "background: [0, 0, 0]" "materials: { wall: { type: lambertian, albedo: [$a, $a, $a] } }" \
+        "objects: [{ type: sphere, center: [0, 0, 0], radius: 10, material: wall }]" >"$T/ww-$a-scene.yaml"
+    for rr in on off; do
+        printf '%s\n' "name: ww-$a-$rr" "scene: $T/ww-$a-scene.yaml" "width: 16" "threshold: 25" "max_depth: 3" \
+            "integrator: nee" "russian_roulette: $rr" >"$T/ww.yaml"
+        "$WORKER" --quiet --out "$T/ww" "$T/ww.yaml" 2>"$T/ww.err" || echo "ww-$a-$rr: $(cat "$T/ww.err")"
+    done
+done
+check "roulette spares a throughput of 0.75^2 (segments $(segs "$T/ww/ww-0.75-on/ww-0.75-on.json") on, $(segs "$T/ww/ww-0.75-off/ww-0.75-off.json") off)" \
+    [ "$(segs "$T/ww/ww-0.75-on/ww-0.75-on.json")" -eq "$(segs "$T/ww/ww-0.75-off/ww-0.75-off.json")" ]
+check "roulette may end a throughput of 0.7^2 (segments $(segs "$T/ww/ww-0.7-on/ww-0.7-on.json") on, $(segs "$T/ww/ww-0.7-off/ww-0.7-off.json") off)" \
+    [ "$(segs "$T/ww/ww-0.7-on/ww-0.7-on.json")" -lt "$(segs "$T/ww/ww-0.7-off/ww-0.7-off.json")" ]
 # a compare variant takes russian_roulette too: its images named for it, each sidecar as applied
 printf '%s\n' "name: rr" "scenes: [$root/scenes/cornell-book3.yaml]" "width: 8" "integrator: nee" \
     "reference: { sampler: jitter, threshold: 25 }" "seeds: [1]" "sweep: { threshold: [50] }" "variants:" \

@@ -241,18 +241,21 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
     }
 }
 
-/* Russian roulette after the scatter at vertex at (pbrt-v4's path integrator; Arvo and Kirk,
-   "Particle Transport and Image Synthesis", SIGGRAPH 1990), when at.roulette: from the second
-   scatter on, a path whose throughput's largest channel m is below 1 goes on with probability m,
-   its throughput divided by m, so that its expectation is unchanged. The coin is the vertex's
-   decision DIM_ROULETTE (x) under sampler_dims: all, else the path's rng. 1: the path goes on. */
+/* Russian roulette after the scatter at vertex at (Arvo and Kirk, "Particle Transport and Image
+   Synthesis", SIGGRAPH 1990), when at.roulette: from the second scatter on (as pbrt-v4's path
+   integrator), a path whose throughput's largest channel m is below ROULETTE_WEIGHT goes on with
+   probability m / ROULETTE_WEIGHT, its throughput divided by that, so that its expectation is
+   unchanged: a weight window at 1/2 (Booth, "A Sample Problem for Variance Reduction in MCNP",
+   1985), where pbrt-v4's is at 1; BENCH.md has the error per CPU second of both. The coin is the
+   vertex's decision DIM_ROULETTE (x) under sampler_dims: all, else the path's rng. 1: goes on. */
 #define ROULETTE_FROM_DEPTH 1
+#define ROULETTE_WEIGHT 0.5
 static inline __attribute__((always_inline)) int path_survives(struct render_ctx *ctx, struct path_state *p,
                                                                struct rng *rng, struct path_at at)
 {
     if (!at.roulette || at.depth < ROULETTE_FROM_DEPTH)
         return 1;
-    const double m = d_max(p->beta.x, d_max(p->beta.y, p->beta.z));
+    const double m = d_max(p->beta.x, d_max(p->beta.y, p->beta.z)) / ROULETTE_WEIGHT;
     if (!(m < 1))
         return 1;
     const double coin = at.dims ? path_decide(ctx, rng, at, DIM_ROULETTE).x : rng_uniform32(rng);
