@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "sample/padding.h"
+#include "sample/sobol.h"
 
 /* The permutation sampler_dims: all used before issue 26: keyed steps without Kensler's offset
    and without mixing the high bits into the low ones (kept here as the control the test must
@@ -180,8 +181,49 @@ static void test_one_per_cell(void)
     }
 }
 
+/* A Sobol slot makes its points as they are read: each is, bit for bit, the point the whole set
+   (the slot stream's seeds, sobol_fill) left at that place after the Fisher-Yates shuffle, read in
+   any order. */
+static void test_sobol_lazy(void)
+{
+    struct err e;
+    struct sampler *s = sampler_new(SAMPLER_SOBOL, 12.5, 0, 0, &e); /* 64 points */
+    struct padding pad;
+    CHECK(s != NULL);
+    if (!s || padding_init(&pad, s, 6, &e) < 0)
+        return;
+    CHECK(pad.sobol != NULL && pad.pts == NULL);
+    int same = 1;
+    for (int px = 0; px < 20; px++) {
+        padding_pixel(&pad, 9, px, 3, 64);
+        for (int slot = 5; slot >= 0; slot--) {
+            struct rng r;
+            struct sobol_seeds seeds;
+            struct pt2 whole[64];
+            rng_pixel(&r, 9, px, 3, 16 + (uint64_t)slot);
+            CHECK(sampler_sobol_set(s, &r, &seeds) == 64);
+            sobol_fill(seeds, 64, whole);
+            for (size_t k = 0; k < 64; k++) {
+                size_t j = k + rng_below(&r, (uint32_t)(64 - k));
+                struct pt2 t = whole[k];
+                whole[k] = whole[j];
+                whole[j] = t;
+            }
+            for (uint32_t i = 0; i < 64; i++) {
+                uint32_t k = (i * 37 + (uint32_t)px) % 64; /* any order */
+                struct pt2 p = padding_point(&pad, slot, k);
+                same &= p.x == whole[k].x && p.y == whole[k].y;
+            }
+        }
+    }
+    CHECK(same);
+    padding_release(&pad);
+    sampler_free(s);
+}
+
 int main(void)
 {
+    test_sobol_lazy();
     test_one_per_cell();
     test_uniform_permutation();
     return check_report("test_dims");

@@ -17,9 +17,15 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
     p->sampler = s;
     p->slots = slots;
     p->slot_cap = padding_slot_points(s);
-    p->pts = malloc((size_t)slots * p->slot_cap * sizeof *p->pts);
+    const int lazy = sampler_walk_of(s) == SAMPLER_WALK_SOBOL;
+    if (lazy) {
+        p->sobol = malloc((size_t)slots * sizeof *p->sobol);
+        p->order = malloc((size_t)slots * p->slot_cap * sizeof *p->order);
+    } else {
+        p->pts = malloc((size_t)slots * p->slot_cap * sizeof *p->pts);
+    }
     p->gen = calloc((size_t)slots, sizeof *p->gen);
-    if (!p->pts || !p->gen) {
+    if ((lazy ? !p->sobol || !p->order : !p->pts) || !p->gen) {
         padding_release(p);
         return err_set(e, NULL, 0, 0,
                        "out of memory for sampler_dims: all's point sets (%d of them, %zu points each)",
@@ -31,8 +37,12 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
 void padding_release(struct padding *p)
 {
     free(p->pts);
+    free(p->sobol);
+    free(p->order);
     free(p->gen);
     p->pts = NULL;
+    p->sobol = NULL;
+    p->order = NULL;
     p->gen = NULL;
 }
 
@@ -43,31 +53,58 @@ void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n)
     p->pixel++;
 }
 
-void padding_fill(struct padding *p, int slot)
+/* A Sobol slot: the seeds draw_sobol would take from r, then the first n places of the same
+   Fisher-Yates shuffle applied to the points' indices (the same draws of r): padding_point's
+   sobol_point of index order[s] is then the point the whole set's shuffle left at place s. (A set
+   is never shorter than the pixel's count n; were it, places past it would read the sequence on.) */
+static void fill_sobol(struct padding *p, int slot, struct rng *r)
+{
+    uint32_t *order = p->order + (size_t)slot * p->slot_cap;
+    const size_t have = sampler_sobol_set(p->sampler, r, &p->sobol[slot]), n = p->n;
+    for (size_t k = 0; k < have || k < n; k++)
+        order[k] = (uint32_t)k;
+    for (size_t k = 0; k < n && k < have; k++) {
+        size_t j = k + rng_below(r, (uint32_t)(have - k));
+        uint32_t t = order[k];
+        order[k] = order[j];
+        order[j] = t;
+    }
+}
+
+/* Any other sampler: its whole sets until the pixel's count, shuffled. */
+static void fill_points(struct padding *p, int slot, struct rng *r)
 {
     struct pt2 *pts = p->pts + (size_t)slot * p->slot_cap;
     const size_t n = p->n, cap = sampler_set_capacity(p->sampler);
-    const uint64_t t0 = p->timed_draw_ns ? sampler_clock_ns() : 0;
-    struct rng r;
-    rng_pixel(&r, p->seed, p->px, p->py, 16 + (uint64_t)slot);
     size_t have = 0;
     /* halton, zsobol: slot s is dimension 1 + s of the pixel (0 its camera points) */
     struct sampler_at at = {p->seed, p->px, p->py, 1 + (uint32_t)slot};
     while (have < n && have + cap <= p->slot_cap) {
-        have += sampler_draw_at(p->sampler, &r, &at, pts + have);
+        have += sampler_draw_at(p->sampler, r, &at, pts + have);
         at.dim += (uint32_t)p->slots;
     }
     /* the first n places of a Fisher-Yates shuffle: sample s takes a uniformly random point */
     for (size_t k = 0; k < n && k < have; k++) {
-        size_t j = k + rng_below(&r, (uint32_t)(have - k));
+        size_t j = k + rng_below(r, (uint32_t)(have - k));
         struct pt2 t = pts[k];
         pts[k] = pts[j];
         pts[j] = t;
     }
     for (size_t k = have; k < n; k++) { /* unreachable for the shipped samplers: a set is never empty */
-        pts[k].x = rng_uniform(&r);
-        pts[k].y = rng_uniform(&r);
+        pts[k].x = rng_uniform(r);
+        pts[k].y = rng_uniform(r);
     }
+}
+
+void padding_fill(struct padding *p, int slot)
+{
+    const uint64_t t0 = p->timed_draw_ns ? sampler_clock_ns() : 0;
+    struct rng r;
+    rng_pixel(&r, p->seed, p->px, p->py, 16 + (uint64_t)slot);
+    if (p->sobol)
+        fill_sobol(p, slot, &r);
+    else
+        fill_points(p, slot, &r);
     p->gen[slot] = p->pixel;
     if (p->timed_draw_ns)
         *p->timed_draw_ns += sampler_clock_ns() - t0;

@@ -10,16 +10,21 @@
 
 #include "base/err.h"
 #include "sampler.h"
+#include "sobol.h"
 
 /* The sets of one pixel at a time: a slot's set is drawn whole when a sample of the pixel first
    asks for it (from the pixel's own stream for that slot), then shuffled by Fisher-Yates, so
    that sample s takes a uniformly random point of it: a uniform random permutation per pixel and
-   slot, whatever the sampler. */
+   slot, whatever the sampler. A Sobol slot keeps its seeds and the shuffled order of its indices
+   instead of its points, and makes a point when a sample reads it (sobol_point: the same bits
+   as the whole set's): most samples end before the deeper slots, whose points then go unmade. */
 struct padding {
     struct sampler *sampler; /* the pixel sampler (not owned) */
     int slots;               /* slots 0 .. slots - 1 */
     size_t slot_cap;         /* points stored per slot */
     struct pt2 *pts;         /* slots x slot_cap */
+    struct sobol_seeds *sobol; /* sobol: each slot's seeds (NULL for the other samplers) */
+    uint32_t *order;         /* sobol: slots x slot_cap point indices, each slot's shuffle */
     uint64_t *gen;           /* slot k is current when gen[k] == pixel */
     uint64_t pixel;          /* bumped by padding_pixel */
     uint64_t seed;           /* the job's seed */
@@ -49,6 +54,8 @@ static inline struct pt2 padding_point(struct padding *p, int slot, uint32_t s)
 {
     if (p->gen[slot] != p->pixel)
         padding_fill(p, slot);
+    if (p->sobol)
+        return sobol_point(p->sobol[slot], p->order[(size_t)slot * p->slot_cap + s]);
     return p->pts[(size_t)slot * p->slot_cap + s];
 }
 
