@@ -19,15 +19,15 @@
    instead of its points, and makes a point when a sample reads it (sobol_point: the same bits
    as the whole set's): most samples end before the deeper slots, whose points then go unmade. */
 struct padding {
-    struct sampler *sampler; /* the pixel sampler (not owned) */
-    int slots;               /* slots 0 .. slots - 1 */
-    size_t slot_cap;         /* points stored per slot */
-    struct pt2 *pts;         /* slots x slot_cap */
+    struct sampler *sampler;   /* the pixel sampler (not owned) */
+    int slots;                 /* slots 0 .. slots - 1 */
+    size_t slot_cap;           /* points stored per slot */
+    struct pt2 *pts;           /* slots x slot_cap */
     struct sobol_seeds *sobol; /* sobol: each slot's seeds (NULL for the other samplers) */
-    uint32_t *order;         /* sobol: slots x slot_cap point indices, each slot's shuffle */
-    uint64_t *gen;           /* slot k is current when gen[k] == pixel */
-    uint64_t pixel;          /* bumped by padding_pixel */
-    uint64_t seed;           /* the job's seed */
+    uint32_t *order;           /* sobol: slots x slot_cap point indices, each slot's shuffle */
+    uint64_t *gen;             /* slot k is current when gen[k] == pixel */
+    uint64_t pixel;            /* bumped by padding_pixel */
+    uint64_t seed;             /* the job's seed */
     int px, py;
     size_t n;                /* the pixel's sample count */
     uint64_t *timed_draw_ns; /* non-NULL: every whole-set draw adds its nanoseconds here */
