@@ -93,6 +93,15 @@ check "roulette spares a throughput of 0.75^2 (segments $(segs "$T/ww/ww-0.75-on
     [ "$(segs "$T/ww/ww-0.75-on/ww-0.75-on.json")" -eq "$(segs "$T/ww/ww-0.75-off/ww-0.75-off.json")" ]
 check "roulette may end a throughput of 0.7^2 (segments $(segs "$T/ww/ww-0.7-on/ww-0.7-on.json") on, $(segs "$T/ww/ww-0.7-off/ww-0.7-off.json") off)" \
     [ "$(segs "$T/ww/ww-0.7-on/ww-0.7-on.json")" -lt "$(segs "$T/ww/ww-0.7-off/ww-0.7-off.json")" ]
+# The studies of `make run` (soft-shadows, aliasing, cost, error-look) render nee at max_depth 2:
+# no path scatters twice, so roulette never fires and their images, hence rankings, are the same
+# bytes with it on or off.
+for rr in on off; do
+    printf '%s\n' "name: md2-$rr" "scene: $root/scenes/checker.yaml" "width: 16" "threshold: 25" "max_depth: 2" \
+        "integrator: nee" "sampler_dims: all" "sampler: sobol" "russian_roulette: $rr" "output: md2-$rr.pfm" >"$T/md2.yaml"
+    "$WORKER" --quiet --out "$T/md2" "$T/md2.yaml" 2>"$T/md2.err" || echo "md2-$rr: $(cat "$T/md2.err")"
+done
+check "max_depth 2: the same bytes with roulette on and off" cmp -s "$T/md2/md2-on/md2-on.pfm" "$T/md2/md2-off/md2-off.pfm"
 # a compare variant takes russian_roulette too: its images named for it, each sidecar as applied
 printf '%s\n' "name: rr" "scenes: [$root/scenes/cornell-book3.yaml]" "width: 8" "integrator: nee" \
     "reference: { sampler: jitter, threshold: 25 }" "seeds: [1]" "sweep: { threshold: [50] }" "variants:" \
