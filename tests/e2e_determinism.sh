@@ -16,7 +16,9 @@ build() {
     name=$1; shift
     d=$root/build/det-$name
     MAKEFLAGS= make -s -j2 -C "$root" BUILD="$d" BIN="$d/bin" "$@" "$d/bin/worker" >"$T/$name.log" 2>&1
-    check "the $name build succeeds ($(tail -c 300 "$T/$name.log"))" [ -x "$d/bin/worker" ]
+    rc=$? # make's own status: a failed build leaves the last good (stale) binary in place
+    check "the $name build succeeds ($(tail -c 300 "$T/$name.log"))" sh -c "[ $rc -eq 0 ] && [ -x '$d/bin/worker' ]"
+    [ "$rc" -eq 0 ]
 }
 builds="default"
 if command -v clang >/dev/null; then

@@ -71,6 +71,11 @@ static void fill_sobol(struct padding *p, int slot, struct rng *r)
     }
 }
 
+struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s)
+{
+    return sobol_point(p->sobol[slot], p->order[(size_t)slot * p->slot_cap + s]);
+}
+
 /* Any other sampler: its whole sets until the pixel's count, shuffled. */
 static void fill_points(struct padding *p, int slot, struct rng *r)
 {

@@ -49,13 +49,17 @@ void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n);
 /* Draw slot's whole set for the current pixel (out of line: once per pixel and slot). */
 void padding_fill(struct padding *p, int slot);
 
+/* A Sobol slot's point for sample s, made now (out of line: padding_point stays small enough for
+   the lanes' unrolled loop, which clang otherwise declines to unroll). */
+struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s);
+
 /* Sample s's point of set `slot` (< p->slots) of the current pixel (s < its count n). */
 static inline struct pt2 padding_point(struct padding *p, int slot, uint32_t s)
 {
     if (p->gen[slot] != p->pixel)
         padding_fill(p, slot);
     if (p->sobol)
-        return sobol_point(p->sobol[slot], p->order[(size_t)slot * p->slot_cap + s]);
+        return padding_sobol_point(p, slot, s);
     return p->pts[(size_t)slot * p->slot_cap + s];
 }
 
