@@ -5,11 +5,14 @@
 # (the mixture, nee with jitter pixels as the book's job, nee with sobol pixels as Cycles' Sobol,
 # nee + sampler_dims: all + sobol; one process), PEERS_SEEDS seeds each (6: three pairs), Cycles
 # and ours interleaved so that load on the machine hits both alike; then bench/peers.py prints ns
-# per sample, the mean over seed pairs (1,2), (3,4), ... of the MSE between a pair's images, the image means (within 3% of Cycles') and
-# the equal-error efficiency 1 / (MSE x seconds per image) against Cycles'. Installs Debian's
-# blender with apt-get when it is missing and we are root (not part of make test or CI).
+# per sample, the mean over the seed pairs (1,2), (3,4), ... of the MSE between a pair's images,
+# the image means (within 3% of Cycles') and the equal-error efficiency 1 / (MSE x seconds per
+# image) against Cycles'. Installs Debian's blender with apt-get when it is missing and we are
+# root (not part of make test or CI).
 # Env: WORKER, PEERS_SCENE, PEERS_SIZE (200), PEERS_THRESHOLD (12.5: 64 spp), PEERS_SEEDS (6, even),
-# PEERS_OUT.
+# PEERS_OUT, PEERS_SPHERE (mesh: a sphere as a smooth 512x256 UV-sphere mesh; points: as one
+# point of a Cycles point cloud, which is not hit from inside, so that a glass one never lets
+# light out again: BENCH.md's tables before 2026-12-02 07:00 UTC).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 WORKER=${WORKER:-$root/bin/worker}

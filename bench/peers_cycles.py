@@ -10,11 +10,13 @@ CPU seconds and wall seconds, from the render call alone (no start-up, no scene 
 saving)."""
 import json
 import math
+import os
 import struct
 import sys
 import time
 from array import array
 
+import bmesh
 import bpy
 from mathutils import Matrix
 
@@ -72,6 +74,21 @@ def sphere(i, center, radius, mat):
     return ob
 
 
+def sphere_mesh(i, center, radius, mat, segments=512, rings=256):
+    """A sphere as a closed, smooth-shaded UV-sphere mesh (Cycles' point-cloud spheres are not
+    hit from inside, so a glass one would not refract light out again)."""
+    me = bpy.data.meshes.new("sphere%d" % i)
+    bm = bmesh.new()
+    bmesh.ops.create_uvsphere(bm, u_segments=segments, v_segments=rings, radius=radius)
+    bmesh.ops.translate(bm, verts=bm.verts, vec=center)
+    for f in bm.faces:
+        f.smooth = True
+    bm.to_mesh(me)
+    bm.free()
+    me.materials.append(mat)
+    return bpy.data.objects.new("sphere%d" % i, me)
+
+
 def main():
     args = sys.argv[sys.argv.index("--") + 1:]
     scene_json, stem = args[0], args[1]
@@ -83,7 +100,8 @@ def main():
     mats = {name: material(name, m) for name, m in d["materials"].items()}
     for i, o in enumerate(d["objects"]):
         if "sphere" in o:
-            ob = sphere(i, o["sphere"], o["radius"], mats[o["material"]])
+            make = sphere_mesh if os.environ.get("PEERS_SPHERE", "mesh") == "mesh" else sphere
+            ob = make(i, o["sphere"], o["radius"], mats[o["material"]])
         else:
             me = bpy.data.meshes.new("mesh%d" % i)
             me.from_pydata(o["mesh"], [], o["faces"])
