@@ -11,8 +11,8 @@
 # root (not part of make test or CI).
 # Env: WORKER, PEERS_SCENE, PEERS_SIZE (200), PEERS_THRESHOLD (12.5: 64 spp), PEERS_SEEDS (6, even),
 # PEERS_OUT, PEERS_SPHERE (mesh: a sphere as a smooth 512x256 UV-sphere mesh; points: as one
-# point of a Cycles point cloud, which is not hit from inside, so that a glass one never lets
-# light out again: BENCH.md's tables before 2026-12-02 07:00 UTC).
+# point of a Cycles point cloud, through which a glass sphere showed no refracted light, as if a
+# ray inside it never hit it again: BENCH.md's tables before 2026-12-02 07:00 UTC).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 WORKER=${WORKER:-$root/bin/worker}

@@ -75,8 +75,8 @@ def sphere(i, center, radius, mat):
 
 
 def sphere_mesh(i, center, radius, mat, segments=512, rings=256):
-    """A sphere as a closed, smooth-shaded UV-sphere mesh (Cycles' point-cloud spheres are not
-    hit from inside, so a glass one would not refract light out again)."""
+    """A sphere as a closed, smooth-shaded UV-sphere mesh (a glass Cycles point-cloud
+    sphere showed no light refracted through it, as if a ray inside never hit it again)."""
     me = bpy.data.meshes.new("sphere%d" % i)
     bm = bmesh.new()
     bmesh.ops.create_uvsphere(bm, u_segments=segments, v_segments=rings, radius=radius)
