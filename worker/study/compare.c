@@ -24,7 +24,6 @@
 #include "verdict_out.h"
 #include "job/run_out.h"
 #include "base/sbuf.h"
-#include "scenefile/scene_load.h"
 
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
@@ -45,20 +44,15 @@ static void fmt_duration(double s, char *buf, size_t n)
         snprintf(buf, n, "%dh%02dm", (int)s / 3600, (int)s % 3600 / 60);
 }
 
-/* The resume hash of one combination: its scene file's and texture images' bytes, every setting that changes
-   its pixels, and its reference image's bytes (a cached reference's bytes follow its settings, and a
-   reference given as a file may be replaced under the same path), not its path: the same --out spelled
-   another way finds the same outputs current. An image whose sidecar records it is current and is not
+/* The resume hash of one combination: its scene file's and texture images' bytes, then its reference
+   image's bytes (both as the study read them: cs->ref->hash, else cs->input->hash; a cached
+   reference's bytes follow its settings, and a reference given as a file may be replaced under the
+   same path), every setting that changes its pixels, not its path: the same --out spelled another
+   way finds the same outputs current. An image whose sidecar records it is current and is not
    rendered again (unless --force). */
-static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *e)
+static uint64_t item_hash(const struct compare_scene *cs, const struct compare_item *it)
 {
     const struct job *j = &it->job;
-    uint64_t h = HASH_FNV_OFFSET;
-    struct err ignored; /* an unreadable reference was reported when it was loaded */
-    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
-        return -1;
-    if (j->reference[0])
-        fileio_hash(j->reference, IMGIO_MAX_BYTES, &h, &ignored);
     char text[JOB_PATH_MAX + 512];
     int n = snprintf(text, sizeof text,
                      "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s",
@@ -67,8 +61,7 @@ static int item_hash(const struct compare_item *it, uint64_t *hash, struct err *
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
                      WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
                      job_roulette(j) ? " roulette" : "");
-    *hash = hash_bytes(h, text, (size_t)n);
-    return 0;
+    return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 
 /* A combination skipped as current: what it measured, from its sidecar. */
@@ -87,13 +80,6 @@ static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, 
     return 0;
 }
 
-/* A scene's reference, read once: floats to score in (linear, or 8-bit display values for a
-   PNG/PPM reference), and as 8-bit display values for the display figures. */
-struct scene_ref {
-    struct rgbf f;
-    struct rgb8 display;
-};
-
 /* The file a combination is scored and looked at in: its float copy, or its PNG for an 8-bit
    reference. */
 static const char *scored_file(const struct outdir_files *out, enum img_domain domain)
@@ -103,7 +89,7 @@ static const char *scored_file(const struct outdir_files *out, enum img_domain d
 
 /* A combination that was current: score its files (scored_file, read once for its error and its
    look, and its PNG for the display figures). 0 or -1. */
-static int score_files(struct compare_item *it, const struct run_result *rr, const struct scene_ref *ref,
+static int score_files(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
                        enum img_domain domain, struct err *e)
 {
     struct rgbf img = {0};
@@ -123,7 +109,7 @@ static int score_files(struct compare_item *it, const struct run_result *rr, con
 
 /* How a fresh combination's error looks (errspec.h), from scored_file (the framebuffer was
    scored in memory; its look is measured on the file as written). 0 or -1. */
-static int score_look(struct compare_item *it, const struct run_result *rr, const struct scene_ref *ref,
+static int score_look(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
                       enum img_domain domain, struct err *e)
 {
     struct rgbf img = {0};
@@ -136,17 +122,21 @@ static int score_look(struct compare_item *it, const struct run_result *rr, cons
 }
 
 /* Render one combination (or take it as it is when current) and measure it against its
-   scene's reference (ref may be NULL). */
-static int render_item(struct compare *c, struct compare_item *it, const struct scene_ref *ref,
-                       const struct run_opts *o, struct err *e)
+   scene's reference (cs->ref, prepared; none when the study has none). */
+static int render_item(struct compare *c, struct compare_item *it, const struct run_opts *o, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[it->scene];
+    const struct study_ref *ref = cs->ref_kind != COMPARE_REF_NONE ? cs->ref : NULL;
+    if (cs->ref_kind != COMPARE_REF_NONE && !ref) {
+        err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
+        return 1;
+    }
     snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
-    if (item_hash(it, &it->job.hash, e) < 0)
-        return 2;
+    it->job.hash = item_hash(cs, it);
     struct run_result rr;
     struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
     quiet_rows.progress = 0;
+    quiet_rows.scene = &cs->input->src;    /* the scene as the study read it */
     quiet_rows.ref = ref ? &ref->f : NULL; /* scored in memory, on the framebuffer's floats */
     quiet_rows.ref_domain = cs->ref_domain;
     quiet_rows.ref_display = ref ? &ref->display : NULL;
@@ -231,31 +221,10 @@ static char *summary_csv(const struct compare *c)
     return sbuf_take(&b);
 }
 
-/* Read scene cs's prepared reference into r (floats, and 8-bit display values). 0 or -1. */
-static int ref_read(struct compare_scene *cs, struct scene_ref *r, struct err *e)
-{
-    if (imgio_read_f(cs->ref_path, &r->f, &cs->ref_domain, e) < 0 ||
-        (cs->ref_domain == IMG_DISPLAY8 ? imgio_read(cs->ref_path, &r->display, e)
-                                        : image_alloc(&r->display, r->f.w, r->f.h, e)) < 0)
-        return -1;
-    if (cs->ref_domain == IMG_LINEAR)
-        image_float_to_rgb8(r->f.px, r->f.w, r->f.h, r->display.px);
-    return 0;
-}
-
 int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e)
 {
-    struct compare_item *it = &c->items[i];
-    struct compare_scene *cs = &c->scenes[it->scene];
-    struct scene_ref ref = {0};
-    int rc = compare_ref_prepare(c, it->scene, o, e);
-    if (rc == 0 && cs->ref_kind != COMPARE_REF_NONE && ref_read(cs, &ref, e) < 0)
-        rc = 2;
-    if (rc == 0)
-        rc = render_item(c, it, cs->ref_kind != COMPARE_REF_NONE ? &ref : NULL, o, e);
-    image_f_free(&ref.f);
-    image_free(&ref.display);
-    return rc;
+    int rc = compare_ref_prepare(c, c->items[i].scene, o, e);
+    return rc != 0 ? rc : render_item(c, &c->items[i], o, e);
 }
 
 int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
@@ -289,31 +258,18 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 {
     char dir[2048];
-    struct scene_ref *refs = calloc((size_t)c->n_scenes, sizeof *refs);
     int rc = 1;
     double t0 = clock_s(CLOCK_MONOTONIC), total = 0, done = 0;
-    if (!refs) {
-        err_set(e, NULL, 0, 0, "out of memory");
-        return 1;
-    }
     outdir_dir(o->out_dir, c->name, dir, sizeof dir);
     /* Checked now, made only when the first image or the summary is written: a job stopped or
        failed before that (a reference render cut short by Ctrl-C) leaves no empty folder. */
-    if (outdir_check(dir, e) < 0) {
-        rc = 2;
-        goto fail;
-    }
+    if (outdir_check(dir, e) < 0)
+        return 2;
     for (int s = 0; s < c->n_scenes; s++) {
         if ((rc = compare_ref_prepare(c, s, o, e)) != 0)
-            goto fail;
-        struct compare_scene *cs = &c->scenes[s];
-        if (cs->ref_kind == COMPARE_REF_NONE)
-            continue;
-        if (ref_read(cs, &refs[s], e) < 0) {
-            rc = 2;
-            goto fail;
-        }
-        if (cs->ref_domain != IMG_LINEAR)
+            return rc;
+        const struct compare_scene *cs = &c->scenes[s];
+        if (cs->ref_kind != COMPARE_REF_NONE && cs->ref_domain != IMG_LINEAR)
             run_warn_display_reference(c->name, cs->ref_path);
     }
     for (int i = 0; i < c->n_items; i++)
@@ -322,8 +278,8 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     for (int i = 0; i < c->n_items; i++) {
         struct compare_item *it = &c->items[i];
         const struct compare_scene *cs = &c->scenes[it->scene];
-        if ((rc = render_item(c, it, cs->ref_kind != COMPARE_REF_NONE ? &refs[it->scene] : NULL, o, e)) != 0)
-            goto fail;
+        if ((rc = render_item(c, it, o, e)) != 0)
+            return rc;
         if (it->skipped) /* current from an earlier run: no time spent, none to predict */
             total -= cost(c, it);
         else
@@ -339,14 +295,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
                 it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
                 it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
-    rc = compare_write_outputs(c, dir, o, e) < 0;
-fail:
-    for (int s = 0; s < c->n_scenes; s++) {
-        image_f_free(&refs[s].f);
-        image_free(&refs[s].display);
-    }
-    free(refs);
-    return rc;
+    return compare_write_outputs(c, dir, o, e) < 0;
 }
 
 void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)

@@ -9,6 +9,7 @@
 #include "image/metrics.h"
 #include "job/run.h"
 #include "study_env.h"
+#include "study_inputs.h"
 #include "verdict.h"
 
 /* Most images one compare job may expand to. */
@@ -19,16 +20,19 @@
 #define COMPARE_REF_SEED 1000003
 
 struct compare_scene {
-    char name[COMPARE_LABEL_MAX]; /* the scene file's stem: "checker" */
-    int width, height;            /* of every image of this scene */
-    int ref_kind;                 /* COMPARE_REF_NONE | _SETTINGS | _IMAGE */
-    struct job ref_job;           /* _SETTINGS: the reference render (output set at run time) */
-    char ref_path[JOB_PATH_MAX];  /* the reference image once known (cache or given path) */
-    enum img_domain ref_domain;   /* linear (a float image: the cache's EXR, a given EXR or PFM) or
-                                     8-bit display values (a given PNG or PPM) */
-    int ref_reused;               /* the cached reference was reused */
-    double ref_wall_s;            /* seconds its render took (now or when it was cached) */
-    double ref_spp;               /* its samples per pixel (from its render or sidecar), 0 unknown */
+    char name[COMPARE_LABEL_MAX];    /* the scene file's stem: "checker" */
+    const struct study_scene *input; /* its file, read and parsed once (c->inputs holds it) */
+    const struct study_ref *ref;     /* its reference's pixels, read once: an image at load, settings
+                                        when prepared (compare_ref_prepare); NULL before or without */
+    int width, height;               /* of every image of this scene */
+    int ref_kind;                    /* COMPARE_REF_NONE | _SETTINGS | _IMAGE */
+    struct job ref_job;              /* _SETTINGS: the reference render (output set at run time) */
+    char ref_path[JOB_PATH_MAX];     /* the reference image once known (cache or given path) */
+    enum img_domain ref_domain;      /* linear (a float image: the cache's EXR, a given EXR or PFM) or
+                                        8-bit display values (a given PNG or PPM) */
+    int ref_reused;                  /* the cached reference was reused */
+    double ref_wall_s;               /* seconds its render took (now or when it was cached) */
+    double ref_spp;                  /* its samples per pixel (from its render or sidecar), 0 unknown */
     /* A settings reference is the mean of two independent halves (compare_ref.c); from their
        difference: its own relMSE, its mean radiance and that mean's standard error. NAN: unknown
        (an image reference: its mean radiance is read at the verdict, its noise is not known). */
@@ -63,6 +67,8 @@ struct compare {
     struct verdict_study verdict; /* filled by compare_run once every image is scored */
     struct study_env env;         /* the command, program, compiler, CPU and load, at that time */
     int has_verdict;
+    struct study_inputs *inputs; /* its scenes and references, each read once (a suite's shared) */
+    int owns_inputs;             /* compare_free frees inputs (not a suite's) */
 };
 
 /* Load, validate and expand the compare job at path into a new struct compare. Everything a
@@ -73,6 +79,11 @@ struct compare *compare_load(const char *path, struct err *e);
 /* compare_load of the job file at path already parsed into d (jobfile_open), which is read, not
    kept. */
 struct compare *compare_load_doc(const struct ydoc *d, const char *path, struct err *e);
+
+/* compare_load_doc reading its scenes and references through in (a suite's, shared by its
+   studies, which outlives the result): a file another study read is not read again. */
+struct compare *compare_load_in(const struct ydoc *d, const char *path, struct study_inputs *in,
+                                struct err *e);
 void compare_free(struct compare *c);
 
 /* Index of an item in c->items. */

@@ -9,6 +9,7 @@
 #include "compare_expand.h"
 #include "compare_keys.h"
 #include "base/fileio.h"
+#include "image/exr.h"
 #include "image/imgio.h"
 #include "job/job_limits.h"
 
@@ -27,16 +28,28 @@ int compare_expand_reference(struct compare_loading *L)
                              "e.g. reference: { sampler: jitter, threshold: 0.5 }",
                              c->n_scenes);
         struct job tmp = L->scene_base[0];
-        struct rgbf img = {0};
+        struct compare_scene *cs = &c->scenes[0];
         if (compare_keys_apply(&tmp, d, "reference", r, L->e) < 0)
             return -1;
-        if (imgio_read_f(tmp.reference, &img, &c->scenes[0].ref_domain, L->e) < 0)
-            return ydoc_fail(d, r, L->e, "reference: %s: %s", tmp.reference, L->e->msg);
-        int w = img.w, h = img.h;
+        if (!(cs->ref = study_inputs_find_ref(c->inputs, tmp.reference, cs->input->hash))) {
+            struct study_ref got = {0};
+            uint8_t *data = NULL;
+            size_t len = 0;
+            int rc = fileio_read_all(tmp.reference, EXR_MAX_BYTES, &data, &len, L->e) < 0 ||
+                             study_ref_decode(&got, tmp.reference, cs->input->hash, data, len, L->e) < 0
+                         ? -1
+                         : 0;
+            free(data);
+            if (rc < 0)
+                return ydoc_fail(d, r, L->e, "reference: %s: %s", tmp.reference, L->e->msg);
+            if (!(cs->ref = study_inputs_keep_ref(c->inputs, &got, L->e)))
+                return -1;
+        }
+        cs->ref_domain = cs->ref->domain;
+        int w = cs->ref->f.w, h = cs->ref->f.h;
         size_t bad = 0, n = (size_t)w * h * 3;
         for (size_t i = 0; i < n; i++)
-            bad += !isfinite(img.px[i]);
-        image_f_free(&img);
+            bad += !isfinite(cs->ref->f.px[i]);
         if (bad) /* every error against it would be NaN: found now, not after the renders */
             return ydoc_fail(d, r, L->e, "reference: %s: %zu of its %zu values are NaN or infinite",
                              tmp.reference, bad, n);

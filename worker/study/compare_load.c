@@ -25,16 +25,20 @@ void compare_free(struct compare *c)
     free(c->seeds);
     free(c->items);
     verdict_study_free(&c->verdict);
+    if (c->owns_inputs)
+        study_inputs_free(c->inputs);
     free(c);
 }
 
-/* Scene size: the job's width, height or width / the camera's aspect (as run_job does). */
+/* Scene s read once (its parse kept for the renders) and checked; its size: the job's width,
+   height or width / the camera's aspect (as run_job does). */
 static int scene_size(struct compare_loading *L, int s, yaml_node_t *at)
 {
     struct compare_scene *cs = &L->c->scenes[s];
     const struct job *j = &L->scene_base[s];
     struct scene_file sf = {0};
-    if (scene_load(j->scene_path, &sf, L->e) < 0)
+    if (!(cs->input = study_inputs_scene(L->c->inputs, j->scene_path, L->e)) ||
+        scene_load_src(&cs->input->src, &sf, L->e) < 0)
         return -1;
     cs->width = j->width;
     long h = j->height ? j->height : lround(j->width / sf.aspect);
@@ -222,14 +226,22 @@ struct compare *compare_load(const char *path, struct err *e)
 
 struct compare *compare_load_doc(const struct ydoc *doc, const char *path, struct err *e)
 {
+    return compare_load_in(doc, path, NULL, e);
+}
+
+struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct study_inputs *in,
+                                struct err *e)
+{
     /* the document borrowed: read through L.d, freed by its owner */
     struct compare_loading L = {.d = *doc, .e = e};
     const char *extra[] = {"scenes", "variants", "sweep", "seeds"};
     int ok = 0;
-    if (!(L.c = calloc(1, sizeof *L.c))) {
+    if (!(L.c = calloc(1, sizeof *L.c)) || !(L.c->inputs = in ? in : study_inputs_new())) {
+        free(L.c);
         err_set(e, path, 0, 0, "out of memory");
         return NULL;
     }
+    L.c->owns_inputs = !in;
     snprintf(L.c->path, sizeof L.c->path, "%s", path);
     job_defaults(&L.base, path);
     yaml_node_t *root = ydoc_root(&L.d), *k, *v;

@@ -8,24 +8,21 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
+#include "image/exr.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "base/rng.h"
 #include "job/outdir.h"
 #include "job/sidecar.h"
-#include "scenefile/scene_load.h"
 
-/* The cache key of a scene's reference: its scene file's and texture images' bytes, every setting that
-   changes the reference's pixels, and the worker program's own bytes: a rebuilt renderer may draw other
-   pixels, and its version string does not change with every commit. */
-static int reference_key(const struct compare_scene *cs, uint64_t *key, struct err *e)
+/* The cache key of a scene's reference: its scene file's and texture images' bytes (the scene's
+   hash, study_scene.hash), every setting that changes the reference's pixels, and the worker
+   program's own bytes: a rebuilt renderer may draw other pixels, and its version string does not
+   change with every commit. */
+static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
 {
     const struct job *j = &cs->ref_job;
-    struct err ignored;
-    uint64_t h = HASH_FNV_OFFSET;
-    fileio_hash("/proc/self/exe", 1u << 30, &h, &ignored); /* unreadable: the key lacks it */
-    if (scene_hash_inputs(j->scene_path, &h, e) < 0)
-        return -1;
+    uint64_t h = hash_u64(study_inputs_program_hash(c->inputs), cs->input->hash);
     char text[512];
     int n = snprintf(text, sizeof text,
                      "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s%s halves",
@@ -34,8 +31,7 @@ static int reference_key(const struct compare_scene *cs, uint64_t *key, struct e
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
                      j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
                      job_roulette(j) ? " roulette" : "");
-    *key = hash_bytes(h, text, (size_t)n);
-    return 0;
+    return hash_bytes(h, text, (size_t)n);
 }
 
 /* The seconds a half took to render and its samples per pixel, from its sidecar (0 when unknown). */
@@ -48,32 +44,60 @@ static void half_figures(const char *sidecar, double *wall_s, double *spp)
     *spp = ok && isfinite(info.spp_mean) ? info.spp_mean : 0;
 }
 
-/* The record beside a cached half (<stem>.key): its cache key and a hash of the EXR's bytes as
-   rendered, so a file of another scene or settings put at its name, a PFM or PNG renamed .exr, or
-   a damaged one no longer matches and is rendered again. */
-static int record_text(const char *exr, uint64_t key, char *buf, size_t n)
+/* The record beside a cached half (<stem>.key): its cache key and a hash of the EXR's bytes (exr,
+   len) as rendered, so a file of another scene or settings put at its name, a PFM or PNG renamed
+   .exr, or a damaged one no longer matches and is rendered again. */
+static void record_text(const uint8_t *exr, size_t len, uint64_t key, char *buf, size_t n)
 {
-    uint64_t h = HASH_FNV_OFFSET;
-    struct err ignored;
-    if (fileio_hash(exr, 1u << 30, &h, &ignored) < 0)
-        return -1;
     snprintf(buf, n, "worker reference half: key %016llx, exr %016llx\n", (unsigned long long)key,
-             (unsigned long long)h);
-    return 0;
+             (unsigned long long)hash_bytes(HASH_FNV_OFFSET, exr, len));
 }
 
-/* Whether the cached half at exr (of key) is the one its record names: 1, else 0. */
-static int record_ok(const char *exr, const char *record, uint64_t key)
+/* Whether the cached half of key whose bytes are exr (len) is the one its record names: 1, else 0. */
+static int record_ok(const uint8_t *exr, size_t len, const char *record, uint64_t key)
 {
     char want[128];
     uint8_t *have = NULL;
-    size_t len;
+    size_t have_len;
     struct err ignored;
-    int ok = record_text(exr, key, want, sizeof want) == 0 &&
-             fileio_read_all(record, 256, &have, &len, &ignored) == 0 && len == strlen(want) &&
-             !memcmp(have, want, len);
+    record_text(exr, len, key, want, sizeof want);
+    int ok = fileio_read_all(record, 256, &have, &have_len, &ignored) == 0 && have_len == strlen(want) &&
+             !memcmp(have, want, have_len);
     free(have);
     return ok;
+}
+
+/* The cached half at path (of key, its record beside it) read once into img when it is the one its
+   record names and of the scene's size: 1, else 0 (img empty). */
+static int half_cached(const struct compare_scene *cs, const char *path, const char *record, uint64_t key,
+                       struct rgbf *img)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    struct err ignored;
+    int ok = fileio_read_all(path, EXR_MAX_BYTES, &data, &len, &ignored) == 0 &&
+             record_ok(data, len, record, key) && imgio_decode_f(data, len, path, img, NULL, &ignored) == 0 &&
+             img->w == cs->width && img->h == cs->height;
+    free(data);
+    if (!ok)
+        image_f_free(img);
+    return ok;
+}
+
+/* The half just rendered at path read back once into img, and its record written. 0 or -1. */
+static int half_rendered(const char *path, const char *record, uint64_t key, struct rgbf *img, struct err *e)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    char text[128];
+    int rc = -1;
+    if (fileio_read_all(path, EXR_MAX_BYTES, &data, &len, e) == 0 &&
+        imgio_decode_f(data, len, path, img, NULL, e) == 0) {
+        record_text(data, len, key, text, sizeof text);
+        rc = fileio_write_atomic(record, text, strlen(text), e);
+    }
+    free(data);
+    return rc;
 }
 
 /* Half h (0 or 1) of the reference: its settings with half the samples (the thresholds, a spacing,
@@ -93,12 +117,10 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
     struct outdir_files files;
     outdir_files(&j, o->out_dir, &files);
     const char *path = files.image[0], *sidecar = files.sidecar;
-    char record[JOB_PATH_MAX + 8], text[128];
+    char record[JOB_PATH_MAX + 8];
     snprintf(record, sizeof record, "%.*s.key", (int)(strlen(path) - 4), path);
-    struct err ignored;
     double wall_s = 0, spp = 0;
-    if (record_ok(path, record, key) && imgio_read_f(path, img, NULL, &ignored) == 0 && img->w == cs->width &&
-        img->h == cs->height) {
+    if (half_cached(cs, path, record, key, img)) {
         half_figures(sidecar, &wall_s, &spp);
     } else {
         if (access(path, F_OK) == 0)
@@ -106,14 +128,14 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
                     "%s: the cached half %s is not the one its record names (damaged, replaced or of an "
                     "older worker): rendering it again\n",
                     cs->name, path);
-        image_f_free(img);
         cs->ref_reused = 0;
         run_say(o, "%s: rendering the reference's half %c (%s t=%g, light %s t=%g, seed %llu) into %s\n",
                 cs->name, "ab"[h], sampler_kind_name(j.sampler), j.threshold,
                 sampler_kind_name(j.light_sampler), j.light_threshold, (unsigned long long)j.seed, path);
         struct run_result rr;
         struct run_opts forced = *o;
-        forced.force = 1; /* its sidecar may call a damaged image current */
+        forced.force = 1;               /* its sidecar may call a damaged image current */
+        forced.scene = &cs->input->src; /* the scene as the study read it */
         char label[JOB_NAME_MAX + 32];
         snprintf(label, sizeof label, "%s reference %c", cs->name, "ab"[h]);
         forced.label = label;
@@ -124,8 +146,7 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
         }
         wall_s = rr.procs.wall_s;
         spp = rr.procs.total.pixels ? (double)rr.procs.total.samples / rr.procs.total.pixels : 0;
-        if (imgio_read_f(path, img, NULL, e) < 0 || record_text(path, key, text, sizeof text) < 0 ||
-            fileio_write_atomic(record, text, strlen(text), e) < 0)
+        if (half_rendered(path, record, key, img, e) < 0)
             return 1;
     }
     cs->ref_wall_s += wall_s;
@@ -176,15 +197,69 @@ void compare_ref_measure(struct compare_scene *cs)
     image_f_free(&a), image_f_free(&b);
 }
 
+/* The mean m of the halves as cs->ref_path holds it, kept in c->inputs as cs->ref: the file read
+   once when the halves were reused and it matches, else written from m. 0 or -1. */
+static int keep_mean(struct compare *c, struct compare_scene *cs, struct rgbf *m, struct err *e)
+{
+    struct study_ref r = {.domain = IMG_LINEAR,
+                          .reused = cs->ref_reused,
+                          .wall_s = cs->ref_wall_s,
+                          .spp = cs->ref_spp,
+                          .relmse = cs->ref_relmse,
+                          .radiance = cs->ref_radiance,
+                          .radiance_se = cs->ref_radiance_se};
+    uint8_t *data = NULL;
+    size_t len = 0;
+    struct rgbf had = {0};
+    struct err ignored;
+    int current = cs->ref_reused &&
+                  fileio_read_all(cs->ref_path, EXR_MAX_BYTES, &data, &len, &ignored) == 0 &&
+                  imgio_decode_f(data, len, cs->ref_path, &had, NULL, &ignored) == 0 && had.w == m->w &&
+                  had.h == m->h && !memcmp(had.px, m->px, sizeof *m->px * 3 * (size_t)m->w * m->h);
+    image_f_free(&had);
+    if (!current) {
+        free(data);
+        data = NULL;
+        if (imgio_encode_f(m, IMG_EXR, NULL, 0, &data, &len, e) < 0 ||
+            fileio_write_atomic(cs->ref_path, data, len, e) < 0) {
+            free(data);
+            return -1;
+        }
+    }
+    snprintf(r.path, sizeof r.path, "%s", cs->ref_path);
+    r.scene_hash = cs->input->hash;
+    r.hash = hash_bytes(r.scene_hash, data, len); /* the bytes as the file holds them */
+    free(data);
+    r.f = *m; /* taken over */
+    *m = (struct rgbf){0};
+    if (image_alloc(&r.display, r.f.w, r.f.h, e) < 0) {
+        study_ref_free(&r);
+        return -1;
+    }
+    image_float_to_rgb8(r.f.px, r.f.w, r.f.h, r.display.px);
+    return (cs->ref = study_inputs_keep_ref(c->inputs, &r, e)) ? 0 : -1;
+}
+
+/* Scene cs's reference as another study of the suite prepared it (kept): its figures, as if reused
+   from the cache. */
+static void take_kept(struct compare_scene *cs, const struct study_ref *kept)
+{
+    cs->ref = kept;
+    cs->ref_reused = 1;
+    cs->ref_wall_s = kept->wall_s;
+    cs->ref_spp = kept->spp;
+    cs->ref_relmse = kept->relmse;
+    cs->ref_radiance = kept->radiance;
+    cs->ref_radiance_se = kept->radiance_se;
+}
+
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
 {
     struct compare_scene *cs = &c->scenes[s];
     cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
     if (cs->ref_kind != COMPARE_REF_SETTINGS)
         return 0;
-    uint64_t key;
-    if (reference_key(cs, &key, e) < 0)
-        return 2;
+    uint64_t key = reference_key(c, cs);
     struct job j = cs->ref_job;
     snprintf(j.name, sizeof j.name, ".cache");
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
@@ -192,22 +267,25 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
     outdir_files(&j, o->out_dir, &files);
     snprintf(cs->ref_path, sizeof cs->ref_path, "%s", files.image[0]);
     cs->ref_domain = IMG_LINEAR;
-    cs->ref_reused = 1, cs->ref_wall_s = 0, cs->ref_spp = 0;
-    struct rgbf a = {0}, b = {0}, m = {0};
-    int rc = half(cs, 0, key, o, &a, e);
-    if (rc == 0)
-        rc = half(cs, 1, key, o, &b, e);
-    if (rc == 0) {
-        mean_of_halves(cs, &a, &b);
-        struct err ignored;
-        int current = cs->ref_reused && imgio_read_f(cs->ref_path, &m, NULL, &ignored) == 0 && m.w == a.w &&
-                      m.h == a.h && !memcmp(m.px, a.px, sizeof *a.px * 3 * (size_t)a.w * a.h);
-        if (!current && imgio_write_f(cs->ref_path, &a, IMG_EXR, NULL, 0, e) < 0)
-            rc = 1;
+    const struct study_ref *kept = study_inputs_find_ref(c->inputs, cs->ref_path, cs->input->hash);
+    if (kept) {
+        take_kept(cs, kept);
+    } else {
+        cs->ref_reused = 1, cs->ref_wall_s = 0, cs->ref_spp = 0;
+        struct rgbf a = {0}, b = {0};
+        int rc = half(cs, 0, key, o, &a, e);
+        if (rc == 0)
+            rc = half(cs, 1, key, o, &b, e);
+        if (rc == 0) {
+            mean_of_halves(cs, &a, &b);
+            rc = keep_mean(c, cs, &a, e) < 0;
+        }
+        image_f_free(&a), image_f_free(&b);
+        if (rc != 0)
+            return rc;
     }
-    if (rc == 0 && cs->ref_reused)
+    if (cs->ref_reused)
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);
-    image_f_free(&a), image_f_free(&b), image_f_free(&m);
-    return rc;
+    return 0;
 }

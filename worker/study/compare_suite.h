@@ -16,6 +16,7 @@ struct compare_suite {
     char name[JOB_NAME_MAX];
     int n_studies, n_items;
     struct compare *studies[COMPARE_SUITE_MAX_STUDIES]; /* owned, in the order listed */
+    struct study_inputs *inputs; /* owned: the scenes and references of all studies, each read once */
 };
 
 /* Load the suite at path and every study it lists (paths relative to the suite's file), each

@@ -27,6 +27,7 @@ void compare_suite_free(struct compare_suite *s)
         return;
     for (int i = 0; i < s->n_studies; i++)
         compare_free(s->studies[i]);
+    study_inputs_free(s->inputs);
     free(s);
 }
 
@@ -99,8 +100,9 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
     if (!S_ISREG(st.st_mode))
         return ydoc_fail(d, item, e, "studies: %s is not a file", study);
     struct ydoc sd; /* the study file read once: checked, then loaded */
-    struct compare *c =
-        ydoc_load(&sd, study, e) < 0 || check_not_nested(&sd, e) < 0 ? NULL : compare_load_doc(&sd, study, e);
+    struct compare *c = ydoc_load(&sd, study, e) < 0 || check_not_nested(&sd, e) < 0
+                            ? NULL
+                            : compare_load_in(&sd, study, s->inputs, e);
     ydoc_free(&sd);
     if (!c)
         return -1;
@@ -143,7 +145,8 @@ struct compare_suite *compare_suite_load_doc(const struct ydoc *doc, const char 
     struct ydoc d = *doc; /* borrowed: read, freed by its owner */
     struct job base;
     int ok = 0;
-    if (!s) {
+    if (!s || !(s->inputs = study_inputs_new())) {
+        free(s);
         err_set(e, path, 0, 0, "out of memory");
         return NULL;
     }

@@ -95,21 +95,14 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
     return 0;
 }
 
-/* The scene's reference, at the renders' zoom, with id ref<s> (what the A/B toggle shows): ref
-   and reff filled with its 8-bit display image and its floats. */
-static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int s, int zoom, struct rgb8 *ref,
-                            struct rgbf *reff, struct err *e)
+/* The scene's reference (its pixels as the study scored against them, cs->ref), at the renders'
+   zoom, with id ref<s> (what the A/B toggle shows). */
+static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int s, int zoom, struct err *e)
 {
-    int linear = cs->ref_domain == IMG_LINEAR;
     char id[32];
     snprintf(id, sizeof id, "ref%d", s);
     struct report_view_img view = {zoom, id, NULL, "reference"};
-    /* shown as its 8-bit display image (an EXR's floats converted as the PNG writer does) */
-    if (imgio_read_f(cs->ref_path, reff, NULL, e) < 0 ||
-        (linear ? image_alloc(ref, reff->w, reff->h, e) : imgio_read(cs->ref_path, ref, e)) < 0)
-        return -1;
-    if (linear)
-        image_float_to_rgb8(reff->px, reff->w, reff->h, ref->px);
+    const struct rgb8 *ref = &cs->ref->display; /* an EXR's floats converted as the PNG writer does */
     sbuf_printf(b, "<div class=\"row\"><figure>");
     if (report_view_rgb(b, ref, &view, e) < 0)
         return -1;
@@ -128,31 +121,30 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
 static int scene_section(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[s];
-    struct rgb8 ref = {0};
-    struct rgbf reff = {0};
-    int rc = -1, has_ref = cs->ref_kind != COMPARE_REF_NONE, linear = cs->ref_domain == IMG_LINEAR;
+    int has_ref = cs->ref_kind != COMPARE_REF_NONE, linear = cs->ref_domain == IMG_LINEAR;
+    if (has_ref && !cs->ref)
+        return err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", c->name, cs->name);
     int zoom = report_image_zoom(cs->width, REPORT_IMAGE_SHOW_PX);
     sbuf_printf(b, "<section class=\"scene\"><h2>Scene ");
     sbuf_escape(b, cs->name);
     sbuf_printf(b, " (%dx%d)</h2>\n", cs->width, cs->height);
     report_view_controls(b, c, zoom, has_ref);
-    if (has_ref && reference_figure(b, cs, s, zoom, &ref, &reff, e) < 0)
-        goto done;
+    if (has_ref && reference_figure(b, cs, s, zoom, e) < 0)
+        return -1;
     sbuf_printf(b, "<h3>Side by side at each sweep point, with samples per pixel</h3>\n");
     if (image_grid(b, c, s, dir, zoom, has_ref, e) < 0)
-        goto done;
+        return -1;
     if (has_ref) {
         int *order = calloc((size_t)c->n_points, sizeof *order);
-        if (!order) {
-            err_set(e, NULL, 0, 0, "out of memory");
-            goto done;
-        }
+        if (!order)
+            return err_set(e, NULL, 0, 0, "out of memory");
         compare_stats_point_order(c, s, 0, order);
         int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
         free(order);
-        if (report_closeup(b, c, s, mid, dir, &ref, linear ? &reff : NULL, e) < 0 ||
-            (densest != mid && report_closeup(b, c, s, densest, dir, &ref, linear ? &reff : NULL, e) < 0))
-            goto done;
+        const struct rgbf *reff = linear ? &cs->ref->f : NULL;
+        if (report_closeup(b, c, s, mid, dir, &cs->ref->display, reff, e) < 0 ||
+            (densest != mid && report_closeup(b, c, s, densest, dir, &cs->ref->display, reff, e) < 0))
+            return -1;
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
@@ -165,11 +157,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         free(line);
     }
     sbuf_printf(b, "</ul>\n</section>\n");
-    rc = 0;
-done:
-    image_free(&ref);
-    image_f_free(&reff);
-    return rc;
+    return 0;
 }
 
 /* A relative link from the page: href with every byte but letters, digits and "-._~/"

@@ -104,20 +104,23 @@ int verdict_from_compare(const struct compare *c, const char *dir, struct verdic
         return err_set(e, NULL, 0, 0, "out of memory");
     for (int s = 0; s < c->n_scenes; s++) {
         const struct compare_scene *cs = &c->scenes[s];
-        struct rgbf ref = {0};
+        struct rgbf read = {0};
         struct figures_mem m = {0};
         struct err unread;
-        /* without the reference's pixels the checks on images are skipped (the verdict says so) */
-        int has_ref =
-            cs->ref_kind != COMPARE_REF_NONE && imgio_read_f(cs->ref_path, &ref, NULL, &unread) == 0;
-        int rc =
-            gather(c, s, dir, has_ref ? &ref : NULL, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
+        /* the pixels the study scored against (cs->ref); a study judged again from its outputs reads
+           the file; without them the checks on images are skipped (the verdict says so) */
+        const struct rgbf *ref = cs->ref_kind == COMPARE_REF_NONE                        ? NULL
+                                 : cs->ref                                               ? &cs->ref->f
+                                 : imgio_read_f(cs->ref_path, &read, NULL, &unread) == 0 ? &read
+                                                                                         : NULL;
+        int has_ref = ref != NULL;
+        int rc = gather(c, s, dir, ref, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
         if (rc == 0) {
             m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !has_ref;
             rc = verdict_scene_compute(&m.f, &out->scenes[s], e);
         }
         mem_free(&m);
-        image_f_free(&ref);
+        image_f_free(&read);
         if (rc < 0) {
             verdict_study_free(out);
             return -1;
