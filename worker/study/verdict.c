@@ -326,30 +326,6 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
     return 0;
 }
 
-void verdict_scene_free(struct verdict_scene *v)
-{
-    free(v->variants);
-    free(v->by_samples.e);
-    free(v->by_cpu.e);
-    free(v->by_slope.e);
-    free(v->failures);
-    free(v->repeat);
-    free(v->repeat_bias);
-    free(v->samples_vary);
-    free(v->warnings);
-    free(v->sentences);
-    verdict_look_free(&v->look);
-    *v = (struct verdict_scene){0};
-}
-
-void verdict_study_free(struct verdict_study *s)
-{
-    for (int i = 0; s->scenes && i < s->n_scenes; i++)
-        verdict_scene_free(&s->scenes[i]);
-    free(s->scenes);
-    *s = (struct verdict_study){0};
-}
-
 void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)
 {
     verdict_ranking_winner(v, &v->by_cpu, 1, buf, n);

@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "chart.h"
 #include "verdict_rank.h"
 
 static double mean_spp(const struct verdict_figures *f, int v, int p)
@@ -114,59 +113,4 @@ int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *
         out->n_sentences++;
     }
     return 0;
-}
-
-void verdict_look_free(struct verdict_look *l)
-{
-    free(l->point), free(l->mean), free(l->se), free(l->rel);
-    free(l->by_relmse.e), free(l->by_look.e);
-    *l = (struct verdict_look){.at = NAN};
-}
-
-char *verdict_look_svg(const struct verdict_study *s)
-{
-    int n_series = 0, n_vals = 0;
-    for (int i = 0; i < s->n_scenes; i++)
-        n_series += s->scenes[i].n_variants, n_vals += s->scenes[i].n_variants * s->scenes[i].n_points;
-    struct chart_series *ser = calloc((size_t)n_series + 1, sizeof *ser);
-    struct chart_panel *pan = calloc((size_t)s->n_scenes + 1, sizeof *pan);
-    double *mem = calloc((size_t)n_vals * 2 + 1, sizeof *mem);
-    char(*titles)[160] = calloc((size_t)s->n_scenes + 1, sizeof *titles), title[256], *svg = NULL;
-    if (!ser || !pan || !mem || !titles)
-        goto done;
-    struct chart_series *sr = ser;
-    double *lo = mem, *hi = mem + n_vals;
-    for (int i = 0; i < s->n_scenes; i++) {
-        const struct verdict_scene *v = &s->scenes[i];
-        for (int k = 0; k < v->n_variants; k++) {
-            int o = k * v->n_points;
-            for (int p = 0; p < v->n_points; p++)
-                lo[o + p] = v->look.mean[o + p] - v->look.se[o + p],
-                       hi[o + p] = v->look.mean[o + p] + v->look.se[o + p];
-            sr[k] = (struct chart_series){v->variants[k],
-                                          v->n_points,
-                                          v->look.rel + o,
-                                          v->look.mean + o,
-                                          v->n_seeds > 1 ? lo + o : NULL,
-                                          v->n_seeds > 1 ? hi + o : NULL};
-        }
-        snprintf(titles[i], sizeof titles[i], "%s: how the error looks", v->scene);
-        pan[i] = (struct chart_panel){titles[i],
-                                      "relMSE (log)",
-                                      "error_lowfreq (1: white noise; lower: bluer; log)",
-                                      "no error_lowfreq measured",
-                                      sr,
-                                      v->n_variants,
-                                      NULL,
-                                      0};
-        sr += v->n_variants, lo += v->n_variants * v->n_points, hi += v->n_variants * v->n_points;
-    }
-    snprintf(
-        title, sizeof title,
-        "%s: error_lowfreq against relMSE along the sweep (mean over seeds; whiskers: +- one standard error)",
-        s->name);
-    svg = chart_svg(title, pan, s->n_scenes, 2);
-done:
-    free(ser), free(pan), free(mem), free(titles);
-    return svg;
 }

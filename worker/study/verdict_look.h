@@ -13,10 +13,4 @@
    more variants are compared. 0, or -1 out of memory (out->look's arrays then freed). */
 int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *out);
 
-void verdict_look_free(struct verdict_look *l);
-
-/* The study's plot: per scene, each variant's error_lowfreq (mean over seeds, whiskers +- one
-   standard error) against its relMSE along the sweep, log-log. Malloc'd SVG, NULL on no memory. */
-char *verdict_look_svg(const struct verdict_study *s);
-
 #endif
