@@ -6,11 +6,11 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "study/compare.h"
-#include "study/compare_stats.h"
-#include "study/report_chart.h"
-#include "study/report_stability.h"
-#include "study/verdict_from.h"
+#include "study/run/compare.h"
+#include "study/judge/compare_stats.h"
+#include "study/present/report_chart.h"
+#include "study/present/report_stability.h"
+#include "study/judge/verdict_from.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 

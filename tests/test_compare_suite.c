@@ -7,8 +7,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "study/compare_suite.h"
-#include "study/compare_suite_out.h"
+#include "study/run/compare_suite.h"
+#include "study/present/compare_suite_out.h"
 
 static char dir[256], scene[1024];
 

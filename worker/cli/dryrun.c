@@ -7,9 +7,9 @@
 
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
-#include "study/compare.h"
-#include "study/compare_suite.h"
-#include "study/verdict.h"
+#include "study/run/compare.h"
+#include "study/run/compare_suite.h"
+#include "study/judge/verdict.h"
 
 /* One plain job's pilot, and what all of a compare job's pilots share (each takes a pixel at
    least), in CPU seconds. */

@@ -1,6 +1,6 @@
 /* compare_suite_load: reading a suite (`name:` and `studies:`) and loading every study it lists,
    each checked as a compare job of its own, before anything renders. */
-#include "compare_suite.h"
+#include "study/run/compare_suite.h"
 
 #include <errno.h>
 #include <stdio.h>

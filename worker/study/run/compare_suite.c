@@ -9,10 +9,10 @@
 
 #include "base/fileio.h"
 #include "base/sbuf.h"
-#include "compare_suite_out.h"
+#include "study/present/compare_suite_out.h"
 #include "job/outdir.h"
 #include "job/run_out.h"
-#include "verdict_out.h"
+#include "study/present/verdict_out.h"
 
 /* The studies' verdicts side by side, as verdict.h's calls take them: shallow copies (each
    study's compare owns its verdict's arrays); a study without one has no scenes. Free the array

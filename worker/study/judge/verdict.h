@@ -12,7 +12,7 @@
 #include "base/err.h"
 #include "base/json.h"
 #include "base/sbuf.h"
-#include "verdict_model.h"
+#include "study/load/verdict_model.h"
 
 /* A share of the error that repeats in every seed above this is structured (aliasing, a pattern,
    a bias): pure noise averages away across seeds. */

@@ -8,9 +8,9 @@
 #include "job/job.h"
 #include "image/metrics.h"
 #include "job/run.h"
-#include "study_env.h"
-#include "study_inputs.h"
-#include "verdict.h"
+#include "study/load/study_env.h"
+#include "study/load/study_inputs.h"
+#include "study/judge/verdict.h"
 
 /* Most images one compare job may expand to. */
 #define COMPARE_MAX_ITEMS 4096

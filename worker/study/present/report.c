@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compare_stats.h"
+#include "study/judge/compare_stats.h"
 #include "report_chart.h"
 #include "report_stability.h"
 #include "base/fileio.h"

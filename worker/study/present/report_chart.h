@@ -3,7 +3,7 @@
 #ifndef REPORT_CHART_H
 #define REPORT_CHART_H
 
-#include "compare.h"
+#include "study/run/compare.h"
 
 /* The chart as a malloc'd SVG document (caller frees), NULL when out of memory. */
 char *report_chart_svg(const struct compare *c);

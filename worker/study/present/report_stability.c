@@ -5,7 +5,7 @@
 #include <stdlib.h>
 
 #include "base/sbuf.h"
-#include "compare_stats.h"
+#include "study/judge/compare_stats.h"
 
 static const struct verdict_entry *slope_of(const struct verdict_scene *vs, int v)
 {

@@ -11,7 +11,7 @@
 #include "base/fileio.h"
 #include "compare.h"
 #include "compare_ref.h"
-#include "verdict_from.h"
+#include "study/judge/verdict_from.h"
 
 #define CSV_MAX_BYTES (64u << 20)
 #define CSV_FIELDS 20

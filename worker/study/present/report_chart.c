@@ -5,7 +5,7 @@
 #include <stdlib.h>
 
 #include "chart.h"
-#include "compare_stats.h"
+#include "study/judge/compare_stats.h"
 
 char *report_chart_svg(const struct compare *c)
 {

@@ -1,6 +1,6 @@
 /* compare_load: reading a compare job's keys, scenes, seeds, sweep and variants, with every
    check done before anything renders (compare_expand.c makes the combinations). */
-#include "compare.h"
+#include "study/run/compare.h"
 #include "compare_expand.h"
 #include "compare_keys.h"
 

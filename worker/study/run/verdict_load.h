@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #include "base/err.h"
-#include "verdict.h"
+#include "study/judge/verdict.h"
 
 /* The verdicts of the study or suite in dir (DIR/summary.csv; a suite's leading `study` column
    finds each study in DIR/<study>/), judged again by verdict_from_compare; *out a malloc'd array of

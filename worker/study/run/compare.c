@@ -9,8 +9,8 @@
 #include <time.h>
 
 #include "compare_ref.h"
-#include "compare_stats.h"
-#include "report_chart.h"
+#include "study/judge/compare_stats.h"
+#include "study/present/report_chart.h"
 #include "base/clock.h"
 #include "base/fileio.h"
 #include "image/errspec.h"
@@ -18,10 +18,10 @@
 #include "base/hash.h"
 #include "job/outdir.h"
 #include "job/sidecar.h"
-#include "report.h"
+#include "study/present/report.h"
 #include "study_machines.h"
-#include "verdict_from.h"
-#include "verdict_out.h"
+#include "study/judge/verdict_from.h"
+#include "study/present/verdict_out.h"
 #include "job/run_out.h"
 #include "base/sbuf.h"
 

@@ -6,9 +6,9 @@
 #include <string.h>
 
 #include "chart.h"
-#include "verdict_look.h"
+#include "study/judge/verdict_look.h"
 #include "verdict_out.h"
-#include "verdict_rank.h"
+#include "study/judge/verdict_rank.h"
 
 #define TIE_RULE                                                                                             \
     "Each variant's figure is its seeds' mean of log relMSE at the common point (for slopes: the mean of "   \

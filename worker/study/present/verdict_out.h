@@ -6,8 +6,8 @@
 #include <stddef.h>
 
 #include "base/sbuf.h"
-#include "study_env.h"
-#include "verdict.h"
+#include "study/load/study_env.h"
+#include "study/judge/verdict.h"
 
 /* verdict.json: {"job", "error", "alpha", "tie_rule", "reproducibility" (env's, when not NULL),
    "studies": [{"study", "scenes": [{"scene", "seeds", "reference_relmse", "equal_samples",
