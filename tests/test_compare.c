@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "study/load/compare_load.h"
 #include "study/run/compare.h"
 #include "study/judge/compare_stats.h"
 #include "study/present/report_chart.h"

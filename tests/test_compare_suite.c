@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "study/load/compare_suite_load.h"
 #include "study/run/compare_suite.h"
 #include "study/present/compare_suite_out.h"
 

@@ -7,8 +7,8 @@
 
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
-#include "study/run/compare.h"
-#include "study/run/compare_suite.h"
+#include "study/load/compare_load.h"
+#include "study/load/compare_suite_load.h"
 #include "study/judge/verdict.h"
 
 /* One plain job's pilot, and what all of a compare job's pilots share (each takes a pixel at

@@ -1,5 +1,6 @@
 /* compare_stats: means and spread of a compare job's figures, and its seed images taken together. */
 #include "compare_stats.h"
+#include "verdict.h"
 
 #include <math.h>
 #include <stdio.h>

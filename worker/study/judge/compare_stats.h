@@ -4,7 +4,7 @@
 #ifndef COMPARE_STATS_H
 #define COMPARE_STATS_H
 
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 
 /* One (scene, variant, sweep point) over its seeds. rel* are relMSE; 0 when not measured. */
 struct compare_agg {

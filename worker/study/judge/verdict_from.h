@@ -4,7 +4,7 @@
 #ifndef VERDICT_FROM_H
 #define VERDICT_FROM_H
 
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 #include "verdict.h"
 
 /* The verdict of every scene of c, whose images are in dir; its study is named c->name. 0, or -1

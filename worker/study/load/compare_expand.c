@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "study/run/compare.h"
+#include "compare_model.h"
 #include "compare_expand.h"
 #include "compare_keys.h"
 #include "base/fileio.h"

@@ -3,7 +3,7 @@
 #ifndef COMPARE_EXPAND_H
 #define COMPARE_EXPAND_H
 
-#include "study/run/compare.h"
+#include "compare_model.h"
 #include "scenefile/yamlx.h"
 
 /* What the loader holds while it reads one file. */

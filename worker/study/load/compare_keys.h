@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-#include "study/run/compare.h"
+#include "compare_model.h"
 #include "scenefile/yamlx.h"
 
 /* Why `key` may not be set where `where` says ("top", "variant", "sweep", "reference"), or NULL. */

@@ -1,6 +1,6 @@
 /* compare_load: reading a compare job's keys, scenes, seeds, sweep and variants, with every
    check done before anything renders (compare_expand.c makes the combinations). */
-#include "study/run/compare.h"
+#include "compare_load.h"
 #include "compare_expand.h"
 #include "compare_keys.h"
 
@@ -14,21 +14,6 @@
 #include "job/outdir.h"
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
-
-void compare_free(struct compare *c)
-{
-    if (!c)
-        return;
-    free(c->scenes);
-    free(c->variants);
-    free(c->points);
-    free(c->seeds);
-    free(c->items);
-    verdict_study_free(&c->verdict);
-    if (c->owns_inputs)
-        study_inputs_free(c->inputs);
-    free(c);
-}
 
 /* Scene s read once (its parse kept for the renders) and checked; its size: the job's width,
    height or width / the camera's aspect (as run_job does). */

@@ -1,6 +1,7 @@
 /* compare_suite_load: reading a suite (`name:` and `studies:`) and loading every study it lists,
    each checked as a compare job of its own, before anything renders. */
-#include "study/run/compare_suite.h"
+#include "compare_suite_load.h"
+#include "compare_load.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -20,16 +21,6 @@ static const char *const study_only[] = {"scenes", "variants", "sweep", "seeds",
 /* The suite's own outputs in OUT/<suite>/: no study may be named as one (its folder would take
    the file's place). */
 static const char *const top_files[] = {"summary.csv", "chart.svg", "report.html", "verdict.json", NULL};
-
-void compare_suite_free(struct compare_suite *s)
-{
-    if (!s)
-        return;
-    for (int i = 0; i < s->n_studies; i++)
-        compare_free(s->studies[i]);
-    study_inputs_free(s->inputs);
-    free(s);
-}
 
 static int in_list(const char *key, const char *const *list)
 {

@@ -3,7 +3,7 @@
 #ifndef COMPARE_SUITE_OUT_H
 #define COMPARE_SUITE_OUT_H
 
-#include "study/run/compare_suite.h"
+#include "study/load/compare_model.h"
 #include "verdict_out.h"
 
 /* Every study's summary.csv (read back from dir/<study>/) with a leading `study` column, under

@@ -2,7 +2,7 @@
 #ifndef REPORT_H
 #define REPORT_H
 
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 #include "base/sbuf.h"
 
 /* The page for a finished compare job whose images are in dir (OUT/<name>/): the chart, per

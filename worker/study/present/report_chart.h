@@ -3,7 +3,7 @@
 #ifndef REPORT_CHART_H
 #define REPORT_CHART_H
 
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 
 /* The chart as a malloc'd SVG document (caller frees), NULL when out of memory. */
 char *report_chart_svg(const struct compare *c);

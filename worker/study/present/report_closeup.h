@@ -4,7 +4,7 @@
 #define REPORT_CLOSEUP_H
 
 #include "base/sbuf.h"
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 #include "image/image.h"
 
 /* Crops and error maps of scene s at sweep point p, every variant and seed (the images read from

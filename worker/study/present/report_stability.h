@@ -4,7 +4,7 @@
 #ifndef REPORT_STABILITY_H
 #define REPORT_STABILITY_H
 
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 
 /* One line for people on (scene s, variant v) of c, from its figures and c->verdict (without a
    verdict or a reference: only what needs neither). Its length grows with the sweep: a malloc'd

@@ -8,7 +8,7 @@
 
 #include "base/err.h"
 #include "base/sbuf.h"
-#include "study/run/compare.h"
+#include "study/load/compare_model.h"
 #include "image/image.h"
 
 /* The page's CSS for what this module writes (a string literal, to join the page's style). */

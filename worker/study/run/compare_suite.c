@@ -1,6 +1,7 @@
 /* compare_suite: running a loaded suite: each study as a compare job into OUT/<suite>/<study>/,
    then the suite's verdict.json, summary.csv, chart.svg and report.html, and its summary line. */
 #include "compare_suite.h"
+#include "compare.h"
 
 #include <stdio.h>
 #include <stdlib.h>

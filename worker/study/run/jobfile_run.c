@@ -8,6 +8,8 @@
 #include "base/clock.h"
 #include "compare.h"
 #include "compare_suite.h"
+#include "study/load/compare_load.h"
+#include "study/load/compare_suite_load.h"
 
 /* A compare job (c) or a suite (s), loaded from the parsed job file, run, and its line printed. */
 static int run_study(const struct jobfile *f, const struct run_opts *o,

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include "compare_ref.h"
+#include "study/load/compare_load.h"
+#include "study/load/compare_suite_load.h"
 #include "job/outdir.h"
 #include "job/run.h"
 

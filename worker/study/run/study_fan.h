@@ -4,8 +4,8 @@
 #ifndef STUDY_FAN_H
 #define STUDY_FAN_H
 
-#include "compare.h"
-#include "compare_suite.h"
+#include "job/run.h"
+#include "study/load/compare_model.h"
 #include "job/jobfile.h"
 
 /* A loaded compare job: a plain one (c) or a suite (s), one of them. */
