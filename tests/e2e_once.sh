@@ -2,7 +2,8 @@
 # e2e_once: each input read once, each output renamed once (issue 29), counted with strace over
 # the worker and its render processes: the job file is opened once per job (from the command
 # line, and in a queue once after the claim), the scene file once (its one read is hashed and
-# parsed), and every output (images, sidecar) is the target of exactly one rename, from a
+# parsed), a reference image once (hashed and scored), for a compare job and a suite also each
+# image texture and cached reference once, and every output (images, sidecar) is the target of exactly one rename, from a
 # temporary name, with no temporary renamed into another temporary (no second staging).
 . "$(dirname "$0")/lib.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -59,6 +60,14 @@ traced again --out "$T/out" "$T/one.yaml"
 check "again: up to date, nothing renamed" [ "$(renames "$T/again.log" | grep -c .)" -eq 0 ]
 once again "the job file" "$T/one.yaml"
 once again "the scene file" "$T/scene.yaml"
+
+# 2b. a job scored against a reference image: the reference opened once (its bytes hashed and
+#     decoded), the error figures in the sidecar
+cp "$T/out/one/pic.exr" "$T/ref.exr"
+job "$T/scored.yaml" "reference: $T/ref.exr"
+traced scored --out "$T/out" "$T/scored.yaml"
+once scored "its reference image" "$T/ref.exr"
+check "scored: the error against the reference in the sidecar" grep -q '"relmse"' "$T/out/scored/scored.json"
 
 # 3. a queue: the claimed file is opened once after the claim (the scan reads the waiting file for
 #    its priority before), the scene once, each output renamed once

@@ -58,5 +58,7 @@ int jobfile_run(const struct jobfile *f, const struct run_opts *o,
         return 2;
     struct run_opts with_scene = *o;
     with_scene.scene = &f->scene;
+    with_scene.ref_bytes = f->ref_bytes;
+    with_scene.ref_len = f->ref_len;
     return run_job(&f->job, &with_scene, &out->rr, &out->e);
 }
