@@ -3,8 +3,9 @@
 # the worker and its render processes: the job file is opened once per job (from the command
 # line, and in a queue once after the claim), the scene file once (its one read is hashed and
 # parsed), a reference image once (hashed and scored), for a compare job and a suite also each
-# image texture and cached reference once, and every output (images, sidecar) is the target of exactly one rename, from a
-# temporary name, with no temporary renamed into another temporary (no second staging).
+# image texture and cached reference once, and every output (images, sidecar) is the target of
+# exactly one rename, from a temporary name, with no temporary renamed into another temporary
+# (no second staging).
 . "$(dirname "$0")/lib.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
 if ! command -v strace >/dev/null 2>&1 || ! strace -f -o /dev/null true 2>/dev/null; then
