@@ -47,7 +47,8 @@ Q := @
 endif
 
 COMMON_SRC := $(wildcard common/*/*.c)
-WORKER_SRC := $(filter-out worker/cli/main.c,$(wildcard worker/*/*.c))
+# worker/study/ is one folder deeper, a subfolder per stage (load, judge, present, run)
+WORKER_SRC := $(filter-out worker/cli/main.c,$(wildcard worker/*/*.c worker/*/*/*.c))
 TEST_SRC   := $(wildcard tests/test_*.c)
 TOOL_SRC   := $(wildcard tools/*.c)
 COMMON_OBJ := $(COMMON_SRC:%.c=$(BUILD)/%.o)
@@ -209,7 +210,7 @@ fuzz: deps
 	done
 
 lint:
-	clang-format --dry-run --Werror common/*/*.[ch] worker/*/*.[ch] tests/*.[ch] tests/fuzz/*.[ch] tools/*.c
+	clang-format --dry-run --Werror common/*/*.[ch] worker/*/*.[ch] worker/*/*/*.[ch] tests/*.[ch] tests/fuzz/*.[ch] tools/*.c
 	cppcheck --quiet --error-exitcode=1 --enable=warning,portability --std=c11 -Icommon -Iworker common worker
 
 clean:

@@ -2,7 +2,8 @@
 """check_layers: the file-level call graph of the built objects, from `nm` (a file calls another
 when it leaves undefined a symbol the other defines). Fails, naming files and symbols, on any cycle
 between .c files, any cycle between folders (each folder a layer), and any call against the
-layering cli -> study/farm -> job -> common/*.
+layering cli -> study/farm -> job -> common/*, and inside worker/study/ run -> present -> judge ->
+load.
 
 Usage: check_layers.py BUILD_DIR [SOURCE_DIR]   (objects under BUILD_DIR/common and BUILD_DIR/worker;
 an object whose source is no longer in SOURCE_DIR, default ".", is a stale one: passed over)
@@ -16,6 +17,13 @@ FORBIDDEN = [
     ("worker/job/", ("worker/farm/", "worker/study/", "worker/cli/"), "one job knows no farm, study or command line"),
     ("worker/farm/", ("worker/cli/",), "the farm is called by the command line, never calls it"),
     ("worker/study/", ("worker/cli/",), "the study is called by the command line, never calls it"),
+    # worker/study/'s stages, bottom up: load (the model and its reading) < judge (the verdict) <
+    # present (report, charts, verdict.json) < run (renders, and drives the others)
+    ("worker/study/load/", ("worker/study/judge/", "worker/study/present/", "worker/study/run/"),
+     "the loader builds the model: it calls nothing above it"),
+    ("worker/study/judge/", ("worker/study/present/", "worker/study/run/"),
+     "the judge reads a study's figures: it neither presents nor runs"),
+    ("worker/study/present/", ("worker/study/run/",), "the presentation shows a study: it never runs one"),
     ("common/", ("worker/",), "common/ is a library: it knows nothing of the program"),
 ]
 

@@ -29,7 +29,7 @@ intab { buf = buf " " $0; if ($0 ~ /};/) { emit(tab, buf); intab = 0 }; next }
     }
 }
 EOF
-loaders="worker/job/*.c common/scenefile/*.c worker/study/compare*.c"
+loaders="worker/job/*.c common/scenefile/*.c worker/study/load/compare*.c"
 awk -f "$T/tables.awk" $loaders >"$T/tables"
 # a compare variant's extra key, the argument after "variant" in the key check's call:
 # compare_keys_check(&L->d, var, "variant", "label", L->e)

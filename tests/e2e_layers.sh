@@ -1,7 +1,8 @@
 #!/bin/sh
 # e2e_layers: no two .c files call each other in a circle, no folder does, and calls run down the
-# layers cli -> study/farm -> job -> common/* (tests/check_layers.py over the built objects). The
-# checker is shown to fail on a small bad tree first, so a pass means something.
+# layers cli -> study/farm -> job -> common/*, and inside study/ run -> present -> judge -> load
+# (tests/check_layers.py over the built objects). The checker is shown to fail on a small bad tree
+# first, so a pass means something.
 . "$(dirname "$0")/lib.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${TEST_BIN_DIR:-$root/build/tests}/.." && pwd)
@@ -18,7 +19,12 @@ mkdir -p "$T/src/worker/job" "$T/src/worker/farm" "$T/src/common/base" "$T/b/wor
 printf 'int farm_b(void);\nint job_a(void) { return farm_b(); }\n' >"$T/src/worker/job/a.c"
 printf 'int job_a(void);\nint farm_b(void) { return job_a() + 1; }\n' >"$T/src/worker/farm/b.c"
 printf 'int job_a(void);\nint base_c(void) { return job_a(); }\n' >"$T/src/common/base/c.c"
-for f in worker/job/a worker/farm/b common/base/c; do
+# and a study's judge calling its runner, which calls the judge back: a stage out of order, and a
+# cycle between two stage folders
+mkdir -p "$T/src/worker/study/judge" "$T/src/worker/study/run" "$T/b/worker/study/judge" "$T/b/worker/study/run"
+printf 'int run_r(void);\nint judge_j(void) { return run_r(); }\n' >"$T/src/worker/study/judge/j.c"
+printf 'int judge_j(void);\nint run_r(void) { return judge_j() + 1; }\n' >"$T/src/worker/study/run/r.c"
+for f in worker/job/a worker/farm/b common/base/c worker/study/judge/j worker/study/run/r; do
     ${CC:-cc} -c "$T/src/$f.c" -o "$T/b/$f.o" || no "cannot compile $f.c"
 done
 cp "$T/b/worker/job/a.o" "$T/b/worker/job/gone.o"
@@ -29,7 +35,9 @@ check "a bad tree: the symbols of the cycle named" grep -q 'worker/job/a.c -> wo
 check "a bad tree: job calling the farm named" grep -q '^layer: worker/job/a.c -> worker/farm/b.c' "$T/bad.out"
 check "a bad tree: common calling the program named" grep -q '^layer: common/base/c.c -> worker/job/a.c' "$T/bad.out"
 check "a bad tree: the folders' cycle named" grep -q '^folder cycle: worker/farm <-> worker/job' "$T/bad.out"
-check "a bad tree: a stale object passed over" grep -q '3 files' "$T/bad.out"
+check "a bad tree: the judge calling the runner named" grep -q '^layer: worker/study/judge/j.c -> worker/study/run/r.c' "$T/bad.out"
+check "a bad tree: the stage folders' cycle named" grep -q '^folder cycle: worker/study/judge <-> worker/study/run' "$T/bad.out"
+check "a bad tree: a stale object passed over" grep -q '5 files' "$T/bad.out"
 
 # 2. the real build
 python3 "$root/tests/check_layers.py" "$build" "$root" >"$T/real.out" 2>&1; rc=$?

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "study/chart.h"
+#include "study/present/chart.h"
 #include "check.h"
 
 static int count(const char *s, const char *what)

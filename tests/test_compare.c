@@ -3,34 +3,24 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "check.h"
-#include "study/compare.h"
-#include "study/compare_stats.h"
-#include "study/report_chart.h"
-#include "study/report_stability.h"
-#include "study/verdict_from.h"
+#include "compare_fixture.h"
+#include "study/load/compare_load.h"
+#include "study/run/compare.h"
+#include "study/judge/compare_stats.h"
+#include "study/present/report_chart.h"
+#include "study/present/report_stability.h"
+#include "study/judge/verdict_from.h"
 #include "base/fileio.h"
 #include "image/imgio.h"
 
-static char dir[256], scene[1024];
+static struct compare_fixture fx;
 
-/* Write text (with "SCENE" replaced by the checker scene's path) to dir/name; return the path. */
+/* A job file written into the scratch folder (compare_fixture_file); its path. */
 static const char *job_file(const char *name, const char *text)
 {
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    for (const char *p = text; *p; p++)
-        if (!strncmp(p, "SCENE", 5)) {
-            fputs(scene, f);
-            p += 4;
-        } else {
-            fputc(*p, f);
-        }
-    fclose(f);
-    return path;
+    return compare_fixture_file(&fx, name, text);
 }
 
 static const struct compare_item *item(const struct compare *c, int s, int v, int p, int k)
@@ -121,7 +111,7 @@ static void test_errors(void)
         CHECK(image_f_alloc(&img, 4, 4, &e) == 0);
         for (int i = 0; i < 4 * 4 * 3; i++)
             img.px[i] = i == 7 ? NAN : 0.5f;
-        snprintf(path, sizeof path, "%s/nan.exr", dir);
+        snprintf(path, sizeof path, "%s/nan.exr", fx.dir);
         CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
         image_f_free(&img);
         CHECK(!compare_load(job_file("e6.yaml", "scene: SCENE\nwidth: 4\nheight: 4\nreference: nan.exr\n"
@@ -147,7 +137,7 @@ static struct compare *hand_made(const char *name, const char *yaml)
 }
 
 /* report_stability's line for (scene s, variant v) copied into buf, for strstr: the verdict of
-   c's figures (and images in dir) printed; ref NULL: as if the job had no reference. */
+   c's figures (and images in fx.dir) printed; ref NULL: as if the job had no reference. */
 static void stability(struct compare *c, int s, int v, const struct rgbf *ref, char *buf, size_t n)
 {
     struct err e;
@@ -155,7 +145,7 @@ static void stability(struct compare *c, int s, int v, const struct rgbf *ref, c
     if (!ref)
         c->scenes[s].ref_kind = COMPARE_REF_NONE;
     verdict_study_free(&c->verdict);
-    c->has_verdict = verdict_from_compare(c, dir, &c->verdict, &e) == 0;
+    c->has_verdict = verdict_from_compare(c, fx.dir, &c->verdict, &e) == 0;
     CHECK(c->has_verdict);
     char *text = report_stability(c, s, v);
     snprintf(buf, n, "%s", text ? text : "");
@@ -276,7 +266,7 @@ static void test_repeated_error(void)
     CHECK(image_f_alloc(&ref, 4, 4, &e) == 0 && image_f_alloc(&img, 4, 4, &e) == 0);
     for (int i = 0; i < 4 * 4 * 3; i++)
         ref.px[i] = 0.4f;
-    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/ref.exr", dir);
+    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/ref.exr", fx.dir);
     CHECK(imgio_write_f(c->scenes[0].ref_path, &ref, IMG_EXR, NULL, 0, &e) == 0);
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
@@ -285,7 +275,7 @@ static void test_repeated_error(void)
                 char path[1024];
                 for (int i = 0; i < 4 * 4 * 3; i++)
                     img.px[i] = v == 0 || k == 0 ? 0.44f : 0.36f;
-                snprintf(path, sizeof path, "%s/%.*s.exr", dir, (int)strlen(it->job.output) - 4,
+                snprintf(path, sizeof path, "%s/%.*s.exr", fx.dir, (int)strlen(it->job.output) - 4,
                          it->job.output);
                 CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
                 it->done = it->has_error = 1;
@@ -306,11 +296,8 @@ static void test_repeated_error(void)
 
 int main(void)
 {
-    char cwd[512];
-    snprintf(dir, sizeof dir, "/tmp/test_compare.XXXXXX");
-    if (!mkdtemp(dir) || !getcwd(cwd, sizeof cwd))
+    if (compare_fixture_open(&fx, "test_compare") < 0)
         return 1;
-    snprintf(scene, sizeof scene, "%s/scenes/checker.yaml", cwd);
     test_expand();
     test_two_keys_no_sweep();
     test_errors();
@@ -318,8 +305,6 @@ int main(void)
     test_stats_flat_samples();
     test_chart_one_seed();
     test_repeated_error();
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    CHECK(system(cmd) == 0);
+    CHECK(compare_fixture_close(&fx) == 0);
     return check_report("test_compare");
 }

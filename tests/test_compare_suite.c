@@ -4,29 +4,19 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include "check.h"
-#include "study/compare_suite.h"
-#include "study/compare_suite_out.h"
+#include "compare_fixture.h"
+#include "study/load/compare_suite_load.h"
+#include "study/run/compare_suite.h"
+#include "study/present/compare_suite_out.h"
 
-static char dir[256], scene[1024];
+static struct compare_fixture fx;
 
-/* Write text (with "SCENE" replaced by the checker scene's path) to dir/name; return the path. */
+/* A job file written into the scratch folder (compare_fixture_file); its path. */
 static const char *file(const char *name, const char *text)
 {
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    for (const char *p = text; *p; p++)
-        if (!strncmp(p, "SCENE", 5)) {
-            fputs(scene, f);
-            p += 4;
-        } else {
-            fputc(*p, f);
-        }
-    fclose(f);
-    return path;
+    return compare_fixture_file(&fx, name, text);
 }
 
 /* A tiny study named name with two variants, two points and two seeds (8 images). */
@@ -47,7 +37,7 @@ static void test_load(void)
     study("studies/b.yaml", "beta");
     const char *path = file("suite.yaml", "name: top\nstudies: [studies/a.yaml, studies/b.yaml]\n");
     char a_path[512];
-    snprintf(a_path, sizeof a_path, "%s/studies/a.yaml", dir);
+    snprintf(a_path, sizeof a_path, "%s/studies/a.yaml", fx.dir);
     struct compare_suite *s = compare_suite_load(path, &e);
     CHECK(s != NULL);
     if (!s) {
@@ -73,7 +63,7 @@ static void refused(const char *name, const char *text, const char *at_file, int
     struct err e = {0};
     char want[512];
     struct compare_suite *s = compare_suite_load(file(name, text), &e);
-    snprintf(want, sizeof want, "%s/%s", dir, at_file);
+    snprintf(want, sizeof want, "%s/%s", fx.dir, at_file);
     CHECK(s == NULL);
     compare_suite_free(s);
     int ok = strcmp(e.file, want) == 0 && e.line == line && e.col == col && strstr(e.msg, msg);
@@ -122,21 +112,21 @@ static void test_outputs(void)
         return;
     /* the studies' own summary.csv, as compare_run writes them; a quoted field holds a line break */
     char path[512];
-    snprintf(path, sizeof path, "%s/o", dir);
+    snprintf(path, sizeof path, "%s/o", fx.dir);
     mkdir(path, 0755);
-    snprintf(path, sizeof path, "%s/o/alpha", dir);
+    snprintf(path, sizeof path, "%s/o/alpha", fx.dir);
     mkdir(path, 0755);
-    snprintf(path, sizeof path, "%s/o/beta", dir);
+    snprintf(path, sizeof path, "%s/o/beta", fx.dir);
     mkdir(path, 0755);
     file("o/alpha/summary.csv", "scene,variant\n\"two\nlines\",jitter\nchecker,random\n");
     file("o/beta/summary.csv", "scene,variant\nchecker,jitter\n");
-    snprintf(path, sizeof path, "%s/o", dir);
+    snprintf(path, sizeof path, "%s/o", fx.dir);
     char *csv = compare_suite_csv(s, path, &e);
     CHECK(csv && strcmp(csv, "study,scene,variant\nalpha,\"two\nlines\",jitter\nalpha,checker,random\n"
                              "beta,checker,jitter\n") == 0);
     free(csv);
     /* a study's summary.csv missing: an error naming it */
-    snprintf(path, sizeof path, "%s/nowhere", dir);
+    snprintf(path, sizeof path, "%s/nowhere", fx.dir);
     CHECK(compare_suite_csv(s, path, &e) == NULL && strstr(e.file, "nowhere/alpha/summary.csv"));
     /* the chart: one document, each study's chart nested below the one before */
     char *svg = compare_suite_chart_svg(s);
@@ -157,19 +147,14 @@ static void test_outputs(void)
 
 int main(void)
 {
-    char cwd[512];
-    snprintf(dir, sizeof dir, "/tmp/test_compare_suite.XXXXXX");
-    if (!mkdtemp(dir) || !getcwd(cwd, sizeof cwd))
+    if (compare_fixture_open(&fx, "test_compare_suite") < 0)
         return 1;
-    snprintf(scene, sizeof scene, "%s/scenes/checker.yaml", cwd);
     char sub[300];
-    snprintf(sub, sizeof sub, "%s/studies", dir);
+    snprintf(sub, sizeof sub, "%s/studies", fx.dir);
     mkdir(sub, 0755);
     test_load();
     test_errors();
     test_outputs();
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    CHECK(system(cmd) == 0);
+    CHECK(compare_fixture_close(&fx) == 0);
     return check_report("test_compare_suite");
 }

@@ -6,7 +6,7 @@
 
 #include "check.h"
 #include "image/errmap.h"
-#include "study/report_image.h"
+#include "study/present/report_image.h"
 
 /* An image of w x h pixels, every channel v. */
 static void flat(struct rgb8 *img, int w, int h, uint8_t v)

@@ -6,9 +6,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "study/verdict.h"
-#include "study/verdict_out.h"
-#include "study/verdict_rank.h"
+#include "study/judge/verdict.h"
+#include "study/present/verdict_out.h"
+#include "study/judge/verdict_rank.h"
 
 #define NV 4
 #define NP 3

@@ -7,9 +7,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "study/verdict.h"
-#include "study/verdict_look.h"
-#include "study/verdict_out.h"
+#include "study/judge/verdict.h"
+#include "study/judge/verdict_look.h"
+#include "study/present/verdict_out.h"
 
 #define NV 3
 #define NP 2

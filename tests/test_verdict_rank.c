@@ -7,7 +7,7 @@
 
 #include "base/rng.h"
 #include "check.h"
-#include "study/verdict_rank.h"
+#include "study/judge/verdict_rank.h"
 
 #define STUDIES 4000
 #define SEEDS 8

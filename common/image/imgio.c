@@ -74,20 +74,22 @@ int imgio_read(const char *path, struct rgb8 *out, struct err *e)
 {
     uint8_t *data;
     size_t len;
-    out->w = 0;
-    out->h = 0;
-    out->px = NULL;
+    *out = (struct rgb8){0};
     if (fileio_read_all(path, IMGIO_MAX_BYTES, &data, &len, e) < 0)
         return -1;
-    int rc;
-    if (len >= 4 && memcmp(data, "\x89PNG", 4) == 0)
-        rc = png_decode(data, len, path, out, e);
-    else if (len >= 2 && data[0] == 'P' && data[1] >= '1' && data[1] <= '7')
-        rc = ppm_decode(data, len, path, out, e); /* it names the netpbm variants it rejects */
-    else
-        rc = err_set(e, path, 0, 0, "unknown image format (expected PNG or PPM)");
+    int rc = imgio_decode(data, len, path, out, e);
     free(data);
     return rc;
+}
+
+int imgio_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
+{
+    *out = (struct rgb8){0};
+    if (len >= 4 && memcmp(data, "\x89PNG", 4) == 0)
+        return png_decode(data, len, name, out, e);
+    if (len >= 2 && data[0] == 'P' && data[1] >= '1' && data[1] <= '7')
+        return ppm_decode(data, len, name, out, e); /* it names the netpbm variants it rejects */
+    return err_set(e, name, 0, 0, "unknown image format (expected PNG or PPM)");
 }
 
 static int is_exr(const uint8_t *d, size_t len)
@@ -110,24 +112,31 @@ int imgio_read_f(const char *path, struct rgbf *out, enum img_domain *domain, st
         *domain = IMG_LINEAR;
     if (fileio_read_all(path, EXR_MAX_BYTES, &data, &len, e) < 0)
         return -1;
-    int rc;
-    if (is_exr(data, len)) {
-        rc = exr_image_decode(data, len, path, out, e);
-    } else if (is_pfm(data, len)) {
-        rc = pfm_decode(data, len, path, out, e);
-    } else if (len >= 4 &&
-               (memcmp(data, "\x89PNG", 4) == 0 || (data[0] == 'P' && data[1] >= '1' && data[1] <= '7'))) {
-        struct rgb8 img = {0};
-        rc = data[0] == 0x89 ? png_decode(data, len, path, &img, e) : ppm_decode(data, len, path, &img, e);
-        if (rc == 0)
-            rc = image_f_from_rgb8(&img, out, e);
-        image_free(&img);
-        if (domain)
-            *domain = IMG_DISPLAY8;
-    } else {
-        rc = err_set(e, path, 0, 0, "unknown image format (expected EXR, PFM, PNG or PPM)");
-    }
+    int rc = imgio_decode_f(data, len, path, out, domain, e);
     free(data);
+    return rc;
+}
+
+int imgio_decode_f(const uint8_t *data, size_t len, const char *name, struct rgbf *out,
+                   enum img_domain *domain, struct err *e)
+{
+    *out = (struct rgbf){0};
+    if (domain)
+        *domain = IMG_LINEAR;
+    if (is_exr(data, len))
+        return exr_image_decode(data, len, name, out, e);
+    if (is_pfm(data, len))
+        return pfm_decode(data, len, name, out, e);
+    if (!(len >= 4 &&
+          (memcmp(data, "\x89PNG", 4) == 0 || (data[0] == 'P' && data[1] >= '1' && data[1] <= '7'))))
+        return err_set(e, name, 0, 0, "unknown image format (expected EXR, PFM, PNG or PPM)");
+    struct rgb8 img = {0};
+    int rc = data[0] == 0x89 ? png_decode(data, len, name, &img, e) : ppm_decode(data, len, name, &img, e);
+    if (rc == 0)
+        rc = image_f_from_rgb8(&img, out, e);
+    image_free(&img);
+    if (domain)
+        *domain = IMG_DISPLAY8;
     return rc;
 }
 

@@ -15,6 +15,9 @@
 /* Read a PNG or PPM file (chosen by its magic bytes) into out. */
 int imgio_read(const char *path, struct rgb8 *out, struct err *e);
 
+/* imgio_read of a file's bytes already read (data, len; name for messages). */
+int imgio_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
+
 /* The formats imgio_write writes: a format: name, also the file extension (any case) that
    chooses it. */
 const char *img_format_name(enum img_format fmt);
@@ -38,6 +41,10 @@ int imgio_write(const char *path, const struct rgb8 *img, enum img_format fmt, s
    through gamma 2: the writer's clamp and 1/255 steps are not invertible, and an error measured
    on these values is the 8-bit display error, named as such, not a guess at radiance. */
 int imgio_read_f(const char *path, struct rgbf *out, enum img_domain *domain, struct err *e);
+
+/* imgio_read_f of a file's bytes already read (data, len; name for messages). */
+int imgio_decode_f(const uint8_t *data, size_t len, const char *name, struct rgbf *out,
+                   enum img_domain *domain, struct err *e);
 
 /* Write the float image img as an EXR or PFM file (fmt IMG_EXR or IMG_PFM) atomically to path;
    attrs (nattrs strings) go into an EXR's header. 0, or -1 with e filled. */

@@ -6,8 +6,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "base/fileio.h"
-#include "base/hash.h"
 #include "image/imgio.h"
 #include "scene_parse.h"
 #include "scene_objects.h"
@@ -119,17 +117,6 @@ static int load_noise(struct scene_parse *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
-/* path, set to where an image texture's `file` is: beside the scene file unless absolute. */
-static const char *texture_path(const char *scene, const char *file, char *path, size_t n)
-{
-    const char *slash = strrchr(scene, '/');
-    if (file[0] == '/' || !slash)
-        snprintf(path, n, "%s", file);
-    else
-        snprintf(path, n, "%.*s/%s", (int)(slash - scene), scene, file);
-    return path;
-}
-
 /* An image texture: `file` relative to the scene file, PNG or PPM, at most
    TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
 static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
@@ -143,7 +130,7 @@ static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
     if (yget_string(&L->d, v, "file", &file, L->e) < 0)
         return -1;
     char path[1024];
-    texture_path(L->d.file, file, path, sizeof path);
+    const struct scene_src_file *f = scene_src_texture(L->src, L->d.file, file, path, sizeof path);
     struct stat st;
     if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
         return ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
@@ -152,8 +139,11 @@ static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
                          (long long)st.st_size, TEXTURE_MAX_BYTES);
     struct rgb8 img;
     struct err ie;
-    if (imgio_read(path, &img, &ie) < 0)
-        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path, ie.msg);
+    if (!f || !f->bytes || imgio_decode(f->bytes, f->len, path, &img, &ie) < 0)
+        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path,
+                         !f         ? "not read with its scene"
+                         : f->bytes ? ie.msg
+                                    : f->read_err.msg);
     if ((long)img.w * img.h > TEXTURE_MAX_PIXELS) {
         ydoc_fail(&L->d, v, L->e, "file: texture %s is %dx%d, over the limit of %ld pixels", path, img.w,
                   img.h, (long)TEXTURE_MAX_PIXELS);
@@ -306,7 +296,7 @@ int scene_load_src(const struct scene_src *src, struct scene_file *out, struct e
         return -1;
     }
     /* the parsed document borrowed (read, never freed here): a retried render loads it again */
-    struct scene_parse L = {.d = src->doc, .e = e};
+    struct scene_parse L = {.d = src->doc, .src = src, .e = e};
     const char *path = src->doc.file;
     memset(out, 0, sizeof *out);
     int rc = -1;
@@ -362,39 +352,4 @@ void scene_file_free(struct scene_file *sf)
 {
     scene_free(sf->scene);
     sf->scene = NULL;
-}
-
-int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct err *e)
-{
-    uint8_t *data;
-    size_t len;
-    memset(src, 0, sizeof *src);
-    if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
-        return -1;
-    *h = hash_bytes(*h, data, len);
-    src->parsed = ydoc_parse(&src->doc, path, data, len, &src->parse_err) == 0;
-    free(data);
-    struct ydoc *d = &src->doc;
-    yaml_node_t *textures = src->parsed ? ymap_get(d, ydoc_root(d), "textures") : NULL, *k, *v;
-    for (int i = 0; textures && ymap_pair(d, textures, i, &k, &v); i++) {
-        const char *t = yscalar(ymap_get(d, v, "type")), *f = yscalar(ymap_get(d, v, "file"));
-        char tpath[1024];
-        struct err ignored; /* unreadable: scene_load_src says so */
-        if (t && f && !strcmp(t, "image"))
-            fileio_hash(texture_path(path, f, tpath, sizeof tpath), TEXTURE_MAX_BYTES, h, &ignored);
-    }
-    return 0;
-}
-
-void scene_src_free(struct scene_src *src)
-{
-    ydoc_free(&src->doc);
-}
-
-int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
-{
-    struct scene_src src;
-    int rc = scene_src_read(path, &src, h, e);
-    scene_src_free(&src);
-    return rc;
 }

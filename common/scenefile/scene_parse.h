@@ -19,6 +19,7 @@ struct names {
 
 struct scene_parse {
     struct ydoc d;
+    const struct scene_src *src; /* the scene file as read: its image textures' bytes */
     struct scene *sc;
     struct names tex, mat;
     struct err *e;

@@ -7,9 +7,9 @@
 
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
-#include "study/compare.h"
-#include "study/compare_suite.h"
-#include "study/verdict.h"
+#include "study/load/compare_load.h"
+#include "study/load/compare_suite_load.h"
+#include "study/judge/verdict.h"
 
 /* One plain job's pilot, and what all of a compare job's pilots share (each takes a pixel at
    least), in CPU seconds. */
@@ -156,7 +156,7 @@ static int study(const struct compare *c, const struct run_opts *o, struct study
     struct scene_file *sf = calloc((size_t)c->n_scenes, sizeof *sf);
     *sum = (struct study_sum){.spp_lo = 1e300};
     for (int s = 0; sf && s < c->n_scenes; s++)
-        if (scene_load(c->items[compare_index(c, s, 0, 0, 0)].job.scene_path, &sf[s], e) < 0)
+        if (scene_load_src(&c->scenes[s].input->src, &sf[s], e) < 0) /* as the study read it */
             goto done;
     for (int i = 0; sf && densest && i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];

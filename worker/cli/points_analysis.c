@@ -10,7 +10,7 @@
 #include "base/fileio.h"
 #include "image/png.h"
 #include "sample/pointstat.h"
-#include "study/chart.h"
+#include "study/present/chart.h"
 
 /* The periodogram picture's log scale: log10 power from SPECTRUM_LOG_LO (black) to SPECTRUM_LOG_HI
    (white), the same for every sampler so pictures compare; white noise (1) is two thirds grey. */

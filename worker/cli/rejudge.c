@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "study/verdict_load.h"
-#include "study/study_env.h"
-#include "study/verdict_out.h"
+#include "study/run/verdict_load.h"
+#include "study/load/study_env.h"
+#include "study/present/verdict_out.h"
 
 /* Per study and scene: its sentences and failures, one line each. */
 static void print_text(const char *job, const struct verdict_study *s, int n)

@@ -9,7 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "study/jobfile_run.h"
+#include "study/run/jobfile_run.h"
 #include "base/fileio.h"
 #include "lease.h"
 #include "queue_claim.h"

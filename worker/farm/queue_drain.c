@@ -14,8 +14,8 @@
 #include "queue_file.h"
 #include "queue_log.h"
 #include "queue_study.h"
-#include "study/study_fan.h"
-#include "study/jobfile_run.h"
+#include "study/run/study_fan.h"
+#include "study/run/jobfile_run.h"
 
 /* The earliest kind ('a', 'b', 'c') of the entries of folder dir; '~' when there is none. */
 static char earliest_in(const char *dir)

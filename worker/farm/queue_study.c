@@ -18,7 +18,7 @@
 #include "queue_file.h"
 #include "queue_log.h"
 #include "scenefile/yamlx.h"
-#include "study/study_fan.h"
+#include "study/run/study_fan.h"
 
 static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
 {

@@ -47,11 +47,12 @@ int jobfile_open(struct jobfile *f, const char *from, const char *path, struct e
     j->hash = f->hash;
     if (scene_src_read(j->scene_path, &f->scene, &j->hash, e) < 0)
         return -1;
-    /* The reference's bytes too: a replaced reference must not leave a sidecar's old error figures
-       current. Unreadable: run_load_reference says so. */
+    /* The reference's bytes too, kept for the render to score against: a replaced reference must
+       not leave a sidecar's old error figures current. Unreadable: run_load_reference says so. */
     struct err ignored;
-    if (j->reference[0])
-        fileio_hash(j->reference, IMGIO_MAX_BYTES, &j->hash, &ignored);
+    if (j->reference[0] &&
+        fileio_read_all(j->reference, IMGIO_MAX_BYTES, &f->ref_bytes, &f->ref_len, &ignored) == 0)
+        j->hash = hash_bytes(j->hash, f->ref_bytes, f->ref_len);
     return 0;
 }
 
@@ -59,6 +60,8 @@ void jobfile_close(struct jobfile *f)
 {
     free(f->bytes);
     f->bytes = NULL;
+    free(f->ref_bytes);
+    f->ref_bytes = NULL;
     ydoc_free(&f->doc);
     scene_src_free(&f->scene);
 }

@@ -26,11 +26,15 @@ struct jobfile {
     struct job job;         /* JOBFILE_PLAIN: its settings, job.hash complete (file, scene, textures,
                                reference) */
     struct scene_src scene; /* JOBFILE_PLAIN: its scene file, read and parsed once (run_opts.scene) */
+    uint8_t *ref_bytes;     /* JOBFILE_PLAIN: its reference image's bytes, read once for the hash and
+                               the score (run_opts.ref_bytes); NULL: none, or unreadable */
+    size_t ref_len;
 };
 
 /* Read the job file at `from` once (at most YDOC_MAX_BYTES), hash and parse it, as if it were at
    `path` (a queue's claimed file still belongs to the queue's folder; the command line gives the
-   same path twice). A plain job is checked key by key and its scene read and hashed. 0, or -1
+   same path twice). A plain job is checked key by key and its scene and reference read and
+   hashed. 0, or -1
    with e = "file:line:col: key: message" (naming path). jobfile_close after either. */
 int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e);
 void jobfile_close(struct jobfile *f);

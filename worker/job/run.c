@@ -55,11 +55,18 @@ static int is_file(const char *path)
 int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
                        struct err *e)
 {
+    return run_decode_reference(j, NULL, 0, w, h, ref, domain, e);
+}
+
+int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h, struct rgbf *ref,
+                         enum img_domain *domain, struct err *e)
+{
     *ref = (struct rgbf){0};
     *domain = IMG_LINEAR;
     if (!j->reference[0])
         return 0;
-    if (imgio_read_f(j->reference, ref, domain, e) < 0) {
+    if ((data ? imgio_decode_f(data, len, j->reference, ref, domain, e)
+              : imgio_read_f(j->reference, ref, domain, e)) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg);
         return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s",
@@ -140,7 +147,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         goto done;
     }
-    if (!o->ref && run_load_reference(j, w, h, &ref, &ref_domain, e) < 0)
+    if (!o->ref && run_decode_reference(j, o->ref_bytes, o->ref_len, w, h, &ref, &ref_domain, e) < 0)
         goto done;
     if (o->parts == 0 && !o->ref && ref.px && ref_domain == IMG_DISPLAY8)
         run_warn_display_reference(j->name, j->reference);

@@ -25,17 +25,20 @@ struct run_opts {
                                           0 = write nothing, fail (a queue claim taken over, the
                                           folder another queued job's) */
     void *tick_arg;
-    double lock_wait_s;             /* > 0: wait no longer for the output folder's lock (a queue: its lease
-                                       timeout); then its holder is stopped or hung, and this render writes
-                                       without it when may_write still says yes */
-    int (*still_held)(void *arg);   /* optional: asked (with tick_arg) just before each output is
-                                       renamed into place: 0 = the claim was taken over meanwhile;
-                                       rename nothing more, fail */
-    const struct scene_src *scene;  /* optional: the job's scene, already read and parsed (jobfile_open);
-                                       NULL: run_job reads j->scene_path itself */
-    const struct rgbf *ref;         /* optional: the job's reference, already read (a compare job reads each
-                                       scene's once); NULL: run_job reads j->reference itself */
-    enum img_domain ref_domain;     /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
+    double lock_wait_s;            /* > 0: wait no longer for the output folder's lock (a queue: its lease
+                                      timeout); then its holder is stopped or hung, and this render writes
+                                      without it when may_write still says yes */
+    int (*still_held)(void *arg);  /* optional: asked (with tick_arg) just before each output is
+                                      renamed into place: 0 = the claim was taken over meanwhile;
+                                      rename nothing more, fail */
+    const struct scene_src *scene; /* optional: the job's scene, already read and parsed (jobfile_open);
+                                      NULL: run_job reads j->scene_path itself */
+    const struct rgbf *ref;        /* optional: the job's reference, already read (a compare job reads each
+                                      scene's once); NULL: run_job reads j->reference itself */
+    enum img_domain ref_domain;    /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
+    const uint8_t *ref_bytes;      /* optional, without ref: j->reference's bytes, already read
+                                      (jobfile_open); NULL: run_job reads the file */
+    size_t ref_len;
     const char *label;              /* optional: the progress line's name; NULL: the job's name (a
                                        compare reference's name is its folder, ".cache") */
     const struct rgb8 *ref_display; /* optional: the reference as 8-bit display values: the PNG or
@@ -68,6 +71,10 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
    reference key. */
 int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
                        struct err *e);
+
+/* run_load_reference of the reference's bytes already read (data, len). */
+int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h, struct rgbf *ref,
+                         enum img_domain *domain, struct err *e);
 
 /* The one-line warning on stderr that the error against the reference at path is measured on
    8-bit display values (a PNG or PPM reference), not on linear radiance. */

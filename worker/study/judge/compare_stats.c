@@ -1,0 +1,135 @@
+/* compare_stats: means and spread of a compare job's figures, and its seed images taken together. */
+#include "compare_stats.h"
+#include "verdict.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/fileio.h"
+#include "image/imgio.h"
+
+void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
+{
+    *a = (struct compare_agg){0};
+    a->rel_lo = INFINITY;
+    for (int k = 0; k < c->n_seeds; k++) {
+        const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+        if (!it->done)
+            continue;
+        a->n++;
+        a->spp += it->spp_mean;
+        a->wall_s += it->wall_s;
+        a->cpu_s += it->cpu_s;
+        if (it->has_error) {
+            a->rel += it->error.relmse;
+            a->rel_lo = fmin(a->rel_lo, it->error.relmse);
+            a->rel_hi = fmax(a->rel_hi, it->error.relmse);
+        }
+    }
+    if (a->n) {
+        a->spp /= a->n;
+        a->wall_s /= a->n;
+        a->cpu_s /= a->n;
+        a->rel /= a->n;
+    }
+    if (!isfinite(a->rel_lo))
+        a->rel_lo = 0;
+}
+
+int compare_stats_samples_vary(const struct compare *c, int s, int v)
+{
+    double lo = INFINITY, hi = 0;
+    struct compare_agg a;
+    for (int p = 0; p < c->n_points; p++) {
+        compare_stats_aggregate(c, s, v, p, &a);
+        if (a.n > 0)
+            lo = fmin(lo, a.spp), hi = fmax(hi, a.spp);
+    }
+    return verdict_samples_vary(lo, hi);
+}
+
+void compare_stats_point_order(const struct compare *c, int s, int v, int *order)
+{
+    struct compare_agg a, b;
+    for (int p = 0; p < c->n_points; p++)
+        order[p] = p;
+    if (!compare_stats_samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
+        return;
+    for (int i = 1; i < c->n_points; i++) /* insertion sort: a handful of points */
+        for (int j = i; j > 0; j--) {
+            compare_stats_aggregate(c, s, v, order[j], &a);
+            compare_stats_aggregate(c, s, v, order[j - 1], &b);
+            if (!(a.spp < b.spp))
+                break;
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+}
+
+double compare_stats_mean_radiance(const struct rgbf *img)
+{
+    size_t n = (size_t)img->w * img->h * 3;
+    double sum = 0;
+    for (size_t i = 0; i < n; i++)
+        sum += img->px[i];
+    return n ? sum / (double)n : NAN;
+}
+
+/* The path of seed image it's pixels in dir: its float copy when the reference is linear. */
+static void image_path(const struct compare *c, int s, const struct compare_item *it, const char *dir,
+                       char *path, size_t n)
+{
+    const char *dot = strrchr(it->job.output, '.');
+    int stem = dot ? (int)(dot - it->job.output) : (int)strlen(it->job.output);
+    if (c->scenes[s].ref_domain == IMG_LINEAR)
+        snprintf(path, n, "%s/%.*s.exr", dir, stem, it->job.output);
+    else
+        snprintf(path, n, "%s/%s", dir, it->job.output);
+}
+
+int compare_stats_seed_images(const struct compare *c, int s, int v, int p, const char *dir,
+                              const struct rgbf *ref, struct compare_seed_stats *out, struct err *e)
+{
+    size_t n = (size_t)ref->w * ref->h * 3;
+    double *sum = calloc(n, sizeof *sum);
+    int rc = -1;
+    if (!sum)
+        return err_set(e, NULL, 0, 0, "out of memory");
+    for (int k = 0; k < c->n_seeds; k++) {
+        char path[4096];
+        struct rgbf img = {0};
+        image_path(c, s, &c->items[compare_index(c, s, v, p, k)], dir, path, sizeof path);
+        if (imgio_read_f(path, &img, NULL, e) < 0)
+            goto done;
+        if (img.w != ref->w || img.h != ref->h) {
+            image_f_free(&img);
+            err_set(e, path, 0, 0, "image is %dx%d, the reference %dx%d", img.w, img.h, ref->w, ref->h);
+            goto done;
+        }
+        for (size_t i = 0; i < n; i++)
+            sum[i] += img.px[i];
+        out->radiance[k] = compare_stats_mean_radiance(&img);
+        image_f_free(&img);
+    }
+    double rel = 0, mean = 0, ref_mean = compare_stats_mean_radiance(ref), bias = 0;
+    for (size_t i = 0; i < n; i++) {
+        double a = ref->px[i], d = sum[i] / c->n_seeds - a;
+        rel += d * d / (a * a + METRICS_REL_EPS);
+        mean += sum[i] / c->n_seeds / (double)n;
+    }
+    /* the offset alone: the reference scaled to the mean image's mean radiance */
+    double scale = ref_mean > 0 ? mean / ref_mean - 1 : 0;
+    for (size_t i = 0; i < n; i++) {
+        double a = ref->px[i], d = scale * a;
+        bias += d * d / (a * a + METRICS_REL_EPS);
+    }
+    out->rel_of_mean = rel / (double)n;
+    out->bias_rel = bias / (double)n;
+    rc = 0;
+done:
+    free(sum);
+    return rc;
+}

@@ -1,0 +1,130 @@
+/* verdict_from: a compare job's figures, per scene, handed to verdict_scene_compute. */
+#include "verdict_from.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "compare_stats.h"
+#include "image/imgio.h"
+
+/* The arrays of one scene's figures (one allocation each, freed together). */
+struct figures_mem {
+    struct verdict_figures f;
+    const char **variants, **samplers, **points;
+    int *pools;
+    double *spp, *cpu, *rel, *share, *rel_of_mean, *bias_rel, *radiance, *lowfreq;
+    uint64_t *nonfinite;
+};
+
+static void mem_free(struct figures_mem *m)
+{
+    free(m->variants), free(m->samplers), free(m->points), free(m->pools);
+    free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->nonfinite);
+    free(m->rel_of_mean), free(m->bias_rel), free(m->radiance), free(m->lowfreq);
+}
+
+static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
+                  struct figures_mem *m)
+{
+    size_t nv = (size_t)c->n_variants, n = nv * c->n_points * c->n_seeds;
+    m->variants = calloc(nv, sizeof *m->variants), m->samplers = calloc(nv, sizeof *m->samplers);
+    m->points = calloc((size_t)c->n_points, sizeof *m->points), m->pools = calloc(nv, sizeof *m->pools);
+    m->spp = calloc(n, sizeof *m->spp), m->cpu = calloc(n, sizeof *m->cpu),
+    m->rel = calloc(n, sizeof *m->rel);
+    m->share = calloc(n, sizeof *m->share), m->nonfinite = calloc(n, sizeof *m->nonfinite);
+    m->rel_of_mean = calloc(nv * c->n_points, sizeof *m->rel_of_mean);
+    m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
+    m->lowfreq = calloc(n, sizeof *m->lowfreq);
+    if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
+        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq)
+        return -1;
+    struct verdict_figures *f = &m->f;
+    *f = (struct verdict_figures){.study = c->name,
+                                  .scene = c->scenes[s].name,
+                                  .n_variants = c->n_variants,
+                                  .n_points = c->n_points,
+                                  .n_seeds = c->n_seeds,
+                                  .variants = m->variants,
+                                  .samplers = m->samplers,
+                                  .pools = m->pools,
+                                  .points = m->points,
+                                  .spp = m->spp,
+                                  .cpu_s = m->cpu,
+                                  .relmse = m->rel,
+                                  .sampler_share = m->share,
+                                  .nonfinite = m->nonfinite,
+                                  .rel_of_mean = m->rel_of_mean,
+                                  .bias_rel = m->bias_rel,
+                                  .radiance = m->radiance,
+                                  .lowfreq = m->lowfreq,
+                                  .ref_spp = c->scenes[s].ref_spp,
+                                  .ref_relmse = c->scenes[s].ref_relmse,
+                                  .ref_radiance = c->scenes[s].ref_radiance,
+                                  .ref_radiance_se = c->scenes[s].ref_radiance_se};
+    if (ref && !(f->ref_radiance > 0))
+        f->ref_radiance = compare_stats_mean_radiance(ref); /* an image reference: its noise unknown */
+    for (int p = 0; p < c->n_points; p++)
+        m->points[p] = c->points[p];
+    for (int v = 0; v < c->n_variants; v++) {
+        const struct job *j = &c->items[compare_index(c, s, v, 0, 0)].job;
+        m->variants[v] = c->variants[v];
+        m->samplers[v] = sampler_kind_name(j->sampler);
+        m->pools[v] = j->poisson_pool;
+        for (int p = 0; p < c->n_points; p++) {
+            struct compare_seed_stats st = {.radiance = m->radiance + verdict_at(f, v, p, 0)};
+            struct err ignored;
+            int vp = v * c->n_points + p;
+            m->rel_of_mean[vp] = m->bias_rel[vp] = NAN;
+            for (int k = 0; k < c->n_seeds; k++)
+                st.radiance[k] = NAN;
+            if (ref && compare_stats_seed_images(c, s, v, p, dir, ref, &st, &ignored) == 0)
+                m->rel_of_mean[vp] = st.rel_of_mean, m->bias_rel[vp] = st.bias_rel;
+            else
+                f->images_unread += ref != NULL;
+            for (int k = 0; k < c->n_seeds; k++) {
+                const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+                int i = verdict_at(f, v, p, k);
+                m->spp[i] = it->spp_mean, m->cpu[i] = it->cpu_s, m->share[i] = it->sampler_share;
+                m->rel[i] = it->has_error ? it->error.relmse : NAN;
+                m->lowfreq[i] = it->has_error ? it->error_lowfreq : NAN;
+                m->nonfinite[i] = it->nonfinite;
+            }
+        }
+    }
+    return 0;
+}
+
+int verdict_from_compare(const struct compare *c, const char *dir, struct verdict_study *out, struct err *e)
+{
+    *out = (struct verdict_study){.n_scenes = c->n_scenes};
+    snprintf(out->name, sizeof out->name, "%s", c->name);
+    out->scenes = calloc((size_t)c->n_scenes, sizeof *out->scenes);
+    if (!out->scenes)
+        return err_set(e, NULL, 0, 0, "out of memory");
+    for (int s = 0; s < c->n_scenes; s++) {
+        const struct compare_scene *cs = &c->scenes[s];
+        struct rgbf read = {0};
+        struct figures_mem m = {0};
+        struct err unread;
+        /* the pixels the study scored against (cs->ref); a study judged again from its outputs reads
+           the file; without them the checks on images are skipped (the verdict says so) */
+        const struct rgbf *ref = cs->ref_kind == COMPARE_REF_NONE                        ? NULL
+                                 : cs->ref                                               ? &cs->ref->f
+                                 : imgio_read_f(cs->ref_path, &read, NULL, &unread) == 0 ? &read
+                                                                                         : NULL;
+        int has_ref = ref != NULL;
+        int rc = gather(c, s, dir, ref, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
+        if (rc == 0) {
+            m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !has_ref;
+            rc = verdict_scene_compute(&m.f, &out->scenes[s], e);
+        }
+        mem_free(&m);
+        image_f_free(&read);
+        if (rc < 0) {
+            verdict_study_free(out);
+            return -1;
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,36 @@
+/* verdict_model: freeing a verdict's arrays. */
+#include "verdict_model.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+void verdict_look_free(struct verdict_look *l)
+{
+    free(l->point), free(l->mean), free(l->se), free(l->rel);
+    free(l->by_relmse.e), free(l->by_look.e);
+    *l = (struct verdict_look){.at = NAN};
+}
+
+void verdict_scene_free(struct verdict_scene *v)
+{
+    free(v->variants);
+    free(v->by_samples.e);
+    free(v->by_cpu.e);
+    free(v->by_slope.e);
+    free(v->failures);
+    free(v->repeat);
+    free(v->repeat_bias);
+    free(v->samples_vary);
+    free(v->warnings);
+    free(v->sentences);
+    verdict_look_free(&v->look);
+    *v = (struct verdict_scene){0};
+}
+
+void verdict_study_free(struct verdict_study *s)
+{
+    for (int i = 0; s->scenes && i < s->n_scenes; i++)
+        verdict_scene_free(&s->scenes[i]);
+    free(s->scenes);
+    *s = (struct verdict_study){0};
+}

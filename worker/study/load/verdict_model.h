@@ -1,0 +1,99 @@
+/* verdict_model: what a verdict holds (verdict.h computes it, verdict_out.h presents it): per
+   scene of a study, its rankings, failures, look, warnings and sentences. The model of a study
+   (compare_model.h) keeps one; the rules that fill it are verdict.h's. */
+#ifndef VERDICT_MODEL_H
+#define VERDICT_MODEL_H
+
+#define VERDICT_LABEL_MAX 64
+/* Room for warnings and sentences per scene (verdict_scene's arrays); more are left out. */
+#define VERDICT_SAY_MAX 16
+#define VERDICT_TEXT_MAX 400
+
+enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
+
+/* One variant in a ranking (verdict_rank.h fills it): its figure over the seeds. */
+struct verdict_entry {
+    int variant;
+    double value, lo, hi; /* relMSE: the geometric mean over seeds, else the mean; the seeds' min, max */
+    double mean, se;      /* the ranked figure (log relMSE, or the slope): mean and standard error */
+    double m2;            /* sum of squared deviations from mean (while adding seeds) */
+    int n;                /* seeds measured */
+    int rank;             /* 1 + the number of variants that beat it (verdict_beats) */
+    int unreached;        /* its cheapest point costs far more than the common point: it cannot be had
+                             there (value, lo, hi: its cheapest point's) */
+};
+
+/* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
+   variant is beaten, INCONCLUSIVE when none beats another (or there is one seed: no spread). */
+struct verdict_ranking {
+    double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
+    int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
+    enum verdict_status status;
+    double p_cut; /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
+                     separated; -1 when none is */
+    int n;
+    struct verdict_entry *e;
+};
+
+enum verdict_failure_kind {
+    VERDICT_STRUCTURED,
+    VERDICT_STALLS,
+    VERDICT_NONFINITE,
+    VERDICT_SHARE,
+    VERDICT_BIASED
+};
+#define VERDICT_FAILURE_KINDS 5
+
+struct verdict_failure {
+    enum verdict_failure_kind kind;
+    int variant, point; /* point: where it shows most (-1: throughout) */
+    double value;       /* the repeated share, the local slope, the samples dropped, the CPU share, the
+                           bias in percent of the reference's mean radiance */
+    double detail;      /* structured: the share of the error that is bias; biased: standard errors */
+    char text[VERDICT_TEXT_MAX];
+};
+
+/* How the error looks (verdict_look.h): error_lowfreq, the error's low-frequency energy share over
+   white noise's (1: white, below 1: bluer), per variant at the sparsest samples per pixel that every
+   variant has, where the look shows most. */
+struct verdict_look {
+    double at;                        /* that samples per pixel (mean); NAN without points */
+    int *point;                       /* per variant: its point nearest `at` (in log spp) */
+    double *mean, *se;                /* per (variant, point): error_lowfreq's mean over seeds, its SE */
+    double *rel;                      /* per (variant, point): relMSE's geometric mean over seeds */
+    struct verdict_ranking by_relmse; /* at `point`: log relMSE, as by_samples ranks it */
+    struct verdict_ranking by_look;   /* the variants by_relmse ranks first (equal relMSE): mean
+                                         error_lowfreq, lowest (bluest) first; n 0 when unmeasured */
+};
+
+struct verdict_scene {
+    char study[VERDICT_LABEL_MAX], scene[VERDICT_LABEL_MAX];
+    int n_variants, n_points, n_seeds;
+    double ref_relmse;   /* the reference's own relMSE, subtracted from every relMSE ranked; NAN unknown */
+    double *repeat;      /* per (variant, point): the share of the error repeating in every seed, NAN */
+    double *repeat_bias; /* per (variant, point): the part of that share a bias in mean radiance makes */
+    int *samples_vary;   /* per variant: verdict_samples_vary over its points */
+    char (*variants)[VERDICT_LABEL_MAX];
+    struct verdict_ranking by_samples, by_cpu, by_slope;
+    struct verdict_look look;
+    int n_failures, n_warnings, n_sentences;
+    struct verdict_failure *failures;
+    char (*warnings)[VERDICT_TEXT_MAX];
+    char (*sentences)[VERDICT_TEXT_MAX];
+};
+
+/* One study: its scenes' verdicts. */
+struct verdict_study {
+    char name[VERDICT_LABEL_MAX];
+    int n_scenes;
+    struct verdict_scene *scenes;
+    char machines[VERDICT_TEXT_MAX]; /* the CPU models its images were rendered on, "; "-joined, when
+                                        more than one (study_machines.h): equal CPU time mixes them */
+};
+
+/* Free what a verdict's arrays hold (the struct emptied; each accepts an empty one). */
+void verdict_look_free(struct verdict_look *l);
+void verdict_scene_free(struct verdict_scene *v);
+void verdict_study_free(struct verdict_study *s);
+
+#endif

@@ -1,0 +1,79 @@
+/* report_chart: a compare job's chart.svg from its figures. */
+#include "report_chart.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "chart.h"
+#include "study/judge/compare_stats.h"
+
+char *report_chart_svg(const struct compare *c)
+{
+    int ns = c->n_variants, np = c->n_points, nsc = c->n_scenes;
+    size_t per = (size_t)nsc * ns * np;
+    double *mem = calloc(per * 5, sizeof *mem);
+    int *order = calloc((size_t)np, sizeof *order);
+    struct chart_series *ser = calloc((size_t)nsc * ns * 2, sizeof *ser);
+    struct chart_panel *pan = calloc((size_t)nsc * 2, sizeof *pan);
+    char(*titles)[160] = calloc((size_t)nsc * 2, sizeof *titles);
+    static const double slopes[] = {-1, -1.5};
+    char *svg = NULL, title[256];
+    if (!mem || !order || !ser || !pan || !titles)
+        goto done;
+    double *cpu = mem, *spp = mem + per, *rel = mem + 2 * per, *lo = mem + 3 * per, *hi = mem + 4 * per;
+    for (int s = 0; s < nsc; s++) {
+        struct chart_series *by_time = ser + (size_t)2 * s * ns, *by_spp = by_time + ns;
+        for (int v = 0; v < ns; v++) {
+            size_t k0 = ((size_t)s * ns + v) * np;
+            compare_stats_point_order(c, s, v, order);
+            for (int i = 0; i < np; i++) {
+                struct compare_agg a;
+                compare_stats_aggregate(c, s, v, order[i], &a);
+                size_t k = k0 + i;
+                cpu[k] = a.cpu_s, spp[k] = a.spp, rel[k] = a.rel, lo[k] = a.rel_lo, hi[k] = a.rel_hi;
+            }
+            /* One seed has no spread: a whisker would be a dot claiming one. */
+            const double *l = c->n_seeds > 1 ? lo + k0 : NULL, *h = c->n_seeds > 1 ? hi + k0 : NULL;
+            by_time[v] = (struct chart_series){c->variants[v], np, cpu + k0, rel + k0, l, h};
+            by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, l, h};
+        }
+        snprintf(titles[2 * s], sizeof titles[0], "%s: error against CPU time", c->scenes[s].name);
+        snprintf(titles[2 * s + 1], sizeof titles[0], "%s: error against samples", c->scenes[s].name);
+        const char *note =
+            c->scenes[s].ref_kind == COMPARE_REF_NONE ? "no reference given: no error to chart" : NULL;
+        pan[2 * s] = (struct chart_panel){titles[2 * s],
+                                          "CPU time per image (s, log)",
+                                          "relMSE (eps 0.01, log)",
+                                          note,
+                                          by_time,
+                                          ns,
+                                          slopes,
+                                          2};
+        pan[2 * s + 1] = (struct chart_panel){titles[2 * s + 1],
+                                              "samples per pixel (mean, log)",
+                                              "relMSE (eps 0.01, log)",
+                                              note,
+                                              by_spp,
+                                              ns,
+                                              slopes,
+                                              2};
+    }
+    if (c->n_seeds > 1)
+        snprintf(title, sizeof title,
+                 "%s: relMSE against CPU time and samples per pixel (mean of %d seeds; whiskers: "
+                 "min to max)",
+                 c->name, c->n_seeds);
+    else
+        snprintf(title, sizeof title,
+                 "%s: relMSE against CPU time and samples per pixel (one seed: no spread across "
+                 "seeds measured)",
+                 c->name);
+    svg = chart_svg(title, pan, 2 * nsc, 2);
+done:
+    free(mem);
+    free(order);
+    free(ser);
+    free(pan);
+    free(titles);
+    return svg;
+}

@@ -1,0 +1,114 @@
+/* report_stability: a variant's stability line, from the verdict's findings. */
+#include "report_stability.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "base/sbuf.h"
+#include "study/judge/compare_stats.h"
+
+static const struct verdict_entry *slope_of(const struct verdict_scene *vs, int v)
+{
+    for (int i = 0; vs && i < vs->by_slope.n; i++)
+        if (vs->by_slope.e[i].variant == v)
+            return &vs->by_slope.e[i];
+    return NULL;
+}
+
+static const struct verdict_failure *failure_of(const struct verdict_scene *vs, int v,
+                                                enum verdict_failure_kind kind)
+{
+    for (int i = 0; vs && i < vs->n_failures; i++)
+        if (vs->failures[i].variant == v && vs->failures[i].kind == kind)
+            return &vs->failures[i];
+    return NULL;
+}
+
+/* The slope and where error stops falling, or relMSE point by point when the sweep leaves the
+   samples alone. a[] is in point order. */
+static void convergence(struct sbuf *b, const struct compare *c, const struct verdict_scene *vs, int v,
+                        const int *order, const struct compare_agg *a)
+{
+    int last = c->n_points - 1;
+    if (!vs->samples_vary[v]) {
+        sbuf_printf(b, "; samples per pixel stay at about %.0f along the sweep, so relMSE point by point: ",
+                    a[0].spp);
+        for (int i = 0; i < c->n_points; i++)
+            sbuf_printf(b, "%s%s: %.3g", i ? ", " : "", c->points[order[i]], a[i].rel);
+        return;
+    }
+    const struct verdict_entry *e = slope_of(vs, v);
+    if (e && isfinite(e->value))
+        sbuf_printf(b, "; relMSE ~ spp^%.2f (per-seed fits, standard error %.2f)", e->value, e->se);
+    const struct verdict_failure *x = failure_of(vs, v, VERDICT_STALLS);
+    if (x)
+        sbuf_printf(b, "; error stops falling at %s (local slope %.2f)", c->points[x->point], x->value);
+    else
+        sbuf_printf(b, "; error keeps falling down to %s (%.3g at %.0f spp)", c->points[order[last]],
+                    a[last].rel, a[last].spp);
+}
+
+/* The share of the error that repeats in every seed at each point, split into bias and pattern. */
+static void repeated(struct sbuf *b, const struct compare *c, const struct verdict_scene *vs, int v,
+                     const int *order)
+{
+    int shown = 0;
+    for (int i = 0; i < c->n_points; i++) {
+        int p = order[i];
+        double share = vs->repeat[v * vs->n_points + p], bias = vs->repeat_bias[v * vs->n_points + p];
+        if (!isfinite(share))
+            continue;
+        sbuf_printf(b, "%s%.0f%% at %s",
+                    shown++ ? ", " : "; the share of the error that repeats in every seed: ", 100 * share,
+                    c->points[p]);
+        if (isfinite(bias) && share > 0)
+            sbuf_printf(b, " (bias %.0f%%, pattern %.0f%%)", 100 * bias, 100 * (share - bias));
+    }
+    if (failure_of(vs, v, VERDICT_STRUCTURED))
+        sbuf_printf(b, ": structured error (aliasing, a pattern, or a bias)");
+    const struct verdict_failure *x = failure_of(vs, v, VERDICT_BIASED);
+    if (x)
+        sbuf_printf(b, "; biased: mean radiance %+.2f%% off the reference at %s", x->value,
+                    c->points[x->point]);
+    if (isfinite(vs->ref_relmse))
+        sbuf_printf(b, " (the reference's own relMSE, %.3g, taken out)", vs->ref_relmse);
+}
+
+char *report_stability(const struct compare *c, int s, int v)
+{
+    int *order = calloc((size_t)c->n_points, sizeof *order);
+    struct compare_agg *a = calloc((size_t)c->n_points, sizeof *a);
+    const struct verdict_scene *vs = c->has_verdict && s < c->verdict.n_scenes ? &c->verdict.scenes[s] : NULL;
+    struct sbuf b = {0};
+    if (!order || !a)
+        goto done;
+    compare_stats_point_order(c, s, v, order);
+    for (int i = 0; i < c->n_points; i++)
+        compare_stats_aggregate(c, s, v, order[i], &a[i]);
+    if (c->scenes[s].ref_kind == COMPARE_REF_NONE || a[0].n == 0) {
+        sbuf_printf(&b, "no reference, so no error to judge stability by");
+        goto done;
+    }
+    /* Spread across seeds: (max - min) / mean, largest over the sweep. */
+    double spread = 0;
+    int at = 0;
+    for (int i = 0; i < c->n_points; i++)
+        if (a[i].rel > 0 && (a[i].rel_hi - a[i].rel_lo) / a[i].rel > spread)
+            spread = (a[i].rel_hi - a[i].rel_lo) / a[i].rel, at = order[i];
+    if (c->n_seeds > 1)
+        sbuf_printf(&b, "spread across %d seeds at most %.0f%% of the mean relMSE (%s)", c->n_seeds,
+                    100 * spread, c->points[at]);
+    else
+        sbuf_printf(&b, "one seed, so no spread measured");
+    if (!vs) {
+        sbuf_printf(&b, "; no verdict, so no slope or structure");
+        goto done;
+    }
+    if (c->n_points > 1)
+        convergence(&b, c, vs, v, order, a);
+    repeated(&b, c, vs, v, order);
+done:
+    free(order);
+    free(a);
+    return sbuf_take(&b);
+}

@@ -1,0 +1,363 @@
+/* verdict_out: the verdict as verdict.json, as the report's opening HTML, and as the stderr
+   summary. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "chart.h"
+#include "study/judge/verdict_look.h"
+#include "verdict_out.h"
+#include "study/judge/verdict_rank.h"
+
+#define TIE_RULE                                                                                             \
+    "Each variant's figure is its seeds' mean of log relMSE at the common point (for slopes: the mean of "   \
+    "its per-seed log-log fits), with its standard error. Two variants are ranked apart only when Welch's "  \
+    "t test rejects equal means, Holm-corrected across every pair of the ranking, at alpha 0.05: the "       \
+    "chance of separating any pair of truly equal variants is at most about 5%. A variant's rank is 1 + "    \
+    "the number of variants ranked apart ahead of it; best first by rank, then mean. Equal samples and "     \
+    "equal CPU time are each the largest that every variant reached (the smallest of the variants' "         \
+    "densest points), each seed's relMSE read there in log-log between its measured points; a variant "      \
+    "whose cheapest point costs over 1.25x that is not reached and ranks behind those that are. A ranking "  \
+    "is clear when one variant alone ranks 1, a tie when several do but some variant is behind, "            \
+    "inconclusive when none is ahead of another or there is only one seed."
+
+static const char *status_name(enum verdict_status s)
+{
+    return s == VERDICT_CLEAR ? "clear" : s == VERDICT_TIE ? "tie" : "inconclusive";
+}
+
+static const char *kind_name(enum verdict_failure_kind k)
+{
+    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
+                                        "biased"};
+    return names[k];
+}
+
+static void json_ranking(struct json *j, const char *key, const char *at_key, const char *value_key,
+                         const struct verdict_scene *v, const struct verdict_ranking *r)
+{
+    char winner[256];
+    json_begin_object(j, key);
+    if (at_key)
+        json_number(j, at_key, r->at);
+    json_string(j, "status", status_name(r->status));
+    verdict_ranking_winner(v, r, 0, winner, sizeof winner);
+    json_string(j, "winner", winner);
+    json_begin_array(j, "ranking");
+    for (int i = 0; i < r->n; i++) {
+        const struct verdict_entry *e = &r->e[i];
+        json_begin_object(j, NULL);
+        json_string(j, "variant", v->variants[e->variant]);
+        json_uint(j, "rank", (uint64_t)e->rank);
+        json_number(j, value_key, e->value);
+        json_number(j, "standard_error", e->se);
+        json_number(j, "min", e->lo);
+        json_number(j, "max", e->hi);
+        json_bool(j, "reached", !e->unreached);
+        json_end_object(j);
+    }
+    json_end_array(j);
+    json_end_object(j);
+}
+
+/* "error_look": the rule's common point, each variant's error_lowfreq there and along the sweep,
+   the comparison among the variants equal in relMSE, and the bluest. */
+static void json_look(struct json *j, const struct verdict_scene *v)
+{
+    const struct verdict_look *l = &v->look;
+    json_begin_object(j, "error_look");
+    json_number(j, "at_samples_per_pixel", l->at);
+    json_begin_array(j, "variants");
+    for (int k = 0; k < v->n_variants; k++) {
+        int p = l->point[k], o = k * v->n_points;
+        json_begin_object(j, NULL);
+        json_string(j, "variant", v->variants[k]);
+        json_number(j, "error_lowfreq", l->mean[o + p]);
+        json_number(j, "standard_error", l->se[o + p]);
+        json_number(j, "relmse", l->rel[o + p]);
+        json_begin_array(j, "along_sweep");
+        for (int q = 0; q < v->n_points; q++) {
+            json_begin_object(j, NULL);
+            json_number(j, "error_lowfreq", l->mean[o + q]);
+            json_number(j, "standard_error", l->se[o + q]);
+            json_number(j, "relmse", l->rel[o + q]);
+            json_end_object(j);
+        }
+        json_end_array(j);
+        json_end_object(j);
+    }
+    json_end_array(j);
+    json_ranking(j, "equal_relmse", NULL, "relmse", v, &l->by_relmse);
+    json_ranking(j, "bluest", NULL, "error_lowfreq", v, &l->by_look);
+    json_end_object(j);
+}
+
+static void json_scene(struct json *j, const struct verdict_scene *v)
+{
+    json_begin_object(j, NULL);
+    json_string(j, "scene", v->scene);
+    json_uint(j, "seeds", (uint64_t)v->n_seeds);
+    json_number(j, "reference_relmse", v->ref_relmse);
+    json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
+    json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
+    json_ranking(j, "slopes", NULL, "slope", v, &v->by_slope);
+    json_look(j, v);
+    json_begin_array(j, "failures");
+    for (int i = 0; i < v->n_failures; i++) {
+        const struct verdict_failure *x = &v->failures[i];
+        json_begin_object(j, NULL);
+        json_string(j, "variant", v->variants[x->variant]);
+        json_string(j, "kind", kind_name(x->kind));
+        json_number(j, "value", x->value);
+        if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
+            json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
+        json_string(j, "text", x->text);
+        json_end_object(j);
+    }
+    json_end_array(j);
+    json_begin_array(j, "warnings");
+    for (int i = 0; i < v->n_warnings; i++)
+        json_string(j, NULL, v->warnings[i]);
+    json_end_array(j);
+    json_begin_array(j, "sentences");
+    for (int i = 0; i < v->n_sentences; i++)
+        json_string(j, NULL, v->sentences[i]);
+    json_end_array(j);
+    json_end_object(j);
+}
+
+char *verdict_json_text(const char *job, const struct verdict_study *s, int n, const struct study_env *env)
+{
+    struct json j;
+    json_init(&j);
+    json_begin_object(&j, NULL);
+    json_string(&j, "job", job);
+    json_string(&j, "error",
+                "relMSE in linear radiance against each scene's reference: mean over pixels and channels of "
+                "(v - r)^2 / (r^2 + 0.01); ranked on its mean log over seeds (value: the geometric mean)");
+    json_number(&j, "alpha", VERDICT_ALPHA);
+    if (env)
+        study_env_json(&j, "reproducibility", env);
+    json_string(&j, "tie_rule", TIE_RULE);
+    json_begin_array(&j, "studies");
+    for (int i = 0; i < n; i++) {
+        json_begin_object(&j, NULL);
+        json_string(&j, "study", s[i].name);
+        if (s[i].machines[0]) { /* its equal-CPU-time rankings mix CPU models (study_machines.h) */
+            json_bool(&j, "equal_cpu_time_mixes_machines", 1);
+            json_string(&j, "cpu_models", s[i].machines);
+        }
+        json_begin_array(&j, "scenes");
+        for (int k = 0; k < s[i].n_scenes; k++)
+            json_scene(&j, &s[i].scenes[k]);
+        json_end_array(&j);
+        json_end_object(&j);
+    }
+    json_end_array(&j);
+    json_end_object(&j);
+    if (j.oom) {
+        json_free(&j);
+        return NULL;
+    }
+    return j.buf; /* the writer's buffer, handed over */
+}
+
+/* One cell: "2. 1.3e-3 [1.1e-3, 1.5e-3]", the rank bold when 1. */
+static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, const char *fmt)
+{
+    for (int i = 0; i < r->n; i++) {
+        const struct verdict_entry *e = &r->e[i];
+        if (e->variant != v)
+            continue;
+        char val[32], lo[32], hi[32];
+        snprintf(val, sizeof val, fmt, e->value);
+        snprintf(lo, sizeof lo, fmt, e->lo);
+        snprintf(hi, sizeof hi, fmt, e->hi);
+        sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
+                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
+                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
+                    e->unreached ? " not reached: its cheapest point" : "");
+        return;
+    }
+    sbuf_printf(b, "<td></td>");
+}
+
+static void html_scene(struct sbuf *b, const struct verdict_scene *v)
+{
+    sbuf_printf(b, "<h3>");
+    sbuf_escape(b, v->study);
+    sbuf_printf(b, " / ");
+    sbuf_escape(b, v->scene);
+    sbuf_printf(b, "</h3>\n<ul class=\"verdict\">\n");
+    for (int i = 0; i < v->n_sentences; i++) {
+        sbuf_printf(b, "<li>");
+        sbuf_escape(b, v->sentences[i]);
+        sbuf_printf(b, "</li>\n");
+    }
+    sbuf_printf(b,
+                "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
+                "[min, max]</th><th>rank at equal CPU time (%.3g s): relMSE [min, max]</th><th>rank by "
+                "slope: relMSE ~ spp^s [min, max]</th></tr>\n",
+                v->by_samples.at, v->by_cpu.at);
+    for (int k = 0; k < v->n_variants; k++) {
+        sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
+        sbuf_escape(b, v->variants[k]);
+        sbuf_printf(b, "</td>");
+        html_cell(b, &v->by_samples, k, "%.3g");
+        html_cell(b, &v->by_cpu, k, "%.3g");
+        html_cell(b, &v->by_slope, k, "%.2f");
+        sbuf_printf(b, "</tr>\n");
+    }
+    sbuf_printf(
+        b, "</table>\n<p class=\"note\">Rankings: at equal samples %s, at equal CPU time %s, by slope %s.",
+        status_name(v->by_samples.status), status_name(v->by_cpu.status), status_name(v->by_slope.status));
+    for (int i = 0; i < v->n_failures; i++) {
+        sbuf_printf(b, "%s", i ? "; " : " <b>Failures</b>: ");
+        sbuf_escape(b, v->failures[i].text);
+    }
+    sbuf_printf(b, "%s</p>\n", v->n_failures ? "." : " No failure mode detected.");
+    for (int i = 0; i < v->n_warnings; i++) {
+        sbuf_printf(b, "<p class=\"warn\">Warning: ");
+        sbuf_escape(b, v->warnings[i]);
+        sbuf_printf(b, "</p>\n");
+    }
+}
+
+/* One line per study and scene: the three winners and the failures' kinds, at a glance. */
+static void html_overview(struct sbuf *b, const struct verdict_study *s, int n)
+{
+    sbuf_printf(b, "<table><tr><th class=\"l\">study / scene</th><th class=\"l\">best at equal CPU time</th>"
+                   "<th class=\"l\">best at equal samples</th><th class=\"l\">fastest slope</th>"
+                   "<th class=\"l\">failures found</th></tr>\n");
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < s[i].n_scenes; k++) {
+            const struct verdict_scene *v = &s[i].scenes[k];
+            const struct verdict_ranking *rs[] = {&v->by_cpu, &v->by_samples, &v->by_slope};
+            char w[512];
+            sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
+            sbuf_escape(b, v->study);
+            sbuf_printf(b, " / ");
+            sbuf_escape(b, v->scene);
+            sbuf_printf(b, "</td>");
+            for (int r = 0; r < 3; r++) {
+                verdict_ranking_winner(v, rs[r], 1, w, sizeof w);
+                sbuf_printf(b, "<td class=\"l\">%s", r == 0 ? "<b>" : "");
+                sbuf_escape(b, w);
+                sbuf_printf(b, "%s</td>", r == 0 ? "</b>" : "");
+            }
+            sbuf_printf(b, "<td class=\"l\">");
+            for (int f = 0; f < v->n_failures; f++) {
+                sbuf_printf(b, "%s", f ? "; " : "");
+                sbuf_escape(b, v->variants[v->failures[f].variant]);
+                sbuf_printf(b, ": %s", kind_name(v->failures[f].kind));
+            }
+            sbuf_printf(b, "%s</td></tr>\n", v->n_failures ? "" : "none");
+        }
+    sbuf_printf(b, "</table>\n");
+}
+
+/* The study's error_lowfreq plot, inline, when any was measured. */
+static void html_look(struct sbuf *b, const struct verdict_study *s)
+{
+    int any = 0;
+    for (int k = 0; k < s->n_scenes; k++)
+        for (int i = 0; i < s->scenes[k].n_variants * s->scenes[k].n_points; i++)
+            any |= isfinite(s->scenes[k].look.mean[i]);
+    char *svg = any ? verdict_look_svg(s) : NULL;
+    const char *root = svg ? strstr(svg, "<svg") : NULL; /* inline: drop the XML declaration */
+    if (root)
+        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
+    free(svg);
+}
+
+void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
+{
+    sbuf_printf(b, "<section id=\"verdict\"><h2>Verdict</h2>\n");
+    html_overview(b, s, n);
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < s[i].n_scenes; k++)
+            html_scene(b, &s[i].scenes[k]);
+        html_look(b, &s[i]);
+    }
+    sbuf_printf(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ");
+    sbuf_escape(b, TIE_RULE);
+    sbuf_printf(
+        b,
+        " Failure modes: more than %.0f%% of the error repeating in every seed (structured: averaging "
+        "the seeds' images leaves it); a step along the sweep whose local slope is above %.1f (error "
+        "stops falling); any non-finite sample; a sampler taking more than %.0f%% of the CPU time. "
+        "The same verdict is in <a href=\"verdict.json\">verdict.json</a>.</p></section>\n",
+        100 * VERDICT_STRUCTURED_SHARE, VERDICT_STALL_SLOPE, 100 * VERDICT_SAMPLER_SHARE);
+}
+
+void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len)
+{
+    size_t at = 0;
+    buf[0] = 0;
+    for (int i = 0; i < n && at < len; i++) {
+        at += (size_t)snprintf(buf + at, len - at, "%s%s:", i ? "; " : "", s[i].name);
+        for (int k = 0; k < s[i].n_scenes && at < len; k++) {
+            char w[256];
+            verdict_winner(&s[i].scenes[k], w, sizeof w);
+            at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
+        }
+    }
+}
+
+void verdict_print_warnings(const struct verdict_study *s, int n)
+{
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < s[i].n_scenes; k++)
+            for (int w = 0; w < s[i].scenes[k].n_warnings; w++)
+                err_print("%s: warning: %s: %s\n", s[i].name, s[i].scenes[k].scene,
+                          s[i].scenes[k].warnings[w]);
+}
+
+char *verdict_look_svg(const struct verdict_study *s)
+{
+    int n_series = 0, n_vals = 0;
+    for (int i = 0; i < s->n_scenes; i++)
+        n_series += s->scenes[i].n_variants, n_vals += s->scenes[i].n_variants * s->scenes[i].n_points;
+    struct chart_series *ser = calloc((size_t)n_series + 1, sizeof *ser);
+    struct chart_panel *pan = calloc((size_t)s->n_scenes + 1, sizeof *pan);
+    double *mem = calloc((size_t)n_vals * 2 + 1, sizeof *mem);
+    char(*titles)[160] = calloc((size_t)s->n_scenes + 1, sizeof *titles), title[256], *svg = NULL;
+    if (!ser || !pan || !mem || !titles)
+        goto done;
+    struct chart_series *sr = ser;
+    double *lo = mem, *hi = mem + n_vals;
+    for (int i = 0; i < s->n_scenes; i++) {
+        const struct verdict_scene *v = &s->scenes[i];
+        for (int k = 0; k < v->n_variants; k++) {
+            int o = k * v->n_points;
+            for (int p = 0; p < v->n_points; p++)
+                lo[o + p] = v->look.mean[o + p] - v->look.se[o + p],
+                       hi[o + p] = v->look.mean[o + p] + v->look.se[o + p];
+            sr[k] = (struct chart_series){v->variants[k],
+                                          v->n_points,
+                                          v->look.rel + o,
+                                          v->look.mean + o,
+                                          v->n_seeds > 1 ? lo + o : NULL,
+                                          v->n_seeds > 1 ? hi + o : NULL};
+        }
+        snprintf(titles[i], sizeof titles[i], "%s: how the error looks", v->scene);
+        pan[i] = (struct chart_panel){titles[i],
+                                      "relMSE (log)",
+                                      "error_lowfreq (1: white noise; lower: bluer; log)",
+                                      "no error_lowfreq measured",
+                                      sr,
+                                      v->n_variants,
+                                      NULL,
+                                      0};
+        sr += v->n_variants, lo += v->n_variants * v->n_points, hi += v->n_variants * v->n_points;
+    }
+    snprintf(
+        title, sizeof title,
+        "%s: error_lowfreq against relMSE along the sweep (mean over seeds; whiskers: +- one standard error)",
+        s->name);
+    svg = chart_svg(title, pan, s->n_scenes, 2);
+done:
+    free(ser), free(pan), free(mem), free(titles);
+    return svg;
+}

@@ -1,0 +1,336 @@
+/* compare: running a loaded compare job: references (cached), every combination, then
+   summary.csv, chart.svg and report.html. */
+#include "compare.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "compare_ref.h"
+#include "study/judge/compare_stats.h"
+#include "study/present/report_chart.h"
+#include "base/clock.h"
+#include "base/fileio.h"
+#include "image/errspec.h"
+#include "image/imgio.h"
+#include "base/hash.h"
+#include "job/outdir.h"
+#include "job/sidecar.h"
+#include "study/present/report.h"
+#include "study_machines.h"
+#include "study/judge/verdict_from.h"
+#include "study/present/verdict_out.h"
+#include "job/run_out.h"
+#include "base/sbuf.h"
+
+/* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
+static double cost(const struct compare *c, const struct compare_item *it)
+{
+    double spp = it->job.sampler == SAMPLER_POISSON
+                     ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
+                     : (double)sampler_capacity(it->job.sampler, it->job.threshold);
+    return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
+}
+
+static void fmt_duration(double s, char *buf, size_t n)
+{
+    if (s < 60)
+        snprintf(buf, n, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(buf, n, "%dm%02ds", (int)s / 60, (int)s % 60);
+    else
+        snprintf(buf, n, "%dh%02dm", (int)s / 3600, (int)s % 3600 / 60);
+}
+
+/* The resume hash of one combination: its scene file's and texture images' bytes, then its reference
+   image's bytes (both as the study read them: cs->ref->hash, else cs->input->hash; a cached
+   reference's bytes follow its settings, and a reference given as a file may be replaced under the
+   same path), every setting that changes its pixels, not its path: the same --out spelled another
+   way finds the same outputs current. An image whose sidecar records it is current and is not
+   rendered again (unless --force). */
+static uint64_t item_hash(const struct compare_scene *cs, const struct compare_item *it)
+{
+    const struct job *j = &it->job;
+    char text[JOB_PATH_MAX + 512];
+    int n = snprintf(text, sizeof text,
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s",
+                     j->width, j->height, sampler_kind_name(j->sampler), j->threshold,
+                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
+                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
+                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
+                     job_roulette(j) ? " roulette" : "");
+    return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
+}
+
+/* A combination skipped as current: what it measured, from its sidecar. */
+static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, struct err *e)
+{
+    struct sidecar_info info;
+    if (sidecar_read(sidecar_path, &info, e) < 0)
+        return -1;
+    it->spp_mean = info.spp_mean;
+    it->spp_min = info.spp_min;
+    it->spp_max = info.spp_max;
+    it->wall_s = info.wall_s;
+    it->cpu_s = info.cpu_s;
+    it->sampler_share = info.sampling_share;
+    it->nonfinite = info.nonfinite;
+    return 0;
+}
+
+/* The file a combination is scored and looked at in: its float copy, or its PNG for an 8-bit
+   reference. */
+static const char *scored_file(const struct outdir_files *out, enum img_domain domain)
+{
+    return out->image[domain == IMG_LINEAR && out->float_copy >= 0 ? out->float_copy : 0];
+}
+
+/* A combination that was current: score its files (scored_file, read once for its error and its
+   look, and its PNG for the display figures). 0 or -1. */
+static int score_files(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
+                       enum img_domain domain, struct err *e)
+{
+    struct rgbf img = {0};
+    struct rgb8 png = {0};
+    const struct outdir_files *out = &rr->out;
+    int rc = imgio_read_f(scored_file(out, domain), &img, NULL, e) < 0 ||
+                     metrics_compare_f(&ref->f, &img, 1, &it->error, e) < 0 ||
+                     errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0 ||
+                     imgio_read(out->image[0], &png, e) < 0 ||
+                     metrics_display_compare(&ref->display, &png, &it->display_error, e) < 0
+                 ? -1
+                 : 0;
+    image_f_free(&img);
+    image_free(&png);
+    return rc;
+}
+
+/* How a fresh combination's error looks (errspec.h), from scored_file (the framebuffer was
+   scored in memory; its look is measured on the file as written). 0 or -1. */
+static int score_look(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
+                      enum img_domain domain, struct err *e)
+{
+    struct rgbf img = {0};
+    int rc = imgio_read_f(scored_file(&rr->out, domain), &img, NULL, e) < 0 ||
+                     errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0
+                 ? -1
+                 : 0;
+    image_f_free(&img);
+    return rc;
+}
+
+/* Render one combination (or take it as it is when current) and measure it against its
+   scene's reference (cs->ref, prepared; none when the study has none). */
+static int render_item(struct compare *c, struct compare_item *it, const struct run_opts *o, struct err *e)
+{
+    const struct compare_scene *cs = &c->scenes[it->scene];
+    const struct study_ref *ref = cs->ref_kind != COMPARE_REF_NONE ? cs->ref : NULL;
+    if (cs->ref_kind != COMPARE_REF_NONE && !ref) {
+        err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
+        return 1;
+    }
+    snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
+    it->job.hash = item_hash(cs, it);
+    struct run_result rr;
+    struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
+    quiet_rows.progress = 0;
+    quiet_rows.scene = &cs->input->src;    /* the scene as the study read it */
+    quiet_rows.ref = ref ? &ref->f : NULL; /* scored in memory, on the framebuffer's floats */
+    quiet_rows.ref_domain = cs->ref_domain;
+    quiet_rows.ref_display = ref ? &ref->display : NULL;
+    int rc = run_job(&it->job, &quiet_rows, &rr, e);
+    if (rc != 0) {
+        err_prefix(e, it->job.output);
+        return rc;
+    }
+    it->skipped = rr.skipped;
+    if (rr.skipped) {
+        if (item_from_sidecar(it, rr.out.sidecar, e) < 0)
+            return 1;
+    } else {
+        const struct render_stats *t = &rr.procs.total;
+        it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
+        it->spp_min = t->pixels ? t->spp_min : 0;
+        it->spp_max = t->spp_max;
+        it->nonfinite = t->nonfinite;
+        it->wall_s = rr.procs.wall_s;
+        it->cpu_s = rr.procs.cpu_s;
+        it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
+    }
+    if (ref && rr.skipped) {
+        if (score_files(it, &rr, ref, cs->ref_domain, e) < 0)
+            return 1;
+        it->has_error = 1;
+    } else if (ref) {
+        if (!rr.has_error || !rr.has_display_error) {
+            err_set(e, NULL, 0, 0, "%s: rendered without its error figures", it->job.output);
+            return 1;
+        }
+        it->error = rr.error;
+        it->display_error = rr.display_error;
+        it->has_error = 1;
+        if (score_look(it, &rr, ref, cs->ref_domain, e) < 0)
+            return 1;
+    }
+    it->done = 1;
+    return 0;
+}
+
+/* One CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180), as a scene
+   file's name may. */
+static void csv_field(struct sbuf *b, const char *text, const char *after)
+{
+    if (!strpbrk(text, ",\"\r\n")) {
+        sbuf_printf(b, "%s%s", text, after);
+        return;
+    }
+    sbuf_printf(b, "\"");
+    for (const char *p = text; *p; p++)
+        sbuf_printf(b, "%s%c", *p == '"' ? "\"" : "", *p); /* a quote is doubled */
+    sbuf_printf(b, "\"%s", after);
+}
+
+static char *summary_csv(const struct compare *c)
+{
+    struct sbuf b = {0};
+    sbuf_printf(&b,
+                "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
+                "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
+                "image\n");
+    for (int i = 0; i < c->n_items; i++) {
+        const struct compare_item *it = &c->items[i];
+        csv_field(&b, c->scenes[it->scene].name, ",");
+        csv_field(&b, c->variants[it->variant], ",");
+        sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
+                    (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
+        if (it->has_error)
+            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", it->error.mse, it->error.rmse,
+                        it->error.relmse, it->error.relmse_robust, it->error.psnr,
+                        image_domain_name(c->scenes[it->scene].ref_domain), it->display_error.rmse,
+                        it->display_error.relmse);
+        else
+            sbuf_printf(&b, ",,,,,,,,");
+        if (it->has_error && isfinite(it->error_lowfreq))
+            sbuf_printf(&b, "%.4f,", it->error_lowfreq);
+        else
+            sbuf_printf(&b, ",");
+        csv_field(&b, it->job.output, "\n");
+    }
+    return sbuf_take(&b);
+}
+
+int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e)
+{
+    int rc = compare_ref_prepare(c, c->items[i].scene, o, e);
+    return rc != 0 ? rc : render_item(c, &c->items[i], o, e);
+}
+
+int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
+{
+    e->msg[0] = 0;
+    /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
+       of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
+    char summary[2100], chart[2100], report[2100], verdict[2100];
+    snprintf(summary, sizeof summary, "%s/summary.csv", dir);
+    snprintf(chart, sizeof chart, "%s/chart.svg", dir);
+    snprintf(report, sizeof report, "%s/report.html", dir);
+    snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
+    const char *outs[] = {summary, chart, report, verdict, NULL};
+    int lock = -1, rc = -1;
+    verdict_study_free(&c->verdict);
+    study_env_read(&c->env);
+    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
+        study_machines_mark(c, o->out_dir, e) < 0)
+        return -1;
+    verdict_print_warnings(&c->verdict, 1);
+    if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
+        fileio_write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
+        fileio_write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
+        fileio_write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
+        fileio_write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
+        rc = 0;
+    outdir_unlock(lock);
+    return rc;
+}
+
+int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
+{
+    char dir[2048];
+    int rc = 1;
+    double t0 = clock_s(CLOCK_MONOTONIC), total = 0, done = 0;
+    outdir_dir(o->out_dir, c->name, dir, sizeof dir);
+    /* Checked now, made only when the first image or the summary is written: a job stopped or
+       failed before that (a reference render cut short by Ctrl-C) leaves no empty folder. */
+    if (outdir_check(dir, e) < 0)
+        return 2;
+    for (int s = 0; s < c->n_scenes; s++) {
+        if ((rc = compare_ref_prepare(c, s, o, e)) != 0)
+            return rc;
+        const struct compare_scene *cs = &c->scenes[s];
+        if (cs->ref_kind != COMPARE_REF_NONE && cs->ref_domain != IMG_LINEAR)
+            run_warn_display_reference(c->name, cs->ref_path);
+    }
+    for (int i = 0; i < c->n_items; i++)
+        total += cost(c, &c->items[i]);
+    double t1 = clock_s(CLOCK_MONOTONIC);
+    for (int i = 0; i < c->n_items; i++) {
+        struct compare_item *it = &c->items[i];
+        const struct compare_scene *cs = &c->scenes[it->scene];
+        if ((rc = render_item(c, it, o, e)) != 0)
+            return rc;
+        if (it->skipped) /* current from an earlier run: no time spent, none to predict */
+            total -= cost(c, it);
+        else
+            done += cost(c, it);
+        double elapsed = clock_s(CLOCK_MONOTONIC) - t1;
+        char el[32], eta[32], err_text[48] = "";
+        fmt_duration(clock_s(CLOCK_MONOTONIC) - t0, el, sizeof el);
+        fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
+        if (it->has_error)
+            snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
+        run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
+                c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+                it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+                it->skipped ? " (current, not rendered again)" : "", el, eta);
+    }
+    return compare_write_outputs(c, dir, o, e) < 0;
+}
+
+void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
+{
+    int reused = 0, rendered = 0;
+    double saved_s = 0;
+    for (int s = 0; s < c->n_scenes; s++) {
+        const struct compare_scene *cs = &c->scenes[s];
+        reused += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused;
+        rendered += cs->ref_kind == COMPARE_REF_SETTINGS && !cs->ref_reused;
+        saved_s += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused ? cs->ref_wall_s : 0;
+    }
+    char refs[128] = "no reference";
+    if (reused)
+        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered,
+                 reused, saved_s);
+    else if (rendered)
+        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
+    else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
+        snprintf(refs, sizeof refs, "reference image given");
+    int current = 0;
+    for (int i = 0; i < c->n_items; i++)
+        current += c->items[i].skipped;
+    char resumed[96] = "";
+    if (current)
+        snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
+                 current);
+    char winners[1024] = "";
+    if (c->has_verdict)
+        verdict_summary(&c->verdict, 1, winners, sizeof winners);
+    snprintf(buf, n,
+             "%s: %d image%s (%d scene%s x %d variant%s x %d sweep point%s x %d seed%s)%s, %s, %.2f s -> "
+             "%s/%s/%s%s",
+             c->name, c->n_items, sbuf_plural(c->n_items), c->n_scenes, sbuf_plural(c->n_scenes),
+             c->n_variants, sbuf_plural(c->n_variants), c->n_points, sbuf_plural(c->n_points), c->n_seeds,
+             sbuf_plural(c->n_seeds), resumed, refs, wall_s, outdir_root(out_dir), c->name,
+             winners[0] ? "; at equal CPU time: " : "", winners);
+}

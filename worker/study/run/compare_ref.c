@@ -1,0 +1,291 @@
+/* compare_ref: render a compare job's references into OUT/.cache/, or reuse the cached ones. */
+#include "compare_ref.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "base/fileio.h"
+#include "image/exr.h"
+#include "image/imgio.h"
+#include "base/hash.h"
+#include "base/rng.h"
+#include "job/outdir.h"
+#include "job/sidecar.h"
+
+/* The cache key of a scene's reference: its scene file's and texture images' bytes (the scene's
+   hash, study_scene.hash), every setting that changes the reference's pixels, and the worker
+   program's own bytes: a rebuilt renderer may draw other pixels, and its version string does not
+   change with every commit. */
+static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
+{
+    const struct job *j = &cs->ref_job;
+    uint64_t h = hash_u64(study_inputs_program_hash(c->inputs), cs->input->hash);
+    char text[512];
+    int n = snprintf(text, sizeof text,
+                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s%s halves",
+                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
+                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
+                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
+                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
+                     job_roulette(j) ? " roulette" : "");
+    return hash_bytes(h, text, (size_t)n);
+}
+
+/* The seconds a half took to render and its samples per pixel, from its sidecar (0 when unknown). */
+static void half_figures(const char *sidecar, double *wall_s, double *spp)
+{
+    struct sidecar_info info;
+    struct err e;
+    int ok = sidecar_read(sidecar, &info, &e) == 0;
+    *wall_s = ok && isfinite(info.wall_s) ? info.wall_s : 0;
+    *spp = ok && isfinite(info.spp_mean) ? info.spp_mean : 0;
+}
+
+/* The record beside a cached half (<stem>.key): its cache key and a hash of the EXR's bytes (exr,
+   len) as rendered, so a file of another scene or settings put at its name, a PFM or PNG renamed
+   .exr, or a damaged one no longer matches and is rendered again. */
+static void record_text(const uint8_t *exr, size_t len, uint64_t key, char *buf, size_t n)
+{
+    snprintf(buf, n, "worker reference half: key %016llx, exr %016llx\n", (unsigned long long)key,
+             (unsigned long long)hash_bytes(HASH_FNV_OFFSET, exr, len));
+}
+
+/* Whether the cached half of key whose bytes are exr (len) is the one its record names: 1, else 0. */
+static int record_ok(const uint8_t *exr, size_t len, const char *record, uint64_t key)
+{
+    char want[128];
+    uint8_t *have = NULL;
+    size_t have_len;
+    struct err ignored;
+    record_text(exr, len, key, want, sizeof want);
+    int ok = fileio_read_all(record, 256, &have, &have_len, &ignored) == 0 && have_len == strlen(want) &&
+             !memcmp(have, want, have_len);
+    free(have);
+    return ok;
+}
+
+/* The cached half at path (of key, its record beside it) read once into img when it is the one its
+   record names and of the scene's size: 1, else 0 (img empty). */
+static int half_cached(const struct compare_scene *cs, const char *path, const char *record, uint64_t key,
+                       struct rgbf *img)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    struct err ignored;
+    int ok = fileio_read_all(path, EXR_MAX_BYTES, &data, &len, &ignored) == 0 &&
+             record_ok(data, len, record, key) && imgio_decode_f(data, len, path, img, NULL, &ignored) == 0 &&
+             img->w == cs->width && img->h == cs->height;
+    free(data);
+    if (!ok)
+        image_f_free(img);
+    return ok;
+}
+
+/* The half just rendered at path read back once into img, and its record written. 0 or -1. */
+static int half_rendered(const char *path, const char *record, uint64_t key, struct rgbf *img, struct err *e)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    char text[128];
+    int rc = -1;
+    if (fileio_read_all(path, EXR_MAX_BYTES, &data, &len, e) == 0 &&
+        imgio_decode_f(data, len, path, img, NULL, e) == 0) {
+        record_text(data, len, key, text, sizeof text);
+        rc = fileio_write_atomic(record, text, strlen(text), e);
+    }
+    free(data);
+    return rc;
+}
+
+/* Half h (0 or 1) of the reference: its settings with half the samples (the thresholds, a spacing,
+   times sqrt 2) and its own seed, into OUT/.cache/ref-<scene>-<key>-<a|b>.exr, rendered unless the
+   cache holds it at the right size. *img is its pixels. */
+static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o, struct rgbf *img,
+                struct err *e)
+{
+    struct job j = cs->ref_job;
+    snprintf(j.name, sizeof j.name, ".cache");
+    j.format = IMG_EXR; /* linear radiance, as every error is measured in */
+    j.n_more = 0;       /* one image */
+    j.threshold = fmin(100, j.threshold * sqrt(2));
+    j.light_threshold = fmin(100, j.light_threshold * sqrt(2));
+    j.seed = h ? rng_mix64(j.seed) : j.seed; /* independent of the other half and of the study's seeds */
+    snprintf(j.output, sizeof j.output, "ref-%s-%016llx-%c.exr", cs->name, (unsigned long long)key, "ab"[h]);
+    struct outdir_files files;
+    outdir_files(&j, o->out_dir, &files);
+    const char *path = files.image[0], *sidecar = files.sidecar;
+    char record[JOB_PATH_MAX + 8];
+    snprintf(record, sizeof record, "%.*s.key", (int)(strlen(path) - 4), path);
+    double wall_s = 0, spp = 0;
+    if (half_cached(cs, path, record, key, img)) {
+        half_figures(sidecar, &wall_s, &spp);
+    } else {
+        if (access(path, F_OK) == 0)
+            run_say(o,
+                    "%s: the cached half %s is not the one its record names (damaged, replaced or of an "
+                    "older worker): rendering it again\n",
+                    cs->name, path);
+        cs->ref_reused = 0;
+        run_say(o, "%s: rendering the reference's half %c (%s t=%g, light %s t=%g, seed %llu) into %s\n",
+                cs->name, "ab"[h], sampler_kind_name(j.sampler), j.threshold,
+                sampler_kind_name(j.light_sampler), j.light_threshold, (unsigned long long)j.seed, path);
+        struct run_result rr;
+        struct run_opts forced = *o;
+        forced.force = 1;               /* its sidecar may call a damaged image current */
+        forced.scene = &cs->input->src; /* the scene as the study read it */
+        char label[JOB_NAME_MAX + 32];
+        snprintf(label, sizeof label, "%s reference %c", cs->name, "ab"[h]);
+        forced.label = label;
+        int rc = run_job(&j, &forced, &rr, e);
+        if (rc != 0) {
+            err_prefix(e, "reference");
+            return rc;
+        }
+        wall_s = rr.procs.wall_s;
+        spp = rr.procs.total.pixels ? (double)rr.procs.total.samples / rr.procs.total.pixels : 0;
+        if (half_rendered(path, record, key, img, e) < 0)
+            return 1;
+    }
+    cs->ref_wall_s += wall_s;
+    cs->ref_spp += spp;
+    return 0;
+}
+
+/* The reference = the mean of its halves a and b (into a), and its own noise from their
+   difference: each half has variance s2 per value, their mean s2 / 2 and a - b 2 s2, so the mean's
+   relMSE is the mean of (a - b)^2 / 4 / (m^2 + 0.01), and its mean radiance's variance the sum of
+   (a - b)^2 / 4 over the N values, over N^2 (values independent: per-pixel seeds). */
+static void mean_of_halves(struct compare_scene *cs, struct rgbf *a, const struct rgbf *b)
+{
+    size_t n = (size_t)a->w * a->h * 3;
+    double rel = 0, sum = 0, var = 0;
+    for (size_t i = 0; i < n; i++) {
+        double m = 0.5 * ((double)a->px[i] + b->px[i]), d = (double)a->px[i] - b->px[i];
+        rel += d * d / 4 / (m * m + METRICS_REL_EPS);
+        var += d * d / 4;
+        sum += m;
+        a->px[i] = (float)m;
+    }
+    cs->ref_relmse = rel / (double)n;
+    cs->ref_radiance = sum / (double)n;
+    cs->ref_radiance_se = sqrt(var) / (double)n;
+}
+
+void compare_ref_measure(struct compare_scene *cs)
+{
+    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
+    const char *dot = strrchr(cs->ref_path, '.');
+    int stem = dot ? (int)(dot - cs->ref_path) : (int)strlen(cs->ref_path);
+    char path[JOB_PATH_MAX + 8];
+    struct rgbf a = {0}, b = {0};
+    struct err ignored;
+    double wall_s, spp;
+    cs->ref_spp = 0;
+    for (int h = 0; h < 2; h++) {
+        snprintf(path, sizeof path, "%.*s-%c.json", stem, cs->ref_path, "ab"[h]);
+        half_figures(path, &wall_s, &spp);
+        cs->ref_spp += spp;
+        snprintf(path, sizeof path, "%.*s-%c.exr", stem, cs->ref_path, "ab"[h]);
+        if (imgio_read_f(path, h ? &b : &a, NULL, &ignored) < 0)
+            break;
+    }
+    if (a.px && b.px && a.w == b.w && a.h == b.h)
+        mean_of_halves(cs, &a, &b);
+    image_f_free(&a), image_f_free(&b);
+}
+
+/* The mean m of the halves as cs->ref_path holds it, kept in c->inputs as cs->ref: the file read
+   once when the halves were reused and it matches, else written from m. 0 or -1. */
+static int keep_mean(struct compare *c, struct compare_scene *cs, struct rgbf *m, struct err *e)
+{
+    struct study_ref r = {.domain = IMG_LINEAR,
+                          .reused = cs->ref_reused,
+                          .wall_s = cs->ref_wall_s,
+                          .spp = cs->ref_spp,
+                          .relmse = cs->ref_relmse,
+                          .radiance = cs->ref_radiance,
+                          .radiance_se = cs->ref_radiance_se};
+    uint8_t *data = NULL;
+    size_t len = 0;
+    struct rgbf had = {0};
+    struct err ignored;
+    int current = cs->ref_reused &&
+                  fileio_read_all(cs->ref_path, EXR_MAX_BYTES, &data, &len, &ignored) == 0 &&
+                  imgio_decode_f(data, len, cs->ref_path, &had, NULL, &ignored) == 0 && had.w == m->w &&
+                  had.h == m->h && !memcmp(had.px, m->px, sizeof *m->px * 3 * (size_t)m->w * m->h);
+    image_f_free(&had);
+    if (!current) {
+        free(data);
+        data = NULL;
+        if (imgio_encode_f(m, IMG_EXR, NULL, 0, &data, &len, e) < 0 ||
+            fileio_write_atomic(cs->ref_path, data, len, e) < 0) {
+            free(data);
+            return -1;
+        }
+    }
+    snprintf(r.path, sizeof r.path, "%s", cs->ref_path);
+    r.scene_hash = cs->input->hash;
+    r.hash = hash_bytes(r.scene_hash, data, len); /* the bytes as the file holds them */
+    free(data);
+    r.f = *m; /* taken over */
+    *m = (struct rgbf){0};
+    if (image_alloc(&r.display, r.f.w, r.f.h, e) < 0) {
+        study_ref_free(&r);
+        return -1;
+    }
+    image_float_to_rgb8(r.f.px, r.f.w, r.f.h, r.display.px);
+    return (cs->ref = study_inputs_keep_ref(c->inputs, &r, e)) ? 0 : -1;
+}
+
+/* Scene cs's reference as another study of the suite prepared it (kept): its figures, as if reused
+   from the cache. */
+static void take_kept(struct compare_scene *cs, const struct study_ref *kept)
+{
+    cs->ref = kept;
+    cs->ref_reused = 1;
+    cs->ref_wall_s = kept->wall_s;
+    cs->ref_spp = kept->spp;
+    cs->ref_relmse = kept->relmse;
+    cs->ref_radiance = kept->radiance;
+    cs->ref_radiance_se = kept->radiance_se;
+}
+
+int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
+{
+    struct compare_scene *cs = &c->scenes[s];
+    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
+    if (cs->ref_kind != COMPARE_REF_SETTINGS)
+        return 0;
+    uint64_t key = reference_key(c, cs);
+    struct job j = cs->ref_job;
+    snprintf(j.name, sizeof j.name, ".cache");
+    snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
+    struct outdir_files files;
+    outdir_files(&j, o->out_dir, &files);
+    snprintf(cs->ref_path, sizeof cs->ref_path, "%s", files.image[0]);
+    cs->ref_domain = IMG_LINEAR;
+    const struct study_ref *kept = study_inputs_find_ref(c->inputs, cs->ref_path, cs->input->hash);
+    if (kept) {
+        take_kept(cs, kept);
+    } else {
+        cs->ref_reused = 1, cs->ref_wall_s = 0, cs->ref_spp = 0;
+        struct rgbf a = {0}, b = {0};
+        int rc = half(cs, 0, key, o, &a, e);
+        if (rc == 0)
+            rc = half(cs, 1, key, o, &b, e);
+        if (rc == 0) {
+            mean_of_halves(cs, &a, &b);
+            rc = keep_mean(c, cs, &a, e) < 0;
+        }
+        image_f_free(&a), image_f_free(&b);
+        if (rc != 0)
+            return rc;
+    }
+    if (cs->ref_reused)
+        run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
+                cs->ref_wall_s);
+    return 0;
+}

@@ -1,0 +1,64 @@
+/* jobfile_run: a plain job through run_job, a compare job or suite through the study. */
+#include "jobfile_run.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "base/clock.h"
+#include "compare.h"
+#include "compare_suite.h"
+#include "study/load/compare_load.h"
+#include "study/load/compare_suite_load.h"
+
+/* A compare job (c) or a suite (s), loaded from the parsed job file, run, and its line printed. */
+static int run_study(const struct jobfile *f, const struct run_opts *o,
+                     int (*name_ok)(const char *name, void *arg), void *arg, struct jobfile_outcome *out)
+{
+    struct compare *c = NULL;
+    struct compare_suite *s = NULL;
+    double t0 = clock_s(CLOCK_MONOTONIC);
+    int rc = 2;
+    if (f->kind == JOBFILE_SUITE)
+        s = compare_suite_load_doc(&f->doc, f->path, &out->e);
+    else
+        c = compare_load_doc(&f->doc, f->path, &out->e);
+    const char *name = s ? s->name : c ? c->name : NULL;
+    if (name)
+        snprintf(out->name, sizeof out->name, "%s", name);
+    if (name && name_ok && !name_ok(name, arg))
+        goto done;
+    if (name)
+        rc = s ? compare_suite_run(s, o, &out->e) : compare_run(c, o, &out->e);
+    if (rc != 0) {
+        if (rc == 1 && name) /* a render failure names the job; bad input names its file */
+            err_prefix(&out->e, name);
+        err_format(&out->e, out->line, sizeof out->line);
+    } else if (s) { /* each study's verdict warnings were printed as it finished (compare_run) */
+        compare_suite_summary_line(s, clock_s(CLOCK_MONOTONIC) - t0, o->out_dir, out->line, sizeof out->line);
+    } else {
+        compare_summary_line(c, clock_s(CLOCK_MONOTONIC) - t0, o->out_dir, out->line, sizeof out->line);
+    }
+    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
+        fprintf(stderr, "%s\n", out->line);
+done:
+    compare_suite_free(s);
+    compare_free(c);
+    return rc;
+}
+
+int jobfile_run(const struct jobfile *f, const struct run_opts *o,
+                int (*name_ok)(const char *name, void *arg), void *arg, struct jobfile_outcome *out)
+{
+    memset(out, 0, sizeof *out);
+    if (f->kind != JOBFILE_PLAIN)
+        return run_study(f, o, name_ok, arg, out);
+    snprintf(out->name, sizeof out->name, "%s", f->job.name);
+    if (name_ok && !name_ok(f->job.name, arg))
+        return 2;
+    struct run_opts with_scene = *o;
+    with_scene.scene = &f->scene;
+    with_scene.ref_bytes = f->ref_bytes;
+    with_scene.ref_len = f->ref_len;
+    return run_job(&f->job, &with_scene, &out->rr, &out->e);
+}
