@@ -65,21 +65,6 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
     queue_file_note_rc(q, 2);
 }
 
-/* The file to read the claimed job from: the claim itself, or, when the job was a symbolic link
-   with a relative target, that target seen from DIR, where the link was made (the claim moved
-   the link into running/, where its target would be looked up beside running/). */
-static void claim_source(const struct queue *q, char *out, size_t n)
-{
-    char target[2048];
-    ssize_t len = readlink(q->claim, target, sizeof target - 1);
-    if (len <= 0 || target[0] == '/') {
-        snprintf(out, n, "%s", q->claim);
-        return;
-    }
-    target[len] = 0;
-    snprintf(out, n, "%s/%s", q->dir, target);
-}
-
 /* The summary line of a rendered job, and its warnings, as queue log lines. */
 static void log_summary(const char *name, const struct job *j, const struct run_result *rr)
 {
@@ -165,7 +150,7 @@ static void process_claim(struct queue *q, const char *name)
     struct err e = {0};
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
     outdir_stem(name, stem, sizeof stem);
-    claim_source(q, from, sizeof from);
+    queue_claim_source(q, q->claim, from, sizeof from);
     int rc = jobfile_open(&f, from, as, &e);
     if (rc == 0 && f.kind != JOBFILE_PLAIN) /* spread over the queue as its renders */
         queue_study_expand(q, name, &f, stem);
@@ -234,6 +219,25 @@ static void nap(double s)
 {
     struct timespec ts = {(time_t)s, (long)((s - (time_t)s) * 1e9)};
     nanosleep(&ts, NULL);
+}
+
+/* 1 when a compare job claimed by another worker is being spread (queue_study_spreading): a --once
+   worker waits for its renders rather than leave them all to that worker. Said once per job. */
+static int spreading(struct queue *q)
+{
+    char name[256];
+    struct lease holder;
+    if (!queue_study_spreading(q, &holder, name, sizeof name)) {
+        q->spreading[0] = 0;
+        return 0;
+    }
+    if (strcmp(q->spreading, name) != 0)
+        queue_log(
+            name,
+            "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its renders\n",
+            holder.pid, holder.host[0] ? holder.host : "?");
+    snprintf(q->spreading, sizeof q->spreading, "%s", name);
+    return 1;
 }
 
 /* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
@@ -311,7 +315,7 @@ int queue_main(const struct queue_opts *qo)
         q.took += study == 1;
         if (study == 1)
             continue;
-        if (qo->once && study != 2) {
+        if (qo->once && study != 2 && !spreading(&q)) {
             if (!q.took && !qo->run.quiet) /* a batch task with nothing to do says so */
                 err_print("worker: --queue %s: no job waiting, nothing to do\n", q.dir);
             break;

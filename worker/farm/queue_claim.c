@@ -232,6 +232,18 @@ int queue_claim_take(struct queue *q, const char *name)
     return 0;
 }
 
+void queue_claim_source(const struct queue *q, const char *claim, char *out, size_t n)
+{
+    char target[2048];
+    ssize_t len = readlink(claim, target, sizeof target - 1);
+    if (len <= 0 || target[0] == '/') {
+        snprintf(out, n, "%s", claim);
+        return;
+    }
+    target[len] = 0;
+    snprintf(out, n, "%s/%s", q->dir, target);
+}
+
 int queue_claim_still_ours(struct queue *q)
 {
     struct lease l;

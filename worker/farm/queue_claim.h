@@ -30,6 +30,7 @@ struct queue {
     int processes;               /* its render processes (0 until its job is loaded) */
     char name_owner[2048];       /* its output folder holds another queued job file's outputs */
     char name_dir[2048];         /* that folder */
+    char spreading[256];         /* the compare job being spread elsewhere that a --once worker waits for */
     char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */
     int nreported;
 };
@@ -71,6 +72,12 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n);
    was first, or a job of its file name is running; -1 when the queue cannot be written (said on
    stderr: a read-only DIR, no permission, a full disk). */
 int queue_claim_take(struct queue *q, const char *name);
+
+/* The file to read the job claimed at `claim` (DIR/running/X.yaml) from: the claim itself, or, when
+   the job was a symbolic link with a relative target, that target seen from DIR, where the link was
+   made (the claim moved the link into running/, where its target would be looked up beside
+   running/). */
+void queue_claim_source(const struct queue *q, const char *claim, char *out, size_t n);
 
 /* Still ours? The claim's file is still in running/ (not removed or moved away) and nobody took
    the claim away while we rendered (a lease judged dead elsewhere). */

@@ -170,6 +170,33 @@ static void refuse(struct queue *q, const char *name, const char *log_name, cons
     queue_file_note_rc(q, 2);
 }
 
+int queue_study_spreading(const struct queue *q, struct lease *holder, char *name, size_t n)
+{
+    DIR *d = opendir(q->running);
+    struct dirent *de;
+    int found = 0;
+    while (d && !found && (de = readdir(d))) {
+        char claim[2048], from[4096], why[512];
+        double age;
+        if (!queue_scan_is_job_file(de->d_name))
+            continue;
+        snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
+        /* a dead claimer's claim is the recovery's (queue_claim_recover), which the next scan runs */
+        if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
+            continue;
+        queue_claim_source(q, claim, from, sizeof from);
+        if (jobfile_peek_kind(from) == JOBFILE_PLAIN)
+            continue;
+        if (lease_read(claim, holder, &age) < 0) /* claimed this instant: its lease comes next */
+            memset(holder, 0, sizeof *holder);
+        snprintf(name, n, "%s", de->d_name);
+        found = 1;
+    }
+    if (d)
+        closedir(d);
+    return found;
+}
+
 void queue_study_expand(struct queue *q, const char *name, const struct jobfile *jf, const char *stem)
 {
     const char *as = jf->path;

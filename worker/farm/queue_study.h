@@ -21,6 +21,12 @@
    jf->path, stem its file's stem), over the queue; an invalid one goes to failed/ as any job. */
 void queue_study_expand(struct queue *q, const char *name, const struct jobfile *jf, const char *stem);
 
+/* 1 when a compare job or suite claimed into DIR/running/ by a live worker (lease_stale says not
+   dead) is being spread: its name into name, its lease into holder (zeroed when not written yet).
+   Its renders appear in DIR/spread/ once it is, or the claim goes to failed/, or its claimer dies
+   and the claim is recovered: a --once worker with nothing else to do waits for that. */
+int queue_study_spreading(const struct queue *q, struct lease *holder, char *name, size_t n);
+
 /* Remove the folder tree at path (never following a link). */
 void queue_study_remove_tree(const char *path);
 

@@ -22,7 +22,8 @@ static enum jobfile_kind kind_of(struct ydoc *d)
                                                : JOBFILE_PLAIN;
 }
 
-int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e)
+/* Read the file once, hash and parse it, and tell its kind. 0 or -1 with e. */
+static int read_parse(struct jobfile *f, const char *from, const char *path, struct err *e)
 {
     uint8_t *data;
     size_t len;
@@ -39,6 +40,23 @@ int jobfile_open(struct jobfile *f, const char *from, const char *path, struct e
     if (ydoc_parse(&f->doc, path, data, len, e) < 0)
         return -1;
     f->kind = kind_of(&f->doc);
+    return 0;
+}
+
+enum jobfile_kind jobfile_peek_kind(const char *from)
+{
+    struct jobfile f;
+    struct err ignored;
+    (void)read_parse(&f, from, from, &ignored);
+    enum jobfile_kind kind = f.kind;
+    jobfile_close(&f);
+    return kind;
+}
+
+int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e)
+{
+    if (read_parse(f, from, path, e) < 0)
+        return -1;
     if (f->kind != JOBFILE_PLAIN)
         return 0;
     struct job *j = &f->job;

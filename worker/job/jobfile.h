@@ -39,4 +39,8 @@ struct jobfile {
 int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e);
 void jobfile_close(struct jobfile *f);
 
+/* The kind of the job file at `from`, read and parsed but not checked (a queue worker asks it of
+   another worker's claim); JOBFILE_PLAIN also when it cannot be read or parsed. */
+enum jobfile_kind jobfile_peek_kind(const char *from);
+
 #endif
