@@ -18,26 +18,34 @@ claim() {
     mv "$1/$2" "$1/running/$2"
     printf 'host %s\npid %s\nstart %s\ntoken test:%s\n' "$(hostname)" "$3" "$(date +%s)" "$3" >"$1/running/$2.lease"
 }
-# waits Q LOG PID: wait (up to 20 s) until worker PID says it waits for the spread, or has exited
-waits() {
+# begin N: queue Q=$T/qN holding the study claimed by a live process of ours ($holder); a --once
+# worker ($w, its log $log) started on it; waited=0 once it says it waits for the spread (up to 20 s),
+# 1 when it exits first
+begin() {
+    Q=$T/q$1; log=$T/w$1.log; mkdir -p "$Q"
+    study >"$Q/sp.yaml"
+    sleep 600 & holder=$!
+    claim "$Q" sp.yaml "$holder"
+    "$WORKER" --queue "$Q" --once --lease-timeout 30 --poll 0.1 >/dev/null 2>"$log" & w=$!
+    waited=1
     for _ in $(seq 1 400); do
-        grep -q 'waiting for it to be spread' "$2" 2>/dev/null && return 0
-        kill -0 "$3" 2>/dev/null || return 1
+        grep -q 'waiting for it to be spread' "$log" 2>/dev/null && { waited=0; break; }
+        kill -0 "$w" 2>/dev/null || break
         sleep 0.05
     done
-    return 1
 }
-# gathered RC Q: the worker exited 0 and the study sp of queue Q was gathered
-gathered() { [ "$1" -eq 0 ] && [ -f "$2/done/sp.yaml" ] && [ -s "$2/done/sp/verdict.json" ]; }
+# end: the worker's exit status into rc (killed after 30 s); gathered=0 when it exited 0 and the
+# study was gathered
+end() {
+    for _ in $(seq 1 600); do kill -0 "$w" 2>/dev/null || break; sleep 0.05; done
+    kill "$w" 2>/dev/null; wait "$w"; rc=$?
+    gathered=1
+    [ "$rc" -eq 0 ] && [ -f "$Q/done/sp.yaml" ] && [ -s "$Q/done/sp/verdict.json" ] && gathered=0
+}
 
 # 1. the claimer lives and spreads the study: the waiting worker renders both images and gathers
-Q=$T/q1; mkdir -p "$Q"
-study >"$Q/sp.yaml"
-sleep 600 & holder=$!
-claim "$Q" sp.yaml "$holder"
-"$WORKER" --queue "$Q" --once --lease-timeout 30 --poll 0.1 >/dev/null 2>"$T/w1.log" & w=$!
-waits "$Q" "$T/w1.log" "$w"; waited=$?
-check "a --once worker waits while a live worker spreads a compare job: $(cat "$T/w1.log")" [ "$waited" -eq 0 ]
+begin 1
+check "a --once worker waits while a live worker spreads a compare job: $(cat "$log")" [ "$waited" -eq 0 ]
 S=$Q/spread/.sp.new.$holder
 mkdir -p "$S/job" "$S/running" "$S/done" "$S/failed"
 cp "$Q/running/sp.yaml" "$S/study.job"
@@ -46,28 +54,20 @@ mv "$S" "$Q/spread/sp"
 rm "$Q/running/sp.yaml.lease"
 mv "$Q/running/sp.yaml" "$Q/spread/sp/job/sp.yaml"
 kill "$holder"
-for _ in $(seq 1 600); do kill -0 "$w" 2>/dev/null || break; sleep 0.05; done
-kill "$w" 2>/dev/null; wait "$w"; rc=$?
-check "... then renders the study's images and gathers it (exit $rc): $(tail -n 2 "$T/w1.log")" \
-    gathered "$rc" "$Q"
-check "... both images rendered by it" [ "$(grep -c 'sp/b-img-0-0000[01].yaml: sp: image' "$T/w1.log")" -eq 2 ]
-check "... said once that it waits" [ "$(grep -c 'waiting for it to be spread' "$T/w1.log")" -eq 1 ]
+end
+check "... then renders the study's images and gathers it (exit $rc): $(tail -n 2 "$log")" [ "$gathered" -eq 0 ]
+check "... both images rendered by it" [ "$(grep -c 'sp/b-img-0-0000[01].yaml: sp: image' "$log")" -eq 2 ]
+check "... said once that it waits" [ "$(grep -c 'waiting for it to be spread' "$log")" -eq 1 ]
 
 # 2. the claimer dies before it has spread the study: the waiting worker recovers the claim and
 # spreads and drains the study itself
-Q=$T/q2; mkdir -p "$Q"
-study >"$Q/sp.yaml"
-sleep 600 & holder=$!
-claim "$Q" sp.yaml "$holder"
-"$WORKER" --queue "$Q" --once --lease-timeout 30 --poll 0.1 >/dev/null 2>"$T/w2.log" & w=$!
-waits "$Q" "$T/w2.log" "$w"; waited=$?
-check "a --once worker waits for a claimed compare job: $(cat "$T/w2.log")" [ "$waited" -eq 0 ]
+begin 2
+check "a --once worker waits for a claimed compare job: $(cat "$log")" [ "$waited" -eq 0 ]
 kill "$holder"; wait "$holder" 2>/dev/null
-for _ in $(seq 1 600); do kill -0 "$w" 2>/dev/null || break; sleep 0.05; done
-kill "$w" 2>/dev/null; wait "$w"; rc=$?
-check "... its claimer dead, it takes the job back, spreads and gathers it (exit $rc): $(tail -n 2 "$T/w2.log")" \
-    gathered "$rc" "$Q"
-check "... after returning the dead claim to the queue" grep -q 'sp.yaml: returned to the queue: its worker' "$T/w2.log"
+end
+check "... its claimer dead, it takes the job back, spreads and gathers it (exit $rc): $(tail -n 2 "$log")" \
+    [ "$gathered" -eq 0 ]
+check "... after returning the dead claim to the queue" grep -q 'sp.yaml: returned to the queue: its worker' "$log"
 
 # 3. a plain job running elsewhere: nothing a --once worker could help with, it exits at once
 Q=$T/q3; mkdir -p "$Q"
