@@ -53,11 +53,11 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     const int timed = ctx->timed = sampler_timed(st->pixels);
     ctx->light_source.sets = &st->light_sets;
     ctx->light_source.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
-    const uint64_t t0 = timed ? now_ns() : 0;
+    const uint64_t t0 = timed ? clock_ns(CLOCK_MONOTONIC) : 0;
     const struct sampler_at at = {ctx->rs.seed, x, y, 0};
     size_t n = sampler_draw_at(ctx->pixel, &pix_rng, &at, ctx->pixel_pts);
     if (timed)
-        st->timed_draw_ns += now_ns() - t0;
+        st->timed_draw_ns += clock_ns(CLOCK_MONOTONIC) - t0;
 
     struct pixel_sums ps = {{0, 0, 0}, 0, 0};
     /* nee samples the emitters alone: without any, only the material's own sampling is left */
@@ -103,7 +103,7 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     for (int k = 0; k < 3; k++)
         rgb[k] = (float)(ps.sum[k] * inv);
     if (timed)
-        st->timed_pixel_ns += now_ns() - t0;
+        st->timed_pixel_ns += clock_ns(CLOCK_MONOTONIC) - t0;
     st->pixels++;
     st->samples += n;
     st->rays += ps.rays;

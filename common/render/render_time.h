@@ -4,14 +4,8 @@
 #define RENDER_TIME_H
 
 #include <stdint.h>
-#include <time.h>
 
-static __attribute__((unused)) uint64_t now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
+#include "base/clock.h"
 
 /* The sidecar's sampler_s: one pixel in SAMPLER_TIME_EVERY (by st->pixels) is timed whole, and
    every point-set draw inside it, in integer nanoseconds of one monotonic clock; the draws' share

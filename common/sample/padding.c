@@ -3,6 +3,8 @@
 
 #include <stdlib.h>
 
+#include "base/clock.h"
+
 size_t padding_slot_points(const struct sampler *s)
 {
     /* a set whose count varies (Poisson's, fresh or pooled, and any sampler drawn whole) may fall
@@ -103,7 +105,7 @@ static void fill_points(struct padding *p, int slot, struct rng *r)
 
 void padding_fill(struct padding *p, int slot)
 {
-    const uint64_t t0 = p->timed_draw_ns ? sampler_clock_ns() : 0;
+    const uint64_t t0 = p->timed_draw_ns ? clock_ns(CLOCK_MONOTONIC) : 0;
     struct rng r;
     rng_pixel(&r, p->seed, p->px, p->py, 16 + (uint64_t)slot);
     if (p->sobol)
@@ -112,5 +114,5 @@ void padding_fill(struct padding *p, int slot)
         fill_points(p, slot, &r);
     p->gen[slot] = p->pixel;
     if (p->timed_draw_ns)
-        *p->timed_draw_ns += sampler_clock_ns() - t0;
+        *p->timed_draw_ns += clock_ns(CLOCK_MONOTONIC) - t0;
 }

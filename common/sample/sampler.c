@@ -12,7 +12,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #define SAMPLER_SQRT2 1.41421356237309504880
 /* The pool's own rng stream, so pool sets never correlate with the caller's draws. */
@@ -216,13 +215,6 @@ struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng
 enum sampler_walk sampler_walk_of(const struct sampler *s)
 {
     return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : kind_rows[s->kind].walk;
-}
-
-uint64_t sampler_clock_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
 double sampler_threshold_of(const struct sampler *s)

@@ -89,9 +89,6 @@ enum sampler_kind sampler_kind_of(const struct sampler *s);
    Poisson walks its pool). */
 enum sampler_walk sampler_walk_of(const struct sampler *s);
 
-/* A monotonic clock in nanoseconds, for the set draws' timing (the sidecar's sampler_s). */
-uint64_t sampler_clock_ns(void);
-
 /* What a kind's draw function reads of its sampler: its threshold and grid side n. */
 double sampler_threshold_of(const struct sampler *s);
 

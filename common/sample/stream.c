@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/clock.h"
 #include "base/vec3.h"
 
 /* Indices a set of s shuffles: a grid's cells (made when taken), a pool set's or a sobol set's
@@ -57,7 +58,7 @@ void stream_release(struct stream *st)
 void stream_refill(const struct stream_source *src, struct stream *st, struct rng *rng)
 {
     const enum sampler_walk walk = src->walk;
-    const uint64_t t0 = src->timed_draw_ns ? sampler_clock_ns() : 0;
+    const uint64_t t0 = src->timed_draw_ns ? clock_ns(CLOCK_MONOTONIC) : 0;
     if (st->cells) {
         st->n = walk == SAMPLER_WALK_POOL ? sampler_pool_set(src->sampler, rng, &st->pool, &st->ox, &st->oy)
                 : walk == SAMPLER_WALK_SOBOL ? sampler_sobol_set(src->sampler, rng, &st->sobol)
@@ -72,7 +73,7 @@ void stream_refill(const struct stream_source *src, struct stream *st, struct rn
     }
     st->next = 0;
     if (src->timed_draw_ns)
-        *src->timed_draw_ns += sampler_clock_ns() - t0;
+        *src->timed_draw_ns += clock_ns(CLOCK_MONOTONIC) - t0;
     if (src->sets)
         ++*src->sets;
 }
