@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "verdict_fixture.h"
 #include "study/judge/verdict.h"
 #include "study/present/verdict_out.h"
 #include "study/judge/verdict_rank.h"
@@ -13,24 +14,17 @@
 #define NV 4
 #define NP 3
 #define NS 4
+_Static_assert(NV <= VF_MAX_V && NP <= VF_MAX_P && NS <= VF_MAX_S, "verdict_fixture.h too small");
 
-/* Figures built by hand: relMSE = k[v] / spp^-slope[v] x the seed's factor, CPU = spp x cost[v]. */
-struct fake {
-    struct verdict_figures f;
-    const char *variants[NV], *samplers[NV], *points[NP];
-    int pools[NV];
-    double spp[NV * NP * NS], cpu[NV * NP * NS], rel[NV * NP * NS], share[NV * NP * NS];
-    double rel_of_mean[NV * NP], bias_rel[NV * NP], radiance[NV * NP * NS];
-    uint64_t nonfinite[NV * NP * NS];
-};
-
+/* Figures built by hand (verdict_fixture.h): relMSE = k[v] / spp^-slope[v] x the seed's factor,
+   CPU = spp x cost[v]. */
 static const double seed_factor[NS] = {0.95, 1.0, 1.0, 1.05}; /* a 10% min-max range */
 /* their geometric mean: what a ranking's value is */
 #define GM pow(0.95 * 1.05, 0.25)
 
 /* The seeds' mean image's relMSE at (v, p) that makes `share` of the error repeat in every seed:
    share = (n rel_of_mean / mean_rel - 1) / (n - 1). */
-static void set_share(struct fake *x, int v, int p, double share)
+static void set_share(struct verdict_fixture *x, int v, int p, double share)
 {
     int n = x->f.n_seeds;
     double mr = 0;
@@ -39,33 +33,12 @@ static void set_share(struct fake *x, int v, int p, double share)
     x->rel_of_mean[v * NP + p] = mr * (1 + share * (n - 1)) / n;
 }
 
-static void fake_init(struct fake *x, int nv, int ns, const double *k, const double *slope,
+static void fake_init(struct verdict_fixture *x, int nv, int ns, const double *k, const double *slope,
                       const double *cost)
 {
     static const char *const names[NV] = {"alpha", "beta", "gamma", "delta"};
     static const double spp[NP] = {100, 400, 1600};
-    memset(x, 0, sizeof *x);
-    x->f = (struct verdict_figures){.study = "study",
-                                    .scene = "board",
-                                    .n_variants = nv,
-                                    .n_points = NP,
-                                    .n_seeds = ns,
-                                    .variants = x->variants,
-                                    .samplers = x->samplers,
-                                    .pools = x->pools,
-                                    .points = x->points,
-                                    .spp = x->spp,
-                                    .cpu_s = x->cpu,
-                                    .relmse = x->rel,
-                                    .sampler_share = x->share,
-                                    .nonfinite = x->nonfinite,
-                                    .rel_of_mean = x->rel_of_mean,
-                                    .bias_rel = x->bias_rel,
-                                    .radiance = x->radiance,
-                                    .ref_spp = 10000,
-                                    .ref_relmse = NAN,
-                                    .ref_radiance = NAN,
-                                    .ref_radiance_se = NAN};
+    verdict_fixture_init(x, "study", nv, NP, ns, 10000);
     x->points[0] = "threshold 10", x->points[1] = "threshold 5", x->points[2] = "threshold 2.5";
     for (int v = 0; v < nv; v++) {
         x->variants[v] = names[v];
@@ -156,7 +129,7 @@ static void test_rank_order(void)
 
 static void test_clear_winner(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 2, 4}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 4e-3};
@@ -188,7 +161,7 @@ static void test_clear_winner(void)
 
 static void test_tie_and_inconclusive(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 1.05, 4}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 1e-3};
@@ -223,7 +196,7 @@ static void test_tie_and_inconclusive(void)
 
 static void test_slopes(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 1, 1}, slope[] = {-1, -1.3, -1.02}, cost[] = {1e-3, 1e-3, 1e-3};
@@ -241,7 +214,7 @@ static void test_slopes(void)
 
 static void test_failures_and_guards(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 1.5, 3, 2}, slope[] = {-1, -1, -1, -1}, cost[] = {1e-3, 1e-3, 3e-3, 1e-3};
@@ -281,7 +254,7 @@ static void test_failures_and_guards(void)
    time: ranked behind, whatever its figures, and said so. */
 static void test_unreached(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 2, 0.5}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 50e-3};
@@ -300,7 +273,7 @@ static void test_unreached(void)
    and pattern. */
 static void test_biased(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 0.5, 1}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 1e-3};
@@ -348,7 +321,7 @@ static void test_biased(void)
    is warned: alpha's relMSE k / spp plus a reference floor of 1e-3 fits its true slope -1. */
 static void test_reference_noise(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[] = {1, 2}, slope[] = {-1, -1}, cost[] = {1e-3, 1e-3};

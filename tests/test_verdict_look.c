@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "verdict_fixture.h"
 #include "study/judge/verdict.h"
 #include "study/judge/verdict_look.h"
 #include "study/present/verdict_out.h"
@@ -14,44 +15,15 @@
 #define NV 3
 #define NP 2
 #define NS 8
-#define N (NV * NP * NS)
-
-struct fake {
-    struct verdict_figures f;
-    const char *variants[NV], *samplers[NV], *points[NP];
-    int pools[NV];
-    double spp[N], cpu[N], rel[N], share[N], lowfreq[N], radiance[N], rel_of_mean[NV * NP], bias_rel[NV * NP];
-    uint64_t nonfinite[N];
-};
+_Static_assert(NV <= VF_MAX_V && NP <= VF_MAX_P && NS <= VF_MAX_S, "verdict_fixture.h too small");
 
 /* relMSE = k[v] / spp x a seed's factor; error_lowfreq = look[v] x another (spread about 6%). */
-static void fake_init(struct fake *x, const double *k, const double *look)
+static void fake_init(struct verdict_fixture *x, const double *k, const double *look)
 {
     static const char *const names[NV] = {"sobol", "zsobol", "random"};
     static const double spp[NP] = {4, 16};
-    memset(x, 0, sizeof *x);
-    x->f = (struct verdict_figures){.study = "look",
-                                    .scene = "board",
-                                    .n_variants = NV,
-                                    .n_points = NP,
-                                    .n_seeds = NS,
-                                    .variants = x->variants,
-                                    .samplers = x->samplers,
-                                    .pools = x->pools,
-                                    .points = x->points,
-                                    .spp = x->spp,
-                                    .cpu_s = x->cpu,
-                                    .relmse = x->rel,
-                                    .sampler_share = x->share,
-                                    .nonfinite = x->nonfinite,
-                                    .rel_of_mean = x->rel_of_mean,
-                                    .bias_rel = x->bias_rel,
-                                    .radiance = x->radiance,
-                                    .lowfreq = x->lowfreq,
-                                    .ref_spp = 4096,
-                                    .ref_relmse = NAN,
-                                    .ref_radiance = NAN,
-                                    .ref_radiance_se = NAN};
+    verdict_fixture_init(x, "look", NV, NP, NS, 4096);
+    x->f.lowfreq = x->lowfreq;
     x->points[0] = "threshold 50", x->points[1] = "threshold 25";
     for (int v = 0; v < NV; v++) {
         x->variants[v] = names[v], x->samplers[v] = names[v];
@@ -69,7 +41,7 @@ static void fake_init(struct fake *x, const double *k, const double *look)
 
 static void test_bluest(void)
 {
-    struct fake x;
+    struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
     const double k[NV] = {1, 1, 4}, look[NV] = {1.0, 0.7, 0.3};
