@@ -6,21 +6,16 @@
 #include "check.h"
 #include "job/job.h"
 #include "job/jobfile.h"
+#include "job_fixture.h"
 
-static char dir[64], scene[1024];
+static struct job_fixture fx;
 
 /* Write "scene: <the checker scene>" and text as DIR/name and load it; 0 or -1 (with e). */
 static int load(const char *name, const char *text, struct job *j, struct err *e)
 {
     char path[128];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return -2;
-    fprintf(f, "scene: %s\n%s", scene, text);
-    fclose(f);
     struct jobfile jf;
-    int rc = jobfile_open(&jf, path, path, e);
+    int rc = job_fixture_open(&fx, name, text, path, sizeof path, &jf, e);
     *j = jf.job;
     jobfile_close(&jf);
     unlink(path);
@@ -62,12 +57,10 @@ static void test_threshold_message(void)
 
 int main(void)
 {
-    snprintf(dir, sizeof dir, "/tmp/test_job_XXXXXX");
-    if (!mkdtemp(dir) || !getcwd(scene, sizeof scene - 32))
+    if (job_fixture_init(&fx, "test_job") < 0)
         return 1;
-    strcat(scene, "/scenes/checker.yaml"); /* the tests run from the repository's root */
     test_defaults();
     test_threshold_message();
-    rmdir(dir);
+    rmdir(fx.dir);
     return check_report("test_job");
 }

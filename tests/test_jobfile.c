@@ -7,46 +7,27 @@
 #include "base/hash.h"
 #include "check.h"
 #include "job/jobfile.h"
+#include "job_fixture.h"
 
-static char dir[64], scene[1024];
-
-/* Write text as DIR/name; its path into path. */
-static void put(const char *name, const char *text, char *path, size_t n)
-{
-    snprintf(path, n, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (f) {
-        fputs(text, f);
-        fclose(f);
-    }
-}
+static struct job_fixture fx;
 
 /* The kind jobfile_open reads text as; -1 when it does not open (e filled). */
 static int kind_of(const char *text, struct err *e)
 {
     char path[128];
     struct jobfile f;
-    put("k.yaml", text, path, sizeof path);
+    job_fixture_put(&fx, "k.yaml", text, path, sizeof path);
     int kind = jobfile_open(&f, path, path, e) == 0 ? (int)f.kind : -1;
     jobfile_close(&f);
     unlink(path);
     return kind;
 }
 
-/* Write "scene: <the checker scene>\n" + extra as DIR/name (its path into path) and open it. */
-static int open_job(const char *name, const char *extra, char *path, struct jobfile *f, struct err *e)
-{
-    char text[1200];
-    snprintf(text, sizeof text, "scene: %s\n%s", scene, extra);
-    put(name, text, path, 128);
-    return jobfile_open(f, path, path, e);
-}
-
 static void test_kinds(void)
 {
     struct err e;
     char text[1200];
-    snprintf(text, sizeof text, "scene: %s\n", scene);
+    snprintf(text, sizeof text, "scene: %s\n", fx.scene);
     CHECK(kind_of(text, &e) == JOBFILE_PLAIN);
     CHECK(kind_of("variants:\n  - { sampler: jitter }\n", &e) == JOBFILE_COMPARE);
     CHECK(kind_of("variants:\n", &e) == JOBFILE_COMPARE); /* null: still meant as one (its loader says) */
@@ -56,6 +37,22 @@ static void test_kinds(void)
     CHECK(kind_of("widht: 3\n", &e) == -1 && strstr(e.msg, "did you mean \"width\""));
 }
 
+/* jobfile_peek_kind: the kind alone, nothing checked; a file that does not read or parse is plain. */
+static void test_peek_kind(void)
+{
+    char path[128];
+    job_fixture_put(&fx, "s.yaml", "name: s\nstudies: [a.yaml]\n", path, sizeof path);
+    CHECK(jobfile_peek_kind(path) == JOBFILE_SUITE);
+    job_fixture_put(&fx, "s.yaml", "variants: [{ sampler: nonesuch }]\nwidht: 3\n", path, sizeof path);
+    CHECK(jobfile_peek_kind(path) == JOBFILE_COMPARE); /* its keys are the loader's to judge */
+    job_fixture_put(&fx, "s.yaml", "scene: missing.yaml\n", path, sizeof path);
+    CHECK(jobfile_peek_kind(path) == JOBFILE_PLAIN); /* its scene is not read */
+    job_fixture_put(&fx, "s.yaml", "variants: [\n", path, sizeof path);
+    CHECK(jobfile_peek_kind(path) == JOBFILE_PLAIN);
+    unlink(path);
+    CHECK(jobfile_peek_kind(path) == JOBFILE_PLAIN);
+}
+
 /* The hash: the job file's bytes, then the scene's (the value run_job's resume and sidecars
    record: the same as before the file was read once). */
 static void test_hash_and_scene(void)
@@ -63,13 +60,13 @@ static void test_hash_and_scene(void)
     char path[128], text[1200];
     struct jobfile f;
     struct err e;
-    CHECK(open_job("h.yaml", "width: 8\n", path, &f, &e) == 0);
-    snprintf(text, sizeof text, "scene: %s\nwidth: 8\n", scene);
+    CHECK(job_fixture_open(&fx, "h.yaml", "width: 8\n", path, sizeof path, &f, &e) == 0);
+    snprintf(text, sizeof text, "scene: %s\nwidth: 8\n", fx.scene);
     CHECK(f.hash == hash_bytes(HASH_FNV_OFFSET, text, strlen(text)));
     uint64_t want = f.hash;
-    CHECK(scene_hash_inputs(scene, &want, &e) == 0);
+    CHECK(scene_hash_inputs(fx.scene, &want, &e) == 0);
     CHECK(f.job.hash == want && f.job.width == 8);
-    CHECK(f.scene.parsed && !strcmp(f.scene.doc.file, scene)); /* parsed once, kept for the render */
+    CHECK(f.scene.parsed && !strcmp(f.scene.doc.file, fx.scene)); /* parsed once, kept for the render */
     struct scene_file sf;
     CHECK(scene_load_src(&f.scene, &sf, &e) == 0 && sf.scene != NULL);
     scene_file_free(&sf);
@@ -86,9 +83,9 @@ static void test_hash_and_scene(void)
 
     /* a scene that does not parse: the job opens, the scene's error comes when it is loaded */
     char bad[128];
-    put("bad-scene.yaml", "camera: [\n", bad, sizeof bad);
+    job_fixture_put(&fx, "bad-scene.yaml", "camera: [\n", bad, sizeof bad);
     snprintf(text, sizeof text, "scene: %s\n", bad);
-    put("b.yaml", text, path, sizeof path);
+    job_fixture_put(&fx, "b.yaml", text, path, sizeof path);
     CHECK(jobfile_open(&f, path, path, &e) == 0 && !f.scene.parsed);
     CHECK(scene_load_src(&f.scene, &sf, &e) < 0 && strstr(e.msg, "YAML syntax error") &&
           !strcmp(e.file, bad));
@@ -102,7 +99,7 @@ static void test_output_list(void)
     char path[128];
     struct jobfile f;
     struct err e;
-    CHECK(open_job("o.yaml", "output: [a.png, b.exr, c.PFM]\n", path, &f, &e) == 0);
+    CHECK(job_fixture_open(&fx, "o.yaml", "output: [a.png, b.exr, c.PFM]\n", path, sizeof path, &f, &e) == 0);
     CHECK(!strcmp(f.job.output, "a.png") && f.job.format == IMG_PNG && f.job.n_more == 2);
     CHECK(!strcmp(f.job.more_output[0], "b.exr") && f.job.more_format[0] == IMG_EXR);
     CHECK(!strcmp(f.job.more_output[1], "c.PFM") && f.job.more_format[1] == IMG_PFM);
@@ -112,13 +109,12 @@ static void test_output_list(void)
 
 int main(void)
 {
-    snprintf(dir, sizeof dir, "/tmp/test_jobfile_XXXXXX");
-    if (!mkdtemp(dir) || !getcwd(scene, sizeof scene - 32))
+    if (job_fixture_init(&fx, "test_jobfile") < 0)
         return 1;
-    strcat(scene, "/scenes/checker.yaml"); /* the tests run from the repository's root */
     test_kinds();
+    test_peek_kind();
     test_hash_and_scene();
     test_output_list();
-    rmdir(dir);
+    rmdir(fx.dir);
     return check_report("test_jobfile");
 }
