@@ -7,23 +7,8 @@
 . tests/lib.sh
 root=$(pwd)
 rnd() { od -An -N2 -tu2 /dev/urandom | tr -d ' '; } # 0..65535
-study() {
-    cat <<YAML
-name: spread
-scenes: [$root/scenes/checker.yaml, $root/scenes/cornell.yaml]
-width: 10
-height: 8
-processes: 1
-light_threshold: 50
-reference: { sampler: jitter, threshold: 10 }
-seeds: [1, 2, 3, 4, 5]
-sweep: { threshold: [50, 25] }
-variants:
-  - { sampler: jitter }
-  - { sampler: random }
-  - { sampler: uniform }
-YAML
-}
+. tests/lib_study.sh
+study() { small_study spread "$root" "1, 2, 3, 4, 5" "jitter random uniform"; }
 study >"$T/spread.yaml"
 "$WORKER" --quiet --out "$T/plain" "$T/spread.yaml" 2>"$T/plain.log"
 check "the one-process run: $(cat "$T/plain.log")" [ -s "$T/plain/spread/verdict.json" ]

@@ -10,6 +10,7 @@ WORKER=$(cd "$(dirname "${WORKER:-$root/bin/worker}")" && pwd)/$(basename "${WOR
 t0=$(date +%s.%N)
 elapsed() { awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
 say() { echo "slurm: [$(elapsed) s] $*"; }
+. "$root/tests/lib_study.sh"
 
 for tool in munged slurmctld slurmd sbatch sinfo scancel; do
     command -v "$tool" >/dev/null || PATH=$PATH:/usr/sbin:/sbin
@@ -166,20 +167,7 @@ check "parts: sidecar records 4 parts" grep -q '"parts": 4' "$S/parts/split/spli
 # 3. a study spread over a 3-task array (each --part I/3 of its images), gathered by a dependent
 #    job: the one-process run's images and verdict; each image rendered once; a resubmission
 #    renders nothing again (sidecars' job hash)
-cat >"$S/study.yaml" <<YAML
-name: study
-scenes: [$root/scenes/checker.yaml, $root/scenes/cornell.yaml]
-width: 10
-height: 8
-processes: 1
-light_threshold: 50
-reference: { sampler: jitter, threshold: 10 }
-seeds: [1, 2, 3]
-sweep: { threshold: [50, 25] }
-variants:
-  - { sampler: jitter }
-  - { sampler: random }
-YAML
+small_study study "$root" "1, 2, 3" "jitter random" >"$S/study.yaml"
 "$WORKER" --quiet --out "$S/plain-study" "$S/study.yaml" 2>/dev/null || true
 for round in 1 2; do
     set +e
