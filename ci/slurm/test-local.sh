@@ -117,6 +117,17 @@ check() { # check "description" command...
     local d=$1; shift
     if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $d" >&2; fi
 }
+waited() { # waited WHAT CMD...: CMD (it submits with --wait) run in $S/out, where the task logs go;
+    # the job id it prints into $out (cancelled on cleanup), its exit status into $rc
+    local what=$1; shift
+    set +e
+    out=$(cd "$S/out" && "$@")
+    rc=$?
+    set -e
+    out=${out%%;*}
+    jobs+=("$out")
+    say "$what $out finished (sbatch --wait exit $rc)"
+}
 tiny() { # tiny FILE [yaml lines]: a 16x16 render of a few milliseconds
     local f=$1; shift
     { echo "scene: $root/scenes/checker.yaml"; echo "width: 16"; echo "height: 16"
@@ -128,13 +139,8 @@ tiny() { # tiny FILE [yaml lines]: a 16x16 render of a few milliseconds
 Q=$S/queue
 mkdir -p "$Q"
 for i in $(seq 1 12); do tiny "$Q/j$i.yaml"; done
-set +e
-out=$(cd "$S/out" && WORKER=$WORKER QUEUE=$Q sbatch --parsable --wait --array=0-3 --export=ALL \
-    "$here/queue.sbatch")
-rc=$?
-set -e
-jobs+=("${out%%;*}")
-say "queue array job ${out%%;*} finished (sbatch --wait exit $rc)"
+waited "queue array job" env WORKER="$WORKER" QUEUE="$Q" sbatch --parsable --wait --array=0-3 --export=ALL \
+    "$here/queue.sbatch"
 check "queue: sbatch --wait exits 0 (got $rc)" [ "$rc" -eq 0 ]
 check "queue: 12 job files in done/" [ "$(ls "$Q"/done/*.yaml 2>/dev/null | wc -l)" -eq 12 ]
 check "queue: 12 images" [ "$(ls "$Q"/done/j*/j*.png 2>/dev/null | wc -l)" -eq 12 ]
@@ -153,12 +159,7 @@ check "queue: each job rendered exactly once ($once of 12)" [ "$once" -eq 12 ]
 { echo "scene: $root/scenes/checker.yaml"; echo "width: 40"; echo "height: 30"; echo "threshold: 25"
   echo "light_threshold: 50"; } >"$S/split.yaml"
 "$WORKER" --quiet --out "$S/plain" "$S/split.yaml" 2>/dev/null || true
-set +e
-out=$(cd "$S/out" && WORKER=$WORKER "$here/submit-parts.sh" "$S/split.yaml" "$S/parts" 4 --wait)
-rc=$?
-set -e
-jobs+=("$out")
-say "part array + dependent merge job $out finished (sbatch --wait exit $rc)"
+waited "part array + dependent merge job" env WORKER="$WORKER" "$here/submit-parts.sh" "$S/split.yaml" "$S/parts" 4 --wait
 check "parts: merge step exits 0 (got $rc)" [ "$rc" -eq 0 ]
 check "parts: the merge step ran after the parts" grep -q "split: merged 4 parts, 40x30" "$S/out/worker-merge-$out.out"
 check "parts: 4 part files" [ "$(ls "$S"/parts/split/split.part-*-of-4 2>/dev/null | wc -l)" -eq 4 ]
@@ -170,12 +171,8 @@ check "parts: sidecar records 4 parts" grep -q '"parts": 4' "$S/parts/split/spli
 small_study study "$root" "1, 2, 3" "jitter random" >"$S/study.yaml"
 "$WORKER" --quiet --out "$S/plain-study" "$S/study.yaml" 2>/dev/null || true
 for round in 1 2; do
-    set +e
-    out=$(cd "$S/out" && WORKER=$WORKER "$here/submit-study.sh" "$S/study.yaml" "$S/studies" 3 --wait)
-    rc=$?
-    set -e
-    jobs+=("$out")
-    say "study round $round: render array + dependent gather job $out finished (sbatch --wait exit $rc)"
+    waited "study round $round: render array + dependent gather job" \
+        env WORKER="$WORKER" "$here/submit-study.sh" "$S/study.yaml" "$S/studies" 3 --wait
     check "study $round: gather exits 0 (got $rc)" [ "$rc" -eq 0 ]
     check "study $round: the gather ran after the renders" grep -q "^study: 24 images" "$S/out/worker-gather-$out.out"
     rendered=$(cat "$S"/out/worker-part-*.out | grep "^study: part " | sed 's/.*: part [0-9]*\/3: \([0-9]*\) image.*/\1/' | awk '{s += $1} END {print s + 0}')
