@@ -30,7 +30,7 @@ check "log: no cores warning for $cores cores and one process" sh -c "! grep -q 
 Q=$T/q2; mkdir -p "$Q/running"
 sleep 60 & live=$!
 tiny "$Q/running/busy.yaml"
-{ printf 'host %s\npid %s\nstart %s\ntoken %s:%s:1\n' "$(hostname)" "$live" "$(date +%s)" "$(hostname)" "$live"
+{ lease_text "$live"
   printf 'progress %10d %10d %12.1f %5d %5d\n' 1 16 0.1 1 "$cores"; } >"$Q/running/busy.yaml.lease"
 tiny "$Q/d.yaml" 2
 "$WORKER" --queue "$Q" --once 2>"$T/q2.log"; rc=$?

@@ -3,32 +3,20 @@
 # they are hit every time: a claim handed back never replaces a job queued meanwhile under its name.
 . tests/lib.sh
 root=$(pwd)
-CC=${CC:-cc}
 
 tiny() { # tiny FILE SIZE: a SIZExSIZE job that renders in a few milliseconds
     { echo "scene: $root/scenes/checker.yaml"; echo "width: $2"; echo "height: $2"; echo "threshold: 50"
       echo "light_threshold: 50"; echo "processes: 1"; } >"$1"
 }
 dead_pid() { sh -c 'echo $$'; }
-fake_lease() { # fake_lease CLAIM PID: the lease of a worker on this host with that pid
-    printf 'host %s\npid %s\nstart %s\ntoken %s:%s:1\n' "$(hostname)" "$2" "$(date +%s)" "$(hostname)" "$2" \
-        >"$1.lease"
-}
 
-if ! $CC -shared -fPIC -o "$T/arrive.so" tests/shim/arrive.c -ldl 2>"$T/cc.log"; then
-    cat "$T/cc.log"
-    skip "no C compiler for the shim: race tests"
-    finish
-    exit $?
-fi
-# under ASan (make asan) the preloaded shim comes before the sanitizer's runtime: allowed here
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
+need_shim arrive
 
 # 1. a dead worker's claim is returned to DIR just as a new job of its file name arrives there:
 #    the new file must survive (rename() replaced it), and both jobs render
 Q=$T/q1; mkdir -p "$Q/running"
 tiny "$Q/running/x.yaml" 16
-fake_lease "$Q/running/x.yaml" "$(dead_pid)"
+lease_text "$(dead_pid)" >"$Q/running/x.yaml.lease"
 tiny "$T/new.yaml" 24
 SHIM_ARRIVE=$T/new.yaml LD_PRELOAD=$T/arrive.so "$WORKER" --queue "$Q" --once 2>"$T/q1.log"; rc=$?
 check "return race: exit 0 (got $rc)" [ "$rc" -eq 0 ]

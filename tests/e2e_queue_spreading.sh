@@ -16,7 +16,7 @@ study() {
 claim() {
     mkdir -p "$1/running"
     mv "$1/$2" "$1/running/$2"
-    printf 'host %s\npid %s\nstart %s\ntoken test:%s\n' "$(hostname)" "$3" "$(date +%s)" "$3" >"$1/running/$2.lease"
+    lease_text "$3" >"$1/running/$2.lease"
 }
 # begin N: queue Q=$T/qN holding the study claimed by a live process of ours ($holder); a --once
 # worker ($w, its log $log) started on it; waited=0 once it says it waits for the spread (up to 20 s),

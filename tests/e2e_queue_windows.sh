@@ -4,7 +4,6 @@
 # that they are hit every time.
 . tests/lib.sh
 root=$(pwd)
-CC=${CC:-cc}
 
 tiny() { # tiny FILE SIZE [SEED]: a SIZExSIZE job that renders in a few milliseconds
     { echo "scene: $root/scenes/checker.yaml"; echo "width: $2"; echo "height: $2"; echo "threshold: 50"
@@ -12,22 +11,14 @@ tiny() { # tiny FILE SIZE [SEED]: a SIZExSIZE job that renders in a few millisec
 }
 temps() { find "$1" -name '.*.tmp.*' | wc -l; }
 
-if ! $CC -shared -fPIC -o "$T/race.so" tests/shim/race.c -ldl 2>"$T/cc.log"; then
-    cat "$T/cc.log"
-    skip "no C compiler for the shim: race tests"
-    finish
-    exit $?
-fi
-# under ASan (make asan) the preloaded shim comes before the sanitizer's runtime: allowed here
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
+need_shim race
 
 # defect 7: a finished job is filed in done/ and, that instant, another worker claims a re-queued
 # file of the same name: the new claim's lease must survive the filing of the old one
 Q=$T/q7; mkdir -p "$Q"
 tiny "$Q/x.yaml" 16
 sleep 60 & live=$!
-printf 'host %s\npid %s\nstart %s\ntoken %s:%s:7\n' "$(hostname)" "$live" "$(date +%s)" "$(hostname)" "$live" \
-    >"$T/lease7"
+lease_text "$live" 7 >"$T/lease7"
 SHIM_REQUEUE=$T/lease7 LD_PRELOAD=$T/race.so "$WORKER" --queue "$Q" --once 2>"$T/q7.log"; rc=$?
 check "7: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "7: the first x.yaml is done" [ -f "$Q/done/x.yaml" ]
