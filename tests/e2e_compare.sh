@@ -42,7 +42,7 @@ check "one cached reference per scene, a float image" [ "$(ls "$T"/out/.cache/re
 check "each the mean of two cached halves" [ "$(ls "$T"/out/.cache/ref-*-[ab].exr 2>/dev/null | wc -l)" -eq 4 ]
 check "no 8-bit cached reference" [ "$(ls "$T"/out/.cache/ref-*.png 2>/dev/null | wc -l)" -eq 0 ]
 check "every render keeps its float image beside its PNG" \
-    [ "$(ls "$cdir"/*.exr | wc -l)" -eq 40 ] && [ -s "$cdir/checker-jitter-t25-s2.exr" ]
+    eval '[ "$(ls "$cdir"/*.exr | wc -l)" -eq 40 ] && [ -s "$cdir/checker-jitter-t25-s2.exr" ]'
 check "sidecar: error in linear radiance" grep -q '"domain": "linear"' "$cdir/checker-jitter-t25-s2.json"
 check "first run rendered both references" grep -q "references: 2 rendered, 0 reused from cache" "$T/run1.err"
 check "the summary line counts the combinations" grep -q "cmp: 40 images (2 scenes x 5 variants x 2 sweep points x 2 seeds)" "$T/run1.err"

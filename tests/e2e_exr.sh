@@ -19,7 +19,7 @@ job "$T/p.yaml" p "threshold: 25" "format: pfm"
 job "$T/g.yaml" g "threshold: 25"
 "$WORKER" --quiet --out "$T/o" "$T/e.yaml" "$T/p.yaml" "$T/g.yaml" 2>"$T/e1"; rc=$?
 check "exr, pfm, png jobs: exit 0 (got $rc: $(cat "$T/e1"))" [ "$rc" -eq 0 ]
-check "format: exr writes e.exr and its sidecar" [ -s "$T/o/e/e.exr" ] && [ -s "$T/o/e/e.json" ]
+check "format: exr writes e.exr and its sidecar" eval '[ -s "$T/o/e/e.exr" ] && [ -s "$T/o/e/e.json" ]'
 check "format: pfm writes p.pfm" [ -s "$T/o/p/p.pfm" ]
 check "the EXR starts with OpenEXR's magic number" [ "$(head -c 4 "$T/o/e/e.exr" | od -An -tx1 | tr -d ' ')" = "762f3101" ]
 check "the PFM's header: PF, 24 20, -1.0 (little-endian)" [ "$(head -c 14 "$T/o/p/p.pfm" | tr '\n' ' ')" = "PF 24 20 -1.0 " ]

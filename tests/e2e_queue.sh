@@ -335,9 +335,9 @@ check "odd entries: its sidecar is UTF-8 (the byte as U+FFFD)" \
     sh -c "! LC_ALL=C grep -q \"\$(printf '\\351')\" '$Q/done/$latin1/$latin1.json' &&
            grep -Fq '\"job\": \"caf\\ufffd\"' '$Q/done/$latin1/$latin1.json'"
 check "odd entries: only those two failed" [ "$(ls "$Q/failed" | grep -c 'yaml$')" -eq 2 ]
-check "odd entries: the directory filed in failed/ with a log" [ -d "$Q/failed/dir.yaml" ] && [ -s "$Q/failed/dir.log" ]
-check "odd entries: the dangling link filed in failed/ with a log" [ -L "$Q/failed/dangling.yaml" ] &&
-    [ -s "$Q/failed/dangling.log" ]
+check "odd entries: the directory filed in failed/ with a log" eval '[ -d "$Q/failed/dir.yaml" ] && [ -s "$Q/failed/dir.log" ]'
+check "odd entries: the dangling link filed in failed/ with a log" eval '[ -L "$Q/failed/dangling.yaml" ] &&
+    [ -s "$Q/failed/dangling.log" ]'
 check "odd entries: the link's target untouched" [ -s "$T/q9b/store/real.yaml" ]
 
 # 9c. a file name holding a newline: every message stays one line (control characters escaped)

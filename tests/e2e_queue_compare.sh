@@ -21,7 +21,7 @@ printf 'name: broken\nscenes: [../scenes/checker.yaml]\nsweep: { threshold: [] }
 check "queue with a bad compare job exits 2 (got $rc)" [ "$rc" -eq 2 ]
 check "compare job filed in done/" [ -f "$q/done/study.yaml" ]
 check "its 8 images in done/study/" [ "$(ls "$q"/done/study/*.png 2>/dev/null | wc -l)" -eq 8 ]
-check "its summary.csv, chart.svg and report.html" [ -s "$q/done/study/summary.csv" ] && [ -s "$q/done/study/chart.svg" ] && [ -s "$q/done/study/report.html" ]
+check "its summary.csv, chart.svg and report.html" eval '[ -s "$q/done/study/summary.csv" ] && [ -s "$q/done/study/chart.svg" ] && [ -s "$q/done/study/report.html" ]'
 check "bad compare job filed in failed/" [ -f "$q/failed/broken.yaml" ]
 check "its log names file:line:col" grep -q 'broken.yaml:3:[0-9]*: ' "$q/failed/broken.log"
 check "nothing left running" [ -z "$(ls "$q/running" 2>/dev/null | grep yaml)" ]

@@ -46,6 +46,6 @@ printf 'priority: 5\n' | cat - "$Q/deep.yaml" >"$Q/deep2.yaml" # read by the sca
 timeout 60 "$WORKER" --queue "$Q" --once --quiet 2>"$T/q.log"; rc=$?
 check "queue: the worker ends (exit 2: invalid jobs; got $rc)" [ "$rc" -eq 2 ]
 check "queue: the 5 others are done" [ "$(ls "$Q"/done/j*.yaml 2>/dev/null | wc -l)" -eq 5 ]
-check "queue: both deep files in failed/" [ -f "$Q/failed/deep.yaml" ] && [ -f "$Q/failed/deep2.yaml" ]
+check "queue: both deep files in failed/" eval '[ -f "$Q/failed/deep.yaml" ] && [ -f "$Q/failed/deep2.yaml" ]'
 check "queue: its log gives file:line:col" grep -qE "deep.yaml:2:[0-9]+: nesting deeper" "$Q/failed/deep.log"
 finish

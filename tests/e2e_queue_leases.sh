@@ -19,7 +19,7 @@ for kind in fifo zero; do
     check "$kind lease: status ends at once (rc $rc)" [ "$rc" -eq 0 ]
     check "... shows the claim without a lease" grep -q 'x.yaml  (no lease yet)' "$T/st-$kind.txt"
     within 20 "$WORKER" --queue "$Q" --once --quiet --lease-timeout 1 >/dev/null 2>"$T/w-$kind.log"; rc=$?
-    check "$kind lease: a worker drains the queue (rc $rc): $(cat "$T/w-$kind.log")" [ "$rc" -ne 124 ] && [ -f "$Q/done/y.yaml" ]
+    check "$kind lease: a worker drains the queue (rc $rc): $(cat "$T/w-$kind.log")" eval '[ "$rc" -ne 124 ] && [ -f "$Q/done/y.yaml" ]'
 done
 
 # a forged lease: escapes in the host, absurd numbers
@@ -34,7 +34,7 @@ check "forged lease: elapsed unknown, percent sane: $(grep f.yaml "$T/forged.txt
 # failed/ that cannot be read (a file in its place: root reads any folder)
 Q=$T/q-bad; mkdir -p "$Q"; : >"$Q/failed"
 "$WORKER" status "$Q" >"$T/bad.txt" 2>&1; rc=$?
-check "unreadable failed/: status fails (rc $rc): $(cat "$T/bad.txt")" [ "$rc" -eq 2 ] && grep -q 'failed: cannot be read' "$T/bad.txt"
+check "unreadable failed/: status fails (rc $rc): $(cat "$T/bad.txt")" eval '[ "$rc" -eq 2 ] && grep -q "failed: cannot be read" "$T/bad.txt"'
 "$WORKER" requeue "$Q" --failed >"$T/rq.txt" 2>&1; rc=$?
 check "unreadable failed/: requeue --failed fails (rc $rc): $(cat "$T/rq.txt")" [ "$rc" -eq 2 ]
 
@@ -45,7 +45,7 @@ printf 'name: named\nwidth: oops\n' >"$Q/s.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>/dev/null
 check "the invalid job's log is failed/s.log" [ -f "$Q/failed/s.log" ]
 "$WORKER" requeue "$Q" s 2>/dev/null
-check "requeue removed failed/s.log" [ ! -f "$Q/failed/s.log" ] && [ -f "$Q/s.yaml" ]
+check "requeue removed failed/s.log" eval '[ ! -f "$Q/failed/s.log" ] && [ -f "$Q/s.yaml" ]'
 # two requeues racing for one failed file: the first stops (SIGSTOP, by the shim) just before its
 # rename, the second moves the file; the first, continued, names what happened
 if preload_shim race; then
@@ -56,7 +56,7 @@ if preload_shim race; then
     for _ in $(seq 1 500); do [ "$(ps -o stat= -p "$a" | cut -c1)" = T ] && break; sleep 0.02; done
     "$WORKER" requeue "$Q" r 2>"$T/race-b.txt"; rcb=$?
     kill -CONT "$a"; wait "$a"; rca=$?
-    check "racing requeues: the second moved it (rc $rcb)" [ "$rcb" -eq 0 ] && [ -f "$Q/r.yaml" ]
+    check "racing requeues: the second moved it (rc $rcb)" eval '[ "$rcb" -eq 0 ] && [ -f "$Q/r.yaml" ]'
     check "racing requeues: the loser exits 2 and says why: $(cat "$T/race-a.txt")" \
         sh -c "[ $rca -eq 2 ] && grep -q 'no longer there: moved meanwhile' '$T/race-a.txt'"
 else

@@ -19,8 +19,8 @@ check "log: exit 2 (a bad job) (got $rc)" [ "$rc" -eq 2 ]
 check "log: every line timed and naming its job: $(cat "$T/q1.log")" \
     sh -c "[ \$(grep -cvE '^$TS [^ ]+\\.yaml: ' '$T/q1.log') -eq 0 ] && [ \$(grep -c . '$T/q1.log') -ge 5 ]"
 check "log: one claim line per claimed job" \
-    [ "$(grep -cE "^$TS a\\.yaml: claimed by pid [0-9]+ on " "$T/q1.log")" -eq 1 ] &&
-    [ "$(grep -cE "^$TS b\\.yaml: claimed by pid [0-9]+ on " "$T/q1.log")" -eq 1 ]
+    eval '[ "$(grep -cE "^$TS a\\.yaml: claimed by pid [0-9]+ on " "$T/q1.log")" -eq 1 ] &&
+    [ "$(grep -cE "^$TS b\\.yaml: claimed by pid [0-9]+ on " "$T/q1.log")" -eq 1 ]'
 check "log: the summary after the claim" grep -qE "^$TS a\\.yaml: a: 16x16 " "$T/q1.log"
 check "log: the error at file:line:col" grep -qE "^$TS b\\.yaml: $Q/b\\.yaml:1:8: width: " "$T/q1.log"
 check "log: no cores warning for $cores cores and one process" sh -c "! grep -q 'render processes on' '$T/q1.log'"

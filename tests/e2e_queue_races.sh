@@ -22,7 +22,7 @@ SHIM_ARRIVE=$T/new.yaml LD_PRELOAD=$T/arrive.so "$WORKER" --queue "$Q" --once 2>
 check "return race: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "return race: the dead claim rendered (16x16)" grep -q "16x16" "$T/q1.log"
 check "return race: the job queued meanwhile rendered too (24x24)" grep -q "24x24" "$T/q1.log"
-check "return race: nothing left waiting or running" [ ! -e "$Q/x.yaml" ] && [ -z "$(ls -A "$Q/running")" ]
+check "return race: nothing left waiting or running" eval '[ ! -e "$Q/x.yaml" ] && [ -z "$(ls -A "$Q/running")" ]'
 # 2. the same window on a stop signal's hand-back: the claim stays in running/ for the next worker
 Q=$T/q2; mkdir -p "$Q"
 { echo "scene: $root/scenes/checker.yaml"; echo "width: 64"; echo "height: 64"; echo "threshold: 3"
@@ -35,6 +35,6 @@ check "signal race: the job queued meanwhile is kept" grep -q "width: 24" "$Q/x.
 check "signal race: the stopped claim stays in running/" grep -q "width: 64" "$Q/running/x.yaml"
 check "signal race: said so" grep -q "stays in" "$T/q2.log"
 "$WORKER" --queue "$Q" --once 2>"$T/q2b.log"; rc=$?
-check "signal race: the next worker renders both (got $rc)" [ "$rc" -eq 0 ] && grep -q "64x64" "$T/q2b.log" &&
-    grep -q "24x24" "$T/q2b.log"
+check "signal race: the next worker renders both (got $rc)" eval '[ "$rc" -eq 0 ] && grep -q "64x64" "$T/q2b.log" &&
+    grep -q "24x24" "$T/q2b.log"'
 finish

@@ -15,14 +15,14 @@ Q=$T/q; mkdir -p "$Q"
 check "empty: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "empty: says 0 of each" grep -q "0 waiting, 0 running, 0 done, 0 failed" "$T/s0.txt"
 "$WORKER" status "$T/nowhere" 2>"$T/s0.err"; rc=$?
-check "no such queue: exit 2 (got $rc)" [ "$rc" -eq 2 ] && grep -q "nowhere" "$T/s0.err"
+check "no such queue: exit 2 (got $rc)" eval '[ "$rc" -eq 2 ] && grep -q "nowhere" "$T/s0.err"'
 "$WORKER" status 2>/dev/null; rc=$?
 check "no DIR: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 
 # one done, one failed
 tiny "$Q/ok.yaml"; tiny "$Q/bad.yaml" "seed: -3"
 "$WORKER" --queue "$Q" --once --quiet 2>"$T/w1.log"
-check "setup: ok done, bad failed" [ -f "$Q/done/ok.yaml" ] && [ -f "$Q/failed/bad.yaml" ]
+check "setup: ok done, bad failed" eval '[ -f "$Q/done/ok.yaml" ] && [ -f "$Q/failed/bad.yaml" ]'
 
 # one running: a slow job under a worker whose lease is renewed twice a second
 { echo "scene: $root/scenes/checker.yaml"; echo "width: 200"; echo "height: 200"; echo "threshold: 2"
@@ -40,7 +40,7 @@ touch -d '2020-01-01 00:00:00Z' "$Q/a.yaml"
 "$WORKER" status "$Q" --json >"$T/s1.json"; rcj=$?
 kill -TERM "$wpid"; wait "$wpid"
 cat "$T/s1.txt"
-check "status: exit 0 (got $rc, $rcj)" [ "$rc" -eq 0 ] && [ "$rcj" -eq 0 ]
+check "status: exit 0 (got $rc, $rcj)" eval '[ "$rc" -eq 0 ] && [ "$rcj" -eq 0 ]'
 check "status: counts" grep -q "2 waiting, 1 running, 1 done, 1 failed" "$T/s1.txt"
 check "status: waiting in claim order, priority first" \
     sh -c "grep -A2 '^waiting' '$T/s1.txt' | sed -n 2p | grep -q '1. b.yaml  priority 5' &&
@@ -70,23 +70,23 @@ fi
 # requeue: a failed job by name (its log goes), a done one; refused over a waiting one
 "$WORKER" requeue "$Q" bad 2>"$T/r1.err"; rc=$?
 check "requeue bad: exit 0 (got $rc)" [ "$rc" -eq 0 ]
-check "requeue bad: back in the queue" [ -f "$Q/bad.yaml" ] && [ ! -e "$Q/failed/bad.yaml" ]
+check "requeue bad: back in the queue" eval '[ -f "$Q/bad.yaml" ] && [ ! -e "$Q/failed/bad.yaml" ]'
 check "requeue bad: its log gone" [ ! -e "$Q/failed/bad.log" ]
 tiny "$Q/dup.yaml"; mkdir -p "$Q/failed"; tiny "$Q/failed/dup.yaml"
 "$WORKER" requeue "$Q" dup.yaml 2>"$T/r2.err"; rc=$?
 check "requeue over a waiting job: exit 2 (got $rc)" [ "$rc" -eq 2 ]
-check "requeue over a waiting job: both kept" [ -f "$Q/dup.yaml" ] && [ -f "$Q/failed/dup.yaml" ]
+check "requeue over a waiting job: both kept" eval '[ -f "$Q/dup.yaml" ] && [ -f "$Q/failed/dup.yaml" ]'
 check "requeue over a waiting job: says so" grep -q "waits in the queue already" "$T/r2.err"
 "$WORKER" requeue "$Q" nosuch 2>"$T/r3.err"; rc=$?
-check "requeue unknown: exit 2 (got $rc)" [ "$rc" -eq 2 ] && grep -q "nosuch.yaml: not in" "$T/r3.err"
+check "requeue unknown: exit 2 (got $rc)" eval '[ "$rc" -eq 2 ] && grep -q "nosuch.yaml: not in" "$T/r3.err"'
 "$WORKER" requeue "$Q" ok.yaml 2>/dev/null; rc=$?
-check "requeue a done job: exit 0, back in the queue (got $rc)" [ "$rc" -eq 0 ] && [ -f "$Q/ok.yaml" ]
+check "requeue a done job: exit 0, back in the queue (got $rc)" eval '[ "$rc" -eq 0 ] && [ -f "$Q/ok.yaml" ]'
 rm "$Q/dup.yaml"
 tiny "$Q/failed/c.yaml"
 "$WORKER" requeue "$Q" --failed 2>"$T/r4.err"; rc=$?
 check "requeue --failed: exit 0 (got $rc)" [ "$rc" -eq 0 ]
 check "requeue --failed: failed/ holds no job" [ -z "$(ls "$Q/failed" | grep 'yaml$')" ]
-check "requeue --failed: both back" [ -f "$Q/c.yaml" ] && [ -f "$Q/dup.yaml" ]
+check "requeue --failed: both back" eval '[ -f "$Q/c.yaml" ] && [ -f "$Q/dup.yaml" ]'
 "$WORKER" requeue "$Q" 2>/dev/null; rc=$?
 check "requeue without names: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 finish

@@ -95,7 +95,7 @@ printf 'name: slow\nscenes: [%s/scenes/cornell.yaml]\nwidth: 32\nprocesses: 1\nv
 child=$(render_child "$w")
 kill -TERM "$w"; wait "$w"; rc=$?
 check "SIGTERM: exit 0 (got $rc): $(cat "$T/w6.log")" [ "$rc" -eq 0 ]
-check "... the render is waiting again in the study" [ -f "$Q4/spread/slow/b-img-0-00000.yaml" ] && [ -z "$(ls "$Q4/spread/slow/running")" ]
+check "... the render is waiting again in the study" eval '[ -f "$Q4/spread/slow/b-img-0-00000.yaml" ] && [ -z "$(ls "$Q4/spread/slow/running")" ]'
 
 # a render that fails (its render process killed, no retries) leaves the study waiting: status
 # counts it, `requeue DIR X` puts the study's failed renders back, and the study then completes
@@ -106,15 +106,15 @@ child=$(render_child "$w")
 kill -9 "$child"
 wait "$w"; rc=$?
 check "a study with a failed render: the worker exits 1 (got $rc)" [ "$rc" -eq 1 ]
-check "... the study waits, not gathered" [ ! -f "$Q3/done/slow.yaml" ] && [ -f "$Q3/spread/slow/job/slow.yaml" ]
+check "... the study waits, not gathered" eval '[ ! -f "$Q3/done/slow.yaml" ] && [ -f "$Q3/spread/slow/job/slow.yaml" ]'
 "$WORKER" status "$Q3" >"$T/status3.txt" 2>&1
 check "status: 1/2 done, 1 failed: $(cat "$T/status3.txt")" grep -q 'slow.yaml  study slow  1/2 renders done, 1 failed' "$T/status3.txt"
 "$WORKER" requeue "$Q3" slow >"$T/rq.txt" 2>&1; rc=$?
 check "requeue of the study: exit 0 (got $rc), its failed render put back: $(cat "$T/rq.txt")" grep -q '1 failed render of the study requeued' "$T/rq.txt"
 check "... its log removed too" [ -z "$(ls "$Q3/spread/slow/failed")" ]
 "$WORKER" --queue "$Q3" --once --quiet >/dev/null 2>"$T/w4.log"; rc=$?
-check "the study then completes (exit $rc)" [ "$rc" -eq 0 ] && [ -f "$Q3/done/slow.yaml" ] && [ -s "$Q3/done/slow/summary.csv" ]
+check "the study then completes (exit $rc)" eval '[ "$rc" -eq 0 ] && [ -f "$Q3/done/slow.yaml" ] && [ -s "$Q3/done/slow/summary.csv" ]'
 "$WORKER" --queue "$Q3" --once >/dev/null 2>"$T/w5.log"
 check "a --once worker on an empty queue says so in one line: $(cat "$T/w5.log")" \
-    [ "$(grep -c 'no job waiting, nothing to do' "$T/w5.log")" -eq 1 ] && [ "$(grep -c . "$T/w5.log")" -eq 1 ]
+    eval '[ "$(grep -c "no job waiting, nothing to do" "$T/w5.log")" -eq 1 ] && [ "$(grep -c . "$T/w5.log")" -eq 1 ]'
 finish

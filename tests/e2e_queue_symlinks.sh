@@ -42,8 +42,8 @@ timeout 30 "$WORKER" --queue "$Q" --once --quiet 2>"$T/q4.log"; rc=$?
 check "unrunnable: the worker ends (exit 2; got $rc)" [ "$rc" -eq 2 ]
 check "unrunnable: the good job done" [ -f "$Q/done/e.yaml" ]
 for n in fifo dir dangling loop; do
-    check "unrunnable: $n.yaml moved to failed/" [ ! -e "$Q/$n.yaml" ] && [ ! -L "$Q/$n.yaml" ] &&
-        { [ -e "$Q/failed/$n.yaml" ] || [ -L "$Q/failed/$n.yaml" ]; }
+    check "unrunnable: $n.yaml moved to failed/" eval '[ ! -e "$Q/$n.yaml" ] && [ ! -L "$Q/$n.yaml" ] &&
+        { [ -e "$Q/failed/$n.yaml" ] || [ -L "$Q/failed/$n.yaml" ]; }'
     check "unrunnable: $n.log says why" grep -q "cannot run" "$Q/failed/$n.log"
 done
 check "unrunnable: one line each on stderr" [ "$(grep -c "cannot run" "$T/q4.log")" -eq 4 ]

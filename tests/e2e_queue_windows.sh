@@ -76,7 +76,7 @@ check "3: saying it wrote without the lock" grep -q "writing without it" "$T/q3b
 ino=$(ls -i "$Q/done/s/s.png" 2>/dev/null | cut -d' ' -f1)
 kill -CONT "$a"; wait "$a"
 check "3: the resumed worker wrote nothing over the new holder's image" \
-    [ -n "$ino" ] && [ "$(ls -i "$Q/done/s/s.png" | cut -d' ' -f1)" = "$ino" ]
+    eval '[ -n "$ino" ] && [ "$(ls -i "$Q/done/s/s.png" | cut -d" " -f1)" = "$ino" ]'
 check "3: and said why" grep -q "taken over" "$T/q3a.log"
 check "3: no temporary file left" [ "$(temps "$Q/done")" -eq 0 ]
 check "3: the pair agrees" grep -q '"seed": 1' "$Q/done/s/s.json"
