@@ -62,6 +62,9 @@ check "worker verdict: sentences, failures and the winner (exit $rc)" \
     grep -q '^bias: cornell: failure: depth2: biased: ' "$T/again.txt"
 check "worker verdict: the summary line" grep -q '^bias: at equal CPU time: bias: ' "$T/again.txt"
 check "worker verdict: nothing written" [ ! -e "$T/out/bias/verdict.json.tmp" ]
+"$WORKER" verdict "$T/out/bias" --quiet >"$T/quiet.txt" 2>"$T/quiet.err"; rc=$?
+check "worker verdict --quiet (a common option) is taken: the same sentences (exit $rc)" \
+    sh -c "[ $rc -eq 0 ] && cmp -s '$T/quiet.txt' '$T/again.txt'"
 # without the float images and sidecars: the checks on them are skipped, and said so
 cp -r "$T/out" "$T/bare"
 rm "$T"/bare/bias/*.exr "$T"/bare/bias/*-s[0-9].json
