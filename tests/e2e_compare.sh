@@ -150,6 +150,17 @@ for x in s['scenes']:
         assert sorted(e['rank'] for e in x[k]['ranking'])[0] == 1, x[k]
     assert isinstance(x['failures'], list) and isinstance(x['warnings'], list) and x['sentences']
 "
+# a scene's sidecars gone: only that scene's verdict says what it skipped, with its own count
+cp -r "$cdir" "$T/nosc"
+rm "$T"/nosc/board-*.json
+n_board=$(ls "$cdir"/board-*.json | wc -l)
+"$WORKER" verdict "$T/nosc" --json >"$T/nosc.json" 2>/dev/null
+check "sidecars of one scene gone: its warning alone, its count ($n_board)" python3 -c "
+import json
+s = {x['scene']: ' '.join(x['warnings']) for x in json.load(open('$T/nosc.json'))['studies'][0]['scenes']}
+assert '($n_board sidecars missing)' in s['board'], s['board']
+assert 'sidecars missing' not in s['checker'], s['checker']
+"
 # how the error looks: error_lowfreq per variant in verdict.json, a plot per study in the report,
 # and the same figures when the folder's summary.csv is read back (worker verdict)
 "$WORKER" verdict "$cdir" --json >"$T/look.json" 2>/dev/null
@@ -418,7 +429,7 @@ bad emptysweep '2:21: threshold: the sweep needs a non-empty list'
 printf 'scenes: [checker]\nsweep: {}\nvariants:\n  - { sampler: jitter }\n' >"$T/nosweep.yaml"
 bad nosweep '2:8: sweep: must map a job key to a list of values'
 printf 'scenes: [checker, nowhere]\nvariants:\n  - { sampler: jitter }\n' >"$T/noscene.yaml"
-bad noscene '1:19: scene: no scene file at scenes/nowhere.yaml'
+bad noscene '1:19: scene: no scene file at .*scenes/nowhere.yaml'
 printf 'scenes: [checker]\nvariants: []\n' >"$T/novariants.yaml"
 bad novariants '2:11: variants: must be a non-empty list'
 printf 'scenes: [checker]\nvariants:\n  - { sampler: jitter, width: 10 }\n' >"$T/varwidth.yaml"

@@ -30,8 +30,9 @@ check "job: says nothing is written" grep -q "^job: dry run: nothing rendered, n
 "$WORKER" cmp.yaml --dry-run --processes 1 >"$T/cmp.out" 2>"$T/cmp.err"; rc=$?
 check "compare: exit 0 (got $rc: $(cat "$T/cmp.err"))" [ "$rc" -eq 0 ]
 check "compare: its images ($(cat "$T/cmp.out"))" grep -q "^  images    4 (1 scene x 2 variants x 1 point x 2 seeds): 64000 samples (25 to 100 per pixel)" "$T/cmp.out"
-check "compare: the reference" grep -q "^  reference checker: 16x16 jitter t=10: 25600 samples (100 per pixel)" "$T/cmp.out"
-check "compare: the reference-too-weak guard, before rendering" grep -q "^  warning: checker: the reference would have 100 samples per pixel, fewer than 4x the densest point's 100" "$T/cmp.out"
+# the reference as rendered: two halves at t = 10 sqrt 2 (7x7 each), 98 per pixel, not t=10's 100
+check "compare: the reference, as its two halves" grep -q "^  reference checker: 16x16 jitter t=10: 25088 samples (98 per pixel: two halves at t=14.1421)" "$T/cmp.out"
+check "compare: the reference-too-weak guard, before rendering" grep -q "^  warning: checker: the reference would have 98 samples per pixel, fewer than 4x the densest point's 100" "$T/cmp.out"
 check "compare: the total on 1 process" grep -q "^  CPU time  about .* in all (references .* of it, unless cached).* on 1 process$" "$T/cmp.out"
 "$WORKER" --dry-run suite.yaml >"$T/suite.out" 2>"$T/suite.err"; rc=$?
 check "suite: exit 0 (got $rc: $(cat "$T/suite.err"))" [ "$rc" -eq 0 ]
@@ -50,4 +51,9 @@ check "nothing written anywhere: $(diff "$T/before" "$T/after" | head -5)" cmp -
 check "no out/ folder" [ ! -e out ]
 check "no queue folder" [ ! -e "$T/q" ]
 cd "$root" || exit 1
+# the render says what the dry run said: the same 98 per pixel in its verdict's warning
+"$WORKER" --quiet --out "$T/real" "$T/w/cmp.yaml" 2>"$T/real.err"; rc=$?
+check "compare rendered: exit 0 (got $rc: $(tail -n 1 "$T/real.err"))" [ "$rc" -eq 0 ]
+check "compare rendered: the reference's 98 samples per pixel, as the dry run said" \
+    grep -q "the reference has 98 samples per pixel" "$T/real/cmp/verdict.json"
 finish

@@ -141,4 +141,20 @@ for bad in broken.exr short.pfm; do
     "$WORKER" diff "$T/$bad" "$T/o/e/e.exr" >/dev/null 2>"$T/e6"; rc=$?
     check "diff $bad: exit 2, one line naming it" sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/e6') -eq 1 ] && grep -q '$bad' '$T/e6'"
 done
+
+# 7. a float reference of the right size holding a NaN is refused before rendering, at its key
+python3 -c "
+import sys
+b = open(sys.argv[1], 'rb').read()
+k = 0
+for _ in range(3):
+    k = b.index(b'\\n', k) + 1
+open(sys.argv[2], 'wb').write(b[:k] + bytes.fromhex('0000c07f') + b[k + 4:])
+" "$T/ref.pfm" "$T/nan.pfm"
+job "$T/n.yaml" n "threshold: 25" "format: pfm" "reference: $T/nan.pfm"
+rm -rf "$T/on"
+"$WORKER" --quiet --out "$T/on" "$T/n.yaml" 2>"$T/e7"; rc=$?
+check "NaN reference: exit 2, one line at reference: ($(cat "$T/e7"))" \
+    sh -c "[ $rc -eq 2 ] && [ \$(wc -l <'$T/e7') -eq 1 ] && grep -q '^$T/n.yaml:8:12: reference: .*1 of its .* values are NaN or infinite' '$T/e7'"
+check "NaN reference: nothing written" [ ! -e "$T/on" ]
 finish

@@ -152,6 +152,17 @@ for layout in checkout installed; do
     check "$layout: and names the shipped place looked in" grep -q "nor at .*$sd/cornell.yaml" "$T/bare.err"
 done
 
+# 4c. The job file's own scenes/ wins over the current folder's: a queue's job renders the same
+# scene whichever folder its worker started in (here the current folder's cornell is black).
+mkdir -p "$T/own/q/scenes/textures" "$T/own/cwd/scenes/textures"
+cp scenes/cornell.yaml "$T/own/q/scenes/cornell.yaml"
+cp scenes/textures/planet.png "$T/own/q/scenes/textures/" && cp scenes/textures/planet.png "$T/own/cwd/scenes/textures/"
+sed 's/emit: \[[^]]*\]/emit: [0, 0, 0]/' scenes/cornell.yaml >"$T/own/cwd/scenes/cornell.yaml"
+printf 'scene: cornell\nwidth: 12\nthreshold: 50\nlight_threshold: 50\n' >"$T/own/q/own.yaml"
+(cd "$T/own/cwd" && "$WORKER" --quiet --out "$T/own/out" "$T/own/q/own.yaml" 2>"$T/own.err"); rc=$?
+check "a bare scene beside the job renders from another folder (exit $rc)" [ "$rc" -eq 0 ]
+check "... the job's own scene, not the current folder's" grep -q "\"scene\": \"$T/own/q/scenes/cornell.yaml\"" "$T/own/out/own/own.json"
+
 # 5. A texture over the size limit (4097 x 4097 pixels) is refused at its file: key.
 { printf 'P6\n4097 4097\n255\n'; head -c $((4097 * 4097 * 3)) /dev/zero; } >"$T/elsewhere/scenes/textures/huge.ppm"
 sed 's|file: textures/planet.png|file: textures/huge.ppm|' scenes/cornell.yaml >"$T/elsewhere/scenes/huge.yaml"

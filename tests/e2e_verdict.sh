@@ -62,6 +62,9 @@ check "worker verdict: sentences, failures and the winner (exit $rc)" \
     grep -q '^bias: cornell: failure: depth2: biased: ' "$T/again.txt"
 check "worker verdict: the summary line" grep -q '^bias: at equal CPU time: bias: ' "$T/again.txt"
 check "worker verdict: nothing written" [ ! -e "$T/out/bias/verdict.json.tmp" ]
+"$WORKER" verdict "$T/out/bias" --quiet >"$T/quiet.txt" 2>"$T/quiet.err"; rc=$?
+check "worker verdict --quiet (a common option) is taken: the same sentences (exit $rc)" \
+    sh -c "[ $rc -eq 0 ] && cmp -s '$T/quiet.txt' '$T/again.txt'"
 # without the float images and sidecars: the checks on them are skipped, and said so
 cp -r "$T/out" "$T/bare"
 rm "$T"/bare/bias/*.exr "$T"/bare/bias/*-s[0-9].json
@@ -75,6 +78,18 @@ assert 'skipped: the share of the error that repeats in every seed' in w and 'bi
 assert 'skipped: non-finite samples' in w, w
 assert not any(f['kind'] in ('biased', 'structured_error') for f in x['failures']), x['failures']
 assert x['equal_samples']['ranking'] and x['slopes']['status'], x
+PY
+# today's sidecars name the count nonfinite_samples: worker verdict reads it (it read only the
+# name before issue 26, nonfinite_dropped, and so never saw one)
+cp -r "$T/out" "$T/nf"
+for f in "$T"/nf/bias/*depth2*-s1.json; do
+    sed -i 's/"nonfinite_samples": [0-9]*/"nonfinite_samples": 500/' "$f"
+done
+"$WORKER" verdict "$T/nf/bias" --json >"$T/nf.json" 2>"$T/nf.err"; rc=$?
+check "non-finite samples in a sidecar: the failure non_finite (exit $rc)" python3 - "$T/nf.json" <<'PY'
+import json, sys
+x = json.load(open(sys.argv[1]))['studies'][0]['scenes'][0]
+assert any(f['kind'] == 'non_finite' for f in x['failures']), x['failures']
 PY
 # a suite: its summary.csv's study column finds each study's folder
 mkdir -p "$T/s"

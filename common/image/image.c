@@ -93,6 +93,14 @@ void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out)
         out[i] = float_to_byte(rgb[i]);
 }
 
+size_t image_f_nonfinite(const struct rgbf *img)
+{
+    size_t bad = 0, n = (size_t)(img->w > 0 ? img->w : 0) * (size_t)(img->h > 0 ? img->h : 0) * 3;
+    for (size_t i = 0; i < n; i++)
+        bad += !isfinite(img->px[i]);
+    return bad;
+}
+
 int image_float_black(const float *rgb, int w, int h)
 {
     size_t n = (size_t)(w > 0 ? w : 0) * (size_t)(h > 0 ? h : 0) * 3;

@@ -53,6 +53,10 @@ const char *image_domain_name(enum img_domain d);
 /* Linear float RGB (w*h*3) to 8 bits: sqrt (gamma 2), clamp to [0, 0.999], times 256. */
 void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out);
 
+/* How many of img's w*h*3 values are NaN or infinite (a reference with any scores every error
+   as NaN: refused where it is given). */
+size_t image_f_nonfinite(const struct rgbf *img);
+
 /* Whether no component of the w*h*3 linear floats in rgb is above 0: an entirely black image. */
 int image_float_black(const float *rgb, int w, int h);
 

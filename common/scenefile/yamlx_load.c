@@ -127,19 +127,35 @@ static int check_events(struct ydoc *d, const uint8_t *data, size_t len, const c
     return rc;
 }
 
+/* p's syntax error at its place: libyaml's reader (bad UTF-8, a control character) leaves
+   problem_mark unset and gives the byte offset alone, so its line and column are counted here. */
+static int syntax_error(const yaml_parser_t *p, const uint8_t *data, size_t len, const char *path,
+                        struct err *e)
+{
+    int line = (int)p->problem_mark.line + 1, col = (int)p->problem_mark.column + 1;
+    if (p->error == YAML_READER_ERROR) {
+        line = col = 1;
+        for (size_t i = 0; i < p->problem_offset && i < len; i++, col++)
+            if (data[i] == '\n')
+                line++, col = 0;
+    }
+    const char *what = p->problem ? p->problem : "error";
+    if (p->context)
+        return err_set(e, path, line, col, "YAML syntax error: %s %s", what, p->context);
+    return err_set(e, path, line, col, "YAML syntax error: %s", what);
+}
+
 /* A job or scene file holds one YAML document: a second one (after "---") would be silently
    ignored, so it is an error at its start, as is a syntax error in it. Empty documents (a bare
    "---") are skipped, up to the end of the stream: one may stand before a real second document.
    0 when there is none. */
-static int no_second_document(yaml_parser_t *p, const char *path, struct err *e)
+static int no_second_document(yaml_parser_t *p, const uint8_t *data, size_t len, const char *path,
+                              struct err *e)
 {
     for (;;) {
         yaml_document_t next;
-        if (!yaml_parser_load(p, &next)) {
-            const yaml_mark_t *m = &p->problem_mark;
-            return err_set(e, path, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s",
-                           p->problem ? p->problem : "error");
-        }
+        if (!yaml_parser_load(p, &next))
+            return syntax_error(p, data, len, path, e);
         const yaml_node_t *root = yaml_document_get_root_node(&next);
         int empty = root && root->type == YAML_SCALAR_NODE && root->data.scalar.length == 0 &&
                     root->data.scalar.style == YAML_PLAIN_SCALAR_STYLE;
@@ -168,14 +184,7 @@ int ydoc_parse(struct ydoc *d, const char *name, const uint8_t *data, size_t len
     yaml_parser_set_input_string(&p, data, len);
     int rc = 0;
     if (!yaml_parser_load(&p, &d->doc)) {
-        const yaml_mark_t *m = &p.problem_mark;
-        if (p.context)
-            err_set(e, name, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s %s",
-                    p.problem ? p.problem : "error", p.context);
-        else
-            err_set(e, name, (int)m->line + 1, (int)m->column + 1, "YAML syntax error: %s",
-                    p.problem ? p.problem : "error");
-        rc = -1;
+        rc = syntax_error(&p, data, len, name, e);
     } else {
         d->loaded = 1;
         if (!yaml_document_get_root_node(&d->doc))
@@ -185,7 +194,7 @@ int ydoc_parse(struct ydoc *d, const char *name, const uint8_t *data, size_t len
         if (rc == 0)
             rc = ydoc_expand_merges(d, e);
         if (rc == 0)
-            rc = no_second_document(&p, name, e);
+            rc = no_second_document(&p, data, len, name, e);
         if (rc < 0) /* a failure leaves nothing to free */
             ydoc_free(d);
     }

@@ -9,6 +9,7 @@
 #include "job/jobfile.h"
 #include "study/load/compare_load.h"
 #include "study/load/compare_suite_load.h"
+#include "study/run/compare_ref.h"
 #include "study/judge/verdict.h"
 
 /* One plain job's pilot, and what all of a compare job's pilots share (each takes a pixel at
@@ -130,13 +131,21 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
                            double budget, const struct run_opts *o, struct study_sum *sum, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[s];
-    struct job_estimate est;
-    if (job_estimate(&cs->ref_job, sf, o->processes, budget, &est, e) < 0)
+    struct job_estimate est, half;
+    struct job hj;
+    /* as rendered: two independent halves, each at the thresholds times sqrt 2 */
+    compare_ref_half_job(cs, 0, &hj);
+    if (job_estimate(&hj, sf, o->processes, budget, &half, e) < 0)
         return -1;
+    est = half;
+    est.samples = 2 * half.samples;
+    est.spp_mean = 2 * half.spp_mean;
+    est.cpu_s = 2 * half.cpu_s;
     char a[32], num[32];
-    printf("  reference %s: %dx%d %s t=%g: %s samples (%.4g per pixel), CPU about %s (unless cached)\n",
+    printf("  reference %s: %dx%d %s t=%g: %s samples (%.4g per pixel: two halves at t=%g), CPU about %s "
+           "(unless cached)\n",
            cs->name, est.width, est.height, sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
-           count(est.samples, num, sizeof num), est.spp_mean, duration(est.cpu_s, a, sizeof a));
+           count(est.samples, num, sizeof num), est.spp_mean, hj.threshold, duration(est.cpu_s, a, sizeof a));
     if (est.spp_mean < VERDICT_REF_FACTOR * densest)
         printf("  warning: %s: the reference would have %.0f samples per pixel, fewer than %dx the densest "
                "point's %.0f: its own noise would be a large part of the error measured there; give the "

@@ -32,21 +32,24 @@ int rejudge_main(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--json"))
             json = 1;
+        else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q"))
+            continue; /* the common option: verdict prints no progress to quiet */
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: worker verdict DIR [--json]\n"
+            printf("usage: worker verdict DIR [--json] [--quiet]\n"
                    "the verdict of the compare job or suite whose output folder is DIR, judged again from\n"
                    "its summary.csv (images, sidecars and reference where present; the checks that need\n"
                    "what is missing are named as skipped); --json prints verdict.json's text\n");
             return 0;
         } else if (argv[i][0] == '-' || dir) {
-            fprintf(stderr, "worker verdict: unexpected argument %s; usage: worker verdict DIR [--json]\n",
+            fprintf(stderr,
+                    "worker verdict: unexpected argument %s; usage: worker verdict DIR [--json] [--quiet]\n",
                     argv[i]);
             return 2;
         } else
             dir = argv[i];
     }
     if (!dir) {
-        fprintf(stderr, "worker verdict: no folder given; usage: worker verdict DIR [--json]\n");
+        fprintf(stderr, "worker verdict: no folder given; usage: worker verdict DIR [--json] [--quiet]\n");
         return 2;
     }
     struct verdict_study *s = NULL;

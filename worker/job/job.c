@@ -149,7 +149,7 @@ static int get_output(struct ydoc *d, yaml_node_t *v, int in_list, char *out, en
     return 0;
 }
 
-/* output: one name, or a list of names of distinct formats (the first names the sidecar). */
+/* output: one name, or a list of names of distinct formats and one stem (the sidecar's). */
 static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err *e)
 {
     enum img_format fmt;
@@ -171,6 +171,14 @@ static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err
             if (seen[k] == seen[i])
                 return ydoc_fail(d, item, e, "output: two %s images in one list (one per format)",
                                  img_format_name(seen[i]));
+        /* one stem for all: the sidecar X.json sits beside every image X.<ext> */
+        size_t stem = (size_t)(strrchr(j->output, '.') - j->output);
+        if (i > 0 && (strlen(out) <= stem || strncmp(out, j->output, stem) || out[stem] != '.' ||
+                      strchr(out + stem + 1, '.')))
+            return ydoc_fail(d, item, e,
+                             "output: %s: the images of a list share one name before the extension "
+                             "(%.*s, the sidecar's)",
+                             out, (int)stem, j->output);
         if (i > 0)
             j->more_format[i - 1] = seen[i];
     }

@@ -106,11 +106,13 @@ int job_path_scene(struct job *j, const char *val, char *tried, size_t n)
         enum { N_CAND = 5 };
         char cand[N_CAND][JOB_PATH_MAX], rel[JOB_PATH_MAX], shipped[2][JOB_PATH_MAX];
         int nc = 0;
-        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
+        /* the job file's own places first, so that a job means the same scene wherever the
+           worker runs from (a queue's scenes/ beside its jobs wins over the worker's folder) */
         snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
         job_path_resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
         snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
         job_path_resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
+        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
         for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
             snprintf(cand[nc++], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, shipped[k], val);
         for (int i = 0; i < nc; i++)

@@ -78,6 +78,14 @@ int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, i
         image_f_free(ref);
         return -1;
     }
+    size_t bad = image_f_nonfinite(ref);
+    if (bad) { /* every error against it would be NaN: refused before the render, as a compare job's */
+        err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
+                "reference: %s: %zu of its %zu values are NaN or infinite", j->reference, bad,
+                (size_t)w * h * 3);
+        image_f_free(ref);
+        return -1;
+    }
     return 0;
 }
 

@@ -47,9 +47,7 @@ int compare_expand_reference(struct compare_loading *L)
         }
         cs->ref_domain = cs->ref->domain;
         int w = cs->ref->f.w, h = cs->ref->f.h;
-        size_t bad = 0, n = (size_t)w * h * 3;
-        for (size_t i = 0; i < n; i++)
-            bad += !isfinite(cs->ref->f.px[i]);
+        size_t bad = image_f_nonfinite(&cs->ref->f), n = (size_t)w * h * 3;
         if (bad) /* every error against it would be NaN: found now, not after the renders */
             return ydoc_fail(d, r, L->e, "reference: %s: %zu of its %zu values are NaN or infinite",
                              tmp.reference, bad, n);

@@ -103,16 +103,22 @@ static int half_rendered(const char *path, const char *record, uint64_t key, str
 /* Half h (0 or 1) of the reference: its settings with half the samples (the thresholds, a spacing,
    times sqrt 2) and its own seed, into OUT/.cache/ref-<scene>-<key>-<a|b>.exr, rendered unless the
    cache holds it at the right size. *img is its pixels. */
+void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j)
+{
+    *j = cs->ref_job;
+    j->threshold = fmin(100, j->threshold * sqrt(2));
+    j->light_threshold = fmin(100, j->light_threshold * sqrt(2));
+    j->seed = h ? rng_mix64(j->seed) : j->seed; /* independent of the other half and of the study's seeds */
+}
+
 static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o, struct rgbf *img,
                 struct err *e)
 {
-    struct job j = cs->ref_job;
+    struct job j;
+    compare_ref_half_job(cs, h, &j);
     snprintf(j.name, sizeof j.name, ".cache");
     j.format = IMG_EXR; /* linear radiance, as every error is measured in */
     j.n_more = 0;       /* one image */
-    j.threshold = fmin(100, j.threshold * sqrt(2));
-    j.light_threshold = fmin(100, j.light_threshold * sqrt(2));
-    j.seed = h ? rng_mix64(j.seed) : j.seed; /* independent of the other half and of the study's seeds */
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx-%c.exr", cs->name, (unsigned long long)key, "ab"[h]);
     struct outdir_files files;
     outdir_files(&j, o->out_dir, &files);

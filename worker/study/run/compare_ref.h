@@ -5,6 +5,11 @@
 
 #include "compare.h"
 
+/* Half h (0 or 1) of scene cs's settings reference as it is rendered: cs->ref_job with half the
+   samples (each threshold, a spacing, times sqrt 2, at most 100) and its own seed. The reference's
+   samples per pixel are its two halves' together (what --dry-run estimates). */
+void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j);
+
 /* Render scene s's reference into OUT/.cache/, or reuse it when the cache holds one. */
 int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e);
 

@@ -145,11 +145,10 @@ static void find_reference(const char *named, const char *dir, char *out, size_t
         out[0] = 0;
 }
 
-/* What the images' sidecars add: sampler, pool, non-finite samples and the reference. The number
-   of sidecars missing. */
-static int read_sidecars(struct compare *c, const char *dir)
+/* What the images' sidecars add: sampler, pool, non-finite samples and the reference. missing[s]:
+   how many of scene s's sidecars are missing. */
+static void read_sidecars(struct compare *c, const char *dir, int *missing)
 {
-    int missing = 0;
     for (int i = 0; i < c->n_items; i++) {
         struct compare_item *it = &c->items[i];
         if (!it->done)
@@ -162,7 +161,7 @@ static int read_sidecars(struct compare *c, const char *dir)
         size_t len;
         struct err ignored;
         if (fileio_read_all(path, 1u << 20, &text, &len, &ignored) < 0) {
-            missing++;
+            missing[it->scene]++;
             continue;
         }
         const char *t = (const char *)text;
@@ -170,14 +169,14 @@ static int read_sidecars(struct compare *c, const char *dir)
             sampler_kind_parse(val, &it->job.sampler);
         if (sidecar_field(t, "poisson_pool", val, sizeof val))
             it->job.poisson_pool = atoi(val);
-        if (sidecar_field(t, "nonfinite_dropped", val, sizeof val))
+        if (sidecar_field(t, "nonfinite_samples", val, sizeof val) ||
+            sidecar_field(t, "nonfinite_dropped", val, sizeof val)) /* its name before issue 26 */
             it->nonfinite = strtoull(val, NULL, 10);
         struct compare_scene *cs = &c->scenes[it->scene];
         if (!cs->ref_path[0] && sidecar_field(t, "reference", val, sizeof val))
             find_reference(val, dir, cs->ref_path, sizeof cs->ref_path);
         free(text);
     }
-    return missing;
 }
 
 /* One study's rows (those whose study column is `study`, or all) into a struct compare. */
@@ -297,21 +296,27 @@ static int judge(const struct csv *t, const int *col, const char *study, const c
     struct compare *c = build(t, col, study, dir, e);
     if (!c)
         return -1;
-    int missing = read_sidecars(c, dir);
+    int *missing = calloc((size_t)c->n_scenes, sizeof *missing);
+    if (!missing) {
+        compare_free(c);
+        return err_set(e, dir, 0, 0, "out of memory");
+    }
+    read_sidecars(c, dir, missing);
     for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_path[0])
             compare_ref_measure(&c->scenes[s]);
         else
             c->scenes[s].ref_relmse = c->scenes[s].ref_radiance = c->scenes[s].ref_radiance_se = NAN;
     int rc = verdict_from_compare(c, dir, out, e);
-    for (int s = 0; rc == 0 && missing && s < out->n_scenes; s++) {
+    for (int s = 0; rc == 0 && s < out->n_scenes && s < c->n_scenes; s++) {
         struct verdict_scene *vs = &out->scenes[s];
-        if (vs->n_warnings < VERDICT_SAY_MAX)
+        if (missing[s] && vs->n_warnings < VERDICT_SAY_MAX)
             snprintf(
                 vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX,
-                "skipped: non-finite samples and what needs each variant's sampler (%d sidecars missing)",
-                missing);
+                "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
+                missing[s], missing[s] == 1 ? "" : "s");
     }
+    free(missing);
     compare_free(c);
     return rc;
 }
