@@ -99,8 +99,7 @@ static void test_output_list(void)
     char path[128];
     struct jobfile f;
     struct err e;
-    CHECK(job_fixture_open(&fx, "o.yaml", "output: [a.png, a.exr, a.PFM]
-", path, sizeof path, &f, &e) == 0);
+    CHECK(job_fixture_open(&fx, "o.yaml", "output: [a.png, a.exr, a.PFM]\n", path, sizeof path, &f, &e) == 0);
     CHECK(!strcmp(f.job.output, "a.png") && f.job.format == IMG_PNG && f.job.n_more == 2);
     CHECK(!strcmp(f.job.more_output[0], "a.exr") && f.job.more_format[0] == IMG_EXR);
     CHECK(!strcmp(f.job.more_output[1], "a.PFM") && f.job.more_format[1] == IMG_PFM);
