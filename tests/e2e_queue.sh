@@ -339,6 +339,13 @@ check "odd entries: the directory filed in failed/ with a log" eval '[ -d "$Q/fa
 check "odd entries: the dangling link filed in failed/ with a log" eval '[ -L "$Q/failed/dangling.yaml" ] &&
     [ -s "$Q/failed/dangling.log" ]'
 check "odd entries: the link's target untouched" [ -s "$T/q9b/store/real.yaml" ]
+check "odd entries: the log names the worker that filed it (pid and host)" \
+    grep -Eq '^worker: pid [1-9][0-9]* on [^ ]+$' "$Q/failed/dir.log"
+# only unrunnable entries: a --once worker says it filed them, not just "nothing to do"
+Q=$T/q9d; mkdir -p "$Q/d.yaml"
+"$WORKER" --queue "$Q" --once 2>"$T/q9d.log"
+check "only unrunnable entries: the closing line says they went to failed/ ($(tail -n 1 "$T/q9d.log"))" \
+    grep -q 'nothing to do (what could not run was moved to failed/)' "$T/q9d.log"
 
 # 9c. a file name holding a newline: every message stays one line (control characters escaped)
 Q=$T/q9c; mkdir -p "$Q"

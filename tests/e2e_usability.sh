@@ -79,6 +79,15 @@ for want in 'compare job is a job file with variants:' 'report.html' '--queue DI
     check "--help mentions '$want'" grep -qF -- "$want" "$T/help.out"
 done
 
+# 4b. Every subcommand takes --help (and -h): its usage on stdout, exit 0, nothing on stderr.
+for sub in diff points verdict merge status requeue; do
+    for h in --help -h; do
+        "$WORKER" $sub $h >"$T/sub.out" 2>"$T/sub.err"; rc=$?
+        check "worker $sub $h: exit 0 (got $rc: $(head -c 200 "$T/sub.err"))" \
+            eval '[ $rc -eq 0 ] && [ ! -s "$T/sub.err" ] && grep -q "usage: worker $sub" "$T/sub.out"'
+    done
+done
+
 # 5. The sidecar's sampling_share is a fraction of the render processes' CPU time, and
 #    sampler_s a part of cpu_s: a fresh Poisson set per pixel at a small threshold (drawing is
 #    most of the time) over many processes, rendered whole and as merged parts (whose share was

@@ -248,7 +248,12 @@ static int worker_main(int argc, char **argv)
                             !strcmp(a, "--lease-timeout")))
             queue_only = a;
         out_given |= !strcmp(a, "--out");
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+        if ((!strcmp(a, "--help") || !strcmp(a, "-h")) && merge) {
+            printf("usage: worker merge JOB.yaml [--out DIR] [--quiet]\n"
+                   "join the part files a job's --part I/N renders wrote (OUT/<name>/) into its image and "
+                   "sidecar\n");
+            goto out;
+        } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             printf("%s\n%s", help, usage);
             goto out;
         } else if (!strcmp(a, "--version")) {

@@ -200,6 +200,7 @@ static void file_unrunnable(struct queue *q, const char *name)
         outdir_stem(name, stem, sizeof stem);
         queue_log(name, "%s; moved to %s/\n", msg, q->failed);
         queue_file_log(q, name, stem, msg, 0, 0);
+        q->filed++;
         queue_file_note_rc(q, 2);
         return;
     }
@@ -317,7 +318,8 @@ int queue_main(const struct queue_opts *qo)
             continue;
         if (qo->once && study != 2 && !spreading(&q)) {
             if (!q.took && !qo->run.quiet) /* a batch task with nothing to do says so */
-                err_print("worker: --queue %s: no job waiting, nothing to do\n", q.dir);
+                err_print("worker: --queue %s: no job waiting, nothing to do%s\n", q.dir,
+                          q.filed ? " (what could not run was moved to failed/)" : "");
             break;
         }
         nap(qo->poll_s);

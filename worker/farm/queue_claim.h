@@ -21,6 +21,7 @@ struct queue {
     struct timespec last_touch;
     int worst;
     int took;                    /* claims processed (a --once worker that took none says so) */
+    int filed;                   /* unrunnable entries this worker moved to failed/ */
     char as_name[256];           /* the job file name whose outputs the claims may write ("": the claim's own;
                                     a study's render entries: the study's job file) */
     struct queue_scan scan;      /* the waiting jobs seen by the last scan */

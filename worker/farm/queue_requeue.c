@@ -109,7 +109,12 @@ int queue_requeue_main(int argc, char **argv)
             all_failed = 1;
         else if (!strcmp(argv[i], "--quiet"))
             continue;
-        else if (argv[i][0] == '-' && argv[i][1]) {
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: worker requeue DIR NAME... | --failed\n"
+                   "put the named jobs of queue DIR (from failed/ or done/) back to wait, or every failed "
+                   "one\n");
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
             err_print("worker requeue: unknown option %s; usage: worker requeue DIR NAME... | --failed\n",
                       argv[i]);
             return 2;

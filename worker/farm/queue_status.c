@@ -339,7 +339,12 @@ int queue_status_main(int argc, char **argv)
             json = 1;
         else if (!strcmp(argv[i], "--quiet"))
             continue;
-        else if (argv[i][0] == '-' && argv[i][1]) {
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: worker status DIR [--json]\n"
+                   "the queue DIR's jobs: waiting in claim order, running (host, pid, progress, ETA), done\n"
+                   "with their figures, failed with the reason; --json prints the same as one JSON object\n");
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
             err_print("worker status: unknown option %s; usage: worker status DIR [--json]\n", argv[i]);
             return 2;
         } else if (dir_arg) {
