@@ -212,6 +212,7 @@ fuzz: deps
 lint:
 	clang-format --dry-run --Werror common/*/*.[ch] worker/*/*.[ch] worker/*/*/*.[ch] tests/*.[ch] tests/fuzz/*.[ch] tools/*.c
 	cppcheck --quiet --error-exitcode=1 --enable=warning,portability --std=c11 -Icommon -Iworker common worker
+	python3 tests/check_checks.py tests/*.sh ci/*/*.sh
 
 clean:
 	rm -rf build bin

@@ -52,9 +52,12 @@ traced one --out "$T/out" "$T/one.yaml"
 once one "its job file" "$T/one.yaml"
 once one "its scene file (for hash and parse alike)" "$T/scene.yaml"
 renamed_once one "$T/out/one" pic.png pic.exr pic.json
-check "one: three renames in all, each from a temporary: $(renames "$T/one.log" | tr '\n' ' ')" \
-    [ "$(renames "$T/one.log" | grep -c .)" -eq 3 ] && [ "$(renames "$T/one.log" | grep -c '\.tmp\.[A-Za-z0-9]*", ')" -eq 3 ]
-check "one: both images written" [ -s "$T/out/one/pic.png" ] && [ -s "$T/out/one/pic.exr" ]
+three_renames() { # three renames in one.log, each from a temporary name
+    [ "$(renames "$T/one.log" | grep -c .)" -eq 3 ] &&
+        [ "$(renames "$T/one.log" | grep -c '\.tmp\.[A-Za-z0-9]*", ')" -eq 3 ]
+}
+check "one: three renames in all, each from a temporary: $(renames "$T/one.log" | tr '\n' ' ')" three_renames
+check "one: both images written" eval '[ -s "$T/out/one/pic.png" ] && [ -s "$T/out/one/pic.exr" ]'
 
 # 2. run again: current, nothing renamed; the job file and scene still read once (for the hash)
 traced again --out "$T/out" "$T/one.yaml"

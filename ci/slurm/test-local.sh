@@ -183,7 +183,7 @@ done
 same=0
 for f in "$S"/plain-study/study/*.png; do cmp -s "$f" "$S/studies/study/$(basename "$f")" && same=$((same + 1)); done
 check "study: 24 images == the one-process run's ($same)" [ "$same" -eq 24 ]
-check "study: summary, chart, report, verdict" [ -s "$S/studies/study/summary.csv" ] && [ -s "$S/studies/study/chart.svg" ] && [ -s "$S/studies/study/report.html" ]
+check "study: summary, chart, report, verdict" eval '[ -s "$S/studies/study/summary.csv" ] && [ -s "$S/studies/study/chart.svg" ] && [ -s "$S/studies/study/report.html" ]'
 ranks() { python3 -c 'import json,sys
 for st in json.load(open(sys.argv[1]))["studies"]:
     for sc in st["scenes"]:
