@@ -323,11 +323,10 @@ int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
     snprintf(out, n, "%s", arg);
     for (size_t l = strlen(out); l > 1 && out[l - 1] == '/'; l--)
         out[l - 1] = 0;
-    if (stat(out, &st) < 0 || !S_ISDIR(st.st_mode)) {
-        err_print("worker %s: %s: %s\n", cmd, out, stat(out, &st) < 0 ? strerror(errno) : strerror(ENOTDIR));
-        return 2;
-    }
-    return 0;
+    int bad = stat(out, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+    if (bad)
+        err_print("worker %s: %s: %s\n", cmd, out, strerror(bad));
+    return bad ? 2 : 0;
 }
 
 int queue_status_main(int argc, char **argv)
@@ -339,12 +338,10 @@ int queue_status_main(int argc, char **argv)
             json = 1;
         else if (!strcmp(argv[i], "--quiet"))
             continue;
-        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: worker status DIR [--json]\n"
-                   "the queue DIR's jobs: waiting in claim order, running (host, pid, progress, ETA), done\n"
-                   "with their figures, failed with the reason; --json prints the same as one JSON object\n");
-            return 0;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
+        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
+            return printf("usage: worker status DIR [--json]\nthe queue's jobs: waiting, running (progress, "
+                          "ETA), done (figures), failed (why)\n") < 0;
+        else if (argv[i][0] == '-' && argv[i][1]) {
             err_print("worker status: unknown option %s; usage: worker status DIR [--json]\n", argv[i]);
             return 2;
         } else if (dir_arg) {
