@@ -192,6 +192,16 @@ static void test_tie_and_inconclusive(void)
     CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE);
     CHECK(any_line(s.warnings, s.n_warnings, "one seed"));
     verdict_scene_free(&s);
+
+    fake_init(&x, 3, NS, far, slope, cost); /* no reference: no error anywhere, so nothing to rank by */
+    for (int i = 0; i < 3 * NP * NS; i++)
+        x.rel[i] = NAN;
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE && s.by_cpu.status == VERDICT_INCONCLUSIVE);
+    CHECK(any_line(s.warnings, s.n_warnings, "no reference: no image has an error to rank by"));
+    CHECK(any_line(s.sentences, s.n_sentences, "inconclusive (no reference: no error to compare)."));
+    CHECK(!any_line(s.sentences, s.n_sentences, "more seeds or samples would tell"));
+    verdict_scene_free(&s);
 }
 
 static void test_slopes(void)

@@ -80,9 +80,21 @@ static void group(const struct verdict_scene *out, const struct verdict_ranking 
             append(buf, "%s%s", shown++ ? ", " : "", out->variants[r->e[i].variant]);
 }
 
+/* Whether any image of f was scored (a study without a reference scores none). */
+static int scored(const struct verdict_figures *f)
+{
+    for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds; i++)
+        if (isfinite(f->relmse[i]))
+            return 1;
+    return 0;
+}
+
 void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene *out)
 {
     char *w;
+    if (!scored(f) && (w = next_line(out->warnings, &out->n_warnings)))
+        append(w, "no reference: no image has an error to rank by, so nothing is ranked (give the study a "
+                  "reference:, settings or an image)");
     if (f->n_seeds < 2 && (w = next_line(out->warnings, &out->n_warnings)))
         append(w, "one seed: no spread across seeds to judge a difference by, so nothing is ranked");
     double densest = 0;
@@ -149,14 +161,16 @@ static int rank_of_variant(const struct verdict_ranking *r, int v)
 
 /* "At equal CPU time (0.21 s per image), use jitter: ..." for one ranking. */
 static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at,
-                        char *s)
+                        int scored, char *s)
 {
     char top[VERDICT_TEXT_MAX], rest[VERDICT_TEXT_MAX];
     if (r->n < 2)
         return;
     if (r->status == VERDICT_INCONCLUSIVE) {
         append(s, "%s on %s, no two variants are told apart by their seeds: inconclusive", at, out->scene);
-        append(s, out->n_seeds < 2 ? " (one seed)." : " (more seeds or samples would tell).");
+        append(s, !scored            ? " (no reference: no error to compare)."
+                  : out->n_seeds < 2 ? " (one seed)."
+                                     : " (more seeds or samples would tell).");
         return;
     }
     group(out, r, 1, top);
@@ -264,12 +278,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
     if ((s = next_line(out->sentences, &out->n_sentences))) {
         char at[96];
         snprintf(at, sizeof at, "At equal CPU time (%.3g s per image)", out->by_cpu.at);
-        say_ranking(out, &out->by_cpu, at, s);
+        say_ranking(out, &out->by_cpu, at, scored(f), s);
     }
     if ((s = next_line(out->sentences, &out->n_sentences))) {
         char at[96];
         snprintf(at, sizeof at, "At equal samples (%.0f per pixel)", out->by_samples.at);
-        say_ranking(out, &out->by_samples, at, s);
+        say_ranking(out, &out->by_samples, at, scored(f), s);
     }
     if ((s = next_line(out->sentences, &out->n_sentences)))
         say_slopes(out, s);
