@@ -91,6 +91,21 @@ import json, sys
 x = json.load(open(sys.argv[1]))['studies'][0]['scenes'][0]
 assert any(f['kind'] == 'non_finite' for f in x['failures']), x['failures']
 PY
+# a row whose relmse is no error (nan) is left out of the ranking, and the verdict says so
+cp -r "$T/out" "$T/nanrow"
+python3 - "$T/nanrow/bias/summary.csv" <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1], newline='')))
+col = rows[0].index('relmse')
+rows[1][col] = 'nan'
+csv.writer(open(sys.argv[1], 'w', newline=''), lineterminator='\n').writerows(rows)
+PY
+"$WORKER" verdict "$T/nanrow/bias" --json >"$T/nanrow.json" 2>"$T/nanrow.err"; rc=$?
+check "a nan relmse: exit 0 and said as left out (exit $rc)" python3 - "$T/nanrow.json" <<'PY'
+import json, sys
+x = json.load(open(sys.argv[1]))['studies'][0]['scenes'][0]
+assert any('left out: 1 image whose relmse in summary.csv is not an error' in w for w in x['warnings']), x['warnings']
+PY
 # a suite: its summary.csv's study column finds each study's folder
 mkdir -p "$T/s"
 ln -s "$root/scenes" "$T/s/scenes"

@@ -296,12 +296,20 @@ static int judge(const struct csv *t, const int *col, const char *study, const c
     struct compare *c = build(t, col, study, dir, e);
     if (!c)
         return -1;
-    int *missing = calloc((size_t)c->n_scenes, sizeof *missing);
+    int *missing = calloc(2 * (size_t)c->n_scenes, sizeof *missing);
     if (!missing) {
         compare_free(c);
         return err_set(e, dir, 0, 0, "out of memory");
     }
+    int *unscored = missing + c->n_scenes;
     read_sidecars(c, dir, missing);
+    for (int i = 0; i < c->n_items; i++) { /* a relmse that is no error ("nan", "-1"): left out, said */
+        struct compare_item *it = &c->items[i];
+        if (it->done && it->has_error && !(isfinite(it->error.relmse) && it->error.relmse >= 0)) {
+            it->error.relmse = NAN;
+            unscored[it->scene]++;
+        }
+    }
     for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_path[0])
             compare_ref_measure(&c->scenes[s]);
@@ -315,8 +323,12 @@ static int judge(const struct csv *t, const int *col, const char *study, const c
                 vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX,
                 "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
                 missing[s], missing[s] == 1 ? "" : "s");
+        if (unscored[s] && vs->n_warnings < VERDICT_SAY_MAX)
+            snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX,
+                     "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
+                     unscored[s], unscored[s] == 1 ? "" : "s");
     }
-    free(missing);
+    free(missing); /* and unscored */
     compare_free(c);
     return rc;
 }
