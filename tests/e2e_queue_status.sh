@@ -89,4 +89,12 @@ check "requeue --failed: failed/ holds no job" [ -z "$(ls "$Q/failed" | grep 'ya
 check "requeue --failed: both back" eval '[ -f "$Q/c.yaml" ] && [ -f "$Q/dup.yaml" ]'
 "$WORKER" requeue "$Q" 2>/dev/null; rc=$?
 check "requeue without names: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+# a failed job named by its name: (its log's name), not its file's stem: the log's job line finds it
+Q2=$T/q2; mkdir -p "$Q2"
+tiny "$Q2/sigfile.yaml" "name: signame" "reference: $root/scenes/textures/planet.png"
+"$WORKER" --queue "$Q2" --once --quiet 2>/dev/null
+check "setup: sigfile failed, its log named signame" eval '[ -f "$Q2/failed/sigfile.yaml" ] && [ -f "$Q2/failed/signame.log" ]'
+"$WORKER" requeue "$Q2" signame 2>"$T/r5.err"; rc=$?
+check "requeue by the job's name: exit 0, the file back (got $rc: $(cat "$T/r5.err"))" \
+    eval '[ "$rc" -eq 0 ] && [ -f "$Q2/sigfile.yaml" ] && [ ! -e "$Q2/failed/signame.log" ]'
 finish

@@ -70,6 +70,28 @@ static void remove_log(const char *dir, const char *log_name, const char *file)
     free(text);
 }
 
+/* The job file failed/<name>.log's "job:" line names (a failed job's log is named for its job's
+   name:, which may differ from its file's stem): into file; 0, or -1 without such a log. */
+static int file_of_log(const char *failed, const char *name, char *file, size_t n)
+{
+    char path[2048];
+    uint8_t *text = NULL;
+    size_t len;
+    struct err e;
+    snprintf(path, sizeof path, "%s/%s.log", failed, name);
+    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
+        return -1;
+    const char *t = (const char *)text;
+    size_t line = strcspn(t, "\n"), base = line;
+    while (base > 0 && t[base - 1] != '/')
+        base--;
+    int ok = !strncmp(t, "job: ", 5) && base > 5 && line - base > 0 && line - base < n;
+    if (ok)
+        snprintf(file, n, "%.*s", (int)(line - base), t + base);
+    free(text);
+    return ok ? 0 : -1;
+}
+
 /* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
 static int requeue_one(const char *dir, const char *from, const char *file)
 {
@@ -180,6 +202,11 @@ int queue_requeue_main(int argc, char **argv)
         snprintf(path, sizeof path, "%s/%s", done, file);
         if (!from && lstat(path, &st) == 0)
             from = "done";
+        if (!from &&
+            file_of_log(failed, argv[i], file, sizeof file) == 0) { /* a job's name: its log's file */
+            snprintf(path, sizeof path, "%s/%s", failed, file);
+            from = lstat(path, &st) == 0 ? "failed" : NULL;
+        }
         if (!from) {
             err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
             rc = 2;
