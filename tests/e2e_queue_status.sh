@@ -42,6 +42,7 @@ kill -TERM "$wpid"; wait "$wpid"
 cat "$T/s1.txt"
 check "status: exit 0 (got $rc, $rcj)" eval '[ "$rc" -eq 0 ] && [ "$rcj" -eq 0 ]'
 check "status: counts" grep -q "2 waiting, 1 running, 1 done, 1 failed" "$T/s1.txt"
+check "status: a live worker's job is not said gone" eval 'grep -q "slow.yaml  host" "$T/s1.txt" && ! grep -q "gone" "$T/s1.txt"'
 check "status: waiting in claim order, priority first" \
     sh -c "grep -A2 '^waiting' '$T/s1.txt' | sed -n 2p | grep -q '1. b.yaml  priority 5' &&
            grep -A2 '^waiting' '$T/s1.txt' | sed -n 3p | grep -q '2. a.yaml  priority 0  queued 2020-01-01T00:00:00Z'"
@@ -89,6 +90,16 @@ check "requeue --failed: failed/ holds no job" [ -z "$(ls "$Q/failed" | grep 'ya
 check "requeue --failed: both back" eval '[ -f "$Q/c.yaml" ] && [ -f "$Q/dup.yaml" ]'
 "$WORKER" requeue "$Q" 2>/dev/null; rc=$?
 check "requeue without names: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+# a running job whose worker (on this host) is gone: said so, with no ETA
+Q3=$T/q3; mkdir -p "$Q3/running"
+tiny "$Q3/running/orphan.yaml"
+sh -c 'exit 0' & dead=$!; wait "$dead" # a pid no process holds now
+lease_text "$dead" >"$Q3/running/orphan.yaml.lease"
+"$WORKER" status "$Q3" >"$T/s3.txt"; "$WORKER" status "$Q3" --json >"$T/s3.json"
+check "a dead worker's job: status says it is gone ($(grep orphan "$T/s3.txt"))" \
+    grep -q "orphan.yaml .*ETA --  (its worker is gone: the next worker to scan takes it back)" "$T/s3.txt"
+check "a dead worker's job: worker_gone in the JSON" \
+    python3 -c "import json; r = json.load(open('$T/s3.json'))['running']; assert r[0]['worker_gone'] is True, r"
 # a failed job named by its name: (its log's name), not its file's stem: the log's job line finds it
 Q2=$T/q2; mkdir -p "$Q2"
 tiny "$Q2/sigfile.yaml" "name: signame" "reference: $root/scenes/textures/planet.png"
