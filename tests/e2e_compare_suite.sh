@@ -153,4 +153,11 @@ check "queue: both studies and the suite's files in done/suite/" \
 mv "$q/done/suite.yaml" "$q/suite.yaml"
 "$WORKER" --quiet --queue "$q" --once 2>"$T/queue2.err"
 check "queue: a re-queued suite resumes (16 current)" grep -q "16 of them current" "$T/queue2.err"
+# worker status sums a finished suite's images, in its studies' folders, as a compare job's
+"$WORKER" status "$q" --json >"$T/qs.json"
+check "queue: status gives the done suite its 16 images' figures" python3 -c "
+import json
+d = [x for x in json.load(open('$T/qs.json'))['done'] if x['file'] == 'suite.yaml'][0]
+assert d['images'] == 16 and d['cpu_s'] is not None and d['samples'] > 0, d
+"
 finish

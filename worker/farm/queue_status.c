@@ -37,38 +37,48 @@ void queue_status_job_name(const char *path, const char *file, char *out, size_t
     ydoc_free(&d);
 }
 
-/* Fill x's wall, CPU and samples from the sidecar in done/<name>/ made from x's job file. */
-static void read_sidecar(const char *done, struct status_entry *x)
+/* Add to x the sidecars in folder whose job file is `file` (NULL: any), and, at the top (depth 0),
+   those in its subfolders: a suite's studies, whose images name their study's file. */
+static void sum_sidecars(const char *folder, const char *file, int depth, struct status_entry *x)
 {
-    char folder[2048];
-    snprintf(folder, sizeof folder, "%s/%s", done, x->name);
-    x->wall_s = x->cpu_s = x->samples = -1;
-    char file[1024];
-    if (json_string_read_back(x->file, file, sizeof file) < 0) /* as a sidecar records it */
-        return;
     DIR *dir = opendir(folder);
     if (!dir)
         return;
     struct dirent *de;
     while ((de = readdir(dir))) {
         size_t len = strlen(de->d_name);
-        if (de->d_name[0] == '.' || len < 6 || strcmp(de->d_name + len - 5, ".json"))
-            continue;
         char path[4096];
         struct sidecar_info info;
         struct err e;
+        struct stat st;
         snprintf(path, sizeof path, "%s/%s", folder, de->d_name);
-        if (sidecar_read(path, &info, &e) == 0) { /* a compare job's images: summed */
-            const char *jf = info.job_file, *base = strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
-            if (!strcmp(base, file) && isfinite(info.wall_s) && isfinite(info.cpu_s)) {
-                x->wall_s = (x->images ? x->wall_s : 0) + info.wall_s;
-                x->cpu_s = (x->images ? x->cpu_s : 0) + info.cpu_s;
-                x->samples = (x->images ? x->samples : 0) + (double)info.samples_total;
-                x->images++;
-            }
+        if (de->d_name[0] == '.')
+            continue;
+        if (depth == 0 && lstat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+            sum_sidecars(path, NULL, 1, x);
+            continue;
+        }
+        if (len < 6 || strcmp(de->d_name + len - 5, ".json") || sidecar_read(path, &info, &e) < 0)
+            continue;
+        const char *jf = info.job_file, *base = strrchr(jf, '/') ? strrchr(jf, '/') + 1 : jf;
+        if ((!file || !strcmp(base, file)) && isfinite(info.wall_s) && isfinite(info.cpu_s)) {
+            x->wall_s = (x->images ? x->wall_s : 0) + info.wall_s; /* a compare job's images: summed */
+            x->cpu_s = (x->images ? x->cpu_s : 0) + info.cpu_s;
+            x->samples = (x->images ? x->samples : 0) + (double)info.samples_total;
+            x->images++;
         }
     }
     closedir(dir);
+}
+
+/* Fill x's wall, CPU and samples from the sidecars in done/<name>/ made from x's job file. */
+static void read_sidecar(const char *done, struct status_entry *x)
+{
+    char folder[2048], file[1024];
+    snprintf(folder, sizeof folder, "%s/%s", done, x->name);
+    x->wall_s = x->cpu_s = x->samples = -1;
+    if (json_string_read_back(x->file, file, sizeof file) == 0) /* as a sidecar records it */
+        sum_sidecars(folder, file, 0, x);
 }
 
 /* The first line of the error in failed/<name>.log (or <stem>.log) into x->reason. */
