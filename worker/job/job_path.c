@@ -99,22 +99,30 @@ static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
     return 2;
 }
 
+/* The folders a bare scene name is looked up in, in order: the job file's own places first, so
+   that a job means the same scene wherever the worker runs from (a queue's scenes/ beside its
+   jobs wins over the worker's folder), then the current folder, then the shipped scenes. */
+enum { N_BARE = 5 };
+static int bare_dirs(const struct job *j, char dirs[N_BARE][JOB_PATH_MAX])
+{
+    char shipped[2][JOB_PATH_MAX];
+    int nd = 0;
+    job_path_resolve(j->path, "scenes", dirs[nd++], JOB_PATH_MAX);
+    job_path_resolve(j->path, "../scenes", dirs[nd++], JOB_PATH_MAX);
+    snprintf(dirs[nd++], JOB_PATH_MAX, "scenes");
+    for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
+        snprintf(dirs[nd++], JOB_PATH_MAX, "%s", shipped[k]);
+    return nd;
+}
+
 int job_path_scene(struct job *j, const char *val, char *tried, size_t n)
 {
     tried[0] = 0;
     if (!strchr(val, '/') && !strchr(val, '.')) {
-        enum { N_CAND = 5 };
-        char cand[N_CAND][JOB_PATH_MAX], rel[JOB_PATH_MAX], shipped[2][JOB_PATH_MAX];
-        int nc = 0;
-        /* the job file's own places first, so that a job means the same scene wherever the
-           worker runs from (a queue's scenes/ beside its jobs wins over the worker's folder) */
-        snprintf(rel, sizeof rel, "scenes/%s.yaml", val);
-        job_path_resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
-        snprintf(rel, sizeof rel, "../scenes/%s.yaml", val);
-        job_path_resolve(j->path, rel, cand[nc++], JOB_PATH_MAX);
-        snprintf(cand[nc++], JOB_PATH_MAX, "scenes/%s.yaml", val);
-        for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
-            snprintf(cand[nc++], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, shipped[k], val);
+        char dirs[N_BARE][JOB_PATH_MAX], cand[N_BARE][JOB_PATH_MAX];
+        int nc = bare_dirs(j, dirs);
+        for (int i = 0; i < nc; i++)
+            snprintf(cand[i], JOB_PATH_MAX, "%.*s/%s.yaml", JOB_PATH_MAX / 2, dirs[i], val);
         for (int i = 0; i < nc; i++)
             if (job_path_is_file(cand[i])) {
                 snprintf(j->scene_path, sizeof j->scene_path, "%s", cand[i]);
@@ -144,12 +152,11 @@ const char *job_path_scene_hint(const struct job *j, const char *val, char *buf,
     char near[256], dir[JOB_PATH_MAX];
     const char *slash = strrchr(j->scene_path, '/');
     snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - j->scene_path) : 1, slash ? j->scene_path : ".");
-    if (!strchr(val, '/') && !strchr(val, '.')) { /* a bare name: the shipped scenes' stems */
-        if (!nearest_entry(dir, val, 1, near, sizeof near)) {
-            char shipped[2][JOB_PATH_MAX];
-            for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns && !near[0]; k++)
-                nearest_entry(shipped[k], val, 1, near, sizeof near);
-        }
+    if (!strchr(val, '/') && !strchr(val, '.')) { /* a bare name: a stem in any folder looked in */
+        char dirs[N_BARE][JOB_PATH_MAX];
+        near[0] = 0;
+        for (int k = 0, nd = bare_dirs(j, dirs); k < nd && !near[0]; k++)
+            nearest_entry(dirs[k], val, 1, near, sizeof near);
         if (!near[0])
             return "";
         snprintf(buf, n, " (did you mean \"%s\"?)", near);
