@@ -2,6 +2,7 @@
 #include "yget.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +19,8 @@ static void shown(yaml_node_t *n, char *buf, size_t len)
     snprintf(buf, len, "\"%.40s%s\"", s, strlen(s) > 40 ? "..." : "");
 }
 
+/* 0, -1 (not a finite number), or -2: a number too close to zero for a double's normal range
+   (strtod's underflow, a subnormal or 0 for a non-zero text). */
 static int parse_double(const char *s, double *out)
 {
     if (!s || !*s)
@@ -25,8 +28,10 @@ static int parse_double(const char *s, double *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (*end || errno == ERANGE || !isfinite(v) || end == s)
+    if (*end || end == s || !isfinite(v))
         return -1;
+    if (errno == ERANGE)
+        return fabs(v) <= DBL_MIN ? -2 : -1;
     /* strtod accepts "nan", "inf" and hex; a user writing those meant something else. */
     for (const char *c = s; *c; c++)
         if (!strchr("0123456789+-.eE", *c))
@@ -39,7 +44,12 @@ int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, st
 {
     char buf[64];
     shown(n, buf, sizeof buf);
-    if (parse_double(yscalar(n), out) < 0)
+    int rc = parse_double(yscalar(n), out);
+    if (rc == -2)
+        return ydoc_fail(d, n, e,
+                         "%s: %s is too close to 0 for a double (below %g): give 0 or a larger number", key,
+                         buf, DBL_MIN);
+    if (rc < 0)
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s", key, buf);
     if (yquoted(n))
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s" YQUOTED_NOTE, key, buf);
