@@ -146,7 +146,7 @@ int fileio_stage(const char *path, const void *data, size_t len, char *staged, s
         return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(ENAMETOOLONG));
     int fd = mkstemp(staged);
     if (fd < 0)
-        return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+        return err_set_errno(e, errno, "cannot write %s: %s", path, strerror(errno));
     if (fchmod(fd, 0644) < 0 || write_full(fd, data, len) < 0 || fsync(fd) < 0)
         goto fail;
     int closing = fd;
@@ -155,7 +155,7 @@ int fileio_stage(const char *path, const void *data, size_t len, char *staged, s
         goto fail;
     return 0;
 fail:
-    err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+    err_set_errno(e, errno, "cannot write %s: %s", path, strerror(errno));
     if (fd >= 0)
         close(fd);
     unlink(staged);
@@ -165,7 +165,7 @@ fail:
 int fileio_commit(const char *staged, const char *path, struct err *e)
 {
     if (rename(staged, path) < 0) {
-        err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+        err_set_errno(e, errno, "cannot write %s: %s", path, strerror(errno));
         unlink(staged);
         return -1;
     }

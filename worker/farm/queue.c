@@ -118,7 +118,17 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
         return;
     }
     if (rc == 1 && (rr->procs.stopped || queue_stop)) {
-        queue_file_give_back(q, name);
+        queue_file_stopped(q, name);
+        return;
+    }
+    if (rc != 0 && outdir_env_error(&e)) { /* this machine's fault, not the job's: never failed/ */
+        err_format(&e, msg, sizeof msg);
+        char why[sizeof msg + 64];
+        snprintf(why, sizeof why, "%s (the worker's output folder, not the job: this worker stops, exit 2)",
+                 msg);
+        queue_file_give_back(q, name, why);
+        q->env_failed = 1;
+        queue_file_note_rc(q, 2);
         return;
     }
     if (rc == 0) {
@@ -281,7 +291,7 @@ int queue_main(const struct queue_opts *qo)
         err_print("worker: --queue %s: %s\n", q.dir, e.msg);
         return 2;
     }
-    while (!queue_stop) {
+    while (!queue_stop && !q.env_failed) {
         char adopted[256];
         if (queue_claim_recover(&q, adopted, sizeof adopted)) {
             q.took++;

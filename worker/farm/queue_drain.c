@@ -187,7 +187,7 @@ static void process_entry(struct queue *q, struct queue *sq, const char *sd, con
     else if (sq->lost || !queue_claim_still_ours(sq))
         queue_file_say_lost(sq, label);
     else if (rc == 1 && *q->stop)
-        queue_file_give_back(sq, ticket);
+        queue_file_stopped(sq, ticket);
     else if (rc == 0) {
         queue_log(label, "%s\n", msg);
         queue_claim_file(sq, ticket, sq->done);
