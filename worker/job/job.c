@@ -328,9 +328,24 @@ int job_height(const struct job *j, double aspect)
     return h < 1 ? 1 : h;
 }
 
+int job_check_stem(const struct job *j, struct err *e)
+{
+    char stem[JOB_PATH_MAX];
+    outdir_stem(j->path, stem, sizeof stem);
+    if (j->pos_name[0] || strlen(stem) < JOB_NAME_MAX)
+        return 0;
+    return err_set(
+        e, j->path, 1, 1,
+        "name: the file's stem is %zu bytes, over the %d a name holds (it is never cut short); give "
+        "the job a name:",
+        strlen(stem), JOB_NAME_MAX - 1);
+}
+
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
 {
     (void)d;
+    if (job_check_stem(j, e) < 0)
+        return -1;
     /* A name from the file's stem ("..yaml" gives ".", "...yaml" "..") names the output folder too:
        the rule for name: keeps it inside --out and off hidden folders (.cache). */
     if (!j->pos_name[0] && (!j->name[0] || j->name[0] == '.'))

@@ -144,7 +144,7 @@ struct compare_suite *compare_suite_load_doc(const struct ydoc *doc, const char 
     snprintf(s->path, sizeof s->path, "%s", path);
     job_defaults(&base, path);
     yaml_node_t *root = ydoc_root(&d), *list;
-    if (check_top(&d, root, &base, e) < 0)
+    if (check_top(&d, root, &base, e) < 0 || job_check_stem(&base, e) < 0)
         goto done;
     snprintf(s->name, sizeof s->name, "%s", base.name);
     if (!(list = ymap_get(&d, root, "studies"))) {
