@@ -232,8 +232,28 @@ static void nap(double s)
     nanosleep(&ts, NULL);
 }
 
+/* The lease of running/name into holder, read again for up to a second while it is not yet written
+   (a claimer renames the job into running/ first, then writes its lease). 0 read; -1 still not
+   written; 1 the claim has left running/ meanwhile (spread, or filed). */
+static int read_holder(const struct queue *q, const char *name, struct lease *holder)
+{
+    char claim[2048];
+    double age;
+    struct stat st;
+    snprintf(claim, sizeof claim, "%s/%s", q->running, name);
+    for (int i = 0; holder->pid == 0 && i < 20 && !queue_stop; i++) {
+        nap(0.05);
+        if (lstat(claim, &st) < 0)
+            return 1;
+        if (lease_read(claim, holder, &age) < 0)
+            memset(holder, 0, sizeof *holder);
+    }
+    return holder->pid ? 0 : -1;
+}
+
 /* 1 when a compare job claimed by another worker is being spread (queue_study_spreading): a --once
-   worker waits for its renders rather than leave them all to that worker. Said once per job. */
+   worker waits for its renders rather than leave them all to that worker. Said once per job, with
+   its holder once the holder's lease is written. */
 static int spreading(struct queue *q)
 {
     char name[256];
@@ -242,11 +262,19 @@ static int spreading(struct queue *q)
         q->spreading[0] = 0;
         return 0;
     }
-    if (strcmp(q->spreading, name) != 0)
-        queue_log(
-            name,
-            "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its renders\n",
-            holder.pid, holder.host[0] ? holder.host : "?");
+    int known = strcmp(q->spreading, name) ? read_holder(q, name, &holder) : 0;
+    if (known == 1) /* spread (or filed) while we looked: the next scan sees what became of it */
+        return 1;
+    if (strcmp(q->spreading, name) != 0) {
+        if (known == 0)
+            queue_log(name,
+                      "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its "
+                      "renders\n",
+                      holder.pid, holder.host[0] ? holder.host : "?");
+        else
+            queue_log(name, "a compare job claimed (its lease not yet written): waiting for it to be spread, "
+                            "to take its renders\n");
+    }
     snprintf(q->spreading, sizeof q->spreading, "%s", name);
     return 1;
 }
