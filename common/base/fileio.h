@@ -22,6 +22,12 @@ int fileio_write_atomic(const char *path, const void *data, size_t len, struct e
    dir/file atomically. 0, or -1 with e filled. */
 int fileio_write_text(const char *dir, const char *file, char *text, struct err *e);
 
+/* What path is, for messages about a file that must be a regular one: NULL when nothing is there;
+   "a regular file" (directly or through symbolic links); else "a directory", "a FIFO", "a
+   character device", "a block device", "a socket", "a symbolic link to a FIFO" (and so on),
+   "a symbolic link to nothing" or "a symbolic link that loops". A static string. */
+const char *fileio_kind(const char *path);
+
 /* Whether a file the user named may be written at path (by fileio_write_atomic): path is absent,
    or a regular file (not a symbolic link, FIFO, device, socket or folder) that is none of
    inputs[0 .. n) (compared by device and inode; an input that cannot be stat'ed is skipped).

@@ -181,21 +181,6 @@ static void process(struct queue *q, const char *name)
     queue_file_clear_lost_stop(q);
 }
 
-/* What the unrunnable entry at path is, for messages. */
-static const char *unrunnable_kind(const char *path)
-{
-    struct stat st;
-    if (lstat(path, &st) < 0)
-        return "gone";
-    if (S_ISLNK(st.st_mode))
-        return stat(path, &st) < 0 && errno == ELOOP ? "a symbolic link that loops"
-                                                     : "a symbolic link to nothing";
-    return S_ISDIR(st.st_mode)    ? "a directory"
-           : S_ISFIFO(st.st_mode) ? "a FIFO"
-           : S_ISSOCK(st.st_mode) ? "a socket"
-                                  : "not a regular file";
-}
-
 /* DIR/name can never run (queue_scan's unrunnable): moved to failed/ with a log saying why, by
    whichever worker's rename() gets it; when it cannot be moved, said once per worker. */
 static void file_unrunnable(struct queue *q, const char *name)
@@ -204,7 +189,7 @@ static void file_unrunnable(struct queue *q, const char *name)
     snprintf(from, sizeof from, "%s/%s", q->dir, name);
     snprintf(to, sizeof to, "%s/%s", q->failed, name);
     snprintf(msg, sizeof msg, "%s: cannot run: %s (a job file is a regular file, or a link to one)", from,
-             unrunnable_kind(from));
+             fileio_kind(from) ? fileio_kind(from) : "gone");
     if (rename(from, to) == 0) {
         char stem[256];
         outdir_stem(name, stem, sizeof stem);

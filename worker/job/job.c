@@ -12,6 +12,7 @@
 #include "job_path.h"
 #include "image/imgio.h"
 #include "outdir.h"
+#include "base/fileio.h"
 #include "scenefile/yget.h"
 
 const char *const job_keys[] = {"name",           "scene",      "width",         "height",
@@ -207,9 +208,15 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         mark(j->pos_scene, v);
         char tried[4 * JOB_PATH_MAX + 32], hint[JOB_PATH_MAX + 32];
-        if (job_path_scene(j, s, tried, sizeof tried) < 0)
+        if (job_path_scene(j, s, tried, sizeof tried) < 0) {
+            const char *kind = fileio_kind(j->scene_path); /* there, but a FIFO, a device, a folder */
+            if (kind)
+                return ydoc_fail(d, v, e,
+                                 "scene: %s is %s, not a scene file (a scene file is a regular file)",
+                                 j->scene_path, kind);
             return ydoc_fail(d, v, e, "scene: no scene file at %s%s%s", j->scene_path, tried,
                              job_path_scene_hint(j, s, hint, sizeof hint));
+        }
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
@@ -280,7 +287,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         mark(j->pos_reference, v);
         job_path_resolve(j->path, s, j->reference, sizeof j->reference);
-        if (!job_path_is_file(j->reference))
+        const char *kind = fileio_kind(j->reference);
+        if (kind && !job_path_is_file(j->reference))
+            return ydoc_fail(d, v, e, "reference: %s is %s, not an image file (an image is a regular file)",
+                             j->reference, kind);
+        if (!kind)
             return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
     }
     return 0;
