@@ -38,6 +38,25 @@ check "full disk: the jobs wait in the queue, none failed" jobs_intact "$Q" "$T/
 check "full disk: the log says why" grep -q 'No space left on device' "$T/full.log"
 check "full disk: no empty output folder left" [ -z "$(ls "$Q/done")" ]
 
+# a compare job: refused at its claim (read-only done/) or at a render (full disk), never failed/
+study() { printf 'name: cmp\nscenes: [%s/scenes/checker.yaml]\nwidth: 8\nheight: 6\nprocesses: 1\nseeds: [1, 2]\nvariants: [{ sampler: jitter, threshold: 50 }]\n' "$root" >"$1"; }
+Q=$T/q4; rm -rf "$Q"; mkdir -p "$Q"; chmod 777 "$Q"; study "$Q/cmp.yaml"; chmod 666 "$Q/cmp.yaml"
+if [ "$(id -u)" -ne 0 ] || command -v setpriv >/dev/null; then
+    as_user sh -c "mkdir -p '$Q/done' && chmod 555 '$Q/done' && '$WORKER' --queue '$Q' --once" 2>"$T/cro.log"
+    rc=$?
+    check "compare job, read-only done/: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+    check "compare job, read-only done/: back in the queue, not failed" \
+        sh -c "[ -f '$Q/cmp.yaml' ] && [ -z \"\$(ls '$Q/failed')\" ] && grep -q 'returned to the queue' '$T/cro.log'"
+fi
+Q=$T/q5; mkdir -p "$Q/done"; study "$Q/cmp.yaml"
+SHIM_FULL=$Q/done LD_PRELOAD=$T/full.so "$WORKER" --queue "$Q" --once 2>"$T/cfull.log"
+rc=$?
+check "compare job, full disk at a render: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "compare job, full disk at a render: the render back in the study's queue, none failed" \
+    sh -c "[ -f '$Q/spread/cmp/b-img-0-00000.yaml' ] && [ -z \"\$(ls '$Q/spread/cmp/failed')\" ] && grep -q 'No space left on device.*returned to the queue' '$T/cfull.log'"
+"$WORKER" --queue "$Q" --once 2>/dev/null
+check "compare job: a worker with room then gathers it" [ -s "$Q/done/cmp/verdict.json" ]
+
 # a job error still goes to failed/ (and the worker goes on)
 Q=$T/q3; queue "$Q"; printf 'scene: nowhere.yaml\nwidth: 8\n' >"$Q/bad.yaml"
 "$WORKER" --queue "$Q" --once 2>"$T/bad.log"

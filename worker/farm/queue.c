@@ -122,13 +122,7 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
         return;
     }
     if (rc != 0 && outdir_env_error(&e)) { /* this machine's fault, not the job's: never failed/ */
-        err_format(&e, msg, sizeof msg);
-        char why[sizeof msg + 64];
-        snprintf(why, sizeof why, "%s (the worker's output folder, not the job: this worker stops, exit 2)",
-                 msg);
-        queue_file_give_back(q, name, why);
-        q->env_failed = 1;
-        queue_file_note_rc(q, 2);
+        queue_file_env_stop(q, name, &e);
         return;
     }
     if (rc == 0) {

@@ -63,6 +63,16 @@ void queue_file_stopped(struct queue *q, const char *name)
     queue_file_give_back(q, name, why);
 }
 
+void queue_file_env_stop(struct queue *q, const char *name, const struct err *e)
+{
+    char msg[2048], why[sizeof msg + 96];
+    err_format(e, msg, sizeof msg);
+    snprintf(why, sizeof why, "%s (the worker's output folder, not the job: this worker stops, exit 2)", msg);
+    queue_file_give_back(q, name, why);
+    q->env_failed = 1;
+    queue_file_note_rc(q, 2);
+}
+
 /* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
    One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
    of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
