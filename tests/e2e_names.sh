@@ -45,11 +45,11 @@ check "a 200-byte stem: one line naming the file and asking for name:" \
 check "a 200-byte stem: nothing written" [ ! -e "$T/o5" ]
 printf 'name: longok\nscene: %s/scenes/checker.yaml\nwidth: 8\nthreshold: 50\n' "$root" >"$T/$long.yaml"
 "$WORKER" --quiet --out "$T/o5" "$T/$long.yaml" 2>/dev/null; rc=$?
-check "a 200-byte stem with name: renders (got $rc)" [ "$rc" -eq 0 ] && [ -f "$T/o5/longok/longok.png" ]
+check "a 200-byte stem with name: renders (got $rc)" sh -c "[ $rc -eq 0 ] && [ -f '$T/o5/longok/longok.png' ]"
 s127=$(printf 'a%.0s' $(seq 1 127))
 printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nthreshold: 50\n' "$root" >"$T/$s127.yaml"
 "$WORKER" --quiet --out "$T/o6" "$T/$s127.yaml" 2>/dev/null; rc=$?
-check "a 127-byte stem names its job (got $rc)" [ "$rc" -eq 0 ] && [ -d "$T/o6/$s127" ]
+check "a 127-byte stem names its job (got $rc)" sh -c "[ $rc -eq 0 ] && [ -d '$T/o6/$s127' ]"
 printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nthreshold: 50\n' "$root" >"$T/${s127}b.yaml"
 "$WORKER" --quiet --out "$T/o6" "$T/${s127}b.yaml" 2>/dev/null; rc=$?
 check "a 128-byte stem is refused, not written over the 127-byte one's folder (got $rc)" [ "$rc" -eq 2 ]

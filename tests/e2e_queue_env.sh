@@ -61,7 +61,7 @@ check "compare job: a worker with room then gathers it" [ -s "$Q/done/cmp/verdic
 Q=$T/q3; queue "$Q"; printf 'scene: nowhere.yaml\nwidth: 8\n' >"$Q/bad.yaml"
 "$WORKER" --queue "$Q" --once 2>"$T/bad.log"
 check "a bad job is filed in failed/" [ -f "$Q/failed/bad.yaml" ]
-check "the good ones are done" [ -f "$Q/done/a.yaml" ] && [ -f "$Q/done/b.yaml" ]
+check "the good ones are done" sh -c "[ -f '$Q/done/a.yaml' ] && [ -f '$Q/done/b.yaml' ]"
 
 # a plain run: the output folder errors exit 2, whatever step finds them
 job "$T/p.yaml"
