@@ -19,7 +19,7 @@ else
     umount_later=""
 fi
 echo "full disk via $how"
-check "full disk: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "full disk: exit 2, the output folder's fault (got $rc)" [ "$rc" -eq 2 ]
 check "full disk: the error says why" grep -Eq 'No space left|File too large' "$T/err1"
 check "full disk: the error names the output, not a temporary name: $(cat "$T/err1")" \
     sh -c "grep -q 'cannot write $T/full/big/big\.[a-z]*: ' '$T/err1' && ! grep -q '\.tmp\.' '$T/err1'"
@@ -59,13 +59,13 @@ check "dangling symlink --out: names it" grep -q "cannot create directory $T/dan
 check "dangling symlink on the way: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 
 # 4b. A re-render whose sidecar cannot be written (a 1 KiB file-size limit: the 1x1 PPM fits, the
-#     sidecar does not) fails with exit 1 and leaves the earlier image and sidecar as they were;
+#     sidecar does not) fails with exit 2 (the output folder cannot be written) and leaves the earlier image and sidecar as they were;
 #     the new image used to replace the old one and then be removed with nothing in its place.
 printf 'scene: %s/scenes/checker.yaml\nname: dot\nwidth: 1\nheight: 1\nthreshold: 50\noutput: dot.ppm\n' "$root" >"$T/dot.yaml"
 "$WORKER" --quiet --out "$T/o4b" "$T/dot.yaml" 2>/dev/null
 cp "$T/o4b/dot/dot.ppm" "$T/dot-before.ppm"; cp "$T/o4b/dot/dot.json" "$T/dot-before.json"
 (ulimit -f 1; "$WORKER" --quiet --force --out "$T/o4b" "$T/dot.yaml") 2>"$T/err4b"; rc=$?
-check "sidecar too big: exit 1 (got $rc)" [ "$rc" -eq 1 ]
+check "sidecar too big: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "sidecar too big: the error names the sidecar" grep -q "cannot write $T/o4b/dot/dot.json: File too large" "$T/err4b"
 check "sidecar too big: the earlier image kept" cmp -s "$T/dot-before.ppm" "$T/o4b/dot/dot.ppm"
 check "sidecar too big: the earlier sidecar kept" cmp -s "$T/dot-before.json" "$T/o4b/dot/dot.json"

@@ -95,10 +95,10 @@ rm "$T/fifo/p/p.part-1-of-3" && mkfifo "$T/fifo/p/p.part-1-of-3"
 rm -f "$T/fifo/p/p.png" "$T/fifo/p/p.json"
 timeout 10 "$WORKER" merge --out "$T/fifo" "$T/p.yaml" 2>"$T/fifo.err"; rc=$?
 check "fifo part: merge exits 2 at once (got $rc)" [ "$rc" -eq 2 ]
-check "fifo part: names the file" grep -q "p.part-1-of-3: not a regular file" "$T/fifo.err"
+check "fifo part: names the file" grep -q "p.part-1-of-3: is a FIFO, not a regular file" "$T/fifo.err"
 check "fifo part: no image written" [ ! -e "$T/fifo/p/p.png" ]
 rm "$T/fifo/p/p.part-1-of-3" && mkdir "$T/fifo/p/p.part-1-of-3"
 timeout 10 "$WORKER" merge --out "$T/fifo" "$T/p.yaml" 2>"$T/dir.err"; rc=$?
 check "directory part: merge exits 2 (got $rc)" [ "$rc" -eq 2 ]
-check "directory part: names the file" grep -q "p.part-1-of-3: not a regular file" "$T/dir.err"
+check "directory part: names the file" grep -q "p.part-1-of-3: is a directory, not a regular file" "$T/dir.err"
 finish

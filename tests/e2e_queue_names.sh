@@ -51,4 +51,14 @@ for f in "$(printf 'caf\351.yaml')" "$(printf 'a\tb.yaml')"; do
     check "... queued again after an edit: exit 0 (got $rc: $(cat "$T/log6"))" [ "$rc" -eq 0 ]
     check "... rendered again (seed 4)" grep -q '"seed": 4,' "$Q/done/x/x.json"
 done
+
+# a job file whose stem is over 127 bytes (and has no name:) goes to failed/ saying why, never cut
+Q=$T/ql; mkdir -p "$Q"
+long=$(printf 'é%.0s' $(seq 1 100))
+printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nthreshold: 50\nprocesses: 1\n' "$root" >"$Q/$long.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>"$T/loglong"; rc=$?
+check "a 200-byte stem in a queue: exit 2 (got $rc)" [ "$rc" -eq 2 ]
+check "a 200-byte stem in a queue: filed in failed/" [ -f "$Q/failed/$long.yaml" ]
+check "a 200-byte stem in a queue: its log says why" grep -q 'give the job a name:' "$Q/failed/$long.log"
+check "a 200-byte stem in a queue: nothing in done/" [ -z "$(ls "$Q/done")" ]
 finish

@@ -78,4 +78,17 @@ timeout 20 "$WORKER" --queue "$Q" --once --lease-timeout 30 --poll 0.1 >/dev/nul
 kill "$holder"
 check "a plain job running elsewhere: a --once worker exits 0 at once (got $rc): $(cat "$T/w3.log")" [ "$rc" -eq 0 ]
 check "... saying it had nothing to do" grep -q 'no job waiting, nothing to do' "$T/w3.log"
+
+# 4. the compare job claimed this instant, its lease not yet written (the claimer renames first):
+# the waiting worker names its holder once the lease is there, never "pid 0 on ?"
+Q=$T/q4; mkdir -p "$Q/running"; study >"$Q/running/sp.yaml"
+sleep 600 & holder=$!
+"$WORKER" --queue "$Q" --once --lease-timeout 30 --poll 0.1 >/dev/null 2>"$T/w4.log" & w=$!
+sleep 0.2
+lease_text "$holder" >"$Q/running/sp.yaml.lease.tmp"; mv "$Q/running/sp.yaml.lease.tmp" "$Q/running/sp.yaml.lease"
+for _ in $(seq 1 200); do grep -q 'waiting for it to be spread' "$T/w4.log" && break; sleep 0.05; done
+kill "$w" "$holder"; wait "$w" 2>/dev/null
+check "a claim whose lease comes a moment later: its holder named: $(cat "$T/w4.log")" \
+    grep -q "sp.yaml: a compare job claimed by pid $holder on $(hostname): waiting for it to be spread" "$T/w4.log"
+check "... never an unknown holder" sh -c "! grep -q 'pid 0 on' '$T/w4.log'"
 finish

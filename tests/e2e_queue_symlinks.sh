@@ -75,4 +75,27 @@ for j in fs fr; do
     timeout 20 "$WORKER" --quiet --out "$T/o6" "$T/$j.yaml" 2>"$T/$j.log"; rc=$?
     check "FIFO input ($j): exit 2 at once (got $rc): $(cat "$T/$j.log")" [ "$rc" -eq 2 ]
 done
+
+# 7. each names what the file is (a FIFO, a character device, a directory), never "no scene file" or
+#    "a symbolic link to nothing" for a file that is there
+mkdir -p "$T/adir"
+{ echo "scene: $T/fifo-scene.yaml"; echo "width: 8"; } >"$T/k1.yaml"
+{ echo "scene: /dev/zero"; echo "width: 8"; } >"$T/k2.yaml"
+{ echo "scene: $T/adir"; echo "width: 8"; } >"$T/k3.yaml"
+{ echo "scene: $root/scenes/checker.yaml"; echo "width: 8"; echo "reference: $T/fifo-ref.png"; } >"$T/k4.yaml"
+{ echo "scene: $root/scenes/checker.yaml"; echo "width: 8"; echo "reference: /dev/null"; } >"$T/k5.yaml"
+(cd "$T" && printf 'scene: fifo-scene.yaml\nwidth: 8\n' >k6.yaml)
+for k in "k1:is a FIFO, not a scene file" "k2:/dev/zero is a character device, not a scene file" \
+    "k3:is a directory, not a scene file" "k4:is a FIFO, not an image file" \
+    "k5:/dev/null is a character device, not an image file" "k6:fifo-scene.yaml is a FIFO"; do
+    j=${k%%:*}; want=${k#*:}
+    timeout 20 "$WORKER" --quiet --out "$T/o7" "$T/$j.yaml" 2>"$T/$j.log"; rc=$?
+    check "special input ($j): exit 2 saying \"$want\" (got $rc): $(cat "$T/$j.log")" \
+        sh -c "[ $rc -eq 2 ] && grep -q '$want' '$T/$j.log' && ! grep -q 'did you mean' '$T/$j.log'"
+done
+Q=$T/q7; mkdir -p "$Q"
+ln -s /dev/zero "$Q/z.yaml"; ln -s "$T/fifo-scene.yaml" "$Q/f.yaml"
+timeout 60 "$WORKER" --queue "$Q" --once --quiet 2>"$T/q7.log"
+check "a link to /dev/zero in a queue: named so" grep -q 'z.yaml: cannot run: a symbolic link to a character device' "$Q/failed/z.log"
+check "a link to a FIFO in a queue: named so" grep -q 'f.yaml: cannot run: a symbolic link to a FIFO' "$Q/failed/f.log"
 finish

@@ -86,7 +86,7 @@ static void test_errors(void)
     refused("e5.yaml", "studies: [studies/a.yaml, studies/a.yaml]\n", "e5.yaml", 1, 27, "listed twice");
     refused("e6.yaml", "studies: [studies/nested.yaml]\n", "studies/nested.yaml", 2, 1, "suites do not nest");
     refused("e7.yaml", "studies: [studies/gone.yaml]\n", "e7.yaml", 1, 11, "no study file at");
-    refused("e8.yaml", "studies: [studies]\n", "e8.yaml", 1, 11, "is not a file");
+    refused("e8.yaml", "studies: [studies]\n", "e8.yaml", 1, 11, "is a directory, not a study file");
     refused("e9.yaml", "studies: []\n", "e9.yaml", 1, 10, "non-empty list");
     refused("e10.yaml", "studies: studies/a.yaml\n", "e10.yaml", 1, 10, "non-empty list");
     refused("e11.yaml", "name: x\nstudies:\n", "e11.yaml", 2, 9, "needs a value");

@@ -80,8 +80,32 @@ static void test_read_errors(void)
     char fifo[512];
     in_dir(fifo, "fifo");
     CHECK(mkfifo(fifo, 0600) == 0);
-    CHECK(fileio_read_all(fifo, 100, &data, &len, &e) == -1 && has(&e, "not a regular file"));
+    CHECK(fileio_read_all(fifo, 100, &data, &len, &e) == -1 && has(&e, "is a FIFO, not a regular file"));
     unlink(fifo);
+}
+
+/* fileio_kind names what a path is, through symbolic links too. */
+static void test_kind(void)
+{
+    char fifo[512], link[512], dangling[512], file[512];
+    in_dir(fifo, "kfifo");
+    in_dir(link, "klink");
+    in_dir(dangling, "kdangling");
+    in_dir(file, "kfile");
+    CHECK(mkfifo(fifo, 0600) == 0 && symlink(fifo, link) == 0 && symlink("nowhere", dangling) == 0);
+    struct err e = {0};
+    CHECK(fileio_write_atomic(file, "x", 1, &e) == 0);
+    CHECK(fileio_kind(file) && !strcmp(fileio_kind(file), "a regular file"));
+    CHECK(fileio_kind(fifo) && !strcmp(fileio_kind(fifo), "a FIFO"));
+    CHECK(fileio_kind(link) && !strcmp(fileio_kind(link), "a symbolic link to a FIFO"));
+    CHECK(fileio_kind(dangling) && !strcmp(fileio_kind(dangling), "a symbolic link to nothing"));
+    CHECK(fileio_kind(dir) && !strcmp(fileio_kind(dir), "a directory"));
+    CHECK(fileio_kind("/dev/null") && !strcmp(fileio_kind("/dev/null"), "a character device"));
+    CHECK(fileio_kind(file) && fileio_kind("/no/such/file") == NULL);
+    unlink(fifo);
+    unlink(link);
+    unlink(dangling);
+    unlink(file);
 }
 
 static void test_write_errors(void)
@@ -200,6 +224,7 @@ int main(void)
     }
     test_write_then_read();
     test_read_errors();
+    test_kind();
     test_write_errors();
     test_images();
     test_formats();

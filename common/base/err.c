@@ -12,6 +12,21 @@ int err_set(struct err *e, const char *file, int line, int col, const char *fmt,
     snprintf(e->file, sizeof e->file, "%s", file ? file : "");
     e->line = line;
     e->col = col;
+    e->errnum = 0;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e->msg, sizeof e->msg, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int err_set_errno(struct err *e, int errnum, const char *fmt, ...)
+{
+    if (!e)
+        return -1;
+    e->file[0] = 0;
+    e->line = e->col = 0;
+    e->errnum = errnum;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(e->msg, sizeof e->msg, fmt, ap);

@@ -9,11 +9,16 @@ struct err {
     int line;       /* 1-based; 0 when unknown */
     int col;        /* 1-based; 0 when unknown */
     char msg[768];
+    int errnum; /* the errno of a failed system call writing a file (err_set_errno), else 0 */
 };
 
 /* Fill e (if not NULL) with a position and a printf-style message. Always returns -1. */
 int err_set(struct err *e, const char *file, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
+
+/* err_set without a position, keeping errnum (a failed write's errno) for callers that judge
+   whose fault it is (a full disk, a read-only folder). Always returns -1. */
+int err_set_errno(struct err *e, int errnum, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /* Prefix e's message with "prefix: " (e.g. a key name). Always returns -1. */
 int err_prefix(struct err *e, const char *prefix);

@@ -33,9 +33,22 @@ static int read_full(int fd, uint8_t *buf, size_t size, size_t *got)
     return 0;
 }
 
+/* The kind of a file system entry that is not a regular file, from its mode. */
+static const char *mode_kind(mode_t m)
+{
+    return S_ISREG(m)    ? "a regular file"
+           : S_ISDIR(m)  ? "a directory"
+           : S_ISFIFO(m) ? "a FIFO"
+           : S_ISCHR(m)  ? "a character device"
+           : S_ISBLK(m)  ? "a block device"
+           : S_ISSOCK(m) ? "a socket"
+                         : "not a regular file";
+}
+
 /* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer *data with a NUL
    at data[*len]; the caller frees it. 0, or -1 with e filled (file = path, message from errno,
-   "Is a directory", "not a regular file" or "file too large (N bytes, limit M)"). */
+   "Is a directory", "is a FIFO, not a regular file" (fileio_kind's words) or "file too large (N bytes, limit
+   M)"). */
 int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e)
 {
     *data = NULL;
@@ -56,7 +69,7 @@ int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *
         goto fail;
     }
     if (!S_ISREG(st.st_mode)) {
-        err_set(e, path, 0, 0, "not a regular file");
+        err_set(e, path, 0, 0, "is %s, not a regular file", mode_kind(st.st_mode));
         goto fail;
     }
     if (st.st_size < 0 || (uintmax_t)st.st_size > max_bytes || (uintmax_t)st.st_size >= SIZE_MAX) {
@@ -146,7 +159,7 @@ int fileio_stage(const char *path, const void *data, size_t len, char *staged, s
         return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(ENAMETOOLONG));
     int fd = mkstemp(staged);
     if (fd < 0)
-        return err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+        return err_set_errno(e, errno, "cannot write %s: %s", path, strerror(errno));
     if (fchmod(fd, 0644) < 0 || write_full(fd, data, len) < 0 || fsync(fd) < 0)
         goto fail;
     int closing = fd;
@@ -155,7 +168,7 @@ int fileio_stage(const char *path, const void *data, size_t len, char *staged, s
         goto fail;
     return 0;
 fail:
-    err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+    err_set_errno(e, errno, "cannot write %s: %s", path, strerror(errno));
     if (fd >= 0)
         close(fd);
     unlink(staged);
@@ -165,7 +178,7 @@ fail:
 int fileio_commit(const char *staged, const char *path, struct err *e)
 {
     if (rename(staged, path) < 0) {
-        err_set(e, NULL, 0, 0, "cannot write %s: %s", path, strerror(errno));
+        err_set_errno(e, errno, "cannot write %s: %s", path, strerror(errno));
         unlink(staged);
         return -1;
     }
@@ -193,6 +206,25 @@ int fileio_write_text(const char *dir, const char *file, char *text, struct err 
     int rc = fileio_write_atomic(path, text, strlen(text), e);
     free(text);
     return rc;
+}
+
+const char *fileio_kind(const char *path)
+{
+    static const char *const linked[] = {"a symbolic link to a directory", "a symbolic link to a FIFO",
+                                         "a symbolic link to a character device",
+                                         "a symbolic link to a block device", "a symbolic link to a socket"};
+    struct stat st, lst;
+    if (lstat(path, &lst) < 0)
+        return NULL;
+    if (stat(path, &st) < 0)
+        return errno == ELOOP ? "a symbolic link that loops" : "a symbolic link to nothing";
+    const char *kind = mode_kind(st.st_mode);
+    if (!S_ISLNK(lst.st_mode) || S_ISREG(st.st_mode))
+        return kind;
+    for (size_t i = 0; i < sizeof linked / sizeof linked[0]; i++)
+        if (!strcmp(linked[i] + strlen("a symbolic link to "), kind))
+            return linked[i];
+    return "a symbolic link to something not a regular file";
 }
 
 int fileio_output_ok(const char *path, const char *const *inputs, size_t n, struct err *e)

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/fileio.h"
 #include "job/outdir.h"
 #include "job/part.h"
 #include "job/run_out.h"
@@ -138,7 +139,8 @@ int merge_parts(const struct job *j, const struct run_opts *o, struct run_result
         struct stat st;
         if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode)) { /* opening a FIFO would block */
             err_set(e, path, 0, 0,
-                    "not a regular file (a part file is one; remove it and render that part again)");
+                    "is %s, not a regular file (a part file is one; remove it and render that part again)",
+                    fileio_kind(path) ? fileio_kind(path) : "gone");
             goto done;
         }
         if (lstat(path, &st) == 0)

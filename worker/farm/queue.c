@@ -118,7 +118,11 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
         return;
     }
     if (rc == 1 && (rr->procs.stopped || queue_stop)) {
-        queue_file_give_back(q, name);
+        queue_file_stopped(q, name);
+        return;
+    }
+    if (rc != 0 && outdir_env_error(&e)) { /* this machine's fault, not the job's: never failed/ */
+        queue_file_env_stop(q, name, &e);
         return;
     }
     if (rc == 0) {
@@ -171,21 +175,6 @@ static void process(struct queue *q, const char *name)
     queue_file_clear_lost_stop(q);
 }
 
-/* What the unrunnable entry at path is, for messages. */
-static const char *unrunnable_kind(const char *path)
-{
-    struct stat st;
-    if (lstat(path, &st) < 0)
-        return "gone";
-    if (S_ISLNK(st.st_mode))
-        return stat(path, &st) < 0 && errno == ELOOP ? "a symbolic link that loops"
-                                                     : "a symbolic link to nothing";
-    return S_ISDIR(st.st_mode)    ? "a directory"
-           : S_ISFIFO(st.st_mode) ? "a FIFO"
-           : S_ISSOCK(st.st_mode) ? "a socket"
-                                  : "not a regular file";
-}
-
 /* DIR/name can never run (queue_scan's unrunnable): moved to failed/ with a log saying why, by
    whichever worker's rename() gets it; when it cannot be moved, said once per worker. */
 static void file_unrunnable(struct queue *q, const char *name)
@@ -194,7 +183,7 @@ static void file_unrunnable(struct queue *q, const char *name)
     snprintf(from, sizeof from, "%s/%s", q->dir, name);
     snprintf(to, sizeof to, "%s/%s", q->failed, name);
     snprintf(msg, sizeof msg, "%s: cannot run: %s (a job file is a regular file, or a link to one)", from,
-             unrunnable_kind(from));
+             fileio_kind(from) ? fileio_kind(from) : "gone");
     if (rename(from, to) == 0) {
         char stem[256];
         outdir_stem(name, stem, sizeof stem);
@@ -222,8 +211,28 @@ static void nap(double s)
     nanosleep(&ts, NULL);
 }
 
+/* The lease of running/name into holder, read again for up to a second while it is not yet written
+   (a claimer renames the job into running/ first, then writes its lease). 0 read; -1 still not
+   written; 1 the claim has left running/ meanwhile (spread, or filed). */
+static int read_holder(const struct queue *q, const char *name, struct lease *holder)
+{
+    char claim[2048];
+    double age;
+    struct stat st;
+    snprintf(claim, sizeof claim, "%s/%s", q->running, name);
+    for (int i = 0; holder->pid == 0 && i < 20 && !queue_stop; i++) {
+        nap(0.05);
+        if (lstat(claim, &st) < 0)
+            return 1;
+        if (lease_read(claim, holder, &age) < 0)
+            memset(holder, 0, sizeof *holder);
+    }
+    return holder->pid ? 0 : -1;
+}
+
 /* 1 when a compare job claimed by another worker is being spread (queue_study_spreading): a --once
-   worker waits for its renders rather than leave them all to that worker. Said once per job. */
+   worker waits for its renders rather than leave them all to that worker. Said once per job, with
+   its holder once the holder's lease is written. */
 static int spreading(struct queue *q)
 {
     char name[256];
@@ -232,11 +241,19 @@ static int spreading(struct queue *q)
         q->spreading[0] = 0;
         return 0;
     }
-    if (strcmp(q->spreading, name) != 0)
-        queue_log(
-            name,
-            "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its renders\n",
-            holder.pid, holder.host[0] ? holder.host : "?");
+    int known = strcmp(q->spreading, name) ? read_holder(q, name, &holder) : 0;
+    if (known == 1) /* spread (or filed) while we looked: the next scan sees what became of it */
+        return 1;
+    if (strcmp(q->spreading, name) != 0) {
+        if (known == 0)
+            queue_log(name,
+                      "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its "
+                      "renders\n",
+                      holder.pid, holder.host[0] ? holder.host : "?");
+        else
+            queue_log(name, "a compare job claimed (its lease not yet written): waiting for it to be spread, "
+                            "to take its renders\n");
+    }
     snprintf(q->spreading, sizeof q->spreading, "%s", name);
     return 1;
 }
@@ -281,7 +298,7 @@ int queue_main(const struct queue_opts *qo)
         err_print("worker: --queue %s: %s\n", q.dir, e.msg);
         return 2;
     }
-    while (!queue_stop) {
+    while (!queue_stop && !q.env_failed) {
         char adopted[256];
         if (queue_claim_recover(&q, adopted, sizeof adopted)) {
             q.took++;

@@ -34,6 +34,8 @@ struct queue {
     char spreading[256];         /* the compare job being spread elsewhere that a --once worker waits for */
     char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */
     int nreported;
+    int env_failed;     /* a job's output folder could not be written (outdir_env_error): stop, exit 2 */
+    struct err env_err; /* a study entry's such error (queue_drain), for the log */
 };
 
 /* *queue.stop's value when the tick found the claim in hand gone (not a signal number): the render

@@ -81,6 +81,8 @@ static int render(struct queue *q, struct queue *sq, struct study_fan *f, const 
         describe(f, k, kind, index, msg, n);
     else
         err_format(&e, msg, n);
+    if (rc != 0 && outdir_env_error(&e))
+        sq->env_err = e;
     return rc;
 }
 
@@ -139,6 +141,8 @@ static int gather(struct queue *q, struct queue *sq, const char *from, const cha
     }
     jobfile_close(&jf);
     snprintf(msg, n, "%s", out.line);
+    if (rc != 0 && outdir_env_error(&out.e))
+        sq->env_err = out.e;
     if (rc != 0 || !queue_claim_still_ours(sq))
         return rc;
     if (rename(job, to) < 0) {
@@ -187,8 +191,12 @@ static void process_entry(struct queue *q, struct queue *sq, const char *sd, con
     else if (sq->lost || !queue_claim_still_ours(sq))
         queue_file_say_lost(sq, label);
     else if (rc == 1 && *q->stop)
-        queue_file_give_back(sq, ticket);
-    else if (rc == 0) {
+        queue_file_stopped(sq, ticket);
+    else if (rc != 0 && sq->env_err.msg[0]) { /* this machine's fault: back to the study's queue */
+        queue_file_env_stop(sq, ticket, &sq->env_err);
+        q->env_failed = 1;
+        queue_file_note_rc(q, 2);
+    } else if (rc == 0) {
         queue_log(label, "%s\n", msg);
         queue_claim_file(sq, ticket, sq->done);
     } else {

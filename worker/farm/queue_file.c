@@ -34,32 +34,43 @@ void queue_file_log(struct queue *q, const char *name, const char *job_name, con
         queue_log(name, "%s", e.msg);
 }
 
-/* Hand the claim in hand back to the queue (a stop signal): under its recovery lock, and only
-   while it is still ours. */
-void queue_file_give_back(struct queue *q, const char *name)
+/* Hand the claim in hand back to the queue (why: "stopped by signal 15", or the worker's own
+   failure): under its recovery lock, and only while it is still ours. */
+void queue_file_give_back(struct queue *q, const char *name, const char *why)
 {
     if (queue_claim_lock(q) <
         0) { /* another worker is recovering it (our lease looked dead): the claim is its now */
-        queue_log(name, "stopped by signal %d; its recovery lock is held, so it stays in %s/ for recovery",
-                  (int)*q->stop, q->running);
+        queue_log(name, "%s; its recovery lock is held, so it stays in %s/ for recovery\n", why, q->running);
         return;
     }
     if (!queue_claim_still_ours(q))
         ;
     else if (queue_claim_name_waiting(q, name))
-        queue_log(name,
-                  "stopped by signal %d; a newer %s waits in the queue, so this one stays in %s/ for the "
-                  "next worker\n",
-                  (int)*q->stop, name, q->running);
+        queue_log(name, "%s; a newer %s waits in the queue, so this one stays in %s/ for the next worker\n",
+                  why, name, q->running);
     else if (queue_claim_return(q, q->claim, name) == 0)
-        queue_log(name, "stopped by signal %d, returned to the queue\n", (int)*q->stop);
+        queue_log(name, "%s, returned to the queue\n", why);
     else
-        queue_log(name,
-                  "stopped by signal %d; cannot return it to the queue (%s), so it stays in %s/ for the "
-                  "next worker\n",
-                  (int)*q->stop, errno == EEXIST ? "a newer one of its name arrived" : strerror(errno),
-                  q->running);
+        queue_log(name, "%s; cannot return it to the queue (%s), so it stays in %s/ for the next worker\n",
+                  why, errno == EEXIST ? "a newer one of its name arrived" : strerror(errno), q->running);
     lease_unlock(q->claim);
+}
+
+void queue_file_stopped(struct queue *q, const char *name)
+{
+    char why[64];
+    snprintf(why, sizeof why, "stopped by signal %d", (int)*q->stop);
+    queue_file_give_back(q, name, why);
+}
+
+void queue_file_env_stop(struct queue *q, const char *name, const struct err *e)
+{
+    char msg[2048], why[sizeof msg + 96];
+    err_format(e, msg, sizeof msg);
+    snprintf(why, sizeof why, "%s (the worker's output folder, not the job: this worker stops, exit 2)", msg);
+    queue_file_give_back(q, name, why);
+    q->env_failed = 1;
+    queue_file_note_rc(q, 2);
 }
 
 /* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.

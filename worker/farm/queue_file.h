@@ -9,9 +9,17 @@
 void queue_file_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
                     int attempts);
 
-/* Hand the claim in hand (file `name`) back to the queue after a stop signal: under its recovery
-   lock, and only while it is still ours. One log line. */
-void queue_file_give_back(struct queue *q, const char *name);
+/* Hand the claim in hand (file `name`) back to the queue, why (one phrase) said first: under its
+   recovery lock, and only while it is still ours. One log line. */
+void queue_file_give_back(struct queue *q, const char *name, const char *why);
+
+/* queue_file_give_back after a stop signal ("stopped by signal N"). */
+void queue_file_stopped(struct queue *q, const char *name);
+
+/* The claim in hand could not be written for a reason of this machine (outdir_env_error(e)): handed
+   back with one line saying why, q->env_failed set (the worker stops) and exit status 2 noted. Never
+   failed/: one misconfigured worker must not empty the queue. */
+void queue_file_env_stop(struct queue *q, const char *name, const struct err *e);
 
 /* The claim in hand is no longer ours (cancelled, or taken over): one log line; a cancel's lease
    goes too. */

@@ -225,7 +225,9 @@ void queue_study_expand(struct queue *q, const char *name, const struct jobfile 
     int rc = outdir_check(out, &e) < 0 || outdir_mkdirs(msg, NULL, &e) < 0
                  ? -1
                  : prepare(q, &f, sd, stem, jf->bytes, jf->len, &e);
-    if (rc < 0) {
+    if (rc < 0 && outdir_env_error(&e)) {
+        queue_file_env_stop(q, name, &e);
+    } else if (rc < 0) {
         err_prefix(&e, study_fan_name(&f));
         err_format(&e, msg, sizeof msg);
         refuse(q, name, study_fan_name(&f), msg);

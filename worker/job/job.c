@@ -12,6 +12,7 @@
 #include "job_path.h"
 #include "image/imgio.h"
 #include "outdir.h"
+#include "base/fileio.h"
 #include "scenefile/yget.h"
 
 const char *const job_keys[] = {"name",           "scene",      "width",         "height",
@@ -209,9 +210,15 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         mark(j->pos_scene, v);
         char tried[4 * JOB_PATH_MAX + 32], hint[JOB_PATH_MAX + 32];
-        if (job_path_scene(j, s, tried, sizeof tried) < 0)
+        if (job_path_scene(j, s, tried, sizeof tried) < 0) {
+            const char *kind = fileio_kind(j->scene_path); /* there, but a FIFO, a device, a folder */
+            if (kind)
+                return ydoc_fail(d, v, e,
+                                 "scene: %s is %s, not a scene file (a scene file is a regular file)",
+                                 j->scene_path, kind);
             return ydoc_fail(d, v, e, "scene: no scene file at %s%s%s", j->scene_path, tried,
                              job_path_scene_hint(j, s, hint, sizeof hint));
+        }
     } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
         if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
             return -1;
@@ -282,7 +289,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return -1;
         mark(j->pos_reference, v);
         job_path_resolve(j->path, s, j->reference, sizeof j->reference);
-        if (!job_path_is_file(j->reference))
+        const char *kind = fileio_kind(j->reference);
+        if (kind && !job_path_is_file(j->reference))
+            return ydoc_fail(d, v, e, "reference: %s is %s, not an image file (an image is a regular file)",
+                             j->reference, kind);
+        if (!kind)
             return ydoc_fail(d, v, e, "reference: no image file at %s", j->reference);
     }
     return 0;
@@ -330,9 +341,24 @@ int job_height(const struct job *j, double aspect)
     return h < 1 ? 1 : h;
 }
 
+int job_check_stem(const struct job *j, struct err *e)
+{
+    char stem[JOB_PATH_MAX];
+    outdir_stem(j->path, stem, sizeof stem);
+    if (j->pos_name[0] || strlen(stem) < JOB_NAME_MAX)
+        return 0;
+    return err_set(
+        e, j->path, 1, 1,
+        "name: the file's stem is %zu bytes, over the %d a name holds (it is never cut short); give "
+        "the job a name:",
+        strlen(stem), JOB_NAME_MAX - 1);
+}
+
 int job_finish(struct job *j, struct ydoc *d, struct err *e)
 {
     (void)d;
+    if (job_check_stem(j, e) < 0)
+        return -1;
     /* A name from the file's stem ("..yaml" gives ".", "...yaml" "..") names the output folder too:
        the rule for name: keeps it inside --out and off hidden folders (.cache). */
     if (!j->pos_name[0] && (!j->name[0] || j->name[0] == '.'))

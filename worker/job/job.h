@@ -68,6 +68,11 @@ void job_defaults(struct job *j, const char *path);
 /* Apply one key/value pair of a job mapping to j (used for job files and compare variants). */
 int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *val, struct err *e);
 
+/* A job without name: is named for its file's stem, which must fit a name (JOB_NAME_MAX - 1
+   bytes): a longer stem is refused, never cut (two files differing after the cut would share an
+   output folder, and a cut may split a UTF-8 character). 0, or -1 with e filled (at 1:1). */
+int job_check_stem(const struct job *j, struct err *e);
+
 /* Derive what depends on several keys (light sampler default, format, output name). */
 int job_finish(struct job *j, struct ydoc *d, struct err *e);
 

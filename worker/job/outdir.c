@@ -92,23 +92,29 @@ int outdir_check(const char *dir, struct err *e)
         struct stat st;
         if (stat(p, &st) == 0) {
             if (!S_ISDIR(st.st_mode))
-                return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", p);
+                return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way", p);
             if (access(p, W_OK | X_OK) < 0)
-                return err_set(e, NULL, 0, 0, "cannot write to output directory %s: %s", p, strerror(errno));
+                return err_set_errno(e, errno, "cannot write to output directory %s: %s", p, strerror(errno));
             return 0;
         }
         if ((errno != ENOENT && errno != ENOTDIR) || !strcmp(p, "."))
-            return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", dir, strerror(errno));
+            return err_set_errno(e, errno, "cannot create directory %s: %s", dir, strerror(errno));
         /* missing, but a name is there: a dangling symbolic link, where mkdir fails (EEXIST) */
         if (lstat(p, &st) == 0)
-            return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way (%s)", p,
-                           S_ISLNK(st.st_mode) ? "a symbolic link to nothing" : "not a directory");
+            return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way (%s)", p,
+                                 S_ISLNK(st.st_mode) ? "a symbolic link to nothing" : "not a directory");
         char *slash = strrchr(p, '/');
         if (!slash)
             snprintf(p, sizeof p, ".");
         else
             slash[slash == p] = '\0'; /* "/x" -> "/", "a/b" -> "a" */
     }
+}
+
+int outdir_env_error(const struct err *e)
+{
+    int n = e->errnum;
+    return n == EACCES || n == EPERM || n == EROFS || n == ENOSPC || n == EDQUOT;
 }
 
 int outdir_mkdirs(const char *path, int *made, struct err *e)
@@ -123,16 +129,17 @@ int outdir_mkdirs(const char *path, int *made, struct err *e)
             *p = 0;
             int ok = mkdir(buf, 0755) == 0;
             if (!ok && errno != EEXIST)
-                return err_set(e, NULL, 0, 0, "cannot create directory %s: %s", buf, strerror(errno));
+                return err_set_errno(e, errno, "cannot create directory %s: %s", buf, strerror(errno));
             struct stat st;
             /* the folder itself is never a symbolic link: outputs would land wherever it points */
             if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
-                return err_set(e, NULL, 0, 0,
-                               "%s is a symbolic link: outputs are never written through one (make it a "
-                               "folder)",
-                               buf);
+                return err_set_errno(
+                    e, ELOOP,
+                    "%s is a symbolic link: outputs are never written through one (make it a "
+                    "folder)",
+                    buf);
             if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
-                return err_set(e, NULL, 0, 0, "cannot create directory %s: a file is in the way", buf);
+                return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way", buf);
             *p = c;
             if (!c) {
                 if (made)

@@ -59,6 +59,12 @@ int outdir_check(const char *dir, struct err *e);
    never ours to remove). path itself must not be a symbolic link. 0 or -1 with e filled. */
 int outdir_mkdirs(const char *path, int *made, struct err *e);
 
+/* An output folder's error (e from outdir_check, outdir_mkdirs or a write into the folder) carries
+   e->errnum. 1 when it is the machine's fault, not the job's: the folder or its files cannot be
+   made or written (EACCES, EPERM, EROFS, ENOSPC, EDQUOT). The one rule a queue worker uses to hand
+   a claim back and stop (exit 2) rather than file the job as failed. */
+int outdir_env_error(const struct err *e);
+
 /* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
    an image and its sidecar always come from one render (two jobs of one name, or a worker whose
    queue claim was taken over, finishing together). Under the lock, the temporary files that a

@@ -205,8 +205,11 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     }
     struct run_frame frame = {rgb, w, h, &rr->procs, use_ref, ref_domain, 0};
-    if ((o->parts > 0 ? run_out_write_part(j, o, &frame, rr, e) : run_out_write(j, o, &frame, rr, e)) < 0)
+    if ((o->parts > 0 ? run_out_write_part(j, o, &frame, rr, e) : run_out_write(j, o, &frame, rr, e)) < 0) {
+        rc = e->errnum ? 2
+                       : 1; /* the output folder cannot be made or written: bad usage, as before a render */
         goto done;
+    }
     rc = 0;
 done:
     image_f_free(&ref);

@@ -175,7 +175,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const struct ru
     /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
     int failed = run_out_still_held(o, out->dir, e) < 0;
     if (!failed && unlink(out->sidecar) < 0 && errno != ENOENT)
-        failed = err_set(e, NULL, 0, 0, "cannot write %s: %s", out->sidecar, strerror(errno)) < 0;
+        failed = err_set_errno(e, errno, "cannot write %s: %s", out->sidecar, strerror(errno)) < 0;
     if (failed) {
         for (int r = 0; r < n; r++)
             unlink(staged[r]);

@@ -57,7 +57,14 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
         L->scene_base[s] = L->base;
         if (list && compare_keys_apply(&L->scene_base[s], d, "scene", item, L->e) < 0)
             return -1;
-        outdir_stem(L->scene_base[s].scene_path, L->c->scenes[s].name, sizeof L->c->scenes[s].name);
+        char stem[JOB_PATH_MAX];
+        outdir_stem(L->scene_base[s].scene_path, stem, sizeof stem);
+        if (strlen(stem) >= sizeof L->c->scenes[s].name) /* never cut: two scenes would share a name */
+            return ydoc_fail(d, item, L->e,
+                             "scenes: %s: its stem is %zu bytes, over the %zu that name a scene's outputs "
+                             "(rename the file)",
+                             L->scene_base[s].scene_path, strlen(stem), sizeof L->c->scenes[s].name - 1);
+        snprintf(L->c->scenes[s].name, sizeof L->c->scenes[s].name, "%s", stem);
         for (int t = 0; t < s; t++)
             if (!strcmp(L->c->scenes[t].name, L->c->scenes[s].name))
                 return strcmp(L->scene_base[t].scene_path, L->scene_base[s].scene_path)
@@ -254,6 +261,8 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
         else if (strcmp(key, "scenes") && strcmp(key, "seeds") && job_apply(&L.base, &L.d, k, v, e) < 0)
             goto done;
     }
+    if (job_check_stem(&L.base, e) < 0)
+        goto done;
     snprintf(L.c->name, sizeof L.c->name, "%s", L.base.name);
     if (load_scenes(&L, root) < 0 || load_seeds(&L, root) < 0 || load_sweep(&L) < 0 ||
         load_variants(&L) < 0 || compare_expand_reference(&L) < 0 || compare_expand_items(&L, root) < 0)

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/fileio.h"
 #include "job/job.h"
 #include "scenefile/yget.h"
 
@@ -89,7 +90,7 @@ static int load_study(struct compare_suite *s, struct ydoc *d, yaml_node_t *item
     if (stat(study, &st) < 0)
         return ydoc_fail(d, item, e, "studies: no study file at %s (%s)", study, strerror(errno));
     if (!S_ISREG(st.st_mode))
-        return ydoc_fail(d, item, e, "studies: %s is not a file", study);
+        return ydoc_fail(d, item, e, "studies: %s is %s, not a study file", study, fileio_kind(study));
     struct ydoc sd; /* the study file read once: checked, then loaded */
     struct compare *c = ydoc_load(&sd, study, e) < 0 || check_not_nested(&sd, e) < 0
                             ? NULL
@@ -144,7 +145,7 @@ struct compare_suite *compare_suite_load_doc(const struct ydoc *doc, const char 
     snprintf(s->path, sizeof s->path, "%s", path);
     job_defaults(&base, path);
     yaml_node_t *root = ydoc_root(&d), *list;
-    if (check_top(&d, root, &base, e) < 0)
+    if (check_top(&d, root, &base, e) < 0 || job_check_stem(&base, e) < 0)
         goto done;
     snprintf(s->name, sizeof s->name, "%s", base.name);
     if (!(list = ymap_get(&d, root, "studies"))) {
