@@ -35,6 +35,7 @@ int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct 
     uint8_t *data;
     size_t len;
     memset(src, 0, sizeof *src);
+    src->texture_budget = TEXTURE_BUDGET_BYTES;
     if (fileio_read_all(path, YDOC_MAX_BYTES, &data, &len, e) < 0)
         return -1;
     *h = hash_bytes(*h, data, len);
@@ -43,6 +44,7 @@ int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct 
     struct ydoc *d = &src->doc;
     yaml_node_t *textures = src->parsed ? ymap_get(d, ydoc_root(d), "textures") : NULL, *k, *v;
     int n = 0;
+    size_t total = 0; /* the texture files' bytes read */
     for (int i = 0; textures && ymap_pair(d, textures, i, &k, &v); i++)
         n++;
     if (n && !(src->files = calloc((size_t)n, sizeof *src->files)))
@@ -62,9 +64,18 @@ int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct 
             continue;
         }
         src->n_files++;
-        /* unreadable: scene_load_src says so */
-        if (fileio_read_all(sf->path, TEXTURE_MAX_BYTES, &sf->bytes, &sf->len, &sf->read_err) == 0)
-            *h = hash_bytes(*h, sf->bytes, sf->len);
+        /* unreadable, or over the scene's budget: scene_load_src says so */
+        if (fileio_read_all(sf->path, TEXTURE_MAX_BYTES, &sf->bytes, &sf->len, &sf->read_err) < 0)
+            continue;
+        if (sf->len > TEXTURE_BUDGET_BYTES - total) {
+            err_set(&sf->read_err, sf->path, 0, 0, "the scene's texture files come to over %zu MiB together",
+                    TEXTURE_BUDGET_BYTES >> 20);
+            free(sf->bytes);
+            sf->bytes = NULL;
+            continue;
+        }
+        total += sf->len;
+        *h = hash_bytes(*h, sf->bytes, sf->len);
     }
     return 0;
 }

@@ -25,6 +25,7 @@ struct scene_src {
     struct err parse_err;
     struct scene_src_file *files; /* one per image texture named, n_files of them */
     int n_files;
+    size_t texture_budget; /* the decoded textures' limit in bytes: TEXTURE_BUDGET_BYTES (tests lower it) */
 };
 
 /* Read the scene file at path once: fold into *h what a render of it reads (the file's bytes,
