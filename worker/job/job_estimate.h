@@ -19,12 +19,14 @@ struct job_estimate {
     double cpu_s;         /* the whole render's CPU seconds, at the pilot's cost per pixel */
     double framebuffer_bytes, process_bytes; /* the shared image; one render process's resident set */
     int pilot_pixels;
+    double pilot_samples, pilot_traced; /* the pilot pixels' camera samples, and how many it traced */
 };
 
 /* Estimate j's render with `processes` processes (0: the job's) and write nothing: the scene
    (sf, or loaded from j->scene_path when NULL), the size and the limits as run_job checks them,
    then a pilot of up to JOB_ESTIMATE_PILOT_PIXELS pixels spread over the image, rendered here
-   until budget_s CPU seconds are spent (at least one pixel). 0, or -1 with e filled (bad input,
+   until budget_s CPU seconds are spent (at least one path; a pixel too costly for the budget is
+   cut short, its cost scaled from the paths traced). 0, or -1 with e filled (bad input,
    at the key's line:col as a render would say). */
 int job_estimate(const struct job *j, const struct scene_file *sf, int processes, double budget_s,
                  struct job_estimate *out, struct err *e);
