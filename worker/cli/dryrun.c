@@ -60,8 +60,11 @@ static double wall_of(double cpu_s, int processes)
 
 static void print_memory(const struct job_estimate *est, const char *what)
 {
-    printf("  memory    %s %.3g MB (framebuffer %.3g MB + %d process%s x %.3g MB)\n", what,
-           mb(job_estimate_memory(est)), mb(est->framebuffer_bytes), est->processes,
+    char tex[64] = "";
+    if (est->texture_bytes > 0)
+        snprintf(tex, sizeof tex, " + textures %.3g MB, shared", mb(est->texture_bytes));
+    printf("  memory    %s %.3g MB (framebuffer %.3g MB%s + %d process%s x %.3g MB)\n", what,
+           mb(job_estimate_memory(est)), mb(est->framebuffer_bytes), tex, est->processes,
            est->processes == 1 ? "" : "es", mb(est->process_bytes));
 }
 

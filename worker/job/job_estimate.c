@@ -106,7 +106,10 @@ static int pilot(const struct job *j, const struct scene_file *sf, double budget
     est->pilot_pixels = p.k;
     est->pilot_samples = p.drawn;
     est->pilot_traced = p.traced;
-    est->process_bytes = resident_bytes();
+    /* the renderers share the scene's textures (read-only pages after fork): counted once */
+    for (int i = 0; i < sf->scene->n_images; i++)
+        est->texture_bytes += (double)sf->scene->images[i].w * sf->scene->images[i].h * 3;
+    est->process_bytes = fmax(0, resident_bytes() - est->texture_bytes);
     est->spp_mean = p.drawn / p.k;
     est->samples = est->spp_mean * (double)pixels;
     est->ns_per_sample = p.traced ? p.counted_s * 1e9 / p.traced : 0;
@@ -147,5 +150,5 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
 
 double job_estimate_memory(const struct job_estimate *est)
 {
-    return est->framebuffer_bytes + est->processes * est->process_bytes;
+    return est->framebuffer_bytes + est->texture_bytes + est->processes * est->process_bytes;
 }

@@ -18,6 +18,7 @@ struct job_estimate {
     double ns_per_sample; /* the pilot's CPU nanoseconds per camera sample */
     double cpu_s;         /* the whole render's CPU seconds, at the pilot's cost per pixel */
     double framebuffer_bytes, process_bytes; /* the shared image; one render process's resident set */
+    double texture_bytes; /* the scene's decoded image textures, loaded before the fork: shared */
     int pilot_pixels;
     double pilot_samples, pilot_traced; /* the pilot pixels' camera samples, and how many it traced */
 };
@@ -31,7 +32,8 @@ struct job_estimate {
 int job_estimate(const struct job *j, const struct scene_file *sf, int processes, double budget_s,
                  struct job_estimate *out, struct err *e);
 
-/* The estimate's memory: the framebuffer and every process's resident set. */
+/* The estimate's memory: the framebuffer, the textures (once) and every process's resident set
+   beside them. */
 double job_estimate_memory(const struct job_estimate *est);
 
 #endif
