@@ -127,8 +127,8 @@ static void write_png(const char *dir, const char *name)
     image_free(&img);
 }
 
-/* Twelve image textures naming three files: each file decoded once, its pixels shared by the
-   textures that name it (256 textures of one 4096x4096 file took 12 GiB); and the scene's
+/* Thirteen image textures naming three files: each file decoded once (a.png also by another path), its pixels
+   shared by the textures that name it (256 textures of one 4096x4096 file took 12 GiB); and the scene's
    decoded textures together within src's budget, refused at the `file` key that would pass it. */
 static void test_shared_images(void)
 {
@@ -148,6 +148,7 @@ static void test_shared_images(void)
     for (int i = 0; i < 10; i++)
         fprintf(f, "  t%d: { type: image, file: a.png }\n", i);
     fprintf(f, "  u: { type: image, file: b.png }\n  v: { type: image, file: c.png }\n");
+    fprintf(f, "  w: { type: image, file: ./a.png }\n"); /* another path to a.png */
     fprintf(f, "materials:\n  m: { type: lambertian, texture: t3 }\n  l: { type: light, emit: [4, 4, 4] }\n");
     fprintf(f, "objects:\n  - { type: sphere, center: [0, 0, 0], radius: 1, material: m }\n");
     fprintf(f, "  - { type: sphere, center: [0, 5, 0], radius: 1, material: l }\n");
@@ -156,9 +157,9 @@ static void test_shared_images(void)
     CHECK(load(path, &sf) == 0);
     if (sf.scene) {
         const struct scene *sc = sf.scene;
-        CHECK(sc->n_textures == 12 && sc->n_images == 3);
+        CHECK(sc->n_textures == 13 && sc->n_images == 3);
         int same = 1;
-        for (int i = 1; i < 10; i++)
+        for (int i = 1; i < 13; i += i == 9 ? 3 : 1) /* t1..t9 and w */
             same &= sc->textures[i].image == sc->textures[0].image;
         CHECK(same && sc->textures[10].image != sc->textures[0].image &&
               sc->textures[11].image != sc->textures[10].image);
