@@ -56,7 +56,8 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
     size_t done = all < p->cap ? all : p->cap;
     p->spent_s += dt;
     p->paths += (double)done;
-    double afford = (p->budget_s - p->spent_s) / (p->spent_s / p->paths); /* paths the rest pays */
+    double per_path = p->paths > 0 ? p->spent_s / p->paths : 0;
+    double afford = per_path > 0 ? (p->budget_s - p->spent_s) / per_path : HUGE_VAL; /* paths the rest pays */
     size_t grown = p->cap > SIZE_MAX / 8 ? SIZE_MAX : p->cap * 8;
     size_t cap = afford < (double)grown ? (afford < 1 ? 1 : (size_t)afford) : grown;
     if (done < all && cap > done) {
