@@ -43,6 +43,38 @@ printf 'scene: %s/scenes/checker.yaml\nwidth: 1\nsampler: poisson\nthreshold: 1\
 "$WORKER" big.yaml --dry-run >"$T/big.out" 2>"$T/big.err"; rc=$?
 check "too big: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 check "too big: at poisson_pool's line:col ($(cat "$T/big.err"))" grep -q "^big.yaml:5:15: poisson_pool:" "$T/big.err"
+# three textures naming one image (256x128, 96 KiB decoded): decoded once, and its pixels,
+# shared by the forked renderers, counted once beside the processes' own memory
+{
+    printf 'camera: { lookfrom: [0, 0, 5], lookat: [0, 0, 0], vfov: 40 }\ntextures:\n'
+    for i in 0 1 2; do printf '  t%s: { type: image, file: %s/scenes/textures/planet.png }\n' $i "$root"; done
+    printf 'materials:\n  m: { type: lambertian, texture: t1 }\n  l: { type: light, emit: [4, 4, 4] }\nobjects:\n'
+    printf '  - { type: sphere, center: [0, 0, 0], radius: 1, material: m }\n'
+    printf '  - { type: sphere, center: [0, 5, 5], radius: 1, material: l }\n'
+} >"$T/tex.yaml"
+printf 'scene: %s\nwidth: 8\nthreshold: 50\n' "$T/tex.yaml" >tex.yaml
+"$WORKER" tex.yaml --dry-run --processes 2 >"$T/tex.out" 2>"$T/tex.err"; rc=$?
+check "textures: exit 0 (got $rc: $(cat "$T/tex.err"))" [ "$rc" -eq 0 ]
+check "textures: one image's pixels, shared ($(cat "$T/tex.out"))" grep -Eq \
+    "^  memory    about [0-9.e+]+ MB \(framebuffer [0-9.e+-]+ MB \+ textures 0.0938 MB, shared \+ 2 processes x [0-9.e+]+ MB\)$" \
+    "$T/tex.out"
+rm tex.yaml
+# a pixel costlier than the pilot's time (10000 stacked pyramids, 2500 samples of up to 50
+# bounces: seconds a pixel): cut short after a few of its paths, its cost scaled from them (it
+# rendered the whole pixel: 22 s for 100000 pyramids)
+{
+    printf 'camera: { lookfrom: [20, 30, 20], lookat: [0, 40, 0], vfov: 60 }\nmaterials:\n'
+    printf '  w: { type: lambertian, albedo: [0.7, 0.7, 0.7] }\n  l: { type: light, emit: [4, 4, 4] }\nobjects:\n'
+    printf '  - &s {type: pyramid, apex: [0, 140, 0], base: [[-100, 0, -100], [140, 0, 0], [0, 0, 140]], material: w}\n'
+    awk 'BEGIN { for (i = 1; i < 10000; i++) print "  - *s" }'
+    printf '  - { type: sphere, center: [0, 400, 0], radius: 50, material: l }\n'
+} >"$T/pyr.yaml"
+printf 'scene: %s\nwidth: 32\nsampler: jitter\nthreshold: 2\nmax_depth: 50\n' "$T/pyr.yaml" >pyr.yaml
+"$WORKER" pyr.yaml --dry-run >"$T/pyr.out" 2>"$T/pyr.err"; rc=$?
+check "costly pixel: exit 0 (got $rc: $(cat "$T/pyr.err"))" [ "$rc" -eq 0 ]
+check "costly pixel: the pilot cut it short ($(cat "$T/pyr.out"))" \
+    grep -Eq "from a pilot of [0-9]+ pixels?, [0-9]+ of (its|their) [0-9]+ samples traced\); wall about [0-9.]+ (min|h) " "$T/pyr.out"
+rm pyr.yaml
 "$WORKER" --queue "$T/q" --dry-run >/dev/null 2>"$T/q.err"; rc=$?
 check "--dry-run with --queue: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 rm big.yaml

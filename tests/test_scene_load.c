@@ -1,10 +1,13 @@
 /* Tests for the scene loader on the shipped scenes: every object becomes the primitives, lights
    and textures it should, and transforms and textures resolve as the scene file says. */
 #include <float.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "geom/bvh.h"
 #include "check.h"
+#include "image/imgio.h"
 #include "scenefile/scene_load.h"
 
 static int count_type(const struct scene *sc, int type)
@@ -110,9 +113,83 @@ static void test_book3_and_final(void)
     }
 }
 
+/* Write dir/name: a 512x512 PNG (768 KiB decoded). */
+static void write_png(const char *dir, const char *name)
+{
+    char path[512];
+    struct rgb8 img;
+    struct err e;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    CHECK(image_alloc(&img, 512, 512, &e) == 0);
+    for (size_t i = 0; img.px && i < (size_t)512 * 512 * 3; i++)
+        img.px[i] = (uint8_t)(i * 7);
+    CHECK(imgio_write(path, &img, IMG_PNG, &e) == 0);
+    image_free(&img);
+}
+
+/* Thirteen image textures naming three files: each file decoded once (a.png also by another path), its pixels
+   shared by the textures that name it (256 textures of one 4096x4096 file took 12 GiB); and the scene's
+   decoded textures together within src's budget, refused at the `file` key that would pass it. */
+static void test_shared_images(void)
+{
+    char dir[256], path[300];
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, sizeof dir, "%s/test_scene_load.XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    CHECK(mkdtemp(dir) != NULL);
+    write_png(dir, "a.png");
+    write_png(dir, "b.png");
+    write_png(dir, "c.png");
+    snprintf(path, sizeof path, "%s/s.yaml", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fprintf(f, "camera: { lookfrom: [0, 0, 5], lookat: [0, 0, 0], vfov: 40 }\ntextures:\n");
+    for (int i = 0; i < 10; i++)
+        fprintf(f, "  t%d: { type: image, file: a.png }\n", i);
+    fprintf(f, "  u: { type: image, file: b.png }\n  v: { type: image, file: c.png }\n");
+    fprintf(f, "  w: { type: image, file: ./a.png }\n"); /* another path to a.png */
+    fprintf(f, "materials:\n  m: { type: lambertian, texture: t3 }\n  l: { type: light, emit: [4, 4, 4] }\n");
+    fprintf(f, "objects:\n  - { type: sphere, center: [0, 0, 0], radius: 1, material: m }\n");
+    fprintf(f, "  - { type: sphere, center: [0, 5, 0], radius: 1, material: l }\n");
+    fclose(f);
+    struct scene_file sf;
+    CHECK(load(path, &sf) == 0);
+    if (sf.scene) {
+        const struct scene *sc = sf.scene;
+        CHECK(sc->n_textures == 13 && sc->n_images == 3);
+        int same = 1;
+        for (int i = 1; i < 13; i += i == 9 ? 3 : 1) /* t1..t9 and w */
+            same &= sc->textures[i].image == sc->textures[0].image;
+        CHECK(same && sc->textures[10].image != sc->textures[0].image &&
+              sc->textures[11].image != sc->textures[10].image);
+        scene_file_free(&sf);
+    }
+    struct scene_src src;
+    struct err e;
+    uint64_t h = 0;
+    CHECK(scene_src_read(path, &src, &h, &e) == 0);
+    CHECK(src.texture_budget == (size_t)1 << 30); /* 1 GiB, as docs/scene-format.md says */
+    src.texture_budget = (size_t)2 << 20;         /* two of the files, not three */
+    CHECK(scene_load_src(&src, &sf, &e) == -1 && sf.scene == NULL);
+    CHECK(e.line == 14 && e.col == 27 && strstr(e.msg, "file: texture ") &&
+          strstr(e.msg, "c.png (512x512)") && strstr(e.msg, "2.25 MiB decoded, over the limit of 2 MiB"));
+    src.texture_budget = (size_t)3 * 512 * 512 * 3; /* exactly all three */
+    CHECK(scene_load_src(&src, &sf, &e) == 0);
+    scene_file_free(&sf);
+    scene_src_free(&src);
+    const char *names[] = {"a.png", "b.png", "c.png", "s.yaml"};
+    for (int i = 0; i < 4; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        unlink(path);
+    }
+    rmdir(dir);
+}
+
 int main(void)
 {
     test_cornell();
     test_book3_and_final();
+    test_shared_images();
     return check_report("test_scene_load");
 }

@@ -92,6 +92,15 @@ int imgio_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 
     return err_set(e, name, 0, 0, "unknown image format (expected PNG or PPM)");
 }
 
+int imgio_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, struct err *e)
+{
+    if (len >= 4 && memcmp(data, "\x89PNG", 4) == 0)
+        return png_size(data, len, name, w, h, e);
+    if (len >= 2 && data[0] == 'P' && data[1] >= '1' && data[1] <= '7')
+        return ppm_size(data, len, name, w, h, e);
+    return err_set(e, name, 0, 0, "unknown image format (expected PNG or PPM)");
+}
+
 static int is_exr(const uint8_t *d, size_t len)
 {
     return len >= 4 && memcmp(d, "\x76\x2f\x31\x01", 4) == 0;

@@ -18,6 +18,10 @@ int imgio_read(const char *path, struct rgb8 *out, struct err *e);
 /* imgio_read of a file's bytes already read (data, len; name for messages). */
 int imgio_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
 
+/* The width and height imgio_decode would give data, from its header alone (nothing allocated),
+   so a caller can refuse an image before spending its memory. 0, or -1 with e filled. */
+int imgio_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, struct err *e);
+
 /* The formats imgio_write writes: a format: name, also the file extension (any case) that
    chooses it. */
 const char *img_format_name(enum img_format fmt);

@@ -17,4 +17,8 @@ int png_encode_text(const struct rgb8 *img, const struct img_attr *texts, size_t
    over IMAGE_MAX_SIDE with -1 and e filled. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
 
+/* The width and height in data's IHDR (the signature and that first chunk checked, nothing
+   allocated): what png_decode would give when the rest is sound. 0, or -1 with e filled. */
+int png_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, struct err *e);
+
 #endif

@@ -318,6 +318,27 @@ static int read_chunks(struct png_dec *d, const uint8_t *data, size_t len)
     }
 }
 
+int png_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, struct err *e)
+{
+    struct png_dec d = {.name = name, .e = e};
+    struct png_chunk c;
+    size_t pos = sizeof png_signature;
+    if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0)
+        return err_set(e, name, 0, 0, "not a PNG file (bad signature)");
+    if (next_chunk(&d, data, len, &pos, &c) < 0)
+        return -1;
+    if (!is_type(&c, "IHDR") || c.len != 13)
+        return err_set(e, name, 0, 0, "corrupt PNG: first chunk is %s (%lu bytes), expected IHDR (13)",
+                       c.type, (unsigned long)c.len);
+    uint32_t pw = get_be32(c.data), ph = get_be32(c.data + 4);
+    if (pw < 1 || ph < 1 || pw > IMAGE_MAX_SIDE || ph > IMAGE_MAX_SIDE)
+        return err_set(e, name, 0, 0, "unsupported PNG: size %lux%lu (sides must be 1..%d)",
+                       (unsigned long)pw, (unsigned long)ph, IMAGE_MAX_SIDE);
+    *w = (int)pw;
+    *h = (int)ph;
+    return 0;
+}
+
 /* Decode data (len bytes; `name` for messages) into out as RGB. Supports every PNG: gray, gray+alpha,
    RGB, RGBA and palette images at every bit depth the spec allows, Adam7 interlacing, all five filters;
    ancillary chunks are ignored. 0, or -1 with e filled and out zeroed. */

@@ -143,6 +143,34 @@ static int read_magic(struct ppm_cur *c, int *plain)
     return 0;
 }
 
+/* The magic, width and height of the header at c (checked as ppm_decode checks them). 0 or -1. */
+static int read_size(struct ppm_cur *c, int *plain, unsigned long *w, unsigned long *h)
+{
+    if (read_magic(c, plain) < 0 || read_uint(c, IMAGE_MAX_SIDE, "width", w) < 0)
+        return -1;
+    if (*w < 1)
+        return ppm_fail(c, "corrupt PPM: width must be at least 1");
+    if (read_uint(c, IMAGE_MAX_SIDE, "height", h) < 0)
+        return -1;
+    if (*h < 1)
+        return ppm_fail(c, "corrupt PPM: height must be at least 1");
+    if (*w * *h > (unsigned long)IMAGE_MAX_PIXELS)
+        return ppm_fail(c, "unsupported PPM: %lux%lu is over %ld pixels", *w, *h, IMAGE_MAX_PIXELS);
+    return 0;
+}
+
+int ppm_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, struct err *e)
+{
+    struct ppm_cur c = {data, len, 0, 1, 0, name, e};
+    unsigned long uw, uh;
+    int plain;
+    if (read_size(&c, &plain, &uw, &uh) < 0)
+        return -1;
+    *w = (int)uw;
+    *h = (int)uh;
+    return 0;
+}
+
 /* Decode P3 or P6 data (len bytes; `name` for messages) into out, scaling samples to 8 bits.
    Header errors carry a line and column. 0, or -1 with e filled and out zeroed. */
 int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
@@ -153,17 +181,7 @@ int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *o
     out->w = 0;
     out->h = 0;
     out->px = NULL;
-    if (read_magic(&c, &plain) < 0 || read_uint(&c, IMAGE_MAX_SIDE, "width", &w) < 0)
-        return -1;
-    if (w < 1)
-        return ppm_fail(&c, "corrupt PPM: width must be at least 1");
-    if (read_uint(&c, IMAGE_MAX_SIDE, "height", &h) < 0)
-        return -1;
-    if (h < 1)
-        return ppm_fail(&c, "corrupt PPM: height must be at least 1");
-    if (w * h > (unsigned long)IMAGE_MAX_PIXELS)
-        return ppm_fail(&c, "unsupported PPM: %lux%lu is over %ld pixels", w, h, IMAGE_MAX_PIXELS);
-    if (read_uint(&c, PPM_MAXVAL_MAX, "maxval", &maxval) < 0)
+    if (read_size(&c, &plain, &w, &h) < 0 || read_uint(&c, PPM_MAXVAL_MAX, "maxval", &maxval) < 0)
         return -1;
     if (maxval < 1)
         return ppm_fail(&c, "corrupt PPM: maxval must be 1..65535");

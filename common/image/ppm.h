@@ -11,4 +11,8 @@ int ppm_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct er
    malformed, truncated or oversized input. */
 int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
 
+/* The width and height ppm_decode would give, from the header alone (nothing allocated). 0, or -1
+   with e filled as ppm_decode fills it. */
+int ppm_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, struct err *e);
+
 #endif

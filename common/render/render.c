@@ -36,7 +36,8 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
     return p.L;
 }
 
-void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st)
+size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths, float rgb[3],
+                          struct render_stats *st)
 {
     struct rng pix_rng, path_rng;
     const int w = ctx->rs.width, hgt = ctx->rs.height;
@@ -55,7 +56,8 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
     ctx->light_source.timed_draw_ns = timed ? &st->timed_draw_ns : NULL;
     const uint64_t t0 = timed ? clock_ns(CLOCK_MONOTONIC) : 0;
     const struct sampler_at at = {ctx->rs.seed, x, y, 0};
-    size_t n = sampler_draw_at(ctx->pixel, &pix_rng, &at, ctx->pixel_pts);
+    const size_t drawn = sampler_draw_at(ctx->pixel, &pix_rng, &at, ctx->pixel_pts);
+    const size_t n = drawn < max_paths ? drawn : max_paths; /* the first n of the pixel's samples */
     if (timed)
         st->timed_draw_ns += clock_ns(CLOCK_MONOTONIC) - t0;
 
@@ -112,4 +114,10 @@ void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct ren
         st->spp_min = (uint32_t)n;
     if (n > st->spp_max)
         st->spp_max = (uint32_t)n;
+    return drawn;
+}
+
+void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st)
+{
+    render_pixel_paths(ctx, x, y, SIZE_MAX, rgb, st);
 }

@@ -2,6 +2,7 @@
 #ifndef RENDER_H
 #define RENDER_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "geom/camera.h"
@@ -47,6 +48,13 @@ void render_ctx_free(struct render_ctx *ctx);
 /* Render pixel (x, y) (row 0 at the top) into rgb (linear); its value depends only on the job
    seed, x and y. Adds to st. */
 void render_pixel(struct render_ctx *ctx, int x, int y, float rgb[3], struct render_stats *st);
+
+/* render_pixel tracing at most max_paths of the pixel's camera samples, the first ones as
+   render_pixel traces them (all when max_paths is SIZE_MAX: render_pixel), into rgb (their mean)
+   and st (those traced). Returns how many samples the pixel has. For a cost estimate whose time
+   must stay bounded however costly a path is (the dry run's pilot). */
+size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths, float rgb[3],
+                          struct render_stats *st);
 
 void render_stats_init(struct render_stats *st);
 void render_stats_add(struct render_stats *into, const struct render_stats *from);

@@ -117,8 +117,46 @@ static int load_noise(struct scene_parse *L, yaml_node_t *n, struct texture *t)
     return 0;
 }
 
+/* The decoded image of texture file f (an entry of L->src) into *image: decoded on its first use
+   (its size checked first, against the image and the scene's limits, before the memory is
+   spent), then shared by every texture that names it. Errors at v, the texture's `file` key. */
+static int image_of_file(struct scene_parse *L, yaml_node_t *v, const struct scene_src_file *f,
+                         const char *path, int *image)
+{
+    int *seen = &L->file_image[f - L->src->files];
+    if (*seen >= 0) {
+        *image = *seen;
+        return 0;
+    }
+    struct rgb8 img;
+    struct err ie;
+    int w, h;
+    if (!f->bytes || imgio_size(f->bytes, f->len, path, &w, &h, &ie) < 0)
+        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path,
+                         f->bytes ? ie.msg : f->read_err.msg);
+    if ((long)w * h > TEXTURE_MAX_PIXELS)
+        return ydoc_fail(&L->d, v, L->e, "file: texture %s is %dx%d, over the limit of %ld pixels", path, w,
+                         h, (long)TEXTURE_MAX_PIXELS);
+    size_t bytes = (size_t)w * (size_t)h * 3;
+    if (L->texture_bytes + bytes > L->src->texture_budget)
+        return ydoc_fail(&L->d, v, L->e,
+                         "file: texture %s (%dx%d) takes the scene's image textures to %.4g MiB decoded, "
+                         "over the limit of %.4g MiB",
+                         path, w, h, (double)(L->texture_bytes + bytes) / (1 << 20),
+                         (double)L->src->texture_budget / (1 << 20));
+    if (imgio_decode(f->bytes, f->len, path, &img, &ie) < 0)
+        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path, ie.msg);
+    if ((*seen = scene_add_image(L->sc, &img)) < 0) {
+        image_free(&img);
+        return ydoc_fail(&L->d, v, L->e, "out of memory");
+    }
+    L->texture_bytes += bytes;
+    *image = *seen;
+    return 0;
+}
+
 /* An image texture: `file` relative to the scene file, PNG or PPM, at most
-   TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded. */
+   TEXTURE_MAX_BYTES on disk and TEXTURE_MAX_PIXELS decoded, all of them TEXTURE_BUDGET_BYTES. */
 static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
 {
     yaml_node_t *v;
@@ -137,25 +175,10 @@ static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
     if (st.st_size > TEXTURE_MAX_BYTES)
         return ydoc_fail(&L->d, v, L->e, "file: %s is %lld bytes, over the texture limit of %d", path,
                          (long long)st.st_size, TEXTURE_MAX_BYTES);
-    struct rgb8 img;
-    struct err ie;
-    if (!f || !f->bytes || imgio_decode(f->bytes, f->len, path, &img, &ie) < 0)
-        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: %s", path,
-                         !f         ? "not read with its scene"
-                         : f->bytes ? ie.msg
-                                    : f->read_err.msg);
-    if ((long)img.w * img.h > TEXTURE_MAX_PIXELS) {
-        ydoc_fail(&L->d, v, L->e, "file: texture %s is %dx%d, over the limit of %ld pixels", path, img.w,
-                  img.h, (long)TEXTURE_MAX_PIXELS);
-        image_free(&img);
-        return -1;
-    }
+    if (!f)
+        return ydoc_fail(&L->d, v, L->e, "file: cannot read texture %s: not read with its scene", path);
     t->type = TEX_IMAGE;
-    if ((t->image = scene_add_image(L->sc, &img)) < 0) {
-        image_free(&img);
-        return ydoc_fail(&L->d, n, L->e, "out of memory");
-    }
-    return 0;
+    return image_of_file(L, v, f, path, &t->image);
 }
 
 static int load_texture(struct scene_parse *L, yaml_node_t *k, yaml_node_t *n)
@@ -301,10 +324,13 @@ int scene_load_src(const struct scene_src *src, struct scene_file *out, struct e
     memset(out, 0, sizeof *out);
     int rc = -1;
     L.d.max_abs = SCENE_MAX_ABS;
-    if (!(L.sc = scene_new())) {
+    if (!(L.sc = scene_new()) ||
+        (src->n_files && !(L.file_image = malloc((size_t)src->n_files * sizeof *L.file_image)))) {
         err_set(e, path, 0, 0, "out of memory");
         goto done;
     }
+    for (int i = 0; i < src->n_files; i++)
+        L.file_image[i] = -1;
     yaml_node_t *root = ydoc_root(&L.d), *v;
     if (ymap_check(&L.d, root, scene_keys, "scene", e) < 0)
         goto done;
@@ -334,6 +360,7 @@ int scene_load_src(const struct scene_src *src, struct scene_file *out, struct e
     rc = 0;
 done:
     free(L.light_pos);
+    free(L.file_image);
     scene_free(L.sc);
     return rc;
 }

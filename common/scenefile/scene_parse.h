@@ -16,6 +16,10 @@ struct names {
 /* Limits on an image texture: bytes on disk and decoded pixels. */
 #define TEXTURE_MAX_BYTES (64 << 20)
 #define TEXTURE_MAX_PIXELS (4096L * 4096L)
+/* Limit on a scene's image textures together: their files' bytes as read, and their decoded
+   pixels (3 bytes each; a file several textures name counts once). Each limit above held, but
+   256 textures of one 4096x4096 file decoded 256 times took 12 GiB. */
+#define TEXTURE_BUDGET_BYTES ((size_t)1 << 30)
 
 struct scene_parse {
     struct ydoc d;
@@ -23,6 +27,8 @@ struct scene_parse {
     struct scene *sc;
     struct names tex, mat;
     struct err *e;
+    int *file_image;               /* per src->files entry: its decoded image in sc->images, -1 before */
+    size_t texture_bytes;          /* the decoded images' pixels so far (TEXTURE_BUDGET_BYTES) */
     const struct camera_desc *cam; /* loaded before the objects (a moving sphere's shutter) */
     int (*light_pos)[2];           /* per sc->lights entry: its object's line, col (1-based) */
     int light_pos_cap;

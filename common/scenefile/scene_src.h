@@ -15,6 +15,8 @@ struct scene_src_file {
     uint8_t *bytes;  /* NULL: unreadable, read_err says why (scene_load_src reports it) */
     size_t len;
     struct err read_err;
+    int same_as;       /* -1, or an earlier entry's index: the same file by another path */
+    uint64_t dev, ino; /* which file it is (0, 0 when stat failed) */
 };
 
 /* A scene file read once (scene_src_read): its YAML parsed, and its image textures' bytes, kept
@@ -25,6 +27,7 @@ struct scene_src {
     struct err parse_err;
     struct scene_src_file *files; /* one per image texture named, n_files of them */
     int n_files;
+    size_t texture_budget; /* the decoded textures' limit in bytes: TEXTURE_BUDGET_BYTES (tests lower it) */
 };
 
 /* Read the scene file at path once: fold into *h what a render of it reads (the file's bytes,
@@ -37,7 +40,8 @@ int scene_src_read(const char *path, struct scene_src *src, uint64_t *h, struct 
 void scene_src_free(struct scene_src *src);
 
 /* The image texture file `file` (as a scene file at scene names it) in src, its resolved path
-   in path (n bytes: beside the scene file unless absolute). NULL when src did not read it. */
+   in path (n bytes: beside the scene file unless absolute): the entry that holds its bytes (the
+   first path read to that file). NULL when src did not read it. */
 const struct scene_src_file *scene_src_texture(const struct scene_src *src, const char *scene,
                                                const char *file, char *path, size_t n);
 

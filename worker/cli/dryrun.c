@@ -60,8 +60,11 @@ static double wall_of(double cpu_s, int processes)
 
 static void print_memory(const struct job_estimate *est, const char *what)
 {
-    printf("  memory    %s %.3g MB (framebuffer %.3g MB + %d process%s x %.3g MB)\n", what,
-           mb(job_estimate_memory(est)), mb(est->framebuffer_bytes), est->processes,
+    char tex[64] = "";
+    if (est->texture_bytes > 0)
+        snprintf(tex, sizeof tex, " + textures %.3g MB, shared", mb(est->texture_bytes));
+    printf("  memory    %s %.3g MB (framebuffer %.3g MB%s + %d process%s x %.3g MB)\n", what,
+           mb(job_estimate_memory(est)), mb(est->framebuffer_bytes), tex, est->processes,
            est->processes == 1 ? "" : "es", mb(est->process_bytes));
 }
 
@@ -99,9 +102,12 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
     char num[32];
     printf("  samples   %s (%.4g per pixel)\n", count(est.samples, num, sizeof num), est.spp_mean);
     print_memory(&est, "about");
-    char how[96];
-    snprintf(how, sizeof how, " (%.3g ns per sample, from a pilot of %d pixel%s)", est.ns_per_sample,
-             est.pilot_pixels, est.pilot_pixels == 1 ? "" : "s");
+    char how[160], cut[64] = "";
+    if (est.pilot_traced < est.pilot_samples) /* a pixel too costly for the pilot's time */
+        snprintf(cut, sizeof cut, ", %.0f of %s %.0f samples traced", est.pilot_traced,
+                 est.pilot_pixels == 1 ? "its" : "their", est.pilot_samples);
+    snprintf(how, sizeof how, " (%.3g ns per sample, from a pilot of %d pixel%s%s)", est.ns_per_sample,
+             est.pilot_pixels, est.pilot_pixels == 1 ? "" : "s", cut);
     print_cpu(est.cpu_s, est.processes, how);
     return 0;
 }

@@ -32,6 +32,46 @@ static void pilot_pixel(int k, int n, int w, int h, int *x, int *y)
     *x = (int)(fmod((k + 0.5) * 0.6180339887498949, 1.0) * w);
 }
 
+/* A pilot's progress: pixels counted, and the paths it may trace next. */
+struct pilot_run {
+    double budget_s, spent_s;  /* CPU seconds: the budget, and all spent (re-renders too) */
+    size_t cap;                /* paths the next render_pixel_paths may trace */
+    double paths;              /* paths traced by every call */
+    int k;                     /* pixels counted */
+    double drawn, traced;      /* the counted pixels' camera samples, and those traced */
+    double counted_s, pixel_s; /* their CPU seconds, and those scaled to whole pixels */
+};
+
+/* Render pixel (x, y) of the pilot at most p->cap paths, and count it when it is whole or the
+   budget is spent (a cut pixel's time scaled to all its samples); else leave it to be rendered
+   again with more paths. The cap starts at one path and grows at most 8 times a call, to what
+   the budget left would pay at the cost per path so far: however costly a path is (a whole pixel
+   of 100000 stacked pyramids took 22 s), the pilot stays near its budget. */
+static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y, struct render_stats *st)
+{
+    float rgb[3];
+    double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
+    size_t all = render_pixel_paths(ctx, x, y, p->cap, rgb, st);
+    double dt = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
+    size_t done = all < p->cap ? all : p->cap;
+    p->spent_s += dt;
+    p->paths += (double)done;
+    double per_path = p->paths > 0 ? p->spent_s / p->paths : 0;
+    double afford = per_path > 0 ? (p->budget_s - p->spent_s) / per_path : HUGE_VAL; /* paths the rest pays */
+    size_t grown = p->cap > SIZE_MAX / 8 ? SIZE_MAX : p->cap * 8;
+    size_t cap = afford < (double)grown ? (afford < 1 ? 1 : (size_t)afford) : grown;
+    if (done < all && cap > done) {
+        p->cap = cap; /* again, with more of its paths */
+        return;
+    }
+    p->cap = cap;
+    p->k++;
+    p->drawn += (double)all;
+    p->traced += (double)done;
+    p->counted_s += dt;
+    p->pixel_s += done ? dt * (double)all / (double)done : dt;
+}
+
 /* Render the pilot pixels of est's image with the samplers; fill est's per-sample figures. */
 static int pilot(const struct job *j, const struct scene_file *sf, double budget_s, struct job_estimate *est,
                  struct err *e)
@@ -57,21 +97,24 @@ static int pilot(const struct job *j, const struct scene_file *sf, double budget
     struct render_stats st;
     render_stats_init(&st);
     long pixels = (long)est->width * est->height;
-    int n = pixels < JOB_ESTIMATE_PILOT_PIXELS ? (int)pixels : JOB_ESTIMATE_PILOT_PIXELS, k = 0;
-    double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID), spent = 0;
-    while (k < n && (k == 0 || spent < budget_s)) {
+    int n = pixels < JOB_ESTIMATE_PILOT_PIXELS ? (int)pixels : JOB_ESTIMATE_PILOT_PIXELS;
+    struct pilot_run p = {.budget_s = budget_s, .cap = 1};
+    while (p.k < n && (p.k == 0 || p.spent_s < budget_s)) {
         int x, y;
-        float rgb[3];
-        pilot_pixel(k++, n, est->width, est->height, &x, &y);
-        render_pixel(ctx, x, y, rgb, &st);
-        spent = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
+        pilot_pixel(p.k, n, est->width, est->height, &x, &y);
+        pilot_step(&p, ctx, x, y, &st);
     }
-    est->pilot_pixels = k;
-    est->process_bytes = resident_bytes();
-    est->spp_mean = (double)st.samples / k;
+    est->pilot_pixels = p.k;
+    est->pilot_samples = p.drawn;
+    est->pilot_traced = p.traced;
+    /* the renderers share the scene's textures (read-only pages after fork): counted once */
+    for (int i = 0; i < sf->scene->n_images; i++)
+        est->texture_bytes += (double)sf->scene->images[i].w * sf->scene->images[i].h * 3;
+    est->process_bytes = fmax(0, resident_bytes() - est->texture_bytes);
+    est->spp_mean = p.drawn / p.k;
     est->samples = est->spp_mean * (double)pixels;
-    est->ns_per_sample = st.samples ? spent * 1e9 / (double)st.samples : 0;
-    est->cpu_s = spent / k * (double)pixels;
+    est->ns_per_sample = p.traced ? p.counted_s * 1e9 / p.traced : 0;
+    est->cpu_s = p.pixel_s / p.k * (double)pixels;
     rc = 0;
 done:
     render_ctx_free(ctx);
@@ -108,5 +151,5 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
 
 double job_estimate_memory(const struct job_estimate *est)
 {
-    return est->framebuffer_bytes + est->processes * est->process_bytes;
+    return est->framebuffer_bytes + est->texture_bytes + est->processes * est->process_bytes;
 }
