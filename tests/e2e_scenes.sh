@@ -163,6 +163,14 @@ printf 'scene: cornell\nwidth: 12\nthreshold: 50\nlight_threshold: 50\n' >"$T/ow
 check "a bare scene beside the job renders from another folder (exit $rc)" [ "$rc" -eq 0 ]
 check "... the job's own scene, not the current folder's" grep -q "\"scene\": \"$T/own/q/scenes/cornell.yaml\"" "$T/own/out/own/own.json"
 
+# 4d. A texture that is a FIFO says so at its file: key (and is not opened: no hang)
+mkfifo "$T/elsewhere/scenes/textures/fifo.png"
+sed 's|file: textures/planet.png|file: textures/fifo.png|' scenes/cornell.yaml >"$T/elsewhere/scenes/fifo.yaml"
+printf 'scene: %s\nwidth: 8\n' "$T/elsewhere/scenes/fifo.yaml" >"$T/fifo.yaml"
+timeout 20 "$WORKER" --quiet --out "$T/fifoout" "$T/fifo.yaml" 2>"$T/fifo.err"; rc=$?
+check "a FIFO texture: exit 2, named a FIFO at file: (got $rc: $(cat "$T/fifo.err"))" \
+    eval '[ $rc -eq 2 ] && grep -q "fifo.yaml:[0-9]*:[0-9]*: file: .*fifo.png is a FIFO, not an image file" "$T/fifo.err"'
+
 # 5. A texture over the size limit (4097 x 4097 pixels) is refused at its file: key.
 { printf 'P6\n4097 4097\n255\n'; head -c $((4097 * 4097 * 3)) /dev/zero; } >"$T/elsewhere/scenes/textures/huge.ppm"
 sed 's|file: textures/planet.png|file: textures/huge.ppm|' scenes/cornell.yaml >"$T/elsewhere/scenes/huge.yaml"

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/fileio.h"
 #include "image/imgio.h"
 #include "scene_parse.h"
 #include "scene_objects.h"
@@ -170,8 +171,11 @@ static int load_image(struct scene_parse *L, yaml_node_t *n, struct texture *t)
     char path[1024];
     const struct scene_src_file *f = scene_src_texture(L->src, L->d.file, file, path, sizeof path);
     struct stat st;
-    if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
-        return ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
+    if (stat(path, &st) < 0 || !S_ISREG(st.st_mode)) {
+        const char *kind = fileio_kind(path); /* there, but a FIFO, a device, a folder */
+        return kind ? ydoc_fail(&L->d, v, L->e, "file: %s is %s, not an image file", path, kind)
+                    : ydoc_fail(&L->d, v, L->e, "file: no texture image at %s", path);
+    }
     if (st.st_size > TEXTURE_MAX_BYTES)
         return ydoc_fail(&L->d, v, L->e, "file: %s is %lld bytes, over the texture limit of %d", path,
                          (long long)st.st_size, TEXTURE_MAX_BYTES);
