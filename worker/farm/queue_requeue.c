@@ -53,23 +53,6 @@ static int failed_files(const char *dir, char ***out)
     return n;
 }
 
-/* Remove DIR/failed/<log_name>.log when it is the log of job file `file` (its "job:" line names it). */
-static void remove_log(const char *dir, const char *log_name, const char *file)
-{
-    char path[2048];
-    uint8_t *text = NULL;
-    size_t len;
-    struct err e;
-    snprintf(path, sizeof path, "%s/failed/%s.log", dir, log_name);
-    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
-        return;
-    size_t line = strcspn((const char *)text, "\n"), flen = strlen(file);
-    if (!strncmp((const char *)text, "job: ", 5) && line > flen && text[line - flen - 1] == '/' &&
-        !memcmp(text + line - flen, file, flen))
-        unlink(path);
-    free(text);
-}
-
 /* The job file failed/<name>.log's "job:" line names (a failed job's log is named for its job's
    name:, which may differ from its file's stem): into file; 0, or -1 without such a log. */
 static int file_of_log(const char *failed, const char *name, char *file, size_t n)
@@ -90,6 +73,17 @@ static int file_of_log(const char *failed, const char *name, char *file, size_t 
         snprintf(file, n, "%.*s", (int)(line - base), t + base);
     free(text);
     return ok ? 0 : -1;
+}
+
+/* Remove DIR/failed/<log_name>.log when it is the log of job file `file` (its "job:" line names it). */
+static void remove_log(const char *dir, const char *log_name, const char *file)
+{
+    char failed[2048], named[256], path[2400];
+    snprintf(failed, sizeof failed, "%s/failed", dir);
+    if (file_of_log(failed, log_name, named, sizeof named) == 0 && !strcmp(named, file)) {
+        snprintf(path, sizeof path, "%s/%s.log", failed, log_name);
+        unlink(path);
+    }
 }
 
 /* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
