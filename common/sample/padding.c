@@ -2,6 +2,7 @@
 #include "padding.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/clock.h"
 
@@ -55,6 +56,21 @@ void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n)
     p->pixel++;
 }
 
+/* The first n places of a Fisher-Yates shuffle of the have elements (each `size` bytes) at a,
+   from r: place k takes a uniformly random element of those not yet placed. One shuffle for both
+   kinds of slot, so that a Sobol slot's shuffled indices draw exactly what its shuffled points
+   would. */
+static void shuffle_head(struct rng *r, void *a, size_t size, size_t n, size_t have)
+{
+    unsigned char *b = a, t[sizeof(struct pt2)];
+    for (size_t k = 0; k < n && k < have; k++) {
+        size_t j = k + rng_below(r, (uint32_t)(have - k));
+        memcpy(t, b + k * size, size);
+        memcpy(b + k * size, b + j * size, size);
+        memcpy(b + j * size, t, size);
+    }
+}
+
 /* A Sobol slot: the seeds draw_sobol would take from r, then the first n places of the same
    Fisher-Yates shuffle applied to the points' indices (the same draws of r): padding_point's
    sobol_point of index order[s] is then the point the whole set's shuffle left at place s. (A set
@@ -65,12 +81,7 @@ static void fill_sobol(struct padding *p, int slot, struct rng *r)
     const size_t have = sampler_sobol_set(p->sampler, r, &p->sobol[slot]), n = p->n;
     for (size_t k = 0; k < have || k < n; k++)
         order[k] = (uint32_t)k;
-    for (size_t k = 0; k < n && k < have; k++) {
-        size_t j = k + rng_below(r, (uint32_t)(have - k));
-        uint32_t t = order[k];
-        order[k] = order[j];
-        order[j] = t;
-    }
+    shuffle_head(r, order, sizeof *order, n, have);
 }
 
 struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s)
@@ -90,13 +101,7 @@ static void fill_points(struct padding *p, int slot, struct rng *r)
         have += sampler_draw_at(p->sampler, r, &at, pts + have);
         at.dim += (uint32_t)p->slots;
     }
-    /* the first n places of a Fisher-Yates shuffle: sample s takes a uniformly random point */
-    for (size_t k = 0; k < n && k < have; k++) {
-        size_t j = k + rng_below(r, (uint32_t)(have - k));
-        struct pt2 t = pts[k];
-        pts[k] = pts[j];
-        pts[j] = t;
-    }
+    shuffle_head(r, pts, sizeof *pts, n, have); /* sample s takes a uniformly random point */
     for (size_t k = have; k < n; k++) { /* unreachable for the shipped samplers: a set is never empty */
         pts[k].x = rng_uniform(r);
         pts[k].y = rng_uniform(r);
