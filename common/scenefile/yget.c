@@ -45,10 +45,11 @@ int yget_double(struct ydoc *d, yaml_node_t *n, const char *key, double *out, st
     char buf[64];
     shown(n, buf, sizeof buf);
     int rc = parse_double(yscalar(n), out);
-    if (rc == -2)
-        return ydoc_fail(d, n, e,
-                         "%s: %s is too close to 0 for a double (below %g): give 0 or a larger number", key,
-                         buf, DBL_MIN);
+    if (rc == -2) {
+        ydoc_fail(d, n, e, "%s: %s is too close to 0 for a double (below %g): give 0 or a larger number", key,
+                  buf, DBL_MIN);
+        return YGET_UNDERFLOW;
+    }
     if (rc < 0)
         return ydoc_fail(d, n, e, "%s: must be a finite number, got %s", key, buf);
     if (yquoted(n))

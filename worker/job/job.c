@@ -96,9 +96,9 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double
 {
     const char *s = yscalar(v);
     double t = 0;
-    int failed = yget_double(d, v, key, &t, e) < 0; /* e->msg is set only when it failed */
+    int rc = yget_double(d, v, key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
     int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
-    if (failed && strstr(e->msg, "too close to 0")) /* yget_double's own message says it better */
+    if (rc == YGET_UNDERFLOW) /* yget_double's own message says it better */
         return -1;
     if (!s)
         return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
