@@ -275,15 +275,16 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
 void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene *out)
 {
     char *s;
+    const int any = scored(f);
     if ((s = next_line(out->sentences, &out->n_sentences))) {
         char at[96];
         snprintf(at, sizeof at, "At equal CPU time (%.3g s per image)", out->by_cpu.at);
-        say_ranking(out, &out->by_cpu, at, scored(f), s);
+        say_ranking(out, &out->by_cpu, at, any, s);
     }
     if ((s = next_line(out->sentences, &out->n_sentences))) {
         char at[96];
         snprintf(at, sizeof at, "At equal samples (%.0f per pixel)", out->by_samples.at);
-        say_ranking(out, &out->by_samples, at, scored(f), s);
+        say_ranking(out, &out->by_samples, at, any, s);
     }
     if ((s = next_line(out->sentences, &out->n_sentences)))
         say_slopes(out, s);
