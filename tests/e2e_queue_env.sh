@@ -4,8 +4,12 @@
 # exit 2; nothing goes to failed/. A plain run's output folder errors exit 2 (bad usage), like a file
 # in the way.
 . tests/lib.sh
-root=$(pwd)
-job() { printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nheight: 8\nthreshold: 50\nprocesses: 1\n' "$root" >"$1"; }
+# nobody (below) may not reach the checkout (a clone under a 0700 mktemp folder): the scene and
+# the worker it runs are copies in $T, which is made readable
+chmod 755 "$T"
+cp scenes/checker.yaml "$T/checker.yaml" && mkdir -p "$T/bin" && cp "$WORKER" "$T/bin/worker"
+chmod 644 "$T/checker.yaml"; chmod 755 "$T/bin" "$T/bin/worker"
+job() { printf 'scene: %s/checker.yaml\nwidth: 8\nheight: 8\nthreshold: 50\nprocesses: 1\n' "$T" >"$1"; }
 queue() { # queue DIR: a fresh world-writable queue of two jobs
     rm -rf "$1"; mkdir -p "$1"; chmod 777 "$1"; job "$1/a.yaml"; job "$1/b.yaml"; chmod 666 "$1"/*.yaml
 }
@@ -15,11 +19,10 @@ jobs_intact() { # jobs_intact DIR LOG: no job filed as failed, both still waitin
 }
 
 # a read-only done/, as a user who cannot write it (root writes anywhere: run as nobody)
-chmod 755 "$T"
 Q=$T/q1; queue "$Q"
 as_user() { if [ "$(id -u)" -eq 0 ]; then setpriv --reuid=65534 --regid=65534 --clear-groups "$@"; else "$@"; fi; }
 if [ "$(id -u)" -ne 0 ] || command -v setpriv >/dev/null; then
-    as_user sh -c "mkdir -p '$Q/done' && chmod 555 '$Q/done' && '$WORKER' --queue '$Q' --once" 2>"$T/ro.log"
+    as_user sh -c "mkdir -p '$Q/done' && chmod 555 '$Q/done' && '$T/bin/worker' --queue '$Q' --once" 2>"$T/ro.log"
     rc=$?
     check "read-only done/: exit 2 (got $rc)" [ "$rc" -eq 2 ]
     check "read-only done/: the jobs wait in the queue, none failed" jobs_intact "$Q" "$T/ro.log"
@@ -39,10 +42,10 @@ check "full disk: the log says why" grep -q 'No space left on device' "$T/full.l
 check "full disk: no empty output folder left" [ -z "$(ls "$Q/done")" ]
 
 # a compare job: refused at its claim (read-only done/) or at a render (full disk), never failed/
-study() { printf 'name: cmp\nscenes: [%s/scenes/checker.yaml]\nwidth: 8\nheight: 6\nprocesses: 1\nseeds: [1, 2]\nvariants: [{ sampler: jitter, threshold: 50 }]\n' "$root" >"$1"; }
+study() { printf 'name: cmp\nscenes: [%s/checker.yaml]\nwidth: 8\nheight: 6\nprocesses: 1\nseeds: [1, 2]\nvariants: [{ sampler: jitter, threshold: 50 }]\n' "$T" >"$1"; }
 Q=$T/q4; rm -rf "$Q"; mkdir -p "$Q"; chmod 777 "$Q"; study "$Q/cmp.yaml"; chmod 666 "$Q/cmp.yaml"
 if [ "$(id -u)" -ne 0 ] || command -v setpriv >/dev/null; then
-    as_user sh -c "mkdir -p '$Q/done' && chmod 555 '$Q/done' && '$WORKER' --queue '$Q' --once" 2>"$T/cro.log"
+    as_user sh -c "mkdir -p '$Q/done' && chmod 555 '$Q/done' && '$T/bin/worker' --queue '$Q' --once" 2>"$T/cro.log"
     rc=$?
     check "compare job, read-only done/: exit 2 (got $rc)" [ "$rc" -eq 2 ]
     check "compare job, read-only done/: back in the queue, not failed" \
