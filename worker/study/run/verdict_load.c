@@ -392,6 +392,12 @@ int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *
         *n += rc == 0;
     }
 done:
+    if (rc < 0) { /* nothing half judged is handed back */
+        for (int i = 0; i < *n; i++)
+            verdict_study_free(&(*out)[i]);
+        free(*out);
+        *out = NULL, *n = 0;
+    }
     verdict_names_free(&studies);
     free(T.study);
     verdict_csv_free(&T.t);
