@@ -74,6 +74,14 @@ int verdict_csv_figure(const char *s, double lo, double hi, double *x)
     return 0;
 }
 
+int verdict_csv_product(size_t a, size_t b, size_t max, size_t *out)
+{
+    if (a != 0 && b > max / a)
+        return -1;
+    *out = a * b;
+    return *out <= max ? 0 : -1;
+}
+
 void verdict_csv_free(struct verdict_csv *t)
 {
     free(t->rows);

@@ -30,6 +30,10 @@ void verdict_csv_free(struct verdict_csv *t);
    (text, inf, nan, out of range: the caller leaves it out and says so). */
 int verdict_csv_figure(const char *s, double lo, double hi, double *x);
 
+/* A count's product: a * b into *out when it is at most max (in size_t, checked before it could
+   wrap), else -1. */
+int verdict_csv_product(size_t a, size_t b, size_t max, size_t *out);
+
 /* A set of names, each an index in first-seen order: a hash table over (pointer, length) keys,
    which must stay valid while the set is used. Names are compared whole, never cut. */
 struct verdict_names {

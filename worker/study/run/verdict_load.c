@@ -51,15 +51,6 @@ struct table {
     const char *path;
 };
 
-/* a * b into *out when it is at most max (in size_t: never wraps), else -1. */
-static int product(size_t a, size_t b, size_t max, size_t *out)
-{
-    if (a != 0 && b > max / a)
-        return -1;
-    *out = a * b;
-    return *out <= max ? 0 : -1;
-}
-
 /* The length of a point's key: its image name without "-s<seed>.<ext>" (what the sweep adds:
    -t20-lt10-pool64). */
 static size_t point_key_len(const char *image)
@@ -157,7 +148,7 @@ static int intern_rows(const struct table *T, int si, struct compare *c, struct 
         x[3] = verdict_names_intern(&I->seeds, f[T->col[C_SEED]], strlen(f[T->col[C_SEED]]));
     }
     c->n_scenes = I->scenes.n, c->n_variants = I->variants.n, c->n_seeds = I->seeds.n;
-    if (product((size_t)c->n_scenes, (size_t)c->n_variants, COMPARE_MAX_ITEMS, &sv) < 0)
+    if (verdict_csv_product((size_t)c->n_scenes, (size_t)c->n_variants, COMPARE_MAX_ITEMS, &sv) < 0)
         goto too_many;
     I->top = malloc(sv * sizeof *I->top);
     if (!I->top)
@@ -180,8 +171,8 @@ static int intern_rows(const struct table *T, int si, struct compare *c, struct 
                      atof(f[T->col[C_THRESHOLD]]), atof(f[T->col[C_LT]]));
         }
     }
-    if (product(sv, (size_t)c->n_points, COMPARE_MAX_ITEMS, &n_items) < 0 ||
-        product(n_items, (size_t)c->n_seeds, COMPARE_MAX_ITEMS, &n_items) < 0)
+    if (verdict_csv_product(sv, (size_t)c->n_points, COMPARE_MAX_ITEMS, &n_items) < 0 ||
+        verdict_csv_product(n_items, (size_t)c->n_seeds, COMPARE_MAX_ITEMS, &n_items) < 0)
         goto too_many;
     c->n_items = (int)n_items;
     return 0;
@@ -244,18 +235,11 @@ static struct compare *build(const struct table *T, int si, const char *study, c
         err_set(e, dir, 0, 0, "out of memory");
         goto fail;
     }
-    char(*scenes)[COMPARE_LABEL_MAX] = calloc((size_t)c->n_scenes, sizeof *scenes);
-    if (!scenes) {
-        err_set(e, dir, 0, 0, "out of memory");
-        goto fail;
-    }
-    copy_names(&I.scenes, scenes);
     copy_names(&I.variants, c->variants);
     for (int s = 0; s < c->n_scenes; s++) {
-        snprintf(c->scenes[s].name, sizeof c->scenes[s].name, "%s", scenes[s]);
+        snprintf(c->scenes[s].name, sizeof c->scenes[s].name, "%.*s", (int)I.scenes.len[s], I.scenes.s[s]);
         c->scenes[s].ref_domain = IMG_DISPLAY8;
     }
-    free(scenes);
     for (int k = 0; k < c->n_seeds; k++)
         c->seeds[k] = strtoull(I.seeds.s[k], NULL, 10); /* checked whole by numbers_ok */
     for (int i = 0; i < I.m; i++) {
