@@ -38,6 +38,15 @@ check "spp sweep: the report says how the sweep was given" \
     grep -q "sweep: spp (each variant&#39;s threshold set so its sampler draws that many camera samples" \
     "$T/out/sppsweep/report.html"
 check "spp sweep: the points are labelled by spp" grep -q 'spp 16: pixels' "$T/out/sppsweep/report.html"
+"$WORKER" verdict "$T/out/sppsweep" --json >"$T/again.json" 2>"$T/again.err"; rc=$?
+check "worker verdict on it: exit 0 (got $rc), its points named by spp as the run named them" python3 - \
+    "$T/out/sppsweep/verdict.json" "$T/again.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p))['studies'][0]['scenes'][0] for p in sys.argv[1:3])
+ta, tb = sorted(f['text'] for f in a['failures']), sorted(f['text'] for f in b['failures'])
+assert ta == tb, (ta, tb)
+assert not any('threshold' in t for t in tb), tb
+PY
 bad() { # bad NAME SED-EXPRESSION WANT: the job edited by SED-EXPRESSION fails with WANT, exit 2
     name=$1 want=$3
     sed "$2" "$T/spp.yaml" >"$T/$name.yaml"

@@ -12,6 +12,7 @@
 #include "compare.h"
 #include "compare_ref.h"
 #include "verdict_csv.h"
+#include "verdict_points.h"
 #include "verdict_sidecars.h"
 #include "study/judge/verdict_from.h"
 
@@ -50,14 +51,6 @@ struct table {
     int *study; /* per row (row 0, the header: -1) */
     const char *path;
 };
-
-/* The length of a point's key: its image name without "-s<seed>.<ext>" (what the sweep adds:
-   -t20-lt10-pool64). */
-static size_t point_key_len(const char *image)
-{
-    const char *s = strrchr(image, '-');
-    return s && s[1] == 's' ? (size_t)(s - image) : strlen(image);
-}
 
 /* Row r's field k, a name checked: 1 to max bytes (a compare job's limit, so a name is never cut
    and two names stay two) and, for a file's or a folder's name, no path. 0 or -1 with e at r. */
@@ -159,16 +152,21 @@ static int intern_rows(const struct table *T, int si, struct compare *c, struct 
         const int *x = &I->rows[4 * i];
         char *const *f = t->rows[x[0]];
         const char *image = f[T->col[C_IMAGE]];
-        int before = I->keys.n, k = verdict_names_intern(&I->keys, image, point_key_len(image));
+        int before = I->keys.n, k = verdict_names_intern(&I->keys, image, verdict_point_key_len(image));
         int *top = &I->top[x[1] * c->n_variants + x[2]];
         int p = k < before ? I->key_point[k] : *top + 1;
         I->key_point[k] = p;
         *top = p > *top ? p : *top;
         I->point[i] = p;
-        if (p == c->n_points) { /* a new point: labelled by its first row's thresholds */
+        if (p == c->n_points) { /* a new point: labelled by its first row's thresholds, or spp */
             c->n_points++;
-            snprintf(c->points[p], COMPARE_LABEL_MAX, "threshold %g, light_threshold %g",
-                     atof(f[T->col[C_THRESHOLD]]), atof(f[T->col[C_LT]]));
+            long spp = verdict_point_spp(image, verdict_point_key_len(image));
+            if (spp > 0)
+                snprintf(c->points[p], COMPARE_LABEL_MAX, "spp %ld, light_threshold %g", spp,
+                         atof(f[T->col[C_LT]]));
+            else
+                snprintf(c->points[p], COMPARE_LABEL_MAX, "threshold %g, light_threshold %g",
+                         atof(f[T->col[C_THRESHOLD]]), atof(f[T->col[C_LT]]));
         }
     }
     if (verdict_csv_product(sv, (size_t)c->n_points, COMPARE_MAX_ITEMS, &n_items) < 0 ||
