@@ -12,7 +12,7 @@ struct compare_loading {
     struct compare *c;
     struct job base;        /* the top-level keys */
     struct job *scene_base; /* base + scene, per scene */
-    yaml_node_t *variants, *sweep, *reference;
+    yaml_node_t *variants, *sweep, *reference, *mask; /* mask: the top level's, every scene's */
     struct err *e;
 };
 
