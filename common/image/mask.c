@@ -38,11 +38,11 @@ int mask_rect(struct img_mask *m, int w, int h, const long rect[4], struct err *
 {
     m->on = NULL;
     if (rect[0] < 0 || rect[1] < 0 || rect[2] > w || rect[3] > h)
-        return err_set(e, NULL, 0, 0, "rect [%ld, %ld, %ld, %ld] reaches outside the %dx%d image", rect[0],
+        return err_set(e, NULL, 0, 0, "[%ld, %ld, %ld, %ld] reaches outside the %dx%d image", rect[0],
                        rect[1], rect[2], rect[3], w, h);
     if (rect[2] <= rect[0] || rect[3] <= rect[1])
         return err_set(e, NULL, 0, 0,
-                       "rect [%ld, %ld, %ld, %ld] is empty (x1 > x0 and y1 > y0 are needed; x1 and y1 are "
+                       "[%ld, %ld, %ld, %ld] is empty (x1 > x0 and y1 > y0 are needed; x1 and y1 are "
                        "exclusive)",
                        rect[0], rect[1], rect[2], rect[3]);
     if (mask_alloc(m, w, h, e) < 0)

@@ -28,13 +28,13 @@ static int load_rect(struct ydoc *d, yaml_node_t *r, struct compare_scene *cs, s
 {
     long rect[4];
     if (yseq_len(r) != 4)
-        return ydoc_fail(d, r, e, "rect: must be a list of 4 whole numbers [x0, y0, x1, y1], got %s",
-                         ydoc_node_kind(r));
+        return ydoc_fail(d, r, e, "mask: rect: must be a list of 4 whole numbers [x0, y0, x1, y1], got %s%s",
+                         ydoc_node_kind(r), yseq_len(r) >= 0 ? " of another length" : "");
     for (int i = 0; i < 4; i++)
-        if (yget_long(d, yseq_item(d, r, i), "rect", -(1L << 30), 1L << 30, &rect[i], e) < 0)
+        if (yget_long(d, yseq_item(d, r, i), "mask: rect", -(1L << 30), 1L << 30, &rect[i], e) < 0)
             return -1;
     if (mask_rect(out, cs->width, cs->height, rect, e) < 0)
-        return ydoc_fail(d, r, e, "rect: %s (scene %s)", e->msg, cs->name);
+        return ydoc_fail(d, r, e, "mask: rect: %s (scene %s)", e->msg, cs->name);
     return 0;
 }
 
@@ -44,16 +44,16 @@ static int load_image(struct ydoc *d, yaml_node_t *v, const char *job_path, stru
     const char *name;
     char path[JOB_PATH_MAX];
     struct rgb8 img = {0};
-    if (yget_string(d, v, "image", &name, e) < 0)
+    if (yget_string(d, v, "mask: image", &name, e) < 0)
         return -1;
     job_path_resolve(job_path, name, path, sizeof path);
     int rc = imgio_read(path, &img, e) < 0 || mask_from_image(out, &img, e) < 0 ? -1 : 0;
     image_free(&img);
     if (rc < 0)
-        return ydoc_fail(d, v, e, "image: %s: %s", path, e->msg);
+        return ydoc_fail(d, v, e, "mask: image: %s: %s", path, e->msg);
     if (mask_check_size(out, cs->width, cs->height, e) < 0) {
         mask_free(out);
-        return ydoc_fail(d, v, e, "image: %s: %s (scene %s)", path, e->msg, cs->name);
+        return ydoc_fail(d, v, e, "mask: image: %s: %s (scene %s)", path, e->msg, cs->name);
     }
     return 0;
 }
