@@ -72,7 +72,7 @@ check "rows name their images" grep -q ',board-poisson-pool16-t50-s2.png$' "$csv
 # take about a millisecond, so a fixed 4 decimals would round them by up to 10% or to 0.
 sidecar_matches() { # every row against the first "key": of its sidecar, relative 1e-5
     mism=0
-    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ _ img; do
+    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ _ _ img; do
         side="$cdir/${img%.png}.json"
         for kv in "wall_s $wall" "cpu_s $cpu" "sampling_share $share"; do
             set -- $kv
@@ -365,7 +365,8 @@ check "poisson below random at equal samples" order poisson-t3.92
 # renders' size, and its RMS brightness from `worker diff` against an all-black image.
 ohtml=$T/out/order/report.html
 check "error maps: the scale is stated" grep -q 'Error maps at .*coloured by its log10 on one fixed scale' "$ohtml"
-grep 'data-seed="0" data-slot="m0v[0-9]*"' "$ohtml" | grep -o 'base64,[^"]*' | sed 's/^base64,//' >"$T/maps.b64"
+grep 'data-seed="0" data-slot="m0v[0-9]*"' "$ohtml" | # each figure's first image (its FLIP map follows)
+    awk 'match($0, /base64,[^"]*/) { print substr($0, RSTART + 7, RLENGTH - 7) }' >"$T/maps.b64"
 check "error maps: three maps" [ "$(wc -l <"$T/maps.b64")" -eq 3 ]
 dark=0; n=0; sizes=""
 while read -r b64; do

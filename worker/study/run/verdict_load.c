@@ -14,7 +14,7 @@
 #include "study/judge/verdict_from.h"
 
 #define CSV_MAX_BYTES (64u << 20)
-#define CSV_FIELDS 20
+#define CSV_FIELDS 48 /* room for columns added after these */
 /* Most rows read: a suite of up to 64 studies of COMPARE_MAX_ITEMS images each (the work below
    grows with their square per study). */
 #define CSV_MAX_ROWS (64 * COMPARE_MAX_ITEMS)
@@ -86,7 +86,9 @@ static int csv_parse(struct csv *t, char *text, size_t len, const char *path, st
             t->n_fields = nf;
         if (t->n_rows > CSV_MAX_ROWS)
             return err_set(e, path, t->n_rows + 1, 0, "more than %d rows", CSV_MAX_ROWS);
-        if (nf != t->n_fields || nf > CSV_FIELDS)
+        if (nf > CSV_FIELDS)
+            return err_set(e, path, t->n_rows + 1, 0, "%d fields, more than the %d read", nf, CSV_FIELDS);
+        if (nf != t->n_fields)
             return err_set(e, path, t->n_rows + 1, 0, "%d fields, the header has %d", nf, t->n_fields);
         t->n_rows++;
     }
