@@ -40,7 +40,8 @@ static void equal_and_extremes(void)
     double bw = ldr(&black, &white, NULL);
     CHECK(bw > 0.9 && bw <= 1.0);
     /* more noise, more visible error */
-    struct rgbf n1 = grey(24, 20, 0.4f, 0.05, 9), n2 = grey(24, 20, 0.4f, 0.3, 9), flat = grey(24, 20, 0.4f, 0, 9);
+    struct rgbf n1 = grey(24, 20, 0.4f, 0.05, 9), n2 = grey(24, 20, 0.4f, 0.3, 9),
+                flat = grey(24, 20, 0.4f, 0, 9);
     double f1 = ldr(&flat, &n1, NULL), f2 = ldr(&flat, &n2, NULL);
     CHECK(f1 > 0 && f2 > f1 && f2 < 1);
     CHECK(flip_ldr(&a, &white, NULL, NULL, &r, &e) == 0);
@@ -60,7 +61,8 @@ static void exposures(void)
     struct flip_result r;
     struct err e;
     CHECK(flip_hdr(&a, &b, NULL, NULL, &r, &e) == 0);
-    double x = 2.0 * exp2(r.start_exposure), k[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
+    double x = 2.0 * exp2(r.start_exposure),
+           k[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
     CHECK_NEAR((k[0] * x * x + k[1] * x + k[2]) / (k[3] * x * x + k[4] * x + k[5]), 0.85, 1e-9);
     CHECK_NEAR(r.stop_exposure, r.start_exposure, 1e-12);
     CHECK(r.n_exposures == 2 && r.mean > 0);
@@ -109,8 +111,8 @@ static void masked_metrics(void)
     struct err e;
     long rect[4] = {3, 4, 10, 9};
     CHECK(mask_rect(&m, 20, 12, rect, &e) == 0 && m.count == 35 && m.x0 == 3 && m.y1 == 9);
-    CHECK(metrics_compare_masked(&a, &b, 1, &m, &masked, &e) == 0 && metrics_compare_f(&ca, &cb, 1, &cropped, &e) == 0 &&
-          metrics_compare_f(&a, &b, 1, &whole, &e) == 0);
+    CHECK(metrics_compare_masked(&a, &b, 1, &m, &masked, &e) == 0 &&
+          metrics_compare_f(&ca, &cb, 1, &cropped, &e) == 0 && metrics_compare_f(&a, &b, 1, &whole, &e) == 0);
     CHECK(masked.mse == cropped.mse && masked.relmse == cropped.relmse && masked.psnr == cropped.psnr &&
           masked.relmse_robust == cropped.relmse_robust);
     CHECK(masked.mse != whole.mse);
@@ -133,8 +135,9 @@ static void bad_masks(void)
     struct rgb8 img = {4, 3, calloc(36, 1)};
     CHECK(mask_from_image(&m, &img, &e) == -1 && strstr(e.msg, "no pixel"));
     img.px[3 * 5] = img.px[3 * 5 + 1] = img.px[3 * 5 + 2] = 255; /* pixel (1, 1) white */
-    img.px[3 * 6] = 200;                                          /* (2, 1) red: not white */
-    CHECK(mask_from_image(&m, &img, &e) == 0 && m.count == 1 && m.x0 == 1 && m.y0 == 1 && m.x1 == 2 && m.y1 == 2);
+    img.px[3 * 6] = 200;                                         /* (2, 1) red: not white */
+    CHECK(mask_from_image(&m, &img, &e) == 0 && m.count == 1 && m.x0 == 1 && m.y0 == 1 && m.x1 == 2 &&
+          m.y1 == 2);
     CHECK(mask_check_size(&m, 4, 3, &e) == 0 && mask_check_size(&m, 5, 3, &e) == -1 && strstr(e.msg, "4x3"));
     struct rgbf a = grey(5, 3, 0.5f, 0, 1);
     struct metrics mm;

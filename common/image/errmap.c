@@ -59,8 +59,9 @@ void errmap_outline(struct rgb8 *img, const struct img_mask *m)
     static const uint8_t rgb[3] = {ERRMAP_OUTLINE_RGB};
     for (int y = 0; y < img->h; y++)
         for (int x = 0; x < img->w; x++)
-            if (!mask_on(m, x, y) && ((x > 0 && mask_on(m, x - 1, y)) || (x + 1 < img->w && mask_on(m, x + 1, y)) ||
-                                      (y > 0 && mask_on(m, x, y - 1)) || (y + 1 < img->h && mask_on(m, x, y + 1))))
+            if (!mask_on(m, x, y) &&
+                ((x > 0 && mask_on(m, x - 1, y)) || (x + 1 < img->w && mask_on(m, x + 1, y)) ||
+                 (y > 0 && mask_on(m, x, y - 1)) || (y + 1 < img->h && mask_on(m, x, y + 1))))
                 for (int c = 0; c < 3; c++)
                     img->px[((size_t)y * img->w + x) * 3 + c] = rgb[c];
 }

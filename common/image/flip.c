@@ -12,13 +12,13 @@
 #include <string.h>
 
 #define FLIP_PI 3.14159265358979323846
-#define QC 0.7         /* colour exponent */
-#define QF 0.5         /* feature exponent */
-#define PC 0.4         /* errors up to PC * cmax take the first PT of the range */
+#define QC 0.7 /* colour exponent */
+#define QF 0.5 /* feature exponent */
+#define PC 0.4 /* errors up to PC * cmax take the first PT of the range */
 #define PT 0.95
-#define EDGE_W 0.082   /* peak-to-trough width of the edge detector, in degrees */
-#define RADIUS_MAX 24  /* room for the filters' radii at FLIP_PPD (10 and 9) */
-#define TONE_T 0.85    /* HDR-FLIP: the tone-mapped value the brightest and the median pixel reach */
+#define EDGE_W 0.082  /* peak-to-trough width of the edge detector, in degrees */
+#define RADIUS_MAX 24 /* room for the filters' radii at FLIP_PPD (10 and 9) */
+#define TONE_T 0.85   /* HDR-FLIP: the tone-mapped value the brightest and the median pixel reach */
 
 /* The filters at FLIP_PPD and the colour constants, made once per call. */
 struct flip_ctx {
@@ -53,7 +53,8 @@ static void hunt_lab(const struct flip_ctx *k, const double rgb[3], double lab[3
 {
     double xyz[3];
     mat_apply(k->rgb2xyz, rgb, xyz);
-    double fx = lab_f(xyz[0] / k->white[0]), fy = lab_f(xyz[1] / k->white[1]), fz = lab_f(xyz[2] / k->white[2]);
+    double fx = lab_f(xyz[0] / k->white[0]), fy = lab_f(xyz[1] / k->white[1]),
+           fz = lab_f(xyz[2] / k->white[2]);
     lab[0] = 116 * fy - 16;
     lab[1] = 0.01 * lab[0] * 500 * (fx - fy);
     lab[2] = 0.01 * lab[0] * 200 * (fy - fz);
@@ -78,7 +79,8 @@ static void ctx_filters(struct flip_ctx *k, double ppd)
 {
     /* The contrast sensitivity functions' Gaussians (a, b) per channel: achromatic, red-green,
        blue-yellow (HPG 2020, section 4.1); a = 0: none. */
-    static const double ab[3][2][2] = {{{1, 0.0047}, {0, 1e-5}}, {{1, 0.0053}, {0, 1e-5}}, {{34.1, 0.04}, {13.5, 0.025}}};
+    static const double ab[3][2][2] = {
+        {{1, 0.0047}, {0, 1e-5}}, {{1, 0.0053}, {0, 1e-5}}, {{34.1, 0.04}, {13.5, 0.025}}};
     double bmax = 0.04, dx = 1 / ppd;
     k->r_csf = (int)ceil(3 * sqrt(bmax / (2 * FLIP_PI * FLIP_PI)) * ppd);
     for (int c = 0; c < 3; c++) {
@@ -120,13 +122,14 @@ static void ctx_colour(struct flip_ctx *k)
                                    {2613072.0 / 12288897, 8788810.0 / 12288897, 887015.0 / 12288897},
                                    {1425312.0 / 73733382, 8788810.0 / 73733382, 70074185.0 / 73733382}};
     memcpy(k->rgb2xyz, m, sizeof m);
-    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                 m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                  m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     for (int r = 0; r < 3; r++) {
         for (int c = 0; c < 3; c++) /* the adjugate's (r, c): cofactor (c, r) */
             k->xyz2rgb[3 * r + c] = (m[(c + 1) % 3][(r + 1) % 3] * m[(c + 2) % 3][(r + 2) % 3] -
-                                m[(c + 1) % 3][(r + 2) % 3] * m[(c + 2) % 3][(r + 1) % 3]) /
-                               det;
+                                     m[(c + 1) % 3][(r + 2) % 3] * m[(c + 2) % 3][(r + 1) % 3]) /
+                                    det;
         k->white[r] = m[r][0] + m[r][1] + m[r][2];
     }
     double green[3] = {0, 1, 0}, blue[3] = {0, 0, 1}, lg[3], lb[3];
@@ -150,9 +153,10 @@ static int ctx_make(struct flip_ctx *k, int w, int h, struct err *e)
     float *all = malloc((24 * n + (size_t)w + 2 * RADIUS_MAX) * sizeof *all);
     if (!all)
         return err_set(e, NULL, 0, 0, "out of memory for FLIP's planes of a %dx%d image", w, h);
-    float **planes[] = {&k->ycc[0], &k->ycc[1], &k->ycc[2], &k->tmp, &k->tmp2, &k->tmp3, &k->acc,
-                        &k->lab[0][0], &k->lab[0][1], &k->lab[0][2], &k->lab[1][0], &k->lab[1][1],
-                        &k->lab[1][2], &k->edges[0], &k->edges[1], &k->points[0], &k->points[1], &k->lin};
+    float **planes[] = {&k->ycc[0],    &k->ycc[1],    &k->ycc[2],    &k->tmp,       &k->tmp2,
+                        &k->tmp3,      &k->acc,       &k->lab[0][0], &k->lab[0][1], &k->lab[0][2],
+                        &k->lab[1][0], &k->lab[1][1], &k->lab[1][2], &k->edges[0],  &k->edges[1],
+                        &k->points[0], &k->points[1], &k->lin};
     for (size_t i = 0; i < sizeof planes / sizeof *planes; i++)
         *planes[i] = all + i * n; /* lin last: three planes' room */
     k->pad = all + 24 * n;
@@ -182,7 +186,8 @@ static void axpy(float *acc, float c, const float *src, int n)
 /* out = in filtered along rows by kx then along columns by ky (radius r), edges clamped (a row is
    copied with its clamped ends into k->pad first, so the inner loops run over x unchecked). Each
    output sums its taps in one order, whatever the loops' shape. */
-static void sep_filter(const struct flip_ctx *k, const float *in, float *out, const float *kx, const float *ky, int r)
+static void sep_filter(const struct flip_ctx *k, const float *in, float *out, const float *kx,
+                       const float *ky, int r)
 {
     int w = k->w, h = k->h;
     for (int y = 0; y < h; y++) {
@@ -376,7 +381,8 @@ int flip_hdr(const struct rgbf *ref, const struct rgbf *img, const struct img_ma
 {
     struct flip_ctx k;
     *out = (struct flip_result){0, 1, 0, 0, 0};
-    if (check_pair(ref, img, m, e) < 0 || exposures(ref, m, out, e) < 0 || ctx_make(&k, ref->w, ref->h, e) < 0)
+    if (check_pair(ref, img, m, e) < 0 || exposures(ref, m, out, e) < 0 ||
+        ctx_make(&k, ref->w, ref->h, e) < 0)
         return -1;
     double step = (out->stop_exposure - out->start_exposure) / (out->n_exposures - 1);
     const struct rgbf *pair[2] = {ref, img};

@@ -67,8 +67,8 @@ int metrics_compare_f(const struct rgbf *ref, const struct rgbf *img, int block,
     return metrics_compare_masked(ref, img, block, NULL, m, e);
 }
 
-int metrics_compare_masked(const struct rgbf *ref, const struct rgbf *img, int block, const struct img_mask *mask,
-                           struct metrics *m, struct err *e)
+int metrics_compare_masked(const struct rgbf *ref, const struct rgbf *img, int block,
+                           const struct img_mask *mask, struct metrics *m, struct err *e)
 {
     if (ref->w != img->w || ref->h != img->h)
         return err_set(e, NULL, 0, 0, "image sizes differ: %dx%d against a %dx%d reference", img->w, img->h,

@@ -29,8 +29,8 @@ int metrics_compare_f(const struct rgbf *ref, const struct rgbf *img, int block,
    its counted pixels, a tile without any is left out, so with block 1 the figures are those of
    the counted pixels alone (a rectangle's: the cropped images'). -1 with e filled as
    metrics_compare_f, or when mask is not the images' size. */
-int metrics_compare_masked(const struct rgbf *ref, const struct rgbf *img, int block, const struct img_mask *mask,
-                           struct metrics *m, struct err *e);
+int metrics_compare_masked(const struct rgbf *ref, const struct rgbf *img, int block,
+                           const struct img_mask *mask, struct metrics *m, struct err *e);
 
 /* The display metrics: the same figures on two 8-bit images' values v / 255 (what a PNG viewer
    shows, clipped and gamma-encoded: not radiance). -1 with e filled as metrics_compare_f. */

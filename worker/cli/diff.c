@@ -70,9 +70,9 @@ static int load_mask(const char *arg, int w, int h, struct img_mask *mask, struc
     long rect[4];
     struct rgb8 img = {0};
     int rc = mask_parse_rect(arg, rect) == 0 ? mask_rect(mask, w, h, rect, e)
-             : imgio_read(arg, &img, e) < 0   ? -1
+             : imgio_read(arg, &img, e) < 0  ? -1
              : mask_from_image(mask, &img, e) < 0 || mask_check_size(mask, w, h, e) < 0 ? -1
-                                                                                         : 0;
+                                                                                        : 0;
     image_free(&img);
     if (rc < 0) {
         mask_free(mask);

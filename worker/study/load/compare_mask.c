@@ -8,7 +8,8 @@
 #include "job/job_path.h"
 #include "scenefile/yget.h"
 
-int compare_mask_item(struct ydoc *d, yaml_node_t *item, yaml_node_t **scene, yaml_node_t **mask, struct err *e)
+int compare_mask_item(struct ydoc *d, yaml_node_t *item, yaml_node_t **scene, yaml_node_t **mask,
+                      struct err *e)
 {
     static const char *const keys[] = {"scene", "mask", NULL};
     *scene = item, *mask = NULL;
@@ -17,14 +18,16 @@ int compare_mask_item(struct ydoc *d, yaml_node_t *item, yaml_node_t **scene, ya
     if (ymap_check(d, item, keys, "scenes item", e) < 0)
         return -1;
     if (!(*scene = ymap_get(d, item, "scene")))
-        return ymap_missing(d, item, "scene", e,
-                            "scenes: an item that is a mapping needs scene:, e.g. { scene: cornell, mask: { rect: "
-                            "[0, 0, 32, 32] } }");
+        return ymap_missing(
+            d, item, "scene", e,
+            "scenes: an item that is a mapping needs scene:, e.g. { scene: cornell, mask: { rect: "
+            "[0, 0, 32, 32] } }");
     *mask = ymap_get(d, item, "mask");
     return 0;
 }
 
-static int load_rect(struct ydoc *d, yaml_node_t *r, struct compare_scene *cs, struct img_mask *out, struct err *e)
+static int load_rect(struct ydoc *d, yaml_node_t *r, struct compare_scene *cs, struct img_mask *out,
+                     struct err *e)
 {
     long rect[4];
     if (yseq_len(r) != 4)
@@ -65,8 +68,7 @@ int compare_mask_load(struct ydoc *d, yaml_node_t *m, const char *job_path, stru
     if (!m)
         return 0;
     if (m->type != YAML_MAPPING_NODE)
-        return ydoc_fail(d, m, e,
-                         "mask: must be { rect: [x0, y0, x1, y1] } or { image: FILE.png }, got %s",
+        return ydoc_fail(d, m, e, "mask: must be { rect: [x0, y0, x1, y1] } or { image: FILE.png }, got %s",
                          ydoc_node_kind(m));
     if (ymap_check(d, m, keys, "mask", e) < 0)
         return -1;

@@ -124,7 +124,8 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
     else
         sbuf_escape(b, cs->ref_path);
     if (cs->mask)
-        sbuf_printf(b, "; every figure counts only the %zu pixels inside the cyan outline (mask)", cs->mask->count);
+        sbuf_printf(b, "; every figure counts only the %zu pixels inside the cyan outline (mask)",
+                    cs->mask->count);
     sbuf_printf(b, "</figcaption></figure></div>\n");
     return 0;
 }

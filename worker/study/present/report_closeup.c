@@ -144,8 +144,8 @@ static void maps_heading(struct sbuf *b, const struct compare *c, int s, int p, 
 }
 
 /* An <img> of img with mask m's outline drawn on it (none when m is NULL). */
-static int outlined(struct sbuf *b, struct rgb8 *img, const struct img_mask *m, const struct report_view_img *v,
-                    struct err *e)
+static int outlined(struct sbuf *b, struct rgb8 *img, const struct img_mask *m,
+                    const struct report_view_img *v, struct err *e)
 {
     if (m)
         errmap_outline(img, m);
@@ -153,18 +153,18 @@ static int outlined(struct sbuf *b, struct rgb8 *img, const struct img_mask *m, 
 }
 
 /* The FLIP map of img against ref beside its relMSE map: HDR-FLIP when linear, else LDR-FLIP. */
-static int flip_figure(struct sbuf *b, const struct rgbf *ref, const struct rgbf *img, const struct img_mask *m,
-                       int linear, const struct report_view_img *v, struct err *e)
+static int flip_figure(struct sbuf *b, const struct rgbf *ref, const struct rgbf *img,
+                       const struct img_mask *m, int linear, const struct report_view_img *v, struct err *e)
 {
-    struct flip_result r;
+    struct flip_result r = {0};
     struct rgb8 map = {0};
     float *px = malloc((size_t)ref->w * ref->h * sizeof *px);
     char alt[COMPARE_LABEL_MAX + 32];
     snprintf(alt, sizeof alt, "%s FLIP map", v->alt);
     struct report_view_img fv = {v->zoom, NULL, NULL, alt};
     int rc = !px ? err_set(e, NULL, 0, 0, "out of memory")
-             : (linear ? flip_hdr : flip_ldr)(ref, img, m, px, &r, e) < 0 || errmap_flip(px, ref->w, ref->h, &map, e) < 0 ||
-                     outlined(b, &map, m, &fv, e) < 0
+             : (linear ? flip_hdr : flip_ldr)(ref, img, m, px, &r, e) < 0 ||
+                     errmap_flip(px, ref->w, ref->h, &map, e) < 0 || outlined(b, &map, m, &fv, e) < 0
                  ? -1
                  : 0;
     free(px);

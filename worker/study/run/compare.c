@@ -95,7 +95,7 @@ static int score_look_img(struct compare_item *it, const struct rgbf *img, const
                           const struct compare_scene *cs, struct err *e)
 {
     struct rgbf cut[2] = {{0}, {0}};
-    struct flip_result flip;
+    struct flip_result flip = {0};
     const struct img_mask *m = cs->mask;
     int rc = (m ? mask_crop_pair(m, &ref->f, img, &cut[0], &cut[1], e) < 0 ||
                       errspec_lowfreq(&cut[0], &cut[1], &it->error_lowfreq, e) < 0
