@@ -69,15 +69,19 @@ static int load_mask(const char *arg, int w, int h, struct img_mask *mask, struc
 {
     long rect[4];
     struct rgb8 img = {0};
-    int rc = mask_parse_rect(arg, rect) == 0 ? mask_rect(mask, w, h, rect, e)
-             : imgio_read(arg, &img, e) < 0  ? -1
+    int is_rect = mask_parse_rect(arg, rect) == 0, numbers = strspn(arg, "0123456789,-+ ") == strlen(arg);
+    int rc = is_rect   ? mask_rect(mask, w, h, rect, e)
+             : numbers ? err_set(e, NULL, 0, 0, "must be x0,y0,x1,y1 (four whole numbers) or an image file")
+             : imgio_read(arg, &img, e) < 0                                             ? -1
              : mask_from_image(mask, &img, e) < 0 || mask_check_size(mask, w, h, e) < 0 ? -1
                                                                                         : 0;
     image_free(&img);
     if (rc < 0) {
         mask_free(mask);
-        err_prefix(e, "--mask");
-        snprintf(e->file, sizeof e->file, "%s", arg);
+        char what[600];
+        snprintf(what, sizeof what, "--mask %s", arg);
+        err_prefix(e, what);
+        snprintf(e->file, sizeof e->file, "worker diff");
     }
     return rc;
 }
