@@ -93,6 +93,29 @@ fail:
     return -1;
 }
 
+/* report_image_worst_window, inside the scene's mask: the renders' pixels outside it are taken as
+   the reference's (no error there), so the window lands where the figures are counted. */
+static int worst_window(const struct point_imgs *pi, const struct rgb8 *ref, int side, int *x0, int *y0,
+                        struct err *e)
+{
+    const struct img_mask *m = pi->c->scenes[pi->s].mask;
+    if (!m) {
+        report_image_worst_window(ref, pi->imgs, pi->n, side, x0, y0);
+        return 0;
+    }
+    struct rgb8 *in = calloc((size_t)pi->n, sizeof *in);
+    int k = 0;
+    for (; in && k < pi->n && image_alloc(&in[k], ref->w, ref->h, e) == 0; k++)
+        for (size_t i = 0; i < (size_t)ref->w * ref->h; i++)
+            memcpy(in[k].px + 3 * i, (m->on[i] ? pi->imgs[k].px : ref->px) + 3 * i, 3);
+    if (in && k == pi->n)
+        report_image_worst_window(ref, in, pi->n, side, x0, y0);
+    for (int i = 0; in && i < k; i++)
+        image_free(&in[i]);
+    free(in);
+    return !in ? err_set(e, NULL, 0, 0, "out of memory") : k == pi->n ? 0 : -1;
+}
+
 static int crops(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 *ref, struct err *e)
 {
     const struct compare *c = pi->c;
@@ -100,7 +123,8 @@ static int crops(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 
     int w = ref->w, h = ref->h, x0, y0;
     int side = (w < h ? w : h) / 5;
     side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
-    report_image_worst_window(ref, pi->imgs, pi->n, side, &x0, &y0);
+    if (worst_window(pi, ref, side, &x0, &y0, e) < 0)
+        return -1;
     sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", report_image_zoom(side, REPORT_IMAGE_CROP_PX));
     sbuf_escape(b, c->points[p]);
     sbuf_printf(
