@@ -13,7 +13,7 @@
 
 #define FLIP_PI 3.14159265358979323846
 #define QC 0.7 /* colour exponent */
-#define QF 0.5 /* feature exponent */
+#define QF 0.5 /* feature exponent: its power is a square root */
 #define PC 0.4 /* errors up to PC * cmax take the first PT of the range */
 #define PT 0.95
 #define EDGE_W 0.082  /* peak-to-trough width of the edge detector, in degrees */
@@ -38,7 +38,7 @@ struct flip_ctx {
 static inline double lab_f(double t)
 {
     const double d = 6.0 / 29;
-    return t > d * d * d ? cbrt(t) : t / (3 * d * d) + 4.0 / 29;
+    return t > d * d * d ? cbrtf((float)t) : t / (3 * d * d) + 4.0 / 29;
 }
 
 /* out = m in, m a row-major 3x3 matrix. */
@@ -264,11 +264,11 @@ static void combine(struct flip_ctx *k, float *out, int max)
     for (size_t i = 0; i < (size_t)k->w * k->h; i++) {
         double a[3] = {k->lab[0][0][i], k->lab[0][1][i], k->lab[0][2][i]},
                b[3] = {k->lab[1][0][i], k->lab[1][1][i], k->lab[1][2][i]};
-        double hc = pow(hyab(a, b), QC);
+        double hc = powf((float)hyab(a, b), (float)QC);
         double dc = hc < pccmax ? PT / pccmax * hc : PT + (hc - pccmax) / (k->cmax - pccmax) * (1 - PT);
         double de = fabs(k->edges[0][i] - k->edges[1][i]), dp = fabs(k->points[0][i] - k->points[1][i]);
-        double df = pow((de > dp ? de : dp) / sqrt(2.0), QF);
-        float v = (float)pow(dc, 1 - df);
+        double df = sqrt((de > dp ? de : dp) / sqrt(2.0)); /* ^QF */
+        float v = powf((float)dc, (float)(1 - df));
         out[i] = max && out[i] > v ? out[i] : v;
     }
 }
