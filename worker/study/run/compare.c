@@ -236,7 +236,7 @@ static char *summary_csv(const struct compare *c)
             sbuf_printf(&b, "%.4f,", it->error_lowfreq);
         else
             sbuf_printf(&b, ",");
-        sbuf_printf(&b, it->has_error && isfinite(it->flip) ? "%.6f," : ",", it->flip);
+        sbuf_printf(&b, it->has_error && isfinite(it->flip) ? "%.6g," : ",", it->flip);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
