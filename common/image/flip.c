@@ -13,7 +13,6 @@
 
 #define FLIP_PI 3.14159265358979323846
 #define QC 0.7 /* colour exponent */
-#define QF 0.5 /* feature exponent: its power is a square root */
 #define PC 0.4 /* errors up to PC * cmax take the first PT of the range */
 #define PT 0.95
 #define EDGE_W 0.082  /* peak-to-trough width of the edge detector, in degrees */
@@ -267,7 +266,7 @@ static void combine(struct flip_ctx *k, float *out, int max)
         double hc = powf((float)hyab(a, b), (float)QC);
         double dc = hc < pccmax ? PT / pccmax * hc : PT + (hc - pccmax) / (k->cmax - pccmax) * (1 - PT);
         double de = fabs(k->edges[0][i] - k->edges[1][i]), dp = fabs(k->points[0][i] - k->points[1][i]);
-        double df = sqrt((de > dp ? de : dp) / sqrt(2.0)); /* ^QF */
+        double df = sqrt((de > dp ? de : dp) / sqrt(2.0)); /* to the feature exponent 0.5 */
         float v = powf((float)dc, (float)(1 - df));
         out[i] = max && out[i] > v ? out[i] : v;
     }
