@@ -4,6 +4,7 @@
 #include "compare_expand.h"
 #include "compare_spp.h"
 #include "compare_keys.h"
+#include "compare_mask.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -54,10 +55,12 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
     if (!L->c->scenes || !L->scene_base)
         return err_set(L->e, L->d.file, 0, 0, "out of memory");
     for (int s = 0; s < n; s++) {
-        yaml_node_t *item = list ? yseq_item(d, list, s) : one;
+        yaml_node_t *item = list ? yseq_item(d, list, s) : one, *name = item, *mask = L->mask;
         L->scene_base[s] = L->base;
-        if (list && compare_keys_apply(&L->scene_base[s], d, "scene", item, L->e) < 0)
+        if (list && (compare_mask_item(d, item, &name, &mask, L->e) < 0 ||
+                     compare_keys_apply(&L->scene_base[s], d, "scene", name, L->e) < 0))
             return -1;
+        mask = mask ? mask : L->mask;
         char stem[JOB_PATH_MAX];
         outdir_stem(L->scene_base[s].scene_path, stem, sizeof stem);
         if (strlen(stem) >= sizeof L->c->scenes[s].name) /* never cut: two scenes would share a name */
@@ -75,7 +78,7 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
                                        L->scene_base[t].scene_path, L->scene_base[s].scene_path,
                                        L->c->scenes[s].name)
                            : ydoc_fail(d, item, L->e, "scenes: \"%s\" is listed twice", L->c->scenes[s].name);
-        if (scene_size(L, s, item) < 0)
+        if (scene_size(L, s, item) < 0 || compare_mask_load(d, mask, L->c->path, &L->c->scenes[s], L->e) < 0)
             return -1;
     }
     return 0;
@@ -235,7 +238,7 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
 {
     /* the document borrowed: read through L.d, freed by its owner */
     struct compare_loading L = {.d = *doc, .e = e};
-    const char *extra[] = {"scenes", "variants", "sweep", "seeds"};
+    const char *extra[] = {"scenes", "variants", "sweep", "seeds", "mask"};
     int ok = 0;
     if (!(L.c = calloc(1, sizeof *L.c)) || !(L.c->inputs = in ? in : study_inputs_new())) {
         free(L.c);
@@ -250,7 +253,7 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
     int nk = 0;
     for (int i = 0; job_keys[i] && nk < 58; i++)
         keys[nk++] = job_keys[i];
-    for (int i = 0; i < 4; i++)
+    for (size_t i = 0; i < sizeof extra / sizeof *extra; i++)
         keys[nk++] = extra[i];
     keys[nk] = NULL;
     if (ymap_check(&L.d, root, keys, "compare job", e) < 0)
@@ -267,6 +270,8 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
             L.variants = v;
         else if (!strcmp(key, "sweep"))
             L.sweep = v;
+        else if (!strcmp(key, "mask"))
+            L.mask = v;
         else if (strcmp(key, "scenes") && strcmp(key, "seeds") && job_apply(&L.base, &L.d, k, v, e) < 0)
             goto done;
     }

@@ -10,7 +10,7 @@
 
 /* Most fields a row may have, and most rows (the header included) one file may have: a suite of
    up to 64 studies of 4096 images each, with room. */
-#define VERDICT_CSV_FIELDS 20
+#define VERDICT_CSV_FIELDS 48
 #define VERDICT_CSV_MAX_ROWS (64 * 4096 + 1)
 
 /* Rows of field pointers into one buffer of unquoted, NUL-ended fields; row 0 is the header. */
