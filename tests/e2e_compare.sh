@@ -50,7 +50,7 @@ check "the summary line counts the combinations" grep -q "cmp: 40 images (2 scen
 # summary.csv: a header and one row of 18 fields per image, with its metrics in linear radiance
 # (mse, rmse, relmse, relmse_robust, psnr, domain) and the 8-bit display figures beside them
 csv=$cdir/summary.csv
-check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,image" ]
+check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,pixel_sets,light_sets,padded_sets,image" ]
 check "summary.csv has 40 rows" [ "$(tail -n +2 "$csv" | wc -l)" -eq 40 ]
 check "every row has 19 fields, a relmse, a robust one no larger, linear, and 8-bit figures" \
     [ "$(awk -F, 'NR > 1 && NF == 19 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]

@@ -10,6 +10,7 @@
 
 #include "image/metrics.h"
 #include "job/job.h"
+#include "job/sidecar.h"
 #include "study_env.h"
 #include "study_inputs.h"
 #include "verdict_model.h"
@@ -54,6 +55,7 @@ struct compare_item {
     struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
     struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
     double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
+    struct sidecar_work work;             /* its render's work counts (the sidecar's "work") */
 };
 
 struct compare {
