@@ -107,10 +107,11 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
     if (report_view_rgb(b, ref, &view, e) < 0)
         return -1;
     sbuf_printf(b, "<figcaption><b>reference</b>: ");
+    char light[96];
     if (cs->ref_kind == COMPARE_REF_SETTINGS)
-        sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
-                    cs->ref_job.threshold, sampler_kind_name(cs->ref_job.light_sampler),
-                    cs->ref_job.light_threshold, (unsigned long long)cs->ref_job.seed,
+        sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
+                    cs->ref_job.threshold, job_light_text(&cs->ref_job, light, sizeof light),
+                    (unsigned long long)cs->ref_job.seed,
                     cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
     else
         sbuf_escape(b, cs->ref_path);
