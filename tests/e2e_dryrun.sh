@@ -31,7 +31,7 @@ check "job: says nothing is written" grep -q "^job: dry run: nothing rendered, n
 check "compare: exit 0 (got $rc: $(cat "$T/cmp.err"))" [ "$rc" -eq 0 ]
 check "compare: its images ($(cat "$T/cmp.out"))" grep -q "^  images    4 (1 scene x 2 variants x 1 point x 2 seeds): 64000 samples (25 to 100 per pixel)" "$T/cmp.out"
 # the reference as rendered: two halves at t = 10 sqrt 2 (7x7 each), 98 per pixel, not t=10's 100
-check "compare: the reference, as its two halves" grep -q "^  reference checker: 16x16 jitter t=10: 25088 samples (98 per pixel: two halves at t=14.1421)" "$T/cmp.out"
+check "compare: the reference, as its two halves" grep -Eq "^  reference checker: 16x16 jitter t=10, light [a-z]+ t=[0-9.]+: 25088 samples \(98 per pixel: two halves at t=14.1421\)" "$T/cmp.out"
 check "compare: the reference-too-weak guard, before rendering" grep -q "^  warning: checker: the reference would have 98 samples per pixel, fewer than 4x the densest point's 100" "$T/cmp.out"
 check "compare: the total on 1 process" grep -q "^  CPU time  about .* in all (references .* of it, unless cached).* on 1 process$" "$T/cmp.out"
 "$WORKER" --dry-run suite.yaml >"$T/suite.out" 2>"$T/suite.err"; rc=$?
@@ -75,6 +75,34 @@ check "costly pixel: exit 0 (got $rc: $(cat "$T/pyr.err"))" [ "$rc" -eq 0 ]
 check "costly pixel: the pilot cut it short ($(cat "$T/pyr.out"))" \
     grep -Eq "from a pilot of [0-9]+ pixels?, [0-9]+ of (its|their) [0-9]+ samples traced\); wall about [0-9.]+ (min|h) " "$T/pyr.out"
 rm pyr.yaml
+# issue 36's new user: one seed, and sweep points that give one sample per pixel alike (thresholds
+# 100 and 80), are warned about before rendering; under sampler_dims: all the light sampler is
+# never asked, so neither the image line nor the reference's says "light jitter t=5"
+cat >one.yaml <<EOT
+name: one
+scenes: [$root/scenes/checker.yaml]
+width: 8
+reference: { sampler: jitter, threshold: 10 }
+seeds: [3]
+sampler_dims: all
+sweep: { threshold: [100, 80, 50] }
+variants:
+  - { sampler: jitter }
+EOT
+"$WORKER" one.yaml --dry-run >"$T/one.out" 2>&1; rc=$?
+check "one seed: exit 0 (got $rc)" [ "$rc" -eq 0 ]
+check "one seed: warned ($(cat "$T/one.out"))" grep -q "^  warning: one seed: no spread across seeds to judge a difference by" "$T/one.out"
+check "thresholds 100 and 80: one sample per pixel alike, warned" \
+    grep -q "^  warning: checker, jitter: sweep points threshold 100 and threshold 80 both give 1 sample per pixel" "$T/one.out"
+check "thresholds 100 and 80: warned once, 50 not named" [ "$(grep -c "sweep points" "$T/one.out")" -eq 1 ]
+check "sampler_dims: all: the reference's light points named as they are" \
+    grep -q "^  reference checker: 8x8 jitter t=10, light points from the jitter sets (sampler_dims: all):" "$T/one.out"
+check "sampler_dims: all: no light sampler claimed" sh -c "! grep -q 'light jitter' '$T/one.out'"
+printf 'scene: %s/scenes/checker.yaml\nwidth: 8\nsampler_dims: all\n' "$root" >dims.yaml
+"$WORKER" dims.yaml --dry-run >"$T/dims.out" 2>&1
+check "plain job, sampler_dims: all: the image line says where light points come from ($(head -n 2 "$T/dims.out"))" \
+    grep -q "^  image     8x8, random t=5, light points from the random sets (sampler_dims: all) ->" "$T/dims.out"
+rm one.yaml dims.yaml
 "$WORKER" --queue "$T/q" --dry-run >/dev/null 2>"$T/q.err"; rc=$?
 check "--dry-run with --queue: exit 2 (got $rc)" [ "$rc" -eq 2 ]
 rm big.yaml

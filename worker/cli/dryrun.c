@@ -197,9 +197,9 @@ static void warn_same_points(const struct compare *c, int s, int v, const double
     for (int p = 0; p < c->n_points; p++)
         for (int q = p + 1; q < c->n_points; q++)
             if (spp[p] > 0 && fabs(spp[p] - spp[q]) <= 1e-9 * spp[p]) {
-                printf("  warning: %s, %s: sweep points %s and %s both give %.4g samples per pixel: they measure "
-                       "one thing twice; pick thresholds further apart\n",
-                       c->scenes[s].name, c->variants[v], c->points[p], c->points[q], spp[p]);
+                printf("  warning: %s, %s: sweep points %s and %s both give %.4g sample%s per pixel: they "
+                       "measure one thing twice; pick thresholds further apart\n",
+                       c->scenes[s].name, c->variants[v], c->points[p], c->points[q], spp[p], spp[p] == 1 ? "" : "s");
                 return;
             }
 }
