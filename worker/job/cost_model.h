@@ -17,8 +17,10 @@
 #include "scenefile/scene_load.h"
 
 /* The pilot draws sets of at most this many points: a larger set's kind is drawn at a coarser
-   threshold (its cost per traced sample is the same; its draws are timed apart). */
-#define COST_PILOT_SET_MAX 4096
+   threshold (its cost per traced sample is the same; its draws are timed apart). Small, so that
+   a pilot's time is mostly tracing: what its draws cost is taken out, and the error of that
+   would be charged to every sample (one path beside a 4096-point pmj02bn set was 90 us). */
+#define COST_PILOT_SET_MAX 64
 /* Most pixels one pilot renders. */
 #define COST_PILOT_PIXELS 64
 
@@ -36,11 +38,18 @@ struct cost_estimate {
 
 struct cost_model;
 
-/* A model that spends about budget_s CPU seconds measuring over `estimates` estimates (each
-   pilot's share of what is left, each at least one path; set timings at least one set). NULL on
-   no memory. Free with cost_model_free (accepts NULL). */
-struct cost_model *cost_model_new(double budget_s, int estimates);
+/* A model that spends about budget_s CPU seconds measuring: each pilot an equal share of what is
+   left among those expected and not run (at least one path), each set timing a few sets (at least
+   one; once the budget is spent, a set size is scaled from a timed one of its kind). NULL on no
+   memory. Free with cost_model_free (accepts NULL). */
+struct cost_model *cost_model_new(double budget_s);
 void cost_model_free(struct cost_model *m);
+
+/* Say that j's render at width x height of sf will be estimated, before any estimate, so that
+   the budget is shared among the distinct pilots (a pilot not expected takes all that is left).
+   Measures nothing. 0, or -1 with e filled (no memory). */
+int cost_model_expect(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
+                      int height, struct err *e);
 
 /* Estimate j's render at width x height of the scene sf (loaded, as the render reads it), its
    processes aside (their CPU time adds up). 0, or -1 with e filled (a sampler or scene the

@@ -69,6 +69,11 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
     return rc;
 }
 
+int job_estimate_expect(const struct job *j, const struct scene_file *sf, struct cost_model *m, struct err *e)
+{
+    return cost_model_expect(m, j, sf, j->width, job_height(j, sf->aspect), e);
+}
+
 double job_estimate_memory(const struct job_estimate *est)
 {
     return est->framebuffer_bytes + est->texture_bytes + est->processes * est->process_bytes;

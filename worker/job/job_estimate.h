@@ -26,6 +26,10 @@ struct job_estimate {
 int job_estimate(const struct job *j, const struct scene_file *sf, int processes, struct cost_model *m,
                  struct job_estimate *out, struct err *e);
 
+/* Tell m that j will be estimated (cost_model_expect at the size job_estimate renders), so that
+   its pilots share the budget. 0, or -1 with e filled. */
+int job_estimate_expect(const struct job *j, const struct scene_file *sf, struct cost_model *m, struct err *e);
+
 /* The estimate's memory: the framebuffer, the textures (once) and every process's resident set
    beside them. */
 double job_estimate_memory(const struct job_estimate *est);
