@@ -14,7 +14,7 @@
 #include "study/judge/verdict_from.h"
 
 #define CSV_MAX_BYTES (64u << 20)
-#define CSV_FIELDS 20
+#define CSV_FIELDS 48
 /* Most rows read: a suite of up to 64 studies of COMPARE_MAX_ITEMS images each (the work below
    grows with their square per study). */
 #define CSV_MAX_ROWS (64 * COMPARE_MAX_ITEMS)
