@@ -499,7 +499,8 @@ static struct render_stats work_pixel(int spread, int dims)
     struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0};
     struct camera cam;
     camera_init(&cam, &d, 1, &e);
-    struct sampler *pix = sampler_new(SAMPLER_JITTER, 25, 0, 0, &e), *lsm = sampler_new(SAMPLER_JITTER, 50, 0, 0, &e);
+    struct sampler *pix = sampler_new(SAMPLER_JITTER, 25, 0, 0, &e),
+                   *lsm = sampler_new(SAMPLER_JITTER, 50, 0, 0, &e);
     struct render_settings rs = {4, 4, 2, 1, 0, 1, dims, 0};
     struct render_ctx *ctx = render_ctx_new(sc, &cam, &rs, pix, lsm, &e);
     CHECK(ctx != NULL);

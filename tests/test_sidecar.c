@@ -19,19 +19,19 @@ static struct procs_result *result(void)
     static struct procs_result r;
     memset(&r, 0, sizeof r);
     r.processes = 2;
-    r.total = (struct render_stats){
-        .pixels = 12,
-        .samples = 300,
-        .rays = 900,
-        .spp_min = 20,
-        .spp_max = 30,
-        .sampler_s = 0.25,
-        .shadow_rays = 200,
-        .light_sets = 4,
-        .pixel_points = 300,
-        .light_points = ((uint64_t)1 << 60) + 1, /* past a double's 53 bits: read as a whole number */
-        .padded_points = 55,
-        .padded_sets = 9};
+    r.total = (struct render_stats){.pixels = 12,
+                                    .samples = 300,
+                                    .rays = 900,
+                                    .spp_min = 20,
+                                    .spp_max = 30,
+                                    .sampler_s = 0.25,
+                                    .shadow_rays = 200,
+                                    .light_sets = 4,
+                                    .pixel_points = 300,
+                                    .light_points = ((uint64_t)1 << 60) +
+                                                    1, /* past a double's 53 bits: read as a whole number */
+                                    .padded_points = 55,
+                                    .padded_sets = 9};
     r.wall_s = 1.5;
     r.cpu_s = 2.5;
     r.proc[0] = (struct procs_proc){.st = {.pixels = 6, .samples = 150}, .wall_s = 0.5, .cpu_s = 1.25};

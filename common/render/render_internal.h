@@ -30,7 +30,7 @@ struct render_ctx {
     struct render_stats *st;
     int timed; /* the current pixel is timed (sampler_timed): its light draws add to timed_draw_ns */
     uint64_t light_points, padded_points; /* the pixel's so far: render_stats' work counts */
-    struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
+    struct packet_scene *packet;          /* NULL, or four paths at once through packet_hit */
     /* sampler_dims: all: the pixel sampler's padded sets (sample/padding.h), DIMS_CAMERA +
        DIMS_PER_BOUNCE * dims_bounces slots, then dims_bounces more with Russian roulette (its
        coins: render_dims_slot); bounces past dims_bounces draw from the path's rng */

@@ -87,9 +87,11 @@ static void print_parts(const struct cost_estimate *c)
     printf("  cost      tracing %s (%.3g ns per sample); pixel sets %s", duration(c->trace_s, a, sizeof a),
            c->ns_per_sample, duration(c->pixel_sets_s, b, sizeof b));
     if (c->light_sets > 0)
-        printf("; %s light sets %s", count(c->light_sets, n, sizeof n), duration(c->light_sets_s, a, sizeof a));
+        printf("; %s light sets %s", count(c->light_sets, n, sizeof n),
+               duration(c->light_sets_s, a, sizeof a));
     if (c->padded_sets > 0)
-        printf("; %s padded sets %s", count(c->padded_sets, n, sizeof n), duration(c->padded_sets_s, a, sizeof a));
+        printf("; %s padded sets %s", count(c->padded_sets, n, sizeof n),
+               duration(c->padded_sets_s, a, sizeof a));
     printf("%s\n", c->sets_scaled ? " (sets too large to draw here: timed smaller, scaled)" : "");
 }
 
@@ -121,8 +123,9 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
     const struct cost_estimate *c = &est.cost;
     char light[96];
     printf("%s: dry run: nothing rendered, nothing written\n", j.name);
-    printf("  image     %dx%d, %s t=%g, %s -> %s/%s/%s\n", est.width, est.height, sampler_kind_name(j.sampler),
-           j.threshold, job_light_text(&j, light, sizeof light), o->out_dir, j.name, j.output);
+    printf("  image     %dx%d, %s t=%g, %s -> %s/%s/%s\n", est.width, est.height,
+           sampler_kind_name(j.sampler), j.threshold, job_light_text(&j, light, sizeof light), o->out_dir,
+           j.name, j.output);
     char num[32];
     printf("  samples   %s (%.4g per pixel)\n", count(est.samples, num, sizeof num), est.spp_mean);
     print_memory(&est, "about");
@@ -160,7 +163,8 @@ static void print_study(const struct compare *c, const struct study_sum *sum)
 /* The reference of scene s (given as settings): its estimate, and the guard the verdict applies
    once it is rendered (verdict_say_warnings), known now. */
 static int study_reference(const struct compare *c, int s, const struct scene_file *sf, double densest,
-                           struct cost_model *m, const struct run_opts *o, struct study_sum *sum, struct err *e)
+                           struct cost_model *m, const struct run_opts *o, struct study_sum *sum,
+                           struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[s];
     struct job_estimate est, half;
@@ -177,8 +181,8 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
     printf("  reference %s: %dx%d %s t=%g, %s: %s samples (%.4g per pixel: two halves at t=%g), CPU about %s "
            "(unless cached)\n",
            cs->name, est.width, est.height, sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
-           job_light_text(&cs->ref_job, light, sizeof light), count(est.samples, num, sizeof num), est.spp_mean,
-           hj.threshold, duration(est.cpu_s, a, sizeof a));
+           job_light_text(&cs->ref_job, light, sizeof light), count(est.samples, num, sizeof num),
+           est.spp_mean, hj.threshold, duration(est.cpu_s, a, sizeof a));
     if (est.spp_mean < VERDICT_REF_FACTOR * densest)
         printf("  warning: %s: the reference would have %.0f samples per pixel, fewer than %dx the densest "
                "point's %.0f: its own noise would be a large part of the error measured there; give the "
@@ -199,7 +203,8 @@ static void warn_same_points(const struct compare *c, int s, int v, const double
             if (spp[p] > 0 && fabs(spp[p] - spp[q]) <= 1e-9 * spp[p]) {
                 printf("  warning: %s, %s: sweep points %s and %s both give %.4g sample%s per pixel: they "
                        "measure one thing twice; pick thresholds further apart\n",
-                       c->scenes[s].name, c->variants[v], c->points[p], c->points[q], spp[p], spp[p] == 1 ? "" : "s");
+                       c->scenes[s].name, c->variants[v], c->points[p], c->points[q], spp[p],
+                       spp[p] == 1 ? "" : "s");
                 return;
             }
 }

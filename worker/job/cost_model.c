@@ -34,10 +34,10 @@ struct pilot_key {
 
 /* A pilot's figures, per pixel or per traced sample, means over its pixels. */
 struct pilot_fig {
-    double trace_s;       /* CPU seconds a traced sample costs, its point-set draws taken out */
-    double light_points;  /* light points a sample takes */
-    double light_sets;    /* light sets a pixel draws at the pilot's sizes (the lights it uses) */
-    double padded_sets;   /* padded slots a pixel's samples reach */
+    double trace_s;      /* CPU seconds a traced sample costs, its point-set draws taken out */
+    double light_points; /* light points a sample takes */
+    double light_sets;   /* light sets a pixel draws at the pilot's sizes (the lights it uses) */
+    double padded_sets;  /* padded slots a pixel's samples reach */
     int pixels;
     double samples, traced;
 };
@@ -224,8 +224,8 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
     while ((long)k->width * k->height * scale * scale < COST_PILOT_PIXELS)
         scale++;
     const int w = k->width * scale, h = k->height * scale;
-    const struct render_settings rs = {w, h, j->max_depth, j->seed,
-                                       !j->light_sampling, j->nee, j->dims_all, job_roulette(j)};
+    const struct render_settings rs = {w,      h,           j->max_depth,   j->seed, !j->light_sampling,
+                                       j->nee, j->dims_all, job_roulette(j)};
     struct pilot_run p = {.budget_s = budget_s, .cap = 1, .clock_s = clock_pair_s()};
     if (pilot_draws(m, j, pixel_t, light_t, &p.draws, e) < 0)
         goto done;
@@ -247,9 +247,13 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
         pilot_step(&p, ctx, x, y, sf->scene->n_lights);
     }
     const double np = p.sum.pixels;
-    *fig = (struct pilot_fig){p.sum.trace_s / (p.sum.traced > 0 ? p.sum.traced : 1), p.sum.light_points / np,
+    *fig = (struct pilot_fig){p.sum.trace_s / (p.sum.traced > 0 ? p.sum.traced : 1),
+                              p.sum.light_points / np,
                               p.sum.light_sets / np,
-                              p.sum.padded_sets / np, p.sum.pixels, p.sum.samples, p.sum.traced};
+                              p.sum.padded_sets / np,
+                              p.sum.pixels,
+                              p.sum.samples,
+                              p.sum.traced};
     rc = 0;
 spent:
     m->spent_s += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
@@ -316,8 +320,9 @@ static int pilot_for(struct cost_model *m, const struct job *j, const struct pil
 static int set_cost(struct cost_model *m, const struct job *j, int light, enum cost_set_use use,
                     struct cost_set *out, struct err *e)
 {
-    const struct cost_sampler sp = {light ? j->light_sampler : j->sampler, light ? j->light_threshold : j->threshold,
-                                    j->poisson_pool > 0, j->poisson_domain};
+    const struct cost_sampler sp = {light ? j->light_sampler : j->sampler,
+                                    light ? j->light_threshold : j->threshold, j->poisson_pool > 0,
+                                    j->poisson_domain};
     if (cost_sets_get(m->sets, &sp, use, set_target(m), out, &m->spent_s, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         return -1;
@@ -356,7 +361,8 @@ int cost_model_estimate(struct cost_model *m, const struct job *j, const struct 
     const struct pilot_key k = key_of(j, sf, width, height);
     struct pilot_fig fig = {0};
     struct cost_set pix, light = {0}, pad = {0};
-    if (pilot_for(m, j, &k, &fig, &out->pilot_shared, e) < 0 || set_cost(m, j, 0, COST_SET_PIXEL, &pix, e) < 0)
+    if (pilot_for(m, j, &k, &fig, &out->pilot_shared, e) < 0 ||
+        set_cost(m, j, 0, COST_SET_PIXEL, &pix, e) < 0)
         return -1;
     const double pixels = (double)width * height;
     out->spp_mean = pix.points;
@@ -369,7 +375,8 @@ int cost_model_estimate(struct cost_model *m, const struct job *j, const struct 
             return -1;
         /* the lights a pixel uses draw one set each, more when its samples take more points */
         const double taken = fig.light_points * pix.points, used = fig.light_sets > 0 ? fig.light_sets : 1;
-        const double per_pixel = light.points > 0 && taken / light.points > used ? taken / light.points : used;
+        const double per_pixel =
+            light.points > 0 && taken / light.points > used ? taken / light.points : used;
         out->light_sets = per_pixel * pixels;
         out->light_sets_s = out->light_sets * light.s_per_set;
     }

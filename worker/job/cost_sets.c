@@ -141,12 +141,14 @@ static int time_scaled(const struct cost_sampler *sp, enum cost_set_use use, dou
 {
     const double t1 = threshold_for(sp, COST_SETS_SMALL), t2 = threshold_for(sp, COST_SETS_DIRECT_MAX);
     struct cost_set a, b;
-    if (time_at(sp, t1, use, target_s / 2, &a, spent_s, e) < 0 || time_at(sp, t2, use, target_s / 2, &b, spent_s, e) < 0)
+    if (time_at(sp, t1, use, target_s / 2, &a, spent_s, e) < 0 ||
+        time_at(sp, t2, use, target_s / 2, &b, spent_s, e) < 0)
         return -1;
     const double cap = (double)sampler_capacity(sp->kind, sp->threshold),
                  cap1 = (double)sampler_capacity(sp->kind, t1), cap2 = (double)sampler_capacity(sp->kind, t2);
-    double power = cap2 > cap1 && a.s_per_set > 0 && b.s_per_set > 0 ? log(b.s_per_set / a.s_per_set) / log(cap2 / cap1)
-                                                                      : 1;
+    double power = cap2 > cap1 && a.s_per_set > 0 && b.s_per_set > 0
+                       ? log(b.s_per_set / a.s_per_set) / log(cap2 / cap1)
+                       : 1;
     power = power < 1 ? 1 : power > 2 ? 2 : power;
     *out = (struct cost_set){b.s_per_set * pow(cap / cap2, power), b.points * cap / cap2, 1};
     return 0;
@@ -167,7 +169,8 @@ static int borrow(const struct cost_sets *c, const struct cost_sampler *sp, enum
     double best = HUGE_VAL;
     for (int i = 0; i < c->n; i++) {
         const struct cost_entry *x = &c->e[i];
-        if (x->use != use || x->sp.kind != sp->kind || x->sp.pooled != sp->pooled || x->sp.domain != sp->domain)
+        if (x->use != use || x->sp.kind != sp->kind || x->sp.pooled != sp->pooled ||
+            x->sp.domain != sp->domain)
             continue;
         const double r = cap / (double)sampler_capacity(x->sp.kind, x->sp.threshold);
         if (fabs(log(r)) < best) {

@@ -11,11 +11,11 @@
 
 struct job_estimate {
     int width, height, processes;
-    double spp_mean;      /* camera samples per pixel, the pilot's mean (exact for the grid kinds) */
-    double samples;       /* spp_mean x width x height */
-    double cpu_s;         /* the whole render's CPU seconds (cost's) */
+    double spp_mean; /* camera samples per pixel, the pilot's mean (exact for the grid kinds) */
+    double samples;  /* spp_mean x width x height */
+    double cpu_s;    /* the whole render's CPU seconds (cost's) */
     double framebuffer_bytes, process_bytes; /* the shared image; one render process's resident set */
-    double texture_bytes; /* the scene's decoded image textures, loaded before the fork: shared */
+    double texture_bytes;      /* the scene's decoded image textures, loaded before the fork: shared */
     struct cost_estimate cost; /* the cost model's figures (cost_model.h) */
 };
 
@@ -28,7 +28,8 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
 
 /* Tell m that j will be estimated (cost_model_expect at the size job_estimate renders), so that
    its pilots share the budget. 0, or -1 with e filled. */
-int job_estimate_expect(const struct job *j, const struct scene_file *sf, struct cost_model *m, struct err *e);
+int job_estimate_expect(const struct job *j, const struct scene_file *sf, struct cost_model *m,
+                        struct err *e);
 
 /* The estimate's memory: the framebuffer, the textures (once) and every process's resident set
    beside them. */

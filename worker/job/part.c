@@ -200,9 +200,9 @@ int part_check_contents(const struct part_file *pf, const char *path, struct err
                        (unsigned long long)st->pixels, (unsigned long long)(rows * h->width));
     if (st->samples >= PART_MAX_COUNT || st->rays >= PART_MAX_COUNT || st->light_sets >= PART_MAX_COUNT ||
         st->pixel_points >= PART_MAX_COUNT || st->light_points >= PART_MAX_COUNT ||
-        st->padded_points >= PART_MAX_COUNT || st->padded_sets >= PART_MAX_COUNT || st->shadow_rays > st->rays ||
-        st->nonfinite > st->samples || (st->pixels > 0 && st->spp_min > st->spp_max) ||
-        st->samples < st->pixels * (uint64_t)st->spp_min ||
+        st->padded_points >= PART_MAX_COUNT || st->padded_sets >= PART_MAX_COUNT ||
+        st->shadow_rays > st->rays || st->nonfinite > st->samples ||
+        (st->pixels > 0 && st->spp_min > st->spp_max) || st->samples < st->pixels * (uint64_t)st->spp_min ||
         st->samples > st->pixels * (uint64_t)st->spp_max || st->rays < st->samples)
         return err_set(e, path, 0, 0,
                        "damaged part file: impossible counts (%llu samples, %u to %u per pixel, %llu rays)",

@@ -16,9 +16,10 @@
 
 struct sidecar_work sidecar_work_of(const struct render_stats *st)
 {
-    return (struct sidecar_work){st->samples,      st->rays - st->shadow_rays, st->shadow_rays,
-                                 st->pixel_points, st->light_points,           st->padded_points,
-                                 st->pixels,       st->light_sets,             st->padded_sets};
+    return (struct sidecar_work){
+        st->samples,      st->rays - st->shadow_rays, st->shadow_rays, st->pixel_points,
+        st->light_points, st->padded_points,          st->pixels,      st->light_sets,
+        st->padded_sets};
 }
 
 /* The work counts w as the sidecar's object "work". */

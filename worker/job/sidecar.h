@@ -22,9 +22,9 @@ struct sidecar {
 /* A render's work counts (the sidecar's "work"): deterministic, the same on every machine, run,
    process count and split. render_stats' counters, named as the sidecar names them. */
 struct sidecar_work {
-    uint64_t camera_samples, path_segments, shadow_rays;   /* segments: camera rays included */
-    uint64_t pixel_points, light_points, padded_points;    /* points taken from each kind of set */
-    uint64_t pixel_sets, light_sets, padded_sets;          /* sets drawn of each kind */
+    uint64_t camera_samples, path_segments, shadow_rays; /* segments: camera rays included */
+    uint64_t pixel_points, light_points, padded_points;  /* points taken from each kind of set */
+    uint64_t pixel_sets, light_sets, padded_sets;        /* sets drawn of each kind */
 };
 
 /* The work counts of st. */

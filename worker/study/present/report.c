@@ -180,11 +180,10 @@ void report_link(struct sbuf *b, const char *href, const char *text)
 static void table(struct sbuf *b, const struct compare *c)
 {
     /* the work counts beside the times: the same on every machine (summary.csv has them all) */
-    static const char *const head[] = {"scene",         "variant",     "threshold",  "light threshold",
-                                       "seed",          "spp mean",    "wall s",     "cpu s",
-                                       "sampler share", "segments",    "shadow rays", "set points",
-                                       "mse",           "rmse",        "relmse",     "psnr dB",
-                                       "image, sidecar"};
+    static const char *const head[] = {
+        "scene",  "variant", "threshold",     "light threshold", "seed",          "spp mean",
+        "wall s", "cpu s",   "sampler share", "segments",        "shadow rays",   "set points",
+        "mse",    "rmse",    "relmse",        "psnr dB",         "image, sidecar"};
     const size_t n_head = sizeof head / sizeof head[0];
     sbuf_printf(b, "<table>\n<tr>");
     for (size_t i = 0; i < n_head; i++)

@@ -220,11 +220,12 @@ static char *summary_csv(const struct compare *c)
         else
             sbuf_printf(&b, ",");
         const struct sidecar_work *w = &it->work; /* deterministic: the same on every machine */
-        sbuf_printf(&b, "%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,", (unsigned long long)w->camera_samples,
-                    (unsigned long long)w->path_segments, (unsigned long long)w->shadow_rays,
-                    (unsigned long long)w->pixel_points, (unsigned long long)w->light_points,
-                    (unsigned long long)w->padded_points, (unsigned long long)w->pixel_sets,
-                    (unsigned long long)w->light_sets, (unsigned long long)w->padded_sets);
+        sbuf_printf(&b, "%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,",
+                    (unsigned long long)w->camera_samples, (unsigned long long)w->path_segments,
+                    (unsigned long long)w->shadow_rays, (unsigned long long)w->pixel_points,
+                    (unsigned long long)w->light_points, (unsigned long long)w->padded_points,
+                    (unsigned long long)w->pixel_sets, (unsigned long long)w->light_sets,
+                    (unsigned long long)w->padded_sets);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
