@@ -413,9 +413,8 @@ static void test_medium_albedo(void)
     CHECK(white > plain && white == white_tex);
 }
 
-/* A diffuse floor (xz rect at y = 0) under a rect light facing down at y = 2, seen from above:
-   one pixel's stats at max_depth depth. */
-static struct render_stats floor_pixel(int depth)
+/* A diffuse floor (xz rect at y = 0) under a rect light facing down at y = 2 (not finished). */
+static struct scene *floor_scene(void)
 {
     struct scene *sc = scene_new();
     struct material white = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
@@ -428,6 +427,13 @@ static struct render_stats floor_pixel(int depth)
     li.g.rect.a0 = li.g.rect.b0 = -0.5, li.g.rect.a1 = li.g.rect.b1 = 0.5, li.g.rect.k = 2;
     scene_add_prim(sc, &fl);
     scene_add_light(sc, scene_add_prim(sc, &li));
+    return sc;
+}
+
+/* floor_scene seen from above: one pixel's stats at max_depth depth. */
+static struct render_stats floor_pixel(int depth)
+{
+    struct scene *sc = floor_scene();
     struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0}; /* at the floor */
     float rgb[3];
     return pixel_of(sc, &d, 25, 50, depth, rgb);
@@ -477,17 +483,7 @@ static void closed_box_pixel(double x, double y, float rgb[3])
    and its paths are traced one by one, not in lanes. The stats of pixel (1, 2). */
 static struct render_stats work_pixel(int spread, int dims)
 {
-    struct scene *sc = scene_new();
-    struct material white = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
-    struct material lamp = {.type = MAT_LIGHT, .emit = v3(4, 4, 4), .texture = -1};
-    scene_add_material(sc, &white);
-    scene_add_material(sc, &lamp);
-    struct prim fl = {.type = PRIM_RECT, .material = 0}, li = {.type = PRIM_RECT, .material = 1, .flip = 1};
-    fl.g.rect.axis = li.g.rect.axis = 1;
-    fl.g.rect.a0 = fl.g.rect.b0 = -50, fl.g.rect.a1 = fl.g.rect.b1 = 50, fl.g.rect.k = 0;
-    li.g.rect.a0 = li.g.rect.b0 = -0.5, li.g.rect.a1 = li.g.rect.b1 = 0.5, li.g.rect.k = 2;
-    scene_add_prim(sc, &fl);
-    scene_add_light(sc, scene_add_prim(sc, &li));
+    struct scene *sc = floor_scene();
     for (int i = 0; spread && i < 40; i++) {
         struct prim ball = {.type = PRIM_SPHERE, .material = 0};
         ball.g.sphere.center = v3(40 * i, -100 - 30 * i, 0), ball.g.sphere.radius = 1;
