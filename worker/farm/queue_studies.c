@@ -13,6 +13,7 @@
 
 #include "base/err.h"
 #include "base/fileio.h"
+#include "base/sbuf.h"
 #include "queue_scan.h"
 #include "queue_study.h"
 
@@ -108,9 +109,11 @@ void queue_studies_print(const struct queue_studies_entry *s, int n)
         char eta[32] = "--";
         if (s[i].eta_s >= 0)
             snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s);
+        char file[4 * sizeof s[i].file + 1], name[4 * sizeof s[i].name + 1]; /* shown, never raw */
         printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n",
-               s[i].file, s[i].name, s[i].done, s[i].renders, s[i].failed, s[i].running,
-               s[i].gathering ? ", gathering" : "", s[i].elapsed_s, s[i].done == s[i].renders ? "0 s" : eta);
+               sbuf_show(s[i].file, file, sizeof file), sbuf_show(s[i].name, name, sizeof name), s[i].done,
+               s[i].renders, s[i].failed, s[i].running, s[i].gathering ? ", gathering" : "", s[i].elapsed_s,
+               s[i].done == s[i].renders ? "0 s" : eta);
     }
 }
 

@@ -2,6 +2,7 @@
    check done before anything renders (compare_expand.c makes the combinations). */
 #include "compare_load.h"
 #include "compare_expand.h"
+#include "compare_spp.h"
 #include "compare_keys.h"
 
 #include <math.h>
@@ -121,8 +122,14 @@ static int load_sweep(struct compare_loading *L)
         return ydoc_fail(
             d, sw, L->e,
             "sweep: must map a job key to a list of values, e.g. sweep: { threshold: [20, 10, 5, 2] }");
-    if (compare_keys_check(&L->d, sw, "sweep", NULL, L->e) < 0)
+    if (compare_keys_check(&L->d, sw, "sweep", "spp", L->e) < 0)
         return -1;
+    yaml_node_t *spp = NULL;
+    for (int i = 0; ymap_pair(d, sw, i, &k, &v); i++)
+        spp = strcmp(yscalar(k), "spp") ? spp : k;
+    if (spp && ymap_get(d, sw, "threshold"))
+        return ydoc_fail(d, spp, L->e,
+                         "spp: and threshold: both set the camera sampler's threshold: sweep one of them");
     int n = -1;
     for (int i = 0; ymap_pair(d, sw, i, &k, &v); i++) {
         const char *key = yscalar(k);
@@ -136,7 +143,8 @@ static int load_sweep(struct compare_loading *L)
                              n, len);
         n = len;
         size_t used = strlen(L->c->sweep_keys);
-        snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "", key);
+        snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "",
+                 strcmp(key, "spp") ? key : COMPARE_SPP_SWEEP_NOTE);
     }
     L->c->n_points = n;
     return 0;
@@ -194,9 +202,10 @@ static int load_variants(struct compare_loading *L)
         if (compare_keys_check(&L->d, var, "variant", "label", L->e) < 0)
             return -1;
         for (int p = 0; ymap_pair(d, var, p, &k, &v); p++)
-            if (L->sweep && ymap_get(d, L->sweep, yscalar(k)))
+            if (L->sweep && (ymap_get(d, L->sweep, yscalar(k)) ||
+                             (!strcmp(yscalar(k), "threshold") && ymap_get(d, L->sweep, "spp"))))
                 return ydoc_fail(d, k, L->e, "%s: swept (sweep: %s), so a variant cannot set it", yscalar(k),
-                                 yscalar(k));
+                                 ymap_get(d, L->sweep, yscalar(k)) ? yscalar(k) : "spp");
         if (variant_label(L, var, i, L->c->variants[i], sizeof L->c->variants[i]) < 0)
             return -1;
         for (int j = 0; j < i; j++)

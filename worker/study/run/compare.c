@@ -180,18 +180,12 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     return 0;
 }
 
-/* One CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180), as a scene
-   file's name may. */
+/* One CSV field (sbuf_csv: quoted when it holds a comma, a quote or a line break, as a scene file's
+   name may), then `after`. */
 static void csv_field(struct sbuf *b, const char *text, const char *after)
 {
-    if (!strpbrk(text, ",\"\r\n")) {
-        sbuf_printf(b, "%s%s", text, after);
-        return;
-    }
-    sbuf_printf(b, "\"");
-    for (const char *p = text; *p; p++)
-        sbuf_printf(b, "%s%c", *p == '"' ? "\"" : "", *p); /* a quote is doubled */
-    sbuf_printf(b, "\"%s", after);
+    sbuf_csv(b, text);
+    sbuf_printf(b, "%s", after);
 }
 
 static char *summary_csv(const struct compare *c)
