@@ -28,7 +28,7 @@ mkdir -p "$T/big"
     echo "$header"
     i=0
     while [ $i -lt 2048 ]; do
-        echo "s$i,v$i,25,5,$i,16.00,0.01,0.01,0.05,0.01,0.1,0.05,0.05,20,linear,0.08,0.02,,s$i-v$i-t25-s$i.png"
+        echo "s$i,v$i,25,5,$i,16.00,0.01,0.01,0.05,0.01,0.1,0.05,0.05,20,linear,0.08,0.02,,4,4,0,4,0,0,4,0,0,s$i-v$i-t25-s$i.png"
         i=$((i + 1))
     done
 } >"$T/big/summary.csv"
@@ -73,7 +73,7 @@ mkdir -p "$T/long"
     echo "$header"
     for v in a b; do
         for k in 1 2 3; do
-            echo "checker,$long$v,25,5,$k,16.00,0.01,0.01,0.05,0.01,0.1,0.05,0.05,20,linear,0.08,0.02,,checker-$long$v-t25-s$k.png"
+            echo "checker,$long$v,25,5,$k,16.00,0.01,0.01,0.05,0.01,0.1,0.05,0.05,20,linear,0.08,0.02,,4,4,0,4,0,0,4,0,0,checker-$long$v-t25-s$k.png"
         done
     done
 } >"$T/long/summary.csv"
