@@ -32,7 +32,7 @@ b = bytearray(open(path, 'rb').read())
 w, h, part, parts = struct.unpack_from('<4I', b, 12)
 rows = len(range(part, h, parts))
 struct.pack_into('<I', b, 12, w // 2)
-body = bytes(b[:120]) + b''.join(bytes(b[120 + r * w * 12:120 + r * w * 12 + (w // 2) * 12]) for r in range(rows))
+body = bytes(b[:160]) + b''.join(bytes(b[160 + r * w * 12:160 + r * w * 12 + (w // 2) * 12]) for r in range(rows))
 open(path, 'wb').write(body + struct.pack('<I', zlib.crc32(body) & 0xffffffff))
 PY
 done

@@ -34,6 +34,11 @@ static void result(struct procs_result *fr, int w, int h, int part, int parts)
     fr->total.rays = 100000000;
     fr->total.spp_min = 3 + part;
     fr->total.spp_max = 9 + part;
+    fr->total.shadow_rays = 1000 + (uint64_t)part; /* the work counts: each part's own */
+    fr->total.pixel_points = fr->total.samples;
+    fr->total.light_points = 7 * (uint64_t)(part + 1);
+    fr->total.padded_points = 100 + (uint64_t)part;
+    fr->total.padded_sets = 10 * (uint64_t)(part + 1);
     fr->processes = 1;
     fr->wall_s = 0.5;
     fr->cpu_s = 0.25;
@@ -81,10 +86,10 @@ static void test_forged(const char *dir, const struct job *j0, const float *rgb0
     CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb0}, 0, 1, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 0);
     /* another version says so (it said "file too large") */
-    const uint32_t v2 = 2;
-    forge(path, 8, &v2, 4);
+    const uint32_t v1 = 1; /* format 1: before the work counts of issue 35 */
+    forge(path, 8, &v1, 4);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 &&
-          strstr(e.msg, "another worker version (part format 2") != NULL);
+          strstr(e.msg, "another worker version (part format 1") != NULL);
     /* wrapped counters: 2^64 - 2 samples; spp min over max */
     CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb0}, 0, 1, &fr, &e) == 0);
     const uint64_t wrap = UINT64_MAX - 1;
@@ -153,7 +158,7 @@ int main(void)
     uint8_t *data;
     size_t len;
     CHECK(fileio_read_all(path, 1 << 20, &data, &len, &e) == 0);
-    CHECK(len == 120 + 4 * W * 12 + 4);
+    CHECK(len == 160 + 4 * W * 12 + 4);
     CHECK(memcmp(data, "WPART\r\n\x1a", 8) == 0);
     free(data);
 
@@ -167,6 +172,10 @@ int main(void)
     CHECK_NEAR(rr.procs.cpu_s, 0.75, 1e-12);
     CHECK(rr.procs.peak_rss_kb == 300);
     CHECK(rr.procs.proc[1].st.samples == 4 * W * 6);
+    /* issue 35: the work counts come through the part files and are summed */
+    CHECK(rr.procs.total.shadow_rays == 3003 && rr.procs.total.light_points == 42);
+    CHECK(rr.procs.total.pixel_points == rr.procs.total.samples);
+    CHECK(rr.procs.total.padded_points == 303 && rr.procs.total.padded_sets == 60);
     struct rgb8 got, want;
     CHECK(imgio_read(rr.out.image[0], &got, &e) == 0);
     CHECK(image_alloc(&want, W, H, &e) == 0);

@@ -6,6 +6,7 @@
 #include "geom/bvh.h"
 #include "geom/camera.h"
 #include "check.h"
+#include "geom/packet.h"
 #include "render/render.h"
 #include "base/rng.h"
 #include "geom/shape.h"
@@ -412,9 +413,8 @@ static void test_medium_albedo(void)
     CHECK(white > plain && white == white_tex);
 }
 
-/* A diffuse floor (xz rect at y = 0) under a rect light facing down at y = 2, seen from above:
-   one pixel's stats at max_depth depth. */
-static struct render_stats floor_pixel(int depth)
+/* A diffuse floor (xz rect at y = 0) under a rect light facing down at y = 2 (not finished). */
+static struct scene *floor_scene(void)
 {
     struct scene *sc = scene_new();
     struct material white = {.type = MAT_LAMBERTIAN, .albedo = v3(0.5, 0.5, 0.5), .texture = -1};
@@ -427,6 +427,13 @@ static struct render_stats floor_pixel(int depth)
     li.g.rect.a0 = li.g.rect.b0 = -0.5, li.g.rect.a1 = li.g.rect.b1 = 0.5, li.g.rect.k = 2;
     scene_add_prim(sc, &fl);
     scene_add_light(sc, scene_add_prim(sc, &li));
+    return sc;
+}
+
+/* floor_scene seen from above: one pixel's stats at max_depth depth. */
+static struct render_stats floor_pixel(int depth)
+{
+    struct scene *sc = floor_scene();
     struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0}; /* at the floor */
     float rgb[3];
     return pixel_of(sc, &d, 25, 50, depth, rgb);
@@ -468,6 +475,58 @@ static void closed_box_pixel(double x, double y, float rgb[3])
     struct camera_desc d = {v3(x, y, 0.9), v3(x, y, 0), v3(0, 1, 0), 60, 0, 1, 0, 0};
     struct render_stats st = pixel_of(sc, &d, 6.25, 25, 50, rgb);
     CHECK(st.samples == 256 && st.rays > 2 * st.samples);
+}
+
+/* floor_pixel's scene (floor, lamp above) at max_depth 2 with next-event estimation, pixel
+   sets of 16 points and light sets of 4 (sampler_dims: all when dims), 4x4 pixels; spread: with
+   40 spheres far below the floor (never reached), so that the scene has more than one BVH node
+   and its paths are traced one by one, not in lanes. The stats of pixel (1, 2). */
+static struct render_stats work_pixel(int spread, int dims)
+{
+    struct scene *sc = floor_scene();
+    for (int i = 0; spread && i < 40; i++) {
+        struct prim ball = {.type = PRIM_SPHERE, .material = 0};
+        ball.g.sphere.center = v3(40 * i, -100 - 30 * i, 0), ball.g.sphere.radius = 1;
+        scene_add_prim(sc, &ball);
+    }
+    struct err e;
+    CHECK(scene_finish(sc, &e) == 0);
+    CHECK(packet_usable(sc) == !spread);
+    struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0};
+    struct camera cam;
+    camera_init(&cam, &d, 1, &e);
+    struct sampler *pix = sampler_new(SAMPLER_JITTER, 25, 0, 0, &e),
+                   *lsm = sampler_new(SAMPLER_JITTER, 50, 0, 0, &e);
+    struct render_settings rs = {4, 4, 2, 1, 0, 1, dims, 0};
+    struct render_ctx *ctx = render_ctx_new(sc, &cam, &rs, pix, lsm, &e);
+    CHECK(ctx != NULL);
+    struct render_stats st;
+    render_stats_init(&st);
+    float rgb[3];
+    if (ctx)
+        render_pixel(ctx, 1, 2, rgb, &st);
+    render_ctx_free(ctx);
+    sampler_free(pix);
+    sampler_free(lsm);
+    scene_free(sc);
+    return st;
+}
+
+/* Issue 35: the work counts are counted alike in lanes (render_lanes.c) and one path at a time.
+   Every one of the 16 camera rays reaches the floor, which sends one shadow ray to the lamp and
+   one scattered ray (the last segment): 32 path segments, 16 shadow rays, 16 light points in 4
+   sets of 4; under sampler_dims: all the floor's three decisions (light choice, light point,
+   direction) come from the padded sets instead: 48 points of 3 sets. */
+static void test_work_counts(void)
+{
+    for (int spread = 0; spread < 2; spread++) {
+        struct render_stats st = work_pixel(spread, 0);
+        CHECK(st.samples == 16 && st.pixel_points == 16 && st.rays == 48 && st.shadow_rays == 16);
+        CHECK(st.light_points == 16 && st.light_sets == 4 && st.padded_points == 0 && st.padded_sets == 0);
+        st = work_pixel(spread, 1);
+        CHECK(st.samples == 16 && st.rays == 48 && st.shadow_rays == 16);
+        CHECK(st.light_points == 0 && st.light_sets == 0 && st.padded_points == 48 && st.padded_sets == 3);
+    }
 }
 
 static void test_closed_box(void)
@@ -543,6 +602,7 @@ int main(void)
     test_integrator();
     test_medium_albedo();
     test_last_segment();
+    test_work_counts();
     test_closed_box();
     test_sampler_time();
     return check_report("test_render");

@@ -19,8 +19,19 @@ static struct procs_result *result(void)
     static struct procs_result r;
     memset(&r, 0, sizeof r);
     r.processes = 2;
-    r.total = (struct render_stats){
-        .pixels = 12, .samples = 300, .rays = 900, .spp_min = 20, .spp_max = 30, .sampler_s = 0.25};
+    r.total = (struct render_stats){.pixels = 12,
+                                    .samples = 300,
+                                    .rays = 900,
+                                    .spp_min = 20,
+                                    .spp_max = 30,
+                                    .sampler_s = 0.25,
+                                    .shadow_rays = 200,
+                                    .light_sets = 4,
+                                    .pixel_points = 300,
+                                    .light_points = ((uint64_t)1 << 60) +
+                                                    1, /* past a double's 53 bits: read as a whole number */
+                                    .padded_points = 55,
+                                    .padded_sets = 9};
     r.wall_s = 1.5;
     r.cpu_s = 2.5;
     r.proc[0] = (struct procs_proc){.st = {.pixels = 6, .samples = 150}, .wall_s = 0.5, .cpu_s = 1.25};
@@ -68,6 +79,12 @@ static void test_round_trip(void)
           isnan(in.psnr));
     CHECK(!strcmp(in.error_domain, image_domain_name(IMG_LINEAR)));
     CHECK_NEAR(in.rmse, sqrt(0.5), 1e-9); /* written with 10 digits */
+    /* issue 35: the work counts, path segments being the rays that are not shadow rays */
+    CHECK(in.has_work && in.work.camera_samples == 300 && in.work.path_segments == 700 &&
+          in.work.shadow_rays == 200);
+    CHECK(in.work.pixel_points == 300 && in.work.light_points == ((uint64_t)1 << 60) + 1 &&
+          in.work.padded_points == 55);
+    CHECK(in.work.pixel_sets == 12 && in.work.light_sets == 4 && in.work.padded_sets == 9);
     CHECK(sidecar_matches(path, 0x0123456789abcdefULL) == 1);
     CHECK(sidecar_matches(path, 0x0123456789abcdeeULL) == 0);
     j.hash = 0;

@@ -9,7 +9,8 @@
 #include "geom/bvh.h"
 #include "render_path.h"
 
-/* One camera path from the ray r; returns its radiance estimate and adds its segments to *rays.
+/* One camera path from the ray r; returns its radiance estimate and adds its segments to *rays,
+   its shadow rays to *shadow.
    Diffuse and isotropic scattering draw from the mixture of the light pdf and their own (RTOW
    "The Rest of Your Life": half and half) and weight by scattering pdf / mixture pdf; mirrors and
    glass follow their one direction. Scattered directions are unit vectors. Each segment's
@@ -17,7 +18,7 @@
    then Russian roulette (path_survives) when how.roulette; inline, with the light strategy and
    last made once per pixel. how: the render's part of path_at and the camera sample's index. */
 static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, ray r, struct rng *rng,
-                                                        uint64_t *rays, struct path_at how)
+                                                        uint64_t *rays, uint64_t *shadow, struct path_at how)
 {
     const struct scene *sc = ctx->sc;
     struct path_state p = {r, v3(1, 1, 1), v3(0, 0, 0), 0};
@@ -30,7 +31,7 @@ static inline __attribute__((always_inline)) vec3 trace(struct render_ctx *ctx, 
         }
         struct path_at at = how;
         at.depth = depth;
-        if (!path_scatter(ctx, &p, rng, &h, rays, at) || !path_survives(ctx, &p, rng, at))
+        if (!path_scatter(ctx, &p, rng, &h, shadow, at) || !path_survives(ctx, &p, rng, at))
             break;
     }
     return p.L;
@@ -61,7 +62,8 @@ size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths
     if (timed)
         st->timed_draw_ns += clock_ns(CLOCK_MONOTONIC) - t0;
 
-    struct pixel_sums ps = {{0, 0, 0}, 0, 0};
+    struct pixel_sums ps = {{0, 0, 0}, 0, 0, 0};
+    ctx->light_points = ctx->padded_points = 0;
     /* nee samples the emitters alone: without any, only the material's own sampling is left */
     const int lights = !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
     const int nee = lights && ctx->rs.nee && ctx->sc->n_emitters > 0;
@@ -93,10 +95,10 @@ size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths
                                             .last = last,
                                             .medium_inline = 1,
                                             .sample = (uint32_t)s};
-                c = trace(ctx, r, &path_rng, &ps.rays, how);
+                c = trace(ctx, r, &path_rng, &ps.rays, &ps.shadow, how);
             } else {
                 const struct path_at how = {.lights = mix_or_none, .last = last, .medium_inline = 1};
-                c = trace(ctx, camera_ray(ctx->cam, u, v, &path_rng), &path_rng, &ps.rays, how);
+                c = trace(ctx, camera_ray(ctx->cam, u, v, &path_rng), &path_rng, &ps.rays, &ps.shadow, how);
             }
             add_estimate(c, ps.sum, &ps.nonfinite);
         }
@@ -108,7 +110,14 @@ size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths
         st->timed_pixel_ns += clock_ns(CLOCK_MONOTONIC) - t0;
     st->pixels++;
     st->samples += n;
-    st->rays += ps.rays;
+    st->rays += ps.rays + ps.shadow;
+    st->shadow_rays += ps.shadow;
+    st->pixel_points += drawn;
+    st->light_points += ctx->light_points;
+    st->padded_points += ctx->padded_points;
+    if (dims) /* the slots this pixel's samples reached, each drawn once */
+        for (int k = 0; k < ctx->pad.slots; k++)
+            st->padded_sets += ctx->pad.gen[k] == ctx->pad.pixel;
     st->nonfinite += ps.nonfinite;
     if (n < st->spp_min)
         st->spp_min = (uint32_t)n;

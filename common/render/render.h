@@ -22,10 +22,16 @@ struct render_settings {
 /* Counters one process accumulates; summed by the parent. */
 struct render_stats {
     uint64_t pixels;
-    uint64_t samples;    /* camera samples = camera rays */
-    uint64_t rays;       /* path segments traced (camera rays included) */
-    uint64_t light_sets; /* light point sets drawn */
-    uint64_t nonfinite;  /* samples whose estimate was NaN or infinite, counted as zero */
+    uint64_t samples;     /* camera samples = camera rays */
+    uint64_t rays;        /* rays traced: path segments (camera rays included) and shadow rays */
+    uint64_t shadow_rays; /* of rays, next-event estimation's shadow rays */
+    uint64_t light_sets;  /* light point sets drawn */
+    /* Work counts: the same on every machine, run, process count and split. Points of the pixel
+       sets drawn (a pixel's whole set, traced or not); light points taken from the light
+       sampler's sets; sampler_dims: all's decisions taken from the padded sets, and those sets
+       drawn (one per pixel and slot a sample reached). */
+    uint64_t pixel_points, light_points, padded_points, padded_sets;
+    uint64_t nonfinite; /* samples whose estimate was NaN or infinite, counted as zero */
     uint32_t spp_min, spp_max;
     /* One pixel in SAMPLER_TIME_EVERY is timed whole, and every point-set draw in it: their
        monotonic nanoseconds. Draws lie inside their pixel, so draw_ns <= pixel_ns always. */

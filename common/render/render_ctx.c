@@ -15,7 +15,12 @@ void render_stats_add(struct render_stats *into, const struct render_stats *from
     into->pixels += from->pixels;
     into->samples += from->samples;
     into->rays += from->rays;
+    into->shadow_rays += from->shadow_rays;
     into->light_sets += from->light_sets;
+    into->pixel_points += from->pixel_points;
+    into->light_points += from->light_points;
+    into->padded_points += from->padded_points;
+    into->padded_sets += from->padded_sets;
     into->nonfinite += from->nonfinite;
     into->timed_pixel_ns += from->timed_pixel_ns;
     into->timed_draw_ns += from->timed_draw_ns;

@@ -11,8 +11,10 @@
 static inline __attribute__((always_inline)) struct pt2 path_decide(struct render_ctx *ctx, struct rng *rng,
                                                                     struct path_at at, int k)
 {
-    if (at.depth < ctx->dims_bounces)
+    if (at.depth < ctx->dims_bounces) {
+        ctx->padded_points++;
         return padding_point(&ctx->pad, render_dims_slot(ctx, at.depth, k), at.sample);
+    }
     struct pt2 p;
     p.x = rng_uniform32(rng);
     p.y = rng_uniform32(rng);
@@ -35,10 +37,14 @@ static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct r
 {
     const struct camera *cam = ctx->cam;
     struct pt2 lens = {0, 0}, time = {0, 0};
-    if (cam->lens_radius > 0)
+    if (cam->lens_radius > 0) {
+        ctx->padded_points++;
         lens = padding_point(&ctx->pad, 0, s);
-    if (cam->time0 != cam->time1)
+    }
+    if (cam->time0 != cam->time1) {
+        ctx->padded_points++;
         time = padding_point(&ctx->pad, 1, s);
+    }
     return camera_ray_at(cam, u, v, lens.x, lens.y, time.x);
 }
 

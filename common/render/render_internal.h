@@ -29,7 +29,8 @@ struct render_ctx {
     struct rng light_rng;
     struct render_stats *st;
     int timed; /* the current pixel is timed (sampler_timed): its light draws add to timed_draw_ns */
-    struct packet_scene *packet; /* NULL, or four paths at once through packet_hit */
+    uint64_t light_points, padded_points; /* the pixel's so far: render_stats' work counts */
+    struct packet_scene *packet;          /* NULL, or four paths at once through packet_hit */
     /* sampler_dims: all: the pixel sampler's padded sets (sample/padding.h), DIMS_CAMERA +
        DIMS_PER_BOUNCE * dims_bounces slots, then dims_bounces more with Russian roulette (its
        coins: render_dims_slot); bounces past dims_bounces draw from the path's rng */
@@ -76,10 +77,10 @@ struct path_at {
 };
 
 /* A pixel's sums over its camera samples: the finite estimates (add_estimate), the count of the
-   others (nonfinite) and the path segments traced (rays). */
+   others (nonfinite), the path segments traced (rays) and the shadow rays (shadow). */
 struct pixel_sums {
     double sum[3];
-    uint64_t nonfinite, rays;
+    uint64_t nonfinite, rays, shadow;
 };
 
 /* The padded set of decision k of bounce depth (< ctx->dims_bounces): the roulette coins' sets

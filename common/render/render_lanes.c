@@ -21,7 +21,7 @@ struct path {
    render's part of path_at. trace's loop body: both are path_scatter then path_survives
    (render_path.h). */
 static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, struct path *pt, int got,
-                                                       struct hit *h, struct path_at how, uint64_t *rays)
+                                                       struct hit *h, struct path_at how, uint64_t *shadow)
 {
     if (!got) {
         pt->st.L = v3_add(pt->st.L, v3_mul(pt->st.beta, ctx->sc->background));
@@ -35,7 +35,7 @@ static inline __attribute__((always_inline)) int shade(struct render_ctx *ctx, s
                                .depth = pt->depth++,
                                .sample = pt->s,
                                .shadow = &pt->shadow};
-    return path_scatter(ctx, &pt->st, &pt->rng, h, rays, at) && path_survives(ctx, &pt->st, &pt->rng, at);
+    return path_scatter(ctx, &pt->st, &pt->rng, h, shadow, at) && path_survives(ctx, &pt->st, &pt->rng, at);
 }
 
 /* Camera sample s of pixel (x, y) into path pt, with an rng of its own: the pixel's path
@@ -97,7 +97,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     struct path pt[PACKET_LANES] = {0};
     const ray *rp[PACKET_LANES], *shadow_rp[PACKET_LANES];
     double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
-    uint64_t acc_rays = 0, acc_nonfinite = 0;
+    uint64_t acc_rays = 0, acc_shadow = 0, acc_nonfinite = 0;
     const int nee = how.lights == LIGHTS_NEE;
     int lanes = 0;
     size_t next = 0;
@@ -119,7 +119,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], how, &acc_rays))
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], how, &acc_shadow))
                 continue;
             if (nee) { /* ended, once its shadow ray is traced below */
                 ended |= 1 << i;
@@ -153,6 +153,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
         ps->sum[k] += acc[k];
     ps->nonfinite += acc_nonfinite;
     ps->rays += acc_rays;
+    ps->shadow += acc_shadow;
 }
 
 /* nee, sampler_dims: all or roulette (runtime values), out of line from the default's loop. */

@@ -21,6 +21,7 @@ static inline __attribute__((always_inline)) vec3 light_direction(struct render_
     struct pt2 s, turn = {0, 0};
     int turned = 0;
     if (ctx->uses_points[i]) {
+        ctx->light_points++;
         s = stream_next(&ctx->light_source, &ctx->lp[i], &ctx->light_rng, &turn, &turned);
         if (turned)
             stream_prefetch(&ctx->light_source, ctx->lp, sc->n_lights, &ctx->light_rng);

@@ -55,7 +55,7 @@ path_shadow_add(const struct render_ctx *ctx, struct path_shadow *sh, int got, c
    adding what it reaches; else it is traced here. */
 static inline __attribute__((always_inline)) void
 path_next_event(struct render_ctx *ctx, struct path_state *p, struct rng *rng, const struct hit *h,
-                vec3 albedo, double phase, uint64_t *rays, struct path_at at)
+                vec3 albedo, double phase, uint64_t *shadow_rays, struct path_at at)
 {
     const struct scene *sc = ctx->sc;
     const struct light_set emitters = light_set_emitters(sc);
@@ -83,7 +83,7 @@ path_next_event(struct render_ctx *ctx, struct path_state *p, struct rng *rng, c
         return;
     double w = pl * pl / (pl * pl + f_pdf * f_pdf);
     struct path_shadow sh = {{h->p, dir, p->r.time}, v3_mul(p->beta, albedo), f_pdf * w / pl, 1};
-    ++*rays;
+    ++*shadow_rays;
     if (at.shadow) {
         *at.shadow = sh;
         return;
@@ -98,14 +98,14 @@ path_next_event(struct render_ctx *ctx, struct path_state *p, struct rng *rng, c
    emission counts (a scattered ray would never be traced, so no direction, light point or pdf is
    drawn). at.lights: with the mixture the scene's lights are sampled by the books' pdf mixture;
    with nee by next-event estimation with MIS, p->mis_pdf carrying the last scatter's pdf and
-   *rays counting the shadow rays. at.medium_inline: a medium's scatter (its uniform direction and
+   *shadow_rays counting the shadow rays. at.medium_inline: a medium's scatter (its uniform direction and
    mixture pdf) inline, as a surface's (trace: final's fog scatters on most paths), else through
    calls (the lanes, whose scenes hold no media: inline there it cost checker ~1% and
    cornell-book3 7 instructions a sample by the code it moved). Always inline: the caller's ray,
    weight and radiance stay in its registers (a texture's lookup reads h through a copy). */
 static inline __attribute__((always_inline)) int path_scatter(struct render_ctx *ctx, struct path_state *p,
                                                               struct rng *rng, const struct hit *h,
-                                                              uint64_t *rays, struct path_at at)
+                                                              uint64_t *shadow_rays, struct path_at at)
 {
     const struct scene *sc = ctx->sc;
     const struct material *m = ctx->prim_material[h->prim];
@@ -116,7 +116,7 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
         if (nee) {
-            path_next_event(ctx, p, rng, h, albedo, 0, rays, at);
+            path_next_event(ctx, p, rng, h, albedo, 0, shadow_rays, at);
             onb frame = onb_from_w(h->n);
             if (at.dims) {
                 struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
@@ -209,7 +209,7 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
             c = path_decide(ctx, rng, at, DIM_CHOICE);
         }
         if (nee) {
-            path_next_event(ctx, p, rng, h, albedo, phase, rays, at);
+            path_next_event(ctx, p, rng, h, albedo, phase, shadow_rays, at);
             dir = at.dims            ? uniform_sphere_direction_uv(u.x, u.y)
                   : at.medium_inline ? uniform_sphere_direction_inline(rng)
                                      : uniform_sphere_direction(rng);

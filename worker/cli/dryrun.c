@@ -1,10 +1,12 @@
 /* dryrun: a job's, compare job's or suite's estimate, written nowhere but stdout. */
 #include "dryrun.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
 #include "study/load/compare_load.h"
@@ -12,8 +14,8 @@
 #include "study/run/compare_ref.h"
 #include "study/judge/verdict.h"
 
-/* One plain job's pilot, and what all of a compare job's pilots share (each takes a pixel at
-   least), in CPU seconds. */
+/* The cost model's measuring budget in CPU seconds (cost_model.h: each pilot takes a path at
+   least, each set timing a set): a plain job's, and a compare job's or suite's in all. */
 #define DRYRUN_JOB_BUDGET_S 0.5
 #define DRYRUN_STUDY_BUDGET_S 3.0
 
@@ -78,37 +80,64 @@ static void print_cpu(double cpu_s, int processes, const char *how)
            duration(wall_of(cpu_s, processes), b, sizeof b), processes, processes == 1 ? "" : "es", cores);
 }
 
+/* Where the estimate's CPU time goes: tracing and each kind of point set. */
+static void print_parts(const struct cost_estimate *c)
+{
+    char a[32], b[32], n[32];
+    printf("  cost      tracing %s (%.3g ns per sample); pixel sets %s", duration(c->trace_s, a, sizeof a),
+           c->ns_per_sample, duration(c->pixel_sets_s, b, sizeof b));
+    if (c->light_sets > 0)
+        printf("; %s light sets %s", count(c->light_sets, n, sizeof n),
+               duration(c->light_sets_s, a, sizeof a));
+    if (c->padded_sets > 0)
+        printf("; %s padded sets %s", count(c->padded_sets, n, sizeof n),
+               duration(c->padded_sets_s, a, sizeof a));
+    printf("%s\n", c->sets_scaled ? " (sets too large to draw here: timed smaller, scaled)" : "");
+}
+
+/* The CPU seconds this dry run took, all of it (the measuring and the rest). */
+static void print_took(void)
+{
+    printf("  dry run   took %.3g s of CPU\n", clock_s(CLOCK_PROCESS_CPUTIME_ID));
+}
+
 static int plain(const struct jobfile *f, const struct run_opts *o)
 {
     const struct job *jp = &f->job;
     struct job_estimate est;
     struct scene_file sf = {0};
     struct err e = {0};
+    struct cost_model *m = cost_model_new(DRYRUN_JOB_BUDGET_S);
     /* the scene as jobfile_open read it: built here, not read again */
-    int rc = scene_load_src(&f->scene, &sf, &e) < 0 ||
-                     job_estimate(jp, &sf, o->processes, DRYRUN_JOB_BUDGET_S, &est, &e) < 0
+    int rc = !m ? (err_set(&e, jp->path, 0, 0, "out of memory"), 2)
+             : scene_load_src(&f->scene, &sf, &e) < 0 || job_estimate(jp, &sf, o->processes, m, &est, &e) < 0
                  ? 2
                  : 0;
     scene_file_free(&sf);
+    cost_model_free(m);
     if (rc) {
         err_print_e(&e);
         return 2;
     }
     const struct job j = *jp;
+    const struct cost_estimate *c = &est.cost;
+    char light[96];
     printf("%s: dry run: nothing rendered, nothing written\n", j.name);
-    printf("  image     %dx%d, %s t=%g, light %s t=%g -> %s/%s/%s\n", est.width, est.height,
-           sampler_kind_name(j.sampler), j.threshold, sampler_kind_name(j.light_sampler), j.light_threshold,
-           o->out_dir, j.name, j.output);
+    printf("  image     %dx%d, %s t=%g, %s -> %s/%s/%s\n", est.width, est.height,
+           sampler_kind_name(j.sampler), j.threshold, job_light_text(&j, light, sizeof light), o->out_dir,
+           j.name, j.output);
     char num[32];
     printf("  samples   %s (%.4g per pixel)\n", count(est.samples, num, sizeof num), est.spp_mean);
     print_memory(&est, "about");
     char how[160], cut[64] = "";
-    if (est.pilot_traced < est.pilot_samples) /* a pixel too costly for the pilot's time */
-        snprintf(cut, sizeof cut, ", %.0f of %s %.0f samples traced", est.pilot_traced,
-                 est.pilot_pixels == 1 ? "its" : "their", est.pilot_samples);
-    snprintf(how, sizeof how, " (%.3g ns per sample, from a pilot of %d pixel%s%s)", est.ns_per_sample,
-             est.pilot_pixels, est.pilot_pixels == 1 ? "" : "s", cut);
+    if (c->pilot_traced < c->pilot_samples) /* a pixel too costly for the pilot's time */
+        snprintf(cut, sizeof cut, ", %.0f of %s %.0f samples traced", c->pilot_traced,
+                 c->pilot_pixels == 1 ? "its" : "their", c->pilot_samples);
+    snprintf(how, sizeof how, " (%.3g ns per sample, from a pilot of %d pixel%s%s)", c->ns_per_sample,
+             c->pilot_pixels, c->pilot_pixels == 1 ? "" : "s", cut);
     print_cpu(est.cpu_s, est.processes, how);
+    print_parts(c);
+    print_took();
     return 0;
 }
 
@@ -134,24 +163,26 @@ static void print_study(const struct compare *c, const struct study_sum *sum)
 /* The reference of scene s (given as settings): its estimate, and the guard the verdict applies
    once it is rendered (verdict_say_warnings), known now. */
 static int study_reference(const struct compare *c, int s, const struct scene_file *sf, double densest,
-                           double budget, const struct run_opts *o, struct study_sum *sum, struct err *e)
+                           struct cost_model *m, const struct run_opts *o, struct study_sum *sum,
+                           struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[s];
     struct job_estimate est, half;
     struct job hj;
     /* as rendered: two independent halves, each at the thresholds times sqrt 2 */
     compare_ref_half_job(cs, 0, &hj);
-    if (job_estimate(&hj, sf, o->processes, budget, &half, e) < 0)
+    if (job_estimate(&hj, sf, o->processes, m, &half, e) < 0)
         return -1;
     est = half;
     est.samples = 2 * half.samples;
     est.spp_mean = 2 * half.spp_mean;
     est.cpu_s = 2 * half.cpu_s;
-    char a[32], num[32];
-    printf("  reference %s: %dx%d %s t=%g: %s samples (%.4g per pixel: two halves at t=%g), CPU about %s "
+    char a[32], num[32], light[96];
+    printf("  reference %s: %dx%d %s t=%g, %s: %s samples (%.4g per pixel: two halves at t=%g), CPU about %s "
            "(unless cached)\n",
            cs->name, est.width, est.height, sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
-           count(est.samples, num, sizeof num), est.spp_mean, hj.threshold, duration(est.cpu_s, a, sizeof a));
+           job_light_text(&cs->ref_job, light, sizeof light), count(est.samples, num, sizeof num),
+           est.spp_mean, hj.threshold, duration(est.cpu_s, a, sizeof a));
     if (est.spp_mean < VERDICT_REF_FACTOR * densest)
         printf("  warning: %s: the reference would have %.0f samples per pixel, fewer than %dx the densest "
                "point's %.0f: its own noise would be a large part of the error measured there; give the "
@@ -162,45 +193,135 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
     return 0;
 }
 
-/* Estimate every image of c (once per seedless combination: seeds cost alike) and its references. */
-static int study(const struct compare *c, const struct run_opts *o, struct study_sum *sum, struct err *e)
+/* Sweep points of one scene and variant whose images get the same samples per pixel (spp, by
+   point): warned once per variant, naming the first such pair (thresholds 100 and 80 both give
+   one sample: two points measure one thing). */
+static void warn_same_points(const struct compare *c, int s, int v, const double *spp)
 {
-    int rc = -1, combos = c->n_items / (c->n_seeds > 0 ? c->n_seeds : 1);
-    double budget = DRYRUN_STUDY_BUDGET_S / (combos + c->n_scenes);
+    for (int p = 0; p < c->n_points; p++)
+        for (int q = p + 1; q < c->n_points; q++)
+            if (spp[p] > 0 && fabs(spp[p] - spp[q]) <= 1e-9 * spp[p]) {
+                printf("  warning: %s, %s: sweep points %s and %s both give %.4g sample%s per pixel: they "
+                       "measure one thing twice; pick thresholds further apart\n",
+                       c->scenes[s].name, c->variants[v], c->points[p], c->points[q], spp[p],
+                       spp[p] == 1 ? "" : "s");
+                return;
+            }
+}
+
+/* What the dry run can tell before rendering that would make the study say less than asked. */
+static void warn_study(const struct compare *c, const double *spp)
+{
+    if (c->n_seeds < 2)
+        printf("  warning: one seed: no spread across seeds to judge a difference by, so the verdict ranks "
+               "nothing; give seeds: [1, 2, ...] (8 or more to separate close variants)\n");
+    for (int s = 0; s < c->n_scenes; s++)
+        for (int v = 0; v < c->n_variants; v++)
+            warn_same_points(c, s, v, spp + ((size_t)s * c->n_variants + v) * c->n_points);
+}
+
+/* The loaded scenes of a dry run, one per scene file read (a suite's studies share them): the
+   cost model's pilots are shared between studies through them. */
+struct dry_scenes {
+    const struct study_scene **input;
+    struct scene_file *sf;
+    int n;
+};
+
+/* The loaded scene of study scene cs. */
+static const struct scene_file *scene_of(const struct dry_scenes *ds, const struct compare_scene *cs)
+{
+    for (int i = 0; i < ds->n; i++)
+        if (ds->input[i] == cs->input)
+            return &ds->sf[i];
+    return NULL;
+}
+
+/* Load every scene of the n studies once into ds and tell m of every estimate to come (each
+   combination once, each settings reference's half). 0, or -1 with e filled. */
+static int dry_prepare(struct compare *const *studies, int n, struct dry_scenes *ds, struct cost_model *m,
+                       struct err *e)
+{
+    int total = 0;
+    for (int i = 0; i < n; i++)
+        total += studies[i]->n_scenes;
+    ds->input = calloc((size_t)total, sizeof *ds->input);
+    ds->sf = calloc((size_t)total, sizeof *ds->sf);
+    if (!ds->input || !ds->sf)
+        return err_set(e, NULL, 0, 0, "out of memory");
+    for (int i = 0; i < n; i++) {
+        const struct compare *c = studies[i];
+        for (int s = 0; s < c->n_scenes; s++) {
+            if (scene_of(ds, &c->scenes[s]))
+                continue;
+            ds->input[ds->n] = c->scenes[s].input;
+            if (scene_load_src(&c->scenes[s].input->src, &ds->sf[ds->n++], e) < 0) /* as the study read it */
+                return -1;
+        }
+        for (int k = 0; k < c->n_items; k++)
+            if (c->items[k].seed == 0 &&
+                job_estimate_expect(&c->items[k].job, scene_of(ds, &c->scenes[c->items[k].scene]), m, e) < 0)
+                return -1;
+        for (int s = 0; s < c->n_scenes; s++) {
+            struct job hj;
+            if (c->scenes[s].ref_kind != COMPARE_REF_SETTINGS)
+                continue;
+            compare_ref_half_job(&c->scenes[s], 0, &hj);
+            if (job_estimate_expect(&hj, scene_of(ds, &c->scenes[s]), m, e) < 0)
+                return -1;
+        }
+    }
+    return 0;
+}
+
+static void dry_scenes_free(struct dry_scenes *ds)
+{
+    for (int i = 0; ds->sf && i < ds->n; i++)
+        scene_file_free(&ds->sf[i]);
+    free(ds->sf);
+    free(ds->input);
+}
+
+/* Estimate every image of c (once per seedless combination: seeds cost alike) and its references
+   by the cost model m (its pilots and set timings shared between combinations of equal settings). */
+static int study(const struct compare *c, const struct dry_scenes *ds, struct cost_model *m,
+                 const struct run_opts *o, struct study_sum *sum, struct err *e)
+{
+    int rc = -1;
     double *densest = calloc((size_t)c->n_scenes, sizeof *densest);
-    struct scene_file *sf = calloc((size_t)c->n_scenes, sizeof *sf);
+    double *spp = calloc((size_t)c->n_scenes * c->n_variants * c->n_points, sizeof *spp);
     *sum = (struct study_sum){.spp_lo = 1e300};
-    for (int s = 0; sf && s < c->n_scenes; s++)
-        if (scene_load_src(&c->scenes[s].input->src, &sf[s], e) < 0) /* as the study read it */
-            goto done;
-    for (int i = 0; sf && densest && i < c->n_items; i++) {
+    if (!densest || !spp) {
+        err_set(e, c->path, 0, 0, "out of memory");
+        goto done;
+    }
+    for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         struct job_estimate est;
         if (it->seed != 0)
             continue;
-        if (job_estimate(&it->job, &sf[it->scene], o->processes, budget, &est, e) < 0)
+        if (job_estimate(&it->job, scene_of(ds, &c->scenes[it->scene]), o->processes, m, &est, e) < 0)
             goto done;
         sum->samples += est.samples * c->n_seeds;
         sum->cpu_s += est.cpu_s * c->n_seeds;
         sum->spp_lo = est.spp_mean < sum->spp_lo ? est.spp_mean : sum->spp_lo;
         sum->spp_hi = est.spp_mean > sum->spp_hi ? est.spp_mean : sum->spp_hi;
         densest[it->scene] = est.spp_mean > densest[it->scene] ? est.spp_mean : densest[it->scene];
+        spp[((size_t)it->scene * c->n_variants + it->variant) * c->n_points + it->point] = est.spp_mean;
         if (job_estimate_memory(&est) > job_estimate_memory(&sum->largest))
             sum->largest = est;
         sum->processes = est.processes;
     }
-    if (sf && densest)
-        print_study(c, sum);
-    for (int s = 0; sf && densest && s < c->n_scenes; s++)
+    print_study(c, sum);
+    warn_study(c, spp);
+    for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_kind == COMPARE_REF_SETTINGS &&
-            study_reference(c, s, &sf[s], densest[s], budget, o, sum, e) < 0)
+            study_reference(c, s, scene_of(ds, &c->scenes[s]), densest[s], m, o, sum, e) < 0)
             goto done;
-    rc = sf && densest ? 0 : err_set(e, c->path, 0, 0, "out of memory");
+    rc = 0;
 done:
-    for (int s = 0; sf && s < c->n_scenes; s++)
-        scene_file_free(&sf[s]);
-    free(sf);
     free(densest);
+    free(spp);
     return rc;
 }
 
@@ -216,14 +337,22 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     }
     struct compare *const *studies = suite ? suite->studies : &one;
     int n = suite ? suite->n_studies : 1, rc = 0;
+    struct cost_model *m = cost_model_new(DRYRUN_STUDY_BUDGET_S);
+    struct dry_scenes ds = {0};
     double cpu_s = 0, ref_cpu_s = 0;
     int processes = 1;
     printf("%s: dry run: nothing rendered, nothing written\n", suite ? suite->name : one->name);
+    if (!m)
+        err_set(&e, f->path, 0, 0, "out of memory");
+    if (!m || dry_prepare(studies, n, &ds, m, &e) < 0) {
+        err_print_e(&e);
+        rc = 2;
+    }
     for (int i = 0; i < n && rc == 0; i++) {
         struct study_sum sum;
         if (suite)
             printf(" study %s\n", studies[i]->name);
-        if (study(studies[i], o, &sum, &e) < 0) {
+        if (study(studies[i], &ds, m, o, &sum, &e) < 0) {
             err_print_e(&e);
             rc = 2;
             break;
@@ -237,7 +366,10 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
         snprintf(how, sizeof how, " in all (references %s of it, unless cached), from pilots of a few pixels",
                  duration(ref_cpu_s, a, sizeof a));
         print_cpu(cpu_s, processes, how);
+        print_took();
     }
+    dry_scenes_free(&ds);
+    cost_model_free(m);
     compare_suite_free(suite);
     compare_free(one);
     return rc;

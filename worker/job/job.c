@@ -404,6 +404,17 @@ const char *job_sets_tag(const struct job *j)
     return j->dims_all ? " poisson torus padded uniformly" : " poisson torus";
 }
 
+const char *job_light_text(const struct job *j, char *buf, size_t n)
+{
+    if (!j->light_sampling)
+        snprintf(buf, n, "no light sampling");
+    else if (j->dims_all) /* the light sampler is never asked: render_path.h's path_decide */
+        snprintf(buf, n, "light points from the %s sets (sampler_dims: all)", sampler_kind_name(j->sampler));
+    else
+        snprintf(buf, n, "light %s t=%g", sampler_kind_name(j->light_sampler), j->light_threshold);
+    return buf;
+}
+
 int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e)
 {
     job_defaults(j, path);

@@ -81,6 +81,11 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e);
    an image rendered by an earlier rule is never found current. */
 const char *job_sets_tag(const struct job *j);
 
+/* Where j's light points really come from, for a caption: "light jitter t=5", or under
+   sampler_dims: all (which never asks the light sampler) "light points from the sobol sets
+   (sampler_dims: all)", or "no light sampling". Written into buf (n bytes), returned. */
+const char *job_light_text(const struct job *j, char *buf, size_t n);
+
 /* The keys a job file may hold, NULL-terminated. */
 extern const char *const job_keys[];
 

@@ -12,7 +12,7 @@
 #include "base/hash.h"
 
 #define PART_MAGIC "WPART\r\n\x1a" /* 8 bytes; the CR LF catch text-mode mangling, as PNG's do */
-#define PART_HEADER 120            /* bytes before the rows */
+#define PART_HEADER 160            /* bytes before the rows */
 
 uint64_t part_hash(const struct job *j)
 {
@@ -93,7 +93,12 @@ static void encode_header(uint8_t *b, const struct part_header *h)
     p = put_f64(p, h->st.sampler_s);
     p = put_f64(p, h->wall_s);
     p = put_f64(p, h->cpu_s);
-    put_u64(p, h->peak_rss_kb);
+    p = put_u64(p, h->peak_rss_kb);
+    p = put_u64(p, h->st.shadow_rays);
+    p = put_u64(p, h->st.pixel_points);
+    p = put_u64(p, h->st.light_points);
+    p = put_u64(p, h->st.padded_points);
+    put_u64(p, h->st.padded_sets);
 }
 
 /* Bytes of the part file whose header is h: header, its rows, CRC. */
@@ -127,6 +132,11 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     h->wall_s = get_f64(&p);
     h->cpu_s = get_f64(&p);
     h->peak_rss_kb = get_u64(&p);
+    h->st.shadow_rays = get_u64(&p);
+    h->st.pixel_points = get_u64(&p);
+    h->st.light_points = get_u64(&p);
+    h->st.padded_points = get_u64(&p);
+    h->st.padded_sets = get_u64(&p);
     if (h->version != PART_VERSION)
         return err_set(e, path, 0, 0,
                        "a part file of another worker version (part format %u; this worker reads format %d): "
@@ -189,8 +199,10 @@ int part_check_contents(const struct part_file *pf, const char *path, struct err
         return err_set(e, path, 0, 0, "damaged part file: counts %llu pixels but holds %llu",
                        (unsigned long long)st->pixels, (unsigned long long)(rows * h->width));
     if (st->samples >= PART_MAX_COUNT || st->rays >= PART_MAX_COUNT || st->light_sets >= PART_MAX_COUNT ||
-        st->nonfinite > st->samples || (st->pixels > 0 && st->spp_min > st->spp_max) ||
-        st->samples < st->pixels * (uint64_t)st->spp_min ||
+        st->pixel_points >= PART_MAX_COUNT || st->light_points >= PART_MAX_COUNT ||
+        st->padded_points >= PART_MAX_COUNT || st->padded_sets >= PART_MAX_COUNT ||
+        st->shadow_rays > st->rays || st->nonfinite > st->samples ||
+        (st->pixels > 0 && st->spp_min > st->spp_max) || st->samples < st->pixels * (uint64_t)st->spp_min ||
         st->samples > st->pixels * (uint64_t)st->spp_max || st->rays < st->samples)
         return err_set(e, path, 0, 0,
                        "damaged part file: impossible counts (%llu samples, %u to %u per pixel, %llu rays)",

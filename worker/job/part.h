@@ -9,7 +9,7 @@
 #include "procs.h"
 #include "job.h"
 
-#define PART_VERSION 1
+#define PART_VERSION 2
 #define PART_MAX PROCS_MAX_PROCESSES /* most parts one image may be split into */
 
 /* What a part must have been rendered from to merge with j's other parts: j->hash (job file and
@@ -25,7 +25,8 @@ struct part_frame {
 /* Write part I of N of the render fb (only the part's rows are stored) with fr's stats,
    atomically. Layout, little-endian: "WPART\r\n\x1a", u32 version,
    width, height, part, parts, processes, u64 hash, u64 pixels, samples, rays, light sets,
-   non-finite, u32 spp min, max, f64 sampler_s, wall_s, cpu_s, u64 peak RSS (kB); then the part's rows in
+   non-finite, u32 spp min, max, f64 sampler_s, wall_s, cpu_s, u64 peak RSS (kB), u64 shadow rays,
+   pixel points, light points, padded points, padded sets (format 2); then the part's rows in
    order, width * 3 f32 each; then a u32 CRC-32 of everything before. 0 or -1 with e filled. */
 int part_write(const char *path, const struct job *j, const struct part_frame *fb, int part, int parts,
                const struct procs_result *fr, struct err *e);

@@ -14,6 +14,30 @@
 #include "machine.h"
 #include "scenefile/yamlx.h"
 
+struct sidecar_work sidecar_work_of(const struct render_stats *st)
+{
+    return (struct sidecar_work){
+        st->samples,      st->rays - st->shadow_rays, st->shadow_rays, st->pixel_points,
+        st->light_points, st->padded_points,          st->pixels,      st->light_sets,
+        st->padded_sets};
+}
+
+/* The work counts w as the sidecar's object "work". */
+static void work_json(struct json *js, const struct sidecar_work *w)
+{
+    json_begin_object(js, "work");
+    json_uint(js, "camera_samples", w->camera_samples);
+    json_uint(js, "path_segments", w->path_segments);
+    json_uint(js, "shadow_rays", w->shadow_rays);
+    json_uint(js, "pixel_points", w->pixel_points);
+    json_uint(js, "light_points", w->light_points);
+    json_uint(js, "padded_points", w->padded_points);
+    json_uint(js, "pixel_sets", w->pixel_sets);
+    json_uint(js, "light_sets", w->light_sets);
+    json_uint(js, "padded_sets", w->padded_sets);
+    json_end_object(js);
+}
+
 char *sidecar_json(const struct sidecar *s)
 {
     const struct job *j = s->job;
@@ -67,6 +91,8 @@ char *sidecar_json(const struct sidecar *s)
     json_uint(&js, "camera", t->samples);
     json_uint(&js, "total", t->rays);
     json_end_object(&js);
+    const struct sidecar_work work = sidecar_work_of(t);
+    work_json(&js, &work);
 
     json_begin_object(&js, "time");
     json_number(&js, "wall_s", r->wall_s);
@@ -186,16 +212,28 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
         return ydoc_fail(d, root, e, "a sidecar holds one JSON object, got %s",
                          root ? ydoc_node_kind(root) : "nothing");
     yaml_node_t *samples = ymap_get(d, root, "samples"), *time = ymap_get(d, root, "time"),
-                *error = ymap_get(d, root, "error");
+                *error = ymap_get(d, root, "error"), *work = ymap_get(d, root, "work");
     const struct {
         const char *key;
         yaml_node_t *n;
-    } parts[] = {{"samples", samples}, {"time", time}, {"error", error}};
+    } parts[] = {{"samples", samples}, {"time", time}, {"error", error}, {"work", work}};
     for (size_t i = 0; i < sizeof parts / sizeof parts[0]; i++)
         if (parts[i].n && parts[i].n->type != YAML_MAPPING_NODE)
             return ydoc_fail(d, parts[i].n, e, "%s: expected an object, got %s", parts[i].key,
                              ydoc_node_kind(parts[i].n));
     out->has_error = error != NULL;
+    out->has_work = work != NULL;
+    struct sidecar_work *w = &out->work;
+    if (count_at(d, work, "camera_samples", &w->camera_samples, e) < 0 ||
+        count_at(d, work, "path_segments", &w->path_segments, e) < 0 ||
+        count_at(d, work, "shadow_rays", &w->shadow_rays, e) < 0 ||
+        count_at(d, work, "pixel_points", &w->pixel_points, e) < 0 ||
+        count_at(d, work, "light_points", &w->light_points, e) < 0 ||
+        count_at(d, work, "padded_points", &w->padded_points, e) < 0 ||
+        count_at(d, work, "pixel_sets", &w->pixel_sets, e) < 0 ||
+        count_at(d, work, "light_sets", &w->light_sets, e) < 0 ||
+        count_at(d, work, "padded_sets", &w->padded_sets, e) < 0)
+        return -1;
     return string_at(d, root, "job", out->job, sizeof out->job, e) < 0 ||
                    string_at(d, root, "job_file", out->job_file, sizeof out->job_file, e) < 0 ||
                    hash_at(d, root, out, e) < 0 ||

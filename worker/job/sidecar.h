@@ -19,6 +19,17 @@ struct sidecar {
 /* Largest sidecar sidecar_read reads (one with PROCS_MAX_PROCESSES per_process entries is ~40 kB). */
 #define SIDECAR_MAX_BYTES (1u << 20)
 
+/* A render's work counts (the sidecar's "work"): deterministic, the same on every machine, run,
+   process count and split. render_stats' counters, named as the sidecar names them. */
+struct sidecar_work {
+    uint64_t camera_samples, path_segments, shadow_rays; /* segments: camera rays included */
+    uint64_t pixel_points, light_points, padded_points;  /* points taken from each kind of set */
+    uint64_t pixel_sets, light_sets, padded_sets;        /* sets drawn of each kind */
+};
+
+/* The work counts of st. */
+struct sidecar_work sidecar_work_of(const struct render_stats *st);
+
 /* What callers read back from a sidecar (sidecar_read). A key the file lacks leaves its field ""
    or 0; a number written as null (not finite) reads as NaN. */
 struct sidecar_info {
@@ -36,6 +47,8 @@ struct sidecar_info {
     int has_error;                                                  /* error.* were there */
     char error_domain[16]; /* what the error was measured on: "linear" or "8-bit" */
     double mse, rmse, relmse, relmse_robust, psnr;
+    int has_work; /* "work" was there (sidecars since issue 35) */
+    struct sidecar_work work;
 };
 
 /* Render the sidecar as JSON text into a malloc'd string (caller frees); NULL on no memory. */

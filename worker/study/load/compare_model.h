@@ -10,6 +10,7 @@
 
 #include "image/metrics.h"
 #include "job/job.h"
+#include "job/sidecar.h"
 #include "study_env.h"
 #include "study_inputs.h"
 #include "verdict_model.h"
@@ -56,6 +57,7 @@ struct compare_item {
     struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
     double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
     double flip;                          /* mean FLIP (HDR on linear, LDR on 8-bit) against it */
+    struct sidecar_work work;             /* its render's work counts (the sidecar's "work") */
 };
 
 struct compare {

@@ -116,10 +116,11 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
     if (rc)
         return -1;
     sbuf_printf(b, "<figcaption><b>reference</b>: ");
+    char light[96];
     if (cs->ref_kind == COMPARE_REF_SETTINGS)
-        sbuf_printf(b, "%s t=%g, light %s t=%g, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
-                    cs->ref_job.threshold, sampler_kind_name(cs->ref_job.light_sampler),
-                    cs->ref_job.light_threshold, (unsigned long long)cs->ref_job.seed,
+        sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
+                    cs->ref_job.threshold, job_light_text(&cs->ref_job, light, sizeof light),
+                    (unsigned long long)cs->ref_job.seed,
                     cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
     else
         sbuf_escape(b, cs->ref_path);
@@ -190,12 +191,15 @@ void report_link(struct sbuf *b, const char *href, const char *text)
 
 static void table(struct sbuf *b, const struct compare *c)
 {
-    static const char *const head[] = {"scene",    "variant", "threshold", "light threshold", "seed",
-                                       "spp mean", "wall s",  "cpu s",     "sampler share",   "mse",
-                                       "rmse",     "relmse",  "psnr dB",   "image, sidecar"};
+    /* the work counts beside the times: the same on every machine (summary.csv has them all) */
+    static const char *const head[] = {
+        "scene",  "variant", "threshold",     "light threshold", "seed",          "spp mean",
+        "wall s", "cpu s",   "sampler share", "segments",        "shadow rays",   "set points",
+        "mse",    "rmse",    "relmse",        "psnr dB",         "image, sidecar"};
+    const size_t n_head = sizeof head / sizeof head[0];
     sbuf_printf(b, "<table>\n<tr>");
-    for (size_t i = 0; i < sizeof head / sizeof head[0]; i++)
-        sbuf_printf(b, "<th%s>%s</th>", i < 2 || i == 13 ? " class=\"l\"" : "", head[i]);
+    for (size_t i = 0; i < n_head; i++)
+        sbuf_printf(b, "<th%s>%s</th>", i < 2 || i == n_head - 1 ? " class=\"l\"" : "", head[i]);
     sbuf_printf(b, "</tr>\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
@@ -207,6 +211,10 @@ static void table(struct sbuf *b, const struct compare *c)
             b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
             it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
             it->wall_s, it->cpu_s, it->sampler_share);
+        const struct sidecar_work *w = &it->work;
+        sbuf_printf(b, "<td>%llu</td><td>%llu</td><td>%llu</td>", (unsigned long long)w->path_segments,
+                    (unsigned long long)w->shadow_rays,
+                    (unsigned long long)(w->pixel_points + w->light_points + w->padded_points));
         if (it->has_error)
             sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td>", it->error.mse,
                         it->error.rmse, it->error.relmse, it->error.psnr);

@@ -78,6 +78,7 @@ static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, 
     it->cpu_s = info.cpu_s;
     it->sampler_share = info.sampling_share;
     it->nonfinite = info.nonfinite;
+    it->work = info.work;
     return 0;
 }
 
@@ -178,6 +179,7 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->wall_s = rr.procs.wall_s;
         it->cpu_s = rr.procs.cpu_s;
         it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
+        it->work = sidecar_work_of(t);
     }
     if (ref && (rr.skipped || cs->mask)) { /* the sidecar's figures are the whole image's */
         if (score_files(it, &rr, ref, cs, e) < 0)
@@ -212,7 +214,8 @@ static char *summary_csv(const struct compare *c)
     sbuf_printf(&b,
                 "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
                 "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
-                "flip,image\n");
+                "flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,"
+                "pixel_sets,light_sets,padded_sets,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
@@ -231,6 +234,13 @@ static char *summary_csv(const struct compare *c)
         else
             sbuf_printf(&b, ",");
         sbuf_printf(&b, it->has_error && isfinite(it->flip) ? "%.6g," : ",", it->flip);
+        const struct sidecar_work *w = &it->work; /* deterministic: the same on every machine */
+        sbuf_printf(&b, "%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,",
+                    (unsigned long long)w->camera_samples, (unsigned long long)w->path_segments,
+                    (unsigned long long)w->shadow_rays, (unsigned long long)w->pixel_points,
+                    (unsigned long long)w->light_points, (unsigned long long)w->padded_points,
+                    (unsigned long long)w->pixel_sets, (unsigned long long)w->light_sets,
+                    (unsigned long long)w->padded_sets);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);

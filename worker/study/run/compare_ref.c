@@ -135,9 +135,10 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
                     "older worker): rendering it again\n",
                     cs->name, path);
         cs->ref_reused = 0;
-        run_say(o, "%s: rendering the reference's half %c (%s t=%g, light %s t=%g, seed %llu) into %s\n",
-                cs->name, "ab"[h], sampler_kind_name(j.sampler), j.threshold,
-                sampler_kind_name(j.light_sampler), j.light_threshold, (unsigned long long)j.seed, path);
+        char light[96];
+        run_say(o, "%s: rendering the reference's half %c (%s t=%g, %s, seed %llu) into %s\n", cs->name,
+                "ab"[h], sampler_kind_name(j.sampler), j.threshold, job_light_text(&j, light, sizeof light),
+                (unsigned long long)j.seed, path);
         struct run_result rr;
         struct run_opts forced = *o;
         forced.force = 1;               /* its sidecar may call a damaged image current */

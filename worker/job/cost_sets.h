@@ -1,0 +1,48 @@
+/* cost_sets: what one point set costs to draw, measured on this machine: a pixel's set, a light's
+   set as its stream draws it, or one padded set of sampler_dims: all. A part of the cost model
+   (cost_model.h); cached, so that estimates of equal settings time each set once. */
+#ifndef COST_SETS_H
+#define COST_SETS_H
+
+#include "base/err.h"
+#include "sample/sampler.h"
+
+/* Sets of a capacity above this are not drawn: their cost is measured on two smaller sets of
+   the kind (COST_SETS_SMALL and COST_SETS_DIRECT_MAX points) and scaled as a power of the size. */
+#define COST_SETS_DIRECT_MAX 16384
+#define COST_SETS_SMALL 4096
+
+/* How a set is drawn: whole for a pixel (sampler_draw_at), as a light's stream refills
+   (stream_refill: a grid's or pool's indices, a fresh set's points), or as a padded slot
+   (padding_fill: whole sets up to the pixel's count, shuffled). */
+enum cost_set_use { COST_SET_PIXEL, COST_SET_LIGHT, COST_SET_PADDED };
+
+/* The settings a set's cost depends on. */
+struct cost_sampler {
+    enum sampler_kind kind;
+    double threshold;
+    int pooled; /* poisson_pool > 0: sets from a pool (its size does not change a draw's cost) */
+    enum poisson_domain domain;
+};
+
+/* One set's measured cost (CPU seconds) and its mean points; scaled: from two smaller sets. */
+struct cost_set {
+    double s_per_set, points;
+    int scaled;
+};
+
+struct cost_sets;
+
+/* An empty cache. NULL on no memory. Free with cost_sets_free (accepts NULL). */
+struct cost_sets *cost_sets_new(void);
+void cost_sets_free(struct cost_sets *c);
+
+/* The cost of one set of sp drawn as `use`, measured now (repeated until about target_s CPU
+   seconds or 4096 sets, one set and 20 microseconds at least) or taken from the cache; target_s 0
+   (the caller's time is spent): scaled from the cached set of the same kind nearest in size
+   when there is one. The CPU seconds
+   measuring took are added to *spent_s. 0, or -1 with e filled (no memory). */
+int cost_sets_get(struct cost_sets *c, const struct cost_sampler *sp, enum cost_set_use use, double target_s,
+                  struct cost_set *out, double *spent_s, struct err *e);
+
+#endif
