@@ -179,18 +179,12 @@ static void process(struct queue *q, const char *name)
    whichever worker's rename() gets it; when it cannot be moved, said once per worker. */
 static void file_unrunnable(struct queue *q, const char *name)
 {
-    char from[2048], to[2048], msg[2600];
+    char from[2048], msg[2600];
     snprintf(from, sizeof from, "%s/%s", q->dir, name);
-    snprintf(to, sizeof to, "%s/%s", q->failed, name);
     snprintf(msg, sizeof msg, "%s: cannot run: %s (a job file is a regular file, or a link to one)", from,
              fileio_kind(from) ? fileio_kind(from) : "gone");
-    if (rename(from, to) == 0) {
-        char stem[256];
-        outdir_stem(name, stem, sizeof stem);
-        queue_log(name, "%s; moved to %s/\n", msg, q->failed);
-        queue_file_log(q, name, stem, msg, 0, 0);
+    if (queue_file_aside(q, name, name, msg) == 0) {
         q->filed++;
-        queue_file_note_rc(q, 2);
         return;
     }
     if (errno == ENOENT) /* another worker filed it */
@@ -329,11 +323,17 @@ int queue_main(const struct queue_opts *qo)
             q.worst = 2;
             break;
         }
+        q.waits_requeue[0] = 0;
         int study = took ? 1 : queue_drain_work(&q);
         q.took += study == 1;
         if (study == 1)
             continue;
         if (qo->once && study != 2 && !spreading(&q)) {
+            if (q.waits_requeue[0]) /* it ends unfinished: say why and what finishes it */
+                queue_log(q.waits_requeue,
+                          "the study waits for its failed renders (%s/%s/%s/failed/) to be requeued: worker "
+                          "requeue %s %s\n",
+                          q.dir, QUEUE_STUDY_DIR, q.waits_requeue, q.dir, q.waits_requeue);
             if (!q.took && !qo->run.quiet) /* a batch task with nothing to do says so */
                 err_print("worker: --queue %s: no job waiting, nothing to do%s\n", q.dir,
                           q.filed ? " (what could not run was moved to failed/)" : "");
