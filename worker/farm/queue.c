@@ -1,6 +1,7 @@
 /* queue: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
 #include "queue.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -252,6 +253,39 @@ static int spreading(struct queue *q)
     return 1;
 }
 
+/* When a folder of dir (not the queue's own) holds a file X.yaml, a hint that it is no job there
+   (only dir/X.yaml are: a job put one folder too deep); else "". hint is the buffer. */
+static const char *subfolder_hint(const char *dir, char *hint, size_t n)
+{
+    const char *own[] = {"running", "done", "failed", QUEUE_STUDY_DIR};
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    hint[0] = 0;
+    while (d && !hint[0] && (de = readdir(d))) {
+        char sub[2300];
+        struct stat st;
+        int skip = de->d_name[0] == '.';
+        for (int i = 0; i < 4 && !skip; i++)
+            skip = !strcmp(de->d_name, own[i]);
+        snprintf(sub, sizeof sub, "%s/%s", dir, de->d_name);
+        if (skip || lstat(sub, &st) < 0 || !S_ISDIR(st.st_mode))
+            continue;
+        DIR *s = opendir(sub);
+        struct dirent *f;
+        while (s && !hint[0] && (f = readdir(s)))
+            if (queue_scan_is_job_file(f->d_name))
+                snprintf(hint, n,
+                         "; %s/%s is in a folder of the queue, where no worker looks: a job goes in %s/ itself "
+                         "(a suite's study files may stay there)",
+                         sub, f->d_name, dir);
+        if (s)
+            closedir(s);
+    }
+    if (d)
+        closedir(d);
+    return hint;
+}
+
 /* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
    it): its parent is itself. A queue there would make /running, /done and /failed. */
 static int is_root_dir(const char *dir, const struct stat *st)
@@ -334,9 +368,11 @@ int queue_main(const struct queue_opts *qo)
                           "the study waits for its failed renders (%s/%s/%s/failed/) to be requeued: worker "
                           "requeue %s %s\n",
                           q.dir, QUEUE_STUDY_DIR, q.waits_requeue, q.dir, q.waits_requeue);
+            char hint[1200] = "";
             if (!q.took && !qo->run.quiet) /* a batch task with nothing to do says so */
-                err_print("worker: --queue %s: no job waiting, nothing to do%s\n", q.dir,
-                          q.filed ? " (what could not run was moved to failed/)" : "");
+                err_print("worker: --queue %s: no job waiting, nothing to do%s%s\n", q.dir,
+                          q.filed ? " (what could not run was moved to failed/)" : "",
+                          subfolder_hint(q.dir, hint, sizeof hint));
             break;
         }
         nap(qo->poll_s);
