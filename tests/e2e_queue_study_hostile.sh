@@ -76,6 +76,7 @@ broken() {
         eval '[ "$rc" -eq 2 ] && [ -f "$Q/failed/hs.yaml" ] && [ ! -e "$Q/done/hs.yaml" ] && [ ! -e "$S/job/hs.yaml" ]'
     check "$2: one line says what is wrong" [ "$(grep -c "hs.yaml: the study's folder was changed: .*$3" "$T/wb$1.log")" -eq 1 ]
     check "$2: its log too" grep -q "error: the study's folder was changed: .*$3" "$Q/failed/hs.log"
+    check "$2: the log ends with a newline" [ "$(tail -c 1 "$Q/failed/hs.log" | od -An -tx1 | tr -d ' ')" = 0a ]
 }
 spread 1; sed -i 's/^name: hs/name: victim/' "$S/study.job"
 broken 1 "name: victim in study.job" "study.job: not the job that was spread"

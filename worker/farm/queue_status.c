@@ -159,7 +159,9 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     return n;
 }
 
-/* 1 when dir holds a folder a queue worker makes (running/, done/, failed/ or spread/). */
+/* 1 when dir may be a queue: it holds a folder a queue worker makes (running/, done/, failed/ or
+   spread/), or nothing at all (a queue no worker has seen yet); 0 for a folder of other things (an
+   output folder of --out: its <name>/ and .cache/). */
 static int queue_status_is_queue(const char *dir)
 {
     const char *own[] = {"running", "done", "failed", QUEUE_STUDY_DIR};
@@ -170,7 +172,14 @@ static int queue_status_is_queue(const char *dir)
         if (lstat(path, &st) == 0)
             return 1;
     }
-    return 0;
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    int empty = 1;
+    while (d && empty && (de = readdir(d)))
+        empty = !strcmp(de->d_name, ".") || !strcmp(de->d_name, "..");
+    if (d)
+        closedir(d);
+    return empty;
 }
 
 int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
@@ -237,8 +246,9 @@ int queue_status_main(int argc, char **argv)
     if (ns < 0)
         bad = QUEUE_STUDY_DIR, bad_errno = errno;
     if (!bad && nw <= 0 && !queue_status_is_queue(dir)) {
-        err_print("worker status: %s: not a queue: no running/, done/ or failed/ folder, no job file X.yaml "
-                  "waiting (an output folder of --out? a worker --queue %s makes a queue)\n",
+        err_print("worker status: %s: not a queue: it holds other things but no running/, done/ or failed/ "
+                  "folder and no job file X.yaml waiting (an output folder of --out? worker --queue %s "
+                  "makes a queue of it)\n",
                   dir, dir);
         rc = 2;
     } else if (bad) { /* a folder that cannot be read is no empty one: "0 failed" would be a lie */
