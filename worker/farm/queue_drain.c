@@ -326,18 +326,13 @@ static void file_damaged(struct queue *q, const char *sd, const char *stem, cons
     queue_file_note_rc(q, 2);
 }
 
-/* The recovery locks that workers killed just after filing a finished study's entries left in its
-   running/. */
+/* The recovery lock of a finished study's gather entry, left by a worker killed just after filing
+   it (the locks of its other entries were swept at the gather). */
 static void sweep_locks(const struct queue *q, const char *sd)
 {
     char dir[2400];
     snprintf(dir, sizeof dir, "%s/running", sd);
-    DIR *d = opendir(dir);
-    struct dirent *de;
-    while (d && (de = readdir(d)))
-        lease_sweep_locks(dir, de->d_name, q->o->lease_timeout_s);
-    if (d)
-        closedir(d);
+    lease_sweep_locks(dir, QUEUE_STUDY_GATHER ".lock", q->o->lease_timeout_s);
 }
 
 int queue_drain_work(struct queue *q)

@@ -151,6 +151,12 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     for (int i = 0; i < 4; i++)
         if (not_folder(sd, subs[i], why, n))
             return QUEUE_STUDY_DAMAGED;
+    snprintf(path, sizeof path, "%s/done/%s", sd, QUEUE_STUDY_GATHER);
+    int gather_filed = lstat(path, &st) == 0;
+    snprintf(path, sizeof path, "%s/job/%s.yaml", sd, stem);
+    int job_filed = lstat(path, &st) == 0;
+    if (gather_filed && !job_filed) /* the record of a finished study: nothing more is read */
+        return QUEUE_STUDY_FINISHED;
     if (load(sd, k, why, n) < 0)
         return QUEUE_STUDY_DAMAGED;
     snprintf(path, sizeof path, "%s/study.job", sd);
@@ -162,10 +168,8 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
                      fileio_kind(path) ? fileio_kind(path) : "missing");
         return QUEUE_STUDY_DAMAGED;
     }
-    snprintf(path, sizeof path, "%s/done/%s", sd, QUEUE_STUDY_GATHER);
-    int gather_filed = lstat(path, &st) == 0;
     snprintf(path, sizeof path, "%s/job/%s.yaml", sd, stem);
-    if (lstat(path, &st) == 0) {
+    if (job_filed && lstat(path, &st) == 0) {
         /* a job file queued as a symbolic link is filed as that link: its target is the user's */
         if (!S_ISLNK(st.st_mode) && !queue_study_key_same(path, k->job_hash)) {
             snprintf(why, n, "%s: changed since the study was spread (its hash is not the one study.key records)",
@@ -179,8 +183,6 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
         }
         return QUEUE_STUDY_ACTIVE;
     }
-    if (gather_filed)
-        return QUEUE_STUDY_FINISHED;
     snprintf(path, sizeof path, "%s/done/%s.yaml", dir, stem);
     int linked = lstat(path, &st) == 0 && S_ISLNK(st.st_mode); /* a job queued as a link, filed as one */
     return linked || queue_study_key_same(path, k->job_hash) ? QUEUE_STUDY_GATHERED : QUEUE_STUDY_SPREADING;
