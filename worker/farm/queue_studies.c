@@ -46,7 +46,7 @@ static int read_study(const char *dir, const char *sd, const char *stem, struct 
     struct study_key k;
     int waiting_gather = 0, running_gather = 0, done_gather = 0, failed_gather = 0;
     memset(x, 0, sizeof *x);
-    enum queue_study_state state = queue_study_state(dir, sd, stem, &k, x->damaged, sizeof x->damaged);
+    enum queue_study_state state = queue_study_state(dir, sd, stem, &k, 1, x->damaged, sizeof x->damaged);
     if (state == QUEUE_STUDY_SPREADING || state == QUEUE_STUDY_FINISHED) {
         queue_study_key_free(&k);
         return -1;
@@ -190,7 +190,7 @@ int queue_studies_requeue(const char *dir, const char *file)
         return -1;
     snprintf(sd, sizeof sd, "%s/%s/%.*s", dir, QUEUE_STUDY_DIR, (int)(len - 5), file);
     snprintf(from, sizeof from, "%.*s", (int)(len - 5), file);
-    enum queue_study_state state = queue_study_state(dir, sd, from, &k, why, sizeof why);
+    enum queue_study_state state = queue_study_state(dir, sd, from, &k, 1, why, sizeof why);
     if (state != QUEUE_STUDY_ACTIVE) {
         queue_study_key_free(&k);
         return -1;

@@ -145,7 +145,7 @@ static int prepare(const struct queue *q, const struct study_fan *f, const char 
     if (lstat(sd, &st) == 0) {
         struct study_key k;
         char why[2600];
-        enum queue_study_state s = queue_study_state(q->dir, sd, stem, &k, why, sizeof why);
+        enum queue_study_state s = queue_study_state(q->dir, sd, stem, &k, 1, why, sizeof why);
         int same = s == QUEUE_STUDY_SPREADING && k.job_hash == hash_bytes(HASH_FNV_OFFSET, job, len);
         queue_study_key_free(&k);
         char filed[2300];

@@ -142,7 +142,7 @@ static int not_folder(const char *sd, const char *sub, char *why, size_t n)
 }
 
 enum queue_study_state queue_study_state(const char *dir, const char *sd, const char *stem, struct study_key *k,
-                                         char *why, size_t n)
+                                         int hash_jobs, char *why, size_t n)
 {
     char path[2300];
     struct stat st;
@@ -160,7 +160,8 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     if (load(sd, k, why, n) < 0)
         return QUEUE_STUDY_DAMAGED;
     snprintf(path, sizeof path, "%s/study.job", sd);
-    if (!queue_study_key_same(path, k->job_hash)) {
+    int regular = lstat(path, &st) == 0 && S_ISREG(st.st_mode);
+    if (!regular || (hash_jobs && !queue_study_key_same(path, k->job_hash))) {
         if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
             snprintf(why, n, "%s: not the job that was spread (its hash is not the one study.key records)", path);
         else
@@ -171,7 +172,7 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     snprintf(path, sizeof path, "%s/job/%s.yaml", sd, stem);
     if (job_filed && lstat(path, &st) == 0) {
         /* a job file queued as a symbolic link is filed as that link: its target is the user's */
-        if (!S_ISLNK(st.st_mode) && !queue_study_key_same(path, k->job_hash)) {
+        if (hash_jobs && !S_ISLNK(st.st_mode) && !queue_study_key_same(path, k->job_hash)) {
             snprintf(why, n, "%s: changed since the study was spread (its hash is not the one study.key records)",
                      path);
             return QUEUE_STUDY_DAMAGED;

@@ -39,9 +39,11 @@ int queue_study_key_has(const struct study_key *k, const char *entry);
 void queue_study_key_free(struct study_key *k);
 
 /* Where the study in folder sd (of queue dir, job file stem.yaml) stands; its record into *k
-   (freed by the caller, also when damaged), and when damaged one line into why saying what is wrong. */
+   (freed by the caller, also when damaged), and when damaged one line into why saying what is wrong.
+   With hash_jobs, study.job's and job/X.yaml's bytes are checked against the record too (status); a
+   worker checks them as it reads them, once (queue_entry). */
 enum queue_study_state queue_study_state(const char *dir, const char *sd, const char *stem, struct study_key *k,
-                                         char *why, size_t n);
+                                         int hash_jobs, char *why, size_t n);
 
 /* 1 when the regular file path (never through a link) holds bytes of hash h. */
 int queue_study_key_same(const char *path, uint64_t h);
