@@ -214,7 +214,8 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
     double age;
     if (lease_read(claim, &l, &age) < 0) {
         if (lock_holder_gone(claim, &l)) {
-            snprintf(why, n, "its worker (pid %ld on %s) is gone (killed while it filed the claim)", l.pid, l.host);
+            snprintf(why, n, "its worker (pid %ld on %s) is gone (killed while it filed the claim)", l.pid,
+                     l.host);
             return 1;
         }
         /* rename() sets the claim's ctime: the time it was claimed */
@@ -238,8 +239,8 @@ int lease_lock(const char *claim, double timeout_s)
     if (fd >= 0) { /* it names its holder, as a lease does, so that its holder's death is seen at once */
         struct lease me;
         lease_init(&me);
-        int len = snprintf(text, sizeof text, "host %s\npid %ld\nstart %lld\ntoken %s\npids %s\n", me.host, me.pid,
-                           me.start, me.token, me.pids);
+        int len = snprintf(text, sizeof text, "host %s\npid %ld\nstart %lld\ntoken %s\npids %s\n", me.host,
+                           me.pid, me.start, me.token, me.pids);
         (void)!write(fd, text, (size_t)len);
         close(fd);
         return 0;

@@ -274,10 +274,11 @@ static const char *subfolder_hint(const char *dir, char *hint, size_t n)
         struct dirent *f;
         while (s && !hint[0] && (f = readdir(s)))
             if (queue_scan_is_job_file(f->d_name))
-                snprintf(hint, n,
-                         "; %s/%s is in a folder of the queue, where no worker looks: a job goes in %s/ itself "
-                         "(a suite's study files may stay there)",
-                         sub, f->d_name, dir);
+                snprintf(
+                    hint, n,
+                    "; %s/%s is in a folder of the queue, where no worker looks: a job goes in %s/ itself "
+                    "(a suite's study files may stay there)",
+                    sub, f->d_name, dir);
         if (s)
             closedir(s);
     }

@@ -78,7 +78,8 @@ static int any_claim(const char *dir, const struct study_key *k)
 /* The study's waiting entries (this scan's w, n of them; the unrunnable in sq->scan) that can never
    be claimed go to its failed/ with a log: what is not a regular file, and what the study never wrote
    (its record k). The others are left in w; their count. */
-static int set_aside(struct queue *sq, const char *stem, const struct study_key *k, struct queue_waiting *w, int n)
+static int set_aside(struct queue *sq, const char *stem, const struct study_key *k, struct queue_waiting *w,
+                     int n)
 {
     char label[600], path[2600], msg[3000];
     for (int i = 0; i < sq->scan.nunrunnable; i++) {

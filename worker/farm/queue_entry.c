@@ -120,10 +120,11 @@ static int gather(struct queue *q, struct queue *sq, const char *from, const cha
     ro.force = 0; /* every render is current: --force would render them all again here */
     int rc = 2;
     if (jobfile_open(&jf, from, as, &e) == 0 && jf.hash != k->job_hash) {
-        snprintf(damaged, nd, "%s: not the job that was spread (its hash is not the one study.key records)", from);
+        snprintf(damaged, nd, "%s: not the job that was spread (its hash is not the one study.key records)",
+                 from);
     } else if (lstat(job, &st) == 0 && !S_ISLNK(st.st_mode) && !queue_study_key_same(job, k->job_hash)) {
-        snprintf(damaged, nd, "%s: changed since the study was spread (its hash is not the one study.key records)",
-                 job);
+        snprintf(damaged, nd,
+                 "%s: changed since the study was spread (its hash is not the one study.key records)", job);
     } else if (e.msg[0] || jf.kind == JOBFILE_PLAIN) { /* not the compare job it was */
         if (!e.msg[0])
             err_set(&e, as, 0, 0, "not a compare job");
@@ -140,7 +141,8 @@ static int gather(struct queue *q, struct queue *sq, const char *from, const cha
     if (rc != 0 || !queue_claim_still_ours(sq))
         return rc;
     if (lstat(job, &st) == 0 && !S_ISLNK(st.st_mode) && !queue_study_key_same(job, k->job_hash)) {
-        snprintf(damaged, nd, "%s: changed since the study was spread (its hash is not the one study.key records)",
+        snprintf(damaged, nd,
+                 "%s: changed since the study was spread (its hash is not the one study.key records)",
                  job); /* while it was gathered */
         return 2;
     }
@@ -178,8 +180,8 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
     } else if (!strcmp(ticket, QUEUE_STUDY_GATHER)) {
         rc = gather(q, sq, from, as, sd, stem, k, msg, sizeof msg, damaged, n_damaged);
     } else if (jobfile_open(&jf, from, as, &e) == 0 && jf.hash != k->job_hash) { /* read once, checked */
-        snprintf(damaged, n_damaged, "%s: not the job that was spread (its hash is not the one study.key records)",
-                 from);
+        snprintf(damaged, n_damaged,
+                 "%s: not the job that was spread (its hash is not the one study.key records)", from);
         rc = 2;
     } else if (e.msg[0] || study_fan_load(&jf, &f, &e) < 0) {
         err_format(&e, msg, sizeof msg);
@@ -216,4 +218,3 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
     queue_claim_renew_stop();
     queue_file_clear_lost_stop(sq);
 }
-

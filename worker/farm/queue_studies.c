@@ -121,8 +121,8 @@ void queue_studies_print(const struct queue_studies_entry *s, int n)
         if (s[i].damaged[0])
             snprintf(eta, sizeof eta, "-- (its folder is damaged: %s)", s[i].damaged);
         else if (s[i].waits_requeue)
-            snprintf(eta, sizeof eta, "-- (waits for its failed renders to be requeued: worker requeue DIR %s)",
-                     s[i].file);
+            snprintf(eta, sizeof eta,
+                     "-- (waits for its failed renders to be requeued: worker requeue DIR %s)", s[i].file);
         else if (s[i].eta_s >= 0 || s[i].done == s[i].renders)
             snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s >= 0 ? s[i].eta_s : 0);
         printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n",

@@ -141,8 +141,8 @@ static int not_folder(const char *sd, const char *sub, char *why, size_t n)
     return 1;
 }
 
-enum queue_study_state queue_study_state(const char *dir, const char *sd, const char *stem, struct study_key *k,
-                                         int hash_jobs, char *why, size_t n)
+enum queue_study_state queue_study_state(const char *dir, const char *sd, const char *stem,
+                                         struct study_key *k, int hash_jobs, char *why, size_t n)
 {
     char path[2300];
     struct stat st;
@@ -163,7 +163,8 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     int regular = lstat(path, &st) == 0 && S_ISREG(st.st_mode);
     if (!regular || (hash_jobs && !queue_study_key_same(path, k->job_hash))) {
         if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
-            snprintf(why, n, "%s: not the job that was spread (its hash is not the one study.key records)", path);
+            snprintf(why, n, "%s: not the job that was spread (its hash is not the one study.key records)",
+                     path);
         else
             snprintf(why, n, "%s: %s, not the job file the study was spread from", path,
                      fileio_kind(path) ? fileio_kind(path) : "missing");
@@ -173,13 +174,16 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     if (job_filed && lstat(path, &st) == 0) {
         /* a job file queued as a symbolic link is filed as that link: its target is the user's */
         if (hash_jobs && !S_ISLNK(st.st_mode) && !queue_study_key_same(path, k->job_hash)) {
-            snprintf(why, n, "%s: changed since the study was spread (its hash is not the one study.key records)",
+            snprintf(why, n,
+                     "%s: changed since the study was spread (its hash is not the one study.key records)",
                      path);
             return QUEUE_STUDY_DAMAGED;
         }
         if (gather_filed) {
-            snprintf(why, n, "%s/done/%s: filed as done, but the study was never gathered (its job file is "
-                             "still in job/)", sd, QUEUE_STUDY_GATHER);
+            snprintf(why, n,
+                     "%s/done/%s: filed as done, but the study was never gathered (its job file is "
+                     "still in job/)",
+                     sd, QUEUE_STUDY_GATHER);
             return QUEUE_STUDY_DAMAGED;
         }
         return QUEUE_STUDY_ACTIVE;

@@ -42,8 +42,8 @@ void queue_study_key_free(struct study_key *k);
    (freed by the caller, also when damaged), and when damaged one line into why saying what is wrong.
    With hash_jobs, study.job's and job/X.yaml's bytes are checked against the record too (status); a
    worker checks them as it reads them, once (queue_entry). */
-enum queue_study_state queue_study_state(const char *dir, const char *sd, const char *stem, struct study_key *k,
-                                         int hash_jobs, char *why, size_t n);
+enum queue_study_state queue_study_state(const char *dir, const char *sd, const char *stem,
+                                         struct study_key *k, int hash_jobs, char *why, size_t n);
 
 /* 1 when the regular file path (never through a link) holds bytes of hash h. */
 int queue_study_key_same(const char *path, uint64_t h);
