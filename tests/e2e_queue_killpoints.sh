@@ -24,7 +24,9 @@ ref=$(basename "$(ls "$T"/plain/.cache/ref-checker-*-a.exr)")
 
 n=0
 # killed WHEN SUFFIX WHAT GATHERED: a worker killed just WHEN (before or after) the first rename to a path
-# ending in SUFFIX, then --once workers (--lease-timeout 1) until the study is gathered: one is enough; GATHERED is 1 when the killed worker had filed the job in done/ (the next
+# ending in SUFFIX, then --once workers until the study is gathered: one is enough, and it takes the
+# killed worker's claims back at once (their holder gone on this host: under the default
+# --lease-timeout of 60 s, a claim judged by its age alone would hold it past the 50 s allowed); GATHERED is 1 when the killed worker had filed the job in done/ (the next
 # worker then only files the gather entry, saying "already gathered"), else 0
 killed() {
     n=$((n + 1)); Q=$T/q$n; mkdir -p "$Q"; study >"$Q/ks.yaml"
@@ -38,7 +40,7 @@ killed() {
     rcs=""
     for i in 1 2 3; do
         [ "$i" -gt 1 ] && [ -f "$Q/done/ks.yaml" ] && break
-        timeout 60 "$WORKER" --queue "$Q" --once --lease-timeout 1 --poll 0.1 >/dev/null 2>>"$T/r$n.log"
+        timeout 50 "$WORKER" --queue "$Q" --once --poll 0.1 >/dev/null 2>>"$T/r$n.log"
         rcs="$rcs $?"
     done
     S=$Q/spread/ks

@@ -18,6 +18,7 @@ struct lease {
        it starts; a lease of an earlier version has no P) */
     int rows_done, rows, attempt, processes;
     double render_s;
+    int broke; /* a recovery lock's: its holder took it from a holder that was gone (lease_lock) */
 };
 
 /* Most bytes a lease file may hold (one is larger: not a lease), and most rows it may count. */
@@ -61,7 +62,7 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n);
 /* Take the claim's recovery lock (claim + ".lock", created exclusively, naming its holder as a lease
    does) that serialises whoever returns or files the claim. 0 when taken; -1 when another holds it
    (a lock older than timeout_s, or whose holder of this host is gone, is broken so that a death
-   cannot block the job for ever: the next try takes it). */
+   cannot block the job for ever, and taken when no other was quicker). */
 int lease_lock(const char *claim, double timeout_s);
 void lease_unlock(const char *claim);
 
