@@ -186,7 +186,7 @@ bench-peers: all
 # which `make test` replays. `make fuzz SECONDS=600` is the long local run.
 FUZZ_CC     ?= clang
 SECONDS     ?= 30
-FUZZ_TARGETS ?= job scene image
+FUZZ_TARGETS ?= job scene image summary
 FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -ffp-contract=off -Wno-psabi
 FUZZ_OBJ    := $(patsubst %.c,build/fuzz/obj/%.o,$(COMMON_SRC) $(WORKER_SRC))
 # The library once, in parallel; each target links it with its own entry point.

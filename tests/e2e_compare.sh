@@ -50,10 +50,10 @@ check "the summary line counts the combinations" grep -q "cmp: 40 images (2 scen
 # summary.csv: a header and one row of 18 fields per image, with its metrics in linear radiance
 # (mse, rmse, relmse, relmse_robust, psnr, domain) and the 8-bit display figures beside them
 csv=$cdir/summary.csv
-check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,image" ]
+check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,flip,image" ]
 check "summary.csv has 40 rows" [ "$(tail -n +2 "$csv" | wc -l)" -eq 40 ]
 check "every row has 19 fields, a relmse, a robust one no larger, linear, and 8-bit figures" \
-    [ "$(awk -F, 'NR > 1 && NF == 19 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
+    [ "$(awk -F, 'NR > 1 && NF == 20 && $19 + 0 > 0 && $19 + 0 < 1 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
 # error_lowfreq (how the error looks: its low-frequency share over white noise's) is a positive
 # number for every 32x24 image, near 1 for noise (docs/compare.md)
 check "every row's error_lowfreq is a positive number" \
@@ -72,7 +72,7 @@ check "rows name their images" grep -q ',board-poisson-pool16-t50-s2.png$' "$csv
 # take about a millisecond, so a fixed 4 decimals would round them by up to 10% or to 0.
 sidecar_matches() { # every row against the first "key": of its sidecar, relative 1e-5
     mism=0
-    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ _ img; do
+    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ _ _ img; do
         side="$cdir/${img%.png}.json"
         for kv in "wall_s $wall" "cpu_s $cpu" "sampling_share $share"; do
             set -- $kv
@@ -365,7 +365,8 @@ check "poisson below random at equal samples" order poisson-t3.92
 # renders' size, and its RMS brightness from `worker diff` against an all-black image.
 ohtml=$T/out/order/report.html
 check "error maps: the scale is stated" grep -q 'Error maps at .*coloured by its log10 on one fixed scale' "$ohtml"
-grep 'data-seed="0" data-slot="m0v[0-9]*"' "$ohtml" | grep -o 'base64,[^"]*' | sed 's/^base64,//' >"$T/maps.b64"
+grep 'data-seed="0" data-slot="m0v[0-9]*"' "$ohtml" | # each figure's first image (its FLIP map follows)
+    awk 'match($0, /base64,[^"]*/) { print substr($0, RSTART + 7, RLENGTH - 7) }' >"$T/maps.b64"
 check "error maps: three maps" [ "$(wc -l <"$T/maps.b64")" -eq 3 ]
 dark=0; n=0; sizes=""
 while read -r b64; do

@@ -38,10 +38,10 @@ static int replay_dir(const char *dir, const char *prefix, target_fn fn)
 
 int main(void)
 {
-    const char *names[] = {"job", "scene", "image"};
-    target_fn fns[] = {fuzz_job, fuzz_scene, fuzz_image};
+    const char *names[] = {"job", "scene", "image", "summary"};
+    target_fn fns[] = {fuzz_job, fuzz_scene, fuzz_image, fuzz_summary};
     int total = 0;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 4; i++) {
         char dir[64], prefix[64];
         snprintf(dir, sizeof dir, "tests/fuzz/%s", names[i]);
         snprintf(prefix, sizeof prefix, "%s-", names[i]);

@@ -1,4 +1,5 @@
-/* test_sbuf: the text buffer behind CSV, SVG and HTML: growth, escaping, base64 (RFC 4648). */
+/* test_sbuf: the text buffer behind CSV, SVG and HTML: growth, escaping, base64 (RFC 4648), and
+   the terminal sanitiser and per-format escapers on names with escapes and broken UTF-8. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,6 +34,33 @@ int main(void)
     CHECK(s && strcmp(s, "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;") == 0);
     free(s);
     CHECK(b.buf == NULL && b.len == 0); /* take resets */
+
+    /* ESC, BEL, a C1 CSI (U+009B), a byte that is no UTF-8, a cut sequence; UTF-8 kept */
+    const char *evil = "a\x1b[31mb\x07"
+                       "c\xc2\x9b"
+                       "d\xff"
+                       "e\xe2\x82"
+                       "f\xc3\xa9\n";
+    const char *want_shown = "a\\x1b[31mb\\x07c\\xc2\\x9bd\\xffe\\xe2\\x82f\xc3\xa9\\n";
+    char shown[128];
+    CHECK(strcmp(sbuf_show(evil, shown, sizeof shown), want_shown) == 0);
+    CHECK(strcmp(sbuf_show(evil, shown, 5), "a") == 0); /* cut before an escape that does not fit */
+    sbuf_shown(&b, evil);
+    s = sbuf_take(&b);
+    CHECK(s && strcmp(s, want_shown) == 0);
+    free(s);
+    sbuf_escape(&b, "<\x1b\x01&\xfe>"); /* XML forbids the controls even as references */
+    s = sbuf_take(&b);
+    CHECK(s && strcmp(s, "&lt;\\x1b\\x01&amp;\\xfe&gt;") == 0);
+    free(s);
+    sbuf_csv(&b, "plain\x1b");
+    sbuf_printf(&b, ",");
+    sbuf_csv(&b, "a,\"b\"\n");
+    s = sbuf_take(&b);
+    CHECK(s && strcmp(s, "plain\x1b,\"a,\"\"b\"\"\n\"") == 0); /* lossless: read back as written */
+    free(s);
+    CHECK(sbuf_utf8_len("\xed\xa0\x80") == 0 &&
+          sbuf_utf8_len("\xf0\x9f\x98\x80") == 4); /* a surrogate; U+1F600 */
 
     for (int i = 0; i < 1000; i++) /* grows past its first 256 bytes many times */
         sbuf_printf(&b, "%04d,", i);

@@ -1,5 +1,6 @@
 /* err: filling and formatting the error struct that library calls return. */
 #include "err.h"
+#include "sbuf.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -44,28 +45,11 @@ int err_prefix(struct err *e, const char *prefix)
     return -1;
 }
 
-/* Copy s to out (n bytes, NUL-terminated) with control characters escaped (\n, \t, \r, \xHH): a
-   value quoted in a message may hold a newline, and an error must stay one line. */
-static void escape_controls(const char *s, char *out, size_t n)
-{
-    size_t k = 0;
-    for (; *s && k + 5 < n; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c >= 0x20 && c != 0x7f)
-            out[k++] = (char)c;
-        else if (c == '\n' || c == '\t' || c == '\r')
-            k += (size_t)snprintf(out + k, n - k, "\\%c", c == '\n' ? 'n' : c == '\t' ? 't' : 'r');
-        else
-            k += (size_t)snprintf(out + k, n - k, "\\x%02x", c);
-    }
-    out[k] = 0;
-}
-
 void err_format(const struct err *e, char *buf, size_t n)
 {
     char file[sizeof e->file * 4], msg[sizeof e->msg * 4];
-    escape_controls(e->file, file, sizeof file);
-    escape_controls(e->msg, msg, sizeof msg);
+    sbuf_show(e->file, file, sizeof file); /* an error stays one line, safe to show */
+    sbuf_show(e->msg, msg, sizeof msg);
     if (e->file[0] && e->line > 0)
         snprintf(buf, n, "%s:%d:%d: %s", file, e->line, e->col > 0 ? e->col : 1, msg);
     else if (e->file[0])

@@ -23,8 +23,9 @@ int err_set_errno(struct err *e, int errnum, const char *fmt, ...) __attribute__
 /* Prefix e's message with "prefix: " (e.g. a key name). Always returns -1. */
 int err_prefix(struct err *e, const char *prefix);
 
-/* Write "file:line:col: msg" (parts present only when known) into buf, as one line: control
-   characters in file and msg are escaped (\n, \t, \r, \xHH). */
+/* Write "file:line:col: msg" (parts present only when known) into buf, as one line safe to show:
+   file and msg through the terminal sanitiser sbuf_show (control characters as \n, \t, \r or
+   \xHH, bytes that are not UTF-8 as \xHH). */
 void err_format(const struct err *e, char *buf, size_t n);
 
 /* Print a printf-style message on stderr as one line: control characters escaped as err_format

@@ -1,5 +1,6 @@
 /* json: writing JSON text with escaping and pretty two-space indentation. */
 #include "json.h"
+#include "sbuf.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -44,33 +45,6 @@ static void put(struct json *j, const char *fmt, ...)
     }
 }
 
-/* Length of the well-formed UTF-8 sequence at c (RFC 3629: no overlong forms, surrogates or
-   code points over U+10FFFF), or 0. */
-static int utf8_len(const unsigned char *c)
-{
-    int n = c[0] < 0x80                    ? 1
-            : c[0] >= 0xc2 && c[0] <= 0xdf ? 2
-            : c[0] >= 0xe0 && c[0] <= 0xef ? 3
-            : c[0] >= 0xf0 && c[0] <= 0xf4 ? 4
-                                           : 0;
-    for (int i = 1; i < n; i++)
-        if ((c[i] & 0xc0) != 0x80)
-            return 0;
-    if ((c[0] == 0xe0 && c[1] < 0xa0) || (c[0] == 0xed && c[1] > 0x9f) || (c[0] == 0xf0 && c[1] < 0x90) ||
-        (c[0] == 0xf4 && c[1] > 0x8f))
-        return 0;
-    return n;
-}
-
-/* The code point of the well-formed UTF-8 sequence of n bytes at c. */
-static unsigned code_point(const unsigned char *c, int n)
-{
-    unsigned cp = n == 1 ? c[0] : c[0] & (0x7f >> n);
-    for (int i = 1; i < n; i++)
-        cp = cp << 6 | (c[i] & 0x3f);
-    return cp;
-}
-
 /* Characters JSON allows raw but YAML, whose parser reads sidecars back (libyaml), refuses (DEL,
    the C1 controls, U+FFFE and U+FFFF) or takes for line breaks, folded with the spaces around
    them (U+0085, U+2028, U+2029). */
@@ -87,13 +61,13 @@ static void put_string(struct json *j, const char *s)
 {
     put(j, "\"");
     for (const unsigned char *c = (const unsigned char *)s; *c;) {
-        int n = utf8_len(c);
+        int n = sbuf_utf8_len((const char *)c);
         if (n == 0)
             put(j, "\\ufffd");
         else if (*c == '"' || *c == '\\')
             put(j, "\\%c", *c);
-        else if (*c < 0x20 || yaml_unsafe(code_point(c, n)))
-            put(j, "\\u%04x", code_point(c, n));
+        else if (*c < 0x20 || yaml_unsafe(sbuf_code_point((const char *)c, n)))
+            put(j, "\\u%04x", sbuf_code_point((const char *)c, n));
         else
             put(j, "%.*s", n, (const char *)c);
         c += n ? n : 1;
@@ -187,7 +161,7 @@ int json_string_read_back(const char *s, char *out, size_t n)
 {
     size_t k = 0;
     for (const unsigned char *c = (const unsigned char *)s; *c;) {
-        int len = utf8_len(c);
+        int len = sbuf_utf8_len((const char *)c);
         const char *piece = len ? (const char *)c : "\xef\xbf\xbd";
         size_t pl = len ? (size_t)len : 3;
         if (k + pl >= n)

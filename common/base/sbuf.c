@@ -40,9 +40,87 @@ void sbuf_printf(struct sbuf *b, const char *fmt, ...)
     b->len += (size_t)n;
 }
 
+int sbuf_utf8_len(const char *s)
+{
+    const unsigned char *c = (const unsigned char *)s;
+    int n = c[0] < 0x80                    ? 1
+            : c[0] >= 0xc2 && c[0] <= 0xdf ? 2
+            : c[0] >= 0xe0 && c[0] <= 0xef ? 3
+            : c[0] >= 0xf0 && c[0] <= 0xf4 ? 4
+                                           : 0;
+    for (int i = 1; i < n; i++)
+        if ((c[i] & 0xc0) != 0x80)
+            return 0;
+    if ((c[0] == 0xe0 && c[1] < 0xa0) || (c[0] == 0xed && c[1] > 0x9f) || (c[0] == 0xf0 && c[1] < 0x90) ||
+        (c[0] == 0xf4 && c[1] > 0x8f))
+        return 0;
+    return n;
+}
+
+unsigned sbuf_code_point(const char *s, int n)
+{
+    const unsigned char *c = (const unsigned char *)s;
+    unsigned cp = n == 1 ? c[0] : c[0] & (0x7f >> n);
+    for (int i = 1; i < n; i++)
+        cp = cp << 6 | (c[i] & 0x3f);
+    return cp;
+}
+
+/* The character at s as the terminal sanitiser shows it, into out (at most 17 bytes with the NUL:
+   four \xNN); its length in s into *len. 0 when it is shown as it is (out untouched). */
+static int shown_char(const char *s, char out[17], int *len)
+{
+    int n = sbuf_utf8_len(s);
+    *len = n ? n : 1;
+    unsigned cp = n ? sbuf_code_point(s, n) : 0;
+    if (n && !(cp < 0x20 || cp == 0x7f || (cp >= 0x80 && cp <= 0x9f) || cp == 0xfffe || cp == 0xffff))
+        return 0;
+    if (cp == '\n' || cp == '\t' || cp == '\r') {
+        snprintf(out, 17, "\\%c", cp == '\n' ? 'n' : cp == '\t' ? 't' : 'r');
+        return 1;
+    }
+    size_t k = 0;
+    for (int i = 0; i < *len; i++)
+        k += (size_t)snprintf(out + k, 17 - k, "\\x%02x", (unsigned char)s[i]);
+    return 1;
+}
+
+void sbuf_shown(struct sbuf *b, const char *s)
+{
+    char esc[17];
+    for (int len; *s; s += len)
+        if (shown_char(s, esc, &len))
+            sbuf_printf(b, "%s", esc);
+        else
+            sbuf_printf(b, "%.*s", len, s);
+}
+
+const char *sbuf_show(const char *s, char *out, size_t n)
+{
+    char esc[17];
+    size_t k = 0;
+    if (n == 0)
+        return out;
+    for (int len; *s; s += len) {
+        const char *piece = shown_char(s, esc, &len) ? esc : s;
+        size_t pl = piece == esc ? strlen(esc) : (size_t)len;
+        if (k + pl >= n)
+            break;
+        memcpy(out + k, piece, pl);
+        k += pl;
+    }
+    out[k] = 0;
+    return out;
+}
+
 void sbuf_escape(struct sbuf *b, const char *s)
 {
-    for (; *s; s++) {
+    char esc[17];
+    for (int len; *s; s += len) {
+        if (shown_char(s, esc, &len)) {
+            sbuf_printf(b, "%s", esc);
+            continue;
+        }
         switch (*s) {
         case '&':
             sbuf_printf(b, "&amp;");
@@ -60,9 +138,21 @@ void sbuf_escape(struct sbuf *b, const char *s)
             sbuf_printf(b, "&#39;");
             break;
         default:
-            sbuf_printf(b, "%c", *s);
+            sbuf_printf(b, "%.*s", len, s);
         }
     }
+}
+
+void sbuf_csv(struct sbuf *b, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        sbuf_printf(b, "%s", s);
+        return;
+    }
+    sbuf_printf(b, "\"");
+    for (const char *p = s; *p; p++)
+        sbuf_printf(b, "%s%c", *p == '"' ? "\"" : "", *p); /* a quote is doubled */
+    sbuf_printf(b, "\"");
 }
 
 void sbuf_base64(struct sbuf *b, const uint8_t *data, size_t len)

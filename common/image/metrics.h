@@ -4,6 +4,7 @@
 #define METRICS_H
 
 #include "image.h"
+#include "mask.h"
 
 /* All per channel value, averaged over the w*h*3 values: mse = mean (v - r)^2; relmse = mean
    (v - r)^2 / (r^2 + METRICS_REL_EPS) (not pbrt-v4's MRSE, which divides by (r + eps)^2); relmse_robust =
@@ -24,8 +25,19 @@ struct metrics {
 int metrics_compare_f(const struct rgbf *ref, const struct rgbf *img, int block, struct metrics *m,
                       struct err *e);
 
+/* metrics_compare_f over mask's pixels only (every pixel when mask is NULL): a tile's means take
+   its counted pixels, a tile without any is left out, so with block 1 the figures are those of
+   the counted pixels alone (a rectangle's: the cropped images'). -1 with e filled as
+   metrics_compare_f, or when mask is not the images' size. */
+int metrics_compare_masked(const struct rgbf *ref, const struct rgbf *img, int block,
+                           const struct img_mask *mask, struct metrics *m, struct err *e);
+
 /* The display metrics: the same figures on two 8-bit images' values v / 255 (what a PNG viewer
    shows, clipped and gamma-encoded: not radiance). -1 with e filled as metrics_compare_f. */
 int metrics_display_compare(const struct rgb8 *ref, const struct rgb8 *img, struct metrics *m, struct err *e);
+
+/* metrics_display_compare over mask's pixels (all when NULL), as metrics_compare_masked. */
+int metrics_display_masked(const struct rgb8 *ref, const struct rgb8 *img, const struct img_mask *mask,
+                           struct metrics *m, struct err *e);
 
 #endif

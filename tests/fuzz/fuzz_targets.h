@@ -9,5 +9,6 @@
 int fuzz_job(const uint8_t *data, size_t size);
 int fuzz_scene(const uint8_t *data, size_t size);
 int fuzz_image(const uint8_t *data, size_t size);
+int fuzz_summary(const uint8_t *data, size_t size); /* worker verdict's summary.csv reader */
 
 #endif

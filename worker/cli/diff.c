@@ -9,6 +9,7 @@
 
 #include "base/fileio.h"
 #include "image/errmap.h"
+#include "image/flip.h"
 #include "image/imgio.h"
 #include "image/metrics.h"
 #include "image/png.h"
@@ -63,10 +64,43 @@ static int write_map(const char *path, const struct rgbf *ref, const struct rgbf
     return rc;
 }
 
-/* Measure files[1] against files[0]; fill m and *domain, write the map (when map_path). 0 or -1. */
-static int measure(const char *const files[2], int block, const char *map_path, struct metrics *m,
-                   enum img_domain *domain, struct err *e)
+/* --mask's value: "x0,y0,x1,y1" or an image file (white = counted), for w x h images. 0 or -1. */
+static int load_mask(const char *arg, int w, int h, struct img_mask *mask, struct err *e)
 {
+    long rect[4];
+    struct rgb8 img = {0};
+    int is_rect = mask_parse_rect(arg, rect) == 0, numbers = strspn(arg, "0123456789,-+ ") == strlen(arg);
+    int rc = is_rect   ? mask_rect(mask, w, h, rect, e)
+             : numbers ? err_set(e, NULL, 0, 0, "must be x0,y0,x1,y1 (four whole numbers) or an image file")
+             : imgio_read(arg, &img, e) < 0                                             ? -1
+             : mask_from_image(mask, &img, e) < 0 || mask_check_size(mask, w, h, e) < 0 ? -1
+                                                                                        : 0;
+    image_free(&img);
+    if (rc < 0) {
+        mask_free(mask);
+        char what[600];
+        snprintf(what, sizeof what, "--mask %s", arg);
+        err_prefix(e, what);
+        snprintf(e->file, sizeof e->file, "worker diff");
+    }
+    return rc;
+}
+
+/* What measure found. */
+struct diff_figures {
+    struct metrics m;
+    struct flip_result flip;
+    enum img_domain domain;
+    size_t mask_pixels; /* 0: no mask */
+};
+
+/* Measure files[1] against files[0] (over mask_arg's pixels when given); fill f, write the map
+   (when map_path). 0 or -1. */
+static int measure(const char *const files[2], int block, const char *map_path, const char *mask_arg,
+                   struct diff_figures *f, struct err *e)
+{
+    struct img_mask mask = {0};
+    enum img_domain *domain = &f->domain;
     struct rgbf img[2] = {{0}, {0}};
     enum img_domain d[2];
     int rc = -1;
@@ -82,7 +116,12 @@ static int measure(const char *const files[2], int block, const char *map_path, 
             if (to_display(&img[i], e) < 0)
                 goto done;
         }
-    if (metrics_compare_f(&img[0], &img[1], block, m, e) < 0) {
+    if (mask_arg && load_mask(mask_arg, img[0].w, img[0].h, &mask, e) < 0)
+        goto done;
+    const struct img_mask *mp = mask_arg ? &mask : NULL;
+    f->mask_pixels = mp ? mask.count : 0;
+    if (metrics_compare_masked(&img[0], &img[1], block, mp, &f->m, e) < 0 ||
+        (*domain == IMG_LINEAR ? flip_hdr : flip_ldr)(&img[0], &img[1], mp, NULL, &f->flip, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", files[1]);
         goto done;
     }
@@ -90,6 +129,7 @@ static int measure(const char *const files[2], int block, const char *map_path, 
         goto done;
     rc = 0;
 done:
+    mask_free(&mask);
     image_f_free(&img[0]);
     image_f_free(&img[1]);
     return rc;
@@ -97,7 +137,7 @@ done:
 
 int diff_main(int argc, char **argv)
 {
-    const char *files[2] = {0}, *map_path = NULL;
+    const char *files[2] = {0}, *map_path = NULL, *mask_arg = NULL;
     int nfiles = 0, json = 0;
     double max_rmse = -1, block = 1;
     for (int i = 1; i < argc; i++) {
@@ -118,15 +158,25 @@ int diff_main(int argc, char **argv)
                 return 2;
             }
             map_path = argv[++i];
+        } else if (!strcmp(argv[i], "--mask")) {
+            if (i + 1 >= argc || !argv[i + 1][0]) {
+                err_print("worker diff: --mask needs x0,y0,x1,y1 (pixels, x1 and y1 exclusive) or an image "
+                          "file (white = counted)\n");
+                return 2;
+            }
+            mask_arg = argv[++i];
         } else if (!strcmp(argv[i], "--json")) {
             json = 1;
         } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
             continue; /* a common option; diff draws no progress anyway */
         } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: worker diff A B [--json] [--map F.png] [--max-rmse X] [--block N] [--quiet]\n"
+            printf("usage: worker diff A B [--json] [--map F.png] [--mask x0,y0,x1,y1|M.png] [--max-rmse X]\n"
+                   "                      [--block N] [--quiet]\n"
                    "error metrics of B against reference A (EXR, PFM, PNG or PPM): in linear radiance when\n"
-                   "both are float images (EXR, PFM), else on 8-bit display values; exit 1 when rmse is\n"
-                   "over X. --map writes a false-colour PNG of the per-pixel relative error.\n");
+                   "both are float images (EXR, PFM), else on 8-bit display values; flip is HDR-FLIP on\n"
+                   "linear images, LDR-FLIP on 8-bit ones. exit 1 when rmse is over X. --map writes a\n"
+                   "false-colour PNG of the per-pixel relative error. --mask counts only a rectangle's\n"
+                   "pixels (y down from the top row; x1, y1 exclusive) or an image's white ones.\n");
             return 0;
         } else if (argv[i][0] == '-' && argv[i][1]) {
             err_print("worker diff: unknown option %s; see worker --help\n", argv[i]);
@@ -142,33 +192,48 @@ int diff_main(int argc, char **argv)
         err_print("worker diff: expected two images (reference, then image); see worker --help\n");
         return 2;
     }
-    struct metrics m;
-    enum img_domain domain;
+    struct diff_figures f = {0};
+    const struct metrics *mp = &f.m;
     struct err e = {0};
     if (map_path && fileio_output_ok(map_path, files, 2, &e) < 0) {
         err_print("worker diff: --map %s\n", e.msg);
         return 2;
     }
-    if (measure(files, (int)block, map_path, &m, &domain, &e) < 0) {
+    if (measure(files, (int)block, map_path, mask_arg, &f, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);
         fprintf(stderr, "%s\n", buf);
         return 2;
     }
+    const char *flip_name = f.flip.hdr ? "HDR-FLIP" : "LDR-FLIP";
     if (json) {
         printf("{");
-        print_number("mse", m.mse, ", ");
-        print_number("rmse", m.rmse, ", ");
-        print_number("relmse", m.relmse, ", ");
-        print_number("relmse_robust", m.relmse_robust, ", ");
-        print_number("psnr", m.psnr, ", ");
-        printf("\"domain\": \"%s\"}\n", image_domain_name(domain));
+        print_number("mse", mp->mse, ", ");
+        print_number("rmse", mp->rmse, ", ");
+        print_number("relmse", mp->relmse, ", ");
+        print_number("relmse_robust", mp->relmse_robust, ", ");
+        print_number("psnr", mp->psnr, ", ");
+        print_number("flip", f.flip.mean, ", ");
+        printf("\"flip_metric\": \"%s\", ", flip_name);
+        if (f.flip.hdr)
+            printf("\"flip_exposures\": {\"start\": %.6g, \"stop\": %.6g, \"count\": %d}, ",
+                   f.flip.start_exposure, f.flip.stop_exposure, f.flip.n_exposures);
+        if (f.mask_pixels)
+            printf("\"mask_pixels\": %zu, ", f.mask_pixels);
+        printf("\"domain\": \"%s\"}\n", image_domain_name(f.domain));
     } else {
-        printf("mse %.9g\nrmse %.9g\nrelmse %.9g\nrelmse_robust %.9g\npsnr %.4f\ndomain %s\n", m.mse, m.rmse,
-               m.relmse, m.relmse_robust, m.psnr, image_domain_name(domain));
+        printf("mse %.9g\nrmse %.9g\nrelmse %.9g\nrelmse_robust %.9g\npsnr %.4f\n", mp->mse, mp->rmse,
+               mp->relmse, mp->relmse_robust, mp->psnr);
+        printf("flip %.6f %s", f.flip.mean, flip_name);
+        if (f.flip.hdr)
+            printf(" (%d exposures, %.4f to %.4f stops)", f.flip.n_exposures, f.flip.start_exposure,
+                   f.flip.stop_exposure);
+        printf("\ndomain %s\n", image_domain_name(f.domain));
+        if (f.mask_pixels)
+            printf("mask %zu pixels\n", f.mask_pixels);
     }
-    if (max_rmse >= 0 && m.rmse > max_rmse) {
-        err_print("worker diff: rmse %.6g is over --max-rmse %g\n", m.rmse, max_rmse);
+    if (max_rmse >= 0 && mp->rmse > max_rmse) {
+        err_print("worker diff: rmse %.6g is over --max-rmse %g\n", mp->rmse, max_rmse);
         return 1;
     }
     return 0;

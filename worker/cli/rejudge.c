@@ -5,24 +5,49 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sbuf.h"
 #include "study/run/verdict_load.h"
 #include "study/load/study_env.h"
 #include "study/present/verdict_out.h"
 
+/* One line "a: b: c" (b may be NULL) as the terminal sanitiser shows it: the names in it come from
+   summary.csv, which anyone may have written. */
+static void say(const char *a, const char *b, const char *c)
+{
+    struct sbuf line = {0};
+    sbuf_shown(&line, a);
+    sbuf_printf(&line, ": ");
+    if (b) {
+        sbuf_shown(&line, b);
+        sbuf_printf(&line, ": ");
+    }
+    sbuf_shown(&line, c);
+    if (line.buf)
+        printf("%s\n", line.buf);
+    sbuf_free(&line);
+}
+
 /* Per study and scene: its sentences and failures, one line each. */
 static void print_text(const char *job, const struct verdict_study *s, int n)
 {
+    char text[VERDICT_TEXT_MAX + 16];
     for (int i = 0; i < n; i++)
         for (int k = 0; k < s[i].n_scenes; k++) {
             const struct verdict_scene *v = &s[i].scenes[k];
             for (int l = 0; l < v->n_sentences; l++)
-                printf("%s: %s: %s\n", s[i].name, v->scene, v->sentences[l]);
-            for (int l = 0; l < v->n_failures; l++)
-                printf("%s: %s: failure: %s\n", s[i].name, v->scene, v->failures[l].text);
+                say(s[i].name, v->scene, v->sentences[l]);
+            for (int l = 0; l < v->n_failures; l++) {
+                snprintf(text, sizeof text, "failure: %s", v->failures[l].text);
+                say(s[i].name, v->scene, text);
+            }
         }
     char winners[2048];
     verdict_summary(s, n, winners, sizeof winners);
-    printf("%s: at equal CPU time: %s\n", job, winners);
+    struct sbuf all = {0};
+    sbuf_printf(&all, "at equal CPU time: %s", winners);
+    if (all.buf)
+        say(job, NULL, all.buf);
+    sbuf_free(&all);
 }
 
 int rejudge_main(int argc, char **argv)

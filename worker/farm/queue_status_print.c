@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "base/json.h"
+#include "base/sbuf.h"
 
 static void iso8601(time_t t, char *out, size_t n)
 {
@@ -29,13 +30,18 @@ static double percent(const struct status_entry *x)
     return x->lease.rows > 0 ? 100.0 * x->lease.rows_done / x->lease.rows : 0;
 }
 
+/* Room for a name of 256 bytes as the terminal sanitiser shows it (sbuf_show): 4 per byte. */
+#define SHOWN_MAX 1025
+
 void queue_status_print_text(const char *dir, const struct status_view *v)
 {
-    char when[64];
+    char when[64], name[SHOWN_MAX], reason[4 * 512 + 1]; /* names and reasons shown, never raw */
     const struct queue_waiting *w = v->w;
     const struct status_entry *r = v->r, *dn = v->dn, *f = v->f;
     int nw = v->nw, nr = v->nr, nd = v->nd, nf = v->nf;
-    printf("queue %s: %d waiting, %d running, %d done, %d failed", dir, nw, nr, nd, nf);
+    char shown_dir[4 * 1024 + 1];
+    printf("queue %s: %d waiting, %d running, %d done, %d failed",
+           sbuf_show(dir, shown_dir, sizeof shown_dir), nw, nr, nd, nf);
     if (v->ns)
         printf(", %d stud%s spread over it", v->ns, v->ns == 1 ? "y" : "ies");
     printf("\n");
@@ -43,7 +49,8 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
         printf("waiting (in claim order):\n");
     for (int i = 0; i < nw; i++) {
         iso8601(w[i].mtime.tv_sec, when, sizeof when);
-        printf("  %3d. %s  priority %d  queued %s\n", i + 1, w[i].name, w[i].priority, when);
+        printf("  %3d. %s  priority %d  queued %s\n", i + 1, sbuf_show(w[i].name, name, sizeof name),
+               w[i].priority, when);
     }
     if (nr)
         printf("running:\n");
@@ -51,7 +58,7 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
         double elapsed, eta;
         running_times(&r[i], &elapsed, &eta);
         if (r[i].age_s < 0) {
-            printf("  %s  (no lease yet)\n", r[i].file);
+            printf("  %s  (no lease yet)\n", sbuf_show(r[i].file, name, sizeof name));
             continue;
         }
         char eta_s[32] = "--", elapsed_s[32] = "--";
@@ -59,9 +66,9 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
             snprintf(eta_s, sizeof eta_s, "%.0f s", eta);
         if (elapsed >= 0)
             snprintf(elapsed_s, sizeof elapsed_s, "%.0f s", elapsed);
-        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %s  ETA %s%s\n", r[i].file,
-               r[i].lease.host, r[i].lease.pid, r[i].lease.attempt, percent(&r[i]), r[i].lease.rows_done,
-               r[i].lease.rows, elapsed_s, r[i].gone ? "--" : eta_s,
+        printf("  %s  host %s  pid %ld  attempt %d  %.0f%% (%d/%d rows)  elapsed %s  ETA %s%s\n",
+               sbuf_show(r[i].file, name, sizeof name), r[i].lease.host, r[i].lease.pid, r[i].lease.attempt,
+               percent(&r[i]), r[i].lease.rows_done, r[i].lease.rows, elapsed_s, r[i].gone ? "--" : eta_s,
                r[i].gone ? "  (its worker is gone: the next worker to scan takes it back)" : "");
     }
     queue_studies_print(v->studies, v->ns);
@@ -69,19 +76,21 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
         printf("done:\n");
     for (int i = 0; i < nd; i++) {
         iso8601(dn[i].when.tv_sec, when, sizeof when);
+        const char *file = sbuf_show(dn[i].file, name, sizeof name);
         if (dn[i].wall_s < 0)
-            printf("  %s  finished %s  (no sidecar)\n", dn[i].file, when);
+            printf("  %s  finished %s  (no sidecar)\n", file, when);
         else if (dn[i].images > 1) /* a compare job: its images' figures summed */
-            printf("  %s  finished %s  %d images  wall (sum) %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file,
-                   when, dn[i].images, dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
+            printf("  %s  finished %s  %d images  wall (sum) %.2f s  cpu %.2f s  samples %.0f\n", file, when,
+                   dn[i].images, dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
         else
-            printf("  %s  finished %s  wall %.2f s  cpu %.2f s  samples %.0f\n", dn[i].file, when,
-                   dn[i].wall_s, dn[i].cpu_s, dn[i].samples);
+            printf("  %s  finished %s  wall %.2f s  cpu %.2f s  samples %.0f\n", file, when, dn[i].wall_s,
+                   dn[i].cpu_s, dn[i].samples);
     }
     if (nf)
         printf("failed:\n");
     for (int i = 0; i < nf; i++)
-        printf("  %s  %s\n", f[i].file, f[i].reason);
+        printf("  %s  %s\n", sbuf_show(f[i].file, name, sizeof name),
+               sbuf_show(f[i].reason, reason, sizeof reason));
 }
 
 static void json_maybe(struct json *js, const char *key, double v)

@@ -13,6 +13,7 @@
 
 #include "base/err.h"
 #include "base/fileio.h"
+#include "base/sbuf.h"
 #include "queue_scan.h"
 #include "queue_study.h"
 #include "queue_study_key.h"
@@ -117,16 +118,20 @@ void queue_studies_print(const struct queue_studies_entry *s, int n)
     if (n)
         printf("studies (spread over the queue):\n");
     for (int i = 0; i < n; i++) {
-        char eta[1200] = "--";
+        char eta[5000] = "--";
+        char file[4 * sizeof s[i].file + 1], name[4 * sizeof s[i].name + 1]; /* shown, never raw */
+        char damaged[4 * sizeof s[i].damaged + 1];
+        sbuf_show(s[i].file, file, sizeof file);
         if (s[i].damaged[0])
-            snprintf(eta, sizeof eta, "-- (its folder is damaged: %s)", s[i].damaged);
+            snprintf(eta, sizeof eta, "-- (its folder is damaged: %s)",
+                     sbuf_show(s[i].damaged, damaged, sizeof damaged));
         else if (s[i].waits_requeue)
             snprintf(eta, sizeof eta,
-                     "-- (waits for its failed renders to be requeued: worker requeue DIR %s)", s[i].file);
+                     "-- (waits for its failed renders to be requeued: worker requeue DIR %s)", file);
         else if (s[i].eta_s >= 0 || s[i].done == s[i].renders)
             snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s >= 0 ? s[i].eta_s : 0);
-        printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n",
-               s[i].file, s[i].name, s[i].done, s[i].renders, s[i].failed, s[i].running,
+        printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n", file,
+               sbuf_show(s[i].name, name, sizeof name), s[i].done, s[i].renders, s[i].failed, s[i].running,
                s[i].gathering ? ", gathering" : "", s[i].elapsed_s, eta);
     }
 }

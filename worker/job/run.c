@@ -11,6 +11,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
+#include "base/sbuf.h"
 #include "job_limits.h"
 #include "part.h"
 #include "outdir.h"
@@ -40,8 +41,9 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
     char eta[32] = "--"; /* unknown until a row is done */
     if (done > 0)
         snprintf(eta, sizeof eta, "%.1f s", elapsed * (rows - done) / done);
-    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %s   ", p->name, pct, done, rows, elapsed,
-            eta);
+    char name[4 * 128 + 1]; /* the job's name as the terminal sanitiser shows it */
+    fprintf(stderr, "\r%s: %3d%% (%d/%d rows) %.1f s elapsed, ETA %s   ",
+            sbuf_show(p->name, name, sizeof name), pct, done, rows, elapsed, eta);
     if (done == rows)
         fprintf(stderr, "\n");
 }
@@ -224,10 +226,18 @@ void run_say(const struct run_opts *o, const char *fmt, ...)
 {
     if (o->quiet || !o->progress)
         return;
+    char text[2048];
     va_list ap;
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
+    size_t n = strlen(text), nl = n > 0 && text[n - 1] == '\n';
+    text[n - nl] = 0;
+    struct sbuf b = {0}; /* the names it holds as the terminal sanitiser shows them */
+    sbuf_shown(&b, text);
+    if (b.buf)
+        fprintf(stderr, "%s%s", b.buf, nl ? "\n" : "");
+    sbuf_free(&b);
 }
 
 void run_format_summary(const struct job *j, const struct run_result *rr, char *buf, size_t n)

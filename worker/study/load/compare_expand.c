@@ -8,6 +8,7 @@
 #include "compare_model.h"
 #include "compare_expand.h"
 #include "compare_keys.h"
+#include "compare_spp.h"
 #include "base/fileio.h"
 #include "image/exr.h"
 #include "image/imgio.h"
@@ -121,8 +122,11 @@ static int expand_one(struct compare_loading *L, struct compare_item *it)
         if (strcmp(yscalar(k), "label") && job_apply(j, d, k, v, L->e) < 0)
             return -1;
     for (int i = 0; L->sweep && ymap_pair(d, L->sweep, i, &k, &v); i++)
-        if (job_apply(j, d, k, yseq_item(d, v, it->point), L->e) < 0)
+        if (strcmp(yscalar(k), "spp") && job_apply(j, d, k, yseq_item(d, v, it->point), L->e) < 0)
             return -1;
+    yaml_node_t *spp = L->sweep ? ymap_get(d, L->sweep, "spp") : NULL; /* once the sampler is known */
+    if (spp && compare_spp_apply(j, d, yseq_item(d, spp, it->point), L->e) < 0)
+        return -1;
     j->seed = c->seeds[it->seed];
     j->has_output = j->has_format = 0;
     j->format = IMG_PNG;

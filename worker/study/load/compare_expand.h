@@ -10,9 +10,9 @@
 struct compare_loading {
     struct ydoc d;
     struct compare *c;
-    struct job base;        /* the top-level keys */
-    struct job *scene_base; /* base + scene, per scene */
-    yaml_node_t *variants, *sweep, *reference;
+    struct job base;                                  /* the top-level keys */
+    struct job *scene_base;                           /* base + scene, per scene */
+    yaml_node_t *variants, *sweep, *reference, *mask; /* mask: the top level's, every scene's */
     struct err *e;
 };
 

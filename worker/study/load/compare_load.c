@@ -2,7 +2,9 @@
    check done before anything renders (compare_expand.c makes the combinations). */
 #include "compare_load.h"
 #include "compare_expand.h"
+#include "compare_spp.h"
 #include "compare_keys.h"
+#include "compare_mask.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -53,10 +55,12 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
     if (!L->c->scenes || !L->scene_base)
         return err_set(L->e, L->d.file, 0, 0, "out of memory");
     for (int s = 0; s < n; s++) {
-        yaml_node_t *item = list ? yseq_item(d, list, s) : one;
+        yaml_node_t *item = list ? yseq_item(d, list, s) : one, *name = item, *mask = L->mask;
         L->scene_base[s] = L->base;
-        if (list && compare_keys_apply(&L->scene_base[s], d, "scene", item, L->e) < 0)
+        if (list && (compare_mask_item(d, item, &name, &mask, L->e) < 0 ||
+                     compare_keys_apply(&L->scene_base[s], d, "scene", name, L->e) < 0))
             return -1;
+        mask = mask ? mask : L->mask;
         char stem[JOB_PATH_MAX];
         outdir_stem(L->scene_base[s].scene_path, stem, sizeof stem);
         if (strlen(stem) >= sizeof L->c->scenes[s].name) /* never cut: two scenes would share a name */
@@ -74,7 +78,7 @@ static int load_scenes(struct compare_loading *L, yaml_node_t *root)
                                        L->scene_base[t].scene_path, L->scene_base[s].scene_path,
                                        L->c->scenes[s].name)
                            : ydoc_fail(d, item, L->e, "scenes: \"%s\" is listed twice", L->c->scenes[s].name);
-        if (scene_size(L, s, item) < 0)
+        if (scene_size(L, s, item) < 0 || compare_mask_load(d, mask, L->c->path, &L->c->scenes[s], L->e) < 0)
             return -1;
     }
     return 0;
@@ -121,8 +125,14 @@ static int load_sweep(struct compare_loading *L)
         return ydoc_fail(
             d, sw, L->e,
             "sweep: must map a job key to a list of values, e.g. sweep: { threshold: [20, 10, 5, 2] }");
-    if (compare_keys_check(&L->d, sw, "sweep", NULL, L->e) < 0)
+    if (compare_keys_check(&L->d, sw, "sweep", "spp", L->e) < 0)
         return -1;
+    yaml_node_t *spp = NULL;
+    for (int i = 0; ymap_pair(d, sw, i, &k, &v); i++)
+        spp = strcmp(yscalar(k), "spp") ? spp : k;
+    if (spp && ymap_get(d, sw, "threshold"))
+        return ydoc_fail(d, spp, L->e,
+                         "spp: and threshold: both set the camera sampler's threshold: sweep one of them");
     int n = -1;
     for (int i = 0; ymap_pair(d, sw, i, &k, &v); i++) {
         const char *key = yscalar(k);
@@ -136,7 +146,8 @@ static int load_sweep(struct compare_loading *L)
                              n, len);
         n = len;
         size_t used = strlen(L->c->sweep_keys);
-        snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "", key);
+        snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "",
+                 strcmp(key, "spp") ? key : COMPARE_SPP_SWEEP_NOTE);
     }
     L->c->n_points = n;
     return 0;
@@ -194,9 +205,10 @@ static int load_variants(struct compare_loading *L)
         if (compare_keys_check(&L->d, var, "variant", "label", L->e) < 0)
             return -1;
         for (int p = 0; ymap_pair(d, var, p, &k, &v); p++)
-            if (L->sweep && ymap_get(d, L->sweep, yscalar(k)))
+            if (L->sweep && (ymap_get(d, L->sweep, yscalar(k)) ||
+                             (!strcmp(yscalar(k), "threshold") && ymap_get(d, L->sweep, "spp"))))
                 return ydoc_fail(d, k, L->e, "%s: swept (sweep: %s), so a variant cannot set it", yscalar(k),
-                                 yscalar(k));
+                                 ymap_get(d, L->sweep, yscalar(k)) ? yscalar(k) : "spp");
         if (variant_label(L, var, i, L->c->variants[i], sizeof L->c->variants[i]) < 0)
             return -1;
         for (int j = 0; j < i; j++)
@@ -226,7 +238,7 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
 {
     /* the document borrowed: read through L.d, freed by its owner */
     struct compare_loading L = {.d = *doc, .e = e};
-    const char *extra[] = {"scenes", "variants", "sweep", "seeds"};
+    const char *extra[] = {"scenes", "variants", "sweep", "seeds", "mask"};
     int ok = 0;
     if (!(L.c = calloc(1, sizeof *L.c)) || !(L.c->inputs = in ? in : study_inputs_new())) {
         free(L.c);
@@ -241,7 +253,7 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
     int nk = 0;
     for (int i = 0; job_keys[i] && nk < 58; i++)
         keys[nk++] = job_keys[i];
-    for (int i = 0; i < 4; i++)
+    for (size_t i = 0; i < sizeof extra / sizeof *extra; i++)
         keys[nk++] = extra[i];
     keys[nk] = NULL;
     if (ymap_check(&L.d, root, keys, "compare job", e) < 0)
@@ -258,6 +270,8 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
             L.variants = v;
         else if (!strcmp(key, "sweep"))
             L.sweep = v;
+        else if (!strcmp(key, "mask"))
+            L.mask = v;
         else if (strcmp(key, "scenes") && strcmp(key, "seeds") && job_apply(&L.base, &L.d, k, v, e) < 0)
             goto done;
     }

@@ -7,6 +7,10 @@ void compare_free(struct compare *c)
 {
     if (!c)
         return;
+    for (int s = 0; c->scenes && s < c->n_scenes; s++) {
+        mask_free(c->scenes[s].mask);
+        free(c->scenes[s].mask);
+    }
     free(c->scenes);
     free(c->variants);
     free(c->points);

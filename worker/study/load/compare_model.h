@@ -39,6 +39,7 @@ struct compare_scene {
        difference: its own relMSE, its mean radiance and that mean's standard error. NAN: unknown
        (an image reference: its mean radiance is read at the verdict, its noise is not known). */
     double ref_relmse, ref_radiance, ref_radiance_se;
+    struct img_mask *mask; /* `mask:`: the pixels every figure counts (owned); NULL: all */
 };
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
@@ -54,6 +55,7 @@ struct compare_item {
     struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
     struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
     double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
+    double flip;                          /* mean FLIP (HDR on linear, LDR on 8-bit) against it */
 };
 
 struct compare {

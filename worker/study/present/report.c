@@ -12,6 +12,7 @@
 #include "base/fileio.h"
 #include "image/imgio.h"
 #include "report_closeup.h"
+#include "image/errmap.h"
 #include "report_image.h"
 #include "report_view.h"
 #include "base/sbuf.h"
@@ -103,8 +104,16 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
     snprintf(id, sizeof id, "ref%d", s);
     struct report_view_img view = {zoom, id, NULL, "reference"};
     const struct rgb8 *ref = &cs->ref->display; /* an EXR's floats converted as the PNG writer does */
+    struct rgb8 out = {0};                      /* with the mask's outline */
     sbuf_printf(b, "<div class=\"row\"><figure>");
-    if (report_view_rgb(b, ref, &view, e) < 0)
+    int rc = cs->mask && image_alloc(&out, ref->w, ref->h, e) < 0;
+    if (rc == 0 && cs->mask) {
+        memcpy(out.px, ref->px, (size_t)ref->w * ref->h * 3);
+        errmap_outline(&out, cs->mask);
+    }
+    rc = rc || report_view_rgb(b, cs->mask ? &out : ref, &view, e) < 0;
+    image_free(&out);
+    if (rc)
         return -1;
     sbuf_printf(b, "<figcaption><b>reference</b>: ");
     if (cs->ref_kind == COMPARE_REF_SETTINGS)
@@ -114,6 +123,9 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
                     cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
     else
         sbuf_escape(b, cs->ref_path);
+    if (cs->mask)
+        sbuf_printf(b, "; every figure counts only the %zu pixels inside the cyan outline (mask)",
+                    cs->mask->count);
     sbuf_printf(b, "</figcaption></figure></div>\n");
     return 0;
 }

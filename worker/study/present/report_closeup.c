@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "image/errmap.h"
+#include "image/flip.h"
 #include "image/imgio.h"
 #include "report_image.h"
 #include "report_view.h"
@@ -92,6 +93,29 @@ fail:
     return -1;
 }
 
+/* report_image_worst_window, inside the scene's mask: the renders' pixels outside it are taken as
+   the reference's (no error there), so the window lands where the figures are counted. */
+static int worst_window(const struct point_imgs *pi, const struct rgb8 *ref, int side, int *x0, int *y0,
+                        struct err *e)
+{
+    const struct img_mask *m = pi->c->scenes[pi->s].mask;
+    if (!m) {
+        report_image_worst_window(ref, pi->imgs, pi->n, side, x0, y0);
+        return 0;
+    }
+    struct rgb8 *in = calloc((size_t)pi->n, sizeof *in);
+    int k = 0;
+    for (; in && k < pi->n && image_alloc(&in[k], ref->w, ref->h, e) == 0; k++)
+        for (size_t i = 0; i < (size_t)ref->w * ref->h; i++)
+            memcpy(in[k].px + 3 * i, (m->on[i] ? pi->imgs[k].px : ref->px) + 3 * i, 3);
+    if (in && k == pi->n)
+        report_image_worst_window(ref, in, pi->n, side, x0, y0);
+    for (int i = 0; in && i < k; i++)
+        image_free(&in[i]);
+    free(in);
+    return !in ? err_set(e, NULL, 0, 0, "out of memory") : k == pi->n ? 0 : -1;
+}
+
 static int crops(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 *ref, struct err *e)
 {
     const struct compare *c = pi->c;
@@ -99,7 +123,8 @@ static int crops(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 
     int w = ref->w, h = ref->h, x0, y0;
     int side = (w < h ? w : h) / 5;
     side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
-    report_image_worst_window(ref, pi->imgs, pi->n, side, &x0, &y0);
+    if (worst_window(pi, ref, side, &x0, &y0, e) < 0)
+        return -1;
     sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", report_image_zoom(side, REPORT_IMAGE_CROP_PX));
     sbuf_escape(b, c->points[p]);
     sbuf_printf(
@@ -123,7 +148,7 @@ static int map_floats(const char *dir, const char *output, const struct rgb8 *im
     return imgio_read_f(path, out, NULL, e);
 }
 
-static void maps_heading(struct sbuf *b, const struct compare *c, int p, int linear, int zoom)
+static void maps_heading(struct sbuf *b, const struct compare *c, int s, int p, int linear, int zoom)
 {
     sbuf_printf(b, "<h3>Error maps at ");
     sbuf_escape(b, c->points[p]);
@@ -131,12 +156,44 @@ static void maps_heading(struct sbuf *b, const struct compare *c, int p, int lin
         b,
         ", at %dx: each pixel's relative error against the reference %s, its relMSE term (the mean over "
         "R, G, B of (v - r)^2 / (r^2 + 0.01)), coloured by its log10 on one fixed scale for every "
-        "map (as <code>worker diff --map</code> draws them). Noise looks like grain; structured error "
-        "(aliasing, a repeated pattern, a bias) like a pattern; fireflies as bright dots</h3>\n",
+        "map (as <code>worker diff --map</code> draws them); beside each, its FLIP map (%s: the difference "
+        "a person sees, 0 black to 1 pale yellow, linear). Noise looks like grain; structured error "
+        "(aliasing, a repeated pattern, a bias) like a pattern; fireflies as bright dots%s</h3>\n",
         zoom,
         linear ? "in linear radiance (the float images)"
                : "on 8-bit display values v / 255 (this scene's reference is an 8-bit image), not "
-                 "linear radiance");
+                 "linear radiance",
+        linear ? "HDR-FLIP" : "LDR-FLIP",
+        c->scenes[s].mask ? "; the cyan line outlines the mask, outside which nothing is counted" : "");
+}
+
+/* An <img> of img with mask m's outline drawn on it (none when m is NULL). */
+static int outlined(struct sbuf *b, struct rgb8 *img, const struct img_mask *m,
+                    const struct report_view_img *v, struct err *e)
+{
+    if (m)
+        errmap_outline(img, m);
+    return report_view_rgb(b, img, v, e);
+}
+
+/* The FLIP map of img against ref beside its relMSE map: HDR-FLIP when linear, else LDR-FLIP. */
+static int flip_figure(struct sbuf *b, const struct rgbf *ref, const struct rgbf *img,
+                       const struct img_mask *m, int linear, const struct report_view_img *v, struct err *e)
+{
+    struct flip_result r = {0};
+    struct rgb8 map = {0};
+    float *px = malloc((size_t)ref->w * ref->h * sizeof *px);
+    char alt[COMPARE_LABEL_MAX + 32];
+    snprintf(alt, sizeof alt, "%s FLIP map", v->alt);
+    struct report_view_img fv = {v->zoom, NULL, NULL, alt};
+    int rc = !px ? err_set(e, NULL, 0, 0, "out of memory")
+             : (linear ? flip_hdr : flip_ldr)(ref, img, m, px, &r, e) < 0 ||
+                     errmap_flip(px, ref->w, ref->h, &map, e) < 0 || outlined(b, &map, m, &fv, e) < 0
+                 ? -1
+                 : 0;
+    free(px);
+    image_free(&map);
+    return rc;
 }
 
 static int maps(struct sbuf *b, const struct point_imgs *pi, const struct rgbf *reff, int linear,
@@ -146,7 +203,7 @@ static int maps(struct sbuf *b, const struct point_imgs *pi, const struct rgbf *
     int s = pi->s, p = pi->p;
     const char *dir = pi->dir;
     int zoom = report_image_zoom(reff->w, REPORT_IMAGE_SHOW_PX);
-    maps_heading(b, c, p, linear, zoom);
+    maps_heading(b, c, s, p, linear, zoom);
     if (report_view_scale(b, e) < 0)
         return -1;
     sbuf_printf(b, "<div class=\"row\">");
@@ -160,7 +217,8 @@ static int maps(struct sbuf *b, const struct point_imgs *pi, const struct rgbf *
         report_view_figure(b, k, slot);
         int rc = map_floats(dir, c->items[compare_index(c, s, v, p, k)].job.output, &pi->imgs[i], linear,
                             &img, e) < 0 ||
-                 errmap_make(reff, &img, &map, e) < 0 || report_view_rgb(b, &map, &view, e) < 0;
+                 errmap_make(reff, &img, &map, e) < 0 || outlined(b, &map, c->scenes[s].mask, &view, e) < 0 ||
+                 flip_figure(b, reff, &img, c->scenes[s].mask, linear, &view, e) < 0;
         image_f_free(&img);
         image_free(&map);
         if (rc)

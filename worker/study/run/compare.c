@@ -14,6 +14,7 @@
 #include "base/clock.h"
 #include "base/fileio.h"
 #include "image/errspec.h"
+#include "image/flip.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
@@ -87,19 +88,38 @@ static const char *scored_file(const struct outdir_files *out, enum img_domain d
     return out->image[domain == IMG_LINEAR && out->float_copy >= 0 ? out->float_copy : 0];
 }
 
-/* A combination that was current: score its files (scored_file, read once for its error and its
-   look, and its PNG for the display figures). 0 or -1. */
+/* How a combination's error looks (errspec.h) and its mean FLIP (HDR-FLIP on linear images,
+   LDR-FLIP on 8-bit ones), of img, over the scene's mask (the spectrum: on the mask's bounding
+   rectangle, its uncounted pixels given no error). 0 or -1. */
+static int score_look_img(struct compare_item *it, const struct rgbf *img, const struct study_ref *ref,
+                          const struct compare_scene *cs, struct err *e)
+{
+    struct rgbf cut[2] = {{0}, {0}};
+    struct flip_result flip = {0};
+    const struct img_mask *m = cs->mask;
+    int rc = (m ? mask_crop_pair(m, &ref->f, img, &cut[0], &cut[1], e) < 0 ||
+                      errspec_lowfreq(&cut[0], &cut[1], &it->error_lowfreq, e) < 0
+                : errspec_lowfreq(&ref->f, img, &it->error_lowfreq, e) < 0) ||
+                     (cs->ref_domain == IMG_LINEAR ? flip_hdr : flip_ldr)(&ref->f, img, m, NULL, &flip, e) < 0
+                 ? -1
+                 : 0;
+    it->flip = rc == 0 ? flip.mean : NAN;
+    image_f_free(&cut[0]), image_f_free(&cut[1]);
+    return rc;
+}
+
+/* A combination that was current, or a scene with a mask: score its files (scored_file, read once
+   for its error, look and FLIP, and its PNG for the display figures), over the scene's mask. */
 static int score_files(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
-                       enum img_domain domain, struct err *e)
+                       const struct compare_scene *cs, struct err *e)
 {
     struct rgbf img = {0};
     struct rgb8 png = {0};
     const struct outdir_files *out = &rr->out;
-    int rc = imgio_read_f(scored_file(out, domain), &img, NULL, e) < 0 ||
-                     metrics_compare_f(&ref->f, &img, 1, &it->error, e) < 0 ||
-                     errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0 ||
-                     imgio_read(out->image[0], &png, e) < 0 ||
-                     metrics_display_compare(&ref->display, &png, &it->display_error, e) < 0
+    int rc = imgio_read_f(scored_file(out, cs->ref_domain), &img, NULL, e) < 0 ||
+                     metrics_compare_masked(&ref->f, &img, 1, cs->mask, &it->error, e) < 0 ||
+                     score_look_img(it, &img, ref, cs, e) < 0 || imgio_read(out->image[0], &png, e) < 0 ||
+                     metrics_display_masked(&ref->display, &png, cs->mask, &it->display_error, e) < 0
                  ? -1
                  : 0;
     image_f_free(&img);
@@ -107,14 +127,14 @@ static int score_files(struct compare_item *it, const struct run_result *rr, con
     return rc;
 }
 
-/* How a fresh combination's error looks (errspec.h), from scored_file (the framebuffer was
-   scored in memory; its look is measured on the file as written). 0 or -1. */
+/* How a fresh combination's error looks and its FLIP, from scored_file (the framebuffer was
+   scored in memory; these are measured on the file as written). 0 or -1. */
 static int score_look(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
-                      enum img_domain domain, struct err *e)
+                      const struct compare_scene *cs, struct err *e)
 {
     struct rgbf img = {0};
-    int rc = imgio_read_f(scored_file(&rr->out, domain), &img, NULL, e) < 0 ||
-                     errspec_lowfreq(&ref->f, &img, &it->error_lowfreq, e) < 0
+    int rc = imgio_read_f(scored_file(&rr->out, cs->ref_domain), &img, NULL, e) < 0 ||
+                     score_look_img(it, &img, ref, cs, e) < 0
                  ? -1
                  : 0;
     image_f_free(&img);
@@ -159,8 +179,8 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->cpu_s = rr.procs.cpu_s;
         it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
     }
-    if (ref && rr.skipped) {
-        if (score_files(it, &rr, ref, cs->ref_domain, e) < 0)
+    if (ref && (rr.skipped || cs->mask)) { /* the sidecar's figures are the whole image's */
+        if (score_files(it, &rr, ref, cs, e) < 0)
             return 1;
         it->has_error = 1;
     } else if (ref) {
@@ -171,25 +191,19 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         it->error = rr.error;
         it->display_error = rr.display_error;
         it->has_error = 1;
-        if (score_look(it, &rr, ref, cs->ref_domain, e) < 0)
+        if (score_look(it, &rr, ref, cs, e) < 0)
             return 1;
     }
     it->done = 1;
     return 0;
 }
 
-/* One CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180), as a scene
-   file's name may. */
+/* One CSV field (sbuf_csv: quoted when it holds a comma, a quote or a line break, as a scene file's
+   name may), then `after`. */
 static void csv_field(struct sbuf *b, const char *text, const char *after)
 {
-    if (!strpbrk(text, ",\"\r\n")) {
-        sbuf_printf(b, "%s%s", text, after);
-        return;
-    }
-    sbuf_printf(b, "\"");
-    for (const char *p = text; *p; p++)
-        sbuf_printf(b, "%s%c", *p == '"' ? "\"" : "", *p); /* a quote is doubled */
-    sbuf_printf(b, "\"%s", after);
+    sbuf_csv(b, text);
+    sbuf_printf(b, "%s", after);
 }
 
 static char *summary_csv(const struct compare *c)
@@ -198,7 +212,7 @@ static char *summary_csv(const struct compare *c)
     sbuf_printf(&b,
                 "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
                 "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
-                "image\n");
+                "flip,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
@@ -216,6 +230,7 @@ static char *summary_csv(const struct compare *c)
             sbuf_printf(&b, "%.4f,", it->error_lowfreq);
         else
             sbuf_printf(&b, ",");
+        sbuf_printf(&b, it->has_error && isfinite(it->flip) ? "%.6g," : ",", it->flip);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);

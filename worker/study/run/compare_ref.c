@@ -164,18 +164,22 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
    difference: each half has variance s2 per value, their mean s2 / 2 and a - b 2 s2, so the mean's
    relMSE is the mean of (a - b)^2 / 4 / (m^2 + 0.01), and its mean radiance's variance the sum of
    (a - b)^2 / 4 over the N values, over N^2 (values independent: per-pixel seeds). */
-static void mean_of_halves(struct compare_scene *cs, struct rgbf *a, const struct rgbf *b)
+static void mean_of_halves(struct compare_scene *cs, const struct img_mask *mask, struct rgbf *a,
+                           const struct rgbf *b)
 {
-    size_t n = (size_t)a->w * a->h * 3;
+    size_t n = (size_t)a->w * a->h * 3, counted = 0;
     double rel = 0, sum = 0, var = 0;
     for (size_t i = 0; i < n; i++) {
         double m = 0.5 * ((double)a->px[i] + b->px[i]), d = (double)a->px[i] - b->px[i];
-        rel += d * d / 4 / (m * m + METRICS_REL_EPS);
+        /* relMSE over the mask's pixels (as the variants'); the radiance (the judge's bias test,
+           which reads whole images) over every pixel */
+        if (mask_on(mask, (int)(i / 3 % (size_t)a->w), (int)(i / 3 / (size_t)a->w)))
+            rel += d * d / 4 / (m * m + METRICS_REL_EPS), counted++;
         var += d * d / 4;
         sum += m;
         a->px[i] = (float)m;
     }
-    cs->ref_relmse = rel / (double)n;
+    cs->ref_relmse = rel / (double)counted;
     cs->ref_radiance = sum / (double)n;
     cs->ref_radiance_se = sqrt(var) / (double)n;
 }
@@ -199,7 +203,7 @@ void compare_ref_measure(struct compare_scene *cs)
             break;
     }
     if (a.px && b.px && a.w == b.w && a.h == b.h)
-        mean_of_halves(cs, &a, &b);
+        mean_of_halves(cs, cs->mask, &a, &b);
     image_f_free(&a), image_f_free(&b);
 }
 
@@ -283,13 +287,15 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
         if (rc == 0)
             rc = half(cs, 1, key, o, &b, e);
         if (rc == 0) {
-            mean_of_halves(cs, &a, &b);
+            mean_of_halves(cs, NULL, &a, &b); /* kept for every study: the whole image's */
             rc = keep_mean(c, cs, &a, e) < 0;
         }
         image_f_free(&a), image_f_free(&b);
         if (rc != 0)
             return rc;
     }
+    if (cs->mask) /* its noise over the mask, from the halves as written */
+        compare_ref_measure(cs);
     if (cs->ref_reused)
         run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
                 cs->ref_wall_s);

@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include "base/clock.h"
+#include "base/sbuf.h"
 #include "compare.h"
 #include "compare_suite.h"
 #include "study/load/compare_load.h"
@@ -39,8 +40,13 @@ static int run_study(const struct jobfile *f, const struct run_opts *o,
     } else {
         compare_summary_line(c, clock_s(CLOCK_MONOTONIC) - t0, o->out_dir, out->line, sizeof out->line);
     }
-    if (!(rc == 1 && o->stop && *o->stop)) /* stopped (a signal, a queue claim gone): the caller says so */
-        fprintf(stderr, "%s\n", out->line);
+    if (!(rc == 1 && o->stop && *o->stop)) { /* stopped (a signal, a queue claim gone): the caller says so */
+        struct sbuf shown = {0};             /* the names in it as the terminal sanitiser shows them */
+        sbuf_shown(&shown, out->line);
+        if (shown.buf)
+            fprintf(stderr, "%s\n", shown.buf);
+        sbuf_free(&shown);
+    }
 done:
     compare_suite_free(s);
     compare_free(c);

@@ -2,30 +2,25 @@
    compare, judged again. */
 #include "verdict_load.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "base/fileio.h"
 #include "compare.h"
 #include "compare_ref.h"
+#include "verdict_csv.h"
+#include "verdict_points.h"
+#include "verdict_sidecars.h"
 #include "study/judge/verdict_from.h"
 
 #define CSV_MAX_BYTES (64u << 20)
-#define CSV_FIELDS 20
-/* Most rows read: a suite of up to 64 studies of COMPARE_MAX_ITEMS images each (the work below
-   grows with their square per study). */
-#define CSV_MAX_ROWS (64 * COMPARE_MAX_ITEMS)
-#define KEY_MAX 512
-
-/* summary.csv parsed: rows of field pointers into one buffer of unquoted, NUL-ended fields. */
-struct csv {
-    char *text;
-    char *(*rows)[CSV_FIELDS];
-    int n_rows, n_fields; /* n_fields: the header's; row 0 is the header */
-};
+/* The figures a render can give: samples per pixel up to a job's most camera samples on one pixel
+   (job_limits.h's LIMITS_MAX_JOB_SAMPLES), seconds up to about 30 years. */
+#define SPP_MAX 1e11
+#define SECONDS_MAX 1e9
 
 /* The columns read, by name (study is optional: a suite's). */
 enum {
@@ -49,200 +44,179 @@ static const char *const col_names[N_COLS] = {
     "study",  "scene", "variant",       "threshold", "light_threshold", "seed",  "samples_per_pixel_mean",
     "wall_s", "cpu_s", "sampler_share", "relmse",    "domain",          "image", "error_lowfreq"};
 
-/* Parse RFC 4180 text in place: a quoted field's "" is one quote. -1 on a row of another width. */
-static int csv_parse(struct csv *t, char *text, size_t len, const char *path, struct err *e)
+/* summary.csv read: its rows, the column of each name (-1: absent), each row's study index. */
+struct table {
+    struct verdict_csv t;
+    int col[N_COLS];
+    int *study; /* per row (row 0, the header: -1) */
+    const char *path;
+};
+
+/* Row r's field k, a name checked: 1 to max bytes (a compare job's limit, so a name is never cut
+   and two names stay two) and, for a file's or a folder's name, no path. 0 or -1 with e at r. */
+static int name_ok(const struct table *T, int r, int k, size_t max, struct err *e)
 {
-    size_t lines = 1;
-    for (size_t i = 0; i < len; i++)
-        lines += text[i] == '\n' || text[i] == '\r'; /* a row ends at either (CR alone too) */
-    t->text = text;
-    t->rows = calloc(lines, sizeof *t->rows);
-    if (!t->rows)
-        return err_set(e, path, 0, 0, "out of memory");
-    char *r = text, *w = text;
-    while (*r) {
-        int nf = 0;
-        for (;;) {
-            char *start = w;
-            if (*r == '"') {
-                for (r++; *r && !(*r == '"' && r[1] != '"'); r++)
-                    *w++ = *r == '"' ? *r++ : *r;
-                r += *r == '"';
-            } else
-                while (*r && *r != ',' && *r != '\n' && *r != '\r')
-                    *w++ = *r++;
-            char end = *r;
-            *w++ = 0;
-            if (nf < CSV_FIELDS)
-                t->rows[t->n_rows][nf] = start;
-            nf++;
-            r += end != 0;
-            if (end != ',') {
-                r += end == '\r' && *r == '\n';
-                break;
-            }
+    const char *s = T->t.rows[r][T->col[k]];
+    size_t n = strlen(s);
+    if (n == 0 || n > max)
+        return err_set(e, T->path, r + 1, 0, "%s: %zu bytes, not 1 to %zu", col_names[k], n, max);
+    if ((k == C_IMAGE || k == C_STUDY) && (strchr(s, '/') || !strcmp(s, ".") || !strcmp(s, "..")))
+        return err_set(e, T->path, r + 1, 0, "%s: a file name, not a path", col_names[k]);
+    return 0;
+}
+
+/* Row r's threshold, light_threshold and seed checked as numbers (the seed a whole one): 0 or -1. */
+static int numbers_ok(const struct table *T, int r, double *th, double *lt, uint64_t *seed, struct err *e)
+{
+    char *const *f = T->t.rows[r];
+    const char *s = f[T->col[C_SEED]];
+    if (verdict_csv_figure(f[T->col[C_THRESHOLD]], 0, 1e6, th) < 0 ||
+        verdict_csv_figure(f[T->col[C_LT]], 0, 1e6, lt) < 0)
+        return err_set(e, T->path, r + 1, 0, "threshold and light_threshold: numbers in [0, 1e6]");
+    char *end;
+    errno = 0;
+    *seed = strtoull(s, &end, 10);
+    if (!(*s >= '0' && *s <= '9') || *end || errno == ERANGE)
+        return err_set(e, T->path, r + 1, 0, "seed: not a whole number below 2^64");
+    return 0;
+}
+
+/* The first n names of set into labels (each checked to fit by name_ok). */
+static void copy_names(const struct verdict_names *set, char (*labels)[COMPARE_LABEL_MAX])
+{
+    for (int i = 0; i < set->n; i++)
+        snprintf(labels[i], COMPARE_LABEL_MAX, "%.*s", (int)set->len[i], set->s[i]);
+}
+
+/* A study's rows in the table, interned: per row its index and scene, variant and seed indices. */
+struct interned {
+    struct verdict_names scenes, variants, seeds, keys;
+    int *rows; /* 4 per row: row, scene, variant, seed */
+    int *point, *key_point, *top;
+    int m;
+};
+
+static void interned_free(struct interned *I)
+{
+    verdict_names_free(&I->scenes), verdict_names_free(&I->variants);
+    verdict_names_free(&I->seeds), verdict_names_free(&I->keys);
+    free(I->rows), free(I->point), free(I->key_point), free(I->top);
+}
+
+/* Intern study si's rows (names whole, in linear time) and number its points: each (scene,
+   variant)'s keys in order, a key seen before keeping its point. 0 or -1 with e filled. */
+static int intern_rows(const struct table *T, int si, struct compare *c, struct interned *I, struct err *e)
+{
+    const struct verdict_csv *t = &T->t;
+    I->m = 0;
+    for (int r = 1; r < t->n_rows; r++)
+        I->m += T->study[r] == si;
+    if (I->m == 0)
+        return err_set(e, T->path, 0, 0, "no rows for study %s", c->name);
+    if (I->m > COMPARE_MAX_ITEMS)
+        return err_set(e, T->path, 0, 0, "study %s has %d rows, more than a compare job's %d", c->name, I->m,
+                       COMPARE_MAX_ITEMS);
+    size_t m = (size_t)I->m, sv, n_items;
+    I->rows = calloc(4 * m, sizeof *I->rows), I->point = calloc(m, sizeof *I->point);
+    I->key_point = calloc(m, sizeof *I->key_point);
+    c->points = calloc(m, sizeof *c->points);
+    if (verdict_names_init(&I->scenes, I->m) < 0 || verdict_names_init(&I->variants, I->m) < 0 ||
+        verdict_names_init(&I->seeds, I->m) < 0 || verdict_names_init(&I->keys, I->m) < 0 || !I->rows ||
+        !I->point || !I->key_point || !c->points)
+        return err_set(e, T->path, 0, 0, "out of memory");
+    for (int r = 1, i = 0; r < t->n_rows; r++) {
+        char *const *f = t->rows[r];
+        double th, lt;
+        uint64_t seed;
+        if (T->study[r] != si)
+            continue;
+        if (name_ok(T, r, C_SCENE, COMPARE_LABEL_MAX - 1, e) < 0 ||
+            name_ok(T, r, C_VARIANT, COMPARE_LABEL_MAX - 1, e) < 0 ||
+            name_ok(T, r, C_IMAGE, JOB_NAME_MAX - 1, e) < 0 || numbers_ok(T, r, &th, &lt, &seed, e) < 0)
+            return -1;
+        int *x = &I->rows[4 * i++];
+        x[0] = r;
+        x[1] = verdict_names_intern(&I->scenes, f[T->col[C_SCENE]], strlen(f[T->col[C_SCENE]]));
+        x[2] = verdict_names_intern(&I->variants, f[T->col[C_VARIANT]], strlen(f[T->col[C_VARIANT]]));
+        x[3] = verdict_names_intern(&I->seeds, f[T->col[C_SEED]], strlen(f[T->col[C_SEED]]));
+    }
+    c->n_scenes = I->scenes.n, c->n_variants = I->variants.n, c->n_seeds = I->seeds.n;
+    if (verdict_csv_product((size_t)c->n_scenes, (size_t)c->n_variants, COMPARE_MAX_ITEMS, &sv) < 0)
+        goto too_many;
+    I->top = malloc(sv * sizeof *I->top);
+    if (!I->top)
+        return err_set(e, T->path, 0, 0, "out of memory");
+    for (size_t k = 0; k < sv; k++)
+        I->top[k] = -1; /* the highest point of each (scene, variant) so far */
+    for (int i = 0; i < I->m; i++) {
+        const int *x = &I->rows[4 * i];
+        char *const *f = t->rows[x[0]];
+        const char *image = f[T->col[C_IMAGE]];
+        int before = I->keys.n, k = verdict_names_intern(&I->keys, image, verdict_point_key_len(image));
+        int *top = &I->top[x[1] * c->n_variants + x[2]];
+        int p = k < before ? I->key_point[k] : *top + 1;
+        I->key_point[k] = p;
+        *top = p > *top ? p : *top;
+        I->point[i] = p;
+        if (p == c->n_points) { /* a new point: labelled by its first row's thresholds, or spp */
+            c->n_points++;
+            long spp = verdict_point_spp(image, verdict_point_key_len(image));
+            if (spp > 0)
+                snprintf(c->points[p], COMPARE_LABEL_MAX, "spp %ld, light_threshold %g", spp,
+                         atof(f[T->col[C_LT]]));
+            else
+                snprintf(c->points[p], COMPARE_LABEL_MAX, "threshold %g, light_threshold %g",
+                         atof(f[T->col[C_THRESHOLD]]), atof(f[T->col[C_LT]]));
         }
-        if (t->n_rows == 0)
-            t->n_fields = nf;
-        if (t->n_rows > CSV_MAX_ROWS)
-            return err_set(e, path, t->n_rows + 1, 0, "more than %d rows", CSV_MAX_ROWS);
-        if (nf != t->n_fields || nf > CSV_FIELDS)
-            return err_set(e, path, t->n_rows + 1, 0, "%d fields, the header has %d", nf, t->n_fields);
-        t->n_rows++;
+    }
+    if (verdict_csv_product(sv, (size_t)c->n_points, COMPARE_MAX_ITEMS, &n_items) < 0 ||
+        verdict_csv_product(n_items, (size_t)c->n_seeds, COMPARE_MAX_ITEMS, &n_items) < 0)
+        goto too_many;
+    c->n_items = (int)n_items;
+    return 0;
+too_many:
+    return err_set(e, T->path, 0, 0,
+                   "study %s: too many combinations (%d scenes x %d variants x %d points x %d seeds: more "
+                   "than a compare job's %d images)",
+                   c->name, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, COMPARE_MAX_ITEMS);
+}
+
+/* Row f's figures into it; -1 (it left out) when spp, seconds or share are no figure in range. */
+static int read_figures(const struct table *T, char *const *f, struct compare_item *it)
+{
+    const int *col = T->col;
+    double lowfreq;
+    it->has_error = f[col[C_RELMSE]][0] != 0;
+    if (!it->has_error || verdict_csv_figure(f[col[C_RELMSE]], 0, HUGE_VAL, &it->error.relmse) < 0)
+        it->error.relmse = NAN; /* no error: judge() leaves it out and says so */
+    it->error_lowfreq =
+        col[C_LOWFREQ] >= 0 && verdict_csv_figure(f[col[C_LOWFREQ]], 0, HUGE_VAL, &lowfreq) == 0 ? lowfreq
+                                                                                                 : NAN;
+    if (verdict_csv_figure(f[col[C_SPP]], 0, SPP_MAX, &it->spp_mean) < 0 ||
+        verdict_csv_figure(f[col[C_WALL]], 0, SECONDS_MAX, &it->wall_s) < 0 ||
+        verdict_csv_figure(f[col[C_CPU]], 0, SECONDS_MAX, &it->cpu_s) < 0 ||
+        verdict_csv_figure(f[col[C_SHARE]], 0, 1, &it->sampler_share) < 0) {
+        *it = (struct compare_item){
+            .scene = it->scene, .variant = it->variant, .point = it->point, .seed = it->seed};
+        return -1;
     }
     return 0;
 }
 
-/* Index of s in list (n entries of COMPARE_LABEL_MAX), appended when absent. */
-static int intern(char (*list)[COMPARE_LABEL_MAX], int *n, const char *s)
-{
-    for (int i = 0; i < *n; i++)
-        if (!strcmp(list[i], s))
-            return i;
-    snprintf(list[*n], COMPARE_LABEL_MAX, "%s", s);
-    return (*n)++;
-}
-
-/* A point's key: its image name without "-s<seed>.<ext>" (what the sweep adds: -t20-lt10-pool64). */
-static void point_key(const char *image, char *key, size_t n)
-{
-    snprintf(key, n, "%s", image);
-    char *s = strrchr(key, '-');
-    if (s && s[1] == 's')
-        *s = 0;
-}
-
-/* `"key": "value"` or `"key": number` from a sidecar's text, into out; 0 when absent. */
-static int sidecar_field(const char *text, const char *key, char *out, size_t n)
-{
-    char pat[64];
-    snprintf(pat, sizeof pat, "\"%s\": ", key);
-    const char *p = text ? strstr(text, pat) : NULL;
-    if (!p)
-        return 0;
-    p += strlen(pat);
-    size_t k = 0, quoted = *p == '"';
-    for (p += quoted; *p && k + 1 < n && (quoted ? *p != '"' : (*p != ',' && *p != '\n' && *p != '}')); p++)
-        out[k++] = *p;
-    out[k] = 0;
-    return 1;
-}
-
-/* Where the reference named in a sidecar is now: as written (relative to where the job ran), else
-   in the output root's .cache/ beside the study (dir/../.cache or dir/.cache). */
-static void find_reference(const char *named, const char *dir, char *out, size_t n)
-{
-    const char *base = strrchr(named, '/');
-    base = base ? base + 1 : named;
-    snprintf(out, n, "%s", named);
-    if (access(out, R_OK) == 0)
-        return;
-    snprintf(out, n, "%s/../.cache/%s", dir, base);
-    if (access(out, R_OK) == 0)
-        return;
-    snprintf(out, n, "%s/.cache/%s", dir, base);
-    if (access(out, R_OK) != 0)
-        out[0] = 0;
-}
-
-/* What the images' sidecars add: sampler, pool, non-finite samples and the reference. missing[s]:
-   how many of scene s's sidecars are missing. */
-static void read_sidecars(struct compare *c, const char *dir, int *missing)
-{
-    for (int i = 0; i < c->n_items; i++) {
-        struct compare_item *it = &c->items[i];
-        if (!it->done)
-            continue;
-        char path[JOB_PATH_MAX * 2], val[JOB_PATH_MAX];
-        const char *dot = strrchr(it->job.output, '.');
-        snprintf(path, sizeof path, "%s/%.*s.json", dir, dot ? (int)(dot - it->job.output) : JOB_NAME_MAX,
-                 it->job.output);
-        uint8_t *text = NULL;
-        size_t len;
-        struct err ignored;
-        if (fileio_read_all(path, 1u << 20, &text, &len, &ignored) < 0) {
-            missing[it->scene]++;
-            continue;
-        }
-        const char *t = (const char *)text;
-        if (sidecar_field(t, "sampler", val, sizeof val))
-            sampler_kind_parse(val, &it->job.sampler);
-        if (sidecar_field(t, "poisson_pool", val, sizeof val))
-            it->job.poisson_pool = atoi(val);
-        if (sidecar_field(t, "nonfinite_samples", val, sizeof val) ||
-            sidecar_field(t, "nonfinite_dropped", val, sizeof val)) /* its name before issue 26 */
-            it->nonfinite = strtoull(val, NULL, 10);
-        struct compare_scene *cs = &c->scenes[it->scene];
-        if (!cs->ref_path[0] && sidecar_field(t, "reference", val, sizeof val))
-            find_reference(val, dir, cs->ref_path, sizeof cs->ref_path);
-        free(text);
-    }
-}
-
-/* One study's rows (those whose study column is `study`, or all) into a struct compare. */
-static struct compare *build(const struct csv *t, const int *col, const char *study, const char *dir,
+/* Study si's rows into a struct compare; said: per scene 3 counts (sidecars missing, relMSEs that
+   are no error, images left out for figures that are none), malloc'd, the last filled here. */
+static struct compare *build(const struct table *T, int si, const char *study, const char *dir, int **said,
                              struct err *e)
 {
     struct compare *c = calloc(1, sizeof *c);
-    int n = t->n_rows - 1, cap = n > 0 ? n : 1;
-    char(*keys)[COMPARE_LABEL_MAX] = calloc((size_t)cap, sizeof *keys);
-    char(*scenes)[COMPARE_LABEL_MAX] = calloc((size_t)cap, sizeof *scenes);
-    int *rows = calloc((size_t)cap * 4, sizeof *rows), n_keys = 0, m = 0;
-    if (c) {
-        c->variants = calloc((size_t)cap, sizeof *c->variants),
-        c->points = calloc((size_t)cap, sizeof *c->points);
-        c->seeds = calloc((size_t)cap, sizeof *c->seeds);
-    }
-    if (!c || !keys || !scenes || !rows || !c->variants || !c->points || !c->seeds) {
+    struct interned I = {0};
+    if (!c) {
         err_set(e, dir, 0, 0, "out of memory");
-        goto fail;
+        return NULL;
     }
     snprintf(c->name, sizeof c->name, "%s", study);
-    char(*seeds)[COMPARE_LABEL_MAX] = keys; /* seeds interned first, keys after (below) */
-    for (int r = 1; r <= n; r++) {
-        char *const *f = t->rows[r];
-        if (col[C_STUDY] >= 0 && strcmp(f[col[C_STUDY]], study))
-            continue;
-        int *x = &rows[4 * m++];
-        x[0] = r, x[1] = intern(scenes, &c->n_scenes, f[col[C_SCENE]]);
-        x[2] = intern(c->variants, &c->n_variants, f[col[C_VARIANT]]);
-        x[3] = intern(seeds, &c->n_seeds, f[col[C_SEED]]);
-    }
-    if (m > COMPARE_MAX_ITEMS) {
-        err_set(e, dir, 0, 0, "summary.csv: study %s has %d rows, more than a compare job's %d", study, m,
-                COMPARE_MAX_ITEMS);
+    if (intern_rows(T, si, c, &I, e) < 0)
         goto fail;
-    }
-    for (int k = 0; k < c->n_seeds; k++)
-        c->seeds[k] = strtoull(seeds[k], NULL, 10);
-    /* points: each (scene, variant)'s keys in order; labelled by the first variant's thresholds */
-    int *point = calloc((size_t)(m ? m : 1), sizeof *point);
-    if (!point) {
-        err_set(e, dir, 0, 0, "out of memory");
-        goto fail;
-    }
-    for (int i = 0; i < m; i++) {
-        char key[KEY_MAX];
-        point_key(t->rows[rows[4 * i]][col[C_IMAGE]], key, sizeof key);
-        int p = 0, seen = 0;
-        for (int j = 0; j < i && !seen; j++) { /* the same key earlier: its point */
-            char other[KEY_MAX];
-            point_key(t->rows[rows[4 * j]][col[C_IMAGE]], other, sizeof other);
-            if (!strcmp(other, key))
-                p = point[j], seen = 1;
-        }
-        if (!seen) /* a new key of this (scene, variant): the next point */
-            for (int j = 0; j < i; j++)
-                if (rows[4 * j + 1] == rows[4 * i + 1] && rows[4 * j + 2] == rows[4 * i + 2])
-                    p = point[j] + 1 > p ? point[j] + 1 : p;
-        point[i] = p;
-        if (p >= c->n_points) {
-            c->n_points = p + 1;
-            const char *const *f = (const char *const *)t->rows[rows[4 * i]];
-            snprintf(c->points[p], COMPARE_LABEL_MAX, "threshold %s, light_threshold %s", f[col[C_THRESHOLD]],
-                     f[col[C_LT]]);
-        }
-    }
     /* light_threshold named only when the points differ in it */
     const char *lt = c->n_points ? strstr(c->points[0], ", light_threshold") : NULL;
     int same = lt != NULL;
@@ -250,59 +224,58 @@ static struct compare *build(const struct csv *t, const int *col, const char *st
         same = strstr(c->points[p], lt) != NULL;
     for (int p = 0; same && p < c->n_points; p++)
         *strstr(c->points[p], ", light_threshold") = 0;
-    n_keys = c->n_scenes * c->n_variants * c->n_points * c->n_seeds;
-    c->n_items = n_keys;
-    c->scenes = calloc((size_t)(c->n_scenes ? c->n_scenes : 1), sizeof *c->scenes);
-    c->items = calloc((size_t)(n_keys ? n_keys : 1), sizeof *c->items);
-    if (!c->scenes || !c->items || m == 0) {
-        free(point);
-        err_set(e, dir, 0, 0, m ? "out of memory" : "summary.csv: no rows for study %s", study);
+    c->scenes = calloc((size_t)c->n_scenes, sizeof *c->scenes);
+    c->variants = calloc((size_t)c->n_variants, sizeof *c->variants);
+    c->seeds = calloc((size_t)c->n_seeds, sizeof *c->seeds);
+    c->items = calloc((size_t)c->n_items, sizeof *c->items);
+    *said = calloc(3 * (size_t)c->n_scenes, sizeof **said);
+    if (!c->scenes || !c->variants || !c->seeds || !c->items || !*said) {
+        err_set(e, dir, 0, 0, "out of memory");
         goto fail;
     }
+    copy_names(&I.variants, c->variants);
     for (int s = 0; s < c->n_scenes; s++) {
-        snprintf(c->scenes[s].name, sizeof c->scenes[s].name, "%s", scenes[s]);
+        snprintf(c->scenes[s].name, sizeof c->scenes[s].name, "%.*s", (int)I.scenes.len[s], I.scenes.s[s]);
         c->scenes[s].ref_domain = IMG_DISPLAY8;
     }
-    for (int i = 0; i < m; i++) {
-        char *const *f = t->rows[rows[4 * i]];
-        int s = rows[4 * i + 1], v = rows[4 * i + 2], k = rows[4 * i + 3];
-        struct compare_item *it = &c->items[compare_index(c, s, v, point[i], k)];
-        *it = (struct compare_item){.scene = s, .variant = v, .point = point[i], .seed = k, .done = 1};
-        snprintf(it->job.output, sizeof it->job.output, "%s", f[col[C_IMAGE]]);
-        it->spp_mean = atof(f[col[C_SPP]]), it->wall_s = atof(f[col[C_WALL]]);
-        it->cpu_s = atof(f[col[C_CPU]]), it->sampler_share = atof(f[col[C_SHARE]]);
-        it->has_error = f[col[C_RELMSE]][0] != 0;
-        it->error.relmse = it->has_error ? atof(f[col[C_RELMSE]]) : NAN;
-        it->error_lowfreq = col[C_LOWFREQ] >= 0 && f[col[C_LOWFREQ]][0] ? atof(f[col[C_LOWFREQ]]) : NAN;
+    for (int k = 0; k < c->n_seeds; k++)
+        c->seeds[k] = strtoull(I.seeds.s[k], NULL, 10); /* checked whole by numbers_ok */
+    for (int i = 0; i < I.m; i++) {
+        char *const *f = T->t.rows[I.rows[4 * i]];
+        int s = I.rows[4 * i + 1], v = I.rows[4 * i + 2], k = I.rows[4 * i + 3];
+        struct compare_item *it = &c->items[compare_index(c, s, v, I.point[i], k)];
+        *it = (struct compare_item){.scene = s, .variant = v, .point = I.point[i], .seed = k, .done = 1};
+        if (read_figures(T, f, it) < 0) {
+            (*said)[2 * c->n_scenes + s]++;
+            continue;
+        }
+        snprintf(it->job.output, sizeof it->job.output, "%s", f[T->col[C_IMAGE]]);
         if (it->has_error) {
             c->scenes[s].ref_kind = COMPARE_REF_SETTINGS;
-            if (!strcmp(f[col[C_DOMAIN]], "linear"))
+            if (!strcmp(f[T->col[C_DOMAIN]], "linear"))
                 c->scenes[s].ref_domain = IMG_LINEAR;
         }
     }
-    free(point);
-    free(keys), free(scenes), free(rows);
+    interned_free(&I);
     return c;
 fail:
-    free(keys), free(scenes), free(rows);
+    interned_free(&I);
+    free(*said);
+    *said = NULL;
     compare_free(c);
     return NULL;
 }
 
-/* Judge one study in dir; a warning per scene names the checks skipped for missing sidecars. */
-static int judge(const struct csv *t, const int *col, const char *study, const char *dir,
-                 struct verdict_study *out, struct err *e)
+/* Judge study si in dir; a warning per scene names what was skipped or left out. */
+static int judge(const struct table *T, int si, const char *study, const char *dir, struct verdict_study *out,
+                 struct err *e)
 {
-    struct compare *c = build(t, col, study, dir, e);
+    int *missing = NULL;
+    struct compare *c = build(T, si, study, dir, &missing, e);
     if (!c)
         return -1;
-    int *missing = calloc(2 * (size_t)c->n_scenes, sizeof *missing);
-    if (!missing) {
-        compare_free(c);
-        return err_set(e, dir, 0, 0, "out of memory");
-    }
-    int *unscored = missing + c->n_scenes;
-    read_sidecars(c, dir, missing);
+    int *unscored = missing + c->n_scenes, *unfigured = missing + 2 * c->n_scenes;
+    verdict_sidecars_read(c, dir, missing);
     for (int i = 0; i < c->n_items; i++) { /* a relmse that is no error ("nan", "-1"): left out, said */
         struct compare_item *it = &c->items[i];
         if (it->done && it->has_error && !(isfinite(it->error.relmse) && it->error.relmse >= 0)) {
@@ -327,10 +300,45 @@ static int judge(const struct csv *t, const int *col, const char *study, const c
             snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX,
                      "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
                      unscored[s], unscored[s] == 1 ? "" : "s");
+        if (unfigured[s] && vs->n_warnings < VERDICT_SAY_MAX)
+            snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX,
+                     "left out: %d image%s whose samples_per_pixel_mean, wall_s, cpu_s or sampler_share in "
+                     "summary.csv is not a figure (spp in [0, %g], seconds in [0, %g], share in [0, 1])",
+                     unfigured[s], unfigured[s] == 1 ? "" : "s", SPP_MAX, SECONDS_MAX);
     }
-    free(missing); /* and unscored */
+    free(missing); /* and unscored, unfigured */
     compare_free(c);
     return rc;
+}
+
+/* The columns by name into T->col, and each row's study (a suite's, else the folder's job) into
+   T->study, interned whole into studies (at most 64). 0 or -1 with e filled. */
+static int index_table(struct table *T, const char *job, struct verdict_names *studies, struct err *e)
+{
+    const struct verdict_csv *t = &T->t;
+    for (int k = 0; k < N_COLS; k++) {
+        T->col[k] = -1;
+        for (int f = 0; t->n_rows && f < t->n_fields; f++)
+            if (!strcmp(t->rows[0][f], col_names[k]))
+                T->col[k] = f;
+        if (T->col[k] < 0 && k != C_STUDY && k != C_LOWFREQ)
+            return err_set(e, T->path, 1, 0, "no column %s", col_names[k]);
+    }
+    T->study = calloc((size_t)t->n_rows, sizeof *T->study);
+    if (!T->study || verdict_names_init(studies, 64) < 0)
+        return err_set(e, T->path, 0, 0, "out of memory");
+    T->study[0] = -1;
+    for (int r = 1; r < t->n_rows; r++) {
+        const char *s = T->col[C_STUDY] >= 0 ? t->rows[r][T->col[C_STUDY]] : job;
+        if (T->col[C_STUDY] >= 0 && name_ok(T, r, C_STUDY, VERDICT_LABEL_MAX - 1, e) < 0)
+            return -1;
+        T->study[r] = verdict_names_intern(studies, s, strlen(s));
+        if (T->study[r] < 0)
+            return err_set(e, T->path, r + 1, 0, "more than 64 studies");
+    }
+    if (studies->n == 0 && verdict_names_intern(studies, job, strlen(job)) < 0)
+        return err_set(e, T->path, 0, 0, "out of memory");
+    return 0;
 }
 
 int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *job, size_t job_n,
@@ -339,8 +347,9 @@ int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *
     char path[JOB_PATH_MAX + 16];
     uint8_t *text = NULL;
     size_t len;
-    struct csv t = {0};
-    int col[N_COLS], rc = -1;
+    struct table T = {.path = path};
+    struct verdict_names studies = {0};
+    int rc = -1;
     *out = NULL, *n = 0;
     size_t end = strlen(dir), start;
     while (end > 1 && dir[end - 1] == '/') /* "out/study/": its last name */
@@ -350,47 +359,30 @@ int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *
     snprintf(job, job_n, "%.*s", (int)(end - start), dir + start);
     snprintf(path, sizeof path, "%s/summary.csv", dir);
     if (fileio_read_all(path, CSV_MAX_BYTES, &text, &len, e) < 0 ||
-        csv_parse(&t, (char *)text, len, path, e) < 0)
+        verdict_csv_parse(&T.t, (char *)text, len, path, e) < 0 || index_table(&T, job, &studies, e) < 0)
         goto done;
-    for (int k = 0; k < N_COLS; k++) {
-        col[k] = -1;
-        for (int f = 0; t.n_rows && f < t.n_fields; f++)
-            if (!strcmp(t.rows[0][f], col_names[k]))
-                col[k] = f;
-        if (col[k] < 0 && k != C_STUDY && k != C_LOWFREQ) {
-            err_set(e, path, 1, 0, "no column %s", col_names[k]);
-            goto done;
-        }
-    }
-    char(*studies)[COMPARE_LABEL_MAX] = calloc((size_t)t.n_rows + 1, sizeof *studies);
-    int n_studies = 0;
-    if (!studies) {
-        err_set(e, path, 0, 0, "out of memory");
-        goto done;
-    }
-    if (col[C_STUDY] < 0)
-        intern(studies, &n_studies, job);
-    for (int r = 1; col[C_STUDY] >= 0 && r < t.n_rows && n_studies <= 64; r++)
-        intern(studies, &n_studies, t.rows[r][col[C_STUDY]]);
-    if (n_studies > 64) {
-        free(studies);
-        err_set(e, path, 0, 0, "more than 64 studies");
-        goto done;
-    }
-    *out = calloc((size_t)(n_studies ? n_studies : 1), sizeof **out);
+    *out = calloc((size_t)studies.n, sizeof **out);
     rc = *out ? 0 : err_set(e, path, 0, 0, "out of memory");
-    for (int i = 0; rc == 0 && i < n_studies; i++) {
-        char sdir[JOB_PATH_MAX * 2];
-        if (col[C_STUDY] >= 0)
-            snprintf(sdir, sizeof sdir, "%s/%s", dir, studies[i]);
+    for (int i = 0; rc == 0 && i < studies.n; i++) {
+        char sdir[JOB_PATH_MAX * 2], name[VERDICT_LABEL_MAX];
+        snprintf(name, sizeof name, "%.*s", (int)studies.len[i], studies.s[i]);
+        if (T.col[C_STUDY] >= 0)
+            snprintf(sdir, sizeof sdir, "%s/%s", dir, name);
         else
             snprintf(sdir, sizeof sdir, "%s", dir);
-        rc = judge(&t, col, studies[i], sdir, &(*out)[i], e);
+        rc = judge(&T, i, name, sdir, &(*out)[i], e);
         *n += rc == 0;
     }
-    free(studies);
 done:
-    free(t.rows);
+    if (rc < 0) { /* nothing half judged is handed back */
+        for (int i = 0; i < *n; i++)
+            verdict_study_free(&(*out)[i]);
+        free(*out);
+        *out = NULL, *n = 0;
+    }
+    verdict_names_free(&studies);
+    free(T.study);
+    verdict_csv_free(&T.t);
     free(text);
     return rc;
 }

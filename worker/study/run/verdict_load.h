@@ -13,7 +13,8 @@
    finds each study in DIR/<study>/), judged again by verdict_from_compare; *out a malloc'd array of
    *n studies (free each with verdict_study_free, then the array); job the folder's name. A check
    that needs what is missing (images, sidecars, the reference) is skipped and a warning of the
-   scene says so. 0, or -1 with e filled (no summary.csv, a column missing, a row malformed). */
+   scene says so. 0, or -1 with e filled (no summary.csv, a column missing, a row malformed, too
+   many combinations) and nothing allocated (*out NULL, *n 0). */
 int verdict_load_dir(const char *dir, struct verdict_study **out, int *n, char *job, size_t job_n,
                      struct err *e);
 
