@@ -98,12 +98,14 @@ static int load(const char *sd, struct study_key *k, char *why, size_t n)
         if (lines < 2 || strncmp(line, "entry ", 6))
             continue;
         ok = strlen(line + 6) < sizeof k->entry[0] && queue_scan_is_job_file(line + 6);
-        char(*g)[32] = ok ? realloc(k->entry, (size_t)(k->n + 1) * sizeof *g) : NULL;
-        ok = g != NULL;
-        if (ok) {
-            k->entry = g;
-            snprintf(g[k->n++], sizeof *g, "%s", line + 6);
+        if (ok && (k->n & (k->n - 1)) == 0) { /* grown at each power of two: linear in the entries */
+            char(*g)[32] = realloc(k->entry, (size_t)(k->n ? 2 * k->n : 1) * sizeof *g);
+            ok = g != NULL;
+            if (g)
+                k->entry = g;
         }
+        if (ok)
+            snprintf(k->entry[k->n++], sizeof k->entry[0], "%s", line + 6);
     }
     free(text);
     if (!ok) {
