@@ -4,6 +4,7 @@
 
 #include "halton.h"
 #include "pmj02.h"
+#include "pmj02_table.h"
 #include "poisson.h"
 #include "sobol.h"
 #include "zsobol.h"
@@ -238,9 +239,16 @@ size_t sampler_draw_at(struct sampler *s, struct rng *rng, const struct sampler_
     return row->at ? row->at(s, at, out) : row->draw(s, rng, out);
 }
 
+/* A prefix of one of the precomputed sequences, its digits flipped by a random mask per
+   coordinate (pmj02_table.h): three draws of rng. Sets larger than the table's are drawn fresh. */
 static size_t draw_pmj02bn(struct sampler *s, struct rng *rng, struct pt2 *out)
 {
-    pmj02_draw(&s->pmj, rng, s->capacity, out);
+    if (s->capacity > PMJ02_TABLE_POINTS) {
+        pmj02_draw(&s->pmj, rng, s->capacity, out);
+        return s->capacity;
+    }
+    const uint32_t set = rng_below(rng, PMJ02_TABLE_SETS), fx = rng_u32(rng), fy = rng_u32(rng);
+    pmj02_table_fill(set, fx, fy, (uint32_t)s->capacity, out);
     return s->capacity;
 }
 
@@ -448,7 +456,7 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
     s->capacity = capacity;
     while (((size_t)1 << s->log2_count) < capacity)
         s->log2_count++;
-    if (kind == SAMPLER_PMJ02BN && pmj02_init(&s->pmj, capacity) < 0)
+    if (kind == SAMPLER_PMJ02BN && capacity > PMJ02_TABLE_POINTS && pmj02_init(&s->pmj, capacity) < 0)
         goto oom;
     if (kind != SAMPLER_POISSON)
         return s;
