@@ -80,17 +80,32 @@ struct sobol_seeds sobol_seeds_draw(struct rng *rng)
     return s;
 }
 
+/* The point whose reversed, unscrambled coordinates are xr and yr, each Owen-scrambled with its
+   seed: both coordinates are bit reversals of a reversed value, so each costs one reversal,
+   both done as one 64-bit. */
+static inline struct pt2 scrambled_pair(uint32_t xr, uint32_t yr, uint32_t seed_x, uint32_t seed_y)
+{
+    const uint64_t yx = bit_reverse_pair((uint64_t)owen_reversed(xr, seed_x) << 32 | owen_reversed(yr, seed_y));
+    const uint32_t x = (uint32_t)yx, y = (uint32_t)(yx >> 32);
+    return (struct pt2){x * 0x1.0p-32, y * 0x1.0p-32};
+}
+
 /* Point k: index i = owen(k) (Burley's shuffle: the first 2^m shuffled indices are one aligned
    block of 2^m Sobol indices, itself a (0,m,2)-net), then x = owen(sobol_x(i)) and y =
-   owen(sobol_y(i)), each with its own seed; Owen scrambling keeps a net a net. Both coordinates
-   are bit reversals of a reversed value, so each costs one reversal, both done as one 64-bit. */
+   owen(sobol_y(i)), each with its own seed; Owen scrambling keeps a net a net. */
 static inline struct pt2 point_of(struct sobol_seeds s, uint32_t k)
 {
     const uint32_t i = sobol_owen(k, s.index);
-    const uint64_t yx =
-        bit_reverse_pair((uint64_t)owen_reversed(i, s.x) << 32 | owen_reversed(sobol_y_reversed(i), s.y));
-    const uint32_t x = (uint32_t)yx, y = (uint32_t)(yx >> 32);
-    return (struct pt2){x * 0x1.0p-32, y * 0x1.0p-32};
+    return scrambled_pair(i, sobol_y_reversed(i), s.x, s.y);
+}
+
+/* Sobol's first coordinate takes an index's low 32 bits only (32 digits); its second's generator
+   matrix is Pascal's triangle mod 2, and a column k >= 32 equals column k - 32 in the first 32
+   digits (Lucas's theorem), so the high half adds its own sobol_y. */
+struct pt2 sobol_point64(uint64_t index, uint32_t seed_x, uint32_t seed_y)
+{
+    const uint32_t lo = (uint32_t)index, hi = (uint32_t)(index >> 32);
+    return scrambled_pair(lo, sobol_y_reversed(lo) ^ sobol_y_reversed(hi), seed_x, seed_y);
 }
 
 struct pt2 sobol_point(struct sobol_seeds s, uint32_t k)

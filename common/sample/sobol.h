@@ -35,4 +35,9 @@ void sobol_fill(struct sobol_seeds s, size_t n, struct pt2 *out);
    caller that takes a few points of a large set, in any order). Cannot fail. */
 struct pt2 sobol_point(struct sobol_seeds s, uint32_t k);
 
+/* The point of a 64-bit index of the unscrambled sequence, each coordinate Owen-scrambled with
+   its seed (no index shuffle): x owen(sobol_x(low 32 bits)), y owen(Sobol's second dimension of
+   all 64 bits) as sobol_owen would, in one call. Cannot fail. */
+struct pt2 sobol_point64(uint64_t index, uint32_t seed_x, uint32_t seed_y);
+
 #endif
