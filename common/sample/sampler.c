@@ -28,6 +28,7 @@ struct sampler {
 
     struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
     struct pmj02 pmj;       /* pmj02bn workspace, likewise */
+    struct halton_cache halton; /* halton: the digit permutations of the dimensions met */
     int log2_count;         /* capacity = 2^log2_count for pmj02bn and zsobol */
 
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
@@ -179,6 +180,7 @@ void sampler_free(struct sampler *s)
         return;
     poisson_release(&s->bridson);
     pmj02_release(&s->pmj);
+    halton_cache_release(&s->halton);
     free(s->pool_pts);
     free(s->pool);
     free(s->pool_start);
@@ -254,7 +256,7 @@ static size_t draw_pmj02bn(struct sampler *s, struct rng *rng, struct pt2 *out)
 
 static size_t at_halton(struct sampler *s, const struct sampler_at *at, struct pt2 *out)
 {
-    halton_fill((struct halton_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y},
+    halton_fill(&s->halton, (struct halton_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y},
                 (uint32_t)s->capacity, out);
     return s->capacity;
 }
@@ -456,6 +458,8 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
     s->capacity = capacity;
     while (((size_t)1 << s->log2_count) < capacity)
         s->log2_count++;
+    if (kind == SAMPLER_HALTON && halton_cache_init(&s->halton) < 0)
+        goto oom;
     if (kind == SAMPLER_PMJ02BN && capacity > PMJ02_TABLE_POINTS && pmj02_init(&s->pmj, capacity) < 0)
         goto oom;
     if (kind != SAMPLER_POISSON)
