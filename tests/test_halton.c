@@ -94,8 +94,8 @@ static void test_sets(void)
 }
 
 /* The tables are functions of (seed, dim): a set is the same from a fresh cache and from one that
-   has met 1000 other dimensions and the same ones of another seed (and so started over several times), point by point as whole;
-   dimensions 1 and 32 share their bases but not their points. */
+   has met 1000 other dimensions and the same ones of another seed (and so started over several times), point
+   by point as whole; dimensions 1 and 32 share their bases but not their points. */
 static void test_cache(void)
 {
     struct halton_cache fresh, busy;

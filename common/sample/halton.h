@@ -52,8 +52,8 @@ static inline double halton_inverse(const struct halton_digits *d, uint64_t inde
 
 /* The tables of the dimensions met so far for one job seed (a sampler's workspace, one thread). */
 struct halton_cache {
-    size_t words;      /* uint64 words one dimension's tables take at most */
-    uint64_t *mem;     /* HALTON_CACHE_SLOTS x words, calloc'ed: pages touched only when used */
+    size_t words;  /* uint64 words one dimension's tables take at most */
+    uint64_t *mem; /* HALTON_CACHE_SLOTS x words, calloc'ed: pages touched only when used */
     struct halton_slot *slots;
     int used;
 };

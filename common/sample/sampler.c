@@ -26,10 +26,10 @@ struct sampler {
     size_t capacity;            /* sampler_capacity(kind, threshold) */
     enum poisson_domain domain; /* fresh Poisson sets: torus (shifted) or square */
 
-    struct poisson bridson; /* poisson workspace, allocated once by sampler_new */
-    struct pmj02 pmj;       /* pmj02bn workspace, likewise */
+    struct poisson bridson;     /* poisson workspace, allocated once by sampler_new */
+    struct pmj02 pmj;           /* pmj02bn workspace, likewise */
     struct halton_cache halton; /* halton: the digit permutations of the dimensions met */
-    int log2_count;         /* capacity = 2^log2_count for pmj02bn and zsobol */
+    int log2_count;             /* capacity = 2^log2_count for pmj02bn and zsobol */
 
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
     int pool_size;
