@@ -95,30 +95,48 @@ struct pt2 zsobol_point(struct zsobol_key k, uint32_t i)
     return point_at(zsobol_index(k, i), scramble_seeds(&k));
 }
 
-/* All of the block's indices in order, index_in's for i = 0, 1, ...: a digit's permutation
-   depends on the digits above it only, so it is hashed once per run of samples that share them
-   (1 + 4 + 16 + ... hashes for the set, not one per digit and point). */
+/* A set's filling: the pixel's hash key, the scramble seeds, whether log2_spp is odd, where the
+   next point goes. */
+struct filling {
+    uint64_t key, h;
+    int odd;
+    struct pt2 *out;
+};
+
+/* The points of the indices below raw's digits above bit shift + 2 (raw unpermuted, index its
+   permuted image), in order: the digit at shift is permuted by the hash of those above it, once
+   for its four values, then each value's digits below the same way (index_in's bits). */
+static void descend(struct filling *f, uint64_t raw, uint64_t index, int shift)
+{
+    const uint8_t *perm = perm_of(rng_mix64((raw >> (shift + 2)) ^ f->key));
+    for (uint32_t d = 0; d < 4; d++) {
+        const uint64_t r = raw | (uint64_t)d << shift, x = index | (uint64_t)perm[d] << shift;
+        if (shift > f->odd) {
+            descend(f, r, x, shift - 2);
+        } else if (f->odd) { /* the lone lowest bit, flipped by the hash of the bits above */
+            const uint64_t lone = rng_mix64((r >> 1) ^ f->key) >> 63;
+            *f->out++ = point_at(x | lone, f->h);
+            *f->out++ = point_at(x | (1u ^ lone), f->h);
+        } else {
+            *f->out++ = point_at(x, f->h);
+        }
+    }
+}
+
+/* All of the block's points in order, index_in's for i = 0, 1, ...: a digit's permutation depends
+   on the digits above it only, so it is hashed once per run of samples that share them (1 + 4 +
+   16 + ... hashes for the set, not one per digit and point). */
 void zsobol_fill(struct zsobol_key k, struct pt2 *out)
 {
     const struct pixel_block b = block_of(&k);
-    const uint64_t h = scramble_seeds(&k);
-    const int odd = k.log2_spp & 1, levels = k.log2_spp / 2;
-    const uint32_t n = (uint32_t)1 << k.log2_spp;
-    const uint8_t *perm[ZSOBOL_MAX_LOG2_SPP / 2];
-    uint32_t lone = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        const uint64_t raw = b.raw | i;
-        uint64_t index = b.high;
-        for (int l = 0, shift = k.log2_spp - 2; l < levels; l++, shift -= 2) {
-            if ((i & (((uint32_t)4 << shift) - 1)) == 0) /* the digits above changed */
-                perm[l] = perm_of(rng_mix64((raw >> (shift + 2)) ^ b.key));
-            index |= (uint64_t)perm[l][(raw >> shift) & 3u] << shift;
-        }
-        if (odd) {
-            if ((i & 1u) == 0)
-                lone = (uint32_t)(rng_mix64((raw >> 1) ^ b.key) >> 63);
-            index |= (raw & 1u) ^ lone;
-        }
-        out[i] = point_at(index, h);
+    struct filling f = {b.key, scramble_seeds(&k), k.log2_spp & 1, out};
+    if (k.log2_spp >= 2) {
+        descend(&f, b.raw, b.high, k.log2_spp - 2);
+    } else if (k.log2_spp == 1) {
+        const uint64_t lone = rng_mix64((b.raw >> 1) ^ b.key) >> 63;
+        out[0] = point_at(b.high | lone, f.h);
+        out[1] = point_at(b.high | (1u ^ lone), f.h);
+    } else {
+        out[0] = point_at(b.high, f.h);
     }
 }
