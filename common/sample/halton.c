@@ -50,6 +50,7 @@ static struct halton_digits build(uint32_t b, uint64_t key, uint64_t *mem)
     struct halton_digits d;
     d.base = b;
     d.digits = digits_of(b, &d.scale);
+    d.span = (uint64_t)d.scale;
     uint64_t *pw = mem, *tail = mem + (size_t)d.digits * b;
     uint64_t weight = (uint64_t)d.scale / b; /* b^(digits - 1 - j) */
     uint32_t perm[MAX_BASE];

@@ -29,7 +29,8 @@
 struct halton_digits {
     uint32_t base;
     int digits;
-    double scale; /* base^digits */
+    double scale;  /* base^digits */
+    uint64_t span; /* base^digits as an integer: an index's digits past `digits` are dropped */
     const uint64_t *pw, *tail;
 };
 
@@ -37,16 +38,17 @@ struct halton_digits {
    base^digits, one correctly rounded division, in [0, 1). Digits past `digits` are dropped. */
 static inline double halton_inverse(const struct halton_digits *d, uint64_t index)
 {
-    const uint32_t b = d->base;
+    const uint64_t b = d->base;
+    const uint64_t *pw = d->pw, *tail = d->tail;
+    if (index >= d->span)
+        index %= d->span;
     uint64_t numerator = 0;
-    int j = 0;
-    for (; index && j < d->digits; j++) {
+    for (; index; pw += b, tail++) {
         const uint64_t q = index / b;
-        numerator += d->pw[(uint32_t)j * b + (uint32_t)(index - q * b)];
+        numerator += pw[index - q * b];
         index = q;
     }
-    numerator += d->tail[j];
-    const double v = (double)numerator / d->scale;
+    const double v = (double)(numerator + *tail) / d->scale;
     return v < 1.0 ? v : 0x1.fffffffffffffp-1;
 }
 
