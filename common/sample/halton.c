@@ -150,7 +150,7 @@ double halton_radical_inverse(uint32_t base, uint64_t index, uint64_t seed)
 {
     if (base == 2)
         return owen2(index, seed);
-    uint64_t mem[4 * MAX_BASE + 5];
+    uint64_t mem[4 * MAX_BASE + 5] = {0};
     const struct halton_digits d = build(base, seed, mem);
     return halton_inverse(&d, index);
 }
