@@ -6,6 +6,18 @@
 
 #include "verdict_rank.h"
 
+/* The cost design's blocks, or without one each seed's image as a block of its own. */
+static int blocks(const struct verdict_figures *f)
+{
+    return f->cost_s ? f->n_blocks : f->n_seeds;
+}
+
+/* (v, p)'s CPU seconds per image timed in block b. */
+static double block_cost(const struct verdict_figures *f, int v, int p, int b)
+{
+    return f->cost_s ? f->cost_s[verdict_cost_at(f, v, p, b)] : f->cpu_s[verdict_at(f, v, p, b)];
+}
+
 /* The mean and the variance of that mean of n figures (NAN ones left out); the count used. */
 static int mean_var(const double *x, int n, double *mean, double *var_of_mean)
 {
@@ -32,7 +44,7 @@ static void interval(double mean, double var_of_mean, double df, double *v, doub
 int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *out)
 {
     size_t per = (size_t)f->n_variants * f->n_points;
-    int nb = f->n_blocks, n = f->n_seeds > nb ? f->n_seeds : nb;
+    int nb = blocks(f), n = f->n_seeds > nb ? f->n_seeds : nb;
     double *x = calloc((size_t)n + 1, sizeof *x);
     out->point_rel = calloc(per, sizeof(double)), out->point_rel_lo = calloc(per, sizeof(double));
     out->point_rel_hi = calloc(per, sizeof(double)), out->cost = calloc(per, sizeof(double));
@@ -42,7 +54,7 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
         free(x);
         return -1;
     }
-    out->cost_from_images = f->cost_from_images;
+    out->cost_from_images = f->cost_from_images || !f->cost_s;
     for (int v = 0; v < f->n_variants; v++)
         for (int p = 0; p < f->n_points; p++) {
             size_t i = (size_t)v * f->n_points + p;
@@ -54,7 +66,7 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
             int m = mean_var(x, f->n_seeds, &mean, &var);
             interval(mean, var, m - 1, &out->point_rel[i], &out->point_rel_lo[i], &out->point_rel_hi[i]);
             for (int b = 0; b < nb; b++) {
-                double c = f->cost_s ? f->cost_s[verdict_cost_at(f, v, p, b)] : NAN;
+                double c = block_cost(f, v, p, b);
                 x[b] = c > 0 ? log(c) : NAN;
             }
             m = mean_var(x, nb, &mean, &var);
@@ -168,18 +180,18 @@ static double cost_var(const struct verdict_figures *f, int a, const double *ga,
                        double *lb, double *df)
 {
     int m = 0;
-    for (int k = 0; k < f->n_blocks; k++) {
+    for (int k = 0; k < blocks(f); k++) {
         double l = 0;
         for (int p = 0; p < f->n_points; p++) {
             if (ga[p] != 0)
-                l += ga[p] * log(f->cost_s[verdict_cost_at(f, a, p, k)]);
+                l += ga[p] * log(block_cost(f, a, p, k));
             if (b >= 0 && gb[p] != 0)
-                l -= gb[p] * log(f->cost_s[verdict_cost_at(f, b, p, k)]);
+                l -= gb[p] * log(block_cost(f, b, p, k));
         }
         lb[k] = l;
     }
     double mean, var;
-    m = mean_var(lb, f->n_blocks, &mean, &var);
+    m = mean_var(lb, blocks(f), &mean, &var);
     *df = m - 1;
     return m > 1 ? var : 0;
 }
@@ -196,7 +208,7 @@ static double pair_p(const struct verdict_figures *f, int a, const struct readin
     int m = mean_var(tmp, f->n_seeds, &d, &ve);
     if (m < 2)
         return 1;
-    vc = f->cost_s && f->n_blocks > 1 ? cost_var(f, a, ra->g, b, rb->g, tmp, &df_c) : (df_c = 0);
+    vc = blocks(f) > 1 ? cost_var(f, a, ra->g, b, rb->g, tmp, &df_c) : (df_c = 0);
     double v = ve + vc;
     if (!(v > 0))
         return d == 0 ? 1 : 0;
@@ -208,7 +220,7 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
                       struct verdict_ranking *r)
 {
     int nv = f->n_variants, ns = f->n_seeds, np = f->n_points, rc = -1;
-    int tmp_n = ns > f->n_blocks ? ns : f->n_blocks;
+    int tmp_n = ns > blocks(f) ? ns : blocks(f);
     struct reading *rd = calloc((size_t)nv, sizeof *rd);
     double *mem = calloc((size_t)nv * (ns + np) + tmp_n + 1, sizeof *mem);
     r->pair_p = calloc((size_t)nv * nv, sizeof *r->pair_p);
@@ -235,7 +247,7 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
         e->extrapolated = rd[v].extrapolated, e->untold = rd[v].untold;
         double mean, ve, df_c = 0, vc = 0;
         int m = mean_var(rd[v].y, ns, &mean, &ve);
-        if (!rd[v].untold && m > 0 && f->cost_s && f->n_blocks > 1)
+        if (!rd[v].untold && m > 0 && blocks(f) > 1)
             vc = cost_var(f, v, rd[v].g, -1, NULL, tmp, &df_c);
         e->n = m, e->mean = m ? mean : NAN;
         double var = (m > 1 ? ve : 0) + vc, den = (m > 1 ? ve * ve / (m - 1) : 0) + (df_c > 0 ? vc * vc / df_c : 0);
