@@ -23,8 +23,9 @@ int main(void)
     double y2[] = {0.1, 0.02, 0, 0.01};
     struct chart_series ser[2] = {{"a<b&c", 4, x, y, lo, hi}, {"second", 4, x, y2, NULL, NULL}};
     static const double slopes[] = {-1, -1.5};
-    struct chart_panel p[2] = {{"first & panel", "time (s)", "relMSE", NULL, ser, 2, slopes, 2, "whisker: 95% CI"},
-                               {"empty", "x", "y", "nothing to show", ser, 0, NULL, 0, NULL}};
+    struct chart_panel p[2] = {
+        {"first & panel", "time (s)", "relMSE", NULL, ser, 2, slopes, 2, "whisker: 95% CI"},
+        {"empty", "x", "y", "nothing to show", ser, 0, NULL, 0, NULL}};
     char *svg = chart_svg("title <1>", p, 2, 2);
     CHECK(svg != NULL);
     if (!svg)

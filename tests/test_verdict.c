@@ -108,7 +108,8 @@ static void test_rule(void)
     verdict_entry_add(&e[0], -1, 1); /* not a relMSE: left out */
     verdict_entry_end(&e[0], 1), verdict_entry_end(&e[1], 1);
     /* lo, hi: the 95% interval, exp(mean log +- t(2 df) x its standard error) */
-    double m = (log(0.9) + log(1.1)) / 3, sd = sqrt((pow(log(0.9) - m, 2) + m * m + pow(log(1.1) - m, 2)) / 2);
+    double m = (log(0.9) + log(1.1)) / 3,
+           sd = sqrt((pow(log(0.9) - m, 2) + m * m + pow(log(1.1) - m, 2)) / 2);
     CHECK(e[0].n == 3);
     CHECK_NEAR(e[0].lo, exp(m - 4.302652730 * sd / sqrt(3)), 1e-8);
     CHECK_NEAR(e[0].hi, exp(m + 4.302652730 * sd / sqrt(3)), 1e-8);
@@ -294,7 +295,8 @@ static void test_unreached(void)
     CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].extrapolated && !s.by_cpu.e[2].untold);
     CHECK(!s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
     CHECK_NEAR(s.by_cpu.e[2].value, GM * 0.5 / 32, 1e-9);
-    CHECK(any_line(s.warnings, s.n_warnings, "gamma is read at 1.6 CPU seconds along its error-against-time line"));
+    CHECK(any_line(s.warnings, s.n_warnings,
+                   "gamma is read at 1.6 CPU seconds along its error-against-time line"));
     verdict_scene_free(&s);
 
     k[2] = 0.001; /* 500x better per sample at 50x the cost: 0.001 / 32 at equal time beats 1 / 1600 */

@@ -184,7 +184,6 @@ static void by_samples(const struct verdict_figures *f, int v, int *order)
         }
 }
 
-
 /* The share of each (v, p)'s error that repeats in every seed, and the part of it a bias in mean
    radiance makes: averaging n seeds' images divides noise by n and leaves structure, so with the
    reference's own relMSE taken out of both, share = (n rel_of_mean / mean_rel - 1) / (n - 1). */
@@ -249,7 +248,8 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
     if (out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
         by_samples(f, v, order);
         for (int i = 1; i < f->n_points; i++) { /* the geometric means the chart and table show */
-            double r0 = out->point_rel[v * f->n_points + order[i - 1]], r1 = out->point_rel[v * f->n_points + order[i]];
+            double r0 = out->point_rel[v * f->n_points + order[i - 1]],
+                   r1 = out->point_rel[v * f->n_points + order[i]];
             double s0 = mean_x(f, f->spp, v, order[i - 1]), s1 = mean_x(f, f->spp, v, order[i]);
             if (!(r0 > 0 && r1 > 0 && s1 > s0 * VERDICT_SAMPLES_VARY))
                 continue;

@@ -89,9 +89,9 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
             else
                 f->images_unread += ref != NULL;
             for (int b = 0; b < blocks; b++)
-                m->cost[verdict_cost_at(f, v, p, b)] =
-                    c->n_blocks > 1 ? c->cost_s[compare_cost_index(c, s, v, p, b)]
-                                    : c->items[compare_index(c, s, v, p, b)].cpu_s;
+                m->cost[verdict_cost_at(f, v, p, b)] = c->n_blocks > 1
+                                                           ? c->cost_s[compare_cost_index(c, s, v, p, b)]
+                                                           : c->items[compare_index(c, s, v, p, b)].cpu_s;
             for (int k = 0; k < c->n_seeds; k++) {
                 const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);

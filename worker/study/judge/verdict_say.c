@@ -138,12 +138,10 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
         char top[VERDICT_TEXT_MAX];
         group(out, r, 1, top);
         if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
-            append(
-                w,
-                "%s, %s are not told apart by their seeds%s (%s, Holm-corrected, alpha %.2g): %s",
-                ranking_name(out, r), top, r->pair_p ? " and cost blocks" : "",
-                r->pair_p ? "a t test with both uncertainties" : "Welch's t test", VERDICT_ALPHA,
-                r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
+            append(w, "%s, %s are not told apart by their seeds%s (%s, Holm-corrected, alpha %.2g): %s",
+                   ranking_name(out, r), top, r->pair_p ? " and cost blocks" : "",
+                   r->pair_p ? "a t test with both uncertainties" : "Welch's t test", VERDICT_ALPHA,
+                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
             if (r->e[j].untold && (w = next_line(out->warnings, &out->n_warnings)))
                 append(w,
@@ -216,9 +214,10 @@ static void say_slopes(const struct verdict_scene *out, char *s)
     char top[VERDICT_TEXT_MAX];
     group(out, r, 1, top);
     const struct verdict_entry *b = &r->e[0], *w = &r->e[r->n - 1];
-    append(s,
-           "Error falls fastest with %s (relMSE ~ spp^%.2f, 95%% CI %.2f to %.2f) and slowest with %s (%.2f).",
-           top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
+    append(
+        s,
+        "Error falls fastest with %s (relMSE ~ spp^%.2f, 95%% CI %.2f to %.2f) and slowest with %s (%.2f).",
+        top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
 }
 
 static const struct verdict_entry *entry_of(const struct verdict_ranking *r, int v)

@@ -250,7 +250,8 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
         if (!rd[v].untold && m > 0 && blocks(f) > 1)
             vc = cost_var(f, v, rd[v].g, -1, NULL, tmp, &df_c);
         e->n = m, e->mean = m ? mean : NAN;
-        double var = (m > 1 ? ve : 0) + vc, den = (m > 1 ? ve * ve / (m - 1) : 0) + (df_c > 0 ? vc * vc / df_c : 0);
+        double var = (m > 1 ? ve : 0) + vc,
+               den = (m > 1 ? ve * ve / (m - 1) : 0) + (df_c > 0 ? vc * vc / df_c : 0);
         e->se = m > 1 ? sqrt(var) : NAN;
         if (m > 0)
             interval(mean, m > 1 ? var : NAN, den > 0 ? var * var / den : 0, &e->value, &e->lo, &e->hi);

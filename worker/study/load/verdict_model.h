@@ -14,16 +14,17 @@ enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
 /* One variant in a ranking (verdict_rank.h fills it): its figure over the seeds. */
 struct verdict_entry {
     int variant;
-    double value, lo, hi; /* relMSE: the geometric mean over seeds, else the mean; its 95% confidence interval */
-    double mean, se;      /* the ranked figure (log relMSE, or the slope): mean and standard error */
-    double m2;            /* sum of squared deviations from mean (while adding seeds) */
-    int n;                /* seeds measured */
-    int rank;             /* 1 + the number of variants that beat it (verdict_beats) */
-    int unreached;        /* its cheapest point costs far more than the common point: it cannot be had
-                             there (value, lo, hi: its cheapest point's) */
-    int extrapolated;     /* equal CPU time: read off its error-against-time line beyond its points */
-    int untold;           /* equal CPU time: the common time lies too far beyond its points (or it has
-                             one point: no line): the study cannot tell, it is separated from none */
+    double value, lo,
+        hi;           /* relMSE: the geometric mean over seeds, else the mean; its 95% confidence interval */
+    double mean, se;  /* the ranked figure (log relMSE, or the slope): mean and standard error */
+    double m2;        /* sum of squared deviations from mean (while adding seeds) */
+    int n;            /* seeds measured */
+    int rank;         /* 1 + the number of variants that beat it (verdict_beats) */
+    int unreached;    /* its cheapest point costs far more than the common point: it cannot be had
+                         there (value, lo, hi: its cheapest point's) */
+    int extrapolated; /* equal CPU time: read off its error-against-time line beyond its points */
+    int untold;       /* equal CPU time: the common time lies too far beyond its points (or it has
+                         one point: no line): the study cannot tell, it is separated from none */
 };
 
 /* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
@@ -32,8 +33,8 @@ struct verdict_ranking {
     double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
     int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
     enum verdict_status status;
-    double p_cut; /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
-                     separated; -1 when none is */
+    double p_cut;   /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
+                       separated; -1 when none is */
     double *pair_p; /* optional, owned: per pair of variants (pair_n x pair_n, by variant index) the
                        two-sided p-value of a test of their own (equal CPU time); NULL: Welch's on
                        the entries */

@@ -110,8 +110,9 @@ char *report_stability(const struct compare *c, int s, int v)
             widest = vs->point_rel_hi[k] / vs->point_rel[k], at = order[i];
     }
     if (c->n_seeds > 1)
-        sbuf_printf(&b, "relMSE over %d seeds known within a factor %.2f either way (95%% interval of the "
-                        "geometric mean, widest at %s)",
+        sbuf_printf(&b,
+                    "relMSE over %d seeds known within a factor %.2f either way (95%% interval of the "
+                    "geometric mean, widest at %s)",
                     c->n_seeds, widest, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");

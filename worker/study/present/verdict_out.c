@@ -182,10 +182,10 @@ static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, co
         sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
                     e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
                     e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
-                    e->unreached       ? " not reached: its cheapest point"
-                    : e->untold        ? " cannot tell: too far beyond its points"
+                    e->unreached      ? " not reached: its cheapest point"
+                    : e->untold       ? " cannot tell: too far beyond its points"
                     : e->extrapolated ? " read beyond its cheapest point"
-                                       : "");
+                                      : "");
         return;
     }
     sbuf_printf(b, "<td></td>");

@@ -296,8 +296,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
             run_warn_display_reference(c->name, cs->ref_path);
     }
     int *order = malloc(sizeof *order * (size_t)(c->n_items + 1));
-    if (!order)
-    {
+    if (!order) {
         err_set(e, NULL, 0, 0, "out of memory");
         return 1;
     }

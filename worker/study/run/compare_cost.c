@@ -109,16 +109,16 @@ static int time_unit(const struct compare *c, struct timing *t, int s, int v, in
         if (light) {
             sampler_set_domain(pix, j->poisson_domain);
             sampler_set_domain(light, j->poisson_domain);
-            struct procs_job fj = {
-                .scene = t->sf.scene,
-                .camera = &t->cam,
-                .rs = {t->w, t->h, j->max_depth, seed, !j->light_sampling, j->nee, j->dims_all, job_roulette(j)},
-                .pixel = pix,
-                .light = light,
-                .processes = t->processes > 0 ? t->processes : j->processes,
-                .row_part = b % d->row_parts,
-                .row_parts = d->row_parts,
-                .stop = t->stop};
+            struct procs_job fj = {.scene = t->sf.scene,
+                                   .camera = &t->cam,
+                                   .rs = {t->w, t->h, j->max_depth, seed, !j->light_sampling, j->nee,
+                                          j->dims_all, job_roulette(j)},
+                                   .pixel = pix,
+                                   .light = light,
+                                   .processes = t->processes > 0 ? t->processes : j->processes,
+                                   .row_part = b % d->row_parts,
+                                   .row_parts = d->row_parts,
+                                   .stop = t->stop};
             rc = procs_render(&fj, t->rgb, &res, e);
         }
         sampler_free(pix);
@@ -147,7 +147,8 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
     if (scene_load_src(&cs->input->src, &t.sf, e) < 0)
         goto done;
     t.w = cs->width, t.h = cs->height;
-    if (camera_init(&t.cam, &t.sf.camera, (double)t.w / t.h, e) < 0 || !(t.rgb = procs_framebuffer_new(t.w, t.h, e)))
+    if (camera_init(&t.cam, &t.sf.camera, (double)t.w / t.h, e) < 0 ||
+        !(t.rgb = procs_framebuffer_new(t.w, t.h, e)))
         goto done;
     for (int b = 0; b < c->n_blocks; b++) {
         for (int i = 0; i < n; i++)
@@ -155,7 +156,8 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
         shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
         for (int i = 0; i < n; i++) {
             int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
-            if (time_unit(c, &t, s, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) < 0)
+            if (time_unit(c, &t, s, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) <
+                0)
                 goto done;
         }
     }
