@@ -66,6 +66,22 @@ static void test_aa(void)
     aa_init(&x, cost, tilt, drift, 0.02); /* load moving whole blocks: cancels in the pairs */
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_cpu.status == VERDICT_INCONCLUSIVE);
+    verdict_scene_free(&s);
+    int symmetric = 1; /* one p-value per pair, the same both ways bit for bit (Holm's cut is one) */
+    for (int i = 1; i <= 20; i++) {
+        aa_init(&x, cost, tilt, drift, 0.013 * i);
+        for (int k = 0; k < NS; k++) /* the variants' errors apart: seeds of their own */
+            for (int v = 0; v < NV; v++)
+                x.rel[verdict_at(&x.f, v, 1, k)] *= 1 + 0.1 * sin(3.3 * k + v * i);
+        CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+        for (int a = 0; a < NV; a++)
+            for (int b = 0; b < NV; b++)
+                symmetric &= s.by_cpu.pair_p[a * NV + b] == s.by_cpu.pair_p[b * NV + a];
+        verdict_scene_free(&s);
+    }
+    CHECK(symmetric);
+    aa_init(&x, cost, tilt, drift, 0.02);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     for (int v = 0; v < NV; v++) /* and widens nobody's interval past reason: the blocks' own spread */
         CHECK(s.by_cpu.e[v].hi > s.by_cpu.e[v].value && s.by_cpu.e[v].lo < s.by_cpu.e[v].value);
     verdict_scene_free(&s);
@@ -102,6 +118,11 @@ static void test_cost_uncertainty(void)
                 x.rel[verdict_at(&x.f, 1, p, k)] = 1.1 * (1 + 0.01 * cos(5.0 * k + p)) / spp[p];
             }
         CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+        /* one p-value per pair, the same both ways bit for bit: Holm's cut is one of them, and a
+           pair whose other way came out an ulp above it would not be separated */
+        for (int a = 0; a < 2; a++)
+            for (int b = 0; b < 2; b++)
+                CHECK(s.by_cpu.pair_p[a * s.by_cpu.pair_n + b] == s.by_cpu.pair_p[b * s.by_cpu.pair_n + a]);
         CHECK(noisy ? s.by_cpu.status == VERDICT_INCONCLUSIVE
                     : s.by_cpu.status == VERDICT_CLEAR && s.by_cpu.e[0].variant == 0);
         CHECK(s.by_samples.status == VERDICT_CLEAR); /* at equal samples the cost plays no part */

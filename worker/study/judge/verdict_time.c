@@ -258,9 +258,9 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
         else
             e->value = e->lo = e->hi = NAN;
     }
-    for (int a = 0; a < nv; a++)
-        for (int b = 0; b < nv; b++)
-            r->pair_p[a * nv + b] = a == b ? 1 : pair_p(f, a, &rd[a], b, &rd[b], tmp);
+    for (int a = 0; a < nv; a++) /* one figure per pair, both ways: Holm's cut compares it bit for bit */
+        for (int b = a; b < nv; b++)
+            r->pair_p[a * nv + b] = r->pair_p[b * nv + a] = a == b ? 1 : pair_p(f, a, &rd[a], b, &rd[b], tmp);
     verdict_rank(r);
     rc = 0;
 done:
