@@ -179,7 +179,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
     if (r->n < 2)
         return;
     if (r->status == VERDICT_INCONCLUSIVE) {
-        append(s, "%s on %s, no two variants are told apart by their seeds: inconclusive", at, out->scene);
+        append(s, "%s on %s, no two variants are told apart by their seeds%s: inconclusive", at, out->scene,
+               r->pair_p ? " and cost blocks" : "");
         append(s, !scored            ? " (no reference: no error to compare)."
                   : out->n_seeds < 2 ? " (one seed)."
                                      : " (more seeds or samples would tell).");
@@ -195,8 +196,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
                b->value, next->value / b->value, out->variants[next->variant]);
     else {
         group(out, r, next->rank, rest);
-        append(s, "%s on %s, %s tie (not told apart by their seeds), ahead of %s.", at, out->scene, top,
-               rest);
+        append(s, "%s on %s, %s tie (not told apart by their seeds%s), ahead of %s.", at, out->scene, top,
+               r->pair_p ? " and cost blocks" : "", rest);
     }
     for (int i = 0; i < out->n_failures; i++) /* a low error now, but not the reference's picture */
         if (out->failures[i].kind == VERDICT_BIASED && rank_of_variant(r, out->failures[i].variant) == 1)
