@@ -19,8 +19,8 @@ void verdict_entry_start(struct verdict_entry *e, int v);
 void verdict_entry_add(struct verdict_entry *e, double y, int log_scale);
 
 /* Finish e: value (relMSE: the geometric mean, exp of the mean log; else the mean), lo, hi (its
-   95% confidence interval: Student's t on the mean, exp'd for relMSE; the value with one seed), mean and se (the ranked figure's mean and its standard error). NAN when no
-   seed was added. */
+   95% confidence interval: Student's t on the mean, exp'd for relMSE; the value with one seed), mean and se
+   (the ranked figure's mean and its standard error). NAN when no seed was added. */
 void verdict_entry_end(struct verdict_entry *e, int log_scale);
 
 /* Two-sided p-value of Welch's t test for equal means of a and b; 1 when either has fewer than
