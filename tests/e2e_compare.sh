@@ -135,7 +135,7 @@ check "report: the error maps' scale drawn, with its numbers" \
 check "report: the error maps in linear radiance" grep -q 'Error maps at .*in linear radiance (the float images)' "$html"
 check "report: no 8-bit |diff| maps" sh -c "! grep -q 'image - reference| x' '$html'"
 check "report: one stability line per variant and scene" [ "$(grep -c '^<li><b>' "$html")" -eq 10 ]
-check "report: stability names the seed spread" grep -q 'spread across 2 seeds' "$html"
+check "report: stability names how well the seeds pin the error down" grep -q 'relMSE over 2 seeds known within a factor' "$html"
 check "report: opens with the verdict" sh -c "sed -n '/<h1>/,\$p' '$html' | grep -m1 -o '<h2>[^<]*' | grep -qx '<h2>Verdict'"
 check "report: a verdict per scene" [ "$(grep -c '<h3>cmp / ' "$html")" -eq 2 ]
 check "report: the rule is stated" grep -q 'How it is decided' "$html"
