@@ -229,8 +229,40 @@ static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene
     }
 }
 
-/* The failure modes of variant v: structured error, error that stops falling, non-finite samples,
-   a sampler's CPU share and a bias, each at the point where it shows most. */
+/* Fireflies: the point where v's worst seed carries the largest share of the relMSE summed over its
+   seeds, flagged when over VERDICT_HEAVY_SHARE. Returns whether it was. */
+static int heavy_tailed(const struct verdict_figures *f, int v, struct verdict_scene *out)
+{
+    int n = f->n_seeds, at = -1;
+    double most = 0, ratio = NAN;
+    if (n < VERDICT_HEAVY_SEEDS)
+        return 0;
+    for (int p = 0; p < f->n_points; p++) {
+        double sum = 0, worst = 0;
+        int all = 1;
+        for (int k = 0; k < n; k++) {
+            double r = f->relmse[verdict_at(f, v, p, k)];
+            if (!(isfinite(r) && r >= 0))
+                all = 0;
+            else
+                sum += r, worst = fmax(worst, r);
+        }
+        if (!all || !(sum > 0) || worst / sum <= most)
+            continue;
+        most = worst / sum, at = p;
+        ratio = sum > worst ? worst * (n - 1) / (sum - worst) : INFINITY;
+    }
+    if (!(most > VERDICT_HEAVY_SHARE))
+        return 0;
+    struct verdict_failure *x = add_failure(out, VERDICT_HEAVY_TAILED, v, at, most);
+    x->detail = ratio;
+    verdict_say_failure(f, x);
+    return 1;
+}
+
+/* The failure modes of variant v: structured error, fireflies, error that stops falling,
+   non-finite samples, a sampler's CPU share and a bias, each at the point where it shows most;
+   fireflies suppress the last's and the stall's tests (they read a mean that means nothing). */
 static void failures_of(const struct verdict_figures *f, int v, int *order, struct verdict_scene *out)
 {
     int at = -1;
@@ -245,7 +277,9 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         x->detail = out->repeat_bias[v * f->n_points + at];
         verdict_say_failure(f, x);
     }
-    if (out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
+    /* fireflies first: a mean with infinite variance neither falls as 1/spp nor tests for bias */
+    int heavy = heavy_tailed(f, v, out);
+    if (!heavy && out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
         by_samples(f, v, order);
         for (int i = 1; i < f->n_points; i++) { /* the geometric means the chart and table show */
             double r0 = out->point_rel[v * f->n_points + order[i - 1]],
@@ -272,7 +306,8 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
             most = mean_x(f, f->sampler_share, v, p), at = p;
     if (most > VERDICT_SAMPLER_SHARE)
         verdict_say_failure(f, add_failure(out, VERDICT_SHARE, v, at, most));
-    bias_of(f, v, out);
+    if (!heavy)
+        bias_of(f, v, out);
 }
 
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e)

@@ -52,6 +52,12 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
                "errors)",
                v, at, x->value, x->detail);
         break;
+    case VERDICT_HEAVY_TAILED:
+        append(x->text,
+               "%s: fireflies: one seed carries %.0f%% of its error at %s (%.3gx the others' mean): its mean "
+               "and standard error mean little, so no bias or stall is judged",
+               v, 100 * x->value, at, x->detail);
+        break;
     case VERDICT_STALLS:
         append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
         break;
@@ -319,6 +325,11 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                 "%s is biased on %s: its mean radiance at %s is %+.2f%% off the reference's (%.1f standard "
                 "errors), so more samples or seeds will not bring it to the reference.",
                 v, out->scene, at, x->value, x->detail);
+        else if (x->kind == VERDICT_HEAVY_TAILED)
+            append(s,
+                   "%s has fireflies on %s: one seed's image carries %.0f%% of its error at %s, so its "
+                   "mean error is decided by rare samples and ranks it by luck; rank_by: median is steadier.",
+                   v, out->scene, 100 * x->value, at);
         else if (x->kind == VERDICT_STALLS)
             append(s,
                    "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.",

@@ -48,16 +48,19 @@ enum verdict_failure_kind {
     VERDICT_STALLS,
     VERDICT_NONFINITE,
     VERDICT_SHARE,
-    VERDICT_BIASED
+    VERDICT_BIASED,
+    VERDICT_HEAVY_TAILED
 };
-#define VERDICT_FAILURE_KINDS 5
+#define VERDICT_FAILURE_KINDS 6
 
 struct verdict_failure {
     enum verdict_failure_kind kind;
     int variant, point; /* point: where it shows most (-1: throughout) */
     double value;       /* the repeated share, the local slope, the samples dropped, the CPU share, the
-                           bias in percent of the reference's mean radiance */
-    double detail;      /* structured: the share of the error that is bias; biased: standard errors */
+                           bias in percent of the reference's mean radiance, the worst seed's share of
+                           the error (heavy_tailed) */
+    double detail;      /* structured: the share of the error that is bias; biased: standard errors;
+                           heavy_tailed: the worst seed's relMSE over the others' mean */
     char text[VERDICT_TEXT_MAX];
 };
 

@@ -30,7 +30,7 @@ static const char *status_name(enum verdict_status s)
 static const char *kind_name(enum verdict_failure_kind k)
 {
     static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
-                                        "biased"};
+                                        "biased",           "heavy_tailed"};
     return names[k];
 }
 
@@ -117,6 +117,8 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         json_number(j, "value", x->value);
         if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
             json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
+        if (x->kind == VERDICT_HEAVY_TAILED)
+            json_number(j, "worst_over_others", x->detail);
         json_string(j, "text", x->text);
         json_end_object(j);
     }
