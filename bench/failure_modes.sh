@@ -6,7 +6,7 @@
 # their own, thresholds 25 and 12.5). Prints how many A/A studies flagged heavy_tailed (false
 # alarms), and how many furnace studies flagged the mixture heavy_tailed (hits), the mixture biased,
 # and nee heavy_tailed or biased.
-#   sh bench/failure_modes.sh [N]     (default 40; takes minutes)
+#   sh bench/failure_modes.sh [N]     (default 40; takes minutes; KEEP=DIR keeps each summary.csv)
 set -eu
 N=${1:-40}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -44,6 +44,7 @@ import json, sys
 f = json.load(open(sys.argv[1]))["studies"][0]["scenes"][0]["failures"]
 print(" ".join(sorted({x["variant"] + ":" + x["kind"] for x in f})) or "none")
 PY
+    if [ -n "${KEEP:-}" ]; then cp "$T/out/$1/summary.csv" "$KEEP/$1.csv"; fi
     rm -rf "$T/out/$1"
 }
 

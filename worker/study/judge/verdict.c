@@ -229,33 +229,39 @@ static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene
     }
 }
 
-/* Fireflies: the point where v's worst seed carries the largest share of the relMSE summed over its
-   seeds, flagged when over VERDICT_HEAVY_SHARE. Returns whether it was. */
-static int heavy_tailed(const struct verdict_figures *f, int v, struct verdict_scene *out)
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Fireflies: the point where v's worst seed's relMSE is most times its seeds' median, flagged when
+   over VERDICT_HEAVY_RATIO; scratch holds n_seeds doubles. Returns whether it was. */
+static int heavy_tailed(const struct verdict_figures *f, int v, double *scratch, struct verdict_scene *out)
 {
     int n = f->n_seeds, at = -1;
-    double most = 0, ratio = NAN;
+    double most = 0, share = NAN;
     if (n < VERDICT_HEAVY_SEEDS)
         return 0;
     for (int p = 0; p < f->n_points; p++) {
-        double sum = 0, worst = 0;
-        int all = 1;
+        double sum = 0;
+        int m = 0;
         for (int k = 0; k < n; k++) {
             double r = f->relmse[verdict_at(f, v, p, k)];
-            if (!(isfinite(r) && r >= 0))
-                all = 0;
-            else
-                sum += r, worst = fmax(worst, r);
+            if (isfinite(r) && r >= 0)
+                scratch[m++] = r, sum += r;
         }
-        if (!all || !(sum > 0) || worst / sum <= most)
+        if (m < VERDICT_HEAVY_SEEDS)
             continue;
-        most = worst / sum, at = p;
-        ratio = sum > worst ? worst * (n - 1) / (sum - worst) : INFINITY;
+        qsort(scratch, (size_t)m, sizeof *scratch, cmp_double);
+        double med = m % 2 ? scratch[m / 2] : 0.5 * (scratch[m / 2 - 1] + scratch[m / 2]);
+        if (med > 0 && scratch[m - 1] / med > most)
+            most = scratch[m - 1] / med, at = p, share = scratch[m - 1] / sum;
     }
-    if (!(most > VERDICT_HEAVY_SHARE))
+    if (!(most > VERDICT_HEAVY_RATIO))
         return 0;
     struct verdict_failure *x = add_failure(out, VERDICT_HEAVY_TAILED, v, at, most);
-    x->detail = ratio;
+    x->detail = share;
     verdict_say_failure(f, x);
     return 1;
 }
@@ -263,7 +269,8 @@ static int heavy_tailed(const struct verdict_figures *f, int v, struct verdict_s
 /* The failure modes of variant v: structured error, fireflies, error that stops falling,
    non-finite samples, a sampler's CPU share and a bias, each at the point where it shows most;
    fireflies suppress the last's and the stall's tests (they read a mean that means nothing). */
-static void failures_of(const struct verdict_figures *f, int v, int *order, struct verdict_scene *out)
+static void failures_of(const struct verdict_figures *f, int v, int *order, double *scratch,
+                        struct verdict_scene *out)
 {
     int at = -1;
     double most = 0;
@@ -278,7 +285,7 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         verdict_say_failure(f, x);
     }
     /* fireflies first: a mean with infinite variance neither falls as 1/spp nor tests for bias */
-    int heavy = heavy_tailed(f, v, out);
+    int heavy = heavy_tailed(f, v, scratch, out);
     if (!heavy && out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
         by_samples(f, v, order);
         for (int i = 1; i < f->n_points; i++) { /* the geometric means the chart and table show */
@@ -328,10 +335,12 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
     out->warnings = calloc((size_t)VERDICT_SAY_MAX, sizeof *out->warnings);
     out->sentences = calloc((size_t)VERDICT_SAY_MAX, sizeof *out->sentences);
     int *order = calloc((size_t)f->n_points, sizeof *order);
+    double *scratch = calloc((size_t)f->n_seeds + 1, sizeof *scratch);
     if (!out->variants || !out->by_samples.e || !out->by_cpu.e || !out->by_slope.e || !out->failures ||
         !out->warnings || !out->sentences || !order || !out->repeat || !out->repeat_bias ||
-        !out->samples_vary) {
+        !out->samples_vary || !scratch) {
         free(order);
+        free(scratch);
         verdict_scene_free(out);
         return err_set(e, NULL, 0, 0, "out of memory");
     }
@@ -342,14 +351,16 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
     repeat_shares(f, out);
     if (verdict_time_points(f, out) < 0 || verdict_time_rank(f, out, &out->by_cpu) < 0) {
         free(order);
+        free(scratch);
         verdict_scene_free(out);
         return err_set(e, NULL, 0, 0, "out of memory");
     }
     rank_at(f, f->spp, &out->by_samples);
     rank_slopes(f, &out->by_slope);
     for (int v = 0; v < nv; v++)
-        failures_of(f, v, order, out);
+        failures_of(f, v, order, scratch, out);
     free(order);
+    free(scratch);
     verdict_say_warnings(f, out);
     verdict_say_sentences(f, out);
     if (verdict_look_compute(f, out) < 0) {

@@ -23,11 +23,12 @@
 /* The bias check needs this many seeds: with fewer, their spread is itself too uncertain (4
    standard errors from 2 seeds happen by chance 16% of the time, from 8 seeds 0.5%). */
 #define VERDICT_BIAS_SEEDS 4
-/* Heavy-tailed error (fireflies): at some point one seed's image carries more than this share of
-   the relMSE summed over all seeds. Light-tailed noise spreads it evenly (1/n each, a few percent
-   more for the worst of n); a mean whose variance is infinite is decided by its rarest, largest
-   samples, so one seed dominates. Needs VERDICT_HEAVY_SEEDS seeds (with 2 the worst carries half). */
-#define VERDICT_HEAVY_SHARE 0.5
+/* Heavy-tailed error (fireflies): at some point one seed's relMSE is more than this many times the
+   median of its seeds'. An image's relMSE averages its pixels' squared errors, so with light tails
+   (a finite fourth moment) the seeds' values agree within tens of percent; when rare, huge samples
+   decide the error (an infinite variance, fireflies) the seeds that drew one are many times the
+   rest. Needs VERDICT_HEAVY_SEEDS seeds (a median of fewer is the spread itself). */
+#define VERDICT_HEAVY_RATIO 4
 #define VERDICT_HEAVY_SEEDS 4
 /* A point's relMSE within this factor of the reference's own is dominated by the reference's
    noise: warned. */

@@ -54,9 +54,9 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
         break;
     case VERDICT_HEAVY_TAILED:
         append(x->text,
-               "%s: fireflies: one seed carries %.0f%% of its error at %s (%.3gx the others' mean): its mean "
-               "and standard error mean little, so no bias or stall is judged",
-               v, 100 * x->value, at, x->detail);
+               "%s: fireflies: its worst seed's relMSE at %s is %.3gx its seeds' median (%.0f%% of their sum): "
+               "its mean and standard error mean little, so no bias or stall is judged",
+               v, at, x->value, 100 * x->detail);
         break;
     case VERDICT_STALLS:
         append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
@@ -327,9 +327,9 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                 v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_HEAVY_TAILED)
             append(s,
-                   "%s has fireflies on %s: one seed's image carries %.0f%% of its error at %s, so its "
-                   "mean error is decided by rare samples and ranks it by luck; rank_by: median is steadier.",
-                   v, out->scene, 100 * x->value, at);
+                   "%s has fireflies on %s: at %s one seed's relMSE is %.3gx its seeds' median, so rare, "
+                   "huge samples decide its mean error, and neither a bias nor a stall can be judged.",
+                   v, out->scene, at, x->value);
         else if (x->kind == VERDICT_STALLS)
             append(s,
                    "%s's error stops falling at %s on %s (local slope %.2f): more samples buy little there.",

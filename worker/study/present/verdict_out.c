@@ -118,7 +118,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
             json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
         if (x->kind == VERDICT_HEAVY_TAILED)
-            json_number(j, "worst_over_others", x->detail);
+            json_number(j, "worst_share", x->detail);
         json_string(j, "text", x->text);
         json_end_object(j);
     }
