@@ -8,6 +8,7 @@
 #include "check.h"
 #include "verdict_fixture.h"
 #include "study/judge/verdict.h"
+#include "study/judge/verdict_center.h"
 #include "study/present/verdict_out.h"
 
 #define NP 3
@@ -112,8 +113,52 @@ static void test_suppresses(void)
     verdict_scene_free(&s);
 }
 
+/* rank_by: median: a variant whose seeds are alike but for one firefly seed (1000x) against one
+   twice as bad on every seed: the geometric mean cannot tell them apart (the firefly's log widens
+   the spread), the median ranks the first ahead; and the median's standard error from the order
+   statistics on known numbers. */
+static void test_rank_by_median(void)
+{
+    static const double base[NS] = {1.0, 1.1, 0.9, 1.05, 0.95, 1.02, 0.98, 1.0};
+    struct verdict_fixture x;
+    struct verdict_scene s;
+    struct err e = {0};
+    verdict_fixture_init(&x, "median", 2, 1, NS, 4096);
+    x.variants[0] = "firefly", x.variants[1] = "steady", x.samplers[0] = x.samplers[1] = "jitter";
+    x.points[0] = "threshold 10";
+    for (int v = 0; v < 2; v++) {
+        x.rel_of_mean[v] = x.bias_rel[v] = NAN;
+        for (int k = 0; k < NS; k++) {
+            int i = verdict_at(&x.f, v, 0, k);
+            x.spp[i] = 16, x.cpu[i] = 1e-3, x.radiance[i] = NAN;
+            x.rel[i] = 1e-3 * base[k] * (v ? 2 : k == 5 ? 1000 : 1);
+        }
+    }
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE);
+    verdict_scene_free(&s);
+    x.f.rank_by = VERDICT_RANK_MEDIAN;
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_samples.status == VERDICT_CLEAR && s.by_samples.e[0].variant == 0);
+    CHECK_NEAR(s.by_samples.e[0].value, 1e-3, 1e-12); /* base sorted with the firefly: 1.0, 1.0 mid */
+    CHECK_NEAR(s.point_rel[0], 1e-3, 1e-12);                /* the chart's and table's figure too */
+    char *json = verdict_json_text("job", &(struct verdict_study){"median", 1, &s, ""}, 1, NULL);
+    CHECK(json && strstr(json, "\"rank_by\": \"median\""));
+    free(json);
+    verdict_scene_free(&s);
+    /* 8 values 1..8: median 4.5; c = round(4.5 - 1.96 x sqrt 2) = 2: se = (x7 - x2) / 3.92 */
+    const double v8[8] = {8, 1, 7, 2, 6, 3, 5, 4};
+    double c, var;
+    CHECK(verdict_center(v8, 8, VERDICT_RANK_MEDIAN, &c, &var) == 8);
+    CHECK_NEAR(c, 4.5, 1e-12);
+    CHECK_NEAR(sqrt(var), 5 / (2 * 1.959964), 1e-9);
+    CHECK(verdict_center(v8, 8, VERDICT_RANK_MEAN, &c, &var) == 8 && fabs(c - 4.5) < 1e-12);
+    CHECK_NEAR(var, 6.0 / 8, 1e-12); /* s^2 = 6 (sum of squares 42 / 7) */
+}
+
 int main(void)
 {
+    test_rank_by_median();
     test_furnace();
     test_suppresses();
     return check_report("test_verdict_fireflies");

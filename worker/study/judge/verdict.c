@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "verdict_center.h"
 #include "verdict_look.h"
 #include "verdict_rank.h"
 #include "verdict_say.h"
@@ -89,17 +90,25 @@ static double value_at(const struct verdict_figures *f, const double *x, int v, 
     return exp(log(a.y) + t * (log(b.y) - log(a.y)));
 }
 
+/* Seed k's relMSE into e, and its log into logs[k] (NAN when not positive). */
+static void entry_add(struct verdict_entry *e, double *logs, int k, double y)
+{
+    verdict_entry_add(e, y, 1);
+    logs[k] = y > 0 && isfinite(y) ? log(y) : NAN;
+}
+
 /* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
-static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e)
+static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e, double *logs)
 {
     for (int k = 0; k < f->n_seeds; k++)
-        verdict_entry_add(e, verdict_rel(f, verdict_at(f, v, p, k)), 1);
+        entry_add(e, logs, k, verdict_rel(f, verdict_at(f, v, p, k)));
 }
 
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
    densest points' means (the cheapest densest point, for CPU time). A variant whose cheapest
-   point lies far beyond it is unreached, shown with its cheapest point's figures. */
-static void rank_at(const struct verdict_figures *f, const double *x, struct verdict_ranking *r)
+   point lies far beyond it is unreached, shown with its cheapest point's figures. logs: room for
+   n_seeds doubles. */
+static void rank_at(const struct verdict_figures *f, const double *x, double *logs, struct verdict_ranking *r)
 {
     double at = INFINITY;
     for (int v = 0; v < f->n_variants; v++) {
@@ -120,11 +129,13 @@ static void rank_at(const struct verdict_figures *f, const double *x, struct ver
                 cheapest = p;
         if (mean_x(f, x, v, cheapest) > at * VERDICT_BEYOND) {
             e->unreached = 1;
-            point_figures(f, v, cheapest, e);
+            point_figures(f, v, cheapest, e, logs);
         } else
             for (int k = 0; k < f->n_seeds; k++)
-                verdict_entry_add(e, value_at(f, x, v, k, at), 1);
+                entry_add(e, logs, k, value_at(f, x, v, k, at));
         verdict_entry_end(e, 1);
+        if (f->rank_by == VERDICT_RANK_MEDIAN)
+            verdict_entry_logs(e, logs, f->n_seeds, f->rank_by);
     }
     verdict_rank(r);
 }
@@ -322,7 +333,8 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
     int nv = f->n_variants;
     size_t per = (size_t)nv * f->n_points;
     *out = (struct verdict_scene){
-        .n_variants = nv, .n_points = f->n_points, .n_seeds = f->n_seeds, .ref_relmse = f->ref_relmse};
+        .n_variants = nv, .n_points = f->n_points, .n_seeds = f->n_seeds, .ref_relmse = f->ref_relmse,
+        .rank_by = f->rank_by};
     snprintf(out->study, sizeof out->study, "%s", f->study);
     snprintf(out->scene, sizeof out->scene, "%s", f->scene);
     out->variants = calloc((size_t)nv, sizeof *out->variants);
@@ -355,7 +367,7 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
         verdict_scene_free(out);
         return err_set(e, NULL, 0, 0, "out of memory");
     }
-    rank_at(f, f->spp, &out->by_samples);
+    rank_at(f, f->spp, scratch, &out->by_samples);
     rank_slopes(f, &out->by_slope);
     for (int v = 0; v < nv; v++)
         failures_of(f, v, order, scratch, out);

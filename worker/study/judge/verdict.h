@@ -70,6 +70,7 @@ struct verdict_figures {
     const double *cost_s;        /* per (variant, point, block): CPU seconds per image timed in the
                                     block (verdict_cost_at); NULL: none */
     int cost_from_images;        /* cost_s holds the images' own times, seed k as block k */
+    enum verdict_rank_by rank_by; /* the centre over seeds of every relMSE figure (slopes: the mean) */
     double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
     double ref_relmse;           /* the reference's own relMSE (from its halves), NAN unknown */
     double ref_radiance;         /* the reference's mean radiance, NAN unknown */

@@ -64,6 +64,7 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .n_blocks = blocks,
                                   .cost_s = m->cost,
                                   .cost_from_images = c->n_blocks < 2,
+                                  .rank_by = c->rank_by,
                                   .ref_spp = c->scenes[s].ref_spp,
                                   .ref_relmse = c->scenes[s].ref_relmse,
                                   .ref_radiance = c->scenes[s].ref_radiance,

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "verdict_center.h"
 #include "verdict_rank.h"
 
 /* The cost design's blocks, or without one each seed's image as a block of its own. */
@@ -63,7 +64,7 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
                 double y = verdict_rel(f, verdict_at(f, v, p, k));
                 x[k] = y > 0 ? log(y) : NAN;
             }
-            int m = mean_var(x, f->n_seeds, &mean, &var);
+            int m = verdict_center(x, f->n_seeds, f->rank_by, &mean, &var);
             interval(mean, var, m - 1, &out->point_rel[i], &out->point_rel_lo[i], &out->point_rel_hi[i]);
             for (int b = 0; b < nb; b++) {
                 double c = block_cost(f, v, p, b);
@@ -205,7 +206,7 @@ static double pair_p(const struct verdict_figures *f, int a, const struct readin
     for (int k = 0; k < f->n_seeds; k++)
         tmp[k] = ra->y[k] - rb->y[k];
     double d, ve, df_c, vc;
-    int m = mean_var(tmp, f->n_seeds, &d, &ve);
+    int m = verdict_center(tmp, f->n_seeds, f->rank_by, &d, &ve);
     if (m < 2)
         return 1;
     vc = blocks(f) > 1 ? cost_var(f, a, ra->g, b, rb->g, tmp, &df_c) : (df_c = 0);
@@ -246,7 +247,7 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
         verdict_entry_start(e, v);
         e->extrapolated = rd[v].extrapolated, e->untold = rd[v].untold;
         double mean, ve, df_c = 0, vc = 0;
-        int m = mean_var(rd[v].y, ns, &mean, &ve);
+        int m = verdict_center(rd[v].y, ns, f->rank_by, &mean, &ve);
         if (!rd[v].untold && m > 0 && blocks(f) > 1)
             vc = cost_var(f, v, rd[v].g, -1, NULL, tmp, &df_c);
         e->n = m, e->mean = m ? mean : NAN;

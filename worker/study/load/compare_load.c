@@ -238,7 +238,7 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
 {
     /* the document borrowed: read through L.d, freed by its owner */
     struct compare_loading L = {.d = *doc, .e = e};
-    const char *extra[] = {"scenes", "variants", "sweep", "seeds", "mask"};
+    const char *extra[] = {"scenes", "variants", "sweep", "seeds", "mask", "rank_by"};
     int ok = 0;
     if (!(L.c = calloc(1, sizeof *L.c)) || !(L.c->inputs = in ? in : study_inputs_new())) {
         free(L.c);
@@ -272,6 +272,14 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
             L.sweep = v;
         else if (!strcmp(key, "mask"))
             L.mask = v;
+        else if (!strcmp(key, "rank_by")) {
+            const char *by = yscalar(v);
+            if (!by || (strcmp(by, "mean") && strcmp(by, "median"))) {
+                ydoc_fail(&L.d, v, e, "rank_by: must be mean or median, got %s", by ? by : "a collection");
+                goto done;
+            }
+            L.c->rank_by = strcmp(by, "median") ? VERDICT_RANK_MEAN : VERDICT_RANK_MEDIAN;
+        }
         else if (strcmp(key, "scenes") && strcmp(key, "seeds") && job_apply(&L.base, &L.d, k, v, e) < 0)
             goto done;
     }

@@ -79,7 +79,8 @@ struct compare {
        CPU seconds one image of the point costs, timed in block b; n_blocks 0 when not measured
        (the verdict then falls back on the images' own times, seed k as block k). */
     int n_blocks;
-    double *cost_s; /* index compare_cost_index */
+    double *cost_s;               /* index compare_cost_index */
+    enum verdict_rank_by rank_by; /* `rank_by:` (default mean): the centre over seeds of relMSE */
 };
 
 /* Index of a cost figure in c->cost_s. */

@@ -9,6 +9,10 @@
 #define VERDICT_SAY_MAX 16
 #define VERDICT_TEXT_MAX 400
 
+/* What a (variant, point)'s seeds are summed up by (`rank_by:`): the mean of their log relMSE (the
+   geometric mean), or its median (steadier when a few seeds draw fireflies). */
+enum verdict_rank_by { VERDICT_RANK_MEAN, VERDICT_RANK_MEDIAN };
+
 enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
 
 /* One variant in a ranking (verdict_rank.h fills it): its figure over the seeds. */
@@ -80,6 +84,7 @@ struct verdict_look {
 struct verdict_scene {
     char study[VERDICT_LABEL_MAX], scene[VERDICT_LABEL_MAX];
     int n_variants, n_points, n_seeds;
+    enum verdict_rank_by rank_by; /* the centre over seeds every relMSE figure uses */
     double ref_relmse;   /* the reference's own relMSE, subtracted from every relMSE ranked; NAN unknown */
     double *repeat;      /* per (variant, point): the share of the error repeating in every seed, NAN */
     double *repeat_bias; /* per (variant, point): the part of that share a bias in mean radiance makes */

@@ -103,6 +103,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_string(j, "scene", v->scene);
     json_uint(j, "seeds", (uint64_t)v->n_seeds);
     json_number(j, "reference_relmse", v->ref_relmse);
+    json_string(j, "rank_by", v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "mean");
     json_bool(j, "costs_from_images", v->cost_from_images);
     json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
     json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
@@ -220,8 +221,12 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
         sbuf_printf(b, "</tr>\n");
     }
     sbuf_printf(
-        b, "</table>\n<p class=\"note\">Rankings: at equal samples %s, at equal CPU time %s, by slope %s.",
-        status_name(v->by_samples.status), status_name(v->by_cpu.status), status_name(v->by_slope.status));
+        b,
+        "</table>\n<p class=\"note\">Rankings (relMSE: the %s over seeds, rank_by: %s): at equal samples %s, "
+        "at equal CPU time %s, by slope %s.",
+        v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "geometric mean",
+        v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "mean", status_name(v->by_samples.status),
+        status_name(v->by_cpu.status), status_name(v->by_slope.status));
     for (int i = 0; i < v->n_failures; i++) {
         sbuf_printf(b, "%s", i ? "; " : " <b>Failures</b>: ");
         sbuf_escape(b, v->failures[i].text);
