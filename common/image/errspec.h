@@ -22,4 +22,33 @@
    differ, no memory). */
 int errspec_lowfreq(const struct rgbf *ref, const struct rgbf *img, double *lowfreq, struct err *e);
 
+/* The error's look pooled over images (Heck, Schloemer and Deussen 2013 and UTK show point sets'
+   spectra so): radially averaged power, peaks and anisotropy of the summed periodogram. */
+#define ERRSPEC_RINGS 16   /* rings of 1/16 of the Nyquist radius (the corners beyond it left out) */
+#define ERRSPEC_RING_MIN 8 /* a ring with fewer frequencies has no mean to judge a peak against */
+/* Structured error: a peak whose chance bound is below ERRSPEC_PEAK_P, or an anisotropy above
+   ERRSPEC_ANISOTROPY (noise from any sampler that treats directions alike stays near 1). */
+#define ERRSPEC_PEAK_P 1e-3
+#define ERRSPEC_ANISOTROPY 2
+struct errspec_look {
+    double ring[ERRSPEC_RINGS]; /* each ring's mean power over the mean over all rings (white: 1); NAN
+                                   for a ring without frequencies */
+    double peak;                /* the largest frequency's power over its ring's mean */
+    double peak_p;              /* a bound on the chance of so large a peak in noise without structure
+                                   (each frequency's pooled power a mean of n exponentials about its
+                                   ring's: Chernoff's bound, times the frequencies tested) */
+    double anisotropy;          /* the most over the least of four orientations' (0, 45, 90, 135
+                                   degrees) ring-normalised mean power, over the outer three quarters of
+                                   the rings: 1 isotropic */
+};
+
+/* Add the periodogram of img's luminance error against ref (same size; the crop errspec_lowfreq
+   measures) to acc (ERRSPEC_MAX_SIDE^2 doubles, the caller's, zeroed before the first), the crop's
+   size into w, h. 0, or -1 with e filled (sizes differ, no memory). */
+int errspec_power_add(const struct rgbf *ref, const struct rgbf *img, double *acc, int *w, int *h,
+                      struct err *e);
+
+/* The look of acc, a periodogram summed over n images (w x h). Cannot fail. */
+void errspec_look_of(const double *acc, int w, int h, int n, struct errspec_look *out);
+
 #endif
