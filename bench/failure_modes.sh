@@ -4,7 +4,7 @@
 # near-field rect light, integrator nee, 32x32, 8 seeds of their own, thresholds 25 and 12.5) and N
 # furnace studies (tests/data/furnace-fireflies.yaml: the mixture against nee, 24x24, 8 seeds of
 # their own, thresholds 25 and 12.5). Prints how many A/A studies flagged heavy_tailed (false
-# alarms), and how many furnace studies flagged the mixture heavy_tailed (hits), the mixture biased,
+# alarms; and structured), and how many furnace studies flagged the mixture heavy_tailed (hits), the mixture biased,
 # and nee heavy_tailed or biased.
 #   sh bench/failure_modes.sh [N]     (default 40; takes minutes; KEEP=DIR keeps each summary.csv)
 set -eu
@@ -53,7 +53,7 @@ start=$(date +%s)
 while [ "$i" -lt "$N" ]; do
     r=$(study "aa$i" aa $((1 + 8 * i)))
     case $r in *:heavy_tailed*) aa_heavy=$((aa_heavy + 1)) ;; esac
-    case $r in *:structured_error*) aa_structured=$((aa_structured + 1)) ;; esac
+    case "$r " in *:structured\ *) aa_structured=$((aa_structured + 1)) ;; esac
     r2=$(study "fu$i" fu $((1 + 8 * i)))
     case $r2 in *mixture:heavy_tailed*) hit=$((hit + 1)) ;; esac
     case $r2 in *mixture:biased*) mix_biased=$((mix_biased + 1)) ;; esac
@@ -62,5 +62,5 @@ while [ "$i" -lt "$N" ]; do
     echo "study $i/$N: A/A [$r]; furnace [$r2]" >&2
 done
 echo "$(($(date +%s) - start)) s wall, load average now $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
-echo "A/A (random, near-field light): heavy_tailed in $aa_heavy of $N, structured_error in $aa_structured of $N"
+echo "A/A (random, near-field light): heavy_tailed in $aa_heavy of $N, structured in $aa_structured of $N"
 echo "furnace: mixture heavy_tailed in $hit of $N, mixture biased in $mix_biased, nee heavy_tailed or biased in $nee_flag"

@@ -240,34 +240,22 @@ static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene
     }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Fireflies: the point where v's worst seed's relMSE is most times its seeds' median, flagged when
-   over VERDICT_HEAVY_RATIO; scratch holds n_seeds doubles. Returns whether it was. */
-static int heavy_tailed(const struct verdict_figures *f, int v, double *scratch, struct verdict_scene *out)
+/* Fireflies: the point where v's seeds' relMSE span the largest factor, flagged when over
+   VERDICT_HEAVY_RATIO. Returns whether it was. */
+static int heavy_tailed(const struct verdict_figures *f, int v, struct verdict_scene *out)
 {
     int n = f->n_seeds, at = -1;
     double most = 0, share = NAN;
-    if (n < VERDICT_HEAVY_SEEDS)
-        return 0;
-    for (int p = 0; p < f->n_points; p++) {
-        double sum = 0;
+    for (int p = 0; p < f->n_points && n >= VERDICT_HEAVY_SEEDS; p++) {
+        double sum = 0, lo = INFINITY, hi = 0;
         int m = 0;
         for (int k = 0; k < n; k++) {
             double r = f->relmse[verdict_at(f, v, p, k)];
             if (isfinite(r) && r >= 0)
-                scratch[m++] = r, sum += r;
+                lo = fmin(lo, r), hi = fmax(hi, r), sum += r, m++;
         }
-        if (m < VERDICT_HEAVY_SEEDS)
-            continue;
-        qsort(scratch, (size_t)m, sizeof *scratch, cmp_double);
-        double med = m % 2 ? scratch[m / 2] : 0.5 * (scratch[m / 2 - 1] + scratch[m / 2]);
-        if (med > 0 && scratch[m - 1] / med > most)
-            most = scratch[m - 1] / med, at = p, share = scratch[m - 1] / sum;
+        if (m >= VERDICT_HEAVY_SEEDS && lo > 0 && hi / lo > most)
+            most = hi / lo, at = p, share = hi / sum;
     }
     if (!(most > VERDICT_HEAVY_RATIO))
         return 0;
@@ -280,8 +268,7 @@ static int heavy_tailed(const struct verdict_figures *f, int v, double *scratch,
 /* The failure modes of variant v: structured error, fireflies, error that stops falling,
    non-finite samples, a sampler's CPU share and a bias, each at the point where it shows most;
    fireflies suppress the last's and the stall's tests (they read a mean that means nothing). */
-static void failures_of(const struct verdict_figures *f, int v, int *order, double *scratch,
-                        struct verdict_scene *out)
+static void failures_of(const struct verdict_figures *f, int v, int *order, struct verdict_scene *out)
 {
     int at = -1;
     double most = 0;
@@ -296,7 +283,7 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, doub
         verdict_say_failure(f, x);
     }
     /* fireflies first: a mean with infinite variance neither falls as 1/spp nor tests for bias */
-    int heavy = heavy_tailed(f, v, scratch, out);
+    int heavy = heavy_tailed(f, v, out);
     if (!heavy && out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
         by_samples(f, v, order);
         for (int i = 1; i < f->n_points; i++) { /* the geometric means the chart and table show */
@@ -370,7 +357,7 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
     rank_at(f, f->spp, scratch, &out->by_samples);
     rank_slopes(f, &out->by_slope);
     for (int v = 0; v < nv; v++)
-        failures_of(f, v, order, scratch, out);
+        failures_of(f, v, order, out);
     free(order);
     free(scratch);
     verdict_say_warnings(f, out);

@@ -23,12 +23,12 @@
 /* The bias check needs this many seeds: with fewer, their spread is itself too uncertain (4
    standard errors from 2 seeds happen by chance 16% of the time, from 8 seeds 0.5%). */
 #define VERDICT_BIAS_SEEDS 4
-/* Heavy-tailed error (fireflies): at some point one seed's relMSE is more than this many times the
-   median of its seeds'. An image's relMSE averages its pixels' squared errors, so with light tails
-   (a finite fourth moment) the seeds' values agree within tens of percent; when rare, huge samples
-   decide the error (an infinite variance, fireflies) the seeds that drew one are many times the
-   rest. Needs VERDICT_HEAVY_SEEDS seeds (a median of fewer is the spread itself). */
-#define VERDICT_HEAVY_RATIO 4
+/* Heavy-tailed error (fireflies): at some point the seeds' relMSE span more than this factor (the
+   largest over the smallest). An image's relMSE averages its pixels' squared errors, so with light
+   tails (a finite fourth moment) its seeds agree within tens of percent; when rare, huge samples
+   decide the error (an infinite variance, fireflies) the seeds that drew one stand far above those
+   that did not, whether one seed drew them or half. Needs VERDICT_HEAVY_SEEDS seeds. */
+#define VERDICT_HEAVY_RATIO 8
 #define VERDICT_HEAVY_SEEDS 4
 /* A point's relMSE within this factor of the reference's own is dominated by the reference's
    noise: warned. */

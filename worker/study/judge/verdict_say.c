@@ -54,7 +54,7 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
         break;
     case VERDICT_HEAVY_TAILED:
         append(x->text,
-               "%s: fireflies: its worst seed's relMSE at %s is %.3gx its seeds' median (%.0f%% of their sum): "
+               "%s: fireflies: its seeds' relMSE at %s span a factor %.3g (the worst %.0f%% of their sum): "
                "its mean and standard error mean little, so no bias or stall is judged",
                v, at, x->value, 100 * x->detail);
         break;
@@ -327,7 +327,7 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                 v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_HEAVY_TAILED)
             append(s,
-                   "%s has fireflies on %s: at %s one seed's relMSE is %.3gx its seeds' median, so rare, "
+                   "%s has fireflies on %s: at %s its seeds' relMSE span a factor %.3g, so rare, "
                    "huge samples decide its mean error, and neither a bias nor a stall can be judged.",
                    v, out->scene, at, x->value);
         else if (x->kind == VERDICT_STALLS)

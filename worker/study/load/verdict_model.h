@@ -61,8 +61,8 @@ struct verdict_failure {
     enum verdict_failure_kind kind;
     int variant, point; /* point: where it shows most (-1: throughout) */
     double value;       /* the repeated share, the local slope, the samples dropped, the CPU share, the
-                           bias in percent of the reference's mean radiance, the worst seed's relMSE over
-                           the seeds' median (heavy_tailed) */
+                           bias in percent of the reference's mean radiance, the seeds' largest relMSE over
+                           their smallest (heavy_tailed) */
     double detail;      /* structured: the share of the error that is bias; biased: standard errors;
                            heavy_tailed: the worst seed's share of the seeds' summed relMSE */
     char text[VERDICT_TEXT_MAX];
