@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/fileio.h"
+#include "image/errspec.h"
 #include "image/imgio.h"
 
 void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
@@ -94,10 +95,15 @@ int compare_stats_seed_images(const struct compare *c, int s, int v, int p, cons
                               const struct rgbf *ref, struct compare_seed_stats *out, struct err *e)
 {
     size_t n = (size_t)ref->w * ref->h * 3;
-    double *sum = calloc(n, sizeof *sum);
-    int rc = -1;
-    if (!sum)
+    const size_t side2 = (size_t)ERRSPEC_MAX_SIDE * ERRSPEC_MAX_SIDE;
+    double *sum = calloc(n, sizeof *sum), *pooled = calloc(side2, sizeof *pooled),
+           *one = calloc(side2, sizeof *one);
+    int rc = -1, sw = 0, sh = 0, spec_ok = out->spec_ring != NULL;
+    out->peak_p = out->anisotropy = NAN;
+    if (!sum || !pooled || !one) {
+        free(sum), free(pooled), free(one);
         return err_set(e, NULL, 0, 0, "out of memory");
+    }
     for (int k = 0; k < c->n_seeds; k++) {
         char path[4096];
         struct rgbf img = {0};
@@ -112,6 +118,17 @@ int compare_stats_seed_images(const struct compare *c, int s, int v, int p, cons
         for (size_t i = 0; i < n; i++)
             sum[i] += img.px[i];
         out->radiance[k] = compare_stats_mean_radiance(&img);
+        if (spec_ok) { /* the seed's own spectrum (for the band) and the pool (for the judgment) */
+            struct errspec_look l;
+            for (size_t i = 0; i < side2; i++)
+                one[i] = 0;
+            spec_ok = errspec_power_add(ref, &img, one, &sw, &sh, e) == 0;
+            errspec_look_of(one, sw, sh, 1, &l);
+            for (int r = 0; r < VERDICT_SPEC_RINGS; r++)
+                out->spec_ring[(size_t)k * VERDICT_SPEC_RINGS + r] = l.ring[r] > 0 ? log10(l.ring[r]) : NAN;
+            for (size_t i = 0; i < side2; i++)
+                pooled[i] += one[i];
+        }
         image_f_free(&img);
     }
     double rel = 0, mean = 0, ref_mean = compare_stats_mean_radiance(ref), bias = 0;
@@ -128,8 +145,13 @@ int compare_stats_seed_images(const struct compare *c, int s, int v, int p, cons
     }
     out->rel_of_mean = rel / (double)n;
     out->bias_rel = bias / (double)n;
+    if (spec_ok) {
+        struct errspec_look l;
+        errspec_look_of(pooled, sw, sh, c->n_seeds, &l);
+        out->peak_p = l.peak_p, out->anisotropy = l.anisotropy;
+    }
     rc = 0;
 done:
-    free(sum);
+    free(sum), free(pooled), free(one);
     return rc;
 }

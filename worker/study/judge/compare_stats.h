@@ -30,6 +30,9 @@ struct compare_seed_stats {
     double bias_rel;    /* the relMSE of the reference scaled to that mean image's mean radiance: the
                            part of rel_of_mean an offset in mean radiance alone makes */
     double *radiance;   /* the caller's array of c->n_seeds: each seed image's mean radiance */
+    double *spec_ring;  /* the caller's array of c->n_seeds x VERDICT_SPEC_RINGS, or NULL: each seed
+                           image's error spectrum, log10 of each ring's power over its mean power */
+    double peak_p, anisotropy; /* the seeds' pooled error spectrum's (errspec_look_of); NAN unknown */
 };
 
 /* The seed images of (scene, variant, point) against ref, read from dir: their float copies

@@ -10,6 +10,7 @@
 #include "verdict_look.h"
 #include "verdict_rank.h"
 #include "verdict_say.h"
+#include "verdict_spectrum.h"
 #include "verdict_time.h"
 
 /* The mean over seeds of point p's figure x (spp or CPU seconds) for variant v. */
@@ -360,6 +361,10 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
         failures_of(f, v, order, out);
     free(order);
     free(scratch);
+    if (verdict_spectrum_compute(f, out) < 0) {
+        verdict_scene_free(out);
+        return err_set(e, NULL, 0, 0, "out of memory");
+    }
     verdict_say_warnings(f, out);
     verdict_say_sentences(f, out);
     if (verdict_look_compute(f, out) < 0) {

@@ -66,6 +66,10 @@ struct verdict_figures {
     const double *radiance;      /* per (variant, point, seed): the image's mean radiance; NAN unknown */
     const double *lowfreq;       /* per (variant, point, seed): error_lowfreq (errspec.h); NAN unknown;
                                     NULL: none measured */
+    const double *spec_ring;     /* per (variant, point, seed, ring): log10 of the ring's power over the
+                                    image's mean power (errspec_look_of on one image); NULL: none */
+    const double *spec_peak_p;   /* per (variant, point): the seeds' pooled spectrum's peak_p; NULL */
+    const double *spec_aniso;    /* per (variant, point): its anisotropy; NULL: none */
     int n_blocks;                /* the cost design's blocks */
     const double *cost_s;        /* per (variant, point, block): CPU seconds per image timed in the
                                     block (verdict_cost_at); NULL: none */

@@ -14,6 +14,7 @@ struct figures_mem {
     const char **variants, **samplers, **points;
     int *pools;
     double *spp, *cpu, *cost, *rel, *share, *rel_of_mean, *bias_rel, *radiance, *lowfreq;
+    double *spec_ring, *peak_p, *aniso;
     uint64_t *nonfinite;
 };
 
@@ -22,6 +23,7 @@ static void mem_free(struct figures_mem *m)
     free(m->variants), free(m->samplers), free(m->points), free(m->pools);
     free(m->spp), free(m->cpu), free(m->cost), free(m->rel), free(m->share), free(m->nonfinite);
     free(m->rel_of_mean), free(m->bias_rel), free(m->radiance), free(m->lowfreq);
+    free(m->spec_ring), free(m->peak_p), free(m->aniso);
 }
 
 static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
@@ -36,10 +38,12 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->rel_of_mean = calloc(nv * c->n_points, sizeof *m->rel_of_mean);
     m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
     m->lowfreq = calloc(n, sizeof *m->lowfreq);
+    m->spec_ring = calloc(n * VERDICT_SPEC_RINGS, sizeof *m->spec_ring);
+    m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p), m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
     int blocks = c->n_blocks > 1 ? c->n_blocks : c->n_seeds; /* no cost design: the images' own times */
     m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
-        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
+        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq || !m->spec_ring || !m->peak_p || !m->aniso ||
         !m->cost)
         return -1;
     struct verdict_figures *f = &m->f;
@@ -61,6 +65,9 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .bias_rel = m->bias_rel,
                                   .radiance = m->radiance,
                                   .lowfreq = m->lowfreq,
+                                  .spec_ring = m->spec_ring,
+                                  .spec_peak_p = m->peak_p,
+                                  .spec_aniso = m->aniso,
                                   .n_blocks = blocks,
                                   .cost_s = m->cost,
                                   .cost_from_images = c->n_blocks < 2,
@@ -79,14 +86,19 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
         m->samplers[v] = sampler_kind_name(j->sampler);
         m->pools[v] = j->poisson_pool;
         for (int p = 0; p < c->n_points; p++) {
-            struct compare_seed_stats st = {.radiance = m->radiance + verdict_at(f, v, p, 0)};
+            struct compare_seed_stats st = {.radiance = m->radiance + verdict_at(f, v, p, 0),
+                                            .spec_ring = m->spec_ring +
+                                                         (size_t)verdict_at(f, v, p, 0) * VERDICT_SPEC_RINGS};
             struct err ignored;
             int vp = v * c->n_points + p;
-            m->rel_of_mean[vp] = m->bias_rel[vp] = NAN;
+            m->rel_of_mean[vp] = m->bias_rel[vp] = m->peak_p[vp] = m->aniso[vp] = NAN;
             for (int k = 0; k < c->n_seeds; k++)
                 st.radiance[k] = NAN;
+            for (int r = 0; r < c->n_seeds * VERDICT_SPEC_RINGS; r++)
+                st.spec_ring[r] = NAN;
             if (ref && compare_stats_seed_images(c, s, v, p, dir, ref, &st, &ignored) == 0)
-                m->rel_of_mean[vp] = st.rel_of_mean, m->bias_rel[vp] = st.bias_rel;
+                m->rel_of_mean[vp] = st.rel_of_mean, m->bias_rel[vp] = st.bias_rel, m->peak_p[vp] = st.peak_p,
+                m->aniso[vp] = st.anisotropy;
             else
                 f->images_unread += ref != NULL;
             for (int b = 0; b < blocks; b++)

@@ -1,5 +1,6 @@
 /* verdict_look: error_lowfreq per variant and point, and the bluest variant at equal relMSE. */
 #include "verdict_look.h"
+#include "verdict_spectrum.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -98,8 +99,8 @@ int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *
     for (int i = 0; i < nv; i++) {
         const struct verdict_entry *r = &l->by_relmse.e[i];
         struct verdict_entry *e = &l->by_look.e[l->by_look.n];
-        if (r->rank != 1 || !(r->n > 0))
-            continue;
+        if (r->rank != 1 || !(r->n > 0) || verdict_spectrum_structured(out, r->variant))
+            continue; /* a pattern is not blue noise however little of it is at low frequencies */
         verdict_entry_start(e, r->variant);
         for (int k = 0; k < f->n_seeds; k++)
             verdict_entry_add(e, f->lowfreq[verdict_at(f, r->variant, l->point[r->variant], k)], 0);

@@ -58,6 +58,12 @@ void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure
                "its mean and standard error mean little, so no bias or stall is judged",
                v, at, x->value, 100 * x->detail);
         break;
+    case VERDICT_PATTERN:
+        append(x->text,
+               "%s: structured: its seeds' error spectrum at %s has a peak noise gives with chance under "
+               "%.2g, anisotropy %.2f (a pattern, not noise: never called bluest)",
+               v, at, x->value, x->detail);
+        break;
     case VERDICT_STALLS:
         append(x->text, "%s: error stops falling at %s (local slope %.2f against samples)", v, at, x->value);
         break;
@@ -325,6 +331,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                 "%s is biased on %s: its mean radiance at %s is %+.2f%% off the reference's (%.1f standard "
                 "errors), so more samples or seeds will not bring it to the reference.",
                 v, out->scene, at, x->value, x->detail);
+        else if (x->kind == VERDICT_PATTERN)
+            append(s,
+                   "%s's error on %s is structured at %s: its spectrum has a peak or a direction noise does "
+                   "not (chance under %.2g, anisotropy %.2f), so however low its error_lowfreq it is not blue "
+                   "noise.",
+                   v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_HEAVY_TAILED)
             append(s,
                    "%s has fireflies on %s: at %s its seeds' relMSE span a factor %.3g, so rare, "

@@ -21,6 +21,7 @@ void verdict_scene_free(struct verdict_scene *v)
     free(v->cost), free(v->cost_lo), free(v->cost_hi);
     free(v->by_slope.e);
     free(v->failures);
+    free(v->spec), free(v->spec_lo), free(v->spec_hi), free(v->spec_peak_p), free(v->spec_aniso);
     free(v->repeat);
     free(v->repeat_bias);
     free(v->samples_vary);

@@ -53,18 +53,22 @@ enum verdict_failure_kind {
     VERDICT_NONFINITE,
     VERDICT_SHARE,
     VERDICT_BIASED,
-    VERDICT_HEAVY_TAILED
+    VERDICT_HEAVY_TAILED,
+    VERDICT_PATTERN
 };
-#define VERDICT_FAILURE_KINDS 6
+#define VERDICT_FAILURE_KINDS 7
+/* The rings of a radially averaged error spectrum (errspec.h's ERRSPEC_RINGS). */
+#define VERDICT_SPEC_RINGS 16
 
 struct verdict_failure {
     enum verdict_failure_kind kind;
     int variant, point; /* point: where it shows most (-1: throughout) */
     double value;       /* the repeated share, the local slope, the samples dropped, the CPU share, the
                            bias in percent of the reference's mean radiance, the seeds' largest relMSE over
-                           their smallest (heavy_tailed) */
+                           their smallest (heavy_tailed), the peak's chance bound (structured) */
     double detail;      /* structured: the share of the error that is bias; biased: standard errors;
-                           heavy_tailed: the worst seed's share of the seeds' summed relMSE */
+                           heavy_tailed: the worst seed's share of the seeds' summed relMSE;
+                           structured: the anisotropy */
     char text[VERDICT_TEXT_MAX];
 };
 
@@ -96,6 +100,11 @@ struct verdict_scene {
     /* Per (variant, point): the CPU seconds one image costs, the cost design's geometric mean over
        blocks, with its 95% confidence interval. */
     double *cost, *cost_lo, *cost_hi;
+    /* The error's spectrum per (variant, point, ring): each ring's power over the mean power (white
+       noise 1), the seeds' geometric mean and its +- one standard deviation band; per (variant,
+       point): the seeds' pooled spectrum's peak chance bound and anisotropy (errspec.h). NAN: not
+       measured. */
+    double *spec, *spec_lo, *spec_hi, *spec_peak_p, *spec_aniso;
     int cost_from_images; /* no cost design measured (an older folder): each image's own time, seed k
                              as block k */
     char (*variants)[VERDICT_LABEL_MAX];

@@ -30,7 +30,7 @@ static const char *status_name(enum verdict_status s)
 static const char *kind_name(enum verdict_failure_kind k)
 {
     static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
-                                        "biased",           "heavy_tailed"};
+                                        "biased",           "heavy_tailed",  "structured"};
     return names[k];
 }
 
@@ -86,6 +86,14 @@ static void json_look(struct json *j, const struct verdict_scene *v)
             json_number(j, "error_lowfreq", l->mean[o + q]);
             json_number(j, "standard_error", l->se[o + q]);
             json_number(j, "relmse", l->rel[o + q]);
+            if (v->spec_peak_p) {
+                json_number(j, "spectrum_peak_p", v->spec_peak_p[o + q]);
+                json_number(j, "anisotropy", v->spec_aniso[o + q]);
+                json_begin_array(j, "spectrum");
+                for (int r = 0; r < VERDICT_SPEC_RINGS; r++)
+                    json_number(j, NULL, v->spec[(size_t)(o + q) * VERDICT_SPEC_RINGS + r]);
+                json_end_array(j);
+            }
             json_end_object(j);
         }
         json_end_array(j);
@@ -118,6 +126,8 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         json_number(j, "value", x->value);
         if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
             json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
+        if (x->kind == VERDICT_PATTERN)
+            json_number(j, "anisotropy", x->detail);
         if (x->kind == VERDICT_HEAVY_TAILED)
             json_number(j, "worst_share", x->detail);
         json_string(j, "text", x->text);
