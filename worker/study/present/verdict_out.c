@@ -7,6 +7,7 @@
 
 #include "chart.h"
 #include "study/judge/verdict_look.h"
+#include "report_spectrum.h"
 #include "verdict_out.h"
 #include "study/judge/verdict_rank.h"
 
@@ -291,6 +292,11 @@ static void html_look(struct sbuf *b, const struct verdict_study *s)
             any |= isfinite(s->scenes[k].look.mean[i]);
     char *svg = any ? verdict_look_svg(s) : NULL;
     const char *root = svg ? strstr(svg, "<svg") : NULL; /* inline: drop the XML declaration */
+    if (root)
+        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
+    free(svg);
+    svg = report_spectrum_svg(s);
+    root = svg ? strstr(svg, "<svg") : NULL;
     if (root)
         sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
     free(svg);
