@@ -1,5 +1,6 @@
 /* test_compare: loading and expanding compare jobs (names, labels, sweeps, references, errors)
    and the statistics drawn from their results; nothing is rendered. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +9,7 @@
 #include "compare_fixture.h"
 #include "study/load/compare_load.h"
 #include "study/run/compare.h"
+#include "study/run/compare_ref.h"
 #include "study/judge/compare_stats.h"
 #include "study/present/report_chart.h"
 #include "study/present/report_stability.h"
@@ -306,6 +308,57 @@ static void test_repeated_error(void)
     compare_free(c);
 }
 
+/* A scene's mask restricts the seed images' figures (mean radiance, the mean image's relMSE and its
+   bias part) to its pixels: the right half, far off, does not count. */
+static void test_masked_seed_images(void)
+{
+    struct err e;
+    struct compare *c = hand_made("mask.yaml", "scenes: [SCENE]\nwidth: 4\nheight: 4\nseeds: [1, 2]\n"
+                                               "mask: { rect: [0, 0, 2, 4] }\nvariants:\n  - { label: a }\n");
+    if (!c)
+        return;
+    CHECK(c->scenes[0].mask != NULL);
+    c->scenes[0].ref_domain = IMG_LINEAR;
+    struct rgbf ref = {0}, img = {0};
+    CHECK(image_f_alloc(&ref, 4, 4, &e) == 0 && image_f_alloc(&img, 4, 4, &e) == 0);
+    for (int i = 0; i < 4 * 4 * 3; i++)
+        ref.px[i] = 0.4f, img.px[i] = (i / 3) % 4 < 2 ? 0.44f : 1.2f;
+    for (int k = 0; k < 2; k++) {
+        const struct compare_item *it = &c->items[compare_index(c, 0, 0, 0, k)];
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%.*s.exr", fx.dir, (int)strlen(it->job.output) - 4, it->job.output);
+        CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
+    }
+    double radiance[2];
+    struct compare_seed_stats st = {.radiance = radiance};
+    CHECK(compare_stats_seed_images(c, 0, 0, 0, fx.dir, &ref, &st, &e) == 0);
+    CHECK_NEAR(radiance[0], 0.44, 1e-6);
+    CHECK_NEAR(st.rel_of_mean, 0.04 * 0.04 / (0.16 + 0.01), 1e-6);
+    CHECK_NEAR(st.bias_rel, st.rel_of_mean, 1e-6); /* the masked part is all offset */
+    CHECK_NEAR(compare_stats_mean_radiance(&img, c->scenes[0].mask), 0.44, 1e-6);
+    CHECK_NEAR(compare_stats_mean_radiance(&img, NULL), 0.82, 1e-6);
+    image_f_free(&ref), image_f_free(&img);
+    /* the reference's noise from its halves, over the mask, a pixel's channels together: grey halves
+       0.4 +- 0.1 give the mean radiance a standard error of sqrt(P x 0.1^2) / P over the P = 8
+       pixels (counting the 24 values apart gave it sqrt(3) smaller) */
+    struct rgbf a = {0}, b = {0};
+    CHECK(image_f_alloc(&a, 4, 4, &e) == 0 && image_f_alloc(&b, 4, 4, &e) == 0);
+    for (int i = 0; i < 4 * 4 * 3; i++)
+        a.px[i] = 0.5f, b.px[i] = 0.3f;
+    char path[1100];
+    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/halves.exr", fx.dir);
+    snprintf(path, sizeof path, "%s/halves-a.exr", fx.dir);
+    CHECK(imgio_write_f(path, &a, IMG_EXR, NULL, 0, &e) == 0);
+    snprintf(path, sizeof path, "%s/halves-b.exr", fx.dir);
+    CHECK(imgio_write_f(path, &b, IMG_EXR, NULL, 0, &e) == 0);
+    compare_ref_measure(&c->scenes[0]);
+    CHECK_NEAR(c->scenes[0].ref_radiance, 0.4, 1e-6);
+    CHECK_NEAR(c->scenes[0].ref_radiance_se, sqrt(8 * 0.01) / 8, 1e-6);
+    CHECK_NEAR(c->scenes[0].ref_relmse, 0.01 / (0.16 + 0.01), 1e-6);
+    image_f_free(&a), image_f_free(&b);
+    compare_free(c);
+}
+
 int main(void)
 {
     if (compare_fixture_open(&fx, "test_compare") < 0)
@@ -317,6 +370,7 @@ int main(void)
     test_stats_flat_samples();
     test_chart_one_seed();
     test_repeated_error();
+    test_masked_seed_images();
     CHECK(compare_fixture_close(&fx) == 0);
     return check_report("test_compare");
 }

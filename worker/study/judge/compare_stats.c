@@ -11,6 +11,12 @@
 #include "image/errspec.h"
 #include "image/imgio.h"
 
+/* Whether value i (pixel i / 3) of img counts under mask (every one without). */
+static int on(const struct rgbf *img, const struct img_mask *mask, size_t i)
+{
+    return mask_on(mask, (int)(i / 3 % (size_t)img->w), (int)(i / 3 / (size_t)img->w));
+}
+
 void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
 {
     *a = (struct compare_agg){0};
@@ -70,13 +76,14 @@ void compare_stats_point_order(const struct compare *c, int s, int v, int *order
         }
 }
 
-double compare_stats_mean_radiance(const struct rgbf *img)
+double compare_stats_mean_radiance(const struct rgbf *img, const struct img_mask *mask)
 {
-    size_t n = (size_t)img->w * img->h * 3;
+    size_t n = (size_t)img->w * img->h * 3, counted = 0;
     double sum = 0;
     for (size_t i = 0; i < n; i++)
-        sum += img->px[i];
-    return n ? sum / (double)n : NAN;
+        if (on(img, mask, i))
+            sum += img->px[i], counted++;
+    return counted ? sum / (double)counted : NAN;
 }
 
 /* The path of seed image it's pixels in dir: its float copy when the reference is linear. */
@@ -95,6 +102,7 @@ int compare_stats_seed_images(const struct compare *c, int s, int v, int p, cons
                               const struct rgbf *ref, struct compare_seed_stats *out, struct err *e)
 {
     size_t n = (size_t)ref->w * ref->h * 3;
+    const struct img_mask *mask = c->scenes[s].mask;
     const size_t side2 = (size_t)ERRSPEC_MAX_SIDE * ERRSPEC_MAX_SIDE;
     double *sum = calloc(n, sizeof *sum), *pooled = calloc(side2, sizeof *pooled),
            *one = calloc(side2, sizeof *one);
@@ -117,7 +125,7 @@ int compare_stats_seed_images(const struct compare *c, int s, int v, int p, cons
         }
         for (size_t i = 0; i < n; i++)
             sum[i] += img.px[i];
-        out->radiance[k] = compare_stats_mean_radiance(&img);
+        out->radiance[k] = compare_stats_mean_radiance(&img, mask);
         if (spec_ok) { /* the seed's own spectrum (for the band) and the pool (for the judgment) */
             struct errspec_look l;
             for (size_t i = 0; i < side2; i++)
@@ -131,20 +139,25 @@ int compare_stats_seed_images(const struct compare *c, int s, int v, int p, cons
         }
         image_f_free(&img);
     }
-    double rel = 0, mean = 0, ref_mean = compare_stats_mean_radiance(ref), bias = 0;
+    double rel = 0, mean = 0, ref_mean = compare_stats_mean_radiance(ref, mask), bias = 0;
+    size_t counted = 0;
+    for (size_t i = 0; i < n; i++)
+        counted += on(ref, mask, i);
     for (size_t i = 0; i < n; i++) {
+        if (!on(ref, mask, i))
+            continue;
         double a = ref->px[i], d = sum[i] / c->n_seeds - a;
         rel += d * d / (a * a + METRICS_REL_EPS);
-        mean += sum[i] / c->n_seeds / (double)n;
+        mean += sum[i] / c->n_seeds / (double)counted;
     }
     /* the offset alone: the reference scaled to the mean image's mean radiance */
     double scale = ref_mean > 0 ? mean / ref_mean - 1 : 0;
     for (size_t i = 0; i < n; i++) {
         double a = ref->px[i], d = scale * a;
-        bias += d * d / (a * a + METRICS_REL_EPS);
+        bias += on(ref, mask, i) ? d * d / (a * a + METRICS_REL_EPS) : 0;
     }
-    out->rel_of_mean = rel / (double)n;
-    out->bias_rel = bias / (double)n;
+    out->rel_of_mean = rel / (double)counted;
+    out->bias_rel = bias / (double)counted;
     if (spec_ok) {
         struct errspec_look l;
         errspec_look_of(pooled, sw, sh, c->n_seeds, &l);

@@ -35,14 +35,14 @@ struct compare_seed_stats {
     double peak_p, anisotropy; /* the seeds' pooled error spectrum's (errspec_look_of); NAN unknown */
 };
 
-/* The seed images of (scene, variant, point) against ref, read from dir: their float copies
+/* The seed images of (scene, variant, point) against ref, over the scene's mask's pixels, read from dir: their float copies
    (<stem>.exr) when the scene's reference is linear, else the PNGs' display values. Averaging them
    divides noise by the seed count and leaves structured error; the verdict tells the two apart.
    0, or -1 with e filled. */
 int compare_stats_seed_images(const struct compare *c, int scene, int variant, int point, const char *dir,
                               const struct rgbf *ref, struct compare_seed_stats *out, struct err *e);
 
-/* The mean over an image's pixels and channels. */
-double compare_stats_mean_radiance(const struct rgbf *img);
+/* The mean over an image's pixels (the mask's only; every pixel when mask is NULL) and channels. */
+double compare_stats_mean_radiance(const struct rgbf *img, const struct img_mask *mask);
 
 #endif

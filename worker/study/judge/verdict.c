@@ -316,12 +316,19 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         bias_of(f, v, out);
 }
 
-int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e)
+int verdict_scene_compute(const struct verdict_figures *given, struct verdict_scene *out, struct err *e)
 {
+    struct verdict_figures g = *given;
+    const struct verdict_figures *f = &g;
+    double densest = 0;
+    for (int i = 0; i < g.n_variants * g.n_points * g.n_seeds; i++)
+        densest = fmax(densest, g.spp[i]);
+    if (g.ref_relmse > 0 && g.ref_spp > 0 && g.ref_spp < VERDICT_REF_FACTOR * densest)
+        g.ref_relmse = NAN, g.ref_noise_refused = 1;
     int nv = f->n_variants;
     size_t per = (size_t)nv * f->n_points;
     *out = (struct verdict_scene){
-        .n_variants = nv, .n_points = f->n_points, .n_seeds = f->n_seeds, .ref_relmse = f->ref_relmse,
+        .n_variants = nv, .n_points = f->n_points, .n_seeds = f->n_seeds, .ref_relmse = given->ref_relmse,
         .rank_by = f->rank_by};
     snprintf(out->study, sizeof out->study, "%s", f->study);
     snprintf(out->scene, sizeof out->scene, "%s", f->scene);

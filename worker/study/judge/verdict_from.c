@@ -77,7 +77,7 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .ref_radiance = c->scenes[s].ref_radiance,
                                   .ref_radiance_se = c->scenes[s].ref_radiance_se};
     if (ref && !(f->ref_radiance > 0))
-        f->ref_radiance = compare_stats_mean_radiance(ref); /* an image reference: its noise unknown */
+        f->ref_radiance = compare_stats_mean_radiance(ref, c->scenes[s].mask); /* an image reference: its noise unknown */
     for (int p = 0; p < c->n_points; p++)
         m->points[p] = c->points[p];
     for (int v = 0; v < c->n_variants; v++) {

@@ -119,8 +119,20 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
         (w = next_line(out->warnings, &out->n_warnings)))
         append(w,
                "the reference has %.0f samples per pixel, fewer than %dx the densest point's %.0f: its own "
-               "noise is a large part of the error measured there",
-               f->ref_spp, VERDICT_REF_FACTOR, densest);
+               "noise is a large part of the error measured there%s",
+               f->ref_spp, VERDICT_REF_FACTOR, densest,
+               f->ref_noise_refused ? ", and too sparse to take out (its halves miss the pixels where both "
+                                      "agree by chance): every relMSE shown includes it"
+                                    : "");
+    int floored = 0, scoredn = 0;
+    for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds && f->ref_relmse > 0; i++)
+        if (isfinite(f->relmse[i]))
+            scoredn++, floored += f->relmse[i] - f->ref_relmse < 0.01 * f->relmse[i];
+    if (floored && (w = next_line(out->warnings, &out->n_warnings)))
+        append(w,
+               "%d of %d images' relMSE are within the reference's own %.3g: their own error is shown as 1%% of "
+               "the measured (the difference cannot be told from the reference's noise)",
+               floored, scoredn, f->ref_relmse);
     if ((f->reference_unread || f->images_unread) && (w = next_line(out->warnings, &out->n_warnings)))
         append(w,
                "skipped: the share of the error that repeats in every seed, its split into bias and pattern, "

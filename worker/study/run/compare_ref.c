@@ -163,26 +163,33 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
 
 /* The reference = the mean of its halves a and b (into a), and its own noise from their
    difference: each half has variance s2 per value, their mean s2 / 2 and a - b 2 s2, so the mean's
-   relMSE is the mean of (a - b)^2 / 4 / (m^2 + 0.01), and its mean radiance's variance the sum of
-   (a - b)^2 / 4 over the N values, over N^2 (values independent: per-pixel seeds). */
+   relMSE is the mean of (a - b)^2 / 4 / (m^2 + 0.01), over the mask's pixels as the variants'.
+   Its mean radiance (the mean over the mask's pixels of the channels' mean) has the variance of
+   the sum over those P pixels of the channels' mean difference squared / 4, over P^2: pixels are
+   independent (per-pixel seeds), a pixel's channels are not (one path carries all three: in a grey
+   scene they move together, and counting them apart made the error sqrt(3) too small). */
 static void mean_of_halves(struct compare_scene *cs, const struct img_mask *mask, struct rgbf *a,
                            const struct rgbf *b)
 {
-    size_t n = (size_t)a->w * a->h * 3, counted = 0;
+    size_t n = (size_t)a->w * a->h, counted = 0;
     double rel = 0, sum = 0, var = 0;
     for (size_t i = 0; i < n; i++) {
-        double m = 0.5 * ((double)a->px[i] + b->px[i]), d = (double)a->px[i] - b->px[i];
-        /* relMSE over the mask's pixels (as the variants'); the radiance (the judge's bias test,
-           which reads whole images) over every pixel */
-        if (mask_on(mask, (int)(i / 3 % (size_t)a->w), (int)(i / 3 / (size_t)a->w)))
-            rel += d * d / 4 / (m * m + METRICS_REL_EPS), counted++;
-        var += d * d / 4;
-        sum += m;
-        a->px[i] = (float)m;
+        int on = mask_on(mask, (int)(i % (size_t)a->w), (int)(i / (size_t)a->w));
+        double pix_d = 0;
+        for (int c = 0; c < 3; c++) {
+            size_t j = 3 * i + (size_t)c;
+            double m = 0.5 * ((double)a->px[j] + b->px[j]), d = (double)a->px[j] - b->px[j];
+            if (on)
+                rel += d * d / 4 / (m * m + METRICS_REL_EPS), sum += m / 3;
+            pix_d += d / 3;
+            a->px[j] = (float)m;
+        }
+        if (on)
+            var += pix_d * pix_d / 4, counted++;
     }
-    cs->ref_relmse = rel / (double)counted;
-    cs->ref_radiance = sum / (double)n;
-    cs->ref_radiance_se = sqrt(var) / (double)n;
+    cs->ref_relmse = rel / (double)(3 * counted);
+    cs->ref_radiance = sum / (double)counted;
+    cs->ref_radiance_se = sqrt(var) / (double)counted;
 }
 
 void compare_ref_measure(struct compare_scene *cs)
