@@ -47,6 +47,9 @@ static void aa_init(struct verdict_fixture *x, double *cost, const double *tilt,
     x->f.n_blocks = NB, x->f.cost_s = cost;
 }
 
+/* No tilt, no load: every variant's images cost alike, every block alike. */
+static const double even[NV] = {1, 1, 1, 1}, flat[NB] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+
 static void test_aa(void)
 {
     struct verdict_fixture x;
@@ -54,9 +57,9 @@ static void test_aa(void)
     struct err e = {0};
     double cost[NV * NP * NB];
     const double tilt[NV] = {1, 0.7, 1.3, 1}; /* the images' own times: b rendered in a quiet stretch */
-    double flat[NB], drift[NB];
+    double drift[NB];
     for (int b = 0; b < NB; b++)
-        flat[b] = 1, drift[b] = b % 3 ? 1 : 2.5; /* a hog on every third block */
+        drift[b] = b % 3 ? 1 : 2.5; /* a hog on every third block */
     aa_init(&x, cost, tilt, flat, 0.02);
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_cpu.status == VERDICT_INCONCLUSIVE); /* the old rule, on the images' times: b ahead */
@@ -105,12 +108,8 @@ static void test_cost_uncertainty(void)
     struct verdict_scene s;
     struct err e = {0};
     double cost[NV * NP * NB];
-    const double tilt[NV] = {1, 1, 1, 1};
-    double flat[NB];
-    for (int b = 0; b < NB; b++)
-        flat[b] = 1;
     for (int noisy = 0; noisy < 2; noisy++) {
-        aa_init(&x, cost, tilt, flat, noisy ? 0.25 : 0.001);
+        aa_init(&x, cost, even, flat, noisy ? 0.25 : 0.001);
         x.f.n_variants = 2;
         for (int p = 0; p < NP; p++)
             for (int k = 0; k < NS; k++) {
@@ -138,11 +137,7 @@ static void test_points(void)
     struct verdict_scene s;
     struct err e = {0};
     double cost[NV * NP * NB];
-    const double tilt[NV] = {1, 1, 1, 1};
-    double flat[NB];
-    for (int b = 0; b < NB; b++)
-        flat[b] = 1;
-    aa_init(&x, cost, tilt, flat, 0.02);
+    aa_init(&x, cost, even, flat, 0.02);
     x.f.n_seeds = 2; /* the figures laid out again for two seeds */
     for (int v = 0; v < NV; v++)
         for (int p = 0; p < NP; p++)
