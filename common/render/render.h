@@ -8,13 +8,14 @@
 #include "geom/camera.h"
 #include "sample/sampler.h"
 #include "geom/scene.h"
+#include "integrator.h"
 
 struct render_settings {
     int width, height;
     int max_depth;
     uint64_t seed;
     int light_sampling_off; /* 1: scatter by the material alone (cosine / phase); lights still emit */
-    int nee; /* 1: next-event estimation with MIS at every diffuse or medium vertex; 0: the books' mixture */
+    enum integrator integrator; /* integrator.h: the books' mixture, or next-event estimation with MIS */
     int dims_all; /* 1: every 2D decision of a path from the pixel sampler's sets (sample/padding.h) */
     int russian_roulette; /* 1: a path may end after its second scatter (render_path.h's path_survives) */
 };

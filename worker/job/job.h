@@ -6,6 +6,7 @@
 
 #include "base/err.h"
 #include "image/image.h"
+#include "render/integrator.h"
 #include "sample/sampler.h"
 #include "scenefile/yamlx.h"
 
@@ -33,9 +34,9 @@ struct job {
     int poisson_pool;
     enum poisson_domain poisson_domain; /* fresh Poisson sets: torus (default, unbiased) or square */
     int light_sampling;                 /* 0: no importance sampling of lights (default 1) */
-    int nee;        /* integrator: 1 next-event estimation with MIS, 0 the books' mixture (default) */
+    enum integrator integrator;         /* integrator: (integrator.h), the books' mixture by default */
     int dims_all;   /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
-    int roulette;   /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: on with nee) */
+    int roulette;   /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: the integrator's default) */
     int priority;   /* queue order: higher first (default 0) */
     int float_copy; /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
                        image (a compare job's renders, scored in linear radiance) */
@@ -46,16 +47,13 @@ struct job {
         pos_scene[2], pos_format[2], pos_output[2], pos_name[2], pos_width[2], pos_poisson_pool[2];
 };
 
-/* The smallest threshold sampler kind k takes (its sets stay within SAMPLER_MAX_POINTS). */
-double job_smallest_threshold(enum sampler_kind k);
-
 /* Read the job in the parsed document d of the job file at path (relative scene and reference
    paths resolve beside path) into j: every key checked, defaults filled; j->hash left 0 (the
    job file's reader, jobfile_open, sets it). 0, or -1 with e = "file:line:col: key: message". */
 int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e);
 
 /* Whether the job's paths may end by Russian roulette: russian_roulette when given, else on with
-   integrator: nee and off with the mixture (whose images stay the books'). */
+   the integrator's default (integrator.c: off with the mixture, whose images stay the books'). */
 int job_roulette(const struct job *j);
 
 /* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at

@@ -6,7 +6,7 @@
 /* A Poisson pool of sampler (kind, t): poisson_pool x its largest set within the limit. */
 static int pool_points(const struct job *j, enum sampler_kind kind, double t, struct err *e)
 {
-    if (kind != SAMPLER_POISSON || j->poisson_pool == 0)
+    if (!sampler_kind_has(kind, SAMPLER_POOLED) || j->poisson_pool == 0)
         return 0;
     double per_set = (double)sampler_capacity(kind, t), total = per_set * j->poisson_pool;
     if (total <= LIMITS_MAX_POOL_POINTS)
@@ -26,7 +26,7 @@ int job_limits_samples(const struct job *j, int width, int height, struct err *e
                        "threshold: %dx%d pixels at up to %.0f samples each is %.3g samples (limit %.3g)",
                        width, height, per_pixel, total, LIMITS_MAX_JOB_SAMPLES);
     /* each pixel draws a fresh Poisson set per light, whole, however few of its points it takes */
-    if (j->light_sampling && j->light_sampler == SAMPLER_POISSON && j->poisson_pool == 0) {
+    if (j->light_sampling && sampler_kind_has(j->light_sampler, SAMPLER_POOLED) && j->poisson_pool == 0) {
         double per_light = (double)sampler_capacity(j->light_sampler, j->light_threshold);
         double points = per_light * width * height;
         if (points > LIMITS_MAX_JOB_SAMPLES)

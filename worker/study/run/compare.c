@@ -29,9 +29,7 @@
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
 {
-    double spp = it->job.sampler == SAMPLER_POISSON
-                     ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
-                     : (double)sampler_capacity(it->job.sampler, it->job.threshold);
+    double spp = sampler_expected_spp(it->job.sampler, it->job.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
@@ -60,8 +58,8 @@ static uint64_t item_hash(const struct compare_scene *cs, const struct compare_i
                      j->width, j->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
-                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
-                     job_roulette(j) ? " roulette" : "");
+                     WORKER_VERSION, integrator_traits(j->integrator)->hash_tag,
+                     j->dims_all ? " dims all" : "", job_sets_tag(j), job_roulette(j) ? " roulette" : "");
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 

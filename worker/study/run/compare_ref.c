@@ -29,8 +29,8 @@ static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
                      cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
-                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
-                     job_roulette(j) ? " roulette" : "");
+                     integrator_traits(j->integrator)->hash_tag, j->dims_all ? " dims all" : "",
+                     job_sets_tag(j), job_roulette(j) ? " roulette" : "");
     return hash_bytes(h, text, (size_t)n);
 }
 
