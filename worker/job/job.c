@@ -65,11 +65,10 @@ static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sam
     const char *near = ystr_nearest(s, sampler_kind_names(), -1);
     if (sampler_kind_parse(s, out) < 0 && near)
         return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
+    char list[256];
     if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(d, v, e,
-                         "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson, sobol, "
-                         "halton, pmj02bn or zsobol)",
-                         key, s);
+        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected one of %s)", key, s,
+                         sampler_kind_list(", ", list, sizeof list));
     return 0;
 }
 
@@ -404,14 +403,17 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     return 0;
 }
 
-const char *job_sets_tag(const struct job *j)
+const char *job_sets_tag(const struct job *j, char *buf, size_t n)
 {
-    const int poisson = j->sampler == SAMPLER_POISSON || j->light_sampler == SAMPLER_POISSON;
-    if (!poisson)
-        return j->dims_all ? " padded uniformly" : "";
-    if (j->poisson_domain == POISSON_SQUARE)
-        return j->dims_all ? " poisson square padded uniformly" : " poisson square";
-    return j->dims_all ? " poisson torus padded uniformly" : " poisson torus";
+    const int pooled =
+        sampler_kind_has(j->sampler, SAMPLER_POOLED) || sampler_kind_has(j->light_sampler, SAMPLER_POOLED);
+    const char *pad = j->dims_all ? " padded uniformly" : "";
+    if (!pooled)
+        snprintf(buf, n, "%s", pad);
+    else /* the kind that pools has a domain: its name and the domain's (the hashes of old) */
+        snprintf(buf, n, " %s %s%s", sampler_kind_name(SAMPLER_POISSON),
+                 poisson_domain_name(j->poisson_domain), pad);
+    return buf;
 }
 
 const char *job_light_text(const struct job *j, char *buf, size_t n)

@@ -76,8 +76,9 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e);
 
 /* What a cache key must add for the sets j's samplers make beyond the keys it prints: the Poisson
    domain when a sampler is poisson, the padding's version under sampler_dims: all ("" else), so
-   an image rendered by an earlier rule is never found current. */
-const char *job_sets_tag(const struct job *j);
+   an image rendered by an earlier rule is never found current. Written to buf (n bytes, 64
+   suffice); returns buf. */
+const char *job_sets_tag(const struct job *j, char *buf, size_t n);
 
 /* Where j's light points really come from, for a caption: "light jitter t=5", or under
    sampler_dims: all (which never asks the light sampler) "light points from the sobol sets

@@ -12,9 +12,9 @@ static int pool_points(const struct job *j, enum sampler_kind kind, double t, st
     if (total <= LIMITS_MAX_POOL_POINTS)
         return 0;
     return err_set(e, j->path, j->pos_poisson_pool[0], j->pos_poisson_pool[1],
-                   "poisson_pool: %d sets of up to %.0f points (poisson t=%g) is %.3g points, held in memory "
+                   "poisson_pool: %d sets of up to %.0f points (%s t=%g) is %.3g points, held in memory "
                    "(limit %.3g); take a smaller pool or a larger threshold",
-                   j->poisson_pool, per_set, t, total, LIMITS_MAX_POOL_POINTS);
+                   j->poisson_pool, per_set, sampler_kind_name(kind), t, total, LIMITS_MAX_POOL_POINTS);
 }
 
 int job_limits_samples(const struct job *j, int width, int height, struct err *e)
@@ -31,10 +31,11 @@ int job_limits_samples(const struct job *j, int width, int height, struct err *e
         double points = per_light * width * height;
         if (points > LIMITS_MAX_JOB_SAMPLES)
             return err_set(e, j->path, j->pos_light_threshold[0], j->pos_light_threshold[1],
-                           "light_threshold: %g draws a fresh poisson set of up to %.0f points per pixel and "
+                           "light_threshold: %g draws a fresh %s set of up to %.0f points per pixel and "
                            "light, %.3g points at %dx%d (limit %.3g); take a larger light_threshold, a "
                            "poisson_pool or another light_sampler",
-                           j->light_threshold, per_light, points, width, height, LIMITS_MAX_JOB_SAMPLES);
+                           j->light_threshold, sampler_kind_name(j->light_sampler), per_light, points, width,
+                           height, LIMITS_MAX_JOB_SAMPLES);
     }
     if (pool_points(j, j->sampler, j->threshold, e) < 0)
         return -1;

@@ -7,10 +7,11 @@
 #include "sample/sampler.h"
 #include "scenefile/yamlx.h"
 
-/* What sweep_keys says of an spp sweep (the report's "sweep: ..."). */
+/* What sweep_keys says of an spp sweep (the report's "sweep: ..."), a format of the kind whose
+   count is expected, not exact. */
 #define COMPARE_SPP_SWEEP_NOTE                                                                               \
     "spp (each variant's threshold set so its sampler draws that many camera samples per pixel; "            \
-    "poisson: about)"
+    "%s: about)"
 
 /* The threshold t at which a set of `kind` holds spp points: for the grid kinds, sobol and halton
    (n x n, n = floor(100 / t)) and pmj02bn and zsobol (n x n rounded up to a power of two), exactly,

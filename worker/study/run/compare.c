@@ -52,14 +52,14 @@ static void fmt_duration(double s, char *buf, size_t n)
 static uint64_t item_hash(const struct compare_scene *cs, const struct compare_item *it)
 {
     const struct job *j = &it->job;
-    char text[JOB_PATH_MAX + 512];
-    int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s",
-                     j->width, j->height, sampler_kind_name(j->sampler), j->threshold,
-                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
-                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
-                     WORKER_VERSION, integrator_traits(j->integrator)->hash_tag,
-                     j->dims_all ? " dims all" : "", job_sets_tag(j), job_roulette(j) ? " roulette" : "");
+    char tag[64], text[JOB_PATH_MAX + 512];
+    int n = snprintf(
+        text, sizeof text,
+        "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s", j->width,
+        j->height, sampler_kind_name(j->sampler), j->threshold, sampler_kind_name(j->light_sampler),
+        j->light_threshold, j->max_depth, (unsigned long long)j->seed, j->poisson_pool, j->light_sampling,
+        j->reference[0] != 0, WORKER_VERSION, integrator_traits(j->integrator)->hash_tag,
+        j->dims_all ? " dims all" : "", job_sets_tag(j, tag, sizeof tag), job_roulette(j) ? " roulette" : "");
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 

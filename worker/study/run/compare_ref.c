@@ -23,14 +23,14 @@ static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
 {
     const struct job *j = &cs->ref_job;
     uint64_t h = hash_u64(study_inputs_program_hash(c->inputs), cs->input->hash);
-    char text[512];
+    char tag[64], text[512];
     int n = snprintf(text, sizeof text,
                      "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s%s halves",
                      cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
                      sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
                      (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
                      integrator_traits(j->integrator)->hash_tag, j->dims_all ? " dims all" : "",
-                     job_sets_tag(j), job_roulette(j) ? " roulette" : "");
+                     job_sets_tag(j, tag, sizeof tag), job_roulette(j) ? " roulette" : "");
     return hash_bytes(h, text, (size_t)n);
 }
 
