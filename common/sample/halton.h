@@ -8,7 +8,8 @@
 
 #include <stdint.h>
 
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* The pixel tile: 2^7 columns by 3^5 rows; pixel sample i has index offset + i * HALTON_STRIDE. */
 #define HALTON_TILE_X 128u

@@ -9,11 +9,8 @@
 
 #include "base/err.h"
 #include "base/rng.h"
+#include "pt2.h"
 #include "sampler_kind.h"
-
-struct pt2 {
-    double x, y;
-};
 
 /* Where a fresh Poisson set is drawn (job key poisson_domain): on the unit torus, distances
    measured with wrap-around, then shifted by a random offset modulo 1 (Cranley-Patterson): every

@@ -7,7 +7,8 @@
 
 #include <stdint.h>
 
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* Pixels and samples per pixel a key can address: x, y < 2^16, 2^log2_spp samples with
    log2_spp <= ZSOBOL_MAX_LOG2_SPP. */
