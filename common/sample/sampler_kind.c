@@ -76,10 +76,15 @@ int sampler_threshold_valid(double threshold)
     return threshold > 0.0 && threshold <= 100.0;
 }
 
-/* The 1e-9 keeps exact divisors exact: 100 / 0.1 is 999.9999999999999 in doubles. */
+/* floor(100 / threshold), read as a person would: a threshold within a relative 1e-9 of 100 / m
+   gives m (6.250000001 gives 16, and 0.1 gives 1000 although 100 / 0.1 is 999.9999999999999 in
+   doubles). The one place a threshold becomes a grid side. */
 static double grid_side_real(double threshold)
 {
-    return floor(100.0 / threshold + 1e-9);
+    const double q = 100.0 / threshold, m = floor(q + 0.5);
+    if (m >= 1.0 && fabs(threshold - 100.0 / m) <= 1e-9 * (100.0 / m))
+        return m;
+    return floor(q);
 }
 
 double sampler_poisson_side(double threshold)

@@ -5,6 +5,7 @@
 #ifndef ZSOBOL_H
 #define ZSOBOL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "base/rng.h"
