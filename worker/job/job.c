@@ -403,19 +403,6 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     return 0;
 }
 
-const char *job_sets_tag(const struct job *j, char *buf, size_t n)
-{
-    const int pooled =
-        sampler_kind_has(j->sampler, SAMPLER_POOLED) || sampler_kind_has(j->light_sampler, SAMPLER_POOLED);
-    const char *pad = j->dims_all ? " padded uniformly" : "";
-    if (!pooled)
-        snprintf(buf, n, "%s", pad);
-    else /* the kind that pools has a domain: its name and the domain's (the hashes of old) */
-        snprintf(buf, n, " %s %s%s", sampler_kind_name(SAMPLER_POISSON),
-                 poisson_domain_name(j->poisson_domain), pad);
-    return buf;
-}
-
 const char *job_light_text(const struct job *j, char *buf, size_t n)
 {
     if (!j->light_sampling)

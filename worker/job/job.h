@@ -74,12 +74,6 @@ int job_check_stem(const struct job *j, struct err *e);
 /* Derive what depends on several keys (light sampler default, format, output name). */
 int job_finish(struct job *j, struct ydoc *d, struct err *e);
 
-/* What a cache key must add for the sets j's samplers make beyond the keys it prints: the Poisson
-   domain when a sampler is poisson, the padding's version under sampler_dims: all ("" else), so
-   an image rendered by an earlier rule is never found current. Written to buf (n bytes, 64
-   suffice); returns buf. */
-const char *job_sets_tag(const struct job *j, char *buf, size_t n);
-
 /* Where j's light points really come from, for a caption: "light jitter t=5", or under
    sampler_dims: all (which never asks the light sampler) "light points from the sobol sets
    (sampler_dims: all)", or "no light sampling". Written into buf (n bytes), returned. */
