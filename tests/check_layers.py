@@ -81,9 +81,6 @@ def graph(build, source="."):
 KNOWN_MODULE_CYCLES = [
     {"common/geom/bvh", "common/geom/bvh_build", "common/geom/scene", "common/geom/shape", "common/geom/shape_bake",
      "common/geom/shape_inline", "common/geom/shape_light", "common/geom/shape_light_inline", "common/geom/texture"},
-    {"common/scenefile/scene_load", "common/scenefile/scene_objects"},
-    {"worker/job/job", "worker/job/job_path", "worker/job/outdir"},
-    {"worker/job/run", "worker/job/run_out"},
     {"worker/study/run/compare", "worker/study/run/compare_ref", "worker/study/run/study_machines"},
     {"worker/farm/queue", "worker/farm/queue_claim", "worker/farm/queue_drain", "worker/farm/queue_entry",
      "worker/farm/queue_file", "worker/farm/queue_study", "worker/farm/queue_study_key"},
