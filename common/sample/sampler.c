@@ -84,6 +84,11 @@ void sampler_set_domain(struct sampler *s, enum poisson_domain d)
     s->domain = d;
 }
 
+size_t sampler_table_points(enum sampler_kind kind)
+{
+    return kind == SAMPLER_PMJ02BN ? PMJ02_TABLE_POINTS : 0;
+}
+
 size_t sampler_set_capacity(const struct sampler *s)
 {
     return s->capacity;

@@ -22,6 +22,10 @@ enum poisson_domain { POISSON_TORUS, POISSON_SQUARE };
 int poisson_domain_parse(const char *name, enum poisson_domain *out);
 const char *poisson_domain_name(enum poisson_domain d);
 
+/* The largest set of `kind` taken from a precomputed table (pmj02bn's, pmj02_table.h); larger sets
+   are drawn fresh, at another cost per point. 0: the kind keeps no table. */
+size_t sampler_table_points(enum sampler_kind kind);
+
 struct sampler;
 
 /* A sampler for (kind, threshold in (0,100]). pool_size > 0 with kind poisson draws that many
