@@ -135,7 +135,7 @@ check "report: the error maps' scale drawn, with its numbers" \
 check "report: the error maps in linear radiance" grep -q 'Error maps at .*in linear radiance (the float images)' "$html"
 check "report: no 8-bit |diff| maps" sh -c "! grep -q 'image - reference| x' '$html'"
 check "report: one stability line per variant and scene" [ "$(grep -c '^<li><b>' "$html")" -eq 10 ]
-check "report: stability names the seed spread" grep -q 'spread across 2 seeds' "$html"
+check "report: stability names how well the seeds pin the error down" grep -q 'relMSE over 2 seeds known within a factor' "$html"
 check "report: opens with the verdict" sh -c "sed -n '/<h1>/,\$p' '$html' | grep -m1 -o '<h2>[^<]*' | grep -qx '<h2>Verdict'"
 check "report: a verdict per scene" [ "$(grep -c '<h3>cmp / ' "$html")" -eq 2 ]
 check "report: the rule is stated" grep -q 'How it is decided' "$html"
@@ -255,7 +255,8 @@ check "... to the same bytes" [ "$(cksum <"$hb")" = "$good" ]
 if command -v script >/dev/null 2>&1; then
     script -qec "'$WORKER' --out '$T/out' '$T/cmp.yaml'" /dev/null >"$T/tty.out" 2>&1
     check "progress: a line per combination" [ "$(grep -c '^\[[ 0-9]*/40\] .* spp, .* ETA' "$T/tty.out")" -eq 40 ]
-    check "progress: names scene, variant, threshold, seed" grep -q '\[ 1/40\] checker poisson t=50 seed 1: ' "$T/tty.out"
+    check "progress: names scene, variant, threshold, seed" grep -q '^\[[ 0-9]*/40\] checker poisson t=50 seed 1: ' "$T/tty.out"
+    check "progress: seed-major, shuffled: the first image is a first seed's" grep -q '\[ 1/40\] [a-z-]* [a-z0-9-]* t=[0-9.]* seed 1: ' "$T/tty.out"
     check "progress: says each reference was reused" [ "$(grep -c 'reference reused from cache .*(it took' "$T/tty.out")" -eq 2 ]
     # a reference rendered on a terminal: its progress names the scene and the half, not ".cache"
     sed 's/^name: cmp$/name: cmpref/; s/^seeds: .*/seeds: [1]/' "$T/cmp.yaml" >"$T/cmpref.yaml"

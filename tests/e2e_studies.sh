@@ -47,7 +47,8 @@ for x in s['scenes']:
         ranks = [e['rank'] for e in r['ranking']]
         assert ranks == sorted(ranks) and ranks[0] == 1, (k, ranks)
         for e in r['ranking']:
-            assert e['min'] <= e[val] <= e['max'] and isinstance(e['reached'], bool), e
+            assert e.get('cannot_tell') or e['ci95_lo'] <= e[val] <= e['ci95_hi'], e
+            assert isinstance(e['reached'], bool), e
         top = [e['variant'] for e in r['ranking'] if e['rank'] == 1]
         assert r['status'] != 'clear' or len(top) == 1, r
         assert r['status'] != 'inconclusive' or len(top) == len(variants), r

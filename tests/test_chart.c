@@ -23,8 +23,9 @@ int main(void)
     double y2[] = {0.1, 0.02, 0, 0.01};
     struct chart_series ser[2] = {{"a<b&c", 4, x, y, lo, hi}, {"second", 4, x, y2, NULL, NULL}};
     static const double slopes[] = {-1, -1.5};
-    struct chart_panel p[2] = {{"first & panel", "time (s)", "relMSE", NULL, ser, 2, slopes, 2},
-                               {"empty", "x", "y", "nothing to show", ser, 0, NULL, 0}};
+    struct chart_panel p[2] = {
+        {"first & panel", "time (s)", "relMSE", NULL, ser, 2, slopes, 2, "whisker: 95% CI"},
+        {"empty", "x", "y", "nothing to show", ser, 0, NULL, 0, NULL}};
     char *svg = chart_svg("title <1>", p, 2, 2);
     CHECK(svg != NULL);
     if (!svg)
@@ -47,11 +48,11 @@ int main(void)
     /* decade tick labels of both axes */
     CHECK(strstr(svg, ">100<") && strstr(svg, ">1<") && strstr(svg, ">1e-3<") && strstr(svg, ">0.01<"));
     CHECK(strstr(svg, ">nothing to show<") != NULL);
-    CHECK(strstr(svg, "whisker: seed min-max") != NULL);
+    CHECK(strstr(svg, "whisker: 95% CI") != NULL); /* the panel's own words for its whiskers */
     /* 10 sits in the middle of 1..100: plot x = 74 + 390 / 2 = 269 (panel 480 wide, margins 74 and 16) */
     double xs[] = {1.5, 10, 90}, ys[] = {0.5, 0.05, 0.005};
     struct chart_series one = {"one", 3, xs, ys, NULL, NULL};
-    struct chart_panel q = {"t", "x", "y", NULL, &one, 1, NULL, 0};
+    struct chart_panel q = {"t", "x", "y", NULL, &one, 1, NULL, 0, NULL};
     char *svg2 = chart_svg("t", &q, 1, 1);
     CHECK(svg2 && strstr(svg2, "points=\"") && strstr(strstr(svg2, "points=\""), " 269.0,"));
     CHECK(svg2 && !strstr(svg2, "whisker")); /* no whiskers drawn: none in the legend */
@@ -60,8 +61,8 @@ int main(void)
     {
         struct chart_series a[2] = {{"jitter", 3, xs, ys, NULL, NULL}, {"sobol", 3, xs, ys, NULL, NULL}};
         struct chart_series b[2] = {{"sobol", 3, xs, ys, NULL, NULL}, {"random", 3, xs, ys, NULL, NULL}};
-        struct chart_panel pa = {"a", "x", "y", NULL, a, 2, NULL, 0},
-                           pb = {"b", "x", "y", NULL, b, 2, NULL, 0};
+        struct chart_panel pa = {"a", "x", "y", NULL, a, 2, NULL, 0, NULL},
+                           pb = {"b", "x", "y", NULL, b, 2, NULL, 0, NULL};
         char *sa = chart_svg("a", &pa, 1, 1), *sb = chart_svg("b", &pb, 1, 1);
         const char *ca = sa ? strstr(sa, "stroke=\"#") : NULL, *cb = sb ? strstr(sb, "stroke=\"#") : NULL;
         /* the first polyline of a is jitter's, of b sobol's: find sobol's in a (the second) */
@@ -78,7 +79,7 @@ int main(void)
     /* a long label (up to 63 characters) fits inside the legend box and the drawing */
     struct chart_series longer = {
         "poisson-lightjitter-pool64-depth8-a-label-as-long-as-allowed-xy", 3, xs, ys, NULL, NULL};
-    struct chart_panel r = {"t", "x", "y", NULL, &longer, 1, NULL, 0};
+    struct chart_panel r = {"t", "x", "y", NULL, &longer, 1, NULL, 0, NULL};
     char *svg3 = chart_svg("t", &r, 1, 1);
     int svg_w = 0;
     double box_x = 0, box_w = 0;
@@ -93,7 +94,7 @@ int main(void)
        right-aligned at its end, "slope -1.5" at 11 px about 60 px wide and 12 px high */
     double xn[] = {1, 1.2}, yn[] = {0.015, 0.012};
     struct chart_series near = {"near", 2, xn, yn, NULL, NULL};
-    struct chart_panel u = {"t", "x", "y", NULL, &near, 1, slopes, 2};
+    struct chart_panel u = {"t", "x", "y", NULL, &near, 1, slopes, 2, NULL};
     char *svg4 = chart_svg("t", &u, 1, 1);
     double lx[2] = {0, 0}, ly[2] = {0, 0};
     int labels = 0;
@@ -115,7 +116,7 @@ int main(void)
        is low (noisy wall times): from there they run across the data, not below it */
     double xg[] = {1, 2, 5}, yg[] = {0.001, 0.1, 0.01}, gx = 0, gy = 0, cx = 0, cy = 0;
     struct chart_series hi_pt = {"g", 3, xg, yg, NULL, NULL};
-    struct chart_panel gp = {"t", "x", "y", NULL, &hi_pt, 1, slopes, 2};
+    struct chart_panel gp = {"t", "x", "y", NULL, &hi_pt, 1, slopes, 2, NULL};
     char *svg5 = chart_svg("t", &gp, 1, 1);
     const char *guide = svg5 ? strstr(svg5, "stroke-dasharray=\"2 4\"") : NULL;
     while (guide && guide > svg5 && strncmp(guide, "<line", 5))

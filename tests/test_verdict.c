@@ -49,7 +49,9 @@ static void fake_init(struct verdict_fixture *x, int nv, int ns, const double *k
                 int i = verdict_at(&x->f, v, p, s);
                 x->spp[i] = spp[p];
                 x->cpu[i] = spp[p] * cost[v];
-                x->rel[i] = k[v] * pow(spp[p], slope[v]) * (ns > 1 ? seed_factor[s] : 1);
+                /* each variant's seeds in an order of its own: different samplers' seeds are
+                   independent, so pairing by seed finds no shared factor */
+                x->rel[i] = k[v] * pow(spp[p], slope[v]) * (ns > 1 ? seed_factor[(s + v) % NS] : 1);
                 x->radiance[i] = 1;
             }
         }
@@ -57,6 +59,17 @@ static void fake_init(struct verdict_fixture *x, int nv, int ns, const double *k
     for (int v = 0; v < nv; v++)
         for (int p = 0; p < NP; p++)
             set_share(x, v, p, 0.1);
+}
+
+/* hi / lo of the 95% interval of seed_factor's geometric mean: exp(2 x t(3 df) x se of the logs). */
+static double ci_ratio(void)
+{
+    double m = 0, ss = 0;
+    for (int k = 0; k < NS; k++)
+        m += log(seed_factor[k]) / NS;
+    for (int k = 0; k < NS; k++)
+        ss += pow(log(seed_factor[k]) - m, 2);
+    return exp(2 * 3.182446305 * sqrt(ss / (NS - 1) / NS));
 }
 
 static int rank_of(const struct verdict_ranking *r, int v)
@@ -94,7 +107,12 @@ static void test_rule(void)
         verdict_entry_add(&e[0], a[k], 1), verdict_entry_add(&e[1], b[k], 1);
     verdict_entry_add(&e[0], -1, 1); /* not a relMSE: left out */
     verdict_entry_end(&e[0], 1), verdict_entry_end(&e[1], 1);
-    CHECK(e[0].n == 3 && e[0].lo == 0.9 && e[0].hi == 1.1);
+    /* lo, hi: the 95% interval, exp(mean log +- t(2 df) x its standard error) */
+    double m = (log(0.9) + log(1.1)) / 3,
+           sd = sqrt((pow(log(0.9) - m, 2) + m * m + pow(log(1.1) - m, 2)) / 2);
+    CHECK(e[0].n == 3);
+    CHECK_NEAR(e[0].lo, exp(m - 4.302652730 * sd / sqrt(3)), 1e-8);
+    CHECK_NEAR(e[0].hi, exp(m + 4.302652730 * sd / sqrt(3)), 1e-8);
     CHECK_NEAR(e[0].value, exp((log(0.9) + log(1.1)) / 3), 1e-12); /* the geometric mean */
     struct verdict_ranking r = {.log_scale = 1, .n = 2, .e = e};
     verdict_rank(&r);
@@ -140,7 +158,7 @@ static void test_clear_winner(void)
     CHECK(s.by_samples.e[0].variant == 0 && rank_of(&s.by_samples, 0) == 1);
     CHECK(rank_of(&s.by_samples, 1) == 2 && rank_of(&s.by_samples, 2) == 3);
     CHECK_NEAR(s.by_samples.e[0].value, GM * 1.0 / 1600, 1e-12);
-    CHECK_NEAR(s.by_samples.e[0].hi - s.by_samples.e[0].lo, 0.1 / 1600, 1e-12);
+    CHECK_NEAR(s.by_samples.e[0].hi / s.by_samples.e[0].lo, ci_ratio(), 1e-9);
     /* equal CPU time: the cheapest densest point, 1.6 s; gamma (4x the cost per sample) is read at
        its 400-spp point there */
     CHECK(s.by_cpu.status == VERDICT_CLEAR);
@@ -149,8 +167,10 @@ static void test_clear_winner(void)
     CHECK(s.by_slope.status == VERDICT_INCONCLUSIVE); /* every slope is -1 */
     CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
     CHECK(s.n_failures == 0);
-    CHECK(s.n_warnings == 1 && strstr(s.warnings[0], "by slope, ") &&
-          strstr(s.warnings[0],
+    /* these figures have no cost design: the images' own times, said so */
+    CHECK(s.n_warnings == 2 && strstr(s.warnings[0], "no cost design measured") &&
+          strstr(s.warnings[1], "by slope, ") &&
+          strstr(s.warnings[1],
                  "are not told apart by their seeds (Welch's t test, Holm-corrected, alpha 0.05)"));
     CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
     char w[64];
@@ -260,20 +280,39 @@ static void test_failures_and_guards(void)
     verdict_scene_free(&s);
 }
 
-/* A variant whose cheapest image costs more than the others' densest cannot be had at equal CPU
-   time: ranked behind, whatever its figures, and said so. */
+/* A variant whose cheapest image costs more than the others' densest is read at the common time
+   along its own error-against-time line (extrapolated), never ranked behind for costing more: worse
+   there it ranks behind, better it ranks first (issue 35's furnace), too far beyond its points the
+   study cannot tell. */
 static void test_unreached(void)
 {
     struct verdict_fixture x;
     struct verdict_scene s;
     struct err e = {0};
-    const double k[] = {1, 2, 0.5}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 50e-3};
+    double k[] = {1, 2, 0.5}, slope[] = {-1, -1, -1}, cost[] = {1e-3, 1e-3, 50e-3};
     fake_init(&x, 3, NS, k, slope, cost);
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_samples.e[0].variant == 2 && s.by_samples.status == VERDICT_CLEAR); /* best per sample */
-    CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
-    CHECK_NEAR(s.by_cpu.e[2].value, GM * 0.5 / 100, 1e-12); /* its cheapest point's figure */
-    CHECK(any_line(s.warnings, s.n_warnings, "gamma cannot be had"));
+    /* at 1.6 s gamma would draw 32 samples: relMSE 0.5 / 32, far above alpha's 1 / 1600 */
+    CHECK(s.by_cpu.e[2].variant == 2 && s.by_cpu.e[2].extrapolated && !s.by_cpu.e[2].untold);
+    CHECK(!s.by_cpu.e[2].unreached && s.by_cpu.e[2].rank == 3);
+    CHECK_NEAR(s.by_cpu.e[2].value, GM * 0.5 / 32, 1e-9);
+    CHECK(any_line(s.warnings, s.n_warnings,
+                   "gamma is read at 1.6 CPU seconds along its error-against-time line"));
+    verdict_scene_free(&s);
+
+    k[2] = 0.001; /* 500x better per sample at 50x the cost: 0.001 / 32 at equal time beats 1 / 1600 */
+    fake_init(&x, 3, NS, k, slope, cost);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_cpu.status == VERDICT_CLEAR && s.by_cpu.e[0].variant == 2 && s.by_cpu.e[0].rank == 1);
+    verdict_scene_free(&s);
+
+    cost[2] = 500e-3; /* its cheapest at 50 s: 31x beyond 1.6 s, farther than its points span (16x) */
+    fake_init(&x, 3, NS, k, slope, cost);
+    CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
+    CHECK(s.by_cpu.e[0].untold || s.by_cpu.e[1].untold || s.by_cpu.e[2].untold);
+    CHECK(rank_of(&s.by_cpu, 2) == 1); /* separated from none: not behind */
+    CHECK(any_line(s.warnings, s.n_warnings, "the study cannot tell where gamma stands"));
     verdict_scene_free(&s);
 }
 

@@ -120,9 +120,10 @@ static int write_radial(const char *path, const struct points_analysis *a, const
     const struct chart_series an[2] = {{label, K, f, ratio, NULL, NULL},
                                        {ref_sets, 2, ends, random_ratio, NULL, NULL}};
     const struct chart_panel panels[2] = {{"radial mean power", "frequency |k| (cycles per unit)",
-                                           "mean periodogram", "no power", pw, 2, NULL, 0},
+                                           "mean periodogram", "no power", pw, 2, NULL, 0, NULL},
                                           {"anisotropy", "frequency |k| (cycles per unit)",
-                                           "variance / mean^2 in the annulus", "no power", an, 2, NULL, 0}};
+                                           "variance / mean^2 in the annulus", "no power", an, 2, NULL, 0,
+                                           NULL}};
     char seeds[64]; /* the whole range: the title said "seeds 1.." */
     if (a->sets == 1)
         snprintf(seeds, sizeof seeds, "1 set, seed %llu", (unsigned long long)a->seed);

@@ -9,6 +9,7 @@
 #include "verdict_look.h"
 #include "verdict_rank.h"
 #include "verdict_say.h"
+#include "verdict_time.h"
 
 /* The mean over seeds of point p's figure x (spp or CPU seconds) for variant v. */
 static double mean_x(const struct verdict_figures *f, const double *x, int v, int p)
@@ -183,14 +184,6 @@ static void by_samples(const struct verdict_figures *f, int v, int *order)
         }
 }
 
-static double mean_rel(const struct verdict_figures *f, int v, int p)
-{
-    double sum = 0;
-    for (int k = 0; k < f->n_seeds; k++)
-        sum += verdict_rel(f, verdict_at(f, v, p, k));
-    return sum / f->n_seeds;
-}
-
 /* The share of each (v, p)'s error that repeats in every seed, and the part of it a bias in mean
    radiance makes: averaging n seeds' images divides noise by n and leaves structure, so with the
    reference's own relMSE taken out of both, share = (n rel_of_mean / mean_rel - 1) / (n - 1). */
@@ -252,10 +245,11 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         x->detail = out->repeat_bias[v * f->n_points + at];
         verdict_say_failure(f, x);
     }
-    if (out->samples_vary[v]) {
+    if (out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
         by_samples(f, v, order);
-        for (int i = 1; i < f->n_points; i++) {
-            double r0 = mean_rel(f, v, order[i - 1]), r1 = mean_rel(f, v, order[i]);
+        for (int i = 1; i < f->n_points; i++) { /* the geometric means the chart and table show */
+            double r0 = out->point_rel[v * f->n_points + order[i - 1]],
+                   r1 = out->point_rel[v * f->n_points + order[i]];
             double s0 = mean_x(f, f->spp, v, order[i - 1]), s1 = mean_x(f, f->spp, v, order[i]);
             if (!(r0 > 0 && r1 > 0 && s1 > s0 * VERDICT_SAMPLES_VARY))
                 continue;
@@ -311,8 +305,12 @@ int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene 
         out->samples_vary[v] = samples_vary(f, v);
     }
     repeat_shares(f, out);
+    if (verdict_time_points(f, out) < 0 || verdict_time_rank(f, out, &out->by_cpu) < 0) {
+        free(order);
+        verdict_scene_free(out);
+        return err_set(e, NULL, 0, 0, "out of memory");
+    }
     rank_at(f, f->spp, &out->by_samples);
-    rank_at(f, f->cpu_s, &out->by_cpu);
     rank_slopes(f, &out->by_slope);
     for (int v = 0; v < nv; v++)
         failures_of(f, v, order, out);

@@ -57,6 +57,10 @@ struct verdict_figures {
     const double *radiance;      /* per (variant, point, seed): the image's mean radiance; NAN unknown */
     const double *lowfreq;       /* per (variant, point, seed): error_lowfreq (errspec.h); NAN unknown;
                                     NULL: none measured */
+    int n_blocks;                /* the cost design's blocks */
+    const double *cost_s;        /* per (variant, point, block): CPU seconds per image timed in the
+                                    block (verdict_cost_at); NULL: none */
+    int cost_from_images;        /* cost_s holds the images' own times, seed k as block k */
     double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
     double ref_relmse;           /* the reference's own relMSE (from its halves), NAN unknown */
     double ref_radiance;         /* the reference's mean radiance, NAN unknown */
@@ -68,6 +72,11 @@ struct verdict_figures {
 static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)
 {
     return (v * f->n_points + p) * f->n_seeds + k;
+}
+
+static inline int verdict_cost_at(const struct verdict_figures *f, int v, int p, int b)
+{
+    return (v * f->n_points + p) * f->n_blocks + b;
 }
 
 #endif

@@ -13,14 +13,14 @@ struct figures_mem {
     struct verdict_figures f;
     const char **variants, **samplers, **points;
     int *pools;
-    double *spp, *cpu, *rel, *share, *rel_of_mean, *bias_rel, *radiance, *lowfreq;
+    double *spp, *cpu, *cost, *rel, *share, *rel_of_mean, *bias_rel, *radiance, *lowfreq;
     uint64_t *nonfinite;
 };
 
 static void mem_free(struct figures_mem *m)
 {
     free(m->variants), free(m->samplers), free(m->points), free(m->pools);
-    free(m->spp), free(m->cpu), free(m->rel), free(m->share), free(m->nonfinite);
+    free(m->spp), free(m->cpu), free(m->cost), free(m->rel), free(m->share), free(m->nonfinite);
     free(m->rel_of_mean), free(m->bias_rel), free(m->radiance), free(m->lowfreq);
 }
 
@@ -36,8 +36,11 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->rel_of_mean = calloc(nv * c->n_points, sizeof *m->rel_of_mean);
     m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
     m->lowfreq = calloc(n, sizeof *m->lowfreq);
+    int blocks = c->n_blocks > 1 ? c->n_blocks : c->n_seeds; /* no cost design: the images' own times */
+    m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
-        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq)
+        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
+        !m->cost)
         return -1;
     struct verdict_figures *f = &m->f;
     *f = (struct verdict_figures){.study = c->name,
@@ -58,6 +61,9 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .bias_rel = m->bias_rel,
                                   .radiance = m->radiance,
                                   .lowfreq = m->lowfreq,
+                                  .n_blocks = blocks,
+                                  .cost_s = m->cost,
+                                  .cost_from_images = c->n_blocks < 2,
                                   .ref_spp = c->scenes[s].ref_spp,
                                   .ref_relmse = c->scenes[s].ref_relmse,
                                   .ref_radiance = c->scenes[s].ref_radiance,
@@ -82,6 +88,10 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                 m->rel_of_mean[vp] = st.rel_of_mean, m->bias_rel[vp] = st.bias_rel;
             else
                 f->images_unread += ref != NULL;
+            for (int b = 0; b < blocks; b++)
+                m->cost[verdict_cost_at(f, v, p, b)] = c->n_blocks > 1
+                                                           ? c->cost_s[compare_cost_index(c, s, v, p, b)]
+                                                           : c->items[compare_index(c, s, v, p, b)].cpu_s;
             for (int k = 0; k < c->n_seeds; k++) {
                 const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);

@@ -30,6 +30,9 @@ void verdict_entry_end(struct verdict_entry *e, int log_scale)
     }
     e->value = log_scale ? exp(e->mean) : e->mean;
     e->se = e->n > 1 ? sqrt(e->m2 / (e->n - 1) / e->n) : NAN;
+    double half = e->n > 1 ? verdict_t_975(e->n - 1) * e->se : 0; /* the 95% interval */
+    e->lo = log_scale ? exp(e->mean - half) : e->mean - half;
+    e->hi = log_scale ? exp(e->mean + half) : e->mean + half;
 }
 
 /* The continued fraction of the incomplete beta function (Abramowitz and Stegun 26.5.8),
@@ -77,9 +80,39 @@ double verdict_welch_p(const struct verdict_entry *a, const struct verdict_entry
     if (!(v > 0))
         return a->mean == b->mean ? 1 : 0;
     double t = (a->mean - b->mean) / sqrt(v);
-    /* Welch-Satterthwaite degrees of freedom; Student's t tail as an incomplete beta function */
+    /* Welch-Satterthwaite degrees of freedom */
     double df = v * v / (va * va / (a->n - 1) + vb * vb / (b->n - 1));
-    return beta_inc(df / (df + t * t), df / 2, 0.5);
+    return verdict_t_p(t, df);
+}
+
+double verdict_t_p(double t, double df)
+{
+    if (!(df > 0) || isnan(t))
+        return 1;
+    return beta_inc(df / (df + t * t), df / 2, 0.5); /* Student's t tail as an incomplete beta function */
+}
+
+double verdict_t_975(double df)
+{
+    if (!(df > 0))
+        return NAN;
+    double lo = 0, hi = 1e3;
+    for (int i = 0; i < 100; i++) { /* bisection: the two-sided p falls as t grows */
+        double mid = (lo + hi) / 2;
+        if (verdict_t_p(mid, df) > 0.05)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return (lo + hi) / 2;
+}
+
+double verdict_pair_p(const struct verdict_ranking *r, const struct verdict_entry *a,
+                      const struct verdict_entry *b)
+{
+    if (r->pair_p && a->variant < r->pair_n && b->variant < r->pair_n)
+        return r->pair_p[a->variant * r->pair_n + b->variant];
+    return verdict_welch_p(a, b);
 }
 
 static int cmp_double(const void *x, const void *y)
@@ -99,7 +132,7 @@ static double holm_cut(const struct verdict_ranking *r)
     for (int i = 0; i < r->n; i++)
         for (int j = i + 1; j < r->n; j++)
             if (r->e[i].unreached == r->e[j].unreached)
-                p[m++] = verdict_welch_p(&r->e[i], &r->e[j]);
+                p[m++] = verdict_pair_p(r, &r->e[i], &r->e[j]);
     qsort(p, (size_t)m, sizeof *p, cmp_double);
     for (int k = 0; k < m && p[k] <= VERDICT_ALPHA / (m - k); k++)
         cut = p[k];
@@ -112,7 +145,7 @@ int verdict_beats(const struct verdict_ranking *r, const struct verdict_entry *a
 {
     if (a->unreached != b->unreached)
         return b->unreached;
-    return r->p_cut >= 0 && a->mean < b->mean && verdict_welch_p(a, b) <= r->p_cut;
+    return r->p_cut >= 0 && a->mean < b->mean && verdict_pair_p(r, a, b) <= r->p_cut;
 }
 
 /* Whether x goes before y: fewer beaten-by, then the lower mean (not measured last). */

@@ -18,14 +18,24 @@ void verdict_entry_start(struct verdict_entry *e, int v);
    left out), a slope otherwise. */
 void verdict_entry_add(struct verdict_entry *e, double y, int log_scale);
 
-/* Finish e: value (relMSE: the geometric mean, exp of the mean log; else the mean), lo, hi (the
-   seeds' min and max), mean and se (the ranked figure's mean and its standard error). NAN when no
-   seed was added. */
+/* Finish e: value (relMSE: the geometric mean, exp of the mean log; else the mean), lo, hi (its
+   95% confidence interval: Student's t on the mean, exp'd for relMSE; the value with one seed), mean and se
+   (the ranked figure's mean and its standard error). NAN when no seed was added. */
 void verdict_entry_end(struct verdict_entry *e, int log_scale);
 
 /* Two-sided p-value of Welch's t test for equal means of a and b; 1 when either has fewer than
    two seeds, 0 or 1 when both have no spread (by whether their means differ). */
 double verdict_welch_p(const struct verdict_entry *a, const struct verdict_entry *b);
+
+/* Two-sided p-value of Student's t with df degrees of freedom (1 when df <= 0). */
+double verdict_t_p(double t, double df);
+
+/* Student's t 97.5% quantile with df degrees of freedom: a 95% interval is mean +- it x se. */
+double verdict_t_975(double df);
+
+/* The p-value r separates a and b by: r->pair_p's when set, else Welch's on the entries. */
+double verdict_pair_p(const struct verdict_ranking *r, const struct verdict_entry *a,
+                      const struct verdict_entry *b);
 
 /* Whether a is ranked ahead of b in r: a reaches the common point and b does not, or both do (or
    neither) and Holm's procedure over r's pairs separates them with a's mean lower. */

@@ -98,6 +98,9 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                   "reference:, settings or an image)");
     if (f->n_seeds < 2 && (w = next_line(out->warnings, &out->n_warnings)))
         append(w, "one seed: no spread across seeds to judge a difference by, so nothing is ranked");
+    if (out->cost_from_images && scored(f) && (w = next_line(out->warnings, &out->n_warnings)))
+        append(w, "no cost design measured (no cost.csv): equal CPU time is judged by each image's own CPU "
+                  "time, seed k as block k, which a busy machine can tilt");
     double densest = 0;
     for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds; i++)
         densest = fmax(densest, f->spp[i]);
@@ -136,13 +139,22 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
         char top[VERDICT_TEXT_MAX];
         group(out, r, 1, top);
         if (r->n > 1 && r->status != VERDICT_CLEAR && (w = next_line(out->warnings, &out->n_warnings)))
-            append(
-                w,
-                "%s, %s are not told apart by their seeds (Welch's t test, Holm-corrected, alpha %.2g): %s",
-                ranking_name(out, r), top, VERDICT_ALPHA,
-                r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
+            append(w, "%s, %s are not told apart by their seeds%s (%s, Holm-corrected, alpha %.2g): %s",
+                   ranking_name(out, r), top, r->pair_p ? " and cost blocks" : "",
+                   r->pair_p ? "a t test with both uncertainties" : "Welch's t test", VERDICT_ALPHA,
+                   r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
-            if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
+            if (r->e[j].untold && (w = next_line(out->warnings, &out->n_warnings)))
+                append(w,
+                       "%s, the study cannot tell where %s stands: %.3g CPU seconds lie too far below its "
+                       "points for its error-against-time line to reach (it is separated from none)",
+                       ranking_name(out, r), out->variants[r->e[j].variant], r->at);
+            else if (r->e[j].extrapolated && (w = next_line(out->warnings, &out->n_warnings)))
+                append(w,
+                       "%s, %s is read at %.3g CPU seconds along its error-against-time line beyond its "
+                       "cheapest point (the extrapolation's uncertainty is in its interval)",
+                       ranking_name(out, r), out->variants[r->e[j].variant], r->at);
+            else if (r->e[j].unreached && (w = next_line(out->warnings, &out->n_warnings)))
                 append(w,
                        "%s, %s cannot be had: its cheapest image costs far more than the %.3g %s every other "
                        "variant reached, so it ranks behind them",
@@ -168,7 +180,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
     if (r->n < 2)
         return;
     if (r->status == VERDICT_INCONCLUSIVE) {
-        append(s, "%s on %s, no two variants are told apart by their seeds: inconclusive", at, out->scene);
+        append(s, "%s on %s, no two variants are told apart by their seeds%s: inconclusive", at, out->scene,
+               r->pair_p ? " and cost blocks" : "");
         append(s, !scored            ? " (no reference: no error to compare)."
                   : out->n_seeds < 2 ? " (one seed)."
                                      : " (more seeds or samples would tell).");
@@ -184,8 +197,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
                b->value, next->value / b->value, out->variants[next->variant]);
     else {
         group(out, r, next->rank, rest);
-        append(s, "%s on %s, %s tie (not told apart by their seeds), ahead of %s.", at, out->scene, top,
-               rest);
+        append(s, "%s on %s, %s tie (not told apart by their seeds%s), ahead of %s.", at, out->scene, top,
+               r->pair_p ? " and cost blocks" : "", rest);
     }
     for (int i = 0; i < out->n_failures; i++) /* a low error now, but not the reference's picture */
         if (out->failures[i].kind == VERDICT_BIASED && rank_of_variant(r, out->failures[i].variant) == 1)
@@ -203,9 +216,10 @@ static void say_slopes(const struct verdict_scene *out, char *s)
     char top[VERDICT_TEXT_MAX];
     group(out, r, 1, top);
     const struct verdict_entry *b = &r->e[0], *w = &r->e[r->n - 1];
-    append(s,
-           "Error falls fastest with %s (relMSE ~ spp^%.2f, seeds %.2f to %.2f) and slowest with %s (%.2f).",
-           top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
+    append(
+        s,
+        "Error falls fastest with %s (relMSE ~ spp^%.2f, 95%% CI %.2f to %.2f) and slowest with %s (%.2f).",
+        top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
 }
 
 static const struct verdict_entry *entry_of(const struct verdict_ranking *r, int v)
@@ -216,16 +230,17 @@ static const struct verdict_entry *entry_of(const struct verdict_ranking *r, int
     return NULL;
 }
 
-/* CPU seconds per sample at v's densest point, over its seeds. */
-static double per_sample(const struct verdict_figures *f, int v)
+/* CPU seconds per sample at v's densest point: the cost design's per image over its seeds' mean
+   samples per pixel (the pixels cancel in a ratio). */
+static double per_sample(const struct verdict_figures *f, const struct verdict_scene *out, int v)
 {
     double best = 0, cost = NAN;
     for (int p = 0; p < f->n_points; p++) {
-        double spp = 0, cpu = 0;
+        double spp = 0;
         for (int k = 0; k < f->n_seeds; k++)
-            spp += f->spp[verdict_at(f, v, p, k)], cpu += f->cpu_s[verdict_at(f, v, p, k)];
+            spp += f->spp[verdict_at(f, v, p, k)];
         if (spp > best)
-            best = spp, cost = cpu / spp;
+            best = spp, cost = out->cost[v * f->n_points + p] / (spp / f->n_seeds);
     }
     return cost;
 }
@@ -245,7 +260,7 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
         if (has(f, j, SAMPLER_BASELINE) && (s = next_line(out->sentences, &out->n_sentences))) {
             const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
             append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
-                   per_sample(f, v) / per_sample(f, j), f->variants[j]);
+                   per_sample(f, out, v) / per_sample(f, out, j), f->variants[j]);
             if (verdict_beats(&out->by_samples, a, b))
                 append(s, "%.2fx lower relMSE at equal samples.", b->value / a->value);
             else if (verdict_beats(&out->by_samples, b, a))
@@ -262,11 +277,10 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
             continue;
         const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
         int pool = verdict_beats(&out->by_cpu, a, b), fresh = verdict_beats(&out->by_cpu, b, a);
-        if (pool && b->unreached)
+        if (pool && b->extrapolated)
             append(s,
                    "At equal CPU time on %s, %s (the pool) beats %s (fresh sets), whose cheapest image costs "
-                   "more "
-                   "than the %.3g s the variants are compared at.",
+                   "more than the %.3g s the variants are compared at (read along its error-time line).",
                    out->scene, f->variants[u], f->variants[v], out->by_cpu.at);
         else if (pool || fresh)
             append(s, "At equal CPU time on %s, %s (%s) beats %s (%s): relMSE %.3g against %.3g.", out->scene,

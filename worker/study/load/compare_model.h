@@ -75,7 +75,18 @@ struct compare {
     int has_verdict;
     struct study_inputs *inputs; /* its scenes and references, each read once (a suite's shared) */
     int owns_inputs;             /* compare_free frees inputs (not a suite's) */
+    /* The cost design's figures (study/run/compare_cost.h): per (scene, variant, point, block) the
+       CPU seconds one image of the point costs, timed in block b; n_blocks 0 when not measured
+       (the verdict then falls back on the images' own times, seed k as block k). */
+    int n_blocks;
+    double *cost_s; /* index compare_cost_index */
 };
+
+/* Index of a cost figure in c->cost_s. */
+static inline int compare_cost_index(const struct compare *c, int scene, int variant, int point, int block)
+{
+    return ((scene * c->n_variants + variant) * c->n_points + point) * c->n_blocks + block;
+}
 
 /* Index of an item in c->items. */
 static inline int compare_index(const struct compare *c, int scene, int variant, int point, int seed)

@@ -16,6 +16,9 @@ void verdict_scene_free(struct verdict_scene *v)
     free(v->variants);
     free(v->by_samples.e);
     free(v->by_cpu.e);
+    free(v->by_cpu.pair_p);
+    free(v->point_rel), free(v->point_rel_lo), free(v->point_rel_hi);
+    free(v->cost), free(v->cost_lo), free(v->cost_hi);
     free(v->by_slope.e);
     free(v->failures);
     free(v->repeat);

@@ -14,13 +14,17 @@ enum verdict_status { VERDICT_CLEAR, VERDICT_TIE, VERDICT_INCONCLUSIVE };
 /* One variant in a ranking (verdict_rank.h fills it): its figure over the seeds. */
 struct verdict_entry {
     int variant;
-    double value, lo, hi; /* relMSE: the geometric mean over seeds, else the mean; the seeds' min, max */
-    double mean, se;      /* the ranked figure (log relMSE, or the slope): mean and standard error */
-    double m2;            /* sum of squared deviations from mean (while adding seeds) */
-    int n;                /* seeds measured */
-    int rank;             /* 1 + the number of variants that beat it (verdict_beats) */
-    int unreached;        /* its cheapest point costs far more than the common point: it cannot be had
-                             there (value, lo, hi: its cheapest point's) */
+    double value, lo,
+        hi;           /* relMSE: the geometric mean over seeds, else the mean; its 95% confidence interval */
+    double mean, se;  /* the ranked figure (log relMSE, or the slope): mean and standard error */
+    double m2;        /* sum of squared deviations from mean (while adding seeds) */
+    int n;            /* seeds measured */
+    int rank;         /* 1 + the number of variants that beat it (verdict_beats) */
+    int unreached;    /* its cheapest point costs far more than the common point: it cannot be had
+                         there (value, lo, hi: its cheapest point's) */
+    int extrapolated; /* equal CPU time: read off its error-against-time line beyond its points */
+    int untold;       /* equal CPU time: the common time lies too far beyond its points (or it has
+                         one point: no line): the study cannot tell, it is separated from none */
 };
 
 /* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
@@ -29,8 +33,12 @@ struct verdict_ranking {
     double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
     int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
     enum verdict_status status;
-    double p_cut; /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
-                     separated; -1 when none is */
+    double p_cut;   /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
+                       separated; -1 when none is */
+    double *pair_p; /* optional, owned: per pair of variants (pair_n x pair_n, by variant index) the
+                       two-sided p-value of a test of their own (equal CPU time); NULL: Welch's on
+                       the entries */
+    int pair_n;
     int n;
     struct verdict_entry *e;
 };
@@ -73,6 +81,15 @@ struct verdict_scene {
     double *repeat;      /* per (variant, point): the share of the error repeating in every seed, NAN */
     double *repeat_bias; /* per (variant, point): the part of that share a bias in mean radiance makes */
     int *samples_vary;   /* per variant: verdict_samples_vary over its points */
+    /* The one figure of a (variant, point) everywhere (chart, table, sentences, failures): per
+       (variant, point) the geometric mean over seeds of relMSE with the reference's noise taken out,
+       and its 95% confidence interval (Student's t on the mean log); NAN unknown. */
+    double *point_rel, *point_rel_lo, *point_rel_hi;
+    /* Per (variant, point): the CPU seconds one image costs, the cost design's geometric mean over
+       blocks, with its 95% confidence interval. */
+    double *cost, *cost_lo, *cost_hi;
+    int cost_from_images; /* no cost design measured (an older folder): each image's own time, seed k
+                             as block k */
     char (*variants)[VERDICT_LABEL_MAX];
     struct verdict_ranking by_samples, by_cpu, by_slope;
     struct verdict_look look;

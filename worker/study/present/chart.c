@@ -18,7 +18,6 @@
 #define LEGEND_W 170     /* the narrowest legend column, right of each row of panels */
 #define LEGEND_TEXT_X 34 /* where a legend entry's text starts in its box */
 #define CHAR_W 7         /* a generous width of one character at 12 px sans-serif */
-#define WHISKER_NOTE "whisker: seed min-max"
 
 #define PALETTE 8
 
@@ -234,7 +233,10 @@ static void series(struct sbuf *b, const struct frame *f, const struct chart_ser
 /* The legend column's width: room for the longest entry of any panel (labels may be long). */
 static int legend_width(const struct chart_panel *panels, int n)
 {
-    size_t longest = strlen(WHISKER_NOTE);
+    size_t longest = strlen("whiskers");
+    for (int i = 0; i < n; i++)
+        if (panels[i].whisker_note && strlen(panels[i].whisker_note) > longest)
+            longest = strlen(panels[i].whisker_note);
     for (int i = 0; i < n; i++)
         for (int s = 0; s < panels[i].n_series; s++)
             if (panels[i].series[s].name && strlen(panels[i].series[s].name) > longest)
@@ -274,8 +276,9 @@ static void legend(struct sbuf *b, double x, double y, int legend_w, const struc
     if (whiskers)
         sbuf_printf(b,
                     "<path d=\"M%.1f %.1fV%.1fM%.1f %.1fh8M%.1f %.1fh8\" stroke=\"#444444\"/>\n<text "
-                    "x=\"%.1f\" y=\"%.1f\">" WHISKER_NOTE "</text>\n",
-                    x + 18, ly - 12, ly + 2, x + 14, ly - 12, x + 14, ly + 2, x + LEGEND_TEXT_X, ly);
+                    "x=\"%.1f\" y=\"%.1f\">%s</text>\n",
+                    x + 18, ly - 12, ly + 2, x + 14, ly - 12, x + 14, ly + 2, x + LEGEND_TEXT_X, ly,
+                    p->whisker_note ? p->whisker_note : "whiskers");
 }
 
 static void panel(struct sbuf *b, const struct chart_panel *p, double ox, double oy)

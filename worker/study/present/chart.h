@@ -18,6 +18,7 @@ struct chart_panel {
     int n_series;
     const double *slopes;
     int n_slopes;
+    const char *whisker_note; /* the legend's words for the whiskers ("whisker: 95% CI"); NULL: "whiskers" */
 };
 
 /* An SVG document (UTF-8, valid XML) with `title` above n panels laid out in `columns`

@@ -1,6 +1,7 @@
 /* report_chart: a compare job's chart.svg from its figures. */
 #include "report_chart.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -17,23 +18,31 @@ char *report_chart_svg(const struct compare *c)
     struct chart_panel *pan = calloc((size_t)nsc * 2, sizeof *pan);
     char(*titles)[160] = calloc((size_t)nsc * 2, sizeof *titles);
     static const double slopes[] = {-1, -1.5};
-    char *svg = NULL, title[256];
+    char *svg = NULL, title[400];
     if (!mem || !order || !ser || !pan || !titles)
         goto done;
     double *cpu = mem, *spp = mem + per, *rel = mem + 2 * per, *lo = mem + 3 * per, *hi = mem + 4 * per;
     for (int s = 0; s < nsc; s++) {
         struct chart_series *by_time = ser + (size_t)2 * s * ns, *by_spp = by_time + ns;
+        /* the verdict's figures (one statistic throughout): geometric means with 95% intervals */
+        const struct verdict_scene *vs =
+            c->has_verdict && s < c->verdict.n_scenes ? &c->verdict.scenes[s] : NULL;
+        int judged = vs && vs->point_rel && vs->cost;
         for (int v = 0; v < ns; v++) {
             size_t k0 = ((size_t)s * ns + v) * np;
             compare_stats_point_order(c, s, v, order);
             for (int i = 0; i < np; i++) {
                 struct compare_agg a;
                 compare_stats_aggregate(c, s, v, order[i], &a);
-                size_t k = k0 + i;
-                cpu[k] = a.cpu_s, spp[k] = a.spp, rel[k] = a.rel, lo[k] = a.rel_lo, hi[k] = a.rel_hi;
+                size_t k = k0 + i, vp = (size_t)v * np + order[i];
+                spp[k] = a.spp;
+                cpu[k] = judged ? vs->cost[vp] : a.cpu_s;
+                rel[k] = judged ? vs->point_rel[vp] : a.rel;
+                lo[k] = judged ? vs->point_rel_lo[vp] : NAN, hi[k] = judged ? vs->point_rel_hi[vp] : NAN;
             }
             /* One seed has no spread: a whisker would be a dot claiming one. */
-            const double *l = c->n_seeds > 1 ? lo + k0 : NULL, *h = c->n_seeds > 1 ? hi + k0 : NULL;
+            int whisk = judged && c->n_seeds > 1;
+            const double *l = whisk ? lo + k0 : NULL, *h = whisk ? hi + k0 : NULL;
             by_time[v] = (struct chart_series){c->variants[v], np, cpu + k0, rel + k0, l, h};
             by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, l, h};
         }
@@ -48,7 +57,8 @@ char *report_chart_svg(const struct compare *c)
                                           by_time,
                                           ns,
                                           slopes,
-                                          2};
+                                          2,
+                                          "whisker: 95% CI"};
         pan[2 * s + 1] = (struct chart_panel){titles[2 * s + 1],
                                               "samples per pixel (mean, log)",
                                               "relMSE (eps 0.01, log)",
@@ -56,12 +66,14 @@ char *report_chart_svg(const struct compare *c)
                                               by_spp,
                                               ns,
                                               slopes,
-                                              2};
+                                              2,
+                                              "whisker: 95% CI"};
     }
     if (c->n_seeds > 1)
         snprintf(title, sizeof title,
-                 "%s: relMSE against CPU time and samples per pixel (mean of %d seeds; whiskers: "
-                 "min to max)",
+                 "%s: relMSE against CPU time and samples per pixel (per point the geometric mean over %d "
+                 "seeds, the reference's noise taken out; whiskers: its 95%% confidence interval; CPU time: "
+                 "the cost design's per image)",
                  c->name, c->n_seeds);
     else
         snprintf(title, sizeof title,

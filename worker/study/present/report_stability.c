@@ -24,6 +24,12 @@ static const struct verdict_failure *failure_of(const struct verdict_scene *vs, 
     return NULL;
 }
 
+/* The verdict's figure of (v, p): the geometric mean over seeds, the reference's noise taken out. */
+static double gm(const struct verdict_scene *vs, int v, int p)
+{
+    return vs->point_rel ? vs->point_rel[v * vs->n_points + p] : NAN;
+}
+
 /* The slope and where error stops falling, or relMSE point by point when the sweep leaves the
    samples alone. a[] is in point order. */
 static void convergence(struct sbuf *b, const struct compare *c, const struct verdict_scene *vs, int v,
@@ -34,18 +40,20 @@ static void convergence(struct sbuf *b, const struct compare *c, const struct ve
         sbuf_printf(b, "; samples per pixel stay at about %.0f along the sweep, so relMSE point by point: ",
                     a[0].spp);
         for (int i = 0; i < c->n_points; i++)
-            sbuf_printf(b, "%s%s: %.3g", i ? ", " : "", c->points[order[i]], a[i].rel);
+            sbuf_printf(b, "%s%s: %.3g", i ? ", " : "", c->points[order[i]], gm(vs, v, order[i]));
         return;
     }
     const struct verdict_entry *e = slope_of(vs, v);
-    if (e && isfinite(e->value))
+    if (e && isfinite(e->value) && isfinite(e->se))
         sbuf_printf(b, "; relMSE ~ spp^%.2f (per-seed fits, standard error %.2f)", e->value, e->se);
+    else if (e && isfinite(e->value)) /* one seed: one fit, no spread */
+        sbuf_printf(b, "; relMSE ~ spp^%.2f (one seed's fit)", e->value);
     const struct verdict_failure *x = failure_of(vs, v, VERDICT_STALLS);
     if (x)
         sbuf_printf(b, "; error stops falling at %s (local slope %.2f)", c->points[x->point], x->value);
     else
         sbuf_printf(b, "; error keeps falling down to %s (%.3g at %.0f spp)", c->points[order[last]],
-                    a[last].rel, a[last].spp);
+                    gm(vs, v, order[last]), a[last].spp);
 }
 
 /* The share of the error that repeats in every seed at each point, split into bias and pattern. */
@@ -89,15 +97,23 @@ char *report_stability(const struct compare *c, int s, int v)
         sbuf_printf(&b, "no reference, so no error to judge stability by");
         goto done;
     }
-    /* Spread across seeds: (max - min) / mean, largest over the sweep. */
-    double spread = 0;
+    if (!vs) {
+        sbuf_printf(&b, "no verdict, so no figures across seeds");
+        goto done;
+    }
+    /* The 95% interval of the geometric mean, widest over the sweep, as a factor either side. */
+    double widest = 1;
     int at = 0;
-    for (int i = 0; i < c->n_points; i++)
-        if (a[i].rel > 0 && (a[i].rel_hi - a[i].rel_lo) / a[i].rel > spread)
-            spread = (a[i].rel_hi - a[i].rel_lo) / a[i].rel, at = order[i];
+    for (int i = 0; i < c->n_points && vs->point_rel; i++) {
+        int k = v * vs->n_points + order[i];
+        if (vs->point_rel[k] > 0 && vs->point_rel_hi[k] / vs->point_rel[k] > widest)
+            widest = vs->point_rel_hi[k] / vs->point_rel[k], at = order[i];
+    }
     if (c->n_seeds > 1)
-        sbuf_printf(&b, "spread across %d seeds at most %.0f%% of the mean relMSE (%s)", c->n_seeds,
-                    100 * spread, c->points[at]);
+        sbuf_printf(&b,
+                    "relMSE over %d seeds known within a factor %.2f either way (95%% interval of the "
+                    "geometric mean, widest at %s)",
+                    c->n_seeds, widest, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");
     if (!vs) {

@@ -52,9 +52,13 @@ static void json_ranking(struct json *j, const char *key, const char *at_key, co
         json_uint(j, "rank", (uint64_t)e->rank);
         json_number(j, value_key, e->value);
         json_number(j, "standard_error", e->se);
-        json_number(j, "min", e->lo);
-        json_number(j, "max", e->hi);
+        json_number(j, "ci95_lo", e->lo);
+        json_number(j, "ci95_hi", e->hi);
         json_bool(j, "reached", !e->unreached);
+        if (r->pair_p) { /* equal CPU time: read along its error-time line, or not at all */
+            json_bool(j, "extrapolated", e->extrapolated);
+            json_bool(j, "cannot_tell", e->untold);
+        }
         json_end_object(j);
     }
     json_end_array(j);
@@ -99,6 +103,7 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
     json_string(j, "scene", v->scene);
     json_uint(j, "seeds", (uint64_t)v->n_seeds);
     json_number(j, "reference_relmse", v->ref_relmse);
+    json_bool(j, "costs_from_images", v->cost_from_images);
     json_ranking(j, "equal_samples", "at_samples_per_pixel", "relmse", v, &v->by_samples);
     json_ranking(j, "equal_cpu_time", "at_cpu_s", "relmse", v, &v->by_cpu);
     json_ranking(j, "slopes", NULL, "slope", v, &v->by_slope);
@@ -177,7 +182,10 @@ static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, co
         sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
                     e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
                     e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
-                    e->unreached ? " not reached: its cheapest point" : "");
+                    e->unreached      ? " not reached: its cheapest point"
+                    : e->untold       ? " cannot tell: too far beyond its points"
+                    : e->extrapolated ? " read beyond its cheapest point"
+                                      : "");
         return;
     }
     sbuf_printf(b, "<td></td>");
@@ -197,8 +205,8 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
     }
     sbuf_printf(b,
                 "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
-                "[min, max]</th><th>rank at equal CPU time (%.3g s): relMSE [min, max]</th><th>rank by "
-                "slope: relMSE ~ spp^s [min, max]</th></tr>\n",
+                "[95%% CI]</th><th>rank at equal CPU time (%.3g s): relMSE [95%% CI]</th><th>rank by "
+                "slope: relMSE ~ spp^s [95%% CI]</th></tr>\n",
                 v->by_samples.at, v->by_cpu.at);
     for (int k = 0; k < v->n_variants; k++) {
         sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
@@ -349,7 +357,8 @@ char *verdict_look_svg(const struct verdict_study *s)
                                       sr,
                                       v->n_variants,
                                       NULL,
-                                      0};
+                                      0,
+                                      "whisker: +- one standard error"};
         sr += v->n_variants, lo += v->n_variants * v->n_points, hi += v->n_variants * v->n_points;
     }
     snprintf(

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "compare_cost.h"
 #include "compare_ref.h"
 #include "study/judge/compare_stats.h"
 #include "study/present/report_chart.h"
@@ -32,6 +33,12 @@ static double cost(const struct compare *c, const struct compare_item *it)
 {
     double spp = sampler_expected_spp(it->job.sampler, it->job.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
+}
+
+/* The cost design's CPU seconds: every (scene, variant, point) timed once per block. */
+static double timing_s(const struct compare *c)
+{
+    return (double)c->n_scenes * c->n_variants * c->n_points * COMPARE_COST_BLOCKS * COMPARE_COST_UNIT_S;
 }
 
 static void fmt_duration(double s, char *buf, size_t n)
@@ -250,12 +257,13 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
     e->msg[0] = 0;
     /* Written under the folder's lock, as the images are: writers take turns, and the temporaries
        of a writer killed half-way (.summary.csv.tmp.XXXXXX, ...) are removed, never a live one's. */
-    char summary[2100], chart[2100], report[2100], verdict[2100];
+    char summary[2100], chart[2100], report[2100], verdict[2100], cost_csv[2100];
     snprintf(summary, sizeof summary, "%s/summary.csv", dir);
+    snprintf(cost_csv, sizeof cost_csv, "%s/cost.csv", dir);
     snprintf(chart, sizeof chart, "%s/chart.svg", dir);
     snprintf(report, sizeof report, "%s/report.html", dir);
     snprintf(verdict, sizeof verdict, "%s/verdict.json", dir);
-    const char *outs[] = {summary, chart, report, verdict, NULL};
+    const char *outs[] = {summary, chart, report, verdict, cost_csv, NULL};
     int lock = -1, rc = -1;
     verdict_study_free(&c->verdict);
     study_env_read(&c->env);
@@ -265,12 +273,27 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
         fileio_write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
+        (c->n_blocks == 0 || fileio_write_text(dir, "cost.csv", compare_cost_csv(c), e) == 0) &&
         fileio_write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
         fileio_write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
         fileio_write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
         rc = 0;
     outdir_unlock(lock);
     return rc;
+}
+
+/* The study's costs: timed now (compare_cost.h), unless every image was current and the folder's
+   cost.csv covers them (a resumed study keeps its figures). 0, or 1 with e filled. */
+static int study_costs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
+{
+    int current = 1;
+    for (int i = 0; i < c->n_items; i++)
+        current &= c->items[i].skipped;
+    if (current && compare_cost_read(c, dir) == 0)
+        return 0;
+    run_say(o, "timing: %d blocks of every variant and point, about %.0f s of CPU\n", COMPARE_COST_BLOCKS,
+            timing_s(c));
+    return compare_cost_measure(c, o, e) < 0;
 }
 
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
@@ -290,14 +313,22 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         if (cs->ref_kind != COMPARE_REF_NONE && cs->ref_domain != IMG_LINEAR)
             run_warn_display_reference(c->name, cs->ref_path);
     }
+    int *order = malloc(sizeof *order * (size_t)(c->n_items + 1));
+    if (!order) {
+        err_set(e, NULL, 0, 0, "out of memory");
+        return 1;
+    }
+    compare_cost_order(c, order);
     for (int i = 0; i < c->n_items; i++)
         total += cost(c, &c->items[i]);
     double t1 = clock_s(CLOCK_MONOTONIC);
-    for (int i = 0; i < c->n_items; i++) {
-        struct compare_item *it = &c->items[i];
+    for (int n = 0; n < c->n_items; n++) {
+        struct compare_item *it = &c->items[order[n]];
         const struct compare_scene *cs = &c->scenes[it->scene];
-        if ((rc = render_item(c, it, o, e)) != 0)
+        if ((rc = render_item(c, it, o, e)) != 0) {
+            free(order);
             return rc;
+        }
         if (it->skipped) /* current from an earlier run: no time spent, none to predict */
             total -= cost(c, it);
         else
@@ -305,14 +336,18 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         double elapsed = clock_s(CLOCK_MONOTONIC) - t1;
         char el[32], eta[32], err_text[48] = "";
         fmt_duration(clock_s(CLOCK_MONOTONIC) - t0, el, sizeof el);
-        fmt_duration(done > 0 ? elapsed * (total - done) / done : 0, eta, sizeof eta);
+        /* the images still to render, then the cost design's blocks */
+        fmt_duration((done > 0 ? elapsed * (total - done) / done : 0) + timing_s(c), eta, sizeof eta);
         if (it->has_error)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
         run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
-                c->n_items >= 100 ? 3 : 2, i + 1, c->n_items, cs->name, c->variants[it->variant],
+                c->n_items >= 100 ? 3 : 2, n + 1, c->n_items, cs->name, c->variants[it->variant],
                 it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
                 it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
+    free(order);
+    if ((rc = study_costs(c, dir, o, e)) != 0)
+        return rc;
     return compare_write_outputs(c, dir, o, e) < 0;
 }
 

@@ -49,8 +49,8 @@ int study_machines_mark(struct compare *c, const char *out_dir, struct err *e)
     char text[VERDICT_TEXT_MAX];
     snprintf(
         text, sizeof text,
-        "equal CPU time mixes machines: the images were rendered on %d%s CPU models, whose CPU seconds do "
-        "not compare (the equal-samples and slope rankings do not depend on the machine)",
+        "the images were rendered on %d%s CPU models: their own CPU seconds (summary.csv) do not compare; "
+        "equal CPU time is ranked by the cost design, timed on the one machine that gathered the study",
         n, more ? "+" : "");
     for (int s = 0; s < c->verdict.n_scenes; s++)
         if (add_warning(&c->verdict.scenes[s], text) < 0) {

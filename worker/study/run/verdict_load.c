@@ -10,6 +10,7 @@
 
 #include "base/fileio.h"
 #include "compare.h"
+#include "compare_cost.h"
 #include "compare_ref.h"
 #include "verdict_csv.h"
 #include "verdict_points.h"
@@ -288,6 +289,7 @@ static int judge(const struct table *T, int si, const char *study, const char *d
             compare_ref_measure(&c->scenes[s]);
         else
             c->scenes[s].ref_relmse = c->scenes[s].ref_radiance = c->scenes[s].ref_radiance_se = NAN;
+    (void)compare_cost_read(c, dir); /* absent (an older folder): the images' own times, said so */
     int rc = verdict_from_compare(c, dir, out, e);
     for (int s = 0; rc == 0 && s < out->n_scenes && s < c->n_scenes; s++) {
         struct verdict_scene *vs = &out->scenes[s];

@@ -1,0 +1,282 @@
+/* compare_cost: the cost design (blocks of shuffled timed units), the render order, cost.csv. */
+#include "compare_cost.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/fileio.h"
+#include "base/hash.h"
+#include "base/rng.h"
+#include "base/sbuf.h"
+#include "job/job_render.h"
+
+/* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
+static void shuffle(const struct compare *c, uint64_t key, int *idx, int n)
+{
+    struct rng r;
+    rng_seed(&r, hash_u64(hash_bytes(HASH_FNV_OFFSET, c->name, strlen(c->name)), key), 0x636f7374);
+    for (int i = n - 1; i > 0; i--) {
+        int j = (int)rng_below(&r, (uint32_t)i + 1), t = idx[i];
+        idx[i] = idx[j], idx[j] = t;
+    }
+}
+
+void compare_cost_order(const struct compare *c, int *order)
+{
+    int per = c->n_seeds > 0 ? c->n_items / c->n_seeds : 0, n = 0;
+    for (int k = 0; k < c->n_seeds; k++) {
+        int *run = order + n;
+        for (int s = 0; s < c->n_scenes; s++)
+            for (int v = 0; v < c->n_variants; v++)
+                for (int p = 0; p < c->n_points; p++)
+                    order[n++] = compare_index(c, s, v, p, k);
+        shuffle(c, 0x6f72646572ULL + (uint64_t)k, run, per);
+    }
+}
+
+/* How one (variant, point) is timed: `reps` whole images, or every row_parts-th row of one. */
+struct design {
+    int reps, row_parts;
+    double image_samples; /* the point's mean camera samples per image (over its seeds) */
+};
+
+/* The mean over seeds of (scene, variant, point)'s CPU seconds and camera samples per image. */
+static void cell_means(const struct compare *c, int s, int v, int p, double *cpu, double *samples)
+{
+    int n = 0;
+    *cpu = *samples = 0;
+    for (int k = 0; k < c->n_seeds; k++) {
+        const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+        if (!it->done)
+            continue;
+        *cpu += it->cpu_s, *samples += it->spp_mean * c->scenes[s].width * c->scenes[s].height;
+        n++;
+    }
+    if (n)
+        *cpu /= n, *samples /= n;
+}
+
+/* Scene s's designs. The work of a unit follows the CPU seconds of the point's images, averaged over
+   every (variant, point) of identical settings (their first seed's resume hash): variants that are
+   the same are timed by the same design, so no part of a unit's fixed overhead tells them apart. */
+static void designs(const struct compare *c, int s, struct design *d)
+{
+    int nv = c->n_variants, np = c->n_points, h = c->scenes[s].height;
+    for (int i = 0; i < nv * np; i++) {
+        uint64_t key = c->items[compare_index(c, s, i / np, i % np, 0)].job.hash;
+        double cpu = 0, samples, one;
+        int n = 0;
+        for (int j = 0; j < nv * np; j++)
+            if (j == i || (key && c->items[compare_index(c, s, j / np, j % np, 0)].job.hash == key)) {
+                cell_means(c, s, j / np, j % np, &one, &samples);
+                cpu += one, n++;
+            }
+        cpu /= n;
+        cell_means(c, s, i / np, i % np, &one, &d[i].image_samples);
+        d[i].reps = 1, d[i].row_parts = 1;
+        if (cpu >= COMPARE_COST_UNIT_S)
+            d[i].row_parts = (int)fmin(h, fmax(1, lround(cpu / COMPARE_COST_UNIT_S)));
+        else
+            d[i].reps = cpu > 0 ? (int)fmin(COMPARE_COST_REPS_MAX, fmax(1, lround(COMPARE_COST_UNIT_S / cpu)))
+                                : COMPARE_COST_REPS_MAX;
+    }
+}
+
+/* What the timed renders of one scene share: its scene, camera and a framebuffer thrown away. */
+struct timing {
+    struct scene_file sf;
+    struct camera cam;
+    float *rgb;
+    int w, h, processes;
+    const volatile sig_atomic_t *stop;
+};
+
+/* Time (variant v, point p) once in block b: the CPU seconds one image of the point costs. */
+static int time_unit(const struct compare *c, struct timing *t, int s, int v, int p, int b,
+                     const struct design *d, double *cost, struct err *e)
+{
+    double cpu = 0, samples = 0;
+    for (int r = 0; r < d->reps; r++) {
+        const struct job *j = &c->items[compare_index(c, s, v, p, 0)].job;
+        uint64_t seed = c->seeds[((size_t)b * d->reps + r) % (size_t)c->n_seeds];
+        struct sampler *pix = NULL, *light = NULL;
+        struct procs_result res;
+        int rc = -1;
+        if (job_samplers_new(j, seed, &pix, &light, e) == 0) {
+            struct procs_job fj = {.scene = t->sf.scene,
+                                   .camera = &t->cam,
+                                   .rs = job_render_settings(j, t->w, t->h, seed),
+                                   .pixel = pix,
+                                   .light = light,
+                                   .processes = t->processes > 0 ? t->processes : j->processes,
+                                   .row_part = b % d->row_parts,
+                                   .row_parts = d->row_parts,
+                                   .stop = t->stop};
+            rc = procs_render(&fj, t->rgb, &res, e);
+        }
+        sampler_free(pix);
+        sampler_free(light);
+        if (rc < 0)
+            return -1;
+        cpu += res.cpu_s, samples += (double)res.total.samples;
+    }
+    *cost = samples > 0 ? cpu / samples * d->image_samples : NAN;
+    return 0;
+}
+
+/* Scene s's blocks: each times every (variant, point) once, in an order of its own. */
+static int measure_scene(struct compare *c, int s, const struct run_opts *o, struct err *e)
+{
+    int n = c->n_variants * c->n_points, rc = -1;
+    struct design *d = calloc((size_t)n, sizeof *d);
+    int *idx = calloc((size_t)n, sizeof *idx);
+    struct timing t = {.processes = o->processes, .stop = o->stop};
+    const struct compare_scene *cs = &c->scenes[s];
+    if (!d || !idx) {
+        err_set(e, NULL, 0, 0, "out of memory");
+        goto done;
+    }
+    designs(c, s, d);
+    if (scene_load_src(&cs->input->src, &t.sf, e) < 0)
+        goto done;
+    t.w = cs->width, t.h = cs->height;
+    if (camera_init(&t.cam, &t.sf.camera, (double)t.w / t.h, e) < 0 ||
+        !(t.rgb = procs_framebuffer_new(t.w, t.h, e)))
+        goto done;
+    for (int b = 0; b < c->n_blocks; b++) {
+        for (int i = 0; i < n; i++)
+            idx[i] = i;
+        shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
+        for (int i = 0; i < n; i++) {
+            int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
+            if (time_unit(c, &t, s, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) <
+                0)
+                goto done;
+        }
+    }
+    rc = 0;
+done:
+    procs_framebuffer_free(t.rgb, t.w, t.h);
+    scene_file_free(&t.sf);
+    free(d);
+    free(idx);
+    return rc;
+}
+
+int compare_cost_measure(struct compare *c, const struct run_opts *o, struct err *e)
+{
+    free(c->cost_s);
+    c->n_blocks = COMPARE_COST_BLOCKS;
+    c->cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * c->n_blocks, sizeof *c->cost_s);
+    if (!c->cost_s) {
+        c->n_blocks = 0;
+        return err_set(e, NULL, 0, 0, "out of memory");
+    }
+    for (int s = 0; s < c->n_scenes; s++)
+        if (measure_scene(c, s, o, e) < 0) {
+            free(c->cost_s);
+            c->cost_s = NULL, c->n_blocks = 0;
+            err_prefix(e, c->name);
+            return -1;
+        }
+    return 0;
+}
+
+/* A point's name in cost.csv: its first seed's image without "-s<seed>.<ext>". */
+static void point_name(const struct compare *c, int s, int v, int p, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s", c->items[compare_index(c, s, v, p, 0)].job.output);
+    char *dash = strrchr(buf, '-');
+    if (dash && dash[1] == 's')
+        *dash = 0;
+}
+
+char *compare_cost_csv(const struct compare *c)
+{
+    struct sbuf b = {0};
+    char name[JOB_PATH_MAX];
+    sbuf_printf(&b, "scene,variant,point,block,cpu_s\n");
+    for (int s = 0; s < c->n_scenes; s++)
+        for (int v = 0; v < c->n_variants; v++)
+            for (int p = 0; p < c->n_points; p++) {
+                point_name(c, s, v, p, name, sizeof name);
+                for (int k = 0; k < c->n_blocks; k++) /* names are letters, digits, - and _: no quoting */
+                    sbuf_printf(&b, "%s,%s,%s,%d,%.6g\n", c->scenes[s].name, c->variants[v], name, k,
+                                c->cost_s[compare_cost_index(c, s, v, p, k)]);
+            }
+    return sbuf_take(&b);
+}
+
+/* The (scene, variant, point) of c whose names are these, as an index into n * points; -1. */
+static int find_cell(const struct compare *c, const char *scene, const char *variant, const char *point)
+{
+    char name[JOB_PATH_MAX];
+    for (int s = 0; s < c->n_scenes; s++)
+        for (int v = 0; v < c->n_variants && !strcmp(c->scenes[s].name, scene); v++)
+            for (int p = 0; p < c->n_points && !strcmp(c->variants[v], variant); p++) {
+                point_name(c, s, v, p, name, sizeof name);
+                if (!strcmp(name, point))
+                    return (s * c->n_variants + v) * c->n_points + p;
+            }
+    return -1;
+}
+
+int compare_cost_read(struct compare *c, const char *dir)
+{
+    char path[4096], *line, *save = NULL;
+    uint8_t *data = NULL;
+    size_t len;
+    struct err ignored;
+    int cells = c->n_scenes * c->n_variants * c->n_points, blocks = 0, rc = -1;
+    snprintf(path, sizeof path, "%s/cost.csv", dir);
+    if (fileio_read_all(path, 64u << 20, &data, &len, &ignored) < 0)
+        return -1;
+    double *cost = malloc(sizeof *cost * (size_t)cells * COMPARE_COST_BLOCKS);
+    if (!cost)
+        goto done;
+    for (int i = 0; i < cells * COMPARE_COST_BLOCKS; i++)
+        cost[i] = NAN;
+    line = strtok_r((char *)data, "\r\n", &save);
+    if (!line || strcmp(line, "scene,variant,point,block,cpu_s"))
+        goto done;
+    while ((line = strtok_r(NULL, "\r\n", &save))) {
+        char *f[5], *end, *rest = line;
+        int nf = 0;
+        for (char *comma; nf < 5; rest = comma + 1) {
+            f[nf++] = rest;
+            if (!(comma = strchr(rest, ',')))
+                break;
+            *comma = 0;
+        }
+        long k = nf == 5 ? strtol(f[3], &end, 10) : -1;
+        double x = nf == 5 ? strtod(f[4], NULL) : NAN;
+        int cell = nf == 5 ? find_cell(c, f[0], f[1], f[2]) : -1;
+        if (cell < 0 || k < 0 || k >= COMPARE_COST_BLOCKS || !(x > 0 && isfinite(x)))
+            goto done; /* a row of another study or a damaged file: not guessed at */
+        cost[(size_t)cell * COMPARE_COST_BLOCKS + (size_t)k] = x;
+        blocks = (int)fmax(blocks, (double)k + 1);
+    }
+    for (int i = 0; i < cells; i++)
+        for (int k = 0; k < blocks; k++)
+            if (!isfinite(cost[(size_t)i * COMPARE_COST_BLOCKS + k]))
+                goto done;
+    if (blocks < 2)
+        goto done;
+    free(c->cost_s);
+    c->n_blocks = blocks;
+    c->cost_s = malloc(sizeof *c->cost_s * (size_t)cells * blocks);
+    if (!c->cost_s) {
+        c->n_blocks = 0;
+        goto done;
+    }
+    for (int i = 0; i < cells; i++)
+        for (int k = 0; k < blocks; k++)
+            c->cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
+    rc = 0;
+done:
+    free(cost);
+    free(data);
+    return rc;
+}
