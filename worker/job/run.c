@@ -13,6 +13,7 @@
 #include "base/hash.h"
 #include "base/sbuf.h"
 #include "job_limits.h"
+#include "job_render.h"
 #include "part.h"
 #include "outdir.h"
 #include "run_out.h"
@@ -173,14 +174,10 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
             err_set(e, j->path, 1, 1, "size: %dx%d pixels: %s", w, h, why);
         goto done;
     }
-    uint64_t pool_seed = rng_mix64(j->seed ^ 0x706f6f6cULL);
-    if (!(pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e)) ||
-        !(light = sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e))) {
+    if (job_samplers_new(j, j->seed, &pix, &light, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
-    sampler_set_domain(pix, j->poisson_domain);
-    sampler_set_domain(light, j->poisson_domain);
     /* Nothing is made before the outputs are written: a failed or stopped render leaves no folder. */
     if (outdir_check(rr->out.dir, e) < 0)
         goto done;
@@ -189,18 +186,17 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         goto done;
     struct progress prog = {o->label ? o->label : j->name, o->progress && !o->quiet, -1, o->tick,
                             o->tick_arg};
-    struct procs_job fj = {
-        .scene = sf.scene,
-        .camera = &cam,
-        .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->nee, j->dims_all, job_roulette(j)},
-        .pixel = pix,
-        .light = light,
-        .processes = o->processes > 0 ? o->processes : j->processes,
-        .row_part = o->parts > 0 ? o->part : 0,
-        .row_parts = o->parts > 0 ? o->parts : 1,
-        .progress = show_progress,
-        .progress_arg = &prog,
-        .stop = o->stop};
+    struct procs_job fj = {.scene = sf.scene,
+                           .camera = &cam,
+                           .rs = job_render_settings(j, w, h, j->seed),
+                           .pixel = pix,
+                           .light = light,
+                           .processes = o->processes > 0 ? o->processes : j->processes,
+                           .row_part = o->parts > 0 ? o->part : 0,
+                           .row_parts = o->parts > 0 ? o->parts : 1,
+                           .progress = show_progress,
+                           .progress_arg = &prog,
+                           .stop = o->stop};
     if (procs_render(&fj, rgb, &rr->procs, e) < 0) {
         if (prog.enabled)
             fprintf(stderr, "\n");

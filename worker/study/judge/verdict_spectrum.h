@@ -4,7 +4,7 @@
 #ifndef VERDICT_SPECTRUM_H
 #define VERDICT_SPECTRUM_H
 
-#include "verdict.h"
+#include "verdict_figures.h"
 
 /* Fill out's spec arrays from f and add a VERDICT_PATTERN failure per structured variant (at the
    point where its peak is least likely by chance). 0, or -1 (out of memory). */

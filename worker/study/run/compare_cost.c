@@ -10,6 +10,7 @@
 #include "base/hash.h"
 #include "base/rng.h"
 #include "base/sbuf.h"
+#include "job/job_render.h"
 
 /* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
 static void shuffle(const struct compare *c, uint64_t key, int *idx, int n)
@@ -100,19 +101,13 @@ static int time_unit(const struct compare *c, struct timing *t, int s, int v, in
     for (int r = 0; r < d->reps; r++) {
         const struct job *j = &c->items[compare_index(c, s, v, p, 0)].job;
         uint64_t seed = c->seeds[((size_t)b * d->reps + r) % (size_t)c->n_seeds];
-        uint64_t pool_seed = rng_mix64(seed ^ 0x706f6f6cULL); /* as run_job draws the image's */
-        struct sampler *pix = sampler_new(j->sampler, j->threshold, j->poisson_pool, pool_seed, e);
-        struct sampler *light =
-            pix ? sampler_new(j->light_sampler, j->light_threshold, j->poisson_pool, pool_seed + 1, e) : NULL;
+        struct sampler *pix = NULL, *light = NULL;
         struct procs_result res;
         int rc = -1;
-        if (light) {
-            sampler_set_domain(pix, j->poisson_domain);
-            sampler_set_domain(light, j->poisson_domain);
+        if (job_samplers_new(j, seed, &pix, &light, e) == 0) {
             struct procs_job fj = {.scene = t->sf.scene,
                                    .camera = &t->cam,
-                                   .rs = {t->w, t->h, j->max_depth, seed, !j->light_sampling, j->nee,
-                                          j->dims_all, job_roulette(j)},
+                                   .rs = job_render_settings(j, t->w, t->h, seed),
                                    .pixel = pix,
                                    .light = light,
                                    .processes = t->processes > 0 ? t->processes : j->processes,
