@@ -107,11 +107,12 @@ static void test_errors(void)
     CHECK(e.line == 4 && strstr(e.msg, "two variants are labelled \"a\""));
     CHECK(!compare_load(job_file("e4.yaml", "scenes: []\nvariants:\n  - { sampler: jitter }\n"), &e));
     CHECK(e.line == 1 && e.col == 9 && strstr(e.msg, "scenes: must be a non-empty list"));
-    CHECK(!compare_load(job_file("e7.yaml", "scenes: [SCENE]\nrank_by: mode\nvariants:\n  - { label: a }\n"), &e));
+    CHECK(!compare_load(job_file("e7.yaml", "scenes: [SCENE]\nrank_by: mode\nvariants:\n  - { label: a }\n"),
+                        &e));
     CHECK(e.line == 2 && e.col == 10 && strstr(e.msg, "rank_by: must be mean or median, got mode"));
     {
-        struct compare *c =
-            compare_load(job_file("m1.yaml", "scenes: [SCENE]\nrank_by: median\nvariants:\n  - { label: a }\n"), &e);
+        struct compare *c = compare_load(
+            job_file("m1.yaml", "scenes: [SCENE]\nrank_by: median\nvariants:\n  - { label: a }\n"), &e);
         CHECK(c && c->rank_by == VERDICT_RANK_MEDIAN);
         compare_free(c);
         c = compare_load(job_file("m2.yaml", "scenes: [SCENE]\nvariants:\n  - { label: a }\n"), &e);

@@ -1,6 +1,6 @@
 /* test_errspec_look: the pooled error spectrum's look. A sine grating over noise has a peak no
-   noise gives (peak_p tiny), streaks along rows are strongly anisotropic; white and blue noise have neither; blue
-   noise's radial power rises with frequency, white's is flat. */
+   noise gives (peak_p tiny), streaks along rows are strongly anisotropic; white and blue noise have neither;
+   blue noise's radial power rises with frequency, white's is flat. */
 #include "image/errspec.h"
 
 #include <math.h>
@@ -41,7 +41,8 @@ static void field(enum kind k, struct rng *r, double *d)
 
 static struct errspec_look look_of(enum kind k, uint64_t seed)
 {
-    struct rgbf ref = {W, W, malloc(sizeof(float) * 3 * W * W)}, img = {W, W, malloc(sizeof(float) * 3 * W * W)};
+    struct rgbf ref = {W, W, malloc(sizeof(float) * 3 * W * W)},
+                img = {W, W, malloc(sizeof(float) * 3 * W * W)};
     double *acc = calloc((size_t)ERRSPEC_MAX_SIDE * ERRSPEC_MAX_SIDE, sizeof *acc), d[W * W];
     struct rng rng;
     struct err e;

@@ -16,15 +16,13 @@
 
 /* Per-seed relMSE of the furnace study at thresholds 25 and 12.5 (summary.csv of a 24x24 run, seeds
    1-8), and a third point at 4x the samples where the firefly seed moved. */
-static const double mixture[NP][NS] = {
-    {0.00974, 0.540, 0.0538, 0.0110, 0.0449, 0.0626, 0.00747, 0.138},
-    {0.0108, 3.68, 0.00555, 0.00277, 0.00817, 0.00591, 0.00465, 0.0367},
-    {0.00301, 0.00291, 0.00108, 0.00262, 0.0012, 4.1, 0.0019, 0.0022}};
+static const double mixture[NP][NS] = {{0.00974, 0.540, 0.0538, 0.0110, 0.0449, 0.0626, 0.00747, 0.138},
+                                       {0.0108, 3.68, 0.00555, 0.00277, 0.00817, 0.00591, 0.00465, 0.0367},
+                                       {0.00301, 0.00291, 0.00108, 0.00262, 0.0012, 4.1, 0.0019, 0.0022}};
 /* Seeds 9-16 of the same study: fireflies in several seeds. */
-static const double mixture2[NP][NS] = {
-    {0.0619, 0.0086, 0.00759, 0.0178, 0.00748, 0.137, 0.00712, 0.0635},
-    {0.0118, 0.00548, 0.028, 0.0236, 0.00648, 0.0116, 0.00333, 0.00626},
-    {0.0118, 0.00548, 0.028, 0.0236, 0.00648, 0.0116, 0.00333, 0.00626}};
+static const double mixture2[NP][NS] = {{0.0619, 0.0086, 0.00759, 0.0178, 0.00748, 0.137, 0.00712, 0.0635},
+                                        {0.0118, 0.00548, 0.028, 0.0236, 0.00648, 0.0116, 0.00333, 0.00626},
+                                        {0.0118, 0.00548, 0.028, 0.0236, 0.00648, 0.0116, 0.00333, 0.00626}};
 /* Another run: no seed drew a firefly at threshold 25 (all tight and low, so the mean radiance is
    low: the old verdict called it biased), half of them did at 12.5. */
 static const double bimodal[NP][NS] = {
@@ -81,7 +79,8 @@ static void test_furnace(void)
         if (s.failures[i].kind == VERDICT_HEAVY_TAILED) {
             CHECK(s.failures[i].point == 2);
             CHECK_NEAR(s.failures[i].value, 4.1 / 0.00108, 1e-6 * 4.1 / 0.00108);
-            CHECK(strstr(s.failures[i].text, "mixture: fireflies: its seeds' relMSE at threshold 6.25 span a factor 3.8e+03"));
+            CHECK(strstr(s.failures[i].text,
+                         "mixture: fireflies: its seeds' relMSE at threshold 6.25 span a factor 3.8e+03"));
         }
     CHECK(strstr(s.sentences[s.n_sentences - 1], "mixture has fireflies on board") ||
           strstr(s.sentences[s.n_sentences - 2], "mixture has fireflies on board"));
@@ -151,7 +150,7 @@ static void test_rank_by_median(void)
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_samples.status == VERDICT_CLEAR && s.by_samples.e[0].variant == 0);
     CHECK_NEAR(s.by_samples.e[0].value, 1e-3, 1e-12); /* base sorted with the firefly: 1.0, 1.0 mid */
-    CHECK_NEAR(s.point_rel[0], 1e-3, 1e-12);                /* the chart's and table's figure too */
+    CHECK_NEAR(s.point_rel[0], 1e-3, 1e-12);          /* the chart's and table's figure too */
     char *json = verdict_json_text("job", &(struct verdict_study){"median", 1, &s, ""}, 1, NULL);
     CHECK(json && strstr(json, "\"rank_by\": \"median\""));
     free(json);

@@ -26,16 +26,17 @@ void compare_stats_point_order(const struct compare *c, int scene, int variant, 
 
 /* What a point's seed images say together. */
 struct compare_seed_stats {
-    double rel_of_mean; /* relMSE of the mean of the seeds' images against the reference */
-    double bias_rel;    /* the relMSE of the reference scaled to that mean image's mean radiance: the
-                           part of rel_of_mean an offset in mean radiance alone makes */
-    double *radiance;   /* the caller's array of c->n_seeds: each seed image's mean radiance */
-    double *spec_ring;  /* the caller's array of c->n_seeds x VERDICT_SPEC_RINGS, or NULL: each seed
-                           image's error spectrum, log10 of each ring's power over its mean power */
+    double rel_of_mean;        /* relMSE of the mean of the seeds' images against the reference */
+    double bias_rel;           /* the relMSE of the reference scaled to that mean image's mean radiance: the
+                                  part of rel_of_mean an offset in mean radiance alone makes */
+    double *radiance;          /* the caller's array of c->n_seeds: each seed image's mean radiance */
+    double *spec_ring;         /* the caller's array of c->n_seeds x VERDICT_SPEC_RINGS, or NULL: each seed
+                                  image's error spectrum, log10 of each ring's power over its mean power */
     double peak_p, anisotropy; /* the seeds' pooled error spectrum's (errspec_look_of); NAN unknown */
 };
 
-/* The seed images of (scene, variant, point) against ref, over the scene's mask's pixels, read from dir: their float copies
+/* The seed images of (scene, variant, point) against ref, over the scene's mask's pixels, read from dir:
+   their float copies
    (<stem>.exr) when the scene's reference is linear, else the PNGs' display values. Averaging them
    divides noise by the seed count and leaves structured error; the verdict tells the two apart.
    0, or -1 with e filled. */

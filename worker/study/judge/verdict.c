@@ -99,7 +99,8 @@ static void entry_add(struct verdict_entry *e, double *logs, int k, double y)
 }
 
 /* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
-static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e, double *logs)
+static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e,
+                          double *logs)
 {
     for (int k = 0; k < f->n_seeds; k++)
         entry_add(e, logs, k, verdict_rel(f, verdict_at(f, v, p, k)));
@@ -327,9 +328,11 @@ int verdict_scene_compute(const struct verdict_figures *given, struct verdict_sc
         g.ref_relmse = NAN, g.ref_noise_refused = 1;
     int nv = f->n_variants;
     size_t per = (size_t)nv * f->n_points;
-    *out = (struct verdict_scene){
-        .n_variants = nv, .n_points = f->n_points, .n_seeds = f->n_seeds, .ref_relmse = given->ref_relmse,
-        .rank_by = f->rank_by};
+    *out = (struct verdict_scene){.n_variants = nv,
+                                  .n_points = f->n_points,
+                                  .n_seeds = f->n_seeds,
+                                  .ref_relmse = given->ref_relmse,
+                                  .rank_by = f->rank_by};
     snprintf(out->study, sizeof out->study, "%s", f->study);
     snprintf(out->scene, sizeof out->scene, "%s", f->scene);
     out->variants = calloc((size_t)nv, sizeof *out->variants);

@@ -51,38 +51,38 @@
 struct verdict_figures {
     const char *study, *scene;
     int n_variants, n_points, n_seeds;
-    const char *const *variants; /* labels */
-    const char *const *samplers; /* per variant: its pixel sampler's name ("poisson") */
-    const int *pools;            /* per variant: poisson_pool (0: fresh sets) */
-    const char *const *points;   /* sweep point labels ("threshold 5") */
-    const double *spp;           /* samples per pixel (mean over the image) */
-    const double *cpu_s;         /* the render's CPU seconds */
-    const double *relmse;        /* against the reference; NAN when not measured */
-    const double *sampler_share; /* fraction of CPU time drawing point sets */
-    const uint64_t *nonfinite;   /* samples dropped as NaN or infinite */
-    const double *rel_of_mean;   /* per (variant, point): relMSE of the seeds' mean image; NAN unknown */
-    const double *bias_rel;      /* per (variant, point): the relMSE the mean image's offset in mean
-                                    radiance alone gives (the reference scaled by it); NAN unknown */
-    const double *radiance;      /* per (variant, point, seed): the image's mean radiance; NAN unknown */
-    const double *lowfreq;       /* per (variant, point, seed): error_lowfreq (errspec.h); NAN unknown;
-                                    NULL: none measured */
-    const double *spec_ring;     /* per (variant, point, seed, ring): log10 of the ring's power over the
-                                    image's mean power (errspec_look_of on one image); NULL: none */
-    const double *spec_peak_p;   /* per (variant, point): the seeds' pooled spectrum's peak_p; NULL */
-    const double *spec_aniso;    /* per (variant, point): its anisotropy; NULL: none */
-    int n_blocks;                /* the cost design's blocks */
-    const double *cost_s;        /* per (variant, point, block): CPU seconds per image timed in the
-                                    block (verdict_cost_at); NULL: none */
-    int cost_from_images;        /* cost_s holds the images' own times, seed k as block k */
+    const char *const *variants;  /* labels */
+    const char *const *samplers;  /* per variant: its pixel sampler's name ("poisson") */
+    const int *pools;             /* per variant: poisson_pool (0: fresh sets) */
+    const char *const *points;    /* sweep point labels ("threshold 5") */
+    const double *spp;            /* samples per pixel (mean over the image) */
+    const double *cpu_s;          /* the render's CPU seconds */
+    const double *relmse;         /* against the reference; NAN when not measured */
+    const double *sampler_share;  /* fraction of CPU time drawing point sets */
+    const uint64_t *nonfinite;    /* samples dropped as NaN or infinite */
+    const double *rel_of_mean;    /* per (variant, point): relMSE of the seeds' mean image; NAN unknown */
+    const double *bias_rel;       /* per (variant, point): the relMSE the mean image's offset in mean
+                                     radiance alone gives (the reference scaled by it); NAN unknown */
+    const double *radiance;       /* per (variant, point, seed): the image's mean radiance; NAN unknown */
+    const double *lowfreq;        /* per (variant, point, seed): error_lowfreq (errspec.h); NAN unknown;
+                                     NULL: none measured */
+    const double *spec_ring;      /* per (variant, point, seed, ring): log10 of the ring's power over the
+                                     image's mean power (errspec_look_of on one image); NULL: none */
+    const double *spec_peak_p;    /* per (variant, point): the seeds' pooled spectrum's peak_p; NULL */
+    const double *spec_aniso;     /* per (variant, point): its anisotropy; NULL: none */
+    int n_blocks;                 /* the cost design's blocks */
+    const double *cost_s;         /* per (variant, point, block): CPU seconds per image timed in the
+                                     block (verdict_cost_at); NULL: none */
+    int cost_from_images;         /* cost_s holds the images' own times, seed k as block k */
     enum verdict_rank_by rank_by; /* the centre over seeds of every relMSE figure (slopes: the mean) */
-    double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
-    double ref_relmse;           /* the reference's own relMSE (from its halves), NAN unknown */
-    double ref_radiance;         /* the reference's mean radiance, NAN unknown */
-    double ref_radiance_se;      /* its standard error (from its halves), NAN unknown */
-    int reference_unread;        /* the reference's pixels could not be read: no checks on images */
-    int ref_noise_refused;       /* set by verdict_scene_compute: the reference is too sparse
-                                    (VERDICT_REF_FACTOR) for its noise to be taken out */
-    int images_unread;           /* (variant, point)s whose seed images could not be read */
+    double ref_spp;               /* the reference's samples per pixel, 0 when unknown */
+    double ref_relmse;            /* the reference's own relMSE (from its halves), NAN unknown */
+    double ref_radiance;          /* the reference's mean radiance, NAN unknown */
+    double ref_radiance_se;       /* its standard error (from its halves), NAN unknown */
+    int reference_unread;         /* the reference's pixels could not be read: no checks on images */
+    int ref_noise_refused;        /* set by verdict_scene_compute: the reference is too sparse
+                                     (VERDICT_REF_FACTOR) for its noise to be taken out */
+    int images_unread;            /* (variant, point)s whose seed images could not be read */
 };
 
 static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)

@@ -39,12 +39,13 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
     m->lowfreq = calloc(n, sizeof *m->lowfreq);
     m->spec_ring = calloc(n * VERDICT_SPEC_RINGS, sizeof *m->spec_ring);
-    m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p), m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
+    m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p),
+    m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
     int blocks = c->n_blocks > 1 ? c->n_blocks : c->n_seeds; /* no cost design: the images' own times */
     m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
-        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq || !m->spec_ring || !m->peak_p || !m->aniso ||
-        !m->cost)
+        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
+        !m->spec_ring || !m->peak_p || !m->aniso || !m->cost)
         return -1;
     struct verdict_figures *f = &m->f;
     *f = (struct verdict_figures){.study = c->name,
@@ -77,7 +78,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .ref_radiance = c->scenes[s].ref_radiance,
                                   .ref_radiance_se = c->scenes[s].ref_radiance_se};
     if (ref && !(f->ref_radiance > 0))
-        f->ref_radiance = compare_stats_mean_radiance(ref, c->scenes[s].mask); /* an image reference: its noise unknown */
+        f->ref_radiance =
+            compare_stats_mean_radiance(ref, c->scenes[s].mask); /* an image reference: its noise unknown */
     for (int p = 0; p < c->n_points; p++)
         m->points[p] = c->points[p];
     for (int v = 0; v < c->n_variants; v++) {

@@ -130,10 +130,11 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
         if (isfinite(f->relmse[i]))
             scoredn++, floored += f->relmse[i] - f->ref_relmse < 0.01 * f->relmse[i];
     if (floored && (w = next_line(out->warnings, &out->n_warnings)))
-        append(w,
-               "%d of %d images' relMSE are within the reference's own %.3g: their own error is shown as 1%% of "
-               "the measured (the difference cannot be told from the reference's noise)",
-               floored, scoredn, f->ref_relmse);
+        append(
+            w,
+            "%d of %d images' relMSE are within the reference's own %.3g: their own error is shown as 1%% of "
+            "the measured (the difference cannot be told from the reference's noise)",
+            floored, scoredn, f->ref_relmse);
     if ((f->reference_unread || f->images_unread) && (w = next_line(out->warnings, &out->n_warnings)))
         append(w,
                "skipped: the share of the error that repeats in every seed, its split into bias and pattern, "
@@ -352,11 +353,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
                 "errors), so more samples or seeds will not bring it to the reference.",
                 v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_PATTERN)
-            append(s,
-                   "%s's error on %s is structured at %s: its spectrum has a peak or a direction noise does "
-                   "not (chance under %.2g, anisotropy %.2f), so however low its error_lowfreq it is not blue "
-                   "noise.",
-                   v, out->scene, at, x->value, x->detail);
+            append(
+                s,
+                "%s's error on %s is structured at %s: its spectrum has a peak or a direction noise does "
+                "not (chance under %.2g, anisotropy %.2f), so however low its error_lowfreq it is not blue "
+                "noise.",
+                v, out->scene, at, x->value, x->detail);
         else if (x->kind == VERDICT_HEAVY_TAILED)
             append(s,
                    "%s has fireflies on %s: at %s its seeds' relMSE span a factor %.3g, so rare, "

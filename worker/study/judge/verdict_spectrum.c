@@ -30,7 +30,8 @@ int verdict_spectrum_compute(const struct verdict_figures *f, struct verdict_sce
     out->spec = calloc(per * VERDICT_SPEC_RINGS, sizeof *out->spec);
     out->spec_lo = calloc(per * VERDICT_SPEC_RINGS, sizeof *out->spec_lo);
     out->spec_hi = calloc(per * VERDICT_SPEC_RINGS, sizeof *out->spec_hi);
-    out->spec_peak_p = calloc(per, sizeof *out->spec_peak_p), out->spec_aniso = calloc(per, sizeof *out->spec_aniso);
+    out->spec_peak_p = calloc(per, sizeof *out->spec_peak_p),
+    out->spec_aniso = calloc(per, sizeof *out->spec_aniso);
     if (!out->spec || !out->spec_lo || !out->spec_hi || !out->spec_peak_p || !out->spec_aniso)
         return -1;
     for (size_t i = 0; i < per * VERDICT_SPEC_RINGS; i++)
@@ -55,8 +56,8 @@ int verdict_spectrum_compute(const struct verdict_figures *f, struct verdict_sce
         if (at < 0)
             continue;
         struct verdict_failure *x = &out->failures[out->n_failures++];
-        *x = (struct verdict_failure){.kind = VERDICT_PATTERN, .variant = v, .point = at, .value = least,
-                                      .detail = aniso};
+        *x = (struct verdict_failure){
+            .kind = VERDICT_PATTERN, .variant = v, .point = at, .value = least, .detail = aniso};
         verdict_say_failure(f, x);
     }
     return 0;

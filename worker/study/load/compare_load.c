@@ -283,8 +283,7 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
                 goto done;
             }
             L.c->rank_by = strcmp(by, "median") ? VERDICT_RANK_MEAN : VERDICT_RANK_MEDIAN;
-        }
-        else if (strcmp(key, "scenes") && strcmp(key, "seeds") && job_apply(&L.base, &L.d, k, v, e) < 0)
+        } else if (strcmp(key, "scenes") && strcmp(key, "seeds") && job_apply(&L.base, &L.d, k, v, e) < 0)
             goto done;
     }
     if (job_check_stem(&L.base, e) < 0)

@@ -37,8 +37,11 @@ char *report_spectrum_svg(const struct verdict_study *s)
         for (int k = 0; k < v->n_variants; k++) {
             int p = v->look.point && measured(v) ? v->look.point[k] : 0;
             size_t o = ((size_t)k * v->n_points + p) * VERDICT_SPEC_RINGS;
-            sr[k] = (struct chart_series){v->variants[k], measured(v) ? VERDICT_SPEC_RINGS : 0, freq,
-                                          v->spec ? v->spec + o : NULL, v->spec_lo ? v->spec_lo + o : NULL,
+            sr[k] = (struct chart_series){v->variants[k],
+                                          measured(v) ? VERDICT_SPEC_RINGS : 0,
+                                          freq,
+                                          v->spec ? v->spec + o : NULL,
+                                          v->spec_lo ? v->spec_lo + o : NULL,
                                           v->spec_hi ? v->spec_hi + o : NULL};
         }
         snprintf(titles[i], sizeof titles[i], "%s: error power spectrum", v->scene);
