@@ -292,4 +292,13 @@ check_links "$T/bad3.md" >"$T/links3.out"
 check "a broken link and a broken anchor are found" [ "$(wc -l <"$T/links3.out")" -eq 2 ]
 lines=$(wc -l <"$root/README.md")
 check "README.md is at most 160 lines (got $lines)" [ "$lines" -le 160 ]
+# --- 5. a compare job's scene stem limit: the one docs/job-format.md states is the one refused ---
+mkdir -p "$T/stems"
+long=$(printf 'a%.0s' $(seq 1 64))
+cp "$root/scenes/checker.yaml" "$T/stems/$long.yaml"
+printf 'name: st\nscenes: [%s/stems/%s.yaml]\nwidth: 4\nheight: 4\nvariants: [{ sampler: jitter, threshold: 50 }]\n' \
+    "$T" "$long" >"$T/stems.yaml"
+limit=$("$WORKER" --dry-run "$T/stems.yaml" 2>&1 | sed -n 's/.*its stem is [0-9]* bytes, over the \([0-9]*\) .*/\1/p')
+check "job-format.md states the scene stem limit the worker keeps ($limit bytes)" \
+    grep -q "a scene file whose stem is over $limit bytes is refused" "$root/docs/job-format.md"
 finish

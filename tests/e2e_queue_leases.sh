@@ -59,7 +59,26 @@ if preload_shim race; then
     check "racing requeues: the second moved it (rc $rcb)" eval '[ "$rcb" -eq 0 ] && [ -f "$Q/r.yaml" ]'
     check "racing requeues: the loser exits 2 and says why: $(cat "$T/race-a.txt")" \
         sh -c "[ $rca -eq 2 ] && grep -q 'no longer there: moved meanwhile' '$T/race-a.txt'"
+    # the same race under --failed ("every failed job"): the file moved by the other requeue is
+    # requeued all the same, so neither fails (issue 36, defect 11: both exited 2)
+    "$WORKER" --queue "$Q" --once --quiet 2>/dev/null
+    SHIM_STOP_TO="$Q/r.yaml" LD_PRELOAD=$T/race.so "$WORKER" requeue "$Q" --failed 2>"$T/race-c.txt" & a=$!
+    for _ in $(seq 1 500); do [ "$(ps -o stat= -p "$a" | cut -c1)" = T ] && break; sleep 0.02; done
+    "$WORKER" requeue "$Q" --failed 2>"$T/race-d.txt"; rcb=$?
+    kill -CONT "$a"; wait "$a"; rca=$?
+    check "racing requeue --failed: both exit 0 (got $rca, $rcb): $(cat "$T/race-c.txt")" \
+        eval '[ "$rca" -eq 0 ] && [ "$rcb" -eq 0 ] && [ -f "$Q/r.yaml" ] && [ -z "$(ls "$Q/failed")" ]'
 else
     skip "no C compiler for the shim tests/shim/race.c: racing requeues"
 fi
+# requeue --failed removes every failed job's log: under its stem, and under its name
+Q=$T/q-logs; mkdir -p "$Q"
+printf 'width: oops\n' >"$Q/s1.yaml"
+printf 'name: other\nwidth: oops\n' >"$Q/s2.yaml"
+"$WORKER" --queue "$Q" --once --quiet 2>/dev/null
+printf 'name: given\nscene: x.yaml\n' >"$Q/failed/s3.yaml"
+printf 'job: %s/s3.yaml\nerror: a render failed\n' "$Q" >"$Q/failed/given.log"
+"$WORKER" requeue "$Q" --failed 2>"$T/rqf.txt"; rc=$?
+check "requeue --failed: exit 0 (got $rc), every log gone: $(ls "$Q/failed")" \
+    eval '[ "$rc" -eq 0 ] && [ -z "$(ls "$Q/failed")" ] && [ "$(ls "$Q" | grep -c yaml)" -eq 3 ]'
 finish

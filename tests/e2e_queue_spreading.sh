@@ -49,7 +49,13 @@ check "a --once worker waits while a live worker spreads a compare job: $(cat "$
 S=$Q/spread/.sp.new.$holder
 mkdir -p "$S/job" "$S/running" "$S/done" "$S/failed"
 cp "$Q/running/sp.yaml" "$S/study.job"
-for e in b-img-0-00000 b-img-0-00001 c-gather; do echo "# $e" >"$S/$e.yaml"; done
+# study.key: the record of what was written (the job's FNV-1a hash, the entries' names)
+python3 -c 'import sys
+h = 0xcbf29ce484222325
+for b in open(sys.argv[1], "rb").read():
+    h = ((h ^ b) * 0x100000001b3) % (1 << 64)
+print("worker study key 1\njob %016x" % h)' "$S/study.job" >"$S/study.key"
+for e in b-img-0-00000 b-img-0-00001 c-gather; do echo "# $e" >"$S/$e.yaml"; echo "entry $e.yaml" >>"$S/study.key"; done
 mv "$S" "$Q/spread/sp"
 rm "$Q/running/sp.yaml.lease"
 mv "$Q/running/sp.yaml" "$Q/spread/sp/job/sp.yaml"

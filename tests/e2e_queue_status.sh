@@ -108,4 +108,18 @@ check "setup: sigfile failed, its log named signame" eval '[ -f "$Q2/failed/sigf
 "$WORKER" requeue "$Q2" signame 2>"$T/r5.err"; rc=$?
 check "requeue by the job's name: exit 0, the file back (got $rc: $(cat "$T/r5.err"))" \
     eval '[ "$rc" -eq 0 ] && [ -f "$Q2/sigfile.yaml" ] && [ ! -e "$Q2/failed/signame.log" ]'
+# status on a folder that is no queue (an output folder of --out): it says so, exit 2 (issue 36)
+O=$T/outdir; tiny "$T/plainjob.yaml"
+"$WORKER" "$T/plainjob.yaml" --out "$O" --quiet 2>/dev/null
+"$WORKER" status "$O" >"$T/nq.txt" 2>&1; rc=$?
+check "status on an output folder: exit 2 (got $rc), it says it is no queue: $(cat "$T/nq.txt")" \
+    eval '[ "$rc" -eq 2 ] && [ "$(grep -c "not a queue" "$T/nq.txt")" -eq 1 ] && [ "$(grep -c . "$T/nq.txt")" -eq 1 ]'
+mkdir -p "$T/fresh"; tiny "$T/fresh/a.yaml"
+"$WORKER" status "$T/fresh" >/dev/null 2>&1; rc=$?
+check "status on a folder of waiting jobs no worker has seen yet: a queue (exit $rc)" [ "$rc" -eq 0 ]
+# a job put in a folder of the queue: the --once worker that finds nothing to do names it
+Q5=$T/q5; mkdir -p "$Q5/jobs"; tiny "$Q5/jobs/deep.yaml"
+"$WORKER" --queue "$Q5" --once 2>"$T/deep.txt"
+check "a job in a folder of the queue: the worker says where a job goes: $(cat "$T/deep.txt")" \
+    grep -q "no job waiting, nothing to do; $Q5/jobs/deep.yaml is in a folder of the queue, where no worker looks: a job goes in $Q5/ itself" "$T/deep.txt"
 finish

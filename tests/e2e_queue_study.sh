@@ -109,6 +109,12 @@ check "a study with a failed render: the worker exits 1 (got $rc)" [ "$rc" -eq 1
 check "... the study waits, not gathered" eval '[ ! -f "$Q3/done/slow.yaml" ] && [ -f "$Q3/spread/slow/job/slow.yaml" ]'
 "$WORKER" status "$Q3" >"$T/status3.txt" 2>&1
 check "status: 1/2 done, 1 failed: $(cat "$T/status3.txt")" grep -q 'slow.yaml  study slow  1/2 renders done, 1 failed' "$T/status3.txt"
+check "status: no ETA, it waits for a requeue of its failed render" \
+    grep -q 'slow.yaml  study slow  1/2 renders done, 1 failed, .*ETA -- (waits for its failed renders to be requeued' "$T/status3.txt"
+"$WORKER" status "$Q3" --json >"$T/status3.json" 2>&1
+check "status --json: its eta_s null" python3 -c 'import json,sys
+s=json.load(open(sys.argv[1]))["studies"][0]
+assert s["eta_s"] is None and s["waits_for_requeue"] is True, s' "$T/status3.json"
 "$WORKER" requeue "$Q3" slow >"$T/rq.txt" 2>&1; rc=$?
 check "requeue of the study: exit 0 (got $rc), its failed render put back: $(cat "$T/rq.txt")" grep -q '1 failed render of the study requeued' "$T/rq.txt"
 check "... its log removed too" [ -z "$(ls "$Q3/spread/slow/failed")" ]

@@ -139,9 +139,51 @@ int main(void)
     char lock[300];
     snprintf(lock, sizeof lock, "%s.lock", claim);
     age(lock, 120);
-    CHECK(lease_lock(claim, 60) == -1); /* breaks it ... */
-    CHECK(lease_lock(claim, 60) == 0);  /* ... so the next try takes it */
+    CHECK(lease_lock(claim, 60) == 0); /* breaks it and takes it */
     lease_unlock(claim);
+
+    /* a lock whose holder (of this host) is gone, made since the claim was, on a claim without a
+       lease: its filer was killed between removing the lease and the move. The claim is dead at
+       once, and the lock is broken and taken at once (issue 36, defect 10) */
+    remove(side);
+    struct lease gone;
+    lease_init(&gone);
+    gone.pid = dead_pid();
+    f = fopen(lock, "w");
+    CHECK(f != NULL);
+    if (f) {
+        fprintf(f, "host %s\npid %ld\nstart %lld\ntoken %s\npids %s\n", gone.host, gone.pid, gone.start,
+                gone.token, gone.pids);
+        fclose(f);
+    }
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 1);
+    CHECK(strstr(why, "killed while it filed") != NULL);
+    CHECK(lease_lock(claim, 60) == 0);
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 1); /* judged again under the lock taken from it */
+    lease_unlock(claim);
+    CHECK(lease_lock(claim, 60) == 0); /* a lock of our own, not taken from anyone: no verdict */
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+    lease_unlock(claim);
+    /* a dead holder's lock older than the claim is an earlier claim's: it says nothing of this one */
+    f = fopen(lock, "w");
+    if (f) {
+        fprintf(f, "host %s\npid %ld\nstart %lld\ntoken %s\npids %s\n", gone.host, gone.pid, gone.start,
+                gone.token, gone.pids);
+        fclose(f);
+    }
+    age(lock, 30);
+    CHECK(lease_stale(claim, 60, why, sizeof why) == 0);
+    /* left behind once its claim is gone: swept (a live holder's, or one with its claim, stays) */
+    char running[300], *slash;
+    snprintf(running, sizeof running, "%s", claim);
+    slash = strrchr(running, '/');
+    if (slash)
+        *slash = 0;
+    lease_sweep_locks(running, strrchr(lock, '/') + 1, 60);
+    CHECK(access(lock, F_OK) == 0);
+    remove(claim);
+    lease_sweep_locks(running, strrchr(lock, '/') + 1, 60);
+    CHECK(access(lock, F_OK) != 0);
 
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

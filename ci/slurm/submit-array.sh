@@ -10,9 +10,17 @@ submit_array() {
     local usage=$1 label=$2 name=$3 step=$4 here
     here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
     shift 4
-    [ $# -ge 3 ] || { echo "usage: $0 $usage OUT_DIR N [sbatch options...]" >&2; exit 2; }
+    local line="usage: $0 $usage OUT_DIR N [sbatch options...] (N: tasks, a whole number from 1 to 256)"
+    [ $# -ge 3 ] || { echo "$line" >&2; exit 2; }
     local job=$1 out=$2 n=$3 array named=()
     shift 3
+    # N is checked as text before any arithmetic: $((...)) would run a command substitution in it
+    # (PWD[$(cmd)]), and 0, -1 or 300 are no array Slurm (or --part, at most 256) takes
+    case $n in
+    '' | *[!0-9]* | ????*) echo "$0: N must be a whole number from 1 to 256, got '$n'; $line" >&2; exit 2 ;;
+    esac
+    n=$((10#$n))
+    [ "$n" -ge 1 ] && [ "$n" -le 256 ] || { echo "$0: N must be from 1 to 256, got $n; $line" >&2; exit 2; }
     [ -n "$name" ] && named=(--job-name="$name")
     export JOB=$job OUT=$out PARTS=$n WORKER=${WORKER:-worker}
     array=$(sbatch --parsable --array="0-$((n - 1))" ${named[@]+"${named[@]}"} --export=ALL "$here/part.sbatch")

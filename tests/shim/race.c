@@ -2,6 +2,9 @@
    chosen by the environment, so that a test hits it every time:
    SHIM_KILL_TO=SUFFIX   a staged file (a name holding ".tmp.") renamed to a path ending in SUFFIX:
                          the process kills itself (SIGKILL) just before that rename;
+   SHIM_KILL_BEFORE=SUFFIX, SHIM_KILL_AFTER=SUFFIX
+                         the first rename (of anything) to a path ending in SUFFIX: the process
+                         kills itself (SIGKILL) just before, or just after, that rename;
    SHIM_STOP_TO=TEXT     the first rename to a path containing TEXT: the process stops itself
                          (SIGSTOP) just before it, until a SIGCONT;
    SHIM_STOP_STAGE=TEXT  the first temporary file made (mkstemp) whose name contains TEXT: the
@@ -40,7 +43,10 @@ static void copy(const char *src, const char *dst)
 static void before(const char *from, const char *to)
 {
     const char *kill_to = getenv("SHIM_KILL_TO"), *stop_to = getenv("SHIM_STOP_TO");
+    const char *kill_before = getenv("SHIM_KILL_BEFORE");
     if (kill_to && strstr(from, ".tmp.") && ends_with(to, kill_to))
+        raise(SIGKILL);
+    if (kill_before && ends_with(to, kill_before))
         raise(SIGKILL);
     if (stop_to && !stopped && strstr(to, stop_to)) {
         stopped = 1;
@@ -50,8 +56,10 @@ static void before(const char *from, const char *to)
 
 static void after(const char *from, const char *to, int rc)
 {
-    const char *lease = getenv("SHIM_REQUEUE");
+    const char *lease = getenv("SHIM_REQUEUE"), *kill_after = getenv("SHIM_KILL_AFTER");
     char path[4096];
+    if (rc == 0 && kill_after && ends_with(to, kill_after))
+        raise(SIGKILL);
     if (rc != 0 || !lease || requeued || !strstr(from, "/running/") || strstr(to, "/running/") ||
         !ends_with(from, ".yaml"))
         return;

@@ -126,10 +126,11 @@ static void sane(struct lease *l)
         l->start = 0;
 }
 
-int lease_read(const char *claim, struct lease *l, double *age_s)
+/* Read the lease-format file claim + suffix (a lease, or a recovery lock naming its holder). */
+static int read_side(const char *claim, const char *suffix, struct lease *l, double *age_s)
 {
     char path[2048], text[LEASE_MAX_BYTES + 1];
-    side_path(claim, ".lease", path, sizeof path);
+    side_path(claim, suffix, path, sizeof path);
     memset(l, 0, sizeof *l);
     /* never blocks (a FIFO), never follows a link (to /dev/zero), never reads more than a lease holds */
     int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
@@ -153,6 +154,7 @@ int lease_read(const char *claim, struct lease *l, double *age_s)
         fields += sscanf(line, "start %lld", &l->start) == 1;
         fields += sscanf(line, "token %383s", l->token) == 1;
         (void)sscanf(line, "pids %127s", l->pids);
+        (void)sscanf(line, "broke %d", &l->broke);
         (void)sscanf(line, "progress %d %d %lf %d %d", &l->rows_done, &l->rows, &l->render_s, &l->attempt,
                      &l->processes);
     }
@@ -161,6 +163,38 @@ int lease_read(const char *claim, struct lease *l, double *age_s)
     sane(l);
     *age_s = clock_s(CLOCK_REALTIME) - mtime_s(&st);
     return 0;
+}
+
+int lease_read(const char *claim, struct lease *l, double *age_s)
+{
+    return read_side(claim, ".lease", l, age_s);
+}
+
+/* 1 when the process l names runs in this pid space and is gone (or names nobody). */
+static int holder_gone(const struct lease *l)
+{
+    struct lease me;
+    lease_init(&me);
+    /* The pid is only ours to ask kill() about in our pid space: a worker in a container that
+       shares this hostname (host networking) has pids we cannot see, and is judged by its lease's
+       age as another host's is. A lease that does not say (an earlier version) is taken as ours. */
+    int same_space = !strcmp(l->host, me.host) && (!l->pids[0] || !me.pids[0] || !strcmp(l->pids, me.pids));
+    /* pid 0 or -1 would ask kill() about whole process groups: such a lease names nobody */
+    return same_space && (l->pid <= 0 || l->pid == me.pid || (kill((pid_t)l->pid, 0) < 0 && errno == ESRCH));
+}
+
+/* 1 when the claim's recovery lock, made since the claim was (claimed_s: its ctime), names a holder
+   of this host that is gone (a worker killed while it filed or returned the claim: it removes the
+   lease first, under the lock), or is our own, taken from such a holder. */
+static int lock_holder_gone(const char *claim, double claimed_s, struct lease *l)
+{
+    char path[2048];
+    struct stat st;
+    double age;
+    side_path(claim, ".lock", path, sizeof path);
+    if (lstat(path, &st) < 0 || mtime_s(&st) < claimed_s || read_side(claim, ".lock", l, &age) < 0)
+        return 0; /* a lock older than the claim is an earlier claim's, left behind */
+    return l->pid == (long)getpid() ? l->broke : holder_gone(l);
 }
 
 void lease_touch(const char *claim)
@@ -182,21 +216,21 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
     struct stat cst;
     if (stat(claim, &cst) < 0)
         return 0;
-    struct lease l, me;
+    struct lease l;
     double age;
     if (lease_read(claim, &l, &age) < 0) {
+        if (lock_holder_gone(claim, cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9, &l)) {
+            snprintf(
+                why, n,
+                "its worker is gone, killed while it filed the claim (no lease; its lock's holder gone)");
+            return 1;
+        }
         /* rename() sets the claim's ctime: the time it was claimed */
         double claimed = clock_s(CLOCK_REALTIME) - (cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9);
         snprintf(why, n, "claimed %.0f s ago and no lease was written", claimed);
         return claimed > timeout_s;
     }
-    lease_init(&me);
-    /* The pid is only ours to ask kill() about in our pid space: a worker in a container that
-       shares this hostname (host networking) has pids we cannot see, and is judged by its lease's
-       age as another host's is. A lease that does not say (an earlier version) is taken as ours. */
-    int same_space = !strcmp(l.host, me.host) && (!l.pids[0] || !me.pids[0] || !strcmp(l.pids, me.pids));
-    /* pid 0 or -1 would ask kill() about whole process groups: such a lease names nobody */
-    if (same_space && (l.pid <= 0 || l.pid == me.pid || (kill((pid_t)l.pid, 0) < 0 && errno == ESRCH))) {
+    if (holder_gone(&l)) {
         snprintf(why, n, "its worker (pid %ld on %s) is gone", l.pid, l.host);
         return 1;
     }
@@ -206,17 +240,49 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
 
 int lease_lock(const char *claim, double timeout_s)
 {
-    char path[2048];
+    char path[2048], text[1024];
+    struct stat cst;
+    double claimed_s = stat(claim, &cst) == 0 ? cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9 : 0;
+    int broke = 0;
     side_path(claim, ".lock", path, sizeof path);
-    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd >= 0) {
-        close(fd);
-        return 0;
+    for (int attempt = 0; attempt < 2; attempt++) {
+        int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (fd >= 0) { /* it names its holder, as a lease does, so that its holder's death is seen at once */
+            struct lease me;
+            lease_init(&me);
+            int len =
+                snprintf(text, sizeof text, "host %s\npid %ld\nstart %lld\ntoken %s\npids %s\nbroke %d\n",
+                         me.host, me.pid, me.start, me.token, me.pids, broke);
+            (void)!write(fd, text, (size_t)len);
+            close(fd);
+            return 0;
+        }
+        struct stat st;
+        struct lease l;
+        if (errno != EEXIST || stat(path, &st) < 0)
+            break;
+        broke = lock_holder_gone(claim, claimed_s, &l);
+        if (!broke && !(clock_s(CLOCK_REALTIME) - mtime_s(&st) > timeout_s))
+            break;
+        unlink(path); /* its holder died mid-recovery or mid-filing: broken, and tried once more */
     }
-    struct stat st;
-    if (errno == EEXIST && stat(path, &st) == 0 && clock_s(CLOCK_REALTIME) - mtime_s(&st) > timeout_s)
-        unlink(path); /* its holder died mid-recovery; the next scan takes it */
     return -1;
+}
+
+void lease_sweep_locks(const char *running, const char *name, double timeout_s)
+{
+    char claim[2048], path[2100];
+    struct stat st;
+    struct lease l;
+    size_t len = strlen(name);
+    if (len < 11 || strcmp(name + len - 5, ".lock") || name[0] == '.')
+        return;
+    snprintf(claim, sizeof claim, "%s/%.*s", running, (int)(len - 5), name);
+    snprintf(path, sizeof path, "%s/%s", running, name);
+    if (lstat(claim, &st) == 0 || lstat(path, &st) < 0 || !S_ISREG(st.st_mode))
+        return;
+    if (clock_s(CLOCK_REALTIME) - mtime_s(&st) > timeout_s || lock_holder_gone(claim, 0, &l))
+        unlink(path);
 }
 
 void lease_unlock(const char *claim)

@@ -18,6 +18,7 @@ struct lease {
        it starts; a lease of an earlier version has no P) */
     int rows_done, rows, attempt, processes;
     double render_s;
+    int broke; /* a recovery lock's: its holder took it from a holder that was gone (lease_lock) */
 };
 
 /* Most bytes a lease file may hold (one is larger: not a lease), and most rows it may count. */
@@ -53,14 +54,21 @@ void lease_remove(const char *claim);
 
 /* 1 when the claim's holder is dead: on this host (same hostname and, when both leases know it,
    same pid space) its pid is gone; on any host its lease was not
-   refreshed for timeout_s; without a lease, the claim is older than timeout_s (the holder died
+   refreshed for timeout_s; without a lease, the claim's recovery lock names a holder of this host
+   that is gone (killed while filing it), or the claim is older than timeout_s (the holder died
    between claiming and writing it). why gets a short reason. 0 when alive, or the claim is gone. */
 int lease_stale(const char *claim, double timeout_s, char *why, size_t n);
 
-/* Take the claim's recovery lock (claim + ".lock", created exclusively) that serialises whoever
-   returns the claim to the queue. 0 when taken; -1 when another holds it (a lock older than
-   timeout_s is broken so that a recoverer's death cannot block the job for ever). */
+/* Take the claim's recovery lock (claim + ".lock", created exclusively, naming its holder as a lease
+   does) that serialises whoever returns or files the claim. 0 when taken; -1 when another holds it
+   (a lock older than timeout_s, or whose holder of this host is gone, is broken so that a death
+   cannot block the job for ever, and taken when no other was quicker). */
 int lease_lock(const char *claim, double timeout_s);
 void lease_unlock(const char *claim);
+
+/* The entry `name` of folder running/ when it is the recovery lock of a claim that is no longer
+   there (its holder killed after the claim was filed, before the unlock): removed once its holder
+   is gone (this host) or it is older than timeout_s. Anything else is left alone. */
+void lease_sweep_locks(const char *running, const char *name, double timeout_s);
 
 #endif

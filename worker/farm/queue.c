@@ -1,6 +1,7 @@
 /* queue: claim by rename(), lease while rendering, file as done or failed, recover dead claims. */
 #include "queue.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -179,18 +180,12 @@ static void process(struct queue *q, const char *name)
    whichever worker's rename() gets it; when it cannot be moved, said once per worker. */
 static void file_unrunnable(struct queue *q, const char *name)
 {
-    char from[2048], to[2048], msg[2600];
+    char from[2048], msg[2600];
     snprintf(from, sizeof from, "%s/%s", q->dir, name);
-    snprintf(to, sizeof to, "%s/%s", q->failed, name);
     snprintf(msg, sizeof msg, "%s: cannot run: %s (a job file is a regular file, or a link to one)", from,
              fileio_kind(from) ? fileio_kind(from) : "gone");
-    if (rename(from, to) == 0) {
-        char stem[256];
-        outdir_stem(name, stem, sizeof stem);
-        queue_log(name, "%s; moved to %s/\n", msg, q->failed);
-        queue_file_log(q, name, stem, msg, 0, 0);
+    if (queue_file_aside(q, name, name, msg) == 0) {
         q->filed++;
-        queue_file_note_rc(q, 2);
         return;
     }
     if (errno == ENOENT) /* another worker filed it */
@@ -256,6 +251,40 @@ static int spreading(struct queue *q)
     }
     snprintf(q->spreading, sizeof q->spreading, "%s", name);
     return 1;
+}
+
+/* When a folder of dir (not the queue's own) holds a file X.yaml, a hint that it is no job there
+   (only dir/X.yaml are: a job put one folder too deep); else "". hint is the buffer. */
+static const char *subfolder_hint(const char *dir, char *hint, size_t n)
+{
+    const char *own[] = {"running", "done", "failed", QUEUE_STUDY_DIR};
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    hint[0] = 0;
+    while (d && !hint[0] && (de = readdir(d))) {
+        char sub[2300];
+        struct stat st;
+        int skip = de->d_name[0] == '.';
+        for (int i = 0; i < 4 && !skip; i++)
+            skip = !strcmp(de->d_name, own[i]);
+        snprintf(sub, sizeof sub, "%s/%s", dir, de->d_name);
+        if (skip || lstat(sub, &st) < 0 || !S_ISDIR(st.st_mode))
+            continue;
+        DIR *s = opendir(sub);
+        struct dirent *f;
+        while (s && !hint[0] && (f = readdir(s)))
+            if (queue_scan_is_job_file(f->d_name))
+                snprintf(
+                    hint, n,
+                    "; %s/%s is in a folder of the queue, where no worker looks: a job goes in %s/ itself "
+                    "(a suite's study files may stay there)",
+                    sub, f->d_name, dir);
+        if (s)
+            closedir(s);
+    }
+    if (d)
+        closedir(d);
+    return hint;
 }
 
 /* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
@@ -329,14 +358,22 @@ int queue_main(const struct queue_opts *qo)
             q.worst = 2;
             break;
         }
+        q.waits_requeue[0] = 0;
         int study = took ? 1 : queue_drain_work(&q);
         q.took += study == 1;
         if (study == 1)
             continue;
         if (qo->once && study != 2 && !spreading(&q)) {
+            if (q.waits_requeue[0]) /* it ends unfinished: say why and what finishes it */
+                queue_log(q.waits_requeue,
+                          "the study waits for its failed renders (%s/%s/%s/failed/) to be requeued: worker "
+                          "requeue %s %s\n",
+                          q.dir, QUEUE_STUDY_DIR, q.waits_requeue, q.dir, q.waits_requeue);
+            char hint[1200] = "";
             if (!q.took && !qo->run.quiet) /* a batch task with nothing to do says so */
-                err_print("worker: --queue %s: no job waiting, nothing to do%s\n", q.dir,
-                          q.filed ? " (what could not run was moved to failed/)" : "");
+                err_print("worker: --queue %s: no job waiting, nothing to do%s%s\n", q.dir,
+                          q.filed ? " (what could not run was moved to failed/)" : "",
+                          subfolder_hint(q.dir, hint, sizeof hint));
             break;
         }
         nap(qo->poll_s);

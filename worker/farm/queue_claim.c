@@ -175,6 +175,7 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
     while (!took && (de = readdir(d))) {
         char claim[2048], why[512];
         remove_dead_lease_temp(q, de->d_name);
+        lease_sweep_locks(q->running, de->d_name, q->o->lease_timeout_s);
         if (!queue_scan_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);

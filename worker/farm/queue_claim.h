@@ -32,6 +32,7 @@ struct queue {
     char name_owner[2048];       /* its output folder holds another queued job file's outputs */
     char name_dir[2048];         /* that folder */
     char spreading[256];         /* the compare job being spread elsewhere that a --once worker waits for */
+    char waits_requeue[256];     /* a study whose remaining work waits for its failed renders' requeue */
     char reported[64][256];      /* unrunnable entries said once already (they could not be moved) */
     int nreported;
     int env_failed;     /* a job's output folder could not be written (outdir_env_error): stop, exit 2 */

@@ -116,6 +116,20 @@ void queue_file_failed(struct queue *q, const char *name, const char *job_name)
     queue_claim_file(q, name, q->failed);
 }
 
+int queue_file_aside(struct queue *q, const char *name, const char *label, const char *msg)
+{
+    char from[2048], to[2048], stem[256];
+    snprintf(from, sizeof from, "%s/%s", q->dir, name);
+    snprintf(to, sizeof to, "%s/%s", q->failed, name);
+    if (rename(from, to) < 0)
+        return -1;
+    outdir_stem(name, stem, sizeof stem);
+    queue_log(label, "%s; moved to %s/\n", msg, q->failed);
+    queue_file_log(q, name, stem, msg, 0, 0);
+    queue_file_note_rc(q, 2);
+    return 0;
+}
+
 void queue_file_note_rc(struct queue *q, int rc)
 {
     if (rc > q->worst)

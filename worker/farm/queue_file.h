@@ -32,6 +32,11 @@ void queue_file_clear_lost_stop(struct queue *q);
    output folder done/<job_name>/ first. */
 void queue_file_failed(struct queue *q, const char *name, const char *job_name);
 
+/* The waiting entry q->dir/name that can never be claimed (not a regular file, or no entry of a
+   study), msg saying why: moved to failed/ with its log and one line (label names it), exit status 2
+   noted. 0 when moved, -1 with errno when not (ENOENT: another worker filed it). */
+int queue_file_aside(struct queue *q, const char *name, const char *label, const char *msg);
+
 /* Keep the worst exit status seen (q->worst). */
 void queue_file_note_rc(struct queue *q, int rc);
 

@@ -86,8 +86,9 @@ static void remove_log(const char *dir, const char *log_name, const char *file)
     }
 }
 
-/* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. */
-static int requeue_one(const char *dir, const char *from, const char *file)
+/* Move DIR/<from>/<file> back to DIR/<file>; 0, or -1 after one line. Under --failed (every), a
+   file another requeue moved first is no error: every failed job is requeued all the same. */
+static int requeue_one(const char *dir, const char *from, const char *file, int every)
 {
     char src[2048], dst[2048], running[2048];
     struct stat st;
@@ -98,7 +99,13 @@ static int requeue_one(const char *dir, const char *from, const char *file)
         err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
         return -1;
     }
+    char name[256], stem[256];
+    /* its name read before the move: once moved, a worker may claim it at once */
+    queue_status_job_name(src, file, name, sizeof name);
+    outdir_stem(file, stem, sizeof stem);
     if (fileio_rename_noreplace(src, dst) < 0) {
+        if (every && errno == ENOENT)
+            return 0;
         err_print("worker requeue: %s: %s\n", file,
                   errno == EEXIST   ? "a job of that file name waits in the queue already"
                   : errno == ENOENT ? "no longer there: moved meanwhile (another requeue, or a worker)"
@@ -106,9 +113,6 @@ static int requeue_one(const char *dir, const char *from, const char *file)
         return -1;
     }
     if (!strcmp(from, "failed")) { /* its log goes with it: it is no longer a failed job */
-        char name[256], stem[256];
-        queue_status_job_name(dst, file, name, sizeof name);
-        outdir_stem(file, stem, sizeof stem);
         remove_log(dir, name, file);
         remove_log(dir, stem, file); /* the log of a file that did not load, or whose name was taken */
     }
@@ -157,7 +161,7 @@ int queue_requeue_main(int argc, char **argv)
             return 2;
         }
         for (int i = 0; i < nf; i++) {
-            if (requeue_one(dir, "failed", files[i]) < 0)
+            if (requeue_one(dir, "failed", files[i], 1) < 0)
                 rc = 2;
             free(files[i]);
         }
@@ -204,7 +208,7 @@ int queue_requeue_main(int argc, char **argv)
         if (!from) {
             err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
             rc = 2;
-        } else if (requeue_one(dir, from, file) < 0)
+        } else if (requeue_one(dir, from, file, 0) < 0)
             rc = 2;
     }
     return rc;

@@ -159,6 +159,29 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
     return n;
 }
 
+/* 1 when dir may be a queue: it holds a folder a queue worker makes (running/, done/, failed/ or
+   spread/), or nothing at all (a queue no worker has seen yet); 0 for a folder of other things (an
+   output folder of --out: its <name>/ and .cache/). */
+static int queue_status_is_queue(const char *dir)
+{
+    const char *own[] = {"running", "done", "failed", QUEUE_STUDY_DIR};
+    for (int i = 0; i < 4; i++) {
+        char path[1200];
+        struct stat st;
+        snprintf(path, sizeof path, "%s/%s", dir, own[i]);
+        if (lstat(path, &st) == 0)
+            return 1;
+    }
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    int empty = 1;
+    while (d && empty && (de = readdir(d)))
+        empty = !strcmp(de->d_name, ".") || !strcmp(de->d_name, "..");
+    if (d)
+        closedir(d);
+    return empty;
+}
+
 int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
 {
     struct stat st;
@@ -222,7 +245,13 @@ int queue_status_main(int argc, char **argv)
     int ns = queue_studies_list(dir, &studies);
     if (ns < 0)
         bad = QUEUE_STUDY_DIR, bad_errno = errno;
-    if (bad) { /* a folder that cannot be read is no empty one: "0 failed" would be a lie */
+    if (!bad && nw <= 0 && !queue_status_is_queue(dir)) {
+        err_print("worker status: %s: not a queue: it holds other things but no running/, done/ or failed/ "
+                  "folder and no job file X.yaml waiting (an output folder of --out? worker --queue %s "
+                  "makes a queue of it)\n",
+                  dir, dir);
+        rc = 2;
+    } else if (bad) { /* a folder that cannot be read is no empty one: "0 failed" would be a lie */
         err_print("worker status: %s/%s: cannot be read: %s\n", dir, bad, strerror(bad_errno));
         rc = 2;
     } else {

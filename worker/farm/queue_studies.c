@@ -16,15 +16,17 @@
 #include "base/sbuf.h"
 #include "queue_scan.h"
 #include "queue_study.h"
+#include "queue_study_key.h"
 
-/* Render entries (a-*, b-*: not the gather) of folder dir; the gather's presence into *gather. */
-static int count_entries(const char *dir, int *gather)
+/* The study's render entries (a-*, b-*: not the gather) in folder dir, those its record k names;
+   the gather's presence into *gather. */
+static int count_entries(const char *dir, const struct study_key *k, int *gather)
 {
     DIR *d = opendir(dir);
     struct dirent *de;
     int n = 0;
     while (d && (de = readdir(d))) {
-        if (!queue_scan_is_job_file(de->d_name))
+        if (!queue_study_key_has(k, de->d_name))
             continue;
         if (!strcmp(de->d_name, QUEUE_STUDY_GATHER))
             *gather = 1;
@@ -36,32 +38,42 @@ static int count_entries(const char *dir, int *gather)
     return n;
 }
 
-/* The study folder sd's progress into x; 0, or -1 when it is no study in progress. */
-static int read_study(const char *sd, const char *stem, struct queue_studies_entry *x)
+/* The study folder sd's progress into x; 0, or -1 when it is no study in progress (being spread,
+   or finished). A damaged one is shown with what is wrong. */
+static int read_study(const char *dir, const char *sd, const char *stem, struct queue_studies_entry *x)
 {
     char sub[2300];
     struct stat st;
+    struct study_key k;
     int waiting_gather = 0, running_gather = 0, done_gather = 0, failed_gather = 0;
-    snprintf(sub, sizeof sub, "%s/study.job", sd);
-    if (lstat(sub, &st) < 0 || !S_ISREG(st.st_mode))
-        return -1;
     memset(x, 0, sizeof *x);
+    enum queue_study_state state = queue_study_state(dir, sd, stem, &k, 1, x->damaged, sizeof x->damaged);
+    if (state == QUEUE_STUDY_SPREADING || state == QUEUE_STUDY_FINISHED) {
+        queue_study_key_free(&k);
+        return -1;
+    }
+    if (state != QUEUE_STUDY_DAMAGED)
+        x->damaged[0] = 0;
     snprintf(x->name, sizeof x->name, "%s", stem);
     snprintf(x->file, sizeof x->file, "%s.yaml", stem);
-    int waiting = count_entries(sd, &waiting_gather);
+    int waiting = count_entries(sd, &k, &waiting_gather);
     snprintf(sub, sizeof sub, "%s/running", sd);
-    x->running = count_entries(sub, &running_gather);
+    x->running = count_entries(sub, &k, &running_gather);
     snprintf(sub, sizeof sub, "%s/done", sd);
-    x->done = count_entries(sub, &done_gather);
+    x->done = count_entries(sub, &k, &done_gather);
     snprintf(sub, sizeof sub, "%s/failed", sd);
-    x->failed = count_entries(sub, &failed_gather);
-    if (done_gather)
-        return -1; /* finished: its job file is in done/ */
+    x->failed = count_entries(sub, &k, &failed_gather);
+    queue_study_key_free(&k);
     x->failed += failed_gather;
     x->gathering = running_gather;
     x->renders = waiting + x->running + x->done + x->failed - failed_gather;
-    x->elapsed_s = difftime(time(NULL), st.st_mtim.tv_sec);
-    x->eta_s = x->done > 0 && x->elapsed_s >= 0 ? x->elapsed_s * (x->renders - x->done) / x->done : -1;
+    snprintf(sub, sizeof sub, "%s/study.job", sd);
+    x->elapsed_s = lstat(sub, &st) == 0 ? difftime(time(NULL), st.st_mtim.tv_sec) : 0;
+    /* a failed render blocks the gather: no pace tells when a requeue comes */
+    x->waits_requeue = x->failed > 0;
+    x->eta_s = x->done > 0 && x->elapsed_s >= 0 && !x->waits_requeue && !x->damaged[0]
+                   ? x->elapsed_s * (x->renders - x->done) / x->done
+                   : -1;
     return 0;
 }
 
@@ -86,7 +98,7 @@ int queue_studies_list(const char *dir, struct queue_studies_entry **out)
         if (de->d_name[0] == '.' || strlen(de->d_name) > 200)
             continue;
         snprintf(sd, sizeof sd, "%s/%s", top, de->d_name);
-        if (read_study(sd, de->d_name, &x) < 0)
+        if (read_study(dir, sd, de->d_name, &x) < 0)
             continue;
         struct queue_studies_entry *g = realloc(v, (size_t)(n + 1) * sizeof *v);
         if (!g)
@@ -106,14 +118,21 @@ void queue_studies_print(const struct queue_studies_entry *s, int n)
     if (n)
         printf("studies (spread over the queue):\n");
     for (int i = 0; i < n; i++) {
-        char eta[32] = "--";
-        if (s[i].eta_s >= 0)
-            snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s);
+        char eta[5000] = "--";
         char file[4 * sizeof s[i].file + 1], name[4 * sizeof s[i].name + 1]; /* shown, never raw */
-        printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n",
-               sbuf_show(s[i].file, file, sizeof file), sbuf_show(s[i].name, name, sizeof name), s[i].done,
-               s[i].renders, s[i].failed, s[i].running, s[i].gathering ? ", gathering" : "", s[i].elapsed_s,
-               s[i].done == s[i].renders ? "0 s" : eta);
+        char damaged[4 * sizeof s[i].damaged + 1];
+        sbuf_show(s[i].file, file, sizeof file);
+        if (s[i].damaged[0])
+            snprintf(eta, sizeof eta, "-- (its folder is damaged: %s)",
+                     sbuf_show(s[i].damaged, damaged, sizeof damaged));
+        else if (s[i].waits_requeue)
+            snprintf(eta, sizeof eta,
+                     "-- (waits for its failed renders to be requeued: worker requeue DIR %s)", file);
+        else if (s[i].eta_s >= 0 || s[i].done == s[i].renders)
+            snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s >= 0 ? s[i].eta_s : 0);
+        printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n", file,
+               sbuf_show(s[i].name, name, sizeof name), s[i].done, s[i].renders, s[i].failed, s[i].running,
+               s[i].gathering ? ", gathering" : "", s[i].elapsed_s, eta);
     }
 }
 
@@ -131,47 +150,81 @@ void queue_studies_json(struct json *js, const struct queue_studies_entry *s, in
         json_bool(js, "gathering", s[i].gathering);
         json_number(js, "elapsed_s", s[i].elapsed_s);
         json_number(js, "eta_s", s[i].eta_s < 0 ? (double)NAN : s[i].eta_s);
+        json_bool(js, "waits_for_requeue", s[i].waits_requeue);
+        json_string(js, "damaged", s[i].damaged);
         json_end_object(js);
     }
     json_end_array(js);
 }
 
+/* Put the failed entry sd/failed/name back among the study's waiting entries: moved when it is a
+   regular file; written anew when it is not (a FIFO, a folder, a link put in its place), the other
+   thing removed. 0, 1 when another requeue (or a worker) moved it first, -1 with errno. */
+static int put_back(const char *sd, const char *name)
+{
+    char from[2400], to[2400], fresh[2400];
+    struct stat st;
+    struct err e;
+    snprintf(from, sizeof from, "%s/failed/%s", sd, name);
+    snprintf(to, sizeof to, "%s/%s", sd, name);
+    if (lstat(from, &st) < 0)
+        return errno == ENOENT ? 1 : -1;
+    if (S_ISREG(st.st_mode))
+        return fileio_rename_noreplace(from, to) == 0 ? 0 : errno == ENOENT ? 1 : -1;
+    snprintf(fresh, sizeof fresh, "%s/failed/.%s.new.%ld", sd, name, (long)getpid());
+    if (queue_study_write_entry(sd, fresh + strlen(sd) + 1, "requeued", &e) < 0) {
+        errno = e.errnum ? e.errnum : EIO;
+        return -1;
+    }
+    if (fileio_rename_noreplace(fresh, to) < 0) {
+        int saved = errno;
+        unlink(fresh);
+        errno = saved;
+        return errno == EEXIST ? 1 : -1;
+    }
+    queue_study_remove_tree(from); /* never follows a link: a folder's own files only */
+    return 0;
+}
+
 int queue_studies_requeue(const char *dir, const char *file)
 {
-    char sd[1600], failed[1700], from[2000], to[2000];
-    struct stat st;
+    char sd[1600], failed[1700], from[2000], why[1200];
+    struct study_key k;
     size_t len = strlen(file);
     if (len < 6 || len > 200)
         return -1;
     snprintf(sd, sizeof sd, "%s/%s/%.*s", dir, QUEUE_STUDY_DIR, (int)(len - 5), file);
-    snprintf(from, sizeof from, "%s/job/%s", sd, file);
-    if (lstat(from, &st) < 0)
+    snprintf(from, sizeof from, "%.*s", (int)(len - 5), file);
+    enum queue_study_state state = queue_study_state(dir, sd, from, &k, 1, why, sizeof why);
+    if (state != QUEUE_STUDY_ACTIVE) {
+        queue_study_key_free(&k);
         return -1;
+    }
     snprintf(failed, sizeof failed, "%s/failed", sd);
     DIR *d = opendir(failed);
     if (!d) {
         err_print("worker requeue: %s: %s: %s\n", file, failed, strerror(errno));
+        queue_study_key_free(&k);
         return -2;
     }
     struct dirent *de;
     int moved = 0, bad = 0;
     while ((de = readdir(d))) {
-        if (!queue_scan_is_job_file(de->d_name))
+        if (!queue_study_key_has(&k, de->d_name)) /* what the study never wrote stays where it is */
             continue;
-        snprintf(from, sizeof from, "%s/%s", failed, de->d_name);
-        snprintf(to, sizeof to, "%s/%s", sd, de->d_name);
-        if (fileio_rename_noreplace(from, to) < 0) {
-            if (errno != ENOENT) { /* ENOENT: another requeue moved it first */
-                err_print("worker requeue: %s: %s: %s\n", file, de->d_name, strerror(errno));
-                bad = 1;
-            }
-            continue;
+        int r = put_back(sd, de->d_name);
+        if (r < 0) {
+            err_print("worker requeue: %s: %s: %s\n", file, de->d_name, strerror(errno));
+            bad = 1;
         }
+        if (r != 0)
+            continue;
         snprintf(from, sizeof from, "%s/%.*s.log", failed, (int)(strlen(de->d_name) - 5), de->d_name);
         unlink(from);
         moved++;
     }
     closedir(d);
+    queue_study_key_free(&k);
     if (!bad)
         err_print("%s: %d failed render%s of the study requeued\n", file, moved, moved == 1 ? "" : "s");
     return bad ? -2 : moved;

@@ -11,6 +11,8 @@ struct queue_studies_entry {
     int renders, done, failed, running; /* render entries (references and images; not the gather) */
     int gathering;                      /* its gather entry is claimed */
     double elapsed_s, eta_s;            /* since it was spread; ETA from the pace so far (< 0 unknown) */
+    int waits_requeue;                  /* failed renders: it cannot finish until they are requeued */
+    char damaged[1024];                 /* its folder is not as written: what is wrong ("" when sound) */
 };
 
 /* The studies in progress under dir/spread/ into *out (malloc'd), by name; their count, or -1 when
@@ -24,8 +26,9 @@ void queue_studies_print(const struct queue_studies_entry *s, int n);
 void queue_studies_json(struct json *js, const struct queue_studies_entry *s, int n);
 
 /* Move the failed render entries of the study of job file `file` (X.yaml) back to its waiting
-   entries, their logs removed. The number moved; -1 when no study of that file is in progress;
-   -2 when one could not be moved (said on stderr). */
+   entries, their logs removed (an entry that was no regular file is written anew). The number
+   moved; -1 when no study of that file is in progress; -2 when one could not be moved (said on
+   stderr). */
 int queue_studies_requeue(const char *dir, const char *file);
 
 #endif

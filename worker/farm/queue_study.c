@@ -14,9 +14,12 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
+#include "base/hash.h"
+#include "base/sbuf.h"
 #include "job/outdir.h"
 #include "queue_file.h"
 #include "queue_log.h"
+#include "queue_study_key.h"
 #include "scenefile/yamlx.h"
 #include "study/run/study_fan.h"
 
@@ -52,25 +55,19 @@ int queue_study_has(const char *dir, const char *file)
     return lstat(path, &st) == 0;
 }
 
-/* 1 when folder dir holds any entry but . and .. (0 also when it cannot be read). */
-static int has_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    struct dirent *de;
-    int any = 0;
-    while (d && !any && (de = readdir(d)))
-        any = strcmp(de->d_name, ".") && strcmp(de->d_name, "..");
-    if (d)
-        closedir(d);
-    return any;
-}
-
-static int write_entry(const char *dir, const char *entry, const char *what, struct err *e)
+int queue_study_write_entry(const char *dir, const char *entry, const char *what, struct err *e)
 {
     char path[2600], text[512];
     snprintf(path, sizeof path, "%s/%s", dir, entry);
     int n = snprintf(text, sizeof text, "# %s (a render of a study spread over the queue)\n", what);
     return fileio_write_atomic(path, text, (size_t)n, e);
+}
+
+/* Write entry into the study folder dir and name it in the record key. */
+static int write_entry(const char *dir, struct sbuf *key, const char *entry, const char *what, struct err *e)
+{
+    queue_study_key_add(key, entry);
+    return queue_study_write_entry(dir, entry, what, e);
 }
 
 /* Remove the half-built study folders of job file stem that expanding workers killed before they
@@ -96,6 +93,7 @@ static int build(const struct queue *q, const struct study_fan *f, const char *s
                  const uint8_t *job, size_t len, struct err *e)
 {
     char tmp[2048], sub[2200], entry[64], what[256];
+    struct sbuf key = {0};
     snprintf(tmp, sizeof tmp, "%s/%s/.%s.new.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid());
     remove_unfinished(q, stem);
     const char *subs[] = {"job", "running", "done", "failed"};
@@ -109,51 +107,53 @@ static int build(const struct queue *q, const struct study_fan *f, const char *s
     snprintf(sub, sizeof sub, "%s/study.job", tmp);
     if (fileio_write_atomic(sub, job, len, e) < 0)
         goto fail;
+    queue_study_key_begin(&key, job, len);
     for (int k = 0; k < study_fan_studies(f); k++) {
         const struct compare *c = study_fan_study(f, k);
         for (int s = 0; s < c->n_scenes; s++) {
             snprintf(entry, sizeof entry, "a-ref-%d-%d.yaml", k, s);
             snprintf(what, sizeof what, "%s: the reference of %s", c->name, c->scenes[s].name);
-            if (study_fan_has_reference(f, k, s) && write_entry(tmp, entry, what, e) < 0)
+            if (study_fan_has_reference(f, k, s) && write_entry(tmp, &key, entry, what, e) < 0)
                 goto fail;
         }
         for (int i = 0; i < c->n_items; i++) {
             snprintf(entry, sizeof entry, "b-img-%d-%05d.yaml", k, i);
             snprintf(what, sizeof what, "%s: %s", c->name, c->items[i].job.output);
-            if (write_entry(tmp, entry, what, e) < 0)
+            if (write_entry(tmp, &key, entry, what, e) < 0)
                 goto fail;
         }
     }
-    if (write_entry(tmp, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", e) < 0)
+    if (write_entry(tmp, &key, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", e) < 0 ||
+        fileio_write_text(tmp, "study.key", sbuf_take(&key), e) < 0)
         goto fail;
     if (rename(tmp, sd) == 0)
         return 0;
     err_set(e, NULL, 0, 0, "cannot make %s: %s", sd, strerror(errno));
 fail:
+    sbuf_free(&key);
     queue_study_remove_tree(tmp);
     return -1;
 }
 
-/* The study folder sd for the job bytes: made, or the one a killed worker left (same bytes, not
-   finished) taken on. 0, 1 when another study of this file name is in progress, -1 with e. */
+/* The study folder sd for the job bytes: made, or the one a killed worker left (its record names
+   these bytes, every file as written, not yet gathered) taken on. 0, 1 when another study of this
+   file name is in progress, -1 with e. */
 static int prepare(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
                    const uint8_t *job, size_t len, struct err *e)
 {
-    char sub[2200];
     struct stat st;
     if (lstat(sd, &st) == 0) {
-        snprintf(sub, sizeof sub, "%s/job", sd);
-        if (has_entries(sub))
+        struct study_key k;
+        char why[2600];
+        enum queue_study_state s = queue_study_state(q->dir, sd, stem, &k, 1, why, sizeof why);
+        int same = s == QUEUE_STUDY_SPREADING && k.job_hash == hash_bytes(HASH_FNV_OFFSET, job, len);
+        queue_study_key_free(&k);
+        char filed[2300];
+        snprintf(filed, sizeof filed, "%s/job/%s.yaml", sd, stem);
+        /* its job file still filed there (in progress, or damaged: a worker files it in failed/) */
+        if (lstat(filed, &st) == 0 || s == QUEUE_STUDY_GATHERED)
             return 1;
-        uint8_t *old = NULL;
-        size_t old_len = 0;
-        struct err ignored;
-        snprintf(sub, sizeof sub, "%s/study.job", sd);
-        int same = fileio_read_all(sub, YDOC_MAX_BYTES, &old, &old_len, &ignored) == 0 && old_len == len &&
-                   !memcmp(old, job, len);
-        free(old);
-        snprintf(sub, sizeof sub, "%s/done", sd);
-        if (same && !queue_study_has(sub, QUEUE_STUDY_GATHER))
+        if (same)
             return 0; /* its expanding worker died before filing the job there: carry on */
         discard(q, sd, stem);
     }

@@ -30,6 +30,9 @@ int queue_study_spreading(const struct queue *q, struct lease *holder, char *nam
 /* Remove the folder tree at path (never following a link). */
 void queue_study_remove_tree(const char *path);
 
+/* Write the entry file dir/entry (a comment saying what it renders) atomically. 0 or -1 with e. */
+int queue_study_write_entry(const char *dir, const char *entry, const char *what, struct err *e);
+
 /* 1 when dir/file exists (as any kind of entry). */
 int queue_study_has(const char *dir, const char *file);
 
