@@ -109,7 +109,8 @@ void cli_hoist_subcommand(int argc, char **argv)
         } else if (!(argv[i][0] == '-' && argv[i][1])) {
             if (i > 1 &&
                 (!strcmp(argv[i], "diff") || !strcmp(argv[i], "points") || !strcmp(argv[i], "merge") ||
-                 !strcmp(argv[i], "status") || !strcmp(argv[i], "requeue") || !strcmp(argv[i], "verdict"))) {
+                 !strcmp(argv[i], "status") || !strcmp(argv[i], "requeue") || !strcmp(argv[i], "verdict") ||
+                 !strcmp(argv[i], "plan"))) {
                 char *sub = argv[i];
                 memmove(&argv[2], &argv[1], (size_t)(i - 1) * sizeof *argv);
                 argv[1] = sub;

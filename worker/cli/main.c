@@ -19,6 +19,7 @@
 #include "job/jobfile.h"
 #include "job/outdir.h"
 #include "image/metrics.h"
+#include "plan.h"
 #include "points.h"
 #include "farm/merge.h"
 #include "farm/queue.h"
@@ -32,6 +33,8 @@ static const char usage[] =
     "                                          (a compare job: its images with index % N == I)\n"
     "       worker JOB.yaml --dry-run          samples, memory and CPU time from a short pilot;\n"
     "                                          renders nothing, writes nothing\n"
+    "       worker plan JOB.yaml [--workers N] [--cores C] [--json]  a study's queue entries, their\n"
+    "                                          estimated CPU and its wall time on a farm; writes nothing\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
     "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
@@ -221,6 +224,8 @@ static int worker_main(int argc, char **argv)
         return rejudge_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "status"))
         return queue_status_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "plan"))
+        return plan_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "requeue"))
         return queue_requeue_main(argc - 1, argv + 1);
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
