@@ -25,6 +25,7 @@
 #include "farm/queue.h"
 #include "farm/queue_requeue.h"
 #include "farm/queue_status.h"
+#include "farm/spread_plan.h"
 #include "job/run.h"
 
 static const char usage[] =
@@ -36,7 +37,7 @@ static const char usage[] =
     "       worker plan JOB.yaml [--workers N] [--cores C] [--json]  a study's queue entries, their\n"
     "                                          estimated CPU and its wall time on a farm; writes nothing\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
-    "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
+    "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S] [--entry-cpu-s S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
     "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs, studies\n"
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
@@ -50,7 +51,8 @@ static const char usage[] =
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
     "         --force (render even when the outputs are current)\n"
     "         --opt=VALUE works as --opt VALUE; -- ends the options\n"
-    "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n";
+    "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n"
+    "                --entry-cpu-s 60 (a study's render above it is cut into row parts)\n";
 
 static const char help[] =
     "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
@@ -231,6 +233,7 @@ static int worker_main(int argc, char **argv)
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
+                           .entry_cpu_s = SPREAD_PLAN_ENTRY_CPU_S,
                            .run = {.out_dir = OUTDIR_DEFAULT, .progress = isatty(2)}};
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
@@ -250,7 +253,7 @@ static int worker_main(int argc, char **argv)
             continue;
         }
         if (!queue_only && (!strcmp(a, "--once") || !strcmp(a, "--poll") || !strcmp(a, "--retries") ||
-                            !strcmp(a, "--lease-timeout")))
+                            !strcmp(a, "--lease-timeout") || !strcmp(a, "--entry-cpu-s")))
             queue_only = a;
         out_given |= !strcmp(a, "--out");
         if ((!strcmp(a, "--help") || !strcmp(a, "-h")) && merge) {
