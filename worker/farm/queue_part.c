@@ -65,8 +65,8 @@ static int merge_if_last(struct study_fan *f, const struct spread_entry *x, cons
     if (fd < 0)
         return err_set(e, lock, 0, 0, "cannot open the merge lock");
     (void)flock(fd, LOCK_EX); /* released by close, or by its holder's death */
-    int rc = 0;
-    if (!merged(f, x, j, jo) && all_parts(j, jo, x->parts)) {
+    int rc = 0, done = merged(f, x, j, jo);
+    if (!done && all_parts(j, jo, x->parts)) {
         struct run_result rr;
         struct run_opts whole = *jo;
         whole.part = whole.parts = 0;
@@ -74,6 +74,18 @@ static int merge_if_last(struct study_fan *f, const struct spread_entry *x, cons
         if (rc == 1 && x->kind == STUDY_FAN_REFERENCE &&
             study_fan_half_merged(f, x->k, x->index, x->half, jo, e))
             rc = -1;
+        done = rc == 1;
+    }
+    if (done) {
+        /* merged: its parts are spent (a worker that renders one again finds it merged, under this
+           lock) and the output folder holds what a one-process run writes; the lock goes too (whoever
+           opens it anew checks the merge first) */
+        char path[4096];
+        for (int i = 0; i < x->parts; i++) {
+            outdir_part_path(j, jo->out_dir, i, x->parts, path, sizeof path);
+            unlink(path);
+        }
+        unlink(lock);
     }
     close(fd);
     return rc;
