@@ -70,6 +70,22 @@ verify() { # verify Q WHAT
     done
     check "$2: the 3 sidecars equal apart from times, host and the split ($sc)" [ "$sc" -eq 3 ]
 }
+# status mid-study: one worker stopped while it holds a lease, after an entry is done
+Q=$T/q0; mkdir -p "$Q"; cp "$T/seed.yaml" "$Q/seed.yaml"
+"$WORKER" --queue "$Q" --once --quiet --poll 0.1 >/dev/null 2>>"$Q.log" & w=$!
+n=0; while [ "$n" -lt 600 ] && ! ls "$Q/spread/seed/done" 2>/dev/null | grep -q yaml; do sleep 0.05; n=$((n + 1)); done
+kill -STOP "$w"
+n=0; while [ "$n" -lt 600 ] && ! ls "$Q/spread/seed/running" | grep -q 'lease$'; do kill -CONT "$w"; sleep 0.02; kill -STOP "$w"; n=$((n + 1)); done
+"$WORKER" status "$Q" --json >"$T/status.json" 2>&1
+"$WORKER" status "$Q" >"$T/status.txt" 2>&1
+kill -9 "$w"; kill -CONT "$w"; wait "$w" 2>/dev/null
+check "status: a spread study's CPU done and left by its plan, its finish on the one worker holding a lease: $(cat "$T/status.txt")" \
+    python3 -c 'import json,sys
+s=json.load(open(sys.argv[1]))["studies"][0]
+t=sum(float(l.split()[0]) for l in open(sys.argv[2]))
+assert s["cpu_done_s"] > 0 and s["cpu_left_s"] > 0 and abs(s["cpu_done_s"] + s["cpu_left_s"] - t) < 1e-3 * t, (s, t)
+assert s["lease_workers"] == 1 and s["finish_s"] > 0, s' "$T/status.json" "$Q/spread/seed/plan.txt"
+check "status: its text says so" grep -Eq '^    CPU about [0-9]+ s done, [0-9]+ s left \(estimated by the plan\); predicted finish in about [0-9]+ s on the 1 worker holding leases now$' "$T/status.txt"
 Q=$T/q1; mkdir -p "$Q"; cp "$T/seed.yaml" "$Q/seed.yaml"
 drain "$Q" 0
 verify "$Q" "three workers"

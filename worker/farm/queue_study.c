@@ -140,7 +140,8 @@ static int build(const struct queue *q, const struct study_fan *f, const struct 
     }
     if (write_entry(tmp, &key, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", &base, p->n, e) <
             0 ||
-        fileio_write_text(tmp, "study.key", sbuf_take(&key), e) < 0)
+        fileio_write_text(tmp, "study.key", sbuf_take(&key), e) < 0 ||
+        fileio_write_text(tmp, SPREAD_PLAN_FILE, spread_plan_text(p), e) < 0)
         goto fail;
     if (rename(tmp, sd) == 0)
         return 0;

@@ -3,10 +3,13 @@
 #include "spread_plan.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/fileio.h"
+#include "base/sbuf.h"
 #include "job/job_estimate.h"
 #include "job/part.h"
 #include "study/run/compare_ref.h"
@@ -219,6 +222,52 @@ int spread_plan_parse(const char *name, struct spread_entry *out)
     out->part = part;
     out->parts = parts;
     snprintf(out->name, sizeof out->name, "%s", name);
+    return 0;
+}
+
+char *spread_plan_text(const struct spread_plan *p)
+{
+    struct sbuf b = {0};
+    for (int i = 0; i < p->n; i++)
+        sbuf_printf(&b, "%.6g %d %c %s\n", p->e[i].est_cpu_s, p->e[i].processes,
+                    p->e[i].kind == STUDY_FAN_REFERENCE ? 'a' : 'b', p->e[i].name);
+    return b.buf ? sbuf_take(&b) : calloc(1, 1);
+}
+
+int spread_plan_read(const char *path, struct spread_plan *p)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    struct err ignored;
+    int cap = 0;
+    memset(p, 0, sizeof *p);
+    if (fileio_read_all(path, 1 << 24, &data, &len, &ignored) < 0)
+        return -1;
+    char *text = realloc(data, len + 1), *save = NULL;
+    if (!text) {
+        free(data);
+        return -1;
+    }
+    text[len] = 0;
+    for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+        struct spread_entry x = {0};
+        char kind, name[64];
+        if (sscanf(line, "%lf %d %c %63s", &x.est_cpu_s, &x.processes, &kind, name) != 4 ||
+            !(x.est_cpu_s >= 0 && x.est_cpu_s < 1e12) || x.processes < 1 || (kind != 'a' && kind != 'b'))
+            continue;
+        if (p->n == cap) {
+            int ncap = cap ? 2 * cap : 64;
+            struct spread_entry *ne = realloc(p->e, (size_t)ncap * sizeof *ne);
+            if (!ne)
+                break;
+            p->e = ne, cap = ncap;
+        }
+        x.kind = kind == 'a' ? STUDY_FAN_REFERENCE : STUDY_FAN_IMAGE;
+        snprintf(x.name, sizeof x.name, "%s", name);
+        p->e[p->n++] = x;
+        p->total_cpu_s += x.est_cpu_s;
+    }
+    free(text);
     return 0;
 }
 

@@ -39,6 +39,17 @@ int spread_plan_make(const struct study_fan *f, double target_s, int processes, 
                      struct err *e);
 void spread_plan_free(struct spread_plan *p);
 
+/* The file a spread study's folder keeps its plan in (one line an entry, in claim order:
+   "<est_cpu_s> <processes> <kind a|b> <name>"), for worker status. */
+#define SPREAD_PLAN_FILE "plan.txt"
+
+/* p as that text (malloc'd; NULL on no memory). */
+char *spread_plan_text(const struct spread_plan *p);
+
+/* The plan file at path read back into p (est_cpu_s, processes, kind and name of each entry; lines
+   that do not parse are passed over). 0, or -1 when it cannot be read. Free with spread_plan_free. */
+int spread_plan_read(const char *path, struct spread_plan *p);
+
 /* The entry named `name` in p, or NULL. */
 const struct spread_entry *spread_plan_find(const struct spread_plan *p, const char *name);
 
