@@ -11,9 +11,9 @@
 
 int cli_takes_value(const char *a)
 {
-    static const char *const names[] = {"--out",  "--processes",   "--queue",
-                                        "--poll", "--retries",     "--lease-timeout",
-                                        "--part", "--entry-cpu-s", NULL};
+    static const char *const names[] = {
+        "--out",           "--processes", "--queue",       "--poll",  "--retries",
+        "--lease-timeout", "--part",      "--entry-cpu-s", "--entry", NULL};
     for (int i = 0; names[i]; i++)
         if (!strcmp(a, names[i]))
             return 1;
@@ -51,6 +51,8 @@ int cli_option_value(const char *a, const char *v, struct queue_opts *q)
         if (!number || !(d > 0 && d <= 604800) || (a[2] == 'l' && d < 0.1))
             goto bad;
         *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
+    } else if (!strcmp(a, "--entry")) {
+        q->entry = v;
     } else if (!strcmp(a, "--entry-cpu-s")) {
         if (!number || !(d >= 0.01 && d <= 1e6))
             goto bad;

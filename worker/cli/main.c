@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "diff.h"
 #include "dryrun.h"
+#include "entry.h"
 #include "rejudge.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
@@ -32,6 +33,7 @@ static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
     "                                          (a compare job: its images with index % N == I)\n"
+    "       worker STUDY.yaml --entry NAME     render one entry of `worker plan`'s (a batch array's task)\n"
     "       worker JOB.yaml --dry-run          samples, memory and CPU time from a short pilot;\n"
     "                                          renders nothing, writes nothing\n"
     "       worker plan JOB.yaml [--workers N] [--cores C] [--json]  a study's queue entries, their\n"
@@ -308,6 +310,12 @@ static int worker_main(int argc, char **argv)
     } else if (dry_run) {
         for (int i = 0; i < njobs; i++)
             worst = max_rc(worst, dryrun_main(jobs[i], o));
+    } else if (q.entry && (q.dir || merge || o->parts || njobs != 1)) {
+        err_print("worker: --entry renders one entry of one study: no --queue, merge or --part; see worker "
+                  "--help\n");
+        worst = 2;
+    } else if (q.entry) {
+        worst = entry_main(jobs[0], q.entry, o);
     } else if (q.dir && (njobs || merge || o->parts)) {
         err_print("worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;

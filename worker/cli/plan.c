@@ -51,10 +51,19 @@ static int parse(int argc, char **argv, struct plan_args *a)
 {
     long here = sysconf(_SC_NPROCESSORS_ONLN);
     *a = (struct plan_args){.workers = 1, .cores = here > 0 ? here : 1, .target_s = SPREAD_PLAN_ENTRY_CPU_S};
+    int ended = 0; /* after "--" every argument is the job file */
     for (int i = 1; i < argc; i++) {
         const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
-        if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
+        if (!ended && !strcmp(o, "--")) {
+            ended = 1;
+        } else if (ended) {
+            if (a->path) {
+                fprintf(stderr, "worker plan: one job file at a time (got %s and %s)\n", a->path, o);
+                return 2;
+            }
+            a->path = o;
+        } else if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
             printf("%s\n%s", plan_usage, plan_help);
             return 1;
         } else if (!strcmp(o, "--json")) {

@@ -104,6 +104,14 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
                  c->items[x->index].job.output);
     else
         snprintf(what, sizeof what, "no such render");
+    struct job j;
+    struct run_opts jo;
+    if (x->kind == STUDY_FAN_REFERENCE &&
+        study_fan_render_job(f, x->k, x->kind, x->index, x->half, o, &j, &jo, dir, sizeof dir, e) == 3) {
+        snprintf(msg, n, "%s: in the cache already, not rendered", what);
+        return 0;
+    }
+    e->msg[0] = 0;
     if (x->parts == 1) {
         int rc = x->kind == STUDY_FAN_REFERENCE ? study_fan_render_half(f, x->k, x->index, x->half, o, e)
                                                 : study_fan_render(f, x->k, x->kind, x->index, o, e);
@@ -113,8 +121,6 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
                                                                               : "rendered");
         return rc;
     }
-    struct job j;
-    struct run_opts jo;
     int rc = study_fan_render_job(f, x->k, x->kind, x->index, x->half, o, &j, &jo, dir, sizeof dir, e);
     if (rc == 3 || (rc == 0 && x->kind == STUDY_FAN_IMAGE && image_current(&j, &jo))) {
         snprintf(msg, n, "%s, part %d/%d: merged already (current), not rendered", what, x->part + 1,

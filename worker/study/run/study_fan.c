@@ -131,9 +131,8 @@ int study_fan_half_merged(struct study_fan *f, int k, int s, int h, const struct
     return compare_ref_half_merged(study_fan_study(f, k), s, h, &in, e) < 0;
 }
 
-/* Scene s of study k's reference rendered or reused under its lock, so that the tasks of one array
-   render it once. 0, 1 or 2. */
-static int reference_locked(struct study_fan *f, int k, int s, const struct run_opts *o, struct err *e)
+int study_fan_ref_lock(const struct study_fan *f, int k, int s, const struct run_opts *o, int shared,
+                       struct err *e)
 {
     char cache[2048], lock[2400];
     if (f->s) {
@@ -143,11 +142,21 @@ static int reference_locked(struct study_fan *f, int k, int s, const struct run_
     } else
         outdir_dir(o->out_dir, ".cache", cache, sizeof cache);
     if (outdir_mkdirs(cache, NULL, e) < 0)
-        return 2;
+        return -1;
     snprintf(lock, sizeof lock, "%s/.ref-%s.lock", cache, study_fan_study(f, k)->scenes[s].name);
     int fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd >= 0)
-        (void)flock(fd, LOCK_EX); /* released by close, or by the holder's death */
+        (void)flock(fd, shared ? LOCK_SH : LOCK_EX); /* released by close, or by the holder's death */
+    return fd;
+}
+
+/* Scene s of study k's reference rendered or reused under its lock, so that the tasks of one array
+   render it once. 0, 1 or 2. */
+static int reference_locked(struct study_fan *f, int k, int s, const struct run_opts *o, struct err *e)
+{
+    int fd = study_fan_ref_lock(f, k, s, o, 0, e);
+    if (fd < 0 && e->msg[0])
+        return 2;
     int rc = study_fan_render(f, k, STUDY_FAN_REFERENCE, s, o, e);
     if (fd >= 0)
         close(fd);

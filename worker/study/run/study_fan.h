@@ -50,6 +50,13 @@ int study_fan_render_job(struct study_fan *f, int k, enum study_fan_kind kind, i
 int study_fan_render_half(struct study_fan *f, int k, int s, int h, const struct run_opts *o, struct err *e);
 int study_fan_half_merged(struct study_fan *f, int k, int s, int h, const struct run_opts *o, struct err *e);
 
+/* The lock of study k's reference of scene s (OUT/.cache/.ref-<scene>.lock, a suite's under
+   OUT/<suite>/), taken shared (the tasks rendering its halves or their parts) or exclusive (a task
+   about to prepare it whole: it waits for those): the open file, to close; -1 with e filled when
+   the cache folder cannot be made, -1 with e empty when the lock cannot be opened (go on without). */
+int study_fan_ref_lock(const struct study_fan *f, int k, int s, const struct run_opts *o, int shared,
+                       struct err *e);
+
 /* `worker STUDY.yaml --out OUT --part I/N`: a batch system's task I of N renders the images with
    index % N == I (over all studies of a suite), each after its scene's reference, which the first
    task to need it renders under a lock (OUT/.cache/.ref-<scene>.lock) while the others wait and
