@@ -82,7 +82,22 @@ $(BUILD)/%.o: %.c
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS_ALL) -c $< -o $@
 
-$(LIBCOMMON): $(COMMON_OBJ)
+# The pmj02bn sampler's sequences (common/sample/pmj02_table.h), drawn by our own generator at
+# build time into a generated source: the tool links the generator alone, the library then holds
+# the table, so a change to pmj02.c regenerates it.
+GEN_OBJ := $(BUILD)/gen/pmj02_table.o
+$(BUILD)/tools/gen_pmj02: $(BUILD)/tools/gen_pmj02.o $(BUILD)/common/sample/pmj02.o
+	@$(if $(Q),echo "  LD      $@")
+	$(Q)$(CC) $(OPT) -o $@ $^ $(LDLIBS_ALL)
+$(BUILD)/gen/pmj02_table.c: $(BUILD)/tools/gen_pmj02
+	@mkdir -p $(dir $@)
+	@$(if $(Q),echo "  GEN     $@")
+	$(Q)$< $@
+$(GEN_OBJ): $(BUILD)/gen/pmj02_table.c
+	@$(if $(Q),echo "  CC      $<")
+	$(Q)$(CC) $(CFLAGS_ALL) -c $< -o $@
+
+$(LIBCOMMON): $(COMMON_OBJ) $(GEN_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^
 $(LIBWORKER): $(WORKER_OBJ)
 	$(Q)rm -f $@ && ar rcs $@ $^
@@ -188,7 +203,10 @@ FUZZ_CC     ?= clang
 SECONDS     ?= 30
 FUZZ_TARGETS ?= job scene image summary
 FUZZ_FLAGS  := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -ffp-contract=off -Wno-psabi
-FUZZ_OBJ    := $(patsubst %.c,build/fuzz/obj/%.o,$(COMMON_SRC) $(WORKER_SRC))
+FUZZ_OBJ    := $(patsubst %.c,build/fuzz/obj/%.o,$(COMMON_SRC) $(WORKER_SRC)) build/fuzz/obj/gen/pmj02_table.o
+build/fuzz/obj/gen/pmj02_table.o: $(BUILD)/gen/pmj02_table.c
+	@mkdir -p $(dir $@)
+	$(Q)$(FUZZ_CC) -std=c11 $(DEFS) $(PKG_CFLAGS) -Icommon -Iworker $(FUZZ_FLAGS) -c $< -o $@
 # The library once, in parallel; each target links it with its own entry point.
 build/fuzz/obj/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -217,4 +235,4 @@ lint:
 clean:
 	rm -rf build bin
 
--include $(COMMON_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/cli/main.d $(TEST_BIN:=.d) $(TOOL_BIN:=.d)
+-include $(COMMON_OBJ:.o=.d) $(GEN_OBJ:.o=.d) $(WORKER_OBJ:.o=.d) $(BUILD)/worker/cli/main.d $(TEST_BIN:=.d) $(TOOL_BIN:=.d)

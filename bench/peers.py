@@ -2,8 +2,9 @@
 """peers.py: the halves of `make bench-peers` (bench/peers.sh) that are not Blender's.
 
   peers.py scene SCENE.yaml OUT.json   our scene file as plain geometry for bench/peers_cycles.py:
-                                       the camera's frame, each rect and box as a mesh in world
-                                       space, spheres, materials; refuses what it cannot convert
+                                       the camera's frame, each rect, box and disk as a mesh in
+                                       world space, spheres, materials (the solid checker too);
+                                       refuses what it cannot convert
   peers.py table RESULTS.tsv          the comparison table from the renders' figures
 
 RESULTS.tsv: one line per render, "renderer<TAB>seed<TAB>cpu_s<TAB>image<TAB>samples", and one per
@@ -76,6 +77,20 @@ def box_mesh(o):
     return verts, faces
 
 
+def disk_mesh(o, segments=256):
+    """A disk as a polygon facing `toward`, its circumradius grown so that its area is the disk's
+    (a light's power then matches)."""
+    c, toward, r = vec(o["center"]), vec(o["toward"]), float(o["radius"])
+    n = unit(sub(toward, c))
+    a = unit(cross(n, [0.0, 1.0, 0.0] if abs(n[1]) < 0.9 else [1.0, 0.0, 0.0]))
+    b = cross(n, a)  # (a, b, n) right-handed: counter-clockwise seen from the front
+    step = 2 * math.pi / segments
+    r *= math.sqrt(math.pi / (0.5 * segments * math.sin(step)))
+    verts = [[c[k] + r * (math.cos(i * step) * a[k] + math.sin(i * step) * b[k]) for k in range(3)]
+             for i in range(segments)]
+    return verts, [list(range(segments))]
+
+
 def scene(path, out):
     with open(path) as f:
         sc = yaml.safe_load(f)
@@ -86,11 +101,19 @@ def scene(path, out):
     w = unit(sub(lookfrom, lookat))  # the renderer's frame (common/geom/camera.c): image right = u
     u = unit(cross(vup, w))
     v = cross(w, u)
+    textures = {}
+    for name, tx in (sc.get("textures") or {}).items():
+        if tx.get("type") != "checker":
+            fail("texture %s: %s is not converted" % (name, tx.get("type")))
+        # the books' solid checker (common/geom/texture.c): odd where sin(s x) sin(s y) sin(s z) < 0
+        textures[name] = {"odd": vec(tx["odd"]), "even": vec(tx["even"]), "scale": float(tx.get("scale", 10))}
     mats = {}
     for name, m in sc.get("materials", {}).items():
         t = m["type"]
         if t == "lambertian" and "albedo" in m:
             mats[name] = {"type": t, "albedo": vec(m["albedo"])}
+        elif t == "lambertian" and m.get("texture") in textures:
+            mats[name] = {"type": t, "checker": textures[m["texture"]]}
         elif t == "dielectric":
             mats[name] = {"type": t, "ior": float(m["ior"])}
         elif t == "light":
@@ -105,6 +128,9 @@ def scene(path, out):
             objects.append({"mesh": verts, "faces": faces, "material": o["material"]})
         elif t == "box":
             verts, faces = box_mesh(o)
+            objects.append({"mesh": verts, "faces": faces, "material": o["material"]})
+        elif t == "disk":
+            verts, faces = disk_mesh(o)
             objects.append({"mesh": verts, "faces": faces, "material": o["material"]})
         elif t == "sphere":
             objects.append({"sphere": transform(o, vec(o["center"])), "radius": float(o["radius"]),

@@ -21,6 +21,40 @@ import bpy
 from mathutils import Matrix
 
 
+def checker(nt, c):
+    """The books' solid checker as math nodes: odd where sin(s x) sin(s y) sin(s z) < 0, (x, y, z)
+    the object coordinates (our world's: every mesh is built in world space at the origin)."""
+    coords = nt.nodes.new("ShaderNodeTexCoord")
+    xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
+    nt.links.new(coords.outputs["Object"], xyz.inputs[0])
+    prod = None
+    for k in range(3):
+        scale = nt.nodes.new("ShaderNodeMath")
+        scale.operation = "MULTIPLY"
+        scale.inputs[1].default_value = c["scale"]
+        nt.links.new(xyz.outputs[k], scale.inputs[0])
+        sine = nt.nodes.new("ShaderNodeMath")
+        sine.operation = "SINE"
+        nt.links.new(scale.outputs[0], sine.inputs[0])
+        if prod is None:
+            prod = sine
+        else:
+            mul = nt.nodes.new("ShaderNodeMath")
+            mul.operation = "MULTIPLY"
+            nt.links.new(prod.outputs[0], mul.inputs[0])
+            nt.links.new(sine.outputs[0], mul.inputs[1])
+            prod = mul
+    odd = nt.nodes.new("ShaderNodeMath")
+    odd.operation = "LESS_THAN"
+    odd.inputs[1].default_value = 0.0
+    nt.links.new(prod.outputs[0], odd.inputs[0])
+    mix = nt.nodes.new("ShaderNodeMixRGB")  # factor 1 (odd): Color2
+    mix.inputs["Color1"].default_value = (*c["even"], 1)
+    mix.inputs["Color2"].default_value = (*c["odd"], 1)
+    nt.links.new(odd.outputs[0], mix.inputs["Fac"])
+    return mix.outputs["Color"]
+
+
 def material(name, m):
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
@@ -29,8 +63,11 @@ def material(name, m):
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     if m["type"] == "lambertian":
         n = nt.nodes.new("ShaderNodeBsdfDiffuse")  # roughness 0: Lambert
-        n.inputs["Color"].default_value = (*m["albedo"], 1)
         n.inputs["Roughness"].default_value = 0
+        if "checker" in m:
+            nt.links.new(checker(nt, m["checker"]), n.inputs["Color"])
+        else:
+            n.inputs["Color"].default_value = (*m["albedo"], 1)
         nt.links.new(n.outputs[0], out.inputs["Surface"])
     elif m["type"] == "dielectric":
         n = nt.nodes.new("ShaderNodeBsdfGlass")

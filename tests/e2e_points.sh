@@ -71,6 +71,9 @@ net() { # net FILE M: FILE's points are 2^M and every 2^a x 2^b box (a + b = M) 
         exit bad }' "$1"
 }
 check "sobol t=6.25 prints 256 points" [ "$(count sobol 6.25)" -eq 256 ]
+# a threshold within a relative 1e-9 of 100 / n gives n, as a person reads it
+check "jitter t=6.250000001 prints 256 points" [ "$(count jitter 6.250000001)" -eq 256 ]
+check "jitter t=9.0909090919 prints 121 points" [ "$(count jitter 9.0909090919)" -eq 121 ]
 for s in 1 2 7; do
     "$WORKER" points sobol 6.25 --seed $s >"$T/net$s.csv"
     check "sobol t=6.25 seed $s: 256 points forming a (0,8,2)-net" net "$T/net$s.csv" 8

@@ -1,6 +1,7 @@
 /* test_halton: pbrt-v4's per-pixel index (each pixel's first index lands in that pixel), the
-   scrambled radical inverse (a digit-tree permutation: b^k consecutive indices fill the b^k
-   strata; uniform over seeds), and the pixel sets' points inside [0, 1) and deterministic. */
+   scrambled radical inverse (a permutation per digit: b^k consecutive indices fill the b^k
+   strata; uniform over seeds), the pixel sets' points inside [0, 1) and deterministic, and the
+   same bits whatever the permutation cache held before. */
 #include "sample/halton.h"
 
 #include <stdlib.h>
@@ -68,10 +69,12 @@ static void test_scramble(void)
 
 static void test_sets(void)
 {
+    struct halton_cache c;
+    CHECK(halton_cache_init(&c) == 0);
     struct halton_key k = {9, 0, 40, 17};
     struct pt2 a[100], b[100];
-    halton_fill(k, 100, a);
-    halton_fill(k, 100, b);
+    halton_fill(&c, k, 100, a);
+    halton_fill(&c, k, 100, b);
     int same = 1, inside = 1;
     for (int i = 0; i < 100; i++) {
         same &= a[i].x == b[i].x && a[i].y == b[i].y;
@@ -80,13 +83,46 @@ static void test_sets(void)
     CHECK(same && inside);
     /* dimension 3: not confined to a strip (its bases share no digit with the pixel's) */
     k.dim = 3;
-    halton_fill(k, 100, b);
+    halton_fill(&c, k, 100, b);
     double lo = 1, hi = 0;
     for (int i = 0; i < 100; i++) {
         lo = fmin(lo, b[i].x);
         hi = fmax(hi, b[i].x);
     }
     CHECK(lo < 0.05 && hi > 0.95);
+    halton_cache_release(&c);
+}
+
+/* The tables are functions of (seed, dim): a set is the same from a fresh cache and from one that
+   has met 1000 other dimensions and the same ones of another seed (and so started over several times), point
+   by point as whole; dimensions 1 and 32 share their bases but not their points. */
+static void test_cache(void)
+{
+    struct halton_cache fresh, busy;
+    CHECK(halton_cache_init(&fresh) == 0 && halton_cache_init(&busy) == 0);
+    struct pt2 a[64], b[64], junk[4];
+    int same = 1;
+    for (uint32_t dim = 0; dim < 40; dim++) {
+        const struct halton_key k = {77, dim * 37 % 41, 5, 9};
+        for (uint32_t other = 0; other < 25; other++)
+            halton_fill(&busy, (struct halton_key){77 + other % 3, 1000 + dim * 25 + other, 1, 2}, 4, junk);
+        halton_fill(&busy, (struct halton_key){78, k.dim, 5, 9}, 4, junk); /* another seed's */
+        halton_fill(&fresh, k, 64, a);
+        halton_fill(&busy, k, 64, b);
+        for (uint32_t i = 0; i < 64; i++) {
+            const struct pt2 p = halton_point(&busy, k, i);
+            same &= a[i].x == b[i].x && a[i].y == b[i].y && p.x == a[i].x && p.y == a[i].y;
+        }
+    }
+    CHECK(same);
+    halton_fill(&fresh, (struct halton_key){77, 1, 5, 9}, 64, a);
+    halton_fill(&fresh, (struct halton_key){77, 32, 5, 9}, 64, b);
+    int differ = 0;
+    for (int i = 0; i < 64; i++)
+        differ += a[i].x != b[i].x;
+    CHECK(differ > 32);
+    halton_cache_release(&fresh);
+    halton_cache_release(&busy);
 }
 
 int main(void)
@@ -94,5 +130,6 @@ int main(void)
     test_pixel_offsets();
     test_scramble();
     test_sets();
+    test_cache();
     return check_report("test_halton");
 }

@@ -1,12 +1,16 @@
 /* test_pmj02: pmj02bn sequences are (0,m,2)-nets at every power of two and every power-of-two
    prefix (several seeds), every point finds a valid stratum, the sets are deterministic, and the
-   best-candidate choice spreads points further than plain pmj02 (one candidate) does. */
+   best-candidate choice spreads points further than plain pmj02 (one candidate) does. The
+   precomputed table is the generator's output, and the sampler's sets drawn from it are nets
+   too, a different one per draw. */
 #include "sample/pmj02.h"
 
 #include <stdlib.h>
 
 #include "check.h"
+#include "sample/pmj02_table.h"
 #include "sample/pointstat.h"
+#include "sample/sampler.h"
 #include "sample/sobol.h"
 
 static void test_nets(void)
@@ -115,8 +119,61 @@ static void test_spread(void)
     pmj02_release(&w);
 }
 
+/* The table holds exactly what the generator draws from its seeds (no hand edits, no stale table). */
+static void test_table_is_generated(void)
+{
+    struct pmj02 w;
+    struct pt2 *p = malloc(PMJ02_TABLE_POINTS * sizeof *p);
+    CHECK(p && pmj02_init(&w, PMJ02_TABLE_POINTS) == 0);
+    int same = 1;
+    for (uint32_t i = 0; i < PMJ02_TABLE_SETS; i++) {
+        struct rng r;
+        rng_seed(&r, PMJ02_TABLE_SEED, i);
+        CHECK(pmj02_draw(&w, &r, PMJ02_TABLE_POINTS, p) == 0);
+        for (uint32_t k = 0; k < PMJ02_TABLE_POINTS; k++)
+            same &= pmj02_table[i][k][0] == w.x[k] && pmj02_table[i][k][1] == w.y[k];
+    }
+    CHECK(same);
+    CHECK(pmj02_table[0][5][0] != pmj02_table[1][5][0]); /* the sequences differ */
+    pmj02_release(&w);
+    free(p);
+}
+
+/* The sampler's sets (a table prefix with its digits flipped): a (0,m,2)-net at the set's size and
+   every power-of-two prefix, for thresholds from 100 to 1 (1 to 16384 points, the table's
+   length), and two draws give different sets. */
+static void test_sampler_sets(void)
+{
+    struct pt2 *a = malloc(PMJ02_TABLE_POINTS * sizeof *a), *b = malloc(PMJ02_TABLE_POINTS * sizeof *b);
+    CHECK(a && b);
+    const double thresholds[] = {100, 50, 30, 12.5, 10, 6.25, 3, 1};
+    for (size_t t = 0; t < sizeof thresholds / sizeof thresholds[0]; t++) {
+        struct err e;
+        struct sampler *s = sampler_new(SAMPLER_PMJ02BN, thresholds[t], 0, 0, &e);
+        CHECK(s != NULL);
+        if (!s)
+            continue;
+        struct rng rng;
+        rng_seed(&rng, 7 + t, 3);
+        const size_t n = sampler_draw(s, &rng, a), n2 = sampler_draw(s, &rng, b);
+        CHECK(n == sampler_set_capacity(s) && n2 == n);
+        int nets = 1, differ = n == 1;
+        for (size_t k = 1; k <= n; k *= 2)
+            nets &= pointstat_is_net(a, k) == 1 && pointstat_is_net(b, k) == 1;
+        for (size_t k = 0; k < n; k++)
+            differ |= a[k].x != b[k].x;
+        CHECK(nets);
+        CHECK(differ);
+        sampler_free(s);
+    }
+    free(a);
+    free(b);
+}
+
 int main(void)
 {
+    test_table_is_generated();
+    test_sampler_sets();
     test_nets();
     test_deterministic();
     test_spread();

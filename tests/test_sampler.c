@@ -102,6 +102,10 @@ static void test_names_and_sizes(void)
     CHECK(sampler_grid_side(100) == 1);
     CHECK(sampler_grid_side(0.1) == 1000); /* 100 / 0.1 is 999.99... in doubles */
     CHECK(sampler_grid_side(100.0 / 128) == 128);
+    /* within a relative 1e-9 of 100 / n: n, as a person reads it; farther: the floor */
+    CHECK(sampler_grid_side(6.250000001) == 16 && sampler_grid_side(9.0909090919) == 11);
+    CHECK(sampler_grid_side(6.2500001) == 15 && sampler_grid_side(9.09091) == 10);
+    CHECK(sampler_capacity(SAMPLER_JITTER, 6.250000001) == 256);
     CHECK(sampler_grid_side(0) == 0 && sampler_grid_side(NAN) == 0);
     CHECK(sampler_capacity(SAMPLER_UNIFORM, 1) == 10000);
     CHECK(sampler_capacity(SAMPLER_JITTER, 0.1) == 1000000);

@@ -146,8 +146,28 @@ static void test_blue_error(void)
     CHECK(w > 0.6 && w < 1.6);
 }
 
+/* zsobol_fill hashes each digit's permutation once per run of samples sharing the digits above
+   it: its points are zsobol_point's, made one at a time from the index, bit for bit (even and
+   odd log2_spp, several pixels and dimensions). */
+static void test_fill_is_point(void)
+{
+    static struct pt2 p[1 << 9];
+    int same = 1;
+    for (int log2 = 0; log2 <= 9; log2++)
+        for (uint32_t d = 0; d < 3; d++) {
+            const struct zsobol_key k = {0x5eed + (uint64_t)log2, d, 3 + d, 17 * d, log2};
+            zsobol_fill(k, p);
+            for (uint32_t i = 0; i < (1u << log2); i++) {
+                const struct pt2 q = zsobol_point(k, i);
+                same &= q.x == p[i].x && q.y == p[i].y;
+            }
+        }
+    CHECK(same);
+}
+
 int main(void)
 {
+    test_fill_is_point();
     test_blocks_and_nets();
     test_keys();
     test_blue_error();

@@ -24,11 +24,14 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
     if (lazy) {
         p->sobol = malloc((size_t)slots * sizeof *p->sobol);
         p->order = malloc((size_t)slots * p->slot_cap * sizeof *p->order);
+        p->identity = malloc(p->slot_cap * sizeof *p->identity);
+        for (size_t k = 0; p->identity && k < p->slot_cap; k++)
+            p->identity[k] = sobol_bit_reverse((uint32_t)k);
     } else {
         p->pts = malloc((size_t)slots * p->slot_cap * sizeof *p->pts);
     }
     p->gen = calloc((size_t)slots, sizeof *p->gen);
-    if ((lazy ? !p->sobol || !p->order : !p->pts) || !p->gen) {
+    if ((lazy ? !p->sobol || !p->order || !p->identity : !p->pts) || !p->gen) {
         padding_release(p);
         return err_set(e, NULL, 0, 0,
                        "out of memory for sampler_dims: all's point sets (%d of them, %zu points each)",
@@ -42,10 +45,12 @@ void padding_release(struct padding *p)
     free(p->pts);
     free(p->sobol);
     free(p->order);
+    free(p->identity);
     free(p->gen);
     p->pts = NULL;
     p->sobol = NULL;
     p->order = NULL;
+    p->identity = NULL;
     p->gen = NULL;
 }
 
@@ -60,15 +65,20 @@ void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n)
    from r: place k takes a uniformly random element of those not yet placed. One shuffle for both
    kinds of slot, so that a Sobol slot's shuffled indices draw exactly what its shuffled points
    would. */
-static void shuffle_head(struct rng *r, void *a, size_t size, size_t n, size_t have)
+static inline __attribute__((always_inline)) void shuffle_head(struct rng *r, void *a, size_t size, size_t n,
+                                                               size_t have)
 {
+    /* always inline: each caller's constant size makes the swaps plain loads and stores; the
+       state in a local, which the stores cannot alias */
     unsigned char *b = a, t[sizeof(struct pt2)];
+    struct rng local = *r;
     for (size_t k = 0; k < n && k < have; k++) {
-        size_t j = k + rng_below(r, (uint32_t)(have - k));
+        size_t j = k + rng_below(&local, (uint32_t)(have - k));
         memcpy(t, b + k * size, size);
         memcpy(b + k * size, b + j * size, size);
         memcpy(b + j * size, t, size);
     }
+    *r = local;
 }
 
 /* A Sobol slot: the seeds draw_sobol would take from r, then the first n places of the same
@@ -78,15 +88,19 @@ static void shuffle_head(struct rng *r, void *a, size_t size, size_t n, size_t h
 static void fill_sobol(struct padding *p, int slot, struct rng *r)
 {
     uint32_t *order = p->order + (size_t)slot * p->slot_cap;
-    const size_t have = sampler_sobol_set(p->sampler, r, &p->sobol[slot]), n = p->n;
-    for (size_t k = 0; k < have || k < n; k++)
-        order[k] = (uint32_t)k;
-    shuffle_head(r, order, sizeof *order, n, have);
+    const size_t have = sampler_sobol_set(p->sampler, r, &p->sobol[slot]);
+    memcpy(order, p->identity, p->slot_cap * sizeof *order); /* the indices, bit-reversed */
+    shuffle_head(r, order, sizeof *order, p->n, have);
 }
 
+/* order holds bit-reversed indices: sobol_point's index scramble owen(k) = rev(owen_reversed(rev
+   k)) then starts from the stored value (one reversal fewer per point, the same bits). */
 struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s)
 {
-    return sobol_point(p->sobol[slot], p->order[(size_t)slot * p->slot_cap + s]);
+    const struct sobol_seeds seeds = p->sobol[slot];
+    const uint32_t i =
+        sobol_bit_reverse(sobol_owen_reversed(p->order[(size_t)slot * p->slot_cap + s], seeds.index));
+    return sobol_scrambled_pair(i, sobol_y_reversed(i), seeds.x, seeds.y);
 }
 
 /* Any other sampler: its whole sets until the pixel's count, shuffled. */

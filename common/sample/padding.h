@@ -24,7 +24,8 @@ struct padding {
     size_t slot_cap;           /* points stored per slot */
     struct pt2 *pts;           /* slots x slot_cap */
     struct sobol_seeds *sobol; /* sobol: each slot's seeds (NULL for the other samplers) */
-    uint32_t *order;           /* sobol: slots x slot_cap point indices, each slot's shuffle */
+    uint32_t *order;           /* sobol: slots x slot_cap point indices (bit-reversed), each slot's shuffle */
+    uint32_t *identity;        /* sobol: slot_cap indices 0, 1, ... bit-reversed: a fill's start */
     uint64_t *gen;             /* slot k is current when gen[k] == pixel */
     uint64_t pixel;            /* bumped by padding_pixel */
     uint64_t seed;             /* the job's seed */

@@ -14,20 +14,24 @@ static uint64_t spread_bits(uint32_t v)
     return (x | x << 1) & 0x55555555u;
 }
 
-/* digit's image under the permutation of {0,1,2,3} numbered h mod 24 (its Lehmer code). */
-static uint32_t permute4(uint64_t h, uint32_t digit)
+/* The 24 permutations of {0,1,2,3} in lexicographic order (row p: Lehmer code p / 6, p / 2 mod 3,
+   p mod 2): a lookup instead of decoding the code per digit. */
+static const uint8_t perms4[24][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 1, 3}, {0, 2, 3, 1}, {0, 3, 1, 2},
+                                      {0, 3, 2, 1}, {1, 0, 2, 3}, {1, 0, 3, 2}, {1, 2, 0, 3}, {1, 2, 3, 0},
+                                      {1, 3, 0, 2}, {1, 3, 2, 0}, {2, 0, 1, 3}, {2, 0, 3, 1}, {2, 1, 0, 3},
+                                      {2, 1, 3, 0}, {2, 3, 0, 1}, {2, 3, 1, 0}, {3, 0, 1, 2}, {3, 0, 2, 1},
+                                      {3, 1, 0, 2}, {3, 1, 2, 0}, {3, 2, 0, 1}, {3, 2, 1, 0}};
+
+/* The permutation (a row of perms4) numbered by hash h. */
+static inline const uint8_t *perm_of(uint64_t h)
 {
-    uint32_t p = (uint32_t)(h >> 40) % 24u, left[4] = {0, 1, 2, 3}, image[4];
-    const uint32_t code[3] = {p / 6, (p / 2) % 3, p % 2};
-    int n = 4;
-    for (int j = 0; j < 3; j++) {
-        image[j] = left[code[j]];
-        for (uint32_t t = code[j]; t + 1 < (uint32_t)n; t++)
-            left[t] = left[t + 1];
-        n--;
-    }
-    image[3] = left[0];
-    return image[digit];
+    return perms4[(uint32_t)(h >> 40) % 24u];
+}
+
+/* digit's image under the permutation numbered by h. */
+static inline uint32_t permute4(uint64_t h, uint32_t digit)
+{
+    return perm_of(h)[digit];
 }
 
 /* The digits of raw at shifts from `from` down to `to` (step 2), each permuted by the hash of
@@ -75,16 +79,10 @@ uint64_t zsobol_index(struct zsobol_key k, uint32_t i)
     return index_in(&b, k.log2_spp, i);
 }
 
-/* The scrambled Sobol point of a 64-bit index, scramble seeds from h. */
-static struct pt2 point_at(uint64_t index, uint64_t h)
+/* The scrambled Sobol point of a 64-bit index, scramble seeds from h (sobol_point64). */
+static inline struct pt2 point_at(uint64_t index, uint64_t h)
 {
-    const uint32_t lo = (uint32_t)index, hi = (uint32_t)(index >> 32);
-    /* Sobol's first coordinate takes an index's low 32 bits only (32 digits); its second's
-       generator matrix is Pascal's triangle mod 2, and a column k >= 32 equals column k - 32 in
-       the first 32 digits (Lucas's theorem), so the high half adds sobol_y(hi) */
-    const uint32_t x = sobol_owen(sobol_x(lo), (uint32_t)h),
-                   y = sobol_owen(sobol_y(lo) ^ sobol_y(hi), (uint32_t)(h >> 32));
-    return (struct pt2){x * 0x1.0p-32, y * 0x1.0p-32};
+    return sobol_point64(index, (uint32_t)h, (uint32_t)(h >> 32));
 }
 
 static uint64_t scramble_seeds(const struct zsobol_key *k)
@@ -97,11 +95,48 @@ struct pt2 zsobol_point(struct zsobol_key k, uint32_t i)
     return point_at(zsobol_index(k, i), scramble_seeds(&k));
 }
 
+/* A set's filling: the pixel's hash key, the scramble seeds, whether log2_spp is odd, where the
+   next point goes. */
+struct filling {
+    uint64_t key, h;
+    int odd;
+    struct pt2 *out;
+};
+
+/* The points of the indices below raw's digits above bit shift + 2 (raw unpermuted, index its
+   permuted image), in order: the digit at shift is permuted by the hash of those above it, once
+   for its four values, then each value's digits below the same way (index_in's bits). */
+static void descend(struct filling *f, uint64_t raw, uint64_t index, int shift)
+{
+    const uint8_t *perm = perm_of(rng_mix64((raw >> (shift + 2)) ^ f->key));
+    for (uint32_t d = 0; d < 4; d++) {
+        const uint64_t r = raw | (uint64_t)d << shift, x = index | (uint64_t)perm[d] << shift;
+        if (shift > f->odd) {
+            descend(f, r, x, shift - 2);
+        } else if (f->odd) { /* the lone lowest bit, flipped by the hash of the bits above */
+            const uint64_t lone = rng_mix64((r >> 1) ^ f->key) >> 63;
+            *f->out++ = point_at(x | lone, f->h);
+            *f->out++ = point_at(x | (1u ^ lone), f->h);
+        } else {
+            *f->out++ = point_at(x, f->h);
+        }
+    }
+}
+
+/* All of the block's points in order, index_in's for i = 0, 1, ...: a digit's permutation depends
+   on the digits above it only, so it is hashed once per run of samples that share them (1 + 4 +
+   16 + ... hashes for the set, not one per digit and point). */
 void zsobol_fill(struct zsobol_key k, struct pt2 *out)
 {
     const struct pixel_block b = block_of(&k);
-    const uint64_t h = scramble_seeds(&k);
-    const uint32_t n = (uint32_t)1 << k.log2_spp;
-    for (uint32_t i = 0; i < n; i++)
-        out[i] = point_at(index_in(&b, k.log2_spp, i), h);
+    struct filling f = {b.key, scramble_seeds(&k), k.log2_spp & 1, out};
+    if (k.log2_spp >= 2) {
+        descend(&f, b.raw, b.high, k.log2_spp - 2);
+    } else if (k.log2_spp == 1) {
+        const uint64_t lone = rng_mix64((b.raw >> 1) ^ b.key) >> 63;
+        out[0] = point_at(b.high | lone, f.h);
+        out[1] = point_at(b.high | (1u ^ lone), f.h);
+    } else {
+        out[0] = point_at(b.high, f.h);
+    }
 }
