@@ -192,7 +192,7 @@ check "study: the same verdict at equal samples and by slope" [ "$(ranks "$S/pla
 # 4. a study whose renders are cut into row parts (entry_cpu_s: 0.01), one array task per entry of
 #    its plan (submit-entries.sh) and the dependent gather: the one-process run's bytes, each part
 #    rendered once, each cut render merged once; a resubmission renders nothing
-{ small_study cut "$root" "1, 2" "jitter random" | sed 's/^width: 10/width: 40/; s/^height: 8/height: 32/'
+{ small_study cut "$root" "1, 2" "jitter random" | sed 's/^width: 10/width: 40/; s/^height: 8/height: 32/; s/^processes: 1/processes: 2/'
   echo "entry_cpu_s: 0.01"; } >"$S/cut.yaml"
 "$WORKER" --quiet --out "$S/plain-cut" "$S/cut.yaml" 2>/dev/null || true
 for round in 1 2; do

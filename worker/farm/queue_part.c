@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/hash.h"
 #include "job/outdir.h"
 #include "job/part.h"
 #include "job/sidecar.h"
@@ -122,6 +123,11 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
         return rc;
     }
     int rc = study_fan_render_job(f, x->k, x->kind, x->index, x->half, o, &j, &jo, dir, sizeof dir, e);
+    /* the hash run_job gives a whole render under --processes (run.h): the merged sidecar records
+       it, so the gather (the whole job, with the same option) finds the image current */
+    if (rc == 0 && x->kind == STUDY_FAN_IMAGE && j.hash != 0 && o->processes > 0 &&
+        o->processes != j.processes)
+        j.hash = hash_u64(j.hash, (uint64_t)o->processes);
     if (rc == 3 || (rc == 0 && x->kind == STUDY_FAN_IMAGE && image_current(&j, &jo))) {
         snprintf(msg, n, "%s, part %d/%d: merged already (current), not rendered", what, x->part + 1,
                  x->parts);
