@@ -191,7 +191,9 @@ for st in json.load(open(sys.argv[1]))["studies"]:
 check "study: the same verdict at equal samples and by slope" [ "$(ranks "$S/plain-study/study/verdict.json")" = "$(ranks "$S/studies/study/verdict.json")" ]
 # 4. a study whose renders are cut into row parts (entry_cpu_s: 0.01), one array task per entry of
 #    its plan (submit-entries.sh) and the dependent gather: the one-process run's bytes, each part
-#    rendered once, each cut render merged once; a resubmission renders nothing
+#    rendered once, each cut render merged once; a resubmission renders nothing. The job renders
+#    with 2 processes, the tasks with --processes 1: a merged sidecar records the hash the gather
+#    (also --processes 1) looks for
 { small_study cut "$root" "1, 2" "jitter random" | sed 's/^width: 10/width: 40/; s/^height: 8/height: 32/; s/^processes: 1/processes: 2/'
   echo "entry_cpu_s: 0.01"; } >"$S/cut.yaml"
 "$WORKER" --quiet --out "$S/plain-cut" "$S/cut.yaml" 2>/dev/null || true
