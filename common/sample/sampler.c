@@ -169,6 +169,11 @@ size_t sampler_capacity(enum sampler_kind kind, double threshold)
     return pow2 < n ? SIZE_MAX : pow2;
 }
 
+size_t sampler_table_points(enum sampler_kind kind)
+{
+    return kind == SAMPLER_PMJ02BN ? PMJ02_TABLE_POINTS : 0;
+}
+
 size_t sampler_set_capacity(const struct sampler *s)
 {
     return s->capacity;

@@ -66,6 +66,10 @@ int sampler_grid_side(double threshold);
    zsobol. Fits in size_t for any threshold in (0, 100]. */
 size_t sampler_capacity(enum sampler_kind kind, double threshold);
 
+/* The largest set of `kind` taken from a precomputed table (pmj02bn's, pmj02_table.h); larger sets
+   are drawn fresh, at another cost per point. 0: the kind keeps no table. */
+size_t sampler_table_points(enum sampler_kind kind);
+
 struct sampler;
 
 /* A sampler for (kind, threshold in (0,100]). pool_size > 0 with kind poisson draws that many

@@ -139,7 +139,11 @@ static double threshold_for(const struct cost_sampler *sp, double points)
 static int time_scaled(const struct cost_sampler *sp, enum cost_set_use use, double target_s,
                        struct cost_set *out, double *spent_s, struct err *e)
 {
-    const double t1 = threshold_for(sp, COST_SETS_SMALL), t2 = threshold_for(sp, COST_SETS_DIRECT_MAX);
+    /* both sizes past a table the kind keeps (pmj02bn's): the sets drawn fresh cost another way */
+    const double table = (double)sampler_table_points(sp->kind),
+                 small = table > 0 ? 2 * table : COST_SETS_SMALL,
+                 large = table > 0 ? 4 * table : COST_SETS_DIRECT_MAX;
+    const double t1 = threshold_for(sp, small), t2 = threshold_for(sp, large);
     struct cost_set a, b;
     if (time_at(sp, t1, use, target_s / 2, &a, spent_s, e) < 0 ||
         time_at(sp, t2, use, target_s / 2, &b, spent_s, e) < 0)
@@ -199,7 +203,8 @@ int cost_sets_get(struct cost_sets *c, const struct cost_sampler *sp, enum cost_
         c->e = grown;
         c->cap = cap;
     }
-    int rc = sampler_capacity(sp->kind, sp->threshold) > COST_SETS_DIRECT_MAX
+    const size_t cap = sampler_capacity(sp->kind, sp->threshold), table = sampler_table_points(sp->kind);
+    int rc = cap > (table > 0 ? 4 * table : COST_SETS_DIRECT_MAX)
                  ? time_scaled(sp, use, target_s, out, spent_s, e)
                  : time_at(sp, sp->threshold, use, target_s, out, spent_s, e);
     if (rc < 0)
