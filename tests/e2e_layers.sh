@@ -1,5 +1,6 @@
 #!/bin/sh
-# e2e_layers: no two .c files call each other in a circle, no folder does, and calls run down the
+# e2e_layers: no two .c files call each other in a circle, no two modules (x.h + x.c) include or
+# call each other in one, no folder does, and calls run down the
 # layers cli -> study/farm -> job -> common/*, and inside study/ run -> present -> judge -> load
 # (tests/check_layers.py over the built objects). The checker is shown to fail on a small bad tree
 # first, so a pass means something.
@@ -24,7 +25,14 @@ printf 'int job_a(void);\nint base_c(void) { return job_a(); }\n' >"$T/src/commo
 mkdir -p "$T/src/worker/study/judge" "$T/src/worker/study/run" "$T/b/worker/study/judge" "$T/b/worker/study/run"
 printf 'int run_r(void);\nint judge_j(void) { return run_r(); }\n' >"$T/src/worker/study/judge/j.c"
 printf 'int judge_j(void);\nint run_r(void) { return judge_j() + 1; }\n' >"$T/src/worker/study/run/r.c"
-for f in worker/job/a worker/farm/b common/base/c worker/study/judge/j worker/study/run/r; do
+# and a circle only includes show: common/x/m.c calls n.c's function (through n.h), and n.h includes
+# m.h back for a type; no two objects call each other, so nm alone sees no cycle
+mkdir -p "$T/src/common/x" "$T/b/common/x"
+printf '#ifndef M_H\n#define M_H\nstruct m_point { int x; };\nint m_f(void);\n#endif\n' >"$T/src/common/x/m.h"
+printf '#ifndef N_H\n#define N_H\n#include "m.h"\nint n_g(struct m_point p);\n#endif\n' >"$T/src/common/x/n.h"
+printf '#include "m.h"\n#include "n.h"\nint m_f(void) { struct m_point p = {1}; return n_g(p); }\n' >"$T/src/common/x/m.c"
+printf '#include "n.h"\nint n_g(struct m_point p) { return p.x; }\n' >"$T/src/common/x/n.c"
+for f in worker/job/a worker/farm/b common/base/c worker/study/judge/j worker/study/run/r common/x/m common/x/n; do
     ${CC:-cc} -c "$T/src/$f.c" -o "$T/b/$f.o" || no "cannot compile $f.c"
 done
 cp "$T/b/worker/job/a.o" "$T/b/worker/job/gone.o"
@@ -37,7 +45,9 @@ check "a bad tree: common calling the program named" grep -q '^layer: common/bas
 check "a bad tree: the folders' cycle named" grep -q '^folder cycle: worker/farm <-> worker/job' "$T/bad.out"
 check "a bad tree: the judge calling the runner named" grep -q '^layer: worker/study/judge/j.c -> worker/study/run/r.c' "$T/bad.out"
 check "a bad tree: the stage folders' cycle named" grep -q '^folder cycle: worker/study/judge <-> worker/study/run' "$T/bad.out"
-check "a bad tree: a stale object passed over" grep -q '5 files' "$T/bad.out"
+check "a bad tree: the include circle named" grep -q '^module cycle: common/x/m <-> common/x/n' "$T/bad.out"
+check "a bad tree: the include that closes it named" grep -q 'common/x/n.h includes common/x/m.h' "$T/bad.out"
+check "a bad tree: a stale object passed over" grep -q '7 files' "$T/bad.out"
 
 # 2. the real build
 python3 "$root/tests/check_layers.py" "$build" "$root" >"$T/real.out" 2>&1; rc=$?

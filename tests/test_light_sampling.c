@@ -87,8 +87,9 @@ static int regions_apart(const struct region_stats *a, const struct region_stats
 static int render_regions(const struct scene_file *sf, int light_sampling_off, int nee, int roulette,
                           uint64_t seed0, struct region_stats *out)
 {
-    const struct render_settings how = {
-        .light_sampling_off = light_sampling_off, .nee = nee, .russian_roulette = roulette};
+    const struct render_settings how = {.light_sampling_off = light_sampling_off,
+                                        .integrator = (enum integrator)nee,
+                                        .russian_roulette = roulette};
     return render_regions_as(sf, how, SAMPLER_RANDOM, seed0, out);
 }
 
@@ -173,7 +174,8 @@ int main(void)
         /* sampler_dims: all, every decision from jittered sets, with either integrator (nee
            with roulette: its coin from the sets too) */
         for (int integ = 0; integ < 2; integ++) {
-            const struct render_settings how = {.nee = integ, .dims_all = 1, .russian_roulette = integ};
+            const struct render_settings how = {
+                .integrator = (enum integrator)integ, .dims_all = 1, .russian_roulette = integ};
             CHECK(render_regions_as(&sf, how, SAMPLER_JITTER, 5000 + 1000 * (uint64_t)integ, &all) == 0);
             check_agree(scenes[i],
                         integ ? "mixture vs nee + roulette, sampler_dims all"

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "job/job.h"
 #include "job/outdir.h"
 
 static int exists(const char *path)

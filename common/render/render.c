@@ -64,12 +64,14 @@ size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths
 
     struct pixel_sums ps = {{0, 0, 0}, 0, 0, 0};
     ctx->light_points = ctx->padded_points = 0;
-    /* nee samples the emitters alone: without any, only the material's own sampling is left */
+    /* next-event estimation samples the emitters alone: without any, only the material's own sampling is left
+     */
     const int lights = !ctx->rs.light_sampling_off, last = ctx->rs.max_depth - 1;
-    const int nee = lights && ctx->rs.nee && ctx->sc->n_emitters > 0;
-    const int mix = lights && !ctx->rs.nee && ctx->sc->n_lights > 0, dims = ctx->rs.dims_all;
+    const int direct = lights && ctx->rs.integrator == INTEGRATOR_NEE && ctx->sc->n_emitters > 0;
+    const int mix = lights && ctx->rs.integrator == INTEGRATOR_MIXTURE && ctx->sc->n_lights > 0,
+              dims = ctx->rs.dims_all;
     const int rr = ctx->rs.russian_roulette;
-    /* the mixture or none: a runtime value in the default loops, in which nee is a constant 0 */
+    /* the mixture or none: a runtime value in the default loops, in which direct is a constant 0 */
     const enum path_lights mix_or_none = mix ? LIGHTS_MIXTURE : LIGHTS_NONE;
     if (dims) {
         padding_pixel(&ctx->pad, ctx->rs.seed, x, y, n);
@@ -77,19 +79,19 @@ size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths
     }
     if (ctx->packet) {
         const struct path_at how = {
-            .lights = nee ? LIGHTS_NEE : mix_or_none, .dims = dims, .roulette = rr, .last = last};
+            .lights = direct ? LIGHTS_NEE : mix_or_none, .dims = dims, .roulette = rr, .last = last};
         render_pixel_packet(ctx, x, y, n, &path_rng, how, &ps);
     } else {
-        /* nee, dims and roulette constants in the default loop: the mixture's inlined trace holds
+        /* direct, dims and roulette constants in the default loop: the mixture's inlined trace holds
            none of their code */
         for (size_t s = 0; s < n; s++) {
             struct pt2 p = ctx->pixel_pts[s];
             const double u = (x + p.x) / w, v = (hgt - y - p.y) / hgt;
             vec3 c;
-            if (nee || dims || rr) {
+            if (direct || dims || rr) {
                 ray r = dims ? render_camera_ray_dims(ctx, u, v, (uint32_t)s)
                              : camera_ray(ctx->cam, u, v, &path_rng);
-                const struct path_at how = {.lights = nee ? LIGHTS_NEE : mix_or_none,
+                const struct path_at how = {.lights = direct ? LIGHTS_NEE : mix_or_none,
                                             .dims = dims,
                                             .roulette = rr,
                                             .last = last,

@@ -2,6 +2,7 @@
    counters. */
 #include <stdlib.h>
 
+#include "render.h"
 #include "render_internal.h"
 
 void render_stats_init(struct render_stats *st)

@@ -29,8 +29,8 @@ static inline __attribute__((always_inline, unused)) vec3 cosine_direction_uv(co
     return onb_local(frame, v3(cos_phi * s, sin_phi * s, sqrt(1 - u2)));
 }
 
-/* cosine_direction_uv from r. Always inline: with nee's call beside the mixture's GCC kept it
-   out of line, +2% of cornell-book3's instructions. */
+/* cosine_direction_uv from r. Always inline: with next-event estimation's call beside the mixture's GCC kept
+   it out of line, +2% of cornell-book3's instructions. */
 static inline __attribute__((always_inline, unused)) vec3 cosine_direction(const onb *frame, struct rng *r)
 {
     double u2 = rng_uniform32(r);

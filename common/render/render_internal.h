@@ -4,7 +4,10 @@
 #define RENDER_INTERNAL_H
 
 #include "geom/packet.h"
-#include "render.h"
+#include "render_types.h"
+#include "geom/camera.h"
+#include "geom/scene.h"
+#include "sample/sampler.h"
 #include "base/rng.h"
 #include "sample/padding.h"
 #include "sample/stream.h"

@@ -98,7 +98,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     const ray *rp[PACKET_LANES], *shadow_rp[PACKET_LANES];
     double acc[3] = {0, 0, 0}; /* locals in the loop, added at the end: no stores through pointers */
     uint64_t acc_rays = 0, acc_shadow = 0, acc_nonfinite = 0;
-    const int nee = how.lights == LIGHTS_NEE;
+    const int direct = how.lights == LIGHTS_NEE;
     int lanes = 0;
     size_t next = 0;
     for (int i = 0; i < PACKET_LANES; i++) {
@@ -121,7 +121,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             ++acc_rays;
             if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], how, &acc_shadow))
                 continue;
-            if (nee) { /* ended, once its shadow ray is traced below */
+            if (direct) { /* ended, once its shadow ray is traced below */
                 ended |= 1 << i;
                 continue;
             }
@@ -129,7 +129,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
-        if (nee) { /* the shadow rays shade left, traced together; each adds to its path's L as it
+        if (direct) { /* the shadow rays shade left, traced together; each adds to its path's L as it
                       would have at once (nothing else adds to L in between) */
             int pending = 0;
             for (int i = 0; i < PACKET_LANES; i++)
@@ -156,13 +156,14 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
     ps->shadow += acc_shadow;
 }
 
-/* nee, sampler_dims: all or roulette (runtime values), out of line from the default's loop. */
+/* next-event estimation, sampler_dims: all or roulette (runtime values), out of line from the default's loop.
+ */
 static __attribute__((noinline)) void lanes_other(struct render_ctx *ctx, int x, int y, size_t n,
                                                   const struct rng *base, struct path_at how,
                                                   struct pixel_sums *ps)
 {
-    /* nee a constant in each copy: nee's holds the shadow rays' pass and none of the mixture's
-       code, the other none of nee's */
+    /* next-event estimation a constant in each copy: its copy holds the shadow rays' pass and none of the
+       mixture's code, the other none of next-event estimation's */
     if (how.lights == LIGHTS_NEE) {
         how.lights = LIGHTS_NEE;
         lanes_run(ctx, x, y, n, base, how, ps);

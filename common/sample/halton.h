@@ -8,9 +8,11 @@
 #ifndef HALTON_H
 #define HALTON_H
 
+#include <stddef.h>
 #include <stdint.h>
 
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* The pixel tile: 2^7 columns by 3^5 rows; pixel sample i has index offset + i * HALTON_STRIDE. */
 #define HALTON_TILE_X 128u

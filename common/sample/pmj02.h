@@ -9,7 +9,8 @@
 #include <stdint.h>
 
 #include "base/rng.h"
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* Best-candidate choices per point (Mitchell 1991): the candidate farthest from the points so far. */
 #define PMJ02_CANDIDATES 10

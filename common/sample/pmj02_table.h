@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-#include "sampler.h"
+#include "pt2.h"
 
 /* How many sequences, and their length: 2^14 points, the sets of thresholds down to 1 (larger
    sets are drawn fresh, as before). */

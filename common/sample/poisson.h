@@ -6,7 +6,8 @@
 #include <stdint.h>
 
 #include "base/rng.h"
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* Candidate offsets drawn ahead in one batch (a multiple of 4). */
 #define POISSON_OFFSETS 64

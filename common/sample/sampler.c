@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SAMPLER_SQRT2 1.41421356237309504880
 /* The pool's own rng stream, so pool sets never correlate with the caller's draws. */
 #define POOL_STREAM 0x706f6f6cULL
 
@@ -49,49 +48,19 @@ static size_t draw_zsobol(struct sampler *s, struct rng *rng, struct pt2 *out);
 static size_t at_halton(struct sampler *s, const struct sampler_at *at, struct pt2 *out);
 static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct pt2 *out);
 
-/* The samplers, in enum sampler_kind's order: the name, how a set is drawn (into out, consuming
-   rng, at most sampler_capacity points, at least 1), how it is taken point by point. A new
-   sampler is a draw function in a file of its own, an enum value, its name and a row here
-   (docs/architecture.md, "How to add a sampler"); its sets then serve pixels, lights and
-   sampler_dims: all. A kind whose points are an image-wide sequence's (halton, zsobol) also has
-   an `at` function: the set at (seed, pixel, dimension), consuming nothing (sampler_draw_at). */
-static const char *const kind_names[] = {"uniform", "jitter",  "random", "poisson", "sobol",
-                                         "halton",  "pmj02bn", "zsobol", NULL};
+/* How each kind's set is drawn, in enum sampler_kind's order (its traits: sampler_kind.c): into
+   out, consuming rng, at most sampler_capacity points, at least 1. A kind whose points are an
+   image-wide sequence's (halton, zsobol) also has an `at` function: the set at (seed, pixel,
+   dimension), consuming nothing (sampler_draw_at). */
 static const struct kind_row {
     size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
-    enum sampler_walk walk;
     size_t (*at)(struct sampler *s, const struct sampler_at *at, struct pt2 *out); /* NULL: draw */
 } kind_rows[] = {
-    {draw_uniform, SAMPLER_WALK_CELLS, NULL}, {draw_jitter, SAMPLER_WALK_CELLS, NULL},
-    {draw_random, SAMPLER_WALK_FREE, NULL},   {draw_poisson, SAMPLER_WALK_WHOLE, NULL},
-    {draw_sobol, SAMPLER_WALK_SOBOL, NULL},   {draw_halton, SAMPLER_WALK_WHOLE, at_halton},
-    {draw_pmj02bn, SAMPLER_WALK_WHOLE, NULL}, {draw_zsobol, SAMPLER_WALK_WHOLE, at_zsobol},
+    {draw_uniform, NULL}, {draw_jitter, NULL},      {draw_random, NULL},  {draw_poisson, NULL},
+    {draw_sobol, NULL},   {draw_halton, at_halton}, {draw_pmj02bn, NULL}, {draw_zsobol, at_zsobol},
 };
 #define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
-_Static_assert(sizeof kind_names / sizeof kind_names[0] == KIND_COUNT + 1, "a name per row");
-
-int sampler_kind_parse(const char *name, enum sampler_kind *out)
-{
-    for (int i = 0; i < KIND_COUNT; i++) {
-        if (name && strcmp(name, kind_names[i]) == 0) {
-            *out = (enum sampler_kind)i;
-            return 0;
-        }
-    }
-    return -1;
-}
-
-const char *sampler_kind_name(enum sampler_kind kind)
-{
-    if ((int)kind < 0 || (int)kind >= KIND_COUNT)
-        return "unknown";
-    return kind_names[kind];
-}
-
-const char *const *sampler_kind_names(void)
-{
-    return kind_names;
-}
+_Static_assert(KIND_COUNT == SAMPLER_ZSOBOL + 1, "a draw per kind");
 
 static const char *const domain_names[] = {"torus", "square"};
 
@@ -113,60 +82,6 @@ const char *poisson_domain_name(enum poisson_domain d)
 void sampler_set_domain(struct sampler *s, enum poisson_domain d)
 {
     s->domain = d;
-}
-
-static int threshold_valid(double threshold)
-{
-    return threshold > 0.0 && threshold <= 100.0;
-}
-
-/* floor(100 / threshold), read as a person would: a threshold within a relative 1e-9 of 100 / m
-   gives m (6.250000001 gives 16, and 0.1 gives 1000 although 100 / 0.1 is 999.9999999999999 in
-   doubles). The one place a threshold becomes a grid side. */
-static double grid_side_real(double threshold)
-{
-    const double q = 100.0 / threshold, m = floor(q + 0.5);
-    if (m >= 1.0 && fabs(threshold - 100.0 / m) <= 1e-9 * (100.0 / m))
-        return m;
-    return floor(q);
-}
-
-/* Background-grid side for radius r: ceil(sqrt(2) / r), nudged up so that rounding can never
-   let two points at least r apart share a cell. */
-static double poisson_side_real(double threshold)
-{
-    return ceil(SAMPLER_SQRT2 * 100.0 / threshold * (1.0 + 1e-12));
-}
-
-int sampler_grid_side(double threshold)
-{
-    if (!threshold_valid(threshold))
-        return 0;
-    double n = grid_side_real(threshold);
-    return n >= (double)INT32_MAX ? INT32_MAX : (int)n;
-}
-
-/* side * side, saturating at SIZE_MAX. */
-static size_t side_squared(double side)
-{
-    if (side >= 4294967295.0 || side * side >= (double)SIZE_MAX)
-        return SIZE_MAX;
-    return (size_t)side * (size_t)side;
-}
-
-size_t sampler_capacity(enum sampler_kind kind, double threshold)
-{
-    if (!threshold_valid(threshold))
-        return 0;
-    if (kind == SAMPLER_POISSON)
-        return side_squared(poisson_side_real(threshold));
-    size_t n = side_squared(grid_side_real(threshold));
-    if (kind != SAMPLER_PMJ02BN && kind != SAMPLER_ZSOBOL)
-        return n;
-    size_t pow2 = 1; /* their constructions are nets at powers of two: n rounded up to one */
-    while (pow2 < n && pow2 <= SIZE_MAX / 2)
-        pow2 *= 2;
-    return pow2 < n ? SIZE_MAX : pow2;
 }
 
 size_t sampler_table_points(enum sampler_kind kind)
@@ -210,7 +125,7 @@ enum sampler_kind sampler_kind_of(const struct sampler *s)
 
 uint32_t sampler_cells(const struct sampler *s)
 {
-    const enum sampler_walk w = kind_rows[s->kind].walk;
+    const enum sampler_walk w = sampler_traits(s->kind)->walk;
     return w == SAMPLER_WALK_CELLS || w == SAMPLER_WALK_FREE ? (uint32_t)s->capacity : 0;
 }
 
@@ -227,7 +142,7 @@ struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng
 
 enum sampler_walk sampler_walk_of(const struct sampler *s)
 {
-    return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : kind_rows[s->kind].walk;
+    return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : sampler_traits(s->kind)->walk;
 }
 
 double sampler_threshold_of(const struct sampler *s)
@@ -443,7 +358,7 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
         err_set(e, NULL, 0, 0, "sampler: unknown kind %d", (int)kind);
         return NULL;
     }
-    if (!threshold_valid(threshold)) {
+    if (!sampler_threshold_valid(threshold)) {
         err_set(e, NULL, 0, 0, "threshold: must be a number in (0, 100], got %g", threshold);
         return NULL;
     }
@@ -454,7 +369,7 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
                     SAMPLER_MAX_POINTS);
         else
             err_set(e, NULL, 0, 0, "threshold %g would need %zu %s per set (limit %d)", threshold, capacity,
-                    kind == SAMPLER_POISSON ? "Bridson grid cells" : "points", SAMPLER_MAX_POINTS);
+                    sampler_capacity_unit(kind), SAMPLER_MAX_POINTS);
         return NULL;
     }
 
@@ -475,7 +390,7 @@ struct sampler *sampler_new(enum sampler_kind kind, double threshold, int pool_s
     if (kind != SAMPLER_POISSON)
         return s;
 
-    if (poisson_init(&s->bridson, threshold / 100.0, (int)poisson_side_real(threshold), capacity) < 0)
+    if (poisson_init(&s->bridson, threshold / 100.0, (int)sampler_poisson_side(threshold), capacity) < 0)
         goto oom;
     if (pool_size > 0) {
         s->pool_size = pool_size;

@@ -9,21 +9,8 @@
 
 #include "base/err.h"
 #include "base/rng.h"
-
-struct pt2 {
-    double x, y;
-};
-
-enum sampler_kind {
-    SAMPLER_UNIFORM,
-    SAMPLER_JITTER,
-    SAMPLER_RANDOM,
-    SAMPLER_POISSON,
-    SAMPLER_SOBOL,
-    SAMPLER_HALTON,
-    SAMPLER_PMJ02BN,
-    SAMPLER_ZSOBOL
-};
+#include "pt2.h"
+#include "sampler_kind.h"
 
 /* Where a fresh Poisson set is drawn (job key poisson_domain): on the unit torus, distances
    measured with wrap-around, then shifted by a random offset modulo 1 (Cranley-Patterson): every
@@ -34,37 +21,6 @@ enum poisson_domain { POISSON_TORUS, POISSON_SQUARE };
 /* Name <-> domain. parse returns 0, or -1 for an unknown name. */
 int poisson_domain_parse(const char *name, enum poisson_domain *out);
 const char *poisson_domain_name(enum poisson_domain d);
-
-/* Largest set a job may ask for, per pixel or per light draw. */
-#define SAMPLER_MAX_POINTS 4000000
-
-/* How a set is taken point by point (sample/stream.h): drawn whole and its points shuffled
-   (any sampler; a fresh Poisson set), or a cheaper walk a kind knows: its cells shuffled and a
-   cell's point made when taken (uniform, jitter), independent points (random), a pool set's
-   indices shuffled and a point shifted when taken (pooled Poisson), a set's indices shuffled and
-   point k made when taken (sobol). */
-enum sampler_walk {
-    SAMPLER_WALK_WHOLE,
-    SAMPLER_WALK_CELLS,
-    SAMPLER_WALK_FREE,
-    SAMPLER_WALK_POOL,
-    SAMPLER_WALK_SOBOL
-};
-
-/* Name <-> kind. parse returns 0, or -1 for an unknown name. */
-int sampler_kind_parse(const char *name, enum sampler_kind *out);
-const char *sampler_kind_name(enum sampler_kind kind);
-/* Every kind's name in enum order, then NULL (for "did you mean" and usage lines). */
-const char *const *sampler_kind_names(void);
-
-/* n = floor(100 / threshold): the grid side of uniform/jitter/random; sobol and halton draw n * n
-   points, pmj02bn and zsobol n * n rounded up to a power of two. */
-int sampler_grid_side(double threshold);
-
-/* Upper bound on the size of one set of (kind, threshold): n*n for the grid kinds, sobol and halton,
-   the background-grid cell count for poisson, the power of two at or above n*n for pmj02bn and
-   zsobol. Fits in size_t for any threshold in (0, 100]. */
-size_t sampler_capacity(enum sampler_kind kind, double threshold);
 
 /* The largest set of `kind` taken from a precomputed table (pmj02bn's, pmj02_table.h); larger sets
    are drawn fresh, at another cost per point. 0: the kind keeps no table. */

@@ -5,7 +5,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* The seeds of one scrambled 2D set: one shuffles the sequence's indices (shared by the pair's two
    dimensions, so the points stay pairs), one scrambles each dimension's digits. */

@@ -5,9 +5,11 @@
 #ifndef ZSOBOL_H
 #define ZSOBOL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
-#include "sampler.h"
+#include "base/rng.h"
+#include "pt2.h"
 
 /* Pixels and samples per pixel a key can address: x, y < 2^16, 2^log2_spp samples with
    log2_spp <= ZSOBOL_MAX_LOG2_SPP. */

@@ -16,14 +16,6 @@ struct scene_file {
     char warning[600]; /* "" or one line: a light that lights nothing (scene_parse_facing_away) */
 };
 
-/* Every number in a scene lies within [-SCENE_MAX_ABS, SCENE_MAX_ABS], and every radius is at least
-   SCENE_MIN_SIZE: the BVH's bounds and the framebuffer are floats (max 3.4e38), and a radius
-   whose square underflows gives a light of no area. Beyond them a 1e200 triangle was called
-   degenerate and a far camera's vup parallel (the products overflowed), and emit: [1e39, ...] or
-   a 1e-300 radius rendered inf or nothing. */
-#define SCENE_MAX_ABS 1e30
-#define SCENE_MIN_SIZE 1e-30
-
 /* Build the scene read into src (not changed: it may be loaded again) into out. 0, or -1 with
    e = "file:line:col: key: message"; nothing to free then. */
 int scene_load_src(const struct scene_src *src, struct scene_file *out, struct err *e);

@@ -3,7 +3,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene_load.h"
 #include "scene_objects.h"
 #include "geom/shape.h"
 #include "yget.h"

@@ -7,6 +7,14 @@
 #include "geom/scene.h"
 #include "yamlx.h"
 
+/* Every number in a scene lies within [-SCENE_MAX_ABS, SCENE_MAX_ABS], and every radius is at least
+   SCENE_MIN_SIZE: the BVH's bounds and the framebuffer are floats (max 3.4e38), and a radius
+   whose square underflows gives a light of no area. Beyond them a 1e200 triangle was called
+   degenerate and a far camera's vup parallel (the products overflowed), and emit: [1e39, ...] or
+   a 1e-300 radius rendered inf or nothing. */
+#define SCENE_MAX_ABS 1e30
+#define SCENE_MIN_SIZE 1e-30
+
 /* Names given to textures and materials in the file, for lookups by name. */
 struct names {
     const char *name[256];

@@ -59,12 +59,11 @@ static const char usage[] =
 static const char help[] =
     "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
     "\n"
-    "Each job file (YAML) names a scene, a pixel sampler (uniform | jitter | random | poisson |\n"
-    "sobol | halton | pmj02bn | zsobol) and its threshold (the minimum spacing in a 100x100 domain:\n"
-    "1 gives 10000 samples per pixel for uniform/jitter/random/sobol/halton, 16384 for pmj02bn and\n"
-    "zsobol (a power of two), about 6200 for poisson). Rows are split over forked\n"
-    "processes; the image (PNG or PPM: 8-bit display values; EXR or PFM: linear radiance) and a\n"
-    "JSON stats sidecar land in OUT/<job name>/.\n"
+    "Each job file (YAML) names a scene, a pixel sampler and its threshold (the minimum spacing in\n"
+    "a 100x100 domain). The samplers, with their samples per pixel at threshold 1:\n"
+    "%s\n"
+    "Rows are split over forked processes; the image (PNG or PPM: 8-bit display values; EXR or\n"
+    "PFM: linear radiance) and a JSON stats sidecar land in OUT/<job name>/.\n"
     "\n"
     "A compare job is a job file with variants: (and optionally scenes:, sweep:, seeds:): it\n"
     "renders every combination, scores each against a reference render and writes the images,\n"
@@ -88,6 +87,28 @@ static const char help[] =
     "more:    docs/compare.md, docs/farm.md, docs/samplers.md (in the source tree)\n"
     "\n"
     "exit status: 0 all jobs done, 1 a job failed while rendering, 2 bad usage or bad input.\n";
+
+/* help's sampler list and each kind's samples per pixel at threshold 1, from sampler_kind.c's rows */
+static void print_help(void)
+{
+    char spp[512];
+    size_t used = 0, line = 0;
+    for (const char *const *k = sampler_kind_names(); *k && used < sizeof spp; k++) {
+        enum sampler_kind kind;
+        sampler_kind_parse(*k, &kind);
+        char item[64];
+        int w = snprintf(item, sizeof item, "%s %s%.0f", *k,
+                         sampler_traits(kind)->count == SAMPLER_COUNT_BRIDSON ? "about " : "",
+                         sampler_expected_spp(kind, 1.0));
+        const int wrap = used - line + (size_t)w > 90;
+        w = snprintf(spp + used, sizeof spp - used, "%s%s", used == 0 ? "  " : wrap ? ",\n  " : ", ", item);
+        used += w > 0 ? (size_t)w : 0;
+        if (wrap)
+            line = used - strlen(item) - 2;
+    }
+    printf(help, spp);
+    printf("\n%s", usage);
+}
 
 static void print_err(const struct err *e)
 {
@@ -264,7 +285,7 @@ static int worker_main(int argc, char **argv)
                    "sidecar\n");
             goto out;
         } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            printf("%s\n%s", help, usage);
+            print_help();
             goto out;
         } else if (!strcmp(a, "--version")) {
             printf("worker %s\n", WORKER_VERSION);

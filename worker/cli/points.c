@@ -182,9 +182,9 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         return 2;
     }
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
-        err_print("worker points: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson, "
-                  "sobol, halton, pmj02bn or zsobol)\n",
-                  positional[0]);
+        char list[256];
+        err_print("worker points: unknown sampler \"%.40s\" (expected one of %s)\n", positional[0],
+                  sampler_kind_list(", ", list, sizeof list));
         return 2;
     }
     char *end;
@@ -192,8 +192,7 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     a->threshold = strtod(positional[1], &end);
     /* decimal only, as a job file's threshold: strtod alone takes hex (0x10) and leading blanks */
     int decimal = strspn(positional[1], "0123456789+-.eE") == strlen(positional[1]);
-    if (!positional[1][0] || *end || !decimal || errno == ERANGE ||
-        !(a->threshold > 0.0 && a->threshold <= 100.0)) {
+    if (!positional[1][0] || *end || !decimal || errno == ERANGE || !sampler_threshold_valid(a->threshold)) {
         err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }

@@ -113,10 +113,12 @@ static int write_radial(const char *path, const struct points_analysis *a, const
     const double one[2] = {1, 1}, random_ratio[2] = {1.0 / a->sets, 1.0 / a->sets}, ends[2] = {1, K};
     char label[160], title[256];
     snprintf(label, sizeof label, "%s t=%g", name, a->threshold);
-    const struct chart_series pw[2] = {{label, K, f, power, NULL, NULL},
-                                       {"random: 1", 2, ends, one, NULL, NULL}};
+    char ref_one[64], ref_sets[64]; /* the random sampler's expected lines */
+    snprintf(ref_one, sizeof ref_one, "%s: 1", sampler_kind_name(SAMPLER_RANDOM));
+    snprintf(ref_sets, sizeof ref_sets, "%s: 1 / sets", sampler_kind_name(SAMPLER_RANDOM));
+    const struct chart_series pw[2] = {{label, K, f, power, NULL, NULL}, {ref_one, 2, ends, one, NULL, NULL}};
     const struct chart_series an[2] = {{label, K, f, ratio, NULL, NULL},
-                                       {"random: 1 / sets", 2, ends, random_ratio, NULL, NULL}};
+                                       {ref_sets, 2, ends, random_ratio, NULL, NULL}};
     const struct chart_panel panels[2] = {{"radial mean power", "frequency |k| (cycles per unit)",
                                            "mean periodogram", "no power", pw, 2, NULL, 0},
                                           {"anisotropy", "frequency |k| (cycles per unit)",
@@ -188,9 +190,9 @@ int points_analysis_run(const struct points_analysis *a, struct sampler *s, stru
                torus_sum / m, torus_min);
         printf("star_discrepancy_l2 %.6g (Warnock's formula; mean over the sets)\n", disc_sum / m);
         printf("low_frequency_power %.6g (mean periodogram over 0 < |k| <= %.3g = sqrt(N) / 2 of the first "
-               "set; random "
+               "set; %s "
                "points: 1)\n",
-               spectrum_low_mean(&sp, k_low), k_low);
+               spectrum_low_mean(&sp, k_low), k_low, sampler_kind_name(SAMPLER_RANDOM));
         if (fflush(stdout) != 0 || ferror(stdout)) {
             err_print("worker points: writing the statistics failed\n");
             rc = 1;

@@ -26,7 +26,9 @@
    sets are timed apart. */
 struct pilot_key {
     const struct scene_file *sf;
-    int width, height, max_depth, light_sampling, nee, dims, roulette;
+    int width, height, max_depth, light_sampling;
+    enum integrator integrator;
+    int dims, roulette;
     enum sampler_kind light_kind, dims_kind;
     int dims_size; /* sampler_dims: all: log2 of the pixel set's capacity (the slots a pixel reaches) */
     int pooled;
@@ -224,8 +226,8 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
     while ((long)k->width * k->height * scale * scale < COST_PILOT_PIXELS)
         scale++;
     const int w = k->width * scale, h = k->height * scale;
-    const struct render_settings rs = {w,      h,           j->max_depth,   j->seed, !j->light_sampling,
-                                       j->nee, j->dims_all, job_roulette(j)};
+    const struct render_settings rs = {
+        w, h, j->max_depth, j->seed, !j->light_sampling, j->integrator, j->dims_all, job_roulette(j)};
     struct pilot_run p = {.budget_s = budget_s, .cap = 1, .clock_s = clock_pair_s()};
     if (pilot_draws(m, j, pixel_t, light_t, &p.draws, e) < 0)
         goto done;
@@ -267,7 +269,7 @@ done:
 static int key_equal(const struct pilot_key *a, const struct pilot_key *b)
 {
     return a->sf == b->sf && a->width == b->width && a->height == b->height && a->max_depth == b->max_depth &&
-           a->light_sampling == b->light_sampling && a->nee == b->nee && a->dims == b->dims &&
+           a->light_sampling == b->light_sampling && a->integrator == b->integrator && a->dims == b->dims &&
            a->roulette == b->roulette && a->light_kind == b->light_kind && a->dims_kind == b->dims_kind &&
            a->dims_size == b->dims_size && a->pooled == b->pooled;
 }
@@ -338,7 +340,7 @@ static struct pilot_key key_of(const struct job *j, const struct scene_file *sf,
                               height,
                               j->max_depth,
                               j->light_sampling,
-                              j->nee,
+                              j->integrator,
                               j->dims_all,
                               job_roulette(j),
                               j->light_sampler,

@@ -59,7 +59,7 @@ void job_defaults(struct job *j, const char *path)
 
 int job_roulette(const struct job *j)
 {
-    return j->roulette < 0 ? j->nee : j->roulette;
+    return j->roulette < 0 ? integrator_traits(j->integrator)->roulette : j->roulette;
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
@@ -82,11 +82,10 @@ static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sam
     const char *near = ystr_nearest(s, sampler_kind_names(), -1);
     if (sampler_kind_parse(s, out) < 0 && near)
         return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
+    char list[256];
     if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(d, v, e,
-                         "%s: unknown sampler \"%.40s\" (expected uniform, jitter, random, poisson, sobol, "
-                         "halton, pmj02bn or zsobol)",
-                         key, s);
+        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected one of %s)", key, s,
+                         sampler_kind_list(", ", list, sizeof list));
     return 0;
 }
 
@@ -97,16 +96,33 @@ static void mark(int pos[2], const yaml_node_t *v)
 }
 
 /* A key whose value is one of two words: *second = 1 for the second, 0 for the first. */
-static int get_either(struct ydoc *d, yaml_node_t *v, const char *k, const char *first, const char *second,
-                      int *is_second, struct err *e)
+/* One of names (NULL-ended) at v: its index in *index; else "k: must be a, b or c, got ...". */
+static int get_choice(struct ydoc *d, yaml_node_t *v, const char *k, const char *const *names, int *index,
+                      struct err *e)
 {
     const char *s;
     if (yget_string(d, v, k, &s, e) < 0)
         return -1;
-    if (strcmp(s, first) && strcmp(s, second))
-        return ydoc_fail(d, v, e, "%s: must be %s or %s, got \"%.40s\"", k, first, second, s);
-    *is_second = !strcmp(s, second);
-    return 0;
+    for (int i = 0; names[i]; i++)
+        if (!strcmp(s, names[i])) {
+            *index = i;
+            return 0;
+        }
+    char list[256] = "";
+    for (int i = 0, used = 0; names[i] && used < (int)sizeof list; i++)
+        used += snprintf(list + used, sizeof list - (size_t)used, "%s%s",
+                         i == 0         ? ""
+                         : names[i + 1] ? ", "
+                                        : " or ",
+                         names[i]);
+    return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"", k, list, s);
+}
+
+static int get_either(struct ydoc *d, yaml_node_t *v, const char *k, const char *first, const char *second,
+                      int *is_second, struct err *e)
+{
+    const char *const names[] = {first, second, NULL};
+    return get_choice(d, v, k, names, is_second, e);
 }
 
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
@@ -120,7 +136,7 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double
     if (!s)
         return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
                          v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
-    if (failed || !(t > 0 && t <= 100))
+    if (failed || !sampler_threshold_valid(t))
         return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key, s,
                          quoted_number ? YQUOTED_NOTE : "");
     *out = t;
@@ -288,7 +304,10 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     } else if (!strcmp(k, "light_sampling")) {
         return yget_bool(d, v, k, &j->light_sampling, e);
     } else if (!strcmp(k, "integrator")) {
-        return get_either(d, v, k, "mixture", "nee", &j->nee, e);
+        int i;
+        if (get_choice(d, v, k, integrator_names(), &i, e) < 0)
+            return -1;
+        j->integrator = (enum integrator)i;
     } else if (!strcmp(k, "sampler_dims")) {
         mark(j->pos_dims, v);
         return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
@@ -321,16 +340,6 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     return 0;
 }
 
-double job_smallest_threshold(enum sampler_kind k)
-{
-    /* pmj02bn and zsobol round n * n up to a power of two: n * n <= the largest power of two in the limit */
-    double most = k == SAMPLER_PMJ02BN || k == SAMPLER_ZSOBOL ? 2097152.0 : (double)SAMPLER_MAX_POINTS;
-    double side = floor(sqrt(most));
-    /* grid kinds: n = floor(100 / t) <= side; poisson: Bridson's grid side ceil(sqrt(2) 100 / t) <= side */
-    double t = k == SAMPLER_POISSON ? sqrt(2.0) * 100.0 / side : 100.0 / (side + 1.0);
-    return ceil(t * (1.0 + 1e-9) * 1e4) / 1e4;
-}
-
 /* Refuse a threshold whose sets would not fit the per-set limit: the count, the limit, why, and
    the smallest threshold that fits. The same limit for all four samplers: a set is held whole in
    memory (per render process, one for the pixel and one per sampled light). Poisson's is on
@@ -347,12 +356,12 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
         snprintf(count, sizeof count, "more than %zu", (size_t)SAMPLER_MAX_POINTS);
     else
         snprintf(count, sizeof count, "%zu", n);
-    const char *what = k == SAMPLER_POISSON ? "Bridson grid cells" : "points";
+    const char *what = sampler_capacity_unit(k);
     return err_set(e, j->path, pos[0], pos[1],
                    "%s: %g would need %s %s per %s set (limit %d per set, each set held whole in memory); "
                    "the smallest %s %s is %g",
                    key, t, count, what, sampler_kind_name(k), SAMPLER_MAX_POINTS, sampler_kind_name(k), key,
-                   job_smallest_threshold(k));
+                   sampler_smallest_threshold(k));
 }
 
 int job_height(const struct job *j, double aspect)
@@ -414,16 +423,6 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
     if (!j->has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
-}
-
-const char *job_sets_tag(const struct job *j)
-{
-    const int poisson = j->sampler == SAMPLER_POISSON || j->light_sampler == SAMPLER_POISSON;
-    if (!poisson)
-        return j->dims_all ? " padded uniformly" : "";
-    if (j->poisson_domain == POISSON_SQUARE)
-        return j->dims_all ? " poisson square padded uniformly" : " poisson square";
-    return j->dims_all ? " poisson torus padded uniformly" : " poisson torus";
 }
 
 const char *job_light_text(const struct job *j, char *buf, size_t n)

@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-#include "job.h"
+#include "job_types.h"
 
 /* rel relative to the folder of the file base (an absolute rel is kept) into out. */
 void job_path_resolve(const char *base, const char *rel, char *out, size_t n);

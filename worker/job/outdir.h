@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "image/image.h"
-#include "job.h"
+#include "job_types.h"
 
 /* The output root when --out is not given. */
 #define OUTDIR_DEFAULT "out"

@@ -192,7 +192,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     struct procs_job fj = {
         .scene = sf.scene,
         .camera = &cam,
-        .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->nee, j->dims_all, job_roulette(j)},
+        .rs = {w, h, j->max_depth, j->seed, !j->light_sampling, j->integrator, j->dims_all, job_roulette(j)},
         .pixel = pix,
         .light = light,
         .processes = o->processes > 0 ? o->processes : j->processes,

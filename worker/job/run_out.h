@@ -5,7 +5,7 @@
 
 #include <signal.h>
 
-#include "run.h"
+#include "run_types.h"
 
 /* Whether the render may still rename an output into place (run_opts.still_held): 0, or -1 with e
    filled (the claim was taken over while it wrote). */

@@ -69,7 +69,7 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "light_sampler", sampler_kind_name(j->light_sampler));
     json_number(&js, "light_threshold", j->light_threshold);
     json_bool(&js, "light_sampling", j->light_sampling);
-    json_string(&js, "integrator", j->nee ? "nee" : "mixture");
+    json_string(&js, "integrator", integrator_name(j->integrator));
     json_string(&js, "sampler_dims", j->dims_all ? "all" : "pixel_light");
     json_string(&js, "russian_roulette", job_roulette(j) ? "on" : "off");
     json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);

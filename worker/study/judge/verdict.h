@@ -13,64 +13,7 @@
 #include "base/json.h"
 #include "base/sbuf.h"
 #include "study/load/verdict_model.h"
-
-/* A share of the error that repeats in every seed above this is structured (aliasing, a pattern,
-   a bias): pure noise averages away across seeds. */
-#define VERDICT_STRUCTURED_SHARE 0.5
-/* A variant whose seeds' mean radiance is more standard errors than this off the reference's (the
-   seeds' spread and the reference's noise together) is biased. */
-#define VERDICT_BIAS_SE 4
-/* The bias check needs this many seeds: with fewer, their spread is itself too uncertain (4
-   standard errors from 2 seeds happen by chance 16% of the time, from 8 seeds 0.5%). */
-#define VERDICT_BIAS_SEEDS 4
-/* A point's relMSE within this factor of the reference's own is dominated by the reference's
-   noise: warned. */
-#define VERDICT_REF_NOISE 2
-/* A sweep "changes the samples" when its points' mean samples per pixel span more than this ratio:
-   a light_threshold, max_depth or poisson_pool sweep does not, though a poisson pixel sampler's
-   counts move by a hair from point to point. */
-#define VERDICT_SAMPLES_VARY 1.05
-/* Error "stops falling" at a step whose local slope of log relMSE against log samples is above
-   this (noise alone falls as spp^-1). */
-#define VERDICT_STALL_SLOPE (-0.3)
-/* A sampler's share of its render's CPU time above this is a failure: drawing the points costs
-   more than tracing them. */
-#define VERDICT_SAMPLER_SHARE 0.5
-/* A reference with fewer than this many times the densest point's samples per pixel is too noisy
-   to rank the densest points by. */
-#define VERDICT_REF_FACTOR 4
-
-/* One scene of one study, every (variant, point, seed) at verdict_at(). Arrays are the caller's. */
-struct verdict_figures {
-    const char *study, *scene;
-    int n_variants, n_points, n_seeds;
-    const char *const *variants; /* labels */
-    const char *const *samplers; /* per variant: its pixel sampler's name ("poisson") */
-    const int *pools;            /* per variant: poisson_pool (0: fresh sets) */
-    const char *const *points;   /* sweep point labels ("threshold 5") */
-    const double *spp;           /* samples per pixel (mean over the image) */
-    const double *cpu_s;         /* the render's CPU seconds */
-    const double *relmse;        /* against the reference; NAN when not measured */
-    const double *sampler_share; /* fraction of CPU time drawing point sets */
-    const uint64_t *nonfinite;   /* samples dropped as NaN or infinite */
-    const double *rel_of_mean;   /* per (variant, point): relMSE of the seeds' mean image; NAN unknown */
-    const double *bias_rel;      /* per (variant, point): the relMSE the mean image's offset in mean
-                                    radiance alone gives (the reference scaled by it); NAN unknown */
-    const double *radiance;      /* per (variant, point, seed): the image's mean radiance; NAN unknown */
-    const double *lowfreq;       /* per (variant, point, seed): error_lowfreq (errspec.h); NAN unknown;
-                                    NULL: none measured */
-    double ref_spp;              /* the reference's samples per pixel, 0 when unknown */
-    double ref_relmse;           /* the reference's own relMSE (from its halves), NAN unknown */
-    double ref_radiance;         /* the reference's mean radiance, NAN unknown */
-    double ref_radiance_se;      /* its standard error (from its halves), NAN unknown */
-    int reference_unread;        /* the reference's pixels could not be read: no checks on images */
-    int images_unread;           /* (variant, point)s whose seed images could not be read */
-};
-
-static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)
-{
-    return (v * f->n_points + p) * f->n_seeds + k;
-}
+#include "verdict_figures.h"
 
 /* Whether a sweep whose points' mean samples per pixel run from lo to hi changes the samples (by
    more than VERDICT_SAMPLES_VARY): a slope and "stops falling" need it to. */

@@ -7,7 +7,7 @@
 #ifndef VERDICT_LOOK_H
 #define VERDICT_LOOK_H
 
-#include "verdict.h"
+#include "verdict_figures.h"
 
 /* out->look from f (f->lowfreq may be NULL: nothing measured), plus a sentence in out when two or
    more variants are compared. 0, or -1 out of memory (out->look's arrays then freed). */

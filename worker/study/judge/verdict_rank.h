@@ -6,7 +6,7 @@
 #ifndef VERDICT_RANK_H
 #define VERDICT_RANK_H
 
-#include "verdict.h"
+#include "verdict_figures.h"
 
 /* The family-wise error rate of a ranking: the chance of separating any two equal variants. */
 #define VERDICT_ALPHA 0.05

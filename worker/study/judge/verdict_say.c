@@ -2,6 +2,7 @@
 #include "verdict_say.h"
 
 #include "verdict_rank.h"
+#include "sample/sampler_kind.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -229,12 +230,19 @@ static double per_sample(const struct verdict_figures *f, int v)
     return cost;
 }
 
+/* Whether variant v's pixel sampler's row carries flag (sample/sampler_kind.h). */
+static int has(const struct verdict_figures *f, int v, enum sampler_flag flag)
+{
+    enum sampler_kind k;
+    return sampler_kind_parse(f->samplers[v], &k) == 0 && sampler_kind_has(k, flag);
+}
+
 /* What Bridson's fresh sets cost against jitter per sample, and against the pool at equal time. */
 static void say_poisson(const struct verdict_figures *f, struct verdict_scene *out, int v)
 {
     char *s;
     for (int j = 0; j < f->n_variants; j++) {
-        if (!strcmp(f->samplers[j], "jitter") && (s = next_line(out->sentences, &out->n_sentences))) {
+        if (has(f, j, SAMPLER_BASELINE) && (s = next_line(out->sentences, &out->n_sentences))) {
             const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
             append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
                    per_sample(f, v) / per_sample(f, j), f->variants[j]);
@@ -249,7 +257,7 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
         }
     }
     for (int u = 0; u < f->n_variants; u++) {
-        if (strcmp(f->samplers[u], "poisson") || f->pools[u] == 0 ||
+        if (!has(f, u, SAMPLER_POOLED) || f->pools[u] == 0 ||
             !(s = next_line(out->sentences, &out->n_sentences)))
             continue;
         const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
@@ -297,8 +305,8 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
             append(s,
                    "%s %s on %s: %.0f%% of its error at %s repeats in every seed, so no number of seeds "
                    "averages it away.",
-                   v, strcmp(f->samplers[x->variant], "uniform") ? "has structured error" : "aliases",
-                   out->scene, 100 * x->value, at);
+                   v, has(f, x->variant, SAMPLER_ALIASES) ? "aliases" : "has structured error", out->scene,
+                   100 * x->value, at);
         else if (x->kind == VERDICT_BIASED)
             append(
                 s,
@@ -313,7 +321,7 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
             append(s, "%s dropped %.0f non-finite samples on %s.", v, x->value, out->scene);
     }
     for (int v = 0; v < f->n_variants; v++)
-        if (!strcmp(f->samplers[v], "poisson") && f->pools[v] == 0)
+        if (has(f, v, SAMPLER_POOLED) && f->pools[v] == 0)
             say_poisson(f, out, v);
     int kept = 0; /* a ranking with fewer than two variants said nothing */
     for (int i = 0; i < out->n_sentences; i++)

@@ -3,7 +3,7 @@
 #ifndef VERDICT_SAY_H
 #define VERDICT_SAY_H
 
-#include "verdict.h"
+#include "verdict_figures.h"
 
 /* x->text for a failure just found. */
 void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x);

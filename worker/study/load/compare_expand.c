@@ -26,8 +26,8 @@ int compare_expand_reference(struct compare_loading *L)
         if (c->n_scenes > 1)
             return ydoc_fail(d, r, L->e,
                              "reference: an image serves one scene; with %d scenes give settings, "
-                             "e.g. reference: { sampler: jitter, threshold: 0.5 }",
-                             c->n_scenes);
+                             "e.g. reference: { sampler: %s, threshold: 0.5 }",
+                             c->n_scenes, sampler_kind_name(SAMPLER_JITTER));
         struct job tmp = L->scene_base[0];
         struct compare_scene *cs = &c->scenes[0];
         if (compare_keys_apply(&tmp, d, "reference", r, L->e) < 0)
@@ -62,7 +62,8 @@ int compare_expand_reference(struct compare_loading *L)
     if (r->type != YAML_MAPPING_NODE)
         return ydoc_fail(
             d, r, L->e,
-            "reference: must be an image file or job settings, e.g. { sampler: jitter, threshold: 0.5 }");
+            "reference: must be an image file or job settings, e.g. { sampler: %s, threshold: 0.5 }",
+            sampler_kind_name(SAMPLER_JITTER));
     if (compare_keys_check(&L->d, r, "reference", NULL, L->e) < 0)
         return -1;
     for (int s = 0; s < c->n_scenes; s++) {

@@ -146,8 +146,11 @@ static int load_sweep(struct compare_loading *L)
                              n, len);
         n = len;
         size_t used = strlen(L->c->sweep_keys);
-        snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "",
-                 strcmp(key, "spp") ? key : COMPARE_SPP_SWEEP_NOTE);
+        if (strcmp(key, "spp"))
+            snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s%s", i ? ", " : "", key);
+        else
+            snprintf(L->c->sweep_keys + used, sizeof L->c->sweep_keys - used, "%s" COMPARE_SPP_SWEEP_NOTE,
+                     i ? ", " : "", sampler_kind_name(SAMPLER_POISSON));
     }
     L->c->n_points = n;
     return 0;
@@ -196,7 +199,8 @@ static int load_variants(struct compare_loading *L)
         return ymap_missing(d, ydoc_root(d), "variants", L->e, "variants: missing");
     if (n < 1)
         return ydoc_fail(d, list, L->e,
-                         "variants: must be a non-empty list of job settings, e.g. - { sampler: jitter }");
+                         "variants: must be a non-empty list of job settings, e.g. - { sampler: %s }",
+                         sampler_kind_name(SAMPLER_JITTER));
     L->c->n_variants = n;
     if (!(L->c->variants = calloc((size_t)n, sizeof *L->c->variants)))
         return err_set(L->e, d->file, 0, 0, "out of memory");

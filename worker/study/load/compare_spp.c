@@ -20,9 +20,9 @@ static double side_threshold(int n)
 int compare_spp_threshold(enum sampler_kind kind, long spp, double *t, long *below, long *above)
 {
     *below = *above = 0;
-    if (kind == SAMPLER_POISSON) {
+    if (sampler_traits(kind)->count == SAMPLER_COUNT_BRIDSON) {
         char text[32];
-        snprintf(text, sizeof text, "%.4g", sqrt(COMPARE_SPP_POISSON_T2 / (double)spp));
+        snprintf(text, sizeof text, "%.4g", sqrt(SAMPLER_POISSON_T2 / (double)spp));
         *t = fmin(strtod(text, NULL), 100.0);
         return 0;
     }
@@ -51,9 +51,7 @@ int compare_spp_apply(struct job *j, struct ydoc *d, yaml_node_t *v, struct err 
     if (yget_long(d, v, "spp", 1, SAMPLER_MAX_POINTS, &spp, e) < 0)
         return -1;
     if (compare_spp_threshold(j->sampler, spp, &t, &below, &above) < 0) {
-        const char *rule = j->sampler == SAMPLER_PMJ02BN || j->sampler == SAMPLER_ZSOBOL
-                               ? "n x n points rounded up to a power of two"
-                               : "n x n points";
+        const char *rule = sampler_count_rule(j->sampler);
         char near[64] = "none";
         if (below && above)
             snprintf(near, sizeof near, "%ld or %ld", below, above);

@@ -7,19 +7,16 @@
 #include "sample/sampler.h"
 #include "scenefile/yamlx.h"
 
-/* A toroidal Poisson set's expected size: about POISSON_SPP_T2 / t^2 points at threshold t
-   (0.615 / r^2 for r = t / 100; docs/samplers.md measures it from 15 to 6145 points). */
-#define COMPARE_SPP_POISSON_T2 6150.0
-
-/* What sweep_keys says of an spp sweep (the report's "sweep: ..."). */
+/* What sweep_keys says of an spp sweep (the report's "sweep: ..."), a format of the kind whose
+   count is expected, not exact. */
 #define COMPARE_SPP_SWEEP_NOTE                                                                               \
     "spp (each variant's threshold set so its sampler draws that many camera samples per pixel; "            \
-    "poisson: about)"
+    "%s: about)"
 
 /* The threshold t at which a set of `kind` holds spp points: for the grid kinds, sobol and halton
    (n x n, n = floor(100 / t)) and pmj02bn and zsobol (n x n rounded up to a power of two), exactly,
    t = 100 / n for n = sqrt(spp) when spp is a square, else the smallest n that gives it; for poisson
-   its expected count, t = sqrt(COMPARE_SPP_POISSON_T2 / spp) to 4 digits. 0, or -1 when the kind
+   its expected count, t = sqrt(SAMPLER_POISSON_T2 / spp) to 4 digits. 0, or -1 when the kind
    gives no set of exactly spp points, with *below and *above the nearest counts it gives (0: none). */
 int compare_spp_threshold(enum sampler_kind kind, long spp, double *t, long *below, long *above);
 

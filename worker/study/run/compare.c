@@ -18,6 +18,7 @@
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
+#include "job/job_key.h"
 #include "job/sidecar.h"
 #include "study/present/report.h"
 #include "study_machines.h"
@@ -29,9 +30,7 @@
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
 {
-    double spp = it->job.sampler == SAMPLER_POISSON
-                     ? 0.64 * (100 / it->job.threshold) * (100 / it->job.threshold)
-                     : (double)sampler_capacity(it->job.sampler, it->job.threshold);
+    double spp = sampler_expected_spp(it->job.sampler, it->job.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
@@ -54,14 +53,8 @@ static void fmt_duration(double s, char *buf, size_t n)
 static uint64_t item_hash(const struct compare_scene *cs, const struct compare_item *it)
 {
     const struct job *j = &it->job;
-    char text[JOB_PATH_MAX + 512];
-    int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d ref %d worker %s%s%s%s%s",
-                     j->width, j->height, sampler_kind_name(j->sampler), j->threshold,
-                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
-                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, j->reference[0] != 0,
-                     WORKER_VERSION, j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
-                     job_roulette(j) ? " roulette" : "");
+    char text[512];
+    int n = job_key_text(j, j->width, j->height, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 

@@ -13,6 +13,7 @@
 #include "base/hash.h"
 #include "base/rng.h"
 #include "job/outdir.h"
+#include "job/job_key.h"
 #include "job/sidecar.h"
 
 /* The cache key of a scene's reference: its scene file's and texture images' bytes (the scene's
@@ -24,13 +25,8 @@ static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
     const struct job *j = &cs->ref_job;
     uint64_t h = hash_u64(study_inputs_program_hash(c->inputs), cs->input->hash);
     char text[512];
-    int n = snprintf(text, sizeof text,
-                     "%dx%d %s %.17g %s %.17g depth %d seed %llu pool %d lights %d worker %s%s%s%s%s halves",
-                     cs->width, cs->height, sampler_kind_name(j->sampler), j->threshold,
-                     sampler_kind_name(j->light_sampler), j->light_threshold, j->max_depth,
-                     (unsigned long long)j->seed, j->poisson_pool, j->light_sampling, WORKER_VERSION,
-                     j->nee ? " nee" : "", j->dims_all ? " dims all" : "", job_sets_tag(j),
-                     job_roulette(j) ? " roulette" : "");
+    int n = job_key_text(j, cs->width, cs->height, "", text, sizeof text - 8);
+    n += snprintf(text + n, sizeof text - (size_t)n, " halves");
     return hash_bytes(h, text, (size_t)n);
 }
 
