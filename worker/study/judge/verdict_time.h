@@ -5,7 +5,7 @@
 #ifndef VERDICT_TIME_H
 #define VERDICT_TIME_H
 
-#include "verdict.h"
+#include "verdict_figures.h"
 
 /* A variant's own cheapest point may lie at most this factor above the common time when it has one
    point (no line to read along: its relMSE x time is compared, plain Monte Carlo's slope -1). */
