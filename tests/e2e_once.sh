@@ -94,13 +94,13 @@ traced share --out "$T/share" --part 0/1 "$T/cmp.yaml"
 once share "its job file" "$T/cmp.yaml"
 
 # 6. a compare job in a queue, spread: the claimed file opened once (its bytes, as read, become
-#    the study's study.job), then study.job once per entry: the reference, the image, the gather
+#    the study's study.job), then study.job once per entry: the reference's two halves, the image, the gather
 Q2=$T/q2; mkdir -p "$Q2"
 cp "$T/cmp.yaml" "$Q2/cq.yaml"
 traced spread --queue "$Q2" --once
 once spread "the claimed compare job" "$Q2/running/cq.yaml"
 got=$(opens "$T/spread.log" "$Q2/spread/cq/study.job")
-check "spread: study.job opened once per entry, 3 entries (got $got)" [ "$got" -eq 3 ]
+check "spread: study.job opened once per entry, 4 entries (got $got)" [ "$got" -eq 4 ]
 renamed_once spread "$Q2/done/cq" scene-jitter-t50-s1.png summary.csv verdict.json
 
 # 7. a compare job of two variants and two seeds on a scene with an image texture: the scene file

@@ -54,7 +54,7 @@ killed() {
     check "$3 ($1): the job file only in done/: $(ls "$Q" "$Q/running" "$S/job" 2>&1 | tr '\n' ' ')" \
         eval '[ -z "$(ls "$Q/running" "$S/job" | grep yaml)" ] && [ -z "$(ls "$Q" | grep yaml)" ]'
     check "$3 ($1): every entry filed once in the study's done/, none failed or waiting: $(ls "$S/done" "$S/failed" "$S" | tr '\n' ' ')" \
-        eval '[ "$(ls "$S/done" | grep -c "yaml$")" -eq 4 ] && [ -z "$(ls "$S/failed" "$S/running" "$S" "$Q/failed" | grep "yaml$")" ]'
+        eval '[ "$(ls "$S/done" | grep -c "yaml$")" -eq 5 ] && [ -z "$(ls "$S/failed" "$S/running" "$S" "$Q/failed" | grep "yaml$")" ]'
     same=0
     for f in "$T"/plain/ks/*.png "$T"/plain/ks/*.exr "$T"/plain/.cache/*.exr; do
         g=$Q/done/ks/$(basename "$f")

@@ -1,6 +1,6 @@
 #!/bin/sh
 # A compare job in a queue is spread over the workers (issue 31): a study of 60 renders (2 scenes x
-# 3 variants x 2 thresholds x 5 seeds) and 2 references, drained by 3 local workers killed with
+# 3 variants x 2 thresholds x 5 seeds) and 2 references (4 entries: each reference's two halves), drained by 3 local workers killed with
 # kill -9 at random (and replaced), gives images byte-identical to a one-process run and the same
 # verdict at equal samples and for the slopes; every render is filed exactly once, and the gather
 # runs exactly once.
@@ -34,7 +34,7 @@ for p in $pids; do while kill -0 "$p" 2>/dev/null; do sleep 0.1; done; done
 echo "study: $kills kills"
 check "the study was gathered ($kills workers killed): $(tail -n 3 "$T/workers.log")" [ -f "$Q/done/spread.yaml" ]
 S=$Q/spread/spread
-check "every render filed in the study's done/ exactly once: 62 + the gather" [ "$(ls "$S/done" | grep -c 'yaml$')" -eq 63 ]
+check "every render filed in the study's done/ exactly once: 64 (each reference two halves) + the gather" [ "$(ls "$S/done" | grep -c 'yaml$')" -eq 65 ]
 check "none failed, none waiting or running" [ -z "$(ls "$S/failed" "$S/running" "$S" | grep 'yaml')" ]
 check "the gather ran exactly once" [ "$(grep -c 'c-gather.yaml: gathered into' "$T/workers.log")" -eq 1 ]
 check "done/spread/ holds the same files as the one-process run" \
@@ -82,10 +82,10 @@ kill -STOP "$w"
 "$WORKER" status "$Q2" >"$T/status.txt" 2>&1
 "$WORKER" status "$Q2" --json >"$T/status.json" 2>&1
 kill -CONT "$w"; wait "$w"
-check "status: one study line: $(cat "$T/status.txt")" grep -Eq '^  spread.yaml  study spread  [0-9]+/62 renders done, 0 failed' "$T/status.txt"
+check "status: one study line: $(cat "$T/status.txt")" grep -Eq '^  spread.yaml  study spread  [0-9]+/64 renders done, 0 failed' "$T/status.txt"
 check "status --json: the study's progress" python3 -c 'import json,sys
 s=json.load(open(sys.argv[1]))["studies"][0]
-assert s["file"] == "spread.yaml" and s["renders"] == 62 and 0 < s["done"] < 62 and s["failed"] == 0, s' "$T/status.json"
+assert s["file"] == "spread.yaml" and s["renders"] == 64 and 0 < s["done"] < 64 and s["failed"] == 0, s' "$T/status.json"
 
 # SIGTERM (a Slurm pre-emption) while a study's render runs: that render goes back to the study's
 # waiting entries, and the worker exits 0

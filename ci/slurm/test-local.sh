@@ -189,6 +189,40 @@ for st in json.load(open(sys.argv[1]))["studies"]:
     for sc in st["scenes"]:
         print(sc["scene"], [(k, sc[k]["status"], [(x["variant"], x["rank"]) for x in sc[k]["ranking"]]) for k in ("equal_samples", "slopes")])' "$1"; }
 check "study: the same verdict at equal samples and by slope" [ "$(ranks "$S/plain-study/study/verdict.json")" = "$(ranks "$S/studies/study/verdict.json")" ]
+# 4. a study whose renders are cut into row parts (entry_cpu_s: 0.01), one array task per entry of
+#    its plan (submit-entries.sh) and the dependent gather: the one-process run's bytes, each part
+#    rendered once, each cut render merged once; a resubmission renders nothing. The job renders
+#    with 2 processes, the tasks with --processes 1: a merged sidecar records the hash the gather
+#    (also --processes 1) looks for
+{ small_study cut "$root" "1, 2" "jitter random" | sed 's/^width: 10/width: 40/; s/^height: 8/height: 32/; s/^processes: 1/processes: 2/'
+  echo "entry_cpu_s: 0.01"; } >"$S/cut.yaml"
+"$WORKER" --quiet --out "$S/plain-cut" "$S/cut.yaml" 2>/dev/null || true
+for round in 1 2; do
+    waited "cut study round $round: entry array + dependent gather job" \
+        env WORKER="$WORKER" "$here/submit-entries.sh" "$S/cut.yaml" "$S/cut" --wait
+    check "cut $round: gather exits 0 (got $rc)" [ "$rc" -eq 0 ]
+    n=$(wc -l <"$S/cut/.entries-cut.txt")
+    parts=$(grep -c -- '-p[0-9]*-[0-9]*.yaml$' "$S/cut/.entries-cut.txt")
+    check "cut $round: one array task per entry ($n), renders cut into parts ($parts)" \
+        eval '[ "$(ls "$S"/out/worker-entry-*.out | wc -l)" -eq "$n" ] && [ "$parts" -ge 2 ]'
+    check "cut $round: the gather ran after the entries, rendering nothing" \
+        grep -q "^cut: 16 images .* 16 of them current from an earlier run" "$S/out/worker-gather-$out.out"
+    rendered=$(cat "$S"/out/worker-entry-*.out | grep -c ': rendered' || true)
+    merged=$(cat "$S"/out/worker-entry-*.out | grep -c 'merged into its image and sidecar' || true)
+    cut=$(grep -c -- '-p0-[0-9]*.yaml$' "$S/cut/.entries-cut.txt")
+    if [ "$round" -eq 1 ]; then
+        check "cut 1: every entry rendered once ($rendered of $n), each cut render merged once ($merged of $cut)" \
+            eval '[ "$rendered" -eq "$n" ] && [ "$merged" -eq "$cut" ]'
+    else
+        check "cut 2: a resubmission renders nothing ($rendered renders, $merged merges)" \
+            eval '[ "$rendered" -eq 0 ] && [ "$merged" -eq 0 ]'
+    fi
+    rm -f "$S"/out/worker-entry-*.out
+done
+same=0
+for f in "$S"/plain-cut/cut/*.png "$S"/plain-cut/cut/*.exr; do cmp -s "$f" "$S/cut/cut/$(basename "$f")" && same=$((same + 1)); done
+check "cut: 32 images == the one-process run's ($same)" [ "$same" -eq 32 ]
+check "cut: no part file left" [ -z "$(find "$S/cut" -name '*.part-*')" ]
 say "done"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -11,8 +11,9 @@
 
 int cli_takes_value(const char *a)
 {
-    static const char *const names[] = {"--out",     "--processes",     "--queue", "--poll",
-                                        "--retries", "--lease-timeout", "--part",  NULL};
+    static const char *const names[] = {
+        "--out",           "--processes", "--queue",       "--poll",  "--retries",
+        "--lease-timeout", "--part",      "--entry-cpu-s", "--entry", NULL};
     for (int i = 0; names[i]; i++)
         if (!strcmp(a, names[i]))
             return 1;
@@ -50,6 +51,12 @@ int cli_option_value(const char *a, const char *v, struct queue_opts *q)
         if (!number || !(d > 0 && d <= 604800) || (a[2] == 'l' && d < 0.1))
             goto bad;
         *(a[2] == 'p' ? &q->poll_s : &q->lease_timeout_s) = d;
+    } else if (!strcmp(a, "--entry")) {
+        q->entry = v;
+    } else if (!strcmp(a, "--entry-cpu-s")) {
+        if (!number || !(d >= 0.01 && d <= 1e6))
+            goto bad;
+        q->entry_cpu_s = d;
     } else if (!strcmp(a, "--part")) {
         int i, parts, used = 0;
         if (sscanf(v, "%d/%d%n", &i, &parts, &used) != 2 || v[used] || parts < 1 || parts > PART_MAX ||
@@ -66,6 +73,7 @@ bad:
               !strcmp(a, "--processes")       ? "a whole number in [1, 256]"
               : !strcmp(a, "--retries")       ? "a whole number in [0, 100]"
               : !strcmp(a, "--lease-timeout") ? "a number of seconds in [0.1, 604800]"
+              : !strcmp(a, "--entry-cpu-s")   ? "CPU seconds in [0.01, 1e6]"
                                               : "a number of seconds in (0, 604800]",
               v);
     return -1;
@@ -109,7 +117,8 @@ void cli_hoist_subcommand(int argc, char **argv)
         } else if (!(argv[i][0] == '-' && argv[i][1])) {
             if (i > 1 &&
                 (!strcmp(argv[i], "diff") || !strcmp(argv[i], "points") || !strcmp(argv[i], "merge") ||
-                 !strcmp(argv[i], "status") || !strcmp(argv[i], "requeue") || !strcmp(argv[i], "verdict"))) {
+                 !strcmp(argv[i], "status") || !strcmp(argv[i], "requeue") || !strcmp(argv[i], "verdict") ||
+                 !strcmp(argv[i], "plan"))) {
                 char *sub = argv[i];
                 memmove(&argv[2], &argv[1], (size_t)(i - 1) * sizeof *argv);
                 argv[1] = sub;

@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "diff.h"
 #include "dryrun.h"
+#include "entry.h"
 #include "rejudge.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
@@ -19,21 +20,26 @@
 #include "job/jobfile.h"
 #include "job/outdir.h"
 #include "image/metrics.h"
+#include "plan.h"
 #include "points.h"
 #include "farm/merge.h"
 #include "farm/queue.h"
 #include "farm/queue_requeue.h"
 #include "farm/queue_status.h"
+#include "farm/spread_plan.h"
 #include "job/run.h"
 
 static const char usage[] =
     "usage: worker JOB.yaml [JOB.yaml ...]     render each job file, in order\n"
     "       worker JOB.yaml --part I/N         render rows with row % N == I into a part file\n"
     "                                          (a compare job: its images with index % N == I)\n"
+    "       worker STUDY.yaml --entry NAME     render one entry of `worker plan`'s (a batch array's task)\n"
     "       worker JOB.yaml --dry-run          samples, memory and CPU time from a short pilot;\n"
     "                                          renders nothing, writes nothing\n"
+    "       worker plan JOB.yaml [--workers N] [--cores C] [--json]  a study's queue entries, their\n"
+    "                                          estimated CPU and its wall time on a farm; writes nothing\n"
     "       worker merge JOB.yaml              merge a job's part files into its image\n"
-    "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S]\n"
+    "       worker --queue DIR [--once] [--poll S] [--retries N] [--lease-timeout S] [--entry-cpu-s S]\n"
     "                                          drain DIR; outputs in DIR/done/ (--once: exit when empty)\n"
     "       worker status DIR [--json]         a queue's waiting, running, done and failed jobs, studies\n"
     "       worker requeue DIR NAME... | --failed  move failed (or done) jobs back into the queue\n"
@@ -47,7 +53,8 @@ static const char usage[] =
     "options: --out DIR (default ./out)  --processes N (overrides the job)  --quiet\n"
     "         --force (render even when the outputs are current)\n"
     "         --opt=VALUE works as --opt VALUE; -- ends the options\n"
-    "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n";
+    "queue defaults: --poll 2 (seconds between scans when idle)  --retries 1  --lease-timeout 60\n"
+    "                --entry-cpu-s 60 (a study's render above it is cut into row parts)\n";
 
 static const char help[] =
     "worker: a batch render worker around a Monte Carlo path tracer for studying samplers.\n"
@@ -242,11 +249,14 @@ static int worker_main(int argc, char **argv)
         return rejudge_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "status"))
         return queue_status_main(argc - 1, argv + 1);
+    if (argc >= 2 && !strcmp(argv[1], "plan"))
+        return plan_main(argc - 1, argv + 1);
     if (argc >= 2 && !strcmp(argv[1], "requeue"))
         return queue_requeue_main(argc - 1, argv + 1);
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
+                           .entry_cpu_s = SPREAD_PLAN_ENTRY_CPU_S,
                            .run = {.out_dir = OUTDIR_DEFAULT, .progress = isatty(2)}};
     struct run_opts *o = &q.run;
     int merge = argc >= 2 && !strcmp(argv[1], "merge");
@@ -266,7 +276,7 @@ static int worker_main(int argc, char **argv)
             continue;
         }
         if (!queue_only && (!strcmp(a, "--once") || !strcmp(a, "--poll") || !strcmp(a, "--retries") ||
-                            !strcmp(a, "--lease-timeout")))
+                            !strcmp(a, "--lease-timeout") || !strcmp(a, "--entry-cpu-s")))
             queue_only = a;
         out_given |= !strcmp(a, "--out");
         if ((!strcmp(a, "--help") || !strcmp(a, "-h")) && merge) {
@@ -321,6 +331,12 @@ static int worker_main(int argc, char **argv)
     } else if (dry_run) {
         for (int i = 0; i < njobs; i++)
             worst = max_rc(worst, dryrun_main(jobs[i], o));
+    } else if (q.entry && (q.dir || merge || o->parts || njobs != 1)) {
+        err_print("worker: --entry renders one entry of one study: no --queue, merge or --part; see worker "
+                  "--help\n");
+        worst = 2;
+    } else if (q.entry) {
+        worst = entry_main(jobs[0], q.entry, o);
     } else if (q.dir && (njobs || merge || o->parts)) {
         err_print("worker: --queue takes no job files, merge or --part; see worker --help\n");
         worst = 2;

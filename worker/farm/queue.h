@@ -16,6 +16,8 @@ struct queue_opts {
     double poll_s;          /* seconds between scans of an empty queue */
     int retries;            /* renders of a job whose render process crashed, after the first */
     double lease_timeout_s; /* a lease not refreshed for this long is dead, whatever its host */
+    double entry_cpu_s;     /* a study's entries' CPU target (spread_plan.h) unless its job gives one */
+    const char *entry;      /* --entry NAME: render that entry of the one study given (no queue) */
     struct run_opts run;    /* processes, quiet, progress, force; out_dir is set to DIR/done */
 };
 

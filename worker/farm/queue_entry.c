@@ -14,6 +14,7 @@
 #include "lease.h"
 #include "queue_file.h"
 #include "queue_log.h"
+#include "queue_part.h"
 #include "queue_study.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
@@ -28,40 +29,23 @@ static void give_back_quietly(struct queue *sq, const char *ticket)
     lease_unlock(sq->claim);
 }
 
-/* What entry `ticket` of f rendered, for the log. */
-static void describe(const struct study_fan *f, int k, enum study_fan_kind kind, int index, char *buf,
-                     size_t n)
-{
-    const struct compare *c = study_fan_study(f, k);
-    if (kind == STUDY_FAN_REFERENCE) {
-        snprintf(buf, n, "%s: reference of %s in %s", c->name, c->scenes[index].name,
-                 c->scenes[index].ref_path);
-        return;
-    }
-    const struct compare_item *it = &c->items[index];
-    snprintf(buf, n, "%s: image %d of %d, %s t=%g seed %llu: %.0f spp, %.2f s%s", c->name, index + 1,
-             c->n_items, c->variants[it->variant], it->job.threshold, (unsigned long long)it->job.seed,
-             it->spp_mean, it->wall_s, it->skipped ? " (current, not rendered again)" : "");
-}
-
-/* Render entry `ticket` (kind and indices in its name) of the study loaded as f. */
+/* Render entry `ticket` (kind, indices and part in its name) of the study loaded as f. */
 static int render(struct queue *q, struct queue *sq, struct study_fan *f, const char *ticket, char *msg,
                   size_t n)
 {
-    int k = -1, index = -1, attempts = 0, rc;
-    enum study_fan_kind kind = ticket[0] == 'a' ? STUDY_FAN_REFERENCE : STUDY_FAN_IMAGE;
+    int attempts = 0, rc;
+    struct spread_entry x;
     struct err e = {0};
-    if (sscanf(ticket, kind == STUDY_FAN_REFERENCE ? "a-ref-%d-%d.yaml" : "b-img-%d-%d.yaml", &k, &index) !=
-        2)
-        k = -1;
     struct run_opts ro = queue_claim_run_opts(q, sq);
+    if (spread_plan_parse(ticket, &x) < 0) {
+        snprintf(msg, n, "%s: not a render entry", ticket);
+        return 2;
+    }
     do {
         sq->attempt = ++attempts;
-        rc = study_fan_render(f, k, kind, index, &ro, &e);
+        rc = queue_part_render(f, &x, &ro, msg, n, &e);
     } while (rc == 1 && !*q->stop && attempts <= q->o->retries);
-    if (rc == 0)
-        describe(f, k, kind, index, msg, n);
-    else
+    if (rc != 0)
         err_format(&e, msg, n);
     if (rc != 0 && outdir_env_error(&e))
         sq->env_err = e;

@@ -17,6 +17,7 @@
 #include "queue_scan.h"
 #include "queue_study.h"
 #include "queue_study_key.h"
+#include "spread_plan.h"
 
 /* The study's render entries (a-*, b-*: not the gather) in folder dir, those its record k names;
    the gather's presence into *gather. */
@@ -38,9 +39,56 @@ static int count_entries(const char *dir, const struct study_key *k, int *gather
     return n;
 }
 
+/* Leases held in folder dir (a queue's or a study's running/). */
+static int leases_in(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *de;
+    int n = 0;
+    while (d && (de = readdir(d))) {
+        size_t len = strlen(de->d_name);
+        n += len > 6 && !strcmp(de->d_name + len - 6, ".lease");
+    }
+    if (d)
+        closedir(d);
+    return n;
+}
+
+/* The study's CPU done and left by its plan (sd/plan.txt; none for a study spread before it was
+   written), and its predicted finish: the entries not done, in claim order, on the workers that
+   hold a lease now (`workers`), each of this machine's cores. */
+static void read_plan(const char *sd, int workers, struct queue_studies_entry *x)
+{
+    char path[2400];
+    struct spread_plan p;
+    snprintf(path, sizeof path, "%s/%s", sd, SPREAD_PLAN_FILE);
+    x->finish_s = -1;
+    if (spread_plan_read(path, &p) < 0)
+        return;
+    int left = 0;
+    for (int i = 0; i < p.n; i++) {
+        snprintf(path, sizeof path, "%s/done", sd);
+        if (queue_study_has(path, p.e[i].name)) {
+            x->cpu_done_s += p.e[i].est_cpu_s;
+        } else {
+            x->cpu_left_s += p.e[i].est_cpu_s;
+            p.e[left++] = p.e[i]; /* kept in claim order */
+        }
+    }
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    x->planned = 1;
+    x->lease_workers = workers;
+    if (left == 0)
+        x->finish_s = 0;
+    else if (workers > 0)
+        x->finish_s = spread_plan_makespan(p.e, left, workers, cores > 0 ? (int)cores : 1);
+    spread_plan_free(&p);
+}
+
 /* The study folder sd's progress into x; 0, or -1 when it is no study in progress (being spread,
    or finished). A damaged one is shown with what is wrong. */
-static int read_study(const char *dir, const char *sd, const char *stem, struct queue_studies_entry *x)
+static int read_study(const char *dir, const char *sd, const char *stem, int workers,
+                      struct queue_studies_entry *x)
 {
     char sub[2300];
     struct stat st;
@@ -74,6 +122,7 @@ static int read_study(const char *dir, const char *sd, const char *stem, struct 
     x->eta_s = x->done > 0 && x->elapsed_s >= 0 && !x->waits_requeue && !x->damaged[0]
                    ? x->elapsed_s * (x->renders - x->done) / x->done
                    : -1;
+    read_plan(sd, workers, x);
     return 0;
 }
 
@@ -94,11 +143,19 @@ int queue_studies_list(const char *dir, struct queue_studies_entry **out)
     struct dirent *de;
     struct queue_studies_entry *v = NULL, x;
     int n = 0;
+    snprintf(sd, sizeof sd, "%s/running", dir);
+    int workers = leases_in(sd); /* a worker holds one lease at a time: the queue's and its studies' */
+    while ((de = readdir(d))) {
+        snprintf(sd, sizeof sd, "%s/%s/running", top, de->d_name);
+        if (de->d_name[0] != '.' && strlen(de->d_name) <= 200)
+            workers += leases_in(sd);
+    }
+    rewinddir(d);
     while ((de = readdir(d))) {
         if (de->d_name[0] == '.' || strlen(de->d_name) > 200)
             continue;
         snprintf(sd, sizeof sd, "%s/%s", top, de->d_name);
-        if (read_study(dir, sd, de->d_name, &x) < 0)
+        if (read_study(dir, sd, de->d_name, workers, &x) < 0)
             continue;
         struct queue_studies_entry *g = realloc(v, (size_t)(n + 1) * sizeof *v);
         if (!g)
@@ -133,6 +190,15 @@ void queue_studies_print(const struct queue_studies_entry *s, int n)
         printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n", file,
                sbuf_show(s[i].name, name, sizeof name), s[i].done, s[i].renders, s[i].failed, s[i].running,
                s[i].gathering ? ", gathering" : "", s[i].elapsed_s, eta);
+        if (!s[i].planned)
+            continue;
+        char finish[160] = "no worker holds a lease now: no finish predicted";
+        if (s[i].finish_s >= 0)
+            snprintf(finish, sizeof finish,
+                     "predicted finish in about %.0f s on the %d worker%s holding leases now", s[i].finish_s,
+                     s[i].lease_workers, s[i].lease_workers == 1 ? "" : "s");
+        printf("    CPU about %.0f s done, %.0f s left (estimated by the plan); %s\n", s[i].cpu_done_s,
+               s[i].cpu_left_s, finish);
     }
 }
 
@@ -152,6 +218,12 @@ void queue_studies_json(struct json *js, const struct queue_studies_entry *s, in
         json_number(js, "eta_s", s[i].eta_s < 0 ? (double)NAN : s[i].eta_s);
         json_bool(js, "waits_for_requeue", s[i].waits_requeue);
         json_string(js, "damaged", s[i].damaged);
+        if (s[i].planned) {
+            json_number(js, "cpu_done_s", s[i].cpu_done_s);
+            json_number(js, "cpu_left_s", s[i].cpu_left_s);
+            json_number(js, "lease_workers", s[i].lease_workers);
+            json_number(js, "finish_s", s[i].finish_s < 0 ? (double)NAN : s[i].finish_s);
+        }
         json_end_object(js);
     }
     json_end_array(js);

@@ -13,6 +13,11 @@ struct queue_studies_entry {
     double elapsed_s, eta_s;            /* since it was spread; ETA from the pace so far (< 0 unknown) */
     int waits_requeue;                  /* failed renders: it cannot finish until they are requeued */
     char damaged[1024];                 /* its folder is not as written: what is wrong ("" when sound) */
+    int planned;                        /* its folder holds the plan (spread_plan.h): the figures below */
+    double cpu_done_s, cpu_left_s;      /* estimated CPU seconds of its entries done, and not done */
+    int lease_workers;                  /* workers holding a lease in the queue now (claims in running/) */
+    double finish_s;                    /* predicted wall seconds to its last entry on those workers of
+                                           this machine's cores (< 0 unknown: none holds a lease) */
 };
 
 /* The studies in progress under dir/spread/ into *out (malloc'd), by name; their count, or -1 when

@@ -3,6 +3,7 @@
 #include "queue_study.h"
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <errno.h>
 #include <ftw.h>
 #include <stdint.h>
@@ -20,6 +21,7 @@
 #include "queue_file.h"
 #include "queue_log.h"
 #include "queue_study_key.h"
+#include "spread_plan.h"
 #include "scenefile/yamlx.h"
 #include "study/run/study_fan.h"
 
@@ -63,11 +65,22 @@ int queue_study_write_entry(const char *dir, const char *entry, const char *what
     return fileio_write_atomic(path, text, (size_t)n, e);
 }
 
-/* Write entry into the study folder dir and name it in the record key. */
-static int write_entry(const char *dir, struct sbuf *key, const char *entry, const char *what, struct err *e)
+/* Write entry into the study folder dir and name it in the record key; its mtime base + rank
+   microseconds, so that workers claim the entries in the order written (queue_scan.h: oldest first)
+   whatever the file system's clock granularity. */
+static int write_entry(const char *dir, struct sbuf *key, const char *entry, const char *what,
+                       const struct timespec *base, int rank, struct err *e)
 {
+    char path[2600];
     queue_study_key_add(key, entry);
-    return queue_study_write_entry(dir, entry, what, e);
+    if (queue_study_write_entry(dir, entry, what, e) < 0)
+        return -1;
+    long long ns = (long long)base->tv_nsec + 1000LL * rank;
+    struct timespec t[2] = {{base->tv_sec + (time_t)(ns / 1000000000), ns % 1000000000},
+                            {base->tv_sec + (time_t)(ns / 1000000000), ns % 1000000000}};
+    snprintf(path, sizeof path, "%s/%s", dir, entry);
+    (void)utimensat(AT_FDCWD, path, t, AT_SYMLINK_NOFOLLOW);
+    return 0;
 }
 
 /* Remove the half-built study folders of job file stem that expanding workers killed before they
@@ -89,10 +102,10 @@ static void remove_unfinished(const struct queue *q, const char *stem)
 }
 
 /* Build the study folder of f beside its final place, then rename it there. 0 or -1 with e. */
-static int build(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
-                 const uint8_t *job, size_t len, struct err *e)
+static int build(const struct queue *q, const struct study_fan *f, const struct spread_plan *p,
+                 const char *sd, const char *stem, const uint8_t *job, size_t len, struct err *e)
 {
-    char tmp[2048], sub[2200], entry[64], what[256];
+    char tmp[2048], sub[2200], what[512];
     struct sbuf key = {0};
     snprintf(tmp, sizeof tmp, "%s/%s/.%s.new.%ld", q->dir, QUEUE_STUDY_DIR, stem, (long)getpid());
     remove_unfinished(q, stem);
@@ -108,23 +121,27 @@ static int build(const struct queue *q, const struct study_fan *f, const char *s
     if (fileio_write_atomic(sub, job, len, e) < 0)
         goto fail;
     queue_study_key_begin(&key, job, len);
-    for (int k = 0; k < study_fan_studies(f); k++) {
-        const struct compare *c = study_fan_study(f, k);
-        for (int s = 0; s < c->n_scenes; s++) {
-            snprintf(entry, sizeof entry, "a-ref-%d-%d.yaml", k, s);
-            snprintf(what, sizeof what, "%s: the reference of %s", c->name, c->scenes[s].name);
-            if (study_fan_has_reference(f, k, s) && write_entry(tmp, &key, entry, what, e) < 0)
-                goto fail;
-        }
-        for (int i = 0; i < c->n_items; i++) {
-            snprintf(entry, sizeof entry, "b-img-%d-%05d.yaml", k, i);
-            snprintf(what, sizeof what, "%s: %s", c->name, c->items[i].job.output);
-            if (write_entry(tmp, &key, entry, what, e) < 0)
-                goto fail;
-        }
+    struct timespec base;
+    clock_gettime(CLOCK_REALTIME, &base);
+    for (int i = 0; i < p->n; i++) { /* in the plan's order: the critical path's */
+        const struct spread_entry *x = &p->e[i];
+        const struct compare *c = study_fan_study(f, x->k);
+        char part[48] = "";
+        if (x->parts > 1)
+            snprintf(part, sizeof part, ", row part %d of %d", x->part + 1, x->parts);
+        if (x->kind == STUDY_FAN_REFERENCE)
+            snprintf(what, sizeof what, "%s: the reference of %s, half %c%s, about %.3g CPU s", c->name,
+                     c->scenes[x->index].name, "ab"[x->half], part, x -> est_cpu_s);
+        else
+            snprintf(what, sizeof what, "%s: %s%s, about %.3g CPU s", c->name, c->items[x->index].job.output,
+                     part, x->est_cpu_s);
+        if (write_entry(tmp, &key, x->name, what, &base, i, e) < 0)
+            goto fail;
     }
-    if (write_entry(tmp, &key, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", e) < 0 ||
-        fileio_write_text(tmp, "study.key", sbuf_take(&key), e) < 0)
+    if (write_entry(tmp, &key, QUEUE_STUDY_GATHER, "summary, chart, report and verdict", &base, p->n, e) <
+            0 ||
+        fileio_write_text(tmp, "study.key", sbuf_take(&key), e) < 0 ||
+        fileio_write_text(tmp, SPREAD_PLAN_FILE, spread_plan_text(p), e) < 0)
         goto fail;
     if (rename(tmp, sd) == 0)
         return 0;
@@ -138,8 +155,8 @@ fail:
 /* The study folder sd for the job bytes: made, or the one a killed worker left (its record names
    these bytes, every file as written, not yet gathered) taken on. 0, 1 when another study of this
    file name is in progress, -1 with e. */
-static int prepare(const struct queue *q, const struct study_fan *f, const char *sd, const char *stem,
-                   const uint8_t *job, size_t len, struct err *e)
+static int prepare(const struct queue *q, const struct study_fan *f, const struct spread_plan *p,
+                   const char *sd, const char *stem, const uint8_t *job, size_t len, struct err *e)
 {
     struct stat st;
     if (lstat(sd, &st) == 0) {
@@ -157,7 +174,7 @@ static int prepare(const struct queue *q, const struct study_fan *f, const char 
             return 0; /* its expanding worker died before filing the job there: carry on */
         discard(q, sd, stem);
     }
-    return build(q, f, sd, stem, job, len, e);
+    return build(q, f, p, sd, stem, job, len, e);
 }
 
 /* The claim in hand cannot be spread: failed/ with its log, as an invalid job. */
@@ -222,9 +239,12 @@ void queue_study_expand(struct queue *q, const char *name, const struct jobfile 
     snprintf(sd, sizeof sd, "%s/%s/%s", q->dir, QUEUE_STUDY_DIR, stem);
     snprintf(jobdir, sizeof jobdir, "%s/job", sd);
     snprintf(msg, sizeof msg, "%s/%s", q->dir, QUEUE_STUDY_DIR);
-    int rc = outdir_check(out, &e) < 0 || outdir_mkdirs(msg, NULL, &e) < 0
+    struct spread_plan plan = {0};
+    int rc = outdir_check(out, &e) < 0 || outdir_mkdirs(msg, NULL, &e) < 0 ||
+                     spread_plan_make(&f, q->o->entry_cpu_s > 0 ? q->o->entry_cpu_s : SPREAD_PLAN_ENTRY_CPU_S,
+                                      q->o->run.processes, &plan, &e) < 0
                  ? -1
-                 : prepare(q, &f, sd, stem, jf->bytes, jf->len, &e);
+                 : prepare(q, &f, &plan, sd, stem, jf->bytes, jf->len, &e);
     if (rc < 0 && outdir_env_error(&e)) {
         queue_file_env_stop(q, name, &e);
     } else if (rc < 0) {
@@ -237,17 +257,15 @@ void queue_study_expand(struct queue *q, const char *name, const struct jobfile 
                  sd);
         refuse(q, name, stem, msg);
     } else {
-        int refs = 0, images = 0;
-        for (int k = 0; k < study_fan_studies(&f); k++) {
-            const struct compare *c = study_fan_study(&f, k);
-            images += c->n_items;
-            for (int s = 0; s < c->n_scenes; s++)
-                refs += study_fan_has_reference(&f, k, s);
-        }
+        int refs = 0;
+        for (int i = 0; i < plan.n; i++)
+            refs += plan.e[i].kind == STUDY_FAN_REFERENCE;
         queue_claim_file(q, name, jobdir);
         queue_log(name,
-                  "spread over the queue: %d reference%s and %d image%s to render, then the gather, in %s/\n",
-                  refs, refs == 1 ? "" : "s", images, images == 1 ? "" : "s", sd);
+                  "spread over the queue: %d entr%s (%d of references, %d of images; about %.3g CPU s in "
+                  "all), then the gather, in %s/\n",
+                  plan.n, plan.n == 1 ? "y" : "ies", refs, plan.n - refs, plan.total_cpu_s, sd);
     }
+    spread_plan_free(&plan);
     study_fan_free(&f);
 }

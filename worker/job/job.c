@@ -15,12 +15,29 @@
 #include "base/fileio.h"
 #include "scenefile/yget.h"
 
-const char *const job_keys[] = {"name",           "scene",      "width",         "height",
-                                "sampler",        "threshold",  "light_sampler", "light_threshold",
-                                "max_depth",      "seed",       "processes",     "format",
-                                "output",         "reference",  "poisson_pool",  "light_sampling",
-                                "priority",       "integrator", "sampler_dims",  "russian_roulette",
-                                "poisson_domain", NULL};
+const char *const job_keys[] = {"name",
+                                "scene",
+                                "width",
+                                "height",
+                                "sampler",
+                                "threshold",
+                                "light_sampler",
+                                "light_threshold",
+                                "max_depth",
+                                "seed",
+                                "processes",
+                                "format",
+                                "output",
+                                "reference",
+                                "poisson_pool",
+                                "light_sampling",
+                                "priority",
+                                "integrator",
+                                "sampler_dims",
+                                "russian_roulette",
+                                "poisson_domain",
+                                "entry_cpu_s",
+                                NULL};
 
 void job_defaults(struct job *j, const char *path)
 {
@@ -265,6 +282,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, 1, 256, &n, e) < 0)
             return -1;
         j->processes = (int)n;
+    } else if (!strcmp(k, "entry_cpu_s")) {
+        if (yget_double(d, v, k, &j->entry_cpu_s, e) < 0)
+            return -1;
+        if (!(j->entry_cpu_s >= 0.01 && j->entry_cpu_s <= 1e6))
+            return ydoc_fail(d, v, e, "%s: must be in [0.01, 1e6] CPU seconds, got %s", k, yscalar(v));
     } else if (!strcmp(k, "priority")) {
         if (yget_long(d, v, k, -1000000, 1000000, &n, e) < 0)
             return -1;

@@ -36,12 +36,13 @@ struct job {
     enum poisson_domain poisson_domain; /* fresh Poisson sets: torus (default, unbiased) or square */
     int light_sampling;                 /* 0: no importance sampling of lights (default 1) */
     enum integrator integrator;         /* integrator: (integrator.h), the books' mixture by default */
-    int dims_all;   /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
-    int roulette;   /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: the integrator's default) */
-    int priority;   /* queue order: higher first (default 0) */
-    int float_copy; /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
-                       image (a compare job's renders, scored in linear radiance) */
-    uint64_t hash;  /* FNV-1a of the job file's bytes, then its scene file's */
+    int dims_all; /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
+    int roulette; /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: the integrator's default) */
+    int priority; /* queue order: higher first (default 0) */
+    double entry_cpu_s; /* a study spread over a queue: its entries' CPU target; 0: the queue's */
+    int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
+                           image (a compare job's renders, scored in linear radiance) */
+    uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
     /* which keys were given, and where (1-based line, col; 0 when absent) */
     int has_light_sampler, has_format, has_output;
     int pos_threshold[2], pos_light_threshold[2], pos_light_sampler[2], pos_dims[2], pos_reference[2],

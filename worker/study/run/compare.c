@@ -246,6 +246,24 @@ static char *summary_csv(const struct compare *c)
     return sbuf_take(&b);
 }
 
+int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct job *j, struct err *e)
+{
+    struct compare_item *it = &c->items[i];
+    const struct compare_scene *cs = &c->scenes[it->scene];
+    int rc = compare_ref_prepare(c, it->scene, o, e);
+    if (rc != 0)
+        return rc;
+    if (cs->ref_kind != COMPARE_REF_NONE && !cs->ref) {
+        err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
+        return 1;
+    }
+    snprintf(it->job.reference, sizeof it->job.reference, "%s",
+             cs->ref_kind != COMPARE_REF_NONE ? cs->ref_path : "");
+    it->job.hash = item_hash(cs, it); /* as render_item sets them: the merged sidecar is then current */
+    *j = it->job;
+    return 0;
+}
+
 int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e)
 {
     int rc = compare_ref_prepare(c, c->items[i].scene, o, e);

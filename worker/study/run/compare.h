@@ -20,6 +20,11 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e);
    reference prepared first (reused from the cache when there). 0, 1 or 2 as compare_run. */
 int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e);
 
+/* Combination i's job as compare_run_item renders it (its reference file and hash set), its scene's
+   reference prepared first; for a queue that renders it in row parts and merges them (the merged
+   image and sidecar are then current for compare_run_item). 0, 1 or 2 as compare_run. */
+int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct job *j, struct err *e);
+
 /* From a finished study (every item's figures filled, its images and float copies in dir, each
    settings reference's ref_path and noise known: compare_ref_prepare or compare_ref_measure): the
    verdict (verdict_from_compare, into c->verdict), then summary.csv, chart.svg (report_chart_svg),

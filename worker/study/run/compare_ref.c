@@ -107,20 +107,28 @@ void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j)
     j->seed = h ? rng_mix64(j->seed) : j->seed; /* independent of the other half and of the study's seeds */
 }
 
+/* Half h's job as rendered into the cache (key: the reference's), its files and its record's path. */
+static void half_files(const struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o,
+                       struct job *j, struct outdir_files *files, char *record, size_t n)
+{
+    compare_ref_half_job(cs, h, j);
+    snprintf(j->name, sizeof j->name, ".cache");
+    j->format = IMG_EXR; /* linear radiance, as every error is measured in */
+    j->n_more = 0;       /* one image */
+    snprintf(j->output, sizeof j->output, "ref-%s-%016llx-%c.exr", cs->name, (unsigned long long)key,
+             "ab"[h]);
+    outdir_files(j, o->out_dir, files);
+    snprintf(record, n, "%.*s.key", (int)(strlen(files->image[0]) - 4), files->image[0]);
+}
+
 static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o, struct rgbf *img,
                 struct err *e)
 {
     struct job j;
-    compare_ref_half_job(cs, h, &j);
-    snprintf(j.name, sizeof j.name, ".cache");
-    j.format = IMG_EXR; /* linear radiance, as every error is measured in */
-    j.n_more = 0;       /* one image */
-    snprintf(j.output, sizeof j.output, "ref-%s-%016llx-%c.exr", cs->name, (unsigned long long)key, "ab"[h]);
     struct outdir_files files;
-    outdir_files(&j, o->out_dir, &files);
-    const char *path = files.image[0], *sidecar = files.sidecar;
     char record[JOB_PATH_MAX + 8];
-    snprintf(record, sizeof record, "%.*s.key", (int)(strlen(path) - 4), path);
+    half_files(cs, h, key, o, &j, &files, record, sizeof record);
+    const char *path = files.image[0], *sidecar = files.sidecar;
     double wall_s = 0, spp = 0;
     if (half_cached(cs, path, record, key, img)) {
         half_figures(sidecar, &wall_s, &spp);
@@ -155,6 +163,42 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
     cs->ref_wall_s += wall_s;
     cs->ref_spp += spp;
     return 0;
+}
+
+int compare_ref_half_target(struct compare *c, int s, int h, const struct run_opts *o, struct job *j)
+{
+    struct compare_scene *cs = &c->scenes[s];
+    uint64_t key = reference_key(c, cs);
+    struct outdir_files files;
+    struct rgbf img = {0};
+    char record[JOB_PATH_MAX + 8];
+    half_files(cs, h, key, o, j, &files, record, sizeof record);
+    j->hash = key;
+    int cached = half_cached(cs, files.image[0], record, key, &img);
+    image_f_free(&img);
+    return cached;
+}
+
+int compare_ref_half_render(struct compare *c, int s, int h, const struct run_opts *o, struct err *e)
+{
+    struct rgbf img = {0};
+    int rc = half(&c->scenes[s], h, reference_key(c, &c->scenes[s]), o, &img, e);
+    image_f_free(&img);
+    return rc;
+}
+
+int compare_ref_half_merged(struct compare *c, int s, int h, const struct run_opts *o, struct err *e)
+{
+    struct compare_scene *cs = &c->scenes[s];
+    uint64_t key = reference_key(c, cs);
+    struct job j;
+    struct outdir_files files;
+    struct rgbf img = {0};
+    char record[JOB_PATH_MAX + 8];
+    half_files(cs, h, key, o, &j, &files, record, sizeof record);
+    int rc = half_rendered(files.image[0], record, key, &img, e);
+    image_f_free(&img);
+    return rc;
 }
 
 /* The reference = the mean of its halves a and b (into a), and its own noise from their

@@ -78,9 +78,61 @@ int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int i
     return rc;
 }
 
-/* Scene s of study k's reference rendered or reused under its lock, so that the tasks of one array
-   render it once. 0, 1 or 2. */
-static int reference_locked(struct study_fan *f, int k, int s, const struct run_opts *o, struct err *e)
+/* o for study k of f: a suite's study renders under OUT/<suite> (dir, n bytes). */
+static struct run_opts study_opts(const struct study_fan *f, const struct run_opts *o, char *dir, size_t n)
+{
+    struct run_opts in = *o;
+    if (f->s) {
+        outdir_dir(o->out_dir, f->s->name, dir, n);
+        in.out_dir = dir;
+    }
+    return in;
+}
+
+int study_fan_render_job(struct study_fan *f, int k, enum study_fan_kind kind, int index, int half,
+                         const struct run_opts *o, struct job *j, struct run_opts *jo, char *dir, size_t n,
+                         struct err *e)
+{
+    struct compare *c = k >= 0 && k < study_fan_studies(f) ? study_fan_study(f, k) : NULL;
+    int count = !c ? 0 : kind == STUDY_FAN_REFERENCE ? c->n_scenes : c->n_items;
+    if (index < 0 || index >= count ||
+        (kind == STUDY_FAN_REFERENCE && !study_fan_has_reference(f, k, index))) {
+        err_set(e, NULL, 0, 0, "%s: no such render in study %d", study_fan_name(f), k);
+        return 2;
+    }
+    *jo = study_opts(f, o, dir, n);
+    if (kind == STUDY_FAN_REFERENCE) {
+        jo->scene = &c->scenes[index].input->src;
+        return compare_ref_half_target(c, index, half, jo, j) ? 3 : 0;
+    }
+    jo->scene = &c->scenes[c->items[index].scene].input->src;
+    int rc = compare_item_job(c, index, jo, j, e);
+    if (rc == 1)
+        err_prefix(e, c->name);
+    return rc;
+}
+
+int study_fan_render_half(struct study_fan *f, int k, int s, int h, const struct run_opts *o, struct err *e)
+{
+    char dir[2048];
+    struct run_opts in = study_opts(f, o, dir, sizeof dir);
+    if (k < 0 || k >= study_fan_studies(f) || s < 0 || s >= study_fan_study(f, k)->n_scenes ||
+        !study_fan_has_reference(f, k, s)) {
+        err_set(e, NULL, 0, 0, "%s: no reference %d in study %d", study_fan_name(f), s, k);
+        return 2;
+    }
+    return compare_ref_half_render(study_fan_study(f, k), s, h, &in, e);
+}
+
+int study_fan_half_merged(struct study_fan *f, int k, int s, int h, const struct run_opts *o, struct err *e)
+{
+    char dir[2048];
+    struct run_opts in = study_opts(f, o, dir, sizeof dir);
+    return compare_ref_half_merged(study_fan_study(f, k), s, h, &in, e) < 0;
+}
+
+int study_fan_ref_lock(const struct study_fan *f, int k, int s, const struct run_opts *o, int shared,
+                       struct err *e)
 {
     char cache[2048], lock[2400];
     if (f->s) {
@@ -90,11 +142,21 @@ static int reference_locked(struct study_fan *f, int k, int s, const struct run_
     } else
         outdir_dir(o->out_dir, ".cache", cache, sizeof cache);
     if (outdir_mkdirs(cache, NULL, e) < 0)
-        return 2;
+        return -1;
     snprintf(lock, sizeof lock, "%s/.ref-%s.lock", cache, study_fan_study(f, k)->scenes[s].name);
     int fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd >= 0)
-        (void)flock(fd, LOCK_EX); /* released by close, or by the holder's death */
+        (void)flock(fd, shared ? LOCK_SH : LOCK_EX); /* released by close, or by the holder's death */
+    return fd;
+}
+
+/* Scene s of study k's reference rendered or reused under its lock, so that the tasks of one array
+   render it once. 0, 1 or 2. */
+static int reference_locked(struct study_fan *f, int k, int s, const struct run_opts *o, struct err *e)
+{
+    int fd = study_fan_ref_lock(f, k, s, o, 0, e);
+    if (fd < 0 && e->msg[0])
+        return 2;
     int rc = study_fan_render(f, k, STUDY_FAN_REFERENCE, s, o, e);
     if (fd >= 0)
         close(fd);

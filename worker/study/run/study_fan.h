@@ -36,6 +36,27 @@ int study_fan_has_reference(const struct study_fan *f, int k, int s);
 int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int index,
                      const struct run_opts *o, struct err *e);
 
+/* Study k's render as a queue cuts it into row parts: half `half` of scene `index`'s reference
+   (compare_ref_half_target) or image `index` (compare_item_job: its scene's reference prepared
+   first), its job in *j and the options it renders with in *jo (o's, with its out_dir in dir of n
+   bytes for a suite's study and the scene as the study read it, valid while f is). Returns 0, 3
+   when a reference half is already in the cache, or compare_run's 1 or 2 with e filled. */
+int study_fan_render_job(struct study_fan *f, int k, enum study_fan_kind kind, int index, int half,
+                         const struct run_opts *o, struct job *j, struct run_opts *jo, char *dir, size_t n,
+                         struct err *e);
+
+/* Study k's reference half h of scene s rendered whole into the cache (or found there); or, merged
+   from its parts by the caller, recorded there. 0, 1 or 2 (merged: 0 or 1) with e filled. */
+int study_fan_render_half(struct study_fan *f, int k, int s, int h, const struct run_opts *o, struct err *e);
+int study_fan_half_merged(struct study_fan *f, int k, int s, int h, const struct run_opts *o, struct err *e);
+
+/* The lock of study k's reference of scene s (OUT/.cache/.ref-<scene>.lock, a suite's under
+   OUT/<suite>/), taken shared (the tasks rendering its halves or their parts) or exclusive (a task
+   about to prepare it whole: it waits for those): the open file, to close; -1 with e filled when
+   the cache folder cannot be made, -1 with e empty when the lock cannot be opened (go on without). */
+int study_fan_ref_lock(const struct study_fan *f, int k, int s, const struct run_opts *o, int shared,
+                       struct err *e);
+
 /* `worker STUDY.yaml --out OUT --part I/N`: a batch system's task I of N renders the images with
    index % N == I (over all studies of a suite), each after its scene's reference, which the first
    task to need it renders under a lock (OUT/.cache/.ref-<scene>.lock) while the others wait and
