@@ -12,6 +12,7 @@
 #include "study/load/compare_load.h"
 #include "study/load/compare_suite_load.h"
 #include "study/run/compare_ref.h"
+#include "study/run/study_scenes.h"
 #include "study/judge/verdict.h"
 
 /* The cost model's measuring budget in CPU seconds (cost_model.h: each pilot takes a path at
@@ -220,71 +221,9 @@ static void warn_study(const struct compare *c, const double *spp)
             warn_same_points(c, s, v, spp + ((size_t)s * c->n_variants + v) * c->n_points);
 }
 
-/* The loaded scenes of a dry run, one per scene file read (a suite's studies share them): the
-   cost model's pilots are shared between studies through them. */
-struct dry_scenes {
-    const struct study_scene **input;
-    struct scene_file *sf;
-    int n;
-};
-
-/* The loaded scene of study scene cs. */
-static const struct scene_file *scene_of(const struct dry_scenes *ds, const struct compare_scene *cs)
-{
-    for (int i = 0; i < ds->n; i++)
-        if (ds->input[i] == cs->input)
-            return &ds->sf[i];
-    return NULL;
-}
-
-/* Load every scene of the n studies once into ds and tell m of every estimate to come (each
-   combination once, each settings reference's half). 0, or -1 with e filled. */
-static int dry_prepare(struct compare *const *studies, int n, struct dry_scenes *ds, struct cost_model *m,
-                       struct err *e)
-{
-    int total = 0;
-    for (int i = 0; i < n; i++)
-        total += studies[i]->n_scenes;
-    ds->input = calloc((size_t)total, sizeof *ds->input);
-    ds->sf = calloc((size_t)total, sizeof *ds->sf);
-    if (!ds->input || !ds->sf)
-        return err_set(e, NULL, 0, 0, "out of memory");
-    for (int i = 0; i < n; i++) {
-        const struct compare *c = studies[i];
-        for (int s = 0; s < c->n_scenes; s++) {
-            if (scene_of(ds, &c->scenes[s]))
-                continue;
-            ds->input[ds->n] = c->scenes[s].input;
-            if (scene_load_src(&c->scenes[s].input->src, &ds->sf[ds->n++], e) < 0) /* as the study read it */
-                return -1;
-        }
-        for (int k = 0; k < c->n_items; k++)
-            if (c->items[k].seed == 0 &&
-                job_estimate_expect(&c->items[k].job, scene_of(ds, &c->scenes[c->items[k].scene]), m, e) < 0)
-                return -1;
-        for (int s = 0; s < c->n_scenes; s++) {
-            struct job hj;
-            if (c->scenes[s].ref_kind != COMPARE_REF_SETTINGS)
-                continue;
-            compare_ref_half_job(&c->scenes[s], 0, &hj);
-            if (job_estimate_expect(&hj, scene_of(ds, &c->scenes[s]), m, e) < 0)
-                return -1;
-        }
-    }
-    return 0;
-}
-
-static void dry_scenes_free(struct dry_scenes *ds)
-{
-    for (int i = 0; ds->sf && i < ds->n; i++)
-        scene_file_free(&ds->sf[i]);
-    free(ds->sf);
-    free(ds->input);
-}
-
 /* Estimate every image of c (once per seedless combination: seeds cost alike) and its references
    by the cost model m (its pilots and set timings shared between combinations of equal settings). */
-static int study(const struct compare *c, const struct dry_scenes *ds, struct cost_model *m,
+static int study(const struct compare *c, const struct study_scenes *ds, struct cost_model *m,
                  const struct run_opts *o, struct study_sum *sum, struct err *e)
 {
     int rc = -1;
@@ -300,7 +239,7 @@ static int study(const struct compare *c, const struct dry_scenes *ds, struct co
         struct job_estimate est;
         if (it->seed != 0)
             continue;
-        if (job_estimate(&it->job, scene_of(ds, &c->scenes[it->scene]), o->processes, m, &est, e) < 0)
+        if (job_estimate(&it->job, study_scenes_of(ds, &c->scenes[it->scene]), o->processes, m, &est, e) < 0)
             goto done;
         sum->samples += est.samples * c->n_seeds;
         sum->cpu_s += est.cpu_s * c->n_seeds;
@@ -316,7 +255,7 @@ static int study(const struct compare *c, const struct dry_scenes *ds, struct co
     warn_study(c, spp);
     for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_kind == COMPARE_REF_SETTINGS &&
-            study_reference(c, s, scene_of(ds, &c->scenes[s]), densest[s], m, o, sum, e) < 0)
+            study_reference(c, s, study_scenes_of(ds, &c->scenes[s]), densest[s], m, o, sum, e) < 0)
             goto done;
     rc = 0;
 done:
@@ -338,13 +277,13 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     struct compare *const *studies = suite ? suite->studies : &one;
     int n = suite ? suite->n_studies : 1, rc = 0;
     struct cost_model *m = cost_model_new(DRYRUN_STUDY_BUDGET_S);
-    struct dry_scenes ds = {0};
+    struct study_scenes ds = {0};
     double cpu_s = 0, ref_cpu_s = 0;
     int processes = 1;
     printf("%s: dry run: nothing rendered, nothing written\n", suite ? suite->name : one->name);
     if (!m)
         err_set(&e, f->path, 0, 0, "out of memory");
-    if (!m || dry_prepare(studies, n, &ds, m, &e) < 0) {
+    if (!m || study_scenes_prepare(studies, n, &ds, m, &e) < 0) {
         err_print_e(&e);
         rc = 2;
     }
@@ -368,7 +307,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
         print_cpu(cpu_s, processes, how);
         print_took();
     }
-    dry_scenes_free(&ds);
+    study_scenes_free(&ds);
     cost_model_free(m);
     compare_suite_free(suite);
     compare_free(one);

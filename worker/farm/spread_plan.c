@@ -13,64 +13,7 @@
 #include "job/job_estimate.h"
 #include "job/part.h"
 #include "study/run/compare_ref.h"
-
-/* The scenes of a plan, one per scene file read (a suite's studies share them). */
-struct plan_scenes {
-    const struct study_scene **input;
-    struct scene_file *sf;
-    int n, cap;
-};
-
-static const struct scene_file *scene_of(const struct plan_scenes *ps, const struct compare_scene *cs)
-{
-    for (int i = 0; i < ps->n; i++)
-        if (ps->input[i] == cs->input)
-            return &ps->sf[i];
-    return NULL;
-}
-
-/* Every scene of f loaded once into ps, and every estimate to come told to m. 0 or -1 with e. */
-static int prepare(const struct study_fan *f, struct plan_scenes *ps, struct cost_model *m, struct err *e)
-{
-    int total = 0;
-    for (int k = 0; k < study_fan_studies(f); k++)
-        total += study_fan_study(f, k)->n_scenes;
-    ps->input = calloc((size_t)total, sizeof *ps->input);
-    ps->sf = calloc((size_t)total, sizeof *ps->sf);
-    if (!ps->input || !ps->sf)
-        return err_set(e, NULL, 0, 0, "out of memory");
-    for (int k = 0; k < study_fan_studies(f); k++) {
-        const struct compare *c = study_fan_study(f, k);
-        for (int s = 0; s < c->n_scenes; s++) {
-            if (scene_of(ps, &c->scenes[s]))
-                continue;
-            ps->input[ps->n] = c->scenes[s].input;
-            if (scene_load_src(&c->scenes[s].input->src, &ps->sf[ps->n++], e) < 0)
-                return -1;
-        }
-        for (int i = 0; i < c->n_items; i++)
-            if (c->items[i].seed == 0 &&
-                job_estimate_expect(&c->items[i].job, scene_of(ps, &c->scenes[c->items[i].scene]), m, e) < 0)
-                return -1;
-        for (int s = 0; s < c->n_scenes; s++) {
-            struct job hj;
-            if (!study_fan_has_reference(f, k, s))
-                continue;
-            compare_ref_half_job(&c->scenes[s], 0, &hj);
-            if (job_estimate_expect(&hj, scene_of(ps, &c->scenes[s]), m, e) < 0)
-                return -1;
-        }
-    }
-    return 0;
-}
-
-static void plan_scenes_free(struct plan_scenes *ps)
-{
-    for (int i = 0; ps->sf && i < ps->n; i++)
-        scene_file_free(&ps->sf[i]);
-    free(ps->sf);
-    free(ps->input);
-}
+#include "study/run/study_scenes.h"
 
 /* Append one render of est (its CPU and rows) as entries of at most about target_s each. */
 static int add_render(struct spread_plan *p, int *cap, const struct spread_entry *proto,
@@ -126,7 +69,7 @@ static int by_critical_path(const void *pa, const void *pb)
 }
 
 /* Study k's renders estimated (each seedless combination once) and appended. 0 or -1 with e. */
-static int plan_study(const struct study_fan *f, int k, const struct plan_scenes *ps, struct cost_model *m,
+static int plan_study(const struct study_fan *f, int k, const struct study_scenes *ps, struct cost_model *m,
                       double target_s, int processes, struct spread_plan *p, int *cap, struct err *e)
 {
     const struct compare *c = study_fan_study(f, k);
@@ -139,7 +82,7 @@ static int plan_study(const struct study_fan *f, int k, const struct plan_scenes
             compare_ref_half_job(&c->scenes[s], h, &hj);
             double t = hj.entry_cpu_s > 0 ? hj.entry_cpu_s : target_s;
             struct spread_entry proto = {.kind = STUDY_FAN_REFERENCE, .k = k, .index = s, .half = h};
-            if (job_estimate(&hj, scene_of(ps, &c->scenes[s]), processes, m, &est, e) < 0 ||
+            if (job_estimate(&hj, study_scenes_of(ps, &c->scenes[s]), processes, m, &est, e) < 0 ||
                 add_render(p, cap, &proto, &est, t, e) < 0)
                 return -1;
         }
@@ -148,7 +91,7 @@ static int plan_study(const struct study_fan *f, int k, const struct plan_scenes
         const struct compare_item *it = &c->items[i];
         /* seeds cost alike: est holds the combination's first seed's (seeds are the innermost index) */
         if (it->seed == 0 &&
-            job_estimate(&it->job, scene_of(ps, &c->scenes[it->scene]), processes, m, &est, e) < 0)
+            job_estimate(&it->job, study_scenes_of(ps, &c->scenes[it->scene]), processes, m, &est, e) < 0)
             return -1;
         double t = it->job.entry_cpu_s > 0 ? it->job.entry_cpu_s : target_s;
         struct spread_entry proto = {.kind = STUDY_FAN_IMAGE, .k = k, .index = i};
@@ -161,20 +104,25 @@ static int plan_study(const struct study_fan *f, int k, const struct plan_scenes
 int spread_plan_make(const struct study_fan *f, double target_s, int processes, struct spread_plan *p,
                      struct err *e)
 {
-    struct plan_scenes ps = {0};
+    struct study_scenes ps = {0};
     struct cost_model *m = cost_model_new(SPREAD_PLAN_BUDGET_S);
+    const int n = study_fan_studies(f);
+    struct compare **studies = calloc((size_t)(n > 0 ? n : 1), sizeof *studies);
     int cap = 0, rc = -1;
     memset(p, 0, sizeof *p);
-    if (!m)
+    for (int k = 0; studies && k < n; k++)
+        studies[k] = study_fan_study(f, k);
+    if (!m || !studies)
         err_set(e, NULL, 0, 0, "out of memory");
-    else if (prepare(f, &ps, m, e) == 0) {
+    else if (study_scenes_prepare(studies, n, &ps, m, e) == 0) {
         rc = 0;
         for (int k = 0; k < study_fan_studies(f) && rc == 0; k++)
             rc = plan_study(f, k, &ps, m, target_s, processes, p, &cap, e);
     }
     if (rc == 0 && p->n > 0)
         qsort(p->e, (size_t)p->n, sizeof *p->e, by_critical_path);
-    plan_scenes_free(&ps);
+    study_scenes_free(&ps);
+    free(studies);
     cost_model_free(m);
     if (rc < 0)
         spread_plan_free(p);
