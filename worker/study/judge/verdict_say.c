@@ -169,7 +169,9 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                    r->pair_p ? "a t test with both uncertainties" : "Welch's t test", VERDICT_ALPHA,
                    r->status == VERDICT_TIE ? "tied, no single winner" : "inconclusive");
         for (int j = 0; j < r->n; j++)
-            if (r->e[j].untold && (w = next_line(out->warnings, &out->n_warnings)))
+            if (r->e[j].untold && !isfinite(r->at))
+                continue; /* nothing measured (no reference): no time to read at */
+            else if (r->e[j].untold && (w = next_line(out->warnings, &out->n_warnings)))
                 append(w,
                        "%s, the study cannot tell where %s stands: %.3g CPU seconds lie too far below its "
                        "points for its error-against-time line to reach (it is separated from none)",
