@@ -68,6 +68,30 @@ static void child_main(const struct procs_job *fj, int index, int nproc, float *
     _exit(0);
 }
 
+int procs_render_here(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e)
+{
+    memset(res, 0, sizeof *res);
+    res->processes = 1;
+    const double wall0 = clock_s(CLOCK_MONOTONIC), cpu0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
+    struct render_ctx *ctx = render_ctx_new(fj->scene, fj->camera, &fj->rs, fj->pixel, fj->light, e);
+    if (!ctx)
+        return -1;
+    struct render_stats st;
+    render_stats_init(&st);
+    const int w = fj->rs.width, h = fj->rs.height;
+    for (int y = 0; y < h; y++)
+        if (y % fj->row_parts == fj->row_part)
+            for (int x = 0; x < w; x++)
+                render_pixel(ctx, x, y, &rgb[((size_t)y * w + x) * 3], &st);
+    render_ctx_free(ctx);
+    res->cpu_s = clock_s(CLOCK_THREAD_CPUTIME_ID) - cpu0;
+    render_stats_finish(&st, res->cpu_s);
+    render_stats_init(&res->total);
+    render_stats_add(&res->total, &st);
+    res->wall_s = clock_s(CLOCK_MONOTONIC) - wall0;
+    return 0;
+}
+
 static void kill_all(pid_t *pids, int n)
 {
     for (int i = 0; i < n; i++)

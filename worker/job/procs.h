@@ -53,6 +53,12 @@ void procs_framebuffer_free(float *rgb, int w, int h);
    parent dies is killed with it on Linux (PR_SET_PDEATHSIG), elsewhere stops after its current row. */
 int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
+/* Render fj's rows in the calling process, no fork: for the study's cost design, which times
+   small units of work again and again (a fork per unit cost more than the unit under ASan, and
+   is no part of a sampler's cost). res as procs_render's with one process, cpu_s this thread's
+   CPU seconds. 0, or -1 with e filled (the render context could not be made). */
+int procs_render_here(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
+
 /* The share of the render processes' CPU time spent drawing point sets, in [0, 1]: each
    process's sampler_s is a fraction of its own cpu_s (render_stats_finish), and r sums both
    over the processes (or the parts merged) in one order. */

@@ -114,7 +114,7 @@ static int time_unit(const struct compare *c, struct timing *t, int s, int v, in
                                    .row_part = b % d->row_parts,
                                    .row_parts = d->row_parts,
                                    .stop = t->stop};
-            rc = procs_render(&fj, t->rgb, &res, e);
+            rc = procs_render_here(&fj, t->rgb, &res, e);
         }
         sampler_free(pix);
         sampler_free(light);
