@@ -55,7 +55,8 @@ for x in s['scenes']:
         assert r['winner'] == ('inconclusive' if r['status'] == 'inconclusive' else ' = '.join(top)), r
     for fl in x['failures']:
         assert fl['variant'] in variants and fl['kind'] in ('structured_error', 'stops_falling', 'non_finite',
-                                                            'sampler_share', 'biased') and fl['text'], fl
+                                                            'sampler_share', 'biased', 'heavy_tailed',
+                                                            'structured') and fl['text'], fl
     assert all(isinstance(w, str) for w in x['warnings']) and x['sentences'], x
     # a threshold 20 reference has 25 samples, under 4x threshold 25's 16: the guard says so
     assert any('fewer than 4x' in w for w in x['warnings']), x['warnings']
