@@ -89,14 +89,15 @@ struct timing {
     struct scene_file sf;
     struct camera cam;
     float *rgb;
-    int w, h, processes;
+    int scene, w, h, processes; /* scene: its index in the study */
     const volatile sig_atomic_t *stop;
 };
 
 /* Time (variant v, point p) once in block b: the CPU seconds one image of the point costs. */
-static int time_unit(const struct compare *c, struct timing *t, int s, int v, int p, int b,
-                     const struct design *d, double *cost, struct err *e)
+static int time_unit(const struct compare *c, struct timing *t, int v, int p, int b, const struct design *d,
+                     double *cost, struct err *e)
 {
+    const int s = t->scene;
     double cpu = 0, samples = 0;
     for (int r = 0; r < d->reps; r++) {
         const struct job *j = &c->items[compare_index(c, s, v, p, 0)].job;
@@ -132,7 +133,7 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
     int n = c->n_variants * c->n_points, rc = -1;
     struct design *d = calloc((size_t)n, sizeof *d);
     int *idx = calloc((size_t)n, sizeof *idx);
-    struct timing t = {.processes = o->processes, .stop = o->stop};
+    struct timing t = {.scene = s, .processes = o->processes, .stop = o->stop};
     const struct compare_scene *cs = &c->scenes[s];
     if (!d || !idx) {
         err_set(e, NULL, 0, 0, "out of memory");
@@ -151,8 +152,7 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
         shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
         for (int i = 0; i < n; i++) {
             int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
-            if (time_unit(c, &t, s, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) <
-                0)
+            if (time_unit(c, &t, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) < 0)
                 goto done;
         }
     }
