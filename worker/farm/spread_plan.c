@@ -16,8 +16,8 @@
 #include "study/run/study_scenes.h"
 
 /* Append one render of est (its CPU and rows) as entries of at most about target_s each. */
-static int add_render(struct spread_plan *p, int *cap, const struct spread_entry *proto,
-                      const struct job_estimate *est, double target_s, struct err *e)
+static int add_render(struct spread_plan *p, const struct spread_entry *proto, const struct job_estimate *est,
+                      double target_s, struct err *e)
 {
     int parts = est->cpu_s > target_s ? (int)ceil(est->cpu_s / target_s) : 1;
     if (parts > PART_MAX)
@@ -27,12 +27,12 @@ static int add_render(struct spread_plan *p, int *cap, const struct spread_entry
     if (parts < 1)
         parts = 1;
     for (int i = 0; i < parts; i++) {
-        if (p->n == *cap) {
-            int ncap = *cap ? 2 * *cap : 64;
+        if (p->n == p->cap) {
+            int ncap = p->cap ? 2 * p->cap : 64;
             struct spread_entry *ne = realloc(p->e, (size_t)ncap * sizeof *ne);
             if (!ne)
                 return err_set(e, NULL, 0, 0, "out of memory");
-            p->e = ne, *cap = ncap;
+            p->e = ne, p->cap = ncap;
         }
         struct spread_entry *x = &p->e[p->n++];
         *x = *proto;
@@ -70,7 +70,7 @@ static int by_critical_path(const void *pa, const void *pb)
 
 /* Study k's renders estimated (each seedless combination once) and appended. 0 or -1 with e. */
 static int plan_study(const struct study_fan *f, int k, const struct study_scenes *ps, struct cost_model *m,
-                      double target_s, int processes, struct spread_plan *p, int *cap, struct err *e)
+                      double target_s, int processes, struct spread_plan *p, struct err *e)
 {
     const struct compare *c = study_fan_study(f, k);
     struct job_estimate est;
@@ -83,7 +83,7 @@ static int plan_study(const struct study_fan *f, int k, const struct study_scene
             double t = hj.entry_cpu_s > 0 ? hj.entry_cpu_s : target_s;
             struct spread_entry proto = {.kind = STUDY_FAN_REFERENCE, .k = k, .index = s, .half = h};
             if (job_estimate(&hj, study_scenes_of(ps, &c->scenes[s]), processes, m, &est, e) < 0 ||
-                add_render(p, cap, &proto, &est, t, e) < 0)
+                add_render(p, &proto, &est, t, e) < 0)
                 return -1;
         }
     }
@@ -95,7 +95,7 @@ static int plan_study(const struct study_fan *f, int k, const struct study_scene
             return -1;
         double t = it->job.entry_cpu_s > 0 ? it->job.entry_cpu_s : target_s;
         struct spread_entry proto = {.kind = STUDY_FAN_IMAGE, .k = k, .index = i};
-        if (add_render(p, cap, &proto, &est, t, e) < 0)
+        if (add_render(p, &proto, &est, t, e) < 0)
             return -1;
     }
     return 0;
@@ -108,7 +108,7 @@ int spread_plan_make(const struct study_fan *f, double target_s, int processes, 
     struct cost_model *m = cost_model_new(SPREAD_PLAN_BUDGET_S);
     const int n = study_fan_studies(f);
     struct compare **studies = calloc((size_t)(n > 0 ? n : 1), sizeof *studies);
-    int cap = 0, rc = -1;
+    int rc = -1;
     memset(p, 0, sizeof *p);
     for (int k = 0; studies && k < n; k++)
         studies[k] = study_fan_study(f, k);
@@ -117,7 +117,7 @@ int spread_plan_make(const struct study_fan *f, double target_s, int processes, 
     else if (study_scenes_prepare(studies, n, &ps, m, e) == 0) {
         rc = 0;
         for (int k = 0; k < study_fan_studies(f) && rc == 0; k++)
-            rc = plan_study(f, k, &ps, m, target_s, processes, p, &cap, e);
+            rc = plan_study(f, k, &ps, m, target_s, processes, p, e);
     }
     if (rc == 0 && p->n > 0)
         qsort(p->e, (size_t)p->n, sizeof *p->e, by_critical_path);

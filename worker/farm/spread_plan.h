@@ -27,7 +27,7 @@ struct spread_entry {
 
 struct spread_plan {
     struct spread_entry *e; /* owned, in claim order */
-    int n;
+    int n, cap;             /* cap: entries allocated */
     double total_cpu_s;
 };
 
