@@ -3,8 +3,9 @@
 # scene (default the book-3 Cornell box, then the seed's chess board) is converted from our own
 # scene file (bench/peers.py),
 # rendered by Cycles (bench/peers_cycles.py: one thread, unbiased settings, EXR out) and by us
-# (the mixture, nee with jitter pixels as the book's job, nee with sobol pixels as Cycles' Sobol,
-# nee + sampler_dims: all + sobol, and both nee rows again with light sets the pixel's size;
+# (the mixture as the book's job; nee with jitter pixels and jitter light sets the pixel's size;
+# nee with sobol pixels and light sets, as Cycles' Sobol; nee + sampler_dims: all + sobol; and
+# both nee rows again with the book job's t=5 jitter light sets, nee-book and nee-sobol-book;
 # one process), PEERS_SEEDS seeds each (6: three pairs), Cycles
 # and ours interleaved so that load on the machine hits both alike; then bench/peers.py prints ns
 # per sample, the mean over the seed pairs (1,2), (3,4), ... of the MSE between a pair's images,
@@ -44,10 +45,11 @@ run_scene() {
     rm -rf "$OUT" && mkdir -p "$OUT"
     python3 "$root/bench/peers.py" scene "$SCENE" "$OUT/scene.json"
     # name, then the job keys that make it (KEY=- leaves KEY out: sampler_dims: all refuses light_*)
-    # (nee-lights and nee-sobol-lights: each light's set as large as the pixel's and of its kind, so
-    # that a pixel's samples take one whole stratified light set, as Cycles' Sobol dimensions are
-    # stratified over a pixel's samples; the t=5 jitter lights are the book job's 400-point sets)
-    variants="mixture:integrator=mixture nee:integrator=nee nee-sobol:integrator=nee,sampler=sobol nee-sobol-all:integrator=nee,sampler_dims=all,sampler=sobol,light_sampler=-,light_threshold=- nee-lights:integrator=nee,light_threshold=$THRESHOLD nee-sobol-lights:integrator=nee,sampler=sobol,light_sampler=sobol,light_threshold=$THRESHOLD"
+    # (nee and nee-sobol: each light's set as large as the pixel's and of its kind, so that a
+    # pixel's samples take one whole stratified light set, as Cycles' Sobol light dimensions are
+    # stratified over a pixel's samples; nee-book and nee-sobol-book: the book job's t=5 jitter
+    # light sets, 400 points of which a pixel takes 64 in a random order, as the mixture row)
+    variants="mixture:integrator=mixture nee:integrator=nee,light_threshold=$THRESHOLD nee-sobol:integrator=nee,sampler=sobol,light_sampler=sobol,light_threshold=$THRESHOLD nee-sobol-all:integrator=nee,sampler_dims=all,sampler=sobol,light_sampler=-,light_threshold=- nee-book:integrator=nee nee-sobol-book:integrator=nee,sampler=sobol"
     job() { # job NAME SEED KEYS -> $OUT/NAME-sSEED.yaml
         f=$OUT/$1-s$2.yaml
         printf 'name: %s-s%s\nscene: %s\nwidth: %s\nheight: %s\nsampler: jitter\nthreshold: %s\nlight_sampler: jitter\nlight_threshold: 5\nseed: %s\nprocesses: 1\noutput: %s-s%s.pfm\n' \
