@@ -6,6 +6,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include "compare.h"
 #include "compare_ref.h"
 #include "study/load/compare_load.h"
 #include "study/load/compare_suite_load.h"
