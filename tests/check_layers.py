@@ -76,17 +76,6 @@ def graph(build, source="."):
     return edges
 
 
-# Module circles found when this check learned to read includes, not broken yet (a header included
-# for its types by a module its own source calls): a circle may shrink, never grow or appear anew.
-KNOWN_MODULE_CYCLES = [
-    {"common/geom/bvh", "common/geom/bvh_build", "common/geom/scene", "common/geom/shape", "common/geom/shape_bake",
-     "common/geom/shape_inline", "common/geom/shape_light", "common/geom/shape_light_inline", "common/geom/texture"},
-    {"worker/study/run/compare", "worker/study/run/compare_ref", "worker/study/run/study_machines"},
-    {"worker/farm/queue", "worker/farm/queue_claim", "worker/farm/queue_drain", "worker/farm/queue_entry",
-     "worker/farm/queue_file", "worker/farm/queue_study", "worker/farm/queue_study_key"},
-]
-
-
 def module(path):
     return os.path.splitext(path)[0]
 
@@ -187,9 +176,6 @@ def main():
     for comp in cycles(mods):
         if any(set(comp) <= set(map(module, x)) for x in cycles(edges)):
             continue  # a cycle of .c files, named above
-        if any(set(comp) <= known for known in KNOWN_MODULE_CYCLES):
-            print("known module cycle: " + " <-> ".join(comp))
-            continue
         bad += 1
         print("module cycle: " + " <-> ".join(comp))
         for a in comp:

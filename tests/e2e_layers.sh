@@ -32,6 +32,11 @@ printf '#ifndef M_H\n#define M_H\nstruct m_point { int x; };\nint m_f(void);\n#e
 printf '#ifndef N_H\n#define N_H\n#include "m.h"\nint n_g(struct m_point p);\n#endif\n' >"$T/src/common/x/n.h"
 printf '#include "m.h"\n#include "n.h"\nint m_f(void) { struct m_point p = {1}; return n_g(p); }\n' >"$T/src/common/x/m.c"
 printf '#include "n.h"\nint n_g(struct m_point p) { return p.x; }\n' >"$T/src/common/x/n.c"
+# and two headers alone that include each other (no source, no call), under names whose circle the
+# check once tolerated: any circle of modules fails, none is excused
+mkdir -p "$T/src/common/geom"
+printf '#ifndef SCENE_H\n#define SCENE_H\n#include "shape.h"\nstruct scene { int n; };\n#endif\n' >"$T/src/common/geom/scene.h"
+printf '#ifndef SHAPE_H\n#define SHAPE_H\n#include "scene.h"\nstruct hit { int t; };\n#endif\n' >"$T/src/common/geom/shape.h"
 for f in worker/job/a worker/farm/b common/base/c worker/study/judge/j worker/study/run/r common/x/m common/x/n; do
     ${CC:-cc} -c "$T/src/$f.c" -o "$T/b/$f.o" || no "cannot compile $f.c"
 done
@@ -47,6 +52,8 @@ check "a bad tree: the judge calling the runner named" grep -q '^layer: worker/s
 check "a bad tree: the stage folders' cycle named" grep -q '^folder cycle: worker/study/judge <-> worker/study/run' "$T/bad.out"
 check "a bad tree: the include circle named" grep -q '^module cycle: common/x/m <-> common/x/n' "$T/bad.out"
 check "a bad tree: the include that closes it named" grep -q 'common/x/n.h includes common/x/m.h' "$T/bad.out"
+check "a bad tree: a circle of two headers named" grep -q '^module cycle: common/geom/scene <-> common/geom/shape' "$T/bad.out"
+check "a bad tree: that header circle's includes named" grep -q 'common/geom/shape.h includes common/geom/scene.h' "$T/bad.out"
 check "a bad tree: a stale object passed over" grep -q '7 files' "$T/bad.out"
 
 # 2. the real build

@@ -5,6 +5,7 @@
 
 #include "check.h"
 #include "base/rng.h"
+#include "geom/scene.h"
 #include "geom/shape.h"
 #include "geom/shape_light_inline.h"
 

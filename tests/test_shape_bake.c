@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "base/rng.h"
+#include "geom/scene.h"
 #include "geom/shape.h"
 
 #define RAYS 20000

@@ -3,6 +3,7 @@
 
 #include "check.h"
 #include "geom/shape.h"
+#include "geom/scene.h"
 #include "geom/texture.h"
 
 /* The book's noise as written (RTOW "The Next Week", ch. 5, with floor and & 255 cells):

@@ -3,7 +3,8 @@
 #ifndef BVH_H
 #define BVH_H
 
-#include "scene.h"
+#include "base/err.h"
+#include "geom_types.h"
 #include "shape.h"
 
 /* The deepest a built tree gets (bvh_build.c); the traversal's stack is sized by it. */

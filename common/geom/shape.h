@@ -3,18 +3,7 @@
 #define SHAPE_H
 
 #include "sample/sampler.h"
-#include "scene.h"
-
-#define HIT_EPS 0.001
-
-struct hit {
-    double t;
-    vec3 p;      /* world-space point */
-    vec3 n;      /* unit normal facing against the ray */
-    double u, v; /* surface coordinates, filled by shape_uv when a texture needs them */
-    int front;   /* the ray hit the outward (front) side */
-    int prim;
-};
+#include "geom_types.h"
 
 /* Fill p's derived fields from its geometry. scene_add_prim does it; call it again after
    editing a prim's geometry by hand. */
@@ -41,9 +30,6 @@ uint64_t shape_ray_hash(const ray *r);
    (t_min, t_max) as shape_hit gives it, which finds the boundary's crossings only when the
    flight could end inside. For media without a transform; bvh_hit starts the first step when
    it meets a medium and finishes once the nearest surface is known. */
-struct medium_flight {
-    double len, u;
-};
 void shape_medium_flight(const struct prim *p, const ray *r, uint64_t ray_hash, struct medium_flight *f);
 int shape_medium_hit(const struct prim *p, const ray *r, const struct medium_flight *f, double t_min,
                      double t_max, struct hit *h);

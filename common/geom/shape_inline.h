@@ -3,7 +3,7 @@
 #ifndef SHAPE_INLINE_H
 #define SHAPE_INLINE_H
 
-#include "shape.h"
+#include "geom_types.h"
 
 #include <string.h>
 

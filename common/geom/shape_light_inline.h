@@ -8,7 +8,6 @@
 
 #include <float.h>
 
-#include "scene.h"
 #include "shape_inline.h"
 
 /* The point of light p for s: a disk's at angle 2 pi s.y, whose cos and sin are given. */

@@ -2,7 +2,7 @@
 #ifndef TEXTURE_H
 #define TEXTURE_H
 
-#include "scene.h"
+#include "geom_types.h"
 
 /* Colour of texture t of scene sc at surface coordinates (u, v) and world point p. */
 vec3 texture_value(const struct scene *sc, const struct texture *t, double u, double v, vec3 p);

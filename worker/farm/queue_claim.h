@@ -10,8 +10,8 @@
 #include <time.h>
 
 #include "lease.h"
-#include "queue.h"
 #include "queue_scan.h"
+#include "queue_types.h"
 
 struct queue {
     const struct queue_opts *o;

@@ -78,12 +78,21 @@ static void sweep_running(const char *sd, const char *keep)
         closedir(d);
 }
 
-/* The gather: the whole job (the study's job file `from`, read once as if at `as`) run with every
-   render current, which writes its summary, chart, report and verdict; then its job file goes from
-   the study's job/ to DIR/done/. */
-static int gather(struct queue *q, struct queue *sq, const char *from, const char *as, const char *sd,
-                  const char *stem, const struct study_key *k, char *msg, size_t n, char *damaged, size_t nd)
+/* The study an entry belongs to: its folder sd (DIR/spread/<stem>), its job file `from` (read as if
+   at `as`, where it was queued) and its record k (study.key). */
+struct entry_study {
+    const char *sd, *stem, *from, *as;
+    const struct study_key *k;
+};
+
+/* The gather: the whole job (the study's job file, read once) run with every render current, which
+   writes its summary, chart, report and verdict; then its job file goes from the study's job/ to
+   DIR/done/. */
+static int gather(struct queue *q, struct queue *sq, const struct entry_study *s, char *msg, size_t n,
+                  char *damaged, size_t nd)
 {
+    const char *from = s->from, *as = s->as, *sd = s->sd, *stem = s->stem;
+    const struct study_key *k = s->k;
     char job[2300], to[2300];
     struct jobfile jf;
     struct jobfile_outcome out = {0};
@@ -162,7 +171,8 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
         snprintf(msg, sizeof msg, "not an entry of the study (study.key names its entries)");
         rc = 2;
     } else if (!strcmp(ticket, QUEUE_STUDY_GATHER)) {
-        rc = gather(q, sq, from, as, sd, stem, k, msg, sizeof msg, damaged, n_damaged);
+        struct entry_study s = {.sd = sd, .stem = stem, .from = from, .as = as, .k = k};
+        rc = gather(q, sq, &s, msg, sizeof msg, damaged, n_damaged);
     } else if (jobfile_open(&jf, from, as, &e) == 0 && jf.hash != k->job_hash) { /* read once, checked */
         snprintf(damaged, n_damaged,
                  "%s: not the job that was spread (its hash is not the one study.key records)", from);

@@ -14,6 +14,12 @@
 #include "job/sidecar.h"
 #include "merge.h"
 
+/* Which render of its study entry x is. */
+static struct study_fan_which which(const struct spread_entry *x)
+{
+    return (struct study_fan_which){.k = x->k, .kind = x->kind, .index = x->index, .half = x->half};
+}
+
 /* 1 when j's merged image(s) and sidecar are in place and made from j's inputs. */
 static int image_current(const struct job *j, const struct run_opts *jo)
 {
@@ -36,8 +42,8 @@ static int merged(struct study_fan *f, const struct spread_entry *x, const struc
     char dir[2048];
     struct run_opts ao;
     struct err ignored;
-    return study_fan_render_job(f, x->k, x->kind, x->index, x->half, jo, &again, &ao, dir, sizeof dir,
-                                &ignored) == 3;
+    struct study_fan_which w = which(x);
+    return study_fan_render_job(f, &w, jo, &again, &ao, dir, sizeof dir, &ignored) == 3;
 }
 
 /* Every part of j's render (x->parts of them) whole and rendered from j's inputs: 1, else 0. */
@@ -107,8 +113,8 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
         snprintf(what, sizeof what, "no such render");
     struct job j;
     struct run_opts jo;
-    if (x->kind == STUDY_FAN_REFERENCE &&
-        study_fan_render_job(f, x->k, x->kind, x->index, x->half, o, &j, &jo, dir, sizeof dir, e) == 3) {
+    struct study_fan_which w = which(x);
+    if (x->kind == STUDY_FAN_REFERENCE && study_fan_render_job(f, &w, o, &j, &jo, dir, sizeof dir, e) == 3) {
         snprintf(msg, n, "%s: in the cache already, not rendered", what);
         return 0;
     }
@@ -122,7 +128,7 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
                                                                               : "rendered");
         return rc;
     }
-    int rc = study_fan_render_job(f, x->k, x->kind, x->index, x->half, o, &j, &jo, dir, sizeof dir, e);
+    int rc = study_fan_render_job(f, &w, o, &j, &jo, dir, sizeof dir, e);
     /* the hash run_job gives a whole render under --processes (run.h): the merged sidecar records
        it, so the gather (the whole job, with the same option) finds the image current */
     if (rc == 0 && x->kind == STUDY_FAN_IMAGE && j.hash != 0 && o->processes > 0 &&

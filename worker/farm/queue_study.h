@@ -10,13 +10,6 @@
 #include "job/jobfile.h"
 #include "queue_claim.h"
 
-/* The folder below DIR that holds the studies in progress. */
-#define QUEUE_STUDY_DIR "spread"
-
-/* The three kinds of entry, named so that claim order is their order: a-ref-K-S.yaml (study K's
-   reference of scene S), b-img-K-I.yaml (its image I), c-gather.yaml. */
-#define QUEUE_STUDY_GATHER "c-gather.yaml"
-
 /* Spread the claimed compare job DIR/running/name, read and parsed once into jf (its paths as at
    jf->path, stem its file's stem), over the queue; an invalid one goes to failed/ as any job. */
 void queue_study_expand(struct queue *q, const char *name, const struct jobfile *jf, const char *stem);

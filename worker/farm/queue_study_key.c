@@ -12,7 +12,7 @@
 #include "base/fileio.h"
 #include "base/hash.h"
 #include "queue_scan.h"
-#include "queue_study.h"
+#include "queue_types.h"
 
 /* Most bytes study.key may hold (an entry line is under 32 bytes; a study has at most a few
    hundred thousand entries). */

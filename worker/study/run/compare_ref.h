@@ -3,7 +3,8 @@
 #ifndef COMPARE_REF_H
 #define COMPARE_REF_H
 
-#include "compare.h"
+#include "job/run.h"
+#include "study/load/compare_model.h"
 
 /* Half h (0 or 1) of scene cs's settings reference as it is rendered: cs->ref_job with half the
    samples (each threshold, a spacing, times sqrt 2, at most 100) and its own seed. The reference's

@@ -6,6 +6,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include "compare.h"
 #include "compare_ref.h"
 #include "study/load/compare_load.h"
 #include "study/load/compare_suite_load.h"
@@ -89,10 +90,11 @@ static struct run_opts study_opts(const struct study_fan *f, const struct run_op
     return in;
 }
 
-int study_fan_render_job(struct study_fan *f, int k, enum study_fan_kind kind, int index, int half,
-                         const struct run_opts *o, struct job *j, struct run_opts *jo, char *dir, size_t n,
-                         struct err *e)
+int study_fan_render_job(struct study_fan *f, const struct study_fan_which *w, const struct run_opts *o,
+                         struct job *j, struct run_opts *jo, char *dir, size_t n, struct err *e)
 {
+    int k = w->k, index = w->index;
+    enum study_fan_kind kind = w->kind;
     struct compare *c = k >= 0 && k < study_fan_studies(f) ? study_fan_study(f, k) : NULL;
     int count = !c ? 0 : kind == STUDY_FAN_REFERENCE ? c->n_scenes : c->n_items;
     if (index < 0 || index >= count ||
@@ -103,7 +105,7 @@ int study_fan_render_job(struct study_fan *f, int k, enum study_fan_kind kind, i
     *jo = study_opts(f, o, dir, n);
     if (kind == STUDY_FAN_REFERENCE) {
         jo->scene = &c->scenes[index].input->src;
-        return compare_ref_half_target(c, index, half, jo, j) ? 3 : 0;
+        return compare_ref_half_target(c, index, w->half, jo, j) ? 3 : 0;
     }
     jo->scene = &c->scenes[c->items[index].scene].input->src;
     int rc = compare_item_job(c, index, jo, j, e);

@@ -17,6 +17,13 @@ struct study_fan {
 /* What one render of a study is. */
 enum study_fan_kind { STUDY_FAN_REFERENCE, STUDY_FAN_IMAGE };
 
+/* Which render: study k's half `half` (0 or 1) of scene `index`'s reference, or its image `index`. */
+struct study_fan_which {
+    int k;
+    enum study_fan_kind kind;
+    int index, half;
+};
+
 /* Load the compare job or suite from the job file jobfile_open read and parsed (jf->kind not
    JOBFILE_PLAIN). 0 or -1 with e = "file:line:col: key: message". */
 int study_fan_load(const struct jobfile *jf, struct study_fan *f, struct err *e);
@@ -36,14 +43,13 @@ int study_fan_has_reference(const struct study_fan *f, int k, int s);
 int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int index,
                      const struct run_opts *o, struct err *e);
 
-/* Study k's render as a queue cuts it into row parts: half `half` of scene `index`'s reference
-   (compare_ref_half_target) or image `index` (compare_item_job: its scene's reference prepared
-   first), its job in *j and the options it renders with in *jo (o's, with its out_dir in dir of n
-   bytes for a suite's study and the scene as the study read it, valid while f is). Returns 0, 3
-   when a reference half is already in the cache, or compare_run's 1 or 2 with e filled. */
-int study_fan_render_job(struct study_fan *f, int k, enum study_fan_kind kind, int index, int half,
-                         const struct run_opts *o, struct job *j, struct run_opts *jo, char *dir, size_t n,
-                         struct err *e);
+/* Render w as a queue cuts it into row parts: a reference's half (compare_ref_half_target) or an
+   image (compare_item_job: its scene's reference prepared first), its job in *j and the options it
+   renders with in *jo (o's, with its out_dir in dir of n bytes for a suite's study and the scene as
+   the study read it, valid while f is). Returns 0, 3 when a reference half is already in the cache,
+   or compare_run's 1 or 2 with e filled. */
+int study_fan_render_job(struct study_fan *f, const struct study_fan_which *w, const struct run_opts *o,
+                         struct job *j, struct run_opts *jo, char *dir, size_t n, struct err *e);
 
 /* Study k's reference half h of scene s rendered whole into the cache (or found there); or, merged
    from its parts by the caller, recorded there. 0, 1 or 2 (merged: 0 or 1) with e filled. */

@@ -5,7 +5,7 @@
 #ifndef STUDY_MACHINES_H
 #define STUDY_MACHINES_H
 
-#include "compare.h"
+#include "study/load/compare_model.h"
 
 /* Read the sidecars of c's images under out_dir; when they name more than one CPU model, record
    them in c->verdict.machines and add a warning to each scene's verdict (report and verdict.json).
