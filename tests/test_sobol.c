@@ -95,6 +95,32 @@ static void test_owen_tree(void)
     free(seen);
 }
 
+/* A block's points (a table lookup for the shuffled index's low part) are sobol_point's, bit for
+   bit, at every size from 2 to 2^14 and for random seeds. */
+static void test_block(void)
+{
+    uint64_t *table = malloc(((size_t)1 << 14) * sizeof *table);
+    struct rng rng;
+    rng_seed(&rng, 11, 0);
+    int same = table != NULL, high_varies = 0;
+    for (int bits = 1; table && bits <= 14; bits++) {
+        sobol_low_table(table, bits);
+        for (int set = 0; set < 8; set++) {
+            const struct sobol_seeds seeds = sobol_seeds_draw(&rng);
+            const struct sobol_block b = sobol_block_of(seeds, bits);
+            high_varies += b.xr_hi != 0;
+            for (uint32_t k = 0; k < 1u << bits; k++) {
+                const struct pt2 p = sobol_block_point(&b, table, bits, sobol_bit_reverse(k)),
+                                 q = sobol_point(seeds, k);
+                same &= p.x == q.x && p.y == q.y;
+            }
+        }
+    }
+    CHECK(same);
+    CHECK(high_varies > 100);
+    free(table);
+}
+
 static int is_net(const struct pt2 *p, size_t n, int m)
 {
     return n == (size_t)1 << m && pointstat_is_net(p, n) == 1;
@@ -218,6 +244,7 @@ int main(void)
     test_generators();
     test_high_index();
     test_owen_tree();
+    test_block();
     test_nets();
     test_sampler();
     test_convergence();

@@ -27,11 +27,17 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
         p->identity = malloc(p->slot_cap * sizeof *p->identity);
         for (size_t k = 0; p->identity && k < p->slot_cap; k++)
             p->identity[k] = sobol_bit_reverse((uint32_t)k);
+        p->low_bits = 1;
+        while (((size_t)1 << p->low_bits) < p->slot_cap)
+            p->low_bits++;
+        p->low = malloc(((size_t)1 << p->low_bits) * sizeof *p->low);
+        if (p->low)
+            sobol_low_table(p->low, p->low_bits);
     } else {
         p->pts = malloc((size_t)slots * p->slot_cap * sizeof *p->pts);
     }
     p->gen = calloc((size_t)slots, sizeof *p->gen);
-    if ((lazy ? !p->sobol || !p->order || !p->identity : !p->pts) || !p->gen) {
+    if ((lazy ? !p->sobol || !p->order || !p->identity || !p->low : !p->pts) || !p->gen) {
         padding_release(p);
         return err_set(e, NULL, 0, 0,
                        "out of memory for sampler_dims: all's point sets (%d of them, %zu points each)",
@@ -46,11 +52,13 @@ void padding_release(struct padding *p)
     free(p->sobol);
     free(p->order);
     free(p->identity);
+    free(p->low);
     free(p->gen);
     p->pts = NULL;
     p->sobol = NULL;
     p->order = NULL;
     p->identity = NULL;
+    p->low = NULL;
     p->gen = NULL;
 }
 
@@ -88,19 +96,17 @@ static inline __attribute__((always_inline)) void shuffle_head(struct rng *r, vo
 static void fill_sobol(struct padding *p, int slot, struct rng *r)
 {
     uint32_t *order = p->order + (size_t)slot * p->slot_cap;
-    const size_t have = sampler_sobol_set(p->sampler, r, &p->sobol[slot]);
+    struct sobol_seeds seeds;
+    const size_t have = sampler_sobol_set(p->sampler, r, &seeds);
+    p->sobol[slot] = sobol_block_of(seeds, p->low_bits);
     memcpy(order, p->identity, p->slot_cap * sizeof *order); /* the indices, bit-reversed */
     shuffle_head(r, order, sizeof *order, p->n, have);
 }
 
-/* order holds bit-reversed indices: sobol_point's index scramble owen(k) = rev(owen_reversed(rev
-   k)) then starts from the stored value (one reversal fewer per point, the same bits). */
+/* order holds bit-reversed indices, which sobol_block_point starts from. */
 struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s)
 {
-    const struct sobol_seeds seeds = p->sobol[slot];
-    const uint32_t i =
-        sobol_bit_reverse(sobol_owen_reversed(p->order[(size_t)slot * p->slot_cap + s], seeds.index));
-    return sobol_scrambled_pair(i, sobol_y_reversed(i), seeds.x, seeds.y);
+    return sobol_block_point(&p->sobol[slot], p->low, p->low_bits, p->order[(size_t)slot * p->slot_cap + s]);
 }
 
 /* Any other sampler: its whole sets until the pixel's count, shuffled. */

@@ -40,6 +40,14 @@ struct pt2 sobol_point64(uint64_t index, uint32_t seed_x, uint32_t seed_y)
     return sobol_scrambled_pair(lo, sobol_y_reversed(lo) ^ sobol_y_reversed(hi), seed_x, seed_y);
 }
 
+void sobol_low_table(uint64_t *table, int bits)
+{
+    for (uint32_t v = 0; v < 1u << bits; v++) {
+        const uint32_t low = sobol_bit_reverse(v << (32 - bits));
+        table[v] = (uint64_t)sobol_y_reversed(low) << 32 | low;
+    }
+}
+
 struct pt2 sobol_point(struct sobol_seeds s, uint32_t k)
 {
     return sobol_point_inline(s, k);
