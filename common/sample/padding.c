@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "draws.h"
 
 size_t padding_slot_points(const struct sampler *s)
 {
@@ -21,6 +22,7 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
     p->slots = slots;
     p->slot_cap = padding_slot_points(s);
     const int lazy = sampler_walk_of(s) == SAMPLER_WALK_SOBOL;
+    p->wide_draws = draws_wide();
     if (lazy) {
         p->sobol = malloc((size_t)slots * sizeof *p->sobol);
         p->order = malloc((size_t)slots * p->slot_cap * sizeof *p->order);
@@ -89,6 +91,24 @@ static inline __attribute__((always_inline)) void shuffle_head(struct rng *r, vo
     *r = local;
 }
 
+/* shuffle_head of have indices at a: the same swaps, the draws made a block at a time first
+   (draws_below), not one per swap. */
+static void shuffle_indices(struct rng *r, uint32_t *a, size_t n, size_t have, int wide)
+{
+    uint32_t j[64];
+    const size_t places = n < have ? n : have;
+    for (size_t k = 0; k < places; k += 64) {
+        const size_t m = places - k < 64 ? places - k : 64;
+        draws_below(r, m, (uint32_t)(have - k), j, wide);
+        uint32_t *b = a + k;
+        for (size_t i = 0; i < m; i++) {
+            const uint32_t t = b[i];
+            b[i] = b[i + j[i]];
+            b[i + j[i]] = t;
+        }
+    }
+}
+
 /* A Sobol slot: the seeds draw_sobol would take from r, then the first n places of the same
    Fisher-Yates shuffle applied to the points' indices (the same draws of r): padding_point's
    sobol_point of index order[s] is then the point the whole set's shuffle left at place s. (A set
@@ -100,7 +120,7 @@ static void fill_sobol(struct padding *p, int slot, struct rng *r)
     const size_t have = sampler_sobol_set(p->sampler, r, &seeds);
     p->sobol[slot] = sobol_block_of(seeds, p->low_bits);
     memcpy(order, p->identity, p->slot_cap * sizeof *order); /* the indices, bit-reversed */
-    shuffle_head(r, order, sizeof *order, p->n, have);
+    shuffle_indices(r, order, p->n, have, p->wide_draws);
 }
 
 /* order holds bit-reversed indices, which sobol_block_point starts from. */
