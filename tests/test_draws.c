@@ -2,6 +2,8 @@
    value, and leave the stream where the one-by-one draws leave it. */
 #include "sample/draws.h"
 
+#include "base/simd.h"
+
 #include "check.h"
 
 /* Every count from 0 to 70 and a few larger, bounds from count to near 2^32, many streams: the
@@ -11,7 +13,7 @@ static void test_same_draws(void)
     static const uint32_t extra[] = {64, 100, 1156, 4096};
     static uint32_t out[5000];
     int same = 1, cases = 0;
-    for (int wide = 0; wide <= draws_wide(); wide++)
+    for (int wide = 0; wide <= simd_avx2(); wide++)
         for (uint32_t c = 0; c < 70 + 4; c++) {
             const uint32_t count = c < 70 ? c : extra[c - 70];
             for (uint64_t seed = 0; seed < 40; seed++) {

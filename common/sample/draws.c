@@ -3,27 +3,15 @@
 
 #include "base/simd.h"
 
-#if SIMD_SSE && defined(__x86_64__) && defined(__GNUC__)
-#define DRAWS_AVX2 1
+#if SIMD_AVX2
 #include <immintrin.h>
-#else
-#define DRAWS_AVX2 0
 #endif
 
 /* PCG's jump of four steps: s -> s a^4 + inc (a^3 + a^2 + a + 1) (rng.h's rng_uniform_pair). */
 #define DRAWS_MULT4 0xfb4d3ae39272be11ULL
 #define DRAWS_INC4 0xcbb5f646404a560cULL
 
-int draws_wide(void)
-{
-#if DRAWS_AVX2
-    return __builtin_cpu_supports("avx2") != 0;
-#else
-    return 0;
-#endif
-}
-
-#if DRAWS_AVX2
+#if SIMD_AVX2
 /* Draws k = 0 .. count - 1 (count a multiple of 4) of the stream at state s, increment inc, below
    bound - k: four lanes of states k .. k + 3, each step a jump of four (the 64-bit multiply from
    three 32-bit ones), PCG's output (XSH RR: its rotation by a variable shift on each lane) and
@@ -61,7 +49,7 @@ __attribute__((target("avx2"))) static uint64_t draws_avx2(uint64_t s, uint64_t 
 void draws_below(struct rng *r, size_t count, uint32_t bound, uint32_t *out, int wide)
 {
     size_t k = 0;
-#if DRAWS_AVX2
+#if SIMD_AVX2
     if (wide && count >= 4) {
         k = count & ~(size_t)3;
         r->state = draws_avx2(r->state, r->inc, k, bound, out);

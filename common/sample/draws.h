@@ -9,12 +9,9 @@
 
 #include "base/rng.h"
 
-/* 1 when draws_below may take its AVX2 path on this processor, else 0. */
-int draws_wide(void);
-
 /* out[k] = rng_below(r, bound - k) for k = 0 .. count - 1, drawn in that order from r, which is
-   left as those draws leave it (count <= bound, bound <= 2^32 - 1). wide: draws_wide()'s answer
-   (0 always gives the one-by-one path). Cannot fail. */
+   left as those draws leave it (count <= bound, bound <= 2^32 - 1). wide: simd_avx2()'s answer (0
+   always gives the one-by-one path). Cannot fail. */
 void draws_below(struct rng *r, size_t count, uint32_t bound, uint32_t *out, int wide);
 
 #endif

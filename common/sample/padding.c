@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/simd.h"
 #include "draws.h"
 
 size_t padding_slot_points(const struct sampler *s)
@@ -22,7 +23,7 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
     p->slots = slots;
     p->slot_cap = padding_slot_points(s);
     const int lazy = sampler_walk_of(s) == SAMPLER_WALK_SOBOL;
-    p->wide_draws = draws_wide();
+    p->wide = simd_avx2();
     if (lazy) {
         p->sobol = malloc((size_t)slots * sizeof *p->sobol);
         p->order = malloc((size_t)slots * p->slot_cap * sizeof *p->order);
@@ -132,13 +133,16 @@ static void fill_sobol(struct padding *p, int slot, struct rng *r)
     const size_t have = sampler_sobol_set(p->sampler, r, &seeds);
     p->sobol[slot] = sobol_block_of(seeds, p->low_bits);
     memcpy(order, p->identity, p->slot_cap * sizeof *order); /* the indices, bit-reversed */
-    shuffle_indices(r, order, p->n, have, p->wide_draws);
+    shuffle_indices(r, order, p->n, have, p->wide);
 }
 
 /* order holds bit-reversed indices, which sobol_block_point starts from. */
 struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s)
 {
-    return sobol_block_point(&p->sobol[slot], p->low, p->low_bits, p->order[(size_t)slot * p->slot_cap + s]);
+    const uint32_t k_reversed = p->order[(size_t)slot * p->slot_cap + s];
+    if (p->wide)
+        return sobol_block_point_wide(&p->sobol[slot], p->low, p->low_bits, k_reversed);
+    return sobol_block_point(&p->sobol[slot], p->low, p->low_bits, k_reversed);
 }
 
 /* Any other sampler: its whole sets until the pixel's count, shuffled. */

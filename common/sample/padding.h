@@ -29,7 +29,7 @@ struct padding {
     uint32_t *identity;        /* sobol: slot_cap indices 0, 1, ... bit-reversed: a fill's start */
     uint64_t *low;             /* sobol: sobol_low_table(low_bits) */
     int low_bits;              /* sobol: the indices' bits (2^low_bits >= slot_cap) */
-    int wide_draws;            /* draws_wide(): the shuffles' draws a block at a time with AVX2 */
+    int wide;                  /* simd_avx2(): the shuffles' draws and the points with AVX2 */
     uint64_t *gen;             /* slot k is current when gen[k] == pixel */
     uint64_t pixel;            /* bumped by padding_pixel */
     uint64_t seed;             /* the job's seed */
