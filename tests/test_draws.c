@@ -17,7 +17,8 @@ static void test_same_draws(void)
         for (uint32_t c = 0; c < 70 + 4; c++) {
             const uint32_t count = c < 70 ? c : extra[c - 70];
             for (uint64_t seed = 0; seed < 40; seed++) {
-                const uint32_t bound = seed % 4 == 3 ? 0xfffffff0u - (uint32_t)seed : count + (uint32_t)seed % 3;
+                const uint32_t bound =
+                    seed % 4 == 3 ? 0xfffffff0u - (uint32_t)seed : count + (uint32_t)seed % 3;
                 struct rng a, b;
                 rng_pixel(&a, seed, (int)count, 3, 16 + seed);
                 b = a;

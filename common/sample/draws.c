@@ -23,13 +23,14 @@ __attribute__((target("avx2"))) static uint64_t draws_avx2(uint64_t s, uint64_t 
     __m256i st = _mm256_set_epi64x((long long)s3, (long long)s2, (long long)s1, (long long)s);
     const __m256i a_lo = _mm256_set1_epi64x((long long)(DRAWS_MULT4 & 0xffffffffu)),
                   a_hi = _mm256_set1_epi64x((long long)(DRAWS_MULT4 >> 32)),
-                  c4 = _mm256_set1_epi64x((long long)(inc * DRAWS_INC4)), low32 = _mm256_set1_epi64x(0xffffffff),
-                  thirty_two = _mm256_set1_epi64x(32), four = _mm256_set1_epi64x(4);
-    __m256i below = _mm256_set_epi64x((long long)bound - 3, (long long)bound - 2, (long long)bound - 1,
-                                      (long long)bound);
+                  c4 = _mm256_set1_epi64x((long long)(inc * DRAWS_INC4)),
+                  low32 = _mm256_set1_epi64x(0xffffffff), thirty_two = _mm256_set1_epi64x(32),
+                  four = _mm256_set1_epi64x(4);
+    __m256i below =
+        _mm256_set_epi64x((long long)bound - 3, (long long)bound - 2, (long long)bound - 1, (long long)bound);
     for (size_t k = 0; k < count; k += 4) {
-        const __m256i x = _mm256_and_si256(_mm256_srli_epi64(_mm256_xor_si256(_mm256_srli_epi64(st, 18), st), 27),
-                                           low32),
+        const __m256i x = _mm256_and_si256(
+                          _mm256_srli_epi64(_mm256_xor_si256(_mm256_srli_epi64(st, 18), st), 27), low32),
                       rot = _mm256_srli_epi64(st, 59);
         const __m256i turned = _mm256_or_si256(_mm256_srlv_epi64(x, rot),
                                                _mm256_sllv_epi64(x, _mm256_sub_epi64(thirty_two, rot)));
@@ -37,8 +38,8 @@ __attribute__((target("avx2"))) static uint64_t draws_avx2(uint64_t s, uint64_t 
         /* the four 32-bit draws, in order, from the lanes' low halves */
         const __m256i packed = _mm256_permutevar8x32_epi32(j, _mm256_set_epi32(7, 5, 3, 1, 6, 4, 2, 0));
         _mm_storeu_si128((__m128i *)(void *)(out + k), _mm256_castsi256_si128(packed));
-        const __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(st, 32), a_lo),
-                                               _mm256_mul_epu32(st, a_hi));
+        const __m256i cross =
+            _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(st, 32), a_lo), _mm256_mul_epu32(st, a_hi));
         st = _mm256_add_epi64(_mm256_add_epi64(_mm256_mul_epu32(st, a_lo), _mm256_slli_epi64(cross, 32)), c4);
         below = _mm256_sub_epi64(below, four);
     }
