@@ -183,42 +183,50 @@ static void test_one_per_cell(void)
 
 /* A Sobol slot makes its points as they are read: each is, bit for bit, the point the whole set
    (the slot stream's seeds, sobol_fill) left at that place after the Fisher-Yates shuffle, read in
-   any order. */
+   any order; for sets of 64, 100, 625 and 1089 points (the shuffle's draws in blocks of 64, a
+   remainder, an index table of 7, 10 and 11 bits), the pixel's count the set's or fewer. */
 static void test_sobol_lazy(void)
 {
-    struct err e;
-    struct sampler *s = sampler_new(SAMPLER_SOBOL, 12.5, 0, 0, &e); /* 64 points */
-    struct padding pad;
-    CHECK(s != NULL);
-    if (!s || padding_init(&pad, s, 6, &e) < 0)
-        return;
-    CHECK(pad.sobol != NULL && pad.pts == NULL);
-    int same = 1;
-    for (int px = 0; px < 20; px++) {
-        padding_pixel(&pad, 9, px, 3, 64);
-        for (int slot = 5; slot >= 0; slot--) {
-            struct rng r;
-            struct sobol_seeds seeds;
-            struct pt2 whole[64];
-            rng_pixel(&r, 9, px, 3, 16 + (uint64_t)slot);
-            CHECK(sampler_sobol_set(s, &r, &seeds) == 64);
-            sobol_fill(seeds, 64, whole);
-            for (size_t k = 0; k < 64; k++) {
-                size_t j = k + rng_below(&r, (uint32_t)(64 - k));
-                struct pt2 t = whole[k];
-                whole[k] = whole[j];
-                whole[j] = t;
-            }
-            for (uint32_t i = 0; i < 64; i++) {
-                uint32_t k = (i * 37 + (uint32_t)px) % 64; /* any order */
-                struct pt2 p = padding_point(&pad, slot, k);
-                same &= p.x == whole[k].x && p.y == whole[k].y;
+    static const double thresholds[] = {12.5, 10, 4, 3};
+    static struct pt2 whole[1089];
+    int same = 1, sizes = 0;
+    for (int t = 0; t < 4; t++) {
+        struct err e;
+        struct sampler *s = sampler_new(SAMPLER_SOBOL, thresholds[t], 0, 0, &e);
+        struct padding pad;
+        CHECK(s != NULL);
+        if (!s || padding_init(&pad, s, 6, &e) < 0)
+            return;
+        CHECK(pad.sobol != NULL && pad.pts == NULL);
+        const size_t have = sampler_set_capacity(s);
+        sizes += have == (size_t[]){64, 100, 625, 1089}[t];
+        for (int px = 0; px < 12; px++) {
+            const size_t n = px % 3 == 2 ? have - 5 - (size_t)px : have; /* the pixel's count */
+            padding_pixel(&pad, 9, px, 3, n);
+            for (int slot = 5; slot >= 0; slot--) {
+                struct rng r;
+                struct sobol_seeds seeds;
+                rng_pixel(&r, 9, px, 3, 16 + (uint64_t)slot);
+                CHECK(sampler_sobol_set(s, &r, &seeds) == have);
+                sobol_fill(seeds, have, whole);
+                for (size_t k = 0; k < have; k++) {
+                    size_t j = k + rng_below(&r, (uint32_t)(have - k));
+                    struct pt2 tmp = whole[k];
+                    whole[k] = whole[j];
+                    whole[j] = tmp;
+                }
+                for (uint32_t i = 0; i < n; i++) {
+                    uint32_t k = (uint32_t)((i * 37 + (uint32_t)px) % n); /* any order */
+                    struct pt2 p = padding_point(&pad, slot, k);
+                    same &= p.x == whole[k].x && p.y == whole[k].y;
+                }
             }
         }
+        padding_release(&pad);
+        sampler_free(s);
     }
     CHECK(same);
-    padding_release(&pad);
-    sampler_free(s);
+    CHECK(sizes == 4);
 }
 
 int main(void)

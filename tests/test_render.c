@@ -480,8 +480,10 @@ static void closed_box_pixel(double x, double y, float rgb[3])
 /* floor_pixel's scene (floor, lamp above) at max_depth 2 with next-event estimation, pixel
    sets of 16 points and light sets of 4 (sampler_dims: all when dims), 4x4 pixels; spread: with
    40 spheres far below the floor (never reached), so that the scene has more than one BVH node
-   and its paths are traced one by one, not in lanes. The stats of pixel (1, 2). */
-static struct render_stats work_pixel(int spread, int dims)
+   and its paths are traced one by one, not in lanes; shutter: the camera's shutter open over
+   [0, 1] (shutter 2: and a moving sphere far below the floor, never reached). The stats of pixel
+   (1, 2). */
+static struct render_stats work_pixel(int spread, int dims, int shutter)
 {
     struct scene *sc = floor_scene();
     for (int i = 0; spread && i < 40; i++) {
@@ -489,10 +491,16 @@ static struct render_stats work_pixel(int spread, int dims)
         ball.g.sphere.center = v3(40 * i, -100 - 30 * i, 0), ball.g.sphere.radius = 1;
         scene_add_prim(sc, &ball);
     }
+    if (shutter == 2) {
+        struct prim ball = {.type = PRIM_MOVING_SPHERE, .material = 0};
+        ball.g.msphere.center0 = v3(0, -100, 0), ball.g.msphere.velocity = v3(1, 0, 0);
+        ball.g.msphere.radius = 1, ball.g.msphere.time_hi = 1;
+        scene_add_prim(sc, &ball);
+    }
     struct err e;
     CHECK(scene_finish(sc, &e) == 0);
-    CHECK(packet_usable(sc) == !spread);
-    struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, 0};
+    CHECK(packet_usable(sc) == (!spread && shutter < 2));
+    struct camera_desc d = {v3(0, 1, -1), v3(0, 0, 0.5), v3(0, 1, 0), 20, 0, 1, 0, shutter ? 1 : 0};
     struct camera cam;
     camera_init(&cam, &d, 1, &e);
     struct sampler *pix = sampler_new(SAMPLER_JITTER, 25, 0, 0, &e),
@@ -515,18 +523,30 @@ static struct render_stats work_pixel(int spread, int dims)
 /* Issue 35: the work counts are counted alike in lanes (render_lanes.c) and one path at a time.
    Every one of the 16 camera rays reaches the floor, which sends one shadow ray to the lamp and
    one scattered ray (the last segment): 32 path segments, 16 shadow rays, 16 light points in 4
-   sets of 4; under sampler_dims: all the floor's three decisions (light choice, light point,
-   direction) come from the padded sets instead: 48 points of 3 sets. */
+   sets of 4; under sampler_dims: all the floor's decisions come from the padded sets instead:
+   its light point and direction, 32 points of 2 sets (the lamp is the only emitter: no light
+   choice is drawn). */
 static void test_work_counts(void)
 {
     for (int spread = 0; spread < 2; spread++) {
-        struct render_stats st = work_pixel(spread, 0);
+        struct render_stats st = work_pixel(spread, 0, 0);
         CHECK(st.samples == 16 && st.pixel_points == 16 && st.rays == 48 && st.shadow_rays == 16);
         CHECK(st.light_points == 16 && st.light_sets == 4 && st.padded_points == 0 && st.padded_sets == 0);
-        st = work_pixel(spread, 1);
+        st = work_pixel(spread, 1, 0);
         CHECK(st.samples == 16 && st.rays == 48 && st.shadow_rays == 16);
-        CHECK(st.light_points == 0 && st.light_sets == 0 && st.padded_points == 48 && st.padded_sets == 3);
+        CHECK(st.light_points == 0 && st.light_sets == 0 && st.padded_points == 32 && st.padded_sets == 2);
     }
+}
+
+/* Under sampler_dims: all the shutter time is a decision only where a hit depends on it: with
+   the shutter open over [0, 1] the floor scene's samples read no time set (32 points of 2 sets, as
+   with a closed shutter); with a moving sphere in the scene they read it (48 points of 3 sets). */
+static void test_time_read(void)
+{
+    struct render_stats st = work_pixel(0, 1, 1);
+    CHECK(st.samples == 16 && st.padded_points == 32 && st.padded_sets == 2);
+    st = work_pixel(0, 1, 2);
+    CHECK(st.samples == 16 && st.padded_points == 48 && st.padded_sets == 3);
 }
 
 static void test_closed_box(void)
@@ -603,6 +623,7 @@ int main(void)
     test_medium_albedo();
     test_last_segment();
     test_work_counts();
+    test_time_read();
     test_closed_box();
     test_sampler_time();
     return check_report("test_render");

@@ -5,6 +5,8 @@
 
 #include "sample/pointstat.h"
 
+#include "base/simd.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,6 +95,35 @@ static void test_owen_tree(void)
     }
     CHECK(distinct);
     free(seen);
+}
+
+/* A block's points (a table lookup for the shuffled index's low part), one coordinate at a time
+   and side by side (AVX2, where the processor has it), are sobol_point's, bit for bit, at every
+   size from 2 to 2^14 and for random seeds. */
+static void test_block(void)
+{
+    uint64_t *table = malloc(((size_t)1 << 14) * sizeof *table);
+    struct rng rng;
+    rng_seed(&rng, 11, 0);
+    int same = table != NULL, high_varies = 0;
+    const int wide = simd_avx2();
+    for (int bits = 1; table && bits <= 14; bits++) {
+        sobol_low_table(table, bits);
+        for (int set = 0; set < 8; set++) {
+            const struct sobol_seeds seeds = sobol_seeds_draw(&rng);
+            const struct sobol_block b = sobol_block_of(seeds, bits);
+            high_varies += b.hi[0] != 0;
+            for (uint32_t k = 0; k < 1u << bits; k++) {
+                const struct pt2 p = sobol_block_point(&b, table, bits, sobol_bit_reverse(k)),
+                                 w = wide ? sobol_block_point_wide(&b, table, bits, sobol_bit_reverse(k)) : p,
+                                 q = sobol_point(seeds, k);
+                same &= p.x == q.x && p.y == q.y && w.x == q.x && w.y == q.y;
+            }
+        }
+    }
+    CHECK(same);
+    CHECK(high_varies > 100);
+    free(table);
 }
 
 static int is_net(const struct pt2 *p, size_t n, int m)
@@ -218,6 +249,7 @@ int main(void)
     test_generators();
     test_high_index();
     test_owen_tree();
+    test_block();
     test_nets();
     test_sampler();
     test_convergence();

@@ -101,8 +101,10 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
         render_ctx_free(ctx);
         return NULL;
     }
-    for (int i = 0; i < sc->n_prims; i++)
+    for (int i = 0; i < sc->n_prims; i++) {
         ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
+        ctx->time_matters |= sc->prims[i].type == PRIM_MOVING_SPHERE || sc->prims[i].type == PRIM_MEDIUM;
+    }
     if (light && stream_source_init(&ctx->light_source, light, e) < 0) {
         render_ctx_free(ctx);
         return NULL;

@@ -31,7 +31,9 @@ static __attribute__((unused)) vec3 in_unit_ball(struct render_ctx *ctx, struct 
 }
 
 /* camera_ray under sampler_dims: all: the lens point and the shutter time of sample s from the
-   pixel's sets (each drawn only where the camera uses it). */
+   pixel's sets, each drawn only where it is used: the lens point with a lens, the time with a
+   shutter interval and a scene whose hits depend on it (else the shutter's opening: the same
+   hits, and the other sets' points do not depend on whether this one is read). */
 static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct render_ctx *ctx, double u,
                                                                         double v, uint32_t s)
 {
@@ -41,7 +43,7 @@ static inline __attribute__((always_inline)) ray render_camera_ray_dims(struct r
         ctx->padded_points++;
         lens = padding_point(&ctx->pad, 0, s);
     }
-    if (cam->time0 != cam->time1) {
+    if (cam->time0 != cam->time1 && ctx->time_matters) {
         ctx->padded_points++;
         time = padding_point(&ctx->pad, 1, s);
     }

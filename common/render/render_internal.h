@@ -39,6 +39,9 @@ struct render_ctx {
        coins: render_dims_slot); bounces past dims_bounces draw from the path's rng */
     struct padding pad;
     int dims_bounces;
+    /* the scene's hits depend on a ray's time: a moving sphere, or a medium (its free flight hashes
+       the ray, time included); else sampler_dims: all reads no shutter time */
+    int time_matters;
 };
 
 /* A shadow ray of next-event estimation not traced yet, and what an emitter it reaches first

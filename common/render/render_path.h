@@ -63,8 +63,12 @@ path_next_event(struct render_ctx *ctx, struct path_state *p, struct rng *rng, c
     double light_pdf = 0;
     vec3 dir;
     if (at.dims) {
-        struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
-        dir = light_direction_at(ctx, emitters, h->p, c.y, path_decide(ctx, rng, at, DIM_LIGHT), &light,
+        /* one emitter: no choice to make, so its padded set is not read (each sample's points of
+           the other sets are the same whether it reads this one or not); past the padded bounces
+           the path's rng still draws it, the draws after it unchanged */
+        const double choice =
+            emitters.n > 1 || at.depth >= ctx->dims_bounces ? path_decide(ctx, rng, at, DIM_CHOICE).y : 0;
+        dir = light_direction_at(ctx, emitters, h->p, choice, path_decide(ctx, rng, at, DIM_LIGHT), &light,
                                  &light_pdf);
     } else {
         dir = light_direction(ctx, emitters, sc->emitter_lights, h->p, rng, &light, &light_pdf);

@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "base/simd.h"
+#include "draws.h"
 
 size_t padding_slot_points(const struct sampler *s)
 {
@@ -21,17 +23,24 @@ int padding_init(struct padding *p, struct sampler *s, int slots, struct err *e)
     p->slots = slots;
     p->slot_cap = padding_slot_points(s);
     const int lazy = sampler_walk_of(s) == SAMPLER_WALK_SOBOL;
+    p->wide = simd_avx2();
     if (lazy) {
         p->sobol = malloc((size_t)slots * sizeof *p->sobol);
         p->order = malloc((size_t)slots * p->slot_cap * sizeof *p->order);
         p->identity = malloc(p->slot_cap * sizeof *p->identity);
         for (size_t k = 0; p->identity && k < p->slot_cap; k++)
             p->identity[k] = sobol_bit_reverse((uint32_t)k);
+        p->low_bits = 1;
+        while (((size_t)1 << p->low_bits) < p->slot_cap)
+            p->low_bits++;
+        p->low = malloc(((size_t)1 << p->low_bits) * sizeof *p->low);
+        if (p->low)
+            sobol_low_table(p->low, p->low_bits);
     } else {
         p->pts = malloc((size_t)slots * p->slot_cap * sizeof *p->pts);
     }
     p->gen = calloc((size_t)slots, sizeof *p->gen);
-    if ((lazy ? !p->sobol || !p->order || !p->identity : !p->pts) || !p->gen) {
+    if ((lazy ? !p->sobol || !p->order || !p->identity || !p->low : !p->pts) || !p->gen) {
         padding_release(p);
         return err_set(e, NULL, 0, 0,
                        "out of memory for sampler_dims: all's point sets (%d of them, %zu points each)",
@@ -46,11 +55,13 @@ void padding_release(struct padding *p)
     free(p->sobol);
     free(p->order);
     free(p->identity);
+    free(p->low);
     free(p->gen);
     p->pts = NULL;
     p->sobol = NULL;
     p->order = NULL;
     p->identity = NULL;
+    p->low = NULL;
     p->gen = NULL;
 }
 
@@ -81,6 +92,36 @@ static inline __attribute__((always_inline)) void shuffle_head(struct rng *r, vo
     *r = local;
 }
 
+/* Swap place b[0] with b[j]. */
+static inline void swap_with(uint32_t *b, uint32_t j)
+{
+    const uint32_t t = b[0];
+    b[0] = b[j];
+    b[j] = t;
+}
+
+/* shuffle_head of have indices at a: the same swaps, the draws made a block at a time first
+   (draws_below), not one per swap. */
+static void shuffle_indices(struct rng *r, uint32_t *a, size_t n, size_t have, int wide)
+{
+    uint32_t j[64];
+    const size_t places = n < have ? n : have;
+    for (size_t k = 0; k < places; k += 64) {
+        const size_t m = places - k < 64 ? places - k : 64;
+        draws_below(r, m, (uint32_t)(have - k), j, wide);
+        uint32_t *b = a + k;
+        size_t i = 0;
+        for (; i + 4 <= m; i += 4) { /* four a turn: one loop test for four swaps */
+            swap_with(b + i, j[i]);
+            swap_with(b + i + 1, j[i + 1]);
+            swap_with(b + i + 2, j[i + 2]);
+            swap_with(b + i + 3, j[i + 3]);
+        }
+        for (; i < m; i++)
+            swap_with(b + i, j[i]);
+    }
+}
+
 /* A Sobol slot: the seeds draw_sobol would take from r, then the first n places of the same
    Fisher-Yates shuffle applied to the points' indices (the same draws of r): padding_point's
    sobol_point of index order[s] is then the point the whole set's shuffle left at place s. (A set
@@ -88,19 +129,20 @@ static inline __attribute__((always_inline)) void shuffle_head(struct rng *r, vo
 static void fill_sobol(struct padding *p, int slot, struct rng *r)
 {
     uint32_t *order = p->order + (size_t)slot * p->slot_cap;
-    const size_t have = sampler_sobol_set(p->sampler, r, &p->sobol[slot]);
+    struct sobol_seeds seeds;
+    const size_t have = sampler_sobol_set(p->sampler, r, &seeds);
+    p->sobol[slot] = sobol_block_of(seeds, p->low_bits);
     memcpy(order, p->identity, p->slot_cap * sizeof *order); /* the indices, bit-reversed */
-    shuffle_head(r, order, sizeof *order, p->n, have);
+    shuffle_indices(r, order, p->n, have, p->wide);
 }
 
-/* order holds bit-reversed indices: sobol_point's index scramble owen(k) = rev(owen_reversed(rev
-   k)) then starts from the stored value (one reversal fewer per point, the same bits). */
+/* order holds bit-reversed indices, which sobol_block_point starts from. */
 struct pt2 padding_sobol_point(const struct padding *p, int slot, uint32_t s)
 {
-    const struct sobol_seeds seeds = p->sobol[slot];
-    const uint32_t i =
-        sobol_bit_reverse(sobol_owen_reversed(p->order[(size_t)slot * p->slot_cap + s], seeds.index));
-    return sobol_scrambled_pair(i, sobol_y_reversed(i), seeds.x, seeds.y);
+    const uint32_t k_reversed = p->order[(size_t)slot * p->slot_cap + s];
+    if (p->wide)
+        return sobol_block_point_wide(&p->sobol[slot], p->low, p->low_bits, k_reversed);
+    return sobol_block_point(&p->sobol[slot], p->low, p->low_bits, k_reversed);
 }
 
 /* Any other sampler: its whole sets until the pixel's count, shuffled. */

@@ -16,16 +16,20 @@
    asks for it (from the pixel's own stream for that slot), then shuffled by Fisher-Yates, so
    that sample s takes a uniformly random point of it: a uniform random permutation per pixel and
    slot, whatever the sampler. A Sobol slot keeps its seeds and the shuffled order of its indices
-   instead of its points, and makes a point when a sample reads it (sobol_point: the same bits
-   as the whole set's): most samples end before the deeper slots, whose points then go unmade. */
+   instead of its points, and makes a point when a sample reads it (sobol_block_point: the same
+   bits as the whole set's): most samples end before the deeper slots, whose points then go
+   unmade. */
 struct padding {
     struct sampler *sampler;   /* the pixel sampler (not owned) */
     int slots;                 /* slots 0 .. slots - 1 */
     size_t slot_cap;           /* points stored per slot */
     struct pt2 *pts;           /* slots x slot_cap */
-    struct sobol_seeds *sobol; /* sobol: each slot's seeds (NULL for the other samplers) */
+    struct sobol_block *sobol; /* sobol: each slot's seeds and fixed index part (NULL for the others) */
     uint32_t *order;           /* sobol: slots x slot_cap point indices (bit-reversed), each slot's shuffle */
     uint32_t *identity;        /* sobol: slot_cap indices 0, 1, ... bit-reversed: a fill's start */
+    uint64_t *low;             /* sobol: sobol_low_table(low_bits) */
+    int low_bits;              /* sobol: the indices' bits (2^low_bits >= slot_cap) */
+    int wide;                  /* simd_avx2(): the shuffles' draws and the points with AVX2 */
     uint64_t *gen;             /* slot k is current when gen[k] == pixel */
     uint64_t pixel;            /* bumped by padding_pixel */
     uint64_t seed;             /* the job's seed */

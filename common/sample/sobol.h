@@ -86,6 +86,47 @@ static inline struct pt2 sobol_point_inline(struct sobol_seeds s, uint32_t k)
     return sobol_scrambled_pair(i, sobol_y_reversed(i), s.x, s.y);
 }
 
+/* A set's points of index below 2^bits, made one at a time (padding's Sobol slots), split in what
+   is fixed per set and what varies per point. Index k's reversal rev(k) has its bits in the top
+   `bits` only, and sobol_owen_reversed changes bit j by the bits below it alone, so the low 32 -
+   bits bits of owen_reversed(rev(k)) are the seed's alone: the shuffled index i = rev(that) is a
+   fixed high part (xr_hi) or a low part of `bits` bits read from owen_reversed's top bits. Sobol's
+   second dimension is linear over GF(2), so its reversed value is yr_hi = sobol_y_reversed(xr_hi)
+   xor the low part's (tabled with it). The point is sobol_point's, bit for bit, for one hash and a
+   table lookup instead of two reversals and the second dimension's five steps. */
+struct sobol_block {
+    uint32_t index;   /* the index shuffle's seed */
+    uint32_t seed[2]; /* x's and y's scramble seeds */
+    uint32_t hi[2];   /* the shuffled index's fixed high part, as x's and y's reversed values */
+};
+
+/* The fixed part of seeds s's points below 2^bits (1 <= bits <= 31). */
+static inline struct sobol_block sobol_block_of(struct sobol_seeds s, int bits)
+{
+    const uint32_t hi = sobol_bit_reverse(sobol_owen_reversed(0, s.index)) & ~((1u << bits) - 1);
+    return (struct sobol_block){s.index, {s.x, s.y}, {hi, sobol_y_reversed(hi)}};
+}
+
+/* The low parts' table for bits (1 <= bits <= 31): entry v is the index's low part rev(v) read as
+   a `bits`-bit value, and its second dimension reversed in the high 32 bits; 2^bits entries. */
+void sobol_low_table(uint64_t *table, int bits);
+
+/* Point k of b's set (k < 2^bits) from rev(k) (sobol_bit_reverse), table = sobol_low_table(bits):
+   sobol_point(seeds, k) of the seeds b was made from, bit for bit. */
+static inline struct pt2 sobol_block_point(const struct sobol_block *b, const uint64_t *table, int bits,
+                                           uint32_t k_reversed)
+{
+    const uint64_t low = table[sobol_owen_reversed(k_reversed, b->index) >> (32 - bits)];
+    return sobol_scrambled_pair(b->hi[0] | (uint32_t)low, b->hi[1] ^ (uint32_t)(low >> 32), b->seed[0],
+                                b->seed[1]);
+}
+
+/* sobol_block_point with AVX2, the same bits: both coordinates' hashes, bit reversals (a byte
+   shuffle and two nibble lookups) and conversions side by side in one register. Only where
+   simd_avx2() (base/simd.h) says so; without SIMD_AVX2 it is sobol_block_point. */
+struct pt2 sobol_block_point_wide(const struct sobol_block *b, const uint64_t *table, int bits,
+                                  uint32_t k_reversed);
+
 /* The seeds of the next set, three draws of rng: a set per (seed, pixel) and per dimension pair,
    whatever the caller's rng is seeded from. */
 struct sobol_seeds sobol_seeds_draw(struct rng *rng);
