@@ -41,7 +41,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->spec_ring = calloc(n * VERDICT_SPEC_RINGS, sizeof *m->spec_ring);
     m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p),
     m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
-    int blocks = c->n_blocks > 1 ? c->n_blocks : c->n_seeds; /* no cost design: the images' own times */
+    int blocks = c->results.n_blocks > 1 ? c->results.n_blocks
+                                         : c->n_seeds; /* no cost design: the images' own times */
     m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
         !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
@@ -71,7 +72,7 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .spec_aniso = m->aniso,
                                   .n_blocks = blocks,
                                   .cost_s = m->cost,
-                                  .cost_from_images = c->n_blocks < 2,
+                                  .cost_from_images = c->results.n_blocks < 2,
                                   .rank_by = c->rank_by,
                                   .ref_spp = c->scenes[s].ref_spp,
                                   .ref_relmse = c->scenes[s].ref_relmse,
@@ -104,11 +105,11 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
             else
                 f->images_unread += ref != NULL;
             for (int b = 0; b < blocks; b++)
-                m->cost[verdict_cost_at(f, v, p, b)] = c->n_blocks > 1
-                                                           ? c->cost_s[compare_cost_index(c, s, v, p, b)]
-                                                           : c->items[compare_index(c, s, v, p, b)].cpu_s;
+                m->cost[verdict_cost_at(f, v, p, b)] =
+                    c->results.n_blocks > 1 ? c->results.cost_s[compare_cost_index(c, s, v, p, b)]
+                                            : c->results.rows[compare_index(c, s, v, p, b)].cpu_s;
             for (int k = 0; k < c->n_seeds; k++) {
-                const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+                const struct study_result *it = &c->results.rows[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);
                 m->spp[i] = it->spp_mean, m->cpu[i] = it->cpu_s, m->share[i] = it->sampler_share;
                 m->rel[i] = it->has_error ? it->error.relmse : NAN;

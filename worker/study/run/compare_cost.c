@@ -48,10 +48,10 @@ static void cell_means(const struct compare *c, int s, int v, int p, double *cpu
     int n = 0;
     *cpu = *samples = 0;
     for (int k = 0; k < c->n_seeds; k++) {
-        const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
-        if (!it->done)
+        const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
+        if (!r->done)
             continue;
-        *cpu += it->cpu_s, *samples += it->spp_mean * c->scenes[s].width * c->scenes[s].height;
+        *cpu += r->cpu_s, *samples += r->spp_mean * c->scenes[s].width * c->scenes[s].height;
         n++;
     }
     if (n)
@@ -146,13 +146,14 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
     if (camera_init(&t.cam, &t.sf.camera, (double)t.w / t.h, e) < 0 ||
         !(t.rgb = procs_framebuffer_new(t.w, t.h, e)))
         goto done;
-    for (int b = 0; b < c->n_blocks; b++) {
+    for (int b = 0; b < c->results.n_blocks; b++) {
         for (int i = 0; i < n; i++)
             idx[i] = i;
         shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
         for (int i = 0; i < n; i++) {
             int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
-            if (time_unit(c, &t, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) < 0)
+            if (time_unit(c, &t, v, p, b, &d[idx[i]], &c->results.cost_s[compare_cost_index(c, s, v, p, b)],
+                          e) < 0)
                 goto done;
         }
     }
@@ -167,17 +168,18 @@ done:
 
 int compare_cost_measure(struct compare *c, const struct run_opts *o, struct err *e)
 {
-    free(c->cost_s);
-    c->n_blocks = COMPARE_COST_BLOCKS;
-    c->cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * c->n_blocks, sizeof *c->cost_s);
-    if (!c->cost_s) {
-        c->n_blocks = 0;
+    free(c->results.cost_s);
+    c->results.n_blocks = COMPARE_COST_BLOCKS;
+    c->results.cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * c->results.n_blocks,
+                               sizeof *c->results.cost_s);
+    if (!c->results.cost_s) {
+        c->results.n_blocks = 0;
         return err_set(e, NULL, 0, 0, "out of memory");
     }
     for (int s = 0; s < c->n_scenes; s++)
         if (measure_scene(c, s, o, e) < 0) {
-            free(c->cost_s);
-            c->cost_s = NULL, c->n_blocks = 0;
+            free(c->results.cost_s);
+            c->results.cost_s = NULL, c->results.n_blocks = 0;
             err_prefix(e, c->name);
             return -1;
         }
@@ -202,9 +204,10 @@ char *compare_cost_csv(const struct compare *c)
         for (int v = 0; v < c->n_variants; v++)
             for (int p = 0; p < c->n_points; p++) {
                 point_name(c, s, v, p, name, sizeof name);
-                for (int k = 0; k < c->n_blocks; k++) /* names are letters, digits, - and _: no quoting */
+                for (int k = 0; k < c->results.n_blocks;
+                     k++) /* names are letters, digits, - and _: no quoting */
                     sbuf_printf(&b, "%s,%s,%s,%d,%.6g\n", c->scenes[s].name, c->variants[v], name, k,
-                                c->cost_s[compare_cost_index(c, s, v, p, k)]);
+                                c->results.cost_s[compare_cost_index(c, s, v, p, k)]);
             }
     return sbuf_take(&b);
 }
@@ -264,16 +267,16 @@ int compare_cost_read(struct compare *c, const char *dir)
                 goto done;
     if (blocks < 2)
         goto done;
-    free(c->cost_s);
-    c->n_blocks = blocks;
-    c->cost_s = malloc(sizeof *c->cost_s * (size_t)cells * blocks);
-    if (!c->cost_s) {
-        c->n_blocks = 0;
+    free(c->results.cost_s);
+    c->results.n_blocks = blocks;
+    c->results.cost_s = malloc(sizeof *c->results.cost_s * (size_t)cells * blocks);
+    if (!c->results.cost_s) {
+        c->results.n_blocks = 0;
         goto done;
     }
     for (int i = 0; i < cells; i++)
         for (int k = 0; k < blocks; k++)
-            c->cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
+            c->results.cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
     rc = 0;
 done:
     free(cost);

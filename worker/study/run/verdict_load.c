@@ -183,7 +183,7 @@ too_many:
 }
 
 /* Row f's figures into it; -1 (it left out) when spp, seconds or share are no figure in range. */
-static int read_figures(const struct table *T, char *const *f, struct compare_item *it)
+static int read_figures(const struct table *T, char *const *f, struct study_result *it)
 {
     const int *col = T->col;
     double lowfreq;
@@ -197,8 +197,7 @@ static int read_figures(const struct table *T, char *const *f, struct compare_it
         verdict_csv_figure(f[col[C_WALL]], 0, SECONDS_MAX, &it->wall_s) < 0 ||
         verdict_csv_figure(f[col[C_CPU]], 0, SECONDS_MAX, &it->cpu_s) < 0 ||
         verdict_csv_figure(f[col[C_SHARE]], 0, 1, &it->sampler_share) < 0) {
-        *it = (struct compare_item){
-            .scene = it->scene, .variant = it->variant, .point = it->point, .seed = it->seed};
+        *it = (struct study_result){0};
         return -1;
     }
     return 0;
@@ -229,6 +228,8 @@ static struct compare *build(const struct table *T, int si, const char *study, c
     c->variants = calloc((size_t)c->n_variants, sizeof *c->variants);
     c->seeds = calloc((size_t)c->n_seeds, sizeof *c->seeds);
     c->items = calloc((size_t)c->n_items, sizeof *c->items);
+    if (study_results_init(&c->results, c->n_items) < 0)
+        c->items = (free(c->items), NULL);
     *said = calloc(3 * (size_t)c->n_scenes, sizeof **said);
     if (!c->scenes || !c->variants || !c->seeds || !c->items || !*said) {
         err_set(e, dir, 0, 0, "out of memory");
@@ -245,13 +246,15 @@ static struct compare *build(const struct table *T, int si, const char *study, c
         char *const *f = T->t.rows[I.rows[4 * i]];
         int s = I.rows[4 * i + 1], v = I.rows[4 * i + 2], k = I.rows[4 * i + 3];
         struct compare_item *it = &c->items[compare_index(c, s, v, I.point[i], k)];
-        *it = (struct compare_item){.scene = s, .variant = v, .point = I.point[i], .seed = k, .done = 1};
-        if (read_figures(T, f, it) < 0) {
+        struct study_result *r = &c->results.rows[compare_index(c, s, v, I.point[i], k)];
+        *it = (struct compare_item){.scene = s, .variant = v, .point = I.point[i], .seed = k};
+        *r = (struct study_result){.done = 1};
+        if (read_figures(T, f, r) < 0) {
             (*said)[2 * c->n_scenes + s]++;
             continue;
         }
         snprintf(it->job.output, sizeof it->job.output, "%s", f[T->col[C_IMAGE]]);
-        if (it->has_error) {
+        if (r->has_error) {
             c->scenes[s].ref_kind = COMPARE_REF_SETTINGS;
             if (!strcmp(f[T->col[C_DOMAIN]], "linear"))
                 c->scenes[s].ref_domain = IMG_LINEAR;
@@ -278,10 +281,10 @@ static int judge(const struct table *T, int si, const char *study, const char *d
     int *unscored = missing + c->n_scenes, *unfigured = missing + 2 * c->n_scenes;
     verdict_sidecars_read(c, dir, missing);
     for (int i = 0; i < c->n_items; i++) { /* a relmse that is no error ("nan", "-1"): left out, said */
-        struct compare_item *it = &c->items[i];
-        if (it->done && it->has_error && !(isfinite(it->error.relmse) && it->error.relmse >= 0)) {
-            it->error.relmse = NAN;
-            unscored[it->scene]++;
+        struct study_result *r = &c->results.rows[i];
+        if (r->done && r->has_error && !(isfinite(r->error.relmse) && r->error.relmse >= 0)) {
+            r->error.relmse = NAN;
+            unscored[c->items[i].scene]++;
         }
     }
     for (int s = 0; s < c->n_scenes; s++)
