@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
-#include "verdict_csv.h"
+#include "study/load/verdict_csv.h"
 
 /* `"key": "value"` or `"key": number` from a sidecar's text, into out; 0 when absent. */
 static int sidecar_field(const char *text, const char *key, char *out, size_t n)
