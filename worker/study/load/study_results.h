@@ -21,6 +21,7 @@ struct study_result {
     double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
     double flip;                          /* mean FLIP (HDR on linear, LDR on 8-bit) against it */
     struct sidecar_work work;             /* its render's work counts (the sidecar's "work") */
+    uint64_t hash;                        /* the resume hash it was rendered under (not a column) */
 };
 
 struct study_results {

@@ -57,9 +57,8 @@ static void fmt_duration(double s, char *buf, size_t n)
    same path), every setting that changes its pixels, not its path: the same --out spelled another
    way finds the same outputs current. An image whose sidecar records it is current and is not
    rendered again (unless --force). */
-static uint64_t item_hash(const struct compare_scene *cs, const struct compare_item *it)
+static uint64_t item_hash(const struct compare_scene *cs, const struct job *j)
 {
-    const struct job *j = &it->job;
     char text[512];
     int n = job_key_text(j, j->width, j->height, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
@@ -142,9 +141,11 @@ static int score_look(struct study_result *r, const struct run_result *rr, const
     return rc;
 }
 
-/* Render one combination (or take it as it is when current) and measure it against its
-   scene's reference (cs->ref, prepared; none when the study has none). */
-static int render_item(struct compare *c, struct compare_item *it, const struct run_opts *o, struct err *e)
+/* Render one combination (its plan's job with its reference and hash set) or take it as it is when
+   current, and measure it against its scene's reference (cs->ref, prepared; none when the study has
+   none) into its row of c->results. */
+static int render_item(struct compare *c, const struct compare_item *it, const struct run_opts *o,
+                       struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[it->scene];
     const struct study_ref *ref = cs->ref_kind != COMPARE_REF_NONE ? cs->ref : NULL;
@@ -153,8 +154,9 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
         err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
         return 1;
     }
-    snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
-    it->job.hash = item_hash(cs, it);
+    struct job j = it->job;
+    snprintf(j.reference, sizeof j.reference, "%s", ref ? cs->ref_path : "");
+    r->hash = j.hash = item_hash(cs, &j);
     struct run_result rr;
     struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
     quiet_rows.progress = 0;
@@ -162,7 +164,7 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     quiet_rows.ref = ref ? &ref->f : NULL; /* scored in memory, on the framebuffer's floats */
     quiet_rows.ref_domain = cs->ref_domain;
     quiet_rows.ref_display = ref ? &ref->display : NULL;
-    int rc = run_job(&it->job, &quiet_rows, &rr, e);
+    int rc = run_job(&j, &quiet_rows, &rr, e);
     if (rc != 0) {
         err_prefix(e, it->job.output);
         return rc;
@@ -250,7 +252,7 @@ static char *summary_csv(const struct compare *c)
 
 int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct job *j, struct err *e)
 {
-    struct compare_item *it = &c->items[i];
+    const struct compare_item *it = &c->items[i];
     const struct compare_scene *cs = &c->scenes[it->scene];
     int rc = compare_ref_prepare(c, it->scene, o, e);
     if (rc != 0)
@@ -259,10 +261,9 @@ int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct 
         err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
         return 1;
     }
-    snprintf(it->job.reference, sizeof it->job.reference, "%s",
-             cs->ref_kind != COMPARE_REF_NONE ? cs->ref_path : "");
-    it->job.hash = item_hash(cs, it); /* as render_item sets them: the merged sidecar is then current */
-    *j = it->job;
+    *j = it->job; /* its reference and hash as render_item sets them: the merged sidecar is then current */
+    snprintf(j->reference, sizeof j->reference, "%s", cs->ref_kind != COMPARE_REF_NONE ? cs->ref_path : "");
+    j->hash = item_hash(cs, j);
     return 0;
 }
 
@@ -343,7 +344,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         total += cost(c, &c->items[i]);
     double t1 = clock_s(CLOCK_MONOTONIC);
     for (int n = 0; n < c->n_items; n++) {
-        struct compare_item *it = &c->items[order[n]];
+        const struct compare_item *it = &c->items[order[n]];
         const struct study_result *r = &c->results.rows[order[n]];
         const struct compare_scene *cs = &c->scenes[it->scene];
         if ((rc = render_item(c, it, o, e)) != 0) {

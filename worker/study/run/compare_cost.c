@@ -65,11 +65,11 @@ static void designs(const struct compare *c, int s, struct design *d)
 {
     int nv = c->n_variants, np = c->n_points, h = c->scenes[s].height;
     for (int i = 0; i < nv * np; i++) {
-        uint64_t key = c->items[compare_index(c, s, i / np, i % np, 0)].job.hash;
+        uint64_t key = c->results.rows[compare_index(c, s, i / np, i % np, 0)].hash;
         double cpu = 0, samples, one;
         int n = 0;
         for (int j = 0; j < nv * np; j++)
-            if (j == i || (key && c->items[compare_index(c, s, j / np, j % np, 0)].job.hash == key)) {
+            if (j == i || (key && c->results.rows[compare_index(c, s, j / np, j % np, 0)].hash == key)) {
                 cell_means(c, s, j / np, j % np, &one, &samples);
                 cpu += one, n++;
             }
