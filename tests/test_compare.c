@@ -159,7 +159,7 @@ static void stability(struct compare *c, int s, int v, const struct rgbf *ref, c
     if (!ref)
         c->scenes[s].ref_kind = COMPARE_REF_NONE;
     verdict_study_free(&c->verdict);
-    c->has_verdict = verdict_from_compare(c, fx.dir, &c->verdict, &e) == 0;
+    c->has_verdict = verdict_from_compare(c, fx.dir, NULL, &c->verdict, &e) == 0;
     CHECK(c->has_verdict);
     char *text = report_stability(c, s, v);
     snprintf(buf, n, "%s", text ? text : "");

@@ -121,7 +121,37 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     return 0;
 }
 
-int verdict_from_compare(const struct compare *c, const char *dir, struct verdict_study *out, struct err *e)
+/* Add text to v's warnings. 0 or -1. */
+static int add_warning(struct verdict_scene *v, const char *text)
+{
+    char(*w)[VERDICT_TEXT_MAX] = realloc(v->warnings, (size_t)(v->n_warnings + 1) * sizeof *w);
+    if (!w)
+        return -1;
+    v->warnings = w;
+    snprintf(w[v->n_warnings++], VERDICT_TEXT_MAX, "%s", text);
+    return 0;
+}
+
+/* Images rendered on several CPU models: listed, and a warning on each scene's equal CPU time. */
+static int mark_machines(const struct verdict_machines *m, struct verdict_study *out)
+{
+    char text[VERDICT_TEXT_MAX];
+    if (!m || m->n < 2)
+        return 0;
+    snprintf(out->machines, sizeof out->machines, "%s", m->list);
+    snprintf(
+        text, sizeof text,
+        "the images were rendered on %d%s CPU models: their own CPU seconds (summary.csv) do not compare; "
+        "equal CPU time is ranked by the cost design, timed on the one machine that gathered the study",
+        m->n, m->more ? "+" : "");
+    for (int s = 0; s < out->n_scenes; s++)
+        if (add_warning(&out->scenes[s], text) < 0)
+            return -1;
+    return 0;
+}
+
+int verdict_from_compare(const struct compare *c, const char *dir, const struct verdict_machines *machines,
+                         struct verdict_study *out, struct err *e)
 {
     *out = (struct verdict_study){.n_scenes = c->n_scenes};
     snprintf(out->name, sizeof out->name, "%s", c->name);
@@ -151,6 +181,10 @@ int verdict_from_compare(const struct compare *c, const char *dir, struct verdic
             verdict_study_free(out);
             return -1;
         }
+    }
+    if (mark_machines(machines, out) < 0) {
+        verdict_study_free(out);
+        return err_set(e, NULL, 0, 0, "out of memory");
     }
     return 0;
 }

@@ -116,6 +116,13 @@ struct verdict_scene {
     char (*sentences)[VERDICT_TEXT_MAX];
 };
 
+/* The CPU models a study's images were rendered on (study_machines.h reads them from their
+   sidecars): the first ones "; "-joined, how many are listed, and whether there were more. */
+struct verdict_machines {
+    char list[VERDICT_TEXT_MAX];
+    int n, more;
+};
+
 /* One study: its scenes' verdicts. */
 struct verdict_study {
     char name[VERDICT_LABEL_MAX];

@@ -49,7 +49,7 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
         else
             c->scenes[s].ref_relmse = c->scenes[s].ref_radiance = c->scenes[s].ref_radiance_se = NAN;
     (void)compare_cost_read(c, dir); /* absent (an older folder): the images' own times, said so */
-    int rc = verdict_from_compare(c, dir, out, e);
+    int rc = verdict_from_compare(c, dir, NULL, out, e);
     for (int s = 0; rc == 0 && s < out->n_scenes && s < c->n_scenes; s++) {
         struct verdict_scene *vs = &out->scenes[s];
         warn(vs, "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
