@@ -373,7 +373,8 @@ void study_table_label_spp(struct compare *c)
         for (int v = 0; v < c->n_variants && spp != 0; v++) {
             const struct job *j = &c->items[compare_index(c, 0, v, p, 0)].job;
             const struct job *j0 = &c->items[compare_index(c, 0, 0, p, 0)].job;
-            long n = lround(sampler_expected_spp(j->sampler, j->threshold));
+            int valid = j->threshold >= sampler_smallest_threshold(j->sampler) && j->threshold <= 100;
+            long n = valid ? lround(sampler_expected_spp(j->sampler, j->threshold)) : 0; /* 0: a hole */
             differ |= j->threshold != j0->threshold;
             spp = spp < 0 || spp == n ? n : 0;
         }
