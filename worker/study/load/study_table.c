@@ -98,12 +98,13 @@ static int read_rows(struct study_table *t, const char *job, struct err *e)
 {
     const struct verdict_csv *csv = &t->csv;
     int col[N_COLS], set[N_SETTINGS];
-    for (int k = 0; k < N_COLS + N_SETTINGS; k++) { /* scene, variant, the settings, then the rest */
-        int c = k < C_SEED ? k : k < C_SEED + N_SETTINGS ? -1 : k - N_SETTINGS, j = k - C_SEED;
-        const char *name = c >= 0 ? col_names[c] : point_settings[j];
-        int f = *(c >= 0 ? &col[c] : &set[j]) = column(csv, name);
-        if (f < 0 && c != C_STUDY && c != C_LOWFREQ && (c >= 0 || j < 2)) /* every file has today's two */
-            return err_set(e, t->path, 1, 0, "no column %s", name);
+    for (int k = 0; k < N_COLS; k++)
+        if ((col[k] = column(csv, col_names[k])) < 0 && k != C_STUDY && k != C_LOWFREQ)
+            return err_set(e, t->path, 1, 0, "no column %s", col_names[k]);
+    for (int k = 0; k < N_SETTINGS; k++) { /* every file has today's two; a newer setting may be absent */
+        set[k] = column(csv, point_settings[k]);
+        if (k < 2 && set[k] < 0)
+            return err_set(e, t->path, 1, 0, "no column %s", point_settings[k]);
     }
     t->has_study = col[C_STUDY] >= 0;
     t->n_rows = csv->n_rows > 0 ? csv->n_rows - 1 : 0;
