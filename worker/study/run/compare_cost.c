@@ -11,6 +11,7 @@
 #include "base/rng.h"
 #include "base/sbuf.h"
 #include "job/job_render.h"
+#include "study/load/verdict_csv.h"
 
 /* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
 static void shuffle(const struct compare *c, uint64_t key, int *idx, int n)
@@ -228,34 +229,30 @@ static int find_cell(const struct compare *c, const char *scene, const char *var
 
 int compare_cost_read(struct compare *c, const char *dir)
 {
-    char path[4096], *line, *save = NULL;
+    char path[4096];
     uint8_t *data = NULL;
     size_t len;
     struct err ignored;
+    struct verdict_csv t = {0};
     int cells = c->n_scenes * c->n_variants * c->n_points, blocks = 0, rc = -1;
     snprintf(path, sizeof path, "%s/cost.csv", dir);
     if (fileio_read_all(path, 64u << 20, &data, &len, &ignored) < 0)
         return -1;
     double *cost = malloc(sizeof *cost * (size_t)cells * COMPARE_COST_BLOCKS);
-    if (!cost)
+    static const char *const head[5] = {"scene", "variant", "point", "block", "cpu_s"};
+    if (!cost || verdict_csv_parse(&t, (char *)data, len, path, &ignored) < 0 || t.n_rows < 1 ||
+        t.n_fields != 5)
         goto done;
+    for (int i = 0; i < 5; i++)
+        if (strcmp(t.rows[0][i], head[i]))
+            goto done;
     for (int i = 0; i < cells * COMPARE_COST_BLOCKS; i++)
         cost[i] = NAN;
-    line = strtok_r((char *)data, "\r\n", &save);
-    if (!line || strcmp(line, "scene,variant,point,block,cpu_s"))
-        goto done;
-    while ((line = strtok_r(NULL, "\r\n", &save))) {
-        char *f[5], *end, *rest = line;
-        int nf = 0;
-        for (char *comma; nf < 5; rest = comma + 1) {
-            f[nf++] = rest;
-            if (!(comma = strchr(rest, ',')))
-                break;
-            *comma = 0;
-        }
-        long k = nf == 5 ? strtol(f[3], &end, 10) : -1;
-        double x = nf == 5 ? strtod(f[4], NULL) : NAN;
-        int cell = nf == 5 ? find_cell(c, f[0], f[1], f[2]) : -1;
+    for (int r = 1; r < t.n_rows; r++) {
+        char *const *f = t.rows[r];
+        long k = strtol(f[3], NULL, 10);
+        double x = strtod(f[4], NULL);
+        int cell = find_cell(c, f[0], f[1], f[2]);
         if (cell < 0 || k < 0 || k >= COMPARE_COST_BLOCKS || !(x > 0 && isfinite(x)))
             goto done; /* a row of another study or a damaged file: not guessed at */
         cost[(size_t)cell * COMPARE_COST_BLOCKS + (size_t)k] = x;
@@ -279,6 +276,7 @@ int compare_cost_read(struct compare *c, const char *dir)
             c->results.cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
     rc = 0;
 done:
+    verdict_csv_free(&t);
     free(cost);
     free(data);
     return rc;
