@@ -13,7 +13,9 @@
 #define CSV_MAX_BYTES (64u << 20)
 
 /* The settings columns that place a row at its sweep point: every render setting summary.csv
-   writes but seed, in the order a point's label names them. The one list of them. */
+   writes but seed, in the order a point's label names them. The one list of them; threshold and
+   light_threshold first (every file has them: checked as numbers, the plan's items keep them, and a
+   label always names the first), a later one read as "" from a file without its column. */
 static const char *const point_settings[] = {"threshold", "light_threshold"};
 #define N_SETTINGS (int)(sizeof point_settings / sizeof *point_settings)
 
@@ -138,7 +140,7 @@ int study_table_read(struct study_table *t, const char *path, const char *job, s
 {
     uint8_t *text = NULL;
     size_t len;
-    *t = (struct study_table){.path = path, .n_settings = N_SETTINGS, .settings = point_settings};
+    *t = (struct study_table){.path = path};
     if (fileio_read_all(path, CSV_MAX_BYTES, &text, &len, e) < 0)
         return -1;
     t->text = (char *)text;
@@ -184,13 +186,13 @@ static int intern(struct verdict_names *n, const char *s)
    variant and settings, and how many rows before it had those and its seed. 0 or -1 (no memory). */
 static int intern_rows(const struct study_table *t, int si, struct interned *I)
 {
-    size_t m = (size_t)I->m, w = (size_t)(I->w = 3 + t->n_settings);
+    size_t m = (size_t)I->m, w = (size_t)(I->w = 3 + N_SETTINGS);
     I->row = calloc(m, sizeof *I->row), I->svk = calloc(4 * m, sizeof *I->svk);
     I->with_seed = calloc(m * w, sizeof *I->with_seed), I->with_occ = calloc(m * w, sizeof *I->with_occ);
     I->occ = calloc(m, sizeof *I->occ), I->key_point = calloc(m, sizeof *I->key_point);
     I->first = calloc(m, sizeof *I->first);
     if (verdict_names_init(&I->scenes, I->m) < 0 || verdict_names_init(&I->variants, I->m) < 0 ||
-        verdict_names_init(&I->seeds, I->m) < 0 || verdict_names_init(&I->values, I->m * t->n_settings) < 0 ||
+        verdict_names_init(&I->seeds, I->m) < 0 || verdict_names_init(&I->values, I->m * N_SETTINGS) < 0 ||
         verdict_names_init(&I->seen, I->m) < 0 || verdict_names_init(&I->keys, I->m) < 0 || !I->row ||
         !I->svk || !I->with_seed || !I->with_occ || !I->occ || !I->key_point || !I->first)
         return -1;
@@ -202,7 +204,7 @@ static int intern_rows(const struct study_table *t, int si, struct interned *I)
         I->row[i] = r;
         a[0] = I->svk[4 * i] = intern(&I->scenes, x->scene);
         a[1] = I->svk[4 * i + 1] = intern(&I->variants, x->variant);
-        for (int j = 0; j < t->n_settings; j++)
+        for (int j = 0; j < N_SETTINGS; j++)
             a[2 + j] = intern(&I->values, x->setting[j]);
         a[w - 1] = I->svk[4 * i + 2] =
             verdict_names_intern(&I->seeds, (const char *)&x->seed, sizeof x->seed);
@@ -258,7 +260,7 @@ static void label_points(const struct study_table *t, struct compare *c, const s
 {
     for (int p = 0; p < c->n_points; p++)
         c->points[p][0] = 0;
-    for (int j = 0; j < t->n_settings; j++) {
+    for (int j = 0; j < N_SETTINGS; j++) {
         char first[COMPARE_LABEL_MAX], v[COMPARE_LABEL_MAX];
         int differ = j == 0;
         setting_text(t->rows[I->row[I->first[0]]].setting[j], first, sizeof first);
@@ -269,7 +271,7 @@ static void label_points(const struct study_table *t, struct compare *c, const s
         for (int p = 0; differ && p < c->n_points; p++) {
             size_t len = strlen(c->points[p]);
             setting_text(t->rows[I->row[I->first[p]]].setting[j], v, sizeof v);
-            snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "", t->settings[j],
+            snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "", point_settings[j],
                      v);
         }
     }

@@ -38,8 +38,6 @@ struct study_table {
     struct study_table_row *rows;
     int has_study; /* a suite's: the leading study column names each row's study */
     struct verdict_names studies;
-    int n_settings; /* the point's settings columns, in label order */
-    const char *const *settings;
 };
 
 /* Read and check path (a study's or a suite's summary.csv); job names the study of a file without a
