@@ -114,7 +114,10 @@ static void test_bad(void)
     struct err e;
     const char *path = compare_fixture_file(&fx, "summary.csv", HEAD "a,x,abc,10,1,16,1,1,0.1,0.5,,a.png\n");
     CHECK(study_table_read(&t, path, "job", &e) < 0 && e.line == 2 && strstr(e.msg, "threshold"));
-    path = compare_fixture_file(&fx, "summary.csv", "scene,variant,threshold,seed\na,x,5,1\n");
+    path =
+        compare_fixture_file(&fx, "summary.csv",
+                             "scene,variant,threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,"
+                             "relmse,domain,image\na,x,5,1,16,1,1,0.1,0.5,,a.png\n");
     CHECK(study_table_read(&t, path, "job", &e) < 0 && e.line == 1 &&
           strcmp(e.msg, "no column light_threshold") == 0);
 }
