@@ -41,8 +41,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->spec_ring = calloc(n * VERDICT_SPEC_RINGS, sizeof *m->spec_ring);
     m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p),
     m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
-    int blocks = c->results.n_blocks > 1 ? c->results.n_blocks
-                                         : c->n_seeds; /* no cost design: the images' own times */
+    /* no cost design: the images' own times */
+    int blocks = c->results.n_blocks > 1 ? c->results.n_blocks : c->n_seeds;
     m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
         !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
@@ -109,12 +109,12 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                     c->results.n_blocks > 1 ? c->results.cost_s[compare_cost_index(c, s, v, p, b)]
                                             : c->results.rows[compare_index(c, s, v, p, b)].cpu_s;
             for (int k = 0; k < c->n_seeds; k++) {
-                const struct study_result *it = &c->results.rows[compare_index(c, s, v, p, k)];
+                const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);
-                m->spp[i] = it->spp_mean, m->cpu[i] = it->cpu_s, m->share[i] = it->sampler_share;
-                m->rel[i] = it->has_error ? it->error.relmse : NAN;
-                m->lowfreq[i] = it->has_error ? it->error_lowfreq : NAN;
-                m->nonfinite[i] = it->nonfinite;
+                m->spp[i] = r->spp_mean, m->cpu[i] = r->cpu_s, m->share[i] = r->sampler_share;
+                m->rel[i] = r->has_error ? r->error.relmse : NAN;
+                m->lowfreq[i] = r->has_error ? r->error_lowfreq : NAN;
+                m->nonfinite[i] = r->nonfinite;
             }
         }
     }
