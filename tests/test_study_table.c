@@ -4,6 +4,7 @@
    sweep told from each variant's sampler and threshold, and a bad row refused at its line. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -28,6 +29,13 @@ static struct compare *study(const char *text, struct study_table *t, int **unfi
     struct compare *c = study_table_study(t, 0, unfigured, &e);
     CHECK(c != NULL);
     return c;
+}
+
+static void done(struct compare *c, struct study_table *t, int *unfigured)
+{
+    free(unfigured);
+    compare_free(c);
+    study_table_free(t);
 }
 
 /* Points from the settings columns: the images' names say nothing; light_threshold is named, as the
@@ -56,9 +64,7 @@ static void test_points(void)
         CHECK(!c->results.rows[compare_index(c, 0, 1, 1, 1)].done && unfigured[0] == 1);
         CHECK(c->scenes[0].ref_kind == COMPARE_REF_SETTINGS && c->scenes[0].ref_domain == IMG_LINEAR);
     }
-    free(unfigured);
-    compare_free(c);
-    study_table_free(&t);
+    done(c, &t, unfigured);
 }
 
 /* A sweep over a setting summary.csv has no column for (poisson_pool): the seeds repeat at the same
@@ -78,9 +84,7 @@ static void test_repeated_seeds(void)
         CHECK(strcmp(c->items[compare_index(c, 0, 0, 1, 0)].job.output, "p16-s1.png") == 0);
         CHECK(c->results.rows[compare_index(c, 0, 0, 1, 1)].error.relmse == 0.2);
     }
-    free(unfigured);
-    compare_free(c);
-    study_table_free(&t);
+    done(c, &t, unfigured);
 }
 
 /* An spp sweep: the variants' thresholds differ at each point, their samplers' counts agree. */
@@ -102,9 +106,7 @@ static void test_spp(void)
         study_table_label_spp(c);
         CHECK(strcmp(c->points[0], "spp 4") == 0 && strcmp(c->points[1], "spp 16") == 0);
     }
-    free(unfigured);
-    compare_free(c);
-    study_table_free(&t);
+    done(c, &t, unfigured);
 }
 
 /* A threshold that is no number, a column missing: refused at file:line. */
