@@ -132,25 +132,46 @@ static int add_warning(struct verdict_scene *v, const char *text)
     return 0;
 }
 
-/* Images rendered on several CPU models: listed, and a warning on each scene's equal CPU time. */
-static int mark_machines(const struct verdict_machines *m, struct verdict_study *out)
+/* A warning of n images (one, more: the words after "image") when there are any and room. */
+static void say_images(struct verdict_scene *vs, const char *text, int n, const char *one, const char *more)
+{
+    if (n && vs->n_warnings < VERDICT_SAY_MAX)
+        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, n == 1 ? one : more);
+}
+
+/* What the runner found, said: a folder's missing parts per scene; several CPU models listed, and a
+   warning on each scene's equal CPU time. 0 or -1 (no memory). */
+static int say_found(const struct verdict_found *f, struct verdict_study *out)
 {
     char text[VERDICT_TEXT_MAX];
-    if (!m || m->n < 2)
+    snprintf(text, sizeof text,
+             "left out: %%d image%%s whose samples_per_pixel_mean, wall_s, cpu_s or sampler_share in "
+             "summary.csv is not a figure (spp in [0, %g], seconds in [0, %g], share in [0, 1])",
+             STUDY_RESULTS_SPP_MAX, STUDY_RESULTS_SECONDS_MAX);
+    for (int s = 0; f && s < out->n_scenes; s++) {
+        struct verdict_scene *vs = &out->scenes[s];
+        say_images(vs,
+                   "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
+                   f->no_sidecar ? f->no_sidecar[s] : 0, "", "s");
+        say_images(vs, "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
+                   f->no_relmse ? f->no_relmse[s] : 0, "", "s");
+        say_images(vs, text, f->no_figures ? f->no_figures[s] : 0, "", "s");
+    }
+    if (!f || f->n_machines < 2)
         return 0;
-    snprintf(out->machines, sizeof out->machines, "%s", m->list);
+    snprintf(out->machines, sizeof out->machines, "%s", f->machines);
     snprintf(
         text, sizeof text,
         "the images were rendered on %d%s CPU models: their own CPU seconds (summary.csv) do not compare; "
         "equal CPU time is ranked by the cost design, timed on the one machine that gathered the study",
-        m->n, m->more ? "+" : "");
+        f->n_machines, f->more_machines ? "+" : "");
     for (int s = 0; s < out->n_scenes; s++)
         if (add_warning(&out->scenes[s], text) < 0)
             return -1;
     return 0;
 }
 
-int verdict_from_compare(const struct compare *c, const char *dir, const struct verdict_machines *machines,
+int verdict_from_compare(const struct compare *c, const char *dir, const struct verdict_found *found,
                          struct verdict_study *out, struct err *e)
 {
     *out = (struct verdict_study){.n_scenes = c->n_scenes};
@@ -182,7 +203,7 @@ int verdict_from_compare(const struct compare *c, const char *dir, const struct 
             return -1;
         }
     }
-    if (mark_machines(machines, out) < 0) {
+    if (say_found(found, out) < 0) {
         verdict_study_free(out);
         return err_set(e, NULL, 0, 0, "out of memory");
     }

@@ -10,6 +10,12 @@
 #include "image/metrics.h"
 #include "job/sidecar.h"
 
+/* The figures a render can give (a row read back outside them is no figure): samples per pixel up
+   to a job's most camera samples on one pixel (job_limits.h's LIMITS_MAX_JOB_SAMPLES), seconds up to
+   about 30 years. */
+#define STUDY_RESULTS_SPP_MAX 1e11
+#define STUDY_RESULTS_SECONDS_MAX 1e9
+
 /* One image's figures (one summary.csv row, less the settings its plan item holds). */
 struct study_result {
     int done, has_error;

@@ -78,9 +78,9 @@ static void read_figures(char *const *f, const int *col, struct study_table_row 
     r->error_lowfreq =
         col[C_LOWFREQ] >= 0 && verdict_csv_figure(f[col[C_LOWFREQ]], 0, HUGE_VAL, &lowfreq) == 0 ? lowfreq
                                                                                                  : NAN;
-    x->figured = verdict_csv_figure(f[col[C_SPP]], 0, STUDY_TABLE_SPP_MAX, &r->spp_mean) == 0 &&
-                 verdict_csv_figure(f[col[C_WALL]], 0, STUDY_TABLE_SECONDS_MAX, &r->wall_s) == 0 &&
-                 verdict_csv_figure(f[col[C_CPU]], 0, STUDY_TABLE_SECONDS_MAX, &r->cpu_s) == 0 &&
+    x->figured = verdict_csv_figure(f[col[C_SPP]], 0, STUDY_RESULTS_SPP_MAX, &r->spp_mean) == 0 &&
+                 verdict_csv_figure(f[col[C_WALL]], 0, STUDY_RESULTS_SECONDS_MAX, &r->wall_s) == 0 &&
+                 verdict_csv_figure(f[col[C_CPU]], 0, STUDY_RESULTS_SECONDS_MAX, &r->cpu_s) == 0 &&
                  verdict_csv_figure(f[col[C_SHARE]], 0, 1, &r->sampler_share) == 0;
     if (!x->figured)
         *r = (struct study_result){0};

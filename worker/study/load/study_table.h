@@ -12,10 +12,6 @@
 #include "compare_model.h"
 #include "verdict_csv.h"
 
-/* The figures a render can give: samples per pixel up to a job's most camera samples on one pixel
-   (job_limits.h's LIMITS_MAX_JOB_SAMPLES), seconds up to about 30 years. */
-#define STUDY_TABLE_SPP_MAX 1e11
-#define STUDY_TABLE_SECONDS_MAX 1e9
 /* Most settings columns that place a row at its point (study_table.c's list, every setting but
    seed). */
 #define STUDY_TABLE_SETTINGS_MAX 32

@@ -288,9 +288,9 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
     int lock = -1, rc = -1;
     verdict_study_free(&c->verdict);
     study_env_read(&c->env);
-    struct verdict_machines machines;
-    study_machines_read(c, o->out_dir, &machines);
-    if ((c->has_verdict = verdict_from_compare(c, dir, &machines, &c->verdict, e) == 0) == 0)
+    struct verdict_found found;
+    study_machines_read(c, o->out_dir, &found);
+    if ((c->has_verdict = verdict_from_compare(c, dir, &found, &c->verdict, e) == 0) == 0)
         return -1;
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&

@@ -7,10 +7,10 @@
 #include "job/outdir.h"
 #include "job/sidecar.h"
 
-void study_machines_read(const struct compare *c, const char *out_dir, struct verdict_machines *out)
+void study_machines_read(const struct compare *c, const char *out_dir, struct verdict_found *out)
 {
     char models[STUDY_MACHINES_MAX][128];
-    *out = (struct verdict_machines){0};
+    *out = (struct verdict_found){0};
     for (int i = 0; i < c->n_items; i++) {
         struct outdir_files files;
         struct sidecar_info info;
@@ -19,14 +19,15 @@ void study_machines_read(const struct compare *c, const char *out_dir, struct ve
         if (sidecar_read(files.sidecar, &info, &ignored) < 0 || !info.cpu_model[0])
             continue;
         int k = 0;
-        while (k < out->n && strcmp(models[k], info.cpu_model))
+        while (k < out->n_machines && strcmp(models[k], info.cpu_model))
             k++;
-        if (k == out->n && out->n < STUDY_MACHINES_MAX)
-            snprintf(models[out->n++], sizeof models[0], "%s", info.cpu_model);
-        else if (k == out->n)
-            out->more = 1;
+        if (k == out->n_machines && out->n_machines < STUDY_MACHINES_MAX)
+            snprintf(models[out->n_machines++], sizeof models[0], "%s", info.cpu_model);
+        else if (k == out->n_machines)
+            out->more_machines = 1;
     }
     size_t len = 0;
-    for (int k = 0; k < out->n && len < sizeof out->list; k++)
-        len += (size_t)snprintf(out->list + len, sizeof out->list - len, "%s%s", k ? "; " : "", models[k]);
+    for (int k = 0; k < out->n_machines && len < sizeof out->machines; k++)
+        len += (size_t)snprintf(out->machines + len, sizeof out->machines - len, "%s%s", k ? "; " : "",
+                                models[k]);
 }

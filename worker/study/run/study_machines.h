@@ -6,9 +6,9 @@
 
 #include "compare.h"
 
-/* The CPU models of c's images, read from their sidecars under out_dir (the first
-   STUDY_MACHINES_MAX listed); a missing or older sidecar counts as no model. */
+/* The CPU models of c's images, read from their sidecars under out_dir, into out's machines (the
+   first STUDY_MACHINES_MAX listed; out emptied first); a missing or older sidecar counts as none. */
 #define STUDY_MACHINES_MAX 8
-void study_machines_read(const struct compare *c, const char *out_dir, struct verdict_machines *out);
+void study_machines_read(const struct compare *c, const char *out_dir, struct verdict_found *out);
 
 #endif

@@ -13,13 +13,6 @@
 #include "study/load/study_table.h"
 #include "verdict_sidecars.h"
 
-/* Add a warning to vs when there is room. */
-static void warn(struct verdict_scene *vs, const char *text, int n, const char *one, const char *more)
-{
-    if (n && vs->n_warnings < VERDICT_SAY_MAX)
-        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, n == 1 ? one : more);
-}
-
 /* Judge study si of t, whose images are in dir; a warning per scene names what was skipped or left
    out. 0, or -1 with e filled. */
 static int judge(const struct study_table *t, int si, const char *dir, struct verdict_study *out,
@@ -49,20 +42,8 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
         else
             c->scenes[s].ref_relmse = c->scenes[s].ref_radiance = c->scenes[s].ref_radiance_se = NAN;
     (void)compare_cost_read(c, dir); /* absent (an older folder): the images' own times, said so */
-    int rc = verdict_from_compare(c, dir, NULL, out, e);
-    for (int s = 0; rc == 0 && s < out->n_scenes && s < c->n_scenes; s++) {
-        struct verdict_scene *vs = &out->scenes[s];
-        warn(vs, "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
-             missing[s], "", "s");
-        warn(vs, "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
-             unscored[s], "", "s");
-        char text[VERDICT_TEXT_MAX];
-        snprintf(text, sizeof text,
-                 "left out: %%d image%%s whose samples_per_pixel_mean, wall_s, cpu_s or sampler_share in "
-                 "summary.csv is not a figure (spp in [0, %g], seconds in [0, %g], share in [0, 1])",
-                 STUDY_TABLE_SPP_MAX, STUDY_TABLE_SECONDS_MAX);
-        warn(vs, text, unfigured[s], "", "s");
-    }
+    struct verdict_found found = {.no_sidecar = missing, .no_relmse = unscored, .no_figures = unfigured};
+    int rc = verdict_from_compare(c, dir, &found, out, e);
     free(missing); /* and unscored */
     free(unfigured);
     compare_free(c);
