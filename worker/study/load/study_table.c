@@ -2,6 +2,7 @@
 #include "study_table.h"
 
 #include <errno.h>
+#include <stdint.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,14 +11,22 @@
 #include "base/fileio.h"
 #include "sample/sampler_kind.h"
 
-#define CSV_MAX_BYTES (64u << 20)
-
 /* The settings columns that place a row at its sweep point: every render setting summary.csv
    writes but seed, in the order a point's label names them. The one list of them; threshold and
    light_threshold first (every file has them: checked as numbers, the plan's items keep them, and a
    label always names the first), a later one read as "" from a file without its column. */
 static const char *const point_settings[] = {"threshold", "light_threshold"};
 #define N_SETTINGS (int)(sizeof point_settings / sizeof *point_settings)
+
+struct study_table_row {
+    int study; /* index into the table's studies */
+    const char *scene, *variant, *image, *domain;
+    const char *setting[N_SETTINGS]; /* the settings columns' fields ("" when absent) */
+    double threshold, light_threshold;
+    uint64_t seed;
+    int figured; /* 0: spp, seconds or share no figure in range (res not done: left out, said) */
+    struct study_result res;
+};
 
 /* The other columns read, by name (study, error_lowfreq optional: a suite's, a newer file's). */
 enum {
@@ -141,7 +150,7 @@ int study_table_read(struct study_table *t, const char *path, const char *job, s
     uint8_t *text = NULL;
     size_t len;
     *t = (struct study_table){.path = path};
-    if (fileio_read_all(path, CSV_MAX_BYTES, &text, &len, e) < 0)
+    if (fileio_read_all(path, 64u << 20, &text, &len, e) < 0) /* 64 studies of 4096 rows, with room */
         return -1;
     t->text = (char *)text;
     if (verdict_csv_parse(&t->csv, t->text, len, path, e) < 0 || read_rows(t, job, e) < 0) {
@@ -244,35 +253,35 @@ static int number_points(struct compare *c, struct interned *I)
     return 0;
 }
 
-/* A setting's value as a label shows it: a number as %g, else its text. */
-static void setting_text(const char *field, char *out, size_t n)
+/* Point p's setting j as its label shows it (a number as %g, else its text), into out. */
+static const char *setting_text(const struct study_table *t, const struct interned *I, int p, int j,
+                                char *out)
 {
     double x;
+    const char *field = t->rows[I->row[I->first[p]]].setting[j];
     if (verdict_csv_figure(field, -HUGE_VAL, HUGE_VAL, &x) == 0)
-        snprintf(out, n, "%g", x);
+        snprintf(out, COMPARE_LABEL_MAX, "%g", x);
     else
-        snprintf(out, n, "%s", field);
+        snprintf(out, COMPARE_LABEL_MAX, "%s", field);
+    return out;
 }
 
 /* Each point labelled by its first row's settings: the first always, each other one when the points
    differ in it ("threshold 5, light_threshold 10"). */
 static void label_points(const struct study_table *t, struct compare *c, const struct interned *I)
 {
+    char first[COMPARE_LABEL_MAX], v[COMPARE_LABEL_MAX];
     for (int p = 0; p < c->n_points; p++)
         c->points[p][0] = 0;
     for (int j = 0; j < N_SETTINGS; j++) {
-        char first[COMPARE_LABEL_MAX], v[COMPARE_LABEL_MAX];
         int differ = j == 0;
-        setting_text(t->rows[I->row[I->first[0]]].setting[j], first, sizeof first);
-        for (int p = 1; !differ && p < c->n_points; p++) {
-            setting_text(t->rows[I->row[I->first[p]]].setting[j], v, sizeof v);
-            differ = strcmp(v, first) != 0;
-        }
+        setting_text(t, I, 0, j, first);
+        for (int p = 1; p < c->n_points; p++)
+            differ |= strcmp(setting_text(t, I, p, j, v), first) != 0;
         for (int p = 0; differ && p < c->n_points; p++) {
             size_t len = strlen(c->points[p]);
-            setting_text(t->rows[I->row[I->first[p]]].setting[j], v, sizeof v);
             snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "", point_settings[j],
-                     v);
+                     setting_text(t, I, p, j, v));
         }
     }
 }
@@ -335,15 +344,14 @@ struct compare *study_table_study(const struct study_table *t, int si, int **unf
         goto fail;
     }
     int numbered = number_points(c, &I);
-    if (numbered == -2) {
-        err_set(e, t->path, 0, 0, "out of memory");
-        goto fail;
-    }
     if (numbered < 0) {
-        err_set(e, t->path, 0, 0,
-                "study %s: too many combinations (%d scenes x %d variants x %d points x %d seeds: more "
-                "than a compare job's %d images)",
-                c->name, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, COMPARE_MAX_ITEMS);
+        if (numbered == -2)
+            err_set(e, t->path, 0, 0, "out of memory");
+        else
+            err_set(e, t->path, 0, 0,
+                    "study %s: too many combinations (%d scenes x %d variants x %d points x %d seeds: more "
+                    "than a compare job's %d images)",
+                    c->name, c->n_scenes, c->n_variants, c->n_points, c->n_seeds, COMPARE_MAX_ITEMS);
         goto fail;
     }
     label_points(t, c, &I);

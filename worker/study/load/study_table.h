@@ -5,34 +5,17 @@
 #ifndef STUDY_TABLE_H
 #define STUDY_TABLE_H
 
-#include <stddef.h>
-#include <stdint.h>
-
 #include "base/err.h"
 #include "compare_model.h"
 #include "verdict_csv.h"
-
-/* Most settings columns that place a row at its point (study_table.c's list, every setting but
-   seed). */
-#define STUDY_TABLE_SETTINGS_MAX 32
-
-struct study_table_row {
-    int study; /* index into the table's studies */
-    const char *scene, *variant, *image, *domain;
-    const char *setting[STUDY_TABLE_SETTINGS_MAX]; /* the settings columns' fields ("" when absent) */
-    double threshold, light_threshold;
-    uint64_t seed;
-    int figured; /* 0: spp, seconds or share no figure in range (res not done: left out, said) */
-    struct study_result res;
-};
 
 struct study_table {
     const char *path;
     char *text; /* the file's bytes, which rows point into */
     struct verdict_csv csv;
-    int n_rows; /* rows[0] is the first row after the header */
-    struct study_table_row *rows;
-    int has_study; /* a suite's: the leading study column names each row's study */
+    int n_rows;                   /* rows[0] is the first row after the header */
+    struct study_table_row *rows; /* each row's identity and figures (study_table.c) */
+    int has_study;                /* a suite's: the leading study column names each row's study */
     struct verdict_names studies;
 };
 
