@@ -57,6 +57,24 @@ PY
 "$WORKER" verdict "$T/out/bias" --json >"$T/again.json" 2>"$T/again.err"; rc=$?
 check "worker verdict --json: exit 0 (got $rc: $(cat "$T/again.err"))" [ "$rc" -eq 0 ]
 check "worker verdict --json: the verdict the run wrote" same_verdict "$T/out/bias/verdict.json" "$T/again.json"
+# a row's point is told by its settings columns, not by its image's name: images renamed (and their
+# files with them) to names that say nothing of their point, the same verdict
+cp -r "$T/out" "$T/renamed"
+python3 - "$T/renamed/bias" <<'PY'
+import csv, os, sys
+d = sys.argv[1]
+rows = list(csv.reader(open(d + '/summary.csv', newline='')))
+col = rows[0].index('image')
+for i, r in enumerate(rows[1:]):
+    old, new = r[col][:-4], 'img%d' % (len(rows) - i)
+    for ext in ('.png', '.exr', '.json'):
+        os.rename(d + '/' + old + ext, d + '/' + new + ext)
+    r[col] = new + '.png'
+csv.writer(open(d + '/summary.csv', 'w', newline=''), lineterminator='\n').writerows(rows)
+PY
+"$WORKER" verdict "$T/renamed/bias" --json >"$T/renamed.json" 2>"$T/renamed.err"; rc=$?
+check "images renamed: exit 0 (got $rc: $(cat "$T/renamed.err"))" [ "$rc" -eq 0 ]
+check "images renamed: the verdict the run wrote" same_verdict "$T/out/bias/verdict.json" "$T/renamed.json"
 "$WORKER" verdict "$T/out/bias" >"$T/again.txt" 2>"$T/again.err"; rc=$?
 check "worker verdict: sentences, failures and the winner (exit $rc)" \
     grep -q '^bias: cornell: failure: depth2: biased: ' "$T/again.txt"

@@ -159,7 +159,7 @@ static void stability(struct compare *c, int s, int v, const struct rgbf *ref, c
     if (!ref)
         c->scenes[s].ref_kind = COMPARE_REF_NONE;
     verdict_study_free(&c->verdict);
-    c->has_verdict = verdict_from_compare(c, fx.dir, &c->verdict, &e) == 0;
+    c->has_verdict = verdict_from_compare(c, fx.dir, NULL, &c->verdict, &e) == 0;
     CHECK(c->has_verdict);
     char *text = report_stability(c, s, v);
     snprintf(buf, n, "%s", text ? text : "");
@@ -178,7 +178,7 @@ static void test_stats(void)
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 3; p++)
             for (int k = 0; k < 2; k++) {
-                struct compare_item *it = &c->items[compare_index(c, 0, v, p, k)];
+                struct study_result *it = &c->results.rows[compare_index(c, 0, v, p, k)];
                 double spp = 25 << (2 * p); /* 25, 100, 400 */
                 it->done = it->has_error = 1;
                 it->spp_mean = spp;
@@ -224,7 +224,7 @@ static void test_stats_flat_samples(void)
     static const double rel[3] = {0.03, 0.02, 0.021}, spp[3] = {66.9, 67.2, 67.0};
     for (int p = 0; p < 3; p++)
         for (int k = 0; k < 2; k++) {
-            struct compare_item *it = &c->items[compare_index(c, 0, 0, p, k)];
+            struct study_result *it = &c->results.rows[compare_index(c, 0, 0, p, k)];
             it->done = it->has_error = 1;
             it->spp_mean = spp[p];
             it->wall_s = 0.01 * (p + 1);
@@ -251,7 +251,7 @@ static void test_chart_one_seed(void)
     if (!c)
         return;
     for (int p = 0; p < 2; p++) {
-        struct compare_item *it = &c->items[compare_index(c, 0, 0, p, 0)];
+        struct study_result *it = &c->results.rows[compare_index(c, 0, 0, p, 0)];
         it->done = it->has_error = 1;
         it->spp_mean = 25 << (2 * p);
         it->wall_s = 0.01 * (p + 1);
@@ -286,17 +286,18 @@ static void test_repeated_error(void)
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
             for (int k = 0; k < 2; k++) {
-                struct compare_item *it = &c->items[compare_index(c, 0, v, p, k)];
+                const struct compare_item *it = &c->items[compare_index(c, 0, v, p, k)];
+                struct study_result *r = &c->results.rows[compare_index(c, 0, v, p, k)];
                 char path[1024];
                 for (int i = 0; i < 4 * 4 * 3; i++)
                     img.px[i] = v == 0 || k == 0 ? 0.44f : 0.36f;
                 snprintf(path, sizeof path, "%s/%.*s.exr", fx.dir, (int)strlen(it->job.output) - 4,
                          it->job.output);
                 CHECK(imgio_write_f(path, &img, IMG_EXR, NULL, 0, &e) == 0);
-                it->done = it->has_error = 1;
-                it->spp_mean = 25 << (2 * p);
-                it->wall_s = 0.01 * (p + 1);
-                CHECK(metrics_compare_f(&ref, &img, 1, &it->error, &e) == 0);
+                r->done = r->has_error = 1;
+                r->spp_mean = 25 << (2 * p);
+                r->wall_s = 0.01 * (p + 1);
+                CHECK(metrics_compare_f(&ref, &img, 1, &r->error, &e) == 0);
             }
     char line[2048];
     stability(c, 0, 0, &ref, line, sizeof line);

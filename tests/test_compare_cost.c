@@ -62,32 +62,32 @@ static void test_csv(void)
                                         "  - { label: b }\n  - { label: a }\n");
     if (!c || !d)
         goto done;
-    c->n_blocks = 3;
-    c->cost_s = calloc(2 * 2 * 3, sizeof *c->cost_s);
+    c->results.n_blocks = 3;
+    c->results.cost_s = calloc(2 * 2 * 3, sizeof *c->results.cost_s);
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
             for (int b = 0; b < 3; b++)
-                c->cost_s[compare_cost_index(c, 0, v, p, b)] = 0.001 * (1 + v) * (1 + p) * (10 + b);
+                c->results.cost_s[compare_cost_index(c, 0, v, p, b)] = 0.001 * (1 + v) * (1 + p) * (10 + b);
     struct err e;
     CHECK(fileio_write_text(fx.dir, "cost.csv", compare_cost_csv(c), &e) == 0);
-    CHECK(compare_cost_read(d, fx.dir) == 0 && d->n_blocks == 3);
-    if (d->n_blocks == 3) /* d lists b first: its figures found by name */
+    CHECK(compare_cost_read(d, fx.dir) == 0 && d->results.n_blocks == 3);
+    if (d->results.n_blocks == 3) /* d lists b first: its figures found by name */
         for (int p = 0; p < 2; p++)
             for (int b = 0; b < 3; b++) {
-                CHECK(d->cost_s[compare_cost_index(d, 0, 1, p, b)] ==
-                      c->cost_s[compare_cost_index(c, 0, 0, p, b)]);
-                CHECK(d->cost_s[compare_cost_index(d, 0, 0, p, b)] ==
-                      c->cost_s[compare_cost_index(c, 0, 1, p, b)]);
+                CHECK(d->results.cost_s[compare_cost_index(d, 0, 1, p, b)] ==
+                      c->results.cost_s[compare_cost_index(c, 0, 0, p, b)]);
+                CHECK(d->results.cost_s[compare_cost_index(d, 0, 0, p, b)] ==
+                      c->results.cost_s[compare_cost_index(c, 0, 1, p, b)]);
             }
     /* a study with a point cost.csv does not hold: not read (no figure guessed) */
     struct compare *x = load("k3.yaml", "name: k\nscenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
                                         "sweep: { threshold: [20, 10, 5] }\nvariants:\n"
                                         "  - { label: a }\n  - { label: b }\n");
-    CHECK(x && compare_cost_read(x, fx.dir) < 0 && x->n_blocks == 0 && !x->cost_s);
+    CHECK(x && compare_cost_read(x, fx.dir) < 0 && x->results.n_blocks == 0 && !x->results.cost_s);
     compare_free(x);
     compare_fixture_file(&fx, "cost.csv", "scene,variant,point,block,cpu_s\nnot,a,row,0,1\n");
-    free(d->cost_s), d->cost_s = NULL, d->n_blocks = 0;
-    CHECK(compare_cost_read(d, fx.dir) < 0 && d->n_blocks == 0);
+    free(d->results.cost_s), d->results.cost_s = NULL, d->results.n_blocks = 0;
+    CHECK(compare_cost_read(d, fx.dir) < 0 && d->results.n_blocks == 0);
 done:
     compare_free(c);
     compare_free(d);

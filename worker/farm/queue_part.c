@@ -124,8 +124,9 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
                                                 : study_fan_render(f, x->k, x->kind, x->index, o, e);
         if (rc == 0)
             snprintf(msg, n, "%s: %s", what,
-                     x->kind == STUDY_FAN_IMAGE && c->items[x->index].skipped ? "current, not rendered again"
-                                                                              : "rendered");
+                     x->kind == STUDY_FAN_IMAGE && c->results.rows[x->index].skipped
+                         ? "current, not rendered again"
+                         : "rendered");
         return rc;
     }
     int rc = study_fan_render_job(f, &w, o, &j, &jo, dir, sizeof dir, e);

@@ -22,17 +22,17 @@ void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struc
     *a = (struct compare_agg){0};
     a->rel_lo = INFINITY;
     for (int k = 0; k < c->n_seeds; k++) {
-        const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
-        if (!it->done)
+        const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
+        if (!r->done)
             continue;
         a->n++;
-        a->spp += it->spp_mean;
-        a->wall_s += it->wall_s;
-        a->cpu_s += it->cpu_s;
-        if (it->has_error) {
-            a->rel += it->error.relmse;
-            a->rel_lo = fmin(a->rel_lo, it->error.relmse);
-            a->rel_hi = fmax(a->rel_hi, it->error.relmse);
+        a->spp += r->spp_mean;
+        a->wall_s += r->wall_s;
+        a->cpu_s += r->cpu_s;
+        if (r->has_error) {
+            a->rel += r->error.relmse;
+            a->rel_lo = fmin(a->rel_lo, r->error.relmse);
+            a->rel_hi = fmax(a->rel_hi, r->error.relmse);
         }
     }
     if (a->n) {

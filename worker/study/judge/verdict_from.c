@@ -41,7 +41,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     m->spec_ring = calloc(n * VERDICT_SPEC_RINGS, sizeof *m->spec_ring);
     m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p),
     m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
-    int blocks = c->n_blocks > 1 ? c->n_blocks : c->n_seeds; /* no cost design: the images' own times */
+    /* no cost design: the images' own times */
+    int blocks = c->results.n_blocks > 1 ? c->results.n_blocks : c->n_seeds;
     m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
     if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
         !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
@@ -71,7 +72,7 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .spec_aniso = m->aniso,
                                   .n_blocks = blocks,
                                   .cost_s = m->cost,
-                                  .cost_from_images = c->n_blocks < 2,
+                                  .cost_from_images = c->results.n_blocks < 2,
                                   .rank_by = c->rank_by,
                                   .ref_spp = c->scenes[s].ref_spp,
                                   .ref_relmse = c->scenes[s].ref_relmse,
@@ -104,23 +105,74 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
             else
                 f->images_unread += ref != NULL;
             for (int b = 0; b < blocks; b++)
-                m->cost[verdict_cost_at(f, v, p, b)] = c->n_blocks > 1
-                                                           ? c->cost_s[compare_cost_index(c, s, v, p, b)]
-                                                           : c->items[compare_index(c, s, v, p, b)].cpu_s;
+                m->cost[verdict_cost_at(f, v, p, b)] =
+                    c->results.n_blocks > 1 ? c->results.cost_s[compare_cost_index(c, s, v, p, b)]
+                                            : c->results.rows[compare_index(c, s, v, p, b)].cpu_s;
             for (int k = 0; k < c->n_seeds; k++) {
-                const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+                const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);
-                m->spp[i] = it->spp_mean, m->cpu[i] = it->cpu_s, m->share[i] = it->sampler_share;
-                m->rel[i] = it->has_error ? it->error.relmse : NAN;
-                m->lowfreq[i] = it->has_error ? it->error_lowfreq : NAN;
-                m->nonfinite[i] = it->nonfinite;
+                m->spp[i] = r->spp_mean, m->cpu[i] = r->cpu_s, m->share[i] = r->sampler_share;
+                m->rel[i] = r->has_error ? r->error.relmse : NAN;
+                m->lowfreq[i] = r->has_error ? r->error_lowfreq : NAN;
+                m->nonfinite[i] = r->nonfinite;
             }
         }
     }
     return 0;
 }
 
-int verdict_from_compare(const struct compare *c, const char *dir, struct verdict_study *out, struct err *e)
+/* Add text to v's warnings. 0 or -1. */
+static int add_warning(struct verdict_scene *v, const char *text)
+{
+    char(*w)[VERDICT_TEXT_MAX] = realloc(v->warnings, (size_t)(v->n_warnings + 1) * sizeof *w);
+    if (!w)
+        return -1;
+    v->warnings = w;
+    snprintf(w[v->n_warnings++], VERDICT_TEXT_MAX, "%s", text);
+    return 0;
+}
+
+/* A warning of n images (one, more: the words after "image") when there are any and room. */
+static void say_images(struct verdict_scene *vs, const char *text, int n, const char *one, const char *more)
+{
+    if (n && vs->n_warnings < VERDICT_SAY_MAX)
+        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, n == 1 ? one : more);
+}
+
+/* What the runner found, said: a folder's missing parts per scene; several CPU models listed, and a
+   warning on each scene's equal CPU time. 0 or -1 (no memory). */
+static int say_found(const struct verdict_found *f, struct verdict_study *out)
+{
+    char text[VERDICT_TEXT_MAX];
+    snprintf(text, sizeof text,
+             "left out: %%d image%%s whose samples_per_pixel_mean, wall_s, cpu_s or sampler_share in "
+             "summary.csv is not a figure (spp in [0, %g], seconds in [0, %g], share in [0, 1])",
+             STUDY_RESULTS_SPP_MAX, STUDY_RESULTS_SECONDS_MAX);
+    for (int s = 0; f && s < out->n_scenes; s++) {
+        struct verdict_scene *vs = &out->scenes[s];
+        say_images(vs,
+                   "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
+                   f->no_sidecar ? f->no_sidecar[s] : 0, "", "s");
+        say_images(vs, "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
+                   f->no_relmse ? f->no_relmse[s] : 0, "", "s");
+        say_images(vs, text, f->no_figures ? f->no_figures[s] : 0, "", "s");
+    }
+    if (!f || f->n_machines < 2)
+        return 0;
+    snprintf(out->machines, sizeof out->machines, "%s", f->machines);
+    snprintf(
+        text, sizeof text,
+        "the images were rendered on %d%s CPU models: their own CPU seconds (summary.csv) do not compare; "
+        "equal CPU time is ranked by the cost design, timed on the one machine that gathered the study",
+        f->n_machines, f->more_machines ? "+" : "");
+    for (int s = 0; s < out->n_scenes; s++)
+        if (add_warning(&out->scenes[s], text) < 0)
+            return -1;
+    return 0;
+}
+
+int verdict_from_compare(const struct compare *c, const char *dir, const struct verdict_found *found,
+                         struct verdict_study *out, struct err *e)
 {
     *out = (struct verdict_study){.n_scenes = c->n_scenes};
     snprintf(out->name, sizeof out->name, "%s", c->name);
@@ -150,6 +202,10 @@ int verdict_from_compare(const struct compare *c, const char *dir, struct verdic
             verdict_study_free(out);
             return -1;
         }
+    }
+    if (say_found(found, out) < 0) {
+        verdict_study_free(out);
+        return err_set(e, NULL, 0, 0, "out of memory");
     }
     return 0;
 }

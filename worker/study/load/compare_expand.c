@@ -164,7 +164,7 @@ int compare_expand_items(struct compare_loading *L, yaml_node_t *root)
     c->n_items = (int)n;
     c->items = calloc((size_t)c->n_items, sizeof *c->items);
     c->points = calloc((size_t)c->n_points, sizeof *c->points);
-    if (!c->items || !c->points)
+    if (!c->items || !c->points || study_results_init(&c->results, c->n_items) < 0)
         return err_set(L->e, L->d.file, 0, 0, "out of memory");
     for (int p = 0; p < c->n_points; p++)
         point_label(L, p, c->points[p], sizeof c->points[p]);

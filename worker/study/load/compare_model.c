@@ -16,7 +16,7 @@ void compare_free(struct compare *c)
     free(c->points);
     free(c->seeds);
     free(c->items);
-    free(c->cost_s);
+    study_results_free(&c->results);
     verdict_study_free(&c->verdict);
     if (c->owns_inputs)
         study_inputs_free(c->inputs);

@@ -1,18 +1,18 @@
 /* compare_model: what a compare job is, once loaded (compare_load.h): its scenes with their
-   references, variants, sweep points, seeds and every combination as an ordinary job; the figures
-   its renders measured (run/), its verdict (judge/) and the machine it ran on, filled in as it goes;
-   and a suite of such studies. The bottom of worker/study/: the loader, the judge, the
-   presentation and the runner all read it. */
+   references, variants, sweep points, seeds and every combination as an ordinary job, the plan,
+   the first of a study's three shapes. Beside it the handle keeps the other two, each written by one
+   stage: the figures its renders measured (study_results.h, run/'s) and its verdict (judge/'s
+   output, verdict_from.h) with the machine it ran on. And a suite of such studies. The bottom of
+   worker/study/: the loader, the judge, the presentation and the runner all read it. */
 #ifndef COMPARE_MODEL_H
 #define COMPARE_MODEL_H
 
 #include <stdint.h>
 
-#include "image/metrics.h"
 #include "job/job.h"
-#include "job/sidecar.h"
 #include "study_env.h"
 #include "study_inputs.h"
+#include "study_results.h"
 #include "verdict_model.h"
 
 /* Most images one compare job may expand to. */
@@ -45,19 +45,10 @@ struct compare_scene {
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
 
-/* One combination: an ordinary job plus what its render measured. */
+/* One combination: an ordinary job and its indices (what it measured: c->results.rows, same index). */
 struct compare_item {
     struct job job;
     int scene, variant, point, seed; /* indices */
-    int done, has_error;
-    int skipped; /* its image and sidecar were current (same hash): not rendered again */
-    double spp_mean, wall_s, cpu_s, sampler_share;
-    uint64_t spp_min, spp_max, nonfinite; /* nonfinite: samples dropped as NaN or infinite */
-    struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
-    struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
-    double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
-    double flip;                          /* mean FLIP (HDR on linear, LDR on 8-bit) against it */
-    struct sidecar_work work;             /* its render's work counts (the sidecar's "work") */
 };
 
 struct compare {
@@ -70,23 +61,21 @@ struct compare {
     char sweep_keys[COMPARE_LABEL_MAX * 2]; /* "threshold" or "threshold, light_threshold"; "" */
     uint64_t *seeds;
     struct compare_item *items;   /* index compare_index(c, scene, variant, point, seed) */
-    struct verdict_study verdict; /* filled by compare_run once every image is scored */
-    struct study_env env;         /* the command, program, compiler, CPU and load, at that time */
-    int has_verdict;
-    struct study_inputs *inputs; /* its scenes and references, each read once (a suite's shared) */
-    int owns_inputs;             /* compare_free frees inputs (not a suite's) */
-    /* The cost design's figures (study/run/compare_cost.h): per (scene, variant, point, block) the
-       CPU seconds one image of the point costs, timed in block b; n_blocks 0 when not measured
-       (the verdict then falls back on the images' own times, seed k as block k). */
-    int n_blocks;
-    double *cost_s;               /* index compare_cost_index */
+    struct study_inputs *inputs;  /* its scenes and references, each read once (a suite's shared) */
+    int owns_inputs;              /* compare_free frees inputs (not a suite's) */
     enum verdict_rank_by rank_by; /* `rank_by:` (default mean): the centre over seeds of relMSE */
+    /* run/'s: what the renders measured, a row per item (allocated at load, every row not done) */
+    struct study_results results;
+    /* judge/'s output, kept for presenting: set by compare_write_outputs from verdict_from_compare */
+    struct verdict_study verdict;
+    struct study_env env; /* the command, program, compiler, CPU and load, at that time */
+    int has_verdict;
 };
 
-/* Index of a cost figure in c->cost_s. */
+/* Index of a cost figure in c->results.cost_s. */
 static inline int compare_cost_index(const struct compare *c, int scene, int variant, int point, int block)
 {
-    return ((scene * c->n_variants + variant) * c->n_points + point) * c->n_blocks + block;
+    return ((scene * c->n_variants + variant) * c->n_points + point) * c->results.n_blocks + block;
 }
 
 /* Index of an item in c->items. */

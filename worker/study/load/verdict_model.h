@@ -116,6 +116,17 @@ struct verdict_scene {
     char (*sentences)[VERDICT_TEXT_MAX];
 };
 
+/* What the runner found beside a study's plan and results, for its verdict to say
+   (verdict_from_compare): the CPU models its images were rendered on (study_machines.h: the first
+   ones "; "-joined, how many are listed, whether there were more), and, reading a folder back
+   (worker verdict), per scene how many images had no sidecar, a relmse that is no error, figures
+   out of range (NULL: none). */
+struct verdict_found {
+    char machines[VERDICT_TEXT_MAX];
+    int n_machines, more_machines;
+    const int *no_sidecar, *no_relmse, *no_figures;
+};
+
 /* One study: its scenes' verdicts. */
 struct verdict_study {
     char name[VERDICT_LABEL_MAX];

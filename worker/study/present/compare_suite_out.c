@@ -9,21 +9,21 @@
 #include "base/sbuf.h"
 #include "report_chart.h"
 #include "report.h"
+#include "study/load/verdict_csv.h"
 
 /* Largest study summary.csv read back: 4096 rows of a few hundred bytes each, with room. */
 #define SUITE_CSV_MAX_BYTES (64u << 20)
 
-/* The end of the CSV record starting at p: its line break outside quotes (RFC 4180 fields may
-   hold one, as a scene file's name may), or the text's end. */
-static const char *record_end(const char *p)
+/* One CSV record: first (unquoted, a study name: letters, digits, '-', '_', '.'), then the fields,
+   each quoted as the study's summary.csv had it (sbuf_csv: the bytes written again as they were). */
+static void record(struct sbuf *b, const char *first, char *const *f, int n)
 {
-    int quoted = 0;
-    for (; *p; p++)
-        if (*p == '"')
-            quoted = !quoted; /* a doubled quote toggles twice */
-        else if (*p == '\n' && !quoted)
-            return p;
-    return p;
+    sbuf_printf(b, "%s", first);
+    for (int k = 0; k < n; k++) {
+        sbuf_printf(b, ",");
+        sbuf_csv(b, f[k]);
+    }
+    sbuf_printf(b, "\n");
 }
 
 char *compare_suite_csv(const struct compare_suite *s, const char *dir, struct err *e)
@@ -34,19 +34,18 @@ char *compare_suite_csv(const struct compare_suite *s, const char *dir, struct e
         char path[4096];
         uint8_t *data;
         size_t len;
+        struct verdict_csv t;
         snprintf(path, sizeof path, "%s/%s/summary.csv", dir, c->name);
-        if (fileio_read_all(path, SUITE_CSV_MAX_BYTES, &data, &len, e) < 0) {
+        int rc = fileio_read_all(path, SUITE_CSV_MAX_BYTES, &data, &len, e);
+        if (rc == 0 && (rc = verdict_csv_parse(&t, (char *)data, len, path, e)) < 0)
+            free(data);
+        if (rc < 0) {
             sbuf_free(&b);
             return NULL;
         }
-        const char *p = (const char *)data, *end = record_end(p);
-        if (i == 0) /* every study's header is the same: compare_run wrote it */
-            sbuf_printf(&b, "study,%.*s\n", (int)(end - p), p);
-        for (p = *end ? end + 1 : end; *p; p = *end ? end + 1 : end) {
-            end = record_end(p);
-            if (end > p) /* study names need no quoting: letters, digits, '-', '_', '.' */
-                sbuf_printf(&b, "%s,%.*s\n", c->name, (int)(end - p), p);
-        }
+        for (int r = i == 0 ? 0 : 1; r < t.n_rows; r++) /* every study's header is the same */
+            record(&b, r == 0 ? "study" : c->name, t.rows[r], t.n_fields);
+        verdict_csv_free(&t);
         free(data);
     }
     char *text = sbuf_take(&b);

@@ -49,6 +49,7 @@ static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k
     int s = g->s, zoom = g->zoom;
     const char *dir = g->dir, *ab = g->ab;
     const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
+    const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
     char path[4096], alt[256], slot[32];
     uint8_t *png;
     size_t len;
@@ -63,11 +64,10 @@ static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k
     free(png);
     sbuf_printf(b, "<figcaption><b>");
     sbuf_escape(b, c->variants[v]);
-    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, it->spp_mean);
-    if (it->has_error)
-        sbuf_printf(b, ", relMSE %.3g", it->error.relmse);
-    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", it->wall_s,
-                (unsigned long long)c->seeds[k]);
+    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, r->spp_mean);
+    if (r->has_error)
+        sbuf_printf(b, ", relMSE %.3g", r->error.relmse);
+    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", r->wall_s, (unsigned long long)c->seeds[k]);
     return 0;
 }
 
@@ -203,21 +203,22 @@ static void table(struct sbuf *b, const struct compare *c)
     sbuf_printf(b, "</tr>\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
+        const struct study_result *r = &c->results.rows[i];
         sbuf_printf(b, "<tr><td class=\"l\">");
         sbuf_escape(b, c->scenes[it->scene].name);
         sbuf_printf(b, "</td><td class=\"l\">");
         sbuf_escape(b, c->variants[it->variant]);
         sbuf_printf(
             b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
-            it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
-            it->wall_s, it->cpu_s, it->sampler_share);
-        const struct sidecar_work *w = &it->work;
+            it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, r->spp_mean,
+            r->wall_s, r->cpu_s, r->sampler_share);
+        const struct sidecar_work *w = &r->work;
         sbuf_printf(b, "<td>%llu</td><td>%llu</td><td>%llu</td>", (unsigned long long)w->path_segments,
                     (unsigned long long)w->shadow_rays,
                     (unsigned long long)(w->pixel_points + w->light_points + w->padded_points));
-        if (it->has_error)
-            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td>", it->error.mse,
-                        it->error.rmse, it->error.relmse, it->error.psnr);
+        if (r->has_error)
+            sbuf_printf(b, "<td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.2f</td>", r->error.mse,
+                        r->error.rmse, r->error.relmse, r->error.psnr);
         else
             sbuf_printf(b, "<td></td><td></td><td></td><td></td>");
         char sidecar[JOB_PATH_MAX + 8];

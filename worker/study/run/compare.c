@@ -57,28 +57,27 @@ static void fmt_duration(double s, char *buf, size_t n)
    same path), every setting that changes its pixels, not its path: the same --out spelled another
    way finds the same outputs current. An image whose sidecar records it is current and is not
    rendered again (unless --force). */
-static uint64_t item_hash(const struct compare_scene *cs, const struct compare_item *it)
+static uint64_t item_hash(const struct compare_scene *cs, const struct job *j)
 {
-    const struct job *j = &it->job;
     char text[512];
     int n = job_key_text(j, j->width, j->height, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 
 /* A combination skipped as current: what it measured, from its sidecar. */
-static int item_from_sidecar(struct compare_item *it, const char *sidecar_path, struct err *e)
+static int item_from_sidecar(struct study_result *r, const char *sidecar_path, struct err *e)
 {
     struct sidecar_info info;
     if (sidecar_read(sidecar_path, &info, e) < 0)
         return -1;
-    it->spp_mean = info.spp_mean;
-    it->spp_min = info.spp_min;
-    it->spp_max = info.spp_max;
-    it->wall_s = info.wall_s;
-    it->cpu_s = info.cpu_s;
-    it->sampler_share = info.sampling_share;
-    it->nonfinite = info.nonfinite;
-    it->work = info.work;
+    r->spp_mean = info.spp_mean;
+    r->spp_min = info.spp_min;
+    r->spp_max = info.spp_max;
+    r->wall_s = info.wall_s;
+    r->cpu_s = info.cpu_s;
+    r->sampler_share = info.sampling_share;
+    r->nonfinite = info.nonfinite;
+    r->work = info.work;
     return 0;
 }
 
@@ -92,35 +91,35 @@ static const char *scored_file(const struct outdir_files *out, enum img_domain d
 /* How a combination's error looks (errspec.h) and its mean FLIP (HDR-FLIP on linear images,
    LDR-FLIP on 8-bit ones), of img, over the scene's mask (the spectrum: on the mask's bounding
    rectangle, its uncounted pixels given no error). 0 or -1. */
-static int score_look_img(struct compare_item *it, const struct rgbf *img, const struct study_ref *ref,
+static int score_look_img(struct study_result *r, const struct rgbf *img, const struct study_ref *ref,
                           const struct compare_scene *cs, struct err *e)
 {
     struct rgbf cut[2] = {{0}, {0}};
     struct flip_result flip = {0};
     const struct img_mask *m = cs->mask;
     int rc = (m ? mask_crop_pair(m, &ref->f, img, &cut[0], &cut[1], e) < 0 ||
-                      errspec_lowfreq(&cut[0], &cut[1], &it->error_lowfreq, e) < 0
-                : errspec_lowfreq(&ref->f, img, &it->error_lowfreq, e) < 0) ||
+                      errspec_lowfreq(&cut[0], &cut[1], &r->error_lowfreq, e) < 0
+                : errspec_lowfreq(&ref->f, img, &r->error_lowfreq, e) < 0) ||
                      (cs->ref_domain == IMG_LINEAR ? flip_hdr : flip_ldr)(&ref->f, img, m, NULL, &flip, e) < 0
                  ? -1
                  : 0;
-    it->flip = rc == 0 ? flip.mean : NAN;
+    r->flip = rc == 0 ? flip.mean : NAN;
     image_f_free(&cut[0]), image_f_free(&cut[1]);
     return rc;
 }
 
 /* A combination that was current, or a scene with a mask: score its files (scored_file, read once
    for its error, look and FLIP, and its PNG for the display figures), over the scene's mask. */
-static int score_files(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
+static int score_files(struct study_result *r, const struct run_result *rr, const struct study_ref *ref,
                        const struct compare_scene *cs, struct err *e)
 {
     struct rgbf img = {0};
     struct rgb8 png = {0};
     const struct outdir_files *out = &rr->out;
     int rc = imgio_read_f(scored_file(out, cs->ref_domain), &img, NULL, e) < 0 ||
-                     metrics_compare_masked(&ref->f, &img, 1, cs->mask, &it->error, e) < 0 ||
-                     score_look_img(it, &img, ref, cs, e) < 0 || imgio_read(out->image[0], &png, e) < 0 ||
-                     metrics_display_masked(&ref->display, &png, cs->mask, &it->display_error, e) < 0
+                     metrics_compare_masked(&ref->f, &img, 1, cs->mask, &r->error, e) < 0 ||
+                     score_look_img(r, &img, ref, cs, e) < 0 || imgio_read(out->image[0], &png, e) < 0 ||
+                     metrics_display_masked(&ref->display, &png, cs->mask, &r->display_error, e) < 0
                  ? -1
                  : 0;
     image_f_free(&img);
@@ -130,30 +129,34 @@ static int score_files(struct compare_item *it, const struct run_result *rr, con
 
 /* How a fresh combination's error looks and its FLIP, from scored_file (the framebuffer was
    scored in memory; these are measured on the file as written). 0 or -1. */
-static int score_look(struct compare_item *it, const struct run_result *rr, const struct study_ref *ref,
+static int score_look(struct study_result *r, const struct run_result *rr, const struct study_ref *ref,
                       const struct compare_scene *cs, struct err *e)
 {
     struct rgbf img = {0};
     int rc = imgio_read_f(scored_file(&rr->out, cs->ref_domain), &img, NULL, e) < 0 ||
-                     score_look_img(it, &img, ref, cs, e) < 0
+                     score_look_img(r, &img, ref, cs, e) < 0
                  ? -1
                  : 0;
     image_f_free(&img);
     return rc;
 }
 
-/* Render one combination (or take it as it is when current) and measure it against its
-   scene's reference (cs->ref, prepared; none when the study has none). */
-static int render_item(struct compare *c, struct compare_item *it, const struct run_opts *o, struct err *e)
+/* Render one combination (its plan's job with its reference and hash set) or take it as it is when
+   current, and measure it against its scene's reference (cs->ref, prepared; none when the study has
+   none) into its row of c->results. */
+static int render_item(struct compare *c, const struct compare_item *it, const struct run_opts *o,
+                       struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[it->scene];
     const struct study_ref *ref = cs->ref_kind != COMPARE_REF_NONE ? cs->ref : NULL;
+    struct study_result *r = &c->results.rows[it - c->items];
     if (cs->ref_kind != COMPARE_REF_NONE && !ref) {
         err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
         return 1;
     }
-    snprintf(it->job.reference, sizeof it->job.reference, "%s", ref ? cs->ref_path : "");
-    it->job.hash = item_hash(cs, it);
+    struct job j = it->job;
+    snprintf(j.reference, sizeof j.reference, "%s", ref ? cs->ref_path : "");
+    r->hash = j.hash = item_hash(cs, &j);
     struct run_result rr;
     struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
     quiet_rows.progress = 0;
@@ -161,42 +164,42 @@ static int render_item(struct compare *c, struct compare_item *it, const struct 
     quiet_rows.ref = ref ? &ref->f : NULL; /* scored in memory, on the framebuffer's floats */
     quiet_rows.ref_domain = cs->ref_domain;
     quiet_rows.ref_display = ref ? &ref->display : NULL;
-    int rc = run_job(&it->job, &quiet_rows, &rr, e);
+    int rc = run_job(&j, &quiet_rows, &rr, e);
     if (rc != 0) {
         err_prefix(e, it->job.output);
         return rc;
     }
-    it->skipped = rr.skipped;
+    r->skipped = rr.skipped;
     if (rr.skipped) {
-        if (item_from_sidecar(it, rr.out.sidecar, e) < 0)
+        if (item_from_sidecar(r, rr.out.sidecar, e) < 0)
             return 1;
     } else {
         const struct render_stats *t = &rr.procs.total;
-        it->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
-        it->spp_min = t->pixels ? t->spp_min : 0;
-        it->spp_max = t->spp_max;
-        it->nonfinite = t->nonfinite;
-        it->wall_s = rr.procs.wall_s;
-        it->cpu_s = rr.procs.cpu_s;
-        it->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
-        it->work = sidecar_work_of(t);
+        r->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
+        r->spp_min = t->pixels ? t->spp_min : 0;
+        r->spp_max = t->spp_max;
+        r->nonfinite = t->nonfinite;
+        r->wall_s = rr.procs.wall_s;
+        r->cpu_s = rr.procs.cpu_s;
+        r->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
+        r->work = sidecar_work_of(t);
     }
     if (ref && (rr.skipped || cs->mask)) { /* the sidecar's figures are the whole image's */
-        if (score_files(it, &rr, ref, cs, e) < 0)
+        if (score_files(r, &rr, ref, cs, e) < 0)
             return 1;
-        it->has_error = 1;
+        r->has_error = 1;
     } else if (ref) {
         if (!rr.has_error || !rr.has_display_error) {
             err_set(e, NULL, 0, 0, "%s: rendered without its error figures", it->job.output);
             return 1;
         }
-        it->error = rr.error;
-        it->display_error = rr.display_error;
-        it->has_error = 1;
-        if (score_look(it, &rr, ref, cs, e) < 0)
+        r->error = rr.error;
+        r->display_error = rr.display_error;
+        r->has_error = 1;
+        if (score_look(r, &rr, ref, cs, e) < 0)
             return 1;
     }
-    it->done = 1;
+    r->done = 1;
     return 0;
 }
 
@@ -218,23 +221,24 @@ static char *summary_csv(const struct compare *c)
                 "pixel_sets,light_sets,padded_sets,image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
+        const struct study_result *r = &c->results.rows[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
         csv_field(&b, c->variants[it->variant], ",");
         sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
-                    (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
-        if (it->has_error)
-            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", it->error.mse, it->error.rmse,
-                        it->error.relmse, it->error.relmse_robust, it->error.psnr,
-                        image_domain_name(c->scenes[it->scene].ref_domain), it->display_error.rmse,
-                        it->display_error.relmse);
+                    (unsigned long long)it->job.seed, r->spp_mean, r->wall_s, r->cpu_s, r->sampler_share);
+        if (r->has_error)
+            sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", r->error.mse, r->error.rmse,
+                        r->error.relmse, r->error.relmse_robust, r->error.psnr,
+                        image_domain_name(c->scenes[it->scene].ref_domain), r->display_error.rmse,
+                        r->display_error.relmse);
         else
             sbuf_printf(&b, ",,,,,,,,");
-        if (it->has_error && isfinite(it->error_lowfreq))
-            sbuf_printf(&b, "%.4f,", it->error_lowfreq);
+        if (r->has_error && isfinite(r->error_lowfreq))
+            sbuf_printf(&b, "%.4f,", r->error_lowfreq);
         else
             sbuf_printf(&b, ",");
-        sbuf_printf(&b, it->has_error && isfinite(it->flip) ? "%.6g," : ",", it->flip);
-        const struct sidecar_work *w = &it->work; /* deterministic: the same on every machine */
+        sbuf_printf(&b, r->has_error && isfinite(r->flip) ? "%.6g," : ",", r->flip);
+        const struct sidecar_work *w = &r->work; /* deterministic: the same on every machine */
         sbuf_printf(&b, "%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,",
                     (unsigned long long)w->camera_samples, (unsigned long long)w->path_segments,
                     (unsigned long long)w->shadow_rays, (unsigned long long)w->pixel_points,
@@ -248,7 +252,7 @@ static char *summary_csv(const struct compare *c)
 
 int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct job *j, struct err *e)
 {
-    struct compare_item *it = &c->items[i];
+    const struct compare_item *it = &c->items[i];
     const struct compare_scene *cs = &c->scenes[it->scene];
     int rc = compare_ref_prepare(c, it->scene, o, e);
     if (rc != 0)
@@ -257,10 +261,9 @@ int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct 
         err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
         return 1;
     }
-    snprintf(it->job.reference, sizeof it->job.reference, "%s",
-             cs->ref_kind != COMPARE_REF_NONE ? cs->ref_path : "");
-    it->job.hash = item_hash(cs, it); /* as render_item sets them: the merged sidecar is then current */
-    *j = it->job;
+    *j = it->job; /* its reference and hash as render_item sets them: the merged sidecar is then current */
+    snprintf(j->reference, sizeof j->reference, "%s", cs->ref_kind != COMPARE_REF_NONE ? cs->ref_path : "");
+    j->hash = item_hash(cs, j);
     return 0;
 }
 
@@ -285,13 +288,14 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
     int lock = -1, rc = -1;
     verdict_study_free(&c->verdict);
     study_env_read(&c->env);
-    if ((c->has_verdict = verdict_from_compare(c, dir, &c->verdict, e) == 0) == 0 ||
-        study_machines_mark(c, o->out_dir, e) < 0)
+    struct verdict_found found;
+    study_machines_read(c, o->out_dir, &found);
+    if ((c->has_verdict = verdict_from_compare(c, dir, &found, &c->verdict, e) == 0) == 0)
         return -1;
     verdict_print_warnings(&c->verdict, 1);
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
         fileio_write_text(dir, "summary.csv", summary_csv(c), e) == 0 &&
-        (c->n_blocks == 0 || fileio_write_text(dir, "cost.csv", compare_cost_csv(c), e) == 0) &&
+        (c->results.n_blocks == 0 || fileio_write_text(dir, "cost.csv", compare_cost_csv(c), e) == 0) &&
         fileio_write_text(dir, "chart.svg", report_chart_svg(c), e) == 0 &&
         fileio_write_text(dir, "verdict.json", verdict_json_text(c->name, &c->verdict, 1, &c->env), e) == 0 &&
         fileio_write_text(dir, "report.html", report_html(c, dir, e), e) == 0)
@@ -306,7 +310,7 @@ static int study_costs(struct compare *c, const char *dir, const struct run_opts
 {
     int current = 1;
     for (int i = 0; i < c->n_items; i++)
-        current &= c->items[i].skipped;
+        current &= c->results.rows[i].skipped;
     if (current && compare_cost_read(c, dir) == 0)
         return 0;
     run_say(o, "timing: %d blocks of every variant and point, about %.0f s of CPU\n", COMPARE_COST_BLOCKS,
@@ -341,13 +345,14 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         total += cost(c, &c->items[i]);
     double t1 = clock_s(CLOCK_MONOTONIC);
     for (int n = 0; n < c->n_items; n++) {
-        struct compare_item *it = &c->items[order[n]];
+        const struct compare_item *it = &c->items[order[n]];
+        const struct study_result *r = &c->results.rows[order[n]];
         const struct compare_scene *cs = &c->scenes[it->scene];
         if ((rc = render_item(c, it, o, e)) != 0) {
             free(order);
             return rc;
         }
-        if (it->skipped) /* current from an earlier run: no time spent, none to predict */
+        if (r->skipped) /* current from an earlier run: no time spent, none to predict */
             total -= cost(c, it);
         else
             done += cost(c, it);
@@ -356,12 +361,12 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         fmt_duration(clock_s(CLOCK_MONOTONIC) - t0, el, sizeof el);
         /* the images still to render, then the cost design's blocks */
         fmt_duration((done > 0 ? elapsed * (total - done) / done : 0) + timing_s(c), eta, sizeof eta);
-        if (it->has_error)
-            snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
+        if (r->has_error)
+            snprintf(err_text, sizeof err_text, ", relMSE %.4g", r->error.relmse);
         run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
                 c->n_items >= 100 ? 3 : 2, n + 1, c->n_items, cs->name, c->variants[it->variant],
-                it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
-                it->skipped ? " (current, not rendered again)" : "", el, eta);
+                it->job.threshold, (unsigned long long)it->job.seed, r->spp_mean, r->wall_s, err_text,
+                r->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     free(order);
     if ((rc = study_costs(c, dir, o, e)) != 0)
@@ -389,7 +394,7 @@ void compare_summary_line(const struct compare *c, double wall_s, const char *ou
         snprintf(refs, sizeof refs, "reference image given");
     int current = 0;
     for (int i = 0; i < c->n_items; i++)
-        current += c->items[i].skipped;
+        current += c->results.rows[i].skipped;
     char resumed[96] = "";
     if (current)
         snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",

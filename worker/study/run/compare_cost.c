@@ -11,6 +11,7 @@
 #include "base/rng.h"
 #include "base/sbuf.h"
 #include "job/job_render.h"
+#include "study/load/verdict_csv.h"
 
 /* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
 static void shuffle(const struct compare *c, uint64_t key, int *idx, int n)
@@ -48,10 +49,10 @@ static void cell_means(const struct compare *c, int s, int v, int p, double *cpu
     int n = 0;
     *cpu = *samples = 0;
     for (int k = 0; k < c->n_seeds; k++) {
-        const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
-        if (!it->done)
+        const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
+        if (!r->done)
             continue;
-        *cpu += it->cpu_s, *samples += it->spp_mean * c->scenes[s].width * c->scenes[s].height;
+        *cpu += r->cpu_s, *samples += r->spp_mean * c->scenes[s].width * c->scenes[s].height;
         n++;
     }
     if (n)
@@ -65,11 +66,11 @@ static void designs(const struct compare *c, int s, struct design *d)
 {
     int nv = c->n_variants, np = c->n_points, h = c->scenes[s].height;
     for (int i = 0; i < nv * np; i++) {
-        uint64_t key = c->items[compare_index(c, s, i / np, i % np, 0)].job.hash;
+        uint64_t key = c->results.rows[compare_index(c, s, i / np, i % np, 0)].hash;
         double cpu = 0, samples, one;
         int n = 0;
         for (int j = 0; j < nv * np; j++)
-            if (j == i || (key && c->items[compare_index(c, s, j / np, j % np, 0)].job.hash == key)) {
+            if (j == i || (key && c->results.rows[compare_index(c, s, j / np, j % np, 0)].hash == key)) {
                 cell_means(c, s, j / np, j % np, &one, &samples);
                 cpu += one, n++;
             }
@@ -146,13 +147,14 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
     if (camera_init(&t.cam, &t.sf.camera, (double)t.w / t.h, e) < 0 ||
         !(t.rgb = procs_framebuffer_new(t.w, t.h, e)))
         goto done;
-    for (int b = 0; b < c->n_blocks; b++) {
+    for (int b = 0; b < c->results.n_blocks; b++) {
         for (int i = 0; i < n; i++)
             idx[i] = i;
         shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
         for (int i = 0; i < n; i++) {
             int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
-            if (time_unit(c, &t, v, p, b, &d[idx[i]], &c->cost_s[compare_cost_index(c, s, v, p, b)], e) < 0)
+            if (time_unit(c, &t, v, p, b, &d[idx[i]], &c->results.cost_s[compare_cost_index(c, s, v, p, b)],
+                          e) < 0)
                 goto done;
         }
     }
@@ -167,17 +169,18 @@ done:
 
 int compare_cost_measure(struct compare *c, const struct run_opts *o, struct err *e)
 {
-    free(c->cost_s);
-    c->n_blocks = COMPARE_COST_BLOCKS;
-    c->cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * c->n_blocks, sizeof *c->cost_s);
-    if (!c->cost_s) {
-        c->n_blocks = 0;
+    free(c->results.cost_s);
+    c->results.n_blocks = COMPARE_COST_BLOCKS;
+    c->results.cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * c->results.n_blocks,
+                               sizeof *c->results.cost_s);
+    if (!c->results.cost_s) {
+        c->results.n_blocks = 0;
         return err_set(e, NULL, 0, 0, "out of memory");
     }
     for (int s = 0; s < c->n_scenes; s++)
         if (measure_scene(c, s, o, e) < 0) {
-            free(c->cost_s);
-            c->cost_s = NULL, c->n_blocks = 0;
+            free(c->results.cost_s);
+            c->results.cost_s = NULL, c->results.n_blocks = 0;
             err_prefix(e, c->name);
             return -1;
         }
@@ -202,9 +205,10 @@ char *compare_cost_csv(const struct compare *c)
         for (int v = 0; v < c->n_variants; v++)
             for (int p = 0; p < c->n_points; p++) {
                 point_name(c, s, v, p, name, sizeof name);
-                for (int k = 0; k < c->n_blocks; k++) /* names are letters, digits, - and _: no quoting */
+                for (int k = 0; k < c->results.n_blocks;
+                     k++) /* names are letters, digits, - and _: no quoting */
                     sbuf_printf(&b, "%s,%s,%s,%d,%.6g\n", c->scenes[s].name, c->variants[v], name, k,
-                                c->cost_s[compare_cost_index(c, s, v, p, k)]);
+                                c->results.cost_s[compare_cost_index(c, s, v, p, k)]);
             }
     return sbuf_take(&b);
 }
@@ -225,34 +229,30 @@ static int find_cell(const struct compare *c, const char *scene, const char *var
 
 int compare_cost_read(struct compare *c, const char *dir)
 {
-    char path[4096], *line, *save = NULL;
+    char path[4096];
     uint8_t *data = NULL;
     size_t len;
     struct err ignored;
+    struct verdict_csv t = {0};
     int cells = c->n_scenes * c->n_variants * c->n_points, blocks = 0, rc = -1;
     snprintf(path, sizeof path, "%s/cost.csv", dir);
     if (fileio_read_all(path, 64u << 20, &data, &len, &ignored) < 0)
         return -1;
     double *cost = malloc(sizeof *cost * (size_t)cells * COMPARE_COST_BLOCKS);
-    if (!cost)
+    static const char *const head[5] = {"scene", "variant", "point", "block", "cpu_s"};
+    if (!cost || verdict_csv_parse(&t, (char *)data, len, path, &ignored) < 0 || t.n_rows < 1 ||
+        t.n_fields != 5)
         goto done;
+    for (int i = 0; i < 5; i++)
+        if (strcmp(t.rows[0][i], head[i]))
+            goto done;
     for (int i = 0; i < cells * COMPARE_COST_BLOCKS; i++)
         cost[i] = NAN;
-    line = strtok_r((char *)data, "\r\n", &save);
-    if (!line || strcmp(line, "scene,variant,point,block,cpu_s"))
-        goto done;
-    while ((line = strtok_r(NULL, "\r\n", &save))) {
-        char *f[5], *end, *rest = line;
-        int nf = 0;
-        for (char *comma; nf < 5; rest = comma + 1) {
-            f[nf++] = rest;
-            if (!(comma = strchr(rest, ',')))
-                break;
-            *comma = 0;
-        }
-        long k = nf == 5 ? strtol(f[3], &end, 10) : -1;
-        double x = nf == 5 ? strtod(f[4], NULL) : NAN;
-        int cell = nf == 5 ? find_cell(c, f[0], f[1], f[2]) : -1;
+    for (int r = 1; r < t.n_rows; r++) {
+        char *const *f = t.rows[r];
+        long k = strtol(f[3], NULL, 10);
+        double x = strtod(f[4], NULL);
+        int cell = find_cell(c, f[0], f[1], f[2]);
         if (cell < 0 || k < 0 || k >= COMPARE_COST_BLOCKS || !(x > 0 && isfinite(x)))
             goto done; /* a row of another study or a damaged file: not guessed at */
         cost[(size_t)cell * COMPARE_COST_BLOCKS + (size_t)k] = x;
@@ -264,18 +264,19 @@ int compare_cost_read(struct compare *c, const char *dir)
                 goto done;
     if (blocks < 2)
         goto done;
-    free(c->cost_s);
-    c->n_blocks = blocks;
-    c->cost_s = malloc(sizeof *c->cost_s * (size_t)cells * blocks);
-    if (!c->cost_s) {
-        c->n_blocks = 0;
+    free(c->results.cost_s);
+    c->results.n_blocks = blocks;
+    c->results.cost_s = malloc(sizeof *c->results.cost_s * (size_t)cells * blocks);
+    if (!c->results.cost_s) {
+        c->results.n_blocks = 0;
         goto done;
     }
     for (int i = 0; i < cells; i++)
         for (int k = 0; k < blocks; k++)
-            c->cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
+            c->results.cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
     rc = 0;
 done:
+    verdict_csv_free(&t);
     free(cost);
     free(data);
     return rc;

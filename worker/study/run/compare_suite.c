@@ -98,7 +98,7 @@ void compare_suite_summary_line(const struct compare_suite *s, double wall_s, co
             given += cs->ref_kind == COMPARE_REF_IMAGE;
         }
         for (int k = 0; k < c->n_items; k++)
-            current += c->items[k].skipped;
+            current += c->results.rows[k].skipped;
     }
     /* a reference that an earlier study of this run rendered counts as reused, its time as saved */
     if (reused)

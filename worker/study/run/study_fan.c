@@ -191,8 +191,8 @@ int study_fan_share(const struct jobfile *jf, const struct run_opts *o)
             ready[s] = 1;
             if (rc == 0)
                 rc = study_fan_render(&f, k, STUDY_FAN_IMAGE, i, &whole, &e);
-            rendered += rc == 0 && !c->items[i].skipped;
-            current += rc == 0 && c->items[i].skipped;
+            rendered += rc == 0 && !c->results.rows[i].skipped;
+            current += rc == 0 && c->results.rows[i].skipped;
         }
     }
     if (rc != 0) {

@@ -1,15 +1,14 @@
-/* study_machines: the machines a compare job's images were rendered on (their sidecars' host and
-   cpu_model), and the mark on the equal-CPU-time ranking when their CPU models differ: CPU seconds
-   of different machines do not compare, while the equal-samples and slope rankings do not depend
-   on the machine. */
+/* study_machines: the CPU models a compare job's images were rendered on (their sidecars'
+   cpu_model), for the verdict to mark its equal-CPU-time ranking when they differ
+   (verdict_from_compare). */
 #ifndef STUDY_MACHINES_H
 #define STUDY_MACHINES_H
 
 #include "study/load/compare_model.h"
 
-/* Read the sidecars of c's images under out_dir; when they name more than one CPU model, record
-   them in c->verdict.machines and add a warning to each scene's verdict (report and verdict.json).
-   0, or -1 with e filled (out of memory). A missing or older sidecar counts as no model. */
-int study_machines_mark(struct compare *c, const char *out_dir, struct err *e);
+/* The CPU models of c's images, read from their sidecars under out_dir, into out's machines (the
+   first STUDY_MACHINES_MAX listed; out emptied first); a missing or older sidecar counts as none. */
+#define STUDY_MACHINES_MAX 8
+void study_machines_read(const struct compare *c, const char *out_dir, struct verdict_found *out);
 
 #endif

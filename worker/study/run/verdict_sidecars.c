@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "base/fileio.h"
-#include "verdict_csv.h"
+#include "study/load/verdict_csv.h"
 
 /* `"key": "value"` or `"key": number` from a sidecar's text, into out; 0 when absent. */
 static int sidecar_field(const char *text, const char *key, char *out, size_t n)
@@ -48,7 +48,7 @@ void verdict_sidecars_read(struct compare *c, const char *dir, int *missing)
 {
     for (int i = 0; i < c->n_items; i++) {
         struct compare_item *it = &c->items[i];
-        if (!it->done)
+        if (!c->results.rows[i].done)
             continue;
         char path[JOB_PATH_MAX * 2], val[JOB_PATH_MAX];
         const char *dot = strrchr(it->job.output, '.');
@@ -71,7 +71,8 @@ void verdict_sidecars_read(struct compare *c, const char *dir, int *missing)
             it->job.poisson_pool = (int)pool; /* a job's range; anything else: unknown (0) */
         if (sidecar_field(t, "nonfinite_samples", val, sizeof val) ||
             sidecar_field(t, "nonfinite_dropped", val, sizeof val)) /* its name before issue 26 */
-            it->nonfinite = verdict_csv_figure(val, 0, 1e19, &count) == 0 ? (uint64_t)count : 0;
+            c->results.rows[i].nonfinite =
+                verdict_csv_figure(val, 0, 1e19, &count) == 0 ? (uint64_t)count : 0;
         struct compare_scene *cs = &c->scenes[it->scene];
         if (!cs->ref_path[0] && sidecar_field(t, "reference", val, sizeof val))
             find_reference(val, dir, cs->ref_path, sizeof cs->ref_path);
