@@ -62,7 +62,12 @@ static const struct kind_row {
 #define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
 _Static_assert(KIND_COUNT == SAMPLER_ZSOBOL + 1, "a draw per kind");
 
-static const char *const domain_names[] = {"torus", "square"};
+static const char *const domain_names[] = {"torus", "square", NULL};
+
+const char *const *poisson_domain_names(void)
+{
+    return domain_names;
+}
 
 int poisson_domain_parse(const char *name, enum poisson_domain *out)
 {

@@ -47,7 +47,8 @@ struct sidecar_info {
     int has_error;                                                  /* error.* were there */
     char error_domain[16]; /* what the error was measured on: "linear" or "8-bit" */
     double mse, rmse, relmse, relmse_robust, psnr;
-    int has_work; /* "work" was there (sidecars since issue 35) */
+    struct render_spec spec; /* the render's settings (a setting absent: its default) */
+    int has_work;            /* "work" was there (sidecars since issue 35) */
     struct sidecar_work work;
 };
 

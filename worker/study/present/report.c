@@ -63,7 +63,7 @@ static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k
     free(png);
     sbuf_printf(b, "<figcaption><b>");
     sbuf_escape(b, c->variants[v]);
-    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, it->spp_mean);
+    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.spec.pixel.threshold, it->spp_mean);
     if (it->has_error)
         sbuf_printf(b, ", relMSE %.3g", it->error.relmse);
     sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", it->wall_s,
@@ -118,9 +118,9 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
     sbuf_printf(b, "<figcaption><b>reference</b>: ");
     char light[96];
     if (cs->ref_kind == COMPARE_REF_SETTINGS)
-        sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
-                    cs->ref_job.threshold, job_light_text(&cs->ref_job, light, sizeof light),
-                    (unsigned long long)cs->ref_job.seed,
+        sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.spec.pixel.kind),
+                    cs->ref_job.spec.pixel.threshold, job_light_text(&cs->ref_job, light, sizeof light),
+                    (unsigned long long)cs->ref_job.spec.seed,
                     cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
     else
         sbuf_escape(b, cs->ref_path);
@@ -209,7 +209,7 @@ static void table(struct sbuf *b, const struct compare *c)
         sbuf_escape(b, c->variants[it->variant]);
         sbuf_printf(
             b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
-            it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, it->spp_mean,
+            it->job.spec.pixel.threshold, it->job.spec.light.threshold, (unsigned long long)it->job.spec.seed, it->spp_mean,
             it->wall_s, it->cpu_s, it->sampler_share);
         const struct sidecar_work *w = &it->work;
         sbuf_printf(b, "<td>%llu</td><td>%llu</td><td>%llu</td>", (unsigned long long)w->path_segments,

@@ -19,7 +19,6 @@
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
-#include "job/job_key.h"
 #include "job/sidecar.h"
 #include "study/present/report.h"
 #include "study_machines.h"
@@ -31,7 +30,7 @@
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
 {
-    double spp = sampler_expected_spp(it->job.sampler, it->job.threshold);
+    double spp = sampler_expected_spp(it->job.spec.pixel.kind, it->job.spec.pixel.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
@@ -61,7 +60,7 @@ static uint64_t item_hash(const struct compare_scene *cs, const struct compare_i
 {
     const struct job *j = &it->job;
     char text[512];
-    int n = job_key_text(j, j->width, j->height, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
+    int n = render_spec_key_text(&j->spec, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 
@@ -211,8 +210,10 @@ static void csv_field(struct sbuf *b, const char *text, const char *after)
 static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
+    sbuf_printf(&b, "scene,variant,");
+    render_spec_csv_header(&b); /* the render's settings, a column per render_spec row */
     sbuf_printf(&b,
-                "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
+                "samples_per_pixel_mean,wall_s,cpu_s,"
                 "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
                 "flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,"
                 "pixel_sets,light_sets,padded_sets,image\n");
@@ -220,8 +221,11 @@ static char *summary_csv(const struct compare *c)
         const struct compare_item *it = &c->items[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
         csv_field(&b, c->variants[it->variant], ",");
-        sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
-                    (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
+        struct render_spec spec = it->job.spec; /* at the size rendered */
+        spec.width = c->scenes[it->scene].width;
+        spec.height = c->scenes[it->scene].height;
+        render_spec_csv_row(&spec, &b);
+        sbuf_printf(&b, "%.2f,%.6g,%.6g,%.6g,", it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
             sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", it->error.mse, it->error.rmse,
                         it->error.relmse, it->error.relmse_robust, it->error.psnr,
@@ -360,7 +364,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
         run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
                 c->n_items >= 100 ? 3 : 2, n + 1, c->n_items, cs->name, c->variants[it->variant],
-                it->job.threshold, (unsigned long long)it->job.seed, it->spp_mean, it->wall_s, err_text,
+                it->job.spec.pixel.threshold, (unsigned long long)it->job.spec.seed, it->spp_mean, it->wall_s, err_text,
                 it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     free(order);
