@@ -58,8 +58,10 @@ static int via_sidecar(const struct render_spec *s, struct render_spec *out)
 static int via_csv(const struct render_spec *s, struct render_spec *out)
 {
     struct sbuf head = {0}, row = {0};
-    render_spec_csv_header(&head);
-    render_spec_csv_row(s, &row);
+    render_spec_csv_header(&head, 1);
+    render_spec_csv_row(s, 1, &row);
+    render_spec_csv_header(&head, 0);
+    render_spec_csv_row(s, 0, &row);
     char *h = sbuf_take(&head), *r = sbuf_take(&row);
     const char *names[64], *values[64];
     int n = 0;

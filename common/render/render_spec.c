@@ -26,23 +26,24 @@ static const char *const *roulette_names(void)
 }
 
 #define AT(field) offsetof(struct render_spec, field)
-/* key, type, field, lo, hi, names, default, changes pixels, label. In the order the sidecar and
-   summary.csv write them; a new setting is a row at the end (and a field in struct render_spec). */
+/* key, type, field, lo, hi, names, default, changes pixels, label, summary.csv's place. In the order
+   the sidecar and summary.csv write them; a new setting is a row at the end (and a field in struct
+   render_spec). */
 static const struct render_spec_row rows[] = {
-    {"width", RS_INT, AT(width), 1, IMAGE_MAX_SIDE, NULL, 300, 1, "width"},
-    {"height", RS_INT, AT(height), 1, IMAGE_MAX_SIDE, NULL, 0, 1, "height"},
-    {"sampler", RS_SAMPLER, AT(pixel.kind), 0, 0, NULL, SAMPLER_RANDOM, 1, "sampler"},
-    {"threshold", RS_THRESHOLD, AT(pixel.threshold), 0, 100, NULL, 5, 1, "threshold"},
-    {"light_sampler", RS_SAMPLER, AT(light.kind), 0, 0, NULL, SAMPLER_RANDOM, 1, "light sampler"},
-    {"light_threshold", RS_THRESHOLD, AT(light.threshold), 0, 100, NULL, 5, 1, "light threshold"},
-    {"light_sampling", RS_BOOL, AT(light_sampling), 0, 1, NULL, 1, 1, "light sampling"},
-    {"integrator", RS_CHOICE, AT(integrator), 0, 0, integrator_names, INTEGRATOR_MIXTURE, 1, "integrator"},
-    {"sampler_dims", RS_CHOICE, AT(dims_all), 0, 0, dims_names, 0, 1, "sampler dims"},
-    {"russian_roulette", RS_CHOICE, AT(roulette), 0, 0, roulette_names, -1, 1, "russian roulette"},
-    {"poisson_pool", RS_INT, AT(poisson_pool), 0, 65536, NULL, 0, 1, "poisson pool"},
-    {"poisson_domain", RS_CHOICE, AT(poisson_domain), 0, 0, poisson_domain_names, POISSON_TORUS, 1, "poisson domain"},
-    {"max_depth", RS_INT, AT(max_depth), 1, 10000, NULL, 50, 1, "max depth"},
-    {"seed", RS_U64, AT(seed), 0, 2147483647L, NULL, 1, 1, "seed"},
+    {"width", RS_INT, AT(width), 1, IMAGE_MAX_SIDE, NULL, 300, 1, "width", 0},
+    {"height", RS_INT, AT(height), 1, IMAGE_MAX_SIDE, NULL, 0, 1, "height", 0},
+    {"sampler", RS_SAMPLER, AT(pixel.kind), 0, 0, NULL, SAMPLER_RANDOM, 1, "sampler", 0},
+    {"threshold", RS_THRESHOLD, AT(pixel.threshold), 0, 100, NULL, 5, 1, "threshold", 1},
+    {"light_sampler", RS_SAMPLER, AT(light.kind), 0, 0, NULL, SAMPLER_RANDOM, 1, "light sampler", 0},
+    {"light_threshold", RS_THRESHOLD, AT(light.threshold), 0, 100, NULL, 5, 1, "light threshold", 1},
+    {"light_sampling", RS_BOOL, AT(light_sampling), 0, 1, NULL, 1, 1, "light sampling", 0},
+    {"integrator", RS_CHOICE, AT(integrator), 0, 0, integrator_names, INTEGRATOR_MIXTURE, 1, "integrator", 0},
+    {"sampler_dims", RS_CHOICE, AT(dims_all), 0, 0, dims_names, 0, 1, "sampler dims", 0},
+    {"russian_roulette", RS_CHOICE, AT(roulette), 0, 0, roulette_names, -1, 1, "russian roulette", 0},
+    {"poisson_pool", RS_INT, AT(poisson_pool), 0, 65536, NULL, 0, 1, "poisson pool", 0},
+    {"poisson_domain", RS_CHOICE, AT(poisson_domain), 0, 0, poisson_domain_names, POISSON_TORUS, 1, "poisson domain", 0},
+    {"max_depth", RS_INT, AT(max_depth), 1, 10000, NULL, 50, 1, "max depth", 0},
+    {"seed", RS_U64, AT(seed), 0, 2147483647L, NULL, 1, 1, "seed", 1},
 };
 #define N_ROWS ((int)(sizeof rows / sizeof rows[0]))
 /* The rows render_spec_key_text spells as earlier cache keys did; later rows add " key value". */
@@ -114,7 +115,7 @@ const char *render_spec_text(const struct render_spec *s, const struct render_sp
     const uint64_t v = render_spec_get(s, r);
     switch (r->type) {
     case RS_THRESHOLD:
-        for (int digits = 1; digits <= 17; digits++) { /* the fewest digits that read back exactly */
+        for (int digits = 6; digits <= 17; digits += digits == 6 ? 9 : 1) { /* %g when it reads back */
             snprintf(buf, n, "%.*g", digits, render_spec_get_threshold(s, r));
             if (strtod(buf, NULL) == render_spec_get_threshold(s, r))
                 break;
@@ -212,17 +213,19 @@ void render_spec_json(const struct render_spec *s, struct json *js)
     }
 }
 
-void render_spec_csv_header(struct sbuf *b)
+void render_spec_csv_header(struct sbuf *b, int front)
 {
     for (int i = 0; i < N_ROWS; i++)
-        sbuf_printf(b, "%s,", rows[i].key);
+        if (rows[i].csv_front == front)
+            sbuf_printf(b, "%s,", rows[i].key);
 }
 
-void render_spec_csv_row(const struct render_spec *s, struct sbuf *b)
+void render_spec_csv_row(const struct render_spec *s, int front, struct sbuf *b)
 {
     char text[64];
     for (int i = 0; i < N_ROWS; i++)
-        sbuf_printf(b, "%s,", render_spec_text(s, &rows[i], text, sizeof text));
+        if (rows[i].csv_front == front)
+            sbuf_printf(b, "%s,", render_spec_text(s, &rows[i], text, sizeof text));
 }
 
 int render_spec_from_fields(struct render_spec *s, const char *const *names, const char *const *values,

@@ -47,6 +47,8 @@ struct render_spec_row {
     double default_value;     /* a threshold; any other type's value as a number */
     int pixels;               /* 1: changes pixels (every row today; a row that does not is named) */
     const char *label;        /* for people: a report's column head */
+    int csv_front;            /* summary.csv: 1 among its first columns (where readers found threshold,
+                                 light_threshold and seed before this table), 0 just before image */
 };
 
 /* The rows, in the order the sidecar and summary.csv write them; *n their count. */
@@ -83,9 +85,10 @@ const char *render_spec_expected(const struct render_spec_row *r, char *buf, siz
 
 /* Every row as a member of the JSON object being written (numbers as numbers, names as strings). */
 void render_spec_json(const struct render_spec *s, struct json *js);
-/* summary.csv: every row's key, then every row's value, each followed by a comma. */
-void render_spec_csv_header(struct sbuf *b);
-void render_spec_csv_row(const struct render_spec *s, struct sbuf *b);
+/* summary.csv: the keys, then the values, of the rows whose csv_front is front, each followed by a
+   comma (both parts together: every row). */
+void render_spec_csv_header(struct sbuf *b, int front);
+void render_spec_csv_row(const struct render_spec *s, int front, struct sbuf *b);
 /* A spec from a row of named fields (names[i] holds values[i], n of each): every row's column must
    be there. 0, or -1 with e naming the column (at file, line). */
 int render_spec_from_fields(struct render_spec *s, const char *const *names, const char *const *values,

@@ -211,12 +211,14 @@ static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
     sbuf_printf(&b, "scene,variant,");
-    render_spec_csv_header(&b); /* the render's settings, a column per render_spec row */
+    render_spec_csv_header(&b, 1); /* the render's settings, a column per render_spec row */
     sbuf_printf(&b,
                 "samples_per_pixel_mean,wall_s,cpu_s,"
                 "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
                 "flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,"
-                "pixel_sets,light_sets,padded_sets,image\n");
+                "pixel_sets,light_sets,padded_sets,");
+    render_spec_csv_header(&b, 0);
+    sbuf_printf(&b, "image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
@@ -224,7 +226,7 @@ static char *summary_csv(const struct compare *c)
         struct render_spec spec = it->job.spec; /* at the size rendered */
         spec.width = c->scenes[it->scene].width;
         spec.height = c->scenes[it->scene].height;
-        render_spec_csv_row(&spec, &b);
+        render_spec_csv_row(&spec, 1, &b);
         sbuf_printf(&b, "%.2f,%.6g,%.6g,%.6g,", it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
             sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", it->error.mse, it->error.rmse,
@@ -245,6 +247,7 @@ static char *summary_csv(const struct compare *c)
                     (unsigned long long)w->light_points, (unsigned long long)w->padded_points,
                     (unsigned long long)w->pixel_sets, (unsigned long long)w->light_sets,
                     (unsigned long long)w->padded_sets);
+        render_spec_csv_row(&spec, 0, &b);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
