@@ -27,8 +27,8 @@ static void test_defaults(void)
     struct job j;
     struct err e;
     CHECK(load("cornell-box.v2.yaml", "sampler: jitter\n", &j, &e) == 0);
-    CHECK(!strcmp(j.name, "cornell-box.v2")); /* the file's stem */
-    CHECK(j.spec.width == 300 && j.spec.height == 0);   /* height 0: from the camera's aspect */
+    CHECK(!strcmp(j.name, "cornell-box.v2"));         /* the file's stem */
+    CHECK(j.spec.width == 300 && j.spec.height == 0); /* height 0: from the camera's aspect */
     CHECK(j.spec.pixel.kind == SAMPLER_JITTER && j.spec.light.kind == SAMPLER_JITTER);
     CHECK(j.spec.light.threshold == 5 && j.spec.max_depth == 50 && j.spec.seed == 1 && j.processes == 2);
     CHECK(j.format == IMG_PNG && !strcmp(j.output, "cornell-box.v2.png"));

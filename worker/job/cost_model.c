@@ -190,8 +190,10 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
 static int pilot_draws(struct cost_model *m, const struct job *j, double pixel_t, double light_t,
                        struct pilot_draws *d, struct err *e)
 {
-    const struct cost_sampler px = {j->spec.pixel.kind, pixel_t, j->spec.poisson_pool > 0, j->spec.poisson_domain},
-                              li = {j->spec.light.kind, light_t, j->spec.poisson_pool > 0, j->spec.poisson_domain};
+    const struct cost_sampler px = {j->spec.pixel.kind, pixel_t, j->spec.poisson_pool > 0,
+                                    j->spec.poisson_domain},
+                              li = {j->spec.light.kind, light_t, j->spec.poisson_pool > 0,
+                                    j->spec.poisson_domain};
     struct cost_set a = {0}, b = {0}, c = {0};
     /* timed, never scaled (at most COST_PILOT_SET_MAX points): what is left of a call is tracing */
     const double target = set_target(m) > 0 ? set_target(m) : 1e-9;
@@ -217,7 +219,8 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         return -1;
     }
-    const int pool = j->spec.poisson_pool > 0; /* one set: a draw from a pool costs the same whatever its size */
+    const int pool =
+        j->spec.poisson_pool > 0; /* one set: a draw from a pool costs the same whatever its size */
     const double pixel_t = pilot_threshold(j->spec.pixel.kind, j->spec.pixel.threshold),
                  light_t = pilot_threshold(j->spec.light.kind, j->spec.light.threshold);
     /* an image of fewer pixels than a pilot renders: the same view at a multiple of its size, so
@@ -322,8 +325,8 @@ static int set_cost(struct cost_model *m, const struct job *j, int light, enum c
                     struct cost_set *out, struct err *e)
 {
     const struct cost_sampler sp = {light ? j->spec.light.kind : j->spec.pixel.kind,
-                                    light ? j->spec.light.threshold : j->spec.pixel.threshold, j->spec.poisson_pool > 0,
-                                    j->spec.poisson_domain};
+                                    light ? j->spec.light.threshold : j->spec.pixel.threshold,
+                                    j->spec.poisson_pool > 0, j->spec.poisson_domain};
     if (cost_sets_get(m->sets, &sp, use, set_target(m), out, &m->spent_s, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         return -1;
@@ -334,18 +337,19 @@ static int set_cost(struct cost_model *m, const struct job *j, int light, enum c
 /* The pilot key of j's render at width x height of sf. */
 static struct pilot_key key_of(const struct job *j, const struct scene_file *sf, int width, int height)
 {
-    return (struct pilot_key){sf,
-                              width,
-                              height,
-                              j->spec.max_depth,
-                              j->spec.light_sampling,
-                              j->spec.integrator,
-                              j->spec.dims_all,
-                              render_spec_roulette(&j->spec),
-                              j->spec.light.kind,
-                              j->spec.dims_all ? j->spec.pixel.kind : SAMPLER_RANDOM,
-                              j->spec.dims_all ? ilogb((double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold)) : 0,
-                              j->spec.poisson_pool > 0};
+    return (struct pilot_key){
+        sf,
+        width,
+        height,
+        j->spec.max_depth,
+        j->spec.light_sampling,
+        j->spec.integrator,
+        j->spec.dims_all,
+        render_spec_roulette(&j->spec),
+        j->spec.light.kind,
+        j->spec.dims_all ? j->spec.pixel.kind : SAMPLER_RANDOM,
+        j->spec.dims_all ? ilogb((double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold)) : 0,
+        j->spec.poisson_pool > 0};
 }
 
 int cost_model_expect(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,

@@ -16,16 +16,16 @@
 #include "scenefile/yget.h"
 
 /* The job's own keys; a render's are render_spec's rows. */
-static const char *const own_keys[] = {"name",      "scene",    "processes",   "format", "output",
+static const char *const job_keys[] = {"name",      "scene",    "processes",   "format", "output",
                                        "reference", "priority", "entry_cpu_s", NULL};
-#define OWN_KEYS ((int)(sizeof own_keys / sizeof own_keys[0]) - 1)
+#define JOB_OWN_KEYS ((int)(sizeof job_keys / sizeof job_keys[0]) - 1)
 
 int job_key_list(const char **out, int cap)
 {
     int n = 0, rows;
     const struct render_spec_row *r = render_spec_rows(&rows);
-    for (int i = 0; i < OWN_KEYS + rows && n < cap - 1; i++)
-        out[n++] = i < OWN_KEYS ? own_keys[i] : r[i - OWN_KEYS].key;
+    for (int i = 0; i < JOB_OWN_KEYS + rows && n < cap - 1; i++)
+        out[n++] = i < JOB_OWN_KEYS ? job_keys[i] : r[i - JOB_OWN_KEYS].key;
     out[n] = NULL;
     return n;
 }
@@ -33,12 +33,11 @@ int job_key_list(const char **out, int cap)
 /* key's index in job_key_list, or -1. */
 static int key_index(const char *key)
 {
-    int rows;
-    const struct render_spec_row *r = render_spec_rows(&rows), *row = render_spec_find(key);
-    for (int i = 0; i < OWN_KEYS; i++)
-        if (!strcmp(own_keys[i], key))
+    const char *keys[JOB_KEYS_MAX + 1];
+    for (int i = 0, n = job_key_list(keys, JOB_KEYS_MAX + 1); i < n; i++)
+        if (!strcmp(keys[i], key))
             return i;
-    return row && OWN_KEYS + (row - r) < JOB_KEYS_MAX ? OWN_KEYS + (int)(row - r) : -1;
+    return -1;
 }
 
 const int *job_at(const struct job *j, const char *key)
@@ -79,41 +78,15 @@ static int safe_name(const char *s)
     return 1;
 }
 
-static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sampler_kind *out, struct err *e)
+/* The message for s, no sampler's name, at v: the nearest name, else the list. */
+static int sampler_fail(struct ydoc *d, yaml_node_t *v, const char *key, const char *s, struct err *e)
 {
-    const char *s;
-    if (yget_string(d, v, key, &s, e) < 0)
-        return -1;
     const char *near = ystr_nearest(s, sampler_kind_names(), -1);
-    if (sampler_kind_parse(s, out) < 0 && near)
-        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
     char list[256];
-    if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected one of %s)", key, s,
-                         sampler_kind_list(", ", list, sizeof list));
-    return 0;
-}
-
-/* One of names (NULL-ended) at v: its index in *index; else "k: must be a, b or c, got ...". */
-static int get_choice(struct ydoc *d, yaml_node_t *v, const char *k, const char *const *names, int *index,
-                      struct err *e)
-{
-    const char *s;
-    if (yget_string(d, v, k, &s, e) < 0)
-        return -1;
-    for (int i = 0; names[i]; i++)
-        if (!strcmp(s, names[i])) {
-            *index = i;
-            return 0;
-        }
-    char list[256] = "";
-    for (int i = 0, used = 0; names[i] && used < (int)sizeof list; i++)
-        used += snprintf(list + used, sizeof list - (size_t)used, "%s%s",
-                         i == 0         ? ""
-                         : names[i + 1] ? ", "
-                                        : " or ",
-                         names[i]);
-    return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"", k, list, s);
+    if (near)
+        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
+    return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected one of %s)", key, s,
+                     sampler_kind_list(", ", list, sizeof list));
 }
 
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const struct render_spec_row *r, double *out,
@@ -121,16 +94,18 @@ static int get_threshold(struct ydoc *d, yaml_node_t *v, const struct render_spe
 {
     const char *key = r->key;
     const char *s = yscalar(v);
+    char want[64];
+    render_spec_expected(r, want, sizeof want);
     double t = 0;
     int rc = yget_double(d, v, key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
     int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
     if (rc == YGET_UNDERFLOW) /* yget_double's own message says it better */
         return -1;
     if (!s)
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
+        return ydoc_fail(d, v, e, "%s: must be %s, got a %s", key, want,
                          v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
     if (failed || !render_spec_in_range(r, t))
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key, s,
+        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"%s", key, want, s,
                          quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
@@ -217,36 +192,26 @@ static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err
 static int apply_spec(struct render_spec *s, const struct render_spec_row *r, struct ydoc *d, yaml_node_t *v,
                       struct err *e)
 {
-    long n;
-    int i;
-    double t = 0;
-    enum sampler_kind kind;
-    switch (r->type) {
-    case RS_THRESHOLD:
-        if (get_threshold(d, v, r, &t, e) < 0)
+    long n = 0;
+    int yes = 0;
+    const char *text;
+    char want[256];
+    if (r->type == RS_THRESHOLD)
+        return get_threshold(d, v, r, render_spec_threshold(s, r), e);
+    if (r->type == RS_SAMPLER || r->type == RS_CHOICE) {
+        if (yget_string(d, v, r->key, &text, e) < 0)
             return -1;
-        render_spec_put_threshold(s, r, t);
-        return 0;
-    case RS_SAMPLER:
-        if (get_sampler(d, v, r->key, &kind, e) < 0)
-            return -1;
-        n = (long)kind;
-        break;
-    case RS_CHOICE:
-        if (get_choice(d, v, r->key, r->names(), &i, e) < 0)
-            return -1;
-        n = i;
-        break;
-    case RS_BOOL:
-        if (yget_bool(d, v, r->key, &i, e) < 0)
-            return -1;
-        n = i;
-        break;
-    default:
-        if (yget_long(d, v, r->key, r->lo, r->hi, &n, e) < 0)
-            return -1;
+        if (render_spec_set_text(s, r, text) == 0)
+            return 0;
+        if (r->type == RS_SAMPLER)
+            return sampler_fail(d, v, r->key, text, e);
+        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"", r->key,
+                         render_spec_expected(r, want, sizeof want), text);
     }
-    render_spec_put(s, r, (uint64_t)(int64_t)n);
+    if (r->type == RS_BOOL ? yget_bool(d, v, r->key, &yes, e) < 0
+                           : yget_long(d, v, r->key, r->lo, r->hi, &n, e) < 0)
+        return -1;
+    render_spec_put(s, r, (uint64_t)(int64_t)(r->type == RS_BOOL ? yes : n));
     return 0;
 }
 
@@ -413,7 +378,8 @@ const char *job_light_text(const struct job *j, char *buf, size_t n)
     if (!s->light_sampling)
         snprintf(buf, n, "no light sampling");
     else if (s->dims_all) /* the light sampler is never asked: render_path.h's path_decide */
-        snprintf(buf, n, "light points from the %s sets (sampler_dims: all)", sampler_kind_name(s->pixel.kind));
+        snprintf(buf, n, "light points from the %s sets (sampler_dims: all)",
+                 sampler_kind_name(s->pixel.kind));
     else
         snprintf(buf, n, "light %s t=%g", sampler_kind_name(s->light.kind), s->light.threshold);
     return buf;

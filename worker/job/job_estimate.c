@@ -26,11 +26,14 @@ static double resident_bytes(void)
    (render_ctx.c: 2 + 4 a bounce, at most 16 bounces and 256 MB; twice a set each at most). */
 static double set_bytes(const struct job *j, const struct scene_file *sf)
 {
-    const double pixel = (double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold) * sizeof(struct pt2);
-    const double light = (double)sampler_capacity(j->spec.light.kind, j->spec.light.threshold) * sizeof(struct pt2);
+    const double pixel =
+        (double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold) * sizeof(struct pt2);
+    const double light =
+        (double)sampler_capacity(j->spec.light.kind, j->spec.light.threshold) * sizeof(struct pt2);
     double dims = 0;
     if (j->spec.dims_all)
-        dims = fmin((2.0 + 4.0 * (j->spec.max_depth < 16 ? j->spec.max_depth : 16)) * 2 * pixel, 256.0 * (1 << 20));
+        dims = fmin((2.0 + 4.0 * (j->spec.max_depth < 16 ? j->spec.max_depth : 16)) * 2 * pixel,
+                    256.0 * (1 << 20));
     return pixel + (j->spec.light_sampling ? light * sf->scene->n_lights : 0) + dims;
 }
 

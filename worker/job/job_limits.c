@@ -26,7 +26,8 @@ int job_limits_samples(const struct job *j, int width, int height, struct err *e
                        "threshold: %dx%d pixels at up to %.0f samples each is %.3g samples (limit %.3g)",
                        width, height, per_pixel, total, LIMITS_MAX_JOB_SAMPLES);
     /* each pixel draws a fresh Poisson set per light, whole, however few of its points it takes */
-    if (j->spec.light_sampling && sampler_kind_has(j->spec.light.kind, SAMPLER_POOLED) && j->spec.poisson_pool == 0) {
+    if (j->spec.light_sampling && sampler_kind_has(j->spec.light.kind, SAMPLER_POOLED) &&
+        j->spec.poisson_pool == 0) {
         double per_light = (double)sampler_capacity(j->spec.light.kind, j->spec.light.threshold);
         double points = per_light * width * height;
         if (points > LIMITS_MAX_JOB_SAMPLES)
@@ -34,8 +35,8 @@ int job_limits_samples(const struct job *j, int width, int height, struct err *e
                            "light_threshold: %g draws a fresh %s set of up to %.0f points per pixel and "
                            "light, %.3g points at %dx%d (limit %.3g); take a larger light_threshold, a "
                            "poisson_pool or another light_sampler",
-                           j->spec.light.threshold, sampler_kind_name(j->spec.light.kind), per_light, points, width,
-                           height, LIMITS_MAX_JOB_SAMPLES);
+                           j->spec.light.threshold, sampler_kind_name(j->spec.light.kind), per_light, points,
+                           width, height, LIMITS_MAX_JOB_SAMPLES);
     }
     if (pool_points(j, j->spec.pixel.kind, j->spec.pixel.threshold, e) < 0)
         return -1;

@@ -37,11 +37,11 @@ struct job {
     enum img_format more_format[JOB_OUTPUTS_MAX - 1];
     char reference[JOB_PATH_MAX]; /* resolved; "" when none */
     int priority;                 /* queue order: higher first (default 0) */
-    double entry_cpu_s; /* a study spread over a queue: its entries' CPU target; 0: the queue's */
-    int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
-                           image (a compare job's renders, scored in linear radiance) */
-    uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
-    struct job_pos pos; /* parse positions, for messages only */
+    double entry_cpu_s;           /* a study spread over a queue: its entries' CPU target; 0: the queue's */
+    int float_copy;               /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
+                                     image (a compare job's renders, scored in linear radiance) */
+    uint64_t hash;                /* FNV-1a of the job file's bytes, then its scene file's */
+    struct job_pos pos;           /* parse positions, for messages only */
 };
 
 #endif

@@ -168,7 +168,8 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg); /* at the size's key: the user's lever */
         if (job_at(j, "width")[0])
-            err_set(e, j->path, job_at(j, "width")[0], job_at(j, "width")[1], "width: %dx%d pixels: %s", w, h, why);
+            err_set(e, j->path, job_at(j, "width")[0], job_at(j, "width")[1], "width: %dx%d pixels: %s", w, h,
+                    why);
         else
             err_set(e, j->path, 1, 1, "size: %dx%d pixels: %s", w, h, why);
         goto done;

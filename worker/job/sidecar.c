@@ -248,8 +248,6 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    string_at(d, root, "image", out->image, sizeof out->image, e) < 0 ||
                    string_at(d, root, "host", out->host, sizeof out->host, e) < 0 ||
                    string_at(d, root, "cpu_model", out->cpu_model, sizeof out->cpu_model, e) < 0 ||
-                   count_at(d, root, "width", &out->width, e) < 0 ||
-                   count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||
                    count_at(d, root, "parts", &out->parts, e) < 0 ||
                    count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 || /* before issue 26 */

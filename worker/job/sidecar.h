@@ -39,7 +39,7 @@ struct sidecar_info {
     uint64_t job_hash;
     char image[JOB_NAME_MAX];
     char host[128], cpu_model[128]; /* where it was rendered ("" in sidecars of earlier versions) */
-    uint64_t width, height, processes, parts;
+    uint64_t processes, parts;
     uint64_t samples_total, spp_min, spp_max; /* samples.total, per_pixel_min, per_pixel_max */
     uint64_t nonfinite;                       /* nonfinite_samples (nonfinite_dropped before) */
     double spp_mean;                          /* samples.per_pixel_mean */

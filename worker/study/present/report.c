@@ -192,10 +192,23 @@ void report_link(struct sbuf *b, const char *href, const char *text)
 static void table(struct sbuf *b, const struct compare *c)
 {
     /* the work counts beside the times: the same on every machine (summary.csv has them all) */
-    static const char *const head[] = {
-        "scene",  "variant", "threshold",     "light threshold", "seed",          "spp mean",
-        "wall s", "cpu s",   "sampler share", "segments",        "shadow rays",   "set points",
-        "mse",    "rmse",    "relmse",        "psnr dB",         "image, sidecar"};
+    const char *const head[] = {"scene",
+                                "variant",
+                                render_spec_find("threshold")->label,
+                                render_spec_find("light_threshold")->label,
+                                render_spec_find("seed")->label,
+                                "spp mean",
+                                "wall s",
+                                "cpu s",
+                                "sampler share",
+                                "segments",
+                                "shadow rays",
+                                "set points",
+                                "mse",
+                                "rmse",
+                                "relmse",
+                                "psnr dB",
+                                "image, sidecar"};
     const size_t n_head = sizeof head / sizeof head[0];
     sbuf_printf(b, "<table>\n<tr>");
     for (size_t i = 0; i < n_head; i++)
@@ -209,8 +222,8 @@ static void table(struct sbuf *b, const struct compare *c)
         sbuf_escape(b, c->variants[it->variant]);
         sbuf_printf(
             b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
-            it->job.spec.pixel.threshold, it->job.spec.light.threshold, (unsigned long long)it->job.spec.seed, it->spp_mean,
-            it->wall_s, it->cpu_s, it->sampler_share);
+            it->job.spec.pixel.threshold, it->job.spec.light.threshold, (unsigned long long)it->job.spec.seed,
+            it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         const struct sidecar_work *w = &it->work;
         sbuf_printf(b, "<td>%llu</td><td>%llu</td><td>%llu</td>", (unsigned long long)w->path_segments,
                     (unsigned long long)w->shadow_rays,

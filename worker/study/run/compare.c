@@ -211,13 +211,13 @@ static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
     sbuf_printf(&b, "scene,variant,");
-    render_spec_csv_header(&b, 1); /* the render's settings, a column per render_spec row */
+    render_spec_csv(NULL, 1, &b); /* the render's settings, a column per render_spec row */
     sbuf_printf(&b,
                 "samples_per_pixel_mean,wall_s,cpu_s,"
                 "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
                 "flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,"
                 "pixel_sets,light_sets,padded_sets,");
-    render_spec_csv_header(&b, 0);
+    render_spec_csv(NULL, 0, &b);
     sbuf_printf(&b, "image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
@@ -226,7 +226,7 @@ static char *summary_csv(const struct compare *c)
         struct render_spec spec = it->job.spec; /* at the size rendered */
         spec.width = c->scenes[it->scene].width;
         spec.height = c->scenes[it->scene].height;
-        render_spec_csv_row(&spec, 1, &b);
+        render_spec_csv(&spec, 1, &b);
         sbuf_printf(&b, "%.2f,%.6g,%.6g,%.6g,", it->spp_mean, it->wall_s, it->cpu_s, it->sampler_share);
         if (it->has_error)
             sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", it->error.mse, it->error.rmse,
@@ -247,7 +247,7 @@ static char *summary_csv(const struct compare *c)
                     (unsigned long long)w->light_points, (unsigned long long)w->padded_points,
                     (unsigned long long)w->pixel_sets, (unsigned long long)w->light_sets,
                     (unsigned long long)w->padded_sets);
-        render_spec_csv_row(&spec, 0, &b);
+        render_spec_csv(&spec, 0, &b);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
@@ -367,8 +367,8 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", it->error.relmse);
         run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
                 c->n_items >= 100 ? 3 : 2, n + 1, c->n_items, cs->name, c->variants[it->variant],
-                it->job.spec.pixel.threshold, (unsigned long long)it->job.spec.seed, it->spp_mean, it->wall_s, err_text,
-                it->skipped ? " (current, not rendered again)" : "", el, eta);
+                it->job.spec.pixel.threshold, (unsigned long long)it->job.spec.seed, it->spp_mean, it->wall_s,
+                err_text, it->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     free(order);
     if ((rc = study_costs(c, dir, o, e)) != 0)

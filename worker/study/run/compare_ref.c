@@ -105,7 +105,8 @@ void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j)
     *j = cs->ref_job;
     j->spec.pixel.threshold = fmin(100, j->spec.pixel.threshold * sqrt(2));
     j->spec.light.threshold = fmin(100, j->spec.light.threshold * sqrt(2));
-    j->spec.seed = h ? rng_mix64(j->spec.seed) : j->spec.seed; /* independent of the other half and of the study's seeds */
+    j->spec.seed = h ? rng_mix64(j->spec.seed)
+                     : j->spec.seed; /* independent of the other half and of the study's seeds */
 }
 
 /* Half h's job as rendered into the cache (key: the reference's), its files and its record's path. */
@@ -142,8 +143,8 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
         cs->ref_reused = 0;
         char light[96];
         run_say(o, "%s: rendering the reference's half %c (%s t=%g, %s, seed %llu) into %s\n", cs->name,
-                "ab"[h], sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold, job_light_text(&j, light, sizeof light),
-                (unsigned long long)j.spec.seed, path);
+                "ab"[h], sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold,
+                job_light_text(&j, light, sizeof light), (unsigned long long)j.spec.seed, path);
         struct run_result rr;
         struct run_opts forced = *o;
         forced.force = 1;               /* its sidecar may call a damaged image current */
