@@ -69,16 +69,6 @@ const char *const *poisson_domain_names(void)
     return domain_names;
 }
 
-int poisson_domain_parse(const char *name, enum poisson_domain *out)
-{
-    for (int i = 0; i < 2; i++)
-        if (name && strcmp(name, domain_names[i]) == 0) {
-            *out = (enum poisson_domain)i;
-            return 0;
-        }
-    return -1;
-}
-
 const char *poisson_domain_name(enum poisson_domain d)
 {
     return d == POISSON_SQUARE ? domain_names[1] : domain_names[0];

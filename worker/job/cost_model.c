@@ -324,9 +324,8 @@ static int pilot_for(struct cost_model *m, const struct job *j, const struct pil
 static int set_cost(struct cost_model *m, const struct job *j, int light, enum cost_set_use use,
                     struct cost_set *out, struct err *e)
 {
-    const struct cost_sampler sp = {light ? j->spec.light.kind : j->spec.pixel.kind,
-                                    light ? j->spec.light.threshold : j->spec.pixel.threshold,
-                                    j->spec.poisson_pool > 0, j->spec.poisson_domain};
+    const struct sampler_spec *s = light ? &j->spec.light : &j->spec.pixel;
+    const struct cost_sampler sp = {s->kind, s->threshold, j->spec.poisson_pool > 0, j->spec.poisson_domain};
     if (cost_sets_get(m->sets, &sp, use, set_target(m), out, &m->spent_s, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         return -1;

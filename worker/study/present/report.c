@@ -192,23 +192,14 @@ void report_link(struct sbuf *b, const char *href, const char *text)
 static void table(struct sbuf *b, const struct compare *c)
 {
     /* the work counts beside the times: the same on every machine (summary.csv has them all) */
-    const char *const head[] = {"scene",
-                                "variant",
-                                render_spec_find("threshold")->label,
-                                render_spec_find("light_threshold")->label,
-                                render_spec_find("seed")->label,
-                                "spp mean",
-                                "wall s",
-                                "cpu s",
-                                "sampler share",
-                                "segments",
-                                "shadow rays",
-                                "set points",
-                                "mse",
-                                "rmse",
-                                "relmse",
-                                "psnr dB",
-                                "image, sidecar"};
+    const char *head[] = {
+        "scene",         "variant",  NULL,          NULL,         NULL,  "spp mean", "wall s", "cpu s",
+        "sampler share", "segments", "shadow rays", "set points", "mse", "rmse",     "relmse", "psnr dB",
+        "image, sidecar"};
+    /* the settings' heads: their labels in render_spec's rows */
+    const char *const settings[] = {"threshold", "light_threshold", "seed"};
+    for (int k = 0; k < 3; k++)
+        head[2 + k] = render_spec_find(settings[k])->label;
     const size_t n_head = sizeof head / sizeof head[0];
     sbuf_printf(b, "<table>\n<tr>");
     for (size_t i = 0; i < n_head; i++)
