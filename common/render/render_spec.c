@@ -151,12 +151,11 @@ int render_spec_set_text(struct render_spec *s, const struct render_spec_row *r,
 const char *render_spec_expected(const struct render_spec_row *r, char *buf, size_t n)
 {
     const char *const *names = r->names ? r->names() : NULL;
-    size_t used = (size_t)snprintf(buf, n,
-                                   r->type == RS_THRESHOLD ? "a number in (0, 100]"
-                                   : names                 ? ""
-                                                           : "a whole number in [%ld, %ld]",
-                                   r->lo, r->hi);
-    for (int i = 0; names && names[i] && used < n; i++) /* "a, b or c" */
+    if (r->type == RS_THRESHOLD)
+        snprintf(buf, n, "a number in (0, 100]");
+    else if (!names)
+        snprintf(buf, n, "a whole number in [%ld, %ld]", r->lo, r->hi);
+    for (size_t i = 0, used = 0; names && names[i] && used < n; i++) /* "a, b or c" */
         used += (size_t)snprintf(buf + used, n - used, "%s%s",
                                  !i             ? ""
                                  : names[i + 1] ? ", "
