@@ -151,6 +151,9 @@ static void test_malformed(void)
     CHECK(refused("{\"job\": [1]}", "job: expected a value"));
     CHECK(refused("{\"width\": \"wide\"}", "width: expected a whole number"));
     CHECK(refused("{\"width\": -4}", "width: expected a whole number"));
+    CHECK(refused("{\"sampler\": \"jiter\"}", "sampler: expected uniform, jitter,"));
+    CHECK(refused("{\"threshold\": 0}", "threshold: expected a number in (0, 100]"));
+    CHECK(refused("{\"integrator\": \"NEE\"}", "integrator: expected mixture or nee"));
     CHECK(refused("{\"time\": {\"wall_s\": \"slow\"}}", "wall_s: expected a number"));
     CHECK(refused("{\"time\": 5}", "time: expected an object"));
     CHECK(refused("{\"job\": \"a\\u0000b\"}", "NUL"));
