@@ -71,7 +71,8 @@ static void *field(const struct render_spec *s, const struct render_spec_row *r)
 
 uint64_t render_spec_get(const struct render_spec *s, const struct render_spec_row *r)
 {
-    return r->type == RS_U64 ? *(uint64_t *)field(s, r) : (uint64_t)(int64_t) * (int *)field(s, r);
+    const int *i = field(s, r);
+    return r->type == RS_U64 ? *(uint64_t *)field(s, r) : (uint64_t)(int64_t)*i;
 }
 
 double *render_spec_threshold(struct render_spec *s, const struct render_spec_row *r)

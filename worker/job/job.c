@@ -75,15 +75,16 @@ static int safe_name(const char *s)
     return 1;
 }
 
-/* The message for s, no sampler's name, at v: the nearest name, else the list. */
-static int sampler_fail(struct ydoc *d, yaml_node_t *v, const char *key, const char *s, struct err *e)
+const char *job_unknown_sampler(const char *s, char *buf, size_t n)
 {
     const char *near = ystr_nearest(s, sampler_kind_names(), -1);
     char list[256];
     if (near)
-        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
-    return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected one of %s)", key, s,
-                     sampler_kind_list(", ", list, sizeof list));
+        snprintf(buf, n, "unknown sampler \"%.40s\" (did you mean \"%s\"?)", s, near);
+    else
+        snprintf(buf, n, "unknown sampler \"%.40s\" (expected one of %s)", s,
+                 sampler_kind_list(", ", list, sizeof list));
+    return buf;
 }
 
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const struct render_spec_row *r, double *out,
@@ -201,7 +202,7 @@ static int apply_spec(struct render_spec *s, const struct render_spec_row *r, st
         if (render_spec_set_text(s, r, text) == 0)
             return 0;
         if (r->type == RS_SAMPLER)
-            return sampler_fail(d, v, r->key, text, e);
+            return ydoc_fail(d, v, e, "%s: %s", r->key, job_unknown_sampler(text, want, sizeof want));
         return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"", r->key,
                          render_spec_expected(r, want, sizeof want), text);
     }

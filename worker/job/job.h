@@ -32,6 +32,10 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e);
    (sampler_dims: all)", or "no light sampling". Written into buf (n bytes), returned. */
 const char *job_light_text(const struct job *j, char *buf, size_t n);
 
+/* The message for s, no sampler's name: "unknown sampler \"s\" (did you mean \"x\"?)", else with the
+   list of names; into buf (n bytes), returned. */
+const char *job_unknown_sampler(const char *s, char *buf, size_t n);
+
 /* The keys a job file may hold (its own, then render_spec's rows) into out (cap entries, the last
    NULL); returns their count (JOB_KEYS_MAX holds them all). */
 int job_key_list(const char **out, int cap);
