@@ -47,13 +47,14 @@ check "sidecar: error in linear radiance" grep -q '"domain": "linear"' "$cdir/ch
 check "first run rendered both references" grep -q "references: 2 rendered, 0 reused from cache" "$T/run1.err"
 check "the summary line counts the combinations" grep -q "cmp: 40 images (2 scenes x 5 variants x 2 sweep points x 2 seeds)" "$T/run1.err"
 
-# summary.csv: a header and one row of 28 fields per image, with its metrics in linear radiance
+# summary.csv: a header and one row of 40 fields per image (the render's settings, render_spec's
+# rows, around the figures), with its metrics in linear radiance
 # (mse, rmse, relmse, relmse_robust, psnr, domain) and the 8-bit display figures beside them
 csv=$cdir/summary.csv
-check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,pixel_sets,light_sets,padded_sets,image" ]
+check "summary.csv header" [ "$(head -n 1 "$csv")" = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,pixel_sets,light_sets,padded_sets,width,height,sampler,light_sampler,light_sampling,integrator,sampler_dims,russian_roulette,poisson_pool,poisson_domain,max_depth,image" ]
 check "summary.csv has 40 rows" [ "$(tail -n +2 "$csv" | wc -l)" -eq 40 ]
-check "every row has 29 fields, a flip in (0, 1), a relmse, a robust one no larger, linear, and 8-bit figures" \
-    [ "$(awk -F, 'NR > 1 && NF == 29 && $19 + 0 > 0 && $19 + 0 < 1 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
+check "every row has 40 fields, a flip in (0, 1), a relmse, a robust one no larger, linear, and 8-bit figures" \
+    [ "$(awk -F, 'NR > 1 && NF == 40 && $19 + 0 > 0 && $19 + 0 < 1 && $12 + 0 > 0 && $13 <= $12 && $15 == "linear" && $17 + 0 > 0' "$csv" | wc -l)" -eq 40 ]
 # error_lowfreq (how the error looks: its low-frequency share over white noise's) is a positive
 # number for every 32x24 image, near 1 for noise (docs/compare.md)
 check "every row's error_lowfreq is a positive number" \
@@ -72,7 +73,7 @@ check "rows name their images" grep -q ',board-poisson-pool16-t50-s2.png$' "$csv
 # take about a millisecond, so a fixed 4 decimals would round them by up to 10% or to 0.
 sidecar_matches() { # every row against the first "key": of its sidecar, relative 1e-5
     mism=0
-    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ img; do
+    while IFS=, read -r _ _ _ _ _ _ wall cpu share _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ img; do
         side="$cdir/${img%.png}.json"
         for kv in "wall_s $wall" "cpu_s $cpu" "sampling_share $share"; do
             set -- $kv

@@ -34,6 +34,8 @@ awk -f "$T/tables.awk" $loaders >"$T/tables"
 # a compare variant's extra key, the argument after "variant" in the key check's call:
 # compare_keys_check(&L->d, var, "variant", "label", L->e)
 grep -ho '"variant", "[a-z_]*"' $loaders | sed 's/.*, "\([a-z_]*\)"$/extra \1/' | sort -u >>"$T/tables"
+# a render's keys, the rows of render_spec's table: {"width", RS_INT, ...}, (a job's own: job.c's job_keys)
+sed -n 's/^ *{"\([a-z_]*\)", RS_[A-Z0-9]*,.*/job_keys \1/p' common/render/render_spec.c >>"$T/tables"
 # object types and their tables: {"sphere", sphere_keys, load_sphere, 1},
 sed -n 's/^ *{"\([a-z_]*\)", \([a-z_]*_keys\),.*/\1 \2/p' common/scenefile/*.c >"$T/objects"
 awk '{print "object_types", $1}' "$T/objects" >>"$T/tables"

@@ -54,19 +54,22 @@ static void test_expand(void)
     CHECK(strcmp(c->points[1], "threshold 10") == 0 && strcmp(c->sweep_keys, "threshold") == 0);
     const struct compare_item *it = item(c, 0, 0, 2, 1);
     CHECK(strcmp(it->job.output, "checker-poisson-pool64-t5-s7.png") == 0);
-    CHECK(it->job.threshold == 5 && it->job.seed == 7 && it->job.poisson_pool == 64);
-    CHECK(it->job.sampler == SAMPLER_POISSON && it->job.light_sampler == SAMPLER_POISSON); /* default: same */
+    CHECK(it->job.spec.pixel.threshold == 5 && it->job.spec.seed == 7 && it->job.spec.poisson_pool == 64);
+    CHECK(it->job.spec.pixel.kind == SAMPLER_POISSON &&
+          it->job.spec.light.kind == SAMPLER_POISSON); /* default: same */
     CHECK(strcmp(it->job.name, "full") == 0 && it->job.format == IMG_PNG);
     it = item(c, 0, 1, 0, 0);
     CHECK(strcmp(it->job.output, "checker-jitter-lightrandom-t20-s3.png") == 0);
-    CHECK(it->job.light_sampler == SAMPLER_RANDOM && it->job.threshold == 20);
+    CHECK(it->job.spec.light.kind == SAMPLER_RANDOM && it->job.spec.pixel.threshold == 20);
     it = item(c, 0, 2, 1, 0);
-    CHECK(strcmp(it->job.output, "checker-grid-t10-s3.png") == 0 && it->job.max_depth == 4);
-    CHECK(it->job.max_depth == 4 && item(c, 0, 1, 1, 0)->job.max_depth == 50); /* variants do not leak */
+    CHECK(strcmp(it->job.output, "checker-grid-t10-s3.png") == 0 && it->job.spec.max_depth == 4);
+    CHECK(it->job.spec.max_depth == 4 &&
+          item(c, 0, 1, 1, 0)->job.spec.max_depth == 50); /* variants do not leak */
     /* the reference: its settings on the scene, its own seed, rendered at the images' size */
     const struct job *r = &c->scenes[0].ref_job;
-    CHECK(c->scenes[0].ref_kind == COMPARE_REF_SETTINGS && r->sampler == SAMPLER_JITTER && r->threshold == 2);
-    CHECK(r->seed == COMPARE_REF_SEED && r->width == 40);
+    CHECK(c->scenes[0].ref_kind == COMPARE_REF_SETTINGS && r->spec.pixel.kind == SAMPLER_JITTER &&
+          r->spec.pixel.threshold == 2);
+    CHECK(r->spec.seed == COMPARE_REF_SEED && r->spec.width == 40);
     compare_free(c);
 }
 
@@ -81,7 +84,7 @@ static void test_two_keys_no_sweep(void)
     CHECK(c && c->n_points == 2 && c->n_seeds == 1 && c->n_items == 2); /* swept keys step together */
     if (c) {
         CHECK(strcmp(c->items[1].job.output, "checker-random-t5-lt10-s1.png") == 0);
-        CHECK(c->items[1].job.light_threshold == 10 && c->scenes[0].ref_kind == COMPARE_REF_NONE);
+        CHECK(c->items[1].job.spec.light.threshold == 10 && c->scenes[0].ref_kind == COMPARE_REF_NONE);
         CHECK(strcmp(c->points[1], "threshold 5, light_threshold 10") == 0);
     }
     compare_free(c);

@@ -27,14 +27,14 @@ static void test_defaults(void)
     struct job j;
     struct err e;
     CHECK(load("cornell-box.v2.yaml", "sampler: jitter\n", &j, &e) == 0);
-    CHECK(!strcmp(j.name, "cornell-box.v2")); /* the file's stem */
-    CHECK(j.width == 300 && j.height == 0);   /* height 0: from the camera's aspect */
-    CHECK(j.sampler == SAMPLER_JITTER && j.light_sampler == SAMPLER_JITTER);
-    CHECK(j.light_threshold == 5 && j.max_depth == 50 && j.seed == 1 && j.processes == 2);
+    CHECK(!strcmp(j.name, "cornell-box.v2"));         /* the file's stem */
+    CHECK(j.spec.width == 300 && j.spec.height == 0); /* height 0: from the camera's aspect */
+    CHECK(j.spec.pixel.kind == SAMPLER_JITTER && j.spec.light.kind == SAMPLER_JITTER);
+    CHECK(j.spec.light.threshold == 5 && j.spec.max_depth == 50 && j.spec.seed == 1 && j.processes == 2);
     CHECK(j.format == IMG_PNG && !strcmp(j.output, "cornell-box.v2.png"));
 
     CHECK(load("p.yaml", "format: ppm\nlight_sampler: poisson\n", &j, &e) == 0);
-    CHECK(j.light_sampler == SAMPLER_POISSON && j.format == IMG_PPM && !strcmp(j.output, "p.ppm"));
+    CHECK(j.spec.light.kind == SAMPLER_POISSON && j.format == IMG_PPM && !strcmp(j.output, "p.ppm"));
     CHECK(load("q.yaml", "output: Q.PPM\n", &j, &e) == 0);
     CHECK(j.format == IMG_PPM);
 }

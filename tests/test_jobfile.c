@@ -65,7 +65,7 @@ static void test_hash_and_scene(void)
     CHECK(f.hash == hash_bytes(HASH_FNV_OFFSET, text, strlen(text)));
     uint64_t want = f.hash;
     CHECK(scene_hash_inputs(fx.scene, &want, &e) == 0);
-    CHECK(f.job.hash == want && f.job.width == 8);
+    CHECK(f.job.hash == want && f.job.spec.width == 8);
     CHECK(f.scene.parsed && !strcmp(f.scene.doc.file, fx.scene)); /* parsed once, kept for the render */
     struct scene_file sf;
     CHECK(scene_load_src(&f.scene, &sf, &e) == 0 && sf.scene != NULL);

@@ -76,12 +76,12 @@ static void test_forged(const char *dir, const struct job *j0, const float *rgb0
     CHECK(outdir_mkdirs(sub, NULL, &e) == 0);
     outdir_part_path(&j, dir, 0, 1, path, sizeof path);
     /* no height: the camera's aspect gives it; a part 1 row high is not this job's */
-    j.height = 0;
+    j.spec.height = 0;
     snprintf(j.scene_path, sizeof j.scene_path, "scenes/checker.yaml");
     result(&fr, W, 1, 0, 1);
     CHECK(part_write(path, &j, &(struct part_frame){W, 1, rgb0}, 0, 1, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 2 && strstr(e.msg, "is 7x1 but the job renders 7x") != NULL);
-    j.height = H;
+    j.spec.height = H;
     result(&fr, W, H, 0, 1);
     CHECK(part_write(path, &j, &(struct part_frame){W, H, rgb0}, 0, 1, &fr, &e) == 0);
     CHECK(merge_parts(&j, &o, &rr, &e) == 0);
@@ -116,8 +116,8 @@ int main(void)
     job_defaults(&j, "merge.yaml");
     snprintf(j.output, sizeof j.output, "merge.png");
     j.hash = 0x1234;
-    j.width = W; /* the size the job renders: merge checks the parts against it */
-    j.height = H;
+    j.spec.width = W; /* the size the job renders: merge checks the parts against it */
+    j.spec.height = H;
     struct run_opts o = {.out_dir = dir};
     struct run_result rr;
     struct err e;

@@ -70,7 +70,7 @@ static void test_round_trip(void)
     CHECK(sidecar_read(path, &in, &e) == 0);
     CHECK(!strcmp(in.job, "demo") && !strcmp(in.job_file, "jobs/demo.yaml") && !strcmp(in.image, "demo.png"));
     CHECK(in.has_hash && in.job_hash == 0x0123456789abcdefULL);
-    CHECK(in.width == 4 && in.height == 3 && in.processes == 2 && in.parts == 0);
+    CHECK(in.spec.width == 4 && in.spec.height == 3 && in.processes == 2 && in.parts == 0);
     CHECK(in.samples_total == 300 && in.spp_min == 20 && in.spp_max == 30);
     CHECK(in.spp_mean == 25);
     CHECK(in.wall_s == 1.5 && in.cpu_s == 2.5 && in.sampler_s == 0.25); /* the job's, not per_process */
@@ -151,6 +151,9 @@ static void test_malformed(void)
     CHECK(refused("{\"job\": [1]}", "job: expected a value"));
     CHECK(refused("{\"width\": \"wide\"}", "width: expected a whole number"));
     CHECK(refused("{\"width\": -4}", "width: expected a whole number"));
+    CHECK(refused("{\"sampler\": \"jiter\"}", "sampler: expected uniform, jitter,"));
+    CHECK(refused("{\"threshold\": 0}", "threshold: expected a number in (0, 100]"));
+    CHECK(refused("{\"integrator\": \"NEE\"}", "integrator: expected mixture or nee"));
     CHECK(refused("{\"time\": {\"wall_s\": \"slow\"}}", "wall_s: expected a number"));
     CHECK(refused("{\"time\": 5}", "time: expected an object"));
     CHECK(refused("{\"job\": \"a\\u0000b\"}", "NUL"));

@@ -58,8 +58,8 @@ static void test_points(void)
         CHECK(strcmp(c->points[0], "threshold 20, light_threshold 10") == 0);
         CHECK(strcmp(c->points[1], "threshold 10, light_threshold 5") == 0);
         const struct compare_item *it = &c->items[compare_index(c, 0, 1, 1, 0)];
-        CHECK(strcmp(it->job.output, "u.png") == 0 && it->job.threshold == 10 &&
-              it->job.light_threshold == 5);
+        CHECK(strcmp(it->job.output, "u.png") == 0 && it->job.spec.pixel.threshold == 10 &&
+              it->job.spec.light.threshold == 5);
         CHECK(c->results.rows[compare_index(c, 0, 0, 1, 1)].error.relmse == 0.1);
         CHECK(!c->results.rows[compare_index(c, 0, 1, 1, 1)].done && unfigured[0] == 1);
         CHECK(c->scenes[0].ref_kind == COMPARE_REF_SETTINGS && c->scenes[0].ref_domain == IMG_LINEAR);
@@ -99,8 +99,8 @@ static void test_spp(void)
                               &t, &unfigured);
     if (c) {
         for (int p = 0; p < 2; p++) {
-            c->items[compare_index(c, 0, 0, p, 0)].job.sampler = SAMPLER_JITTER;
-            c->items[compare_index(c, 0, 1, p, 0)].job.sampler = SAMPLER_POISSON;
+            c->items[compare_index(c, 0, 0, p, 0)].job.spec.pixel.kind = SAMPLER_JITTER;
+            c->items[compare_index(c, 0, 1, p, 0)].job.spec.pixel.kind = SAMPLER_POISSON;
         }
         CHECK(strcmp(c->points[1], "threshold 25") == 0);
         study_table_label_spp(c);

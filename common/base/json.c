@@ -145,6 +145,12 @@ void json_number(struct json *j, const char *key, double val)
         put(j, "null");
 }
 
+void json_number_text(struct json *j, const char *key, const char *text)
+{
+    member(j, key);
+    put(j, "%s", text);
+}
+
 void json_uint(struct json *j, const char *key, uint64_t val)
 {
     member(j, key);

@@ -21,6 +21,8 @@ void json_begin_array(struct json *j, const char *key);
 void json_end_array(struct json *j);
 void json_string(struct json *j, const char *key, const char *val);
 void json_number(struct json *j, const char *key, double val); /* non-finite -> null */
+/* A number the caller formatted (text: a JSON number, written as it is). */
+void json_number_text(struct json *j, const char *key, const char *text);
 void json_uint(struct json *j, const char *key, uint64_t val);
 void json_bool(struct json *j, const char *key, int val);
 

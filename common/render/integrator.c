@@ -1,7 +1,7 @@
 /* integrator: the light transport estimators a job may pick, one row each. */
 #include "integrator.h"
 
-#include <string.h>
+#include <stddef.h>
 
 /* name, hash tag, roulette by default */
 #define INTEGRATOR_ROWS(X) X("mixture", "", 0) X("nee", " nee", 1)
@@ -15,21 +15,6 @@ static const char *const names[] = {INTEGRATOR_ROWS(AS_NAME) NULL};
 const struct integrator_traits *integrator_traits(enum integrator i)
 {
     return &rows[(int)i >= 0 && (int)i < COUNT ? (int)i : 0];
-}
-
-int integrator_parse(const char *name, enum integrator *out)
-{
-    for (int i = 0; i < COUNT; i++)
-        if (name && !strcmp(name, rows[i].name)) {
-            *out = (enum integrator)i;
-            return 0;
-        }
-    return -1;
-}
-
-const char *integrator_name(enum integrator i)
-{
-    return integrator_traits(i)->name;
 }
 
 const char *const *integrator_names(void)

@@ -16,10 +16,7 @@ struct integrator_traits {
 
 /* The row of i (the first row for a value outside the enum). */
 const struct integrator_traits *integrator_traits(enum integrator i);
-/* Name <-> integrator. parse returns 0, or -1 for an unknown name. */
-int integrator_parse(const char *name, enum integrator *out);
-const char *integrator_name(enum integrator i);
-/* Every integrator's name in enum order, then NULL. */
+/* Every integrator's name in enum order, then NULL (a job's integrator: is read through them). */
 const char *const *integrator_names(void);
 
 #endif

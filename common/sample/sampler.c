@@ -62,16 +62,11 @@ static const struct kind_row {
 #define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
 _Static_assert(KIND_COUNT == SAMPLER_ZSOBOL + 1, "a draw per kind");
 
-static const char *const domain_names[] = {"torus", "square"};
+static const char *const domain_names[] = {"torus", "square", NULL};
 
-int poisson_domain_parse(const char *name, enum poisson_domain *out)
+const char *const *poisson_domain_names(void)
 {
-    for (int i = 0; i < 2; i++)
-        if (name && strcmp(name, domain_names[i]) == 0) {
-            *out = (enum poisson_domain)i;
-            return 0;
-        }
-    return -1;
+    return domain_names;
 }
 
 const char *poisson_domain_name(enum poisson_domain d)

@@ -18,9 +18,9 @@
    density piles up along the edges (docs/samplers.md): kept to reproduce the seed, biased. */
 enum poisson_domain { POISSON_TORUS, POISSON_SQUARE };
 
-/* Name <-> domain. parse returns 0, or -1 for an unknown name. */
-int poisson_domain_parse(const char *name, enum poisson_domain *out);
+/* A domain's name; every domain's name in enum order, then NULL (the job key's values). */
 const char *poisson_domain_name(enum poisson_domain d);
+const char *const *poisson_domain_names(void);
 
 /* The largest set of `kind` taken from a precomputed table (pmj02bn's, pmj02_table.h); larger sets
    are drawn fresh, at another cost per point. 0: the kind keeps no table. */

@@ -125,8 +125,8 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
     char light[96];
     printf("%s: dry run: nothing rendered, nothing written\n", j.name);
     printf("  image     %dx%d, %s t=%g, %s -> %s/%s/%s\n", est.width, est.height,
-           sampler_kind_name(j.sampler), j.threshold, job_light_text(&j, light, sizeof light), o->out_dir,
-           j.name, j.output);
+           sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold,
+           job_light_text(&j, light, sizeof light), o->out_dir, j.name, j.output);
     char num[32];
     printf("  samples   %s (%.4g per pixel)\n", count(est.samples, num, sizeof num), est.spp_mean);
     print_memory(&est, "about");
@@ -181,9 +181,10 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
     char a[32], num[32], light[96];
     printf("  reference %s: %dx%d %s t=%g, %s: %s samples (%.4g per pixel: two halves at t=%g), CPU about %s "
            "(unless cached)\n",
-           cs->name, est.width, est.height, sampler_kind_name(cs->ref_job.sampler), cs->ref_job.threshold,
-           job_light_text(&cs->ref_job, light, sizeof light), count(est.samples, num, sizeof num),
-           est.spp_mean, hj.threshold, duration(est.cpu_s, a, sizeof a));
+           cs->name, est.width, est.height, sampler_kind_name(cs->ref_job.spec.pixel.kind),
+           cs->ref_job.spec.pixel.threshold, job_light_text(&cs->ref_job, light, sizeof light),
+           count(est.samples, num, sizeof num), est.spp_mean, hj.spec.pixel.threshold,
+           duration(est.cpu_s, a, sizeof a));
     if (est.spp_mean < VERDICT_REF_FACTOR * densest)
         printf("  warning: %s: the reference would have %.0f samples per pixel, fewer than %dx the densest "
                "point's %.0f: its own noise would be a large part of the error measured there; give the "

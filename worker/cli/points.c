@@ -18,7 +18,7 @@
 #include "points_analysis.h"
 #include "sample/padding.h"
 #include "sample/sampler.h"
-#include "scenefile/yamlx.h"
+#include "job/job.h"
 
 static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] "
                                    "[--spectrum F.png] [--radial F.svg] "
@@ -176,26 +176,17 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
         err_print("worker points: expected a sampler and a threshold; %s", points_usage);
         return 2;
     }
-    const char *near = ystr_nearest(positional[0], sampler_kind_names(), -1);
-    if (sampler_kind_parse(positional[0], &a->kind) < 0 && near) {
-        err_print("worker points: unknown sampler \"%.40s\" (did you mean \"%s\"?)\n", positional[0], near);
-        return 2;
-    }
+    char why[400];
+    struct render_spec spec; /* the threshold read as a job file's (render_spec's row) */
     if (sampler_kind_parse(positional[0], &a->kind) < 0) {
-        char list[256];
-        err_print("worker points: unknown sampler \"%.40s\" (expected one of %s)\n", positional[0],
-                  sampler_kind_list(", ", list, sizeof list));
+        err_print("worker points: %s\n", job_unknown_sampler(positional[0], why, sizeof why));
         return 2;
     }
-    char *end;
-    errno = 0;
-    a->threshold = strtod(positional[1], &end);
-    /* decimal only, as a job file's threshold: strtod alone takes hex (0x10) and leading blanks */
-    int decimal = strspn(positional[1], "0123456789+-.eE") == strlen(positional[1]);
-    if (!positional[1][0] || *end || !decimal || errno == ERANGE || !sampler_threshold_valid(a->threshold)) {
+    if (render_spec_set_text(&spec, render_spec_find("threshold"), positional[1]) < 0) {
         err_print("worker points: threshold: must be a number in (0, 100], got \"%.40s\"\n", positional[1]);
         return 2;
     }
+    a->threshold = spec.pixel.threshold;
     if (a->seed > UINT64_MAX - (uint64_t)(a->an.sets - 1)) {
         err_print("worker points: --seed %llu with --sets %d runs past the largest seed\n",
                   (unsigned long long)a->seed, a->an.sets);

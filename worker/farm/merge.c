@@ -100,8 +100,8 @@ done:
 static int merge_image_new(const struct job *j, struct merge_image *img, struct err *e)
 {
     struct scene_file sf = {0};
-    img->w = j->width;
-    img->h = j->height;
+    img->w = j->spec.width;
+    img->h = j->spec.height;
     if (!img->h) {
         if (scene_load(j->scene_path, &sf, e) < 0)
             return -1;

@@ -98,7 +98,7 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
     snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
     if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
         snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
-        name_taken(q, name, stem, j.pos_name);
+        name_taken(q, name, stem, job_at(&j, "name"));
         return;
     }
     struct run_opts ro = queue_claim_run_opts(q, q); /* q->stop is &queue_stop */
@@ -136,7 +136,7 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
         return;
     }
     if (q->name_owner[0]) { /* another file of this name wrote its outputs while we rendered */
-        name_taken(q, name, stem, j.pos_name);
+        name_taken(q, name, stem, job_at(&j, "name"));
         return;
     }
     err_format(&e, msg, sizeof msg);

@@ -69,8 +69,8 @@ int queue_inputs_check(const char *dir, const struct job *j, struct err *e)
     char dir_text[PATH_MAX], dir_real[PATH_MAX];
     if (lexical(dir, dir_text, sizeof dir_text) < 0 || !realpath(dir, dir_real))
         return 0;
-    if (check_one(dir_text, dir_real, "scene", j->scene_path, j->path, j->pos_scene, e) < 0 ||
-        check_one(dir_text, dir_real, "reference", j->reference, j->path, j->pos_reference, e) < 0)
+    if (check_one(dir_text, dir_real, "scene", j->scene_path, j->path, job_at(j, "scene"), e) < 0 ||
+        check_one(dir_text, dir_real, "reference", j->reference, j->path, job_at(j, "reference"), e) < 0)
         return -1;
     return 0;
 }

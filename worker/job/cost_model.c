@@ -190,14 +190,16 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
 static int pilot_draws(struct cost_model *m, const struct job *j, double pixel_t, double light_t,
                        struct pilot_draws *d, struct err *e)
 {
-    const struct cost_sampler px = {j->sampler, pixel_t, j->poisson_pool > 0, j->poisson_domain},
-                              li = {j->light_sampler, light_t, j->poisson_pool > 0, j->poisson_domain};
+    const struct cost_sampler px = {j->spec.pixel.kind, pixel_t, j->spec.poisson_pool > 0,
+                                    j->spec.poisson_domain},
+                              li = {j->spec.light.kind, light_t, j->spec.poisson_pool > 0,
+                                    j->spec.poisson_domain};
     struct cost_set a = {0}, b = {0}, c = {0};
     /* timed, never scaled (at most COST_PILOT_SET_MAX points): what is left of a call is tracing */
     const double target = set_target(m) > 0 ? set_target(m) : 1e-9;
     if (cost_sets_get(m->sets, &px, COST_SET_PIXEL, target, &a, &m->spent_s, e) < 0 ||
-        (j->dims_all && cost_sets_get(m->sets, &px, COST_SET_PADDED, target, &c, &m->spent_s, e) < 0) ||
-        (!j->dims_all && j->light_sampling &&
+        (j->spec.dims_all && cost_sets_get(m->sets, &px, COST_SET_PADDED, target, &c, &m->spent_s, e) < 0) ||
+        (!j->spec.dims_all && j->spec.light_sampling &&
          cost_sets_get(m->sets, &li, COST_SET_LIGHT, target, &b, &m->spent_s, e) < 0))
         return -1;
     *d = (struct pilot_draws){a.s_per_set, b.s_per_set, c.s_per_set};
@@ -217,28 +219,28 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         return -1;
     }
-    const int pool = j->poisson_pool > 0; /* one set: a draw from a pool costs the same whatever its size */
-    const double pixel_t = pilot_threshold(j->sampler, j->threshold),
-                 light_t = pilot_threshold(j->light_sampler, j->light_threshold);
+    const int pool =
+        j->spec.poisson_pool > 0; /* one set: a draw from a pool costs the same whatever its size */
+    const double pixel_t = pilot_threshold(j->spec.pixel.kind, j->spec.pixel.threshold),
+                 light_t = pilot_threshold(j->spec.light.kind, j->spec.light.threshold);
     /* an image of fewer pixels than a pilot renders: the same view at a multiple of its size, so
        that the pilot's samples still come from COST_PILOT_PIXELS pixels */
     int scale = 1;
     while ((long)k->width * k->height * scale * scale < COST_PILOT_PIXELS)
         scale++;
     const int w = k->width * scale, h = k->height * scale;
-    const struct render_settings rs = {
-        w, h, j->max_depth, j->seed, !j->light_sampling, j->integrator, j->dims_all, job_roulette(j)};
+    const struct render_settings rs = render_spec_settings(&j->spec, w, h, j->spec.seed);
     struct pilot_run p = {.budget_s = budget_s, .cap = 1, .clock_s = clock_pair_s()};
     if (pilot_draws(m, j, pixel_t, light_t, &p.draws, e) < 0)
         goto done;
     const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
-    if (!(pix = sampler_new(j->sampler, pixel_t, pool, 1, e)) ||
-        !(light = sampler_new(j->light_sampler, light_t, pool, 2, e))) {
+    if (!(pix = sampler_new(j->spec.pixel.kind, pixel_t, pool, 1, e)) ||
+        !(light = sampler_new(j->spec.light.kind, light_t, pool, 2, e))) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto spent;
     }
-    sampler_set_domain(pix, j->poisson_domain);
-    sampler_set_domain(light, j->poisson_domain);
+    sampler_set_domain(pix, j->spec.poisson_domain);
+    sampler_set_domain(light, j->spec.poisson_domain);
     if (!(ctx = render_ctx_new(sf->scene, &cam, &rs, pix, light, e)))
         goto spent;
     const long pixels = (long)w * h;
@@ -322,9 +324,8 @@ static int pilot_for(struct cost_model *m, const struct job *j, const struct pil
 static int set_cost(struct cost_model *m, const struct job *j, int light, enum cost_set_use use,
                     struct cost_set *out, struct err *e)
 {
-    const struct cost_sampler sp = {light ? j->light_sampler : j->sampler,
-                                    light ? j->light_threshold : j->threshold, j->poisson_pool > 0,
-                                    j->poisson_domain};
+    const struct sampler_spec *s = light ? &j->spec.light : &j->spec.pixel;
+    const struct cost_sampler sp = {s->kind, s->threshold, j->spec.poisson_pool > 0, j->spec.poisson_domain};
     if (cost_sets_get(m->sets, &sp, use, set_target(m), out, &m->spent_s, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         return -1;
@@ -335,18 +336,19 @@ static int set_cost(struct cost_model *m, const struct job *j, int light, enum c
 /* The pilot key of j's render at width x height of sf. */
 static struct pilot_key key_of(const struct job *j, const struct scene_file *sf, int width, int height)
 {
-    return (struct pilot_key){sf,
-                              width,
-                              height,
-                              j->max_depth,
-                              j->light_sampling,
-                              j->integrator,
-                              j->dims_all,
-                              job_roulette(j),
-                              j->light_sampler,
-                              j->dims_all ? j->sampler : SAMPLER_RANDOM,
-                              j->dims_all ? ilogb((double)sampler_capacity(j->sampler, j->threshold)) : 0,
-                              j->poisson_pool > 0};
+    return (struct pilot_key){
+        sf,
+        width,
+        height,
+        j->spec.max_depth,
+        j->spec.light_sampling,
+        j->spec.integrator,
+        j->spec.dims_all,
+        render_spec_roulette(&j->spec),
+        j->spec.light.kind,
+        j->spec.dims_all ? j->spec.pixel.kind : SAMPLER_RANDOM,
+        j->spec.dims_all ? ilogb((double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold)) : 0,
+        j->spec.poisson_pool > 0};
 }
 
 int cost_model_expect(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
@@ -372,7 +374,7 @@ int cost_model_estimate(struct cost_model *m, const struct job *j, const struct 
     out->ns_per_sample = fig.trace_s * 1e9;
     out->trace_s = out->samples * fig.trace_s;
     out->pixel_sets_s = pixels * pix.s_per_set;
-    if (fig.light_points > 0 && !j->dims_all) {
+    if (fig.light_points > 0 && !j->spec.dims_all) {
         if (set_cost(m, j, 1, COST_SET_LIGHT, &light, e) < 0)
             return -1;
         /* the lights a pixel uses draw one set each, more when its samples take more points */
@@ -382,7 +384,7 @@ int cost_model_estimate(struct cost_model *m, const struct job *j, const struct 
         out->light_sets = per_pixel * pixels;
         out->light_sets_s = out->light_sets * light.s_per_set;
     }
-    if (j->dims_all && fig.padded_sets > 0) {
+    if (j->spec.dims_all && fig.padded_sets > 0) {
         if (set_cost(m, j, 0, COST_SET_PADDED, &pad, e) < 0)
             return -1;
         out->padded_sets = fig.padded_sets * pixels;

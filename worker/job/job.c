@@ -4,10 +4,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "job_path.h"
 #include "image/imgio.h"
@@ -15,51 +12,55 @@
 #include "base/fileio.h"
 #include "scenefile/yget.h"
 
-const char *const job_keys[] = {"name",
-                                "scene",
-                                "width",
-                                "height",
-                                "sampler",
-                                "threshold",
-                                "light_sampler",
-                                "light_threshold",
-                                "max_depth",
-                                "seed",
-                                "processes",
-                                "format",
-                                "output",
-                                "reference",
-                                "poisson_pool",
-                                "light_sampling",
-                                "priority",
-                                "integrator",
-                                "sampler_dims",
-                                "russian_roulette",
-                                "poisson_domain",
-                                "entry_cpu_s",
-                                NULL};
+/* The job's own keys; a render's are render_spec's rows. */
+static const char *const job_keys[] = {"name",      "scene",    "processes",   "format", "output",
+                                       "reference", "priority", "entry_cpu_s", NULL};
+#define JOB_OWN_KEYS ((int)(sizeof job_keys / sizeof job_keys[0]) - 1)
+
+int job_key_list(const char **out, int cap)
+{
+    int n = 0, rows;
+    const struct render_spec_row *r = render_spec_rows(&rows);
+    for (int i = 0; i < JOB_OWN_KEYS + rows && n < cap - 1; i++)
+        out[n++] = i < JOB_OWN_KEYS ? job_keys[i] : r[i - JOB_OWN_KEYS].key;
+    out[n] = NULL;
+    return n;
+}
+
+/* key's index in job_key_list, or -1. */
+static int key_index(const char *key)
+{
+    const char *keys[JOB_KEYS_MAX + 1];
+    for (int i = 0, n = job_key_list(keys, JOB_KEYS_MAX + 1); i < n; i++)
+        if (!strcmp(keys[i], key))
+            return i;
+    return -1;
+}
+
+const int *job_at(const struct job *j, const char *key)
+{
+    static const int absent[2] = {0, 0};
+    int i = key_index(key);
+    return i < 0 ? absent : j->pos.at[i];
+}
+
+void job_mark(struct job *j, const char *key, const yaml_node_t *v)
+{
+    int i = key_index(key);
+    if (i >= 0) {
+        j->pos.at[i][0] = v ? (int)v->start_mark.line + 1 : 0;
+        j->pos.at[i][1] = v ? (int)v->start_mark.column + 1 : 0;
+    }
+}
 
 void job_defaults(struct job *j, const char *path)
 {
     memset(j, 0, sizeof *j);
     snprintf(j->path, sizeof j->path, "%s", path);
     outdir_stem(path, j->name, sizeof j->name);
-    j->width = 300;
-    j->sampler = SAMPLER_RANDOM;
-    j->threshold = 5;
-    j->light_sampler = SAMPLER_RANDOM;
-    j->light_threshold = 5;
-    j->max_depth = 50;
-    j->seed = 1;
+    render_spec_defaults(&j->spec);
     j->processes = 2;
     j->format = IMG_PNG;
-    j->light_sampling = 1;
-    j->roulette = -1;
-}
-
-int job_roulette(const struct job *j)
-{
-    return j->roulette < 0 ? integrator_traits(j->integrator)->roulette : j->roulette;
 }
 
 /* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
@@ -74,70 +75,35 @@ static int safe_name(const char *s)
     return 1;
 }
 
-static int get_sampler(struct ydoc *d, yaml_node_t *v, const char *key, enum sampler_kind *out, struct err *e)
+const char *job_unknown_sampler(const char *s, char *buf, size_t n)
 {
-    const char *s;
-    if (yget_string(d, v, key, &s, e) < 0)
-        return -1;
     const char *near = ystr_nearest(s, sampler_kind_names(), -1);
-    if (sampler_kind_parse(s, out) < 0 && near)
-        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (did you mean \"%s\"?)", key, s, near);
     char list[256];
-    if (sampler_kind_parse(s, out) < 0)
-        return ydoc_fail(d, v, e, "%s: unknown sampler \"%.40s\" (expected one of %s)", key, s,
-                         sampler_kind_list(", ", list, sizeof list));
-    return 0;
+    if (near)
+        snprintf(buf, n, "unknown sampler \"%.40s\" (did you mean \"%s\"?)", s, near);
+    else
+        snprintf(buf, n, "unknown sampler \"%.40s\" (expected one of %s)", s,
+                 sampler_kind_list(", ", list, sizeof list));
+    return buf;
 }
 
-static void mark(int pos[2], const yaml_node_t *v)
+static int get_threshold(struct ydoc *d, yaml_node_t *v, const struct render_spec_row *r, double *out,
+                         struct err *e)
 {
-    pos[0] = (int)v->start_mark.line + 1;
-    pos[1] = (int)v->start_mark.column + 1;
-}
-
-/* A key whose value is one of two words: *second = 1 for the second, 0 for the first. */
-/* One of names (NULL-ended) at v: its index in *index; else "k: must be a, b or c, got ...". */
-static int get_choice(struct ydoc *d, yaml_node_t *v, const char *k, const char *const *names, int *index,
-                      struct err *e)
-{
-    const char *s;
-    if (yget_string(d, v, k, &s, e) < 0)
-        return -1;
-    for (int i = 0; names[i]; i++)
-        if (!strcmp(s, names[i])) {
-            *index = i;
-            return 0;
-        }
-    char list[256] = "";
-    for (int i = 0, used = 0; names[i] && used < (int)sizeof list; i++)
-        used += snprintf(list + used, sizeof list - (size_t)used, "%s%s",
-                         i == 0         ? ""
-                         : names[i + 1] ? ", "
-                                        : " or ",
-                         names[i]);
-    return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"", k, list, s);
-}
-
-static int get_either(struct ydoc *d, yaml_node_t *v, const char *k, const char *first, const char *second,
-                      int *is_second, struct err *e)
-{
-    const char *const names[] = {first, second, NULL};
-    return get_choice(d, v, k, names, is_second, e);
-}
-
-static int get_threshold(struct ydoc *d, yaml_node_t *v, const char *key, double *out, struct err *e)
-{
+    const char *key = r->key;
     const char *s = yscalar(v);
+    char want[64];
+    render_spec_expected(r, want, sizeof want);
     double t = 0;
     int rc = yget_double(d, v, key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
     int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
     if (rc == YGET_UNDERFLOW) /* yget_double's own message says it better */
         return -1;
     if (!s)
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got a %s", key,
+        return ydoc_fail(d, v, e, "%s: must be %s, got a %s", key, want,
                          v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
-    if (failed || !sampler_threshold_valid(t))
-        return ydoc_fail(d, v, e, "%s: must be a number in (0, 100], got \"%.40s\"%s", key, s,
+    if (failed || !render_spec_in_range(r, t))
+        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"%s", key, want, s,
                          quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
@@ -189,8 +155,6 @@ static int get_output(struct ydoc *d, yaml_node_t *v, int in_list, char *out, en
 static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err *e)
 {
     enum img_format fmt;
-    j->has_output = 1;
-    mark(j->pos_output, v);
     if (v->type != YAML_SEQUENCE_NODE)
         return get_output(d, v, 0, j->output, &fmt, e);
     int n = yseq_len(v);
@@ -222,11 +186,42 @@ static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err
     return 0;
 }
 
+/* A render setting: row r's value at v into s, checked against the row's type and range. */
+static int apply_spec(struct render_spec *s, const struct render_spec_row *r, struct ydoc *d, yaml_node_t *v,
+                      struct err *e)
+{
+    long n = 0;
+    int yes = 0;
+    const char *text;
+    char want[256];
+    if (r->type == RS_THRESHOLD)
+        return get_threshold(d, v, r, render_spec_threshold(s, r), e);
+    if (r->type == RS_SAMPLER || r->type == RS_CHOICE) {
+        if (yget_string(d, v, r->key, &text, e) < 0)
+            return -1;
+        if (render_spec_set_text(s, r, text) == 0)
+            return 0;
+        if (r->type == RS_SAMPLER)
+            return ydoc_fail(d, v, e, "%s: %s", r->key, job_unknown_sampler(text, want, sizeof want));
+        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"", r->key,
+                         render_spec_expected(r, want, sizeof want), text);
+    }
+    if (r->type == RS_BOOL ? yget_bool(d, v, r->key, &yes, e) < 0
+                           : yget_long(d, v, r->key, r->lo, r->hi, &n, e) < 0)
+        return -1;
+    render_spec_put(s, r, (uint64_t)(int64_t)(r->type == RS_BOOL ? yes : n));
+    return 0;
+}
+
 int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, struct err *e)
 {
     const char *k = yscalar(key);
     const char *s;
     long n;
+    const struct render_spec_row *row = render_spec_find(k);
+    job_mark(j, k, v);
+    if (row)
+        return apply_spec(&j->spec, row, d, v, e);
     if (!strcmp(k, "name")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -237,11 +232,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
                 "got \"%.40s\"",
                 JOB_NAME_MAX - 1, s);
         snprintf(j->name, sizeof j->name, "%s", s);
-        mark(j->pos_name, v);
     } else if (!strcmp(k, "scene")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
-        mark(j->pos_scene, v);
         char tried[4 * JOB_PATH_MAX + 32], hint[JOB_PATH_MAX + 32];
         if (job_path_scene(j, s, tried, sizeof tried) < 0) {
             const char *kind = fileio_kind(j->scene_path); /* there, but a FIFO, a device, a folder */
@@ -252,32 +245,6 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             return ydoc_fail(d, v, e, "scene: no scene file at %s%s%s", j->scene_path, tried,
                              job_path_scene_hint(j, s, hint, sizeof hint));
         }
-    } else if (!strcmp(k, "width") || !strcmp(k, "height")) {
-        if (yget_long(d, v, k, 1, IMAGE_MAX_SIDE, &n, e) < 0)
-            return -1;
-        *(k[0] == 'w' ? &j->width : &j->height) = (int)n;
-        if (k[0] == 'w')
-            mark(j->pos_width, v);
-    } else if (!strcmp(k, "sampler")) {
-        return get_sampler(d, v, k, &j->sampler, e);
-    } else if (!strcmp(k, "light_sampler")) {
-        j->has_light_sampler = 1;
-        mark(j->pos_light_sampler, v);
-        return get_sampler(d, v, k, &j->light_sampler, e);
-    } else if (!strcmp(k, "threshold")) {
-        mark(j->pos_threshold, v);
-        return get_threshold(d, v, k, &j->threshold, e);
-    } else if (!strcmp(k, "light_threshold")) {
-        mark(j->pos_light_threshold, v);
-        return get_threshold(d, v, k, &j->light_threshold, e);
-    } else if (!strcmp(k, "max_depth")) {
-        if (yget_long(d, v, k, 1, 10000, &n, e) < 0)
-            return -1;
-        j->max_depth = (int)n;
-    } else if (!strcmp(k, "seed")) {
-        if (yget_long(d, v, k, 0, 2147483647L, &n, e) < 0)
-            return -1;
-        j->seed = (uint64_t)n;
     } else if (!strcmp(k, "processes")) {
         if (yget_long(d, v, k, 1, 256, &n, e) < 0)
             return -1;
@@ -291,28 +258,6 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
         if (yget_long(d, v, k, -1000000, 1000000, &n, e) < 0)
             return -1;
         j->priority = (int)n;
-    } else if (!strcmp(k, "poisson_pool")) {
-        mark(j->pos_poisson_pool, v);
-        if (yget_long(d, v, k, 0, 65536, &n, e) < 0)
-            return -1;
-        j->poisson_pool = (int)n;
-    } else if (!strcmp(k, "poisson_domain")) {
-        int square = 0;
-        if (get_either(d, v, k, "torus", "square", &square, e) < 0)
-            return -1;
-        j->poisson_domain = square ? POISSON_SQUARE : POISSON_TORUS;
-    } else if (!strcmp(k, "light_sampling")) {
-        return yget_bool(d, v, k, &j->light_sampling, e);
-    } else if (!strcmp(k, "integrator")) {
-        int i;
-        if (get_choice(d, v, k, integrator_names(), &i, e) < 0)
-            return -1;
-        j->integrator = (enum integrator)i;
-    } else if (!strcmp(k, "sampler_dims")) {
-        mark(j->pos_dims, v);
-        return get_either(d, v, k, "pixel_light", "all", &j->dims_all, e);
-    } else if (!strcmp(k, "russian_roulette")) {
-        return get_either(d, v, k, "off", "on", &j->roulette, e);
     } else if (!strcmp(k, "format")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -321,14 +266,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
             img_format_list(list, sizeof list);
             return ydoc_fail(d, v, e, "format: must be %s, got \"%.40s\"", list, s);
         }
-        j->has_format = 1;
-        mark(j->pos_format, v);
     } else if (!strcmp(k, "output")) {
         return get_outputs(j, d, v, e);
     } else if (!strcmp(k, "reference")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
-        mark(j->pos_reference, v);
         job_path_resolve(j->path, s, j->reference, sizeof j->reference);
         const char *kind = fileio_kind(j->reference);
         if (kind && !job_path_is_file(j->reference))
@@ -345,9 +287,11 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
    memory (per render process, one for the pixel and one per sampled light). Poisson's is on
    Bridson's background grid, one cell per possible point (at most one point per cell): its
    points are about a third of its cells. */
-static int check_set_size(const struct job *j, enum sampler_kind k, double t, const int pos[2],
-                          const char *key, struct err *e)
+static int check_set_size(const struct job *j, const struct sampler_spec *sp, const char *key, struct err *e)
 {
+    const enum sampler_kind k = sp->kind;
+    const double t = sp->threshold;
+    const int *pos = job_at(j, key);
     size_t n = sampler_capacity(k, t);
     if (n <= SAMPLER_MAX_POINTS)
         return 0;
@@ -366,9 +310,9 @@ static int check_set_size(const struct job *j, enum sampler_kind k, double t, co
 
 int job_height(const struct job *j, double aspect)
 {
-    if (j->height)
-        return j->height;
-    int h = (int)lround(j->width / aspect); /* the aspect is at least 0.01: within an int */
+    if (j->spec.height)
+        return j->spec.height;
+    int h = (int)lround(j->spec.width / aspect); /* the aspect is at least 0.01: within an int */
     return h < 1 ? 1 : h;
 }
 
@@ -376,7 +320,7 @@ int job_check_stem(const struct job *j, struct err *e)
 {
     char stem[JOB_PATH_MAX];
     outdir_stem(j->path, stem, sizeof stem);
-    if (j->pos_name[0] || strlen(stem) < JOB_NAME_MAX)
+    if (job_at(j, "name")[0] || strlen(stem) < JOB_NAME_MAX)
         return 0;
     return err_set(
         e, j->path, 1, 1,
@@ -392,47 +336,50 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e)
         return -1;
     /* A name from the file's stem ("..yaml" gives ".", "...yaml" "..") names the output folder too:
        the rule for name: keeps it inside --out and off hidden folders (.cache). */
-    if (!j->pos_name[0] && (!j->name[0] || j->name[0] == '.'))
+    if (!job_at(j, "name")[0] && (!j->name[0] || j->name[0] == '.'))
         return err_set(e, j->path, 1, 1,
                        "name: the file's stem \"%s\" cannot name the output folder (it starts with '.'); "
                        "give the job a name:",
                        j->name);
     /* under sampler_dims: all every light point comes from the pixel sampler's sets: a light
        sampler or threshold would be silently ignored */
-    const int *light_pos = j->has_light_sampler ? j->pos_light_sampler : j->pos_light_threshold;
-    if (j->dims_all && light_pos[0])
+    const int has_light_sampler = job_at(j, "light_sampler")[0] != 0;
+    const int *light_pos = job_at(j, has_light_sampler ? "light_sampler" : "light_threshold");
+    if (j->spec.dims_all && light_pos[0])
         return err_set(e, j->path, light_pos[0], light_pos[1],
                        "%s: has no effect with sampler_dims: all (line %d), whose light points come from the "
                        "pixel sampler's sets; remove it or use sampler_dims: pixel_light",
-                       j->has_light_sampler ? "light_sampler" : "light_threshold", j->pos_dims[0]);
-    if (!j->has_light_sampler)
-        j->light_sampler = j->sampler;
-    if (check_set_size(j, j->sampler, j->threshold, j->pos_threshold, "threshold", e) < 0 ||
-        check_set_size(j, j->light_sampler, j->light_threshold, j->pos_light_threshold, "light_threshold",
-                       e) < 0)
+                       has_light_sampler ? "light_sampler" : "light_threshold", job_at(j, "sampler_dims")[0]);
+    if (!has_light_sampler)
+        j->spec.light.kind = j->spec.pixel.kind;
+    if (check_set_size(j, &j->spec.pixel, "threshold", e) < 0 ||
+        check_set_size(j, &j->spec.light, "light_threshold", e) < 0)
         return -1;
     /* the output's extension (job_apply checked it names a format) and format: must agree */
     enum img_format ext;
-    int has_ext = j->has_output && img_format_of_file(j->output, &ext) > 0;
-    if (has_ext && j->has_format && ext != j->format)
-        return err_set(e, j->path, j->pos_format[0], j->pos_format[1],
+    const int *format_pos = job_at(j, "format"), has_output = job_at(j, "output")[0] != 0;
+    int has_ext = has_output && img_format_of_file(j->output, &ext) > 0;
+    if (has_ext && format_pos[0] && ext != j->format)
+        return err_set(e, j->path, format_pos[0], format_pos[1],
                        "format: %s contradicts the output's extension (%s); give one or make them agree",
                        img_format_name(j->format), j->output);
     if (has_ext)
         j->format = ext;
-    if (!j->has_output)
+    if (!has_output)
         snprintf(j->output, sizeof j->output, "%s.%s", j->name, img_format_name(j->format));
     return 0;
 }
 
 const char *job_light_text(const struct job *j, char *buf, size_t n)
 {
-    if (!j->light_sampling)
+    const struct render_spec *s = &j->spec;
+    if (!s->light_sampling)
         snprintf(buf, n, "no light sampling");
-    else if (j->dims_all) /* the light sampler is never asked: render_path.h's path_decide */
-        snprintf(buf, n, "light points from the %s sets (sampler_dims: all)", sampler_kind_name(j->sampler));
+    else if (s->dims_all) /* the light sampler is never asked: render_path.h's path_decide */
+        snprintf(buf, n, "light points from the %s sets (sampler_dims: all)",
+                 sampler_kind_name(s->pixel.kind));
     else
-        snprintf(buf, n, "light %s t=%g", sampler_kind_name(j->light_sampler), j->light_threshold);
+        snprintf(buf, n, "light %s t=%g", sampler_kind_name(s->light.kind), s->light.threshold);
     return buf;
 }
 
@@ -440,7 +387,9 @@ int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e)
 {
     job_defaults(j, path);
     yaml_node_t *root = ydoc_root(d), *k, *v;
-    if (ymap_check(d, root, job_keys, "job", e) < 0)
+    const char *keys[JOB_KEYS_MAX + 1];
+    job_key_list(keys, JOB_KEYS_MAX + 1);
+    if (ymap_check(d, root, keys, "job", e) < 0)
         return -1;
     for (int i = 0; ymap_pair(d, root, i, &k, &v); i++)
         if (job_apply(j, d, k, v, e) < 0)

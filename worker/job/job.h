@@ -9,10 +9,6 @@
    job file's reader, jobfile_open, sets it). 0, or -1 with e = "file:line:col: key: message". */
 int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e);
 
-/* Whether the job's paths may end by Russian roulette: russian_roulette when given, else on with
-   the integrator's default (integrator.c: off with the mixture, whose images stay the books'). */
-int job_roulette(const struct job *j);
-
 /* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
    least 1 (the caller checks it against IMAGE_MAX_SIDE). */
 int job_height(const struct job *j, double aspect);
@@ -36,7 +32,17 @@ int job_finish(struct job *j, struct ydoc *d, struct err *e);
    (sampler_dims: all)", or "no light sampling". Written into buf (n bytes), returned. */
 const char *job_light_text(const struct job *j, char *buf, size_t n);
 
-/* The keys a job file may hold, NULL-terminated. */
-extern const char *const job_keys[];
+/* The message for s, no sampler's name: "unknown sampler \"s\" (did you mean \"x\"?)", else with the
+   list of names; into buf (n bytes), returned. */
+const char *job_unknown_sampler(const char *s, char *buf, size_t n);
+
+/* The keys a job file may hold (its own, then render_spec's rows) into out (cap entries, the last
+   NULL); returns their count (JOB_KEYS_MAX holds them all). */
+int job_key_list(const char **out, int cap);
+
+/* Where j's key was given: {line, column}, {0, 0} when it was not (or is no key of a job). */
+const int *job_at(const struct job *j, const char *key);
+/* Record that key was given at v (NULL: as not given). */
+void job_mark(struct job *j, const char *key, const yaml_node_t *v);
 
 #endif

@@ -26,12 +26,15 @@ static double resident_bytes(void)
    (render_ctx.c: 2 + 4 a bounce, at most 16 bounces and 256 MB; twice a set each at most). */
 static double set_bytes(const struct job *j, const struct scene_file *sf)
 {
-    const double pixel = (double)sampler_capacity(j->sampler, j->threshold) * sizeof(struct pt2);
-    const double light = (double)sampler_capacity(j->light_sampler, j->light_threshold) * sizeof(struct pt2);
+    const double pixel =
+        (double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold) * sizeof(struct pt2);
+    const double light =
+        (double)sampler_capacity(j->spec.light.kind, j->spec.light.threshold) * sizeof(struct pt2);
     double dims = 0;
-    if (j->dims_all)
-        dims = fmin((2.0 + 4.0 * (j->max_depth < 16 ? j->max_depth : 16)) * 2 * pixel, 256.0 * (1 << 20));
-    return pixel + (j->light_sampling ? light * sf->scene->n_lights : 0) + dims;
+    if (j->spec.dims_all)
+        dims = fmin((2.0 + 4.0 * (j->spec.max_depth < 16 ? j->spec.max_depth : 16)) * 2 * pixel,
+                    256.0 * (1 << 20));
+    return pixel + (j->spec.light_sampling ? light * sf->scene->n_lights : 0) + dims;
 }
 
 int job_estimate(const struct job *j, const struct scene_file *sf, int processes, struct cost_model *m,
@@ -45,12 +48,12 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
         sf = &own;
     }
     int rc = -1;
-    out->width = j->width;
+    out->width = j->spec.width;
     out->height = job_height(j, sf->aspect);
     out->processes = processes > 0 ? processes : j->processes;
     if (out->height > IMAGE_MAX_SIDE)
-        err_set(e, j->path, j->pos_width[0], j->pos_width[1],
-                "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", j->width,
+        err_set(e, j->path, job_at(j, "width")[0], job_at(j, "width")[1],
+                "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", j->spec.width,
                 sf->aspect, out->height, IMAGE_MAX_SIDE);
     else if (job_limits_samples(j, out->width, out->height, e) == 0) {
         out->framebuffer_bytes = (double)out->width * out->height * (3 * sizeof(float) + 3);
@@ -71,7 +74,7 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
 
 int job_estimate_expect(const struct job *j, const struct scene_file *sf, struct cost_model *m, struct err *e)
 {
-    return cost_model_expect(m, j, sf, j->width, job_height(j, sf->aspect), e);
+    return cost_model_expect(m, j, sf, j->spec.width, job_height(j, sf->aspect), e);
 }
 
 double job_estimate_memory(const struct job_estimate *est)

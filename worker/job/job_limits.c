@@ -6,40 +6,41 @@
 /* A Poisson pool of sampler (kind, t): poisson_pool x its largest set within the limit. */
 static int pool_points(const struct job *j, enum sampler_kind kind, double t, struct err *e)
 {
-    if (!sampler_kind_has(kind, SAMPLER_POOLED) || j->poisson_pool == 0)
+    if (!sampler_kind_has(kind, SAMPLER_POOLED) || j->spec.poisson_pool == 0)
         return 0;
-    double per_set = (double)sampler_capacity(kind, t), total = per_set * j->poisson_pool;
+    double per_set = (double)sampler_capacity(kind, t), total = per_set * j->spec.poisson_pool;
     if (total <= LIMITS_MAX_POOL_POINTS)
         return 0;
-    return err_set(e, j->path, j->pos_poisson_pool[0], j->pos_poisson_pool[1],
+    return err_set(e, j->path, job_at(j, "poisson_pool")[0], job_at(j, "poisson_pool")[1],
                    "poisson_pool: %d sets of up to %.0f points (%s t=%g) is %.3g points, held in memory "
                    "(limit %.3g); take a smaller pool or a larger threshold",
-                   j->poisson_pool, per_set, sampler_kind_name(kind), t, total, LIMITS_MAX_POOL_POINTS);
+                   j->spec.poisson_pool, per_set, sampler_kind_name(kind), t, total, LIMITS_MAX_POOL_POINTS);
 }
 
 int job_limits_samples(const struct job *j, int width, int height, struct err *e)
 {
-    double per_pixel = (double)sampler_capacity(j->sampler, j->threshold);
+    double per_pixel = (double)sampler_capacity(j->spec.pixel.kind, j->spec.pixel.threshold);
     double total = per_pixel * width * height;
     if (total > LIMITS_MAX_JOB_SAMPLES)
-        return err_set(e, j->path, j->pos_threshold[0], j->pos_threshold[1],
+        return err_set(e, j->path, job_at(j, "threshold")[0], job_at(j, "threshold")[1],
                        "threshold: %dx%d pixels at up to %.0f samples each is %.3g samples (limit %.3g)",
                        width, height, per_pixel, total, LIMITS_MAX_JOB_SAMPLES);
     /* each pixel draws a fresh Poisson set per light, whole, however few of its points it takes */
-    if (j->light_sampling && sampler_kind_has(j->light_sampler, SAMPLER_POOLED) && j->poisson_pool == 0) {
-        double per_light = (double)sampler_capacity(j->light_sampler, j->light_threshold);
+    if (j->spec.light_sampling && sampler_kind_has(j->spec.light.kind, SAMPLER_POOLED) &&
+        j->spec.poisson_pool == 0) {
+        double per_light = (double)sampler_capacity(j->spec.light.kind, j->spec.light.threshold);
         double points = per_light * width * height;
         if (points > LIMITS_MAX_JOB_SAMPLES)
-            return err_set(e, j->path, j->pos_light_threshold[0], j->pos_light_threshold[1],
+            return err_set(e, j->path, job_at(j, "light_threshold")[0], job_at(j, "light_threshold")[1],
                            "light_threshold: %g draws a fresh %s set of up to %.0f points per pixel and "
                            "light, %.3g points at %dx%d (limit %.3g); take a larger light_threshold, a "
                            "poisson_pool or another light_sampler",
-                           j->light_threshold, sampler_kind_name(j->light_sampler), per_light, points, width,
-                           height, LIMITS_MAX_JOB_SAMPLES);
+                           j->spec.light.threshold, sampler_kind_name(j->spec.light.kind), per_light, points,
+                           width, height, LIMITS_MAX_JOB_SAMPLES);
     }
-    if (pool_points(j, j->sampler, j->threshold, e) < 0)
+    if (pool_points(j, j->spec.pixel.kind, j->spec.pixel.threshold, e) < 0)
         return -1;
-    return j->light_sampling ? pool_points(j, j->light_sampler, j->light_threshold, e) : 0;
+    return j->spec.light_sampling ? pool_points(j, j->spec.light.kind, j->spec.light.threshold, e) : 0;
 }
 
 /* MemAvailable in bytes, or 0 when unknown. */

@@ -7,23 +7,27 @@
 
 #include "base/err.h"
 #include "image/image.h"
-#include "render/integrator.h"
-#include "sample/sampler.h"
+#include "render/render_spec.h"
 #include "scenefile/yamlx.h"
 
 #define JOB_PATH_MAX 1024
 #define JOB_NAME_MAX 128
 #define JOB_OUTPUTS_MAX 4 /* images one job writes: one per format */
 
+/* Most keys a job file may hold: its own and a render's (job_key_list; a test checks they fit). */
+#define JOB_KEYS_MAX 32
+
+/* Where each key was given (1-based line and column; 0 when absent), by job_key_list's index: for
+   messages, and to tell a key given from its default (job_at, job_mark). */
+struct job_pos {
+    int at[JOB_KEYS_MAX][2];
+};
+
 struct job {
     char path[JOB_PATH_MAX]; /* the job file */
     char name[JOB_NAME_MAX];
     char scene_path[JOB_PATH_MAX]; /* resolved */
-    int width, height;             /* height 0: width / camera aspect */
-    enum sampler_kind sampler, light_sampler;
-    double threshold, light_threshold;
-    int max_depth;
-    uint64_t seed;
+    struct render_spec spec;       /* everything that changes the pixels */
     int processes;
     enum img_format format;
     char output[JOB_NAME_MAX]; /* the image's file name under --out DIR/<name>/ (a list's first): its
@@ -32,21 +36,12 @@ struct job {
     char more_output[JOB_OUTPUTS_MAX - 1][JOB_NAME_MAX];
     enum img_format more_format[JOB_OUTPUTS_MAX - 1];
     char reference[JOB_PATH_MAX]; /* resolved; "" when none */
-    int poisson_pool;
-    enum poisson_domain poisson_domain; /* fresh Poisson sets: torus (default, unbiased) or square */
-    int light_sampling;                 /* 0: no importance sampling of lights (default 1) */
-    enum integrator integrator;         /* integrator: (integrator.h), the books' mixture by default */
-    int dims_all; /* sampler_dims: 1 all (every 2D decision from the sampler), 0 pixel_light */
-    int roulette; /* russian_roulette: 1 on, 0 off, -1 not given (job_roulette: the integrator's default) */
-    int priority; /* queue order: higher first (default 0) */
-    double entry_cpu_s; /* a study spread over a queue: its entries' CPU target; 0: the queue's */
-    int float_copy;     /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
-                           image (a compare job's renders, scored in linear radiance) */
-    uint64_t hash;      /* FNV-1a of the job file's bytes, then its scene file's */
-    /* which keys were given, and where (1-based line, col; 0 when absent) */
-    int has_light_sampler, has_format, has_output;
-    int pos_threshold[2], pos_light_threshold[2], pos_light_sampler[2], pos_dims[2], pos_reference[2],
-        pos_scene[2], pos_format[2], pos_output[2], pos_name[2], pos_width[2], pos_poisson_pool[2];
+    int priority;                 /* queue order: higher first (default 0) */
+    double entry_cpu_s;           /* a study spread over a queue: its entries' CPU target; 0: the queue's */
+    int float_copy;               /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
+                                     image (a compare job's renders, scored in linear radiance) */
+    uint64_t hash;                /* FNV-1a of the job file's bytes, then its scene file's */
+    struct job_pos pos;           /* parse positions, for messages only */
 };
 
 #endif

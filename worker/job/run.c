@@ -13,7 +13,6 @@
 #include "base/hash.h"
 #include "base/sbuf.h"
 #include "job_limits.h"
-#include "job_render.h"
 #include "part.h"
 #include "outdir.h"
 #include "run_out.h"
@@ -72,18 +71,18 @@ int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, i
               : imgio_read_f(j->reference, ref, domain, e)) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg);
-        return err_set(e, j->path, j->pos_reference[0], j->pos_reference[1], "reference: %s: %s",
+        return err_set(e, j->path, job_at(j, "reference")[0], job_at(j, "reference")[1], "reference: %s: %s",
                        j->reference, why);
     }
     if (ref->w != w || ref->h != h) {
-        err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
+        err_set(e, j->path, job_at(j, "reference")[0], job_at(j, "reference")[1],
                 "reference: image is %dx%d but the job renders %dx%d", ref->w, ref->h, w, h);
         image_f_free(ref);
         return -1;
     }
     size_t bad = image_f_nonfinite(ref);
     if (bad) { /* every error against it would be NaN: refused before the render, as a compare job's */
-        err_set(e, j->path, j->pos_reference[0], j->pos_reference[1],
+        err_set(e, j->path, job_at(j, "reference")[0], job_at(j, "reference")[1],
                 "reference: %s: %zu of its %zu values are NaN or infinite", j->reference, bad,
                 (size_t)w * h * 3);
         image_f_free(ref);
@@ -142,11 +141,11 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if ((o->scene ? scene_load_src(o->scene, &sf, e) : scene_load(j->scene_path, &sf, e)) < 0)
         goto done;
     snprintf(rr->scene_warning, sizeof rr->scene_warning, "%s", sf.warning);
-    int w = j->width;
+    int w = j->spec.width;
     int h = job_height(j, sf.aspect);
     if (h > IMAGE_MAX_SIDE) {
         /* only a given width can get here (300 / the smallest aspect, 0.01, is within the limit) */
-        err_set(e, j->path, j->pos_width[0], j->pos_width[1],
+        err_set(e, j->path, job_at(j, "width")[0], job_at(j, "width")[1],
                 "width: %d / the camera's aspect %g gives %d rows (limit %d); give height:", w, sf.aspect, h,
                 IMAGE_MAX_SIDE);
         goto done;
@@ -168,13 +167,14 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg); /* at the size's key: the user's lever */
-        if (j->pos_width[0])
-            err_set(e, j->path, j->pos_width[0], j->pos_width[1], "width: %dx%d pixels: %s", w, h, why);
+        if (job_at(j, "width")[0])
+            err_set(e, j->path, job_at(j, "width")[0], job_at(j, "width")[1], "width: %dx%d pixels: %s", w, h,
+                    why);
         else
             err_set(e, j->path, 1, 1, "size: %dx%d pixels: %s", w, h, why);
         goto done;
     }
-    if (job_samplers_new(j, j->seed, &pix, &light, e) < 0) {
+    if (render_spec_samplers_new(&j->spec, j->spec.seed, &pix, &light, e) < 0) {
         snprintf(e->file, sizeof e->file, "%s", j->path);
         goto done;
     }
@@ -188,7 +188,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
                             o->tick_arg};
     struct procs_job fj = {.scene = sf.scene,
                            .camera = &cam,
-                           .rs = job_render_settings(j, w, h, j->seed),
+                           .rs = render_spec_settings(&j->spec, w, h, j->spec.seed),
                            .pixel = pix,
                            .light = light,
                            .processes = o->processes > 0 ? o->processes : j->processes,
@@ -240,7 +240,7 @@ void run_format_summary(const struct job *j, const struct run_result *rr, char *
 {
     const struct render_stats *t = &rr->procs.total;
     int len = snprintf(buf, n, "%s: %dx%d %s t=%g (%.0f spp mean), %d process%s, %.2f s -> %s", j->name,
-                       rr->width, rr->height, sampler_kind_name(j->sampler), j->threshold,
+                       rr->width, rr->height, sampler_kind_name(j->spec.pixel.kind), j->spec.pixel.threshold,
                        t->pixels ? (double)t->samples / t->pixels : 0.0, rr->procs.processes,
                        rr->procs.processes == 1 ? "" : "es", rr->procs.wall_s, rr->out.image[0]);
     for (int i = 1; i <= j->n_more && len > 0 && (size_t)len < n; i++) { /* output: [a.png, a.exr] */

@@ -49,10 +49,10 @@ static size_t exr_attrs(const struct job *j, struct img_attr *a, char texts[][16
 {
     const char *slash = strrchr(j->scene_path, '/');
     snprintf(texts[0], 160, "%s", slash ? slash + 1 : j->scene_path);
-    snprintf(texts[1], 160, "%s t=%.17g", sampler_kind_name(j->sampler), j->threshold);
-    snprintf(texts[2], 160, "%s t=%.17g", sampler_kind_name(j->light_sampler), j->light_threshold);
-    snprintf(texts[3], 160, "%llu", (unsigned long long)j->seed);
-    snprintf(texts[4], 160, "%d", j->max_depth);
+    snprintf(texts[1], 160, "%s t=%.17g", sampler_kind_name(j->spec.pixel.kind), j->spec.pixel.threshold);
+    snprintf(texts[2], 160, "%s t=%.17g", sampler_kind_name(j->spec.light.kind), j->spec.light.threshold);
+    snprintf(texts[3], 160, "%llu", (unsigned long long)j->spec.seed);
+    snprintf(texts[4], 160, "%d", j->spec.max_depth);
     snprintf(texts[5], 160, "worker %s", WORKER_VERSION);
     const struct img_attr list[] = {{"job", j->name},           {"scene", texts[0]}, {"sampler", texts[1]},
                                     {"lightSampler", texts[2]}, {"seed", texts[3]},  {"maxDepth", texts[4]},

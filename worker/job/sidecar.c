@@ -58,24 +58,14 @@ char *sidecar_json(const struct sidecar *s)
     machine_describe(&m);
     json_string(&js, "host", m.host);
     json_string(&js, "cpu_model", m.cpu_model);
-    json_uint(&js, "width", (uint64_t)s->width);
-    json_uint(&js, "height", (uint64_t)s->height);
+    struct render_spec spec = j->spec; /* at the size rendered */
+    spec.width = s->width;
+    spec.height = s->height;
+    render_spec_json(&spec, &js);
     json_begin_array(&js, "size");
     json_uint(&js, NULL, (uint64_t)s->width);
     json_uint(&js, NULL, (uint64_t)s->height);
     json_end_array(&js);
-    json_string(&js, "sampler", sampler_kind_name(j->sampler));
-    json_number(&js, "threshold", j->threshold);
-    json_string(&js, "light_sampler", sampler_kind_name(j->light_sampler));
-    json_number(&js, "light_threshold", j->light_threshold);
-    json_bool(&js, "light_sampling", j->light_sampling);
-    json_string(&js, "integrator", integrator_name(j->integrator));
-    json_string(&js, "sampler_dims", j->dims_all ? "all" : "pixel_light");
-    json_string(&js, "russian_roulette", job_roulette(j) ? "on" : "off");
-    json_uint(&js, "poisson_pool", (uint64_t)j->poisson_pool);
-    json_string(&js, "poisson_domain", poisson_domain_name(j->poisson_domain));
-    json_uint(&js, "max_depth", (uint64_t)j->max_depth);
-    json_uint(&js, "seed", j->seed);
     json_uint(&js, "processes", (uint64_t)r->processes);
     if (s->parts > 0)
         json_uint(&js, "parts", (uint64_t)s->parts);
@@ -205,6 +195,24 @@ static int hash_at(struct ydoc *d, yaml_node_t *m, struct sidecar_info *out, str
     return 0;
 }
 
+/* The render's settings (render_spec's rows) into out->spec; a key absent keeps its default. */
+static int spec_at(struct ydoc *d, yaml_node_t *m, struct sidecar_info *out, struct err *e)
+{
+    int n;
+    const struct render_spec_row *rows = render_spec_rows(&n);
+    render_spec_defaults(&out->spec);
+    for (int i = 0; i < n; i++) {
+        const char *s;
+        char want[160];
+        if (scalar_at(d, m, rows[i].key, &s, e) < 0)
+            return -1;
+        if (s && render_spec_set_text(&out->spec, &rows[i], s) < 0)
+            return ydoc_fail(d, ymap_get_raw(d, m, rows[i].key), e, "%s: expected %s, got \"%.40s\"",
+                             rows[i].key, render_spec_expected(&rows[i], want, sizeof want), s);
+    }
+    return 0;
+}
+
 static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
 {
     yaml_node_t *root = ydoc_root(d);
@@ -234,14 +242,12 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
         count_at(d, work, "light_sets", &w->light_sets, e) < 0 ||
         count_at(d, work, "padded_sets", &w->padded_sets, e) < 0)
         return -1;
-    return string_at(d, root, "job", out->job, sizeof out->job, e) < 0 ||
+    return spec_at(d, root, out, e) < 0 || string_at(d, root, "job", out->job, sizeof out->job, e) < 0 ||
                    string_at(d, root, "job_file", out->job_file, sizeof out->job_file, e) < 0 ||
                    hash_at(d, root, out, e) < 0 ||
                    string_at(d, root, "image", out->image, sizeof out->image, e) < 0 ||
                    string_at(d, root, "host", out->host, sizeof out->host, e) < 0 ||
                    string_at(d, root, "cpu_model", out->cpu_model, sizeof out->cpu_model, e) < 0 ||
-                   count_at(d, root, "width", &out->width, e) < 0 ||
-                   count_at(d, root, "height", &out->height, e) < 0 ||
                    count_at(d, root, "processes", &out->processes, e) < 0 ||
                    count_at(d, root, "parts", &out->parts, e) < 0 ||
                    count_at(d, root, "nonfinite_dropped", &out->nonfinite, e) < 0 || /* before issue 26 */

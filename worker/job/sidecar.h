@@ -39,7 +39,7 @@ struct sidecar_info {
     uint64_t job_hash;
     char image[JOB_NAME_MAX];
     char host[128], cpu_model[128]; /* where it was rendered ("" in sidecars of earlier versions) */
-    uint64_t width, height, processes, parts;
+    uint64_t processes, parts;
     uint64_t samples_total, spp_min, spp_max; /* samples.total, per_pixel_min, per_pixel_max */
     uint64_t nonfinite;                       /* nonfinite_samples (nonfinite_dropped before) */
     double spp_mean;                          /* samples.per_pixel_mean */
@@ -47,7 +47,8 @@ struct sidecar_info {
     int has_error;                                                  /* error.* were there */
     char error_domain[16]; /* what the error was measured on: "linear" or "8-bit" */
     double mse, rmse, relmse, relmse_robust, psnr;
-    int has_work; /* "work" was there (sidecars since issue 35) */
+    struct render_spec spec; /* the render's settings (a setting absent: its default) */
+    int has_work;            /* "work" was there (sidecars since issue 35) */
     struct sidecar_work work;
 };
 
@@ -56,7 +57,8 @@ char *sidecar_json(const struct sidecar *s);
 
 /* Read the sidecar at path (at most SIDECAR_MAX_BYTES) with the YAML parser, JSON being YAML's
    flow syntax, into out. 0, or -1 with e filled: unreadable, not JSON, not an object, or a known
-   key of the wrong type (a string too long for its field included). */
+   key of the wrong type (a string too long for its field included; a setting that is no value of
+   its render_spec row: an unknown sampler, a threshold outside (0, 100]). */
 int sidecar_read(const char *path, struct sidecar_info *out, struct err *e);
 
 /* 1 when the sidecar at path exists and records job hash `hash`, else 0 (missing, unreadable,

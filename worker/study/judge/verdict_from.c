@@ -86,8 +86,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     for (int v = 0; v < c->n_variants; v++) {
         const struct job *j = &c->items[compare_index(c, s, v, 0, 0)].job;
         m->variants[v] = c->variants[v];
-        m->samplers[v] = sampler_kind_name(j->sampler);
-        m->pools[v] = j->poisson_pool;
+        m->samplers[v] = sampler_kind_name(j->spec.pixel.kind);
+        m->pools[v] = j->spec.poisson_pool;
         for (int p = 0; p < c->n_points; p++) {
             struct compare_seed_stats st = {.radiance = m->radiance + verdict_at(f, v, p, 0),
                                             .spec_ring = m->spec_ring +

@@ -70,7 +70,7 @@ int compare_expand_reference(struct compare_loading *L)
         struct compare_scene *cs = &c->scenes[s];
         cs->ref_kind = COMPARE_REF_SETTINGS;
         cs->ref_job = L->scene_base[s];
-        cs->ref_job.seed = COMPARE_REF_SEED;
+        cs->ref_job.spec.seed = COMPARE_REF_SEED;
         for (int i = 0; ymap_pair(d, r, i, &k, &v); i++)
             if (job_apply(&cs->ref_job, d, k, v, L->e) < 0)
                 return -1;
@@ -87,7 +87,7 @@ static int file_name(struct compare_loading *L, const struct compare_item *it, c
     struct compare *c = L->c;
     char mid[256] = "", t[32];
     yaml_node_t *k, *v;
-    snprintf(t, sizeof t, "%g", it->job.threshold);
+    snprintf(t, sizeof t, "%g", it->job.spec.pixel.threshold);
     compare_keys_append(mid, sizeof mid, "threshold", t);
     for (int i = 0; L->sweep && ymap_pair(&L->d, L->sweep, i, &k, &v); i++) {
         const char *val = yscalar(yseq_item(&L->d, v, it->point));
@@ -128,8 +128,9 @@ static int expand_one(struct compare_loading *L, struct compare_item *it)
     yaml_node_t *spp = L->sweep ? ymap_get(d, L->sweep, "spp") : NULL; /* once the sampler is known */
     if (spp && compare_spp_apply(j, d, yseq_item(d, spp, it->point), L->e) < 0)
         return -1;
-    j->seed = c->seeds[it->seed];
-    j->has_output = j->has_format = 0;
+    j->spec.seed = c->seeds[it->seed];
+    job_mark(j, "output", NULL); /* the study names its images */
+    job_mark(j, "format", NULL);
     j->format = IMG_PNG;
     if (job_finish(j, d, L->e) < 0)
         return -1;
@@ -137,7 +138,6 @@ static int expand_one(struct compare_loading *L, struct compare_item *it)
     if (file_name(L, it, j->output, sizeof j->output) < 0)
         return ydoc_fail(d, var, L->e, "variant: the image name %s-%s-... is too long (shorten its label)",
                          cs->name, c->variants[it->variant]);
-    j->has_output = 1;
     j->float_copy = 1; /* scored, and averaged across seeds, in linear radiance */
     if (job_limits_samples(j, cs->width, cs->height, L->e) < 0)
         return -1;

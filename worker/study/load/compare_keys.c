@@ -39,10 +39,8 @@ const char *compare_keys_forbidden(const char *key, const char *where)
 
 int compare_keys_check(struct ydoc *d, yaml_node_t *n, const char *where, const char *extra, struct err *e)
 {
-    const char *keys[64];
-    int nk = 0;
-    for (int i = 0; job_keys[i] && nk < 62; i++)
-        keys[nk++] = job_keys[i];
+    const char *keys[JOB_KEYS_MAX + 2];
+    int nk = job_key_list(keys, JOB_KEYS_MAX + 1);
     if (extra)
         keys[nk++] = extra;
     keys[nk] = NULL;

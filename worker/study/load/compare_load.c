@@ -27,8 +27,8 @@ static int scene_size(struct compare_loading *L, int s, yaml_node_t *at)
     if (!(cs->input = study_inputs_scene(L->c->inputs, j->scene_path, L->e)) ||
         scene_load_src(&cs->input->src, &sf, L->e) < 0)
         return -1;
-    cs->width = j->width;
-    long h = j->height ? j->height : lround(j->width / sf.aspect);
+    cs->width = j->spec.width;
+    long h = j->spec.height ? j->spec.height : lround(j->spec.width / sf.aspect);
     scene_file_free(&sf);
     cs->height = h < 1 ? 1 : (int)h;
     if (h > IMAGE_MAX_SIDE)
@@ -98,13 +98,14 @@ static int load_seeds(struct compare_loading *L, yaml_node_t *root)
     if (!(L->c->seeds = calloc((size_t)n, sizeof *L->c->seeds)))
         return err_set(L->e, d->file, 0, 0, "out of memory");
     if (!list) {
-        L->c->seeds[0] = L->base.seed;
+        L->c->seeds[0] = L->base.spec.seed;
         return 0;
     }
     for (int i = 0; i < n; i++) {
         long v;
         yaml_node_t *item = yseq_item(d, list, i);
-        if (yget_long(d, item, "seeds", 0, 2147483647L, &v, L->e) < 0)
+        const struct render_spec_row *seed = render_spec_find("seed"); /* a seed's range, once */
+        if (yget_long(d, item, "seeds", seed->lo, seed->hi, &v, L->e) < 0)
             return -1;
         for (int k = 0; k < i; k++)
             if (L->c->seeds[k] == (uint64_t)v)
@@ -253,10 +254,8 @@ struct compare *compare_load_in(const struct ydoc *doc, const char *path, struct
     snprintf(L.c->path, sizeof L.c->path, "%s", path);
     job_defaults(&L.base, path);
     yaml_node_t *root = ydoc_root(&L.d), *k, *v;
-    const char *keys[64];
-    int nk = 0;
-    for (int i = 0; job_keys[i] && nk < 58; i++)
-        keys[nk++] = job_keys[i];
+    const char *keys[JOB_KEYS_MAX + 1 + sizeof extra / sizeof *extra];
+    int nk = job_key_list(keys, JOB_KEYS_MAX + 1);
     for (size_t i = 0; i < sizeof extra / sizeof *extra; i++)
         keys[nk++] = extra[i];
     keys[nk] = NULL;

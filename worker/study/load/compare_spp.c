@@ -50,18 +50,17 @@ int compare_spp_apply(struct job *j, struct ydoc *d, yaml_node_t *v, struct err 
     double t;
     if (yget_long(d, v, "spp", 1, SAMPLER_MAX_POINTS, &spp, e) < 0)
         return -1;
-    if (compare_spp_threshold(j->sampler, spp, &t, &below, &above) < 0) {
-        const char *rule = sampler_count_rule(j->sampler);
+    if (compare_spp_threshold(j->spec.pixel.kind, spp, &t, &below, &above) < 0) {
+        const char *rule = sampler_count_rule(j->spec.pixel.kind);
         char near[64] = "none";
         if (below && above)
             snprintf(near, sizeof near, "%ld or %ld", below, above);
         else if (below || above)
             snprintf(near, sizeof near, "%ld", below ? below : above);
         return ydoc_fail(d, v, e, "spp: %ld: %s sets hold %s (n = floor(100 / threshold)): %s, not %ld", spp,
-                         sampler_kind_name(j->sampler), rule, near, spp);
+                         sampler_kind_name(j->spec.pixel.kind), rule, near, spp);
     }
-    j->threshold = t;
-    j->pos_threshold[0] = (int)v->start_mark.line + 1;
-    j->pos_threshold[1] = (int)v->start_mark.column + 1;
+    j->spec.pixel.threshold = t;
+    job_mark(j, "threshold", v);
     return 0;
 }

@@ -36,6 +36,8 @@ static int in_list(const char *key, const char *const *list)
 static int check_top(struct ydoc *d, yaml_node_t *root, struct job *base, struct err *e)
 {
     yaml_node_t *k, *v;
+    const char *job_keys[JOB_KEYS_MAX + 1];
+    job_key_list(job_keys, JOB_KEYS_MAX + 1);
     for (int i = 0; ymap_pair(d, root, i, &k, &v); i++) {
         const char *key = yscalar(k);
         if (key && !in_list(key, suite_keys) && (in_list(key, job_keys) || in_list(key, study_only)))

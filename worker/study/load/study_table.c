@@ -9,14 +9,24 @@
 #include <string.h>
 
 #include "base/fileio.h"
+#include "render/render_spec.h"
 #include "sample/sampler_kind.h"
 
-/* The settings columns that place a row at its sweep point: every render setting summary.csv
-   writes but seed, in the order a point's label names them. The one list of them; threshold and
-   light_threshold first (every file has them: checked as numbers, the plan's items keep them, and a
-   label always names the first), a later one read as "" from a file without its column. */
-static const char *const point_settings[] = {"threshold", "light_threshold"};
-#define N_SETTINGS (int)(sizeof point_settings / sizeof *point_settings)
+/* The settings columns that place a row at its sweep point: every render_spec row (the table
+   summary.csv writes its settings from) but seed, threshold and light_threshold first (every file
+   has them: checked as numbers, and a label always names the first), the others in the table's
+   order, each read as "" from a file written before it had their columns. */
+#define N_SETTINGS STUDY_TABLE_SETTINGS_MAX
+static int point_settings(const struct render_spec_row **out)
+{
+    int n, k = 2;
+    const struct render_spec_row *r = render_spec_rows(&n);
+    out[0] = render_spec_find("threshold"), out[1] = render_spec_find("light_threshold");
+    for (int i = 0; i < n && k < N_SETTINGS; i++)
+        if (&r[i] != out[0] && &r[i] != out[1] && strcmp(r[i].key, "seed"))
+            out[k++] = &r[i];
+    return k;
+}
 
 struct study_table_row {
     int study; /* index into the table's studies */
@@ -75,6 +85,28 @@ static int numbers_ok(const struct study_table *t, int r, struct study_table_row
     return 0;
 }
 
+/* The row's spec: the defaults, its threshold and light_threshold (numbers_ok's), and each other
+   setting it has a field for read through its row. */
+static int row_spec(const struct study_table *t, const struct study_table_row *x, struct render_spec *spec)
+{
+    render_spec_defaults(spec);
+    spec->pixel.threshold = x->threshold, spec->light.threshold = x->light_threshold;
+    for (int k = 2; k < t->n_settings; k++)
+        if (x->setting[k][0] && render_spec_set_text(spec, t->settings[k], x->setting[k]) < 0)
+            return k;
+    return 0;
+}
+
+/* Line r's settings each a value of its setting (or absent). 0 or -1 with e at r. */
+static int settings_ok(const struct study_table *t, int r, const struct study_table_row *x, struct err *e)
+{
+    struct render_spec spec;
+    int k = row_spec(t, x, &spec);
+    return k ? err_set(e, t->path, r + 1, 0, "%s: \"%s\" is no value of the setting", t->settings[k]->key,
+                       x->setting[k])
+             : 0;
+}
+
 /* A row's figures into x->res (done); x->figured 0 (res emptied) when spp, seconds or share are no
    figure in range. A relmse that is no figure is NAN (the judge leaves it out and says so). */
 static void read_figures(char *const *f, const int *col, struct study_table_row *x)
@@ -109,13 +141,14 @@ static int read_rows(struct study_table *t, const char *job, struct err *e)
 {
     const struct verdict_csv *csv = &t->csv;
     int col[N_COLS], set[N_SETTINGS];
+    t->n_settings = point_settings(t->settings);
     for (int k = 0; k < N_COLS; k++)
         if ((col[k] = column(csv, col_names[k])) < 0 && k != C_STUDY && k != C_LOWFREQ)
             return err_set(e, t->path, 1, 0, "no column %s", col_names[k]);
-    for (int k = 0; k < N_SETTINGS; k++) { /* every file has today's two; a newer setting may be absent */
-        set[k] = column(csv, point_settings[k]);
+    for (int k = 0; k < t->n_settings; k++) { /* every file has the first two; a newer one may be absent */
+        set[k] = column(csv, t->settings[k]->key);
         if (k < 2 && set[k] < 0)
-            return err_set(e, t->path, 1, 0, "no column %s", point_settings[k]);
+            return err_set(e, t->path, 1, 0, "no column %s", t->settings[k]->key);
     }
     t->has_study = col[C_STUDY] >= 0;
     t->n_rows = csv->n_rows > 0 ? csv->n_rows - 1 : 0;
@@ -127,14 +160,14 @@ static int read_rows(struct study_table *t, const char *job, struct err *e)
         struct study_table_row *x = &t->rows[i];
         x->scene = f[col[C_SCENE]], x->variant = f[col[C_VARIANT]], x->image = f[col[C_IMAGE]];
         x->domain = f[col[C_DOMAIN]];
-        for (int k = 0; k < N_SETTINGS; k++)
+        for (int k = 0; k < t->n_settings; k++)
             x->setting[k] = set[k] >= 0 ? f[set[k]] : "";
         const char *study = t->has_study ? f[col[C_STUDY]] : job;
         if ((t->has_study && name_ok(t, i + 1, C_STUDY, study, VERDICT_LABEL_MAX - 1, e) < 0) ||
             name_ok(t, i + 1, C_SCENE, x->scene, COMPARE_LABEL_MAX - 1, e) < 0 ||
             name_ok(t, i + 1, C_VARIANT, x->variant, COMPARE_LABEL_MAX - 1, e) < 0 ||
             name_ok(t, i + 1, C_IMAGE, x->image, JOB_NAME_MAX - 1, e) < 0 ||
-            numbers_ok(t, i + 1, x, f[col[C_SEED]], e) < 0)
+            numbers_ok(t, i + 1, x, f[col[C_SEED]], e) < 0 || settings_ok(t, i + 1, x, e) < 0)
             return -1;
         if ((x->study = verdict_names_intern(&t->studies, study, strlen(study))) < 0)
             return err_set(e, t->path, i + 2, 0, "more than 64 studies");
@@ -195,13 +228,13 @@ static int intern(struct verdict_names *n, const char *s)
    variant and settings, and how many rows before it had those and its seed. 0 or -1 (no memory). */
 static int intern_rows(const struct study_table *t, int si, struct interned *I)
 {
-    size_t m = (size_t)I->m, w = (size_t)(I->w = 3 + N_SETTINGS);
+    size_t m = (size_t)I->m, w = (size_t)(I->w = 3 + t->n_settings);
     I->row = calloc(m, sizeof *I->row), I->svk = calloc(4 * m, sizeof *I->svk);
     I->with_seed = calloc(m * w, sizeof *I->with_seed), I->with_occ = calloc(m * w, sizeof *I->with_occ);
     I->occ = calloc(m, sizeof *I->occ), I->key_point = calloc(m, sizeof *I->key_point);
     I->first = calloc(m, sizeof *I->first);
     if (verdict_names_init(&I->scenes, I->m) < 0 || verdict_names_init(&I->variants, I->m) < 0 ||
-        verdict_names_init(&I->seeds, I->m) < 0 || verdict_names_init(&I->values, I->m * N_SETTINGS) < 0 ||
+        verdict_names_init(&I->seeds, I->m) < 0 || verdict_names_init(&I->values, I->m * t->n_settings) < 0 ||
         verdict_names_init(&I->seen, I->m) < 0 || verdict_names_init(&I->keys, I->m) < 0 || !I->row ||
         !I->svk || !I->with_seed || !I->with_occ || !I->occ || !I->key_point || !I->first)
         return -1;
@@ -213,7 +246,7 @@ static int intern_rows(const struct study_table *t, int si, struct interned *I)
         I->row[i] = r;
         a[0] = I->svk[4 * i] = intern(&I->scenes, x->scene);
         a[1] = I->svk[4 * i + 1] = intern(&I->variants, x->variant);
-        for (int j = 0; j < N_SETTINGS; j++)
+        for (int j = 0; j < t->n_settings; j++)
             a[2 + j] = intern(&I->values, x->setting[j]);
         a[w - 1] = I->svk[4 * i + 2] =
             verdict_names_intern(&I->seeds, (const char *)&x->seed, sizeof x->seed);
@@ -273,14 +306,14 @@ static void label_points(const struct study_table *t, struct compare *c, const s
     char first[COMPARE_LABEL_MAX], v[COMPARE_LABEL_MAX];
     for (int p = 0; p < c->n_points; p++)
         c->points[p][0] = 0;
-    for (int j = 0; j < N_SETTINGS; j++) {
+    for (int j = 0; j < t->n_settings; j++) {
         int differ = j == 0;
         setting_text(t, I, 0, j, first);
         for (int p = 1; p < c->n_points; p++)
             differ |= strcmp(setting_text(t, I, p, j, v), first) != 0;
         for (int p = 0; differ && p < c->n_points; p++) {
             size_t len = strlen(c->points[p]);
-            snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "", point_settings[j],
+            snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "", t->settings[j]->key,
                      setting_text(t, I, p, j, v));
         }
     }
@@ -303,7 +336,7 @@ static void fill(const struct study_table *t, struct compare *c, const struct in
         int n = compare_index(c, a[0], a[1], a[3], a[2]);
         struct compare_item *it = &c->items[n];
         *it = (struct compare_item){.scene = a[0], .variant = a[1], .point = a[3], .seed = a[2]};
-        it->job.threshold = x->threshold, it->job.light_threshold = x->light_threshold;
+        row_spec(t, x, &it->job.spec); /* checked by settings_ok */
         c->results.rows[n] = x->res;
         if (!x->figured) {
             unfigured[a[0]]++;
@@ -382,11 +415,12 @@ void study_table_label_spp(struct compare *c)
         long spp = -1;
         int differ = 0;
         for (int v = 0; v < c->n_variants && spp != 0; v++) {
-            const struct job *j = &c->items[compare_index(c, 0, v, p, 0)].job;
-            const struct job *j0 = &c->items[compare_index(c, 0, 0, p, 0)].job;
-            int valid = j->threshold >= sampler_smallest_threshold(j->sampler) && j->threshold <= 100;
-            long n = valid ? lround(sampler_expected_spp(j->sampler, j->threshold)) : 0; /* 0: a hole */
-            differ |= j->threshold != j0->threshold;
+            const struct render_spec *j = &c->items[compare_index(c, 0, v, p, 0)].job.spec;
+            const struct render_spec *j0 = &c->items[compare_index(c, 0, 0, p, 0)].job.spec;
+            int valid = render_spec_in_range(render_spec_find("threshold"), j->pixel.threshold) &&
+                        j->pixel.threshold >= sampler_smallest_threshold(j->pixel.kind);
+            long n = valid ? lround(sampler_expected_spp(j->pixel.kind, j->pixel.threshold)) : 0; /* 0: a hole */
+            differ |= j->pixel.threshold != j0->pixel.threshold;
             spp = spp < 0 || spp == n ? n : 0;
         }
         const char *rest = strchr(c->points[p], ',');

@@ -7,7 +7,11 @@
 
 #include "base/err.h"
 #include "compare_model.h"
+#include "render/render_spec.h"
 #include "verdict_csv.h"
+
+/* Most settings columns that tell a study's points apart (render_spec's rows but seed). */
+#define STUDY_TABLE_SETTINGS_MAX 24
 
 struct study_table {
     const char *path;
@@ -17,6 +21,8 @@ struct study_table {
     struct study_table_row *rows; /* each row's identity and figures (study_table.c) */
     int has_study;                /* a suite's: the leading study column names each row's study */
     struct verdict_names studies;
+    const struct render_spec_row *settings[STUDY_TABLE_SETTINGS_MAX]; /* the settings columns that tell points apart */
+    int n_settings;
 };
 
 /* Read and check path (a study's or a suite's summary.csv); job names the study of a file without a
@@ -31,8 +37,8 @@ void study_table_free(struct study_table *t);
    first-seen order; each (scene, variant)'s points numbered in order of their settings, a row
    repeating a seed at the same settings opening the next point (a setting summary.csv has no column
    for); labelled by the settings that tell the points apart ("threshold 5, light_threshold 10").
-   Each item's output is its row's image, its threshold and light_threshold the row's; unfigured[s]
-   (malloc'd, n_scenes) counts scene s's unfigured rows. NULL with e filled (too many combinations,
+   Each item's output is its row's image, its spec the row's settings (defaults where a file has no
+   column); unfigured[s] (malloc'd, n_scenes) counts scene s's unfigured rows. NULL with e filled (too many combinations,
    no rows, no memory). */
 struct compare *study_table_study(const struct study_table *t, int si, int **unfigured, struct err *e);
 

@@ -8,9 +8,9 @@
 
 #include "base/err.h"
 
-/* Most fields a row may have (summary.csv: 30 with a suite's study column, flip and the work
-   counts), and most rows (the header included) one file may have: a suite of up to 64 studies of
-   4096 images each, with room. */
+/* Most fields a row may have (summary.csv: 41 with a suite's study column, flip, the work counts
+   and a column per render_spec row), and most rows (the header included) one file may have: a suite of up to
+   64 studies of 4096 images each, with room. */
 #define VERDICT_CSV_FIELDS 48
 #define VERDICT_CSV_MAX_ROWS (64 * 4096 + 1)
 

@@ -64,10 +64,11 @@ static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k
     free(png);
     sbuf_printf(b, "<figcaption><b>");
     sbuf_escape(b, c->variants[v]);
-    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.threshold, r->spp_mean);
+    sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.spec.pixel.threshold, r->spp_mean);
     if (r->has_error)
         sbuf_printf(b, ", relMSE %.3g", r->error.relmse);
-    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", r->wall_s, (unsigned long long)c->seeds[k]);
+    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", r->wall_s,
+                (unsigned long long)c->seeds[k]);
     return 0;
 }
 
@@ -118,9 +119,9 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
     sbuf_printf(b, "<figcaption><b>reference</b>: ");
     char light[96];
     if (cs->ref_kind == COMPARE_REF_SETTINGS)
-        sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.sampler),
-                    cs->ref_job.threshold, job_light_text(&cs->ref_job, light, sizeof light),
-                    (unsigned long long)cs->ref_job.seed,
+        sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.spec.pixel.kind),
+                    cs->ref_job.spec.pixel.threshold, job_light_text(&cs->ref_job, light, sizeof light),
+                    (unsigned long long)cs->ref_job.spec.seed,
                     cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
     else
         sbuf_escape(b, cs->ref_path);
@@ -192,10 +193,14 @@ void report_link(struct sbuf *b, const char *href, const char *text)
 static void table(struct sbuf *b, const struct compare *c)
 {
     /* the work counts beside the times: the same on every machine (summary.csv has them all) */
-    static const char *const head[] = {
-        "scene",  "variant", "threshold",     "light threshold", "seed",          "spp mean",
-        "wall s", "cpu s",   "sampler share", "segments",        "shadow rays",   "set points",
-        "mse",    "rmse",    "relmse",        "psnr dB",         "image, sidecar"};
+    const char *head[] = {
+        "scene",         "variant",  NULL,          NULL,         NULL,  "spp mean", "wall s", "cpu s",
+        "sampler share", "segments", "shadow rays", "set points", "mse", "rmse",     "relmse", "psnr dB",
+        "image, sidecar"};
+    /* the settings' heads: their labels in render_spec's rows */
+    const char *const settings[] = {"threshold", "light_threshold", "seed"};
+    for (int k = 0; k < 3; k++)
+        head[2 + k] = render_spec_find(settings[k])->label;
     const size_t n_head = sizeof head / sizeof head[0];
     sbuf_printf(b, "<table>\n<tr>");
     for (size_t i = 0; i < n_head; i++)
@@ -210,8 +215,8 @@ static void table(struct sbuf *b, const struct compare *c)
         sbuf_escape(b, c->variants[it->variant]);
         sbuf_printf(
             b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
-            it->job.threshold, it->job.light_threshold, (unsigned long long)it->job.seed, r->spp_mean,
-            r->wall_s, r->cpu_s, r->sampler_share);
+            it->job.spec.pixel.threshold, it->job.spec.light.threshold, (unsigned long long)it->job.spec.seed,
+            r->spp_mean, r->wall_s, r->cpu_s, r->sampler_share);
         const struct sidecar_work *w = &r->work;
         sbuf_printf(b, "<td>%llu</td><td>%llu</td><td>%llu</td>", (unsigned long long)w->path_segments,
                     (unsigned long long)w->shadow_rays,

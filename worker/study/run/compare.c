@@ -19,7 +19,6 @@
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "job/outdir.h"
-#include "job/job_key.h"
 #include "job/sidecar.h"
 #include "study/present/report.h"
 #include "study_machines.h"
@@ -31,7 +30,7 @@
 /* What one render is expected to cost, for the ETA: pixels x expected samples per pixel. */
 static double cost(const struct compare *c, const struct compare_item *it)
 {
-    double spp = sampler_expected_spp(it->job.sampler, it->job.threshold);
+    double spp = sampler_expected_spp(it->job.spec.pixel.kind, it->job.spec.pixel.threshold);
     return (double)c->scenes[it->scene].width * c->scenes[it->scene].height * (spp > 1 ? spp : 1);
 }
 
@@ -60,7 +59,7 @@ static void fmt_duration(double s, char *buf, size_t n)
 static uint64_t item_hash(const struct compare_scene *cs, const struct job *j)
 {
     char text[512];
-    int n = job_key_text(j, j->width, j->height, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
+    int n = render_spec_key_text(&j->spec, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
     return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
 }
 
@@ -214,18 +213,25 @@ static void csv_field(struct sbuf *b, const char *text, const char *after)
 static char *summary_csv(const struct compare *c)
 {
     struct sbuf b = {0};
+    sbuf_printf(&b, "scene,variant,");
+    render_spec_csv(NULL, 1, &b); /* the render's settings, a column per render_spec row */
     sbuf_printf(&b,
-                "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
+                "samples_per_pixel_mean,wall_s,cpu_s,"
                 "sampler_share,mse,rmse,relmse,relmse_robust,psnr,domain,rmse_8bit,relmse_8bit,error_lowfreq,"
                 "flip,camera_samples,path_segments,shadow_rays,pixel_points,light_points,padded_points,"
-                "pixel_sets,light_sets,padded_sets,image\n");
+                "pixel_sets,light_sets,padded_sets,");
+    render_spec_csv(NULL, 0, &b);
+    sbuf_printf(&b, "image\n");
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         const struct study_result *r = &c->results.rows[i];
         csv_field(&b, c->scenes[it->scene].name, ",");
         csv_field(&b, c->variants[it->variant], ",");
-        sbuf_printf(&b, "%g,%g,%llu,%.2f,%.6g,%.6g,%.6g,", it->job.threshold, it->job.light_threshold,
-                    (unsigned long long)it->job.seed, r->spp_mean, r->wall_s, r->cpu_s, r->sampler_share);
+        struct render_spec spec = it->job.spec; /* at the size rendered */
+        spec.width = c->scenes[it->scene].width;
+        spec.height = c->scenes[it->scene].height;
+        render_spec_csv(&spec, 1, &b);
+        sbuf_printf(&b, "%.2f,%.6g,%.6g,%.6g,", r->spp_mean, r->wall_s, r->cpu_s, r->sampler_share);
         if (r->has_error)
             sbuf_printf(&b, "%.6g,%.6g,%.6g,%.6g,%.4f,%s,%.6g,%.6g,", r->error.mse, r->error.rmse,
                         r->error.relmse, r->error.relmse_robust, r->error.psnr,
@@ -245,6 +251,7 @@ static char *summary_csv(const struct compare *c)
                     (unsigned long long)w->light_points, (unsigned long long)w->padded_points,
                     (unsigned long long)w->pixel_sets, (unsigned long long)w->light_sets,
                     (unsigned long long)w->padded_sets);
+        render_spec_csv(&spec, 0, &b);
         csv_field(&b, it->job.output, "\n");
     }
     return sbuf_take(&b);
@@ -365,8 +372,8 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
             snprintf(err_text, sizeof err_text, ", relMSE %.4g", r->error.relmse);
         run_say(o, "[%*d/%d] %s %s t=%g seed %llu: %.0f spp, %.2f s%s%s | %s elapsed, ETA %s\n",
                 c->n_items >= 100 ? 3 : 2, n + 1, c->n_items, cs->name, c->variants[it->variant],
-                it->job.threshold, (unsigned long long)it->job.seed, r->spp_mean, r->wall_s, err_text,
-                r->skipped ? " (current, not rendered again)" : "", el, eta);
+                it->job.spec.pixel.threshold, (unsigned long long)it->job.spec.seed, r->spp_mean, r->wall_s,
+                err_text, r->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     free(order);
     if ((rc = study_costs(c, dir, o, e)) != 0)

@@ -10,7 +10,6 @@
 #include "base/hash.h"
 #include "base/rng.h"
 #include "base/sbuf.h"
-#include "job/job_render.h"
 #include "study/load/verdict_csv.h"
 
 /* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
@@ -106,10 +105,10 @@ static int time_unit(const struct compare *c, struct timing *t, int v, int p, in
         struct sampler *pix = NULL, *light = NULL;
         struct procs_result res;
         int rc = -1;
-        if (job_samplers_new(j, seed, &pix, &light, e) == 0) {
+        if (render_spec_samplers_new(&j->spec, seed, &pix, &light, e) == 0) {
             struct procs_job fj = {.scene = t->sf.scene,
                                    .camera = &t->cam,
-                                   .rs = job_render_settings(j, t->w, t->h, seed),
+                                   .rs = render_spec_settings(&j->spec, t->w, t->h, seed),
                                    .pixel = pix,
                                    .light = light,
                                    .processes = t->processes > 0 ? t->processes : j->processes,

@@ -13,7 +13,6 @@
 #include "base/hash.h"
 #include "base/rng.h"
 #include "job/outdir.h"
-#include "job/job_key.h"
 #include "job/sidecar.h"
 
 /* The cache key of a scene's reference: its scene file's and texture images' bytes (the scene's
@@ -22,10 +21,12 @@
    change with every commit. */
 static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
 {
-    const struct job *j = &cs->ref_job;
+    struct render_spec s = cs->ref_job.spec;
+    s.width = cs->width;
+    s.height = cs->height;
     uint64_t h = hash_u64(study_inputs_program_hash(c->inputs), cs->input->hash);
     char text[512];
-    int n = job_key_text(j, cs->width, cs->height, "", text, sizeof text - 8);
+    int n = render_spec_key_text(&s, "", text, sizeof text - 8);
     n += snprintf(text + n, sizeof text - (size_t)n, " halves");
     return hash_bytes(h, text, (size_t)n);
 }
@@ -102,9 +103,10 @@ static int half_rendered(const char *path, const char *record, uint64_t key, str
 void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j)
 {
     *j = cs->ref_job;
-    j->threshold = fmin(100, j->threshold * sqrt(2));
-    j->light_threshold = fmin(100, j->light_threshold * sqrt(2));
-    j->seed = h ? rng_mix64(j->seed) : j->seed; /* independent of the other half and of the study's seeds */
+    j->spec.pixel.threshold = fmin(100, j->spec.pixel.threshold * sqrt(2));
+    j->spec.light.threshold = fmin(100, j->spec.light.threshold * sqrt(2));
+    j->spec.seed = h ? rng_mix64(j->spec.seed)
+                     : j->spec.seed; /* independent of the other half and of the study's seeds */
 }
 
 /* Half h's job as rendered into the cache (key: the reference's), its files and its record's path. */
@@ -141,8 +143,8 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
         cs->ref_reused = 0;
         char light[96];
         run_say(o, "%s: rendering the reference's half %c (%s t=%g, %s, seed %llu) into %s\n", cs->name,
-                "ab"[h], sampler_kind_name(j.sampler), j.threshold, job_light_text(&j, light, sizeof light),
-                (unsigned long long)j.seed, path);
+                "ab"[h], sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold,
+                job_light_text(&j, light, sizeof light), (unsigned long long)j.spec.seed, path);
         struct run_result rr;
         struct run_opts forced = *o;
         forced.force = 1;               /* its sidecar may call a damaged image current */

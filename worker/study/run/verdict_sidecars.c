@@ -64,11 +64,11 @@ void verdict_sidecars_read(struct compare *c, const char *dir, int *missing)
         const char *t = (const char *)text;
         double count;
         if (sidecar_field(t, "sampler", val, sizeof val))
-            sampler_kind_parse(val, &it->job.sampler);
+            sampler_kind_parse(val, &it->job.spec.pixel.kind);
         double pool;
         if (sidecar_field(t, "poisson_pool", val, sizeof val) &&
-            verdict_csv_figure(val, 0, 65536, &pool) == 0)
-            it->job.poisson_pool = (int)pool; /* a job's range; anything else: unknown (0) */
+            verdict_csv_figure(val, 0, (double)render_spec_find("poisson_pool")->hi, &pool) == 0)
+            it->job.spec.poisson_pool = (int)pool; /* a job's range; anything else: unknown (0) */
         if (sidecar_field(t, "nonfinite_samples", val, sizeof val) ||
             sidecar_field(t, "nonfinite_dropped", val, sizeof val)) /* its name before issue 26 */
             c->results.rows[i].nonfinite =
