@@ -110,6 +110,33 @@ static void test_spp(void)
 }
 
 /* A threshold that is no number, a column missing: refused at file:line. */
+/* The render spec's other columns tell points apart too (a pool sweep at one threshold), label the
+   points, and come back into each item's spec; a value that is none of its setting's is refused. */
+static void test_spec_columns(void)
+{
+    struct study_table t;
+    int *unfigured;
+    const char *head = "scene,variant,threshold,light_threshold,seed,samples_per_pixel_mean,wall_s,cpu_s,"
+                       "sampler_share,relmse,domain,sampler,poisson_pool,image\n";
+    char text[1024];
+    snprintf(text, sizeof text,
+             "%sa,x,5,5,1,16,1,1,0.1,0.5,linear,poisson,0,q.png\n"
+             "a,x,5,5,1,16,1,1,0.1,0.4,linear,poisson,64,w.png\n",
+             head);
+    struct compare *c = study(text, &t, &unfigured);
+    if (c) {
+        CHECK(c->n_points == 2 && c->n_seeds == 1);
+        CHECK(strcmp(c->points[1], "threshold 5, poisson_pool 64") == 0);
+        const struct compare_item *it = &c->items[compare_index(c, 0, 0, 1, 0)];
+        CHECK(it->job.spec.poisson_pool == 64 && it->job.spec.pixel.kind == SAMPLER_POISSON);
+    }
+    done(c, &t, unfigured);
+    snprintf(text, sizeof text, "%sa,x,5,5,1,16,1,1,0.1,0.5,linear,poissonx,0,q.png\n", head);
+    struct err e;
+    CHECK(study_table_read(&t, compare_fixture_file(&fx, "summary.csv", text), "job", &e) < 0 &&
+          strstr(e.msg, "sampler") && e.line == 2);
+}
+
 static void test_bad(void)
 {
     struct study_table t;
@@ -131,6 +158,7 @@ int main(void)
     test_points();
     test_repeated_seeds();
     test_spp();
+    test_spec_columns();
     test_bad();
     compare_fixture_close(&fx);
     return check_report("test_study_table");
