@@ -62,6 +62,7 @@ static void test_round_trip(void)
     struct job j;
     job_defaults(&j, "jobs/demo.yaml");
     snprintf(j.output, sizeof j.output, "demo.png");
+    snprintf(j.reference, sizeof j.reference, "refs/demo.exr");
     j.hash = 0x0123456789abcdefULL;
     struct metrics m = {0.5, sqrt(0.5), 0.125, 0.0625, INFINITY}; /* psnr of equal images: written null */
     CHECK(write_sidecar(&j, &m) == 0);
@@ -78,6 +79,7 @@ static void test_round_trip(void)
     CHECK(in.has_error && in.mse == 0.5 && in.relmse == 0.125 && in.relmse_robust == 0.0625 &&
           isnan(in.psnr));
     CHECK(!strcmp(in.error_domain, image_domain_name(IMG_LINEAR)));
+    CHECK(!strcmp(in.reference, "refs/demo.exr")); /* worker verdict finds the reference by it */
     CHECK_NEAR(in.rmse, sqrt(0.5), 1e-9); /* written with 10 digits */
     /* issue 35: the work counts, path segments being the rays that are not shadow rays */
     CHECK(in.has_work && in.work.camera_samples == 300 && in.work.path_segments == 700 &&

@@ -266,6 +266,7 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                    number_at(d, error, "relmse", &out->relmse, e) < 0 ||
                    number_at(d, error, "relmse_robust", &out->relmse_robust, e) < 0 ||
                    string_at(d, error, "domain", out->error_domain, sizeof out->error_domain, e) < 0 ||
+                   string_at(d, error, "reference", out->reference, sizeof out->reference, e) < 0 ||
                    number_at(d, error, "psnr", &out->psnr, e) < 0
                ? -1
                : 0;
