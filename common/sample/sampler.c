@@ -140,11 +140,6 @@ enum sampler_walk sampler_walk_of(const struct sampler *s)
     return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : sampler_traits(s->kind)->walk;
 }
 
-double sampler_threshold_of(const struct sampler *s)
-{
-    return s->threshold;
-}
-
 size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
 {
     return kind_rows[s->kind].draw(s, rng, out);

@@ -49,9 +49,6 @@ enum sampler_kind sampler_kind_of(const struct sampler *s);
    Poisson walks its pool). */
 enum sampler_walk sampler_walk_of(const struct sampler *s);
 
-/* What a kind's draw function reads of its sampler: its threshold and grid side n. */
-double sampler_threshold_of(const struct sampler *s);
-
 /* Sets point by point, for a caller that consumes a set in random order and often only part
    of it (a light's points within one pixel). A uniform, jitter or random set has one point per
    cell of an n x n grid, and that point depends on its cell alone (random: on nothing), so it

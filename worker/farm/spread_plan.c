@@ -135,14 +135,6 @@ void spread_plan_free(struct spread_plan *p)
     memset(p, 0, sizeof *p);
 }
 
-const struct spread_entry *spread_plan_find(const struct spread_plan *p, const char *name)
-{
-    for (int i = 0; i < p->n; i++)
-        if (!strcmp(p->e[i].name, name))
-            return &p->e[i];
-    return NULL;
-}
-
 int spread_plan_parse(const char *name, struct spread_entry *out)
 {
     int a, b, c, part = 0, parts = 1, used = 0;

@@ -50,9 +50,6 @@ char *spread_plan_text(const struct spread_plan *p);
    that do not parse are passed over). 0, or -1 when it cannot be read. Free with spread_plan_free. */
 int spread_plan_read(const char *path, struct spread_plan *p);
 
-/* The entry named `name` in p, or NULL. */
-const struct spread_entry *spread_plan_find(const struct spread_plan *p, const char *name);
-
 /* Read an entry file's name back: its kind, indices and part (parts 1: whole). 0, or -1 when it
    is not one (the gather, or a name no plan makes). */
 int spread_plan_parse(const char *name, struct spread_entry *out);

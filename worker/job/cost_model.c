@@ -77,11 +77,6 @@ void cost_model_free(struct cost_model *m)
     free(m);
 }
 
-double cost_model_spent(const struct cost_model *m)
-{
-    return m->spent_s;
-}
-
 /* Pixels k of n of a w x h image, spread over it: one per band of rows, at golden-ratio steps
    across (a pixel's cost depends on what it sees). */
 static void pilot_pixel(int k, int n, int w, int h, int *x, int *y)

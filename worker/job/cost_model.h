@@ -57,7 +57,4 @@ int cost_model_expect(struct cost_model *m, const struct job *j, const struct sc
 int cost_model_estimate(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
                         int height, struct cost_estimate *out, struct err *e);
 
-/* The CPU seconds the model has spent measuring so far. */
-double cost_model_spent(const struct cost_model *m);
-
 #endif
