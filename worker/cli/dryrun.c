@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "base/clock.h"
+#include "cli.h"
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
 #include "study/load/compare_load.h"
@@ -39,13 +40,6 @@ static const char *count(double v, char *buf, size_t n)
 {
     snprintf(buf, n, v < 1e7 ? "%.0f" : "%.4g", v);
     return buf;
-}
-
-static void err_print_e(const struct err *e)
-{
-    char buf[2048];
-    err_format(e, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
 }
 
 static double mb(double bytes)
@@ -117,7 +111,7 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
     scene_file_free(&sf);
     cost_model_free(m);
     if (rc) {
-        err_print_e(&e);
+        cli_print_err(&e);
         return 2;
     }
     const struct job j = *jp;
@@ -272,7 +266,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     struct compare *one = NULL;
     if (f->kind == JOBFILE_SUITE ? !(suite = compare_suite_load_doc(&f->doc, f->path, &e))
                                  : !(one = compare_load_doc(&f->doc, f->path, &e))) {
-        err_print_e(&e);
+        cli_print_err(&e);
         return 2;
     }
     struct compare *const *studies = suite ? suite->studies : &one;
@@ -285,7 +279,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     if (!m)
         err_set(&e, f->path, 0, 0, "out of memory");
     if (!m || study_scenes_prepare(studies, n, &ds, m, &e) < 0) {
-        err_print_e(&e);
+        cli_print_err(&e);
         rc = 2;
     }
     for (int i = 0; i < n && rc == 0; i++) {
@@ -293,7 +287,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
         if (suite)
             printf(" study %s\n", studies[i]->name);
         if (study(studies[i], &ds, m, o, &sum, &e) < 0) {
-            err_print_e(&e);
+            cli_print_err(&e);
             rc = 2;
             break;
         }
@@ -321,7 +315,7 @@ int dryrun_main(const char *path, const struct run_opts *o)
     struct err e = {0};
     int rc = 2;
     if (jobfile_open(&f, path, path, &e) < 0)
-        err_print_e(&e);
+        cli_print_err(&e);
     else
         rc = f.kind == JOBFILE_PLAIN ? plain(&f, o) : compare_job(&f, o);
     jobfile_close(&f);

@@ -110,13 +110,6 @@ static void print_help(void)
     printf("\n%s", usage);
 }
 
-static void print_err(const struct err *e)
-{
-    char buf[2048];
-    err_format(e, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
-}
-
 static int max_rc(int a, int b)
 {
     return a > b ? a : b;
@@ -180,7 +173,7 @@ static void print_outcome(const struct job *j, int merge, int rc, struct run_res
             snprintf(why, sizeof why, "%s", e->msg);
             snprintf(e->msg, sizeof e->msg, "%s: %s; nothing written", j->name, why);
         }
-        print_err(e);
+        cli_print_err(e);
     } else if (rr->skipped) {
         err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j->name,
                   rr->out.image[0]);
@@ -203,7 +196,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     struct names_seen ns = {path, o, taken, ntaken};
     int rc = 2;
     if (jobfile_open(&f, path, path, &e) < 0) {
-        print_err(&e);
+        cli_print_err(&e);
     } else if (f.kind != JOBFILE_PLAIN && merge) {
         err_print("%s: a compare job renders whole images: no merge\n", path);
     } else if (f.kind != JOBFILE_PLAIN && o->parts) { /* a batch task's share of the study's renders */
