@@ -29,7 +29,9 @@ void queue_log(const char *file, const char *fmt, ...)
     err_print("%s %s: %s", when, file, msg);
 }
 
-int queue_log_host_processes(const char *running, const struct lease *me, const char *skip)
+/* Render processes that the live claims in running/ held by workers on this host (its name and
+   pid space, as `me` says) run now, by their leases, leaving out the claim at `skip`. */
+static int host_processes(const char *running, const struct lease *me, const char *skip)
 {
     DIR *d = opendir(running);
     int total = 0;
@@ -61,7 +63,7 @@ void queue_log_check_cores(const char *running, const struct lease *me, const ch
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (cores < 1)
         return;
-    int others = queue_log_host_processes(running, me, claim);
+    int others = host_processes(running, me, claim);
     if (others + processes > cores)
         queue_log(file,
                   "warning: the workers on %s run %d render processes on %ld cores (this job %d, others %d): "

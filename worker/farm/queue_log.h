@@ -10,10 +10,6 @@
    the queue; a trailing newline in fmt is dropped). */
 void queue_log(const char *file, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Render processes that the live claims in running/ held by workers on this host (its name and
-   pid space, as `me` says) run now, by their leases, leaving out the claim at `skip`. */
-int queue_log_host_processes(const char *running, const struct lease *me, const char *skip);
-
 /* Warn (queue_log) when this claim's `processes` and the other claims' on this host together
    exceed its cores: renders that share cores slow each other down. */
 void queue_log_check_cores(const char *running, const struct lease *me, const char *claim, const char *file,

@@ -54,14 +54,9 @@ static int is_file(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
-                       struct err *e)
-{
-    return run_decode_reference(j, NULL, 0, w, h, ref, domain, e);
-}
-
-int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h, struct rgbf *ref,
-                         enum img_domain *domain, struct err *e)
+/* run_load_reference from the reference's bytes already read (data, len), or its file when data is NULL. */
+static int decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h,
+                            struct rgbf *ref, enum img_domain *domain, struct err *e)
 {
     *ref = (struct rgbf){0};
     *domain = IMG_LINEAR;
@@ -89,6 +84,12 @@ int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, i
         return -1;
     }
     return 0;
+}
+
+int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
+                       struct err *e)
+{
+    return decode_reference(j, NULL, 0, w, h, ref, domain, e);
 }
 
 void run_warn_display_reference(const char *job_name, const char *path)
@@ -157,7 +158,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         goto done;
     }
-    if (!o->ref && run_decode_reference(j, o->ref_bytes, o->ref_len, w, h, &ref, &ref_domain, e) < 0)
+    if (!o->ref && decode_reference(j, o->ref_bytes, o->ref_len, w, h, &ref, &ref_domain, e) < 0)
         goto done;
     if (o->parts == 0 && !o->ref && ref.px && ref_domain == IMG_DISPLAY8)
         run_warn_display_reference(j->name, j->reference);
