@@ -1,6 +1,5 @@
 /* main: the `worker` command line: parse, dispatch, print, exit. */
 #include <signal.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,12 +13,9 @@
 #include "rejudge.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
-#include "base/fileio.h"
-#include "image/imgio.h"
 #include "job/job.h"
 #include "job/jobfile.h"
 #include "job/outdir.h"
-#include "image/metrics.h"
 #include "plan.h"
 #include "points.h"
 #include "farm/merge.h"

@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "base/rng.h"
 #include "cost_sets.h"
 #include "render/render.h"
 

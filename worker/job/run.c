@@ -1,14 +1,11 @@
 /* run: one job from its loaded settings to an image and its sidecar on disk. */
 #include "run.h"
 
-#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-#include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "base/sbuf.h"
