@@ -4,12 +4,12 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "base/sbuf.h"
 #include "job_limits.h"
+#include "job_path.h"
 #include "part.h"
 #include "outdir.h"
 #include "run_out.h"
@@ -43,12 +43,6 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
             sbuf_show(p->name, name, sizeof name), pct, done, rows, elapsed, eta);
     if (done == rows)
         fprintf(stderr, "\n");
-}
-
-static int is_file(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
 /* run_load_reference from the reference's bytes already read (data, len), or its file when data is NULL. */
@@ -104,7 +98,7 @@ static int outputs_current(const struct job *j, const struct run_opts *o, const 
     if (o->parts > 0)
         return part_matches(rr->out.image[0], j, o->part, o->parts);
     for (int i = 0; i < rr->out.n_images; i++)
-        if (!is_file(rr->out.image[i]))
+        if (!job_path_is_file(rr->out.image[i]))
             return 0;
     return sidecar_matches(rr->out.sidecar, j->hash);
 }
