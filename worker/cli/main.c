@@ -229,19 +229,15 @@ int main(int argc, char **argv)
 /* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
 static int worker_main(int argc, char **argv)
 {
+    static const struct {
+        const char *name;
+        int (*run)(int, char **); /* the subcommand's main, given argv from its name */
+    } subcommands[] = {{"points", points_main},       {"diff", diff_main}, {"verdict", rejudge_main},
+                       {"status", queue_status_main}, {"plan", plan_main}, {"requeue", queue_requeue_main}};
     cli_hoist_subcommand(argc, argv);
-    if (argc >= 2 && !strcmp(argv[1], "points"))
-        return points_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "diff"))
-        return diff_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "verdict"))
-        return rejudge_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "status"))
-        return queue_status_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "plan"))
-        return plan_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "requeue"))
-        return queue_requeue_main(argc - 1, argv + 1);
+    for (size_t i = 0; argc >= 2 && i < sizeof subcommands / sizeof subcommands[0]; i++)
+        if (!strcmp(argv[1], subcommands[i].name))
+            return subcommands[i].run(argc - 1, argv + 1);
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,
