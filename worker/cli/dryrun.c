@@ -47,14 +47,6 @@ static double mb(double bytes)
     return bytes / (1 << 20);
 }
 
-/* The wall time of cpu_s spread over `processes` processes, on at most this machine's cores. */
-static double wall_of(double cpu_s, int processes)
-{
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    int p = processes < 1 ? 1 : processes;
-    return cpu_s / (double)(cores > 0 && cores < p ? cores : p);
-}
-
 static void print_memory(const struct job_estimate *est, const char *what)
 {
     char tex[64] = "";
@@ -65,14 +57,17 @@ static void print_memory(const struct job_estimate *est, const char *what)
            est->processes == 1 ? "" : "es", mb(est->process_bytes));
 }
 
+/* cpu_s, and its wall time spread over `processes` processes on at most this machine's cores. */
 static void print_cpu(double cpu_s, int processes, const char *how)
 {
     char a[32], b[32], cores[48] = "";
     long n = sysconf(_SC_NPROCESSORS_ONLN);
+    const int p = processes < 1 ? 1 : processes;
     if (n > 0 && n < processes)
         snprintf(cores, sizeof cores, " (%ld cores here)", n);
     printf("  CPU time  about %s%s; wall about %s on %d process%s%s\n", duration(cpu_s, a, sizeof a), how,
-           duration(wall_of(cpu_s, processes), b, sizeof b), processes, processes == 1 ? "" : "es", cores);
+           duration(cpu_s / (double)(n > 0 && n < p ? n : p), b, sizeof b), processes,
+           processes == 1 ? "" : "es", cores);
 }
 
 /* Where the estimate's CPU time goes: tracing and each kind of point set. */
