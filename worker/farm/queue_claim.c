@@ -12,18 +12,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/json.h"
 #include "job/sidecar.h"
 #include "queue_log.h"
-
-static double since(const struct timespec *t)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
-}
 
 static double renew_every_s(const struct queue *q)
 {
@@ -41,9 +35,9 @@ static volatile sig_atomic_t renew_fd = -1;
 static void tick(void *arg, int rows_done, int rows, double elapsed_s)
 {
     struct queue *q = arg;
-    if (since(&q->last_touch) < renew_every_s(q))
+    if (clock_s(CLOCK_MONOTONIC) - q->last_touch < renew_every_s(q))
         return;
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    q->last_touch = clock_s(CLOCK_MONOTONIC);
     if (!queue_claim_still_ours(q)) {
         q->lost = 1;
         if (q->stop && !*q->stop)
@@ -140,7 +134,7 @@ static int adopt_claim(struct queue *q, const char *claim, const char *name)
         return -1;
     snprintf(q->claim, sizeof q->claim, "%s", claim);
     lease_init(&q->lease);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    q->last_touch = clock_s(CLOCK_MONOTONIC);
     if (lease_write(q->claim, &q->lease, &e) == 0)
         return 0;
     char buf[2048];
@@ -161,10 +155,8 @@ static void remove_dead_lease_temp(struct queue *q, const char *name)
     if (name[0] != '.' || !tmp || strlen(tmp + strlen(".yaml.lease.tmp.")) != 6)
         return;
     snprintf(path, sizeof path, "%s/%s", q->running, name);
-    struct timespec now;
-    clock_gettime(CLOCK_REALTIME, &now);
     if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
-        (now.tv_sec - st.st_mtim.tv_sec) + (now.tv_nsec - st.st_mtim.tv_nsec) * 1e-9 > q->o->lease_timeout_s)
+        clock_s(CLOCK_REALTIME) - (st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9) > q->o->lease_timeout_s)
         unlink(path);
 }
 
@@ -224,7 +216,7 @@ int queue_claim_take(struct queue *q, const char *name)
         return -1;
     }
     lease_init(&q->lease);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    q->last_touch = clock_s(CLOCK_MONOTONIC);
     if (lease_write(q->claim, &q->lease, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);

@@ -18,7 +18,7 @@ struct queue {
     char dir[1024], running[1100], done[1100], failed[1100];
     struct lease lease; /* ours, for the claim in hand */
     char claim[2048];   /* DIR/running/X.yaml while a job is held */
-    struct timespec last_touch;
+    double last_touch;  /* CLOCK_MONOTONIC seconds (clock_s) of the lease's last renewal */
     int worst;
     int took;                    /* claims processed (a --once worker that took none says so) */
     int filed;                   /* unrunnable entries this worker moved to failed/ */

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "base/clock.h"
 #include "base/fileio.h"
 #include "scenefile/yamlx.h"
 
@@ -53,9 +54,7 @@ static int peek_priority(const char *path)
    empty file is claimed and filed in failed/ as invalid. Files with content are claimed at once. */
 static int just_created(const struct stat *st)
 {
-    struct timespec now;
-    clock_gettime(CLOCK_REALTIME, &now);
-    double age = (double)(now.tv_sec - st->st_mtim.tv_sec) + (now.tv_nsec - st->st_mtim.tv_nsec) * 1e-9;
+    double age = clock_s(CLOCK_REALTIME) - (st->st_mtim.tv_sec + st->st_mtim.tv_nsec * 1e-9);
     return st->st_size == 0 && age < QUEUE_SCAN_EMPTY_GRACE_S;
 }
 
