@@ -85,14 +85,12 @@ static void pilot_pixel(int k, int n, int w, int h, int *x, int *y)
 }
 
 /* The threshold at which the pilot draws kind's sets: t, or coarser when its sets are larger
-   than COST_PILOT_SET_MAX points (capacity ~ 1 / t^2). */
+   than COST_PILOT_SET_MAX points. */
 static double pilot_threshold(enum sampler_kind kind, double t)
 {
-    const double cap = (double)sampler_capacity(kind, t);
-    if (cap <= COST_PILOT_SET_MAX)
-        return t;
-    const double coarse = t * sqrt(cap / COST_PILOT_SET_MAX);
-    return coarse < 100 ? coarse : 100;
+    return (double)sampler_capacity(kind, t) <= COST_PILOT_SET_MAX
+               ? t
+               : cost_sets_threshold_for(kind, t, COST_PILOT_SET_MAX);
 }
 
 /* How long a set timing may take: COST_SET_TARGET_S, then one batch past the budget, 0 past
