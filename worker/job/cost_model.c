@@ -289,12 +289,11 @@ static struct pilot_entry *entry_for(struct cost_model *m, const struct pilot_ke
 /* The pilot of j's key: shared when one ran, else run now with its share of the budget left
    (an equal share with every pilot expected and not run yet). */
 static int pilot_for(struct cost_model *m, const struct job *j, const struct pilot_key *k,
-                     struct pilot_fig *fig, int *shared, struct err *e)
+                     struct pilot_fig *fig, struct err *e)
 {
     struct pilot_entry *p = entry_for(m, k);
     if (!p)
         return err_set(e, NULL, 0, 0, "out of memory for the cost model");
-    *shared = p->measured;
     if (!p->measured) {
         int waiting = 0;
         for (int i = 0; i < m->n_pilots; i++)
@@ -357,8 +356,7 @@ int cost_model_estimate(struct cost_model *m, const struct job *j, const struct 
     const struct pilot_key k = key_of(j, sf, width, height);
     struct pilot_fig fig = {0};
     struct cost_set pix, light = {0}, pad = {0};
-    if (pilot_for(m, j, &k, &fig, &out->pilot_shared, e) < 0 ||
-        set_cost(m, j, 0, COST_SET_PIXEL, &pix, e) < 0)
+    if (pilot_for(m, j, &k, &fig, e) < 0 || set_cost(m, j, 0, COST_SET_PIXEL, &pix, e) < 0)
         return -1;
     const double pixels = (double)width * height;
     out->spp_mean = pix.points;
