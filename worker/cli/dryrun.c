@@ -135,7 +135,7 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
 struct study_sum {
     double samples, cpu_s, ref_cpu_s, spp_lo, spp_hi;
     struct job_estimate largest; /* of the most memory */
-    int processes, refs;
+    int processes;
 };
 
 static void print_study(const struct compare *c, const struct study_sum *sum)
@@ -180,7 +180,6 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
                "reference a smaller threshold\n",
                cs->name, est.spp_mean, VERDICT_REF_FACTOR, densest);
     sum->ref_cpu_s += est.cpu_s;
-    sum->refs++;
     return 0;
 }
 
