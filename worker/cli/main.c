@@ -120,31 +120,8 @@ struct named {
     ino_t ino;
 };
 
-/* 1 (said on stderr) when the name of the job file at path is another file's among the n in taken;
-   else it is added. */
-static int name_taken(const char *name, const char *path, const struct run_opts *o, struct named *taken,
-                      int *n)
-{
-    struct stat st;
-    if (stat(path, &st) < 0)
-        st.st_dev = 0, st.st_ino = 0;
-    for (int i = 0; i < *n; i++) {
-        if (strcmp(taken[i].name, name) != 0)
-            continue;
-        if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
-            return 0;
-        err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
-                  "%s/%s/ would replace that job's (give one of them another name: in its file)",
-                  path, name, taken[i].path, o->out_dir, name);
-        return 1;
-    }
-    taken[*n] = (struct named){.path = path, .dev = st.st_dev, .ino = st.st_ino};
-    snprintf(taken[*n].name, sizeof taken[*n].name, "%s", name);
-    (*n)++;
-    return 0;
-}
-
-/* A job's name against the command line's others (jobfile_run's name_ok). */
+/* A job's name against the command line's others (jobfile_run's name_ok): the job files taken
+   so far (taken, *ntaken of them) and the one at path now. */
 struct names_seen {
     const char *path;
     const struct run_opts *o;
@@ -152,10 +129,28 @@ struct names_seen {
     int *ntaken;
 };
 
+/* 0 (said on stderr) when name is another job file's among those taken; else 1, and it is taken. */
 static int name_ok(const char *name, void *arg)
 {
-    struct names_seen *ns = arg;
-    return !name_taken(name, ns->path, ns->o, ns->taken, ns->ntaken);
+    const struct names_seen *ns = arg;
+    struct named *taken = ns->taken;
+    struct stat st;
+    if (stat(ns->path, &st) < 0)
+        st.st_dev = 0, st.st_ino = 0;
+    for (int i = 0; i < *ns->ntaken; i++) {
+        if (strcmp(taken[i].name, name) != 0)
+            continue;
+        if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
+            return 1;
+        err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
+                  "%s/%s/ would replace that job's (give one of them another name: in its file)",
+                  ns->path, name, taken[i].path, ns->o->out_dir, name);
+        return 0;
+    }
+    taken[*ns->ntaken] = (struct named){.path = ns->path, .dev = st.st_dev, .ino = st.st_ino};
+    snprintf(taken[*ns->ntaken].name, sizeof taken[0].name, "%s", name);
+    (*ns->ntaken)++;
+    return 1;
 }
 
 /* What a plain job's run or merge ended with, on stderr. */
@@ -183,7 +178,7 @@ static void print_outcome(const struct job *j, int merge, int rc, struct run_res
 }
 
 /* Render (or, with merge, merge the parts of) one job file, read once; its exit status. taken:
-   the jobs of this command line so far (name_taken), compare jobs included. */
+   the jobs of this command line so far (name_ok), compare jobs included. */
 static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
 {
     struct jobfile f;
