@@ -20,14 +20,12 @@ void queue_file_log(struct queue *q, const char *name, const char *job_name, con
     int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
     if (sig)
         n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
-    time_t t = time(NULL);
     char when[64];
-    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&t));
     struct lease me = q->lease;
     if (!me.pid) /* no claim in hand (an entry filed at the scan): this worker is who filed it */
         lease_init(&me);
     n += snprintf(text + n, sizeof text - n, "attempts: %d\nworker: pid %ld on %s\ntime: %s\n", attempts,
-                  me.pid, me.host, when);
+                  me.pid, me.host, queue_log_time(time(NULL), when, sizeof when));
     snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
     struct err e;
     if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)

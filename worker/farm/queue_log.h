@@ -4,7 +4,12 @@
 #ifndef QUEUE_LOG_H
 #define QUEUE_LOG_H
 
+#include <time.h>
+
 #include "lease.h"
+
+/* t as the log's time, ISO 8601 in UTC ("2025-06-01T10:02:11Z"), into out (n bytes); returns out. */
+char *queue_log_time(time_t t, char *out, size_t n);
 
 /* One line on stderr: "2025-06-01T10:02:11Z x.yaml: message" (UTC; file is the job file's name in
    the queue; a trailing newline in fmt is dropped). */
