@@ -1,11 +1,10 @@
-/* cli: parse the command line's options and their values. */
+/* cli: parse the command line's options and their values; print an error as one line. */
 #include "cli.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/err.h"
 #include "job/procs.h"
 #include "job/part.h"
 
@@ -126,4 +125,11 @@ void cli_hoist_subcommand(int argc, char **argv)
             return;
         }
     }
+}
+
+void cli_print_err(const struct err *e)
+{
+    char buf[4096];
+    err_format(e, buf, sizeof buf);
+    fprintf(stderr, "%s\n", buf);
 }

@@ -3,6 +3,7 @@
 #ifndef CLI_H
 #define CLI_H
 
+#include "base/err.h"
 #include "farm/queue.h"
 
 /* 1 when a is an option that takes a value (--out, --processes, --queue, --poll, --retries,
@@ -22,5 +23,8 @@ char **cli_split_equals(int *argc, char **argv);
    subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
    After --help or --version nothing moves: those answer whatever follows. */
 void cli_hoist_subcommand(int argc, char **argv);
+
+/* e as one line on stderr (err_format's "file:line:col: msg"). */
+void cli_print_err(const struct err *e);
 
 #endif

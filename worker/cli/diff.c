@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/fileio.h"
+#include "cli.h"
 #include "image/errmap.h"
 #include "image/flip.h"
 #include "image/imgio.h"
@@ -200,9 +201,7 @@ int diff_main(int argc, char **argv)
         return 2;
     }
     if (measure(files, (int)block, map_path, mask_arg, &f, &e) < 0) {
-        char buf[2048];
-        err_format(&e, buf, sizeof buf);
-        fprintf(stderr, "%s\n", buf);
+        cli_print_err(&e);
         return 2;
     }
     const char *flip_name = f.flip.hdr ? "HDR-FLIP" : "LDR-FLIP";

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "base/clock.h"
+#include "cli.h"
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
 #include "study/load/compare_load.h"
@@ -41,24 +42,9 @@ static const char *count(double v, char *buf, size_t n)
     return buf;
 }
 
-static void err_print_e(const struct err *e)
-{
-    char buf[2048];
-    err_format(e, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
-}
-
 static double mb(double bytes)
 {
     return bytes / (1 << 20);
-}
-
-/* The wall time of cpu_s spread over `processes` processes, on at most this machine's cores. */
-static double wall_of(double cpu_s, int processes)
-{
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    int p = processes < 1 ? 1 : processes;
-    return cpu_s / (double)(cores > 0 && cores < p ? cores : p);
 }
 
 static void print_memory(const struct job_estimate *est, const char *what)
@@ -71,14 +57,17 @@ static void print_memory(const struct job_estimate *est, const char *what)
            est->processes == 1 ? "" : "es", mb(est->process_bytes));
 }
 
+/* cpu_s, and its wall time spread over `processes` processes on at most this machine's cores. */
 static void print_cpu(double cpu_s, int processes, const char *how)
 {
     char a[32], b[32], cores[48] = "";
     long n = sysconf(_SC_NPROCESSORS_ONLN);
+    const int p = processes < 1 ? 1 : processes;
     if (n > 0 && n < processes)
         snprintf(cores, sizeof cores, " (%ld cores here)", n);
     printf("  CPU time  about %s%s; wall about %s on %d process%s%s\n", duration(cpu_s, a, sizeof a), how,
-           duration(wall_of(cpu_s, processes), b, sizeof b), processes, processes == 1 ? "" : "es", cores);
+           duration(cpu_s / (double)(n > 0 && n < p ? n : p), b, sizeof b), processes,
+           processes == 1 ? "" : "es", cores);
 }
 
 /* Where the estimate's CPU time goes: tracing and each kind of point set. */
@@ -117,7 +106,7 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
     scene_file_free(&sf);
     cost_model_free(m);
     if (rc) {
-        err_print_e(&e);
+        cli_print_err(&e);
         return 2;
     }
     const struct job j = *jp;
@@ -146,7 +135,7 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
 struct study_sum {
     double samples, cpu_s, ref_cpu_s, spp_lo, spp_hi;
     struct job_estimate largest; /* of the most memory */
-    int processes, refs;
+    int processes;
 };
 
 static void print_study(const struct compare *c, const struct study_sum *sum)
@@ -191,7 +180,6 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
                "reference a smaller threshold\n",
                cs->name, est.spp_mean, VERDICT_REF_FACTOR, densest);
     sum->ref_cpu_s += est.cpu_s;
-    sum->refs++;
     return 0;
 }
 
@@ -272,7 +260,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     struct compare *one = NULL;
     if (f->kind == JOBFILE_SUITE ? !(suite = compare_suite_load_doc(&f->doc, f->path, &e))
                                  : !(one = compare_load_doc(&f->doc, f->path, &e))) {
-        err_print_e(&e);
+        cli_print_err(&e);
         return 2;
     }
     struct compare *const *studies = suite ? suite->studies : &one;
@@ -285,7 +273,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     if (!m)
         err_set(&e, f->path, 0, 0, "out of memory");
     if (!m || study_scenes_prepare(studies, n, &ds, m, &e) < 0) {
-        err_print_e(&e);
+        cli_print_err(&e);
         rc = 2;
     }
     for (int i = 0; i < n && rc == 0; i++) {
@@ -293,7 +281,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
         if (suite)
             printf(" study %s\n", studies[i]->name);
         if (study(studies[i], &ds, m, o, &sum, &e) < 0) {
-            err_print_e(&e);
+            cli_print_err(&e);
             rc = 2;
             break;
         }
@@ -321,7 +309,7 @@ int dryrun_main(const char *path, const struct run_opts *o)
     struct err e = {0};
     int rc = 2;
     if (jobfile_open(&f, path, path, &e) < 0)
-        err_print_e(&e);
+        cli_print_err(&e);
     else
         rc = f.kind == JOBFILE_PLAIN ? plain(&f, o) : compare_job(&f, o);
     jobfile_close(&f);

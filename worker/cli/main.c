@@ -1,6 +1,5 @@
 /* main: the `worker` command line: parse, dispatch, print, exit. */
 #include <signal.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,12 +13,9 @@
 #include "rejudge.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
-#include "base/fileio.h"
-#include "image/imgio.h"
 #include "job/job.h"
 #include "job/jobfile.h"
 #include "job/outdir.h"
-#include "image/metrics.h"
 #include "plan.h"
 #include "points.h"
 #include "farm/merge.h"
@@ -110,13 +106,6 @@ static void print_help(void)
     printf("\n%s", usage);
 }
 
-static void print_err(const struct err *e)
-{
-    char buf[2048];
-    err_format(e, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
-}
-
 static int max_rc(int a, int b)
 {
     return a > b ? a : b;
@@ -131,31 +120,8 @@ struct named {
     ino_t ino;
 };
 
-/* 1 (said on stderr) when the name of the job file at path is another file's among the n in taken;
-   else it is added. */
-static int name_taken(const char *name, const char *path, const struct run_opts *o, struct named *taken,
-                      int *n)
-{
-    struct stat st;
-    if (stat(path, &st) < 0)
-        st.st_dev = 0, st.st_ino = 0;
-    for (int i = 0; i < *n; i++) {
-        if (strcmp(taken[i].name, name) != 0)
-            continue;
-        if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
-            return 0;
-        err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
-                  "%s/%s/ would replace that job's (give one of them another name: in its file)",
-                  path, name, taken[i].path, o->out_dir, name);
-        return 1;
-    }
-    taken[*n] = (struct named){.path = path, .dev = st.st_dev, .ino = st.st_ino};
-    snprintf(taken[*n].name, sizeof taken[*n].name, "%s", name);
-    (*n)++;
-    return 0;
-}
-
-/* A job's name against the command line's others (jobfile_run's name_ok). */
+/* A job's name against the command line's others (jobfile_run's name_ok): the job files taken
+   so far (taken, *ntaken of them) and the one at path now. */
 struct names_seen {
     const char *path;
     const struct run_opts *o;
@@ -163,10 +129,28 @@ struct names_seen {
     int *ntaken;
 };
 
+/* 0 (said on stderr) when name is another job file's among those taken; else 1, and it is taken. */
 static int name_ok(const char *name, void *arg)
 {
-    struct names_seen *ns = arg;
-    return !name_taken(name, ns->path, ns->o, ns->taken, ns->ntaken);
+    const struct names_seen *ns = arg;
+    struct named *taken = ns->taken;
+    struct stat st;
+    if (stat(ns->path, &st) < 0)
+        st.st_dev = 0, st.st_ino = 0;
+    for (int i = 0; i < *ns->ntaken; i++) {
+        if (strcmp(taken[i].name, name) != 0)
+            continue;
+        if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
+            return 1;
+        err_print("%s: name \"%s\" is also the name of %s, earlier on this command line: its outputs in "
+                  "%s/%s/ would replace that job's (give one of them another name: in its file)",
+                  ns->path, name, taken[i].path, ns->o->out_dir, name);
+        return 0;
+    }
+    taken[*ns->ntaken] = (struct named){.path = ns->path, .dev = st.st_dev, .ino = st.st_ino};
+    snprintf(taken[*ns->ntaken].name, sizeof taken[0].name, "%s", name);
+    (*ns->ntaken)++;
+    return 1;
 }
 
 /* What a plain job's run or merge ended with, on stderr. */
@@ -180,7 +164,7 @@ static void print_outcome(const struct job *j, int merge, int rc, struct run_res
             snprintf(why, sizeof why, "%s", e->msg);
             snprintf(e->msg, sizeof e->msg, "%s: %s; nothing written", j->name, why);
         }
-        print_err(e);
+        cli_print_err(e);
     } else if (rr->skipped) {
         err_print("%s: up to date (%s, same job hash), skipped; --force renders it again\n", j->name,
                   rr->out.image[0]);
@@ -194,7 +178,7 @@ static void print_outcome(const struct job *j, int merge, int rc, struct run_res
 }
 
 /* Render (or, with merge, merge the parts of) one job file, read once; its exit status. taken:
-   the jobs of this command line so far (name_taken), compare jobs included. */
+   the jobs of this command line so far (name_ok), compare jobs included. */
 static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
 {
     struct jobfile f;
@@ -203,7 +187,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     struct names_seen ns = {path, o, taken, ntaken};
     int rc = 2;
     if (jobfile_open(&f, path, path, &e) < 0) {
-        print_err(&e);
+        cli_print_err(&e);
     } else if (f.kind != JOBFILE_PLAIN && merge) {
         err_print("%s: a compare job renders whole images: no merge\n", path);
     } else if (f.kind != JOBFILE_PLAIN && o->parts) { /* a batch task's share of the study's renders */
@@ -240,19 +224,15 @@ int main(int argc, char **argv)
 /* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
 static int worker_main(int argc, char **argv)
 {
+    static const struct {
+        const char *name;
+        int (*run)(int, char **); /* the subcommand's main, given argv from its name */
+    } subcommands[] = {{"points", points_main},       {"diff", diff_main}, {"verdict", rejudge_main},
+                       {"status", queue_status_main}, {"plan", plan_main}, {"requeue", queue_requeue_main}};
     cli_hoist_subcommand(argc, argv);
-    if (argc >= 2 && !strcmp(argv[1], "points"))
-        return points_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "diff"))
-        return diff_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "verdict"))
-        return rejudge_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "status"))
-        return queue_status_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "plan"))
-        return plan_main(argc - 1, argv + 1);
-    if (argc >= 2 && !strcmp(argv[1], "requeue"))
-        return queue_requeue_main(argc - 1, argv + 1);
+    for (size_t i = 0; argc >= 2 && i < sizeof subcommands / sizeof subcommands[0]; i++)
+        if (!strcmp(argv[1], subcommands[i].name))
+            return subcommands[i].run(argc - 1, argv + 1);
     struct queue_opts q = {.poll_s = QUEUE_POLL_S,
                            .retries = QUEUE_RETRIES,
                            .lease_timeout_s = QUEUE_LEASE_TIMEOUT_S,

@@ -3,13 +3,13 @@
 #include "plan.h"
 
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "base/json.h"
+#include "cli.h"
 #include "farm/spread_plan.h"
 #include "job/jobfile.h"
 
@@ -188,7 +188,6 @@ int plan_main(int argc, char **argv)
     struct study_fan f = {0};
     struct spread_plan p = {0};
     struct err e = {0};
-    char line[2600];
     rc = 2;
     if (jobfile_open(&jf, a.path, a.path, &e) < 0) {
     } else if (jf.kind == JOBFILE_PLAIN) {
@@ -201,10 +200,8 @@ int plan_main(int argc, char **argv)
         (a.json ? print_json : print_text)(&f, &p, &a, makespan_s);
         rc = 0;
     }
-    if (rc) {
-        err_format(&e, line, sizeof line);
-        fprintf(stderr, "%s\n", line);
-    }
+    if (rc)
+        cli_print_err(&e);
     spread_plan_free(&p);
     study_fan_free(&f);
     jobfile_close(&jf);

@@ -19,6 +19,7 @@
 #include "sample/padding.h"
 #include "sample/sampler.h"
 #include "job/job.h"
+#include "job/job_path.h"
 
 static const char points_usage[] = "usage: worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] "
                                    "[--spectrum F.png] [--radial F.svg] "
@@ -61,13 +62,7 @@ static int place_ok(const char *opt, const char *path)
     if (!path)
         return 0;
     char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        snprintf(dir, sizeof dir, ".");
-    else if (slash == path)
-        snprintf(dir, sizeof dir, "/");
-    else
-        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    job_path_dir(path, dir, sizeof dir);
     struct stat st;
     struct err e = {0};
     if (fileio_output_ok(path, NULL, 0, &e) < 0) {

@@ -5,27 +5,19 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/json.h"
 #include "job/sidecar.h"
 #include "queue_log.h"
-
-static double since(const struct timespec *t)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (now.tv_sec - t->tv_sec) + (now.tv_nsec - t->tv_nsec) * 1e-9;
-}
 
 static double renew_every_s(const struct queue *q)
 {
@@ -35,12 +27,17 @@ static double renew_every_s(const struct queue *q)
 /* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
 static volatile sig_atomic_t renew_fd = -1;
 
-void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s)
+/* The render's progress callback (run_opts.tick, every 5 ms): about once a second, or four times per
+   --lease-timeout when that is shorter, see that the claim is still ours (its file still in
+   running/, its lease still ours) and renew the lease with the render's progress; a claim gone (the job file
+   removed or moved away: the job was cancelled) or taken over sets q->lost and *q->stop to
+   QUEUE_STOP_CLAIM_LOST, which stops the render. */
+static void tick(void *arg, int rows_done, int rows, double elapsed_s)
 {
     struct queue *q = arg;
-    if (since(&q->last_touch) < renew_every_s(q))
+    if (clock_s(CLOCK_MONOTONIC) - q->last_touch < renew_every_s(q))
         return;
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    q->last_touch = clock_s(CLOCK_MONOTONIC);
     if (!queue_claim_still_ours(q)) {
         q->lost = 1;
         if (q->stop && !*q->stop)
@@ -137,7 +134,7 @@ static int adopt_claim(struct queue *q, const char *claim, const char *name)
         return -1;
     snprintf(q->claim, sizeof q->claim, "%s", claim);
     lease_init(&q->lease);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    q->last_touch = clock_s(CLOCK_MONOTONIC);
     if (lease_write(q->claim, &q->lease, &e) == 0)
         return 0;
     char buf[2048];
@@ -158,10 +155,8 @@ static void remove_dead_lease_temp(struct queue *q, const char *name)
     if (name[0] != '.' || !tmp || strlen(tmp + strlen(".yaml.lease.tmp.")) != 6)
         return;
     snprintf(path, sizeof path, "%s/%s", q->running, name);
-    struct timespec now;
-    clock_gettime(CLOCK_REALTIME, &now);
     if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
-        (now.tv_sec - st.st_mtim.tv_sec) + (now.tv_nsec - st.st_mtim.tv_nsec) * 1e-9 > q->o->lease_timeout_s)
+        clock_s(CLOCK_REALTIME) - (st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9) > q->o->lease_timeout_s)
         unlink(path);
 }
 
@@ -221,7 +216,7 @@ int queue_claim_take(struct queue *q, const char *name)
         return -1;
     }
     lease_init(&q->lease);
-    clock_gettime(CLOCK_MONOTONIC, &q->last_touch);
+    q->last_touch = clock_s(CLOCK_MONOTONIC);
     if (lease_write(q->claim, &q->lease, &e) < 0) {
         char buf[2048];
         err_format(&e, buf, sizeof buf);
@@ -254,7 +249,8 @@ int queue_claim_still_ours(struct queue *q)
            strcmp(l.token, q->lease.token) == 0;
 }
 
-int queue_claim_still_held(void *arg)
+/* run_opts.still_held: queue_claim_still_ours, asked just before each output is renamed. */
+static int still_held(void *arg)
 {
     return queue_claim_still_ours(arg);
 }
@@ -265,14 +261,29 @@ int queue_claim_gone(struct queue *q)
     return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
+/* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
+   we were stopped or hung) writes nothing, lest it replace the new holder's outputs; nor does one
+   whose output folder `dir` holds the outputs of another job file of the queue with the same
+   `name:` (q->name_owner says which). */
+static int may_write(void *arg, const char *dir)
+{
+    struct queue *q = arg;
+    if (!queue_claim_still_ours(q))
+        return 0;
+    if (!queue_claim_name_owner(q, dir, q->name_owner, sizeof q->name_owner))
+        return 1;
+    snprintf(q->name_dir, sizeof q->name_dir, "%s", dir);
+    return 0;
+}
+
 struct run_opts queue_claim_run_opts(const struct queue *q, struct queue *held)
 {
     struct run_opts ro = q->o->run;
     ro.out_dir = q->done;
     ro.stop = q->stop;
-    ro.tick = queue_claim_tick;
-    ro.may_write = queue_claim_held;
-    ro.still_held = queue_claim_still_held;
+    ro.tick = tick;
+    ro.may_write = may_write;
+    ro.still_held = still_held;
     ro.lock_wait_s = q->o->lease_timeout_s;
     ro.tick_arg = held;
     return ro;
@@ -314,17 +325,6 @@ int queue_claim_name_owner(const struct queue *q, const char *dir, char *owner, 
     }
     closedir(d);
     return taken;
-}
-
-int queue_claim_held(void *arg, const char *dir)
-{
-    struct queue *q = arg;
-    if (!queue_claim_still_ours(q))
-        return 0;
-    if (!queue_claim_name_owner(q, dir, q->name_owner, sizeof q->name_owner))
-        return 1;
-    snprintf(q->name_dir, sizeof q->name_dir, "%s", dir);
-    return 0;
 }
 
 int queue_claim_lock(struct queue *q)

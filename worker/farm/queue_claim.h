@@ -18,7 +18,7 @@ struct queue {
     char dir[1024], running[1100], done[1100], failed[1100];
     struct lease lease; /* ours, for the claim in hand */
     char claim[2048];   /* DIR/running/X.yaml while a job is held */
-    struct timespec last_touch;
+    double last_touch;  /* CLOCK_MONOTONIC seconds (clock_s) of the lease's last renewal */
     int worst;
     int took;                    /* claims processed (a --once worker that took none says so) */
     int filed;                   /* unrunnable entries this worker moved to failed/ */
@@ -42,13 +42,6 @@ struct queue {
 /* *queue.stop's value when the tick found the claim in hand gone (not a signal number): the render
    stops, writes nothing, and the worker goes on with the next job. */
 #define QUEUE_STOP_CLAIM_LOST (-1)
-
-/* The render's progress callback (run_opts.tick, every 5 ms): about once a second, or four times per
-   --lease-timeout when that is shorter, see that the claim is still ours (its file still in
-   running/, its lease still ours) and renew the lease with the render's progress; a claim gone (the job file
-   removed or moved away: the job was cancelled) or taken over sets q->lost and *q->stop to
-   QUEUE_STOP_CLAIM_LOST, which stops the render. */
-void queue_claim_tick(void *arg, int rows_done, int rows, double elapsed_s);
 
 /* Renew the claim in hand's lease from a timer (SIGALRM, SA_RESTART) as often as the tick would,
    whatever the worker is doing: loading a scene (a big texture), encoding and writing an image,
@@ -87,17 +80,8 @@ void queue_claim_source(const struct queue *q, const char *claim, char *out, siz
    the claim away while we rendered (a lease judged dead elsewhere). */
 int queue_claim_still_ours(struct queue *q);
 
-/* run_opts.still_held: queue_claim_still_ours, asked just before each output is renamed. */
-int queue_claim_still_held(void *arg);
-
 /* The claim's file is no longer in running/: removed or moved away while we held it (cancelled). */
 int queue_claim_gone(struct queue *q);
-
-/* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
-   we were stopped or hung) writes nothing, lest it replace the new holder's outputs; nor does one
-   whose output folder `dir` holds the outputs of another job file of the queue with the same
-   `name:` (q->name_owner says which). */
-int queue_claim_held(void *arg, const char *dir);
 
 /* The run options of a render of the claim in hand: the worker's --run options, outputs into
    DIR/done, q's stop flag, and the claim's tick, may_write and still_held on held (q itself, or

@@ -3,15 +3,12 @@
 #include "queue_drain.h"
 
 #include <dirent.h>
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include "base/fileio.h"
-#include "job/outdir.h"
 #include "lease.h"
 #include "queue_entry.h"
 #include "queue_file.h"

@@ -20,14 +20,12 @@ void queue_file_log(struct queue *q, const char *name, const char *job_name, con
     int n = snprintf(text, sizeof text, "job: %s/%s\nerror: %s\n", q->dir, name, error);
     if (sig)
         n += snprintf(text + n, sizeof text - n, "signal: %d (%s)\n", sig, strsignal(sig));
-    time_t t = time(NULL);
     char when[64];
-    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&t));
     struct lease me = q->lease;
     if (!me.pid) /* no claim in hand (an entry filed at the scan): this worker is who filed it */
         lease_init(&me);
     n += snprintf(text + n, sizeof text - n, "attempts: %d\nworker: pid %ld on %s\ntime: %s\n", attempts,
-                  me.pid, me.host, when);
+                  me.pid, me.host, queue_log_time(time(NULL), when, sizeof when));
     snprintf(path, sizeof path, "%s/%s.log", q->failed, job_name);
     struct err e;
     if (fileio_write_atomic(path, text, (size_t)(n < (int)sizeof text ? n : (int)sizeof text - 1), &e) < 0)
@@ -35,8 +33,8 @@ void queue_file_log(struct queue *q, const char *name, const char *job_name, con
 }
 
 /* Hand the claim in hand back to the queue (why: "stopped by signal 15", or the worker's own
-   failure): under its recovery lock, and only while it is still ours. */
-void queue_file_give_back(struct queue *q, const char *name, const char *why)
+   failure): under its recovery lock, and only while it is still ours. One log line. */
+static void give_back(struct queue *q, const char *name, const char *why)
 {
     if (queue_claim_lock(q) <
         0) { /* another worker is recovering it (our lease looked dead): the claim is its now */
@@ -60,7 +58,7 @@ void queue_file_stopped(struct queue *q, const char *name)
 {
     char why[64];
     snprintf(why, sizeof why, "stopped by signal %d", (int)*q->stop);
-    queue_file_give_back(q, name, why);
+    give_back(q, name, why);
 }
 
 void queue_file_env_stop(struct queue *q, const char *name, const struct err *e)
@@ -68,7 +66,7 @@ void queue_file_env_stop(struct queue *q, const char *name, const struct err *e)
     char msg[2048], why[sizeof msg + 96];
     err_format(e, msg, sizeof msg);
     snprintf(why, sizeof why, "%s (the worker's output folder, not the job: this worker stops, exit 2)", msg);
-    queue_file_give_back(q, name, why);
+    give_back(q, name, why);
     q->env_failed = 1;
     queue_file_note_rc(q, 2);
 }

@@ -9,11 +9,8 @@
 void queue_file_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
                     int attempts);
 
-/* Hand the claim in hand (file `name`) back to the queue, why (one phrase) said first: under its
-   recovery lock, and only while it is still ours. One log line. */
-void queue_file_give_back(struct queue *q, const char *name, const char *why);
-
-/* queue_file_give_back after a stop signal ("stopped by signal N"). */
+/* The claim in hand (file `name`) given back to the queue after a stop signal ("stopped by signal
+   N"): under its recovery lock, and only while it is still ours. One log line. */
 void queue_file_stopped(struct queue *q, const char *name);
 
 /* The claim in hand could not be written for a reason of this machine (outdir_env_error(e)): handed

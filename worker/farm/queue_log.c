@@ -13,6 +13,13 @@
 #include "base/err.h"
 #include "queue_scan.h"
 
+char *queue_log_time(time_t t, char *out, size_t n)
+{
+    struct tm tm;
+    strftime(out, n, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&t, &tm));
+    return out;
+}
+
 void queue_log(const char *file, const char *fmt, ...)
 {
     char msg[4096], when[32];
@@ -23,13 +30,12 @@ void queue_log(const char *file, const char *fmt, ...)
     size_t n = strlen(msg);
     if (n > 0 && msg[n - 1] == '\n')
         msg[n - 1] = 0;
-    time_t t = time(NULL);
-    struct tm tm;
-    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&t, &tm));
-    err_print("%s %s: %s", when, file, msg);
+    err_print("%s %s: %s", queue_log_time(time(NULL), when, sizeof when), file, msg);
 }
 
-int queue_log_host_processes(const char *running, const struct lease *me, const char *skip)
+/* Render processes that the live claims in running/ held by workers on this host (its name and
+   pid space, as `me` says) run now, by their leases, leaving out the claim at `skip`. */
+static int host_processes(const char *running, const struct lease *me, const char *skip)
 {
     DIR *d = opendir(running);
     int total = 0;
@@ -61,7 +67,7 @@ void queue_log_check_cores(const char *running, const struct lease *me, const ch
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (cores < 1)
         return;
-    int others = queue_log_host_processes(running, me, claim);
+    int others = host_processes(running, me, claim);
     if (others + processes > cores)
         queue_log(file,
                   "warning: the workers on %s run %d render processes on %ld cores (this job %d, others %d): "

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "base/clock.h"
 #include "base/fileio.h"
 #include "scenefile/yamlx.h"
 
@@ -29,11 +30,8 @@ static int peek_priority(const char *path)
     int p = 0;
     if (fileio_read_all(path, YDOC_MAX_BYTES, &text, &len, &e) < 0)
         return 0;
-    int mentioned = strstr((const char *)text, "priority") != NULL;
-    free(text);
-    if (!mentioned) /* most jobs: no YAML parse on every scan */
-        return 0;
-    if (ydoc_load(&d, path, &e) == 0) {
+    /* most jobs: no YAML parse on every scan; the rest parsed from the bytes read */
+    if (strstr((const char *)text, "priority") && ydoc_parse(&d, path, text, len, &e) == 0) {
         yaml_node_t *root = ydoc_root(&d);
         yaml_node_t *v = root && root->type == YAML_MAPPING_NODE ? ymap_get(&d, root, "priority") : NULL;
         const char *s = v ? yscalar(v) : NULL;
@@ -43,8 +41,9 @@ static int peek_priority(const char *path)
             if (*s && !*end && n >= -1000000 && n <= 1000000)
                 p = (int)n;
         }
+        ydoc_free(&d);
     }
-    ydoc_free(&d);
+    free(text);
     return p;
 }
 
@@ -53,9 +52,7 @@ static int peek_priority(const char *path)
    empty file is claimed and filed in failed/ as invalid. Files with content are claimed at once. */
 static int just_created(const struct stat *st)
 {
-    struct timespec now;
-    clock_gettime(CLOCK_REALTIME, &now);
-    double age = (double)(now.tv_sec - st->st_mtim.tv_sec) + (now.tv_nsec - st->st_mtim.tv_nsec) * 1e-9;
+    double age = clock_s(CLOCK_REALTIME) - (st->st_mtim.tv_sec + st->st_mtim.tv_nsec * 1e-9);
     return st->st_size == 0 && age < QUEUE_SCAN_EMPTY_GRACE_S;
 }
 

@@ -6,13 +6,7 @@
 
 #include "base/json.h"
 #include "base/sbuf.h"
-
-static void iso8601(time_t t, char *out, size_t n)
-{
-    struct tm tm;
-    gmtime_r(&t, &tm);
-    strftime(out, n, "%Y-%m-%dT%H:%M:%SZ", &tm);
-}
+#include "queue_log.h"
 
 /* Elapsed seconds of a running entry (since its claim) and its ETA (-1: unknown). */
 static void running_times(const struct status_entry *x, double *elapsed, double *eta)
@@ -48,9 +42,8 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
     if (nw)
         printf("waiting (in claim order):\n");
     for (int i = 0; i < nw; i++) {
-        iso8601(w[i].mtime.tv_sec, when, sizeof when);
         printf("  %3d. %s  priority %d  queued %s\n", i + 1, sbuf_show(w[i].name, name, sizeof name),
-               w[i].priority, when);
+               w[i].priority, queue_log_time(w[i].mtime.tv_sec, when, sizeof when));
     }
     if (nr)
         printf("running:\n");
@@ -75,7 +68,7 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
     if (nd)
         printf("done:\n");
     for (int i = 0; i < nd; i++) {
-        iso8601(dn[i].when.tv_sec, when, sizeof when);
+        queue_log_time(dn[i].when.tv_sec, when, sizeof when);
         const char *file = sbuf_show(dn[i].file, name, sizeof name);
         if (dn[i].wall_s < 0)
             printf("  %s  finished %s  (no sidecar)\n", file, when);
@@ -113,8 +106,7 @@ void queue_status_print_json(const char *dir, const struct status_view *v)
         json_begin_object(&js, NULL);
         json_string(&js, "file", w[i].name);
         json_number(&js, "priority", w[i].priority);
-        iso8601(w[i].mtime.tv_sec, when, sizeof when);
-        json_string(&js, "queued", when);
+        json_string(&js, "queued", queue_log_time(w[i].mtime.tv_sec, when, sizeof when));
         json_end_object(&js);
     }
     json_end_array(&js);
@@ -145,8 +137,7 @@ void queue_status_print_json(const char *dir, const struct status_view *v)
         json_begin_object(&js, NULL);
         json_string(&js, "file", dn[i].file);
         json_string(&js, "name", dn[i].name);
-        iso8601(dn[i].when.tv_sec, when, sizeof when);
-        json_string(&js, "finished", when);
+        json_string(&js, "finished", queue_log_time(dn[i].when.tv_sec, when, sizeof when));
         json_maybe(&js, "wall_s", dn[i].wall_s);
         json_maybe(&js, "cpu_s", dn[i].cpu_s);
         json_maybe(&js, "samples", dn[i].samples);
@@ -159,8 +150,7 @@ void queue_status_print_json(const char *dir, const struct status_view *v)
         json_begin_object(&js, NULL);
         json_string(&js, "file", f[i].file);
         json_string(&js, "name", f[i].name);
-        iso8601(f[i].when.tv_sec, when, sizeof when);
-        json_string(&js, "failed", when);
+        json_string(&js, "failed", queue_log_time(f[i].when.tv_sec, when, sizeof when));
         json_string(&js, "reason", f[i].reason);
         json_end_object(&js);
     }

@@ -14,7 +14,6 @@
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/sbuf.h"
-#include "queue_scan.h"
 #include "queue_study.h"
 #include "queue_study_key.h"
 #include "spread_plan.h"

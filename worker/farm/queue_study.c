@@ -8,7 +8,6 @@
 #include <ftw.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -22,7 +21,6 @@
 #include "queue_log.h"
 #include "queue_study_key.h"
 #include "spread_plan.h"
-#include "scenefile/yamlx.h"
 #include "study/run/study_fan.h"
 
 static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)

@@ -1,7 +1,6 @@
 /* queue_study_key: a study folder's record of what was written into it, and its check. */
 #include "queue_study_key.h"
 
-#include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>

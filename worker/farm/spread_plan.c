@@ -183,12 +183,7 @@ int spread_plan_read(const char *path, struct spread_plan *p)
     memset(p, 0, sizeof *p);
     if (fileio_read_all(path, 1 << 24, &data, &len, &ignored) < 0)
         return -1;
-    char *text = realloc(data, len + 1), *save = NULL;
-    if (!text) {
-        free(data);
-        return -1;
-    }
-    text[len] = 0;
+    char *text = (char *)data, *save = NULL; /* NUL-terminated by fileio_read_all */
     for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         struct spread_entry x = {0};
         char kind, name[64];

@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "base/clock.h"
-#include "base/rng.h"
 #include "cost_sets.h"
 #include "render/render.h"
 
@@ -86,14 +85,12 @@ static void pilot_pixel(int k, int n, int w, int h, int *x, int *y)
 }
 
 /* The threshold at which the pilot draws kind's sets: t, or coarser when its sets are larger
-   than COST_PILOT_SET_MAX points (capacity ~ 1 / t^2). */
+   than COST_PILOT_SET_MAX points. */
 static double pilot_threshold(enum sampler_kind kind, double t)
 {
-    const double cap = (double)sampler_capacity(kind, t);
-    if (cap <= COST_PILOT_SET_MAX)
-        return t;
-    const double coarse = t * sqrt(cap / COST_PILOT_SET_MAX);
-    return coarse < 100 ? coarse : 100;
+    return (double)sampler_capacity(kind, t) <= COST_PILOT_SET_MAX
+               ? t
+               : cost_sets_threshold_for(kind, t, COST_PILOT_SET_MAX);
 }
 
 /* How long a set timing may take: COST_SET_TARGET_S, then one batch past the budget, 0 past
@@ -292,12 +289,11 @@ static struct pilot_entry *entry_for(struct cost_model *m, const struct pilot_ke
 /* The pilot of j's key: shared when one ran, else run now with its share of the budget left
    (an equal share with every pilot expected and not run yet). */
 static int pilot_for(struct cost_model *m, const struct job *j, const struct pilot_key *k,
-                     struct pilot_fig *fig, int *shared, struct err *e)
+                     struct pilot_fig *fig, struct err *e)
 {
     struct pilot_entry *p = entry_for(m, k);
     if (!p)
         return err_set(e, NULL, 0, 0, "out of memory for the cost model");
-    *shared = p->measured;
     if (!p->measured) {
         int waiting = 0;
         for (int i = 0; i < m->n_pilots; i++)
@@ -360,8 +356,7 @@ int cost_model_estimate(struct cost_model *m, const struct job *j, const struct 
     const struct pilot_key k = key_of(j, sf, width, height);
     struct pilot_fig fig = {0};
     struct cost_set pix, light = {0}, pad = {0};
-    if (pilot_for(m, j, &k, &fig, &out->pilot_shared, e) < 0 ||
-        set_cost(m, j, 0, COST_SET_PIXEL, &pix, e) < 0)
+    if (pilot_for(m, j, &k, &fig, e) < 0 || set_cost(m, j, 0, COST_SET_PIXEL, &pix, e) < 0)
         return -1;
     const double pixels = (double)width * height;
     out->spp_mean = pix.points;

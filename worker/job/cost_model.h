@@ -31,8 +31,8 @@ struct cost_estimate {
     double ns_per_sample;                                      /* a traced sample, draws taken out */
     double light_sets, padded_sets;                            /* the sets the render would draw */
     int sets_scaled; /* a set too large to draw was timed at smaller sizes and scaled */
-    /* the pilot's pixels, their camera samples and those traced; shared: another estimate's */
-    int pilot_pixels, pilot_shared;
+    /* the pilot's pixels, their camera samples and those traced */
+    int pilot_pixels;
     double pilot_samples, pilot_traced;
 };
 

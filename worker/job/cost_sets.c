@@ -126,12 +126,10 @@ done:
     return rc;
 }
 
-/* The threshold of sp's kind whose sets hold about `points` points (capacity ~ 1 / t^2). */
-static double threshold_for(const struct cost_sampler *sp, double points)
+double cost_sets_threshold_for(enum sampler_kind kind, double t, double points)
 {
-    const double cap = (double)sampler_capacity(sp->kind, sp->threshold);
-    double t = sp->threshold * sqrt(cap / points);
-    return t < 100 ? t : 100;
+    const double cap = (double)sampler_capacity(kind, t), scaled = t * sqrt(cap / points);
+    return scaled < 100 ? scaled : 100;
 }
 
 /* A set too large to draw: timed at two smaller sizes, its cost a power of the capacity between
@@ -143,7 +141,8 @@ static int time_scaled(const struct cost_sampler *sp, enum cost_set_use use, dou
     const double table = (double)sampler_table_points(sp->kind),
                  small = table > 0 ? 2 * table : COST_SETS_SMALL,
                  large = table > 0 ? 4 * table : COST_SETS_DIRECT_MAX;
-    const double t1 = threshold_for(sp, small), t2 = threshold_for(sp, large);
+    const double t1 = cost_sets_threshold_for(sp->kind, sp->threshold, small),
+                 t2 = cost_sets_threshold_for(sp->kind, sp->threshold, large);
     struct cost_set a, b;
     if (time_at(sp, t1, use, target_s / 2, &a, spent_s, e) < 0 ||
         time_at(sp, t2, use, target_s / 2, &b, spent_s, e) < 0)

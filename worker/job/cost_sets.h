@@ -35,6 +35,10 @@ struct cost_set {
 
 struct cost_sets;
 
+/* The threshold of kind whose sets hold about `points` points, from threshold t's capacity
+   (capacity ~ 1 / t^2); at most 100. */
+double cost_sets_threshold_for(enum sampler_kind kind, double t, double points);
+
 /* An empty cache. NULL on no memory. Free with cost_sets_free (accepts NULL). */
 struct cost_sets *cost_sets_new(void);
 void cost_sets_free(struct cost_sets *c);

@@ -63,16 +63,12 @@ void job_defaults(struct job *j, const char *path)
     j->format = IMG_PNG;
 }
 
-/* A name used as a directory and file name: letters, digits, '-', '_', '.'; not "." or "..". */
+/* A name used as a directory and file name: letters, digits, '-', '_', '.'; not starting with '.'
+   (".", "..", and hidden folders: .cache holds compare references). */
 static int safe_name(const char *s)
 {
-    if (!*s || *s == '.') /* ".", "..", and hidden folders (.cache holds compare references) */
-        return 0;
-    for (; *s; s++)
-        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') || *s == '-' ||
-              *s == '_' || *s == '.'))
-            return 0;
-    return 1;
+    return *s && *s != '.' &&
+           strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") == strlen(s);
 }
 
 const char *job_unknown_sampler(const char *s, char *buf, size_t n)

@@ -49,7 +49,7 @@ static int nearest_entry(const char *dir, const char *name, int stems, char *out
     return near != NULL;
 }
 
-static void dir_of(const char *path, char *out, size_t n)
+void job_path_dir(const char *path, char *out, size_t n)
 {
     const char *slash = strrchr(path, '/');
     if (!slash)
@@ -67,7 +67,7 @@ void job_path_resolve(const char *base, const char *rel, char *out, size_t n)
         return;
     }
     char dir[JOB_PATH_MAX];
-    dir_of(base, dir, sizeof dir);
+    job_path_dir(base, dir, sizeof dir);
     if (strcmp(dir, ".") == 0)
         snprintf(out, n, "%s", rel);
     else
@@ -91,8 +91,8 @@ static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
         return 0;
     exe[len] = 0;
     char bin[JOB_PATH_MAX], top[JOB_PATH_MAX];
-    dir_of(exe, bin, sizeof bin);
-    dir_of(bin, top, sizeof top);
+    job_path_dir(exe, bin, sizeof bin);
+    job_path_dir(bin, top, sizeof top);
     const char *sep = strcmp(top, "/") ? "/" : "";
     snprintf(dirs[0], JOB_PATH_MAX, "%.*s%sscenes", JOB_PATH_MAX - 32, top, sep);
     snprintf(dirs[1], JOB_PATH_MAX, "%.*s%sshare/worker/scenes", JOB_PATH_MAX - 32, top, sep);

@@ -7,6 +7,9 @@
 
 #include "job_types.h"
 
+/* The folder of the file at path into out: "." for a bare name, "/" for one at the root. */
+void job_path_dir(const char *path, char *out, size_t n);
+
 /* rel relative to the folder of the file base (an absolute rel is kept) into out. */
 void job_path_resolve(const char *base, const char *rel, char *out, size_t n);
 

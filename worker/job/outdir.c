@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "image/imgio.h"
 
 const char *outdir_root(const char *out_dir)
@@ -219,8 +220,8 @@ void outdir_remove_temps(const char *dir)
    when waited out, EINTR when *stop was set meanwhile. */
 static int lock_within(int fd, double wait_s, const volatile sig_atomic_t *stop)
 {
-    struct timespec t0, now, nap = {0, 20 * 1000 * 1000};
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    const struct timespec nap = {0, 20 * 1000 * 1000};
+    const double t0 = clock_s(CLOCK_MONOTONIC);
     for (;;) {
         if (flock(fd, LOCK_EX | LOCK_NB) == 0)
             return 0;
@@ -230,8 +231,7 @@ static int lock_within(int fd, double wait_s, const volatile sig_atomic_t *stop)
             errno = EINTR;
             return -1;
         }
-        clock_gettime(CLOCK_MONOTONIC, &now);
-        if ((now.tv_sec - t0.tv_sec) + (now.tv_nsec - t0.tv_nsec) * 1e-9 > wait_s) {
+        if (clock_s(CLOCK_MONOTONIC) - t0 > wait_s) {
             errno = EWOULDBLOCK;
             return -1;
         }

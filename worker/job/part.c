@@ -2,7 +2,7 @@
 #include "part.h"
 
 #include <fcntl.h>
-#include <stdio.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -32,20 +32,6 @@ static uint8_t *put_u32(uint8_t *p, uint32_t v)
     return p;
 }
 
-static uint8_t *put_u64(uint8_t *p, uint64_t v)
-{
-    for (int i = 0; i < 8; i++)
-        *p++ = (uint8_t)(v >> (8 * i));
-    return p;
-}
-
-static uint8_t *put_f64(uint8_t *p, double d)
-{
-    uint64_t v;
-    memcpy(&v, &d, sizeof v);
-    return put_u64(p, v);
-}
-
 static uint32_t get_u32(const uint8_t **p)
 {
     uint32_t v = 0;
@@ -55,50 +41,54 @@ static uint32_t get_u32(const uint8_t **p)
     return v;
 }
 
-static uint64_t get_u64(const uint8_t **p)
-{
-    uint64_t v = 0;
-    for (int i = 0; i < 8; i++)
-        v |= (uint64_t)(*p)[i] << (8 * i);
-    *p += 8;
-    return v;
-}
-
-static double get_f64(const uint8_t **p)
-{
-    uint64_t v = get_u64(p);
-    double d;
-    memcpy(&d, &v, sizeof d);
-    return d;
-}
+/* The header's fields after the magic, in file order (part.h's layout): each little-endian, a u32
+   or a u64 (a double as its bits) as its field in struct part_header. The writer and the reader
+   both walk it. */
+#define AT(f) offsetof(struct part_header, f)
+static const struct {
+    size_t at, size;
+} header_fields[] = {{AT(version), 4},
+                     {AT(width), 4},
+                     {AT(height), 4},
+                     {AT(part), 4},
+                     {AT(parts), 4},
+                     {AT(processes), 4},
+                     {AT(hash), 8},
+                     {AT(st.pixels), 8},
+                     {AT(st.samples), 8},
+                     {AT(st.rays), 8},
+                     {AT(st.light_sets), 8},
+                     {AT(st.nonfinite), 8},
+                     {AT(st.spp_min), 4},
+                     {AT(st.spp_max), 4},
+                     {AT(st.sampler_s), 8},
+                     {AT(wall_s), 8},
+                     {AT(cpu_s), 8},
+                     {AT(peak_rss_kb), 8},
+                     {AT(st.shadow_rays), 8},
+                     {AT(st.pixel_points), 8},
+                     {AT(st.light_points), 8},
+                     {AT(st.padded_points), 8},
+                     {AT(st.padded_sets), 8}};
+#define N_HEADER_FIELDS (sizeof header_fields / sizeof header_fields[0])
 
 static void encode_header(uint8_t *b, const struct part_header *h)
 {
     memcpy(b, PART_MAGIC, 8);
-    uint8_t *p = b + 8;
-    p = put_u32(p, h->version);
-    p = put_u32(p, h->width);
-    p = put_u32(p, h->height);
-    p = put_u32(p, h->part);
-    p = put_u32(p, h->parts);
-    p = put_u32(p, h->processes);
-    p = put_u64(p, h->hash);
-    p = put_u64(p, h->st.pixels);
-    p = put_u64(p, h->st.samples);
-    p = put_u64(p, h->st.rays);
-    p = put_u64(p, h->st.light_sets);
-    p = put_u64(p, h->st.nonfinite);
-    p = put_u32(p, h->st.spp_min);
-    p = put_u32(p, h->st.spp_max);
-    p = put_f64(p, h->st.sampler_s);
-    p = put_f64(p, h->wall_s);
-    p = put_f64(p, h->cpu_s);
-    p = put_u64(p, h->peak_rss_kb);
-    p = put_u64(p, h->st.shadow_rays);
-    p = put_u64(p, h->st.pixel_points);
-    p = put_u64(p, h->st.light_points);
-    p = put_u64(p, h->st.padded_points);
-    put_u64(p, h->st.padded_sets);
+    b += 8;
+    for (size_t i = 0; i < N_HEADER_FIELDS; i++) {
+        const char *field = (const char *)h + header_fields[i].at;
+        uint64_t v;
+        if (header_fields[i].size == 4) {
+            uint32_t u;
+            memcpy(&u, field, 4);
+            v = u;
+        } else {
+            memcpy(&v, field, 8);
+        }
+        for (size_t k = 0; k < header_fields[i].size; k++)
+            *b++ = (uint8_t)(v >> (8 * k));
+    }
 }
 
 /* Bytes of the part file whose header is h: header, its rows, CRC. */
@@ -114,29 +104,18 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
     if (len < PART_HEADER || memcmp(b, PART_MAGIC, 8) != 0)
         return err_set(e, path, 0, 0, "not a worker part file");
     const uint8_t *p = b + 8;
-    h->version = get_u32(&p);
-    h->width = get_u32(&p);
-    h->height = get_u32(&p);
-    h->part = get_u32(&p);
-    h->parts = get_u32(&p);
-    h->processes = get_u32(&p);
-    h->hash = get_u64(&p);
-    h->st.pixels = get_u64(&p);
-    h->st.samples = get_u64(&p);
-    h->st.rays = get_u64(&p);
-    h->st.light_sets = get_u64(&p);
-    h->st.nonfinite = get_u64(&p);
-    h->st.spp_min = get_u32(&p);
-    h->st.spp_max = get_u32(&p);
-    h->st.sampler_s = get_f64(&p);
-    h->wall_s = get_f64(&p);
-    h->cpu_s = get_f64(&p);
-    h->peak_rss_kb = get_u64(&p);
-    h->st.shadow_rays = get_u64(&p);
-    h->st.pixel_points = get_u64(&p);
-    h->st.light_points = get_u64(&p);
-    h->st.padded_points = get_u64(&p);
-    h->st.padded_sets = get_u64(&p);
+    for (size_t i = 0; i < N_HEADER_FIELDS; i++) {
+        char *field = (char *)h + header_fields[i].at;
+        uint64_t v = 0;
+        for (size_t k = 0; k < header_fields[i].size; k++)
+            v |= (uint64_t)*p++ << (8 * k);
+        if (header_fields[i].size == 4) {
+            uint32_t u = (uint32_t)v;
+            memcpy(field, &u, 4);
+        } else {
+            memcpy(field, &v, 8);
+        }
+    }
     if (h->version != PART_VERSION)
         return err_set(e, path, 0, 0,
                        "a part file of another worker version (part format %u; this worker reads format %d): "

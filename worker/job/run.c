@@ -1,18 +1,15 @@
 /* run: one job from its loaded settings to an image and its sidecar on disk. */
 #include "run.h"
 
-#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "base/fileio.h"
 #include "image/imgio.h"
 #include "base/hash.h"
 #include "base/sbuf.h"
 #include "job_limits.h"
+#include "job_path.h"
 #include "part.h"
 #include "outdir.h"
 #include "run_out.h"
@@ -48,20 +45,9 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
         fprintf(stderr, "\n");
 }
 
-static int is_file(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
-}
-
-int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
-                       struct err *e)
-{
-    return run_decode_reference(j, NULL, 0, w, h, ref, domain, e);
-}
-
-int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h, struct rgbf *ref,
-                         enum img_domain *domain, struct err *e)
+/* run_load_reference from the reference's bytes already read (data, len), or its file when data is NULL. */
+static int decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h,
+                            struct rgbf *ref, enum img_domain *domain, struct err *e)
 {
     *ref = (struct rgbf){0};
     *domain = IMG_LINEAR;
@@ -91,6 +77,12 @@ int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, i
     return 0;
 }
 
+int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
+                       struct err *e)
+{
+    return decode_reference(j, NULL, 0, w, h, ref, domain, e);
+}
+
 void run_warn_display_reference(const char *job_name, const char *path)
 {
     err_print("%s: warning: reference %s is an 8-bit PNG/PPM: the error is measured on 8-bit display "
@@ -106,7 +98,7 @@ static int outputs_current(const struct job *j, const struct run_opts *o, const 
     if (o->parts > 0)
         return part_matches(rr->out.image[0], j, o->part, o->parts);
     for (int i = 0; i < rr->out.n_images; i++)
-        if (!is_file(rr->out.image[i]))
+        if (!job_path_is_file(rr->out.image[i]))
             return 0;
     return sidecar_matches(rr->out.sidecar, j->hash);
 }
@@ -157,7 +149,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
         snprintf(e->file, sizeof e->file, "%s", j->scene_path);
         goto done;
     }
-    if (!o->ref && run_decode_reference(j, o->ref_bytes, o->ref_len, w, h, &ref, &ref_domain, e) < 0)
+    if (!o->ref && decode_reference(j, o->ref_bytes, o->ref_len, w, h, &ref, &ref_domain, e) < 0)
         goto done;
     if (o->parts == 0 && !o->ref && ref.px && ref_domain == IMG_DISPLAY8)
         run_warn_display_reference(j->name, j->reference);

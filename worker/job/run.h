@@ -17,10 +17,6 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
 int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
                        struct err *e);
 
-/* run_load_reference of the reference's bytes already read (data, len). */
-int run_decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h, struct rgbf *ref,
-                         enum img_domain *domain, struct err *e);
-
 /* The one-line warning on stderr that the error against the reference at path is measured on
    8-bit display values (a PNG or PPM reference), not on linear radiance. */
 void run_warn_display_reference(const char *job_name, const char *path);

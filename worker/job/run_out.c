@@ -36,7 +36,9 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                    dir);
 }
 
-int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e)
+/* Whether the render may still rename an output into place (run_opts.still_held): 0, or -1 with e
+   filled (the claim was taken over while it wrote). */
+static int still_held(const struct run_opts *o, const char *dir, struct err *e)
 {
     if (!o->still_held || o->still_held(o->tick_arg))
         return 0;
@@ -106,7 +108,7 @@ static int commit_all(const struct run_opts *o, const char *dir, char staged[][2
 {
     for (int i = 0; i < n; i++) {
         /* a claim taken over between renames: what is renamed stays, without a sidecar */
-        if (i > 0 && run_out_still_held(o, dir, e) < 0) {
+        if (i > 0 && still_held(o, dir, e) < 0) {
             for (int r = i; r < n; r++)
                 unlink(staged[r]);
             return -1;
@@ -173,7 +175,7 @@ int run_out_write(const struct job *j, const struct run_opts *o, const struct ru
         goto done;
     }
     /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
-    int failed = run_out_still_held(o, out->dir, e) < 0;
+    int failed = still_held(o, out->dir, e) < 0;
     if (!failed && unlink(out->sidecar) < 0 && errno != ENOENT)
         failed = err_set_errno(e, errno, "cannot write %s: %s", out->sidecar, strerror(errno)) < 0;
     if (failed) {

@@ -7,15 +7,11 @@
 
 #include "run_types.h"
 
-/* Whether the render may still rename an output into place (run_opts.still_held): 0, or -1 with e
-   filled (the claim was taken over while it wrote). */
-int run_out_still_held(const struct run_opts *o, const char *dir, struct err *e);
-
 /* Take dir's lock for writing paths (outdir_lock) into *lock, then ask whether this render may
    still write (run_opts.may_write): a claim taken over while we waited for the lock (another
    writer, a slow disk) writes nothing, nor does a writer stopped while it waited. A lock not had
    within o->lock_wait_s (> 0) is held by a stopped or hung writer, whose claim was taken over (it
-   checks before each rename, run_out_still_held, and gives up): this writer goes on without it,
+   checks before each rename, run_opts.still_held, and gives up): this writer goes on without it,
    saying so, when may_write says yes. 0, or -1 with e filled; outdir_unlock(*lock) either way. */
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e);

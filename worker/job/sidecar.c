@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,20 +23,22 @@ struct sidecar_work sidecar_work_of(const struct render_stats *st)
         st->padded_sets};
 }
 
-/* The work counts w as the sidecar's object "work". */
-static void work_json(struct json *js, const struct sidecar_work *w)
+/* The sidecar's object "work": each count's key and field, in the order written; the writer and
+   the reader both go by it. */
+#define AT(field) offsetof(struct sidecar_work, field)
+static const struct {
+    const char *key;
+    size_t at;
+} work_keys[] = {{"camera_samples", AT(camera_samples)}, {"path_segments", AT(path_segments)},
+                 {"shadow_rays", AT(shadow_rays)},       {"pixel_points", AT(pixel_points)},
+                 {"light_points", AT(light_points)},     {"padded_points", AT(padded_points)},
+                 {"pixel_sets", AT(pixel_sets)},         {"light_sets", AT(light_sets)},
+                 {"padded_sets", AT(padded_sets)}};
+#define N_WORK (sizeof work_keys / sizeof work_keys[0])
+
+static uint64_t *work_count(struct sidecar_work *w, size_t i)
 {
-    json_begin_object(js, "work");
-    json_uint(js, "camera_samples", w->camera_samples);
-    json_uint(js, "path_segments", w->path_segments);
-    json_uint(js, "shadow_rays", w->shadow_rays);
-    json_uint(js, "pixel_points", w->pixel_points);
-    json_uint(js, "light_points", w->light_points);
-    json_uint(js, "padded_points", w->padded_points);
-    json_uint(js, "pixel_sets", w->pixel_sets);
-    json_uint(js, "light_sets", w->light_sets);
-    json_uint(js, "padded_sets", w->padded_sets);
-    json_end_object(js);
+    return (uint64_t *)((char *)w + work_keys[i].at);
 }
 
 char *sidecar_json(const struct sidecar *s)
@@ -81,8 +84,11 @@ char *sidecar_json(const struct sidecar *s)
     json_uint(&js, "camera", t->samples);
     json_uint(&js, "total", t->rays);
     json_end_object(&js);
-    const struct sidecar_work work = sidecar_work_of(t);
-    work_json(&js, &work);
+    struct sidecar_work work = sidecar_work_of(t);
+    json_begin_object(&js, "work");
+    for (size_t i = 0; i < N_WORK; i++)
+        json_uint(&js, work_keys[i].key, *work_count(&work, i));
+    json_end_object(&js);
 
     json_begin_object(&js, "time");
     json_number(&js, "wall_s", r->wall_s);
@@ -231,17 +237,9 @@ static int fill(struct ydoc *d, struct sidecar_info *out, struct err *e)
                              ydoc_node_kind(parts[i].n));
     out->has_error = error != NULL;
     out->has_work = work != NULL;
-    struct sidecar_work *w = &out->work;
-    if (count_at(d, work, "camera_samples", &w->camera_samples, e) < 0 ||
-        count_at(d, work, "path_segments", &w->path_segments, e) < 0 ||
-        count_at(d, work, "shadow_rays", &w->shadow_rays, e) < 0 ||
-        count_at(d, work, "pixel_points", &w->pixel_points, e) < 0 ||
-        count_at(d, work, "light_points", &w->light_points, e) < 0 ||
-        count_at(d, work, "padded_points", &w->padded_points, e) < 0 ||
-        count_at(d, work, "pixel_sets", &w->pixel_sets, e) < 0 ||
-        count_at(d, work, "light_sets", &w->light_sets, e) < 0 ||
-        count_at(d, work, "padded_sets", &w->padded_sets, e) < 0)
-        return -1;
+    for (size_t i = 0; i < N_WORK; i++)
+        if (count_at(d, work, work_keys[i].key, work_count(&out->work, i), e) < 0)
+            return -1;
     return spec_at(d, root, out, e) < 0 || string_at(d, root, "job", out->job, sizeof out->job, e) < 0 ||
                    string_at(d, root, "job_file", out->job_file, sizeof out->job_file, e) < 0 ||
                    hash_at(d, root, out, e) < 0 ||

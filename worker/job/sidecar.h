@@ -45,7 +45,7 @@ struct sidecar_info {
     double spp_mean;                          /* samples.per_pixel_mean */
     double wall_s, cpu_s, sampler_s, sampling_share, ns_per_sample; /* time.* (the job's) */
     int has_error;                                                  /* error.* were there */
-    char error_domain[16]; /* what the error was measured on: "linear" or "8-bit" */
+    char error_domain[16];        /* what the error was measured on: "linear" or "8-bit" */
     char reference[JOB_PATH_MAX]; /* error.reference: the reference image as the job named it */
     double mse, rmse, relmse, relmse_robust, psnr;
     struct render_spec spec; /* the render's settings (a setting absent: its default) */
