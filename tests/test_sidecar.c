@@ -80,7 +80,7 @@ static void test_round_trip(void)
           isnan(in.psnr));
     CHECK(!strcmp(in.error_domain, image_domain_name(IMG_LINEAR)));
     CHECK(!strcmp(in.reference, "refs/demo.exr")); /* worker verdict finds the reference by it */
-    CHECK_NEAR(in.rmse, sqrt(0.5), 1e-9); /* written with 10 digits */
+    CHECK_NEAR(in.rmse, sqrt(0.5), 1e-9);          /* written with 10 digits */
     /* issue 35: the work counts, path segments being the rays that are not shadow rays */
     CHECK(in.has_work && in.work.camera_samples == 300 && in.work.path_segments == 700 &&
           in.work.shadow_rays == 200);
