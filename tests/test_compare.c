@@ -284,8 +284,8 @@ static void test_repeated_error(void)
     CHECK(image_f_alloc(&ref, 4, 4, &e) == 0 && image_f_alloc(&img, 4, 4, &e) == 0);
     for (int i = 0; i < 4 * 4 * 3; i++)
         ref.px[i] = 0.4f;
-    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/ref.exr", fx.dir);
-    CHECK(imgio_write_f(c->scenes[0].ref_path, &ref, IMG_EXR, NULL, 0, &e) == 0);
+    snprintf(c->results.refs[0].path, sizeof c->results.refs[0].path, "%s/ref.exr", fx.dir);
+    CHECK(imgio_write_f(c->results.refs[0].path, &ref, IMG_EXR, NULL, 0, &e) == 0);
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
             for (int k = 0; k < 2; k++) {
@@ -351,15 +351,16 @@ static void test_masked_seed_images(void)
     for (int i = 0; i < 4 * 4 * 3; i++)
         a.px[i] = 0.5f, b.px[i] = 0.3f;
     char path[1100];
-    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/halves.exr", fx.dir);
+    struct study_ref_result *rr = &c->results.refs[0];
+    snprintf(rr->path, sizeof rr->path, "%s/halves.exr", fx.dir);
     snprintf(path, sizeof path, "%s/halves-a.exr", fx.dir);
     CHECK(imgio_write_f(path, &a, IMG_EXR, NULL, 0, &e) == 0);
     snprintf(path, sizeof path, "%s/halves-b.exr", fx.dir);
     CHECK(imgio_write_f(path, &b, IMG_EXR, NULL, 0, &e) == 0);
-    compare_ref_measure(&c->scenes[0]);
-    CHECK_NEAR(c->scenes[0].ref_radiance, 0.4, 1e-6);
-    CHECK_NEAR(c->scenes[0].ref_radiance_se, sqrt(8 * 0.01) / 8, 1e-6);
-    CHECK_NEAR(c->scenes[0].ref_relmse, 0.01 / (0.16 + 0.01), 1e-6);
+    compare_ref_measure(&c->scenes[0], rr);
+    CHECK_NEAR(rr->fig.radiance, 0.4, 1e-6);
+    CHECK_NEAR(rr->fig.radiance_se, sqrt(8 * 0.01) / 8, 1e-6);
+    CHECK_NEAR(rr->fig.relmse, 0.01 / (0.16 + 0.01), 1e-6);
     image_f_free(&a), image_f_free(&b);
     compare_free(c);
 }

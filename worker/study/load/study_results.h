@@ -9,6 +9,7 @@
 
 #include "image/metrics.h"
 #include "job/sidecar.h"
+#include "study_inputs.h"
 
 /* The figures a render can give (a row read back outside them is no figure): samples per pixel up
    to a job's most camera samples on one pixel (job_limits.h's LIMITS_MAX_JOB_SAMPLES), seconds up to
@@ -30,8 +31,19 @@ struct study_result {
     uint64_t hash;                        /* the resume hash it was rendered under (not a column) */
 };
 
+/* What a run found or measured of one scene's reference (run/compare_ref.c; reading a folder back,
+   run/verdict_sidecars.c and compare_ref_measure). The plan says which reference a scene has (its
+   kind, its settings job, a given image read at load); this says which file and pixels the images
+   were scored against and what it cost. */
+struct study_ref_result {
+    const struct study_ref *ref; /* its pixels (kept in the plan's inputs); NULL before or without */
+    char path[JOB_PATH_MAX];     /* its image once known (the given one, the cache's mean, or found) */
+    struct study_ref_figures fig; /* over the scene's mask */
+};
+
 struct study_results {
-    struct study_result *rows; /* one per item of the plan, at its index (compare_index) */
+    struct study_result *rows;    /* one per item of the plan, at its index (compare_index) */
+    struct study_ref_result *refs; /* one per scene of the plan */
     /* The cost design's figures (study/run/compare_cost.h): per (scene, variant, point, block) the
        CPU seconds one image of the point costs, timed in block b; n_blocks 0 when not measured
        (the verdict then falls back on the images' own times, seed k as block k). */
@@ -39,8 +51,9 @@ struct study_results {
     double *cost_s; /* index compare_cost_index */
 };
 
-/* Rows for n images, each not done (0), or -1 when out of memory. */
-int study_results_init(struct study_results *r, int n);
+/* Rows for n images, each not done, and n_scenes references, none known (NAN figures); 0, or -1
+   when out of memory. */
+int study_results_init(struct study_results *r, int n, int n_scenes);
 
 /* Free what r holds (r emptied; an empty one is fine). */
 void study_results_free(struct study_results *r);

@@ -1,5 +1,7 @@
 /* compare_ref: a compare job's per-scene reference renders, cached under OUT/.cache/ by a key
-   over everything that changes their pixels (scene bytes, settings, the worker program). */
+   over everything that changes their pixels (scene bytes, settings, the worker program). The plan
+   is only read; what a reference turns out to be (its file, pixels, time and noise) goes into the
+   results' refs (study_results.h). */
 #ifndef COMPARE_REF_H
 #define COMPARE_REF_H
 
@@ -14,21 +16,28 @@ void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j);
 /* Half h of scene s's settings reference as compare_ref_prepare renders it into OUT/.cache/: its
    job (*j, its hash the reference's cache key, so that its row parts are matched by it); 1 when the
    cache holds it already (nothing to render), else 0. */
-int compare_ref_half_target(struct compare *c, int s, int h, const struct run_opts *o, struct job *j);
+int compare_ref_half_target(const struct compare *c, int s, int h, const struct run_opts *o, struct job *j);
 
 /* Half h of scene s's reference rendered whole into the cache (or found there). 0, 1 or 2. */
-int compare_ref_half_render(struct compare *c, int s, int h, const struct run_opts *o, struct err *e);
+int compare_ref_half_render(const struct compare *c, int s, int h, const struct run_opts *o, struct err *e);
 
 /* Half h of scene s's reference, just merged from its row parts at its place in the cache, recorded
    there (its .key beside it) so that compare_ref_prepare reuses it. 0 or -1 with e filled. */
-int compare_ref_half_merged(struct compare *c, int s, int h, const struct run_opts *o, struct err *e);
+int compare_ref_half_merged(const struct compare *c, int s, int h, const struct run_opts *o, struct err *e);
 
-/* Render scene s's reference into OUT/.cache/, or reuse it when the cache holds one. */
-int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e);
+/* Scene s's reference made ready to score against, into r->refs[s]: a settings one rendered into
+   OUT/.cache/ or reused when the cache holds it (its path, pixels, time and noise), a given image
+   as load read it. 0, 1 or 2 as compare_run. */
+int compare_ref_prepare(const struct compare *c, int s, struct study_results *r, const struct run_opts *o,
+                        struct err *e);
 
-/* The noise of the settings reference at cs->ref_path measured again from its halves beside it
-   (<stem>-a.exr, -b.exr): ref_relmse, ref_radiance, ref_radiance_se (NAN without them) and
-   ref_spp (their sidecars'; 0 without). For a finished study re-judged. */
-void compare_ref_measure(struct compare_scene *cs);
+/* The noise of the settings reference at rr->path measured again from its halves beside it
+   (<stem>-a.exr, -b.exr), over cs's mask: rr's relmse, radiance, radiance_se (NAN without them)
+   and spp (their sidecars'; 0 without). For a finished study re-judged. */
+void compare_ref_measure(const struct compare_scene *cs, struct study_ref_result *rr);
+
+/* c's settings references as prepared (its results' refs): how many were rendered, how many reused
+   from the cache and the seconds reusing saved, added to *rendered, *reused and *saved_s. */
+void compare_ref_tally(const struct compare *c, int *rendered, int *reused, double *saved_s);
 
 #endif

@@ -2,6 +2,7 @@
    then the suite's verdict.json, summary.csv, chart.svg and report.html, and its summary line. */
 #include "compare_suite.h"
 #include "compare.h"
+#include "compare_ref.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -90,13 +91,9 @@ void compare_suite_summary_line(const struct compare_suite *s, double wall_s, co
         const struct compare *c = s->studies[i];
         size_t used = strlen(studies);
         snprintf(studies + used, sizeof studies - used, "%s%s %d", i ? ", " : "", c->name, c->n_items);
-        for (int k = 0; k < c->n_scenes; k++) {
-            const struct compare_scene *cs = &c->scenes[k];
-            rendered += cs->ref_kind == COMPARE_REF_SETTINGS && !cs->ref_reused;
-            reused += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused;
-            saved_s += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused ? cs->ref_wall_s : 0;
-            given += cs->ref_kind == COMPARE_REF_IMAGE;
-        }
+        compare_ref_tally(c, &rendered, &reused, &saved_s);
+        for (int k = 0; k < c->n_scenes; k++)
+            given += c->scenes[k].ref_kind == COMPARE_REF_IMAGE;
         for (int k = 0; k < c->n_items; k++)
             current += c->results.rows[k].skipped;
     }

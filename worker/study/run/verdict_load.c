@@ -27,7 +27,7 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
         return c ? err_set(e, dir, 0, 0, "out of memory") : -1;
     }
     unscored += c->n_scenes;
-    verdict_sidecars_read(c, dir, missing);
+    verdict_sidecars_read(c, &c->results, dir, missing);
     study_table_label_spp(c);
     for (int i = 0; i < c->n_items; i++) { /* a relmse that is no error ("nan", "-1"): left out, said */
         struct study_result *r = &c->results.rows[i];
@@ -37,11 +37,9 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
         }
     }
     for (int s = 0; s < c->n_scenes; s++)
-        if (c->scenes[s].ref_path[0])
-            compare_ref_measure(&c->scenes[s]);
-        else
-            c->scenes[s].ref_relmse = c->scenes[s].ref_radiance = c->scenes[s].ref_radiance_se = NAN;
-    (void)compare_cost_read(c, dir); /* absent (an older folder): the images' own times, said so */
+        if (c->results.refs[s].path[0])
+            compare_ref_measure(&c->scenes[s], &c->results.refs[s]);
+    (void)compare_cost_read(c, &c->results, dir); /* absent (an older folder): the images' own times, said so */
     struct verdict_found found = {.no_sidecar = missing, .no_relmse = unscored, .no_figures = unfigured};
     int rc = verdict_from_compare(c, dir, &found, out, e);
     free(missing); /* and unscored */

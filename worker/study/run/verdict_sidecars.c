@@ -29,11 +29,11 @@ static void find_reference(const char *named, const char *dir, char *out, size_t
 /* What the images' sidecars add to summary.csv's rows (sidecar_read, the one reader of a sidecar):
    non-finite samples and the reference. missing[s]: how many of scene s's sidecars are missing or
    unreadable. */
-void verdict_sidecars_read(struct compare *c, const char *dir, int *missing)
+void verdict_sidecars_read(const struct compare *c, struct study_results *r, const char *dir, int *missing)
 {
     for (int i = 0; i < c->n_items; i++) {
-        struct compare_item *it = &c->items[i];
-        if (!c->results.rows[i].done)
+        const struct compare_item *it = &c->items[i];
+        if (!r->rows[i].done)
             continue;
         char path[JOB_PATH_MAX * 2];
         const char *dot = strrchr(it->job.output, '.');
@@ -46,10 +46,10 @@ void verdict_sidecars_read(struct compare *c, const char *dir, int *missing)
             free(info);
             continue;
         }
-        c->results.rows[i].nonfinite = info->nonfinite;
-        struct compare_scene *cs = &c->scenes[it->scene];
-        if (!cs->ref_path[0] && info->reference[0])
-            find_reference(info->reference, dir, cs->ref_path, sizeof cs->ref_path);
+        r->rows[i].nonfinite = info->nonfinite;
+        struct study_ref_result *rr = &r->refs[it->scene];
+        if (!rr->path[0] && info->reference[0])
+            find_reference(info->reference, dir, rr->path, sizeof rr->path);
         free(info);
     }
 }

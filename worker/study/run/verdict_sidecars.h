@@ -5,8 +5,9 @@
 
 #include "compare.h"
 
-/* Fill c's done items from their sidecars in dir; missing[s]: how many of scene s's sidecars are
-   missing or unreadable (added to). */
-void verdict_sidecars_read(struct compare *c, const char *dir, int *missing);
+/* Fill r's done rows (plan c's results) from their sidecars in dir, and each scene's reference path
+   where a sidecar names one; missing[s]: how many of scene s's sidecars are missing or unreadable
+   (added to). */
+void verdict_sidecars_read(const struct compare *c, struct study_results *r, const char *dir, int *missing);
 
 #endif
