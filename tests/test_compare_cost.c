@@ -83,7 +83,8 @@ static void test_csv(void)
     struct compare *x = load("k3.yaml", "name: k\nscenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
                                         "sweep: { threshold: [20, 10, 5] }\nvariants:\n"
                                         "  - { label: a }\n  - { label: b }\n");
-    CHECK(x && compare_cost_read(x, &x->results, fx.dir) < 0 && x->results.n_blocks == 0 && !x->results.cost_s);
+    CHECK(x && compare_cost_read(x, &x->results, fx.dir) < 0 && x->results.n_blocks == 0 &&
+          !x->results.cost_s);
     compare_free(x);
     compare_fixture_file(&fx, "cost.csv", "scene,variant,point,block,cpu_s\nnot,a,row,0,1\n");
     free(d->results.cost_s), d->results.cost_s = NULL, d->results.n_blocks = 0;

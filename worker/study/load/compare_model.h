@@ -1,11 +1,9 @@
 /* compare_model: what a compare job is, once loaded (compare_load.h): its scenes with the
    reference each asks for, variants, sweep points, seeds and every combination as an ordinary job,
    the plan, the first of a study's three shapes, fixed after load. Beside it the handle keeps the
-   other two, each written by one stage: the figures its renders measured and what its references
-   turned out to be (`results`, study_results.h: run/ writes them through functions that take the
-   plan const and the results apart, e.g. compare_run_item(c, &c->results, ...)), and its verdict
-   (`verdict`: judge/'s output from the const plan and results, verdict_from.h, set by
-   compare_write_outputs) with the machine it ran on. And a suite of such studies. The bottom of
+   other two: `results` (study_results.h), written by run/'s functions that take the plan const and
+   the results apart (compare_run_item(c, &c->results, ...)), and `verdict`, judge/'s output from
+   both (verdict_from.h) with the machine it ran on. And a suite of such studies. The bottom of
    worker/study/: the loader, the judge, the presentation and the runner all read it. */
 #ifndef COMPARE_MODEL_H
 #define COMPARE_MODEL_H
@@ -34,7 +32,7 @@ struct compare_scene {
     struct job ref_job;              /* _SETTINGS: the reference render (output set at run time) */
     enum img_domain ref_domain;      /* linear (a settings reference: the cache's EXR; a given EXR or
                                         PFM) or 8-bit display values (a given PNG or PPM) */
-    struct img_mask *mask; /* `mask:`: the pixels every figure counts (owned); NULL: all */
+    struct img_mask *mask;           /* `mask:`: the pixels every figure counts (owned); NULL: all */
 };
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
@@ -55,12 +53,10 @@ struct compare {
     char sweep_keys[COMPARE_LABEL_MAX * 2]; /* "threshold" or "threshold, light_threshold"; "" */
     uint64_t *seeds;
     struct compare_item *items;   /* index compare_index(c, scene, variant, point, seed) */
-    struct study_inputs *inputs;  /* its scenes and references, each read once (a suite's shared; a
-                                     cache: run/ adds a rendered reference's pixels to it) */
+    struct study_inputs *inputs;  /* its scenes and references, each read once (a suite's shared) */
     int owns_inputs;              /* compare_free frees inputs (not a suite's) */
     enum verdict_rank_by rank_by; /* `rank_by:` (default mean): the centre over seeds of relMSE */
-    /* run/'s: what the renders measured, a row per item, and each scene's reference as prepared
-       (allocated at load, nothing done or known) */
+    /* run/'s: a row per item, a reference per scene (allocated at load, nothing done or known) */
     struct study_results results;
     /* judge/'s output, kept for presenting: set by compare_write_outputs from verdict_from_compare */
     struct verdict_study verdict;

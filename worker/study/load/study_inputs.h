@@ -24,21 +24,20 @@ struct study_ref_figures {
     int reused;    /* its halves came from the cache */
     double wall_s; /* seconds its render took (now or when it was cached) */
     double spp;    /* its samples per pixel (from its render or its halves' sidecars) */
-    /* It is the mean of two independent halves; from their difference: its own relMSE, its mean
-       radiance and that mean's standard error (an image reference: its mean radiance is read at the
-       verdict, its noise is not known). */
+    /* The mean of two independent halves: from their difference its own relMSE, mean radiance and
+       that mean's standard error (an image reference's are read or unknown at the verdict). */
     double relmse, radiance, radiance_se;
 };
 
 /* A reference image read (or rendered and computed) once. */
 struct study_ref {
-    char path[JOB_PATH_MAX]; /* a given file, or the cache's mean (OUT/.cache/ref-<scene>-<key>.exr) */
-    uint64_t scene_hash;     /* the study_scene.hash of the scene it is scored for */
-    uint64_t hash;           /* scene_hash continued over the image file's bytes: each image's own hash
-                                starts there (a replaced reference makes its images stale) */
-    enum img_domain domain;  /* linear, or 8-bit display values (a given PNG or PPM) */
-    struct rgbf f;           /* what images are scored against, in domain */
-    struct rgb8 display;     /* as 8-bit display values (an EXR's floats as the PNG writer makes them) */
+    char path[JOB_PATH_MAX];      /* a given file, or the cache's mean (OUT/.cache/ref-<scene>-<key>.exr) */
+    uint64_t scene_hash;          /* the study_scene.hash of the scene it is scored for */
+    uint64_t hash;                /* scene_hash continued over the image file's bytes: each image's own hash
+                                     starts there (a replaced reference makes its images stale) */
+    enum img_domain domain;       /* linear, or 8-bit display values (a given PNG or PPM) */
+    struct rgbf f;                /* what images are scored against, in domain */
+    struct rgb8 display;          /* as 8-bit display values (an EXR's floats as the PNG writer makes them) */
     struct study_ref_figures fig; /* a settings reference's, over the whole image */
 };
 

@@ -31,18 +31,16 @@ struct study_result {
     uint64_t hash;                        /* the resume hash it was rendered under (not a column) */
 };
 
-/* What a run found or measured of one scene's reference (run/compare_ref.c; reading a folder back,
-   run/verdict_sidecars.c and compare_ref_measure). The plan says which reference a scene has (its
-   kind, its settings job, a given image read at load); this says which file and pixels the images
-   were scored against and what it cost. */
+/* The reference a scene's images were scored against, as run/ prepared or found it (the plan says
+   which one is asked for: its kind, settings job or given image). */
 struct study_ref_result {
-    const struct study_ref *ref; /* its pixels (kept in the plan's inputs); NULL before or without */
-    char path[JOB_PATH_MAX];     /* its image once known (the given one, the cache's mean, or found) */
+    const struct study_ref *ref;  /* its pixels (kept in the plan's inputs); NULL before or without */
+    char path[JOB_PATH_MAX];      /* its image once known (the given one, the cache's mean, or found) */
     struct study_ref_figures fig; /* over the scene's mask */
 };
 
 struct study_results {
-    struct study_result *rows;    /* one per item of the plan, at its index (compare_index) */
+    struct study_result *rows;     /* one per item of the plan, at its index (compare_index) */
     struct study_ref_result *refs; /* one per scene of the plan */
     /* The cost design's figures (study/run/compare_cost.h): per (scene, variant, point, block) the
        CPU seconds one image of the point costs, timed in block b; n_blocks 0 when not measured

@@ -313,8 +313,8 @@ static void label_points(const struct study_table *t, struct compare *c, const s
             differ |= strcmp(setting_text(t, I, p, j, v), first) != 0;
         for (int p = 0; differ && p < c->n_points; p++) {
             size_t len = strlen(c->points[p]);
-            snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "", t->settings[j]->key,
-                     setting_text(t, I, p, j, v));
+            snprintf(c->points[p] + len, COMPARE_LABEL_MAX - len, "%s%s %s", j ? ", " : "",
+                     t->settings[j]->key, setting_text(t, I, p, j, v));
         }
     }
 }
@@ -419,7 +419,8 @@ void study_table_label_spp(struct compare *c)
             const struct render_spec *j0 = &c->items[compare_index(c, 0, 0, p, 0)].job.spec;
             int valid = render_spec_in_range(render_spec_find("threshold"), j->pixel.threshold) &&
                         j->pixel.threshold >= sampler_smallest_threshold(j->pixel.kind);
-            long n = valid ? lround(sampler_expected_spp(j->pixel.kind, j->pixel.threshold)) : 0; /* 0: a hole */
+            long n =
+                valid ? lround(sampler_expected_spp(j->pixel.kind, j->pixel.threshold)) : 0; /* 0: a hole */
             differ |= j->pixel.threshold != j0->pixel.threshold;
             spp = spp < 0 || spp == n ? n : 0;
         }

@@ -67,8 +67,7 @@ static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k
     sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.spec.pixel.threshold, r->spp_mean);
     if (r->has_error)
         sbuf_printf(b, ", relMSE %.3g", r->error.relmse);
-    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", r->wall_s,
-                (unsigned long long)c->seeds[k]);
+    sbuf_printf(b, ", %.2f s, seed %llu</figcaption></figure>\n", r->wall_s, (unsigned long long)c->seeds[k]);
     return 0;
 }
 

@@ -32,9 +32,9 @@ int compare_item_job(const struct compare *c, struct study_results *r, int i, co
 
 /* From a finished study (every item's figures filled, its images and float copies in dir, each
    reference's path and noise in c->results.refs: compare_ref_prepare or compare_ref_measure): the
-   verdict (verdict_from_compare, into c->verdict: the one member of c this writes), then summary.csv, chart.svg (report_chart_svg),
-   verdict.json (verdict_json_text) and report.html (report_html) under dir's lock. The gather of a
-   study spread over a queue calls this as compare_run does. 0, or -1 with e filled. */
+   verdict (verdict_from_compare, into c->verdict: the one member of c this writes), then summary.csv,
+   chart.svg (report_chart_svg), verdict.json (verdict_json_text) and report.html (report_html) under dir's
+   lock. The gather of a study spread over a queue calls this as compare_run does. 0, or -1 with e filled. */
 int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e);
 
 /* The line that ends a compare job's run: its images, references, time, output folder and the

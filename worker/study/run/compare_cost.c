@@ -128,7 +128,8 @@ static int time_unit(const struct compare *c, struct timing *t, int v, int p, in
 }
 
 /* Scene s's blocks: each times every (variant, point) once, in an order of its own. */
-static int measure_scene(const struct compare *c, struct study_results *r, int s, const struct run_opts *o, struct err *e)
+static int measure_scene(const struct compare *c, struct study_results *r, int s, const struct run_opts *o,
+                         struct err *e)
 {
     int n = c->n_variants * c->n_points, rc = -1;
     struct design *d = calloc((size_t)n, sizeof *d);
@@ -152,8 +153,7 @@ static int measure_scene(const struct compare *c, struct study_results *r, int s
         shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
         for (int i = 0; i < n; i++) {
             int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
-            if (time_unit(c, &t, v, p, b, &d[idx[i]], &r->cost_s[compare_cost_index(c, s, v, p, b)],
-                          e) < 0)
+            if (time_unit(c, &t, v, p, b, &d[idx[i]], &r->cost_s[compare_cost_index(c, s, v, p, b)], e) < 0)
                 goto done;
         }
     }
@@ -171,8 +171,7 @@ int compare_cost_measure(const struct compare *c, struct study_results *r, const
 {
     free(r->cost_s);
     r->n_blocks = COMPARE_COST_BLOCKS;
-    r->cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * r->n_blocks,
-                               sizeof *r->cost_s);
+    r->cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * r->n_blocks, sizeof *r->cost_s);
     if (!r->cost_s) {
         r->n_blocks = 0;
         return err_set(e, NULL, 0, 0, "out of memory");

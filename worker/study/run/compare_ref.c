@@ -297,15 +297,6 @@ static int keep_mean(const struct compare *c, const struct compare_scene *cs, st
     return (rr->ref = study_inputs_keep_ref(c->inputs, &r, e)) ? 0 : -1;
 }
 
-/* The reference as another study of the suite prepared it (kept): its figures, as if reused from
-   the cache. */
-static void take_kept(struct study_ref_result *rr, const struct study_ref *kept)
-{
-    rr->ref = kept;
-    rr->fig = kept->fig;
-    rr->fig.reused = 1;
-}
-
 int compare_ref_prepare(const struct compare *c, int s, struct study_results *res, const struct run_opts *o,
                         struct err *e)
 {
@@ -326,8 +317,9 @@ int compare_ref_prepare(const struct compare *c, int s, struct study_results *re
     outdir_files(&j, o->out_dir, &files);
     snprintf(rr->path, sizeof rr->path, "%s", files.image[0]);
     const struct study_ref *kept = study_inputs_find_ref(c->inputs, rr->path, cs->input->hash);
-    if (kept) {
-        take_kept(rr, kept);
+    if (kept) { /* another study of the suite prepared it: as if reused from the cache */
+        rr->ref = kept, rr->fig = kept->fig;
+        rr->fig.reused = 1;
     } else {
         rr->fig.reused = 1, rr->fig.wall_s = 0, rr->fig.spp = 0;
         struct rgbf a = {0}, b = {0};

@@ -1,7 +1,5 @@
 /* compare_ref: a compare job's per-scene reference renders, cached under OUT/.cache/ by a key
-   over everything that changes their pixels (scene bytes, settings, the worker program). The plan
-   is only read; what a reference turns out to be (its file, pixels, time and noise) goes into the
-   results' refs (study_results.h). */
+   over everything that changes their pixels (scene bytes, settings, the worker program). */
 #ifndef COMPARE_REF_H
 #define COMPARE_REF_H
 
