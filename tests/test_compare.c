@@ -1,5 +1,6 @@
 /* test_compare: loading and expanding compare jobs (names, labels, sweeps, references, errors)
-   and the statistics drawn from their results; nothing is rendered. */
+   and the statistics drawn from their results; one tiny reference and image rendered, to show that
+   a run writes its results and leaves the plan as loaded. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -365,6 +366,31 @@ static void test_masked_seed_images(void)
     compare_free(c);
 }
 
+/* Preparing a settings reference and rendering an image write the results (the reference's file,
+   pixels and time, the image's row) and leave the plan byte for byte as loaded. */
+static void test_run_keeps_plan(void)
+{
+    struct err e;
+    struct compare *c =
+        compare_load(job_file("plan.yaml", "name: plan\nscenes: [SCENE]\nwidth: 4\n"
+                                           "reference: { sampler: jitter, threshold: 50 }\n"
+                                           "variants:\n  - { sampler: jitter, threshold: 50 }\n"),
+                     &e);
+    CHECK(c != NULL && c->n_items == 1 && c->scenes[0].ref_kind == COMPARE_REF_SETTINGS);
+    if (!c)
+        return;
+    struct compare_scene scene = c->scenes[0];
+    struct compare_item it = c->items[0];
+    struct run_opts o = {.out_dir = fx.dir, .quiet = 1, .processes = 1};
+    CHECK(compare_ref_prepare(c, 0, &c->results, &o, &e) == 0);
+    const struct study_ref_result *rr = &c->results.refs[0];
+    CHECK(rr->ref && strstr(rr->path, "/.cache/ref-checker-") && !rr->fig.reused && rr->fig.spp > 0);
+    CHECK(compare_run_item(c, &c->results, 0, &o, &e) == 0); /* prepares it again: reused */
+    CHECK(!memcmp(&scene, &c->scenes[0], sizeof scene) && !memcmp(&it, &c->items[0], sizeof it));
+    CHECK(c->results.rows[0].done && c->results.rows[0].has_error && c->results.rows[0].hash != 0);
+    compare_free(c);
+}
+
 int main(void)
 {
     if (compare_fixture_open(&fx, "test_compare") < 0)
@@ -377,6 +403,7 @@ int main(void)
     test_chart_one_seed();
     test_repeated_error();
     test_masked_seed_images();
+    test_run_keeps_plan();
     CHECK(compare_fixture_close(&fx) == 0);
     return check_report("test_compare");
 }
