@@ -21,7 +21,8 @@ struct study_table {
     struct study_table_row *rows; /* each row's identity and figures (study_table.c) */
     int has_study;                /* a suite's: the leading study column names each row's study */
     struct verdict_names studies;
-    const struct render_spec_row *settings[STUDY_TABLE_SETTINGS_MAX]; /* the settings columns that tell points apart */
+    const struct render_spec_row
+        *settings[STUDY_TABLE_SETTINGS_MAX]; /* the settings columns that tell points apart */
     int n_settings;
 };
 
@@ -38,8 +39,8 @@ void study_table_free(struct study_table *t);
    repeating a seed at the same settings opening the next point (a setting summary.csv has no column
    for); labelled by the settings that tell the points apart ("threshold 5, light_threshold 10").
    Each item's output is its row's image, its spec the row's settings (defaults where a file has no
-   column); unfigured[s] (malloc'd, n_scenes) counts scene s's unfigured rows. NULL with e filled (too many combinations,
-   no rows, no memory). */
+   column); unfigured[s] (malloc'd, n_scenes) counts scene s's unfigured rows. NULL with e filled (too many
+   combinations, no rows, no memory). */
 struct compare *study_table_study(const struct study_table *t, int si, int **unfigured, struct err *e);
 
 /* A sweep given in samples per pixel, told from the plan (each item's sampler and threshold set):
