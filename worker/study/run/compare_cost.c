@@ -10,6 +10,7 @@
 #include "base/hash.h"
 #include "base/rng.h"
 #include "base/sbuf.h"
+#include "study/judge/compare_stats.h"
 #include "study/load/verdict_csv.h"
 
 /* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
@@ -42,22 +43,6 @@ struct design {
     double image_samples; /* the point's mean camera samples per image (over its seeds) */
 };
 
-/* The mean over seeds of (scene, variant, point)'s CPU seconds and camera samples per image. */
-static void cell_means(const struct compare *c, int s, int v, int p, double *cpu, double *samples)
-{
-    int n = 0;
-    *cpu = *samples = 0;
-    for (int k = 0; k < c->n_seeds; k++) {
-        const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
-        if (!r->done)
-            continue;
-        *cpu += r->cpu_s, *samples += r->spp_mean * c->scenes[s].width * c->scenes[s].height;
-        n++;
-    }
-    if (n)
-        *cpu /= n, *samples /= n;
-}
-
 /* Scene s's designs. The work of a unit follows the CPU seconds of the point's images, averaged over
    every (variant, point) of identical settings (their first seed's resume hash): variants that are
    the same are timed by the same design, so no part of a unit's fixed overhead tells them apart. */
@@ -66,15 +51,17 @@ static void designs(const struct compare *c, int s, struct design *d)
     int nv = c->n_variants, np = c->n_points, h = c->scenes[s].height;
     for (int i = 0; i < nv * np; i++) {
         uint64_t key = c->results.rows[compare_index(c, s, i / np, i % np, 0)].hash;
-        double cpu = 0, samples, one;
+        double cpu = 0;
         int n = 0;
+        struct compare_agg a; /* means over the seeds */
         for (int j = 0; j < nv * np; j++)
             if (j == i || (key && c->results.rows[compare_index(c, s, j / np, j % np, 0)].hash == key)) {
-                cell_means(c, s, j / np, j % np, &one, &samples);
-                cpu += one, n++;
+                compare_stats_aggregate(c, s, j / np, j % np, &a);
+                cpu += a.cpu_s, n++;
             }
         cpu /= n;
-        cell_means(c, s, i / np, i % np, &one, &d[i].image_samples);
+        compare_stats_aggregate(c, s, i / np, i % np, &a);
+        d[i].image_samples = a.spp * c->scenes[s].width * h; /* camera samples per image */
         d[i].reps = 1, d[i].row_parts = 1;
         if (cpu >= COMPARE_COST_UNIT_S)
             d[i].row_parts = (int)fmin(h, fmax(1, lround(cpu / COMPARE_COST_UNIT_S)));
