@@ -390,25 +390,8 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
 
 void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
 {
-    int reused = 0, rendered = 0;
-    double saved_s = 0;
-    compare_ref_tally(c, &rendered, &reused, &saved_s);
-    char refs[128] = "no reference";
-    if (reused)
-        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered,
-                 reused, saved_s);
-    else if (rendered)
-        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
-    else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
-        snprintf(refs, sizeof refs, "reference image given");
-    int current = 0;
-    for (int i = 0; i < c->n_items; i++)
-        current += c->results.rows[i].skipped;
-    char resumed[96] = "";
-    if (current)
-        snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
-                 current);
-    char winners[1024] = "";
+    char refs[160], resumed[96], winners[1024] = "";
+    compare_ref_summary(&c, 1, 0, refs, sizeof refs, resumed, sizeof resumed);
     if (c->has_verdict)
         verdict_summary(&c->verdict, 1, winners, sizeof winners);
     snprintf(buf, n,

@@ -342,12 +342,33 @@ int compare_ref_prepare(const struct compare *c, int s, struct study_results *re
     return 0;
 }
 
-void compare_ref_tally(const struct compare *c, int *rendered, int *reused, double *saved_s)
+void compare_ref_summary(const struct compare *const *cs, int n, int suite, char *refs, size_t refs_n,
+                         char *resumed, size_t resumed_n)
 {
-    for (int s = 0; s < c->n_scenes; s++) {
-        const struct study_ref_figures *f = &c->results.refs[s].fig;
-        *rendered += c->scenes[s].ref_kind == COMPARE_REF_SETTINGS && !f->reused;
-        *reused += c->scenes[s].ref_kind == COMPARE_REF_SETTINGS && f->reused;
-        *saved_s += c->scenes[s].ref_kind == COMPARE_REF_SETTINGS && f->reused ? f->wall_s : 0;
+    int rendered = 0, reused = 0, given = 0, current = 0;
+    double saved_s = 0;
+    for (int i = 0; i < n; i++) {
+        for (int s = 0; s < cs[i]->n_scenes; s++) {
+            const struct study_ref_figures *f = &cs[i]->results.refs[s].fig;
+            int settings = cs[i]->scenes[s].ref_kind == COMPARE_REF_SETTINGS;
+            rendered += settings && !f->reused, reused += settings && f->reused;
+            saved_s += settings && f->reused ? f->wall_s : 0;
+            given += cs[i]->scenes[s].ref_kind == COMPARE_REF_IMAGE;
+        }
+        for (int k = 0; k < cs[i]->n_items; k++)
+            current += cs[i]->results.rows[k].skipped;
     }
+    const char *also = given ? ", images given" : "";
+    snprintf(refs, refs_n, "no reference");
+    if (reused)
+        snprintf(refs, refs_n, "references: %d rendered, %d reused from cache (saving %.1f s)%s", rendered,
+                 reused, saved_s, also);
+    else if (rendered)
+        snprintf(refs, refs_n, "references: %d rendered, 0 reused from cache%s", rendered, also);
+    else if (given)
+        snprintf(refs, refs_n, "%s", suite ? "reference images given" : "reference image given");
+    resumed[0] = 0;
+    if (current)
+        snprintf(resumed, resumed_n, ", %d of them current from an earlier run (--force renders all)",
+                 current);
 }

@@ -34,8 +34,11 @@ int compare_ref_prepare(const struct compare *c, int s, struct study_results *r,
    and spp (their sidecars'; 0 without). For a finished study re-judged. */
 void compare_ref_measure(const struct compare_scene *cs, struct study_ref_result *rr);
 
-/* c's settings references as prepared (its results' refs): how many were rendered, how many reused
-   from the cache and the seconds reusing saved, added to *rendered, *reused and *saved_s. */
-void compare_ref_tally(const struct compare *c, int *rendered, int *reused, double *saved_s);
+/* Two parts of the summary line of studies cs[0..n) (a suite's when suite), from their results:
+   refs, what their references were ("references: 2 rendered, 1 reused from cache (saving 3.1 s)",
+   "reference image given", "no reference"; a reference an earlier study of the run rendered counts
+   as reused), and resumed, how many images were current (", 4 of them current ...", or ""). */
+void compare_ref_summary(const struct compare *const *cs, int n, int suite, char *refs, size_t refs_n,
+                         char *resumed, size_t resumed_n);
 
 #endif
