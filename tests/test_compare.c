@@ -1,5 +1,6 @@
 /* test_compare: loading and expanding compare jobs (names, labels, sweeps, references, errors)
-   and the statistics drawn from their results; nothing is rendered. */
+   and the statistics drawn from their results; one tiny reference and image rendered, to show that
+   a run writes its results and leaves the plan as loaded. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -284,8 +285,8 @@ static void test_repeated_error(void)
     CHECK(image_f_alloc(&ref, 4, 4, &e) == 0 && image_f_alloc(&img, 4, 4, &e) == 0);
     for (int i = 0; i < 4 * 4 * 3; i++)
         ref.px[i] = 0.4f;
-    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/ref.exr", fx.dir);
-    CHECK(imgio_write_f(c->scenes[0].ref_path, &ref, IMG_EXR, NULL, 0, &e) == 0);
+    snprintf(c->results.refs[0].path, sizeof c->results.refs[0].path, "%s/ref.exr", fx.dir);
+    CHECK(imgio_write_f(c->results.refs[0].path, &ref, IMG_EXR, NULL, 0, &e) == 0);
     for (int v = 0; v < 2; v++)
         for (int p = 0; p < 2; p++)
             for (int k = 0; k < 2; k++) {
@@ -351,16 +352,42 @@ static void test_masked_seed_images(void)
     for (int i = 0; i < 4 * 4 * 3; i++)
         a.px[i] = 0.5f, b.px[i] = 0.3f;
     char path[1100];
-    snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s/halves.exr", fx.dir);
+    struct study_ref_result *rr = &c->results.refs[0];
+    snprintf(rr->path, sizeof rr->path, "%s/halves.exr", fx.dir);
     snprintf(path, sizeof path, "%s/halves-a.exr", fx.dir);
     CHECK(imgio_write_f(path, &a, IMG_EXR, NULL, 0, &e) == 0);
     snprintf(path, sizeof path, "%s/halves-b.exr", fx.dir);
     CHECK(imgio_write_f(path, &b, IMG_EXR, NULL, 0, &e) == 0);
-    compare_ref_measure(&c->scenes[0]);
-    CHECK_NEAR(c->scenes[0].ref_radiance, 0.4, 1e-6);
-    CHECK_NEAR(c->scenes[0].ref_radiance_se, sqrt(8 * 0.01) / 8, 1e-6);
-    CHECK_NEAR(c->scenes[0].ref_relmse, 0.01 / (0.16 + 0.01), 1e-6);
+    compare_ref_measure(&c->scenes[0], rr);
+    CHECK_NEAR(rr->fig.radiance, 0.4, 1e-6);
+    CHECK_NEAR(rr->fig.radiance_se, sqrt(8 * 0.01) / 8, 1e-6);
+    CHECK_NEAR(rr->fig.relmse, 0.01 / (0.16 + 0.01), 1e-6);
     image_f_free(&a), image_f_free(&b);
+    compare_free(c);
+}
+
+/* Preparing a settings reference and rendering an image write the results (the reference's file,
+   pixels and time, the image's row) and leave the plan byte for byte as loaded. */
+static void test_run_keeps_plan(void)
+{
+    struct err e;
+    struct compare *c =
+        compare_load(job_file("plan.yaml", "name: plan\nscenes: [SCENE]\nwidth: 4\n"
+                                           "reference: { sampler: jitter, threshold: 50 }\n"
+                                           "variants:\n  - { sampler: jitter, threshold: 50 }\n"),
+                     &e);
+    CHECK(c != NULL && c->n_items == 1 && c->scenes[0].ref_kind == COMPARE_REF_SETTINGS);
+    if (!c)
+        return;
+    struct compare_scene scene = c->scenes[0];
+    struct compare_item it = c->items[0];
+    struct run_opts o = {.out_dir = fx.dir, .quiet = 1, .processes = 1};
+    CHECK(compare_ref_prepare(c, 0, &c->results, &o, &e) == 0);
+    const struct study_ref_result *rr = &c->results.refs[0];
+    CHECK(rr->ref && strstr(rr->path, "/.cache/ref-checker-") && !rr->fig.reused && rr->fig.spp > 0);
+    CHECK(compare_run_item(c, &c->results, 0, &o, &e) == 0); /* prepares it again: reused */
+    CHECK(!memcmp(&scene, &c->scenes[0], sizeof scene) && !memcmp(&it, &c->items[0], sizeof it));
+    CHECK(c->results.rows[0].done && c->results.rows[0].has_error && c->results.rows[0].hash != 0);
     compare_free(c);
 }
 
@@ -376,6 +403,7 @@ int main(void)
     test_chart_one_seed();
     test_repeated_error();
     test_masked_seed_images();
+    test_run_keeps_plan();
     CHECK(compare_fixture_close(&fx) == 0);
     return check_report("test_compare");
 }

@@ -70,7 +70,7 @@ static void test_csv(void)
                 c->results.cost_s[compare_cost_index(c, 0, v, p, b)] = 0.001 * (1 + v) * (1 + p) * (10 + b);
     struct err e;
     CHECK(fileio_write_text(fx.dir, "cost.csv", compare_cost_csv(c), &e) == 0);
-    CHECK(compare_cost_read(d, fx.dir) == 0 && d->results.n_blocks == 3);
+    CHECK(compare_cost_read(d, &d->results, fx.dir) == 0 && d->results.n_blocks == 3);
     if (d->results.n_blocks == 3) /* d lists b first: its figures found by name */
         for (int p = 0; p < 2; p++)
             for (int b = 0; b < 3; b++) {
@@ -83,11 +83,12 @@ static void test_csv(void)
     struct compare *x = load("k3.yaml", "name: k\nscenes: [SCENE]\nwidth: 8\nseeds: [1, 2]\n"
                                         "sweep: { threshold: [20, 10, 5] }\nvariants:\n"
                                         "  - { label: a }\n  - { label: b }\n");
-    CHECK(x && compare_cost_read(x, fx.dir) < 0 && x->results.n_blocks == 0 && !x->results.cost_s);
+    CHECK(x && compare_cost_read(x, &x->results, fx.dir) < 0 && x->results.n_blocks == 0 &&
+          !x->results.cost_s);
     compare_free(x);
     compare_fixture_file(&fx, "cost.csv", "scene,variant,point,block,cpu_s\nnot,a,row,0,1\n");
     free(d->results.cost_s), d->results.cost_s = NULL, d->results.n_blocks = 0;
-    CHECK(compare_cost_read(d, fx.dir) < 0 && d->results.n_blocks == 0);
+    CHECK(compare_cost_read(d, &d->results, fx.dir) < 0 && d->results.n_blocks == 0);
 done:
     compare_free(c);
     compare_free(d);

@@ -258,7 +258,7 @@ static void test_failures_and_guards(void)
             x.rel[verdict_at(&x.f, 3, p, k2)] = 0.002 * (p ? 0.95 : 1) * seed_factor[k2]; /* stalls */
         }
     x.nonfinite[verdict_at(&x.f, 3, 1, 0)] = 3;
-    x.f.ref_spp = 3000; /* under 4x the densest point's 1600 */
+    x.f.ref.spp = 3000; /* under 4x the densest point's 1600 */
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(has_failure(&s, VERDICT_STRUCTURED, 1) && !has_failure(&s, VERDICT_STRUCTURED, 0));
     CHECK(has_failure(&s, VERDICT_SHARE, 2) && !has_failure(&s, VERDICT_SHARE, 0));
@@ -274,7 +274,7 @@ static void test_failures_and_guards(void)
           strstr(json, "\"tie_rule\""));
     free(json);
     verdict_scene_free(&s);
-    x.f.ref_spp = 6400; /* exactly 4x: no warning */
+    x.f.ref.spp = 6400; /* exactly 4x: no warning */
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(!any_line(s.warnings, s.n_warnings, "the reference has"));
     verdict_scene_free(&s);
@@ -335,7 +335,7 @@ static void test_biased(void)
             x.radiance[verdict_at(&x.f, 2, p, k2)] =
                 1.0 + 4 * noise[k2] + (p == 2 ? 0.004 : 0); /* within 4 SE */
         }
-    x.f.ref_radiance = 1.0, x.f.ref_radiance_se = 0.001;
+    x.f.ref.radiance = 1.0, x.f.ref.radiance_se = 0.001;
     set_share(&x, 1, 2, 0.8);
     x.bias_rel[1 * NP + 2] = 0.6 * x.rel[verdict_at(&x.f, 1, 2, 1)]; /* 0.6 of the mean relMSE */
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
@@ -377,7 +377,7 @@ static void test_reference_noise(void)
     fake_init(&x, 2, NS, k, slope, cost);
     for (int i = 0; i < 2 * NP * NS; i++)
         x.rel[i] += 1e-3;
-    x.f.ref_relmse = 1e-3;
+    x.f.ref.relmse = 1e-3;
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK_NEAR(s.by_slope.e[0].value, -1, 1e-9);
     CHECK_NEAR(s.by_samples.e[0].value, GM / 1600, 1e-12);
@@ -389,7 +389,7 @@ static void test_reference_noise(void)
     CHECK(json && strstr(json, "\"reference_relmse\": 0.001"));
     free(json);
     verdict_scene_free(&s);
-    x.f.ref_relmse = NAN; /* unknown: the floor stays in, the slope flattens */
+    x.f.ref.relmse = NAN; /* unknown: the floor stays in, the slope flattens */
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_slope.e[0].value > -0.9);
     verdict_scene_free(&s);

@@ -61,7 +61,7 @@ static void fill(struct verdict_fixture *x, const double (*fig)[NS])
         for (int p = 0; p < NP; p++)
             x->rel_of_mean[v * NP + p] = NAN, x->bias_rel[v * NP + p] = NAN;
     }
-    x->f.ref_radiance = 1, x->f.ref_radiance_se = 0.001;
+    x->f.ref.radiance = 1, x->f.ref.radiance_se = 0.001;
 }
 
 static void test_furnace(void)

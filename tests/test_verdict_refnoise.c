@@ -36,7 +36,7 @@ static void build(struct verdict_fixture *x, double ref_spp, double floor_one)
             }
         }
     x->rel[verdict_at(&x->f, 0, 1, 0)] = floor_one > 0 ? floor_one : x->rel[verdict_at(&x->f, 0, 1, 0)];
-    x->f.ref_relmse = 1e-3;
+    x->f.ref.relmse = 1e-3;
 }
 
 int main(void)

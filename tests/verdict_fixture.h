@@ -32,27 +32,25 @@ static inline void verdict_fixture_init(struct verdict_fixture *x, const char *s
                                         double ref_spp)
 {
     memset(x, 0, sizeof *x);
-    x->f = (struct verdict_figures){.study = study,
-                                    .scene = "board",
-                                    .n_variants = nv,
-                                    .n_points = np,
-                                    .n_seeds = ns,
-                                    .variants = x->variants,
-                                    .samplers = x->samplers,
-                                    .pools = x->pools,
-                                    .points = x->points,
-                                    .spp = x->spp,
-                                    .cpu_s = x->cpu,
-                                    .relmse = x->rel,
-                                    .sampler_share = x->share,
-                                    .nonfinite = x->nonfinite,
-                                    .rel_of_mean = x->rel_of_mean,
-                                    .bias_rel = x->bias_rel,
-                                    .radiance = x->radiance,
-                                    .ref_spp = ref_spp,
-                                    .ref_relmse = NAN,
-                                    .ref_radiance = NAN,
-                                    .ref_radiance_se = NAN};
+    x->f =
+        (struct verdict_figures){.study = study,
+                                 .scene = "board",
+                                 .n_variants = nv,
+                                 .n_points = np,
+                                 .n_seeds = ns,
+                                 .variants = x->variants,
+                                 .samplers = x->samplers,
+                                 .pools = x->pools,
+                                 .points = x->points,
+                                 .spp = x->spp,
+                                 .cpu_s = x->cpu,
+                                 .relmse = x->rel,
+                                 .sampler_share = x->share,
+                                 .nonfinite = x->nonfinite,
+                                 .rel_of_mean = x->rel_of_mean,
+                                 .bias_rel = x->bias_rel,
+                                 .radiance = x->radiance,
+                                 .ref = {.spp = ref_spp, .relmse = NAN, .radiance = NAN, .radiance_se = NAN}};
 }
 
 #endif

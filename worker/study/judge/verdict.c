@@ -203,7 +203,7 @@ static void by_samples(const struct verdict_figures *f, int v, int *order)
 static void repeat_shares(const struct verdict_figures *f, struct verdict_scene *out)
 {
     int n = f->n_seeds, np = f->n_points;
-    double ref = f->ref_relmse > 0 ? f->ref_relmse : 0;
+    double ref = f->ref.relmse > 0 ? f->ref.relmse : 0;
     for (int v = 0; v < f->n_variants; v++)
         for (int p = 0; p < np; p++) {
             double rom = f->rel_of_mean ? f->rel_of_mean[v * np + p] - ref : NAN;
@@ -221,9 +221,9 @@ static void repeat_shares(const struct verdict_figures *f, struct verdict_scene 
    spread and the reference's noise) off the reference's, when that is over VERDICT_BIAS_SE. */
 static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene *out)
 {
-    if (!f->radiance || !(f->ref_radiance > 0) || f->n_seeds < VERDICT_BIAS_SEEDS)
+    if (!f->radiance || !(f->ref.radiance > 0) || f->n_seeds < VERDICT_BIAS_SEEDS)
         return;
-    double ref_se = isfinite(f->ref_radiance_se) ? f->ref_radiance_se : 0, worst = 0, pct = 0;
+    double ref_se = isfinite(f->ref.radiance_se) ? f->ref.radiance_se : 0, worst = 0, pct = 0;
     int at = -1;
     for (int p = 0; p < f->n_points; p++) {
         struct verdict_entry e;
@@ -231,9 +231,9 @@ static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene
         for (int k = 0; k < f->n_seeds; k++)
             verdict_entry_add(&e, f->radiance[verdict_at(f, v, p, k)], 0);
         verdict_entry_end(&e, 0);
-        double se = sqrt(e.se * e.se + ref_se * ref_se), z = (e.mean - f->ref_radiance) / se;
+        double se = sqrt(e.se * e.se + ref_se * ref_se), z = (e.mean - f->ref.radiance) / se;
         if (e.n > 1 && se > 0 && fabs(z) > fabs(worst))
-            worst = z, at = p, pct = 100 * (e.mean / f->ref_radiance - 1);
+            worst = z, at = p, pct = 100 * (e.mean / f->ref.radiance - 1);
     }
     if (fabs(worst) > VERDICT_BIAS_SE) {
         struct verdict_failure *x = add_failure(out, VERDICT_BIASED, v, at, pct);
@@ -324,14 +324,14 @@ int verdict_scene_compute(const struct verdict_figures *given, struct verdict_sc
     double densest = 0;
     for (int i = 0; i < g.n_variants * g.n_points * g.n_seeds; i++)
         densest = fmax(densest, g.spp[i]);
-    if (g.ref_relmse > 0 && g.ref_spp > 0 && g.ref_spp < VERDICT_REF_FACTOR * densest)
-        g.ref_relmse = NAN, g.ref_noise_refused = 1;
+    if (g.ref.relmse > 0 && g.ref.spp > 0 && g.ref.spp < VERDICT_REF_FACTOR * densest)
+        g.ref.relmse = NAN, g.ref_noise_refused = 1;
     int nv = f->n_variants;
     size_t per = (size_t)nv * f->n_points;
     *out = (struct verdict_scene){.n_variants = nv,
                                   .n_points = f->n_points,
                                   .n_seeds = f->n_seeds,
-                                  .ref_relmse = given->ref_relmse,
+                                  .ref_relmse = given->ref.relmse,
                                   .rank_by = f->rank_by};
     snprintf(out->study, sizeof out->study, "%s", f->study);
     snprintf(out->scene, sizeof out->scene, "%s", f->scene);

@@ -10,6 +10,7 @@
 #include "base/err.h"
 #include "base/json.h"
 #include "base/sbuf.h"
+#include "study/load/study_inputs.h"
 #include "study/load/verdict_model.h"
 
 /* A share of the error that repeats in every seed above this is structured (aliasing, a pattern,
@@ -75,10 +76,7 @@ struct verdict_figures {
                                      block (verdict_cost_at); NULL: none */
     int cost_from_images;         /* cost_s holds the images' own times, seed k as block k */
     enum verdict_rank_by rank_by; /* the centre over seeds of every relMSE figure (slopes: the mean) */
-    double ref_spp;               /* the reference's samples per pixel, 0 when unknown */
-    double ref_relmse;            /* the reference's own relMSE (from its halves), NAN unknown */
-    double ref_radiance;          /* the reference's mean radiance, NAN unknown */
-    double ref_radiance_se;       /* its standard error (from its halves), NAN unknown */
+    struct study_ref_figures ref; /* the reference's samples per pixel (0 unknown), noise, radiance */
     int reference_unread;         /* the reference's pixels could not be read: no checks on images */
     int ref_noise_refused;        /* set by verdict_scene_compute: the reference is too sparse
                                      (VERDICT_REF_FACTOR) for its noise to be taken out */

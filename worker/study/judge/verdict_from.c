@@ -74,12 +74,9 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
                                   .cost_s = m->cost,
                                   .cost_from_images = c->results.n_blocks < 2,
                                   .rank_by = c->rank_by,
-                                  .ref_spp = c->scenes[s].ref_spp,
-                                  .ref_relmse = c->scenes[s].ref_relmse,
-                                  .ref_radiance = c->scenes[s].ref_radiance,
-                                  .ref_radiance_se = c->scenes[s].ref_radiance_se};
-    if (ref && !(f->ref_radiance > 0))
-        f->ref_radiance =
+                                  .ref = c->results.refs[s].fig};
+    if (ref && !(f->ref.radiance > 0))
+        f->ref.radiance =
             compare_stats_mean_radiance(ref, c->scenes[s].mask); /* an image reference: its noise unknown */
     for (int p = 0; p < c->n_points; p++)
         m->points[p] = c->points[p];
@@ -181,15 +178,16 @@ int verdict_from_compare(const struct compare *c, const char *dir, const struct 
         return err_set(e, NULL, 0, 0, "out of memory");
     for (int s = 0; s < c->n_scenes; s++) {
         const struct compare_scene *cs = &c->scenes[s];
+        const struct study_ref_result *rr = &c->results.refs[s];
         struct rgbf read = {0};
         struct figures_mem m = {0};
         struct err unread;
-        /* the pixels the study scored against (cs->ref); a study judged again from its outputs reads
+        /* the pixels the study scored against (rr->ref); a study judged again from its outputs reads
            the file; without them the checks on images are skipped (the verdict says so) */
-        const struct rgbf *ref = cs->ref_kind == COMPARE_REF_NONE                        ? NULL
-                                 : cs->ref                                               ? &cs->ref->f
-                                 : imgio_read_f(cs->ref_path, &read, NULL, &unread) == 0 ? &read
-                                                                                         : NULL;
+        const struct rgbf *ref = cs->ref_kind == COMPARE_REF_NONE                    ? NULL
+                                 : rr->ref                                           ? &rr->ref->f
+                                 : imgio_read_f(rr->path, &read, NULL, &unread) == 0 ? &read
+                                                                                     : NULL;
         int has_ref = ref != NULL;
         int rc = gather(c, s, dir, ref, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
         if (rc == 0) {

@@ -186,7 +186,7 @@ void verdict_rank(struct verdict_ranking *r)
 double verdict_rel(const struct verdict_figures *f, int i)
 {
     double y = f->relmse[i];
-    return f->ref_relmse > 0 && isfinite(y) ? fmax(y - f->ref_relmse, 0.01 * y) : y;
+    return f->ref.relmse > 0 && isfinite(y) ? fmax(y - f->ref.relmse, 0.01 * y) : y;
 }
 
 void verdict_ranking_winner(const struct verdict_scene *v, const struct verdict_ranking *r, int tie_note,

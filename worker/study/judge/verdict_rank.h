@@ -46,7 +46,7 @@ int verdict_beats(const struct verdict_ranking *r, const struct verdict_entry *a
    of variants ahead of it, order them best first (by rank, then mean) and set the status. */
 void verdict_rank(struct verdict_ranking *r);
 
-/* Figure i's relMSE with the reference's own noise (f->ref_relmse) taken out. */
+/* Figure i's relMSE with the reference's own noise (f->ref.relmse) taken out. */
 double verdict_rel(const struct verdict_figures *f, int i);
 
 /* The variants at rank 1 of r joined by " = ", then " (tie)" when tie_note and they tie; or

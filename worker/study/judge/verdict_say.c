@@ -116,25 +116,25 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     double densest = 0;
     for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds; i++)
         densest = fmax(densest, f->spp[i]);
-    if (f->ref_spp > 0 && f->ref_spp < VERDICT_REF_FACTOR * densest &&
+    if (f->ref.spp > 0 && f->ref.spp < VERDICT_REF_FACTOR * densest &&
         (w = next_line(out->warnings, &out->n_warnings)))
         append(w,
                "the reference has %.0f samples per pixel, fewer than %dx the densest point's %.0f: its own "
                "noise is a large part of the error measured there%s",
-               f->ref_spp, VERDICT_REF_FACTOR, densest,
+               f->ref.spp, VERDICT_REF_FACTOR, densest,
                f->ref_noise_refused ? ", and too sparse to take out (its halves miss the pixels where both "
                                       "agree by chance): every relMSE shown includes it"
                                     : "");
     int floored = 0, scoredn = 0;
-    for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds && f->ref_relmse > 0; i++)
+    for (int i = 0; i < f->n_variants * f->n_points * f->n_seeds && f->ref.relmse > 0; i++)
         if (isfinite(f->relmse[i]))
-            scoredn++, floored += f->relmse[i] - f->ref_relmse < 0.01 * f->relmse[i];
+            scoredn++, floored += f->relmse[i] - f->ref.relmse < 0.01 * f->relmse[i];
     if (floored && (w = next_line(out->warnings, &out->n_warnings)))
         append(
             w,
             "%d of %d images' relMSE are within the reference's own %.3g: their own error is shown as 1%% of "
             "the measured (the difference cannot be told from the reference's noise)",
-            floored, scoredn, f->ref_relmse);
+            floored, scoredn, f->ref.relmse);
     if ((f->reference_unread || f->images_unread) && (w = next_line(out->warnings, &out->n_warnings)))
         append(w,
                "skipped: the share of the error that repeats in every seed, its split into bias and pattern, "
@@ -142,13 +142,13 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                f->reference_unread ? "everywhere" : "where images are missing",
                f->reference_unread ? "the reference image could not be read"
                                    : "some seed images could not be read");
-    for (int v = 0; v < f->n_variants && f->ref_relmse > 0; v++) {
+    for (int v = 0; v < f->n_variants && f->ref.relmse > 0; v++) {
         char near[VERDICT_TEXT_MAX] = "";
         for (int p = 0; p < f->n_points; p++) {
             double sum = 0;
             for (int k = 0; k < f->n_seeds; k++)
                 sum += f->relmse[verdict_at(f, v, p, k)];
-            if (sum / f->n_seeds < VERDICT_REF_NOISE * f->ref_relmse)
+            if (sum / f->n_seeds < VERDICT_REF_NOISE * f->ref.relmse)
                 append(near, "%s%s (%.3g)", near[0] ? ", " : "", point_name(f, p), sum / f->n_seeds);
         }
         if (near[0] && (w = next_line(out->warnings, &out->n_warnings)))
@@ -156,7 +156,7 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
                 w,
                 "%s's relMSE is within %dx of the reference's own %.3g at %s: the reference's noise is most "
                 "of it there (it is subtracted; a denser reference would tell more)",
-                f->variants[v], VERDICT_REF_NOISE, f->ref_relmse, near);
+                f->variants[v], VERDICT_REF_NOISE, f->ref.relmse, near);
     }
     const struct verdict_ranking *rs[] = {&out->by_samples, &out->by_cpu, &out->by_slope};
     for (int i = 0; i < 3 && f->n_seeds > 1; i++) {

@@ -32,7 +32,7 @@ int compare_expand_reference(struct compare_loading *L)
         struct compare_scene *cs = &c->scenes[0];
         if (compare_keys_apply(&tmp, d, "reference", r, L->e) < 0)
             return -1;
-        if (!(cs->ref = study_inputs_find_ref(c->inputs, tmp.reference, cs->input->hash))) {
+        if (!(cs->image = study_inputs_find_ref(c->inputs, tmp.reference, cs->input->hash))) {
             struct study_ref got = {0};
             uint8_t *data = NULL;
             size_t len = 0;
@@ -43,12 +43,12 @@ int compare_expand_reference(struct compare_loading *L)
             free(data);
             if (rc < 0)
                 return ydoc_fail(d, r, L->e, "reference: %s: %s", tmp.reference, L->e->msg);
-            if (!(cs->ref = study_inputs_keep_ref(c->inputs, &got, L->e)))
+            if (!(cs->image = study_inputs_keep_ref(c->inputs, &got, L->e)))
                 return -1;
         }
-        cs->ref_domain = cs->ref->domain;
-        int w = cs->ref->f.w, h = cs->ref->f.h;
-        size_t bad = image_f_nonfinite(&cs->ref->f), n = (size_t)w * h * 3;
+        cs->ref_domain = cs->image->domain;
+        int w = cs->image->f.w, h = cs->image->f.h;
+        size_t bad = image_f_nonfinite(&cs->image->f), n = (size_t)w * h * 3;
         if (bad) /* every error against it would be NaN: found now, not after the renders */
             return ydoc_fail(d, r, L->e, "reference: %s: %zu of its %zu values are NaN or infinite",
                              tmp.reference, bad, n);
@@ -56,7 +56,6 @@ int compare_expand_reference(struct compare_loading *L)
             return ydoc_fail(d, r, L->e, "reference: image is %dx%d but the job renders %dx%d", w, h,
                              c->scenes[0].width, c->scenes[0].height);
         c->scenes[0].ref_kind = COMPARE_REF_IMAGE;
-        snprintf(c->scenes[0].ref_path, sizeof c->scenes[0].ref_path, "%s", tmp.reference);
         return 0;
     }
     if (r->type != YAML_MAPPING_NODE)
@@ -164,7 +163,7 @@ int compare_expand_items(struct compare_loading *L, yaml_node_t *root)
     c->n_items = (int)n;
     c->items = calloc((size_t)c->n_items, sizeof *c->items);
     c->points = calloc((size_t)c->n_points, sizeof *c->points);
-    if (!c->items || !c->points || study_results_init(&c->results, c->n_items) < 0)
+    if (!c->items || !c->points || study_results_init(&c->results, c->n_items, c->n_scenes) < 0)
         return err_set(L->e, L->d.file, 0, 0, "out of memory");
     for (int p = 0; p < c->n_points; p++)
         point_label(L, p, c->points[p], sizeof c->points[p]);

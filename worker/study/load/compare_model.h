@@ -1,8 +1,9 @@
-/* compare_model: what a compare job is, once loaded (compare_load.h): its scenes with their
-   references, variants, sweep points, seeds and every combination as an ordinary job, the plan,
-   the first of a study's three shapes. Beside it the handle keeps the other two, each written by one
-   stage: the figures its renders measured (study_results.h, run/'s) and its verdict (judge/'s
-   output, verdict_from.h) with the machine it ran on. And a suite of such studies. The bottom of
+/* compare_model: what a compare job is, once loaded (compare_load.h): its scenes with the
+   reference each asks for, variants, sweep points, seeds and every combination as an ordinary job,
+   the plan, the first of a study's three shapes, fixed after load. Beside it the handle keeps the
+   other two: `results` (study_results.h), written by run/'s functions that take the plan const and
+   the results apart (compare_run_item(c, &c->results, ...)), and `verdict`, judge/'s output from
+   both (verdict_from.h) with the machine it ran on. And a suite of such studies. The bottom of
    worker/study/: the loader, the judge, the presentation and the runner all read it. */
 #ifndef COMPARE_MODEL_H
 #define COMPARE_MODEL_H
@@ -25,22 +26,13 @@
 struct compare_scene {
     char name[COMPARE_LABEL_MAX];    /* the scene file's stem: "checker" */
     const struct study_scene *input; /* its file, read and parsed once (c->inputs holds it) */
-    const struct study_ref *ref;     /* its reference's pixels, read once: an image at load, settings
-                                        when prepared (compare_ref_prepare); NULL before or without */
+    const struct study_ref *image;   /* _IMAGE: the given reference image, read at load; else NULL */
     int width, height;               /* of every image of this scene */
     int ref_kind;                    /* COMPARE_REF_NONE | _SETTINGS | _IMAGE */
     struct job ref_job;              /* _SETTINGS: the reference render (output set at run time) */
-    char ref_path[JOB_PATH_MAX];     /* the reference image once known (cache or given path) */
-    enum img_domain ref_domain;      /* linear (a float image: the cache's EXR, a given EXR or PFM) or
-                                        8-bit display values (a given PNG or PPM) */
-    int ref_reused;                  /* the cached reference was reused */
-    double ref_wall_s;               /* seconds its render took (now or when it was cached) */
-    double ref_spp;                  /* its samples per pixel (from its render or sidecar), 0 unknown */
-    /* A settings reference is the mean of two independent halves (compare_ref.c); from their
-       difference: its own relMSE, its mean radiance and that mean's standard error. NAN: unknown
-       (an image reference: its mean radiance is read at the verdict, its noise is not known). */
-    double ref_relmse, ref_radiance, ref_radiance_se;
-    struct img_mask *mask; /* `mask:`: the pixels every figure counts (owned); NULL: all */
+    enum img_domain ref_domain;      /* linear (a settings reference: the cache's EXR; a given EXR or
+                                        PFM) or 8-bit display values (a given PNG or PPM) */
+    struct img_mask *mask;           /* `mask:`: the pixels every figure counts (owned); NULL: all */
 };
 
 enum { COMPARE_REF_NONE, COMPARE_REF_SETTINGS, COMPARE_REF_IMAGE };
@@ -64,7 +56,7 @@ struct compare {
     struct study_inputs *inputs;  /* its scenes and references, each read once (a suite's shared) */
     int owns_inputs;              /* compare_free frees inputs (not a suite's) */
     enum verdict_rank_by rank_by; /* `rank_by:` (default mean): the centre over seeds of relMSE */
-    /* run/'s: what the renders measured, a row per item (allocated at load, every row not done) */
+    /* run/'s: a row per item, a reference per scene (allocated at load, nothing done or known) */
     struct study_results results;
     /* judge/'s output, kept for presenting: set by compare_write_outputs from verdict_from_compare */
     struct verdict_study verdict;

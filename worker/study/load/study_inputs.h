@@ -19,18 +19,26 @@ struct study_scene {
     uint64_t hash; /* FNV-1a from HASH_FNV_OFFSET over the file's bytes, then its image textures' */
 };
 
+/* What a settings reference cost and how noisy it is (compare_ref.c); 0 or NAN when unknown. */
+struct study_ref_figures {
+    int reused;    /* its halves came from the cache */
+    double wall_s; /* seconds its render took (now or when it was cached) */
+    double spp;    /* its samples per pixel (from its render or its halves' sidecars) */
+    /* The mean of two independent halves: from their difference its own relMSE, mean radiance and
+       that mean's standard error (an image reference's are read or unknown at the verdict). */
+    double relmse, radiance, radiance_se;
+};
+
 /* A reference image read (or rendered and computed) once. */
 struct study_ref {
-    char path[JOB_PATH_MAX]; /* a given file, or the cache's mean (OUT/.cache/ref-<scene>-<key>.exr) */
-    uint64_t scene_hash;     /* the study_scene.hash of the scene it is scored for */
-    uint64_t hash;           /* scene_hash continued over the image file's bytes: each image's own hash
-                                starts there (a replaced reference makes its images stale) */
-    enum img_domain domain;  /* linear, or 8-bit display values (a given PNG or PPM) */
-    struct rgbf f;           /* what images are scored against, in domain */
-    struct rgb8 display;     /* as 8-bit display values (an EXR's floats as the PNG writer makes them) */
-    /* a settings reference's figures (compare_ref.c), NAN or 0 when unknown */
-    int reused; /* its halves came from the cache */
-    double wall_s, spp, relmse, radiance, radiance_se;
+    char path[JOB_PATH_MAX];      /* a given file, or the cache's mean (OUT/.cache/ref-<scene>-<key>.exr) */
+    uint64_t scene_hash;          /* the study_scene.hash of the scene it is scored for */
+    uint64_t hash;                /* scene_hash continued over the image file's bytes: each image's own hash
+                                     starts there (a replaced reference makes its images stale) */
+    enum img_domain domain;       /* linear, or 8-bit display values (a given PNG or PPM) */
+    struct rgbf f;                /* what images are scored against, in domain */
+    struct rgb8 display;          /* as 8-bit display values (an EXR's floats as the PNG writer makes them) */
+    struct study_ref_figures fig; /* a settings reference's, over the whole image */
 };
 
 struct study_inputs {

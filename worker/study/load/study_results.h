@@ -9,6 +9,7 @@
 
 #include "image/metrics.h"
 #include "job/sidecar.h"
+#include "study_inputs.h"
 
 /* The figures a render can give (a row read back outside them is no figure): samples per pixel up
    to a job's most camera samples on one pixel (job_limits.h's LIMITS_MAX_JOB_SAMPLES), seconds up to
@@ -30,8 +31,17 @@ struct study_result {
     uint64_t hash;                        /* the resume hash it was rendered under (not a column) */
 };
 
+/* The reference a scene's images were scored against, as run/ prepared or found it (the plan says
+   which one is asked for: its kind, settings job or given image). */
+struct study_ref_result {
+    const struct study_ref *ref;  /* its pixels (kept in the plan's inputs); NULL before or without */
+    char path[JOB_PATH_MAX];      /* its image once known (the given one, the cache's mean, or found) */
+    struct study_ref_figures fig; /* over the scene's mask */
+};
+
 struct study_results {
-    struct study_result *rows; /* one per item of the plan, at its index (compare_index) */
+    struct study_result *rows;     /* one per item of the plan, at its index (compare_index) */
+    struct study_ref_result *refs; /* one per scene of the plan */
     /* The cost design's figures (study/run/compare_cost.h): per (scene, variant, point, block) the
        CPU seconds one image of the point costs, timed in block b; n_blocks 0 when not measured
        (the verdict then falls back on the images' own times, seed k as block k). */
@@ -39,8 +49,9 @@ struct study_results {
     double *cost_s; /* index compare_cost_index */
 };
 
-/* Rows for n images, each not done (0), or -1 when out of memory. */
-int study_results_init(struct study_results *r, int n);
+/* Rows for n images, each not done, and n_scenes references, none known (NAN figures); 0, or -1
+   when out of memory. */
+int study_results_init(struct study_results *r, int n, int n_scenes);
 
 /* Free what r holds (r emptied; an empty one is fine). */
 void study_results_free(struct study_results *r);

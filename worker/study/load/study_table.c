@@ -394,7 +394,7 @@ struct compare *study_table_study(const struct study_table *t, int si, int **unf
     c->items = calloc((size_t)c->n_items, sizeof *c->items);
     *unfigured = calloc((size_t)c->n_scenes, sizeof **unfigured);
     if (!c->scenes || !c->variants || !c->seeds || !c->items || !*unfigured ||
-        study_results_init(&c->results, c->n_items) < 0) {
+        study_results_init(&c->results, c->n_items, c->n_scenes) < 0) {
         err_set(e, t->path, 0, 0, "out of memory");
         goto fail;
     }

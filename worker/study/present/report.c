@@ -96,14 +96,15 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
     return 0;
 }
 
-/* The scene's reference (its pixels as the study scored against them, cs->ref), at the renders'
+/* The scene's reference (its pixels as the study scored against them, rr->ref), at the renders'
    zoom, with id ref<s> (what the A/B toggle shows). */
-static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int s, int zoom, struct err *e)
+static int reference_figure(struct sbuf *b, const struct compare_scene *cs, const struct study_ref_result *rr,
+                            int s, int zoom, struct err *e)
 {
     char id[32];
     snprintf(id, sizeof id, "ref%d", s);
     struct report_view_img view = {zoom, id, NULL, "reference"};
-    const struct rgb8 *ref = &cs->ref->display; /* an EXR's floats converted as the PNG writer does */
+    const struct rgb8 *ref = &rr->ref->display; /* an EXR's floats converted as the PNG writer does */
     struct rgb8 out = {0};                      /* with the mask's outline */
     sbuf_printf(b, "<div class=\"row\"><figure>");
     int rc = cs->mask && image_alloc(&out, ref->w, ref->h, e) < 0;
@@ -121,9 +122,9 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
         sbuf_printf(b, "%s t=%g, %s, seed %llu; %s %.1f s", sampler_kind_name(cs->ref_job.spec.pixel.kind),
                     cs->ref_job.spec.pixel.threshold, job_light_text(&cs->ref_job, light, sizeof light),
                     (unsigned long long)cs->ref_job.spec.seed,
-                    cs->ref_reused ? "reused from cache, rendered in" : "rendered in", cs->ref_wall_s);
+                    rr->fig.reused ? "reused from cache, rendered in" : "rendered in", rr->fig.wall_s);
     else
-        sbuf_escape(b, cs->ref_path);
+        sbuf_escape(b, rr->path);
     if (cs->mask)
         sbuf_printf(b, "; every figure counts only the %zu pixels inside the cyan outline (mask)",
                     cs->mask->count);
@@ -134,15 +135,16 @@ static int reference_figure(struct sbuf *b, const struct compare_scene *cs, int 
 static int scene_section(struct sbuf *b, const struct compare *c, int s, const char *dir, struct err *e)
 {
     const struct compare_scene *cs = &c->scenes[s];
+    const struct study_ref_result *rr = &c->results.refs[s];
     int has_ref = cs->ref_kind != COMPARE_REF_NONE, linear = cs->ref_domain == IMG_LINEAR;
-    if (has_ref && !cs->ref)
+    if (has_ref && !rr->ref)
         return err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", c->name, cs->name);
     int zoom = report_image_zoom(cs->width, REPORT_IMAGE_SHOW_PX);
     sbuf_printf(b, "<section class=\"scene\"><h2>Scene ");
     sbuf_escape(b, cs->name);
     sbuf_printf(b, " (%dx%d)</h2>\n", cs->width, cs->height);
     report_view_controls(b, c, zoom, has_ref);
-    if (has_ref && reference_figure(b, cs, s, zoom, e) < 0)
+    if (has_ref && reference_figure(b, cs, rr, s, zoom, e) < 0)
         return -1;
     sbuf_printf(b, "<h3>Side by side at each sweep point, with samples per pixel</h3>\n");
     if (image_grid(b, c, s, dir, zoom, has_ref, e) < 0)
@@ -154,9 +156,9 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
         compare_stats_point_order(c, s, 0, order);
         int mid = order[c->n_points / 2], densest = order[c->n_points - 1];
         free(order);
-        const struct rgbf *reff = linear ? &cs->ref->f : NULL;
-        if (report_closeup(b, c, s, mid, dir, &cs->ref->display, reff, e) < 0 ||
-            (densest != mid && report_closeup(b, c, s, densest, dir, &cs->ref->display, reff, e) < 0))
+        const struct rgbf *reff = linear ? &rr->ref->f : NULL;
+        if (report_closeup(b, c, s, mid, dir, &rr->ref->display, reff, e) < 0 ||
+            (densest != mid && report_closeup(b, c, s, densest, dir, &rr->ref->display, reff, e) < 0))
             return -1;
     }
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");

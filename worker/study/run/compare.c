@@ -51,16 +51,34 @@ static void fmt_duration(double s, char *buf, size_t n)
 }
 
 /* The resume hash of one combination: its scene file's and texture images' bytes, then its reference
-   image's bytes (both as the study read them: cs->ref->hash, else cs->input->hash; a cached
+   image's bytes (both as the study read them: ref->hash, else cs->input->hash; a cached
    reference's bytes follow its settings, and a reference given as a file may be replaced under the
    same path), every setting that changes its pixels, not its path: the same --out spelled another
    way finds the same outputs current. An image whose sidecar records it is current and is not
    rendered again (unless --force). */
-static uint64_t item_hash(const struct compare_scene *cs, const struct job *j)
+static uint64_t item_hash(const struct compare_scene *cs, const struct study_ref *ref, const struct job *j)
 {
     char text[512];
     int n = render_spec_key_text(&j->spec, j->reference[0] ? " ref 1" : " ref 0", text, sizeof text);
-    return hash_bytes(j->reference[0] ? cs->ref->hash : cs->input->hash, text, (size_t)n);
+    return hash_bytes(j->reference[0] ? ref->hash : cs->input->hash, text, (size_t)n);
+}
+
+/* Item i's job as rendered: the plan's, with its scene's prepared reference (r->refs) and the resume
+   hash set. 0, or 1 with e filled when the reference was not prepared. */
+static int item_job(const struct compare *c, const struct study_results *r, int i, struct job *j,
+                    struct err *e)
+{
+    const struct compare_item *it = &c->items[i];
+    const struct compare_scene *cs = &c->scenes[it->scene];
+    const struct study_ref_result *rr = &r->refs[it->scene];
+    if (cs->ref_kind != COMPARE_REF_NONE && !rr->ref) {
+        err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
+        return 1;
+    }
+    *j = it->job;
+    snprintf(j->reference, sizeof j->reference, "%s", cs->ref_kind != COMPARE_REF_NONE ? rr->path : "");
+    j->hash = item_hash(cs, rr->ref, j);
+    return 0;
 }
 
 /* A combination skipped as current: what it measured, from its sidecar. */
@@ -140,22 +158,19 @@ static int score_look(struct study_result *r, const struct run_result *rr, const
     return rc;
 }
 
-/* Render one combination (its plan's job with its reference and hash set) or take it as it is when
-   current, and measure it against its scene's reference (cs->ref, prepared; none when the study has
-   none) into its row of c->results. */
-static int render_item(struct compare *c, const struct compare_item *it, const struct run_opts *o,
+/* Render combination i (item_job) or take it as it is when current, and measure it against its
+   scene's prepared reference (none when the study has none) into its row of res. */
+static int render_item(const struct compare *c, struct study_results *res, int i, const struct run_opts *o,
                        struct err *e)
 {
+    const struct compare_item *it = &c->items[i];
     const struct compare_scene *cs = &c->scenes[it->scene];
-    const struct study_ref *ref = cs->ref_kind != COMPARE_REF_NONE ? cs->ref : NULL;
-    struct study_result *r = &c->results.rows[it - c->items];
-    if (cs->ref_kind != COMPARE_REF_NONE && !ref) {
-        err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
+    const struct study_ref *ref = cs->ref_kind != COMPARE_REF_NONE ? res->refs[it->scene].ref : NULL;
+    struct study_result *r = &res->rows[i];
+    struct job j;
+    if (item_job(c, res, i, &j, e) != 0)
         return 1;
-    }
-    struct job j = it->job;
-    snprintf(j.reference, sizeof j.reference, "%s", ref ? cs->ref_path : "");
-    r->hash = j.hash = item_hash(cs, &j);
+    r->hash = j.hash;
     struct run_result rr;
     struct run_opts quiet_rows = *o; /* the combination's own line replaces row progress */
     quiet_rows.progress = 0;
@@ -257,27 +272,18 @@ static char *summary_csv(const struct compare *c)
     return sbuf_take(&b);
 }
 
-int compare_item_job(struct compare *c, int i, const struct run_opts *o, struct job *j, struct err *e)
+int compare_item_job(const struct compare *c, struct study_results *r, int i, const struct run_opts *o,
+                     struct job *j, struct err *e)
 {
-    const struct compare_item *it = &c->items[i];
-    const struct compare_scene *cs = &c->scenes[it->scene];
-    int rc = compare_ref_prepare(c, it->scene, o, e);
-    if (rc != 0)
-        return rc;
-    if (cs->ref_kind != COMPARE_REF_NONE && !cs->ref) {
-        err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", it->job.output, cs->name);
-        return 1;
-    }
-    *j = it->job; /* its reference and hash as render_item sets them: the merged sidecar is then current */
-    snprintf(j->reference, sizeof j->reference, "%s", cs->ref_kind != COMPARE_REF_NONE ? cs->ref_path : "");
-    j->hash = item_hash(cs, j);
-    return 0;
+    int rc = compare_ref_prepare(c, c->items[i].scene, r, o, e);
+    return rc != 0 ? rc : item_job(c, r, i, j, e); /* as render_item renders it: the merged sidecar current */
 }
 
-int compare_run_item(struct compare *c, int i, const struct run_opts *o, struct err *e)
+int compare_run_item(const struct compare *c, struct study_results *r, int i, const struct run_opts *o,
+                     struct err *e)
 {
-    int rc = compare_ref_prepare(c, c->items[i].scene, o, e);
-    return rc != 0 ? rc : render_item(c, &c->items[i], o, e);
+    int rc = compare_ref_prepare(c, c->items[i].scene, r, o, e);
+    return rc != 0 ? rc : render_item(c, r, i, o, e);
 }
 
 int compare_write_outputs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
@@ -313,16 +319,17 @@ int compare_write_outputs(struct compare *c, const char *dir, const struct run_o
 
 /* The study's costs: timed now (compare_cost.h), unless every image was current and the folder's
    cost.csv covers them (a resumed study keeps its figures). 0, or 1 with e filled. */
-static int study_costs(struct compare *c, const char *dir, const struct run_opts *o, struct err *e)
+static int study_costs(const struct compare *c, struct study_results *r, const char *dir,
+                       const struct run_opts *o, struct err *e)
 {
     int current = 1;
     for (int i = 0; i < c->n_items; i++)
-        current &= c->results.rows[i].skipped;
-    if (current && compare_cost_read(c, dir) == 0)
+        current &= r->rows[i].skipped;
+    if (current && compare_cost_read(c, r, dir) == 0)
         return 0;
     run_say(o, "timing: %d blocks of every variant and point, about %.0f s of CPU\n", COMPARE_COST_BLOCKS,
             timing_s(c));
-    return compare_cost_measure(c, o, e) < 0;
+    return compare_cost_measure(c, r, o, e) < 0;
 }
 
 int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
@@ -336,11 +343,11 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
     if (outdir_check(dir, e) < 0)
         return 2;
     for (int s = 0; s < c->n_scenes; s++) {
-        if ((rc = compare_ref_prepare(c, s, o, e)) != 0)
+        if ((rc = compare_ref_prepare(c, s, &c->results, o, e)) != 0)
             return rc;
         const struct compare_scene *cs = &c->scenes[s];
         if (cs->ref_kind != COMPARE_REF_NONE && cs->ref_domain != IMG_LINEAR)
-            run_warn_display_reference(c->name, cs->ref_path);
+            run_warn_display_reference(c->name, c->results.refs[s].path);
     }
     int *order = malloc(sizeof *order * (size_t)(c->n_items + 1));
     if (!order) {
@@ -355,7 +362,7 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
         const struct compare_item *it = &c->items[order[n]];
         const struct study_result *r = &c->results.rows[order[n]];
         const struct compare_scene *cs = &c->scenes[it->scene];
-        if ((rc = render_item(c, it, o, e)) != 0) {
+        if ((rc = render_item(c, &c->results, order[n], o, e)) != 0) {
             free(order);
             return rc;
         }
@@ -376,37 +383,15 @@ int compare_run(struct compare *c, const struct run_opts *o, struct err *e)
                 err_text, r->skipped ? " (current, not rendered again)" : "", el, eta);
     }
     free(order);
-    if ((rc = study_costs(c, dir, o, e)) != 0)
+    if ((rc = study_costs(c, &c->results, dir, o, e)) != 0)
         return rc;
     return compare_write_outputs(c, dir, o, e) < 0;
 }
 
 void compare_summary_line(const struct compare *c, double wall_s, const char *out_dir, char *buf, size_t n)
 {
-    int reused = 0, rendered = 0;
-    double saved_s = 0;
-    for (int s = 0; s < c->n_scenes; s++) {
-        const struct compare_scene *cs = &c->scenes[s];
-        reused += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused;
-        rendered += cs->ref_kind == COMPARE_REF_SETTINGS && !cs->ref_reused;
-        saved_s += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused ? cs->ref_wall_s : 0;
-    }
-    char refs[128] = "no reference";
-    if (reused)
-        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)", rendered,
-                 reused, saved_s);
-    else if (rendered)
-        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache", rendered);
-    else if (c->n_scenes && c->scenes[0].ref_kind == COMPARE_REF_IMAGE)
-        snprintf(refs, sizeof refs, "reference image given");
-    int current = 0;
-    for (int i = 0; i < c->n_items; i++)
-        current += c->results.rows[i].skipped;
-    char resumed[96] = "";
-    if (current)
-        snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
-                 current);
-    char winners[1024] = "";
+    char refs[160], resumed[96], winners[1024] = "";
+    compare_ref_summary(&c, 1, 0, refs, sizeof refs, resumed, sizeof resumed);
     if (c->has_verdict)
         verdict_summary(&c->verdict, 1, winners, sizeof winners);
     snprintf(buf, n,

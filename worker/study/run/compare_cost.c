@@ -10,6 +10,7 @@
 #include "base/hash.h"
 #include "base/rng.h"
 #include "base/sbuf.h"
+#include "study/judge/compare_stats.h"
 #include "study/load/verdict_csv.h"
 
 /* Fisher-Yates over n indices with a generator seeded from the study's name and key. */
@@ -42,22 +43,6 @@ struct design {
     double image_samples; /* the point's mean camera samples per image (over its seeds) */
 };
 
-/* The mean over seeds of (scene, variant, point)'s CPU seconds and camera samples per image. */
-static void cell_means(const struct compare *c, int s, int v, int p, double *cpu, double *samples)
-{
-    int n = 0;
-    *cpu = *samples = 0;
-    for (int k = 0; k < c->n_seeds; k++) {
-        const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
-        if (!r->done)
-            continue;
-        *cpu += r->cpu_s, *samples += r->spp_mean * c->scenes[s].width * c->scenes[s].height;
-        n++;
-    }
-    if (n)
-        *cpu /= n, *samples /= n;
-}
-
 /* Scene s's designs. The work of a unit follows the CPU seconds of the point's images, averaged over
    every (variant, point) of identical settings (their first seed's resume hash): variants that are
    the same are timed by the same design, so no part of a unit's fixed overhead tells them apart. */
@@ -66,15 +51,17 @@ static void designs(const struct compare *c, int s, struct design *d)
     int nv = c->n_variants, np = c->n_points, h = c->scenes[s].height;
     for (int i = 0; i < nv * np; i++) {
         uint64_t key = c->results.rows[compare_index(c, s, i / np, i % np, 0)].hash;
-        double cpu = 0, samples, one;
+        double cpu = 0;
         int n = 0;
+        struct compare_agg a; /* means over the seeds */
         for (int j = 0; j < nv * np; j++)
             if (j == i || (key && c->results.rows[compare_index(c, s, j / np, j % np, 0)].hash == key)) {
-                cell_means(c, s, j / np, j % np, &one, &samples);
-                cpu += one, n++;
+                compare_stats_aggregate(c, s, j / np, j % np, &a);
+                cpu += a.cpu_s, n++;
             }
         cpu /= n;
-        cell_means(c, s, i / np, i % np, &one, &d[i].image_samples);
+        compare_stats_aggregate(c, s, i / np, i % np, &a);
+        d[i].image_samples = a.spp * c->scenes[s].width * h; /* camera samples per image */
         d[i].reps = 1, d[i].row_parts = 1;
         if (cpu >= COMPARE_COST_UNIT_S)
             d[i].row_parts = (int)fmin(h, fmax(1, lround(cpu / COMPARE_COST_UNIT_S)));
@@ -128,7 +115,8 @@ static int time_unit(const struct compare *c, struct timing *t, int v, int p, in
 }
 
 /* Scene s's blocks: each times every (variant, point) once, in an order of its own. */
-static int measure_scene(struct compare *c, int s, const struct run_opts *o, struct err *e)
+static int measure_scene(const struct compare *c, struct study_results *r, int s, const struct run_opts *o,
+                         struct err *e)
 {
     int n = c->n_variants * c->n_points, rc = -1;
     struct design *d = calloc((size_t)n, sizeof *d);
@@ -146,14 +134,13 @@ static int measure_scene(struct compare *c, int s, const struct run_opts *o, str
     if (camera_init(&t.cam, &t.sf.camera, (double)t.w / t.h, e) < 0 ||
         !(t.rgb = procs_framebuffer_new(t.w, t.h, e)))
         goto done;
-    for (int b = 0; b < c->results.n_blocks; b++) {
+    for (int b = 0; b < r->n_blocks; b++) {
         for (int i = 0; i < n; i++)
             idx[i] = i;
         shuffle(c, ((uint64_t)s << 32) | (uint64_t)b, idx, n);
         for (int i = 0; i < n; i++) {
             int v = idx[i] / c->n_points, p = idx[i] % c->n_points;
-            if (time_unit(c, &t, v, p, b, &d[idx[i]], &c->results.cost_s[compare_cost_index(c, s, v, p, b)],
-                          e) < 0)
+            if (time_unit(c, &t, v, p, b, &d[idx[i]], &r->cost_s[compare_cost_index(c, s, v, p, b)], e) < 0)
                 goto done;
         }
     }
@@ -166,20 +153,20 @@ done:
     return rc;
 }
 
-int compare_cost_measure(struct compare *c, const struct run_opts *o, struct err *e)
+int compare_cost_measure(const struct compare *c, struct study_results *r, const struct run_opts *o,
+                         struct err *e)
 {
-    free(c->results.cost_s);
-    c->results.n_blocks = COMPARE_COST_BLOCKS;
-    c->results.cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * c->results.n_blocks,
-                               sizeof *c->results.cost_s);
-    if (!c->results.cost_s) {
-        c->results.n_blocks = 0;
+    free(r->cost_s);
+    r->n_blocks = COMPARE_COST_BLOCKS;
+    r->cost_s = calloc((size_t)c->n_scenes * c->n_variants * c->n_points * r->n_blocks, sizeof *r->cost_s);
+    if (!r->cost_s) {
+        r->n_blocks = 0;
         return err_set(e, NULL, 0, 0, "out of memory");
     }
     for (int s = 0; s < c->n_scenes; s++)
-        if (measure_scene(c, s, o, e) < 0) {
-            free(c->results.cost_s);
-            c->results.cost_s = NULL, c->results.n_blocks = 0;
+        if (measure_scene(c, r, s, o, e) < 0) {
+            free(r->cost_s);
+            r->cost_s = NULL, r->n_blocks = 0;
             err_prefix(e, c->name);
             return -1;
         }
@@ -226,7 +213,7 @@ static int find_cell(const struct compare *c, const char *scene, const char *var
     return -1;
 }
 
-int compare_cost_read(struct compare *c, const char *dir)
+int compare_cost_read(const struct compare *c, struct study_results *res, const char *dir)
 {
     char path[4096];
     uint8_t *data = NULL;
@@ -263,16 +250,16 @@ int compare_cost_read(struct compare *c, const char *dir)
                 goto done;
     if (blocks < 2)
         goto done;
-    free(c->results.cost_s);
-    c->results.n_blocks = blocks;
-    c->results.cost_s = malloc(sizeof *c->results.cost_s * (size_t)cells * blocks);
-    if (!c->results.cost_s) {
-        c->results.n_blocks = 0;
+    free(res->cost_s);
+    res->n_blocks = blocks;
+    res->cost_s = malloc(sizeof *res->cost_s * (size_t)cells * blocks);
+    if (!res->cost_s) {
+        res->n_blocks = 0;
         goto done;
     }
     for (int i = 0; i < cells; i++)
         for (int k = 0; k < blocks; k++)
-            c->results.cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
+            res->cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
     rc = 0;
 done:
     verdict_csv_free(&t);

@@ -22,20 +22,21 @@
    renders in a stretch of machine load of its own. order gets c->n_items indices. */
 void compare_cost_order(const struct compare *c, int *order);
 
-/* Time every (scene, variant, point) of c (its items rendered or current: their samples and CPU
-   seconds known) in COMPARE_COST_BLOCKS blocks into c->cost_s (allocated; c->n_blocks set). Renders
-   with o's process count; nothing is written. 0, or -1 with e filled (a scene that does not load,
-   out of memory, a render that failed). */
-int compare_cost_measure(struct compare *c, const struct run_opts *o, struct err *e);
+/* Time every (scene, variant, point) of plan c (its items rendered or current: their samples and
+   CPU seconds known in r, c's results) in COMPARE_COST_BLOCKS blocks into r->cost_s (allocated;
+   r->n_blocks set). Renders with o's process count; nothing is written. 0, or -1 with e filled (a
+   scene that does not load, out of memory, a render that failed). */
+int compare_cost_measure(const struct compare *c, struct study_results *r, const struct run_opts *o,
+                         struct err *e);
 
 /* cost.csv's text (malloc'd; NULL on no memory): one row per (scene, variant, point, block):
    scene, variant, point (the first seed's image name without "-s<seed>.<ext>"), block, cpu_s (the
    CPU seconds one image of the point costs, timed in that block). */
 char *compare_cost_csv(const struct compare *c);
 
-/* Read dir/cost.csv into c (its items' images named as when written). 0, or -1 when it is missing
-   or does not cover every (scene, variant, point) of c: c->n_blocks stays 0 (the verdict falls back
-   on the images' own CPU times and says so). */
-int compare_cost_read(struct compare *c, const char *dir);
+/* Read dir/cost.csv into r, plan c's results (its items' images named as when written). 0, or -1
+   when it is missing or does not cover every (scene, variant, point) of c: r->n_blocks stays 0 (the
+   verdict falls back on the images' own CPU times and says so). */
+int compare_cost_read(const struct compare *c, struct study_results *r, const char *dir);
 
 #endif

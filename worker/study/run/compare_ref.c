@@ -19,7 +19,7 @@
    hash, study_scene.hash), every setting that changes the reference's pixels, and the worker
    program's own bytes: a rebuilt renderer may draw other pixels, and its version string does not
    change with every commit. */
-static uint64_t reference_key(struct compare *c, const struct compare_scene *cs)
+static uint64_t reference_key(const struct compare *c, const struct compare_scene *cs)
 {
     struct render_spec s = cs->ref_job.spec;
     s.width = cs->width;
@@ -123,8 +123,10 @@ static void half_files(const struct compare_scene *cs, int h, uint64_t key, cons
     snprintf(record, n, "%.*s.key", (int)(strlen(files->image[0]) - 4), files->image[0]);
 }
 
-static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o, struct rgbf *img,
-                struct err *e)
+/* Half h rendered into the cache, or found there (img its pixels); its time and samples added to
+   got->fig, its reused cleared when it was rendered. 0, 1 or 2. */
+static int half(const struct compare_scene *cs, int h, uint64_t key, const struct run_opts *o,
+                struct rgbf *img, struct study_ref_result *got, struct err *e)
 {
     struct job j;
     struct outdir_files files;
@@ -140,7 +142,7 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
                     "%s: the cached half %s is not the one its record names (damaged, replaced or of an "
                     "older worker): rendering it again\n",
                     cs->name, path);
-        cs->ref_reused = 0;
+        got->fig.reused = 0;
         char light[96];
         run_say(o, "%s: rendering the reference's half %c (%s t=%g, %s, seed %llu) into %s\n", cs->name,
                 "ab"[h], sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold,
@@ -162,14 +164,14 @@ static int half(struct compare_scene *cs, int h, uint64_t key, const struct run_
         if (half_rendered(path, record, key, img, e) < 0)
             return 1;
     }
-    cs->ref_wall_s += wall_s;
-    cs->ref_spp += spp;
+    got->fig.wall_s += wall_s;
+    got->fig.spp += spp;
     return 0;
 }
 
-int compare_ref_half_target(struct compare *c, int s, int h, const struct run_opts *o, struct job *j)
+int compare_ref_half_target(const struct compare *c, int s, int h, const struct run_opts *o, struct job *j)
 {
-    struct compare_scene *cs = &c->scenes[s];
+    const struct compare_scene *cs = &c->scenes[s];
     uint64_t key = reference_key(c, cs);
     struct outdir_files files;
     struct rgbf img = {0};
@@ -181,17 +183,18 @@ int compare_ref_half_target(struct compare *c, int s, int h, const struct run_op
     return cached;
 }
 
-int compare_ref_half_render(struct compare *c, int s, int h, const struct run_opts *o, struct err *e)
+int compare_ref_half_render(const struct compare *c, int s, int h, const struct run_opts *o, struct err *e)
 {
     struct rgbf img = {0};
-    int rc = half(&c->scenes[s], h, reference_key(c, &c->scenes[s]), o, &img, e);
+    struct study_ref_result figures = {0}; /* the reference's are the prepared whole's */
+    int rc = half(&c->scenes[s], h, reference_key(c, &c->scenes[s]), o, &img, &figures, e);
     image_f_free(&img);
     return rc;
 }
 
-int compare_ref_half_merged(struct compare *c, int s, int h, const struct run_opts *o, struct err *e)
+int compare_ref_half_merged(const struct compare *c, int s, int h, const struct run_opts *o, struct err *e)
 {
-    struct compare_scene *cs = &c->scenes[s];
+    const struct compare_scene *cs = &c->scenes[s];
     uint64_t key = reference_key(c, cs);
     struct job j;
     struct outdir_files files;
@@ -210,7 +213,7 @@ int compare_ref_half_merged(struct compare *c, int s, int h, const struct run_op
    the sum over those P pixels of the channels' mean difference squared / 4, over P^2: pixels are
    independent (per-pixel seeds), a pixel's channels are not (one path carries all three: in a grey
    scene they move together, and counting them apart made the error sqrt(3) too small). */
-static void mean_of_halves(struct compare_scene *cs, const struct img_mask *mask, struct rgbf *a,
+static void mean_of_halves(struct study_ref_result *rr, const struct img_mask *mask, struct rgbf *a,
                            const struct rgbf *b)
 {
     size_t n = (size_t)a->w * a->h, counted = 0;
@@ -229,64 +232,58 @@ static void mean_of_halves(struct compare_scene *cs, const struct img_mask *mask
         if (on)
             var += pix_d * pix_d / 4, counted++;
     }
-    cs->ref_relmse = rel / (double)(3 * counted);
-    cs->ref_radiance = sum / (double)counted;
-    cs->ref_radiance_se = sqrt(var) / (double)counted;
+    rr->fig.relmse = rel / (double)(3 * counted);
+    rr->fig.radiance = sum / (double)counted;
+    rr->fig.radiance_se = sqrt(var) / (double)counted;
 }
 
-void compare_ref_measure(struct compare_scene *cs)
+void compare_ref_measure(const struct compare_scene *cs, struct study_ref_result *rr)
 {
-    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
-    const char *dot = strrchr(cs->ref_path, '.');
-    int stem = dot ? (int)(dot - cs->ref_path) : (int)strlen(cs->ref_path);
+    rr->fig.relmse = rr->fig.radiance = rr->fig.radiance_se = NAN;
+    const char *dot = strrchr(rr->path, '.');
+    int stem = dot ? (int)(dot - rr->path) : (int)strlen(rr->path);
     char path[JOB_PATH_MAX + 8];
     struct rgbf a = {0}, b = {0};
     struct err ignored;
     double wall_s, spp;
-    cs->ref_spp = 0;
+    rr->fig.spp = 0;
     for (int h = 0; h < 2; h++) {
-        snprintf(path, sizeof path, "%.*s-%c.json", stem, cs->ref_path, "ab"[h]);
+        snprintf(path, sizeof path, "%.*s-%c.json", stem, rr->path, "ab"[h]);
         half_figures(path, &wall_s, &spp);
-        cs->ref_spp += spp;
-        snprintf(path, sizeof path, "%.*s-%c.exr", stem, cs->ref_path, "ab"[h]);
+        rr->fig.spp += spp;
+        snprintf(path, sizeof path, "%.*s-%c.exr", stem, rr->path, "ab"[h]);
         if (imgio_read_f(path, h ? &b : &a, NULL, &ignored) < 0)
             break;
     }
     if (a.px && b.px && a.w == b.w && a.h == b.h)
-        mean_of_halves(cs, cs->mask, &a, &b);
+        mean_of_halves(rr, cs->mask, &a, &b);
     image_f_free(&a), image_f_free(&b);
 }
 
-/* The mean m of the halves as cs->ref_path holds it, kept in c->inputs as cs->ref: the file read
-   once when the halves were reused and it matches, else written from m. 0 or -1. */
-static int keep_mean(struct compare *c, struct compare_scene *cs, struct rgbf *m, struct err *e)
+/* The mean m of the halves as rr->path holds it, kept in c->inputs as rr->ref: the file read once
+   when the halves were reused and it matches, else written from m. 0 or -1. */
+static int keep_mean(const struct compare *c, const struct compare_scene *cs, struct study_ref_result *rr,
+                     struct rgbf *m, struct err *e)
 {
-    struct study_ref r = {.domain = IMG_LINEAR,
-                          .reused = cs->ref_reused,
-                          .wall_s = cs->ref_wall_s,
-                          .spp = cs->ref_spp,
-                          .relmse = cs->ref_relmse,
-                          .radiance = cs->ref_radiance,
-                          .radiance_se = cs->ref_radiance_se};
+    struct study_ref r = {.domain = IMG_LINEAR, .fig = rr->fig};
     uint8_t *data = NULL;
     size_t len = 0;
     struct rgbf had = {0};
     struct err ignored;
-    int current = cs->ref_reused &&
-                  fileio_read_all(cs->ref_path, EXR_MAX_BYTES, &data, &len, &ignored) == 0 &&
-                  imgio_decode_f(data, len, cs->ref_path, &had, NULL, &ignored) == 0 && had.w == m->w &&
+    int current = rr->fig.reused && fileio_read_all(rr->path, EXR_MAX_BYTES, &data, &len, &ignored) == 0 &&
+                  imgio_decode_f(data, len, rr->path, &had, NULL, &ignored) == 0 && had.w == m->w &&
                   had.h == m->h && !memcmp(had.px, m->px, sizeof *m->px * 3 * (size_t)m->w * m->h);
     image_f_free(&had);
     if (!current) {
         free(data);
         data = NULL;
         if (imgio_encode_f(m, IMG_EXR, NULL, 0, &data, &len, e) < 0 ||
-            fileio_write_atomic(cs->ref_path, data, len, e) < 0) {
+            fileio_write_atomic(rr->path, data, len, e) < 0) {
             free(data);
             return -1;
         }
     }
-    snprintf(r.path, sizeof r.path, "%s", cs->ref_path);
+    snprintf(r.path, sizeof r.path, "%s", rr->path);
     r.scene_hash = cs->input->hash;
     r.hash = hash_bytes(r.scene_hash, data, len); /* the bytes as the file holds them */
     free(data);
@@ -297,26 +294,19 @@ static int keep_mean(struct compare *c, struct compare_scene *cs, struct rgbf *m
         return -1;
     }
     image_float_to_rgb8(r.f.px, r.f.w, r.f.h, r.display.px);
-    return (cs->ref = study_inputs_keep_ref(c->inputs, &r, e)) ? 0 : -1;
+    return (rr->ref = study_inputs_keep_ref(c->inputs, &r, e)) ? 0 : -1;
 }
 
-/* Scene cs's reference as another study of the suite prepared it (kept): its figures, as if reused
-   from the cache. */
-static void take_kept(struct compare_scene *cs, const struct study_ref *kept)
+int compare_ref_prepare(const struct compare *c, int s, struct study_results *res, const struct run_opts *o,
+                        struct err *e)
 {
-    cs->ref = kept;
-    cs->ref_reused = 1;
-    cs->ref_wall_s = kept->wall_s;
-    cs->ref_spp = kept->spp;
-    cs->ref_relmse = kept->relmse;
-    cs->ref_radiance = kept->radiance;
-    cs->ref_radiance_se = kept->radiance_se;
-}
-
-int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, struct err *e)
-{
-    struct compare_scene *cs = &c->scenes[s];
-    cs->ref_relmse = cs->ref_radiance = cs->ref_radiance_se = NAN;
+    const struct compare_scene *cs = &c->scenes[s];
+    struct study_ref_result *rr = &res->refs[s];
+    rr->fig.relmse = rr->fig.radiance = rr->fig.radiance_se = NAN;
+    if (cs->ref_kind == COMPARE_REF_IMAGE) { /* given: read at load */
+        rr->ref = cs->image;
+        snprintf(rr->path, sizeof rr->path, "%s", cs->image->path);
+    }
     if (cs->ref_kind != COMPARE_REF_SETTINGS)
         return 0;
     uint64_t key = reference_key(c, cs);
@@ -325,29 +315,60 @@ int compare_ref_prepare(struct compare *c, int s, const struct run_opts *o, stru
     snprintf(j.output, sizeof j.output, "ref-%s-%016llx.exr", cs->name, (unsigned long long)key);
     struct outdir_files files;
     outdir_files(&j, o->out_dir, &files);
-    snprintf(cs->ref_path, sizeof cs->ref_path, "%s", files.image[0]);
-    cs->ref_domain = IMG_LINEAR;
-    const struct study_ref *kept = study_inputs_find_ref(c->inputs, cs->ref_path, cs->input->hash);
-    if (kept) {
-        take_kept(cs, kept);
+    snprintf(rr->path, sizeof rr->path, "%s", files.image[0]);
+    const struct study_ref *kept = study_inputs_find_ref(c->inputs, rr->path, cs->input->hash);
+    if (kept) { /* another study of the suite prepared it: as if reused from the cache */
+        rr->ref = kept, rr->fig = kept->fig;
+        rr->fig.reused = 1;
     } else {
-        cs->ref_reused = 1, cs->ref_wall_s = 0, cs->ref_spp = 0;
+        rr->fig.reused = 1, rr->fig.wall_s = 0, rr->fig.spp = 0;
         struct rgbf a = {0}, b = {0};
-        int rc = half(cs, 0, key, o, &a, e);
+        int rc = half(cs, 0, key, o, &a, rr, e);
         if (rc == 0)
-            rc = half(cs, 1, key, o, &b, e);
+            rc = half(cs, 1, key, o, &b, rr, e);
         if (rc == 0) {
-            mean_of_halves(cs, NULL, &a, &b); /* kept for every study: the whole image's */
-            rc = keep_mean(c, cs, &a, e) < 0;
+            mean_of_halves(rr, NULL, &a, &b); /* kept for every study: the whole image's */
+            rc = keep_mean(c, cs, rr, &a, e) < 0;
         }
         image_f_free(&a), image_f_free(&b);
         if (rc != 0)
             return rc;
     }
     if (cs->mask) /* its noise over the mask, from the halves as written */
-        compare_ref_measure(cs);
-    if (cs->ref_reused)
-        run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, cs->ref_path,
-                cs->ref_wall_s);
+        compare_ref_measure(cs, rr);
+    if (rr->fig.reused)
+        run_say(o, "%s: reference reused from cache %s (it took %.1f s to render)\n", cs->name, rr->path,
+                rr->fig.wall_s);
     return 0;
+}
+
+void compare_ref_summary(const struct compare *const *cs, int n, int suite, char *refs, size_t refs_n,
+                         char *resumed, size_t resumed_n)
+{
+    int rendered = 0, reused = 0, given = 0, current = 0;
+    double saved_s = 0;
+    for (int i = 0; i < n; i++) {
+        for (int s = 0; s < cs[i]->n_scenes; s++) {
+            const struct study_ref_figures *f = &cs[i]->results.refs[s].fig;
+            int settings = cs[i]->scenes[s].ref_kind == COMPARE_REF_SETTINGS;
+            rendered += settings && !f->reused, reused += settings && f->reused;
+            saved_s += settings && f->reused ? f->wall_s : 0;
+            given += cs[i]->scenes[s].ref_kind == COMPARE_REF_IMAGE;
+        }
+        for (int k = 0; k < cs[i]->n_items; k++)
+            current += cs[i]->results.rows[k].skipped;
+    }
+    const char *also = given ? ", images given" : "";
+    snprintf(refs, refs_n, "no reference");
+    if (reused)
+        snprintf(refs, refs_n, "references: %d rendered, %d reused from cache (saving %.1f s)%s", rendered,
+                 reused, saved_s, also);
+    else if (rendered)
+        snprintf(refs, refs_n, "references: %d rendered, 0 reused from cache%s", rendered, also);
+    else if (given)
+        snprintf(refs, refs_n, "%s", suite ? "reference images given" : "reference image given");
+    resumed[0] = 0;
+    if (current)
+        snprintf(resumed, resumed_n, ", %d of them current from an earlier run (--force renders all)",
+                 current);
 }

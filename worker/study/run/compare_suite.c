@@ -2,6 +2,7 @@
    then the suite's verdict.json, summary.csv, chart.svg and report.html, and its summary line. */
 #include "compare_suite.h"
 #include "compare.h"
+#include "compare_ref.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,35 +84,14 @@ int compare_suite_run(struct compare_suite *s, const struct run_opts *o, struct 
 void compare_suite_summary_line(const struct compare_suite *s, double wall_s, const char *out_dir, char *buf,
                                 size_t n)
 {
-    char studies[1024] = "", refs[160] = "no reference", resumed[96] = "", verdict[1024] = "";
-    int rendered = 0, reused = 0, given = 0, current = 0;
-    double saved_s = 0;
+    char studies[1024] = "", refs[160], resumed[96], verdict[1024] = "";
     for (int i = 0; i < s->n_studies; i++) {
-        const struct compare *c = s->studies[i];
         size_t used = strlen(studies);
-        snprintf(studies + used, sizeof studies - used, "%s%s %d", i ? ", " : "", c->name, c->n_items);
-        for (int k = 0; k < c->n_scenes; k++) {
-            const struct compare_scene *cs = &c->scenes[k];
-            rendered += cs->ref_kind == COMPARE_REF_SETTINGS && !cs->ref_reused;
-            reused += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused;
-            saved_s += cs->ref_kind == COMPARE_REF_SETTINGS && cs->ref_reused ? cs->ref_wall_s : 0;
-            given += cs->ref_kind == COMPARE_REF_IMAGE;
-        }
-        for (int k = 0; k < c->n_items; k++)
-            current += c->results.rows[k].skipped;
+        snprintf(studies + used, sizeof studies - used, "%s%s %d", i ? ", " : "", s->studies[i]->name,
+                 s->studies[i]->n_items);
     }
-    /* a reference that an earlier study of this run rendered counts as reused, its time as saved */
-    if (reused)
-        snprintf(refs, sizeof refs, "references: %d rendered, %d reused from cache (saving %.1f s)%s",
-                 rendered, reused, saved_s, given ? ", images given" : "");
-    else if (rendered)
-        snprintf(refs, sizeof refs, "references: %d rendered, 0 reused from cache%s", rendered,
-                 given ? ", images given" : "");
-    else if (given)
-        snprintf(refs, sizeof refs, "reference images given");
-    if (current)
-        snprintf(resumed, sizeof resumed, ", %d of them current from an earlier run (--force renders all)",
-                 current);
+    compare_ref_summary((const struct compare *const *)s->studies, s->n_studies, 1, refs, sizeof refs,
+                        resumed, sizeof resumed);
     struct verdict_study *v = suite_verdicts(s);
     if (v)
         verdict_summary(v, s->n_studies, verdict, sizeof verdict);

@@ -52,6 +52,17 @@ int study_fan_has_reference(const struct study_fan *f, int k, int s)
     return study_fan_study(f, k)->scenes[s].ref_kind == COMPARE_REF_SETTINGS;
 }
 
+/* o for study k of f: a suite's study renders under OUT/<suite> (dir, n bytes). */
+static struct run_opts study_opts(const struct study_fan *f, const struct run_opts *o, char *dir, size_t n)
+{
+    struct run_opts in = *o;
+    if (f->s) {
+        outdir_dir(o->out_dir, f->s->name, dir, n);
+        in.out_dir = dir;
+    }
+    return in;
+}
+
 int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int index,
                      const struct run_opts *o, struct err *e)
 {
@@ -67,27 +78,12 @@ int study_fan_render(struct study_fan *f, int k, enum study_fan_kind kind, int i
         return 2;
     }
     char dir[2048];
-    struct run_opts in = *o; /* a suite's study renders as compare_suite_run has it: --out OUT/<suite> */
-    if (f->s) {
-        outdir_dir(o->out_dir, f->s->name, dir, sizeof dir);
-        in.out_dir = dir;
-    }
-    int rc = kind == STUDY_FAN_REFERENCE ? compare_ref_prepare(c, index, &in, e)
-                                         : compare_run_item(c, index, &in, e);
+    struct run_opts in = study_opts(f, o, dir, sizeof dir); /* as compare_suite_run has it */
+    int rc = kind == STUDY_FAN_REFERENCE ? compare_ref_prepare(c, index, &c->results, &in, e)
+                                         : compare_run_item(c, &c->results, index, &in, e);
     if (rc == 1)
         err_prefix(e, c->name);
     return rc;
-}
-
-/* o for study k of f: a suite's study renders under OUT/<suite> (dir, n bytes). */
-static struct run_opts study_opts(const struct study_fan *f, const struct run_opts *o, char *dir, size_t n)
-{
-    struct run_opts in = *o;
-    if (f->s) {
-        outdir_dir(o->out_dir, f->s->name, dir, n);
-        in.out_dir = dir;
-    }
-    return in;
 }
 
 int study_fan_render_job(struct study_fan *f, const struct study_fan_which *w, const struct run_opts *o,
@@ -108,7 +104,7 @@ int study_fan_render_job(struct study_fan *f, const struct study_fan_which *w, c
         return compare_ref_half_target(c, index, w->half, jo, j) ? 3 : 0;
     }
     jo->scene = &c->scenes[c->items[index].scene].input->src;
-    int rc = compare_item_job(c, index, jo, j, e);
+    int rc = compare_item_job(c, &c->results, index, jo, j, e);
     if (rc == 1)
         err_prefix(e, c->name);
     return rc;

@@ -1,17 +1,63 @@
 /* verdict_load: a compare output folder read back (its summary.csv as a plan and results, with
-   what its sidecars and images add) and judged again. */
+   what its sidecars, sidecar_read the one reader, and images add) and judged again. */
 #include "verdict_load.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "compare_cost.h"
 #include "compare_ref.h"
 #include "study/judge/verdict_from.h"
+#include "job/sidecar.h"
 #include "study/load/study_table.h"
-#include "verdict_sidecars.h"
+
+/* Where the reference named in a sidecar is now: as written (relative to where the job ran), else
+   in the output root's .cache/ beside the study (dir/../.cache or dir/.cache). */
+static void find_reference(const char *named, const char *dir, char *out, size_t n)
+{
+    const char *base = strrchr(named, '/');
+    base = base ? base + 1 : named;
+    snprintf(out, n, "%s", named);
+    if (access(out, R_OK) == 0)
+        return;
+    snprintf(out, n, "%s/../.cache/%s", dir, base);
+    if (access(out, R_OK) == 0)
+        return;
+    snprintf(out, n, "%s/.cache/%s", dir, base);
+    if (access(out, R_OK) != 0)
+        out[0] = 0;
+}
+
+/* What the images' sidecars add to summary.csv's rows (sidecar_read, the one reader of a sidecar):
+   non-finite samples and the reference. missing[s]: how many of scene s's sidecars are missing or
+   unreadable. */
+static void read_sidecars(const struct compare *c, struct study_results *r, const char *dir, int *missing)
+{
+    for (int i = 0; i < c->n_items; i++) {
+        const struct compare_item *it = &c->items[i];
+        if (!r->rows[i].done)
+            continue;
+        char path[JOB_PATH_MAX * 2];
+        const char *dot = strrchr(it->job.output, '.');
+        snprintf(path, sizeof path, "%s/%.*s.json", dir, dot ? (int)(dot - it->job.output) : JOB_NAME_MAX,
+                 it->job.output);
+        struct sidecar_info *info = malloc(sizeof *info);
+        struct err ignored;
+        if (!info || sidecar_read(path, info, &ignored) < 0) {
+            missing[it->scene]++;
+            free(info);
+            continue;
+        }
+        r->rows[i].nonfinite = info->nonfinite;
+        struct study_ref_result *rr = &r->refs[it->scene];
+        if (!rr->path[0] && info->reference[0])
+            find_reference(info->reference, dir, rr->path, sizeof rr->path);
+        free(info);
+    }
+}
 
 /* Judge study si of t, whose images are in dir; a warning per scene names what was skipped or left
    out. 0, or -1 with e filled. */
@@ -27,7 +73,7 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
         return c ? err_set(e, dir, 0, 0, "out of memory") : -1;
     }
     unscored += c->n_scenes;
-    verdict_sidecars_read(c, dir, missing);
+    read_sidecars(c, &c->results, dir, missing);
     study_table_label_spp(c);
     for (int i = 0; i < c->n_items; i++) { /* a relmse that is no error ("nan", "-1"): left out, said */
         struct study_result *r = &c->results.rows[i];
@@ -37,11 +83,10 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
         }
     }
     for (int s = 0; s < c->n_scenes; s++)
-        if (c->scenes[s].ref_path[0])
-            compare_ref_measure(&c->scenes[s]);
-        else
-            c->scenes[s].ref_relmse = c->scenes[s].ref_radiance = c->scenes[s].ref_radiance_se = NAN;
-    (void)compare_cost_read(c, dir); /* absent (an older folder): the images' own times, said so */
+        if (c->results.refs[s].path[0])
+            compare_ref_measure(&c->scenes[s], &c->results.refs[s]);
+    (void)compare_cost_read(c, &c->results,
+                            dir); /* absent (an older folder): the images' own times, said so */
     struct verdict_found found = {.no_sidecar = missing, .no_relmse = unscored, .no_figures = unfigured};
     int rc = verdict_from_compare(c, dir, &found, out, e);
     free(missing); /* and unscored */
