@@ -129,12 +129,6 @@ struct sampler_grid sampler_grid_of(const struct sampler *s)
     return (struct sampler_grid){s->kind, s->grid_n, s->n_recip};
 }
 
-struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng)
-{
-    const struct sampler_grid g = sampler_grid_of(s);
-    return sampler_grid_point(&g, cell, rng);
-}
-
 enum sampler_walk sampler_walk_of(const struct sampler *s)
 {
     return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : sampler_traits(s->kind)->walk;
@@ -277,11 +271,6 @@ size_t sampler_sobol_set(const struct sampler *s, struct rng *rng, struct sobol_
         return 0;
     *seeds = sobol_seeds_draw(rng);
     return (size_t)s->grid_n * (size_t)s->grid_n;
-}
-
-int sampler_is_pooled(const struct sampler *s)
-{
-    return s->kind == SAMPLER_POISSON && s->pool_size > 0;
 }
 
 /* Cranley-Patterson rotation of a pool set: a toroidal set stays Poisson-disk (distances modulo
