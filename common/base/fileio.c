@@ -45,10 +45,6 @@ static const char *mode_kind(mode_t m)
                          : "not a regular file";
 }
 
-/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer *data with a NUL
-   at data[*len]; the caller frees it. 0, or -1 with e filled (file = path, message from errno,
-   "Is a directory", "is a FIFO, not a regular file" (fileio_kind's words) or "file too large (N bytes, limit
-   M)"). */
 int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e)
 {
     *data = NULL;
