@@ -167,9 +167,7 @@ int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *o
     struct ppm_cur c = {data, len, 0, 1, 0, name, e};
     unsigned long w, h, maxval;
     int plain = 0;
-    out->w = 0;
-    out->h = 0;
-    out->px = NULL;
+    *out = (struct rgb8){0};
     if (read_size(&c, &plain, &w, &h) < 0 || read_uint(&c, PPM_MAXVAL_MAX, "maxval", &maxval) < 0)
         return -1;
     if (maxval < 1)
