@@ -20,7 +20,9 @@ int image_alloc(struct rgb8 *img, int w, int h, struct err *e)
 {
     void *px;
     const int rc = raster_alloc(w, h, 1, "image", &px, e);
-    *img = rc < 0 ? (struct rgb8){0} : (struct rgb8){w, h, px};
+    if (rc < 0)
+        w = h = 0; /* and px NULL */
+    *img = (struct rgb8){w, h, px};
     return rc;
 }
 
@@ -36,7 +38,9 @@ int image_f_alloc(struct rgbf *img, int w, int h, struct err *e)
 {
     void *px;
     const int rc = raster_alloc(w, h, sizeof(float), "float image", &px, e);
-    *img = rc < 0 ? (struct rgbf){0} : (struct rgbf){w, h, px};
+    if (rc < 0)
+        w = h = 0; /* and px NULL */
+    *img = (struct rgbf){w, h, px};
     return rc;
 }
 
