@@ -73,9 +73,9 @@ static int load_camera(struct scene_parse *L, yaml_node_t *n, struct scene_file 
 static const char *const texture_types[] = {"checker", "noise", "image", NULL};
 /* The material types in enum mat_type's order, and the keys each takes besides type. */
 static const char *const material_types[] = {"lambertian", "metal", "dielectric", "light", "isotropic", NULL};
-static const char *const material_type_keys[] = {"albedo texture", "albedo fuzz", "ior", "emit",
-                                                 "albedo texture"};
-_Static_assert(sizeof material_type_keys / sizeof *material_type_keys == MAT_ISOTROPIC + 1,
+static const char *const material_takes[] = {"albedo texture", "albedo fuzz", "ior", "emit",
+                                             "albedo texture"};
+_Static_assert(sizeof material_takes / sizeof *material_takes == MAT_ISOTROPIC + 1,
                "a row per material type");
 
 static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL};
@@ -235,7 +235,7 @@ static int load_material(struct scene_parse *L, yaml_node_t *k, yaml_node_t *n)
         return scene_parse_unknown(L, tn, "type: unknown material type", type, material_types,
                                    "lambertian, metal, dielectric, light or isotropic");
     struct material m = {.type = t, .texture = -1, .albedo = v3(1, 1, 1), .ior = 1.5};
-    const char *allowed = material_type_keys[t];
+    const char *allowed = material_takes[t];
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
         const char *name = yscalar(kk);
