@@ -143,8 +143,7 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e)
     return 0;
 }
 
-/* Stage data for path in "<dir>/.<base>.tmp.XXXXXX": write all, fsync, close, mode 0644. On any
-   failure the temporary file is removed and e says "cannot write <path>: <reason>". */
+/* Mode 0644, written whole, fsynced and closed before it counts. */
 int fileio_stage(const char *path, const void *data, size_t len, char *staged, size_t n, struct err *e)
 {
     size_t dlen = dir_len(path);
