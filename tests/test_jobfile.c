@@ -8,6 +8,7 @@
 #include "check.h"
 #include "job/jobfile.h"
 #include "job_fixture.h"
+#include "scenefile/scene_src.h"
 
 static struct job_fixture fx;
 
@@ -64,7 +65,9 @@ static void test_hash_and_scene(void)
     snprintf(text, sizeof text, "scene: %s\nwidth: 8\n", fx.scene);
     CHECK(f.hash == hash_bytes(HASH_FNV_OFFSET, text, strlen(text)));
     uint64_t want = f.hash;
-    CHECK(scene_hash_inputs(fx.scene, &want, &e) == 0);
+    struct scene_src src;
+    CHECK(scene_src_read(fx.scene, &src, &want, &e) == 0);
+    scene_src_free(&src);
     CHECK(f.job.hash == want && f.job.spec.width == 8);
     CHECK(f.scene.parsed && !strcmp(f.scene.doc.file, fx.scene)); /* parsed once, kept for the render */
     struct scene_file sf;

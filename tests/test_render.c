@@ -587,7 +587,8 @@ static double sampler_share_of_render(int pixels, int *bounded)
     render_ctx_free(ctx);
     sampler_free(pix);
     scene_free(sc);
-    double share = render_stats_draw_share(&st);
+    render_stats_finish(&st, 1);
+    double share = st.sampler_s;
     render_stats_finish(&st, 0.25);
     *bounded = st.timed_draw_ns <= st.timed_pixel_ns && share >= 0 && share <= 1 && st.sampler_s <= 0.25 &&
                st.sampler_s == share * 0.25;

@@ -73,8 +73,15 @@ static int via_csv(const struct render_spec *s, struct render_spec *out)
             break;
         *a++ = 0, *b++ = 0;
     }
-    struct err e;
-    int rc = render_spec_from_fields(out, names, values, n, "summary.csv", 2, &e);
+    int nrows, rc = 0;
+    const struct render_spec_row *rows = render_spec_rows(&nrows);
+    render_spec_defaults(out);
+    for (int i = 0; i < nrows; i++) {
+        int k = 0;
+        while (k < n && strcmp(names[k], rows[i].key))
+            k++;
+        rc |= k == n || render_spec_set_text(out, &rows[i], values[k]) < 0 ? -1 : 0;
+    }
     free(h), free(r);
     return rc;
 }

@@ -186,8 +186,59 @@ static void test_shared_images(void)
     rmdir(dir);
 }
 
+/* A scene whose material m is `material` (a flow mapping's inside), loaded from a file under
+   TMPDIR: 0 with *type m's type, or -1 with e filled. */
+static int load_material(const char *material, int *type, struct err *e)
+{
+    char path[300];
+    const char *tmp = getenv("TMPDIR");
+    snprintf(path, sizeof path, "%s/test_scene_load_mat.XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    int fd = mkstemp(path);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f)
+        return -1;
+    fprintf(f, "camera: { lookfrom: [0, 0, 5], lookat: [0, 0, 0], vfov: 40 }\n");
+    fprintf(f, "materials:\n  m: { %s }\n", material);
+    fprintf(f, "objects:\n  - { type: sphere, center: [0, 0, 0], radius: 1, material: m }\n");
+    fclose(f);
+    struct scene_file sf;
+    int rc = scene_load(path, &sf, e);
+    *type = rc == 0 ? sf.scene->materials[0].type : -1;
+    if (rc == 0)
+        scene_file_free(&sf);
+    unlink(path);
+    return rc;
+}
+
+/* Each material type by its name, with the keys it takes; another type's key, an unknown type
+   (and a near one) refused naming what is allowed. */
+static void test_material_types(void)
+{
+    const char *ok[] = {"type: lambertian, albedo: [1, 0, 0]", "type: metal, albedo: [1, 1, 1], fuzz: 0.1",
+                        "type: dielectric, ior: 1.3", "type: light, emit: [1, 1, 1]"};
+    const int want[] = {MAT_LAMBERTIAN, MAT_METAL, MAT_DIELECTRIC, MAT_LIGHT};
+    struct err e;
+    int type;
+    for (int i = 0; i < 4; i++)
+        CHECK(load_material(ok[i], &type, &e) == 0 && type == want[i]);
+    /* isotropic: read as such, refused on a sphere (a medium's material only) */
+    CHECK(load_material("type: isotropic, albedo: [1, 1, 1]", &type, &e) < 0 &&
+          strstr(e.msg, "isotropic materials fill media only"));
+    CHECK(load_material("type: metal, albedo: [1, 1, 1], emit: [1, 1, 1]", &type, &e) < 0 &&
+          !strcmp(e.msg, "emit: not a key of a metal material (it takes: albedo fuzz)"));
+    CHECK(load_material("type: dielectric, texture: t", &type, &e) < 0 &&
+          !strcmp(e.msg, "texture: not a key of a dielectric material (it takes: ior)"));
+    CHECK(load_material("type: metl", &type, &e) < 0 &&
+          !strcmp(e.msg, "type: unknown material type \"metl\" (did you mean \"metal\"?)"));
+    CHECK(load_material("type: wood", &type, &e) < 0 &&
+          !strcmp(e.msg,
+                  "type: unknown material type \"wood\" (expected lambertian, metal, dielectric, light "
+                  "or isotropic)"));
+}
+
 int main(void)
 {
+    test_material_types();
     test_cornell();
     test_book3_and_final();
     test_shared_images();

@@ -45,10 +45,6 @@ static const char *mode_kind(mode_t m)
                          : "not a regular file";
 }
 
-/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer *data with a NUL
-   at data[*len]; the caller frees it. 0, or -1 with e filled (file = path, message from errno,
-   "Is a directory", "is a FIFO, not a regular file" (fileio_kind's words) or "file too large (N bytes, limit
-   M)"). */
 int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e)
 {
     *data = NULL;
@@ -147,8 +143,7 @@ int fileio_hash(const char *path, size_t max_bytes, uint64_t *h, struct err *e)
     return 0;
 }
 
-/* Stage data for path in "<dir>/.<base>.tmp.XXXXXX": write all, fsync, close, mode 0644. On any
-   failure the temporary file is removed and e says "cannot write <path>: <reason>". */
+/* Mode 0644, written whole, fsynced and closed before it counts. */
 int fileio_stage(const char *path, const void *data, size_t len, char *staged, size_t n, struct err *e)
 {
     size_t dlen = dir_len(path);

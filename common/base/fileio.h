@@ -7,8 +7,10 @@
 
 #include "err.h"
 
-/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer, NUL-terminated
-   one byte past *len. 0, or -1 with e filled (missing, a directory, too large, read error). */
+/* Read all of path (a regular file of at most max_bytes) into a malloc'd buffer *data with a NUL
+   at data[*len]; the caller frees it. 0, or -1 with e filled (file = path, message from errno,
+   "Is a directory", "is a FIFO, not a regular file" (fileio_kind's words) or "file too large (N
+   bytes, limit M)"). */
 int fileio_read_all(const char *path, size_t max_bytes, uint8_t **data, size_t *len, struct err *e);
 
 /* Fold the bytes of path (at most max_bytes) into the FNV-1a hash *h. 0, or -1 with e filled. */

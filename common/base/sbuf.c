@@ -85,14 +85,29 @@ static int shown_char(const char *s, char out[17], int *len)
     return 1;
 }
 
-void sbuf_shown(struct sbuf *b, const char *s)
+/* s through the terminal sanitiser, and with html its markup characters as entities too. */
+static void append_shown(struct sbuf *b, const char *s, int html)
 {
     char esc[17];
-    for (int len; *s; s += len)
-        if (shown_char(s, esc, &len))
-            sbuf_printf(b, "%s", esc);
+    for (int len; *s; s += len) {
+        const char *as = shown_char(s, esc, &len) ? esc
+                         : !html                  ? NULL
+                         : *s == '&'              ? "&amp;"
+                         : *s == '<'              ? "&lt;"
+                         : *s == '>'              ? "&gt;"
+                         : *s == '"'              ? "&quot;"
+                         : *s == '\''             ? "&#39;"
+                                                  : NULL;
+        if (as)
+            sbuf_printf(b, "%s", as);
         else
             sbuf_printf(b, "%.*s", len, s);
+    }
+}
+
+void sbuf_shown(struct sbuf *b, const char *s)
+{
+    append_shown(b, s, 0);
 }
 
 const char *sbuf_show(const char *s, char *out, size_t n)
@@ -115,32 +130,7 @@ const char *sbuf_show(const char *s, char *out, size_t n)
 
 void sbuf_escape(struct sbuf *b, const char *s)
 {
-    char esc[17];
-    for (int len; *s; s += len) {
-        if (shown_char(s, esc, &len)) {
-            sbuf_printf(b, "%s", esc);
-            continue;
-        }
-        switch (*s) {
-        case '&':
-            sbuf_printf(b, "&amp;");
-            break;
-        case '<':
-            sbuf_printf(b, "&lt;");
-            break;
-        case '>':
-            sbuf_printf(b, "&gt;");
-            break;
-        case '"':
-            sbuf_printf(b, "&quot;");
-            break;
-        case '\'':
-            sbuf_printf(b, "&#39;");
-            break;
-        default:
-            sbuf_printf(b, "%.*s", len, s);
-        }
-    }
+    append_shown(b, s, 1);
 }
 
 void sbuf_csv(struct sbuf *b, const char *s)

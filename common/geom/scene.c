@@ -9,8 +9,7 @@
 
 struct scene *scene_new(void)
 {
-    struct scene *sc = calloc(1, sizeof *sc);
-    return sc;
+    return calloc(1, sizeof(struct scene));
 }
 
 void scene_free(struct scene *sc)

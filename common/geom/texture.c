@@ -2,7 +2,8 @@
    by (u, v) with nearest-texel sampling (v = 0 at the bottom row, as the book). */
 #include "texture.h"
 
-vec3 texture_marble(const struct perlin *pn, double scale, vec3 p)
+/* The marble colour of RTOW "The Next Week": grey 0.5 (1 + sin(scale z + 10 turb(p))). */
+static vec3 texture_marble(const struct perlin *pn, double scale, vec3 p)
 {
     double g = 0.5 * (1 + d_sin(scale * p.z + 10 * perlin_turb(pn, p, 7)));
     return v3(g, g, g);

@@ -10,7 +10,4 @@ vec3 texture_value(const struct scene *sc, const struct texture *t, double u, do
 /* Whether t reads (u, v) (so the hit must compute them). */
 int texture_needs_uv(const struct texture *t);
 
-/* The marble colour of RTOW "The Next Week": grey 0.5 (1 + sin(scale z + 10 turb(p))). */
-vec3 texture_marble(const struct perlin *pn, double scale, vec3 p);
-
 #endif

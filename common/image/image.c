@@ -16,49 +16,40 @@ static int raster_alloc(int w, int h, size_t size, const char *what, void **px, 
     return 0;
 }
 
-/* Allocate a zeroed w x h RGB raster into img (sides 1..IMAGE_MAX_SIDE). On failure img is
-   zeroed and e filled. The caller releases it with image_free. */
 int image_alloc(struct rgb8 *img, int w, int h, struct err *e)
 {
     void *px;
-    *img = (struct rgb8){0};
-    if (raster_alloc(w, h, 1, "image", &px, e) < 0)
-        return -1;
+    const int rc = raster_alloc(w, h, 1, "image", &px, e);
+    if (rc < 0)
+        w = h = 0; /* and px NULL */
     *img = (struct rgb8){w, h, px};
-    return 0;
+    return rc;
 }
 
-/* Release img's pixels; accepts NULL, a zeroed struct, or one already freed. */
 void image_free(struct rgb8 *img)
 {
-    if (!img)
-        return;
-    free(img->px);
-    img->px = NULL;
-    img->w = 0;
-    img->h = 0;
+    if (img) {
+        free(img->px);
+        *img = (struct rgb8){0};
+    }
 }
 
-/* Allocate a zeroed w x h float raster into img; on failure img is zeroed and e filled. */
 int image_f_alloc(struct rgbf *img, int w, int h, struct err *e)
 {
     void *px;
-    *img = (struct rgbf){0};
-    if (raster_alloc(w, h, sizeof(float), "float image", &px, e) < 0)
-        return -1;
+    const int rc = raster_alloc(w, h, sizeof(float), "float image", &px, e);
+    if (rc < 0)
+        w = h = 0; /* and px NULL */
     *img = (struct rgbf){w, h, px};
-    return 0;
+    return rc;
 }
 
-/* Release img's floats; accepts NULL, a zeroed struct, or one already freed. */
 void image_f_free(struct rgbf *img)
 {
-    if (!img)
-        return;
-    free(img->px);
-    img->px = NULL;
-    img->w = 0;
-    img->h = 0;
+    if (img) {
+        free(img->px);
+        *img = (struct rgbf){0};
+    }
 }
 
 int image_f_from_rgb8(const struct rgb8 *img, struct rgbf *out, struct err *e)
@@ -85,7 +76,6 @@ static uint8_t float_to_byte(float c)
     return (uint8_t)(int)(256.0 * v);
 }
 
-/* Convert w*h*3 linear floats in rgb to bytes in out (same layout). Never fails. */
 void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out)
 {
     size_t n = (size_t)(w > 0 ? w : 0) * (size_t)(h > 0 ? h : 0) * 3;

@@ -36,11 +36,12 @@ struct img_attr {
 /* Largest pixel count (w * h) a decoder accepts, so a tiny file cannot demand gigabytes. */
 #define IMAGE_MAX_PIXELS 100000000L
 
-/* Allocate a zeroed w x h raster; -1 and e filled on bad size or no memory. */
+/* Allocate a zeroed w x h raster into img (sides 1..IMAGE_MAX_SIDE); on a bad size or no memory
+   -1, img zeroed and e filled. The free functions accept NULL, a zeroed struct or one already freed. */
 int image_alloc(struct rgb8 *img, int w, int h, struct err *e);
 void image_free(struct rgb8 *img);
 
-/* Allocate a zeroed w x h float raster (same limits); -1 and e filled on bad size or no memory. */
+/* The same for a float raster. */
 int image_f_alloc(struct rgbf *img, int w, int h, struct err *e);
 void image_f_free(struct rgbf *img);
 
@@ -50,7 +51,8 @@ int image_f_from_rgb8(const struct rgb8 *img, struct rgbf *out, struct err *e);
 /* The name of a domain for messages and JSON: "linear" or "8-bit". */
 const char *image_domain_name(enum img_domain d);
 
-/* Linear float RGB (w*h*3) to 8 bits: sqrt (gamma 2), clamp to [0, 0.999], times 256. */
+/* Linear float RGB (w*h*3) to 8 bits in out (same layout): sqrt (gamma 2), clamp to [0, 0.999],
+   times 256. Never fails. */
 void image_float_to_rgb8(const float *rgb, int w, int h, uint8_t *out);
 
 /* How many of img's w*h*3 values are NaN or infinite (a reference with any scores every error

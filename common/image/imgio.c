@@ -69,7 +69,6 @@ void img_format_list(char *buf, size_t n)
                                  formats[i].name);
 }
 
-/* Read a PNG or PPM file, chosen by its first bytes, into out (limit 512 MiB). 0 or -1. */
 int imgio_read(const char *path, struct rgb8 *out, struct err *e)
 {
     uint8_t *data;

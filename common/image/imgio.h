@@ -12,7 +12,7 @@
 /* The largest image file imgio_read accepts. */
 #define IMGIO_MAX_BYTES ((size_t)512 << 20)
 
-/* Read a PNG or PPM file (chosen by its magic bytes) into out. */
+/* Read a PNG or PPM file (chosen by its magic bytes) into out. 0 or -1 with e filled. */
 int imgio_read(const char *path, struct rgb8 *out, struct err *e);
 
 /* imgio_read of a file's bytes already read (data, len; name for messages). */

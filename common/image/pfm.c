@@ -7,14 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Whether this machine stores floats little-endian (checked once per call, no global). */
-static int host_little_endian(void)
-{
-    const uint32_t one = 1;
-    uint8_t b;
-    memcpy(&b, &one, 1);
-    return b == 1;
-}
+/* Whether this machine stores floats little-endian (GCC's and clang's predefined byte order). */
+#define HOST_LITTLE_ENDIAN (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
 
 int pfm_encode(const struct rgbf *img, uint8_t **out, size_t *out_len, struct err *e)
 {
@@ -29,7 +23,7 @@ int pfm_encode(const struct rgbf *img, uint8_t **out, size_t *out_len, struct er
     if (!buf)
         return err_set(e, NULL, 0, 0, "PFM: out of memory for a %dx%d image", img->w, img->h);
     memcpy(buf, head, (size_t)hl);
-    int le = host_little_endian();
+    int le = HOST_LITTLE_ENDIAN;
     for (int y = 0; y < img->h; y++) {
         const float *src = img->px + (size_t)(img->h - 1 - y) * img->w * 3; /* bottom row first */
         uint8_t *dst = buf + hl + row * (size_t)y;
@@ -115,7 +109,7 @@ int pfm_decode(const uint8_t *data, size_t len, const char *name, struct rgbf *o
         return err_set(e, name, 0, 0, "corrupt PFM: %zu bytes after the raster", len - pos - need);
     if (image_f_alloc(out, w, h, e) < 0)
         return -1;
-    int swap = (scale < 0) != host_little_endian();
+    int swap = (scale < 0) != HOST_LITTLE_ENDIAN;
     for (int y = 0; y < h; y++) {
         const uint8_t *src = data + pos + row * (size_t)y;
         float *dst = out->px + (size_t)(h - 1 - y) * w * 3; /* the file's first row is the bottom */

@@ -344,13 +344,8 @@ int png_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, 
    ancillary chunks are ignored. 0, or -1 with e filled and out zeroed. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
 {
-    struct png_dec d;
-    memset(&d, 0, sizeof d);
-    d.name = name;
-    d.e = e;
-    out->w = 0;
-    out->h = 0;
-    out->px = NULL;
+    struct png_dec d = {.name = name, .e = e};
+    *out = (struct rgb8){0};
     int rc = -1;
     if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0) {
         err_set(e, name, 0, 0, "not a PNG file (bad signature)");

@@ -1,6 +1,7 @@
 /* ppm: writing binary P6 and reading P3/P6 netpbm images (maxval up to 65535) in memory. */
 #include "ppm.h"
 
+#include <ctype.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,16 +30,6 @@ __attribute__((format(printf, 2, 3))) static int ppm_fail(const struct ppm_cur *
     return err_set(c->e, c->name, c->line, (int)(c->pos - c->line_start) + 1, "%s", msg);
 }
 
-static int is_space(int ch)
-{
-    return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r' || ch == '\v' || ch == '\f';
-}
-
-static int is_digit(int ch)
-{
-    return ch >= '0' && ch <= '9';
-}
-
 /* Skip whitespace and '#' comments (to the end of the line), counting lines. */
 static void skip_space(struct ppm_cur *c)
 {
@@ -49,7 +40,7 @@ static void skip_space(struct ppm_cur *c)
                 c->pos++;
             continue;
         }
-        if (!is_space(ch))
+        if (!isspace(ch))
             return;
         c->pos++;
         if (ch == '\n') {
@@ -65,17 +56,17 @@ static int read_uint(struct ppm_cur *c, unsigned long limit, const char *what, u
     skip_space(c);
     if (c->pos >= c->len)
         return ppm_fail(c, "truncated PPM: missing %s", what);
-    if (!is_digit(c->p[c->pos]))
+    if (!isdigit(c->p[c->pos]))
         return ppm_fail(c, "corrupt PPM: expected %s, got a non-digit", what);
     unsigned long v = 0;
-    while (c->pos < c->len && is_digit(c->p[c->pos])) {
+    while (c->pos < c->len && isdigit(c->p[c->pos])) {
         /* limit <= 65535, so stopping as soon as v passes it keeps v * 10 from overflowing */
         v = v * 10 + (unsigned long)(c->p[c->pos] - '0');
         if (v > limit)
             return ppm_fail(c, "corrupt PPM: %s larger than %lu", what, limit);
         c->pos++;
     }
-    if (c->pos < c->len && !is_space(c->p[c->pos]) && c->p[c->pos] != '#')
+    if (c->pos < c->len && !isspace(c->p[c->pos]) && c->p[c->pos] != '#')
         return ppm_fail(c, "corrupt PPM: unexpected character after %s", what);
     *out = v;
     return 0;
@@ -105,7 +96,7 @@ static int read_raw(struct ppm_cur *c, unsigned long maxval, struct rgb8 *out)
 {
     if (c->pos >= c->len)
         return ppm_fail(c, "truncated PPM: no pixel data");
-    if (!is_space(c->p[c->pos]))
+    if (!isspace(c->p[c->pos]))
         return ppm_fail(c, "corrupt PPM: expected one whitespace byte after maxval");
     c->pos++;
     size_t bytes = maxval > 255 ? 2 : 1;
@@ -137,7 +128,7 @@ static int read_magic(struct ppm_cur *c, int *plain)
     if (p[1] != '3' && p[1] != '6')
         return ppm_fail(c, "unsupported netpbm format P%c (only P3 and P6)", p[1]);
     c->pos = 2;
-    if (c->len > 2 && !is_space(p[2]) && p[2] != '#')
+    if (c->len > 2 && !isspace(p[2]) && p[2] != '#')
         return ppm_fail(c, "corrupt PPM: bad magic number");
     *plain = p[1] == '3';
     return 0;
@@ -171,16 +162,12 @@ int ppm_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, 
     return 0;
 }
 
-/* Decode P3 or P6 data (len bytes; `name` for messages) into out, scaling samples to 8 bits.
-   Header errors carry a line and column. 0, or -1 with e filled and out zeroed. */
 int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
 {
     struct ppm_cur c = {data, len, 0, 1, 0, name, e};
     unsigned long w, h, maxval;
     int plain = 0;
-    out->w = 0;
-    out->h = 0;
-    out->px = NULL;
+    *out = (struct rgb8){0};
     if (read_size(&c, &plain, &w, &h) < 0 || read_uint(&c, PPM_MAXVAL_MAX, "maxval", &maxval) < 0)
         return -1;
     if (maxval < 1)
@@ -194,7 +181,6 @@ int ppm_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *o
     return 0;
 }
 
-/* Encode img as binary P6 with maxval 255 into a malloc'd buffer *out (caller frees). */
 int ppm_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct err *e)
 {
     *out = NULL;

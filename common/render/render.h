@@ -36,11 +36,8 @@ size_t render_pixel_paths(struct render_ctx *ctx, int x, int y, size_t max_paths
 void render_stats_init(struct render_stats *st);
 void render_stats_add(struct render_stats *into, const struct render_stats *from);
 
-/* The fraction of the timed pixels' time spent drawing point sets: in [0, 1], 0 when none was
-   timed. */
-double render_stats_draw_share(const struct render_stats *st);
-
-/* At the end of a render process: sampler_s = its draw share times cpu_s, the process's CPU
+/* At the end of a render process: sampler_s = its draw share (the fraction of the timed pixels'
+   time spent drawing point sets, in [0, 1], 0 when none was timed) times cpu_s, the process's CPU
    seconds, so that sampler_s never exceeds the CPU time it is a part of. */
 void render_stats_finish(struct render_stats *st, double cpu_s);
 

@@ -32,14 +32,10 @@ void render_stats_add(struct render_stats *into, const struct render_stats *from
         into->spp_max = from->spp_max;
 }
 
-double render_stats_draw_share(const struct render_stats *st)
-{
-    return st->timed_pixel_ns > 0 ? (double)st->timed_draw_ns / (double)st->timed_pixel_ns : 0;
-}
-
 void render_stats_finish(struct render_stats *st, double cpu_s)
 {
-    st->sampler_s = cpu_s > 0 ? render_stats_draw_share(st) * cpu_s : 0;
+    const double share = st->timed_pixel_ns > 0 ? (double)st->timed_draw_ns / (double)st->timed_pixel_ns : 0;
+    st->sampler_s = cpu_s > 0 ? share * cpu_s : 0;
 }
 
 /* sampler_dims: all's sets, at most this many bytes of them; past it fewer bounces are padded. */

@@ -69,7 +69,8 @@ static void *field(const struct render_spec *s, const struct render_spec_row *r)
     return (char *)(uintptr_t)s + r->offset; /* const taken off here only: the writers take a mutable s */
 }
 
-uint64_t render_spec_get(const struct render_spec *s, const struct render_spec_row *r)
+/* A field's value through its row (an enum's as its int; the seed a uint64_t). */
+static uint64_t render_spec_get(const struct render_spec *s, const struct render_spec_row *r)
 {
     const int *i = field(s, r);
     return r->type == RS_U64 ? *(uint64_t *)field(s, r) : (uint64_t)(int64_t)*i;
@@ -185,24 +186,6 @@ void render_spec_csv(const struct render_spec *s, int front, struct sbuf *b)
     for (const struct render_spec_row *r = rows; r < rows + N_ROWS; r++)
         if (r->csv_front == front)
             sbuf_printf(b, "%s,", s ? render_spec_text(s, r, text, sizeof text) : r->key);
-}
-
-int render_spec_from_fields(struct render_spec *s, const char *const *names, const char *const *values, int n,
-                            const char *file, int line, struct err *e)
-{
-    render_spec_defaults(s);
-    for (const struct render_spec_row *r = rows; r < rows + N_ROWS; r++) {
-        int k = 0;
-        char want[160];
-        while (k < n && strcmp(names[k], r->key))
-            k++;
-        if (k == n)
-            return err_set(e, file, line, 0, "%s: no such column", r->key);
-        if (render_spec_set_text(s, r, values[k]) < 0)
-            return err_set(e, file, line, 0, "%s: expected %s, got \"%.40s\"", r->key,
-                           render_spec_expected(r, want, sizeof want), values[k]);
-    }
-    return 0;
 }
 
 /* What a key adds for the sets s's samplers make beyond the rows it prints: the Poisson domain when

@@ -58,9 +58,8 @@ const struct render_spec_row *render_spec_find(const char *key);
 /* Every row's default (width 300, height 0, random samplers at 5, ...). */
 void render_spec_defaults(struct render_spec *s);
 
-/* A field through its row: a threshold's address, any other's value (an enum's as its int). */
+/* A field through its row: a threshold's address; any other's value put (an enum's as its int). */
 double *render_spec_threshold(struct render_spec *s, const struct render_spec_row *r);
-uint64_t render_spec_get(const struct render_spec *s, const struct render_spec_row *r);
 void render_spec_put(struct render_spec *s, const struct render_spec_row *r, uint64_t v);
 
 /* Whether v is in row r's range: the one place a setting's range is checked. */
@@ -82,10 +81,6 @@ int render_spec_set_text(struct render_spec *s, const struct render_spec_row *r,
 void render_spec_json(const struct render_spec *s, struct json *js);
 /* summary.csv: the values (s NULL: the keys) of the rows whose csv_front is front, each then a comma. */
 void render_spec_csv(const struct render_spec *s, int front, struct sbuf *b);
-/* A spec from a row of named fields (names[i] holding values[i], n of each); every row's column must
-   be there. 0, or -1 with e naming the column (at file, line). */
-int render_spec_from_fields(struct render_spec *s, const char *const *names, const char *const *values, int n,
-                            const char *file, int line, struct err *e);
 
 /* The canonical text every cache key (images and references) is hashed from: size, samplers and
    thresholds, depth, seed, pool, light sampling, then `middle` (the caller's), the worker's version,

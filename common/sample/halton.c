@@ -184,12 +184,6 @@ static inline struct pt2 point_in(const struct halton_slot *s, uint64_t key, uin
     return (struct pt2){halton_inverse(&s->d[0], index), halton_inverse(&s->d[1], index)};
 }
 
-struct pt2 halton_point(struct halton_cache *c, struct halton_key k, uint32_t i)
-{
-    const struct halton_slot *s = slot_of(c, k.seed, k.dim);
-    return point_in(s, dim_key(k.seed, k.dim), halton_pixel_offset(k.x, k.y), i);
-}
-
 void halton_fill(struct halton_cache *c, struct halton_key k, uint32_t n, struct pt2 *out)
 {
     const struct halton_slot *s = slot_of(c, k.seed, k.dim);

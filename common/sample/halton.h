@@ -83,13 +83,10 @@ struct halton_key {
     uint32_t x, y;
 };
 
-/* Sample i of k's pixel: dimension 0 the point inside the pixel (the radical inverses of the
-   index with the 7 and 5 digits that chose the pixel removed), dimension d > 0 the point in its
-   pair of bases; every coordinate scrambled by (seed, dim) alone. The same bits whatever the
-   cache held before. Cannot fail. */
-struct pt2 halton_point(struct halton_cache *c, struct halton_key k, uint32_t i);
-
-/* The pixel's first n points: halton_point's for i = 0 .. n - 1. Cannot fail. */
+/* The pixel's first n points. Sample i: dimension 0 the point inside the pixel (the radical
+   inverses of the index with the 7 and 5 digits that chose the pixel removed), dimension d > 0
+   the point in its pair of bases; every coordinate scrambled by (seed, dim) alone. The same bits
+   whatever the cache held before. Cannot fail. */
 void halton_fill(struct halton_cache *c, struct halton_key k, uint32_t n, struct pt2 *out);
 
 #endif

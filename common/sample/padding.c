@@ -57,12 +57,7 @@ void padding_release(struct padding *p)
     free(p->identity);
     free(p->low);
     free(p->gen);
-    p->pts = NULL;
-    p->sobol = NULL;
-    p->order = NULL;
-    p->identity = NULL;
-    p->low = NULL;
-    p->gen = NULL;
+    *p = (struct padding){0};
 }
 
 void padding_pixel(struct padding *p, uint64_t seed, int px, int py, size_t n)

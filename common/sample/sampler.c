@@ -37,31 +37,6 @@ struct sampler {
     size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
 };
 
-static size_t draw_uniform(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_jitter(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_random(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_poisson(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_sobol(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_pmj02bn(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_halton(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t draw_zsobol(struct sampler *s, struct rng *rng, struct pt2 *out);
-static size_t at_halton(struct sampler *s, const struct sampler_at *at, struct pt2 *out);
-static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct pt2 *out);
-
-/* How each kind's set is drawn, in enum sampler_kind's order (its traits: sampler_kind.c): into
-   out, consuming rng, at most sampler_capacity points, at least 1. A kind whose points are an
-   image-wide sequence's (halton, zsobol) also has an `at` function: the set at (seed, pixel,
-   dimension), consuming nothing (sampler_draw_at). */
-static const struct kind_row {
-    size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
-    size_t (*at)(struct sampler *s, const struct sampler_at *at, struct pt2 *out); /* NULL: draw */
-} kind_rows[] = {
-    {draw_uniform, NULL}, {draw_jitter, NULL},      {draw_random, NULL},  {draw_poisson, NULL},
-    {draw_sobol, NULL},   {draw_halton, at_halton}, {draw_pmj02bn, NULL}, {draw_zsobol, at_zsobol},
-};
-#define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
-_Static_assert(KIND_COUNT == SAMPLER_ZSOBOL + 1, "a draw per kind");
-
 static const char *const domain_names[] = {"torus", "square", NULL};
 
 const char *const *poisson_domain_names(void)
@@ -129,26 +104,9 @@ struct sampler_grid sampler_grid_of(const struct sampler *s)
     return (struct sampler_grid){s->kind, s->grid_n, s->n_recip};
 }
 
-struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng)
-{
-    const struct sampler_grid g = sampler_grid_of(s);
-    return sampler_grid_point(&g, cell, rng);
-}
-
 enum sampler_walk sampler_walk_of(const struct sampler *s)
 {
     return s->kind == SAMPLER_POISSON && s->pool_size > 0 ? SAMPLER_WALK_POOL : sampler_traits(s->kind)->walk;
-}
-
-size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
-{
-    return kind_rows[s->kind].draw(s, rng, out);
-}
-
-size_t sampler_draw_at(struct sampler *s, struct rng *rng, const struct sampler_at *at, struct pt2 *out)
-{
-    const struct kind_row *row = &kind_rows[s->kind];
-    return row->at ? row->at(s, at, out) : row->draw(s, rng, out);
 }
 
 /* A prefix of one of the precomputed sequences, its digits flipped by a random mask per
@@ -180,25 +138,6 @@ static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct p
 {
     zsobol_fill((struct zsobol_key){at->seed, at->dim, (uint32_t)at->x, (uint32_t)at->y, s->log2_count}, out);
     return s->capacity;
-}
-
-/* Without a place (worker points, a caller with a stream only): pixel (0, 0), dimension 0, for a
-   seed of two draws of rng. */
-static size_t at_drawn(struct sampler *s, struct rng *rng, struct pt2 *out)
-{
-    uint64_t seed = rng_u32(rng);
-    const struct sampler_at at = {seed << 32 | rng_u32(rng), 0, 0, 0};
-    return kind_rows[s->kind].at(s, &at, out);
-}
-
-static size_t draw_halton(struct sampler *s, struct rng *rng, struct pt2 *out)
-{
-    return at_drawn(s, rng, out);
-}
-
-static size_t draw_zsobol(struct sampler *s, struct rng *rng, struct pt2 *out)
-{
-    return at_drawn(s, rng, out);
 }
 
 static size_t draw_uniform(struct sampler *s, struct rng *rng, struct pt2 *out)
@@ -271,17 +210,48 @@ static size_t draw_poisson(struct sampler *s, struct rng *rng, struct pt2 *out)
     return count;
 }
 
+/* Without a place (worker points, a caller with a stream only): pixel (0, 0), dimension 0, for a
+   seed of two draws of rng. */
+static size_t at_drawn(struct sampler *s, struct rng *rng, struct pt2 *out);
+
+/* How each kind's set is drawn, in enum sampler_kind's order (its traits: sampler_kind.c): into
+   out, consuming rng, at most sampler_capacity points, at least 1. A kind whose points are an
+   image-wide sequence's (halton, zsobol) also has an `at` function: the set at (seed, pixel,
+   dimension), consuming nothing (sampler_draw_at); its draw is at_drawn. */
+static const struct kind_row {
+    size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
+    size_t (*at)(struct sampler *s, const struct sampler_at *at, struct pt2 *out); /* NULL: draw */
+} kind_rows[] = {
+    {draw_uniform, NULL}, {draw_jitter, NULL},   {draw_random, NULL},  {draw_poisson, NULL},
+    {draw_sobol, NULL},   {at_drawn, at_halton}, {draw_pmj02bn, NULL}, {at_drawn, at_zsobol},
+};
+#define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
+_Static_assert(KIND_COUNT == SAMPLER_ZSOBOL + 1, "a draw per kind");
+
+static size_t at_drawn(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    uint64_t seed = rng_u32(rng);
+    const struct sampler_at at = {seed << 32 | rng_u32(rng), 0, 0, 0};
+    return kind_rows[s->kind].at(s, &at, out);
+}
+
+size_t sampler_draw(struct sampler *s, struct rng *rng, struct pt2 *out)
+{
+    return kind_rows[s->kind].draw(s, rng, out);
+}
+
+size_t sampler_draw_at(struct sampler *s, struct rng *rng, const struct sampler_at *at, struct pt2 *out)
+{
+    const struct kind_row *row = &kind_rows[s->kind];
+    return row->at ? row->at(s, at, out) : row->draw(s, rng, out);
+}
+
 size_t sampler_sobol_set(const struct sampler *s, struct rng *rng, struct sobol_seeds *seeds)
 {
     if (s->kind != SAMPLER_SOBOL)
         return 0;
     *seeds = sobol_seeds_draw(rng);
     return (size_t)s->grid_n * (size_t)s->grid_n;
-}
-
-int sampler_is_pooled(const struct sampler *s)
-{
-    return s->kind == SAMPLER_POISSON && s->pool_size > 0;
 }
 
 /* Cranley-Patterson rotation of a pool set: a toroidal set stays Poisson-disk (distances modulo

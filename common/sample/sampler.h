@@ -53,14 +53,13 @@ enum sampler_walk sampler_walk_of(const struct sampler *s);
    of it (a light's points within one pixel). A uniform, jitter or random set has one point per
    cell of an n x n grid, and that point depends on its cell alone (random: on nothing), so it
    can be made when taken instead of drawing the whole set: sampler_cells is n * n (0 for
-   poisson and sobol, whose sets are drawn whole), and sampler_cell_point makes cell c's point,
+   poisson and sobol, whose sets are drawn whole), and sampler_grid_point makes cell c's point,
    distributed exactly as in sampler_draw's set. */
 uint32_t sampler_cells(const struct sampler *s);
-struct pt2 sampler_cell_point(const struct sampler *s, uint32_t cell, struct rng *rng);
 
-/* What sampler_cell_point needs of a uniform, jitter or random sampler, for a caller that makes
-   cell points inline (sampler_grid_point: no call, no lookups through the sampler): its kind,
-   its n x n grid, and 2^42 / n + 1, which gives a cell's row as a multiply and shift. */
+/* What sampler_grid_point needs of a uniform, jitter or random sampler, to make cell points
+   inline (no call, no lookups through the sampler): its kind, its n x n grid, and 2^42 / n + 1,
+   which gives a cell's row as a multiply and shift. */
 struct sampler_grid {
     enum sampler_kind kind;
     int n;
@@ -80,7 +79,7 @@ static inline double sampler_cell_coord(int i, double u, int n)
     return sampler_cell_repair(v, i, n);
 }
 
-/* sampler_cell_point for g = sampler_grid_of(s): the same point, the same draws. cell / n without
+/* Cell `cell`'s point of the sampler g = sampler_grid_of(s) describes. cell / n without
    a division: cell < 2^22 (SAMPLER_MAX_POINTS) and n < 2^20, so cell * n_recip / 2^42 exceeds
    cell / n by less than 2^-20 < 1 / n, never reaching the next integer. */
 static inline struct pt2 sampler_grid_point(const struct sampler_grid *g, uint32_t cell, struct rng *rng)
@@ -115,16 +114,15 @@ static inline double sampler_shift_unit(double p, double o)
     return v >= 1.0 ? 0.0 : v;
 }
 
-/* A pooled Poisson set without copying it (s poisson with a pool, else 0): the set sampler_draw
-   would return for this rng is (*pts)[0 .. count).p each shifted by sampler_shift(p, *ox, *oy);
-   returns count and consumes rng exactly as sampler_draw does. */
-int sampler_is_pooled(const struct sampler *s);
 /* A pooled point with cos and sin of 2 pi p.y in turn (x, y), for a caller that maps y to an
    angle (a disk light's point): the shifted point's angle 2 pi (y + oy) is then turn rotated by
    2 pi oy, with no sine series per point. Both in one 32-byte record: one cache line a point. */
 struct pool_point {
     struct pt2 p, turn;
 };
+/* A pooled Poisson set without copying it (s poisson with a pool, else 0): the set sampler_draw
+   would return for this rng is (*pts)[0 .. count).p each shifted by sampler_shift(p, *ox, *oy);
+   returns count and consumes rng exactly as sampler_draw does. */
 size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct pool_point **pts, double *ox,
                         double *oy);
 static inline struct pt2 sampler_shift(struct pt2 p, double ox, double oy)

@@ -71,7 +71,12 @@ static int load_camera(struct scene_parse *L, yaml_node_t *n, struct scene_file 
 }
 
 static const char *const texture_types[] = {"checker", "noise", "image", NULL};
+/* The material types in enum mat_type's order, and the keys each takes besides type. */
 static const char *const material_types[] = {"lambertian", "metal", "dielectric", "light", "isotropic", NULL};
+static const char *const material_takes[] = {"albedo texture", "albedo fuzz", "ior", "emit",
+                                             "albedo texture"};
+_Static_assert(sizeof material_takes / sizeof *material_takes == MAT_ISOTROPIC + 1,
+               "a row per material type");
 
 static const char *const checker_keys[] = {"type", "odd", "even", "scale", NULL};
 static const char *const noise_keys[] = {"type", "scale", NULL};
@@ -223,28 +228,14 @@ static int load_material(struct scene_parse *L, yaml_node_t *k, yaml_node_t *n)
         return ymap_missing(&L->d, n, "type", L->e, "type: missing in material \"%s\"", yscalar(k));
     if (yget_string(&L->d, tn, "type", &type, L->e) < 0)
         return -1;
-    struct material m = {.texture = -1, .albedo = v3(1, 1, 1), .ior = 1.5};
-    /* Which keys each type takes: albedo|texture for lambertian, etc. */
-    const char *allowed;
-    if (!strcmp(type, "lambertian")) {
-        m.type = MAT_LAMBERTIAN;
-        allowed = "albedo texture";
-    } else if (!strcmp(type, "metal")) {
-        m.type = MAT_METAL;
-        allowed = "albedo fuzz";
-    } else if (!strcmp(type, "dielectric")) {
-        m.type = MAT_DIELECTRIC;
-        allowed = "ior";
-    } else if (!strcmp(type, "light")) {
-        m.type = MAT_LIGHT;
-        allowed = "emit";
-    } else if (!strcmp(type, "isotropic")) {
-        m.type = MAT_ISOTROPIC;
-        allowed = "albedo texture";
-    } else {
+    int t = 0;
+    while (material_types[t] && strcmp(type, material_types[t]))
+        t++;
+    if (!material_types[t])
         return scene_parse_unknown(L, tn, "type: unknown material type", type, material_types,
                                    "lambertian, metal, dielectric, light or isotropic");
-    }
+    struct material m = {.type = t, .texture = -1, .albedo = v3(1, 1, 1), .ior = 1.5};
+    const char *allowed = material_takes[t];
     yaml_node_t *kk;
     for (int i = 0; ymap_pair(&L->d, n, i, &kk, &v); i++) {
         const char *name = yscalar(kk);

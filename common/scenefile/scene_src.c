@@ -104,11 +104,3 @@ void scene_src_free(struct scene_src *src)
     src->files = NULL;
     src->n_files = 0;
 }
-
-int scene_hash_inputs(const char *path, uint64_t *h, struct err *e)
-{
-    struct scene_src src;
-    int rc = scene_src_read(path, &src, h, e);
-    scene_src_free(&src);
-    return rc;
-}

@@ -45,7 +45,4 @@ void scene_src_free(struct scene_src *src);
 const struct scene_src_file *scene_src_texture(const struct scene_src *src, const char *scene,
                                                const char *file, char *path, size_t n);
 
-/* scene_src_read's hash alone (the parse dropped). */
-int scene_hash_inputs(const char *path, uint64_t *h, struct err *e);
-
 #endif

@@ -43,7 +43,8 @@ const char *yscalar(yaml_node_t *n)
     return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value : NULL;
 }
 
-int ystr_distance(const char *a, const char *b)
+/* Edit distance of two short strings (for "did you mean"). */
+static int ystr_distance(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);
     if (la > 63 || lb > 63)

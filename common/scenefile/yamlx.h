@@ -93,9 +93,6 @@ int ystr_tagged(const struct ydoc *d, const yaml_node_t *n);
 /* The note a quoted number's message ends with. */
 #define YQUOTED_NOTE " (a quoted string: write numbers without quotes)"
 
-/* Edit distance of two short strings (for "did you mean"). */
-int ystr_distance(const char *a, const char *b);
-
 /* The name near s (same letters in another case, or an edit or two away) among names (n of
    them, or NULL-terminated when n < 0), for a "did you mean"; NULL when none is. */
 const char *ystr_nearest(const char *s, const char *const *names, int n);
