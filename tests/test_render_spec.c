@@ -10,6 +10,7 @@
 #include "base/rng.h"
 #include "check.h"
 #include "job/sidecar.h"
+#include "study/load/study_table.h"
 #include "job_fixture.h"
 
 static struct job_fixture fx;
@@ -55,34 +56,39 @@ static int via_sidecar(const struct render_spec *s, struct render_spec *out)
     return rc;
 }
 
-/* s as a summary.csv header and row, split at the commas and read back by name into out. */
+/* s as summary.csv writes it (compare.c's columns around render_spec_csv's), read back by the
+   product's one reader of that file, study_table: the plan's item's spec, the seed from the row. */
 static int via_csv(const struct render_spec *s, struct render_spec *out)
 {
-    struct sbuf head = {0}, row = {0};
-    render_spec_csv(NULL, 1, &head);
-    render_spec_csv(s, 1, &row);
-    render_spec_csv(NULL, 0, &head);
-    render_spec_csv(s, 0, &row);
-    char *h = sbuf_take(&head), *r = sbuf_take(&row);
-    const char *names[64], *values[64];
-    int n = 0;
-    for (char *a = h, *b = r; n < 64 && *a && *b; n++) {
-        names[n] = a, values[n] = b;
-        a = strchr(a, ','), b = strchr(b, ',');
-        if (!a || !b)
-            break;
-        *a++ = 0, *b++ = 0;
+    struct sbuf b = {0};
+    sbuf_printf(&b, "scene,variant,");
+    render_spec_csv(NULL, 1, &b);
+    sbuf_printf(&b, "samples_per_pixel_mean,wall_s,cpu_s,sampler_share,relmse,domain,");
+    render_spec_csv(NULL, 0, &b);
+    sbuf_printf(&b, "image\nchecker,v,");
+    render_spec_csv(s, 1, &b);
+    sbuf_printf(&b, "4.00,0.5,0.5,0.1,0.01,linear,");
+    render_spec_csv(s, 0, &b);
+    sbuf_printf(&b, "checker-v-s1.png\n");
+    char *text = sbuf_take(&b);
+    struct err e;
+    struct study_table t;
+    int *unfigured = NULL, rc = -1;
+    char path[600];
+    snprintf(path, sizeof path, "%s/summary.csv", fx.dir);
+    if (text && fileio_write_atomic(path, text, strlen(text), &e) == 0 &&
+        study_table_read(&t, path, "job", &e) == 0) {
+        struct compare *c = study_table_study(&t, 0, &unfigured, &e);
+        if (c && c->n_items == 1) {
+            *out = c->items[0].job.spec;
+            out->seed = c->seeds[0];
+            rc = 0;
+        }
+        compare_free(c);
+        study_table_free(&t);
     }
-    int nrows, rc = 0;
-    const struct render_spec_row *rows = render_spec_rows(&nrows);
-    render_spec_defaults(out);
-    for (int i = 0; i < nrows; i++) {
-        int k = 0;
-        while (k < n && strcmp(names[k], rows[i].key))
-            k++;
-        rc |= k == n || render_spec_set_text(out, &rows[i], values[k]) < 0 ? -1 : 0;
-    }
-    free(h), free(r);
+    free(unfigured);
+    free(text);
     return rc;
 }
 
