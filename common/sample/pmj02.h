@@ -1,4 +1,4 @@
-/* pmj02: progressive multi-jittered (0,2) sequences with blue-noise selection, "pmj02bn"
+/* pmj02: progressive multi-jittered (0,2) sequences with blue-noise selection (pmj02bn)
    (Christensen, Kensler and Kilpatrick 2018, "Progressive Multi-Jittered Sample Sequences", EGSR),
    their valid strata found as in Pharr 2019 ("Efficient Generation of Points that Satisfy
    Two-Dimensional Elementary Intervals", JCGT 8(1)). */

@@ -53,7 +53,7 @@ struct verdict_figures {
     const char *study, *scene;
     int n_variants, n_points, n_seeds;
     const char *const *variants;  /* labels */
-    const char *const *samplers;  /* per variant: its pixel sampler's name ("poisson") */
+    const char *const *samplers;  /* per variant: its pixel sampler's name (sampler_kind.c) */
     const int *pools;             /* per variant: poisson_pool (0: fresh sets) */
     const char *const *points;    /* sweep point labels ("threshold 5") */
     const double *spp;            /* samples per pixel (mean over the image) */
