@@ -11,7 +11,7 @@ tiny() { # tiny FILE [yaml lines...]: a 16x16 job that renders in a few millisec
     { echo "scene: $root/scenes/checker.yaml"; echo "width: 16"; echo "height: 16"; echo "threshold: 50"
       echo "light_threshold: 50"; echo "processes: 1"; for l in "$@"; do echo "$l"; done; } >"$f"
 }
-slow() { # slow FILE: a job long enough (about a second) to be interrupted mid-render
+slow() { # slow FILE: a job long enough (a third of a second here) to be interrupted mid-render
     { echo "scene: $root/scenes/checker.yaml"; echo "width: 64"; echo "height: 64"; echo "threshold: 3"
       echo "light_threshold: 50"; echo "processes: 1"; } >"$1"
 }
@@ -121,10 +121,15 @@ check "wide row: the render process dies with its worker" gone "$child"
 Q=$T/q2b; mkdir -p "$Q"; slow "$Q/slow.yaml"
 "$WORKER" --queue "$Q" --once --quiet 2>/dev/null & apid=$!
 child=$(render_child "$apid")
+# stopped, the render cannot finish within the poller's wait however fast the machine; the worker's
+# death still kills it (PR_SET_PDEATHSIG sends SIGKILL, which a stopped process also takes)
+[ -n "$child" ] && kill -STOP "$child"
 "$WORKER" --queue "$Q" --quiet --poll 0.2 2>"$T/b2.log" & bpid=$!
-sleep 0.3
+sleep 0.5
+check "poller: found the render process" [ -n "$child" ]
 check "poller: idle while the claim is alive" [ -f "$Q/running/slow.yaml" ]
 kill -9 "$apid"; wait "$apid" 2>/dev/null
+check "poller: the stopped render process dies with its worker" gone "$child"
 for _ in $(seq 1 300); do [ -f "$Q/done/slow.yaml" ] && break; sleep 0.05; done
 kill -TERM "$bpid"; wait "$bpid"; rc=$?
 check "poller: took over the dead worker's job" [ -f "$Q/done/slow.yaml" ]
