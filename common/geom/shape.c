@@ -11,11 +11,9 @@
 /* World -> object space for a rotate_y + translate transform. */
 static ray to_object(const struct prim *p, const ray *r)
 {
-    vec3 o = v3_sub(r->orig, p->offset);
     ray out = *r;
-    out.orig = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
-    out.dir =
-        v3(p->cos_y * r->dir.x - p->sin_y * r->dir.z, r->dir.y, p->sin_y * r->dir.x + p->cos_y * r->dir.z);
+    out.orig = rotate_to_object(p, v3_sub(r->orig, p->offset));
+    out.dir = rotate_to_object(p, r->dir);
     return out;
 }
 
@@ -76,10 +74,8 @@ static __attribute__((noinline)) int hit_box(const struct prim *p, const ray *r,
 {
     vec3 o = r->orig, d = r->dir;
     if (p->has_xform) {
-        const double c = p->cos_y, s = p->sin_y;
-        vec3 w = v3_sub(r->orig, p->offset);
-        o = v3(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
-        d = v3(c * r->dir.x - s * r->dir.z, r->dir.y, s * r->dir.x + c * r->dir.z);
+        o = rotate_to_object(p, v3_sub(r->orig, p->offset));
+        d = rotate_to_object(p, r->dir);
     }
     double t_near = -INFINITY, t_far = INFINITY;
     int near_axis = 0, far_axis = 0;
@@ -99,7 +95,7 @@ static __attribute__((noinline)) int hit_box(const struct prim *p, const ray *r,
     h->t = t;
     h->front = entry;
     if (p->has_xform) {
-        h->p = v3_add(rotate_to_world(p, q), p->offset);
+        h->p = point_to_world(p, q);
         h->n = rotate_to_world(p, n);
     } else {
         h->p = q;
@@ -283,7 +279,7 @@ static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *
     if (!got)
         return 0;
     if (p->has_xform) {
-        h->p = v3_add(rotate_to_world(p, h->p), p->offset);
+        h->p = point_to_world(p, h->p);
         h->n = rotate_to_world(p, h->n);
     }
     return 1;

@@ -35,13 +35,6 @@ void shape_prepare(struct prim *p)
     p->area = shape_area(p);
 }
 
-/* rotate_y + translate of an object-space point (directions take rotate_to_world alone): the
-   same arithmetic shape_hit applies to a transformed prim's hit point. */
-static vec3 point_to_world(const struct prim *p, vec3 a)
-{
-    return v3_add(rotate_to_world(p, a), p->offset);
-}
-
 /* A rotate_y by a multiple of 90 degrees: cos and sin within rounding of 0 and +-1. */
 static int quarter_turn(const struct prim *p)
 {
