@@ -183,9 +183,7 @@ static void set_lane(struct bvh_node *n, int c, struct box b)
 /* Expected cost of testing p. */
 static double prim_cost(const struct prim *p)
 {
-    if ((p->type == PRIM_SPHERE || p->type == PRIM_RECT || p->type == PRIM_MEDIUM) && !p->has_xform)
-        return COST_FAST;
-    return COST_SLOW;
+    return bvh_prim_kind(p) == BVH_LEAF_SHAPE ? COST_SLOW : COST_FAST;
 }
 
 /* Fill bd->plan[b] from its children's plans, for nodes of `width` lanes. */
@@ -252,18 +250,14 @@ static int node_new(struct build *bd, int n)
     return bd->n_nodes++;
 }
 
-/* The kind of a leaf of order[start..start+count) (bvh_node.kind). */
-static uint8_t leaf_kind(const struct build *bd, int start, int count)
+/* Lane c of node n is binary node k's leaf: its prims and kind (bvh_node.kind); a one-prim leaf
+   the traversal dispatches by kind names its prim: one load fewer. */
+static void set_leaf(const struct build *bd, struct bvh_node *n, int c, const struct bnode *k)
 {
-    const struct prim *p = &bd->sc->prims[bd->order[start]];
-    if (count != 1)
-        return BVH_LEAF_ANY;
-    if (p->has_xform)
-        return BVH_LEAF_SHAPE;
-    return p->type == PRIM_RECT     ? BVH_LEAF_RECT
-           : p->type == PRIM_SPHERE ? BVH_LEAF_SPHERE
-           : p->type == PRIM_MEDIUM ? BVH_LEAF_MEDIUM
-                                    : BVH_LEAF_SHAPE;
+    n->count[c] = (uint16_t)k->count;
+    n->leaves |= (uint16_t)(1u << c);
+    n->kind[c] = k->count != 1 ? BVH_LEAF_ANY : (uint8_t)bvh_prim_kind(&bd->sc->prims[bd->order[k->start]]);
+    n->child[c] = n->kind[c] == BVH_LEAF_ANY ? k->start : bd->order[k->start];
 }
 
 /* Wide node for binary interior node b as planned; its index. */
@@ -277,13 +271,8 @@ static int collapse(struct build *bd, int b)
     for (int c = 0; c < n; c++) {
         const struct bnode *k = &bd->bin[kids[c]];
         set_lane(node, c, k->box);
-        if (bd->plan[kids[c]].leaf) {
-            node->count[c] = (uint16_t)k->count;
-            node->leaves |= (uint16_t)(1u << c);
-            node->kind[c] = leaf_kind(bd, k->start, k->count);
-            /* a one-prim leaf the traversal dispatches by kind names its prim: one load fewer */
-            node->child[c] = node->kind[c] == BVH_LEAF_ANY ? k->start : bd->order[k->start];
-        }
+        if (bd->plan[kids[c]].leaf)
+            set_leaf(bd, node, c, k);
     }
     for (int c = 0; c < n; c++)
         if (!bd->plan[kids[c]].leaf) {
@@ -329,10 +318,7 @@ int bvh_build(struct scene *sc, struct err *e)
     if (bd.bin[0].left < 0) { /* a scene of one prim: a root with one child */
         struct bvh_node *root = &bd.nodes[node_new(&bd, 1)];
         set_lane(root, 0, bd.bin[0].box);
-        root->count[0] = (uint16_t)n;
-        root->leaves = 1;
-        root->kind[0] = leaf_kind(&bd, 0, n);
-        root->child[0] = root->kind[0] == BVH_LEAF_ANY ? 0 : bd.order[0];
+        set_leaf(&bd, root, 0, &bd.bin[0]);
     } else {
         /* A scene of at most 16 prims (the Cornell boxes: 8 and 15, a prim per lane) in one
            node: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere
