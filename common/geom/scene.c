@@ -2,6 +2,7 @@
 #include "scene.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "bvh.h"
 #include "shape.h"
@@ -41,10 +42,7 @@ static int push(void **arr, int *n, size_t size, const void *item)
             return -1;
         *arr = grown;
     }
-    unsigned char *dst = (unsigned char *)*arr + (size_t)*n * size;
-    const unsigned char *src = item;
-    for (size_t i = 0; i < size; i++)
-        dst[i] = src[i];
+    memcpy((unsigned char *)*arr + (size_t)*n * size, item, size);
     return (*n)++;
 }
 
