@@ -95,20 +95,8 @@ static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t
 /* Channels per pixel for a colour type (a palette index is one), or 0 for an unknown type. */
 static int channels_of(int color_type)
 {
-    switch (color_type) {
-    case 0:
-        return 1; /* gray */
-    case 2:
-        return 3; /* RGB */
-    case 3:
-        return 1; /* palette index */
-    case 4:
-        return 2; /* gray + alpha */
-    case 6:
-        return 4; /* RGBA */
-    default:
-        return 0;
-    }
+    static const int channels[7] = {1, 0, 3, 1, 2, 0, 4}; /* gray, -, RGB, palette, gray + alpha, -, RGBA */
+    return color_type >= 0 && color_type < 7 ? channels[color_type] : 0;
 }
 
 /* Whether the spec (table 11.1) allows this bit depth for this colour type. */
