@@ -327,9 +327,6 @@ int png_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, 
     return 0;
 }
 
-/* Decode data (len bytes; `name` for messages) into out as RGB. Supports every PNG: gray, gray+alpha,
-   RGB, RGBA and palette images at every bit depth the spec allows, Adam7 interlacing, all five filters;
-   ancillary chunks are ignored. 0, or -1 with e filled and out zeroed. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
 {
     struct png_dec d = {.name = name, .e = e};
