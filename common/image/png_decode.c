@@ -332,10 +332,8 @@ int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *o
     struct png_dec d = {.name = name, .e = e};
     *out = (struct rgb8){0};
     int rc = -1;
-    if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0) {
-        err_set(e, name, 0, 0, "not a PNG file (bad signature)");
-        goto done;
-    }
+    if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0)
+        return err_set(e, name, 0, 0, "not a PNG file (bad signature)");
     if (read_chunks(&d, data, len) < 0)
         goto done;
     if (!d.seen_idat) {
