@@ -137,11 +137,6 @@ static void ctx_colour(struct flip_ctx *k)
     k->cmax = pow(hyab(lg, lb), QC);
 }
 
-static void ctx_free(struct flip_ctx *k)
-{
-    free(k->ycc[0]);
-}
-
 static int ctx_make(struct flip_ctx *k, int w, int h, struct err *e)
 {
     memset(k, 0, sizeof *k);
@@ -380,7 +375,7 @@ static int flip_run(const struct rgbf *ref, const struct rgbf *img, const struct
         combine(&k, k.acc, x > 0);
     }
     finish(&k, m, map, out);
-    ctx_free(&k);
+    free(k.ycc[0]); /* every plane's block (ctx_make) */
     return 0;
 }
 
