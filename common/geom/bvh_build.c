@@ -34,14 +34,6 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-/* World box of p. */
-static struct box prim_box(const struct prim *p)
-{
-    struct box b;
-    shape_bounds(p, &b.lo, &b.hi);
-    return b;
-}
-
 /* The binary SAH tree, built first and then collapsed into BVH_WIDTH-wide nodes. */
 struct bnode {
     struct box box;
@@ -180,12 +172,6 @@ static void set_lane(struct bvh_node *n, int c, struct box b)
 #define COST_FAST 0.5
 #define COST_SLOW 1.5
 
-/* Expected cost of testing p. */
-static double prim_cost(const struct prim *p)
-{
-    return bvh_prim_kind(p) == BVH_LEAF_SHAPE ? COST_SLOW : COST_FAST;
-}
-
 /* Fill bd->plan[b] from its children's plans, for nodes of `width` lanes. */
 static void plan_node(struct build *bd, int b, int width)
 {
@@ -196,7 +182,7 @@ static void plan_node(struct build *bd, int b, int width)
     if (k->count <= BVH_LEAF_MAX) {
         leaf = COST_LEAF;
         for (int i = k->start; i < k->start + k->count; i++)
-            leaf += prim_cost(&bd->sc->prims[bd->order[i]]);
+            leaf += bvh_prim_kind(&bd->sc->prims[bd->order[i]]) == BVH_LEAF_SHAPE ? COST_SLOW : COST_FAST;
         leaf *= area;
     }
     memset(pl->left, 0, sizeof pl->left);
@@ -310,7 +296,7 @@ int bvh_build(struct scene *sc, struct err *e)
         return err_set(e, NULL, 0, 0, "out of memory building the BVH of %d primitives", n);
     }
     for (int i = 0; i < n; i++) {
-        bd.boxes[i] = prim_box(&sc->prims[i]);
+        shape_bounds(&sc->prims[i], &bd.boxes[i].lo, &bd.boxes[i].hi);
         bd.centroids[i] = v3_scale(v3_add(bd.boxes[i].lo, bd.boxes[i].hi), 0.5);
         bd.order[i] = i;
     }

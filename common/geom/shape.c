@@ -8,15 +8,6 @@
 
 #include "shape_inline.h"
 
-/* World -> object space for a rotate_y + translate transform. */
-static ray to_object(const struct prim *p, const ray *r)
-{
-    ray out = *r;
-    out.orig = rotate_to_object(p, v3_sub(r->orig, p->offset));
-    out.dir = rotate_to_object(p, r->dir);
-    return out;
-}
-
 /* Both roots t0 <= t1 of |o + t d - c| = rad; 0 when the line misses the sphere. */
 static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1)
 {
@@ -248,8 +239,10 @@ static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *
 {
     ray local;
     const ray *q = r;
-    if (p->has_xform) {
-        local = to_object(p, r);
+    if (p->has_xform) { /* the ray in object space */
+        local = *r;
+        local.orig = rotate_to_object(p, v3_sub(r->orig, p->offset));
+        local.dir = rotate_to_object(p, r->dir);
         q = &local;
     }
     int got = 0;
