@@ -59,8 +59,6 @@ static int64_t mem_read(exr_const_context_t ctx, void *ud, void *buffer, uint64_
                         exr_stream_error_func_ptr_t error_cb)
 {
     const struct exr_mem *m = ud;
-    (void)ctx;
-    (void)error_cb;
     if (offset >= m->len)
         return 0;
     size_t n = sz < m->len - offset ? (size_t)sz : (size_t)(m->len - offset);
@@ -70,7 +68,6 @@ static int64_t mem_read(exr_const_context_t ctx, void *ud, void *buffer, uint64_
 
 static int64_t mem_size(exr_const_context_t ctx, void *ud)
 {
-    (void)ctx;
     return (int64_t)((const struct exr_mem *)ud)->len;
 }
 
