@@ -4,7 +4,6 @@
 #include "base/simd.h"
 #include "shape_inline.h"
 
-#include <stdlib.h>
 #include <string.h>
 
 /* A wide node is visited at most once per level and pushes at most BVH_WIDTH - 1 children. */

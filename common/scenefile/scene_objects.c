@@ -1,5 +1,4 @@
 /* scene_objects: the `objects:` list of a scene file, one primitive (or a few) per entry. */
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
