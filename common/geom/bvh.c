@@ -305,11 +305,8 @@ static inline __attribute__((always_inline)) int finish(const struct scene *sc, 
                                                         const struct media_met *mm)
 {
     for (int i = 0; i < lr->n_media; i++)
-        if (shape_medium_hit(&sc->prims[mm->prim[i]], r, &mm->flight[i], t_min, lr->t_max, h)) {
-            lr->t_max = h->t;
-            h->prim = mm->prim[i];
-            lr->got = 1;
-        }
+        if (shape_medium_hit(&sc->prims[mm->prim[i]], r, &mm->flight[i], t_min, lr->t_max, h))
+            take_hit(lr, h, mm->prim[i], BVH_GROW); /* (t_hi no longer read) */
     return lr->got;
 }
 
