@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "check.h"
+#include "net_check.h"
 #include "sample/pmj02_table.h"
 #include "sample/pointstat.h"
 #include "sample/sampler.h"
@@ -25,9 +26,9 @@ static void test_nets(void)
         rng_seed(&rng, seed, 11);
         const int m = (int)(seed % 13); /* sequences of 1 .. 4096 points */
         dead += pmj02_draw(&w, &rng, (size_t)1 << m, p);
-        nets &= pointstat_is_net(p, (size_t)1 << m) == 1;
+        nets &= points_are_net(p, (size_t)1 << m) == 1;
         for (int k = 0; k < m; k++)
-            prefixes &= pointstat_is_net(p, (size_t)1 << k) == 1;
+            prefixes &= points_are_net(p, (size_t)1 << k) == 1;
         for (size_t i = 0; i < ((size_t)1 << m); i++)
             inside &= p[i].x >= 0 && p[i].x < 1 && p[i].y >= 0 && p[i].y < 1;
     }
@@ -39,11 +40,11 @@ static void test_nets(void)
     struct rng rng;
     rng_seed(&rng, 99, 11);
     CHECK(pmj02_draw(&w, &rng, 100, p) == 0);
-    CHECK(pointstat_is_net(p, 64) == 1 && pointstat_is_net(p, 100) == 0);
+    CHECK(points_are_net(p, 64) == 1 && points_are_net(p, 100) == 0);
     /* the check can fail: two points in one column */
     pmj02_draw(&w, &rng, 256, p);
     p[3].x = p[200].x;
-    CHECK(pointstat_is_net(p, 256) == 0);
+    CHECK(points_are_net(p, 256) == 0);
     pmj02_release(&w);
     free(p);
 }
@@ -159,7 +160,7 @@ static void test_sampler_sets(void)
         CHECK(n == sampler_set_capacity(s) && n2 == n);
         int nets = 1, differ = n == 1;
         for (size_t k = 1; k <= n; k *= 2)
-            nets &= pointstat_is_net(a, k) == 1 && pointstat_is_net(b, k) == 1;
+            nets &= points_are_net(a, k) == 1 && points_are_net(b, k) == 1;
         for (size_t k = 0; k < n; k++)
             differ |= a[k].x != b[k].x;
         CHECK(nets);

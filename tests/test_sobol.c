@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "net_check.h"
 
 /* Sobol's second dimension the long way: direction numbers v_1 = 1/2, v_(k+1) = v_k xor v_k / 2
    (primitive polynomial x + 1), xored for each set bit of i. */
@@ -128,7 +129,7 @@ static void test_block(void)
 
 static int is_net(const struct pt2 *p, size_t n, int m)
 {
-    return n == (size_t)1 << m && pointstat_is_net(p, n) == 1;
+    return n == (size_t)1 << m && points_are_net(p, n) == 1;
 }
 
 static void test_nets(void)

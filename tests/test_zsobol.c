@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "check.h"
+#include "net_check.h"
 #include "sample/pointstat.h"
 #include "sample/sobol.h"
 
@@ -24,7 +25,7 @@ static void test_blocks_and_nets(void)
             for (uint32_t i = 0; i < n; i++)
                 blocks &= zsobol_index(k, i) >> m == first;
             zsobol_fill(k, p);
-            nets &= pointstat_is_net(p, n) == 1;
+            nets &= points_are_net(p, n) == 1;
             /* the Morton quad holding this pixel: its four pixels' sets, one net of 4n */
             for (uint32_t q = 0; q < 4; q++) {
                 struct zsobol_key kq = k;
@@ -32,7 +33,7 @@ static void test_blocks_and_nets(void)
                 kq.y = (k.y & ~1u) | (q >> 1);
                 zsobol_fill(kq, p + q * n);
             }
-            quads &= pointstat_is_net(p, 4 * n) == 1;
+            quads &= points_are_net(p, 4 * n) == 1;
         }
     CHECK(blocks);
     CHECK(nets);
@@ -47,7 +48,7 @@ static void test_blocks_and_nets(void)
         b.dim = q;
         zsobol_fill(b, p + q * 16);
     }
-    CHECK(pointstat_is_net(p, 64) == 0);
+    CHECK(points_are_net(p, 64) == 0);
 }
 
 static void test_keys(void)
@@ -71,7 +72,7 @@ static void test_keys(void)
     k.log2_spp = 7;
     struct pt2 c[128];
     zsobol_fill(k, c);
-    CHECK(pointstat_is_net(c, 128) == 1);
+    CHECK(points_are_net(c, 128) == 1);
 }
 
 #define SIDE 32

@@ -3,9 +3,6 @@
 #include "sbuf.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 void json_init(struct json *j)
@@ -16,33 +13,7 @@ void json_init(struct json *j)
 
 void json_free(struct json *j)
 {
-    free(j->buf);
-    j->buf = NULL;
-}
-
-static void put(struct json *j, const char *fmt, ...)
-{
-    va_list ap;
-    for (;;) {
-        size_t room = j->cap - j->len;
-        va_start(ap, fmt);
-        int n = j->buf ? vsnprintf(j->buf + j->len, room, fmt, ap) : -1;
-        va_end(ap);
-        if (n >= 0 && (size_t)n < room) {
-            j->len += (size_t)n;
-            return;
-        }
-        size_t cap = j->cap ? j->cap * 2 : 1024;
-        if (n >= 0 && cap < j->len + (size_t)n + 1)
-            cap = j->len + (size_t)n + 1;
-        char *b = realloc(j->buf, cap);
-        if (!b) {
-            j->oom = 1;
-            return;
-        }
-        j->buf = b;
-        j->cap = cap;
-    }
+    sbuf_free(&j->text);
 }
 
 /* Characters JSON allows raw but YAML, whose parser reads sidecars back (libyaml), refuses (DEL,
@@ -59,40 +30,40 @@ static int yaml_unsafe(unsigned cp)
    must be UTF-8. */
 static void put_string(struct json *j, const char *s)
 {
-    put(j, "\"");
+    sbuf_printf(&j->text, "\"");
     for (const unsigned char *c = (const unsigned char *)s; *c;) {
         int n = sbuf_utf8_len((const char *)c);
         if (n == 0)
-            put(j, "\\ufffd");
+            sbuf_printf(&j->text, "\\ufffd");
         else if (*c == '"' || *c == '\\')
-            put(j, "\\%c", *c);
+            sbuf_printf(&j->text, "\\%c", *c);
         else if (*c < 0x20 || yaml_unsafe(sbuf_code_point((const char *)c, n)))
-            put(j, "\\u%04x", sbuf_code_point((const char *)c, n));
+            sbuf_printf(&j->text, "\\u%04x", sbuf_code_point((const char *)c, n));
         else
-            put(j, "%.*s", n, (const char *)c);
+            sbuf_printf(&j->text, "%.*s", n, (const char *)c);
         c += n ? n : 1;
     }
-    put(j, "\"");
+    sbuf_printf(&j->text, "\"");
 }
 
 static void member(struct json *j, const char *key)
 {
     if (j->depth > 0) {
-        put(j, j->first[j->depth] ? "\n" : ",\n");
+        sbuf_printf(&j->text, j->first[j->depth] ? "\n" : ",\n");
         for (int i = 0; i < j->depth; i++)
-            put(j, "  ");
+            sbuf_printf(&j->text, "  ");
     }
     j->first[j->depth] = 0;
     if (key) {
         put_string(j, key);
-        put(j, ": ");
+        sbuf_printf(&j->text, ": ");
     }
 }
 
 static void open_(struct json *j, const char *key, const char *c)
 {
     member(j, key);
-    put(j, "%s", c);
+    sbuf_printf(&j->text, "%s", c);
     if (j->depth < 31)
         j->depth++;
     j->first[j->depth] = 1;
@@ -104,13 +75,13 @@ static void close_(struct json *j, const char *c)
     if (j->depth > 0)
         j->depth--;
     if (!empty) {
-        put(j, "\n");
+        sbuf_printf(&j->text, "\n");
         for (int i = 0; i < j->depth; i++)
-            put(j, "  ");
+            sbuf_printf(&j->text, "  ");
     }
-    put(j, "%s", c);
+    sbuf_printf(&j->text, "%s", c);
     if (j->depth == 0)
-        put(j, "\n");
+        sbuf_printf(&j->text, "\n");
 }
 
 void json_begin_object(struct json *j, const char *key)
@@ -140,27 +111,27 @@ void json_number(struct json *j, const char *key, double val)
 {
     member(j, key);
     if (isfinite(val))
-        put(j, "%.10g", val);
+        sbuf_printf(&j->text, "%.10g", val);
     else
-        put(j, "null");
+        sbuf_printf(&j->text, "null");
 }
 
 void json_number_text(struct json *j, const char *key, const char *text)
 {
     member(j, key);
-    put(j, "%s", text);
+    sbuf_printf(&j->text, "%s", text);
 }
 
 void json_uint(struct json *j, const char *key, uint64_t val)
 {
     member(j, key);
-    put(j, "%llu", (unsigned long long)val);
+    sbuf_printf(&j->text, "%llu", (unsigned long long)val);
 }
 
 void json_bool(struct json *j, const char *key, int val)
 {
     member(j, key);
-    put(j, "%s", val ? "true" : "false");
+    sbuf_printf(&j->text, "%s", val ? "true" : "false");
 }
 
 int json_string_read_back(const char *s, char *out, size_t n)

@@ -5,12 +5,21 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "sbuf.h"
+
+/* The text is an sbuf, also read as buf, len and oom (the same members: a common initial
+   sequence, which a union may read through either). */
 struct json {
-    char *buf;
-    size_t len, cap;
+    union {
+        struct sbuf text;
+        struct {
+            char *buf;
+            size_t len, cap;
+            int oom;
+        };
+    };
     int depth;
     int first[32]; /* no member written yet at this depth */
-    int oom;
 };
 
 void json_init(struct json *j);

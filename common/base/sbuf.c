@@ -151,20 +151,13 @@ void sbuf_base64(struct sbuf *b, const uint8_t *data, size_t len)
     if (reserve(b, (len + 2) / 3 * 4) < 0)
         return;
     char *o = b->buf + b->len;
-    size_t i = 0;
-    for (; i + 3 <= len; i += 3) {
-        uint32_t v = (uint32_t)data[i] << 16 | (uint32_t)data[i + 1] << 8 | data[i + 2];
-        *o++ = tab[v >> 18];
-        *o++ = tab[(v >> 12) & 63];
-        *o++ = tab[(v >> 6) & 63];
-        *o++ = tab[v & 63];
-    }
-    if (i < len) {
-        uint32_t v = (uint32_t)data[i] << 16 | (i + 1 < len ? (uint32_t)data[i + 1] << 8 : 0);
+    for (size_t i = 0; i < len; i += 3) { /* a last group of one or two bytes is padded with '=' */
+        uint32_t v = (uint32_t)data[i] << 16 | (i + 1 < len ? (uint32_t)data[i + 1] << 8 : 0) |
+                     (i + 2 < len ? data[i + 2] : 0);
         *o++ = tab[v >> 18];
         *o++ = tab[(v >> 12) & 63];
         *o++ = i + 1 < len ? tab[(v >> 6) & 63] : '=';
-        *o++ = '=';
+        *o++ = i + 2 < len ? tab[v & 63] : '=';
     }
     *o = 0;
     b->len = (size_t)(o - b->buf);

@@ -4,7 +4,6 @@
 #include "base/simd.h"
 #include "shape_inline.h"
 
-#include <stdlib.h>
 #include <string.h>
 
 /* A wide node is visited at most once per level and pushes at most BVH_WIDTH - 1 children. */
@@ -262,55 +261,41 @@ struct leaf_args {
     float grow;
 };
 
+/* Test prim p, of leaf kind `kind` (bvh_prim_kind), against a.r. */
+static inline __attribute__((always_inline)) void
+test_prim(struct leaf_args a, int p, int kind, struct hit *h, struct leaf_run *lr, struct media_met *mm)
+{
+    const struct prim *pr = &a.sc->prims[p];
+    int got;
+    if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
+        meet_medium(pr, p, a.r, lr, mm, a.media_inline);
+        return;
+    }
+    if (kind == BVH_LEAF_RECT)
+        got = hit_rect(pr, a.r, a.t_min, lr->t_max, h);
+    else if (kind == BVH_LEAF_SPHERE)
+        got = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, a.r, a.t_min, lr->t_max, h);
+    else
+        got = shape_hit(pr, a.r, a.t_min, lr->t_max, h);
+    if (got)
+        take_hit(lr, h, p, a.grow);
+}
+
 /* Test the prims of node n's leaf lanes m (entry distances tn) against a.r, as met. */
 static inline __attribute__((always_inline)) void test_leaves(struct leaf_args a, const struct bvh_node *n,
                                                               int m, const float *tn, struct hit *h,
                                                               struct leaf_run *lr, struct media_met *mm)
 {
-    const struct scene *sc = a.sc;
-    const ray *r = a.r;
-    const double t_min = a.t_min;
-    const int media_inline = a.media_inline;
-    const float grow = a.grow;
     for (; m; m &= m - 1) {
         int c = __builtin_ctz((unsigned)m);
         if (tn[c] > lr->t_hi)
             continue;
-        const int kind = n->kind[c];
-        if (kind != BVH_LEAF_ANY) { /* one prim, dispatched by the node, not the prim's type */
-            int p = n->child[c], got_p;
-            const struct prim *pr = &sc->prims[p];
-            if (kind == BVH_LEAF_MEDIUM && lr->n_media < BVH_MEDIA) {
-                meet_medium(pr, p, r, lr, mm, media_inline);
-                continue;
-            }
-            if (kind == BVH_LEAF_RECT)
-                got_p = hit_rect(pr, r, t_min, lr->t_max, h);
-            else if (kind == BVH_LEAF_SPHERE)
-                got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
-            else
-                got_p = shape_hit(pr, r, t_min, lr->t_max, h);
-            if (got_p)
-                take_hit(lr, h, p, grow);
-            continue;
-        }
-        for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++) {
-            int p = sc->prim_order[i];
-            const struct prim *pr = &sc->prims[p];
-            int got_p;
-            if (pr->type == PRIM_MEDIUM && !pr->has_xform && lr->n_media < BVH_MEDIA) {
-                meet_medium(pr, p, r, lr, mm, media_inline);
-                continue;
-            }
-            if (pr->type == PRIM_RECT && !pr->has_xform)
-                got_p = hit_rect(pr, r, t_min, lr->t_max, h);
-            else if (pr->type == PRIM_SPHERE && !pr->has_xform)
-                got_p = hit_sphere(pr->g.sphere.center, pr->g.sphere.radius, r, t_min, lr->t_max, h);
-            else
-                got_p = shape_hit(pr, r, t_min, lr->t_max, h);
-            if (got_p)
-                take_hit(lr, h, p, grow);
-        }
+        if (n->kind[c] != BVH_LEAF_ANY) /* one prim, dispatched by the node, not the prim's type */
+            test_prim(a, n->child[c], n->kind[c], h, lr, mm);
+        else
+            for (int i = n->child[c]; i < n->child[c] + n->count[c]; i++)
+                test_prim(a, a.sc->prim_order[i], bvh_prim_kind(&a.sc->prims[a.sc->prim_order[i]]), h, lr,
+                          mm);
     }
 }
 
@@ -320,11 +305,8 @@ static inline __attribute__((always_inline)) int finish(const struct scene *sc, 
                                                         const struct media_met *mm)
 {
     for (int i = 0; i < lr->n_media; i++)
-        if (shape_medium_hit(&sc->prims[mm->prim[i]], r, &mm->flight[i], t_min, lr->t_max, h)) {
-            lr->t_max = h->t;
-            h->prim = mm->prim[i];
-            lr->got = 1;
-        }
+        if (shape_medium_hit(&sc->prims[mm->prim[i]], r, &mm->flight[i], t_min, lr->t_max, h))
+            take_hit(lr, h, mm->prim[i], BVH_GROW); /* (t_hi no longer read) */
     return lr->got;
 }
 

@@ -10,6 +10,18 @@
 /* The deepest a built tree gets (bvh_build.c); the traversal's stack is sized by it. */
 #define BVH_DEPTH 96
 
+/* How the traversal tests prim p in a leaf: BVH_LEAF_RECT, _SPHERE or _MEDIUM when it is one such
+   without a transform, else BVH_LEAF_SHAPE (through shape_hit). */
+static inline int bvh_prim_kind(const struct prim *p)
+{
+    if (p->has_xform)
+        return BVH_LEAF_SHAPE;
+    return p->type == PRIM_RECT     ? BVH_LEAF_RECT
+           : p->type == PRIM_SPHERE ? BVH_LEAF_SPHERE
+           : p->type == PRIM_MEDIUM ? BVH_LEAF_MEDIUM
+                                    : BVH_LEAF_SHAPE;
+}
+
 /* Build sc->nodes and sc->prim_order over sc->prims. 0, or -1 with e filled (no memory). */
 int bvh_build(struct scene *sc, struct err *e);
 

@@ -34,14 +34,6 @@ static double box_area(struct box b)
     return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-/* World box of p. */
-static struct box prim_box(const struct prim *p)
-{
-    struct box b;
-    shape_bounds(p, &b.lo, &b.hi);
-    return b;
-}
-
 /* The binary SAH tree, built first and then collapsed into BVH_WIDTH-wide nodes. */
 struct bnode {
     struct box box;
@@ -180,14 +172,6 @@ static void set_lane(struct bvh_node *n, int c, struct box b)
 #define COST_FAST 0.5
 #define COST_SLOW 1.5
 
-/* Expected cost of testing p. */
-static double prim_cost(const struct prim *p)
-{
-    if ((p->type == PRIM_SPHERE || p->type == PRIM_RECT || p->type == PRIM_MEDIUM) && !p->has_xform)
-        return COST_FAST;
-    return COST_SLOW;
-}
-
 /* Fill bd->plan[b] from its children's plans, for nodes of `width` lanes. */
 static void plan_node(struct build *bd, int b, int width)
 {
@@ -198,7 +182,7 @@ static void plan_node(struct build *bd, int b, int width)
     if (k->count <= BVH_LEAF_MAX) {
         leaf = COST_LEAF;
         for (int i = k->start; i < k->start + k->count; i++)
-            leaf += prim_cost(&bd->sc->prims[bd->order[i]]);
+            leaf += bvh_prim_kind(&bd->sc->prims[bd->order[i]]) == BVH_LEAF_SHAPE ? COST_SLOW : COST_FAST;
         leaf *= area;
     }
     memset(pl->left, 0, sizeof pl->left);
@@ -252,18 +236,14 @@ static int node_new(struct build *bd, int n)
     return bd->n_nodes++;
 }
 
-/* The kind of a leaf of order[start..start+count) (bvh_node.kind). */
-static uint8_t leaf_kind(const struct build *bd, int start, int count)
+/* Lane c of node n is binary node k's leaf: its prims and kind (bvh_node.kind); a one-prim leaf
+   the traversal dispatches by kind names its prim: one load fewer. */
+static void set_leaf(const struct build *bd, struct bvh_node *n, int c, const struct bnode *k)
 {
-    const struct prim *p = &bd->sc->prims[bd->order[start]];
-    if (count != 1)
-        return BVH_LEAF_ANY;
-    if (p->has_xform)
-        return BVH_LEAF_SHAPE;
-    return p->type == PRIM_RECT     ? BVH_LEAF_RECT
-           : p->type == PRIM_SPHERE ? BVH_LEAF_SPHERE
-           : p->type == PRIM_MEDIUM ? BVH_LEAF_MEDIUM
-                                    : BVH_LEAF_SHAPE;
+    n->count[c] = (uint16_t)k->count;
+    n->leaves |= (uint16_t)(1u << c);
+    n->kind[c] = k->count != 1 ? BVH_LEAF_ANY : (uint8_t)bvh_prim_kind(&bd->sc->prims[bd->order[k->start]]);
+    n->child[c] = n->kind[c] == BVH_LEAF_ANY ? k->start : bd->order[k->start];
 }
 
 /* Wide node for binary interior node b as planned; its index. */
@@ -277,13 +257,8 @@ static int collapse(struct build *bd, int b)
     for (int c = 0; c < n; c++) {
         const struct bnode *k = &bd->bin[kids[c]];
         set_lane(node, c, k->box);
-        if (bd->plan[kids[c]].leaf) {
-            node->count[c] = (uint16_t)k->count;
-            node->leaves |= (uint16_t)(1u << c);
-            node->kind[c] = leaf_kind(bd, k->start, k->count);
-            /* a one-prim leaf the traversal dispatches by kind names its prim: one load fewer */
-            node->child[c] = node->kind[c] == BVH_LEAF_ANY ? k->start : bd->order[k->start];
-        }
+        if (bd->plan[kids[c]].leaf)
+            set_leaf(bd, node, c, k);
     }
     for (int c = 0; c < n; c++)
         if (!bd->plan[kids[c]].leaf) {
@@ -321,7 +296,7 @@ int bvh_build(struct scene *sc, struct err *e)
         return err_set(e, NULL, 0, 0, "out of memory building the BVH of %d primitives", n);
     }
     for (int i = 0; i < n; i++) {
-        bd.boxes[i] = prim_box(&sc->prims[i]);
+        shape_bounds(&sc->prims[i], &bd.boxes[i].lo, &bd.boxes[i].hi);
         bd.centroids[i] = v3_scale(v3_add(bd.boxes[i].lo, bd.boxes[i].hi), 0.5);
         bd.order[i] = i;
     }
@@ -329,10 +304,7 @@ int bvh_build(struct scene *sc, struct err *e)
     if (bd.bin[0].left < 0) { /* a scene of one prim: a root with one child */
         struct bvh_node *root = &bd.nodes[node_new(&bd, 1)];
         set_lane(root, 0, bd.bin[0].box);
-        root->count[0] = (uint16_t)n;
-        root->leaves = 1;
-        root->kind[0] = leaf_kind(&bd, 0, n);
-        root->child[0] = root->kind[0] == BVH_LEAF_ANY ? 0 : bd.order[0];
+        set_leaf(&bd, root, 0, &bd.bin[0]);
     } else {
         /* A scene of at most 16 prims (the Cornell boxes: 8 and 15, a prim per lane) in one
            node: one visit per ray, its leaves tested nearest-hit-culled in one pass. Elsewhere

@@ -23,10 +23,9 @@ struct camera {
    description is degenerate (lookfrom == lookat, vup parallel to the view, vfov out of (0,180)). */
 int camera_init(struct camera *cam, const struct camera_desc *d, double aspect, struct err *e);
 
-/* The ray through film point (s, t) in [0,1]^2, s rightwards, t upwards; lens and time from rng.
-   Inline: one per camera sample, and a call passed the ray back through memory. */
-/* The ray through (s, t) of the image plane from the lens point of uniforms (lu, lv) (unused
-   without a lens) at the shutter time of uniform tu (unused with the shutter closed). */
+/* The ray through film point (s, t) in [0,1]^2 (s rightwards, t upwards) from the lens point of
+   uniforms (lu, lv) (unused without a lens) at the shutter time of uniform tu (unused with the
+   shutter closed). Inline: one per camera sample, and a call passed the ray back through memory. */
 static inline __attribute__((always_inline)) ray camera_ray_at(const struct camera *cam, double s, double t,
                                                                double lu, double lv, double tu)
 {

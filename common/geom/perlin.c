@@ -99,8 +99,7 @@ static inline __attribute__((always_inline)) double cell_sum(const struct perlin
     return accum;
 }
 
-/* perlin_noise's body. */
-static double noise(const struct perlin *p, vec3 q)
+double perlin_noise(const struct perlin *p, vec3 q)
 {
     if (!v3_finite(q))
         return 0;
@@ -109,11 +108,6 @@ static double noise(const struct perlin *p, vec3 q)
        integer conversion where it is exact, fmod (slower) beyond. */
     /* 0 + s: the book's +0 where cell_sum's zero came out -0 (+0 + s is s for any other s) */
     return 0.0 + cell_sum(p, perlin_cell(fx), perlin_cell(fy), perlin_cell(fz), q.x - fx, q.y - fy, q.z - fz);
-}
-
-double perlin_noise(const struct perlin *p, vec3 q)
-{
-    return noise(p, q);
 }
 
 /* Whether every octave's cell and offset follow exactly from the first's: x - floor(x) is exact
@@ -147,7 +141,7 @@ double perlin_turb(const struct perlin *p, vec3 q, int depth)
         return fabs(accum);
     }
     for (int o = 0; o < depth; o++) {
-        accum += weight * noise(p, q);
+        accum += weight * perlin_noise(p, q);
         weight *= 0.5;
         q = v3_scale(q, 2);
     }

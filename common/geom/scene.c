@@ -2,6 +2,7 @@
 #include "scene.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "bvh.h"
 #include "shape.h"
@@ -41,10 +42,7 @@ static int push(void **arr, int *n, size_t size, const void *item)
             return -1;
         *arr = grown;
     }
-    unsigned char *dst = (unsigned char *)*arr + (size_t)*n * size;
-    const unsigned char *src = item;
-    for (size_t i = 0; i < size; i++)
-        dst[i] = src[i];
+    memcpy((unsigned char *)*arr + (size_t)*n * size, item, size);
     return (*n)++;
 }
 
@@ -108,19 +106,15 @@ int scene_finish(struct scene *sc, struct err *e)
     }
     /* lights are sampled in world space: the loader admits only transforms that fold */
     for (int i = 0; i < sc->n_lights; i++)
-        if (sc->prims[sc->lights[i]].has_xform) {
-            err_set(e, NULL, 0, 0, "internal: light %d keeps a transform shape_bake cannot fold", i);
-            return -1;
-        }
+        if (sc->prims[sc->lights[i]].has_xform)
+            return err_set(e, NULL, 0, 0, "internal: light %d keeps a transform shape_bake cannot fold", i);
     free(sc->emitters);
     free(sc->emitter_lights);
     sc->emitters = malloc(((size_t)sc->n_lights + 1) * sizeof *sc->emitters);
     sc->emitter_lights = malloc(((size_t)sc->n_lights + 1) * sizeof *sc->emitter_lights);
     sc->n_emitters = 0;
-    if (!sc->emitters || !sc->emitter_lights) {
-        err_set(e, NULL, 0, 0, "out of memory for the scene's list of emitters");
-        return -1;
-    }
+    if (!sc->emitters || !sc->emitter_lights)
+        return err_set(e, NULL, 0, 0, "out of memory for the scene's list of emitters");
     for (int i = 0; i < sc->n_lights; i++) {
         const int m = sc->prims[sc->lights[i]].material;
         if (m >= 0 && m < sc->n_materials && sc->materials[m].type == MAT_LIGHT) {

@@ -8,17 +8,6 @@
 
 #include "shape_inline.h"
 
-/* World -> object space for a rotate_y + translate transform. */
-static ray to_object(const struct prim *p, const ray *r)
-{
-    vec3 o = v3_sub(r->orig, p->offset);
-    ray out = *r;
-    out.orig = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
-    out.dir =
-        v3(p->cos_y * r->dir.x - p->sin_y * r->dir.z, r->dir.y, p->sin_y * r->dir.x + p->cos_y * r->dir.z);
-    return out;
-}
-
 /* Both roots t0 <= t1 of |o + t d - c| = rad; 0 when the line misses the sphere. */
 static int sphere_roots(vec3 c, double rad, const ray *r, double *t0, double *t1)
 {
@@ -76,10 +65,8 @@ static __attribute__((noinline)) int hit_box(const struct prim *p, const ray *r,
 {
     vec3 o = r->orig, d = r->dir;
     if (p->has_xform) {
-        const double c = p->cos_y, s = p->sin_y;
-        vec3 w = v3_sub(r->orig, p->offset);
-        o = v3(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
-        d = v3(c * r->dir.x - s * r->dir.z, r->dir.y, s * r->dir.x + c * r->dir.z);
+        o = rotate_to_object(p, v3_sub(r->orig, p->offset));
+        d = rotate_to_object(p, r->dir);
     }
     double t_near = -INFINITY, t_far = INFINITY;
     int near_axis = 0, far_axis = 0;
@@ -99,7 +86,7 @@ static __attribute__((noinline)) int hit_box(const struct prim *p, const ray *r,
     h->t = t;
     h->front = entry;
     if (p->has_xform) {
-        h->p = v3_add(rotate_to_world(p, q), p->offset);
+        h->p = point_to_world(p, q);
         h->n = rotate_to_world(p, n);
     } else {
         h->p = q;
@@ -252,8 +239,10 @@ static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *
 {
     ray local;
     const ray *q = r;
-    if (p->has_xform) {
-        local = to_object(p, r);
+    if (p->has_xform) { /* the ray in object space */
+        local = *r;
+        local.orig = rotate_to_object(p, v3_sub(r->orig, p->offset));
+        local.dir = rotate_to_object(p, r->dir);
         q = &local;
     }
     int got = 0;
@@ -283,7 +272,7 @@ static __attribute__((noinline)) int hit_other(const struct prim *p, const ray *
     if (!got)
         return 0;
     if (p->has_xform) {
-        h->p = v3_add(rotate_to_world(p, h->p), p->offset);
+        h->p = point_to_world(p, h->p);
         h->n = rotate_to_world(p, h->n);
     }
     return 1;

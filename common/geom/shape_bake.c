@@ -35,19 +35,6 @@ void shape_prepare(struct prim *p)
     p->area = shape_area(p);
 }
 
-/* rotate_y + translate of an object-space point (directions take rotate_to_world alone): the
-   same arithmetic shape_hit applies to a transformed prim's hit point. */
-static vec3 point_to_world(const struct prim *p, vec3 a)
-{
-    return v3_add(rotate_to_world(p, a), p->offset);
-}
-
-/* A rotate_y by a multiple of 90 degrees: cos and sin within rounding of 0 and +-1. */
-static int quarter_turn(const struct prim *p)
-{
-    return fabs(p->cos_y) < 1e-12 || fabs(p->sin_y) < 1e-12;
-}
-
 int shape_bakes(const struct prim *p, int keep_uv)
 {
     if (!p->has_xform)
@@ -55,8 +42,8 @@ int shape_bakes(const struct prim *p, int keep_uv)
     switch (p->type) {
     case PRIM_SPHERE: /* its uv is its object-space direction: turned, the texture would turn */
         return !keep_uv;
-    case PRIM_RECT: /* axis-aligned only after quarter turns; its uv would turn too */
-        return !keep_uv && quarter_turn(p);
+    case PRIM_RECT: /* axis-aligned after quarter turns alone (cos or sin 0 to rounding); its uv turns */
+        return !keep_uv && (fabs(p->cos_y) < 1e-12 || fabs(p->sin_y) < 1e-12);
     case PRIM_MOVING_SPHERE:
     case PRIM_DISK: /* its frame turns with it: the same uv */
     case PRIM_CYLINDER:

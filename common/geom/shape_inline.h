@@ -9,11 +9,20 @@
 
 #include "base/rng.h"
 
-/* A rotate_y's turn of object-space vector a into world space (the transform's inverse is
-   shape.c's to_object). */
+/* A rotate_y's turn of object-space vector a into world space, and back. */
 static inline vec3 rotate_to_world(const struct prim *p, vec3 a)
 {
     return v3(p->cos_y * a.x + p->sin_y * a.z, a.y, -p->sin_y * a.x + p->cos_y * a.z);
+}
+static inline vec3 rotate_to_object(const struct prim *p, vec3 a)
+{
+    return v3(p->cos_y * a.x - p->sin_y * a.z, a.y, p->sin_y * a.x + p->cos_y * a.z);
+}
+
+/* rotate_y + translate of an object-space point (directions take rotate_to_world alone). */
+static inline vec3 point_to_world(const struct prim *p, vec3 a)
+{
+    return v3_add(rotate_to_world(p, a), p->offset);
 }
 
 /* The in-plane axes a, b of a rect whose normal is axis (yz: y, z; xz: x, z; xy: x, y). */
@@ -44,15 +53,6 @@ static inline int sphere_quadratic(vec3 c, double rad, const ray *r, double *a, 
     return 1;
 }
 
-/* The hit record of the sphere's hit at t (hit_sphere's, and packet.c's for its winners). */
-static inline __attribute__((always_inline)) void sphere_record(vec3 c, double rad, const ray *r, double t,
-                                                                struct hit *h)
-{
-    h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, v3_scale(v3_sub(h->p, c), 1.0 / rad));
-}
-
 /* The roots are compared as a t (a = |d|^2 > 0) and divided only for a hit. Always inline, as
    hit_rect: bvh.c's two traversals each keep their own copy in the leaf loop (with two callers
    GCC's unit growth limit would put one out of line). */
@@ -69,7 +69,9 @@ static inline __attribute__((always_inline)) int hit_sphere(vec3 c, double rad, 
         if (!(at > lo && at < hi))
             return 0;
     }
-    sphere_record(c, rad, r, at / a, h);
+    h->t = at / a;
+    h->p = ray_at(r, h->t);
+    set_face(h, r, v3_scale(v3_sub(h->p, c), 1.0 / rad));
     return 1;
 }
 
@@ -79,15 +81,6 @@ static inline double v3_at_offset(const vec3 *v, long off)
     double x;
     memcpy(&x, (const char *)v + off, sizeof x);
     return x;
-}
-
-/* The hit record of the rect's hit at t (hit_rect's, and packet.c's for its winners). */
-static inline __attribute__((always_inline)) void rect_record(const struct prim *p, const ray *r, double t,
-                                                              struct hit *h)
-{
-    h->t = t;
-    h->p = ray_at(r, t);
-    set_face(h, r, p->flip ? v3_neg(p->g.rect.n) : p->g.rect.n);
 }
 
 /* The rect's plane test, written once for hit_rect and a rect light's pdf (shape_light_inline.h's
@@ -116,7 +109,9 @@ static inline __attribute__((always_inline)) int hit_rect(const struct prim *p, 
     double t;
     if (!rect_plane(p, &r->orig, &r->dir, t_min, t_max, &t))
         return 0;
-    rect_record(p, r, t, h);
+    h->t = t;
+    h->p = ray_at(r, t);
+    set_face(h, r, p->flip ? v3_neg(p->g.rect.n) : p->g.rect.n);
     return 1;
 }
 

@@ -10,10 +10,8 @@
 void shape_uv(const struct prim *p, struct hit *h)
 {
     vec3 q = h->p;
-    if (p->has_xform) {
-        vec3 o = v3_sub(q, p->offset);
-        q = v3(p->cos_y * o.x - p->sin_y * o.z, o.y, p->sin_y * o.x + p->cos_y * o.z);
-    }
+    if (p->has_xform)
+        q = rotate_to_object(p, v3_sub(q, p->offset));
     if (p->type == PRIM_RECT) {
         h->u = (v3_dot(q, p->g.rect.ea) - p->g.rect.a0) / (p->g.rect.a1 - p->g.rect.a0);
         h->v = (v3_dot(q, p->g.rect.eb) - p->g.rect.b0) / (p->g.rect.b1 - p->g.rect.b0);
@@ -122,14 +120,14 @@ void shape_bounds(const struct prim *p, vec3 *lo, vec3 *hi)
            and z at 15 degrees) */
         vec3 c = p->type == PRIM_SPHERE ? p->g.sphere.center : p->g.medium.center;
         double r = p->type == PRIM_SPHERE ? p->g.sphere.radius : p->g.medium.radius;
-        vec3 w = v3_add(rotate_to_world(p, c), p->offset);
+        vec3 w = point_to_world(p, c);
         *lo = v3_sub(w, v3(r, r, r)), *hi = v3_add(w, v3(r, r, r));
         return;
     }
     vec3 mn = v3(DBL_MAX, DBL_MAX, DBL_MAX), mx = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
     for (int i = 0; i < 8; i++) {
         vec3 c = v3(i & 1 ? h.x : l.x, i & 2 ? h.y : l.y, i & 4 ? h.z : l.z);
-        vec3 w = v3_add(rotate_to_world(p, c), p->offset);
+        vec3 w = point_to_world(p, c);
         mn = v3_min(mn, w);
         mx = v3_max(mx, w);
     }

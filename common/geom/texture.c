@@ -2,13 +2,6 @@
    by (u, v) with nearest-texel sampling (v = 0 at the bottom row, as the book). */
 #include "texture.h"
 
-/* The marble colour of RTOW "The Next Week": grey 0.5 (1 + sin(scale z + 10 turb(p))). */
-static vec3 texture_marble(const struct perlin *pn, double scale, vec3 p)
-{
-    double g = 0.5 * (1 + d_sin(scale * p.z + 10 * perlin_turb(pn, p, 7)));
-    return v3(g, g, g);
-}
-
 static vec3 image_value(const struct rgb8 *img, double u, double v)
 {
     u = u < 0 ? 0 : u > 1 ? 1 : u;
@@ -38,8 +31,10 @@ static int sin_negative(double x)
 vec3 texture_value(const struct scene *sc, const struct texture *t, double u, double v, vec3 p)
 {
     switch (t->type) {
-    case TEX_NOISE:
-        return texture_marble(sc->perlin, t->scale, p);
+    case TEX_NOISE: { /* the marble of RTOW "The Next Week": grey 0.5 (1 + sin(scale z + 10 turb(p))) */
+        double g = 0.5 * (1 + d_sin(t->scale * p.z + 10 * perlin_turb(sc->perlin, p, 7)));
+        return v3(g, g, g);
+    }
     case TEX_IMAGE:
         return image_value(&sc->images[t->image], u, v);
     default: {

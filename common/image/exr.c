@@ -59,8 +59,6 @@ static int64_t mem_read(exr_const_context_t ctx, void *ud, void *buffer, uint64_
                         exr_stream_error_func_ptr_t error_cb)
 {
     const struct exr_mem *m = ud;
-    (void)ctx;
-    (void)error_cb;
     if (offset >= m->len)
         return 0;
     size_t n = sz < m->len - offset ? (size_t)sz : (size_t)(m->len - offset);
@@ -70,7 +68,6 @@ static int64_t mem_read(exr_const_context_t ctx, void *ud, void *buffer, uint64_
 
 static int64_t mem_size(exr_const_context_t ctx, void *ud)
 {
-    (void)ctx;
     return (int64_t)((const struct exr_mem *)ud)->len;
 }
 
@@ -308,7 +305,7 @@ int exr_image_decode(const uint8_t *data, size_t len, const char *name, struct r
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_attr_box2i_t dw;
-    int w = 0, h = 0, spc = 0, started = 0, rc = -1;
+    int w = 0, h = 0, spc = 0, rc = -1;
     exr_result_t r;
     *out = (struct rgbf){0};
     if (len < 4 || memcmp(data, "\x76\x2f\x31\x01", 4) != 0)
@@ -333,11 +330,10 @@ int exr_image_decode(const uint8_t *data, size_t len, const char *name, struct r
         goto done;
     }
     for (long long y = dw.min.y; y <= dw.max.y; y += spc) {
-        if ((r = decode_chunk(ctx, &dw, (int)y, out, &dec, !started)) != EXR_ERR_SUCCESS) {
+        if ((r = decode_chunk(ctx, &dw, (int)y, out, &dec, y == dw.min.y)) != EXR_ERR_SUCCESS) {
             rc = exr_fail(e, name, &m, "corrupt or truncated pixel data", r);
             goto done;
         }
-        started = 1;
     }
     rc = 0;
 done:

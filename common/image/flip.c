@@ -137,11 +137,6 @@ static void ctx_colour(struct flip_ctx *k)
     k->cmax = pow(hyab(lg, lb), QC);
 }
 
-static void ctx_free(struct flip_ctx *k)
-{
-    free(k->ycc[0]);
-}
-
 static int ctx_make(struct flip_ctx *k, int w, int h, struct err *e)
 {
     memset(k, 0, sizeof *k);
@@ -306,25 +301,6 @@ static inline double srgb_decode(double v)
     return v > 0.04045 ? pow((v + 0.055) / 1.055, 2.4) : v / 12.92;
 }
 
-int flip_ldr(const struct rgbf *ref, const struct rgbf *img, const struct img_mask *m, float *map,
-             struct flip_result *out, struct err *e)
-{
-    struct flip_ctx k;
-    if (check_pair(ref, img, m, e) < 0 || ctx_make(&k, ref->w, ref->h, e) < 0)
-        return -1;
-    const struct rgbf *pair[2] = {ref, img};
-    for (int which = 0; which < 2; which++) {
-        for (size_t i = 0; i < (size_t)ref->w * ref->h * 3; i++)
-            k.lin[i] = (float)srgb_decode(pair[which]->px[i]);
-        prepare(&k, which);
-    }
-    combine(&k, k.acc, 0);
-    *out = (struct flip_result){0, 0, 0, 0, 0};
-    finish(&k, m, map, out);
-    ctx_free(&k);
-    return 0;
-}
-
 /* ACES filmic curve (Narkowicz 2016) as a ratio of quadratics, its 0.6 pre-exposure folded in. */
 static const double aces[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
 
@@ -375,26 +351,42 @@ static int exposures(const struct rgbf *ref, const struct img_mask *m, struct fl
     return 0;
 }
 
-int flip_hdr(const struct rgbf *ref, const struct rgbf *img, const struct img_mask *m, float *map,
-             struct flip_result *out, struct err *e)
+/* LDR-FLIP (hdr 0), or HDR-FLIP (1): LDR-FLIP of each exposure's tone-mapped pair, the per-pixel
+   maximum. */
+static int flip_run(const struct rgbf *ref, const struct rgbf *img, const struct img_mask *m, float *map,
+                    struct flip_result *out, struct err *e, int hdr)
 {
     struct flip_ctx k;
-    *out = (struct flip_result){0, 1, 0, 0, 0};
-    if (check_pair(ref, img, m, e) < 0 || exposures(ref, m, out, e) < 0 ||
+    *out = (struct flip_result){0, hdr, 0, 0, 0};
+    if (check_pair(ref, img, m, e) < 0 || (hdr && exposures(ref, m, out, e) < 0) ||
         ctx_make(&k, ref->w, ref->h, e) < 0)
         return -1;
-    double step = (out->stop_exposure - out->start_exposure) / (out->n_exposures - 1);
+    const int n = hdr ? out->n_exposures : 1;
+    const double step = hdr ? (out->stop_exposure - out->start_exposure) / (n - 1) : 0;
     const struct rgbf *pair[2] = {ref, img};
-    for (int x = 0; x < out->n_exposures; x++) {
-        double scale = exp2(out->start_exposure + x * step);
+    for (int x = 0; x < n; x++) {
+        const double scale = exp2(out->start_exposure + x * step);
         for (int which = 0; which < 2; which++) {
+            const float *px = pair[which]->px;
             for (size_t i = 0; i < (size_t)ref->w * ref->h * 3; i++)
-                k.lin[i] = (float)tone_map(pair[which]->px[i], scale);
+                k.lin[i] = (float)(hdr ? tone_map(px[i], scale) : srgb_decode(px[i]));
             prepare(&k, which);
         }
         combine(&k, k.acc, x > 0);
     }
     finish(&k, m, map, out);
-    ctx_free(&k);
+    free(k.ycc[0]); /* every plane's block (ctx_make) */
     return 0;
+}
+
+int flip_ldr(const struct rgbf *ref, const struct rgbf *img, const struct img_mask *m, float *map,
+             struct flip_result *out, struct err *e)
+{
+    return flip_run(ref, img, m, map, out, e, 0);
+}
+
+int flip_hdr(const struct rgbf *ref, const struct rgbf *img, const struct img_mask *m, float *map,
+             struct flip_result *out, struct err *e)
+{
+    return flip_run(ref, img, m, map, out, e, 1);
 }

@@ -100,17 +100,6 @@ int imgio_size(const uint8_t *data, size_t len, const char *name, int *w, int *h
     return err_set(e, name, 0, 0, "unknown image format (expected PNG or PPM)");
 }
 
-static int is_exr(const uint8_t *d, size_t len)
-{
-    return len >= 4 && memcmp(d, "\x76\x2f\x31\x01", 4) == 0;
-}
-
-static int is_pfm(const uint8_t *d, size_t len)
-{
-    return len >= 3 && d[0] == 'P' && (d[1] == 'F' || d[1] == 'f') &&
-           (d[2] == '\n' || d[2] == ' ' || d[2] == '\r' || d[2] == '\t');
-}
-
 int imgio_read_f(const char *path, struct rgbf *out, enum img_domain *domain, struct err *e)
 {
     uint8_t *data;
@@ -131,9 +120,10 @@ int imgio_decode_f(const uint8_t *data, size_t len, const char *name, struct rgb
     *out = (struct rgbf){0};
     if (domain)
         *domain = IMG_LINEAR;
-    if (is_exr(data, len))
+    if (len >= 4 && memcmp(data, "\x76\x2f\x31\x01", 4) == 0) /* EXR's magic number */
         return exr_image_decode(data, len, name, out, e);
-    if (is_pfm(data, len))
+    if (len >= 3 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f') &&
+        (data[2] == '\n' || data[2] == ' ' || data[2] == '\r' || data[2] == '\t')) /* "PF" or "Pf", a space */
         return pfm_decode(data, len, name, out, e);
     if (!(len >= 4 &&
           (memcmp(data, "\x89PNG", 4) == 0 || (data[0] == 'P' && data[1] >= '1' && data[1] <= '7'))))

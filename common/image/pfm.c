@@ -55,20 +55,13 @@ static int header_token(const uint8_t *d, size_t len, size_t *pos, char *tok, si
     return k ? 0 : -1;
 }
 
-/* A side: decimal digits only, 1..IMAGE_MAX_SIDE. */
+/* A side: decimal digits only, 1..IMAGE_MAX_SIDE (too many digits: strtol's LONG_MAX, refused). */
 static int parse_side(const char *t, int *out)
 {
-    long v = 0;
-    if (!*t)
+    if (!*t || t[strspn(t, "0123456789")])
         return -1;
-    for (; *t; t++) {
-        if (*t < '0' || *t > '9')
-            return -1;
-        v = v * 10 + (*t - '0');
-        if (v > IMAGE_MAX_SIDE)
-            return -1;
-    }
-    if (v < 1)
+    long v = strtol(t, NULL, 10);
+    if (v < 1 || v > IMAGE_MAX_SIDE)
         return -1;
     *out = (int)v;
     return 0;

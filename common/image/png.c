@@ -75,9 +75,7 @@ int png_encode(const struct rgb8 *img, uint8_t **out, size_t *out_len, struct er
     return png_encode_text(img, NULL, 0, out, out_len, e);
 }
 
-/* Encode img as an 8-bit RGB PNG into a malloc'd buffer *out of *out_len bytes (caller frees),
-   with a tEXt chunk per text after IHDR. The zlib stream is split over IDAT chunks of at most
-   1 MiB. 0, or -1 with e filled. */
+/* The zlib stream is split over IDAT chunks of at most 1 MiB. */
 int png_encode_text(const struct rgb8 *img, const struct img_attr *texts, size_t ntexts, uint8_t **out,
                     size_t *out_len, struct err *e)
 {

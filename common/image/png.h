@@ -12,9 +12,9 @@ int png_encode_text(const struct rgb8 *img, const struct img_attr *texts, size_t
                     size_t *out_len, struct err *e);
 
 /* Decode a gray, gray+alpha, RGB, RGBA or palette PNG of any allowed bit depth (1 to 16), plain or
-   Adam7-interlaced, into out (RGB, 8 bits; alpha dropped, 16-bit samples rounded to 8). `name` is
-   used in error messages. Never reads out of bounds; rejects truncated or corrupt data and sides
-   over IMAGE_MAX_SIDE with -1 and e filled. */
+   Adam7-interlaced, into out (RGB, 8 bits; alpha dropped, 16-bit samples rounded to 8; ancillary
+   chunks ignored). `name` is used in error messages. Never reads out of bounds; rejects truncated or
+   corrupt data and sides over IMAGE_MAX_SIDE with -1, e filled and out zeroed. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e);
 
 /* The width and height in data's IHDR (the signature and that first chunk checked, nothing

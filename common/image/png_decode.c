@@ -95,20 +95,8 @@ static int next_chunk(struct png_dec *d, const uint8_t *data, size_t len, size_t
 /* Channels per pixel for a colour type (a palette index is one), or 0 for an unknown type. */
 static int channels_of(int color_type)
 {
-    switch (color_type) {
-    case 0:
-        return 1; /* gray */
-    case 2:
-        return 3; /* RGB */
-    case 3:
-        return 1; /* palette index */
-    case 4:
-        return 2; /* gray + alpha */
-    case 6:
-        return 4; /* RGBA */
-    default:
-        return 0;
-    }
+    static const int channels[7] = {1, 0, 3, 1, 2, 0, 4}; /* gray, -, RGB, palette, gray + alpha, -, RGBA */
+    return color_type >= 0 && color_type < 7 ? channels[color_type] : 0;
 }
 
 /* Whether the spec (table 11.1) allows this bit depth for this colour type. */
@@ -339,18 +327,13 @@ int png_size(const uint8_t *data, size_t len, const char *name, int *w, int *h, 
     return 0;
 }
 
-/* Decode data (len bytes; `name` for messages) into out as RGB. Supports every PNG: gray, gray+alpha,
-   RGB, RGBA and palette images at every bit depth the spec allows, Adam7 interlacing, all five filters;
-   ancillary chunks are ignored. 0, or -1 with e filled and out zeroed. */
 int png_decode(const uint8_t *data, size_t len, const char *name, struct rgb8 *out, struct err *e)
 {
     struct png_dec d = {.name = name, .e = e};
     *out = (struct rgb8){0};
     int rc = -1;
-    if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0) {
-        err_set(e, name, 0, 0, "not a PNG file (bad signature)");
-        goto done;
-    }
+    if (len < sizeof png_signature || memcmp(data, png_signature, sizeof png_signature) != 0)
+        return err_set(e, name, 0, 0, "not a PNG file (bad signature)");
     if (read_chunks(&d, data, len) < 0)
         goto done;
     if (!d.seen_idat) {

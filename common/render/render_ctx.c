@@ -79,7 +79,7 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
 {
     struct render_ctx *ctx = calloc(1, sizeof *ctx);
     if (!ctx)
-        goto fail;
+        goto oom;
     ctx->sc = sc;
     ctx->cam = cam;
     ctx->rs = *rs;
@@ -90,36 +90,32 @@ struct render_ctx *render_ctx_new(const struct scene *sc, const struct camera *c
     ctx->uses_points = calloc((size_t)sc->n_lights + 1, sizeof *ctx->uses_points);
     ctx->prim_material = malloc(((size_t)sc->n_prims + 1) * sizeof *ctx->prim_material);
     if (packet_usable(sc) && !(ctx->packet = packet_scene_new(sc)))
-        goto fail;
+        goto oom;
     if (!ctx->pixel_pts || !ctx->lp || !ctx->uses_points || !ctx->prim_material)
+        goto oom;
+    if (rs->dims_all && dims_init(ctx, e) < 0)
         goto fail;
-    if (rs->dims_all && dims_init(ctx, e) < 0) {
-        render_ctx_free(ctx);
-        return NULL;
-    }
     for (int i = 0; i < sc->n_prims; i++) {
         ctx->prim_material[i] = &sc->materials[sc->prims[i].material];
         ctx->time_matters |= sc->prims[i].type == PRIM_MOVING_SPHERE || sc->prims[i].type == PRIM_MEDIUM;
     }
-    if (light && stream_source_init(&ctx->light_source, light, e) < 0) {
-        render_ctx_free(ctx);
-        return NULL;
-    }
+    if (light && stream_source_init(&ctx->light_source, light, e) < 0)
+        goto fail;
     for (int i = 0; i < sc->n_lights; i++) {
         ctx->uses_points[i] = shape_light_uses_points(&sc->prims[sc->lights[i]]);
         if (rs->light_sampling_off || !ctx->uses_points[i])
             continue;
         if (!light) {
             err_set(e, NULL, 0, 0, "internal: scene has a disk or rect light but no light sampler");
-            render_ctx_free(ctx);
-            return NULL;
+            goto fail;
         }
         if (stream_init(&ctx->lp[i], &ctx->light_source) < 0)
-            goto fail;
+            goto oom;
     }
     return ctx;
+oom:
+    err_set(e, NULL, 0, 0, "out of memory for the render's sample buffers");
 fail:
     render_ctx_free(ctx);
-    err_set(e, NULL, 0, 0, "out of memory for the render's sample buffers");
     return NULL;
 }

@@ -119,40 +119,20 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
     vec3 dir;
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
-        if (nee) {
-            path_next_event(ctx, p, rng, h, albedo, 0, shadow_rays, at);
-            onb frame = onb_from_w(h->n);
-            if (at.dims) {
-                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
-                dir = cosine_direction_uv(&frame, u.x, u.y);
-            } else {
-                dir = cosine_direction(&frame, rng);
-            }
-            double cosine = v3_dot(dir, h->n);
-            if (!(cosine > 0))
-                return 0;
-            p->mis_pdf = cosine / PI;
-            p->beta = v3_mul(p->beta, albedo);
-            p->r = (ray){h->p, dir, p->r.time};
-            return 1;
-        }
         int light = -1;
         double light_pdf = 0;
-        if (at.dims) {
-            struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
-            if (mix && c.x < 0.5) {
-                dir = light_direction_at(ctx, light_set_all(sc), h->p, c.y,
-                                         path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf);
-            } else {
-                onb frame = onb_from_w(h->n);
-                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
-                dir = cosine_direction_uv(&frame, u.x, u.y);
-            }
-        } else if (mix && rng_u32(rng) >> 31) {
-            dir = light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf);
+        if (nee)
+            path_next_event(ctx, p, rng, h, albedo, 0, shadow_rays, at);
+        /* the mixture's coin (under dims its choice's x; next-event estimation draws none) */
+        const struct pt2 c = at.dims && !nee ? path_decide(ctx, rng, at, DIM_CHOICE) : (struct pt2){0, 0};
+        if (mix && (at.dims ? c.x < 0.5 : rng_u32(rng) >> 31)) {
+            dir = at.dims ? light_direction_at(ctx, light_set_all(sc), h->p, c.y,
+                                               path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf)
+                          : light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf);
         } else {
             onb frame = onb_from_w(h->n);
-            dir = cosine_direction(&frame, rng);
+            const struct pt2 u = at.dims ? path_decide(ctx, rng, at, DIM_DIR) : (struct pt2){0, 0};
+            dir = at.dims ? cosine_direction_uv(&frame, u.x, u.y) : cosine_direction(&frame, rng);
         }
         /* below the surface: the scattering pdf is 0 and so is the estimate */
         double cosine = v3_dot(dir, h->n);
@@ -162,7 +142,10 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
         double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
         if (!(pdf > 0))
             return 0;
-        p->beta = v3_mul(p->beta, v3_scale(albedo, cosine_pdf / pdf));
+        if (nee)
+            p->mis_pdf = cosine_pdf;
+        /* without the mixture pdf is cosine_pdf: the weight is the albedo */
+        p->beta = v3_mul(p->beta, mix ? v3_scale(albedo, cosine_pdf / pdf) : albedo);
         p->r = (ray){h->p, dir, p->r.time};
         return 1;
     }
@@ -184,10 +167,7 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
         if (v3_dot(dir, h->n) <= 0)
             return 0;
         p->beta = v3_mul(p->beta, m->albedo);
-        p->r = (ray){h->p, dir, p->r.time};
-        if (nee) /* a specular bounce: the emission it reaches counts whole */
-            p->mis_pdf = 0;
-        return 1;
+        break;
     case MAT_DIELECTRIC: {
         vec3 unit_dir = v3_unit(p->r.dir);
         double ratio = h->front ? 1.0 / m->ior : m->ior;
@@ -198,10 +178,7 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
                    (at.dims ? path_decide(ctx, rng, at, DIM_CHOICE).x : rng_uniform32(rng)))
                   ? v3_reflect(unit_dir, h->n)
                   : v3_refract(unit_dir, h->n, ratio);
-        p->r = (ray){h->p, dir, p->r.time};
-        if (nee) /* a specular bounce: the emission it reaches counts whole */
-            p->mis_pdf = 0;
-        return 1;
+        break;
     }
     default: { /* MAT_ISOTROPIC */
         vec3 albedo = surface_albedo(sc, m, h);
@@ -212,37 +189,34 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
             u = path_decide(ctx, rng, at, DIM_DIR);
             c = path_decide(ctx, rng, at, DIM_CHOICE);
         }
-        if (nee) {
+        int light = -1;
+        double light_pdf = 0;
+        if (nee)
             path_next_event(ctx, p, rng, h, albedo, phase, shadow_rays, at);
+        if (mix && (at.dims ? c.x < 0.5 : rng_u32(rng) >> 31)) /* the mixture's coin: toward a light */
+            dir = at.dims ? light_direction_at(ctx, light_set_all(sc), h->p, c.y,
+                                               path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf)
+                          : light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf);
+        else
             dir = at.dims            ? uniform_sphere_direction_uv(u.x, u.y)
                   : at.medium_inline ? uniform_sphere_direction_inline(rng)
                                      : uniform_sphere_direction(rng);
+        if (nee)
             p->mis_pdf = phase;
-        } else if (mix) {
-            int light = -1;
-            double light_pdf = 0;
-            if (at.dims)
-                dir = c.x < 0.5 ? light_direction_at(ctx, light_set_all(sc), h->p, c.y,
-                                                     path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf)
-                                : uniform_sphere_direction_uv(u.x, u.y);
-            else
-                dir = rng_u32(rng) >> 31
-                          ? light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf)
-                      : at.medium_inline ? uniform_sphere_direction_inline(rng)
-                                         : uniform_sphere_direction(rng);
+        else if (mix)
             pdf = 0.5 * (at.medium_inline ? lights_pdf(sc, h->p, dir, light, light_pdf)
                                           : shape_lights_pdf(sc, h->p, dir, light, light_pdf)) +
                   0.5 * phase;
-        } else {
-            dir = at.dims            ? uniform_sphere_direction_uv(u.x, u.y)
-                  : at.medium_inline ? uniform_sphere_direction_inline(rng)
-                                     : uniform_sphere_direction(rng);
-        }
         p->beta = v3_mul(p->beta, v3_scale(albedo, phase / pdf));
         p->r = (ray){h->p, dir, p->r.time};
         return 1;
     }
     }
+    /* metal and glass: a specular bounce, whose emission reached counts whole */
+    p->r = (ray){h->p, dir, p->r.time};
+    if (nee)
+        p->mis_pdf = 0;
+    return 1;
 }
 
 /* Russian roulette after the scatter at vertex at (Arvo and Kirk, "Particle Transport and Image

@@ -55,8 +55,6 @@ void draws_below(struct rng *r, size_t count, uint32_t bound, uint32_t *out, int
         k = count & ~(size_t)3;
         r->state = draws_avx2(r->state, r->inc, k, bound, out);
     }
-#else
-    (void)wide;
 #endif
     for (; k < count; k++)
         out[k] = rng_below(r, bound - (uint32_t)k);

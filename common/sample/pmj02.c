@@ -68,15 +68,22 @@ static void mark(struct pmj02 *w, int m, uint32_t x, uint32_t y)
         *interval(w, m, k, top(x, k), top(y, m - k)) = 1;
 }
 
+/* Enter point i at (x, y). */
+static void add(struct pmj02 *w, struct level lv, size_t i, uint32_t x, uint32_t y)
+{
+    w->x[i] = x;
+    w->y[i] = y;
+    mark(w, lv.m, x, y);
+    w->grid[(size_t)top(y, lv.g) << lv.g | top(x, lv.g)] = (uint32_t)i + 1;
+}
+
 /* Clear level m's intervals and the g-grid, then enter points [0, count). */
 static void relevel(struct pmj02 *w, struct level lv, size_t count)
 {
     memset(w->occupied, 0, ((size_t)lv.m + 1) << lv.m);
     memset(w->grid, 0, ((size_t)1 << 2 * lv.g) * sizeof *w->grid);
-    for (size_t i = 0; i < count; i++) {
-        mark(w, lv.m, w->x[i], w->y[i]);
-        w->grid[(size_t)top(w->y[i], lv.g) << lv.g | top(w->x[i], lv.g)] = (uint32_t)i + 1;
-    }
+    for (size_t i = 0; i < count; i++)
+        add(w, lv, i, w->x[i], w->y[i]);
 }
 
 /* The valid strata of one axis (0 x, 1 y) below prefix (its first `bits` bits, bits >= g) in the
@@ -145,15 +152,6 @@ static uint64_t candidate(const struct pmj02 *w, struct rng *rng, struct level l
         }
     }
     return best;
-}
-
-/* Enter point i at (x, y). */
-static void add(struct pmj02 *w, struct level lv, size_t i, uint32_t x, uint32_t y)
-{
-    w->x[i] = x;
-    w->y[i] = y;
-    mark(w, lv.m, x, y);
-    w->grid[(size_t)top(y, lv.g) << lv.g | top(x, lv.g)] = (uint32_t)i + 1;
 }
 
 /* Point i in subquadrant (cx, cy); returns 0, or -1 if it has no valid stratum. */

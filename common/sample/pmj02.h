@@ -9,7 +9,6 @@
 #include <stdint.h>
 
 #include "base/rng.h"
-#include "base/rng.h"
 #include "pt2.h"
 
 /* Best-candidate choices per point (Mitchell 1991): the candidate farthest from the points so far. */

@@ -164,28 +164,3 @@ void pointstat_pairs(const struct pt2 *p, size_t n, double *plain, double *torus
     const double t2 = n ? 1.0 / 9.0 - single / (2.0 * N) + pairs / (N * N) : 0.0;
     *discrepancy = sqrt(fmax(0.0, t2));
 }
-
-int pointstat_is_net(const struct pt2 *p, size_t n)
-{
-    int m = 0;
-    while (((size_t)1 << m) < n)
-        m++;
-    if (n == 0 || n != (size_t)1 << m)
-        return 0;
-    unsigned char *count = calloc(n, 1);
-    if (!count)
-        return -1;
-    int ok = 1;
-    for (int a = 0; ok && a <= m; a++) {
-        const int b = m - a;
-        memset(count, 0, n);
-        for (size_t k = 0; k < n; k++) {
-            const size_t i = (size_t)(p[k].x * (double)((size_t)1 << a)),
-                         j = (size_t)(p[k].y * (double)((size_t)1 << b));
-            if (i >> a || j >> b || count[(i << b) | j]++)
-                ok = 0;
-        }
-    }
-    free(count);
-    return ok;
-}

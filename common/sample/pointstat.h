@@ -52,9 +52,4 @@ double spectrum_low_mean(const struct spectrum *s, double k_low);
    y_j)). O(n^2): n (n - 1) / 2 pairs. */
 void pointstat_pairs(const struct pt2 *p, size_t n, double *plain, double *torus, double *discrepancy);
 
-/* Whether the n points form a (0,m,2)-net in base 2, n = 2^m: every elementary interval
-   [i / 2^a, (i + 1) / 2^a) x [j / 2^b, (j + 1) / 2^b) with a + b = m holds exactly one point.
-   1 yes, 0 no (or n not a power of two), -1 out of memory. */
-int pointstat_is_net(const struct pt2 *p, size_t n);
-
 #endif

@@ -6,7 +6,6 @@
 #include <stdint.h>
 
 #include "base/rng.h"
-#include "base/rng.h"
 #include "pt2.h"
 
 /* Candidate offsets drawn ahead in one batch (a multiple of 4). */

@@ -12,7 +12,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 /* The pool's own rng stream, so pool sets never correlate with the caller's draws. */
 #define POOL_STREAM 0x706f6f6cULL
@@ -32,7 +31,6 @@ struct sampler {
 
     /* pool of toroidal Poisson sets, drawn once (pool_size 0: none) */
     int pool_size;
-    struct pt2 *pool_pts;    /* while the pool is drawn */
     struct pool_point *pool; /* the points and their turns */
     size_t *pool_start;      /* set i is pool[pool_start[i] .. pool_start[i+1]) */
 };
@@ -71,7 +69,6 @@ void sampler_free(struct sampler *s)
     poisson_release(&s->bridson);
     pmj02_release(&s->pmj);
     halton_cache_release(&s->halton);
-    free(s->pool_pts);
     free(s->pool);
     free(s->pool_start);
     free(s);
@@ -140,42 +137,16 @@ static size_t at_zsobol(struct sampler *s, const struct sampler_at *at, struct p
     return s->capacity;
 }
 
-static size_t draw_uniform(struct sampler *s, struct rng *rng, struct pt2 *out)
+/* uniform, jitter, random: the n * n cells' points row by row, each as sampler_grid_point makes it */
+static size_t draw_grid(struct sampler *s, struct rng *rng, struct pt2 *out)
 {
-    (void)rng;
-    const int n = s->grid_n;
-    size_t count = 0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++)
-            out[count++] = (struct pt2){(i + 0.5) / n, (j + 0.5) / n};
-    return count;
-}
-
-static size_t draw_jitter(struct sampler *s, struct rng *rng, struct pt2 *out)
-{
-    const int n = s->grid_n;
-    size_t count = 0;
+    const struct sampler_grid g = sampler_grid_of(s);
+    const uint32_t cells = (uint32_t)g.n * (uint32_t)g.n;
     struct rng r = *rng; /* a local state: out may alias *rng, so GCC stored it per point */
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            double u, v;
-            rng_uniform_pair(&r, &u, &v);
-            out[count++] = (struct pt2){sampler_cell_coord(i, u, n), sampler_cell_coord(j, v, n)};
-        }
+    for (uint32_t c = 0; c < cells; c++)
+        out[c] = sampler_grid_point(&g, c, &r);
     *rng = r;
-    return count;
-}
-
-static size_t draw_random(struct sampler *s, struct rng *rng, struct pt2 *out)
-{
-    const int n = s->grid_n;
-    size_t count = 0;
-    for (size_t k = 0; k < (size_t)n * (size_t)n; k++) {
-        double u, v;
-        rng_uniform_pair(rng, &u, &v);
-        out[count++] = (struct pt2){u, v};
-    }
-    return count;
+    return cells;
 }
 
 /* the first n * n points of a sequence scrambled for this set: a (0,2)-net when n * n is a power
@@ -222,8 +193,8 @@ static const struct kind_row {
     size_t (*draw)(struct sampler *s, struct rng *rng, struct pt2 *out);
     size_t (*at)(struct sampler *s, const struct sampler_at *at, struct pt2 *out); /* NULL: draw */
 } kind_rows[] = {
-    {draw_uniform, NULL}, {draw_jitter, NULL},   {draw_random, NULL},  {draw_poisson, NULL},
-    {draw_sobol, NULL},   {at_drawn, at_halton}, {draw_pmj02bn, NULL}, {at_drawn, at_zsobol},
+    {draw_grid, NULL},  {draw_grid, NULL},     {draw_grid, NULL},    {draw_poisson, NULL},
+    {draw_sobol, NULL}, {at_drawn, at_halton}, {draw_pmj02bn, NULL}, {at_drawn, at_zsobol},
 };
 #define KIND_COUNT ((int)(sizeof kind_rows / sizeof kind_rows[0]))
 _Static_assert(KIND_COUNT == SAMPLER_ZSOBOL + 1, "a draw per kind");
@@ -268,7 +239,7 @@ size_t sampler_pool_set(const struct sampler *s, struct rng *rng, const struct p
     return s->pool_start[pick + 1] - s->pool_start[pick];
 }
 
-/* Draw the pool's toroidal sets from pool_seed into one packed array. */
+/* Draw the pool's toroidal sets from pool_seed into one packed array of points and their turns. */
 static int pool_fill(struct sampler *s, uint64_t pool_seed, struct err *e)
 {
     struct rng pool_rng;
@@ -285,25 +256,18 @@ static int pool_fill(struct sampler *s, uint64_t pool_seed, struct err *e)
             size_t grown = room ? room * 2 : count * (size_t)s->pool_size + count / 8 + 1;
             while (grown < used + count)
                 grown *= 2;
-            struct pt2 *bigger = realloc(s->pool_pts, grown * sizeof *bigger);
+            struct pool_point *bigger = realloc(s->pool, grown * sizeof *bigger);
             if (!bigger)
                 goto fail;
-            s->pool_pts = bigger;
+            s->pool = bigger;
             room = grown;
         }
-        memcpy(s->pool_pts + used, scratch, count * sizeof *scratch);
-        used += count;
+        for (size_t k = 0; k < count; k++, used++) {
+            s->pool[used].p = scratch[k];
+            v3_sincos_turn(scratch[k].y, &s->pool[used].turn.y, &s->pool[used].turn.x);
+        }
         s->pool_start[p + 1] = used;
     }
-    s->pool = malloc(used * sizeof *s->pool);
-    if (!s->pool)
-        goto fail;
-    for (size_t k = 0; k < used; k++) {
-        s->pool[k].p = s->pool_pts[k];
-        v3_sincos_turn(s->pool_pts[k].y, &s->pool[k].turn.y, &s->pool[k].turn.x);
-    }
-    free(s->pool_pts);
-    s->pool_pts = NULL;
     free(scratch);
     return 0;
 fail:

@@ -7,20 +7,15 @@
 #include "base/clock.h"
 #include "base/vec3.h"
 
-/* Indices a set of s shuffles: a grid's cells (made when taken), a pool set's or a sobol set's
-   points (by index); 0 for a fresh Poisson set, whose points are drawn and shuffled whole. */
-static size_t shuffled_indices(const struct sampler *s)
-{
-    return sampler_walk_of(s) == SAMPLER_WALK_WHOLE ? 0 : sampler_set_capacity(s);
-}
-
 int stream_source_init(struct stream_source *src, struct sampler *s, struct err *e)
 {
     *src = (struct stream_source){0};
     src->sampler = s;
     src->walk = sampler_walk_of(s);
     src->grid = sampler_grid_of(s);
-    src->cells = shuffled_indices(s);
+    /* a grid's cells (made when taken), a pool set's or a sobol set's points (by index); none for
+       a set drawn whole (a fresh Poisson set's points are shuffled themselves) */
+    src->cells = src->walk == SAMPLER_WALK_WHOLE ? 0 : sampler_set_capacity(s);
     if (src->cells == 0)
         return 0;
     src->identity = malloc(src->cells * sizeof *src->identity);

@@ -63,11 +63,8 @@ void stream_refill(const struct stream_source *src, struct stream *st, struct rn
    then cover only part of the light (a grid's first rows, a Poisson blob around its first
    point) and bias the image, so the set is consumed in a random order: a Fisher-Yates shuffle
    done lazily, one swap per point taken. Every point taken is then uniform, and the set still
-   stratifies what is taken of it. Uniform and jitter sets shuffle their cells and make a cell's
-   point when it is taken; a random set's points are independent, so any order of them is just
-   the next point; a pooled Poisson set shuffles indices into the pool and shifts a point when
-   it is taken; a sobol set shuffles indices and makes its point k when it is taken (a pixel
-   takes few of a light's set, BENCH.md "Sobol points"). Only a fresh Poisson set is drawn whole.
+   stratifies what is taken of it; what a kind shuffles (cells, indices, or points drawn whole) is
+   its enum sampler_walk's (sampler_kind.h; sobol's: BENCH.md "Sobol points").
    The next point of st from rng; when the sampler knows cos and sin of 2 pi y (a pooled set's
    turns, for a disk light's angle), *turn gets them and *turned 1. Inline with the grid kinds'
    cell point: a light point costs no call. */

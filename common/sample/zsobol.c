@@ -28,12 +28,6 @@ static inline const uint8_t *perm_of(uint64_t h)
     return perms4[(uint32_t)(h >> 40) % 24u];
 }
 
-/* digit's image under the permutation numbered by h. */
-static inline uint32_t permute4(uint64_t h, uint32_t digit)
-{
-    return perm_of(h)[digit];
-}
-
 /* The digits of raw at shifts from `from` down to `to` (step 2), each permuted by the hash of
    key (the seed and dimension, mixed once) and the digits above it. */
 static uint64_t permute_digits(uint64_t key, uint64_t raw, int from, int to)
@@ -41,7 +35,7 @@ static uint64_t permute_digits(uint64_t key, uint64_t raw, int from, int to)
     uint64_t out = 0;
     for (int shift = from; shift >= to; shift -= 2) {
         const uint32_t digit = (uint32_t)(raw >> shift) & 3u;
-        out |= (uint64_t)permute4(rng_mix64((raw >> (shift + 2)) ^ key), digit) << shift;
+        out |= (uint64_t)perm_of(rng_mix64((raw >> (shift + 2)) ^ key))[digit] << shift;
     }
     return out;
 }

@@ -1,6 +1,7 @@
 /* scene_load: validating a scene file and building the renderer's scene from it. */
 #include "scene_load.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,25 @@
 #include "scene_parse.h"
 #include "scene_objects.h"
 #include "yget.h"
+
+enum { LO_OPEN = 1, HI_OPEN = 2 }; /* number_in: an end left out of the range */
+
+/* The number at key of mapping n into *out when given (else *out kept), within [lo, hi] (an end
+   left out by open), else "key: must be <rule>, got v". 0, or -1 with L->e filled. */
+static int number_in(struct scene_parse *L, yaml_node_t *n, const char *key, double lo, double hi, int open,
+                     const char *rule, double *out)
+{
+    yaml_node_t *v = ymap_get(&L->d, n, key);
+    if (!v)
+        return 0;
+    if (yget_double(&L->d, v, key, out, L->e) < 0)
+        return -1;
+    const int below = open & LO_OPEN ? !(*out > lo) : *out < lo,
+              above = open & HI_OPEN ? !(*out < hi) : *out > hi;
+    if (below || above)
+        return ydoc_fail(&L->d, v, L->e, "%s: must be %s, got %g", key, rule, *out);
+    return 0;
+}
 
 static const char *const camera_keys[] = {"lookfrom",   "lookat",  "vup",    "vfov", "aperture",
                                           "focus_dist", "shutter", "aspect", NULL};
@@ -32,23 +52,10 @@ static int load_camera(struct scene_parse *L, yaml_node_t *n, struct scene_file 
         return -1;
     if ((v = ymap_get(&L->d, n, "vup")) && yget_vec3(&L->d, v, "vup", &c->vup, L->e) < 0)
         return -1;
-    v = ymap_get(&L->d, n, "vfov");
-    if (yget_double(&L->d, v, "vfov", &c->vfov_deg, L->e) < 0)
+    if (number_in(L, n, "vfov", 0, 180, LO_OPEN | HI_OPEN, "in (0, 180) degrees", &c->vfov_deg) < 0 ||
+        number_in(L, n, "aperture", 0, INFINITY, 0, ">= 0", &c->aperture) < 0 ||
+        number_in(L, n, "focus_dist", 0, INFINITY, LO_OPEN, "> 0", &c->focus_dist) < 0)
         return -1;
-    if (!(c->vfov_deg > 0 && c->vfov_deg < 180))
-        return ydoc_fail(&L->d, v, L->e, "vfov: must be in (0, 180) degrees, got %g", c->vfov_deg);
-    if ((v = ymap_get(&L->d, n, "aperture"))) {
-        if (yget_double(&L->d, v, "aperture", &c->aperture, L->e) < 0)
-            return -1;
-        if (c->aperture < 0)
-            return ydoc_fail(&L->d, v, L->e, "aperture: must be >= 0, got %g", c->aperture);
-    }
-    if ((v = ymap_get(&L->d, n, "focus_dist"))) {
-        if (yget_double(&L->d, v, "focus_dist", &c->focus_dist, L->e) < 0)
-            return -1;
-        if (!(c->focus_dist > 0))
-            return ydoc_fail(&L->d, v, L->e, "focus_dist: must be > 0, got %g", c->focus_dist);
-    }
     double sh[2] = {0, 1};
     if ((v = ymap_get(&L->d, n, "shutter"))) {
         if (yget_vec2(&L->d, v, "shutter", sh, L->e) < 0)
@@ -58,12 +65,8 @@ static int load_camera(struct scene_parse *L, yaml_node_t *n, struct scene_file 
     }
     c->shutter0 = sh[0];
     c->shutter1 = sh[1];
-    if ((v = ymap_get(&L->d, n, "aspect"))) {
-        if (yget_double(&L->d, v, "aspect", &out->aspect, L->e) < 0)
-            return -1;
-        if (!(out->aspect >= 0.01 && out->aspect <= 100))
-            return ydoc_fail(&L->d, v, L->e, "aspect: must be in [0.01, 100], got %g", out->aspect);
-    }
+    if (number_in(L, n, "aspect", 0.01, 100, 0, "in [0.01, 100]", &out->aspect) < 0)
+        return -1;
     struct camera probe;
     if (camera_init(&probe, c, out->aspect, L->e) < 0)
         return ydoc_fail(&L->d, n, L->e, "camera: %s", L->e->msg);
@@ -84,7 +87,6 @@ static const char *const image_keys[] = {"type", "file", NULL};
 
 static int load_checker(struct scene_parse *L, yaml_node_t *n, struct texture *t)
 {
-    yaml_node_t *v;
     if (ymap_check(&L->d, n, checker_keys, "checker texture", L->e) < 0)
         return -1;
     t->type = TEX_CHECKER;
@@ -96,28 +98,17 @@ static int load_checker(struct scene_parse *L, yaml_node_t *n, struct texture *t
     if (scene_parse_color(L, ymap_get(&L->d, n, "odd"), "odd", &t->odd) < 0 ||
         scene_parse_color(L, ymap_get(&L->d, n, "even"), "even", &t->even) < 0)
         return -1;
-    if ((v = ymap_get(&L->d, n, "scale"))) {
-        if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
-            return -1;
-        if (!(t->scale > 0))
-            return ydoc_fail(&L->d, v, L->e, "scale: must be > 0, got %g", t->scale);
-    }
-    return 0;
+    return number_in(L, n, "scale", 0, INFINITY, LO_OPEN, "> 0", &t->scale);
 }
 
 static int load_noise(struct scene_parse *L, yaml_node_t *n, struct texture *t)
 {
-    yaml_node_t *v;
     if (ymap_check(&L->d, n, noise_keys, "noise texture", L->e) < 0)
         return -1;
     t->type = TEX_NOISE;
     t->scale = 1;
-    if ((v = ymap_get(&L->d, n, "scale"))) {
-        if (yget_double(&L->d, v, "scale", &t->scale, L->e) < 0)
-            return -1;
-        if (!(t->scale > 0 && t->scale <= 1e6))
-            return ydoc_fail(&L->d, v, L->e, "scale: must be in (0, 1e6], got %g", t->scale);
-    }
+    if (number_in(L, n, "scale", 0, 1e6, LO_OPEN, "in (0, 1e6]", &t->scale) < 0)
+        return -1;
     if (scene_use_perlin(L->sc) < 0)
         return ydoc_fail(&L->d, n, L->e, "out of memory");
     return 0;
@@ -256,18 +247,9 @@ static int load_material(struct scene_parse *L, yaml_node_t *k, yaml_node_t *n)
         return ymap_missing(&L->d, n, "albedo", L->e, "albedo: missing in %s material \"%s\"", type,
                             yscalar(k));
     }
-    if ((v = ymap_get(&L->d, n, "fuzz"))) {
-        if (yget_double(&L->d, v, "fuzz", &m.fuzz, L->e) < 0)
-            return -1;
-        if (m.fuzz < 0 || m.fuzz > 1)
-            return ydoc_fail(&L->d, v, L->e, "fuzz: must be in [0, 1], got %g", m.fuzz);
-    }
-    if ((v = ymap_get(&L->d, n, "ior"))) {
-        if (yget_double(&L->d, v, "ior", &m.ior, L->e) < 0)
-            return -1;
-        if (!(m.ior >= 1 && m.ior <= 10))
-            return ydoc_fail(&L->d, v, L->e, "ior: must be in [1, 10], got %g", m.ior);
-    }
+    if (number_in(L, n, "fuzz", 0, 1, 0, "in [0, 1]", &m.fuzz) < 0 ||
+        number_in(L, n, "ior", 1, 10, 0, "in [1, 10]", &m.ior) < 0)
+        return -1;
     if (m.type == MAT_LIGHT) {
         if (!(v = ymap_get(&L->d, n, "emit")))
             return ymap_missing(&L->d, n, "emit", L->e, "emit: missing in light material \"%s\"", yscalar(k));

@@ -1,5 +1,4 @@
 /* scene_objects: the `objects:` list of a scene file, one primitive (or a few) per entry. */
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -112,14 +111,13 @@ static int load_rect(struct scene_parse *L, yaml_node_t *n, struct prim *p)
     p->type = PRIM_RECT;
     if (need(L, n, "plane", "rect", &v) < 0 || yget_string(&L->d, v, "plane", &plane, L->e) < 0)
         return -1;
-    if (!strcmp(plane, "yz"))
-        p->g.rect.axis = 0;
-    else if (!strcmp(plane, "xz"))
-        p->g.rect.axis = 1;
-    else if (!strcmp(plane, "xy"))
-        p->g.rect.axis = 2;
-    else
+    static const char *const planes[3] = {"yz", "xz", "xy"}; /* by normal axis */
+    int axis = 0;
+    while (axis < 3 && strcmp(plane, planes[axis]))
+        axis++;
+    if (axis == 3)
         return ydoc_fail(&L->d, v, L->e, "plane: must be xy, xz or yz, got \"%.20s\"", plane);
+    p->g.rect.axis = axis;
     double lo[2], hi[2];
     yaml_node_t *mn, *mx, *at;
     if (need(L, n, "min", "rect", &mn) < 0 || yget_vec2(&L->d, mn, "min", lo, L->e) < 0 ||

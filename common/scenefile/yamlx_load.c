@@ -78,7 +78,7 @@ static int check_events(struct ydoc *d, const uint8_t *data, size_t len, const c
         yaml_event_t ev;
         if (!yaml_parser_parse(&p, &ev))
             break;
-        const yaml_mark_t *m = &ev.start_mark;
+        const int line = (int)ev.start_mark.line + 1, col = (int)ev.start_mark.column + 1;
         const char *anchor = NULL;
         switch (ev.type) {
         case YAML_STREAM_END_EVENT:
@@ -89,8 +89,7 @@ static int check_events(struct ydoc *d, const uint8_t *data, size_t len, const c
             anchor = ev.type == YAML_SEQUENCE_START_EVENT ? (const char *)ev.data.sequence_start.anchor
                                                           : (const char *)ev.data.mapping_start.anchor;
             if (++depth > YDOC_MAX_DEPTH)
-                rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "nesting deeper than %d levels",
-                             YDOC_MAX_DEPTH);
+                rc = err_set(e, path, line, col, "nesting deeper than %d levels", YDOC_MAX_DEPTH);
             break;
         case YAML_SEQUENCE_END_EVENT:
         case YAML_MAPPING_END_EVENT:
@@ -102,25 +101,23 @@ static int check_events(struct ydoc *d, const uint8_t *data, size_t len, const c
                 if ((size_t)d->n_str_tagged == cap) {
                     size_t *grown = realloc(d->str_tagged, (cap = cap ? 2 * cap : 16) * sizeof *grown);
                     if (!grown) {
-                        rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "out of memory");
+                        rc = err_set(e, path, line, col, "out of memory");
                         break;
                     }
                     d->str_tagged = grown;
                 }
-                d->str_tagged[d->n_str_tagged++] = m->index;
+                d->str_tagged[d->n_str_tagged++] = ev.start_mark.index;
             }
             break;
         case YAML_ALIAS_EVENT:
             if (++aliases > YDOC_MAX_ALIASES)
-                rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "more than %d aliases",
-                             YDOC_MAX_ALIASES);
+                rc = err_set(e, path, line, col, "more than %d aliases", YDOC_MAX_ALIASES);
             break;
         default:
             break;
         }
         if (rc == 0 && anchor && ++anchors > YDOC_MAX_ANCHORS)
-            rc = err_set(e, path, (int)m->line + 1, (int)m->column + 1, "more than %d anchors (&name)",
-                         YDOC_MAX_ANCHORS);
+            rc = err_set(e, path, line, col, "more than %d anchors (&name)", YDOC_MAX_ANCHORS);
         yaml_event_delete(&ev);
     }
     yaml_parser_delete(&p);
