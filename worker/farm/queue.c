@@ -58,11 +58,7 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
              "%s/%s%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
              "remove that folder to replace them)",
              q->dir, name, at, job_name, q->name_dir, q->name_owner);
-    queue_log(name, "%s\n", msg);
-    queue_log(name, "name taken, moved to %s/\n", q->failed);
-    queue_file_log(q, name, log_name, msg, 0, 0);
-    queue_claim_file(q, name, q->failed);
-    queue_file_note_rc(q, 2);
+    queue_file_invalid(q, name, log_name, msg, "name taken", 0);
 }
 
 /* The summary line of a rendered job, and its warnings, as queue log lines. */
@@ -86,11 +82,7 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
     outdir_stem(name, stem, sizeof stem);
     if (open_rc < 0 || queue_inputs_check(q->dir, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
-        queue_log(name, "%s", msg);
-        queue_log(name, "invalid job, moved to %s/", q->failed);
-        queue_file_log(q, name, stem, msg, 0, 0);
-        queue_file_failed(q, name, stem);
-        queue_file_note_rc(q, 2);
+        queue_file_invalid(q, name, stem, msg, "invalid job", 1);
         return;
     }
     char folder[2048];
@@ -146,12 +138,14 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
     queue_file_note_rc(q, rc);
 }
 
-/* Read the claimed job DIR/running/name once, then render and file it. */
-static void process_claim(struct queue *q, const char *name)
+/* The claim in hand, DIR/running/name, read once, then rendered and filed, its lease renewed
+   throughout. */
+static void process(struct queue *q, const char *name)
 {
     char as[2048], from[4096], stem[256];
     struct jobfile f;
     struct err e = {0};
+    queue_claim_begin(q);
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
     outdir_stem(name, stem, sizeof stem);
     queue_claim_source(q, q->claim, from, sizeof from);
@@ -161,18 +155,7 @@ static void process_claim(struct queue *q, const char *name)
     else
         process_job(q, name, &f, rc, e);
     jobfile_close(&f);
-}
-
-/* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */
-static void process(struct queue *q, const char *name)
-{
-    q->lost = 0;
-    q->processes = 0;
-    q->name_owner[0] = 0;
-    queue_claim_renew_start(q);
-    process_claim(q, name);
-    queue_claim_renew_stop();
-    queue_file_clear_lost_stop(q);
+    queue_claim_end(q);
 }
 
 /* DIR/name can never run (queue_scan's unrunnable): moved to failed/ with a log saying why, by

@@ -59,11 +59,25 @@ static void on_renew_alarm(int sig)
     errno = saved;
 }
 
-void queue_claim_renew_start(struct queue *q)
+static void renew_stop(void)
+{
+    struct itimerval off;
+    memset(&off, 0, sizeof off);
+    setitimer(ITIMER_REAL, &off, NULL);
+    int fd = renew_fd;
+    renew_fd = -1;
+    if (fd >= 0)
+        close(fd);
+}
+
+void queue_claim_begin(struct queue *q)
 {
     char path[2100];
+    q->lost = 0;
+    q->processes = 0;
+    q->name_owner[0] = 0;
     snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
-    queue_claim_renew_stop();
+    renew_stop();
     /* a lease is a regular file: a FIFO or device put in its place must not block or feed us */
     int fd = open(path, O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
     struct stat st;
@@ -86,15 +100,17 @@ void queue_claim_renew_start(struct queue *q)
     setitimer(ITIMER_REAL, &it, NULL);
 }
 
-void queue_claim_renew_stop(void)
+void queue_claim_end(struct queue *q)
 {
-    struct itimerval off;
-    memset(&off, 0, sizeof off);
-    setitimer(ITIMER_REAL, &off, NULL);
-    int fd = renew_fd;
-    renew_fd = -1;
-    if (fd >= 0)
-        close(fd);
+    sigset_t block, old;
+    renew_stop();
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigprocmask(SIG_BLOCK, &block, &old);
+    if (*q->stop == QUEUE_STOP_CLAIM_LOST)
+        *q->stop = 0;
+    sigprocmask(SIG_SETMASK, &old, NULL);
 }
 
 int queue_claim_return(struct queue *q, const char *claim, const char *name)

@@ -43,14 +43,16 @@ struct queue {
    stops, writes nothing, and the worker goes on with the next job. */
 #define QUEUE_STOP_CLAIM_LOST (-1)
 
-/* Renew the claim in hand's lease from a timer (SIGALRM, SA_RESTART) as often as the tick would,
-   whatever the worker is doing: loading a scene (a big texture), encoding and writing an image,
-   waiting for its output folder's lock, between a compare job's renders. The tick alone ran only
-   while the render processes ran, so a long load or encode let the lease look dead and another worker
-   take a live claim. A stopped (SIGSTOP) or dead worker renews nothing. The lease file is held
-   open: a lease rewritten by a new holder is a new file that our timer does not touch. */
-void queue_claim_renew_start(struct queue *q);
-void queue_claim_renew_stop(void);
+/* Begin processing the claim in hand: its per-claim state reset, and its lease renewed from a timer
+   (SIGALRM, SA_RESTART) as often as the tick would, whatever the worker is doing (loading a scene,
+   encoding an image, waiting for a lock), since the tick runs only while render processes run. A
+   stopped (SIGSTOP) or dead worker renews nothing. The lease file is held open: a lease rewritten by
+   a new holder is a new file that our timer does not touch. */
+void queue_claim_begin(struct queue *q);
+
+/* End it: the timer stopped, and the tick's "claim lost" stop over (*q->stop is the queue's again;
+   a signal that came meanwhile is kept). */
+void queue_claim_end(struct queue *q);
 
 /* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
    so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */

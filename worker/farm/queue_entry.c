@@ -162,10 +162,7 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
     snprintf(from, sizeof from, "%s/study.job", sd);
     snprintf(as, sizeof as, "%s/%s.yaml", q->dir, stem);
     outdir_stem(ticket, log_name, sizeof log_name);
-    sq->lost = 0;
-    sq->processes = 0;
-    sq->name_owner[0] = 0;
-    queue_claim_renew_start(sq);
+    queue_claim_begin(sq);
     if (!queue_study_key_has(k, ticket)) { /* a claim recovered in running/ that the study never wrote */
         snprintf(msg, sizeof msg, "not an entry of the study (study.key names its entries)");
         rc = 2;
@@ -208,6 +205,5 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
         queue_file_failed(sq, ticket, "");
         queue_file_note_rc(q, rc);
     }
-    queue_claim_renew_stop();
-    queue_file_clear_lost_stop(sq);
+    queue_claim_end(sq);
 }

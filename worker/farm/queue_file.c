@@ -88,20 +88,6 @@ void queue_file_say_lost(struct queue *q, const char *name)
               q->claim);
 }
 
-/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
-   that came meanwhile is kept). */
-void queue_file_clear_lost_stop(struct queue *q)
-{
-    sigset_t block, old;
-    sigemptyset(&block);
-    sigaddset(&block, SIGINT);
-    sigaddset(&block, SIGTERM);
-    sigprocmask(SIG_BLOCK, &block, &old);
-    if (*q->stop == QUEUE_STOP_CLAIM_LOST)
-        *q->stop = 0;
-    sigprocmask(SIG_SETMASK, &old, NULL);
-}
-
 /* File the claim in hand in failed/: the temporaries a killed writer of an earlier attempt left in
    its output folder done/<job_name>/ go first (nothing else would remove them). */
 void queue_file_failed(struct queue *q, const char *name, const char *job_name)
@@ -126,6 +112,16 @@ int queue_file_aside(struct queue *q, const char *name, const char *label, const
     queue_file_log(q, name, stem, msg, 0, 0);
     queue_file_note_rc(q, 2);
     return 0;
+}
+
+void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg, const char *what,
+                        int clean)
+{
+    queue_log(name, "%s\n", msg);
+    queue_log(name, "%s, moved to %s/\n", what, q->failed);
+    queue_file_log(q, name, log_name, msg, 0, 0);
+    queue_file_failed(q, name, clean ? log_name : "");
+    queue_file_note_rc(q, 2);
 }
 
 void queue_file_note_rc(struct queue *q, int rc)

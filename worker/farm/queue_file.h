@@ -22,9 +22,6 @@ void queue_file_env_stop(struct queue *q, const char *name, const struct err *e)
    goes too. */
 void queue_file_say_lost(struct queue *q, const char *name);
 
-/* The tick's "claim lost" stop is over once its job is left: *q->stop is the queue's again. */
-void queue_file_clear_lost_stop(struct queue *q);
-
 /* File the claim in hand in failed/, removing the temporaries a killed writer left in the
    output folder done/<job_name>/ first. */
 void queue_file_failed(struct queue *q, const char *name, const char *job_name);
@@ -33,6 +30,12 @@ void queue_file_failed(struct queue *q, const char *name, const char *job_name);
    study), msg saying why: moved to failed/ with its log and one line (label names it), exit status 2
    noted. 0 when moved, -1 with errno when not (ENOENT: another worker filed it). */
 int queue_file_aside(struct queue *q, const char *name, const char *label, const char *msg);
+
+/* The claim in hand (file `name`) can never run, msg saying why: msg and "<what>, moved to failed/"
+   logged, failed/<log_name>.log written, the claim filed in failed/ (clean: after removing the
+   temporaries in done/<log_name>/, as queue_file_failed), exit status 2 noted. */
+void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg, const char *what,
+                        int clean);
 
 /* Keep the worst exit status seen (q->worst). */
 void queue_file_note_rc(struct queue *q, int rc);
