@@ -114,8 +114,8 @@ int queue_file_aside(struct queue *q, const char *name, const char *label, const
     return 0;
 }
 
-void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg, const char *what,
-                        int clean)
+void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg,
+                        const char *what, int clean)
 {
     queue_log(name, "%s\n", msg);
     queue_log(name, "%s, moved to %s/\n", what, q->failed);

@@ -34,8 +34,8 @@ int queue_file_aside(struct queue *q, const char *name, const char *label, const
 /* The claim in hand (file `name`) can never run, msg saying why: msg and "<what>, moved to failed/"
    logged, failed/<log_name>.log written, the claim filed in failed/ (clean: after removing the
    temporaries in done/<log_name>/, as queue_file_failed), exit status 2 noted. */
-void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg, const char *what,
-                        int clean);
+void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg,
+                        const char *what, int clean);
 
 /* Keep the worst exit status seen (q->worst). */
 void queue_file_note_rc(struct queue *q, int rc);

@@ -18,39 +18,10 @@
 #include "queue_status.h"
 #include "queue_studies.h"
 
-static int by_name(const void *a, const void *b)
+/* scandir's filter: the job files X.yaml. */
+static int is_job_entry(const struct dirent *de)
 {
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* The job files X.yaml in folder dir (malloc'd names, by name) into *out; their count, or -1 when
-   dir exists but cannot be read (errno). */
-static int failed_files(const char *dir, char ***out)
-{
-    DIR *d = opendir(dir);
-    *out = NULL;
-    if (!d)
-        return errno == ENOENT ? 0 : -1;
-    struct dirent *de;
-    int n = 0;
-    while ((de = readdir(d))) {
-        if (!queue_scan_is_job_file(de->d_name))
-            continue;
-        char **g = realloc(*out, (size_t)(n + 1) * sizeof *g);
-        char *name = strdup(de->d_name);
-        if (!g || !name) {
-            free(name);
-            if (g)
-                *out = g;
-            break;
-        }
-        *out = g;
-        g[n++] = name;
-    }
-    closedir(d);
-    if (n > 1)
-        qsort(*out, (size_t)n, sizeof **out, by_name);
-    return n;
+    return queue_scan_is_job_file(de->d_name);
 }
 
 /* The job file failed/<name>.log's "job:" line names (a failed job's log is named for its job's
@@ -154,14 +125,17 @@ int queue_requeue_main(int argc, char **argv)
     snprintf(done, sizeof done, "%s/done", dir);
     if (all_failed) {
         struct queue_studies_entry *studies;
-        char **files = NULL;
-        int nf = failed_files(failed, &files);
+        struct dirent **files = NULL;
+        int nf =
+            scandir(failed, &files, is_job_entry, alphasort); /* by name: no setlocale, so strcmp's order */
+        if (nf < 0 && errno == ENOENT)
+            nf = 0;
         if (nf < 0) {
             err_print("worker requeue: %s: cannot be read: %s\n", failed, strerror(errno));
             return 2;
         }
         for (int i = 0; i < nf; i++) {
-            if (requeue_one(dir, "failed", files[i], 1) < 0)
+            if (requeue_one(dir, "failed", files[i]->d_name, 1) < 0)
                 rc = 2;
             free(files[i]);
         }
