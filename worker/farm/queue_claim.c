@@ -132,14 +132,6 @@ int queue_claim_return(struct queue *q, const char *claim, const char *name)
     return -1;
 }
 
-int queue_claim_name_waiting(struct queue *q, const char *name)
-{
-    char back[2048];
-    struct stat st;
-    snprintf(back, sizeof back, "%s/%s", q->dir, name);
-    return lstat(back, &st) == 0;
-}
-
 /* Take the dead claim at `claim` over where it lies, under its recovery lock: our lease replaces
    its holder's and it becomes the claim in hand. 0 when it is ours. */
 static int adopt_claim(struct queue *q, const char *claim, const char *name)
@@ -197,7 +189,7 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
         /* judged again under the lock: another recoverer may have moved it meanwhile */
         if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
             int returned = 0;
-            if (!queue_claim_name_waiting(q, de->d_name)) {
+            if (!queue_scan_has(q->dir, de->d_name)) {
                 returned = queue_claim_return(q, claim, de->d_name) == 0;
                 if (returned)
                     queue_log(de->d_name, "returned to the queue: %s\n", why);

@@ -58,10 +58,6 @@ void queue_claim_end(struct queue *q);
    so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */
 int queue_claim_return(struct queue *q, const char *claim, const char *name);
 
-/* A job of the claim's file name waits in DIR again (re-submitted while the claim ran): the claim
-   cannot go back without replacing it, nor can it wait there, since that name stays claimed. */
-int queue_claim_name_waiting(struct queue *q, const char *name);
-
 /* Return every dead worker's claim to the queue. A dead claim whose file name waits in DIR again
    is taken over in place instead (its name into `adopted`, and 1: process it now), so that both
    jobs are rendered, this one first. */

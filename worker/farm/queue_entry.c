@@ -181,7 +181,7 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
     }
     study_fan_free(&f);
     jobfile_close(&jf);
-    if ((sq->lost || !queue_claim_still_ours(sq)) && !queue_study_has(sd, "study.job"))
+    if ((sq->lost || !queue_claim_still_ours(sq)) && !queue_scan_has(sd, "study.job"))
         queue_log(label,
                   "the study's folder %s/ was removed while it rendered (cancelled): render stopped, "
                   "nothing written\n",

@@ -43,7 +43,7 @@ static void give_back(struct queue *q, const char *name, const char *why)
     }
     if (!queue_claim_still_ours(q))
         ;
-    else if (queue_claim_name_waiting(q, name))
+    else if (queue_scan_has(q->dir, name)) /* it cannot go back without replacing it */
         queue_log(name, "%s; a newer %s waits in the queue, so this one stays in %s/ for the next worker\n",
                   why, name, q->running);
     else if (queue_claim_return(q, q->claim, name) == 0)

@@ -152,8 +152,7 @@ int queue_requeue_main(int argc, char **argv)
             continue;
         if (!seen_dir++)
             continue;
-        char file[256], path[2048];
-        struct stat st;
+        char file[256];
         size_t len = strlen(argv[i]);
         if (strchr(argv[i], '/') || len == 0 || len > 200) {
             err_print("worker requeue: %s: give a job file's name (X or X.yaml), not a path\n", argv[i]);
@@ -167,18 +166,11 @@ int queue_requeue_main(int argc, char **argv)
             rc = study == -2 ? 2 : rc;
             continue;
         }
-        const char *from = NULL;
-        snprintf(path, sizeof path, "%s/%s", failed, file);
-        if (lstat(path, &st) == 0)
-            from = "failed";
-        snprintf(path, sizeof path, "%s/%s", done, file);
-        if (!from && lstat(path, &st) == 0)
-            from = "done";
-        if (!from &&
-            file_of_log(failed, argv[i], file, sizeof file) == 0) { /* a job's name: its log's file */
-            snprintf(path, sizeof path, "%s/%s", failed, file);
-            from = lstat(path, &st) == 0 ? "failed" : NULL;
-        }
+        const char *from = queue_scan_has(failed, file) ? "failed"
+                           : queue_scan_has(done, file) ? "done"
+                                                        : NULL;
+        if (!from && file_of_log(failed, argv[i], file, sizeof file) == 0) /* a job's name: its log's file */
+            from = queue_scan_has(failed, file) ? "failed" : NULL;
         if (!from) {
             err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
             rc = 2;

@@ -67,7 +67,7 @@ static void read_plan(const char *sd, int workers, struct queue_studies_entry *x
     int left = 0;
     for (int i = 0; i < p.n; i++) {
         snprintf(path, sizeof path, "%s/done", sd);
-        if (queue_study_has(path, p.e[i].name)) {
+        if (queue_scan_has(path, p.e[i].name)) {
             x->cpu_done_s += p.e[i].est_cpu_s;
         } else {
             x->cpu_left_s += p.e[i].est_cpu_s;

@@ -47,14 +47,6 @@ static void discard(const struct queue *q, const char *sd, const char *stem)
         queue_study_remove_tree(gone);
 }
 
-int queue_study_has(const char *dir, const char *file)
-{
-    char path[2600];
-    struct stat st;
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    return lstat(path, &st) == 0;
-}
-
 int queue_study_write_entry(const char *dir, const char *entry, const char *what, struct err *e)
 {
     char path[2600], text[512];

@@ -26,7 +26,4 @@ void queue_study_remove_tree(const char *path);
 /* Write the entry file dir/entry (a comment saying what it renders) atomically. 0 or -1 with e. */
 int queue_study_write_entry(const char *dir, const char *entry, const char *what, struct err *e);
 
-/* 1 when dir/file exists (as any kind of entry). */
-int queue_study_has(const char *dir, const char *file);
-
 #endif
