@@ -17,6 +17,7 @@
 #include "queue_inputs.h"
 #include "queue_log.h"
 #include "queue_scan.h"
+#include "queue_status.h"
 #include "queue_drain.h"
 #include "queue_study.h"
 #include "job/outdir.h"
@@ -269,33 +270,26 @@ static const char *subfolder_hint(const char *dir, char *hint, size_t n)
     return hint;
 }
 
-/* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
-   it): its parent is itself. A queue there would make /running, /done and /failed. */
-static int is_root_dir(const char *dir, const struct stat *st)
+/* Whether directory dir is "/" under any spelling ("/", "//", "/tmp/..", a link to it): its parent
+   is itself. A queue there would make /running, /done and /failed. */
+static int is_root_dir(const char *dir)
 {
     char up[1100];
-    struct stat pst;
+    struct stat st, pst;
     snprintf(up, sizeof up, "%s/..", dir);
-    return stat(up, &pst) == 0 && pst.st_dev == st->st_dev && pst.st_ino == st->st_ino;
+    return stat(dir, &st) == 0 && stat(up, &pst) == 0 && pst.st_dev == st.st_dev && pst.st_ino == st.st_ino;
 }
 
 int queue_main(const struct queue_opts *qo)
 {
     struct queue q;
-    struct stat st;
     struct err e;
     memset(&q, 0, sizeof q);
     q.o = qo;
     q.stop = &queue_stop;
-    snprintf(q.dir, sizeof q.dir, "%s", qo->dir);
-    for (size_t n = strlen(q.dir); n > 1 && q.dir[n - 1] == '/'; n--)
-        q.dir[n - 1] = 0;
-    int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
-    if (bad) {
-        err_print("worker: --queue %s: %s\n", q.dir, strerror(bad));
+    if (queue_status_dir("worker: --queue ", qo->dir, q.dir, sizeof q.dir))
         return 2;
-    }
-    if (is_root_dir(q.dir, &st)) {
+    if (is_root_dir(q.dir)) {
         err_print("worker: --queue %s: is the file system's root directory; give the queue a directory of "
                   "its own (running/, done/ and failed/ are made in it)\n",
                   q.dir);

@@ -119,7 +119,7 @@ int queue_requeue_main(int argc, char **argv)
         return 2;
     }
     char dir[1024], failed[1100], done[1100];
-    if (queue_status_dir("requeue", dir_arg, dir, sizeof dir))
+    if (queue_status_dir("worker requeue: ", dir_arg, dir, sizeof dir))
         return 2;
     snprintf(failed, sizeof failed, "%s/failed", dir);
     snprintf(done, sizeof done, "%s/done", dir);

@@ -176,7 +176,7 @@ static int queue_status_is_queue(const char *dir)
     return empty;
 }
 
-int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
+int queue_status_dir(const char *who, const char *arg, char *out, size_t n)
 {
     struct stat st;
     snprintf(out, n, "%s", arg);
@@ -184,7 +184,7 @@ int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
         out[l - 1] = 0;
     int bad = stat(out, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
     if (bad)
-        err_print("worker %s: %s: %s\n", cmd, out, strerror(bad));
+        err_print("%s%s: %s\n", who, out, strerror(bad));
     return bad ? 2 : 0;
 }
 
@@ -214,7 +214,7 @@ int queue_status_main(int argc, char **argv)
         err_print("worker status: expected a queue directory; usage: worker status DIR [--json]\n");
         return 2;
     }
-    if (queue_status_dir("status", dir_arg, dir, sizeof dir))
+    if (queue_status_dir("worker status: ", dir_arg, dir, sizeof dir))
         return 2;
     struct queue_scan scan = {0};
     struct queue_waiting *w = NULL;

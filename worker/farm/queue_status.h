@@ -17,8 +17,8 @@ int queue_status_main(int argc, char **argv);
    valid-looking one, else the file's stem. */
 void queue_status_job_name(const char *path, const char *file, char *out, size_t n);
 
-/* DIR (arg) without trailing slashes into out; 0, or 2 after one line ("worker CMD: ...") when it
-   is no directory. */
-int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n);
+/* DIR (arg) without trailing slashes into out; 0, or 2 after one line ("<who>DIR: reason", who
+   such as "worker status: ") when it is no directory. */
+int queue_status_dir(const char *who, const char *arg, char *out, size_t n);
 
 #endif
