@@ -86,10 +86,8 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
         queue_file_invalid(q, name, stem, msg, "invalid job", 1);
         return;
     }
-    char folder[2048];
-    snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
-    if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
-        snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
+    snprintf(q->name_dir, sizeof q->name_dir, "%s/%s", q->done, j.name);
+    if (queue_claim_name_owner(q, q->name_dir, q->name_owner, sizeof q->name_owner)) {
         name_taken(q, name, stem, job_at(&j, "name"));
         return;
     }
@@ -219,19 +217,19 @@ static int spreading(struct queue *q)
         q->spreading[0] = 0;
         return 0;
     }
-    int known = strcmp(q->spreading, name) ? read_holder(q, name, &holder) : 0;
+    if (!strcmp(q->spreading, name)) /* said already */
+        return 1;
+    int known = read_holder(q, name, &holder);
     if (known == 1) /* spread (or filed) while we looked: the next scan sees what became of it */
         return 1;
-    if (strcmp(q->spreading, name) != 0) {
-        if (known == 0)
-            queue_log(name,
-                      "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its "
-                      "renders\n",
-                      holder.pid, holder.host[0] ? holder.host : "?");
-        else
-            queue_log(name, "a compare job claimed (its lease not yet written): waiting for it to be spread, "
-                            "to take its renders\n");
-    }
+    if (known == 0)
+        queue_log(name,
+                  "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its "
+                  "renders\n",
+                  holder.pid, holder.host[0] ? holder.host : "?");
+    else
+        queue_log(name, "a compare job claimed (its lease not yet written): waiting for it to be spread, to "
+                        "take its renders\n");
     snprintf(q->spreading, sizeof q->spreading, "%s", name);
     return 1;
 }
@@ -323,11 +321,9 @@ int queue_main(const struct queue_opts *qo)
         for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
             int got = queue_claim_take(&q, w[i].name);
             unusable = got < 0;
-            if (got == 0) {
-                q.took++;
+            took = got == 0;
+            if (took)
                 process(&q, w[i].name);
-                took = 1;
-            }
         }
         free(w);
         if (unusable) {
@@ -335,7 +331,7 @@ int queue_main(const struct queue_opts *qo)
             break;
         }
         q.waits_requeue[0] = 0;
-        int study = took ? 1 : queue_drain_work(&q);
+        int study = took ? 1 : queue_drain_work(&q); /* 1: a job or a study's entry processed */
         q.took += study == 1;
         if (study == 1)
             continue;
