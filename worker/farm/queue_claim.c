@@ -263,12 +263,6 @@ static int still_held(void *arg)
     return queue_claim_still_ours(arg);
 }
 
-int queue_claim_gone(struct queue *q)
-{
-    struct stat st;
-    return lstat(q->claim, &st) < 0 && errno == ENOENT;
-}
-
 /* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while
    we were stopped or hung) writes nothing, lest it replace the new holder's outputs; nor does one
    whose output folder `dir` holds the outputs of another job file of the queue with the same

@@ -78,9 +78,6 @@ void queue_claim_source(const struct queue *q, const char *claim, char *out, siz
    the claim away while we rendered (a lease judged dead elsewhere). */
 int queue_claim_still_ours(struct queue *q);
 
-/* The claim's file is no longer in running/: removed or moved away while we held it (cancelled). */
-int queue_claim_gone(struct queue *q);
-
 /* The run options of a render of the claim in hand: the worker's --run options, outputs into
    DIR/done, q's stop flag, and the claim's tick, may_write and still_held on held (q itself, or
    the study queue whose render entry is held). */

@@ -18,12 +18,13 @@ void queue_file_stopped(struct queue *q, const char *name);
    failed/: one misconfigured worker must not empty the queue. */
 void queue_file_env_stop(struct queue *q, const char *name, const struct err *e);
 
-/* The claim in hand is no longer ours (cancelled, or taken over): one log line; a cancel's lease
-   goes too. */
+/* The claim in hand is no longer ours and its render wrote nothing: one log line. Its file gone from
+   running/ with our lease still beside it is a user's cancel (rm or mv): our lease goes too; else
+   another worker took it over (a recovery removes our lease first). */
 void queue_file_say_lost(struct queue *q, const char *name);
 
-/* File the claim in hand in failed/, removing the temporaries a killed writer left in the
-   output folder done/<job_name>/ first. */
+/* File the claim in hand in failed/, removing first the temporaries a killed writer of an earlier
+   attempt left in its output folder done/<job_name>/ (nothing else would). */
 void queue_file_failed(struct queue *q, const char *name, const char *job_name);
 
 /* The waiting entry q->dir/name that can never be claimed (not a regular file, or no entry of a
