@@ -139,10 +139,7 @@ static int read_side(const char *claim, const char *suffix, struct lease *l, dou
         return -1;
     text[n] = 0;
     int fields = 0;
-    for (char *line = text, *next; line && *line; line = next) {
-        next = strchr(line, '\n');
-        if (next)
-            *next++ = 0;
+    for (char *save = NULL, *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         fields += sscanf(line, "host %255s", l->host) == 1;
         fields += sscanf(line, "pid %ld", &l->pid) == 1;
         fields += sscanf(line, "start %lld", &l->start) == 1;

@@ -159,13 +159,9 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
 static int queue_status_is_queue(const char *dir)
 {
     const char *own[] = {"running", "done", "failed", QUEUE_STUDY_DIR};
-    for (int i = 0; i < 4; i++) {
-        char path[1200];
-        struct stat st;
-        snprintf(path, sizeof path, "%s/%s", dir, own[i]);
-        if (lstat(path, &st) == 0)
+    for (int i = 0; i < 4; i++)
+        if (queue_scan_has(dir, own[i]))
             return 1;
-    }
     DIR *d = opendir(dir);
     struct dirent *de;
     int empty = 1;
