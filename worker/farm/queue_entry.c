@@ -14,7 +14,6 @@
 #include "queue_file.h"
 #include "queue_log.h"
 #include "queue_part.h"
-#include "queue_study.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
 
