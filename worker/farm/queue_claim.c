@@ -182,18 +182,16 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
         if (!queue_scan_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
-        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
-            continue;
-        if (lease_lock(claim, q->o->lease_timeout_s) < 0)
+        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why) ||
+            lease_lock(claim, q->o->lease_timeout_s) < 0)
             continue;
         /* judged again under the lock: another recoverer may have moved it meanwhile */
         if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
-            int returned = 0;
-            if (!queue_scan_has(q->dir, de->d_name)) {
-                returned = queue_claim_return(q, claim, de->d_name) == 0;
-                if (returned)
-                    queue_log(de->d_name, "returned to the queue: %s\n", why);
-            } /* not returned: a new file of that name waits (or arrived just now) */
+            int returned =
+                !queue_scan_has(q->dir, de->d_name) && queue_claim_return(q, claim, de->d_name) == 0;
+            if (returned)
+                queue_log(de->d_name, "returned to the queue: %s\n", why);
+            /* not returned: a new file of that name waits (or arrived just now) */
             if (!returned && adopt_claim(q, claim, de->d_name) == 0) {
                 queue_log(de->d_name, "taken over in %s/ (a newer %s waits in the queue): %s\n", q->running,
                           de->d_name, why);
