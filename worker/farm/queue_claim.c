@@ -19,6 +19,7 @@
 #include "job/sidecar.h"
 #include "queue_log.h"
 
+/* Seconds between lease renewals: one, or a quarter of --lease-timeout when that is shorter. */
 static double renew_every_s(const struct queue *q)
 {
     return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
@@ -27,11 +28,9 @@ static double renew_every_s(const struct queue *q)
 /* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
 static volatile sig_atomic_t renew_fd = -1;
 
-/* The render's progress callback (run_opts.tick, every 5 ms): about once a second, or four times per
-   --lease-timeout when that is shorter, see that the claim is still ours (its file still in
-   running/, its lease still ours) and renew the lease with the render's progress; a claim gone (the job file
-   removed or moved away: the job was cancelled) or taken over sets q->lost and *q->stop to
-   QUEUE_STOP_CLAIM_LOST, which stops the render. */
+/* The render's progress callback (run_opts.tick, every 5 ms): every renew_every_s, the lease renewed
+   with the render's progress while the claim is still ours; a claim gone (cancelled) or taken over
+   sets q->lost and *q->stop to QUEUE_STOP_CLAIM_LOST, which stops the render. */
 static void tick(void *arg, int rows_done, int rows, double elapsed_s)
 {
     struct queue *q = arg;

@@ -44,10 +44,9 @@ struct queue {
 #define QUEUE_STOP_CLAIM_LOST (-1)
 
 /* Begin processing the claim in hand: its per-claim state reset, and its lease renewed from a timer
-   (SIGALRM, SA_RESTART) as often as the tick would, whatever the worker is doing (loading a scene,
-   encoding an image, waiting for a lock), since the tick runs only while render processes run. A
-   stopped (SIGSTOP) or dead worker renews nothing. The lease file is held open: a lease rewritten by
-   a new holder is a new file that our timer does not touch. */
+   (SIGALRM) whatever the worker is doing (loading a scene, encoding an image, waiting for a lock): the
+   tick runs only while render processes run. A stopped or dead worker renews nothing; the lease file
+   is held open, so a lease rewritten by a new holder is not touched. */
 void queue_claim_begin(struct queue *q);
 
 /* End it: the timer stopped, and the tick's "claim lost" stop over (*q->stop is the queue's again;

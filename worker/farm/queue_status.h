@@ -1,6 +1,5 @@
-/* queue_status: `worker status DIR` and `worker requeue DIR`, a queue seen and steered by people
-   (SPEC "Additions"). They read the queue's files and move job files with rename(); they never
-   take a claim, so they run beside live workers. */
+/* queue_status: `worker status DIR`, a queue seen by people (SPEC "Additions"): it reads the
+   queue's files and never takes a claim, so it runs beside live workers. */
 #ifndef QUEUE_STATUS_H
 #define QUEUE_STATUS_H
 
