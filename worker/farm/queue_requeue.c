@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/err.h"
@@ -62,11 +61,10 @@ static void remove_log(const char *dir, const char *log_name, const char *file)
 static int requeue_one(const char *dir, const char *from, const char *file, int every)
 {
     char src[2048], dst[2048], running[2048];
-    struct stat st;
     snprintf(src, sizeof src, "%s/%s/%s", dir, from, file);
     snprintf(dst, sizeof dst, "%s/%s", dir, file);
-    snprintf(running, sizeof running, "%s/running/%s", dir, file);
-    if (lstat(running, &st) == 0) {
+    snprintf(running, sizeof running, "%s/running", dir);
+    if (queue_scan_has(running, file)) {
         err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
         return -1;
     }
@@ -126,8 +124,8 @@ int queue_requeue_main(int argc, char **argv)
     if (all_failed) {
         struct queue_studies_entry *studies;
         struct dirent **files = NULL;
-        int nf =
-            scandir(failed, &files, is_job_entry, alphasort); /* by name: no setlocale, so strcmp's order */
+        /* by name: alphasort's strcoll is strcmp, the program setting no locale */
+        int nf = scandir(failed, &files, is_job_entry, alphasort);
         if (nf < 0 && errno == ENOENT)
             nf = 0;
         if (nf < 0) {
