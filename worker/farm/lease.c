@@ -13,14 +13,9 @@
 #include "base/clock.h"
 #include "base/fileio.h"
 
-static void side_path(const char *claim, const char *suffix, char *out, size_t n)
+static double seconds(const struct timespec *t)
 {
-    snprintf(out, n, "%s%s", claim, suffix);
-}
-
-static double mtime_s(const struct stat *st)
-{
-    return st->st_mtim.tv_sec + st->st_mtim.tv_nsec * 1e-9;
+    return t->tv_sec + t->tv_nsec * 1e-9;
 }
 
 /* This process's pid space into out: the boot id (one per kernel boot, so per machine) and the pid
@@ -87,7 +82,7 @@ void lease_progress(int fd, int rows_done, int rows, double render_s, int attemp
 int lease_write(const char *claim, const struct lease *l, struct err *e)
 {
     char path[2048], text[1024];
-    side_path(claim, ".lease", path, sizeof path);
+    snprintf(path, sizeof path, "%s.lease", claim);
     int n = snprintf(text, sizeof text, "host %s\npid %ld\nstart %lld\ntoken %s\n", l->host, l->pid, l->start,
                      l->token);
     if (l->pids[0]) /* optional: leases of earlier versions lack it */
@@ -129,7 +124,7 @@ static void sane(struct lease *l)
 static int read_side(const char *claim, const char *suffix, struct lease *l, double *age_s)
 {
     char path[2048], text[LEASE_MAX_BYTES + 1];
-    side_path(claim, suffix, path, sizeof path);
+    snprintf(path, sizeof path, "%s%s", claim, suffix);
     memset(l, 0, sizeof *l);
     /* never blocks (a FIFO), never follows a link (to /dev/zero), never reads more than a lease holds */
     int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
@@ -144,10 +139,7 @@ static int read_side(const char *claim, const char *suffix, struct lease *l, dou
         return -1;
     text[n] = 0;
     int fields = 0;
-    for (char *line = text, *next; line && *line; line = next) {
-        next = strchr(line, '\n');
-        if (next)
-            *next++ = 0;
+    for (char *save = NULL, *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         fields += sscanf(line, "host %255s", l->host) == 1;
         fields += sscanf(line, "pid %ld", &l->pid) == 1;
         fields += sscanf(line, "start %lld", &l->start) == 1;
@@ -160,7 +152,7 @@ static int read_side(const char *claim, const char *suffix, struct lease *l, dou
     if (fields != 4)
         return -1;
     sane(l);
-    *age_s = clock_s(CLOCK_REALTIME) - mtime_s(&st);
+    *age_s = clock_s(CLOCK_REALTIME) - seconds(&st.st_mtim);
     return 0;
 }
 
@@ -190,8 +182,8 @@ static int lock_holder_gone(const char *claim, double claimed_s, struct lease *l
     char path[2048];
     struct stat st;
     double age;
-    side_path(claim, ".lock", path, sizeof path);
-    if (lstat(path, &st) < 0 || mtime_s(&st) < claimed_s || read_side(claim, ".lock", l, &age) < 0)
+    snprintf(path, sizeof path, "%s.lock", claim);
+    if (lstat(path, &st) < 0 || seconds(&st.st_mtim) < claimed_s || read_side(claim, ".lock", l, &age) < 0)
         return 0; /* a lock older than the claim is an earlier claim's, left behind */
     return l->pid == (long)getpid() ? l->broke : holder_gone(l);
 }
@@ -199,14 +191,14 @@ static int lock_holder_gone(const char *claim, double claimed_s, struct lease *l
 void lease_touch(const char *claim)
 {
     char path[2048];
-    side_path(claim, ".lease", path, sizeof path);
+    snprintf(path, sizeof path, "%s.lease", claim);
     (void)utimensat(AT_FDCWD, path, NULL, 0);
 }
 
 void lease_remove(const char *claim)
 {
     char path[2048];
-    side_path(claim, ".lease", path, sizeof path);
+    snprintf(path, sizeof path, "%s.lease", claim);
     unlink(path);
 }
 
@@ -218,14 +210,14 @@ int lease_stale(const char *claim, double timeout_s, char *why, size_t n)
     struct lease l;
     double age;
     if (lease_read(claim, &l, &age) < 0) {
-        if (lock_holder_gone(claim, cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9, &l)) {
+        if (lock_holder_gone(claim, seconds(&cst.st_ctim), &l)) {
             snprintf(
                 why, n,
                 "its worker is gone, killed while it filed the claim (no lease; its lock's holder gone)");
             return 1;
         }
         /* rename() sets the claim's ctime: the time it was claimed */
-        double claimed = clock_s(CLOCK_REALTIME) - (cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9);
+        double claimed = clock_s(CLOCK_REALTIME) - seconds(&cst.st_ctim);
         snprintf(why, n, "claimed %.0f s ago and no lease was written", claimed);
         return claimed > timeout_s;
     }
@@ -241,9 +233,9 @@ int lease_lock(const char *claim, double timeout_s)
 {
     char path[2048], text[1024];
     struct stat cst;
-    double claimed_s = stat(claim, &cst) == 0 ? cst.st_ctim.tv_sec + cst.st_ctim.tv_nsec * 1e-9 : 0;
+    double claimed_s = stat(claim, &cst) == 0 ? seconds(&cst.st_ctim) : 0;
     int broke = 0;
-    side_path(claim, ".lock", path, sizeof path);
+    snprintf(path, sizeof path, "%s.lock", claim);
     for (int attempt = 0; attempt < 2; attempt++) {
         int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
         if (fd >= 0) { /* it names its holder, as a lease does, so that its holder's death is seen at once */
@@ -261,7 +253,7 @@ int lease_lock(const char *claim, double timeout_s)
         if (errno != EEXIST || stat(path, &st) < 0)
             break;
         broke = lock_holder_gone(claim, claimed_s, &l);
-        if (!broke && !(clock_s(CLOCK_REALTIME) - mtime_s(&st) > timeout_s))
+        if (!broke && !(clock_s(CLOCK_REALTIME) - seconds(&st.st_mtim) > timeout_s))
             break;
         unlink(path); /* its holder died mid-recovery or mid-filing: broken, and tried once more */
     }
@@ -280,13 +272,13 @@ void lease_sweep_locks(const char *running, const char *name, double timeout_s)
     snprintf(path, sizeof path, "%s/%s", running, name);
     if (lstat(claim, &st) == 0 || lstat(path, &st) < 0 || !S_ISREG(st.st_mode))
         return;
-    if (clock_s(CLOCK_REALTIME) - mtime_s(&st) > timeout_s || lock_holder_gone(claim, 0, &l))
+    if (clock_s(CLOCK_REALTIME) - seconds(&st.st_mtim) > timeout_s || lock_holder_gone(claim, 0, &l))
         unlink(path);
 }
 
 void lease_unlock(const char *claim)
 {
     char path[2048];
-    side_path(claim, ".lock", path, sizeof path);
+    snprintf(path, sizeof path, "%s.lock", claim);
     unlink(path);
 }

@@ -17,6 +17,7 @@
 #include "queue_inputs.h"
 #include "queue_log.h"
 #include "queue_scan.h"
+#include "queue_status.h"
 #include "queue_drain.h"
 #include "queue_study.h"
 #include "job/outdir.h"
@@ -58,11 +59,7 @@ static void name_taken(struct queue *q, const char *name, const char *log_name, 
              "%s/%s%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or "
              "remove that folder to replace them)",
              q->dir, name, at, job_name, q->name_dir, q->name_owner);
-    queue_log(name, "%s\n", msg);
-    queue_log(name, "name taken, moved to %s/\n", q->failed);
-    queue_file_log(q, name, log_name, msg, 0, 0);
-    queue_claim_file(q, name, q->failed);
-    queue_file_note_rc(q, 2);
+    queue_file_invalid(q, name, log_name, msg, "name taken", 0);
 }
 
 /* The summary line of a rendered job, and its warnings, as queue log lines. */
@@ -86,17 +83,11 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
     outdir_stem(name, stem, sizeof stem);
     if (open_rc < 0 || queue_inputs_check(q->dir, &j, &e) < 0) { /* invalid: never retried */
         err_format(&e, msg, sizeof msg);
-        queue_log(name, "%s", msg);
-        queue_log(name, "invalid job, moved to %s/", q->failed);
-        queue_file_log(q, name, stem, msg, 0, 0);
-        queue_file_failed(q, name, stem);
-        queue_file_note_rc(q, 2);
+        queue_file_invalid(q, name, stem, msg, "invalid job", 1);
         return;
     }
-    char folder[2048];
-    snprintf(folder, sizeof folder, "%s/%s", q->done, j.name);
-    if (queue_claim_name_owner(q, folder, q->name_owner, sizeof q->name_owner)) {
-        snprintf(q->name_dir, sizeof q->name_dir, "%s", folder);
+    snprintf(q->name_dir, sizeof q->name_dir, "%s/%s", q->done, j.name);
+    if (queue_claim_name_owner(q, q->name_dir, q->name_owner, sizeof q->name_owner)) {
         name_taken(q, name, stem, job_at(&j, "name"));
         return;
     }
@@ -146,12 +137,14 @@ static void process_job(struct queue *q, const char *name, const struct jobfile 
     queue_file_note_rc(q, rc);
 }
 
-/* Read the claimed job DIR/running/name once, then render and file it. */
-static void process_claim(struct queue *q, const char *name)
+/* The claim in hand, DIR/running/name, read once, then rendered and filed, its lease renewed
+   throughout. */
+static void process(struct queue *q, const char *name)
 {
     char as[2048], from[4096], stem[256];
     struct jobfile f;
     struct err e = {0};
+    queue_claim_begin(q);
     snprintf(as, sizeof as, "%s/%s", q->dir, name);
     outdir_stem(name, stem, sizeof stem);
     queue_claim_source(q, q->claim, from, sizeof from);
@@ -161,18 +154,7 @@ static void process_claim(struct queue *q, const char *name)
     else
         process_job(q, name, &f, rc, e);
     jobfile_close(&f);
-}
-
-/* The claim in hand, DIR/running/name, from start to filed, its lease renewed throughout. */
-static void process(struct queue *q, const char *name)
-{
-    q->lost = 0;
-    q->processes = 0;
-    q->name_owner[0] = 0;
-    queue_claim_renew_start(q);
-    process_claim(q, name);
-    queue_claim_renew_stop();
-    queue_file_clear_lost_stop(q);
+    queue_claim_end(q);
 }
 
 /* DIR/name can never run (queue_scan's unrunnable): moved to failed/ with a log saying why, by
@@ -235,19 +217,19 @@ static int spreading(struct queue *q)
         q->spreading[0] = 0;
         return 0;
     }
-    int known = strcmp(q->spreading, name) ? read_holder(q, name, &holder) : 0;
+    if (!strcmp(q->spreading, name)) /* said already */
+        return 1;
+    int known = read_holder(q, name, &holder);
     if (known == 1) /* spread (or filed) while we looked: the next scan sees what became of it */
         return 1;
-    if (strcmp(q->spreading, name) != 0) {
-        if (known == 0)
-            queue_log(name,
-                      "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its "
-                      "renders\n",
-                      holder.pid, holder.host[0] ? holder.host : "?");
-        else
-            queue_log(name, "a compare job claimed (its lease not yet written): waiting for it to be spread, "
-                            "to take its renders\n");
-    }
+    if (known == 0)
+        queue_log(name,
+                  "a compare job claimed by pid %ld on %s: waiting for it to be spread, to take its "
+                  "renders\n",
+                  holder.pid, holder.host[0] ? holder.host : "?");
+    else
+        queue_log(name, "a compare job claimed (its lease not yet written): waiting for it to be spread, to "
+                        "take its renders\n");
     snprintf(q->spreading, sizeof q->spreading, "%s", name);
     return 1;
 }
@@ -286,33 +268,26 @@ static const char *subfolder_hint(const char *dir, char *hint, size_t n)
     return hint;
 }
 
-/* Whether directory dir (its stat st) is "/" under any spelling ("/", "//", "/tmp/..", a link to
-   it): its parent is itself. A queue there would make /running, /done and /failed. */
-static int is_root_dir(const char *dir, const struct stat *st)
+/* Whether directory dir is "/" under any spelling ("/", "//", "/tmp/..", a link to it): its parent
+   is itself. A queue there would make /running, /done and /failed. */
+static int is_root_dir(const char *dir)
 {
     char up[1100];
-    struct stat pst;
+    struct stat st, pst;
     snprintf(up, sizeof up, "%s/..", dir);
-    return stat(up, &pst) == 0 && pst.st_dev == st->st_dev && pst.st_ino == st->st_ino;
+    return stat(dir, &st) == 0 && stat(up, &pst) == 0 && pst.st_dev == st.st_dev && pst.st_ino == st.st_ino;
 }
 
 int queue_main(const struct queue_opts *qo)
 {
     struct queue q;
-    struct stat st;
     struct err e;
     memset(&q, 0, sizeof q);
     q.o = qo;
     q.stop = &queue_stop;
-    snprintf(q.dir, sizeof q.dir, "%s", qo->dir);
-    for (size_t n = strlen(q.dir); n > 1 && q.dir[n - 1] == '/'; n--)
-        q.dir[n - 1] = 0;
-    int bad = stat(q.dir, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
-    if (bad) {
-        err_print("worker: --queue %s: %s\n", q.dir, strerror(bad));
+    if (queue_status_dir("worker: --queue ", qo->dir, q.dir, sizeof q.dir))
         return 2;
-    }
-    if (is_root_dir(q.dir, &st)) {
+    if (is_root_dir(q.dir)) {
         err_print("worker: --queue %s: is the file system's root directory; give the queue a directory of "
                   "its own (running/, done/ and failed/ are made in it)\n",
                   q.dir);
@@ -346,11 +321,9 @@ int queue_main(const struct queue_opts *qo)
         for (int i = 0; i < n && !took && !unusable && !queue_stop; i++) {
             int got = queue_claim_take(&q, w[i].name);
             unusable = got < 0;
-            if (got == 0) {
-                q.took++;
+            took = got == 0;
+            if (took)
                 process(&q, w[i].name);
-                took = 1;
-            }
         }
         free(w);
         if (unusable) {
@@ -358,7 +331,7 @@ int queue_main(const struct queue_opts *qo)
             break;
         }
         q.waits_requeue[0] = 0;
-        int study = took ? 1 : queue_drain_work(&q);
+        int study = took ? 1 : queue_drain_work(&q); /* 1: a job or a study's entry processed */
         q.took += study == 1;
         if (study == 1)
             continue;

@@ -19,6 +19,7 @@
 #include "job/sidecar.h"
 #include "queue_log.h"
 
+/* Seconds between lease renewals: one, or a quarter of --lease-timeout when that is shorter. */
 static double renew_every_s(const struct queue *q)
 {
     return q->o->lease_timeout_s / 4 < 1.0 ? q->o->lease_timeout_s / 4 : 1.0;
@@ -27,11 +28,9 @@ static double renew_every_s(const struct queue *q)
 /* The open lease file the renewal timer touches (-1: none); a signal handler's only way to it. */
 static volatile sig_atomic_t renew_fd = -1;
 
-/* The render's progress callback (run_opts.tick, every 5 ms): about once a second, or four times per
-   --lease-timeout when that is shorter, see that the claim is still ours (its file still in
-   running/, its lease still ours) and renew the lease with the render's progress; a claim gone (the job file
-   removed or moved away: the job was cancelled) or taken over sets q->lost and *q->stop to
-   QUEUE_STOP_CLAIM_LOST, which stops the render. */
+/* The render's progress callback (run_opts.tick, every 5 ms): every renew_every_s, the lease renewed
+   with the render's progress while the claim is still ours; a claim gone (cancelled) or taken over
+   sets q->lost and *q->stop to QUEUE_STOP_CLAIM_LOST, which stops the render. */
 static void tick(void *arg, int rows_done, int rows, double elapsed_s)
 {
     struct queue *q = arg;
@@ -59,11 +58,25 @@ static void on_renew_alarm(int sig)
     errno = saved;
 }
 
-void queue_claim_renew_start(struct queue *q)
+static void renew_stop(void)
+{
+    struct itimerval off;
+    memset(&off, 0, sizeof off);
+    setitimer(ITIMER_REAL, &off, NULL);
+    int fd = renew_fd;
+    renew_fd = -1;
+    if (fd >= 0)
+        close(fd);
+}
+
+void queue_claim_begin(struct queue *q)
 {
     char path[2100];
+    q->lost = 0;
+    q->processes = 0;
+    q->name_owner[0] = 0;
     snprintf(path, sizeof path, "%s.lease", q->claim); /* lease.c's name for the claim's lease */
-    queue_claim_renew_stop();
+    renew_stop();
     /* a lease is a regular file: a FIFO or device put in its place must not block or feed us */
     int fd = open(path, O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
     struct stat st;
@@ -86,15 +99,17 @@ void queue_claim_renew_start(struct queue *q)
     setitimer(ITIMER_REAL, &it, NULL);
 }
 
-void queue_claim_renew_stop(void)
+void queue_claim_end(struct queue *q)
 {
-    struct itimerval off;
-    memset(&off, 0, sizeof off);
-    setitimer(ITIMER_REAL, &off, NULL);
-    int fd = renew_fd;
-    renew_fd = -1;
-    if (fd >= 0)
-        close(fd);
+    sigset_t block, old;
+    renew_stop();
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    sigprocmask(SIG_BLOCK, &block, &old);
+    if (*q->stop == QUEUE_STOP_CLAIM_LOST)
+        *q->stop = 0;
+    sigprocmask(SIG_SETMASK, &old, NULL);
 }
 
 int queue_claim_return(struct queue *q, const char *claim, const char *name)
@@ -114,14 +129,6 @@ int queue_claim_return(struct queue *q, const char *claim, const char *name)
         (void)lease_write(claim, &l, &e);
     errno = saved;
     return -1;
-}
-
-int queue_claim_name_waiting(struct queue *q, const char *name)
-{
-    char back[2048];
-    struct stat st;
-    snprintf(back, sizeof back, "%s/%s", q->dir, name);
-    return lstat(back, &st) == 0;
 }
 
 /* Take the dead claim at `claim` over where it lies, under its recovery lock: our lease replaces
@@ -174,18 +181,16 @@ int queue_claim_recover(struct queue *q, char *adopted, size_t n)
         if (!queue_scan_is_job_file(de->d_name))
             continue;
         snprintf(claim, sizeof claim, "%s/%s", q->running, de->d_name);
-        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why))
-            continue;
-        if (lease_lock(claim, q->o->lease_timeout_s) < 0)
+        if (!lease_stale(claim, q->o->lease_timeout_s, why, sizeof why) ||
+            lease_lock(claim, q->o->lease_timeout_s) < 0)
             continue;
         /* judged again under the lock: another recoverer may have moved it meanwhile */
         if (lease_stale(claim, q->o->lease_timeout_s, why, sizeof why)) {
-            int returned = 0;
-            if (!queue_claim_name_waiting(q, de->d_name)) {
-                returned = queue_claim_return(q, claim, de->d_name) == 0;
-                if (returned)
-                    queue_log(de->d_name, "returned to the queue: %s\n", why);
-            } /* not returned: a new file of that name waits (or arrived just now) */
+            int returned =
+                !queue_scan_has(q->dir, de->d_name) && queue_claim_return(q, claim, de->d_name) == 0;
+            if (returned)
+                queue_log(de->d_name, "returned to the queue: %s\n", why);
+            /* not returned: a new file of that name waits (or arrived just now) */
             if (!returned && adopt_claim(q, claim, de->d_name) == 0) {
                 queue_log(de->d_name, "taken over in %s/ (a newer %s waits in the queue): %s\n", q->running,
                           de->d_name, why);
@@ -253,12 +258,6 @@ int queue_claim_still_ours(struct queue *q)
 static int still_held(void *arg)
 {
     return queue_claim_still_ours(arg);
-}
-
-int queue_claim_gone(struct queue *q)
-{
-    struct stat st;
-    return lstat(q->claim, &st) < 0 && errno == ENOENT;
 }
 
 /* run_opts.may_write: a render whose claim was taken over meanwhile (our lease judged dead while

@@ -43,22 +43,19 @@ struct queue {
    stops, writes nothing, and the worker goes on with the next job. */
 #define QUEUE_STOP_CLAIM_LOST (-1)
 
-/* Renew the claim in hand's lease from a timer (SIGALRM, SA_RESTART) as often as the tick would,
-   whatever the worker is doing: loading a scene (a big texture), encoding and writing an image,
-   waiting for its output folder's lock, between a compare job's renders. The tick alone ran only
-   while the render processes ran, so a long load or encode let the lease look dead and another worker
-   take a live claim. A stopped (SIGSTOP) or dead worker renews nothing. The lease file is held
-   open: a lease rewritten by a new holder is a new file that our timer does not touch. */
-void queue_claim_renew_start(struct queue *q);
-void queue_claim_renew_stop(void);
+/* Begin processing the claim in hand: its per-claim state reset, and its lease renewed from a timer
+   (SIGALRM) whatever the worker is doing (loading a scene, encoding an image, waiting for a lock): the
+   tick runs only while render processes run. A stopped or dead worker renews nothing; the lease file
+   is held open, so a lease rewritten by a new holder is not touched. */
+void queue_claim_begin(struct queue *q);
+
+/* End it: the timer stopped, and the tick's "claim lost" stop over (*q->stop is the queue's again;
+   a signal that came meanwhile is kept). */
+void queue_claim_end(struct queue *q);
 
 /* Move the claim at `claim` (file `name`) back to DIR under its recovery lock; the lease goes first
    so that nobody can mistake a fresh claim's lease for the old one. 0 when moved. */
 int queue_claim_return(struct queue *q, const char *claim, const char *name);
-
-/* A job of the claim's file name waits in DIR again (re-submitted while the claim ran): the claim
-   cannot go back without replacing it, nor can it wait there, since that name stays claimed. */
-int queue_claim_name_waiting(struct queue *q, const char *name);
 
 /* Return every dead worker's claim to the queue. A dead claim whose file name waits in DIR again
    is taken over in place instead (its name into `adopted`, and 1: process it now), so that both
@@ -79,9 +76,6 @@ void queue_claim_source(const struct queue *q, const char *claim, char *out, siz
 /* Still ours? The claim's file is still in running/ (not removed or moved away) and nobody took
    the claim away while we rendered (a lease judged dead elsewhere). */
 int queue_claim_still_ours(struct queue *q);
-
-/* The claim's file is no longer in running/: removed or moved away while we held it (cancelled). */
-int queue_claim_gone(struct queue *q);
 
 /* The run options of a render of the claim in hand: the worker's --run options, outputs into
    DIR/done, q's stop flag, and the claim's tick, may_write and still_held on held (q itself, or

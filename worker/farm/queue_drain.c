@@ -66,12 +66,6 @@ static void file_damaged(struct queue *q, const char *sd, const char *stem, cons
     queue_file_note_rc(q, 2);
 }
 
-/* 1 when folder dir holds a claim of an entry of the study (its record k). */
-static int any_claim(const char *dir, const struct study_key *k)
-{
-    return earliest_in(dir, k) != '~';
-}
-
 /* The study's waiting entries (this scan's w, n of them; the unrunnable in sq->scan) that can never
    be claimed go to its failed/ with a log: what is not a regular file, and what the study never wrote
    (its record k). The others are left in w; their count. */
@@ -145,20 +139,11 @@ static int work_on(struct queue *q, const char *sd, const char *stem, const stru
         file_damaged(q, sd, stem, damaged);
     /* a claim held elsewhere: its worker may die before filing it, and a --once worker that left
        would leave it to nobody; it is taken back once judged dead (pid gone, or --lease-timeout) */
-    if (result == 0 && any_claim(sq.running, k))
+    if (result == 0 && earliest_in(sq.running, k) != '~')
         result = 2;
     if (result == 0 && blocked)
         snprintf(q->waits_requeue, sizeof q->waits_requeue, "%s", stem);
     return result;
-}
-
-/* The recovery lock of a finished study's gather entry, left by a worker killed just after filing
-   it (the locks of its other entries were swept at the gather). */
-static void sweep_locks(const struct queue *q, const char *sd)
-{
-    char dir[2400];
-    snprintf(dir, sizeof dir, "%s/running", sd);
-    lease_sweep_locks(dir, QUEUE_STUDY_GATHER ".lock", q->o->lease_timeout_s);
 }
 
 int queue_drain_work(struct queue *q)
@@ -190,8 +175,9 @@ int queue_drain_work(struct queue *q)
         case QUEUE_STUDY_DAMAGED:
             file_damaged(q, sd, de->d_name, why);
             break;
-        case QUEUE_STUDY_FINISHED:
-            sweep_locks(q, sd);
+        case QUEUE_STUDY_FINISHED: /* the gather's recovery lock, left by a worker killed after filing it */
+            snprintf(why, sizeof why, "%s/running", sd);
+            lease_sweep_locks(why, QUEUE_STUDY_GATHER ".lock", q->o->lease_timeout_s);
             break;
         case QUEUE_STUDY_SPREADING: /* its claim is in running/, to be filed in job/ or recovered */
             break;

@@ -14,7 +14,6 @@
 #include "queue_file.h"
 #include "queue_log.h"
 #include "queue_part.h"
-#include "queue_study.h"
 #include "study/run/jobfile_run.h"
 #include "study/run/study_fan.h"
 
@@ -162,10 +161,7 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
     snprintf(from, sizeof from, "%s/study.job", sd);
     snprintf(as, sizeof as, "%s/%s.yaml", q->dir, stem);
     outdir_stem(ticket, log_name, sizeof log_name);
-    sq->lost = 0;
-    sq->processes = 0;
-    sq->name_owner[0] = 0;
-    queue_claim_renew_start(sq);
+    queue_claim_begin(sq);
     if (!queue_study_key_has(k, ticket)) { /* a claim recovered in running/ that the study never wrote */
         snprintf(msg, sizeof msg, "not an entry of the study (study.key names its entries)");
         rc = 2;
@@ -184,7 +180,7 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
     }
     study_fan_free(&f);
     jobfile_close(&jf);
-    if ((sq->lost || !queue_claim_still_ours(sq)) && !queue_study_has(sd, "study.job"))
+    if ((sq->lost || !queue_claim_still_ours(sq)) && !queue_scan_has(sd, "study.job"))
         queue_log(label,
                   "the study's folder %s/ was removed while it rendered (cancelled): render stopped, "
                   "nothing written\n",
@@ -208,6 +204,5 @@ void queue_entry_process(struct queue *q, struct queue *sq, const char *sd, cons
         queue_file_failed(sq, ticket, "");
         queue_file_note_rc(q, rc);
     }
-    queue_claim_renew_stop();
-    queue_file_clear_lost_stop(sq);
+    queue_claim_end(sq);
 }

@@ -2,9 +2,9 @@
 #include "queue_file.h"
 
 #include <errno.h>
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "base/fileio.h"
@@ -12,7 +12,6 @@
 #include "lease.h"
 #include "queue_log.h"
 
-/* failed/<name>.log: what went wrong, the signal, the attempts. */
 void queue_file_log(struct queue *q, const char *name, const char *job_name, const char *error, int sig,
                     int attempts)
 {
@@ -43,7 +42,7 @@ static void give_back(struct queue *q, const char *name, const char *why)
     }
     if (!queue_claim_still_ours(q))
         ;
-    else if (queue_claim_name_waiting(q, name))
+    else if (queue_scan_has(q->dir, name)) /* it cannot go back without replacing it */
         queue_log(name, "%s; a newer %s waits in the queue, so this one stays in %s/ for the next worker\n",
                   why, name, q->running);
     else if (queue_claim_return(q, q->claim, name) == 0)
@@ -71,15 +70,13 @@ void queue_file_env_stop(struct queue *q, const char *name, const struct err *e)
     queue_file_note_rc(q, 2);
 }
 
-/* The claim in hand is no longer ours: the render (stopped by the tick, or finished) wrote nothing.
-   One line. Its file gone from running/ with our lease still beside it is a user's cancel (rm or mv
-   of DIR/running/X.yaml): our lease goes too. Otherwise another worker took it over (a recovery
-   removes our lease first, then returns the claim to the queue or adopts it). */
 void queue_file_say_lost(struct queue *q, const char *name)
 {
     struct lease l;
+    struct stat st;
     double age;
-    if (!queue_claim_gone(q) || lease_read(q->claim, &l, &age) < 0 || strcmp(l.token, q->lease.token)) {
+    if (lstat(q->claim, &st) == 0 || errno != ENOENT || lease_read(q->claim, &l, &age) < 0 ||
+        strcmp(l.token, q->lease.token)) {
         queue_log(name, "the claim was taken over (our lease was judged dead); leaving the job to it\n");
         return;
     }
@@ -88,22 +85,6 @@ void queue_file_say_lost(struct queue *q, const char *name)
               q->claim);
 }
 
-/* The tick's "claim lost" stop is over once its job is left: the flag is the queue's again (a signal
-   that came meanwhile is kept). */
-void queue_file_clear_lost_stop(struct queue *q)
-{
-    sigset_t block, old;
-    sigemptyset(&block);
-    sigaddset(&block, SIGINT);
-    sigaddset(&block, SIGTERM);
-    sigprocmask(SIG_BLOCK, &block, &old);
-    if (*q->stop == QUEUE_STOP_CLAIM_LOST)
-        *q->stop = 0;
-    sigprocmask(SIG_SETMASK, &old, NULL);
-}
-
-/* File the claim in hand in failed/: the temporaries a killed writer of an earlier attempt left in
-   its output folder done/<job_name>/ go first (nothing else would remove them). */
 void queue_file_failed(struct queue *q, const char *name, const char *job_name)
 {
     char dir[2048];
@@ -126,6 +107,16 @@ int queue_file_aside(struct queue *q, const char *name, const char *label, const
     queue_file_log(q, name, stem, msg, 0, 0);
     queue_file_note_rc(q, 2);
     return 0;
+}
+
+void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg,
+                        const char *what, int clean)
+{
+    queue_log(name, "%s\n", msg);
+    queue_log(name, "%s, moved to %s/\n", what, q->failed);
+    queue_file_log(q, name, log_name, msg, 0, 0);
+    queue_file_failed(q, name, clean ? log_name : "");
+    queue_file_note_rc(q, 2);
 }
 
 void queue_file_note_rc(struct queue *q, int rc)

@@ -18,21 +18,25 @@ void queue_file_stopped(struct queue *q, const char *name);
    failed/: one misconfigured worker must not empty the queue. */
 void queue_file_env_stop(struct queue *q, const char *name, const struct err *e);
 
-/* The claim in hand is no longer ours (cancelled, or taken over): one log line; a cancel's lease
-   goes too. */
+/* The claim in hand is no longer ours and its render wrote nothing: one log line. Its file gone from
+   running/ with our lease still beside it is a user's cancel (rm or mv): our lease goes too; else
+   another worker took it over (a recovery removes our lease first). */
 void queue_file_say_lost(struct queue *q, const char *name);
 
-/* The tick's "claim lost" stop is over once its job is left: *q->stop is the queue's again. */
-void queue_file_clear_lost_stop(struct queue *q);
-
-/* File the claim in hand in failed/, removing the temporaries a killed writer left in the
-   output folder done/<job_name>/ first. */
+/* File the claim in hand in failed/, removing first the temporaries a killed writer of an earlier
+   attempt left in its output folder done/<job_name>/ (nothing else would). */
 void queue_file_failed(struct queue *q, const char *name, const char *job_name);
 
 /* The waiting entry q->dir/name that can never be claimed (not a regular file, or no entry of a
    study), msg saying why: moved to failed/ with its log and one line (label names it), exit status 2
    noted. 0 when moved, -1 with errno when not (ENOENT: another worker filed it). */
 int queue_file_aside(struct queue *q, const char *name, const char *label, const char *msg);
+
+/* The claim in hand (file `name`) can never run, msg saying why: msg and "<what>, moved to failed/"
+   logged, failed/<log_name>.log written, the claim filed in failed/ (clean: after removing the
+   temporaries in done/<log_name>/, as queue_file_failed), exit status 2 noted. */
+void queue_file_invalid(struct queue *q, const char *name, const char *log_name, const char *msg,
+                        const char *what, int clean);
 
 /* Keep the worst exit status seen (q->worst). */
 void queue_file_note_rc(struct queue *q, int rc);

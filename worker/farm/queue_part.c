@@ -13,12 +13,6 @@
 #include "job/sidecar.h"
 #include "merge.h"
 
-/* Which render of its study entry x is. */
-static struct study_fan_which which(const struct spread_entry *x)
-{
-    return (struct study_fan_which){.k = x->k, .kind = x->kind, .index = x->index, .half = x->half};
-}
-
 /* 1 when j's merged image(s) and sidecar are in place and made from j's inputs. */
 static int image_current(const struct job *j, const struct run_opts *jo)
 {
@@ -41,7 +35,7 @@ static int merged(struct study_fan *f, const struct spread_entry *x, const struc
     char dir[2048];
     struct run_opts ao;
     struct err ignored;
-    struct study_fan_which w = which(x);
+    struct study_fan_which w = {.k = x->k, .kind = x->kind, .index = x->index, .half = x->half};
     return study_fan_render_job(f, &w, jo, &again, &ao, dir, sizeof dir, &ignored) == 3;
 }
 
@@ -112,7 +106,7 @@ int queue_part_render(struct study_fan *f, const struct spread_entry *x, const s
         snprintf(what, sizeof what, "no such render");
     struct job j;
     struct run_opts jo;
-    struct study_fan_which w = which(x);
+    struct study_fan_which w = {.k = x->k, .kind = x->kind, .index = x->index, .half = x->half};
     if (x->kind == STUDY_FAN_REFERENCE && study_fan_render_job(f, &w, o, &j, &jo, dir, sizeof dir, e) == 3) {
         snprintf(msg, n, "%s: in the cache already, not rendered", what);
         return 0;

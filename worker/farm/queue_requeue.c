@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/err.h"
@@ -18,39 +17,10 @@
 #include "queue_status.h"
 #include "queue_studies.h"
 
-static int by_name(const void *a, const void *b)
+/* scandir's filter: the job files X.yaml. */
+static int is_job_entry(const struct dirent *de)
 {
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* The job files X.yaml in folder dir (malloc'd names, by name) into *out; their count, or -1 when
-   dir exists but cannot be read (errno). */
-static int failed_files(const char *dir, char ***out)
-{
-    DIR *d = opendir(dir);
-    *out = NULL;
-    if (!d)
-        return errno == ENOENT ? 0 : -1;
-    struct dirent *de;
-    int n = 0;
-    while ((de = readdir(d))) {
-        if (!queue_scan_is_job_file(de->d_name))
-            continue;
-        char **g = realloc(*out, (size_t)(n + 1) * sizeof *g);
-        char *name = strdup(de->d_name);
-        if (!g || !name) {
-            free(name);
-            if (g)
-                *out = g;
-            break;
-        }
-        *out = g;
-        g[n++] = name;
-    }
-    closedir(d);
-    if (n > 1)
-        qsort(*out, (size_t)n, sizeof **out, by_name);
-    return n;
+    return queue_scan_is_job_file(de->d_name);
 }
 
 /* The job file failed/<name>.log's "job:" line names (a failed job's log is named for its job's
@@ -91,11 +61,10 @@ static void remove_log(const char *dir, const char *log_name, const char *file)
 static int requeue_one(const char *dir, const char *from, const char *file, int every)
 {
     char src[2048], dst[2048], running[2048];
-    struct stat st;
     snprintf(src, sizeof src, "%s/%s/%s", dir, from, file);
     snprintf(dst, sizeof dst, "%s/%s", dir, file);
-    snprintf(running, sizeof running, "%s/running/%s", dir, file);
-    if (lstat(running, &st) == 0) {
+    snprintf(running, sizeof running, "%s/running", dir);
+    if (queue_scan_has(running, file)) {
         err_print("worker requeue: %s: a job of that file name is running; left in %s/\n", file, from);
         return -1;
     }
@@ -148,20 +117,23 @@ int queue_requeue_main(int argc, char **argv)
         return 2;
     }
     char dir[1024], failed[1100], done[1100];
-    if (queue_status_dir("requeue", dir_arg, dir, sizeof dir))
+    if (queue_status_dir("worker requeue: ", dir_arg, dir, sizeof dir))
         return 2;
     snprintf(failed, sizeof failed, "%s/failed", dir);
     snprintf(done, sizeof done, "%s/done", dir);
     if (all_failed) {
         struct queue_studies_entry *studies;
-        char **files = NULL;
-        int nf = failed_files(failed, &files);
+        struct dirent **files = NULL;
+        /* by name: alphasort's strcoll is strcmp, the program setting no locale */
+        int nf = scandir(failed, &files, is_job_entry, alphasort);
+        if (nf < 0 && errno == ENOENT)
+            nf = 0;
         if (nf < 0) {
             err_print("worker requeue: %s: cannot be read: %s\n", failed, strerror(errno));
             return 2;
         }
         for (int i = 0; i < nf; i++) {
-            if (requeue_one(dir, "failed", files[i], 1) < 0)
+            if (requeue_one(dir, "failed", files[i]->d_name, 1) < 0)
                 rc = 2;
             free(files[i]);
         }
@@ -178,8 +150,7 @@ int queue_requeue_main(int argc, char **argv)
             continue;
         if (!seen_dir++)
             continue;
-        char file[256], path[2048];
-        struct stat st;
+        char file[256];
         size_t len = strlen(argv[i]);
         if (strchr(argv[i], '/') || len == 0 || len > 200) {
             err_print("worker requeue: %s: give a job file's name (X or X.yaml), not a path\n", argv[i]);
@@ -193,18 +164,11 @@ int queue_requeue_main(int argc, char **argv)
             rc = study == -2 ? 2 : rc;
             continue;
         }
-        const char *from = NULL;
-        snprintf(path, sizeof path, "%s/%s", failed, file);
-        if (lstat(path, &st) == 0)
-            from = "failed";
-        snprintf(path, sizeof path, "%s/%s", done, file);
-        if (!from && lstat(path, &st) == 0)
-            from = "done";
-        if (!from &&
-            file_of_log(failed, argv[i], file, sizeof file) == 0) { /* a job's name: its log's file */
-            snprintf(path, sizeof path, "%s/%s", failed, file);
-            from = lstat(path, &st) == 0 ? "failed" : NULL;
-        }
+        const char *from = queue_scan_has(failed, file) ? "failed"
+                           : queue_scan_has(done, file) ? "done"
+                                                        : NULL;
+        if (!from && file_of_log(failed, argv[i], file, sizeof file) == 0) /* a job's name: its log's file */
+            from = queue_scan_has(failed, file) ? "failed" : NULL;
         if (!from) {
             err_print("worker requeue: %s: not in %s/failed/ or %s/done/\n", file, dir, dir);
             rc = 2;

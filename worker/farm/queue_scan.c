@@ -19,6 +19,14 @@ int queue_scan_is_job_file(const char *s)
     return s[0] != '.' && n > 5 && strcmp(s + n - 5, ".yaml") == 0;
 }
 
+int queue_scan_has(const char *dir, const char *name)
+{
+    char path[2600];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return lstat(path, &st) == 0;
+}
+
 /* A waiting job's priority: its `priority:` key, 0 when absent or unreadable (loading the job
    later reports the error). */
 static int peek_priority(const char *path)

@@ -30,6 +30,9 @@ struct queue_scan {
 /* 1 when a directory entry's name is a job file's: X.yaml, not hidden (temporaries start with a dot). */
 int queue_scan_is_job_file(const char *name);
 
+/* 1 when dir/name exists (as any kind of entry, a link not followed). */
+int queue_scan_has(const char *dir, const char *name);
+
 /* The regular files DIR/X.yaml in claim order into *out (malloc'd, the caller frees it); their
    count, or -1 when dir cannot be read (errno says why). The entries named X.yaml that can never
    run (a FIFO, a directory, a socket, a dangling or looping symbolic link) go to s->unrunnable. */

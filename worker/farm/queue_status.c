@@ -83,24 +83,19 @@ static void read_sidecar(const char *done, struct status_entry *x)
 /* The first line of the error in failed/<name>.log (or <stem>.log) into x->reason. */
 static void read_reason(const char *failed, struct status_entry *x)
 {
-    char path[2048];
+    char path[2048], stem[256];
     uint8_t *text = NULL;
     size_t len;
     struct err e;
-    snprintf(path, sizeof path, "%s/%s.log", failed, x->name);
-    if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0) {
-        char stem[256];
-        outdir_stem(x->file, stem, sizeof stem);
-        snprintf(path, sizeof path, "%s/%s.log", failed, stem);
-        if (fileio_read_all(path, 1 << 20, &text, &len, &e) < 0)
-            text = NULL;
+    outdir_stem(x->file, stem, sizeof stem);
+    const char *log_names[] = {x->name, stem};
+    for (int i = 0; i < 2 && !text; i++) { /* fileio_read_all leaves text NULL when it fails */
+        snprintf(path, sizeof path, "%s/%s.log", failed, log_names[i]);
+        (void)fileio_read_all(path, 1 << 20, &text, &len, &e);
     }
     const char *s = text ? strstr((const char *)text, "error: ") : NULL;
-    if (s) {
-        s += strlen("error: ");
-        snprintf(x->reason, sizeof x->reason, "%.*s", (int)strcspn(s, "\n"), s);
-    } else
-        snprintf(x->reason, sizeof x->reason, "(no log)");
+    s = s ? s + strlen("error: ") : "(no log)";
+    snprintf(x->reason, sizeof x->reason, "%.*s", (int)strcspn(s, "\n"), s);
     free(text);
 }
 
@@ -164,13 +159,9 @@ static int list_folder(const char *dir, const char *kind, const char *done, stru
 static int queue_status_is_queue(const char *dir)
 {
     const char *own[] = {"running", "done", "failed", QUEUE_STUDY_DIR};
-    for (int i = 0; i < 4; i++) {
-        char path[1200];
-        struct stat st;
-        snprintf(path, sizeof path, "%s/%s", dir, own[i]);
-        if (lstat(path, &st) == 0)
+    for (int i = 0; i < 4; i++)
+        if (queue_scan_has(dir, own[i]))
             return 1;
-    }
     DIR *d = opendir(dir);
     struct dirent *de;
     int empty = 1;
@@ -181,7 +172,7 @@ static int queue_status_is_queue(const char *dir)
     return empty;
 }
 
-int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
+int queue_status_dir(const char *who, const char *arg, char *out, size_t n)
 {
     struct stat st;
     snprintf(out, n, "%s", arg);
@@ -189,7 +180,7 @@ int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n)
         out[l - 1] = 0;
     int bad = stat(out, &st) < 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
     if (bad)
-        err_print("worker %s: %s: %s\n", cmd, out, strerror(bad));
+        err_print("%s%s: %s\n", who, out, strerror(bad));
     return bad ? 2 : 0;
 }
 
@@ -219,28 +210,22 @@ int queue_status_main(int argc, char **argv)
         err_print("worker status: expected a queue directory; usage: worker status DIR [--json]\n");
         return 2;
     }
-    if (queue_status_dir("status", dir_arg, dir, sizeof dir))
+    if (queue_status_dir("worker status: ", dir_arg, dir, sizeof dir))
         return 2;
     struct queue_scan scan = {0};
     struct queue_waiting *w = NULL;
-    struct status_entry *r = NULL, *dn = NULL, *f = NULL;
+    struct status_entry *lists[3] = {NULL};
     struct queue_studies_entry *studies = NULL;
-    int nw = queue_scan_waiting(&scan, dir, &w), rc = 0;
+    int nw = queue_scan_waiting(&scan, dir, &w), rc = 0, counts[3];
     char done[1100];
     snprintf(done, sizeof done, "%s/done", dir);
-    snprintf(sub, sizeof sub, "%s/running", dir);
-    const char *bad = nw < 0 && errno != ENOENT ? "." : NULL;
+    const char *bad = nw < 0 && errno != ENOENT ? "." : NULL, *folders[] = {"running", "done", "failed"};
     int bad_errno = errno;
-    int nr = list_folder(sub, "running", done, &r);
-    if (nr < 0)
-        bad = "running", bad_errno = errno;
-    int nd = list_folder(done, "done", done, &dn);
-    if (nd < 0)
-        bad = "done", bad_errno = errno;
-    snprintf(sub, sizeof sub, "%s/failed", dir);
-    int nf = list_folder(sub, "failed", done, &f);
-    if (nf < 0)
-        bad = "failed", bad_errno = errno;
+    for (int i = 0; i < 3; i++) {
+        snprintf(sub, sizeof sub, "%s/%s", dir, folders[i]);
+        if ((counts[i] = list_folder(sub, folders[i], done, &lists[i])) < 0)
+            bad = folders[i], bad_errno = errno;
+    }
     int ns = queue_studies_list(dir, &studies);
     if (ns < 0)
         bad = QUEUE_STUDY_DIR, bad_errno = errno;
@@ -254,16 +239,16 @@ int queue_status_main(int argc, char **argv)
         err_print("worker status: %s/%s: cannot be read: %s\n", dir, bad, strerror(bad_errno));
         rc = 2;
     } else {
-        struct status_view v = {w, r, dn, f, nw < 0 ? 0 : nw, nr, nd, nf, ns < 0 ? 0 : ns, studies};
+        struct status_view v = {w,         lists[0],  lists[1],  lists[2],        nw < 0 ? 0 : nw,
+                                counts[0], counts[1], counts[2], ns < 0 ? 0 : ns, studies};
         if (json)
             queue_status_print_json(dir, &v);
         else
             queue_status_print_text(dir, &v);
     }
     free(w);
-    free(r);
-    free(dn);
-    free(f);
+    for (int i = 0; i < 3; i++)
+        free(lists[i]);
     free(studies);
     queue_scan_free(&scan);
     return rc;

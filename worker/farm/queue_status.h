@@ -1,6 +1,5 @@
-/* queue_status: `worker status DIR` and `worker requeue DIR`, a queue seen and steered by people
-   (SPEC "Additions"). They read the queue's files and move job files with rename(); they never
-   take a claim, so they run beside live workers. */
+/* queue_status: `worker status DIR`, a queue seen by people (SPEC "Additions"): it reads the
+   queue's files and never takes a claim, so it runs beside live workers. */
 #ifndef QUEUE_STATUS_H
 #define QUEUE_STATUS_H
 
@@ -17,8 +16,8 @@ int queue_status_main(int argc, char **argv);
    valid-looking one, else the file's stem. */
 void queue_status_job_name(const char *path, const char *file, char *out, size_t n);
 
-/* DIR (arg) without trailing slashes into out; 0, or 2 after one line ("worker CMD: ...") when it
-   is no directory. */
-int queue_status_dir(const char *cmd, const char *arg, char *out, size_t n);
+/* DIR (arg) without trailing slashes into out; 0, or 2 after one line ("<who>DIR: reason", who
+   such as "worker status: ") when it is no directory. */
+int queue_status_dir(const char *who, const char *arg, char *out, size_t n);
 
 #endif

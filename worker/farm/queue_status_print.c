@@ -24,6 +24,72 @@ static double percent(const struct status_entry *x)
     return x->lease.rows > 0 ? 100.0 * x->lease.rows_done / x->lease.rows : 0;
 }
 
+static void json_maybe(struct json *js, const char *key, double v)
+{
+    json_number(js, key, v < 0 ? (double)NAN : v); /* non-finite: null (unknown) */
+}
+
+/* The studies in progress: one line each under a "studies:" heading (nothing when n is 0). */
+static void print_studies(const struct queue_studies_entry *s, int n)
+{
+    if (n)
+        printf("studies (spread over the queue):\n");
+    for (int i = 0; i < n; i++) {
+        char eta[5000] = "--";
+        char file[4 * sizeof s[i].file + 1], name[4 * sizeof s[i].name + 1]; /* shown, never raw */
+        char damaged[4 * sizeof s[i].damaged + 1];
+        sbuf_show(s[i].file, file, sizeof file);
+        if (s[i].damaged[0])
+            snprintf(eta, sizeof eta, "-- (its folder is damaged: %s)",
+                     sbuf_show(s[i].damaged, damaged, sizeof damaged));
+        else if (s[i].waits_requeue)
+            snprintf(eta, sizeof eta,
+                     "-- (waits for its failed renders to be requeued: worker requeue DIR %s)", file);
+        else if (s[i].eta_s >= 0 || s[i].done == s[i].renders)
+            snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s >= 0 ? s[i].eta_s : 0);
+        printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n", file,
+               sbuf_show(s[i].name, name, sizeof name), s[i].done, s[i].renders, s[i].failed, s[i].running,
+               s[i].gathering ? ", gathering" : "", s[i].elapsed_s, eta);
+        if (!s[i].planned)
+            continue;
+        char finish[160] = "no worker holds a lease now: no finish predicted";
+        if (s[i].finish_s >= 0)
+            snprintf(finish, sizeof finish,
+                     "predicted finish in about %.0f s on the %d worker%s holding leases now", s[i].finish_s,
+                     s[i].lease_workers, s[i].lease_workers == 1 ? "" : "s");
+        printf("    CPU about %.0f s done, %.0f s left (estimated by the plan); %s\n", s[i].cpu_done_s,
+               s[i].cpu_left_s, finish);
+    }
+}
+
+/* The "studies" array of status --json. */
+static void json_studies(struct json *js, const struct queue_studies_entry *s, int n)
+{
+    json_begin_array(js, "studies");
+    for (int i = 0; i < n; i++) {
+        json_begin_object(js, NULL);
+        json_string(js, "file", s[i].file);
+        json_string(js, "name", s[i].name);
+        json_number(js, "renders", s[i].renders);
+        json_number(js, "done", s[i].done);
+        json_number(js, "failed", s[i].failed);
+        json_number(js, "running", s[i].running);
+        json_bool(js, "gathering", s[i].gathering);
+        json_number(js, "elapsed_s", s[i].elapsed_s);
+        json_maybe(js, "eta_s", s[i].eta_s);
+        json_bool(js, "waits_for_requeue", s[i].waits_requeue);
+        json_string(js, "damaged", s[i].damaged);
+        if (s[i].planned) {
+            json_number(js, "cpu_done_s", s[i].cpu_done_s);
+            json_number(js, "cpu_left_s", s[i].cpu_left_s);
+            json_number(js, "lease_workers", s[i].lease_workers);
+            json_maybe(js, "finish_s", s[i].finish_s);
+        }
+        json_end_object(js);
+    }
+    json_end_array(js);
+}
+
 /* Room for a name of 256 bytes as the terminal sanitiser shows it (sbuf_show): 4 per byte. */
 #define SHOWN_MAX 1025
 
@@ -64,7 +130,7 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
                percent(&r[i]), r[i].lease.rows_done, r[i].lease.rows, elapsed_s, r[i].gone ? "--" : eta_s,
                r[i].gone ? "  (its worker is gone: the next worker to scan takes it back)" : "");
     }
-    queue_studies_print(v->studies, v->ns);
+    print_studies(v->studies, v->ns);
     if (nd)
         printf("done:\n");
     for (int i = 0; i < nd; i++) {
@@ -84,11 +150,6 @@ void queue_status_print_text(const char *dir, const struct status_view *v)
     for (int i = 0; i < nf; i++)
         printf("  %s  %s\n", sbuf_show(f[i].file, name, sizeof name),
                sbuf_show(f[i].reason, reason, sizeof reason));
-}
-
-static void json_maybe(struct json *js, const char *key, double v)
-{
-    json_number(js, key, v < 0 ? (double)NAN : v); /* non-finite: null (unknown) */
 }
 
 void queue_status_print_json(const char *dir, const struct status_view *v)
@@ -131,7 +192,7 @@ void queue_status_print_json(const char *dir, const struct status_view *v)
         json_end_object(&js);
     }
     json_end_array(&js);
-    queue_studies_json(&js, v->studies, v->ns);
+    json_studies(&js, v->studies, v->ns);
     json_begin_array(&js, "done");
     for (int i = 0; i < nd; i++) {
         json_begin_object(&js, NULL);

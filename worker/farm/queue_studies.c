@@ -3,7 +3,6 @@
 
 #include <dirent.h>
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,7 +12,6 @@
 
 #include "base/err.h"
 #include "base/fileio.h"
-#include "base/sbuf.h"
 #include "queue_study.h"
 #include "queue_study_key.h"
 #include "spread_plan.h"
@@ -67,7 +65,7 @@ static void read_plan(const char *sd, int workers, struct queue_studies_entry *x
     int left = 0;
     for (int i = 0; i < p.n; i++) {
         snprintf(path, sizeof path, "%s/done", sd);
-        if (queue_study_has(path, p.e[i].name)) {
+        if (queue_scan_has(path, p.e[i].name)) {
             x->cpu_done_s += p.e[i].est_cpu_s;
         } else {
             x->cpu_left_s += p.e[i].est_cpu_s;
@@ -167,65 +165,6 @@ int queue_studies_list(const char *dir, struct queue_studies_entry **out)
         qsort(v, (size_t)n, sizeof *v, by_name);
     *out = v;
     return n;
-}
-
-void queue_studies_print(const struct queue_studies_entry *s, int n)
-{
-    if (n)
-        printf("studies (spread over the queue):\n");
-    for (int i = 0; i < n; i++) {
-        char eta[5000] = "--";
-        char file[4 * sizeof s[i].file + 1], name[4 * sizeof s[i].name + 1]; /* shown, never raw */
-        char damaged[4 * sizeof s[i].damaged + 1];
-        sbuf_show(s[i].file, file, sizeof file);
-        if (s[i].damaged[0])
-            snprintf(eta, sizeof eta, "-- (its folder is damaged: %s)",
-                     sbuf_show(s[i].damaged, damaged, sizeof damaged));
-        else if (s[i].waits_requeue)
-            snprintf(eta, sizeof eta,
-                     "-- (waits for its failed renders to be requeued: worker requeue DIR %s)", file);
-        else if (s[i].eta_s >= 0 || s[i].done == s[i].renders)
-            snprintf(eta, sizeof eta, "%.0f s", s[i].eta_s >= 0 ? s[i].eta_s : 0);
-        printf("  %s  study %s  %d/%d renders done, %d failed, %d running%s  elapsed %.0f s  ETA %s\n", file,
-               sbuf_show(s[i].name, name, sizeof name), s[i].done, s[i].renders, s[i].failed, s[i].running,
-               s[i].gathering ? ", gathering" : "", s[i].elapsed_s, eta);
-        if (!s[i].planned)
-            continue;
-        char finish[160] = "no worker holds a lease now: no finish predicted";
-        if (s[i].finish_s >= 0)
-            snprintf(finish, sizeof finish,
-                     "predicted finish in about %.0f s on the %d worker%s holding leases now", s[i].finish_s,
-                     s[i].lease_workers, s[i].lease_workers == 1 ? "" : "s");
-        printf("    CPU about %.0f s done, %.0f s left (estimated by the plan); %s\n", s[i].cpu_done_s,
-               s[i].cpu_left_s, finish);
-    }
-}
-
-void queue_studies_json(struct json *js, const struct queue_studies_entry *s, int n)
-{
-    json_begin_array(js, "studies");
-    for (int i = 0; i < n; i++) {
-        json_begin_object(js, NULL);
-        json_string(js, "file", s[i].file);
-        json_string(js, "name", s[i].name);
-        json_number(js, "renders", s[i].renders);
-        json_number(js, "done", s[i].done);
-        json_number(js, "failed", s[i].failed);
-        json_number(js, "running", s[i].running);
-        json_bool(js, "gathering", s[i].gathering);
-        json_number(js, "elapsed_s", s[i].elapsed_s);
-        json_number(js, "eta_s", s[i].eta_s < 0 ? (double)NAN : s[i].eta_s);
-        json_bool(js, "waits_for_requeue", s[i].waits_requeue);
-        json_string(js, "damaged", s[i].damaged);
-        if (s[i].planned) {
-            json_number(js, "cpu_done_s", s[i].cpu_done_s);
-            json_number(js, "cpu_left_s", s[i].cpu_left_s);
-            json_number(js, "lease_workers", s[i].lease_workers);
-            json_number(js, "finish_s", s[i].finish_s < 0 ? (double)NAN : s[i].finish_s);
-        }
-        json_end_object(js);
-    }
-    json_end_array(js);
 }
 
 /* Put the failed entry sd/failed/name back among the study's waiting entries: moved when it is a

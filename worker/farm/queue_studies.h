@@ -3,8 +3,6 @@
 #ifndef QUEUE_STUDIES_H
 #define QUEUE_STUDIES_H
 
-#include "base/json.h"
-
 struct queue_studies_entry {
     char file[256];                     /* the job file, X.yaml */
     char name[256];                     /* the study's folder name: the file's stem */
@@ -23,12 +21,6 @@ struct queue_studies_entry {
 /* The studies in progress under dir/spread/ into *out (malloc'd), by name; their count, or -1 when
    dir/spread/ exists but cannot be read (errno). */
 int queue_studies_list(const char *dir, struct queue_studies_entry **out);
-
-/* One line per study, under a "studies:" heading (nothing when n is 0). */
-void queue_studies_print(const struct queue_studies_entry *s, int n);
-
-/* The "studies" array of status --json. */
-void queue_studies_json(struct json *js, const struct queue_studies_entry *s, int n);
 
 /* Move the failed render entries of the study of job file `file` (X.yaml) back to its waiting
    entries, their logs removed (an entry that was no regular file is written anew). The number

@@ -47,14 +47,6 @@ static void discard(const struct queue *q, const char *sd, const char *stem)
         queue_study_remove_tree(gone);
 }
 
-int queue_study_has(const char *dir, const char *file)
-{
-    char path[2600];
-    struct stat st;
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    return lstat(path, &st) == 0;
-}
-
 int queue_study_write_entry(const char *dir, const char *entry, const char *what, struct err *e)
 {
     char path[2600], text[512];
@@ -175,16 +167,6 @@ static int prepare(const struct queue *q, const struct study_fan *f, const struc
     return build(q, f, p, sd, stem, job, len, e);
 }
 
-/* The claim in hand cannot be spread: failed/ with its log, as an invalid job. */
-static void refuse(struct queue *q, const char *name, const char *log_name, const char *msg)
-{
-    queue_log(name, "%s\n", msg);
-    queue_log(name, "invalid compare job, moved to %s/\n", q->failed);
-    queue_file_log(q, name, log_name, msg, 0, 0);
-    queue_file_failed(q, name, log_name);
-    queue_file_note_rc(q, 2);
-}
-
 int queue_study_spreading(const struct queue *q, struct lease *holder, char *name, size_t n)
 {
     DIR *d = opendir(q->running);
@@ -220,7 +202,7 @@ void queue_study_expand(struct queue *q, const char *name, const struct jobfile 
     char msg[2600], out[2048], sd[2048], jobdir[2100];
     if (study_fan_load(jf, &f, &e) < 0) {
         err_format(&e, msg, sizeof msg);
-        refuse(q, name, stem, msg);
+        queue_file_invalid(q, name, stem, msg, "invalid compare job", 1);
         return;
     }
     outdir_dir(q->done, study_fan_name(&f), out, sizeof out);
@@ -230,7 +212,7 @@ void queue_study_expand(struct queue *q, const char *name, const struct jobfile 
             "%s: name: \"%s\" is taken: %s/ holds the outputs of %s; give this job another name (or remove "
             "that folder to replace them)",
             as, study_fan_name(&f), out, q->name_owner);
-        refuse(q, name, stem, msg);
+        queue_file_invalid(q, name, stem, msg, "invalid compare job", 1);
         study_fan_free(&f);
         return;
     }
@@ -248,12 +230,12 @@ void queue_study_expand(struct queue *q, const char *name, const struct jobfile 
     } else if (rc < 0) {
         err_prefix(&e, study_fan_name(&f));
         err_format(&e, msg, sizeof msg);
-        refuse(q, name, study_fan_name(&f), msg);
+        queue_file_invalid(q, name, study_fan_name(&f), msg, "invalid compare job", 1);
     } else if (rc == 1) {
         snprintf(msg, sizeof msg,
                  "%s: a study of this file name is in progress in %s/; queue it again when it is done", as,
                  sd);
-        refuse(q, name, stem, msg);
+        queue_file_invalid(q, name, stem, msg, "invalid compare job", 1);
     } else {
         int refs = 0;
         for (int i = 0; i < plan.n; i++)

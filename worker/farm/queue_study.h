@@ -1,9 +1,7 @@
-/* queue_study: a compare job or suite in a queue spread over its workers. The worker that claims
-   it writes one render entry per reference and per image into DIR/spread/<stem>/ (a queue of its
-   own: running/, done/, failed/, with the same claims, leases, retries and recovery) and files the
-   job there (job/<X>.yaml); workers drain those entries, references first; the entry claimed last
-   gathers summary.csv, chart, report and verdict into done/<name>/, then files the job file in
-   done/ (queue_drain.h). This module makes the study's folder. */
+/* queue_study: a compare job or suite in a queue spread over its workers (docs/farm.md): the worker
+   that claims it writes one render entry per reference and per image into DIR/spread/<stem>/, a
+   queue of its own that workers drain (queue_drain.h), and files the job there (job/<X>.yaml). This
+   module makes the study's folder. */
 #ifndef QUEUE_STUDY_H
 #define QUEUE_STUDY_H
 
@@ -25,8 +23,5 @@ void queue_study_remove_tree(const char *path);
 
 /* Write the entry file dir/entry (a comment saying what it renders) atomically. 0 or -1 with e. */
 int queue_study_write_entry(const char *dir, const char *entry, const char *what, struct err *e);
-
-/* 1 when dir/file exists (as any kind of entry). */
-int queue_study_has(const char *dir, const char *file);
 
 #endif

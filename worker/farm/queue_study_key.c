@@ -152,8 +152,7 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     for (int i = 0; i < 4; i++)
         if (not_folder(sd, subs[i], why, n))
             return QUEUE_STUDY_DAMAGED;
-    snprintf(path, sizeof path, "%s/done/%s", sd, QUEUE_STUDY_GATHER);
-    int gather_filed = lstat(path, &st) == 0;
+    int gather_filed = queue_scan_has(sd, "done/" QUEUE_STUDY_GATHER);
     snprintf(path, sizeof path, "%s/job/%s.yaml", sd, stem);
     int job_filed = lstat(path, &st) == 0;
     if (gather_filed && !job_filed) /* the record of a finished study: nothing more is read */
@@ -163,7 +162,7 @@ enum queue_study_state queue_study_state(const char *dir, const char *sd, const 
     snprintf(path, sizeof path, "%s/study.job", sd);
     int regular = lstat(path, &st) == 0 && S_ISREG(st.st_mode);
     if (!regular || (hash_jobs && !queue_study_key_same(path, k->job_hash))) {
-        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
+        if (regular)
             snprintf(why, n, "%s: not the job that was spread (its hash is not the one study.key records)",
                      path);
         else

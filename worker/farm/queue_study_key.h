@@ -1,9 +1,7 @@
-/* queue_study_key: what a study's folder DIR/spread/<stem>/ must hold, and the check of it. The
-   worker that spreads a study records in study.key the hash of the job's bytes and the name of every
-   entry it wrote; everything read back later (study.job, the job file in job/, the entries, the
-   folders) is checked against that record and against the kind of file it must be (never a
-   symbolic link), so that a changed, forged or removed file is said in one line rather than
-   trusted. */
+/* queue_study_key: what a study's folder DIR/spread/<stem>/ must hold, and the check of it: study.key
+   records the hash of the job's bytes and the name of every entry written; everything read back later
+   is checked against it and against the kind of file it must be (never a symbolic link), so that a
+   changed, forged or removed file is said in one line rather than trusted. */
 #ifndef QUEUE_STUDY_KEY_H
 #define QUEUE_STUDY_KEY_H
 

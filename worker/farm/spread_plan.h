@@ -1,9 +1,7 @@
-/* spread_plan: the entries a compare job or suite spread over a queue is cut into, sized by the
-   cost model (cost_model.h): each settings reference's two halves and each image, a render whose
-   estimated CPU exceeds the target cut into row parts (`--part I/N`), in the order workers claim
-   them (references first, which every image waits for, then the longest); and the wall time the
-   study would take on W workers of C cores (list scheduling in that order). Shared by the queue's
-   spread (queue_study.h) and `worker plan`. */
+/* spread_plan: the entries a compare job or suite spread over a queue is cut into (each reference's
+   two halves and each image, one over the CPU target cut into row parts), sized by the cost model, in
+   claim order (references first, then the longest), and the study's wall time on W workers of C
+   cores. Shared by the queue's spread (queue_study.h) and `worker plan`. */
 #ifndef SPREAD_PLAN_H
 #define SPREAD_PLAN_H
 
