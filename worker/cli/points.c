@@ -115,17 +115,14 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     const char *positional[2] = {NULL, NULL};
     int npositional = 0;
     *done = 0;
-    a->seed = 1;
-    a->svg_path = NULL;
-    a->padded = 0;
-    a->an = (struct points_analysis){NULL, NULL, 0, 1, 1, 0};
+    *a = (struct points_args){.seed = 1, .an = {.sets = 1, .seed = 1}};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
             fputs(points_usage, stdout);
             *done = 1;
             return 0;
-        } else if (!strcmp(arg, "--seed") || !strncmp(arg, "--seed=", 7)) {
+        } else if (file_option(arg, "--seed")) {
             const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
             if (!v) {
                 err_print("worker points: --seed needs a value; %s", points_usage);
@@ -194,13 +191,11 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     }
     a->an.seed = a->seed;
     a->an.threshold = a->threshold;
+    const char *const files[3][2] = {
+        {"--svg", a->svg_path}, {"--spectrum", a->an.spectrum_path}, {"--radial", a->an.radial_path}};
     int rc = 0;
-    if (a->svg_path)
-        rc = place_ok("--svg", a->svg_path);
-    if (!rc && a->an.spectrum_path)
-        rc = place_ok("--spectrum", a->an.spectrum_path);
-    if (!rc && a->an.radial_path)
-        rc = place_ok("--radial", a->an.radial_path);
+    for (int k = 0; k < 3 && !rc; k++)
+        rc = place_ok(files[k][0], files[k][1]);
     return rc;
 }
 

@@ -99,16 +99,20 @@ static int stage_image(const struct job *j, const struct run_result *rr, int i, 
     return rc;
 }
 
-/* Rename the n staged files to their final names, each once, in order (the sidecar last), asking
-   before each after the first whether the claim is still held. 0, or -1 with e filled and nothing
-   of this writer's left: what was renamed is removed again (an image without its sidecar is not a
-   finished job) and what was not is unlinked. */
+/* Remove the earlier sidecar (final[n - 1]), then rename the n staged files to their final names,
+   each once, in order (the sidecar last), asking before each whether the claim is still held. 0,
+   or -1 with e filled and nothing of this writer's left: what was renamed is removed again (an
+   image without its sidecar is not a finished job) and what was not is unlinked. */
 static int commit_all(const struct run_opts *o, const char *dir, char staged[][2100],
                       const char *const *final, int n, struct err *e)
 {
     for (int i = 0; i < n; i++) {
-        /* a claim taken over between renames: what is renamed stays, without a sidecar */
-        if (i > 0 && still_held(o, dir, e) < 0) {
+        /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not; a
+           claim taken over between renames: what is renamed stays, without a sidecar */
+        int failed = still_held(o, dir, e) < 0;
+        if (!failed && i == 0 && unlink(final[n - 1]) < 0 && errno != ENOENT)
+            failed = err_set_errno(e, errno, "cannot write %s: %s", final[n - 1], strerror(errno)) < 0;
+        if (failed) {
             for (int r = i; r < n; r++)
                 unlink(staged[r]);
             return -1;
@@ -172,15 +176,6 @@ int run_out_write(const struct job *j, const struct run_opts *o, const struct ru
     if (k < n - 1 || fileio_stage(out->sidecar, json, strlen(json), staged[k], sizeof staged[k], e) < 0) {
         while (k-- > 0)
             unlink(staged[k]);
-        goto done;
-    }
-    /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
-    int failed = still_held(o, out->dir, e) < 0;
-    if (!failed && unlink(out->sidecar) < 0 && errno != ENOENT)
-        failed = err_set_errno(e, errno, "cannot write %s: %s", out->sidecar, strerror(errno)) < 0;
-    if (failed) {
-        for (int r = 0; r < n; r++)
-            unlink(staged[r]);
         goto done;
     }
     if (commit_all(o, out->dir, staged, final, n, e) < 0)
