@@ -126,22 +126,6 @@ static double clock_pair_s(void)
     return least;
 }
 
-/* Pixel (x, y) rendered at most cap paths, untimed inside (render_time.h times a pixel whose
-   stats count 8k pixels: these count one), into *st; its CPU seconds, the clock's own taken out.
-   Not repeated: the same pixel again runs faster than a render's pixels do (its draws' branches
-   learnt, its memory hot: a 20-point Poisson set in 6 us where fresh ones took 10). */
-static double pilot_call(const struct pilot_run *p, struct render_ctx *ctx, int x, int y, size_t *all,
-                         struct render_stats *st)
-{
-    float rgb[3];
-    render_stats_init(st);
-    st->pixels = 1;
-    const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
-    *all = render_pixel_paths(ctx, x, y, p->cap, rgb, st);
-    const double dt = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s;
-    return dt > 0 ? dt : 0;
-}
-
 /* Render pixel (x, y) at most p->cap paths; count it when it is whole or the budget is spent,
    else leave it to be rendered again with more paths. The cap starts at one path and grows at
    most 8 times a call, to what the budget left would pay: however costly a path is (a whole
@@ -150,8 +134,17 @@ static double pilot_call(const struct pilot_run *p, struct render_ctx *ctx, int 
 static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y, int n_lights)
 {
     struct render_stats st;
-    size_t all;
-    const double dt = pilot_call(p, ctx, x, y, &all, &st);
+    float rgb[3];
+    render_stats_init(&st);
+    st.pixels = 1;
+    /* timed as a whole, untimed inside (render_time.h times a pixel whose stats count 8k pixels:
+       these count one), the clock's own cost taken out. Not repeated: the same pixel again runs
+       faster than a render's pixels do (its draws' branches learnt, its memory hot: a 20-point
+       Poisson set in 6 us where fresh ones took 10). */
+    const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
+    const size_t all = render_pixel_paths(ctx, x, y, p->cap, rgb, &st);
+    const double dt_clock = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s,
+                 dt = dt_clock > 0 ? dt_clock : 0;
     const size_t done = all < p->cap ? all : p->cap;
     const double draws = p->draws.pixel_s + (double)st.light_sets * p->draws.light_s +
                          (double)st.padded_sets * p->draws.padded_s;
@@ -162,11 +155,9 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
     const double afford = per_path > 0 ? (p->budget_s - p->spent_s) / per_path : HUGE_VAL;
     const size_t grown = p->cap > SIZE_MAX / 8 ? SIZE_MAX : p->cap * 8;
     const size_t cap = afford < (double)grown ? (afford < 1 ? 1 : (size_t)afford) : grown;
-    if (done < all && cap > done) {
-        p->cap = cap; /* again, with more of its paths */
-        return;
-    }
     p->cap = cap;
+    if (done < all && cap > done)
+        return; /* again, with more of its paths */
     const double traced = done ? (double)done : 1;
     p->sum.pixels++;
     p->sum.samples += (double)all;
