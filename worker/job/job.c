@@ -63,12 +63,24 @@ void job_defaults(struct job *j, const char *path)
     j->format = IMG_PNG;
 }
 
-/* A name used as a directory and file name: letters, digits, '-', '_', '.'; not starting with '.'
-   (".", "..", and hidden folders: .cache holds compare references). */
-static int safe_name(const char *s)
+/* key's value at v, a name used as a directory or file name, into out (JOB_NAME_MAX bytes):
+   letters, digits, '-', '_', '.'; not starting with '.' (".", "..", and hidden folders: .cache
+   holds compare references). what: the message's words for such a name. */
+static int get_safe_name(struct ydoc *d, yaml_node_t *v, const char *key, const char *what, char *out,
+                         struct err *e)
 {
-    return *s && *s != '.' &&
-           strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") == strlen(s);
+    const char *s;
+    if (yget_string(d, v, key, &s, e) < 0)
+        return -1;
+    if (!*s || *s == '.' || strlen(s) >= JOB_NAME_MAX ||
+        strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") != strlen(s))
+        return ydoc_fail(
+            d, v, e,
+            "%s: must be %sletters, digits, '-', '_' or '.' (at most %d, not starting with '.'), "
+            "got \"%.40s\"",
+            key, what, JOB_NAME_MAX - 1, s);
+    snprintf(out, JOB_NAME_MAX, "%s", s);
+    return 0;
 }
 
 const char *job_unknown_sampler(const char *s, char *buf, size_t n)
@@ -131,19 +143,11 @@ static int check_output_ext(struct ydoc *d, yaml_node_t *v, const char *out, str
 static int get_output(struct ydoc *d, yaml_node_t *v, int in_list, char *out, enum img_format *fmt,
                       struct err *e)
 {
-    const char *s;
-    if (yget_string(d, v, "output", &s, e) < 0)
+    if (get_safe_name(d, v, "output", "a plain file name of ", out, e) < 0 ||
+        check_output_ext(d, v, out, e) < 0)
         return -1;
-    if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-        return ydoc_fail(d, v, e,
-                         "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
-                         "most %d, not starting with '.'), got \"%.40s\"",
-                         JOB_NAME_MAX - 1, s);
-    if (check_output_ext(d, v, s, e) < 0)
-        return -1;
-    if (in_list && img_format_of_file(s, fmt) <= 0)
-        return ydoc_fail(d, v, e, "output: %s: in a list each image needs its format's extension", s);
-    snprintf(out, JOB_NAME_MAX, "%s", s);
+    if (in_list && img_format_of_file(out, fmt) <= 0)
+        return ydoc_fail(d, v, e, "output: %s: in a list each image needs its format's extension", out);
     return 0;
 }
 
@@ -219,15 +223,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     if (row)
         return apply_spec(&j->spec, row, d, v, e);
     if (!strcmp(k, "name")) {
-        if (yget_string(d, v, k, &s, e) < 0)
-            return -1;
-        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(
-                d, v, e,
-                "name: must be letters, digits, '-', '_' or '.' (at most %d, not starting with '.'), "
-                "got \"%.40s\"",
-                JOB_NAME_MAX - 1, s);
-        snprintf(j->name, sizeof j->name, "%s", s);
+        return get_safe_name(d, v, k, "", j->name, e);
     } else if (!strcmp(k, "scene")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
