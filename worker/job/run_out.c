@@ -36,15 +36,6 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                    dir);
 }
 
-/* Whether the render may still rename an output into place (run_opts.still_held): 0, or -1 with e
-   filled (the claim was taken over while it wrote). */
-static int still_held(const struct run_opts *o, const char *dir, struct err *e)
-{
-    if (!o->still_held || o->still_held(o->tick_arg))
-        return 0;
-    return err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
-}
-
 /* The EXR header's string attributes for j (nothing that depends on the process count or the
    output folder: the file's bytes do not). texts holds their values. */
 static size_t exr_attrs(const struct job *j, struct img_attr *a, char texts[][160])
@@ -100,17 +91,19 @@ static int stage_image(const struct job *j, const struct run_result *rr, int i, 
 }
 
 /* Remove the earlier sidecar (final[n - 1]), then rename the n staged files to their final names,
-   each once, in order (the sidecar last), asking before each whether the claim is still held. 0,
-   or -1 with e filled and nothing of this writer's left: what was renamed is removed again (an
-   image without its sidecar is not a finished job) and what was not is unlinked. */
+   each once, in order (the sidecar last), asking before each whether the claim is still held
+   (run_opts.still_held). 0, or -1 with e filled and nothing of this writer's left: what was renamed is
+   removed again (an image without its sidecar is not a finished job) and what was not is unlinked. */
 static int commit_all(const struct run_opts *o, const char *dir, char staged[][2100],
                       const char *const *final, int n, struct err *e)
 {
     for (int i = 0; i < n; i++) {
         /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not; a
            claim taken over between renames: what is renamed stays, without a sidecar */
-        int failed = still_held(o, dir, e) < 0;
-        if (!failed && i == 0 && unlink(final[n - 1]) < 0 && errno != ENOENT)
+        int failed = o->still_held && !o->still_held(o->tick_arg);
+        if (failed)
+            err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
+        else if (i == 0 && unlink(final[n - 1]) < 0 && errno != ENOENT)
             failed = err_set_errno(e, errno, "cannot write %s: %s", final[n - 1], strerror(errno)) < 0;
         if (failed) {
             for (int r = i; r < n; r++)
