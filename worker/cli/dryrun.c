@@ -10,9 +10,8 @@
 #include "cli.h"
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
-#include "study/load/compare_load.h"
-#include "study/load/compare_suite_load.h"
 #include "study/run/compare_ref.h"
+#include "study/run/study_fan.h"
 #include "study/run/study_scenes.h"
 #include "study/judge/verdict.h"
 
@@ -256,20 +255,18 @@ done:
 static int compare_job(const struct jobfile *f, const struct run_opts *o)
 {
     struct err e = {0};
-    struct compare_suite *suite = NULL;
-    struct compare *one = NULL;
-    if (f->kind == JOBFILE_SUITE ? !(suite = compare_suite_load_doc(&f->doc, f->path, &e))
-                                 : !(one = compare_load_doc(&f->doc, f->path, &e))) {
+    struct study_fan fan = {0};
+    if (study_fan_load(f, &fan, &e) < 0) {
         cli_print_err(&e);
         return 2;
     }
-    struct compare *const *studies = suite ? suite->studies : &one;
-    int n = suite ? suite->n_studies : 1, rc = 0;
+    struct compare *const *studies = fan.s ? fan.s->studies : &fan.c;
+    int n = study_fan_studies(&fan), rc = 0;
     struct cost_model *m = cost_model_new(DRYRUN_STUDY_BUDGET_S);
     struct study_scenes ds = {0};
     double cpu_s = 0, ref_cpu_s = 0;
     int processes = 1;
-    printf("%s: dry run: nothing rendered, nothing written\n", suite ? suite->name : one->name);
+    printf("%s: dry run: nothing rendered, nothing written\n", study_fan_name(&fan));
     if (!m)
         err_set(&e, f->path, 0, 0, "out of memory");
     if (!m || study_scenes_prepare(studies, n, &ds, m, &e) < 0) {
@@ -278,7 +275,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     }
     for (int i = 0; i < n && rc == 0; i++) {
         struct study_sum sum;
-        if (suite)
+        if (fan.s)
             printf(" study %s\n", studies[i]->name);
         if (study(studies[i], &ds, m, o, &sum, &e) < 0) {
             cli_print_err(&e);
@@ -298,8 +295,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     }
     study_scenes_free(&ds);
     cost_model_free(m);
-    compare_suite_free(suite);
-    compare_free(one);
+    study_fan_free(&fan);
     return rc;
 }
 
