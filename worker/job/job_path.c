@@ -105,14 +105,10 @@ static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
 enum { N_BARE = 5 };
 static int bare_dirs(const struct job *j, char dirs[N_BARE][JOB_PATH_MAX])
 {
-    char shipped[2][JOB_PATH_MAX];
-    int nd = 0;
-    job_path_resolve(j->path, "scenes", dirs[nd++], JOB_PATH_MAX);
-    job_path_resolve(j->path, "../scenes", dirs[nd++], JOB_PATH_MAX);
-    snprintf(dirs[nd++], JOB_PATH_MAX, "scenes");
-    for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
-        snprintf(dirs[nd++], JOB_PATH_MAX, "%s", shipped[k]);
-    return nd;
+    job_path_resolve(j->path, "scenes", dirs[0], JOB_PATH_MAX);
+    job_path_resolve(j->path, "../scenes", dirs[1], JOB_PATH_MAX);
+    snprintf(dirs[2], JOB_PATH_MAX, "scenes");
+    return 3 + shipped_scene_dirs(dirs + 3);
 }
 
 int job_path_scene(struct job *j, const char *val, char *tried, size_t n)
