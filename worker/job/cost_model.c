@@ -234,13 +234,11 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
         pilot_step(&p, ctx, x, y, sf->scene->n_lights);
     }
     const double np = p.sum.pixels;
-    *fig = (struct pilot_fig){p.sum.trace_s / (p.sum.traced > 0 ? p.sum.traced : 1),
-                              p.sum.light_points / np,
-                              p.sum.light_sets / np,
-                              p.sum.padded_sets / np,
-                              p.sum.pixels,
-                              p.sum.samples,
-                              p.sum.traced};
+    *fig = p.sum; /* sums: the trace time per traced sample, the rest per pixel */
+    fig->trace_s /= p.sum.traced > 0 ? p.sum.traced : 1;
+    fig->light_points /= np;
+    fig->light_sets /= np;
+    fig->padded_sets /= np;
     rc = 0;
 spent:
     m->spent_s += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
