@@ -15,6 +15,7 @@
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/rng.h"
+#include "base/sbuf.h"
 #include "points_analysis.h"
 #include "sample/padding.h"
 #include "sample/sampler.h"
@@ -206,31 +207,23 @@ static int write_svg(const char *path, const struct points_args *a, const struct
     const double side = 500.0, margin = 10.0;
     double dot = 0.35 * side / sqrt((double)n);
     dot = dot < 0.4 ? 0.4 : dot > 4.0 ? 4.0 : dot;
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&buf, &len);
-    if (!f)
-        return err_set(e, path, 0, 0, "%s", strerror(errno));
-    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    fprintf(f,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\">\n",
-            side + 2 * margin, side + 2 * margin, side + 2 * margin, side + 2 * margin);
-    fprintf(f, "<title>%s, threshold %g, seed %llu: %zu points</title>\n", sampler_kind_name(a->kind),
-            a->threshold, (unsigned long long)a->seed, n);
-    fprintf(f, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"white\" stroke=\"black\"/>\n",
-            margin, margin, side, side);
-    fprintf(f, "<g fill=\"black\">\n");
+    struct sbuf b = {0};
+    sbuf_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    sbuf_printf(
+        &b, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\">\n",
+        side + 2 * margin, side + 2 * margin, side + 2 * margin, side + 2 * margin);
+    sbuf_printf(&b, "<title>%s, threshold %g, seed %llu: %zu points</title>\n", sampler_kind_name(a->kind),
+                a->threshold, (unsigned long long)a->seed, n);
+    sbuf_printf(&b, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"white\" stroke=\"black\"/>\n",
+                margin, margin, side, side);
+    sbuf_printf(&b, "<g fill=\"black\">\n");
     for (size_t k = 0; k < n; k++)
-        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", margin + p[k].x * side,
-                margin + (1.0 - p[k].y) * side, dot);
-    fprintf(f, "</g>\n</svg>\n");
-    int failed = ferror(f);
-    if (fclose(f) != 0 || failed) {
-        free(buf);
-        return err_set(e, path, 0, 0, "out of memory while drawing %zu points", n);
-    }
-    int rc = fileio_write_atomic(path, buf, len, e);
-    free(buf);
+        sbuf_printf(&b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", margin + p[k].x * side,
+                    margin + (1.0 - p[k].y) * side, dot);
+    sbuf_printf(&b, "</g>\n</svg>\n");
+    int rc = b.oom ? err_set(e, path, 0, 0, "out of memory while drawing %zu points", n)
+                   : fileio_write_atomic(path, b.buf, b.len, e);
+    sbuf_free(&b);
     return rc;
 }
 
