@@ -17,18 +17,16 @@
 #include "sidecar.h"
 
 struct progress {
+    const struct run_opts *o; /* its tick, called at every report */
     const char *name;
-    int enabled;
-    int last_pct;
-    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s);
-    void *tick_arg;
+    int enabled, last_pct;
 };
 
 static void show_progress(void *arg, int done, int rows, double elapsed)
 {
     struct progress *p = arg;
-    if (p->tick)
-        p->tick(p->tick_arg, done, rows, elapsed);
+    if (p->o->tick)
+        p->o->tick(p->o->tick_arg, done, rows, elapsed);
     if (!p->enabled || rows == 0)
         return;
     int pct = (int)(100.0 * done / rows);
@@ -172,8 +170,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     rc = 1;
     if (!(rgb = procs_framebuffer_new(w, h, e)))
         goto done;
-    struct progress prog = {o->label ? o->label : j->name, o->progress && !o->quiet, -1, o->tick,
-                            o->tick_arg};
+    struct progress prog = {o, o->label ? o->label : j->name, o->progress && !o->quiet, -1};
     struct procs_job fj = {.scene = sf.scene,
                            .camera = &cam,
                            .rs = render_spec_settings(&j->spec, w, h, j->spec.seed),
