@@ -98,20 +98,19 @@ const char *job_unknown_sampler(const char *s, char *buf, size_t n)
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const struct render_spec_row *r, double *out,
                          struct err *e)
 {
-    const char *key = r->key;
     const char *s = yscalar(v);
     char want[64];
     render_spec_expected(r, want, sizeof want);
     double t = 0;
-    int rc = yget_double(d, v, key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
+    int rc = yget_double(d, v, r->key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
     int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
     if (rc == YGET_UNDERFLOW) /* yget_double's own message says it better */
         return -1;
     if (!s)
-        return ydoc_fail(d, v, e, "%s: must be %s, got a %s", key, want,
+        return ydoc_fail(d, v, e, "%s: must be %s, got a %s", r->key, want,
                          v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
     if (failed || !render_spec_in_range(r, t))
-        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"%s", key, want, s,
+        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"%s", r->key, want, s,
                          quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;

@@ -191,7 +191,8 @@ char *sidecar_json(const struct sidecar *s)
     return js.buf;
 }
 
-/* The scalar text of key in mapping m: NULL when absent; -1 (e filled) when not a scalar. */
+/* The scalar text of key in mapping m: 1, or 0 and NULL when absent; -1 (e filled) when not a
+   scalar. */
 static int scalar_at(struct ydoc *d, yaml_node_t *m, const char *key, const char **out, struct err *e)
 {
     yaml_node_t *v = ymap_get_raw(d, m, key);
@@ -202,7 +203,7 @@ static int scalar_at(struct ydoc *d, yaml_node_t *m, const char *key, const char
         return ydoc_fail(d, v, e, "%s: expected a value, got %s", key, ydoc_node_kind(v));
     if (strlen(*out) != v->data.scalar.length)
         return ydoc_fail(d, v, e, "%s: holds a NUL character", key);
-    return 0;
+    return 1;
 }
 
 static int string_at(struct ydoc *d, yaml_node_t *m, const char *key, char *out, size_t n, struct err *e)
@@ -220,10 +221,9 @@ static int number_at(struct ydoc *d, yaml_node_t *m, const char *key, double *ou
 {
     const char *s;
     char *end;
-    if (scalar_at(d, m, key, &s, e) < 0)
-        return -1;
-    if (!s)
-        return 0;
+    int rc = scalar_at(d, m, key, &s, e);
+    if (rc <= 0)
+        return rc;
     if (!strcmp(s, "null")) {
         *out = NAN;
         return 0;
@@ -238,10 +238,9 @@ static int count_at(struct ydoc *d, yaml_node_t *m, const char *key, uint64_t *o
 {
     const char *s;
     char *end;
-    if (scalar_at(d, m, key, &s, e) < 0)
-        return -1;
-    if (!s)
-        return 0;
+    int rc = scalar_at(d, m, key, &s, e);
+    if (rc <= 0)
+        return rc;
     errno = 0;
     *out = strtoull(s, &end, 10);
     if (!*s || *end || errno || strspn(s, "0123456789") != strlen(s))
