@@ -92,14 +92,14 @@ static void print_took(void)
 
 static int plain(const struct jobfile *f, const struct run_opts *o)
 {
-    const struct job *jp = &f->job;
+    const struct job *j = &f->job;
     struct job_estimate est;
     struct scene_file sf = {0};
     struct err e = {0};
     struct cost_model *m = cost_model_new(DRYRUN_JOB_BUDGET_S);
     /* the scene as jobfile_open read it: built here, not read again */
-    int rc = !m ? (err_set(&e, jp->path, 0, 0, "out of memory"), 2)
-             : scene_load_src(&f->scene, &sf, &e) < 0 || job_estimate(jp, &sf, o->processes, m, &est, &e) < 0
+    int rc = !m ? (err_set(&e, j->path, 0, 0, "out of memory"), 2)
+             : scene_load_src(&f->scene, &sf, &e) < 0 || job_estimate(j, &sf, o->processes, m, &est, &e) < 0
                  ? 2
                  : 0;
     scene_file_free(&sf);
@@ -108,13 +108,12 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
         cli_print_err(&e);
         return 2;
     }
-    const struct job j = *jp;
     const struct cost_estimate *c = &est.cost;
     char light[96];
-    printf("%s: dry run: nothing rendered, nothing written\n", j.name);
+    printf("%s: dry run: nothing rendered, nothing written\n", j->name);
     printf("  image     %dx%d, %s t=%g, %s -> %s/%s/%s\n", est.width, est.height,
-           sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold,
-           job_light_text(&j, light, sizeof light), o->out_dir, j.name, j.output);
+           sampler_kind_name(j->spec.pixel.kind), j->spec.pixel.threshold,
+           job_light_text(j, light, sizeof light), o->out_dir, j->name, j->output);
     char num[32];
     printf("  samples   %s (%.4g per pixel)\n", count(est.samples, num, sizeof num), est.spp_mean);
     print_memory(&est, "about");

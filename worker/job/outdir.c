@@ -125,31 +125,28 @@ int outdir_mkdirs(const char *path, int *made, struct err *e)
     if (made)
         *made = 0;
     for (char *p = buf + 1;; p++) {
-        if (*p == '/' || *p == 0) {
-            char c = *p;
-            *p = 0;
-            int ok = mkdir(buf, 0755) == 0;
-            if (!ok && errno != EEXIST)
-                return err_set_errno(e, errno, "cannot create directory %s: %s", buf, strerror(errno));
-            struct stat st;
-            /* the folder itself is never a symbolic link: outputs would land wherever it points */
-            if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
-                return err_set_errno(
-                    e, ELOOP,
-                    "%s is a symbolic link: outputs are never written through one (make it a "
-                    "folder)",
-                    buf);
-            if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
-                return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way", buf);
-            *p = c;
-            if (!c) {
-                if (made)
-                    *made = ok;
-                break;
-            }
+        if (*p != '/' && *p != 0)
+            continue;
+        char c = *p;
+        *p = 0;
+        int ok = mkdir(buf, 0755) == 0;
+        if (!ok && errno != EEXIST)
+            return err_set_errno(e, errno, "cannot create directory %s: %s", buf, strerror(errno));
+        struct stat st;
+        /* the folder itself is never a symbolic link: outputs would land wherever it points */
+        if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
+            return err_set_errno(
+                e, ELOOP, "%s is a symbolic link: outputs are never written through one (make it a folder)",
+                buf);
+        if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
+            return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way", buf);
+        *p = c;
+        if (!c) {
+            if (made)
+                *made = ok;
+            return 0;
         }
     }
-    return 0;
 }
 
 /* Whether n is a temporary of the file named base: fileio_stage's ".<base>.tmp.XXXXXX", or what
