@@ -46,8 +46,8 @@ void cost_sets_free(struct cost_sets *c);
 /* The cost of one set of sp drawn as `use`, measured now (repeated until about target_s CPU
    seconds or 4096 sets, one set and 20 microseconds at least) or taken from the cache; target_s 0
    (the caller's time is spent): scaled from the cached set of the same kind nearest in size
-   when there is one. The CPU seconds
-   measuring took are added to *spent_s. 0, or -1 with e filled (no memory). */
+   when there is one. The CPU seconds measuring took are added to *spent_s. 0, or -1 with e
+   filled (no memory). */
 int cost_sets_get(struct cost_sets *c, const struct cost_sampler *sp, enum cost_set_use use, double target_s,
                   struct cost_set *out, double *spent_s, struct err *e);
 

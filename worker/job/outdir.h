@@ -65,15 +65,14 @@ int outdir_mkdirs(const char *path, int *made, struct err *e);
    a claim back and stop (exit 2) rather than file the job as failed. */
 int outdir_env_error(const struct err *e);
 
-/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
-   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
-   queue claim was taken over, finishing together). Under the lock, the temporary files that a
-   killed writer left for the given paths (NULL-terminated, each a file in dir) are removed: a lock holder's
-   own temporary files never outlive its lock. Returns the lock (for outdir_unlock), or -1 when the folder
-   cannot be locked (some network file systems): the writer goes on alone, removing nothing; or when dir
-   cannot be opened (errno ELOOP or ENOTDIR: it is a symbolic link); OUTDIR_STOPPED when *stop (optional) was
-   set by a signal while it waited: write nothing; OUTDIR_WAITED_OUT when wait_s > 0 and the lock was not had
-   within wait_s seconds (its holder is stopped or hung). wait_s 0: wait as long as it takes. */
+/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that an
+   image and its sidecar always come from one render (two jobs of one name, or a worker whose queue
+   claim was taken over, finishing together). Under the lock, the temporary files that a killed
+   writer left for the given paths (NULL-terminated, each a file in dir) are removed. Returns the
+   lock (for outdir_unlock); -1 when the folder cannot be locked (some network file systems: the
+   writer goes on alone, removing nothing) or opened (errno ELOOP or ENOTDIR: a symbolic link);
+   OUTDIR_STOPPED when *stop (optional) was set while it waited: write nothing; OUTDIR_WAITED_OUT
+   when not had within wait_s > 0 seconds (its holder is stopped or hung; 0: wait for ever). */
 #define OUTDIR_STOPPED (-2)
 #define OUTDIR_WAITED_OUT (-3)
 int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s);

@@ -91,9 +91,8 @@ static int stage_image(const struct job *j, const struct run_result *rr, int i, 
 }
 
 /* Remove the earlier sidecar (final[n - 1]), then rename the n staged files to their final names,
-   each once, in order (the sidecar last), asking before each whether the claim is still held
-   (run_opts.still_held). 0, or -1 with e filled and nothing of this writer's left: what was renamed is
-   removed again (an image without its sidecar is not a finished job) and what was not is unlinked. */
+   in order (the sidecar last), asking before each whether the claim is still held. 0, or -1 with
+   e filled and nothing of this writer's left (an image without its sidecar is no finished job). */
 static int commit_all(const struct run_opts *o, const char *dir, char staged[][2100],
                       const char *const *final, int n, struct err *e)
 {
@@ -157,12 +156,10 @@ int run_out_write(const struct job *j, const struct run_opts *o, const struct ru
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* All are staged whole first: a failure before the renames (a full disk, a size limit) leaves
-       the earlier outputs as they were. Then the earlier sidecar goes, the images are renamed, the
-       sidecar last: a reader (or a writer killed at any step) sees the earlier outputs, images
-       without a sidecar (not finished: rendered again), or the new ones, never a new image beside
-       an earlier sidecar (issue 21, defect 6). A killed writer's staged files go under the next
-       one's lock. */
+    /* All staged whole first: a failure before the renames (a full disk) leaves the earlier outputs
+       as they were; then commit_all: a reader (or a writer killed at any step) sees the earlier
+       outputs, images without a sidecar (rendered again), or the new ones, never a new image
+       beside an earlier sidecar (issue 21, defect 6). */
     for (k = 0; k < n - 1; k++)
         if (stage_image(j, rr, k, &fb, &img, staged[k], sizeof staged[k], e) < 0)
             break;
