@@ -89,24 +89,24 @@ static int file_option(const char *arg, const char *name)
 }
 
 /* The value of option argv[*i] (`--name V` or `--name=V`, advancing *i past V), a whole number
-   in [1, limit]: 0, or 2 after one line on stderr. */
-static int count_option(int argc, char **argv, int *i, int limit, int *out)
+   in [1, limit], or any (parse_seed's) when limit is 0: 0, or 2 after one line on stderr. */
+static int whole_option(int argc, char **argv, int *i, int limit, uint64_t *out)
 {
     const char *arg = argv[*i];
-    const size_t len = strcspn(arg, "=");
+    const int len = (int)strcspn(arg, "=");
     const char *v = arg[len] == '=' ? arg + len + 1 : (*i + 1 < argc ? argv[++*i] : NULL);
-    uint64_t m;
     if (!v) {
-        err_print("worker points: %.*s needs a value; %s", (int)len, arg, points_usage);
+        err_print("worker points: %.*s needs a value; %s", len, arg, points_usage);
         return 2;
     }
-    if (parse_seed(v, &m) < 0 || m < 1 || m > (uint64_t)limit) {
-        err_print("worker points: %.*s: must be a whole number in [1, %d], got \"%.40s\"\n", (int)len, arg,
-                  limit, v);
-        return 2;
-    }
-    *out = (int)m;
-    return 0;
+    if (parse_seed(v, out) == 0 && (limit == 0 || (*out >= 1 && *out <= (uint64_t)limit)))
+        return 0;
+    if (limit == 0)
+        err_print("worker points: %.*s: must be a whole number >= 0, got \"%.40s\"\n", len, arg, v);
+    else
+        err_print("worker points: %.*s: must be a whole number in [1, %d], got \"%.40s\"\n", len, arg, limit,
+                  v);
+    return 2;
 }
 
 /* Fill a from argv. Returns 0, or the exit status after one line on stderr; --help prints the
@@ -124,21 +124,14 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
             *done = 1;
             return 0;
         } else if (file_option(arg, "--seed")) {
-            const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
-            if (!v) {
-                err_print("worker points: --seed needs a value; %s", points_usage);
+            if (whole_option(argc, argv, &i, 0, &a->seed) != 0)
                 return 2;
-            }
-            if (parse_seed(v, &a->seed) < 0) {
-                err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
-                return 2;
-            }
         } else if (file_option(arg, "--sets") || file_option(arg, "--padded")) {
             const int sets = arg[2] == 's', limit = sets ? POINTS_MAX_SETS : POINTS_MAX_PADDED;
-            int v;
-            if (count_option(argc, argv, &i, limit, &v) != 0)
+            uint64_t v;
+            if (whole_option(argc, argv, &i, limit, &v) != 0)
                 return 2;
-            *(sets ? &a->an.sets : &a->padded) = v;
+            *(sets ? &a->an.sets : &a->padded) = (int)v;
         } else if (file_option(arg, "--svg") || file_option(arg, "--spectrum") ||
                    file_option(arg, "--radial")) {
             const size_t len = strcspn(arg, "=");
