@@ -126,21 +126,20 @@ static double clock_pair_s(void)
     return least;
 }
 
-/* Render pixel (x, y) at most p->cap paths; count it when it is whole or the budget is spent,
-   else leave it to be rendered again with more paths. The cap starts at one path and grows at
-   most 8 times a call, to what the budget left would pay: however costly a path is (a whole
-   pixel of 100000 stacked pyramids took 22 s), the pilot stays near its budget. The sets the
-   call drew (counted in its stats) are taken out at their timed cost: what is left is tracing. */
+/* Render pixel (x, y) at most p->cap paths, timed whole (the clock's own cost taken out) and
+   untimed inside (render_time.h times a pixel whose stats count 8k pixels: these count one); count
+   it when it is whole or the budget is spent, else leave it to be rendered again with more paths.
+   The cap starts at one path and grows at most 8 times a call, to what the budget left would pay:
+   however costly a path is (a whole pixel of 100000 stacked pyramids took 22 s), the pilot stays
+   near its budget. The sets the call drew are taken out at their timed cost: what is left is
+   tracing. A call is timed once, not repeated: the same pixel again runs faster than a render's
+   pixels do (its draws' branches learnt, its memory hot: a 20-point Poisson set in 6 us, fresh 10). */
 static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y, int n_lights)
 {
     struct render_stats st;
     float rgb[3];
     render_stats_init(&st);
     st.pixels = 1;
-    /* timed as a whole, untimed inside (render_time.h times a pixel whose stats count 8k pixels:
-       these count one), the clock's own cost taken out. Not repeated: the same pixel again runs
-       faster than a render's pixels do (its draws' branches learnt, its memory hot: a 20-point
-       Poisson set in 6 us where fresh ones took 10). */
     const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
     const size_t all = render_pixel_paths(ctx, x, y, p->cap, rgb, &st);
     const double dt_clock = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s,
