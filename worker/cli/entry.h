@@ -7,9 +7,8 @@
 #include "job/run.h"
 
 /* Render entry `name` of the compare job or suite at path into o->out_dir: a reference's half (or
-   part of it, merged by the task that finds every part there) under its reference's shared lock;
-   an image (or part) once its scene's reference is prepared under that lock taken exclusive (it
-   waits for the tasks rendering the halves; a half still missing then is rendered whole). One
+   part) under its reference's shared lock; an image (or part) once its scene's reference is
+   prepared under that lock taken exclusive (a half still missing then is rendered whole). One
    line on stderr; the exit status 0, 1 or 2. */
 int entry_main(const char *path, const char *name, const struct run_opts *o);
 

@@ -43,11 +43,9 @@ double cost_sets_threshold_for(enum sampler_kind kind, double t, double points);
 struct cost_sets *cost_sets_new(void);
 void cost_sets_free(struct cost_sets *c);
 
-/* The cost of one set of sp drawn as `use`, measured now (repeated until about target_s CPU
-   seconds or 4096 sets, one set and 20 microseconds at least) or taken from the cache; target_s 0
-   (the caller's time is spent): scaled from the cached set of the same kind nearest in size
-   when there is one. The CPU seconds measuring took are added to *spent_s. 0, or -1 with e
-   filled (no memory). */
+/* The cost of one set of sp drawn as `use`, from the cache, or measured now (about target_s CPU
+   seconds; target_s 0: scaled from the cached set of its kind nearest in size when there is one),
+   the CPU seconds measuring took added to *spent_s. 0, or -1 with e filled (no memory). */
 int cost_sets_get(struct cost_sets *c, const struct cost_sampler *sp, enum cost_set_use use, double target_s,
                   struct cost_set *out, double *spent_s, struct err *e);
 

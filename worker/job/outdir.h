@@ -59,10 +59,9 @@ int outdir_check(const char *dir, struct err *e);
    never ours to remove). path itself must not be a symbolic link. 0 or -1 with e filled. */
 int outdir_mkdirs(const char *path, int *made, struct err *e);
 
-/* An output folder's error (e from outdir_check, outdir_mkdirs or a write into the folder) carries
-   e->errnum. 1 when it is the machine's fault, not the job's: the folder or its files cannot be
-   made or written (EACCES, EPERM, EROFS, ENOSPC, EDQUOT). The one rule a queue worker uses to hand
-   a claim back and stop (exit 2) rather than file the job as failed. */
+/* 1 when the output folder's error e (its errnum) is the machine's fault, not the job's: EACCES,
+   EPERM, EROFS, ENOSPC, EDQUOT. The one rule a queue worker uses to hand a claim back and stop
+   (exit 2) rather than file the job as failed. */
 int outdir_env_error(const struct err *e);
 
 /* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that an
@@ -78,9 +77,8 @@ int outdir_env_error(const struct err *e);
 int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s);
 void outdir_unlock(int lock);
 
-/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir, under its lock: for a
-   job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
-   A lock held by another writer for over a second leaves them (they may be that writer's). */
+/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir under its lock, for a
+   job that failed; a lock held by another for over a second leaves them (they may be its). */
 void outdir_remove_temps(const char *dir);
 
 #endif

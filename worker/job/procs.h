@@ -59,9 +59,8 @@ int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *re
    CPU seconds. 0, or -1 with e filled (the render context could not be made). */
 int procs_render_here(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
-/* The share of the render processes' CPU time spent drawing point sets, in [0, 1]: each
-   process's sampler_s is a fraction of its own cpu_s (render_stats_finish), and r sums both
-   over the processes (or the parts merged) in one order. */
+/* The share of the render processes' CPU time spent drawing point sets, in [0, 1] (each process's
+   sampler_s is a part of its cpu_s, and r sums both over the processes or parts merged). */
 double procs_sampling_share(const struct procs_result *r);
 
 #endif
