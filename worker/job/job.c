@@ -137,51 +137,42 @@ static int check_output_ext(struct ydoc *d, yaml_node_t *v, const char *out, str
                      strrchr(out, '.'), list);
 }
 
-/* One output name at v into out: a plain file name whose extension names a format (in a list,
-   it must have one: each image's format is its own). */
-static int get_output(struct ydoc *d, yaml_node_t *v, int in_list, char *out, enum img_format *fmt,
-                      struct err *e)
-{
-    if (get_safe_name(d, v, "output", "a plain file name of ", out, e) < 0 ||
-        check_output_ext(d, v, out, e) < 0)
-        return -1;
-    if (in_list && img_format_of_file(out, fmt) <= 0)
-        return ydoc_fail(d, v, e, "output: %s: in a list each image needs its format's extension", out);
-    return 0;
-}
-
-/* output: one name, or a list of names of distinct formats and one stem (the sidecar's). */
+/* output: one plain file name whose extension names a format written (none: format:), or a list
+   of such names, each with its extension, of distinct formats and one stem (the sidecar's). */
 static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err *e)
 {
-    enum img_format fmt;
-    if (v->type != YAML_SEQUENCE_NODE)
-        return get_output(d, v, 0, j->output, &fmt, e);
-    int n = yseq_len(v);
+    const int list = v->type == YAML_SEQUENCE_NODE, n = list ? yseq_len(v) : 1;
     if (n < 1 || n > JOB_OUTPUTS_MAX)
         return ydoc_fail(d, v, e, "output: a list holds 1 to %d image names (one per format), got %d",
                          JOB_OUTPUTS_MAX, n);
     enum img_format seen[JOB_OUTPUTS_MAX];
     for (int i = 0; i < n; i++) {
-        yaml_node_t *item = yseq_item(d, v, i);
+        yaml_node_t *item = list ? yseq_item(d, v, i) : v;
         char *out = i == 0 ? j->output : j->more_output[i - 1];
-        if (get_output(d, item, 1, out, &seen[i], e) < 0)
+        if (get_safe_name(d, item, "output", "a plain file name of ", out, e) < 0 ||
+            check_output_ext(d, item, out, e) < 0)
             return -1;
+        if (list && img_format_of_file(out, &seen[i]) <= 0)
+            return ydoc_fail(d, item, e, "output: %s: in a list each image needs its format's extension",
+                             out);
         for (int k = 0; k < i; k++)
             if (seen[k] == seen[i])
                 return ydoc_fail(d, item, e, "output: two %s images in one list (one per format)",
                                  img_format_name(seen[i]));
-        /* one stem for all: the sidecar X.json sits beside every image X.<ext> */
-        size_t stem = (size_t)(strrchr(j->output, '.') - j->output);
-        if (i > 0 && (strlen(out) <= stem || strncmp(out, j->output, stem) || out[stem] != '.' ||
-                      strchr(out + stem + 1, '.')))
-            return ydoc_fail(d, item, e,
-                             "output: %s: the images of a list share one name before the extension "
-                             "(%.*s, the sidecar's)",
-                             out, (int)stem, j->output);
-        if (i > 0)
+        if (i > 0) {
+            /* one stem for all: the sidecar X.json sits beside every image X.<ext> */
+            size_t stem = (size_t)(strrchr(j->output, '.') - j->output);
+            if (strlen(out) <= stem || strncmp(out, j->output, stem) || out[stem] != '.' ||
+                strchr(out + stem + 1, '.'))
+                return ydoc_fail(d, item, e,
+                                 "output: %s: the images of a list share one name before the extension "
+                                 "(%.*s, the sidecar's)",
+                                 out, (int)stem, j->output);
             j->more_format[i - 1] = seen[i];
+        }
     }
-    j->n_more = n - 1;
+    if (list)
+        j->n_more = n - 1;
     return 0;
 }
 
