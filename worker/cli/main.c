@@ -205,22 +205,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     return rc;
 }
 
-static int worker_main(int argc, char **argv);
-
-int main(int argc, char **argv)
-{
-    /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
-       kill the process half-way through an output. */
-    signal(SIGXFSZ, SIG_IGN);
-    char **args = cli_split_equals(&argc, argv);
-    if (!args)
-        return 2;
-    int rc = worker_main(argc, args);
-    free(args);
-    return rc;
-}
-
-/* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
+/* main after cli_split_equals: dispatch to a subcommand or render the jobs; the exit status. */
 static int worker_main(int argc, char **argv)
 {
     static const struct {
@@ -341,4 +326,17 @@ static int worker_main(int argc, char **argv)
 out:
     free(jobs);
     return worst;
+}
+
+int main(int argc, char **argv)
+{
+    /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
+       kill the process half-way through an output. */
+    signal(SIGXFSZ, SIG_IGN);
+    char **args = cli_split_equals(&argc, argv);
+    if (!args)
+        return 2;
+    int rc = worker_main(argc, args);
+    free(args);
+    return rc;
 }
