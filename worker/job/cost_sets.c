@@ -49,15 +49,6 @@ struct drawer {
     size_t pixel_n; /* padded: the pixel's count a slot is filled to */
 };
 
-static void drawer_release(struct drawer *d)
-{
-    stream_release(&d->st);
-    stream_source_release(&d->src);
-    padding_release(&d->pad);
-    free(d->pts);
-    sampler_free(d->s);
-}
-
 /* One set drawn as `use` (k: its index, a pixel of its own); returns its points. */
 static size_t draw_one(struct drawer *d, enum cost_set_use use, struct rng *rng, int k)
 {
@@ -119,7 +110,11 @@ static int time_at(const struct cost_sampler *sp, double t, enum cost_set_use us
     *out = (struct cost_set){spent / n, points / n, 0};
     rc = 0;
 done:
-    drawer_release(&d);
+    stream_release(&d.st);
+    stream_source_release(&d.src);
+    padding_release(&d.pad);
+    free(d.pts);
+    sampler_free(d.s);
     *spent_s += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
     return rc;
 }
