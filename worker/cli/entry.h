@@ -1,6 +1,5 @@
-/* entry: `worker STUDY.yaml --entry NAME --out OUT`: one entry of the study's plan (`worker plan`'s
-   names: a reference's half or an image, whole or a row part) rendered as a queue's worker renders
-   it, for a batch system's array of one task per entry (ci/slurm/submit-study.sh). */
+/* entry: `worker STUDY.yaml --entry NAME --out OUT`: one entry of `worker plan`'s rendered as a
+   queue's worker renders it, for a batch system's array of one task per entry. */
 #ifndef ENTRY_H
 #define ENTRY_H
 

@@ -38,22 +38,19 @@ struct cost_estimate {
 
 struct cost_model;
 
-/* A model that spends about budget_s CPU seconds measuring: each pilot an equal share of what is
-   left among those expected and not run (at least one path), each set timing a few sets (at least
-   one; once the budget is spent, a set size is scaled from a timed one of its kind). NULL on no
-   memory. Free with cost_model_free (accepts NULL). */
+/* A model that spends about budget_s CPU seconds measuring (each pilot an equal share of what is
+   left among those expected, each set timing a few sets; past it, a set is scaled from a timed one
+   of its kind). NULL on no memory. Free with cost_model_free (accepts NULL). */
 struct cost_model *cost_model_new(double budget_s);
 void cost_model_free(struct cost_model *m);
 
-/* Say that j's render at width x height of sf will be estimated, before any estimate, so that
-   the budget is shared among the distinct pilots (a pilot not expected takes all that is left).
-   Measures nothing. 0, or -1 with e filled (no memory). */
+/* Say, measuring nothing, that j's render at width x height of sf will be estimated, so that the
+   budget is shared among the distinct pilots. 0, or -1 with e filled (no memory). */
 int cost_model_expect(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
                       int height, struct err *e);
 
-/* Estimate j's render at width x height of the scene sf (loaded, as the render reads it), its
-   processes aside (their CPU time adds up). 0, or -1 with e filled (a sampler or scene the
-   render would refuse too, or no memory). */
+/* Estimate j's render at width x height of the loaded scene sf, whatever its processes (their CPU
+   time adds up). 0, or -1 with e filled (a sampler or scene the render would refuse, no memory). */
 int cost_model_estimate(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
                         int height, struct cost_estimate *out, struct err *e);
 

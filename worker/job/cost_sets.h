@@ -1,6 +1,5 @@
-/* cost_sets: what one point set costs to draw, measured on this machine: a pixel's set, a light's
-   set as its stream draws it, or one padded set of sampler_dims: all. A part of the cost model
-   (cost_model.h); cached, so that estimates of equal settings time each set once. */
+/* cost_sets: what one point set costs to draw (a pixel's, a light stream's, a padded one), measured
+   on this machine for the cost model (cost_model.h) and cached: equal settings are timed once. */
 #ifndef COST_SETS_H
 #define COST_SETS_H
 
