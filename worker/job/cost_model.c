@@ -100,17 +100,12 @@ static double set_target(const struct cost_model *m)
     return m->spent_s < m->budget_s ? COST_SET_TARGET_S : m->spent_s < COST_OVER * m->budget_s ? 1e-9 : 0;
 }
 
-/* What a pilot's set draws cost (the pilot's own samplers' sets, timed by cost_sets). */
-struct pilot_draws {
-    double pixel_s, light_s, padded_s;
-};
-
 /* A pilot's progress: the paths the next call may trace, the time spent, the counted pixels. */
 struct pilot_run {
     double budget_s, spent_s, paths;
     double clock_s; /* clock_pair_s */
     size_t cap;
-    struct pilot_draws draws;
+    struct cost_set pixel, light, padded; /* what the pilot's own set draws cost (pilot_draws) */
     struct pilot_fig sum;
 };
 
@@ -145,8 +140,8 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
     const double dt_clock = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s,
                  dt = dt_clock > 0 ? dt_clock : 0;
     const size_t done = all < p->cap ? all : p->cap;
-    const double draws = p->draws.pixel_s + (double)st.light_sets * p->draws.light_s +
-                         (double)st.padded_sets * p->draws.padded_s;
+    const double draws = p->pixel.s_per_set + (double)st.light_sets * p->light.s_per_set +
+                         (double)st.padded_sets * p->padded.s_per_set;
     const double trace = dt > draws ? dt - draws : 0;
     p->spent_s += dt;
     p->paths += (double)done;
@@ -167,24 +162,23 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
     p->sum.padded_sets += (double)st.padded_sets;
 }
 
-/* The cost of the pilot's own sets of j: its pixel sampler at pixel_t (as a pixel's and as a
+/* The cost of the pilot's own sets of j into p: its pixel sampler at pixel_t (as a pixel's and as a
    padded set), its light sampler at light_t. 0 or -1. */
 static int pilot_draws(struct cost_model *m, const struct job *j, double pixel_t, double light_t,
-                       struct pilot_draws *d, struct err *e)
+                       struct pilot_run *p, struct err *e)
 {
     const struct cost_sampler px = {j->spec.pixel.kind, pixel_t, j->spec.poisson_pool > 0,
                                     j->spec.poisson_domain},
                               li = {j->spec.light.kind, light_t, j->spec.poisson_pool > 0,
                                     j->spec.poisson_domain};
-    struct cost_set a = {0}, b = {0}, c = {0};
     /* timed, never scaled (at most COST_PILOT_SET_MAX points): what is left of a call is tracing */
     const double target = set_target(m) > 0 ? set_target(m) : 1e-9;
-    if (cost_sets_get(m->sets, &px, COST_SET_PIXEL, target, &a, &m->spent_s, e) < 0 ||
-        (j->spec.dims_all && cost_sets_get(m->sets, &px, COST_SET_PADDED, target, &c, &m->spent_s, e) < 0) ||
+    if (cost_sets_get(m->sets, &px, COST_SET_PIXEL, target, &p->pixel, &m->spent_s, e) < 0 ||
+        (j->spec.dims_all &&
+         cost_sets_get(m->sets, &px, COST_SET_PADDED, target, &p->padded, &m->spent_s, e) < 0) ||
         (!j->spec.dims_all && j->spec.light_sampling &&
-         cost_sets_get(m->sets, &li, COST_SET_LIGHT, target, &b, &m->spent_s, e) < 0))
+         cost_sets_get(m->sets, &li, COST_SET_LIGHT, target, &p->light, &m->spent_s, e) < 0))
         return -1;
-    *d = (struct pilot_draws){a.s_per_set, b.s_per_set, c.s_per_set};
     return 0;
 }
 
@@ -213,7 +207,7 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
     const int w = k->width * scale, h = k->height * scale;
     const struct render_settings rs = render_spec_settings(&j->spec, w, h, j->spec.seed);
     struct pilot_run p = {.budget_s = budget_s, .cap = 1, .clock_s = clock_pair_s()};
-    if (pilot_draws(m, j, pixel_t, light_t, &p.draws, e) < 0)
+    if (pilot_draws(m, j, pixel_t, light_t, &p, e) < 0)
         goto done;
     const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
     if (!(pix = sampler_new(j->spec.pixel.kind, pixel_t, pool, 1, e)) ||
