@@ -55,9 +55,8 @@ static int parse_seed(const char *s, uint64_t *out)
     return 0;
 }
 
-/* Whether the file of option opt can go where it is named (its folder exists and is writable, and it is not
-   a folder itself): 0, or 2 after one line on stderr. Bad usage, found before anything is drawn; a
-   write that fails later (a full disk) is exit 1. */
+/* Whether the file of option opt can go where it is named (a writable folder, not a folder itself):
+   0, or 2 (bad usage, before anything is drawn) after one line on stderr. */
 static int place_ok(const char *opt, const char *path)
 {
     if (!path)

@@ -18,11 +18,9 @@
 #define COST_OVER 1.5
 #define COST_PILOT_MIN_S 0.0005
 
-/* What a pilot's traced samples cost depends on: the scene and view, the path's settings and how
-   light points are taken (the light sampler's kind); under sampler_dims: all, the pixel
-   sampler's sets decide every bounce, and the more samples a pixel has the more of its padded
-   slots they reach (its set size, to a factor of 2). Thresholds do not enter otherwise: their
-   sets are timed apart. */
+/* What a pilot's traced samples cost depends on: the scene and view, the path's settings, the light
+   sampler's kind, and under sampler_dims: all the pixel sampler and its set size (to a factor of 2:
+   the padded slots a pixel reaches). Thresholds do not enter otherwise: their sets are timed apart. */
 struct pilot_key {
     const struct scene_file *sf;
     int width, height, max_depth, light_sampling;

@@ -264,11 +264,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     return 0;
 }
 
-/* Refuse a threshold whose sets would not fit the per-set limit: the count, the limit, why, and
-   the smallest threshold that fits. The same limit for all four samplers: a set is held whole in
-   memory (per render process, one for the pixel and one per sampled light). Poisson's is on
-   Bridson's background grid, one cell per possible point (at most one point per cell): its
-   points are about a third of its cells. */
+/* Refuse a threshold whose sets would not fit the per-set limit (a set is held whole in memory, one
+   for the pixel and one per sampled light; Poisson's counts Bridson's grid cells, about three per
+   point): the count, the limit, why, and the smallest threshold that fits. */
 static int check_set_size(const struct job *j, const struct sampler_spec *sp, const char *key, struct err *e)
 {
     const enum sampler_kind k = sp->kind;

@@ -49,9 +49,8 @@ void outdir_part_path(const struct job *j, const char *out_dir, int part, int pa
  *parts; else 0. */
 int outdir_part_name(const struct job *j, const char *file, int *part, int *parts);
 
-/* Check, making nothing, that dir is a writable directory or can be made as one (its nearest
-   existing ancestor is a writable directory), so an interrupted render leaves no empty folder
-   behind. 0 or -1 with e filled. */
+/* Check, making nothing, that dir is a writable directory or can be made as one (so an interrupted
+   render leaves no empty folder behind). 0 or -1 with e filled. */
 int outdir_check(const char *dir, struct err *e);
 
 /* mkdir -p for path; *made (unless NULL): whether path itself was made here, so a failed write
