@@ -181,9 +181,8 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
     return 0;
 }
 
-/* Sweep points of one scene and variant whose images get the same samples per pixel (spp, by
-   point): warned once per variant, naming the first such pair (thresholds 100 and 80 both give
-   one sample: two points measure one thing). */
+/* Sweep points of scene s and variant v whose images get the same samples per pixel (spp, by point;
+   thresholds 100 and 80 both give one): warned once per variant, naming the first such pair. */
 static void warn_same_points(const struct compare *c, int s, int v, const double *spp)
 {
     for (int p = 0; p < c->n_points; p++)

@@ -1,5 +1,4 @@
-/* points: `worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] [--spectrum F.png]
-   [--radial F.svg] [--stats] [--padded K]`: one sample set as CSV / SVG, its spectrum and
+/* points: `worker points SAMPLER THRESHOLD [options]`: one sample set as CSV / SVG, its spectrum and
    statistics, or a pixel's padded dimensions. */
 #include "points.h"
 

@@ -12,9 +12,8 @@
 
 /* The share of a pilot's time a set timing may take (one set at least): a few sets. */
 #define COST_SET_TARGET_S 0.004
-/* Past its budget a model still gives each new pilot this much (a few paths), each set timing
-   one batch (cost_sets.h); past COST_OVER times its budget it measures nothing new: new set
-   sizes are scaled from timed ones of their kind, new pilots trace one path. */
+/* Past its budget a model still gives each new pilot COST_PILOT_MIN_S (a few paths), each set timing
+   one batch; past COST_OVER times it, new set sizes are scaled, new pilots trace one path. */
 #define COST_OVER 1.5
 #define COST_PILOT_MIN_S 0.0005
 

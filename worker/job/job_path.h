@@ -22,8 +22,7 @@ int job_path_is_file(const char *p);
 int job_path_scene(struct job *j, const char *val, char *tried, size_t n);
 
 /* " (did you mean X?)" for a scene: value val that names no file (after job_path_scene), when a
-   file near it exists where it was looked for (buf holds it); else "". A bare name is compared
-   with the scenes' stems, a path's last part with its folder's entries. */
+   file near it exists where it was looked for (into buf); else "". */
 const char *job_path_scene_hint(const struct job *j, const char *val, char *buf, size_t n);
 
 #endif

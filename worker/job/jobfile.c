@@ -9,9 +9,8 @@
 #include "base/hash.h"
 #include "image/imgio.h"
 
-/* Which kind the parsed document is: a mapping with studies: is a suite, with variants: a compare
-   job (either written null still says which kind was meant); anything else a plain job, whose
-   reader says what is wrong with it. */
+/* The parsed document's kind: a mapping with studies: is a suite, with variants: a compare job
+   (either written null still says which); anything else a plain job, its reader says what's wrong. */
 static enum jobfile_kind kind_of(struct ydoc *d)
 {
     yaml_node_t *root = ydoc_root(d);

@@ -53,9 +53,8 @@ int outdir_part_name(const struct job *j, const char *file, int *part, int *part
    render leaves no empty folder behind). 0 or -1 with e filled. */
 int outdir_check(const char *dir, struct err *e);
 
-/* mkdir -p for path; *made (unless NULL): whether path itself was made here, so a failed write
-   may remove it (a folder that was there already, or that another process made meanwhile, is
-   never ours to remove). path itself must not be a symbolic link. 0 or -1 with e filled. */
+/* mkdir -p for path, itself no symbolic link; *made (unless NULL): whether path itself was made
+   here, so that a failed write may remove it. 0 or -1 with e filled. */
 int outdir_mkdirs(const char *path, int *made, struct err *e);
 
 /* 1 when the output folder's error e (its errnum) is the machine's fault, not the job's: EACCES,

@@ -101,10 +101,9 @@ static int outputs_current(const struct job *j, const struct run_opts *o, const 
 
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
 {
-    /* Outputs left by a render with another process count are not what --processes asked for:
-       their sidecar records that count and its per-process times; so an override joins the hash
-       the outputs are matched by, from the command line, a queue or a compare job alike. (Parts
-       keep the file's hash: merge matches them against it, whatever split rendered them.) */
+    /* Outputs of another process count (their sidecar records it) are not what --processes asked
+       for: an override joins the hash the outputs are matched by. (Parts keep the file's hash:
+       merge matches them against it, whatever split rendered them.) */
     struct job overridden;
     if (j->hash != 0 && o->parts == 0 && o->processes > 0 && o->processes != j->processes) {
         overridden = *j;

@@ -10,9 +10,8 @@
    jobfile_open) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
 
-/* Read j's reference (EXR, PFM, PNG or PPM) into ref as floats, *domain saying what they are,
-   and check it is w x h. 0 (ref->px NULL when the job has none), or -1 with e at the job's
-   reference key. */
+/* Read j's reference into ref as floats (*domain: what they are) and check it is w x h. 0 (ref->px
+   NULL when the job has none), or -1 with e at the job's reference key. */
 int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
                        struct err *e);
 
