@@ -6,10 +6,9 @@
 #include "base/err.h"
 #include "sample/sampler.h"
 
-/* Sets of a capacity above this are not drawn: their cost is measured on two smaller sets of
-   the kind (COST_SETS_SMALL and COST_SETS_DIRECT_MAX points) and scaled as a power of the size. A
-   kind that takes sets up to T points from a table (sampler_table_points) is timed at 2T and 4T,
-   past it, where its sets are drawn fresh: a table's prefix says nothing of a fresh set's cost. */
+/* Sets of a capacity above this are not drawn: timed at COST_SETS_SMALL and COST_SETS_DIRECT_MAX
+   points and scaled as a power of the size. A kind that takes sets up to T points from a table
+   (sampler_table_points) is timed at 2T and 4T instead, where its sets are drawn fresh. */
 #define COST_SETS_DIRECT_MAX 16384
 #define COST_SETS_SMALL 4096
 

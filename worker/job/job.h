@@ -27,9 +27,8 @@ int job_check_stem(const struct job *j, struct err *e);
 /* Derive what depends on several keys (light sampler default, format, output name). */
 int job_finish(struct job *j, struct ydoc *d, struct err *e);
 
-/* Where j's light points really come from, for a caption: "light jitter t=5", or under
-   sampler_dims: all (which never asks the light sampler) "light points from the sobol sets
-   (sampler_dims: all)", or "no light sampling". Written into buf (n bytes), returned. */
+/* Where j's light points really come from, for a caption, into buf (n bytes), returned: "light
+   jitter t=5", "light points from the sobol sets (sampler_dims: all)" or "no light sampling". */
 const char *job_light_text(const struct job *j, char *buf, size_t n);
 
 /* The message for s, no sampler's name: "unknown sampler \"s\" (did you mean \"x\"?)", else with the

@@ -53,10 +53,9 @@ void procs_framebuffer_free(float *rgb, int w, int h);
    stops after its current row. */
 int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
-/* Render fj's rows in the calling process, no fork: for the study's cost design, which times
-   small units of work again and again (a fork per unit cost more than the unit under ASan, and
-   is no part of a sampler's cost). res as procs_render's with one process, cpu_s this thread's
-   CPU seconds. 0, or -1 with e filled (the render context could not be made). */
+/* Render fj's rows in the calling process, no fork (the study's cost design times small units of
+   work, for which a fork costs more than the unit): res as procs_render's with one process, cpu_s
+   this thread's. 0, or -1 with e filled (the render context could not be made). */
 int procs_render_here(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
 /* The share of the render processes' CPU time spent drawing point sets, in [0, 1] (each process's
