@@ -2,10 +2,9 @@
 #ifndef POINTS_H
 #define POINTS_H
 
-/* worker points SAMPLER THRESHOLD [options] (points.c's usage lists them), with argv[0] =
-   "points": seed S's set as one "x,y" line per point on stdout, or its statistics, pictures and
-   spectra (files written atomically). The exit status: 0 done, 1 output could not be written, 2
-   bad usage or input (one line on stderr says why). */
+/* worker points SAMPLER THRESHOLD [options], with argv[0] = "points": a set's points as CSV on
+   stdout, or its statistics, pictures and spectra. The exit status: 0 done, 1 output could not be
+   written, 2 bad usage or input (one line on stderr says why). */
 int points_main(int argc, char **argv);
 
 #endif

@@ -118,20 +118,18 @@ static double clock_pair_s(void)
     return least;
 }
 
-/* Render pixel (x, y) at most p->cap paths, timed whole (the clock's own cost taken out) and
-   untimed inside (render_time.h times a pixel whose stats count 8k pixels: these count one); count
-   it when it is whole or the budget is spent, else leave it to be rendered again with more paths.
-   The cap starts at one path and grows at most 8 times a call, to what the budget left would pay:
-   however costly a path is (a whole pixel of 100000 stacked pyramids took 22 s), the pilot stays
-   near its budget. The sets the call drew are taken out at their timed cost: what is left is
-   tracing. A call is timed once, not repeated: the same pixel again runs faster than a render's
-   pixels do (its draws' branches learnt, its memory hot: a 20-point Poisson set in 6 us, fresh 10). */
+/* Render pixel (x, y) at most p->cap paths, timed whole, once (the same pixel again runs faster than
+   a render's do: a 20-point Poisson set in 6 us, fresh 10); count it when it is whole or the budget
+   is spent, else leave it to be rendered again with more paths. The cap starts at one path and
+   grows at most 8 times a call, to what the budget left would pay: however costly a path is (a
+   whole pixel of 100000 stacked pyramids took 22 s), the pilot stays near its budget. The sets the
+   call drew are taken out at their timed cost: what is left is tracing. */
 static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y, int n_lights)
 {
     struct render_stats st;
     float rgb[3];
     render_stats_init(&st);
-    st.pixels = 1;
+    st.pixels = 1; /* untimed inside: render_time.h times a pixel whose stats count 8k pixels */
     const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
     const size_t all = render_pixel_paths(ctx, x, y, p->cap, rgb, &st);
     const double dt_clock = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s,

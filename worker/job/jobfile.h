@@ -32,9 +32,8 @@ struct jobfile {
 };
 
 /* Read the job file at `from` once (at most YDOC_MAX_BYTES), hash and parse it, as if it were at
-   `path` (a queue's claimed file still belongs to the queue's folder; the command line gives the
-   same path twice). A plain job is checked key by key and its scene and reference read and
-   hashed. 0, or -1 with e = "file:line:col: key: message" (naming path); jobfile_close after. */
+   `path` (a queue's claim still belongs to the queue's folder); a plain job's keys checked, its
+   scene and reference read and hashed. 0, or -1 with e naming path; jobfile_close after. */
 int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e);
 void jobfile_close(struct jobfile *f);
 

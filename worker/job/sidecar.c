@@ -28,8 +28,9 @@ static void clean(char *s)
             *s = '?';
 }
 
-/* The value of the first line "key<tabs/spaces>: value" of text among keys, into out. 0 or -1. */
-static int cpuinfo_value(const char *text, char *out, size_t n)
+/* The value of /proc/cpuinfo's (text's) first line "key<tabs/spaces>: value" among keys, into out
+   (unchanged when there is none). */
+static void cpuinfo_value(const char *text, char *out, size_t n)
 {
     static const char *const keys[] = {"model name", "Hardware", "cpu model", "Processor"};
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
@@ -44,15 +45,13 @@ static int cpuinfo_value(const char *text, char *out, size_t n)
             snprintf(out, n, "%.*s", (int)((end ? end : colon + strlen(colon)) - colon - 1), colon + 1);
             clean(out);
             if (out[0])
-                return 0;
+                return;
         }
-    return -1;
 }
 
-/* Where a render ran, for its sidecar (a study whose images came from several machines says its
-   CPU times do not compare): this machine's host name ("unknown" when gethostname fails) and CPU
-   model (/proc/cpuinfo's first "model name", else "Hardware", "cpu model", "Processor"; "unknown"
-   when there is none), printable ASCII only, into host and cpu (n bytes each). */
+/* Where a render ran (CPU times of different machines do not compare): this machine's host name and
+   CPU model (cpuinfo_value's), "unknown" when not found, printable ASCII only, into host and cpu
+   (n bytes each). */
 static void describe_machine(char *host, char *cpu, size_t n)
 {
     snprintf(host, n, "unknown");
@@ -71,7 +70,7 @@ static void describe_machine(char *host, char *cpu, size_t n)
         size_t len = fread(text, 1, max, f);
         text[len] = 0;
         fclose(f);
-        (void)cpuinfo_value(text, cpu, n);
+        cpuinfo_value(text, cpu, n);
     }
     free(text);
 }
