@@ -5,10 +5,9 @@
 
 #include "job/run.h"
 
-/* Render entry `name` of the compare job or suite at path into o->out_dir: a reference's half (or
-   part) under its reference's shared lock; an image (or part) once its scene's reference is
-   prepared under that lock taken exclusive (a half still missing then is rendered whole). One
-   line on stderr; the exit status 0, 1 or 2. */
+/* Render entry `name` of the compare job or suite at path into o->out_dir: a reference's half under
+   its reference's shared lock, an image once its scene's reference is prepared under that lock
+   taken exclusive. One line on stderr; the exit status 0, 1 or 2. */
 int entry_main(const char *path, const char *name, const struct run_opts *o);
 
 #endif
