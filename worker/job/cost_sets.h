@@ -13,8 +13,7 @@
 #define COST_SETS_SMALL 4096
 
 /* How a set is drawn: whole for a pixel (sampler_draw_at), as a light's stream refills
-   (stream_refill: a grid's or pool's indices, a fresh set's points), or as a padded slot
-   (padding_fill: whole sets up to the pixel's count, shuffled). */
+   (stream_refill), or as a padded slot (padding_fill). */
 enum cost_set_use { COST_SET_PIXEL, COST_SET_LIGHT, COST_SET_PADDED };
 
 /* The settings a set's cost depends on. */

@@ -1,6 +1,5 @@
-/* outdir: a job's output folder OUT/<name>/ and the names in it (image, sidecar, part files, all
-   from the output's stem), made on demand and locked while written; the removal of the temporary
-   files a killed writer left. */
+/* outdir: a job's output folder OUT/<name>/ and the names in it (all from the output's stem), made
+   on demand, locked while written, and swept of the temporary files a killed writer left. */
 #ifndef OUTDIR_H
 #define OUTDIR_H
 

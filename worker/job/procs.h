@@ -45,12 +45,11 @@ struct procs_job {
 float *procs_framebuffer_new(int w, int h, struct err *e);
 void procs_framebuffer_free(float *rgb, int w, int h);
 
-/* Render fj into rgb (from procs_framebuffer_new, linear) with rows split over the processes as
-   row % processes: every pixel depends only on (seed, x, y), so any split gives the same bytes. 0;
-   -1 with e filled when a child fails (the others killed and reaped; res->child_crashed and
-   res->child_signal say so), when *fj->stop becomes set (res->stopped), or when a resource is
-   missing. A child whose parent dies is killed with it on Linux (PR_SET_PDEATHSIG), elsewhere
-   stops after its current row. */
+/* Render fj into rgb (from procs_framebuffer_new, linear), rows split over the processes as row %
+   processes (a pixel depends only on (seed, x, y): any split gives the same bytes). 0; -1 with e
+   filled when a child fails (the others killed and reaped; res->child_crashed, res->child_signal),
+   when *fj->stop becomes set (res->stopped), or when a resource is missing. A child whose parent
+   dies is killed with it on Linux, elsewhere stops after its current row. */
 int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
 /* Render fj's rows in the calling process, no fork (the study's cost design times small units of

@@ -7,11 +7,10 @@
 
 #include "run_types.h"
 
-/* Take dir's lock for writing paths (outdir_lock) into *lock, then ask whether this render may
-   still write (run_opts.may_write): a claim taken over while it waited, or a writer stopped then,
-   writes nothing. A lock not had within o->lock_wait_s (> 0) is a stopped or hung writer's, who
-   gives up at its next rename (run_opts.still_held): this one goes on without it, saying so. 0,
-   or -1 with e filled; outdir_unlock(*lock) either way. */
+/* Take dir's lock for writing paths (outdir_lock) into *lock, then ask run_opts.may_write: a claim
+   taken over while it waited writes nothing. A lock not had within o->lock_wait_s (> 0) is a hung
+   writer's, who gives up at its next rename: this one goes on without it, saying so. 0, or -1 with
+   e filled (also when stopped while waiting); outdir_unlock(*lock) either way. */
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e);
 
