@@ -6,12 +6,10 @@
 #include "base/err.h"
 #include "farm/queue.h"
 
-/* 1 when a is an option that takes a value (--out, --processes, --queue, --poll, --retries,
-   --lease-timeout, --part). */
+/* 1 when a is an option that takes a value (cli.c's list: --out, --processes, --queue, ...). */
 int cli_takes_value(const char *a);
 
-/* One option with a value (--out, --processes, --queue, --poll, --retries, --lease-timeout,
-   --part) into q. 0, or -1 after printing the usage error. */
+/* One option a with its value v into q. 0, or -1 after printing the usage error. */
 int cli_option_value(const char *a, const char *v, struct queue_opts *q);
 
 /* `--out=DIR` as `--out DIR` (GNU style, as pbrt and Slurm take it too) for every option that
@@ -19,9 +17,8 @@ int cli_option_value(const char *a, const char *v, struct queue_opts *q);
    The new argv (argc grown by one per split) is malloc'ed; NULL when out of memory. */
 char **cli_split_equals(int *argc, char **argv);
 
-/* `worker --quiet diff A B`: a subcommand (diff, points, merge) after leading options is still the
-   subcommand; it is moved to argv[1] and the options after it, where its own parser judges them.
-   After --help or --version nothing moves: those answer whatever follows. */
+/* `worker --quiet diff A B`: a subcommand after leading options is moved to argv[1], the options
+   after it, where its own parser judges them; after --help or --version nothing moves. */
 void cli_hoist_subcommand(int argc, char **argv);
 
 /* e as one line on stderr (err_format's "file:line:col: msg"). */

@@ -10,9 +10,8 @@
 #include "cli.h"
 #include "job/job_estimate.h"
 #include "job/jobfile.h"
-#include "study/load/compare_load.h"
-#include "study/load/compare_suite_load.h"
 #include "study/run/compare_ref.h"
+#include "study/run/study_fan.h"
 #include "study/run/study_scenes.h"
 #include "study/judge/verdict.h"
 
@@ -93,14 +92,14 @@ static void print_took(void)
 
 static int plain(const struct jobfile *f, const struct run_opts *o)
 {
-    const struct job *jp = &f->job;
+    const struct job *j = &f->job;
     struct job_estimate est;
     struct scene_file sf = {0};
     struct err e = {0};
     struct cost_model *m = cost_model_new(DRYRUN_JOB_BUDGET_S);
     /* the scene as jobfile_open read it: built here, not read again */
-    int rc = !m ? (err_set(&e, jp->path, 0, 0, "out of memory"), 2)
-             : scene_load_src(&f->scene, &sf, &e) < 0 || job_estimate(jp, &sf, o->processes, m, &est, &e) < 0
+    int rc = !m ? (err_set(&e, j->path, 0, 0, "out of memory"), 2)
+             : scene_load_src(&f->scene, &sf, &e) < 0 || job_estimate(j, &sf, o->processes, m, &est, &e) < 0
                  ? 2
                  : 0;
     scene_file_free(&sf);
@@ -109,13 +108,12 @@ static int plain(const struct jobfile *f, const struct run_opts *o)
         cli_print_err(&e);
         return 2;
     }
-    const struct job j = *jp;
     const struct cost_estimate *c = &est.cost;
     char light[96];
-    printf("%s: dry run: nothing rendered, nothing written\n", j.name);
+    printf("%s: dry run: nothing rendered, nothing written\n", j->name);
     printf("  image     %dx%d, %s t=%g, %s -> %s/%s/%s\n", est.width, est.height,
-           sampler_kind_name(j.spec.pixel.kind), j.spec.pixel.threshold,
-           job_light_text(&j, light, sizeof light), o->out_dir, j.name, j.output);
+           sampler_kind_name(j->spec.pixel.kind), j->spec.pixel.threshold,
+           job_light_text(j, light, sizeof light), o->out_dir, j->name, j->output);
     char num[32];
     printf("  samples   %s (%.4g per pixel)\n", count(est.samples, num, sizeof num), est.spp_mean);
     print_memory(&est, "about");
@@ -183,9 +181,8 @@ static int study_reference(const struct compare *c, int s, const struct scene_fi
     return 0;
 }
 
-/* Sweep points of one scene and variant whose images get the same samples per pixel (spp, by
-   point): warned once per variant, naming the first such pair (thresholds 100 and 80 both give
-   one sample: two points measure one thing). */
+/* Sweep points of scene s and variant v whose images get the same samples per pixel (spp, by point;
+   thresholds 100 and 80 both give one): warned once per variant, naming the first such pair. */
 static void warn_same_points(const struct compare *c, int s, int v, const double *spp)
 {
     for (int p = 0; p < c->n_points; p++)
@@ -256,20 +253,18 @@ done:
 static int compare_job(const struct jobfile *f, const struct run_opts *o)
 {
     struct err e = {0};
-    struct compare_suite *suite = NULL;
-    struct compare *one = NULL;
-    if (f->kind == JOBFILE_SUITE ? !(suite = compare_suite_load_doc(&f->doc, f->path, &e))
-                                 : !(one = compare_load_doc(&f->doc, f->path, &e))) {
+    struct study_fan fan = {0};
+    if (study_fan_load(f, &fan, &e) < 0) {
         cli_print_err(&e);
         return 2;
     }
-    struct compare *const *studies = suite ? suite->studies : &one;
-    int n = suite ? suite->n_studies : 1, rc = 0;
+    struct compare *const *studies = fan.s ? fan.s->studies : &fan.c;
+    int n = study_fan_studies(&fan), rc = 0;
     struct cost_model *m = cost_model_new(DRYRUN_STUDY_BUDGET_S);
     struct study_scenes ds = {0};
     double cpu_s = 0, ref_cpu_s = 0;
     int processes = 1;
-    printf("%s: dry run: nothing rendered, nothing written\n", suite ? suite->name : one->name);
+    printf("%s: dry run: nothing rendered, nothing written\n", study_fan_name(&fan));
     if (!m)
         err_set(&e, f->path, 0, 0, "out of memory");
     if (!m || study_scenes_prepare(studies, n, &ds, m, &e) < 0) {
@@ -278,7 +273,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     }
     for (int i = 0; i < n && rc == 0; i++) {
         struct study_sum sum;
-        if (suite)
+        if (fan.s)
             printf(" study %s\n", studies[i]->name);
         if (study(studies[i], &ds, m, o, &sum, &e) < 0) {
             cli_print_err(&e);
@@ -298,8 +293,7 @@ static int compare_job(const struct jobfile *f, const struct run_opts *o)
     }
     study_scenes_free(&ds);
     cost_model_free(m);
-    compare_suite_free(suite);
-    compare_free(one);
+    study_fan_free(&fan);
     return rc;
 }
 

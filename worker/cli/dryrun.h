@@ -1,6 +1,5 @@
 /* dryrun: `worker JOB.yaml --dry-run`: what a job, compare job or suite would render and cost
-   (samples, memory, CPU time from a short pilot, a compare job's reference-too-weak guard), with
-   nothing rendered in full and nothing written. */
+   (samples, memory, CPU time from a short pilot), nothing rendered in full, nothing written. */
 #ifndef DRYRUN_H
 #define DRYRUN_H
 

@@ -1,16 +1,13 @@
-/* entry: `worker STUDY.yaml --entry NAME --out OUT`: one entry of the study's plan (`worker plan`'s
-   names: a reference's half or an image, whole or a row part) rendered as a queue's worker renders
-   it, for a batch system's array of one task per entry (ci/slurm/submit-study.sh). */
+/* entry: `worker STUDY.yaml --entry NAME --out OUT`: one entry of `worker plan`'s rendered as a
+   queue's worker renders it, for a batch system's array of one task per entry. */
 #ifndef ENTRY_H
 #define ENTRY_H
 
 #include "job/run.h"
 
-/* Render entry `name` of the compare job or suite at path into o->out_dir: a reference's half (or
-   part of it, merged by the task that finds every part there) under its reference's shared lock;
-   an image (or part) once its scene's reference is prepared under that lock taken exclusive (it
-   waits for the tasks rendering the halves; a half still missing then is rendered whole). One
-   line on stderr; the exit status 0, 1 or 2. */
+/* Render entry `name` of the compare job or suite at path into o->out_dir: a reference's half under
+   its reference's shared lock, an image once its scene's reference is prepared under that lock
+   taken exclusive. One line on stderr; the exit status 0, 1 or 2. */
 int entry_main(const char *path, const char *name, const struct run_opts *o);
 
 #endif

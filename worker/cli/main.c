@@ -121,23 +121,23 @@ struct named {
 };
 
 /* A job's name against the command line's others (jobfile_run's name_ok): the job files taken
-   so far (taken, *ntaken of them) and the one at path now. */
+   so far (taken, ntaken of them) and the one at path now. */
 struct names_seen {
     const char *path;
     const struct run_opts *o;
     struct named *taken;
-    int *ntaken;
+    int ntaken;
 };
 
 /* 0 (said on stderr) when name is another job file's among those taken; else 1, and it is taken. */
 static int name_ok(const char *name, void *arg)
 {
-    const struct names_seen *ns = arg;
+    struct names_seen *ns = arg;
     struct named *taken = ns->taken;
     struct stat st;
     if (stat(ns->path, &st) < 0)
         st.st_dev = 0, st.st_ino = 0;
-    for (int i = 0; i < *ns->ntaken; i++) {
+    for (int i = 0; i < ns->ntaken; i++) {
         if (strcmp(taken[i].name, name) != 0)
             continue;
         if (taken[i].dev == st.st_dev && taken[i].ino == st.st_ino) /* the same file again */
@@ -147,9 +147,8 @@ static int name_ok(const char *name, void *arg)
                   ns->path, name, taken[i].path, ns->o->out_dir, name);
         return 0;
     }
-    taken[*ns->ntaken] = (struct named){.path = ns->path, .dev = st.st_dev, .ino = st.st_ino};
-    snprintf(taken[*ns->ntaken].name, sizeof taken[0].name, "%s", name);
-    (*ns->ntaken)++;
+    taken[ns->ntaken] = (struct named){.path = ns->path, .dev = st.st_dev, .ino = st.st_ino};
+    snprintf(taken[ns->ntaken++].name, sizeof taken[0].name, "%s", name);
     return 1;
 }
 
@@ -177,15 +176,15 @@ static void print_outcome(const struct job *j, int merge, int rc, struct run_res
     }
 }
 
-/* Render (or, with merge, merge the parts of) one job file, read once; its exit status. taken:
-   the jobs of this command line so far (name_ok), compare jobs included. */
-static int job_main(const char *path, const struct run_opts *o, int merge, struct named *taken, int *ntaken)
+/* Render (or, with merge, merge the parts of) the job file at path, read once; its exit status.
+   ns: the jobs of this command line so far (name_ok), compare jobs included. */
+static int job_main(const char *path, const struct run_opts *o, int merge, struct names_seen *ns)
 {
     struct jobfile f;
     struct jobfile_outcome out = {0};
     struct err e;
-    struct names_seen ns = {path, o, taken, ntaken};
     int rc = 2;
+    ns->path = path;
     if (jobfile_open(&f, path, path, &e) < 0) {
         cli_print_err(&e);
     } else if (f.kind != JOBFILE_PLAIN && merge) {
@@ -193,12 +192,12 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     } else if (f.kind != JOBFILE_PLAIN && o->parts) { /* a batch task's share of the study's renders */
         rc = study_fan_share(&f, o);
     } else if (merge) {
-        if (name_ok(f.job.name, &ns)) {
+        if (name_ok(f.job.name, ns)) {
             rc = merge_parts(&f.job, o, &out.rr, &out.e);
             print_outcome(&f.job, 1, rc, &out.rr, &out.e);
         }
     } else {
-        rc = jobfile_run(&f, o, name_ok, &ns, &out);
+        rc = jobfile_run(&f, o, name_ok, ns, &out);
         if (f.kind == JOBFILE_PLAIN && !(rc == 2 && !out.e.msg[0])) /* not refused by name_ok */
             print_outcome(&f.job, 0, rc, &out.rr, &out.e);
     }
@@ -206,22 +205,7 @@ static int job_main(const char *path, const struct run_opts *o, int merge, struc
     return rc;
 }
 
-static int worker_main(int argc, char **argv);
-
-int main(int argc, char **argv)
-{
-    /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
-       kill the process half-way through an output. */
-    signal(SIGXFSZ, SIG_IGN);
-    char **args = cli_split_equals(&argc, argv);
-    if (!args)
-        return 2;
-    int rc = worker_main(argc, args);
-    free(args);
-    return rc;
-}
-
-/* main after split_equals: dispatch to a subcommand or render the jobs; the exit status. */
+/* main after cli_split_equals: dispatch to a subcommand or render the jobs; the exit status. */
 static int worker_main(int argc, char **argv)
 {
     static const struct {
@@ -330,17 +314,29 @@ static int worker_main(int argc, char **argv)
         err_print("worker: merge finds the parts itself; --part is for rendering one; see worker --help\n");
         worst = 2;
     } else {
-        struct named *taken = calloc((size_t)njobs, sizeof *taken);
-        int ntaken = 0;
-        for (int i = 0; taken && i < njobs; i++)
-            worst = max_rc(worst, job_main(jobs[i], o, merge, taken, &ntaken));
-        if (!taken) {
+        struct names_seen ns = {NULL, o, calloc((size_t)njobs, sizeof *ns.taken), 0};
+        for (int i = 0; ns.taken && i < njobs; i++)
+            worst = max_rc(worst, job_main(jobs[i], o, merge, &ns));
+        if (!ns.taken) {
             err_print("worker: out of memory");
             worst = 2;
         }
-        free(taken);
+        free(ns.taken);
     }
 out:
     free(jobs);
     return worst;
+}
+
+int main(int argc, char **argv)
+{
+    /* A file-size limit must fail our write() with EFBIG (reported, temp file removed), not
+       kill the process half-way through an output. */
+    signal(SIGXFSZ, SIG_IGN);
+    char **args = cli_split_equals(&argc, argv);
+    if (!args)
+        return 2;
+    int rc = worker_main(argc, args);
+    free(args);
+    return rc;
 }

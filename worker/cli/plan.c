@@ -57,7 +57,7 @@ static int parse(int argc, char **argv, struct plan_args *a)
         char *end;
         if (!ended && !strcmp(o, "--")) {
             ended = 1;
-        } else if (ended) {
+        } else if (ended || o[0] != '-' || !o[1]) {
             if (a->path) {
                 fprintf(stderr, "worker plan: one job file at a time (got %s and %s)\n", a->path, o);
                 return 2;
@@ -86,14 +86,9 @@ static int parse(int argc, char **argv, struct plan_args *a)
                 return 2;
             }
             i++;
-        } else if (o[0] == '-' && o[1]) {
+        } else {
             fprintf(stderr, "worker plan: unknown option %s\n%s", o, plan_usage);
             return 2;
-        } else if (a->path) {
-            fprintf(stderr, "worker plan: one job file at a time (got %s and %s)\n", a->path, o);
-            return 2;
-        } else {
-            a->path = o;
         }
     }
     if (!a->path) {

@@ -1,6 +1,5 @@
-/* plan: `worker plan JOB.yaml [--workers N] [--cores C] [--json]`: the entries a queue would spread
-   a compare job or suite into, sized by the cost model, and its predicted wall time on a farm
-   (the farm-sized --dry-run); nothing rendered, nothing written. */
+/* plan: `worker plan JOB.yaml`: the entries a queue would spread a compare job or suite into, sized
+   by the cost model, and its predicted wall time on a farm; nothing rendered, nothing written. */
 #ifndef PLAN_H
 #define PLAN_H
 

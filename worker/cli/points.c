@@ -1,5 +1,4 @@
-/* points: `worker points SAMPLER THRESHOLD [--seed S] [--sets M] [--svg F] [--spectrum F.png]
-   [--radial F.svg] [--stats] [--padded K]`: one sample set as CSV / SVG, its spectrum and
+/* points: `worker points SAMPLER THRESHOLD [options]`: one sample set as CSV / SVG, its spectrum and
    statistics, or a pixel's padded dimensions. */
 #include "points.h"
 
@@ -15,6 +14,7 @@
 #include "base/err.h"
 #include "base/fileio.h"
 #include "base/rng.h"
+#include "base/sbuf.h"
 #include "points_analysis.h"
 #include "sample/padding.h"
 #include "sample/sampler.h"
@@ -54,9 +54,8 @@ static int parse_seed(const char *s, uint64_t *out)
     return 0;
 }
 
-/* Whether the file of option opt can go where it is named (its folder exists and is writable, and it is not
-   a folder itself): 0, or 2 after one line on stderr. Bad usage, found before anything is drawn; a
-   write that fails later (a full disk) is exit 1. */
+/* Whether the file of option opt can go where it is named (a writable folder, not a folder itself):
+   0, or 2 (bad usage, before anything is drawn) after one line on stderr. */
 static int place_ok(const char *opt, const char *path)
 {
     if (!path)
@@ -88,24 +87,24 @@ static int file_option(const char *arg, const char *name)
 }
 
 /* The value of option argv[*i] (`--name V` or `--name=V`, advancing *i past V), a whole number
-   in [1, limit]: 0, or 2 after one line on stderr. */
-static int count_option(int argc, char **argv, int *i, int limit, int *out)
+   in [1, limit], or any (parse_seed's) when limit is 0: 0, or 2 after one line on stderr. */
+static int whole_option(int argc, char **argv, int *i, int limit, uint64_t *out)
 {
     const char *arg = argv[*i];
-    const size_t len = strcspn(arg, "=");
+    const int len = (int)strcspn(arg, "=");
     const char *v = arg[len] == '=' ? arg + len + 1 : (*i + 1 < argc ? argv[++*i] : NULL);
-    uint64_t m;
     if (!v) {
-        err_print("worker points: %.*s needs a value; %s", (int)len, arg, points_usage);
+        err_print("worker points: %.*s needs a value; %s", len, arg, points_usage);
         return 2;
     }
-    if (parse_seed(v, &m) < 0 || m < 1 || m > (uint64_t)limit) {
-        err_print("worker points: %.*s: must be a whole number in [1, %d], got \"%.40s\"\n", (int)len, arg,
-                  limit, v);
-        return 2;
-    }
-    *out = (int)m;
-    return 0;
+    if (parse_seed(v, out) == 0 && (limit == 0 || (*out >= 1 && *out <= (uint64_t)limit)))
+        return 0;
+    if (limit == 0)
+        err_print("worker points: %.*s: must be a whole number >= 0, got \"%.40s\"\n", len, arg, v);
+    else
+        err_print("worker points: %.*s: must be a whole number in [1, %d], got \"%.40s\"\n", len, arg, limit,
+                  v);
+    return 2;
 }
 
 /* Fill a from argv. Returns 0, or the exit status after one line on stderr; --help prints the
@@ -115,32 +114,22 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     const char *positional[2] = {NULL, NULL};
     int npositional = 0;
     *done = 0;
-    a->seed = 1;
-    a->svg_path = NULL;
-    a->padded = 0;
-    a->an = (struct points_analysis){NULL, NULL, 0, 1, 1, 0};
+    *a = (struct points_args){.seed = 1, .an = {.sets = 1, .seed = 1}};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
             fputs(points_usage, stdout);
             *done = 1;
             return 0;
-        } else if (!strcmp(arg, "--seed") || !strncmp(arg, "--seed=", 7)) {
-            const char *v = arg[6] == '=' ? arg + 7 : (i + 1 < argc ? argv[++i] : NULL);
-            if (!v) {
-                err_print("worker points: --seed needs a value; %s", points_usage);
+        } else if (file_option(arg, "--seed")) {
+            if (whole_option(argc, argv, &i, 0, &a->seed) != 0)
                 return 2;
-            }
-            if (parse_seed(v, &a->seed) < 0) {
-                err_print("worker points: --seed: must be a whole number >= 0, got \"%.40s\"\n", v);
-                return 2;
-            }
         } else if (file_option(arg, "--sets") || file_option(arg, "--padded")) {
             const int sets = arg[2] == 's', limit = sets ? POINTS_MAX_SETS : POINTS_MAX_PADDED;
-            int v;
-            if (count_option(argc, argv, &i, limit, &v) != 0)
+            uint64_t v;
+            if (whole_option(argc, argv, &i, limit, &v) != 0)
                 return 2;
-            *(sets ? &a->an.sets : &a->padded) = v;
+            *(sets ? &a->an.sets : &a->padded) = (int)v;
         } else if (file_option(arg, "--svg") || file_option(arg, "--spectrum") ||
                    file_option(arg, "--radial")) {
             const size_t len = strcspn(arg, "=");
@@ -194,13 +183,11 @@ static int points_parse(int argc, char **argv, struct points_args *a, int *done)
     }
     a->an.seed = a->seed;
     a->an.threshold = a->threshold;
+    const char *const files[3][2] = {
+        {"--svg", a->svg_path}, {"--spectrum", a->an.spectrum_path}, {"--radial", a->an.radial_path}};
     int rc = 0;
-    if (a->svg_path)
-        rc = place_ok("--svg", a->svg_path);
-    if (!rc && a->an.spectrum_path)
-        rc = place_ok("--spectrum", a->an.spectrum_path);
-    if (!rc && a->an.radial_path)
-        rc = place_ok("--radial", a->an.radial_path);
+    for (int k = 0; k < 3 && !rc; k++)
+        rc = place_ok(files[k][0], files[k][1]);
     return rc;
 }
 
@@ -211,31 +198,23 @@ static int write_svg(const char *path, const struct points_args *a, const struct
     const double side = 500.0, margin = 10.0;
     double dot = 0.35 * side / sqrt((double)n);
     dot = dot < 0.4 ? 0.4 : dot > 4.0 ? 4.0 : dot;
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&buf, &len);
-    if (!f)
-        return err_set(e, path, 0, 0, "%s", strerror(errno));
-    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    fprintf(f,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\">\n",
-            side + 2 * margin, side + 2 * margin, side + 2 * margin, side + 2 * margin);
-    fprintf(f, "<title>%s, threshold %g, seed %llu: %zu points</title>\n", sampler_kind_name(a->kind),
-            a->threshold, (unsigned long long)a->seed, n);
-    fprintf(f, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"white\" stroke=\"black\"/>\n",
-            margin, margin, side, side);
-    fprintf(f, "<g fill=\"black\">\n");
+    struct sbuf b = {0};
+    sbuf_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    sbuf_printf(
+        &b, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g %g\">\n",
+        side + 2 * margin, side + 2 * margin, side + 2 * margin, side + 2 * margin);
+    sbuf_printf(&b, "<title>%s, threshold %g, seed %llu: %zu points</title>\n", sampler_kind_name(a->kind),
+                a->threshold, (unsigned long long)a->seed, n);
+    sbuf_printf(&b, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"white\" stroke=\"black\"/>\n",
+                margin, margin, side, side);
+    sbuf_printf(&b, "<g fill=\"black\">\n");
     for (size_t k = 0; k < n; k++)
-        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", margin + p[k].x * side,
-                margin + (1.0 - p[k].y) * side, dot);
-    fprintf(f, "</g>\n</svg>\n");
-    int failed = ferror(f);
-    if (fclose(f) != 0 || failed) {
-        free(buf);
-        return err_set(e, path, 0, 0, "out of memory while drawing %zu points", n);
-    }
-    int rc = fileio_write_atomic(path, buf, len, e);
-    free(buf);
+        sbuf_printf(&b, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", margin + p[k].x * side,
+                    margin + (1.0 - p[k].y) * side, dot);
+    sbuf_printf(&b, "</g>\n</svg>\n");
+    int rc = b.oom ? err_set(e, path, 0, 0, "out of memory while drawing %zu points", n)
+                   : fileio_write_atomic(path, b.buf, b.len, e);
+    sbuf_free(&b);
     return rc;
 }
 

@@ -23,9 +23,8 @@ int points_analysis_wanted(const struct points_analysis *a);
    after one line on stderr naming the work, the limit and what to change. */
 int points_analysis_check(const struct points_analysis *a, size_t n);
 
-/* Draw the M sets with s (buf holds sampler_set_capacity(s) points), then write the spectrum PNG
-   and the radial SVG (atomically) and print the statistics. Returns the exit status: 0, or 1 after
-   one line on stderr (no memory, a file not written). */
+/* Draw the M sets with s (buf holds sampler_set_capacity(s) points), write the pictures and print
+   the statistics asked for. The exit status: 0, or 1 after one line on stderr. */
 int points_analysis_run(const struct points_analysis *a, struct sampler *s, struct pt2 *buf);
 
 #endif

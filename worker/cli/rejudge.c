@@ -41,13 +41,10 @@ static void print_text(const char *job, const struct verdict_study *s, int n)
                 say(s[i].name, v->scene, text);
             }
         }
-    char winners[2048];
+    char winners[2048], all[2100];
     verdict_summary(s, n, winners, sizeof winners);
-    struct sbuf all = {0};
-    sbuf_printf(&all, "at equal CPU time: %s", winners);
-    if (all.buf)
-        say(job, NULL, all.buf);
-    sbuf_free(&all);
+    snprintf(all, sizeof all, "at equal CPU time: %s", winners);
+    say(job, NULL, all);
 }
 
 int rejudge_main(int argc, char **argv)

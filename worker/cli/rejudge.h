@@ -3,10 +3,8 @@
 #define REJUDGE_H
 
 /* worker verdict DIR [--json], with argv[0] = "verdict": the verdict of the study or suite whose
-   output folder is DIR (its summary.csv, with its images, sidecars and reference where present),
-   printed as sentences and failures per scene on stdout and warnings on stderr, or with --json as
-   verdict.json's text. Writes nothing. Returns the exit status: 0, or 2 on bad usage or input
-   (one line on stderr says why). */
+   output folder is DIR printed (its --help says from what), writing nothing. The exit status: 0,
+   or 2 on bad usage or input (one line on stderr says why). */
 int rejudge_main(int argc, char **argv);
 
 #endif

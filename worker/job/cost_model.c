@@ -12,17 +12,14 @@
 
 /* The share of a pilot's time a set timing may take (one set at least): a few sets. */
 #define COST_SET_TARGET_S 0.004
-/* Past its budget a model still gives each new pilot this much (a few paths), each set timing
-   one batch (cost_sets.h); past COST_OVER times its budget it measures nothing new: new set
-   sizes are scaled from timed ones of their kind, new pilots trace one path. */
+/* Past its budget a model still gives each new pilot COST_PILOT_MIN_S (a few paths), each set timing
+   one batch; past COST_OVER times it, new set sizes are scaled, new pilots trace one path. */
 #define COST_OVER 1.5
 #define COST_PILOT_MIN_S 0.0005
 
-/* What a pilot's traced samples cost depends on: the scene and view, the path's settings and how
-   light points are taken (the light sampler's kind); under sampler_dims: all, the pixel
-   sampler's sets decide every bounce, and the more samples a pixel has the more of its padded
-   slots they reach (its set size, to a factor of 2). Thresholds do not enter otherwise: their
-   sets are timed apart. */
+/* What a pilot's traced samples cost depends on: the scene and view, the path's settings, the light
+   sampler's kind, and under sampler_dims: all the pixel sampler and its set size (to a factor of 2:
+   the padded slots a pixel reaches). Thresholds do not enter otherwise: their sets are timed apart. */
 struct pilot_key {
     const struct scene_file *sf;
     int width, height, max_depth, light_sampling;
@@ -100,17 +97,12 @@ static double set_target(const struct cost_model *m)
     return m->spent_s < m->budget_s ? COST_SET_TARGET_S : m->spent_s < COST_OVER * m->budget_s ? 1e-9 : 0;
 }
 
-/* What a pilot's set draws cost (the pilot's own samplers' sets, timed by cost_sets). */
-struct pilot_draws {
-    double pixel_s, light_s, padded_s;
-};
-
 /* A pilot's progress: the paths the next call may trace, the time spent, the counted pixels. */
 struct pilot_run {
     double budget_s, spent_s, paths;
     double clock_s; /* clock_pair_s */
     size_t cap;
-    struct pilot_draws draws;
+    struct cost_set pixel, light, padded; /* what the pilot's own set draws cost (pilot_draws) */
     struct pilot_fig sum;
 };
 
@@ -126,35 +118,25 @@ static double clock_pair_s(void)
     return least;
 }
 
-/* Pixel (x, y) rendered at most cap paths, untimed inside (render_time.h times a pixel whose
-   stats count 8k pixels: these count one), into *st; its CPU seconds, the clock's own taken out.
-   Not repeated: the same pixel again runs faster than a render's pixels do (its draws' branches
-   learnt, its memory hot: a 20-point Poisson set in 6 us where fresh ones took 10). */
-static double pilot_call(const struct pilot_run *p, struct render_ctx *ctx, int x, int y, size_t *all,
-                         struct render_stats *st)
-{
-    float rgb[3];
-    render_stats_init(st);
-    st->pixels = 1;
-    const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
-    *all = render_pixel_paths(ctx, x, y, p->cap, rgb, st);
-    const double dt = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s;
-    return dt > 0 ? dt : 0;
-}
-
-/* Render pixel (x, y) at most p->cap paths; count it when it is whole or the budget is spent,
-   else leave it to be rendered again with more paths. The cap starts at one path and grows at
-   most 8 times a call, to what the budget left would pay: however costly a path is (a whole
-   pixel of 100000 stacked pyramids took 22 s), the pilot stays near its budget. The sets the
-   call drew (counted in its stats) are taken out at their timed cost: what is left is tracing. */
+/* Render pixel (x, y) at most p->cap paths, timed whole, once (the same pixel again runs faster than
+   a render's do: a 20-point Poisson set in 6 us, fresh 10); count it when it is whole or the budget
+   is spent, else leave it to be rendered again with more paths. The cap starts at one path and
+   grows at most 8 times a call, to what the budget left would pay: however costly a path is (a
+   whole pixel of 100000 stacked pyramids took 22 s), the pilot stays near its budget. The sets the
+   call drew are taken out at their timed cost: what is left is tracing. */
 static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y, int n_lights)
 {
     struct render_stats st;
-    size_t all;
-    const double dt = pilot_call(p, ctx, x, y, &all, &st);
+    float rgb[3];
+    render_stats_init(&st);
+    st.pixels = 1; /* untimed inside: render_time.h times a pixel whose stats count 8k pixels */
+    const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
+    const size_t all = render_pixel_paths(ctx, x, y, p->cap, rgb, &st);
+    const double dt_clock = clock_s(CLOCK_THREAD_CPUTIME_ID) - t0 - p->clock_s,
+                 dt = dt_clock > 0 ? dt_clock : 0;
     const size_t done = all < p->cap ? all : p->cap;
-    const double draws = p->draws.pixel_s + (double)st.light_sets * p->draws.light_s +
-                         (double)st.padded_sets * p->draws.padded_s;
+    const double draws = p->pixel.s_per_set + (double)st.light_sets * p->light.s_per_set +
+                         (double)st.padded_sets * p->padded.s_per_set;
     const double trace = dt > draws ? dt - draws : 0;
     p->spent_s += dt;
     p->paths += (double)done;
@@ -162,11 +144,9 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
     const double afford = per_path > 0 ? (p->budget_s - p->spent_s) / per_path : HUGE_VAL;
     const size_t grown = p->cap > SIZE_MAX / 8 ? SIZE_MAX : p->cap * 8;
     const size_t cap = afford < (double)grown ? (afford < 1 ? 1 : (size_t)afford) : grown;
-    if (done < all && cap > done) {
-        p->cap = cap; /* again, with more of its paths */
-        return;
-    }
     p->cap = cap;
+    if (done < all && cap > done)
+        return; /* again, with more of its paths */
     const double traced = done ? (double)done : 1;
     p->sum.pixels++;
     p->sum.samples += (double)all;
@@ -177,24 +157,23 @@ static void pilot_step(struct pilot_run *p, struct render_ctx *ctx, int x, int y
     p->sum.padded_sets += (double)st.padded_sets;
 }
 
-/* The cost of the pilot's own sets of j: its pixel sampler at pixel_t (as a pixel's and as a
+/* The cost of the pilot's own sets of j into p: its pixel sampler at pixel_t (as a pixel's and as a
    padded set), its light sampler at light_t. 0 or -1. */
 static int pilot_draws(struct cost_model *m, const struct job *j, double pixel_t, double light_t,
-                       struct pilot_draws *d, struct err *e)
+                       struct pilot_run *p, struct err *e)
 {
     const struct cost_sampler px = {j->spec.pixel.kind, pixel_t, j->spec.poisson_pool > 0,
                                     j->spec.poisson_domain},
                               li = {j->spec.light.kind, light_t, j->spec.poisson_pool > 0,
                                     j->spec.poisson_domain};
-    struct cost_set a = {0}, b = {0}, c = {0};
     /* timed, never scaled (at most COST_PILOT_SET_MAX points): what is left of a call is tracing */
     const double target = set_target(m) > 0 ? set_target(m) : 1e-9;
-    if (cost_sets_get(m->sets, &px, COST_SET_PIXEL, target, &a, &m->spent_s, e) < 0 ||
-        (j->spec.dims_all && cost_sets_get(m->sets, &px, COST_SET_PADDED, target, &c, &m->spent_s, e) < 0) ||
+    if (cost_sets_get(m->sets, &px, COST_SET_PIXEL, target, &p->pixel, &m->spent_s, e) < 0 ||
+        (j->spec.dims_all &&
+         cost_sets_get(m->sets, &px, COST_SET_PADDED, target, &p->padded, &m->spent_s, e) < 0) ||
         (!j->spec.dims_all && j->spec.light_sampling &&
-         cost_sets_get(m->sets, &li, COST_SET_LIGHT, target, &b, &m->spent_s, e) < 0))
+         cost_sets_get(m->sets, &li, COST_SET_LIGHT, target, &p->light, &m->spent_s, e) < 0))
         return -1;
-    *d = (struct pilot_draws){a.s_per_set, b.s_per_set, c.s_per_set};
     return 0;
 }
 
@@ -223,7 +202,7 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
     const int w = k->width * scale, h = k->height * scale;
     const struct render_settings rs = render_spec_settings(&j->spec, w, h, j->spec.seed);
     struct pilot_run p = {.budget_s = budget_s, .cap = 1, .clock_s = clock_pair_s()};
-    if (pilot_draws(m, j, pixel_t, light_t, &p.draws, e) < 0)
+    if (pilot_draws(m, j, pixel_t, light_t, &p, e) < 0)
         goto done;
     const double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
     if (!(pix = sampler_new(j->spec.pixel.kind, pixel_t, pool, 1, e)) ||
@@ -243,13 +222,11 @@ static int pilot(struct cost_model *m, const struct job *j, const struct pilot_k
         pilot_step(&p, ctx, x, y, sf->scene->n_lights);
     }
     const double np = p.sum.pixels;
-    *fig = (struct pilot_fig){p.sum.trace_s / (p.sum.traced > 0 ? p.sum.traced : 1),
-                              p.sum.light_points / np,
-                              p.sum.light_sets / np,
-                              p.sum.padded_sets / np,
-                              p.sum.pixels,
-                              p.sum.samples,
-                              p.sum.traced};
+    *fig = p.sum; /* sums: the trace time per traced sample, the rest per pixel */
+    fig->trace_s /= p.sum.traced > 0 ? p.sum.traced : 1;
+    fig->light_points /= np;
+    fig->light_sets /= np;
+    fig->padded_sets /= np;
     rc = 0;
 spent:
     m->spent_s += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;

@@ -1,25 +1,21 @@
-/* cost_model: what a render costs in CPU seconds, from measurements on this machine, for
-   `--dry-run` and any caller that plans renders. A render's CPU time is its camera samples times
-   a traced sample's cost, plus each kind of point set it draws times that set's cost:
+/* cost_model: what a render costs in CPU seconds, measured on this machine, for `--dry-run` and any
+   caller that plans renders:
 
      cpu = samples x trace + pixels x pixel set + light sets x light set + padded sets x padded set
 
-   A traced sample's cost comes from a short pilot of pixels whose point-set draws are timed apart
-   and taken out (the draws a pilot makes are not the render's: a pilot may trace one path of a
-   pixel of 100000 samples); each set's cost from a few sets drawn alone (cost_sets.h), scaled by
-   the sets the render draws: one a pixel, the light sets its light points need, the padded slots
-   its paths reach. Pilots and set timings are shared between estimates of equal settings, and
-   all stay within one budget of CPU seconds. */
+   A traced sample's cost comes from a short pilot of pixels, its point-set draws timed apart and
+   taken out (a pilot's draws are not the render's); each set's cost from a few sets drawn alone
+   (cost_sets.h), times the sets the render draws. Pilots and set timings are shared between
+   estimates of equal settings, all within one budget of CPU seconds. */
 #ifndef COST_MODEL_H
 #define COST_MODEL_H
 
 #include "job.h"
 #include "scenefile/scene_load.h"
 
-/* The pilot draws sets of at most this many points: a larger set's kind is drawn at a coarser
-   threshold (its cost per traced sample is the same; its draws are timed apart). Small, so that
-   a pilot's time is mostly tracing: what its draws cost is taken out, and the error of that
-   would be charged to every sample (one path beside a 4096-point pmj02bn set was 90 us). */
+/* The pilot draws sets of at most this many points (a larger set's kind at a coarser threshold):
+   small, so that a pilot's time is mostly tracing, the error of taking its draws out charged to
+   every sample (one path beside a 4096-point pmj02bn set was 90 us). */
 #define COST_PILOT_SET_MAX 64
 /* Most pixels one pilot renders. */
 #define COST_PILOT_PIXELS 64
@@ -38,22 +34,19 @@ struct cost_estimate {
 
 struct cost_model;
 
-/* A model that spends about budget_s CPU seconds measuring: each pilot an equal share of what is
-   left among those expected and not run (at least one path), each set timing a few sets (at least
-   one; once the budget is spent, a set size is scaled from a timed one of its kind). NULL on no
-   memory. Free with cost_model_free (accepts NULL). */
+/* A model that spends about budget_s CPU seconds measuring (each pilot an equal share of what is
+   left among those expected, each set timing a few sets; past it, a set is scaled from a timed one
+   of its kind). NULL on no memory. Free with cost_model_free (accepts NULL). */
 struct cost_model *cost_model_new(double budget_s);
 void cost_model_free(struct cost_model *m);
 
-/* Say that j's render at width x height of sf will be estimated, before any estimate, so that
-   the budget is shared among the distinct pilots (a pilot not expected takes all that is left).
-   Measures nothing. 0, or -1 with e filled (no memory). */
+/* Say, measuring nothing, that j's render at width x height of sf will be estimated, so that the
+   budget is shared among the distinct pilots. 0, or -1 with e filled (no memory). */
 int cost_model_expect(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
                       int height, struct err *e);
 
-/* Estimate j's render at width x height of the scene sf (loaded, as the render reads it), its
-   processes aside (their CPU time adds up). 0, or -1 with e filled (a sampler or scene the
-   render would refuse too, or no memory). */
+/* Estimate j's render at width x height of the loaded scene sf, whatever its processes (their CPU
+   time adds up). 0, or -1 with e filled (a sampler or scene the render would refuse, no memory). */
 int cost_model_estimate(struct cost_model *m, const struct job *j, const struct scene_file *sf, int width,
                         int height, struct cost_estimate *out, struct err *e);
 

@@ -49,15 +49,6 @@ struct drawer {
     size_t pixel_n; /* padded: the pixel's count a slot is filled to */
 };
 
-static void drawer_release(struct drawer *d)
-{
-    stream_release(&d->st);
-    stream_source_release(&d->src);
-    padding_release(&d->pad);
-    free(d->pts);
-    sampler_free(d->s);
-}
-
 /* One set drawn as `use` (k: its index, a pixel of its own); returns its points. */
 static size_t draw_one(struct drawer *d, enum cost_set_use use, struct rng *rng, int k)
 {
@@ -89,11 +80,9 @@ static int time_at(const struct cost_sampler *sp, double t, enum cost_set_use us
     if (!(d.s = sampler_new(sp->kind, t, sp->pooled ? 1 : 0, 0x706f6f6cULL, e)))
         goto done;
     sampler_set_domain(d.s, sp->domain);
-    if (!(d.pts = malloc(sampler_set_capacity(d.s) * sizeof *d.pts))) {
-        err_set(e, NULL, 0, 0, "out of memory timing point sets");
-        goto done;
-    }
-    if (use == COST_SET_LIGHT && (stream_source_init(&d.src, d.s, e) < 0 || stream_init(&d.st, &d.src) < 0)) {
+    if (!(d.pts = malloc(sampler_set_capacity(d.s) * sizeof *d.pts)) ||
+        (use == COST_SET_LIGHT &&
+         (stream_source_init(&d.src, d.s, e) < 0 || stream_init(&d.st, &d.src) < 0))) {
         err_set(e, NULL, 0, 0, "out of memory timing point sets");
         goto done;
     }
@@ -121,7 +110,11 @@ static int time_at(const struct cost_sampler *sp, double t, enum cost_set_use us
     *out = (struct cost_set){spent / n, points / n, 0};
     rc = 0;
 done:
-    drawer_release(&d);
+    stream_release(&d.st);
+    stream_source_release(&d.src);
+    padding_release(&d.pad);
+    free(d.pts);
+    sampler_free(d.s);
     *spent_s += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
     return rc;
 }
@@ -157,10 +150,11 @@ static int time_scaled(const struct cost_sampler *sp, enum cost_set_use use, dou
     return 0;
 }
 
-static int same(const struct cost_entry *x, const struct cost_sampler *sp, enum cost_set_use use)
+/* Whether x is a set of sp's kind drawn as `use`, at any threshold. */
+static int same_kind(const struct cost_entry *x, const struct cost_sampler *sp, enum cost_set_use use)
 {
-    return x->use == use && x->sp.kind == sp->kind && x->sp.threshold == sp->threshold &&
-           x->sp.pooled == sp->pooled && x->sp.domain == sp->domain;
+    return x->use == use && x->sp.kind == sp->kind && x->sp.pooled == sp->pooled &&
+           x->sp.domain == sp->domain;
 }
 
 /* Out of time: the cached set of the same kind and use nearest in capacity, scaled in
@@ -172,8 +166,7 @@ static int borrow(const struct cost_sets *c, const struct cost_sampler *sp, enum
     double best = HUGE_VAL;
     for (int i = 0; i < c->n; i++) {
         const struct cost_entry *x = &c->e[i];
-        if (x->use != use || x->sp.kind != sp->kind || x->sp.pooled != sp->pooled ||
-            x->sp.domain != sp->domain)
+        if (!same_kind(x, sp, use))
             continue;
         const double r = cap / (double)sampler_capacity(x->sp.kind, x->sp.threshold);
         if (fabs(log(r)) < best) {
@@ -188,7 +181,7 @@ int cost_sets_get(struct cost_sets *c, const struct cost_sampler *sp, enum cost_
                   struct cost_set *out, double *spent_s, struct err *e)
 {
     for (int i = 0; i < c->n; i++)
-        if (same(&c->e[i], sp, use)) {
+        if (same_kind(&c->e[i], sp, use) && c->e[i].sp.threshold == sp->threshold) {
             *out = c->e[i].cost;
             return 0;
         }

@@ -1,22 +1,19 @@
-/* cost_sets: what one point set costs to draw, measured on this machine: a pixel's set, a light's
-   set as its stream draws it, or one padded set of sampler_dims: all. A part of the cost model
-   (cost_model.h); cached, so that estimates of equal settings time each set once. */
+/* cost_sets: what one point set costs to draw (a pixel's, a light stream's, a padded one), measured
+   on this machine for the cost model (cost_model.h) and cached: equal settings are timed once. */
 #ifndef COST_SETS_H
 #define COST_SETS_H
 
 #include "base/err.h"
 #include "sample/sampler.h"
 
-/* Sets of a capacity above this are not drawn: their cost is measured on two smaller sets of
-   the kind (COST_SETS_SMALL and COST_SETS_DIRECT_MAX points) and scaled as a power of the size. A
-   kind that takes sets up to T points from a table (sampler_table_points) is timed at 2T and 4T,
-   past it, where its sets are drawn fresh: a table's prefix says nothing of a fresh set's cost. */
+/* Sets of a capacity above this are not drawn: timed at COST_SETS_SMALL and COST_SETS_DIRECT_MAX
+   points and scaled as a power of the size. A kind that takes sets up to T points from a table
+   (sampler_table_points) is timed at 2T and 4T instead, where its sets are drawn fresh. */
 #define COST_SETS_DIRECT_MAX 16384
 #define COST_SETS_SMALL 4096
 
 /* How a set is drawn: whole for a pixel (sampler_draw_at), as a light's stream refills
-   (stream_refill: a grid's or pool's indices, a fresh set's points), or as a padded slot
-   (padding_fill: whole sets up to the pixel's count, shuffled). */
+   (stream_refill), or as a padded slot (padding_fill). */
 enum cost_set_use { COST_SET_PIXEL, COST_SET_LIGHT, COST_SET_PADDED };
 
 /* The settings a set's cost depends on. */
@@ -43,11 +40,9 @@ double cost_sets_threshold_for(enum sampler_kind kind, double t, double points);
 struct cost_sets *cost_sets_new(void);
 void cost_sets_free(struct cost_sets *c);
 
-/* The cost of one set of sp drawn as `use`, measured now (repeated until about target_s CPU
-   seconds or 4096 sets, one set and 20 microseconds at least) or taken from the cache; target_s 0
-   (the caller's time is spent): scaled from the cached set of the same kind nearest in size
-   when there is one. The CPU seconds
-   measuring took are added to *spent_s. 0, or -1 with e filled (no memory). */
+/* The cost of one set of sp drawn as `use`, from the cache, or measured now (about target_s CPU
+   seconds; target_s 0: scaled from the cached set of its kind nearest in size when there is one),
+   the CPU seconds measuring took added to *spent_s. 0, or -1 with e filled (no memory). */
 int cost_sets_get(struct cost_sets *c, const struct cost_sampler *sp, enum cost_set_use use, double target_s,
                   struct cost_set *out, double *spent_s, struct err *e);
 

@@ -63,12 +63,24 @@ void job_defaults(struct job *j, const char *path)
     j->format = IMG_PNG;
 }
 
-/* A name used as a directory and file name: letters, digits, '-', '_', '.'; not starting with '.'
-   (".", "..", and hidden folders: .cache holds compare references). */
-static int safe_name(const char *s)
+/* key's value at v, a name used as a directory or file name, into out (JOB_NAME_MAX bytes):
+   letters, digits, '-', '_', '.'; not starting with '.' (".", "..", and hidden folders: .cache
+   holds compare references). what: the message's words for such a name. */
+static int get_safe_name(struct ydoc *d, yaml_node_t *v, const char *key, const char *what, char *out,
+                         struct err *e)
 {
-    return *s && *s != '.' &&
-           strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") == strlen(s);
+    const char *s;
+    if (yget_string(d, v, key, &s, e) < 0)
+        return -1;
+    if (!*s || *s == '.' || strlen(s) >= JOB_NAME_MAX ||
+        strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") != strlen(s))
+        return ydoc_fail(
+            d, v, e,
+            "%s: must be %sletters, digits, '-', '_' or '.' (at most %d, not starting with '.'), "
+            "got \"%.40s\"",
+            key, what, JOB_NAME_MAX - 1, s);
+    snprintf(out, JOB_NAME_MAX, "%s", s);
+    return 0;
 }
 
 const char *job_unknown_sampler(const char *s, char *buf, size_t n)
@@ -86,20 +98,19 @@ const char *job_unknown_sampler(const char *s, char *buf, size_t n)
 static int get_threshold(struct ydoc *d, yaml_node_t *v, const struct render_spec_row *r, double *out,
                          struct err *e)
 {
-    const char *key = r->key;
     const char *s = yscalar(v);
     char want[64];
     render_spec_expected(r, want, sizeof want);
     double t = 0;
-    int rc = yget_double(d, v, key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
+    int rc = yget_double(d, v, r->key, &t, e), failed = rc < 0; /* e->msg is set only when it failed */
     int quoted_number = failed && strstr(e->msg, YQUOTED_NOTE) != NULL;
     if (rc == YGET_UNDERFLOW) /* yget_double's own message says it better */
         return -1;
     if (!s)
-        return ydoc_fail(d, v, e, "%s: must be %s, got a %s", key, want,
+        return ydoc_fail(d, v, e, "%s: must be %s, got a %s", r->key, want,
                          v->type == YAML_SEQUENCE_NODE ? "list" : "mapping");
     if (failed || !render_spec_in_range(r, t))
-        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"%s", key, want, s,
+        return ydoc_fail(d, v, e, "%s: must be %s, got \"%.40s\"%s", r->key, want, s,
                          quoted_number ? YQUOTED_NOTE : "");
     *out = t;
     return 0;
@@ -126,59 +137,42 @@ static int check_output_ext(struct ydoc *d, yaml_node_t *v, const char *out, str
                      strrchr(out, '.'), list);
 }
 
-/* One output name at v into out: a plain file name whose extension names a format (in a list,
-   it must have one: each image's format is its own). */
-static int get_output(struct ydoc *d, yaml_node_t *v, int in_list, char *out, enum img_format *fmt,
-                      struct err *e)
-{
-    const char *s;
-    if (yget_string(d, v, "output", &s, e) < 0)
-        return -1;
-    if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-        return ydoc_fail(d, v, e,
-                         "output: must be a plain file name of letters, digits, '-', '_' or '.' (at "
-                         "most %d, not starting with '.'), got \"%.40s\"",
-                         JOB_NAME_MAX - 1, s);
-    if (check_output_ext(d, v, s, e) < 0)
-        return -1;
-    if (in_list && img_format_of_file(s, fmt) <= 0)
-        return ydoc_fail(d, v, e, "output: %s: in a list each image needs its format's extension", s);
-    snprintf(out, JOB_NAME_MAX, "%s", s);
-    return 0;
-}
-
-/* output: one name, or a list of names of distinct formats and one stem (the sidecar's). */
+/* output: one plain file name whose extension names a format written (none: format:), or a list
+   of such names, each with its extension, of distinct formats and one stem (the sidecar's). */
 static int get_outputs(struct job *j, struct ydoc *d, yaml_node_t *v, struct err *e)
 {
-    enum img_format fmt;
-    if (v->type != YAML_SEQUENCE_NODE)
-        return get_output(d, v, 0, j->output, &fmt, e);
-    int n = yseq_len(v);
+    const int list = v->type == YAML_SEQUENCE_NODE, n = list ? yseq_len(v) : 1;
     if (n < 1 || n > JOB_OUTPUTS_MAX)
         return ydoc_fail(d, v, e, "output: a list holds 1 to %d image names (one per format), got %d",
                          JOB_OUTPUTS_MAX, n);
     enum img_format seen[JOB_OUTPUTS_MAX];
     for (int i = 0; i < n; i++) {
-        yaml_node_t *item = yseq_item(d, v, i);
+        yaml_node_t *item = list ? yseq_item(d, v, i) : v;
         char *out = i == 0 ? j->output : j->more_output[i - 1];
-        if (get_output(d, item, 1, out, &seen[i], e) < 0)
+        if (get_safe_name(d, item, "output", "a plain file name of ", out, e) < 0 ||
+            check_output_ext(d, item, out, e) < 0)
             return -1;
+        if (list && img_format_of_file(out, &seen[i]) <= 0)
+            return ydoc_fail(d, item, e, "output: %s: in a list each image needs its format's extension",
+                             out);
         for (int k = 0; k < i; k++)
             if (seen[k] == seen[i])
                 return ydoc_fail(d, item, e, "output: two %s images in one list (one per format)",
                                  img_format_name(seen[i]));
-        /* one stem for all: the sidecar X.json sits beside every image X.<ext> */
-        size_t stem = (size_t)(strrchr(j->output, '.') - j->output);
-        if (i > 0 && (strlen(out) <= stem || strncmp(out, j->output, stem) || out[stem] != '.' ||
-                      strchr(out + stem + 1, '.')))
-            return ydoc_fail(d, item, e,
-                             "output: %s: the images of a list share one name before the extension "
-                             "(%.*s, the sidecar's)",
-                             out, (int)stem, j->output);
-        if (i > 0)
+        if (i > 0) {
+            /* one stem for all: the sidecar X.json sits beside every image X.<ext> */
+            size_t stem = (size_t)(strrchr(j->output, '.') - j->output);
+            if (strlen(out) <= stem || strncmp(out, j->output, stem) || out[stem] != '.' ||
+                strchr(out + stem + 1, '.'))
+                return ydoc_fail(d, item, e,
+                                 "output: %s: the images of a list share one name before the extension "
+                                 "(%.*s, the sidecar's)",
+                                 out, (int)stem, j->output);
             j->more_format[i - 1] = seen[i];
+        }
     }
-    j->n_more = n - 1;
+    if (list)
+        j->n_more = n - 1;
     return 0;
 }
 
@@ -219,15 +213,7 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     if (row)
         return apply_spec(&j->spec, row, d, v, e);
     if (!strcmp(k, "name")) {
-        if (yget_string(d, v, k, &s, e) < 0)
-            return -1;
-        if (!safe_name(s) || strlen(s) >= JOB_NAME_MAX)
-            return ydoc_fail(
-                d, v, e,
-                "name: must be letters, digits, '-', '_' or '.' (at most %d, not starting with '.'), "
-                "got \"%.40s\"",
-                JOB_NAME_MAX - 1, s);
-        snprintf(j->name, sizeof j->name, "%s", s);
+        return get_safe_name(d, v, k, "", j->name, e);
     } else if (!strcmp(k, "scene")) {
         if (yget_string(d, v, k, &s, e) < 0)
             return -1;
@@ -278,11 +264,9 @@ int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *v, s
     return 0;
 }
 
-/* Refuse a threshold whose sets would not fit the per-set limit: the count, the limit, why, and
-   the smallest threshold that fits. The same limit for all four samplers: a set is held whole in
-   memory (per render process, one for the pixel and one per sampled light). Poisson's is on
-   Bridson's background grid, one cell per possible point (at most one point per cell): its
-   points are about a third of its cells. */
+/* Refuse a threshold whose sets would not fit the per-set limit (a set is held whole in memory, one
+   for the pixel and one per sampled light; Poisson's counts Bridson's grid cells, about three per
+   point): the count, the limit, why, and the smallest threshold that fits. */
 static int check_set_size(const struct job *j, const struct sampler_spec *sp, const char *key, struct err *e)
 {
     const enum sampler_kind k = sp->kind;

@@ -4,9 +4,8 @@
 
 #include "job_types.h"
 
-/* Read the job in the parsed document d of the job file at path (relative scene and reference
-   paths resolve beside path) into j: every key checked, defaults filled; j->hash left 0 (the
-   job file's reader, jobfile_open, sets it). 0, or -1 with e = "file:line:col: key: message". */
+/* Read the job in document d of the job file at path (relative paths resolve beside it) into j:
+   every key checked, defaults filled, j->hash left 0 (jobfile_open's). 0, or -1 with e at the key. */
 int job_from_doc(struct ydoc *d, const char *path, struct job *j, struct err *e);
 
 /* The image height j renders at: its height:, else its width / the camera's aspect, rounded, at
@@ -19,17 +18,15 @@ void job_defaults(struct job *j, const char *path);
 /* Apply one key/value pair of a job mapping to j (used for job files and compare variants). */
 int job_apply(struct job *j, struct ydoc *d, yaml_node_t *key, yaml_node_t *val, struct err *e);
 
-/* A job without name: is named for its file's stem, which must fit a name (JOB_NAME_MAX - 1
-   bytes): a longer stem is refused, never cut (two files differing after the cut would share an
-   output folder, and a cut may split a UTF-8 character). 0, or -1 with e filled (at 1:1). */
+/* A job without name: is named for its file's stem, refused when longer than a name, never cut (two
+   files would share an output folder, a UTF-8 character be split). 0, or -1 with e filled (at 1:1). */
 int job_check_stem(const struct job *j, struct err *e);
 
 /* Derive what depends on several keys (light sampler default, format, output name). */
 int job_finish(struct job *j, struct ydoc *d, struct err *e);
 
-/* Where j's light points really come from, for a caption: "light jitter t=5", or under
-   sampler_dims: all (which never asks the light sampler) "light points from the sobol sets
-   (sampler_dims: all)", or "no light sampling". Written into buf (n bytes), returned. */
+/* Where j's light points really come from, for a caption, into buf (n bytes), returned: "light
+   jitter t=5", "light points from the sobol sets (sampler_dims: all)" or "no light sampling". */
 const char *job_light_text(const struct job *j, char *buf, size_t n);
 
 /* The message for s, no sampler's name: "unknown sampler \"s\" (did you mean \"x\"?)", else with the

@@ -21,9 +21,9 @@ static double resident_bytes(void)
     return ok ? (double)resident * (double)sysconf(_SC_PAGESIZE) : 0;
 }
 
-/* One render process's buffers for j's point sets, which the pilot (drawing smaller sets) does
-   not hold: the pixel set, each light's stream and, under sampler_dims: all, the padded slots
-   (render_ctx.c: 2 + 4 a bounce, at most 16 bounces and 256 MB; twice a set each at most). */
+/* One render process's buffers for j's point sets, which the pilot does not hold: the pixel set, each
+   light's stream, the padded slots of sampler_dims: all (render_ctx.c's: 2 + 4 a bounce, twice a
+   set each, 16 bounces and 256 MB at most). */
 static double set_bytes(const struct job *j, const struct scene_file *sf)
 {
     const double pixel =

@@ -19,10 +19,9 @@ struct job_estimate {
     struct cost_estimate cost; /* the cost model's figures (cost_model.h) */
 };
 
-/* Estimate j's render with `processes` processes (0: the job's) and write nothing: the scene
-   (sf, or loaded from j->scene_path when NULL), the size and the limits as run_job checks them,
-   then its cost by the model m (its pilots and set timings shared with m's other estimates).
-   0, or -1 with e filled (bad input, at the key's line:col as a render would say). */
+/* Estimate j's render with `processes` processes (0: the job's), writing nothing: the scene (sf,
+   else j->scene_path's), size and limits checked as run_job checks them, then its cost by m. 0,
+   or -1 with e filled (bad input, at the key's line:col as a render would say). */
 int job_estimate(const struct job *j, const struct scene_file *sf, int processes, struct cost_model *m,
                  struct job_estimate *out, struct err *e);
 
@@ -31,8 +30,7 @@ int job_estimate(const struct job *j, const struct scene_file *sf, int processes
 int job_estimate_expect(const struct job *j, const struct scene_file *sf, struct cost_model *m,
                         struct err *e);
 
-/* The estimate's memory: the framebuffer, the textures (once) and every process's resident set
-   beside them. */
+/* The estimate's memory: the framebuffer, the textures (once) and every process's resident set. */
 double job_estimate_memory(const struct job_estimate *est);
 
 #endif

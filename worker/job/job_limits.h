@@ -13,11 +13,9 @@
 /* Most points one Poisson pool may hold (poisson_pool x the largest set, per sampler). */
 #define LIMITS_MAX_POOL_POINTS 33554432.0
 
-/* Refuse a job that would draw too much before or while rendering: width x height x (largest
-   pixel set) over LIMITS_MAX_JOB_SAMPLES (at threshold:); a fresh Poisson light set per pixel
-   and light, width x height x (largest light set), over the same limit (at light_threshold:);
-   a Poisson pool of poisson_pool x (largest set) over LIMITS_MAX_POOL_POINTS (at poisson_pool:).
-   0, or -1 with e at the key. */
+/* Refuse a job that would draw too much: width x height x (largest pixel set), or of fresh Poisson
+   light sets per pixel and light, over LIMITS_MAX_JOB_SAMPLES; a Poisson pool of poisson_pool x
+   (largest set) over LIMITS_MAX_POOL_POINTS. 0, or -1 with e at the key to change. */
 int job_limits_samples(const struct job *j, int width, int height, struct err *e);
 
 /* Refuse a framebuffer (and friends) of `bytes` when it exceeds half the memory available now

@@ -13,9 +13,8 @@
 
 enum { HINT_NAME_MAX = 256, HINT_MAX_ENTRIES = 4096 };
 
-/* The entry of folder dir nearest to name (ystr_nearest's closeness) into out: with stems, among
-   the *.yaml files by their stems; else among all entries by their full names. At most
-   HINT_MAX_ENTRIES entries are looked at. 1 when one is near, else 0 and out is "". */
+/* The entry of folder dir nearest to name (ystr_nearest) into out, among its first HINT_MAX_ENTRIES:
+   with stems, the *.yaml files by their stems. 1 when one is near, else 0 and out is "". */
 static int nearest_entry(const char *dir, const char *name, int stems, char *out, size_t n)
 {
     out[0] = 0;
@@ -80,9 +79,8 @@ int job_path_is_file(const char *p)
     return stat(p, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-/* The scenes shipped with the program, for a bare name in a job file anywhere: ../scenes beside
-   the binary (bin/worker in a checkout) and ../share/worker/scenes (`make install`). n: how many
-   of the two were found (0 when /proc/self/exe cannot be read). */
+/* The scenes shipped with the program: ../scenes beside the binary (a checkout's bin/worker) and
+   ../share/worker/scenes (`make install`); how many (0 when /proc/self/exe cannot be read). */
 static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
 {
     char exe[JOB_PATH_MAX];
@@ -105,14 +103,10 @@ static int shipped_scene_dirs(char dirs[2][JOB_PATH_MAX])
 enum { N_BARE = 5 };
 static int bare_dirs(const struct job *j, char dirs[N_BARE][JOB_PATH_MAX])
 {
-    char shipped[2][JOB_PATH_MAX];
-    int nd = 0;
-    job_path_resolve(j->path, "scenes", dirs[nd++], JOB_PATH_MAX);
-    job_path_resolve(j->path, "../scenes", dirs[nd++], JOB_PATH_MAX);
-    snprintf(dirs[nd++], JOB_PATH_MAX, "scenes");
-    for (int k = 0, ns = shipped_scene_dirs(shipped); k < ns; k++)
-        snprintf(dirs[nd++], JOB_PATH_MAX, "%s", shipped[k]);
-    return nd;
+    job_path_resolve(j->path, "scenes", dirs[0], JOB_PATH_MAX);
+    job_path_resolve(j->path, "../scenes", dirs[1], JOB_PATH_MAX);
+    snprintf(dirs[2], JOB_PATH_MAX, "scenes");
+    return 3 + shipped_scene_dirs(dirs + 3);
 }
 
 int job_path_scene(struct job *j, const char *val, char *tried, size_t n)

@@ -16,16 +16,13 @@ void job_path_resolve(const char *base, const char *rel, char *out, size_t n);
 /* Whether p is a regular file (following symbolic links). */
 int job_path_is_file(const char *p);
 
-/* Set j->scene_path from the scene: value val. A bare name (no '/', no extension) means
-   scenes/NAME.yaml: looked up in ./scenes, beside the job file, in the job file's parent (jobs/
-   and scenes/ are siblings), then among the scenes shipped with the program; else val is relative
-   to the job file. 0 when it is a file; -1 with j->scene_path the first place looked at and
-   *tried listing the others. */
+/* Set j->scene_path from the scene: value val: a bare name (no '/', no extension) is NAME.yaml in
+   the scenes/ folders job_path.c's bare_dirs lists, else val is relative to the job file. 0 when it
+   is a file; -1 with j->scene_path the first place looked at and *tried listing the others. */
 int job_path_scene(struct job *j, const char *val, char *tried, size_t n);
 
 /* " (did you mean X?)" for a scene: value val that names no file (after job_path_scene), when a
-   file near it exists where it was looked for (buf holds it); else "". A bare name is compared
-   with the scenes' stems, a path's last part with its folder's entries. */
+   file near it exists where it was looked for (into buf); else "". */
 const char *job_path_scene_hint(const struct job *j, const char *val, char *buf, size_t n);
 
 #endif

@@ -30,16 +30,14 @@ struct job {
     struct render_spec spec;       /* everything that changes the pixels */
     int processes;
     enum img_format format;
-    char output[JOB_NAME_MAX]; /* the image's file name under --out DIR/<name>/ (a list's first): its
-                                  stem names the sidecar and the part files */
+    char output[JOB_NAME_MAX]; /* the image's file name (a list's first): its stem names the sidecar */
     int n_more;                /* output: [a.png, a.exr]: the images written beside it, one per format */
     char more_output[JOB_OUTPUTS_MAX - 1][JOB_NAME_MAX];
     enum img_format more_format[JOB_OUTPUTS_MAX - 1];
     char reference[JOB_PATH_MAX]; /* resolved; "" when none */
     int priority;                 /* queue order: higher first (default 0) */
     double entry_cpu_s;           /* a study spread over a queue: its entries' CPU target; 0: the queue's */
-    int float_copy;               /* not a key: also write the framebuffer as <stem>.exr beside a PNG or PPM
-                                     image (a compare job's renders, scored in linear radiance) */
+    int float_copy;               /* not a key: also write <stem>.exr beside a PNG or PPM (a compare's) */
     uint64_t hash;                /* FNV-1a of the job file's bytes, then its scene file's */
     struct job_pos pos;           /* parse positions, for messages only */
 };

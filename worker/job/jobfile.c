@@ -9,9 +9,8 @@
 #include "base/hash.h"
 #include "image/imgio.h"
 
-/* Which kind the parsed document is: a mapping with studies: is a suite, with variants: a compare
-   job (either written null still says which kind was meant); anything else a plain job, whose
-   reader says what is wrong with it. */
+/* The parsed document's kind: a mapping with studies: is a suite, with variants: a compare job
+   (either written null still says which); anything else a plain job, its reader says what's wrong. */
 static enum jobfile_kind kind_of(struct ydoc *d)
 {
     yaml_node_t *root = ydoc_root(d);
@@ -25,19 +24,15 @@ static enum jobfile_kind kind_of(struct ydoc *d)
 /* Read the file once, hash and parse it, and tell its kind. 0 or -1 with e. */
 static int read_parse(struct jobfile *f, const char *from, const char *path, struct err *e)
 {
-    uint8_t *data;
-    size_t len;
     memset(f, 0, sizeof *f);
     snprintf(f->path, sizeof f->path, "%s", path);
-    if (fileio_read_all(from, YDOC_MAX_BYTES, &data, &len, e) < 0) {
+    if (fileio_read_all(from, YDOC_MAX_BYTES, &f->bytes, &f->len, e) < 0) {
         if (strcmp(e->file, from) == 0)
             snprintf(e->file, sizeof e->file, "%s", path);
         return -1;
     }
-    f->bytes = data;
-    f->len = len;
-    f->hash = hash_bytes(HASH_FNV_OFFSET, data, len);
-    if (ydoc_parse(&f->doc, path, data, len, e) < 0)
+    f->hash = hash_bytes(HASH_FNV_OFFSET, f->bytes, f->len);
+    if (ydoc_parse(&f->doc, path, f->bytes, f->len, e) < 0)
         return -1;
     f->kind = kind_of(&f->doc);
     return 0;

@@ -19,23 +19,18 @@ struct jobfile {
     char path[JOB_PATH_MAX]; /* where it belongs: messages and relative paths name it */
     enum jobfile_kind kind;
     struct ydoc doc; /* the file parsed (doc.file = path); a compare or suite loader reads it */
-    uint8_t *bytes;  /* the file's bytes as read (a queue copies a compare job's into the
-                        study's folder) */
+    uint8_t *bytes;  /* the file's bytes as read (a queue copies a compare job's) */
     size_t len;
     uint64_t hash;          /* FNV-1a of the file's bytes */
-    struct job job;         /* JOBFILE_PLAIN: its settings, job.hash complete (file, scene, textures,
-                               reference) */
+    struct job job;         /* JOBFILE_PLAIN: its settings, job.hash of all its inputs */
     struct scene_src scene; /* JOBFILE_PLAIN: its scene file, read and parsed once (run_opts.scene) */
-    uint8_t *ref_bytes;     /* JOBFILE_PLAIN: its reference image's bytes, read once for the hash and
-                               the score (run_opts.ref_bytes); NULL: none, or unreadable */
+    uint8_t *ref_bytes;     /* JOBFILE_PLAIN: its reference's bytes (run_opts.ref_bytes), or NULL */
     size_t ref_len;
 };
 
 /* Read the job file at `from` once (at most YDOC_MAX_BYTES), hash and parse it, as if it were at
-   `path` (a queue's claimed file still belongs to the queue's folder; the command line gives the
-   same path twice). A plain job is checked key by key and its scene and reference read and
-   hashed. 0, or -1
-   with e = "file:line:col: key: message" (naming path). jobfile_close after either. */
+   `path` (a queue's claim still belongs to the queue's folder); a plain job's keys checked, its
+   scene and reference read and hashed. 0, or -1 with e naming path; jobfile_close after. */
 int jobfile_open(struct jobfile *f, const char *from, const char *path, struct err *e);
 void jobfile_close(struct jobfile *f);
 

@@ -125,31 +125,28 @@ int outdir_mkdirs(const char *path, int *made, struct err *e)
     if (made)
         *made = 0;
     for (char *p = buf + 1;; p++) {
-        if (*p == '/' || *p == 0) {
-            char c = *p;
-            *p = 0;
-            int ok = mkdir(buf, 0755) == 0;
-            if (!ok && errno != EEXIST)
-                return err_set_errno(e, errno, "cannot create directory %s: %s", buf, strerror(errno));
-            struct stat st;
-            /* the folder itself is never a symbolic link: outputs would land wherever it points */
-            if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
-                return err_set_errno(
-                    e, ELOOP,
-                    "%s is a symbolic link: outputs are never written through one (make it a "
-                    "folder)",
-                    buf);
-            if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
-                return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way", buf);
-            *p = c;
-            if (!c) {
-                if (made)
-                    *made = ok;
-                break;
-            }
+        if (*p != '/' && *p != 0)
+            continue;
+        char c = *p;
+        *p = 0;
+        int ok = mkdir(buf, 0755) == 0;
+        if (!ok && errno != EEXIST)
+            return err_set_errno(e, errno, "cannot create directory %s: %s", buf, strerror(errno));
+        struct stat st;
+        /* the folder itself is never a symbolic link: outputs would land wherever it points */
+        if (!c && lstat(buf, &st) == 0 && S_ISLNK(st.st_mode))
+            return err_set_errno(
+                e, ELOOP, "%s is a symbolic link: outputs are never written through one (make it a folder)",
+                buf);
+        if (stat(buf, &st) < 0 || !S_ISDIR(st.st_mode))
+            return err_set_errno(e, ENOTDIR, "cannot create directory %s: a file is in the way", buf);
+        *p = c;
+        if (!c) {
+            if (made)
+                *made = ok;
+            return 0;
         }
     }
-    return 0;
 }
 
 /* Whether n is a temporary of the file named base: fileio_stage's ".<base>.tmp.XXXXXX", or what
@@ -168,28 +165,6 @@ static int is_temp_of(const char *n, const char *base)
     return t == n + 1 + bl ? rest == 6 : rest == 17 && !strncmp(t + 11, ".tmp.", 5);
 }
 
-/* Remove, in one pass over dir, the temporaries that writers killed half-way left for the given
-   paths in it (is_temp_of). Only the holder of the folder's lock may call it. */
-static void remove_dead_temps(const char *dir, const char *const *paths)
-{
-    DIR *d = paths && paths[0] ? opendir(dir) : NULL;
-    if (!d)
-        return;
-    struct dirent *de;
-    while ((de = readdir(d))) {
-        for (int i = 0; paths[i]; i++) {
-            const char *slash = strrchr(paths[i], '/');
-            if (!is_temp_of(de->d_name, slash ? slash + 1 : paths[i]))
-                continue;
-            char dead[4096];
-            snprintf(dead, sizeof dead, "%s/%s", dir, de->d_name);
-            unlink(dead);
-            break;
-        }
-    }
-    closedir(d);
-}
-
 /* Whether n is any writer's temporary (is_temp_of, whatever the file): ".<base>.tmp.XXXXXX". */
 static int is_temp(const char *n)
 {
@@ -197,23 +172,24 @@ static int is_temp(const char *n)
     return n[0] == '.' && len > 12 && !strncmp(n + len - 11, ".tmp.", 5);
 }
 
-void outdir_remove_temps(const char *dir)
+/* Remove, in one pass over the open folder fd, the temporaries that writers killed half-way left:
+   for the given paths in it (is_temp_of), or every one when paths is NULL (is_temp). Only the
+   holder of the folder's lock may call it. */
+static void remove_temps(int fd, const char *const *paths)
 {
-    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), locked = 0;
-    if (fd < 0)
-        return;
-    for (int i = 0; i < 100 && !(locked = flock(fd, LOCK_EX | LOCK_NB) == 0); i++) {
-        struct timespec nap = {0, 10 * 1000 * 1000};
-        nanosleep(&nap, NULL);
-    }
-    DIR *d = locked ? fdopendir(dup(fd)) : NULL;
+    DIR *d = fdopendir(dup(fd));
     struct dirent *de;
-    while (d && (de = readdir(d)))
-        if (is_temp(de->d_name))
+    while (d && (de = readdir(d))) {
+        int dead = !paths && is_temp(de->d_name);
+        for (int i = 0; paths && paths[i] && !dead; i++) {
+            const char *slash = strrchr(paths[i], '/');
+            dead = is_temp_of(de->d_name, slash ? slash + 1 : paths[i]);
+        }
+        if (dead)
             (void)unlinkat(fd, de->d_name, 0);
+    }
     if (d)
         closedir(d);
-    close(fd); /* and the lock with it */
 }
 
 /* flock(fd, LOCK_EX) for at most wait_s seconds (> 0) in 20 ms steps; -1 with errno EWOULDBLOCK
@@ -239,6 +215,16 @@ static int lock_within(int fd, double wait_s, const volatile sig_atomic_t *stop)
     }
 }
 
+void outdir_remove_temps(const char *dir)
+{
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0)
+        return;
+    if (lock_within(fd, 1.0, NULL) == 0)
+        remove_temps(fd, NULL);
+    close(fd); /* and the lock with it */
+}
+
 int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s)
 {
     int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC), rc = -1; /* a link swapped in */
@@ -256,7 +242,8 @@ int outdir_lock(const char *dir, const char *const *paths, const volatile sig_at
         close(fd);
         return why == EINTR ? OUTDIR_STOPPED : why == EWOULDBLOCK ? OUTDIR_WAITED_OUT : -1;
     }
-    remove_dead_temps(dir, paths);
+    if (paths && paths[0])
+        remove_temps(fd, paths);
     return fd;
 }
 

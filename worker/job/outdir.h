@@ -1,6 +1,5 @@
-/* outdir: a job's output folder OUT/<name>/ and the names in it (image, sidecar, part files, all
-   from the output's stem), made on demand and locked while written; the removal of the temporary
-   files a killed writer left. */
+/* outdir: a job's output folder OUT/<name>/ and the names in it (all from the output's stem), made
+   on demand, locked while written, and swept of the temporary files a killed writer left. */
 #ifndef OUTDIR_H
 #define OUTDIR_H
 
@@ -49,39 +48,34 @@ void outdir_part_path(const struct job *j, const char *out_dir, int part, int pa
  *parts; else 0. */
 int outdir_part_name(const struct job *j, const char *file, int *part, int *parts);
 
-/* Check, making nothing, that dir is a writable directory or can be made as one (its nearest
-   existing ancestor is a writable directory), so an interrupted render leaves no empty folder
-   behind. 0 or -1 with e filled. */
+/* Check, making nothing, that dir is a writable directory or can be made as one (so an interrupted
+   render leaves no empty folder behind). 0 or -1 with e filled. */
 int outdir_check(const char *dir, struct err *e);
 
-/* mkdir -p for path; *made (unless NULL): whether path itself was made here, so a failed write
-   may remove it (a folder that was there already, or that another process made meanwhile, is
-   never ours to remove). path itself must not be a symbolic link. 0 or -1 with e filled. */
+/* mkdir -p for path, itself no symbolic link; *made (unless NULL): whether path itself was made
+   here, so that a failed write may remove it. 0 or -1 with e filled. */
 int outdir_mkdirs(const char *path, int *made, struct err *e);
 
-/* An output folder's error (e from outdir_check, outdir_mkdirs or a write into the folder) carries
-   e->errnum. 1 when it is the machine's fault, not the job's: the folder or its files cannot be
-   made or written (EACCES, EPERM, EROFS, ENOSPC, EDQUOT). The one rule a queue worker uses to hand
-   a claim back and stop (exit 2) rather than file the job as failed. */
+/* 1 when the output folder's error e (its errnum) is the machine's fault, not the job's: EACCES,
+   EPERM, EROFS, ENOSPC, EDQUOT. The one rule a queue worker uses to hand a claim back and stop
+   (exit 2) rather than file the job as failed. */
 int outdir_env_error(const struct err *e);
 
-/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that
-   an image and its sidecar always come from one render (two jobs of one name, or a worker whose
-   queue claim was taken over, finishing together). Under the lock, the temporary files that a
-   killed writer left for the given paths (NULL-terminated, each a file in dir) are removed: a lock holder's
-   own temporary files never outlive its lock. Returns the lock (for outdir_unlock), or -1 when the folder
-   cannot be locked (some network file systems): the writer goes on alone, removing nothing; or when dir
-   cannot be opened (errno ELOOP or ENOTDIR: it is a symbolic link); OUTDIR_STOPPED when *stop (optional) was
-   set by a signal while it waited: write nothing; OUTDIR_WAITED_OUT when wait_s > 0 and the lock was not had
-   within wait_s seconds (its holder is stopped or hung). wait_s 0: wait as long as it takes. */
+/* Writers of one output folder take turns: an exclusive flock() on dir while they write, so that an
+   image and its sidecar always come from one render (two jobs of one name, or a worker whose queue
+   claim was taken over, finishing together). Under the lock, the temporary files that a killed
+   writer left for the given paths (NULL-terminated, each a file in dir) are removed. Returns the
+   lock (for outdir_unlock); -1 when the folder cannot be locked (some network file systems: the
+   writer goes on alone, removing nothing) or opened (errno ELOOP or ENOTDIR: a symbolic link);
+   OUTDIR_STOPPED when *stop (optional) was set while it waited: write nothing; OUTDIR_WAITED_OUT
+   when not had within wait_s > 0 seconds (its holder is stopped or hung; 0: wait for ever). */
 #define OUTDIR_STOPPED (-2)
 #define OUTDIR_WAITED_OUT (-3)
 int outdir_lock(const char *dir, const char *const *paths, const volatile sig_atomic_t *stop, double wait_s);
 void outdir_unlock(int lock);
 
-/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir, under its lock: for a
-   job that ends without writing (failed), so that a killed writer's leftovers do not outlive it.
-   A lock held by another writer for over a second leaves them (they may be that writer's). */
+/* Remove every temporary file (".<base>.tmp.XXXXXX", any writer's) from dir under its lock, for a
+   job that failed; a lock held by another for over a second leaves them (they may be its). */
 void outdir_remove_temps(const char *dir);
 
 #endif

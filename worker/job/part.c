@@ -25,19 +25,21 @@ static int part_rows(int h, int part, int parts)
     return h > part ? (h - part + parts - 1) / parts : 0;
 }
 
-static uint8_t *put_u32(uint8_t *p, uint32_t v)
+/* v's low n bytes at p, little-endian; returns p past them. */
+static uint8_t *put_le(uint8_t *p, uint64_t v, size_t n)
 {
-    for (int i = 0; i < 4; i++)
+    for (size_t i = 0; i < n; i++)
         *p++ = (uint8_t)(v >> (8 * i));
     return p;
 }
 
-static uint32_t get_u32(const uint8_t **p)
+/* The n bytes at *p as a little-endian number; *p advanced past them. */
+static uint64_t get_le(const uint8_t **p, size_t n)
 {
-    uint32_t v = 0;
-    for (int i = 0; i < 4; i++)
-        v |= (uint32_t)(*p)[i] << (8 * i);
-    *p += 4;
+    uint64_t v = 0;
+    for (size_t i = 0; i < n; i++)
+        v |= (uint64_t)(*p)[i] << (8 * i);
+    *p += n;
     return v;
 }
 
@@ -77,17 +79,11 @@ static void encode_header(uint8_t *b, const struct part_header *h)
     memcpy(b, PART_MAGIC, 8);
     b += 8;
     for (size_t i = 0; i < N_HEADER_FIELDS; i++) {
-        const char *field = (const char *)h + header_fields[i].at;
-        uint64_t v;
-        if (header_fields[i].size == 4) {
-            uint32_t u;
-            memcpy(&u, field, 4);
-            v = u;
-        } else {
-            memcpy(&v, field, 8);
-        }
-        for (size_t k = 0; k < header_fields[i].size; k++)
-            *b++ = (uint8_t)(v >> (8 * k));
+        const size_t n = header_fields[i].size;
+        uint32_t u = 0;
+        uint64_t v = 0;
+        memcpy(n == 4 ? (void *)&u : (void *)&v, (const char *)h + header_fields[i].at, n);
+        b = put_le(b, n == 4 ? u : v, n);
     }
 }
 
@@ -105,16 +101,10 @@ static int decode_header(const uint8_t *b, size_t len, const char *path, struct 
         return err_set(e, path, 0, 0, "not a worker part file");
     const uint8_t *p = b + 8;
     for (size_t i = 0; i < N_HEADER_FIELDS; i++) {
-        char *field = (char *)h + header_fields[i].at;
-        uint64_t v = 0;
-        for (size_t k = 0; k < header_fields[i].size; k++)
-            v |= (uint64_t)*p++ << (8 * k);
-        if (header_fields[i].size == 4) {
-            uint32_t u = (uint32_t)v;
-            memcpy(field, &u, 4);
-        } else {
-            memcpy(field, &v, 8);
-        }
+        const size_t n = header_fields[i].size;
+        uint64_t v = get_le(&p, n);
+        uint32_t u = (uint32_t)v;
+        memcpy((char *)h + header_fields[i].at, n == 4 ? (void *)&u : (void *)&v, n);
     }
     if (h->version != PART_VERSION)
         return err_set(e, path, 0, 0,
@@ -134,11 +124,6 @@ int part_write(const char *path, const struct job *j, const struct part_frame *f
 {
     int w = fb->w, h = fb->h;
     const float *rgb = fb->rgb;
-    size_t rows = (size_t)part_rows(h, part, parts);
-    size_t len = PART_HEADER + rows * (size_t)w * 12 + 4;
-    uint8_t *buf = malloc(len);
-    if (!buf)
-        return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
     struct part_header hd = {PART_VERSION,
                              (uint32_t)w,
                              (uint32_t)h,
@@ -150,15 +135,19 @@ int part_write(const char *path, const struct job *j, const struct part_frame *f
                              fr->wall_s,
                              fr->cpu_s,
                              (uint64_t)(fr->peak_rss_kb > 0 ? fr->peak_rss_kb : 0)};
+    const size_t len = part_bytes(&hd);
+    uint8_t *buf = malloc(len);
+    if (!buf)
+        return err_set(e, NULL, 0, 0, "cannot write %s: out of memory", path);
     encode_header(buf, &hd);
     uint8_t *p = buf + PART_HEADER;
     for (int y = part; y < h; y += parts)
         for (size_t i = 0; i < (size_t)w * 3; i++) {
             uint32_t v;
             memcpy(&v, &rgb[(size_t)y * w * 3 + i], sizeof v);
-            p = put_u32(p, v);
+            p = put_le(p, v, 4);
         }
-    put_u32(p, (uint32_t)crc32(0L, buf, (uInt)(len - 4)));
+    put_le(p, crc32(0L, buf, (uInt)(len - 4)), 4);
     int rc = fileio_write_atomic(path, buf, len, e);
     free(buf);
     return rc;
@@ -193,7 +182,7 @@ int part_check_contents(const struct part_file *pf, const char *path, struct err
         return err_set(e, path, 0, 0, "damaged part file: impossible times or memory");
     const uint8_t *p = pf->data + PART_HEADER;
     for (uint64_t i = 0; i < rows * h->width * 3; i++) {
-        uint32_t v = get_u32(&p);
+        uint64_t v = get_le(&p, 4);
         if ((v & 0x7f800000u) == 0x7f800000u) /* all exponent bits: inf or NaN */
             return err_set(e, path, 0, 0, "damaged part file: a non-finite pixel in row %llu of the image",
                            (unsigned long long)(h->part + i / (h->width * 3) * h->parts));
@@ -226,7 +215,7 @@ int part_read(const char *path, struct part_file *pf, struct err *e)
         return err_set(e, path, 0, 0, "damaged part file: %zu bytes, expected %zu", pf->len,
                        part_bytes(&pf->h));
     const uint8_t *p = pf->data + pf->len - 4;
-    if (get_u32(&p) != (uint32_t)crc32(0L, pf->data, (uInt)(pf->len - 4)))
+    if (get_le(&p, 4) != (uint32_t)crc32(0L, pf->data, (uInt)(pf->len - 4)))
         return err_set(e, path, 0, 0, "damaged part file: checksum mismatch");
     return 0;
 }
@@ -243,7 +232,7 @@ void part_rows_into(const struct part_file *pf, float *rgb)
     const uint8_t *p = pf->data + PART_HEADER;
     for (int y = (int)pf->h.part; y < h; y += parts)
         for (size_t i = 0; i < (size_t)w * 3; i++) {
-            uint32_t v = get_u32(&p);
+            uint32_t v = (uint32_t)get_le(&p, 4);
             memcpy(&rgb[(size_t)y * w * 3 + i], &v, sizeof v);
         }
 }

@@ -51,16 +51,13 @@ struct part_file {
     size_t len;
 };
 
-/* Read the part file at path into pf and check it: magic, version, a sane split, a length that
-   matches its rows, and its checksum. 0 or -1 with e filled (file = path); part_file_free(pf)
-   either way. */
+/* Read the part file at path into pf, checking its magic, version, split, length and checksum. 0
+   or -1 with e filled (file = path); part_file_free(pf) either way. */
 int part_read(const char *path, struct part_file *pf, struct err *e);
 void part_file_free(struct part_file *pf);
 
-/* What a render can have written into pf (read by part_read): one pixel counted per stored
-   pixel, samples between pixels x spp min and x spp max, counters that cannot wrap when PART_MAX
-   parts are summed, finite non-negative times, a sampling share within the CPU time, finite
-   pixels. 0 or -1 with e filled (file = path). */
+/* Whether pf (read by part_read) holds what a render can have written: counts that agree and
+   cannot wrap when PART_MAX parts are summed, sane times, finite pixels. 0 or -1 with e filled. */
 int part_check_contents(const struct part_file *pf, const char *path, struct err *e);
 
 /* Copy pf's rows (row % parts == part) into rgb, a framebuffer of pf's width x height. */

@@ -162,18 +162,24 @@ int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *re
     int left = nproc;
     long nap_ns = 100000;
     while (left > 0) {
-        int status;
+        int status = 0;
         pid_t pid = waitpid(-1, &status, WNOHANG);
         if (pid < 0 && errno != EINTR)
             break;
-        if (pid <= 0 && fj->stop && *fj->stop) {
+        int i = 0;
+        while (pid > 0 && i < nproc && pids[i] != pid)
+            i++;
+        if (i == nproc)
+            continue; /* not ours */
+        if (pid > 0) {
+            pids[i] = 0;
+            left--;
+        }
+        if (fj->stop && *fj->stop) {
             err_set(e, NULL, 0, 0, "render stopped by a signal");
             res->stopped = 1;
             rc = -1;
-            kill_all(pids, nproc);
-            break;
-        }
-        if (pid <= 0) {
+        } else if (pid <= 0) {
             if (fj->progress)
                 fj->progress(fj->progress_arg, atomic_load(&sh->rows_done), rows,
                              clock_s(CLOCK_MONOTONIC) - wall0);
@@ -184,18 +190,6 @@ int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *re
             nanosleep(&nap, NULL);
             nap_ns = nap_ns < 5000000 / 2 ? 2 * nap_ns : 5000000;
             continue;
-        }
-        int i = 0;
-        while (i < nproc && pids[i] != pid)
-            i++;
-        if (i == nproc)
-            continue; /* not ours */
-        pids[i] = 0;
-        left--;
-        if (fj->stop && *fj->stop) {
-            err_set(e, NULL, 0, 0, "render stopped by a signal");
-            res->stopped = 1;
-            rc = -1;
         } else if (WIFSIGNALED(status)) {
             res->child_signal = WTERMSIG(status);
             res->child_crashed = 1;

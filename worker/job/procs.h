@@ -45,23 +45,20 @@ struct procs_job {
 float *procs_framebuffer_new(int w, int h, struct err *e);
 void procs_framebuffer_free(float *rgb, int w, int h);
 
-/* Render fj into rgb (from procs_framebuffer_new) (width*height*3 floats, linear). Rows are split over the
-   processes as row % processes; every pixel depends only on (seed, x, y), so any split gives the same bytes.
-   0 on success; -1 with e filled when a child fails (exit code or signal: the others are
-   killed and reaped; res->child_crashed, res->child_signal say so), when *fj->stop becomes set
-   (children killed and reaped; res->stopped), or when a resource is missing. A child whose
-   parent dies is killed with it on Linux (PR_SET_PDEATHSIG), elsewhere stops after its current row. */
+/* Render fj into rgb (from procs_framebuffer_new, linear), rows split over the processes as row %
+   processes (a pixel depends only on (seed, x, y): any split gives the same bytes). 0; -1 with e
+   filled when a child fails (the others killed and reaped; res->child_crashed, res->child_signal),
+   when *fj->stop becomes set (res->stopped), or when a resource is missing. A child whose parent
+   dies is killed with it on Linux, elsewhere stops after its current row. */
 int procs_render(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
-/* Render fj's rows in the calling process, no fork: for the study's cost design, which times
-   small units of work again and again (a fork per unit cost more than the unit under ASan, and
-   is no part of a sampler's cost). res as procs_render's with one process, cpu_s this thread's
-   CPU seconds. 0, or -1 with e filled (the render context could not be made). */
+/* Render fj's rows in the calling process, no fork (the study's cost design times small units of
+   work, for which a fork costs more than the unit): res as procs_render's with one process, cpu_s
+   this thread's. 0, or -1 with e filled (the render context could not be made). */
 int procs_render_here(const struct procs_job *fj, float *rgb, struct procs_result *res, struct err *e);
 
-/* The share of the render processes' CPU time spent drawing point sets, in [0, 1]: each
-   process's sampler_s is a fraction of its own cpu_s (render_stats_finish), and r sums both
-   over the processes (or the parts merged) in one order. */
+/* The share of the render processes' CPU time spent drawing point sets, in [0, 1] (each process's
+   sampler_s is a part of its cpu_s, and r sums both over the processes or parts merged). */
 double procs_sampling_share(const struct procs_result *r);
 
 #endif

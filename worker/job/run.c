@@ -17,18 +17,16 @@
 #include "sidecar.h"
 
 struct progress {
+    const struct run_opts *o; /* its tick, called at every report */
     const char *name;
-    int enabled;
-    int last_pct;
-    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s);
-    void *tick_arg;
+    int enabled, last_pct;
 };
 
 static void show_progress(void *arg, int done, int rows, double elapsed)
 {
     struct progress *p = arg;
-    if (p->tick)
-        p->tick(p->tick_arg, done, rows, elapsed);
+    if (p->o->tick)
+        p->o->tick(p->o->tick_arg, done, rows, elapsed);
     if (!p->enabled || rows == 0)
         return;
     int pct = (int)(100.0 * done / rows);
@@ -49,6 +47,8 @@ static void show_progress(void *arg, int done, int rows, double elapsed)
 static int decode_reference(const struct job *j, const uint8_t *data, size_t len, int w, int h,
                             struct rgbf *ref, enum img_domain *domain, struct err *e)
 {
+    const int *at = job_at(j, "reference");
+    size_t bad = 0;
     *ref = (struct rgbf){0};
     *domain = IMG_LINEAR;
     if (!j->reference[0])
@@ -57,24 +57,20 @@ static int decode_reference(const struct job *j, const uint8_t *data, size_t len
               : imgio_read_f(j->reference, ref, domain, e)) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg);
-        return err_set(e, j->path, job_at(j, "reference")[0], job_at(j, "reference")[1], "reference: %s: %s",
-                       j->reference, why);
+        return err_set(e, j->path, at[0], at[1], "reference: %s: %s", j->reference, why);
     }
-    if (ref->w != w || ref->h != h) {
-        err_set(e, j->path, job_at(j, "reference")[0], job_at(j, "reference")[1],
-                "reference: image is %dx%d but the job renders %dx%d", ref->w, ref->h, w, h);
-        image_f_free(ref);
-        return -1;
-    }
-    size_t bad = image_f_nonfinite(ref);
-    if (bad) { /* every error against it would be NaN: refused before the render, as a compare job's */
-        err_set(e, j->path, job_at(j, "reference")[0], job_at(j, "reference")[1],
-                "reference: %s: %zu of its %zu values are NaN or infinite", j->reference, bad,
-                (size_t)w * h * 3);
-        image_f_free(ref);
-        return -1;
-    }
-    return 0;
+    /* refused before the render, as a compare job's: another size, or NaN or infinite values
+       (every error against them would be NaN) */
+    if (ref->w != w || ref->h != h)
+        err_set(e, j->path, at[0], at[1], "reference: image is %dx%d but the job renders %dx%d", ref->w,
+                ref->h, w, h);
+    else if ((bad = image_f_nonfinite(ref)))
+        err_set(e, j->path, at[0], at[1], "reference: %s: %zu of its %zu values are NaN or infinite",
+                j->reference, bad, (size_t)w * h * 3);
+    else
+        return 0;
+    image_f_free(ref);
+    return -1;
 }
 
 int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
@@ -105,10 +101,9 @@ static int outputs_current(const struct job *j, const struct run_opts *o, const 
 
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e)
 {
-    /* Outputs left by a render with another process count are not what --processes asked for:
-       their sidecar records that count and its per-process times; so an override joins the hash
-       the outputs are matched by, from the command line, a queue or a compare job alike. (Parts
-       keep the file's hash: merge matches them against it, whatever split rendered them.) */
+    /* Outputs of another process count (their sidecar records it) are not what --processes asked
+       for: an override joins the hash the outputs are matched by. (Parts keep the file's hash:
+       merge matches them against it, whatever split rendered them.) */
     struct job overridden;
     if (j->hash != 0 && o->parts == 0 && o->processes > 0 && o->processes != j->processes) {
         overridden = *j;
@@ -159,11 +154,9 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     if (job_limits_memory("the framebuffer", (size_t)w * h * 3 * sizeof(float) + (size_t)w * h * 3, e) < 0) {
         char why[sizeof e->msg];
         snprintf(why, sizeof why, "%s", e->msg); /* at the size's key: the user's lever */
-        if (job_at(j, "width")[0])
-            err_set(e, j->path, job_at(j, "width")[0], job_at(j, "width")[1], "width: %dx%d pixels: %s", w, h,
-                    why);
-        else
-            err_set(e, j->path, 1, 1, "size: %dx%d pixels: %s", w, h, why);
+        const int *at = job_at(j, "width");
+        err_set(e, j->path, at[0] ? at[0] : 1, at[0] ? at[1] : 1, "%s: %dx%d pixels: %s",
+                at[0] ? "width" : "size", w, h, why);
         goto done;
     }
     if (render_spec_samplers_new(&j->spec, j->spec.seed, &pix, &light, e) < 0) {
@@ -176,8 +169,7 @@ int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr
     rc = 1;
     if (!(rgb = procs_framebuffer_new(w, h, e)))
         goto done;
-    struct progress prog = {o->label ? o->label : j->name, o->progress && !o->quiet, -1, o->tick,
-                            o->tick_arg};
+    struct progress prog = {o, o->label ? o->label : j->name, o->progress && !o->quiet, -1};
     struct procs_job fj = {.scene = sf.scene,
                            .camera = &cam,
                            .rs = render_spec_settings(&j->spec, w, h, j->spec.seed),

@@ -4,16 +4,14 @@
 
 #include "run_types.h"
 
-/* Render j. Returns 0 on success, 2 when the job's input is bad (scene, reference: nothing
-   rendered), 1 when rendering or writing failed; e says why. No output file exists unless the
-   render completed: images and sidecar are written atomically. rr->out: the files' paths,
-   computed once here. Unless o->force, a job whose images and sidecar (or part file) exist and
-   record j->hash (non-zero: the job was read by jobfile_open) is not rendered: 0, rr->skipped. */
+/* Render j into rr->out's files (computed here), written atomically once it completed. 0; 2 when
+   the job's input is bad (nothing rendered); 1 when rendering or writing failed; e says why.
+   Unless o->force, a job whose outputs exist and record j->hash (non-zero: the job was read by
+   jobfile_open) is not rendered: 0, rr->skipped. */
 int run_job(const struct job *j, const struct run_opts *o, struct run_result *rr, struct err *e);
 
-/* Read j's reference (EXR, PFM, PNG or PPM) into ref as floats, *domain saying what they are,
-   and check it is w x h. 0 (ref->px NULL when the job has none), or -1 with e at the job's
-   reference key. */
+/* Read j's reference into ref as floats (*domain: what they are) and check it is w x h. 0 (ref->px
+   NULL when the job has none), or -1 with e at the job's reference key. */
 int run_load_reference(const struct job *j, int w, int h, struct rgbf *ref, enum img_domain *domain,
                        struct err *e);
 

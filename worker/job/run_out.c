@@ -36,15 +36,6 @@ int run_out_lock_outputs(const char *dir, const char *const *paths, const struct
                    dir);
 }
 
-/* Whether the render may still rename an output into place (run_opts.still_held): 0, or -1 with e
-   filled (the claim was taken over while it wrote). */
-static int still_held(const struct run_opts *o, const char *dir, struct err *e)
-{
-    if (!o->still_held || o->still_held(o->tick_arg))
-        return 0;
-    return err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
-}
-
 /* The EXR header's string attributes for j (nothing that depends on the process count or the
    output folder: the file's bytes do not). texts holds their values. */
 static size_t exr_attrs(const struct job *j, struct img_attr *a, char texts[][160])
@@ -99,16 +90,21 @@ static int stage_image(const struct job *j, const struct run_result *rr, int i, 
     return rc;
 }
 
-/* Rename the n staged files to their final names, each once, in order (the sidecar last), asking
-   before each after the first whether the claim is still held. 0, or -1 with e filled and nothing
-   of this writer's left: what was renamed is removed again (an image without its sidecar is not a
-   finished job) and what was not is unlinked. */
+/* Remove the earlier sidecar (final[n - 1]), then rename the n staged files to their final names,
+   in order (the sidecar last), asking before each whether the claim is still held. 0, or -1 with
+   e filled and nothing of this writer's left (an image without its sidecar is no finished job). */
 static int commit_all(const struct run_opts *o, const char *dir, char staged[][2100],
                       const char *const *final, int n, struct err *e)
 {
     for (int i = 0; i < n; i++) {
-        /* a claim taken over between renames: what is renamed stays, without a sidecar */
-        if (i > 0 && still_held(o, dir, e) < 0) {
+        /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not; a
+           claim taken over between renames: what is renamed stays, without a sidecar */
+        int failed = o->still_held && !o->still_held(o->tick_arg);
+        if (failed)
+            err_set(e, NULL, 0, 0, "the claim was taken over while it wrote %s/: nothing written", dir);
+        else if (i == 0 && unlink(final[n - 1]) < 0 && errno != ENOENT)
+            failed = err_set_errno(e, errno, "cannot write %s: %s", final[n - 1], strerror(errno)) < 0;
+        if (failed) {
             for (int r = i; r < n; r++)
                 unlink(staged[r]);
             return -1;
@@ -160,27 +156,16 @@ int run_out_write(const struct job *j, const struct run_opts *o, const struct ru
         err_set(e, NULL, 0, 0, "out of memory writing the sidecar");
         goto done;
     }
-    /* All are staged whole first: a failure before the renames (a full disk, a size limit) leaves
-       the earlier outputs as they were. Then the earlier sidecar goes, the images are renamed, the
-       sidecar last: a reader (or a writer killed at any step) sees the earlier outputs, images
-       without a sidecar (not finished: rendered again), or the new ones, never a new image beside
-       an earlier sidecar (issue 21, defect 6). A killed writer's staged files go under the next
-       one's lock. */
+    /* All staged whole first: a failure before the renames (a full disk) leaves the earlier outputs
+       as they were; then commit_all: a reader (or a writer killed at any step) sees the earlier
+       outputs, images without a sidecar (rendered again), or the new ones, never a new image
+       beside an earlier sidecar (issue 21, defect 6). */
     for (k = 0; k < n - 1; k++)
         if (stage_image(j, rr, k, &fb, &img, staged[k], sizeof staged[k], e) < 0)
             break;
     if (k < n - 1 || fileio_stage(out->sidecar, json, strlen(json), staged[k], sizeof staged[k], e) < 0) {
         while (k-- > 0)
             unlink(staged[k]);
-        goto done;
-    }
-    /* a writer stopped (SIGSTOP) until its claim was taken over renames nothing, lock or not */
-    int failed = still_held(o, out->dir, e) < 0;
-    if (!failed && unlink(out->sidecar) < 0 && errno != ENOENT)
-        failed = err_set_errno(e, errno, "cannot write %s: %s", out->sidecar, strerror(errno)) < 0;
-    if (failed) {
-        for (int r = 0; r < n; r++)
-            unlink(staged[r]);
         goto done;
     }
     if (commit_all(o, out->dir, staged, final, n, e) < 0)

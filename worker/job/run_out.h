@@ -7,12 +7,10 @@
 
 #include "run_types.h"
 
-/* Take dir's lock for writing paths (outdir_lock) into *lock, then ask whether this render may
-   still write (run_opts.may_write): a claim taken over while we waited for the lock (another
-   writer, a slow disk) writes nothing, nor does a writer stopped while it waited. A lock not had
-   within o->lock_wait_s (> 0) is held by a stopped or hung writer, whose claim was taken over (it
-   checks before each rename, run_opts.still_held, and gives up): this writer goes on without it,
-   saying so, when may_write says yes. 0, or -1 with e filled; outdir_unlock(*lock) either way. */
+/* Take dir's lock for writing paths (outdir_lock) into *lock, then ask run_opts.may_write: a claim
+   taken over while it waited writes nothing. A lock not had within o->lock_wait_s (> 0) is a hung
+   writer's, who gives up at its next rename: this one goes on without it, saying so. 0, or -1 with
+   e filled (also when stopped while waiting); outdir_unlock(*lock) either way. */
 int run_out_lock_outputs(const char *dir, const char *const *paths, const struct run_opts *o, int *lock,
                          struct err *e);
 
@@ -26,19 +24,16 @@ struct run_frame {
     int parts;                  /* > 0: merged from that many part files */
 };
 
-/* Write frame f as j's files rr->out (outdir_files under o->out_dir, computed by the caller):
-   each image in its format (PNG/PPM: converted to 8 bits; EXR/PFM: the floats as they are), then
-   the sidecar. Each file is staged once under a temporary name (fileio_stage) and, when all are
-   staged, renamed once to its final name, the sidecar last. With a reference score f into
-   rr->error: on the linear floats when f->ref_domain is IMG_LINEAR, else on the 8-bit image's
-   display values. rr->black: the image is entirely black. 0 or -1 with e filled (nothing left
-   behind). */
+/* Write frame f as j's files rr->out (computed by the caller): each image in its format (PNG/PPM
+   in 8 bits, EXR/PFM the floats), then the sidecar; each staged once under a temporary name and,
+   when all are, renamed once, the sidecar last. With a reference, f scored into rr->error (on the
+   floats when f->ref_domain is IMG_LINEAR, else on the 8-bit values). rr->black: the image is
+   entirely black. 0 or -1 with e filled (nothing left behind). */
 int run_out_write(const struct job *j, const struct run_opts *o, const struct run_frame *f,
                   struct run_result *rr, struct err *e);
 
-/* Write rows o->part of o->parts of frame f into j's part file rr->out.image[0]
-   (outdir_part_files), under the folder's lock as run_out_write. 0 or -1 with e filled (nothing
-   left behind). */
+/* Write rows o->part of o->parts of frame f into j's part file rr->out.image[0], under the
+   folder's lock as run_out_write. 0 or -1 with e filled (nothing left behind). */
 int run_out_write_part(const struct job *j, const struct run_opts *o, const struct run_frame *f,
                        struct run_result *rr, struct err *e);
 

@@ -19,31 +19,22 @@ struct run_opts {
     int force;                         /* render even when the outputs are current (resume off) */
     int part, parts;                   /* parts > 0: render rows with row % parts == part into a part file */
     const volatile sig_atomic_t *stop; /* optional: abandon the render when it becomes non-zero */
-    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s); /* optional: about every 5 ms
-                                          while rendering, with its progress */
-    int (*may_write)(void *arg, const char *dir); /* optional: asked (with tick_arg and the output
-                                          folder) under that folder's lock, just before writing;
-                                          0 = write nothing, fail (a queue claim taken over, the
-                                          folder another queued job's) */
-    void *tick_arg;
-    double lock_wait_s;            /* > 0: wait no longer for the output folder's lock (a queue: its lease
-                                      timeout); then its holder is stopped or hung, and this render writes
-                                      without it when may_write still says yes */
-    int (*still_held)(void *arg);  /* optional: asked (with tick_arg) just before each output is
-                                      renamed into place: 0 = the claim was taken over meanwhile;
-                                      rename nothing more, fail */
-    const struct scene_src *scene; /* optional: the job's scene, already read and parsed (jobfile_open);
-                                      NULL: run_job reads j->scene_path itself */
-    const struct rgbf *ref;        /* optional: the job's reference, already read (a compare job reads each
-                                      scene's once); NULL: run_job reads j->reference itself */
+    void (*tick)(void *arg, int rows_done, int rows, double elapsed_s); /* optional: every ~5 ms */
+    int (*may_write)(void *arg, const char *dir); /* optional: asked under the output folder's lock
+                                          before writing: 0 = write nothing, fail (a queue claim
+                                          taken over, the folder another queued job's) */
+    void *tick_arg;                               /* the argument of tick, may_write and still_held */
+    double lock_wait_s;            /* > 0: wait no longer for the output folder's lock (a queue: its
+                                      lease timeout), then write without it if may_write says yes */
+    int (*still_held)(void *arg);  /* optional: asked before each output is renamed into place: 0 =
+                                      the claim was taken over; rename nothing more, fail */
+    const struct scene_src *scene; /* optional: the job's scene as jobfile_open parsed it (NULL: read it) */
+    const struct rgbf *ref;        /* optional: the job's reference, already read (NULL: read it) */
     enum img_domain ref_domain;    /* what ref holds (IMG_DISPLAY8: 8-bit display values) */
-    const uint8_t *ref_bytes;      /* optional, without ref: j->reference's bytes, already read
-                                      (jobfile_open); NULL: run_job reads the file */
+    const uint8_t *ref_bytes;      /* optional, without ref: j->reference's bytes (jobfile_open's) */
     size_t ref_len;
-    const char *label;              /* optional: the progress line's name; NULL: the job's name (a
-                                       compare reference's name is its folder, ".cache") */
-    const struct rgb8 *ref_display; /* optional: the reference as 8-bit display values: the PNG or
-                                       PPM image is also scored against it (display_error) */
+    const char *label;              /* optional: the progress line's name (NULL: the job's) */
+    const struct rgb8 *ref_display; /* optional: the reference in 8 bits, a PNG/PPM image scored on it too */
 };
 
 struct run_result {

@@ -1,4 +1,4 @@
-/* sidecar: the JSON record beside every image (job, sampler settings, sample counts, rays, times,
+/* sidecar: the JSON record beside every image (job, machine, sampler settings, sample counts, rays, times,
    error) written, and read back with the YAML parser (JSON is YAML's flow syntax). */
 #include "sidecar.h"
 
@@ -9,11 +9,71 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/fileio.h"
 #include "base/json.h"
-#include "machine.h"
 #include "scenefile/yamlx.h"
+
+/* s with every byte outside printable ASCII replaced by '?' and surrounding spaces trimmed. */
+static void clean(char *s)
+{
+    size_t n = strlen(s);
+    while (n && (s[n - 1] == ' ' || s[n - 1] == '\t'))
+        s[--n] = 0;
+    size_t lead = strspn(s, " \t");
+    memmove(s, s + lead, n - lead + 1);
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20 || (unsigned char)*s > 0x7e)
+            *s = '?';
+}
+
+/* The value of /proc/cpuinfo's (text's) first line "key<tabs/spaces>: value" among keys, into out
+   (unchanged when there is none). */
+static void cpuinfo_value(const char *text, char *out, size_t n)
+{
+    static const char *const keys[] = {"model name", "Hardware", "cpu model", "Processor"};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
+        for (const char *line = text; line && *line;
+             line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+            size_t len = strlen(keys[k]);
+            if (strncmp(line, keys[k], len) || !strchr(" \t:", line[len]))
+                continue;
+            const char *colon = strchr(line, ':'), *end = strchr(line, '\n');
+            if (!colon || (end && colon > end))
+                continue;
+            snprintf(out, n, "%.*s", (int)((end ? end : colon + strlen(colon)) - colon - 1), colon + 1);
+            clean(out);
+            if (out[0])
+                return;
+        }
+}
+
+/* Where a render ran (CPU times of different machines do not compare): this machine's host name and
+   CPU model (cpuinfo_value's), "unknown" when not found, printable ASCII only, into host and cpu
+   (n bytes each). */
+static void describe_machine(char *host, char *cpu, size_t n)
+{
+    snprintf(host, n, "unknown");
+    snprintf(cpu, n, "unknown");
+    char name[256];
+    if (gethostname(name, sizeof name) == 0) {
+        name[sizeof name - 1] = 0;
+        snprintf(host, n, "%s", name);
+        clean(host);
+    }
+    /* /proc files report no size: read the first 64 KiB (the first processor's lines come first) */
+    static const size_t max = 64 * 1024;
+    char *text = malloc(max + 1);
+    FILE *f = text ? fopen("/proc/cpuinfo", "r") : NULL;
+    if (f) {
+        size_t len = fread(text, 1, max, f);
+        text[len] = 0;
+        fclose(f);
+        cpuinfo_value(text, cpu, n);
+    }
+    free(text);
+}
 
 struct sidecar_work sidecar_work_of(const struct render_stats *st)
 {
@@ -57,10 +117,10 @@ char *sidecar_json(const struct sidecar *s)
     json_string(&js, "job_hash", hash);
     json_string(&js, "scene", j->scene_path);
     json_string(&js, "image", s->image);
-    struct machine m = {0}; /* where it ran: CPU times of different models do not compare */
-    machine_describe(&m);
-    json_string(&js, "host", m.host);
-    json_string(&js, "cpu_model", m.cpu_model);
+    char host[128], cpu[128];
+    describe_machine(host, cpu, sizeof host);
+    json_string(&js, "host", host);
+    json_string(&js, "cpu_model", cpu);
     struct render_spec spec = j->spec; /* at the size rendered */
     spec.width = s->width;
     spec.height = s->height;
@@ -130,7 +190,8 @@ char *sidecar_json(const struct sidecar *s)
     return js.buf;
 }
 
-/* The scalar text of key in mapping m: NULL when absent; -1 (e filled) when not a scalar. */
+/* The scalar text of key in mapping m: 1, or 0 and NULL when absent; -1 (e filled) when not a
+   scalar. */
 static int scalar_at(struct ydoc *d, yaml_node_t *m, const char *key, const char **out, struct err *e)
 {
     yaml_node_t *v = ymap_get_raw(d, m, key);
@@ -141,7 +202,7 @@ static int scalar_at(struct ydoc *d, yaml_node_t *m, const char *key, const char
         return ydoc_fail(d, v, e, "%s: expected a value, got %s", key, ydoc_node_kind(v));
     if (strlen(*out) != v->data.scalar.length)
         return ydoc_fail(d, v, e, "%s: holds a NUL character", key);
-    return 0;
+    return 1;
 }
 
 static int string_at(struct ydoc *d, yaml_node_t *m, const char *key, char *out, size_t n, struct err *e)
@@ -159,10 +220,9 @@ static int number_at(struct ydoc *d, yaml_node_t *m, const char *key, double *ou
 {
     const char *s;
     char *end;
-    if (scalar_at(d, m, key, &s, e) < 0)
-        return -1;
-    if (!s)
-        return 0;
+    int rc = scalar_at(d, m, key, &s, e);
+    if (rc <= 0)
+        return rc;
     if (!strcmp(s, "null")) {
         *out = NAN;
         return 0;
@@ -177,10 +237,9 @@ static int count_at(struct ydoc *d, yaml_node_t *m, const char *key, uint64_t *o
 {
     const char *s;
     char *end;
-    if (scalar_at(d, m, key, &s, e) < 0)
-        return -1;
-    if (!s)
-        return 0;
+    int rc = scalar_at(d, m, key, &s, e);
+    if (rc <= 0)
+        return rc;
     errno = 0;
     *out = strtoull(s, &end, 10);
     if (!*s || *end || errno || strspn(s, "0123456789") != strlen(s))

@@ -56,10 +56,9 @@ struct sidecar_info {
 /* Render the sidecar as JSON text into a malloc'd string (caller frees); NULL on no memory. */
 char *sidecar_json(const struct sidecar *s);
 
-/* Read the sidecar at path (at most SIDECAR_MAX_BYTES) with the YAML parser, JSON being YAML's
-   flow syntax, into out. 0, or -1 with e filled: unreadable, not JSON, not an object, or a known
-   key of the wrong type (a string too long for its field included; a setting that is no value of
-   its render_spec row: an unknown sampler, a threshold outside (0, 100]). */
+/* Read the sidecar at path (at most SIDECAR_MAX_BYTES; JSON, read as YAML) into out. 0, or -1 with
+   e filled: unreadable, not a JSON object, or a known key of the wrong type (a string too long
+   for its field, a setting that is no value of its render_spec row). */
 int sidecar_read(const char *path, struct sidecar_info *out, struct err *e);
 
 /* 1 when the sidecar at path exists and records job hash `hash`, else 0 (missing, unreadable,
