@@ -7,6 +7,7 @@
 
 #include "base/hash.h"
 #include "base/sbuf.h"
+#include "study/load/html_text.h"
 
 #define PANEL_W 480
 #define PANEL_H 340
@@ -158,8 +159,7 @@ static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel
     sbuf_escape(b, p->x_label);
     sbuf_printf(b, "</text>\n<text transform=\"translate(%.1f %.1f) rotate(-90)\" text-anchor=\"middle\">",
                 f->left - 54, f->top + f->h / 2);
-    sbuf_escape(b, p->y_label);
-    sbuf_printf(b, "</text>\n");
+    html_text(b, "", p->y_label, "</text>\n");
 }
 
 /* Dotted lines of each slope through the highest data point (the leftmost of equals), labelled at
@@ -261,8 +261,7 @@ static void legend(struct sbuf *b, double x, double y, int legend_w, const struc
             b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"3\"/>\n",
             x + 8, ly - 4, x + 28, ly - 4, series_color(p, s));
         sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\">", x + LEGEND_TEXT_X, ly);
-        sbuf_escape(b, p->series[s].name);
-        sbuf_printf(b, "</text>\n");
+        html_text(b, "", p->series[s].name, "</text>\n");
     }
     double ly = y + 18 + 18 * p->n_series;
     if (p->n_slopes > 0) {
@@ -289,16 +288,14 @@ static void panel(struct sbuf *b, const struct chart_panel *p, double ox, double
                       PANEL_H - MARGIN_T - MARGIN_B,
                       {0, 0, 0, 0}};
     sbuf_printf(b, "<g>\n<text x=\"%.1f\" y=\"%.1f\" font-weight=\"bold\">", f.left, oy + 20);
-    sbuf_escape(b, p->title);
-    sbuf_printf(b, "</text>\n");
+    html_text(b, "", p->title, "</text>\n");
     if (!data_range(p, &f.r)) {
         sbuf_printf(b,
                     "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#fafafa\" "
                     "stroke=\"#444444\"/>\n"
                     "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">",
                     f.left, f.top, f.w, f.h, f.left + f.w / 2, f.top + f.h / 2);
-        sbuf_escape(b, p->empty_note ? p->empty_note : "no data");
-        sbuf_printf(b, "</text>\n</g>\n");
+        html_text(b, "", p->empty_note ? p->empty_note : "no data", "</text>\n</g>\n");
         return;
     }
     axes(b, &f, p);
@@ -320,8 +317,7 @@ char *chart_svg(const char *title, const struct chart_panel *panels, int n, int 
         "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%d\" height=\"%d\" fill=\"#ffffff\"/>\n"
         "<text x=\"12\" y=\"22\" font-size=\"15\" font-weight=\"bold\">",
         w, h, w, h, w, h);
-    sbuf_escape(&b, title);
-    sbuf_printf(&b, "</text>\n");
+    html_text(&b, "", title, "</text>\n");
     for (int i = 0; i < n; i++) {
         panel(&b, &panels[i], (i % cols) * PANEL_W, TITLE_H + (i / cols) * PANEL_H);
         if (i % cols == 0 && panels[i].n_series > 0)

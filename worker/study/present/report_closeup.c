@@ -10,6 +10,7 @@
 #include "image/imgio.h"
 #include "report_image.h"
 #include "report_view.h"
+#include "study/load/html_text.h"
 
 /* Sweep point p of scene s of c, its renders read from dir, and their images decoded:
    imgs[v * n_seeds + k]. */
@@ -53,8 +54,7 @@ static int point_load(struct point_imgs *pi, struct err *e)
 
 static void caption(struct sbuf *b, const struct compare *c, int v, int k)
 {
-    sbuf_printf(b, "<figcaption><b>");
-    sbuf_escape(b, c->variants[v]);
+    html_text(b, "<figcaption><b>", c->variants[v], "");
     sbuf_printf(b, "</b>, seed %llu</figcaption></figure>\n", (unsigned long long)c->seeds[k]);
 }
 
@@ -150,8 +150,7 @@ static int map_floats(const char *dir, const char *output, const struct rgb8 *im
 
 static void maps_heading(struct sbuf *b, const struct compare *c, int s, int p, int linear, int zoom)
 {
-    sbuf_printf(b, "<h3>Error maps at ");
-    sbuf_escape(b, c->points[p]);
+    html_text(b, "<h3>Error maps at ", c->points[p], "");
     sbuf_printf(
         b,
         ", at %dx: each pixel's relative error against the reference %s, its relMSE term (the mean over "

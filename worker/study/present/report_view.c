@@ -10,6 +10,7 @@
 #include "image/errmap.h"
 #include "image/png.h"
 #include "report_image.h"
+#include "study/load/html_text.h"
 
 #define REPORT_VIEW_MAX_PNG_BYTES (256u << 20)
 #define REPORT_VIEW_BAR_PX 360 /* as .cbar's width in REPORT_VIEW_CSS */
@@ -90,8 +91,7 @@ void report_view_png(struct sbuf *b, const uint8_t *png, size_t len, int w, int 
     sbuf_printf(b, " src=\"data:image/png;base64,");
     sbuf_base64(b, png, len);
     sbuf_printf(b, "\" width=\"%d\" height=\"%d\" alt=\"", w * v->zoom, h * v->zoom);
-    sbuf_escape(b, v->alt);
-    sbuf_printf(b, "\">");
+    html_text(b, "", v->alt, "\">");
 }
 
 int report_view_rgb(struct sbuf *b, const struct rgb8 *img, const struct report_view_img *v, struct err *e)

@@ -10,6 +10,7 @@
 #include "report_spectrum.h"
 #include "verdict_out.h"
 #include "study/judge/verdict_rank.h"
+#include "study/load/html_text.h"
 
 #define TIE_RULE                                                                                             \
     "Each variant's figure is its seeds' mean of log relMSE at the common point (for slopes: the mean of "   \
@@ -207,25 +208,17 @@ static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, co
 
 static void html_scene(struct sbuf *b, const struct verdict_scene *v)
 {
-    sbuf_printf(b, "<h3>");
-    sbuf_escape(b, v->study);
-    sbuf_printf(b, " / ");
-    sbuf_escape(b, v->scene);
-    sbuf_printf(b, "</h3>\n<ul class=\"verdict\">\n");
-    for (int i = 0; i < v->n_sentences; i++) {
-        sbuf_printf(b, "<li>");
-        sbuf_escape(b, v->sentences[i]);
-        sbuf_printf(b, "</li>\n");
-    }
+    html_text(b, "<h3>", v->study, " / ");
+    html_text(b, "", v->scene, "</h3>\n<ul class=\"verdict\">\n");
+    for (int i = 0; i < v->n_sentences; i++)
+        html_text(b, "<li>", v->sentences[i], "</li>\n");
     sbuf_printf(b,
                 "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
                 "[95%% CI]</th><th>rank at equal CPU time (%.3g s): relMSE [95%% CI]</th><th>rank by "
                 "slope: relMSE ~ spp^s [95%% CI]</th></tr>\n",
                 v->by_samples.at, v->by_cpu.at);
     for (int k = 0; k < v->n_variants; k++) {
-        sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
-        sbuf_escape(b, v->variants[k]);
-        sbuf_printf(b, "</td>");
+        html_text(b, "<tr class=\"v\"><td class=\"l\">", v->variants[k], "</td>");
         html_cell(b, &v->by_samples, k, "%.3g");
         html_cell(b, &v->by_cpu, k, "%.3g");
         html_cell(b, &v->by_slope, k, "%.2f");
@@ -238,16 +231,11 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
         v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "geometric mean",
         v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "mean", status_name(v->by_samples.status),
         status_name(v->by_cpu.status), status_name(v->by_slope.status));
-    for (int i = 0; i < v->n_failures; i++) {
-        sbuf_printf(b, "%s", i ? "; " : " <b>Failures</b>: ");
-        sbuf_escape(b, v->failures[i].text);
-    }
+    for (int i = 0; i < v->n_failures; i++)
+        html_text(b, i ? "; " : " <b>Failures</b>: ", v->failures[i].text, "");
     sbuf_printf(b, "%s</p>\n", v->n_failures ? "." : " No failure mode detected.");
-    for (int i = 0; i < v->n_warnings; i++) {
-        sbuf_printf(b, "<p class=\"warn\">Warning: ");
-        sbuf_escape(b, v->warnings[i]);
-        sbuf_printf(b, "</p>\n");
-    }
+    for (int i = 0; i < v->n_warnings; i++)
+        html_text(b, "<p class=\"warn\">Warning: ", v->warnings[i], "</p>\n");
 }
 
 /* One line per study and scene: the three winners and the failures' kinds, at a glance. */
@@ -261,22 +249,17 @@ static void html_overview(struct sbuf *b, const struct verdict_study *s, int n)
             const struct verdict_scene *v = &s[i].scenes[k];
             const struct verdict_ranking *rs[] = {&v->by_cpu, &v->by_samples, &v->by_slope};
             char w[512];
-            sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
-            sbuf_escape(b, v->study);
-            sbuf_printf(b, " / ");
-            sbuf_escape(b, v->scene);
-            sbuf_printf(b, "</td>");
+            html_text(b, "<tr class=\"v\"><td class=\"l\">", v->study, " / ");
+            html_text(b, "", v->scene, "</td>");
             for (int r = 0; r < 3; r++) {
                 verdict_ranking_winner(v, rs[r], 1, w, sizeof w);
-                sbuf_printf(b, "<td class=\"l\">%s", r == 0 ? "<b>" : "");
-                sbuf_escape(b, w);
-                sbuf_printf(b, "%s</td>", r == 0 ? "</b>" : "");
+                html_text(b, r == 0 ? "<td class=\"l\"><b>" : "<td class=\"l\">", w,
+                          r == 0 ? "</b></td>" : "</td>");
             }
             sbuf_printf(b, "<td class=\"l\">");
             for (int f = 0; f < v->n_failures; f++) {
-                sbuf_printf(b, "%s", f ? "; " : "");
-                sbuf_escape(b, v->variants[v->failures[f].variant]);
-                sbuf_printf(b, ": %s", kind_name(v->failures[f].kind));
+                html_text(b, f ? "; " : "", v->variants[v->failures[f].variant], ": ");
+                sbuf_printf(b, "%s", kind_name(v->failures[f].kind));
             }
             sbuf_printf(b, "%s</td></tr>\n", v->n_failures ? "" : "none");
         }
@@ -290,16 +273,13 @@ static void html_look(struct sbuf *b, const struct verdict_study *s)
     for (int k = 0; k < s->n_scenes; k++)
         for (int i = 0; i < s->scenes[k].n_variants * s->scenes[k].n_points; i++)
             any |= isfinite(s->scenes[k].look.mean[i]);
-    char *svg = any ? verdict_look_svg(s) : NULL;
-    const char *root = svg ? strstr(svg, "<svg") : NULL; /* inline: drop the XML declaration */
-    if (root)
-        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
-    free(svg);
-    svg = report_spectrum_svg(s);
-    root = svg ? strstr(svg, "<svg") : NULL;
-    if (root)
-        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
-    free(svg);
+    char *svgs[2] = {any ? verdict_look_svg(s) : NULL, report_spectrum_svg(s)};
+    for (int i = 0; i < 2; i++) {
+        const char *root = svgs[i] ? strstr(svgs[i], "<svg") : NULL; /* inline: drop the XML declaration */
+        if (root)
+            sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
+        free(svgs[i]);
+    }
 }
 
 void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
@@ -311,8 +291,8 @@ void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
             html_scene(b, &s[i].scenes[k]);
         html_look(b, &s[i]);
     }
-    sbuf_printf(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ");
-    sbuf_escape(b, TIE_RULE);
+    html_text(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ",
+              TIE_RULE, "");
     sbuf_printf(
         b,
         " Failure modes: more than %.0f%% of the error repeating in every seed (structured: averaging "
