@@ -88,6 +88,15 @@ static inline int verdict_at(const struct verdict_figures *f, int v, int p, int 
     return (v * f->n_points + p) * f->n_seeds + k;
 }
 
+/* The mean over seeds of point p's figure x (one of f's arrays per (variant, point, seed)) for v. */
+static inline double verdict_mean(const struct verdict_figures *f, const double *x, int v, int p)
+{
+    double s = 0;
+    for (int k = 0; k < f->n_seeds; k++)
+        s += x[verdict_at(f, v, p, k)];
+    return s / f->n_seeds;
+}
+
 static inline int verdict_cost_at(const struct verdict_figures *f, int v, int p, int b)
 {
     return (v * f->n_points + p) * f->n_blocks + b;

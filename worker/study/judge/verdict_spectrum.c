@@ -62,11 +62,3 @@ int verdict_spectrum_compute(const struct verdict_figures *f, struct verdict_sce
     }
     return 0;
 }
-
-int verdict_spectrum_structured(const struct verdict_scene *out, int v)
-{
-    for (int i = 0; i < out->n_failures; i++)
-        if (out->failures[i].kind == VERDICT_PATTERN && out->failures[i].variant == v)
-            return 1;
-    return 0;
-}

@@ -19,22 +19,6 @@ static double block_cost(const struct verdict_figures *f, int v, int p, int b)
     return f->cost_s ? f->cost_s[verdict_cost_at(f, v, p, b)] : f->cpu_s[verdict_at(f, v, p, b)];
 }
 
-/* The mean and the variance of that mean of n figures (NAN ones left out); the count used. */
-static int mean_var(const double *x, int n, double *mean, double *var_of_mean)
-{
-    double s = 0, ss = 0;
-    int m = 0;
-    for (int i = 0; i < n; i++)
-        if (isfinite(x[i]))
-            s += x[i], m++;
-    *mean = m ? s / m : NAN;
-    for (int i = 0; i < n; i++)
-        if (isfinite(x[i]))
-            ss += (x[i] - *mean) * (x[i] - *mean);
-    *var_of_mean = m > 1 ? ss / (m - 1) / m : NAN;
-    return m;
-}
-
 /* exp(mean) and exp(mean +- t975 x se) into v, lo, hi (lo = hi = v with one figure). */
 static void interval(double mean, double var_of_mean, double df, double *v, double *lo, double *hi)
 {
@@ -70,7 +54,7 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
                 double c = block_cost(f, v, p, b);
                 x[b] = c > 0 ? log(c) : NAN;
             }
-            m = mean_var(x, nb, &mean, &var);
+            m = verdict_center(x, nb, VERDICT_RANK_MEAN, &mean, &var);
             interval(mean, var, m - 1, &out->cost[i], &out->cost_lo[i], &out->cost_hi[i]);
         }
     free(x);
@@ -180,7 +164,6 @@ static void read_at(const struct verdict_figures *f, const struct verdict_scene 
 static double cost_var(const struct verdict_figures *f, int a, const double *ga, int b, const double *gb,
                        double *lb, double *df)
 {
-    int m = 0;
     for (int k = 0; k < blocks(f); k++) {
         double l = 0;
         for (int p = 0; p < f->n_points; p++) {
@@ -192,7 +175,7 @@ static double cost_var(const struct verdict_figures *f, int a, const double *ga,
         lb[k] = l;
     }
     double mean, var;
-    m = mean_var(lb, blocks(f), &mean, &var);
+    int m = verdict_center(lb, blocks(f), VERDICT_RANK_MEAN, &mean, &var);
     *df = m - 1;
     return m > 1 ? var : 0;
 }

@@ -4,6 +4,23 @@
 #include <math.h>
 #include <stdlib.h>
 
+const struct verdict_entry *verdict_entry_of(const struct verdict_ranking *r, int v)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->e[i].variant == v)
+            return &r->e[i];
+    return NULL;
+}
+
+const struct verdict_failure *verdict_failure_of(const struct verdict_scene *s, int v,
+                                                 enum verdict_failure_kind kind)
+{
+    for (int i = 0; s && i < s->n_failures; i++)
+        if (s->failures[i].variant == v && s->failures[i].kind == kind)
+            return &s->failures[i];
+    return NULL;
+}
+
 void verdict_look_free(struct verdict_look *l)
 {
     free(l->point), free(l->mean), free(l->se), free(l->rel);

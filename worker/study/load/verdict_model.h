@@ -136,6 +136,13 @@ struct verdict_study {
                                         more than one (study_machines.h): equal CPU time mixes them */
 };
 
+/* Variant v's entry in r, or NULL when r does not rank it. */
+const struct verdict_entry *verdict_entry_of(const struct verdict_ranking *r, int v);
+
+/* Variant v's failure of that kind in s, or NULL (NULL too when s is). */
+const struct verdict_failure *verdict_failure_of(const struct verdict_scene *s, int v,
+                                                 enum verdict_failure_kind kind);
+
 /* Free what a verdict's arrays hold (the struct emptied; each accepts an empty one). */
 void verdict_look_free(struct verdict_look *l);
 void verdict_scene_free(struct verdict_scene *v);

@@ -186,24 +186,22 @@ char *verdict_json_text(const char *job, const struct verdict_study *s, int n, c
 /* One cell: "2. 1.3e-3 [1.1e-3, 1.5e-3]", the rank bold when 1. */
 static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, const char *fmt)
 {
-    for (int i = 0; i < r->n; i++) {
-        const struct verdict_entry *e = &r->e[i];
-        if (e->variant != v)
-            continue;
-        char val[32], lo[32], hi[32];
-        snprintf(val, sizeof val, fmt, e->value);
-        snprintf(lo, sizeof lo, fmt, e->lo);
-        snprintf(hi, sizeof hi, fmt, e->hi);
-        sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
-                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
-                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
-                    e->unreached      ? " not reached: its cheapest point"
-                    : e->untold       ? " cannot tell: too far beyond its points"
-                    : e->extrapolated ? " read beyond its cheapest point"
-                                      : "");
+    const struct verdict_entry *e = verdict_entry_of(r, v);
+    char val[32], lo[32], hi[32];
+    if (!e) {
+        sbuf_printf(b, "<td></td>");
         return;
     }
-    sbuf_printf(b, "<td></td>");
+    snprintf(val, sizeof val, fmt, e->value);
+    snprintf(lo, sizeof lo, fmt, e->lo);
+    snprintf(hi, sizeof hi, fmt, e->hi);
+    sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
+                e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
+                e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
+                e->unreached      ? " not reached: its cheapest point"
+                : e->untold       ? " cannot tell: too far beyond its points"
+                : e->extrapolated ? " read beyond its cheapest point"
+                                  : "");
 }
 
 static void html_scene(struct sbuf *b, const struct verdict_scene *v)
