@@ -20,29 +20,21 @@ static int on(const struct rgbf *img, const struct img_mask *mask, size_t i)
 void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
 {
     *a = (struct compare_agg){0};
-    a->rel_lo = INFINITY;
     for (int k = 0; k < c->n_seeds; k++) {
         const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
         if (!r->done)
             continue;
         a->n++;
         a->spp += r->spp_mean;
-        a->wall_s += r->wall_s;
         a->cpu_s += r->cpu_s;
-        if (r->has_error) {
+        if (r->has_error)
             a->rel += r->error.relmse;
-            a->rel_lo = fmin(a->rel_lo, r->error.relmse);
-            a->rel_hi = fmax(a->rel_hi, r->error.relmse);
-        }
     }
     if (a->n) {
         a->spp /= a->n;
-        a->wall_s /= a->n;
         a->cpu_s /= a->n;
         a->rel /= a->n;
     }
-    if (!isfinite(a->rel_lo))
-        a->rel_lo = 0;
 }
 
 int compare_stats_samples_vary(const struct compare *c, int s, int v)

@@ -6,11 +6,10 @@
 
 #include "study/load/compare_model.h"
 
-/* One (scene, variant, sweep point) over its seeds. rel* are relMSE; 0 when not measured. */
+/* One (scene, variant, sweep point) over its seeds: means; rel is relMSE's, 0 when not measured. */
 struct compare_agg {
-    int n;                      /* seeds with a result */
-    double spp, wall_s, cpu_s;  /* means */
-    double rel, rel_lo, rel_hi; /* mean, min, max */
+    int n; /* seeds with a result */
+    double spp, cpu_s, rel;
 };
 
 void compare_stats_aggregate(const struct compare *c, int scene, int variant, int point,

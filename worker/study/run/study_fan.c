@@ -132,13 +132,8 @@ int study_fan_half_merged(struct study_fan *f, int k, int s, int h, const struct
 int study_fan_ref_lock(const struct study_fan *f, int k, int s, const struct run_opts *o, int shared,
                        struct err *e)
 {
-    char cache[2048], lock[2400];
-    if (f->s) {
-        char suite[2048];
-        outdir_dir(o->out_dir, f->s->name, suite, sizeof suite);
-        outdir_dir(suite, ".cache", cache, sizeof cache);
-    } else
-        outdir_dir(o->out_dir, ".cache", cache, sizeof cache);
+    char dir[2048], cache[2048], lock[2400];
+    outdir_dir(study_opts(f, o, dir, sizeof dir).out_dir, ".cache", cache, sizeof cache);
     if (outdir_mkdirs(cache, NULL, e) < 0)
         return -1;
     snprintf(lock, sizeof lock, "%s/.ref-%s.lock", cache, study_fan_study(f, k)->scenes[s].name);
