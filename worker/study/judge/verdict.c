@@ -89,14 +89,6 @@ static void entry_add(struct verdict_entry *e, double *logs, int k, double y)
     logs[k] = y > 0 && isfinite(y) ? log(y) : NAN;
 }
 
-/* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
-static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e,
-                          double *logs)
-{
-    for (int k = 0; k < f->n_seeds; k++)
-        entry_add(e, logs, k, verdict_rel(f, verdict_at(f, v, p, k)));
-}
-
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
    densest points' means (the cheapest densest point, for CPU time). A variant whose cheapest
    point lies far beyond it is unreached, shown with its cheapest point's figures. logs: room for
@@ -120,12 +112,11 @@ static void rank_at(const struct verdict_figures *f, const double *x, double *lo
         for (int p = 1; p < f->n_points; p++)
             if (verdict_mean(f, x, v, p) < verdict_mean(f, x, v, cheapest))
                 cheapest = p;
-        if (verdict_mean(f, x, v, cheapest) > at * VERDICT_BEYOND) {
-            e->unreached = 1;
-            point_figures(f, v, cheapest, e, logs);
-        } else
-            for (int k = 0; k < f->n_seeds; k++)
-                entry_add(e, logs, k, value_at(f, x, v, k, at));
+        e->unreached = verdict_mean(f, x, v, cheapest) > at * VERDICT_BEYOND;
+        for (int k = 0; k < f->n_seeds; k++) /* unreached: its cheapest point's figures */
+            entry_add(e, logs, k,
+                      e->unreached ? verdict_rel(f, verdict_at(f, v, cheapest, k))
+                                   : value_at(f, x, v, k, at));
         verdict_entry_end(e, 1);
         if (f->rank_by == VERDICT_RANK_MEDIAN)
             verdict_entry_logs(e, logs, f->n_seeds, f->rank_by);

@@ -29,12 +29,14 @@ static const char *status_name(enum verdict_status s)
     return s == VERDICT_CLEAR ? "clear" : s == VERDICT_TIE ? "tie" : "inconclusive";
 }
 
-static const char *kind_name(enum verdict_failure_kind k)
-{
-    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
-                                        "biased",           "heavy_tailed",  "structured"};
-    return names[k];
-}
+/* A failure kind's name in verdict.json, and its detail's key there (NULL: none). */
+static const char *const kind_names[][2] = {{"structured_error", "bias_share"},
+                                            {"stops_falling", NULL},
+                                            {"non_finite", NULL},
+                                            {"sampler_share", NULL},
+                                            {"biased", "standard_errors"},
+                                            {"heavy_tailed", "worst_share"},
+                                            {"structured", "anisotropy"}};
 
 static void json_ranking(struct json *j, const char *key, const char *at_key, const char *value_key,
                          const struct verdict_scene *v, const struct verdict_ranking *r)
@@ -124,14 +126,10 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         const struct verdict_failure *x = &v->failures[i];
         json_begin_object(j, NULL);
         json_string(j, "variant", v->variants[x->variant]);
-        json_string(j, "kind", kind_name(x->kind));
+        json_string(j, "kind", kind_names[x->kind][0]);
         json_number(j, "value", x->value);
-        if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
-            json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
-        if (x->kind == VERDICT_PATTERN)
-            json_number(j, "anisotropy", x->detail);
-        if (x->kind == VERDICT_HEAVY_TAILED)
-            json_number(j, "worst_share", x->detail);
+        if (kind_names[x->kind][1])
+            json_number(j, kind_names[x->kind][1], x->detail);
         json_string(j, "text", x->text);
         json_end_object(j);
     }
@@ -257,7 +255,7 @@ static void html_overview(struct sbuf *b, const struct verdict_study *s, int n)
             sbuf_printf(b, "<td class=\"l\">");
             for (int f = 0; f < v->n_failures; f++) {
                 html_text(b, f ? "; " : "", v->variants[v->failures[f].variant], ": ");
-                sbuf_printf(b, "%s", kind_name(v->failures[f].kind));
+                sbuf_printf(b, "%s", kind_names[v->failures[f].kind][0]);
             }
             sbuf_printf(b, "%s</td></tr>\n", v->n_failures ? "" : "none");
         }
