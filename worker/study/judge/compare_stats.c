@@ -37,7 +37,8 @@ void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struc
     }
 }
 
-int compare_stats_samples_vary(const struct compare *c, int s, int v)
+/* Whether v's sweep points in scene s change its samples per pixel (verdict_samples_vary). */
+static int samples_vary(const struct compare *c, int s, int v)
 {
     double lo = INFINITY, hi = 0;
     struct compare_agg a;
@@ -54,7 +55,7 @@ void compare_stats_point_order(const struct compare *c, int s, int v, int *order
     struct compare_agg a, b;
     for (int p = 0; p < c->n_points; p++)
         order[p] = p;
-    if (!compare_stats_samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
+    if (!samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
         return;
     for (int i = 1; i < c->n_points; i++) /* insertion sort: a handful of points */
         for (int j = i; j > 0; j--) {

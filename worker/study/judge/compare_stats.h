@@ -15,9 +15,6 @@ struct compare_agg {
 void compare_stats_aggregate(const struct compare *c, int scene, int variant, int point,
                              struct compare_agg *a);
 
-/* Whether variant's sweep points in scene change its samples per pixel (verdict_samples_vary). */
-int compare_stats_samples_vary(const struct compare *c, int scene, int variant);
-
 /* The sweep points of (scene, variant) ordered by mean samples per pixel, fewest first, or in
    the sweep's own order when the sweep leaves samples per pixel alone (within 5%: a
    light_threshold sweep). order has c->n_points entries. */

@@ -104,7 +104,6 @@ static void rank_at(const struct verdict_figures *f, const double *x, double *lo
     }
     r->at = at;
     r->n = f->n_variants;
-    r->log_scale = 1;
     for (int v = 0; v < f->n_variants; v++) {
         struct verdict_entry *e = &r->e[v];
         verdict_entry_start(e, v);

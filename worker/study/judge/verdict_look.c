@@ -79,7 +79,7 @@ int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *
     common_point(f, l);
     if (!f->lowfreq || !isfinite(l->at))
         return 0;
-    l->by_relmse = (struct verdict_ranking){.at = l->at, .log_scale = 1, .n = nv, .e = l->by_relmse.e};
+    l->by_relmse = (struct verdict_ranking){.at = l->at, .n = nv, .e = l->by_relmse.e};
     for (int v = 0; v < nv; v++) {
         verdict_entry_start(&l->by_relmse.e[v], v);
         for (int k = 0; k < f->n_seeds; k++)
@@ -87,7 +87,7 @@ int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *
         verdict_entry_end(&l->by_relmse.e[v], 1);
     }
     verdict_rank(&l->by_relmse);
-    l->by_look = (struct verdict_ranking){.at = l->at, .log_scale = 0, .e = l->by_look.e};
+    l->by_look = (struct verdict_ranking){.at = l->at, .e = l->by_look.e};
     for (int i = 0; i < nv; i++) {
         const struct verdict_entry *r = &l->by_relmse.e[i];
         struct verdict_entry *e = &l->by_look.e[l->by_look.n];

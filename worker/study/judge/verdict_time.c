@@ -33,9 +33,7 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
     double *x = calloc((size_t)n + 1, sizeof *x);
     out->point_rel = calloc(per, sizeof(double)), out->point_rel_lo = calloc(per, sizeof(double));
     out->point_rel_hi = calloc(per, sizeof(double)), out->cost = calloc(per, sizeof(double));
-    out->cost_lo = calloc(per, sizeof(double)), out->cost_hi = calloc(per, sizeof(double));
-    if (!x || !out->point_rel || !out->point_rel_lo || !out->point_rel_hi || !out->cost || !out->cost_lo ||
-        !out->cost_hi) {
+    if (!x || !out->point_rel || !out->point_rel_lo || !out->point_rel_hi || !out->cost) {
         free(x);
         return -1;
     }
@@ -54,8 +52,8 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
                 double c = block_cost(f, v, p, b);
                 x[b] = c > 0 ? log(c) : NAN;
             }
-            m = verdict_center(x, nb, VERDICT_RANK_MEAN, &mean, &var);
-            interval(mean, var, m - 1, &out->cost[i], &out->cost_lo[i], &out->cost_hi[i]);
+            verdict_center(x, nb, VERDICT_RANK_MEAN, &mean, &var);
+            out->cost[i] = exp(mean);
         }
     free(x);
     return 0;
@@ -219,7 +217,7 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
         if (isfinite(most))
             at = fmin(at, most);
     }
-    r->at = exp(at), r->n = nv, r->log_scale = 1, r->pair_n = nv;
+    r->at = exp(at), r->n = nv, r->pair_n = nv;
     for (int v = 0; v < nv; v++) {
         rd[v] = (struct reading){.y = mem + (size_t)v * (ns + np), .g = mem + (size_t)v * (ns + np) + ns};
         if (isfinite(at))

@@ -35,7 +35,7 @@ void verdict_scene_free(struct verdict_scene *v)
     free(v->by_cpu.e);
     free(v->by_cpu.pair_p);
     free(v->point_rel), free(v->point_rel_lo), free(v->point_rel_hi);
-    free(v->cost), free(v->cost_lo), free(v->cost_hi);
+    free(v->cost);
     free(v->by_slope.e);
     free(v->failures);
     free(v->spec), free(v->spec_lo), free(v->spec_hi), free(v->spec_peak_p), free(v->spec_aniso);

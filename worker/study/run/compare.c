@@ -88,8 +88,6 @@ static int item_from_sidecar(struct study_result *r, const char *sidecar_path, s
     if (sidecar_read(sidecar_path, &info, e) < 0)
         return -1;
     r->spp_mean = info.spp_mean;
-    r->spp_min = info.spp_min;
-    r->spp_max = info.spp_max;
     r->wall_s = info.wall_s;
     r->cpu_s = info.cpu_s;
     r->sampler_share = info.sampling_share;
@@ -179,8 +177,6 @@ static int render_item(const struct compare *c, struct study_results *res, int i
     } else {
         const struct render_stats *t = &rr.procs.total;
         r->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
-        r->spp_min = t->pixels ? t->spp_min : 0;
-        r->spp_max = t->spp_max;
         r->nonfinite = t->nonfinite;
         r->wall_s = rr.procs.wall_s;
         r->cpu_s = rr.procs.cpu_s;
