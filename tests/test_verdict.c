@@ -174,7 +174,7 @@ static void test_clear_winner(void)
                  "are not told apart by their seeds (Welch's t test, Holm-corrected, alpha 0.05)"));
     CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
     char w[64];
-    verdict_winner(&s, w, sizeof w);
+    verdict_ranking_winner(&s, &s.by_cpu, 1, w, sizeof w);
     CHECK(!strcmp(w, "alpha"));
     verdict_scene_free(&s);
 }
@@ -194,7 +194,7 @@ static void test_tie_and_inconclusive(void)
                    "at equal samples, alpha, beta are not told apart by their seeds "
                    "(Welch's t test, Holm-corrected, alpha 0.05): tied, no single winner"));
     char w[64];
-    verdict_winner(&s, w, sizeof w);
+    verdict_ranking_winner(&s, &s.by_cpu, 1, w, sizeof w);
     CHECK(!strcmp(w, "alpha = beta (tie)"));
     verdict_scene_free(&s);
 
@@ -202,7 +202,7 @@ static void test_tie_and_inconclusive(void)
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE && s.by_cpu.status == VERDICT_INCONCLUSIVE);
     CHECK(any_line(s.sentences, s.n_sentences, "inconclusive"));
-    verdict_winner(&s, w, sizeof w);
+    verdict_ranking_winner(&s, &s.by_cpu, 1, w, sizeof w);
     CHECK(!strcmp(w, "inconclusive"));
     verdict_scene_free(&s);
 

@@ -358,8 +358,3 @@ fail:
     verdict_scene_free(out);
     return err_set(e, NULL, 0, 0, "out of memory");
 }
-
-void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)
-{
-    verdict_ranking_winner(v, &v->by_cpu, 1, buf, n);
-}

@@ -22,7 +22,4 @@ int verdict_samples_vary(double lo, double hi);
 /* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
 
-/* The winner at equal CPU time, for people: a variant, "a = b (tie)" or "inconclusive". */
-void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);
-
 #endif

@@ -129,11 +129,11 @@ static int add_warning(struct verdict_scene *v, const char *text)
     return 0;
 }
 
-/* A warning of n images (one, more: the words after "image") when there are any and room. */
-static void say_images(struct verdict_scene *vs, const char *text, int n, const char *one, const char *more)
+/* A warning of n images (text: a format of n and its plural's "s") when there are any and room. */
+static void say_images(struct verdict_scene *vs, const char *text, int n)
 {
     if (n && vs->n_warnings < VERDICT_SAY_MAX)
-        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, n == 1 ? one : more);
+        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, sbuf_plural(n));
 }
 
 /* What the runner found, said: a folder's missing parts per scene; several CPU models listed, and a
@@ -149,10 +149,10 @@ static int say_found(const struct verdict_found *f, struct verdict_study *out)
         struct verdict_scene *vs = &out->scenes[s];
         say_images(vs,
                    "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
-                   f->no_sidecar ? f->no_sidecar[s] : 0, "", "s");
+                   f->no_sidecar ? f->no_sidecar[s] : 0);
         say_images(vs, "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
-                   f->no_relmse ? f->no_relmse[s] : 0, "", "s");
-        say_images(vs, text, f->no_figures ? f->no_figures[s] : 0, "", "s");
+                   f->no_relmse ? f->no_relmse[s] : 0);
+        say_images(vs, text, f->no_figures ? f->no_figures[s] : 0);
     }
     if (!f || f->n_machines < 2)
         return 0;

@@ -169,8 +169,6 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     return 0;
 }
 
-/* A relative link from the page: href with every byte but letters, digits and "-._~/"
-   percent-encoded, so a scene file's name with a quote, '#' or '%' still resolves. */
 void report_link(struct sbuf *b, const char *href, const char *text)
 {
     sbuf_printf(b, "<a href=\"");

@@ -306,7 +306,7 @@ void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len
         at += (size_t)snprintf(buf + at, len - at, "%s%s:", i ? "; " : "", s[i].name);
         for (int k = 0; k < s[i].n_scenes && at < len; k++) {
             char w[256];
-            verdict_winner(&s[i].scenes[k], w, sizeof w);
+            verdict_ranking_winner(&s[i].scenes[k], &s[i].scenes[k].by_cpu, 1, w, sizeof w);
             at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
         }
     }
