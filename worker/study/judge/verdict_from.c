@@ -28,7 +28,8 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
     size_t nv = (size_t)c->n_variants, per = nv * c->n_points, n = per * c->n_seeds;
     /* no cost design: the images' own times */
     int blocks = c->results.n_blocks > 1 ? c->results.n_blocks : c->n_seeds;
-    m->names = calloc(2 * nv + c->n_points, sizeof *m->names), m->pools = calloc(nv, sizeof *m->pools);
+    m->names = calloc(2 * nv + c->n_points, sizeof *m->names);
+    m->pools = calloc(nv, sizeof *m->pools);
     m->nonfinite = calloc(n, sizeof *m->nonfinite);
     m->d = calloc(6 * n + 4 * per + n * VERDICT_SPEC_RINGS + per * blocks, sizeof *m->d);
     if (!m->names || !m->pools || !m->nonfinite || !m->d)

@@ -1,6 +1,7 @@
 /* report: the compare job's HTML page: chart, images side by side, crops, error maps, table. */
 #include "report.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -173,8 +174,7 @@ void report_link(struct sbuf *b, const char *href, const char *text)
 {
     sbuf_printf(b, "<a href=\"");
     for (const unsigned char *p = (const unsigned char *)href; *p; p++)
-        if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-            strchr("-._~/", *p))
+        if (isalnum(*p) || strchr("-._~/", *p))
             sbuf_printf(b, "%c", *p);
         else
             sbuf_printf(b, "%%%02X", *p);
