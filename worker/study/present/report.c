@@ -291,7 +291,7 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     sbuf_printf(&b, "<h2>Every image</h2>\n");
     table(&b, c);
     study_env_html(&b, &c->env);
-    sbuf_printf(&b, "<script>%s</script>\n</body></html>\n", report_view_script());
+    sbuf_printf(&b, "<script>%s</script>\n</body></html>\n", report_view_script);
     char *html = sbuf_take(&b);
     if (!html)
         err_set(e, NULL, 0, 0, "out of memory writing the report");

@@ -17,7 +17,7 @@
 
 /* Renders carry data-ab (the id of their reference); the swap keeps their own src in data-own.
    Figures of seed index k carry class sd and data-seed k; data-slot names a figure's place. */
-static const char script[] =
+const char report_view_script[] =
     "(function(){var ab=false,ov=null,cur=null;"
     "function own(i){return i.dataset.own||i.src;}"
     "function show(i,on){var r=document.getElementById(i.dataset.ab);if(!r)return;"
@@ -62,11 +62,6 @@ static const char script[] =
     "['pointerup','pointerleave','pointercancel'].forEach(function(n){b.addEventListener(n,function(){swap("
     "false);});});});"
     "})();";
-
-const char *report_view_script(void)
-{
-    return script;
-}
 
 int report_view_read_png(const char *path, uint8_t **bytes, size_t *len, struct rgb8 *img, struct err *e)
 {
