@@ -309,16 +309,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
 {
     char *s;
     const int any = scored(f);
-    if ((s = next_line(out->sentences, &out->n_sentences))) {
-        char at[96];
-        snprintf(at, sizeof at, "At equal CPU time (%.3g s per image)", out->by_cpu.at);
-        say_ranking(out, &out->by_cpu, at, any, s);
-    }
-    if ((s = next_line(out->sentences, &out->n_sentences))) {
-        char at[96];
-        snprintf(at, sizeof at, "At equal samples (%.0f per pixel)", out->by_samples.at);
-        say_ranking(out, &out->by_samples, at, any, s);
-    }
+    const struct verdict_ranking *rs[] = {&out->by_cpu, &out->by_samples};
+    char when[2][96];
+    snprintf(when[0], sizeof when[0], "At equal CPU time (%.3g s per image)", out->by_cpu.at);
+    snprintf(when[1], sizeof when[1], "At equal samples (%.0f per pixel)", out->by_samples.at);
+    for (int i = 0; i < 2 && (s = next_line(out->sentences, &out->n_sentences)); i++)
+        say_ranking(out, rs[i], when[i], any, s);
     if ((s = next_line(out->sentences, &out->n_sentences)))
         say_slopes(out, s);
     for (int i = 0; i < out->n_failures; i++) {
