@@ -5,9 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "chart.h"
 #include "study/judge/verdict_look.h"
-#include "report_spectrum.h"
+#include "report_look.h"
 #include "verdict_out.h"
 #include "study/judge/verdict_rank.h"
 #include "study/load/html_text.h"
@@ -269,7 +268,8 @@ static void html_look(struct sbuf *b, const struct verdict_study *s)
     for (int k = 0; k < s->n_scenes; k++)
         for (int i = 0; i < s->scenes[k].n_variants * s->scenes[k].n_points; i++)
             any |= isfinite(s->scenes[k].look.mean[i]);
-    char *svgs[2] = {any ? verdict_look_svg(s) : NULL, report_spectrum_svg(s)};
+    char *svgs[2] = {any ? report_look_svg(s, REPORT_LOOK_LOWFREQ) : NULL,
+                     report_look_svg(s, REPORT_LOOK_SPECTRUM)};
     for (int i = 0; i < 2; i++) {
         const char *root = svgs[i] ? strstr(svgs[i], "<svg") : NULL; /* inline: drop the XML declaration */
         if (root)
@@ -319,53 +319,4 @@ void verdict_print_warnings(const struct verdict_study *s, int n)
             for (int w = 0; w < s[i].scenes[k].n_warnings; w++)
                 err_print("%s: warning: %s: %s\n", s[i].name, s[i].scenes[k].scene,
                           s[i].scenes[k].warnings[w]);
-}
-
-char *verdict_look_svg(const struct verdict_study *s)
-{
-    int n_series = 0, n_vals = 0;
-    for (int i = 0; i < s->n_scenes; i++)
-        n_series += s->scenes[i].n_variants, n_vals += s->scenes[i].n_variants * s->scenes[i].n_points;
-    struct chart_series *ser = calloc((size_t)n_series + 1, sizeof *ser);
-    struct chart_panel *pan = calloc((size_t)s->n_scenes + 1, sizeof *pan);
-    double *mem = calloc((size_t)n_vals * 2 + 1, sizeof *mem);
-    char(*titles)[160] = calloc((size_t)s->n_scenes + 1, sizeof *titles), title[256], *svg = NULL;
-    if (!ser || !pan || !mem || !titles)
-        goto done;
-    struct chart_series *sr = ser;
-    double *lo = mem, *hi = mem + n_vals;
-    for (int i = 0; i < s->n_scenes; i++) {
-        const struct verdict_scene *v = &s->scenes[i];
-        for (int k = 0; k < v->n_variants; k++) {
-            int o = k * v->n_points;
-            for (int p = 0; p < v->n_points; p++)
-                lo[o + p] = v->look.mean[o + p] - v->look.se[o + p],
-                       hi[o + p] = v->look.mean[o + p] + v->look.se[o + p];
-            sr[k] = (struct chart_series){v->variants[k],
-                                          v->n_points,
-                                          v->look.rel + o,
-                                          v->look.mean + o,
-                                          v->n_seeds > 1 ? lo + o : NULL,
-                                          v->n_seeds > 1 ? hi + o : NULL};
-        }
-        snprintf(titles[i], sizeof titles[i], "%s: how the error looks", v->scene);
-        pan[i] = (struct chart_panel){titles[i],
-                                      "relMSE (log)",
-                                      "error_lowfreq (1: white noise; lower: bluer; log)",
-                                      "no error_lowfreq measured",
-                                      sr,
-                                      v->n_variants,
-                                      NULL,
-                                      0,
-                                      "whisker: +- one standard error"};
-        sr += v->n_variants, lo += v->n_variants * v->n_points, hi += v->n_variants * v->n_points;
-    }
-    snprintf(
-        title, sizeof title,
-        "%s: error_lowfreq against relMSE along the sweep (mean over seeds; whiskers: +- one standard error)",
-        s->name);
-    svg = chart_svg(title, pan, s->n_scenes, 2);
-done:
-    free(ser), free(pan), free(mem), free(titles);
-    return svg;
 }
