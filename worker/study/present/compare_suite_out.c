@@ -124,13 +124,10 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
         sbuf_printf(&b, "%s", i ? ", " : " ");
         report_link(&b, href, s->studies[i]->name);
     }
-    sbuf_printf(&b, ". Every study's figures are in ");
-    report_link(&b, "summary.csv", "summary.csv");
-    sbuf_printf(&b, " (its first column names the study), their verdict in ");
-    report_link(&b, "verdict.json", "verdict.json");
-    sbuf_printf(&b, " and their charts in ");
-    report_link(&b, "chart.svg", "chart.svg");
-    sbuf_printf(&b, ".</p>\n");
+    sbuf_printf(&b,
+                ". Every study's figures are in <a href=\"summary.csv\">summary.csv</a> (its first column "
+                "names the study), their verdict in <a href=\"verdict.json\">verdict.json</a> and their "
+                "charts in <a href=\"chart.svg\">chart.svg</a>.</p>\n");
     verdict_html(&b, v, s->n_studies);
     for (int i = 0; i < s->n_studies; i++)
         if (study_section(&b, s->studies[i], e) < 0) {

@@ -269,11 +269,9 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
             "verdict measures it from the "
             "reference's two halves and takes it out: reference_relmse). Wall "
             "time is one image's render on this machine, so it moves with the machine's load. Every image "
-            "and its JSON sidecar are beside this page (linked from the table at the end), with ");
-    report_link(&b, "summary.csv", "summary.csv");
-    sbuf_printf(&b, " (the table's figures) and ");
-    report_link(&b, "chart.svg", "chart.svg");
-    sbuf_printf(&b, ".</p>\n");
+            "and its JSON sidecar are beside this page (linked from the table at the end), with <a "
+            "href=\"summary.csv\">summary.csv</a> (the table's figures) and <a "
+            "href=\"chart.svg\">chart.svg</a>.</p>\n");
     for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_kind != COMPARE_REF_NONE && c->scenes[s].ref_domain == IMG_DISPLAY8) {
             html_text(&b, "<p class=\"note\"><b>Scene ", c->scenes[s].name,
