@@ -12,8 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/fileio.h"
-#include "job/job_limits.h"
 #include "job/outdir.h"
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"

@@ -10,8 +10,6 @@
 #include "study/judge/compare_stats.h"
 #include "report_chart.h"
 #include "report_stability.h"
-#include "base/fileio.h"
-#include "image/imgio.h"
 #include "report_closeup.h"
 #include "image/errmap.h"
 #include "report_image.h"

@@ -3,7 +3,6 @@
 #include "report_view.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 
 #include "base/fileio.h"

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "study/judge/verdict_look.h"
 #include "report_look.h"
 #include "verdict_out.h"
 #include "study/judge/verdict_rank.h"

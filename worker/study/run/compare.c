@@ -10,7 +10,6 @@
 
 #include "compare_cost.h"
 #include "compare_ref.h"
-#include "study/judge/compare_stats.h"
 #include "study/present/report_chart.h"
 #include "base/clock.h"
 #include "base/fileio.h"

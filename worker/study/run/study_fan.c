@@ -11,7 +11,6 @@
 #include "study/load/compare_load.h"
 #include "study/load/compare_suite_load.h"
 #include "job/outdir.h"
-#include "job/run.h"
 
 int study_fan_load(const struct jobfile *jf, struct study_fan *f, struct err *e)
 {
