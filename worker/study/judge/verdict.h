@@ -6,12 +6,7 @@
 #ifndef VERDICT_H
 #define VERDICT_H
 
-#include <stddef.h>
-#include <stdint.h>
-
 #include "base/err.h"
-#include "base/json.h"
-#include "base/sbuf.h"
 #include "study/load/verdict_model.h"
 #include "verdict_figures.h"
 

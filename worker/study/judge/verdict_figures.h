@@ -4,12 +4,8 @@
 #ifndef VERDICT_FIGURES_H
 #define VERDICT_FIGURES_H
 
-#include <stddef.h>
 #include <stdint.h>
 
-#include "base/err.h"
-#include "base/json.h"
-#include "base/sbuf.h"
 #include "study/load/study_inputs.h"
 #include "study/load/verdict_model.h"
 
