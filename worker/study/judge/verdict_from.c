@@ -179,10 +179,9 @@ int verdict_from_compare(const struct compare *c, const char *dir, const struct 
                                  : rr->ref                                           ? &rr->ref->f
                                  : imgio_read_f(rr->path, &read, NULL, &unread) == 0 ? &read
                                                                                      : NULL;
-        int has_ref = ref != NULL;
         int rc = gather(c, s, dir, ref, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
         if (rc == 0) {
-            m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !has_ref;
+            m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !ref;
             rc = verdict_scene_compute(&m.f, &out->scenes[s], e);
         }
         mem_free(&m);
