@@ -157,14 +157,6 @@ static void rank_slopes(const struct verdict_figures *f, struct verdict_ranking 
     verdict_rank(r);
 }
 
-static struct verdict_failure *add_failure(struct verdict_scene *out, enum verdict_failure_kind kind, int v,
-                                           int p, double value)
-{
-    struct verdict_failure *x = &out->failures[out->n_failures++];
-    *x = (struct verdict_failure){.kind = kind, .variant = v, .point = p, .value = value};
-    return x;
-}
-
 /* The points of v in order of mean samples per pixel. */
 static void by_samples(const struct verdict_figures *f, int v, int *order)
 {
@@ -217,11 +209,8 @@ static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene
         if (e.n > 1 && se > 0 && fabs(z) > fabs(worst))
             worst = z, at = p, pct = 100 * (e.mean / f->ref.radiance - 1);
     }
-    if (fabs(worst) > VERDICT_BIAS_SE) {
-        struct verdict_failure *x = add_failure(out, VERDICT_BIASED, v, at, pct);
-        x->detail = worst;
-        verdict_say_failure(f, x);
-    }
+    if (fabs(worst) > VERDICT_BIAS_SE)
+        verdict_say_failure(f, out, VERDICT_BIASED, v, at, pct, worst);
 }
 
 /* Fireflies: the point where v's seeds' relMSE span the largest factor, flagged when over
@@ -243,9 +232,7 @@ static int heavy_tailed(const struct verdict_figures *f, int v, struct verdict_s
     }
     if (!(most > VERDICT_HEAVY_RATIO))
         return 0;
-    struct verdict_failure *x = add_failure(out, VERDICT_HEAVY_TAILED, v, at, most);
-    x->detail = share;
-    verdict_say_failure(f, x);
+    verdict_say_failure(f, out, VERDICT_HEAVY_TAILED, v, at, most, share);
     return 1;
 }
 
@@ -261,11 +248,8 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         if (isfinite(s) && s > most)
             most = s, at = p;
     }
-    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE) {
-        struct verdict_failure *x = add_failure(out, VERDICT_STRUCTURED, v, at, most);
-        x->detail = out->repeat_bias[v * f->n_points + at];
-        verdict_say_failure(f, x);
-    }
+    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE)
+        verdict_say_failure(f, out, VERDICT_STRUCTURED, v, at, most, out->repeat_bias[v * f->n_points + at]);
     /* fireflies first: a mean with infinite variance neither falls as 1/spp nor tests for bias */
     int heavy = heavy_tailed(f, v, out);
     if (!heavy && out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
@@ -278,7 +262,7 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
                 continue;
             double local = log(r1 / r0) / log(s1 / s0);
             if (local > VERDICT_STALL_SLOPE) {
-                verdict_say_failure(f, add_failure(out, VERDICT_STALLS, v, order[i], local));
+                verdict_say_failure(f, out, VERDICT_STALLS, v, order[i], local, 0);
                 break;
             }
         }
@@ -288,13 +272,13 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         for (int k = 0; k < f->n_seeds; k++)
             dropped += f->nonfinite[verdict_at(f, v, p, k)];
     if (dropped)
-        verdict_say_failure(f, add_failure(out, VERDICT_NONFINITE, v, -1, (double)dropped));
+        verdict_say_failure(f, out, VERDICT_NONFINITE, v, -1, (double)dropped, 0);
     at = -1, most = 0;
     for (int p = 0; p < f->n_points; p++)
         if (verdict_mean(f, f->sampler_share, v, p) > most)
             most = verdict_mean(f, f->sampler_share, v, p), at = p;
     if (most > VERDICT_SAMPLER_SHARE)
-        verdict_say_failure(f, add_failure(out, VERDICT_SHARE, v, at, most));
+        verdict_say_failure(f, out, VERDICT_SHARE, v, at, most, 0);
     if (!heavy)
         bias_of(f, v, out);
 }

@@ -34,10 +34,13 @@ static const char *point_name(const struct verdict_figures *f, int p)
     return p >= 0 && p < f->n_points && f->points ? f->points[p] : "every point";
 }
 
-void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x)
+void verdict_say_failure(const struct verdict_figures *f, struct verdict_scene *out,
+                         enum verdict_failure_kind kind, int variant, int p, double value, double detail)
 {
-    const char *v = f->variants[x->variant], *at = point_name(f, x->point);
-    x->text[0] = 0;
+    struct verdict_failure *x = &out->failures[out->n_failures++];
+    *x = (struct verdict_failure){
+        .kind = kind, .variant = variant, .point = p, .value = value, .detail = detail};
+    const char *v = f->variants[variant], *at = point_name(f, p);
     switch (x->kind) {
     case VERDICT_STRUCTURED:
         append(x->text, "%s: %.0f%% of its error at %s repeats in every seed", v, 100 * x->value, at);
