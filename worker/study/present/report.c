@@ -46,19 +46,18 @@ struct grid {
 static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k, struct err *e)
 {
     const struct compare *c = g->c;
-    int s = g->s, zoom = g->zoom;
-    const char *dir = g->dir, *ab = g->ab;
+    int s = g->s;
     const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
     const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
     char path[4096], alt[256], slot[32];
     uint8_t *png;
     size_t len;
-    snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
+    snprintf(path, sizeof path, "%s/%s", g->dir, it->job.output);
     if (report_view_read_png(path, &png, &len, NULL, e) < 0)
         return -1;
     snprintf(alt, sizeof alt, "%s %s", c->variants[v], it->job.output);
     snprintf(slot, sizeof slot, "g%dv%d", p, v);
-    struct report_view_img view = {zoom, NULL, ab, alt};
+    struct report_view_img view = {g->zoom, NULL, g->ab, alt};
     report_view_figure(b, k, slot);
     report_view_png(b, png, len, c->scenes[s].width, c->scenes[s].height, &view);
     free(png);
