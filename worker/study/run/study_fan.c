@@ -161,15 +161,10 @@ int study_fan_share(const struct jobfile *jf, const struct run_opts *o)
     struct study_fan f;
     struct err e = {0};
     char line[4096];
-    int rc = 0, rendered = 0, current = 0, index = 0;
-    if (study_fan_load(jf, &f, &e) < 0) {
-        err_format(&e, line, sizeof line);
-        err_print("%s\n", line);
-        return 2;
-    }
+    int rc = study_fan_load(jf, &f, &e) < 0 ? 2 : 0, rendered = 0, current = 0, index = 0;
     struct run_opts whole = *o; /* each image renders whole: the share is of the study, not of rows */
     whole.part = whole.parts = 0;
-    for (int k = 0; k < study_fan_studies(&f) && rc == 0; k++) {
+    for (int k = 0; rc == 0 && k < study_fan_studies(&f); k++) { /* none when the load failed */
         struct compare *c = study_fan_study(&f, k);
         int ready[COMPARE_MAX_ITEMS] = {0}; /* per scene: its reference prepared */
         for (int i = 0; i < c->n_items && rc == 0; i++, index++) {
