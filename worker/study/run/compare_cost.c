@@ -191,8 +191,7 @@ char *compare_cost_csv(const struct compare *c)
         for (int v = 0; v < c->n_variants; v++)
             for (int p = 0; p < c->n_points; p++) {
                 point_name(c, s, v, p, name, sizeof name);
-                for (int k = 0; k < c->results.n_blocks;
-                     k++) /* names are letters, digits, - and _: no quoting */
+                for (int k = 0; k < c->results.n_blocks; k++) /* letters, digits, - and _: no quoting */
                     sbuf_printf(&b, "%s,%s,%s,%d,%.6g\n", c->scenes[s].name, c->variants[v], name, k,
                                 c->results.cost_s[compare_cost_index(c, s, v, p, k)]);
             }
