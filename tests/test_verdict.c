@@ -114,7 +114,7 @@ static void test_rule(void)
     CHECK_NEAR(e[0].lo, exp(m - 4.302652730 * sd / sqrt(3)), 1e-8);
     CHECK_NEAR(e[0].hi, exp(m + 4.302652730 * sd / sqrt(3)), 1e-8);
     CHECK_NEAR(e[0].value, exp((log(0.9) + log(1.1)) / 3), 1e-12); /* the geometric mean */
-    struct verdict_ranking r = {.log_scale = 1, .n = 2, .e = e};
+    struct verdict_ranking r = {.n = 2, .e = e};
     verdict_rank(&r);
     CHECK(r.status == VERDICT_CLEAR && e[0].variant == 0 && verdict_beats(&r, &e[0], &e[1]));
     CHECK(!verdict_beats(&r, &e[1], &e[0])); /* higher is worse */
@@ -137,7 +137,7 @@ static void test_rank_order(void)
     struct verdict_entry e[3] = {{.variant = 0, .n = 8, .mean = 0.0, .se = 0.01},
                                  {.variant = 1, .n = 8, .mean = 0.2, .se = 0.5},
                                  {.variant = 2, .n = 8, .mean = 0.1, .se = 0.01}};
-    struct verdict_ranking r = {.log_scale = 1, .n = 3, .e = e};
+    struct verdict_ranking r = {.n = 3, .e = e};
     verdict_rank(&r);
     CHECK(e[0].variant == 0 && e[0].rank == 1);
     CHECK(e[1].variant == 1 && e[1].rank == 1); /* nobody tells the wide spread apart */
@@ -174,7 +174,7 @@ static void test_clear_winner(void)
                  "are not told apart by their seeds (Welch's t test, Holm-corrected, alpha 0.05)"));
     CHECK(any_line(s.sentences, s.n_sentences, "use alpha"));
     char w[64];
-    verdict_winner(&s, w, sizeof w);
+    verdict_ranking_winner(&s, &s.by_cpu, 1, w, sizeof w);
     CHECK(!strcmp(w, "alpha"));
     verdict_scene_free(&s);
 }
@@ -194,7 +194,7 @@ static void test_tie_and_inconclusive(void)
                    "at equal samples, alpha, beta are not told apart by their seeds "
                    "(Welch's t test, Holm-corrected, alpha 0.05): tied, no single winner"));
     char w[64];
-    verdict_winner(&s, w, sizeof w);
+    verdict_ranking_winner(&s, &s.by_cpu, 1, w, sizeof w);
     CHECK(!strcmp(w, "alpha = beta (tie)"));
     verdict_scene_free(&s);
 
@@ -202,7 +202,7 @@ static void test_tie_and_inconclusive(void)
     CHECK(verdict_scene_compute(&x.f, &s, &e) == 0);
     CHECK(s.by_samples.status == VERDICT_INCONCLUSIVE && s.by_cpu.status == VERDICT_INCONCLUSIVE);
     CHECK(any_line(s.sentences, s.n_sentences, "inconclusive"));
-    verdict_winner(&s, w, sizeof w);
+    verdict_ranking_winner(&s, &s.by_cpu, 1, w, sizeof w);
     CHECK(!strcmp(w, "inconclusive"));
     verdict_scene_free(&s);
 

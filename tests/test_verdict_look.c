@@ -10,6 +10,7 @@
 #include "verdict_fixture.h"
 #include "study/judge/verdict.h"
 #include "study/judge/verdict_look.h"
+#include "study/present/report_look.h"
 #include "study/present/verdict_out.h"
 
 #define NV 3
@@ -60,7 +61,7 @@ static void test_bluest(void)
         said |= strstr(s.sentences[i], "bluest: zsobol.") != NULL;
     CHECK(said);
     struct verdict_study st = {.name = "look", .n_scenes = 1, .scenes = &s};
-    char *json = verdict_json_text("job", &st, 1, NULL), *svg = verdict_look_svg(&st);
+    char *json = verdict_json_text("job", &st, 1, NULL), *svg = report_look_svg(&st, REPORT_LOOK_LOWFREQ);
     CHECK(json && strstr(json, "\"error_look\"") && strstr(json, "\"bluest\"") &&
           strstr(json, "\"winner\": \"zsobol\""));
     CHECK(svg && strstr(svg, "board: how the error looks") && strstr(svg, "zsobol"));

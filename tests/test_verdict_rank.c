@@ -43,7 +43,7 @@ static void test_holm(void)
 {
     /* three variants on a line, se 1 each, 1000 seeds: p from the normal approximately */
     struct verdict_entry e[3] = {entry(1000, 0, 1), entry(1000, 3.2, 1), entry(1000, 8, 1)};
-    struct verdict_ranking r = {.log_scale = 1, .n = 3, .e = e};
+    struct verdict_ranking r = {.n = 3, .e = e};
     verdict_rank(&r);
     /* pairs: 0-1 gap 3.2/sqrt2 = 2.26 (p 0.024), 1-2 gap 3.39 (p 0.0007), 0-2 (p ~1e-8): Holm
        rejects 0-2 at 0.05/3, 1-2 at 0.05/2 and 0-1 at 0.05/1 */
@@ -97,7 +97,7 @@ static double separated_share(int nv, double gap, double *old, uint64_t seed)
                 verdict_entry_add(&e[v], exp(-5 + (v == 1 ? gap : 0) + normal(&r)), 1);
             verdict_entry_end(&e[v], 1);
         }
-        struct verdict_ranking rk = {.log_scale = 1, .n = nv, .e = e};
+        struct verdict_ranking rk = {.n = nv, .e = e};
         old_n += old_apart(e, nv);
         verdict_rank(&rk);
         apart += rk.status != VERDICT_INCONCLUSIVE;

@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/fileio.h"
 #include "image/errspec.h"
 #include "image/imgio.h"
 
@@ -20,32 +19,25 @@ static int on(const struct rgbf *img, const struct img_mask *mask, size_t i)
 void compare_stats_aggregate(const struct compare *c, int s, int v, int p, struct compare_agg *a)
 {
     *a = (struct compare_agg){0};
-    a->rel_lo = INFINITY;
     for (int k = 0; k < c->n_seeds; k++) {
         const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
         if (!r->done)
             continue;
         a->n++;
         a->spp += r->spp_mean;
-        a->wall_s += r->wall_s;
         a->cpu_s += r->cpu_s;
-        if (r->has_error) {
+        if (r->has_error)
             a->rel += r->error.relmse;
-            a->rel_lo = fmin(a->rel_lo, r->error.relmse);
-            a->rel_hi = fmax(a->rel_hi, r->error.relmse);
-        }
     }
     if (a->n) {
         a->spp /= a->n;
-        a->wall_s /= a->n;
         a->cpu_s /= a->n;
         a->rel /= a->n;
     }
-    if (!isfinite(a->rel_lo))
-        a->rel_lo = 0;
 }
 
-int compare_stats_samples_vary(const struct compare *c, int s, int v)
+/* Whether v's sweep points in scene s change its samples per pixel (verdict_samples_vary). */
+static int samples_vary(const struct compare *c, int s, int v)
 {
     double lo = INFINITY, hi = 0;
     struct compare_agg a;
@@ -62,7 +54,7 @@ void compare_stats_point_order(const struct compare *c, int s, int v, int *order
     struct compare_agg a, b;
     for (int p = 0; p < c->n_points; p++)
         order[p] = p;
-    if (!compare_stats_samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
+    if (!samples_vary(c, s, v)) /* the sweep's own order: sorting by noise would scramble it */
         return;
     for (int i = 1; i < c->n_points; i++) /* insertion sort: a handful of points */
         for (int j = i; j > 0; j--) {

@@ -6,18 +6,14 @@
 
 #include "study/load/compare_model.h"
 
-/* One (scene, variant, sweep point) over its seeds. rel* are relMSE; 0 when not measured. */
+/* One (scene, variant, sweep point) over its seeds: means; rel is relMSE's, 0 when not measured. */
 struct compare_agg {
-    int n;                      /* seeds with a result */
-    double spp, wall_s, cpu_s;  /* means */
-    double rel, rel_lo, rel_hi; /* mean, min, max */
+    int n; /* seeds with a result */
+    double spp, cpu_s, rel;
 };
 
 void compare_stats_aggregate(const struct compare *c, int scene, int variant, int point,
                              struct compare_agg *a);
-
-/* Whether variant's sweep points in scene change its samples per pixel (verdict_samples_vary). */
-int compare_stats_samples_vary(const struct compare *c, int scene, int variant);
 
 /* The sweep points of (scene, variant) ordered by mean samples per pixel, fewest first, or in
    the sweep's own order when the sweep leaves samples per pixel alone (within 5%: a

@@ -13,15 +13,6 @@
 #include "verdict_spectrum.h"
 #include "verdict_time.h"
 
-/* The mean over seeds of point p's figure x (spp or CPU seconds) for variant v. */
-static double mean_x(const struct verdict_figures *f, const double *x, int v, int p)
-{
-    double s = 0;
-    for (int k = 0; k < f->n_seeds; k++)
-        s += x[verdict_at(f, v, p, k)];
-    return s / f->n_seeds;
-}
-
 /* Least-squares line of log y against log x over seed k's points of v: y = exp(a + b log x). */
 static int fit(const struct verdict_figures *f, const double *x, int v, int k, double *a, double *b)
 {
@@ -98,14 +89,6 @@ static void entry_add(struct verdict_entry *e, double *logs, int k, double y)
     logs[k] = y > 0 && isfinite(y) ? log(y) : NAN;
 }
 
-/* The seeds' relMSE at v's point p into e (the figure of a variant that cannot reach `at`). */
-static void point_figures(const struct verdict_figures *f, int v, int p, struct verdict_entry *e,
-                          double *logs)
-{
-    for (int k = 0; k < f->n_seeds; k++)
-        entry_add(e, logs, k, verdict_rel(f, verdict_at(f, v, p, k)));
-}
-
 /* Rank every variant by relMSE at the x that every variant reached: the smallest of their
    densest points' means (the cheapest densest point, for CPU time). A variant whose cheapest
    point lies far beyond it is unreached, shown with its cheapest point's figures. logs: room for
@@ -116,25 +99,23 @@ static void rank_at(const struct verdict_figures *f, const double *x, double *lo
     for (int v = 0; v < f->n_variants; v++) {
         double most = 0;
         for (int p = 0; p < f->n_points; p++)
-            most = fmax(most, mean_x(f, x, v, p));
+            most = fmax(most, verdict_mean(f, x, v, p));
         at = fmin(at, most);
     }
     r->at = at;
     r->n = f->n_variants;
-    r->log_scale = 1;
     for (int v = 0; v < f->n_variants; v++) {
         struct verdict_entry *e = &r->e[v];
         verdict_entry_start(e, v);
         int cheapest = 0;
         for (int p = 1; p < f->n_points; p++)
-            if (mean_x(f, x, v, p) < mean_x(f, x, v, cheapest))
+            if (verdict_mean(f, x, v, p) < verdict_mean(f, x, v, cheapest))
                 cheapest = p;
-        if (mean_x(f, x, v, cheapest) > at * VERDICT_BEYOND) {
-            e->unreached = 1;
-            point_figures(f, v, cheapest, e, logs);
-        } else
-            for (int k = 0; k < f->n_seeds; k++)
-                entry_add(e, logs, k, value_at(f, x, v, k, at));
+        e->unreached = verdict_mean(f, x, v, cheapest) > at * VERDICT_BEYOND;
+        for (int k = 0; k < f->n_seeds; k++) /* unreached: its cheapest point's figures */
+            entry_add(e, logs, k,
+                      e->unreached ? verdict_rel(f, verdict_at(f, v, cheapest, k))
+                                   : value_at(f, x, v, k, at));
         verdict_entry_end(e, 1);
         if (f->rank_by == VERDICT_RANK_MEDIAN)
             verdict_entry_logs(e, logs, f->n_seeds, f->rank_by);
@@ -152,7 +133,7 @@ static int samples_vary(const struct verdict_figures *f, int v)
 {
     double lo = INFINITY, hi = 0;
     for (int p = 0; p < f->n_points; p++)
-        lo = fmin(lo, mean_x(f, f->spp, v, p)), hi = fmax(hi, mean_x(f, f->spp, v, p));
+        lo = fmin(lo, verdict_mean(f, f->spp, v, p)), hi = fmax(hi, verdict_mean(f, f->spp, v, p));
     return verdict_samples_vary(lo, hi);
 }
 
@@ -176,21 +157,14 @@ static void rank_slopes(const struct verdict_figures *f, struct verdict_ranking 
     verdict_rank(r);
 }
 
-static struct verdict_failure *add_failure(struct verdict_scene *out, enum verdict_failure_kind kind, int v,
-                                           int p, double value)
-{
-    struct verdict_failure *x = &out->failures[out->n_failures++];
-    *x = (struct verdict_failure){.kind = kind, .variant = v, .point = p, .value = value};
-    return x;
-}
-
 /* The points of v in order of mean samples per pixel. */
 static void by_samples(const struct verdict_figures *f, int v, int *order)
 {
     for (int p = 0; p < f->n_points; p++)
         order[p] = p;
     for (int i = 1; i < f->n_points; i++)
-        for (int j = i; j > 0 && mean_x(f, f->spp, v, order[j]) < mean_x(f, f->spp, v, order[j - 1]); j--) {
+        for (int j = i;
+             j > 0 && verdict_mean(f, f->spp, v, order[j]) < verdict_mean(f, f->spp, v, order[j - 1]); j--) {
             int t = order[j];
             order[j] = order[j - 1];
             order[j - 1] = t;
@@ -207,7 +181,7 @@ static void repeat_shares(const struct verdict_figures *f, struct verdict_scene 
     for (int v = 0; v < f->n_variants; v++)
         for (int p = 0; p < np; p++) {
             double rom = f->rel_of_mean ? f->rel_of_mean[v * np + p] - ref : NAN;
-            double mr = mean_x(f, f->relmse, v, p) - ref, share = NAN, bias = NAN;
+            double mr = verdict_mean(f, f->relmse, v, p) - ref, share = NAN, bias = NAN;
             if (n > 1 && isfinite(rom) && mr > 0) {
                 share = fmin(1, fmax(0, (n * rom / mr - 1) / (n - 1)));
                 if (f->bias_rel && isfinite(f->bias_rel[v * np + p]))
@@ -235,11 +209,8 @@ static void bias_of(const struct verdict_figures *f, int v, struct verdict_scene
         if (e.n > 1 && se > 0 && fabs(z) > fabs(worst))
             worst = z, at = p, pct = 100 * (e.mean / f->ref.radiance - 1);
     }
-    if (fabs(worst) > VERDICT_BIAS_SE) {
-        struct verdict_failure *x = add_failure(out, VERDICT_BIASED, v, at, pct);
-        x->detail = worst;
-        verdict_say_failure(f, x);
-    }
+    if (fabs(worst) > VERDICT_BIAS_SE)
+        verdict_say_failure(f, out, VERDICT_BIASED, v, at, pct, worst);
 }
 
 /* Fireflies: the point where v's seeds' relMSE span the largest factor, flagged when over
@@ -261,9 +232,7 @@ static int heavy_tailed(const struct verdict_figures *f, int v, struct verdict_s
     }
     if (!(most > VERDICT_HEAVY_RATIO))
         return 0;
-    struct verdict_failure *x = add_failure(out, VERDICT_HEAVY_TAILED, v, at, most);
-    x->detail = share;
-    verdict_say_failure(f, x);
+    verdict_say_failure(f, out, VERDICT_HEAVY_TAILED, v, at, most, share);
     return 1;
 }
 
@@ -279,11 +248,8 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         if (isfinite(s) && s > most)
             most = s, at = p;
     }
-    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE) {
-        struct verdict_failure *x = add_failure(out, VERDICT_STRUCTURED, v, at, most);
-        x->detail = out->repeat_bias[v * f->n_points + at];
-        verdict_say_failure(f, x);
-    }
+    if (f->n_seeds > 1 && most > VERDICT_STRUCTURED_SHARE)
+        verdict_say_failure(f, out, VERDICT_STRUCTURED, v, at, most, out->repeat_bias[v * f->n_points + at]);
     /* fireflies first: a mean with infinite variance neither falls as 1/spp nor tests for bias */
     int heavy = heavy_tailed(f, v, out);
     if (!heavy && out->samples_vary[v] && f->n_seeds > 1) { /* one seed: no spread, no claim */
@@ -291,12 +257,12 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         for (int i = 1; i < f->n_points; i++) { /* the geometric means the chart and table show */
             double r0 = out->point_rel[v * f->n_points + order[i - 1]],
                    r1 = out->point_rel[v * f->n_points + order[i]];
-            double s0 = mean_x(f, f->spp, v, order[i - 1]), s1 = mean_x(f, f->spp, v, order[i]);
+            double s0 = verdict_mean(f, f->spp, v, order[i - 1]), s1 = verdict_mean(f, f->spp, v, order[i]);
             if (!(r0 > 0 && r1 > 0 && s1 > s0 * VERDICT_SAMPLES_VARY))
                 continue;
             double local = log(r1 / r0) / log(s1 / s0);
             if (local > VERDICT_STALL_SLOPE) {
-                verdict_say_failure(f, add_failure(out, VERDICT_STALLS, v, order[i], local));
+                verdict_say_failure(f, out, VERDICT_STALLS, v, order[i], local, 0);
                 break;
             }
         }
@@ -306,13 +272,13 @@ static void failures_of(const struct verdict_figures *f, int v, int *order, stru
         for (int k = 0; k < f->n_seeds; k++)
             dropped += f->nonfinite[verdict_at(f, v, p, k)];
     if (dropped)
-        verdict_say_failure(f, add_failure(out, VERDICT_NONFINITE, v, -1, (double)dropped));
+        verdict_say_failure(f, out, VERDICT_NONFINITE, v, -1, (double)dropped, 0);
     at = -1, most = 0;
     for (int p = 0; p < f->n_points; p++)
-        if (mean_x(f, f->sampler_share, v, p) > most)
-            most = mean_x(f, f->sampler_share, v, p), at = p;
+        if (verdict_mean(f, f->sampler_share, v, p) > most)
+            most = verdict_mean(f, f->sampler_share, v, p), at = p;
     if (most > VERDICT_SAMPLER_SHARE)
-        verdict_say_failure(f, add_failure(out, VERDICT_SHARE, v, at, most));
+        verdict_say_failure(f, out, VERDICT_SHARE, v, at, most, 0);
     if (!heavy)
         bias_of(f, v, out);
 }
@@ -348,43 +314,31 @@ int verdict_scene_compute(const struct verdict_figures *given, struct verdict_sc
     double *scratch = calloc((size_t)f->n_seeds + 1, sizeof *scratch);
     if (!out->variants || !out->by_samples.e || !out->by_cpu.e || !out->by_slope.e || !out->failures ||
         !out->warnings || !out->sentences || !order || !out->repeat || !out->repeat_bias ||
-        !out->samples_vary || !scratch) {
-        free(order);
-        free(scratch);
-        verdict_scene_free(out);
-        return err_set(e, NULL, 0, 0, "out of memory");
-    }
+        !out->samples_vary || !scratch)
+        goto fail;
     for (int v = 0; v < nv; v++) {
         snprintf(out->variants[v], sizeof out->variants[v], "%s", f->variants[v]);
         out->samples_vary[v] = samples_vary(f, v);
     }
     repeat_shares(f, out);
-    if (verdict_time_points(f, out) < 0 || verdict_time_rank(f, out, &out->by_cpu) < 0) {
-        free(order);
-        free(scratch);
-        verdict_scene_free(out);
-        return err_set(e, NULL, 0, 0, "out of memory");
-    }
+    if (verdict_time_points(f, out) < 0 || verdict_time_rank(f, out, &out->by_cpu) < 0)
+        goto fail;
     rank_at(f, f->spp, scratch, &out->by_samples);
     rank_slopes(f, &out->by_slope);
     for (int v = 0; v < nv; v++)
         failures_of(f, v, order, out);
-    free(order);
-    free(scratch);
-    if (verdict_spectrum_compute(f, out) < 0) {
-        verdict_scene_free(out);
-        return err_set(e, NULL, 0, 0, "out of memory");
-    }
+    if (verdict_spectrum_compute(f, out) < 0)
+        goto fail;
     verdict_say_warnings(f, out);
     verdict_say_sentences(f, out);
-    if (verdict_look_compute(f, out) < 0) {
-        verdict_scene_free(out);
-        return err_set(e, NULL, 0, 0, "out of memory");
-    }
+    if (verdict_look_compute(f, out) < 0)
+        goto fail;
+    free(order);
+    free(scratch);
     return 0;
-}
-
-void verdict_winner(const struct verdict_scene *v, char *buf, size_t n)
-{
-    verdict_ranking_winner(v, &v->by_cpu, 1, buf, n);
+fail:
+    free(order);
+    free(scratch);
+    verdict_scene_free(out);
+    return err_set(e, NULL, 0, 0, "out of memory");
 }

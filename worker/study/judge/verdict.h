@@ -6,12 +6,7 @@
 #ifndef VERDICT_H
 #define VERDICT_H
 
-#include <stddef.h>
-#include <stdint.h>
-
 #include "base/err.h"
-#include "base/json.h"
-#include "base/sbuf.h"
 #include "study/load/verdict_model.h"
 #include "verdict_figures.h"
 
@@ -21,8 +16,5 @@ int verdict_samples_vary(double lo, double hi);
 
 /* The verdict of one scene from its figures. 0, or -1 with e filled (out of memory). */
 int verdict_scene_compute(const struct verdict_figures *f, struct verdict_scene *out, struct err *e);
-
-/* The winner at equal CPU time, for people: a variant, "a = b (tie)" or "inconclusive". */
-void verdict_winner(const struct verdict_scene *v, char *buf, size_t n);
 
 #endif

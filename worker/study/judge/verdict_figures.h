@@ -4,12 +4,8 @@
 #ifndef VERDICT_FIGURES_H
 #define VERDICT_FIGURES_H
 
-#include <stddef.h>
 #include <stdint.h>
 
-#include "base/err.h"
-#include "base/json.h"
-#include "base/sbuf.h"
 #include "study/load/study_inputs.h"
 #include "study/load/verdict_model.h"
 
@@ -86,6 +82,15 @@ struct verdict_figures {
 static inline int verdict_at(const struct verdict_figures *f, int v, int p, int k)
 {
     return (v * f->n_points + p) * f->n_seeds + k;
+}
+
+/* The mean over seeds of point p's figure x (one of f's arrays per (variant, point, seed)) for v. */
+static inline double verdict_mean(const struct verdict_figures *f, const double *x, int v, int p)
+{
+    double s = 0;
+    for (int k = 0; k < f->n_seeds; k++)
+        s += x[verdict_at(f, v, p, k)];
+    return s / f->n_seeds;
 }
 
 static inline int verdict_cost_at(const struct verdict_figures *f, int v, int p, int b)

@@ -8,70 +8,61 @@
 #include "compare_stats.h"
 #include "image/imgio.h"
 
-/* The arrays of one scene's figures (one allocation each, freed together). */
+/* The arrays of one scene's figures, freed together. */
 struct figures_mem {
     struct verdict_figures f;
-    const char **variants, **samplers, **points;
+    const char **names; /* n_variants variants, n_variants samplers, n_points points */
     int *pools;
-    double *spp, *cpu, *cost, *rel, *share, *rel_of_mean, *bias_rel, *radiance, *lowfreq;
-    double *spec_ring, *peak_p, *aniso;
     uint64_t *nonfinite;
+    double *d; /* every array of doubles */
 };
 
 static void mem_free(struct figures_mem *m)
 {
-    free(m->variants), free(m->samplers), free(m->points), free(m->pools);
-    free(m->spp), free(m->cpu), free(m->cost), free(m->rel), free(m->share), free(m->nonfinite);
-    free(m->rel_of_mean), free(m->bias_rel), free(m->radiance), free(m->lowfreq);
-    free(m->spec_ring), free(m->peak_p), free(m->aniso);
+    free(m->names), free(m->pools), free(m->nonfinite), free(m->d);
 }
 
 static int gather(const struct compare *c, int s, const char *dir, const struct rgbf *ref,
                   struct figures_mem *m)
 {
-    size_t nv = (size_t)c->n_variants, n = nv * c->n_points * c->n_seeds;
-    m->variants = calloc(nv, sizeof *m->variants), m->samplers = calloc(nv, sizeof *m->samplers);
-    m->points = calloc((size_t)c->n_points, sizeof *m->points), m->pools = calloc(nv, sizeof *m->pools);
-    m->spp = calloc(n, sizeof *m->spp), m->cpu = calloc(n, sizeof *m->cpu),
-    m->rel = calloc(n, sizeof *m->rel);
-    m->share = calloc(n, sizeof *m->share), m->nonfinite = calloc(n, sizeof *m->nonfinite);
-    m->rel_of_mean = calloc(nv * c->n_points, sizeof *m->rel_of_mean);
-    m->bias_rel = calloc(nv * c->n_points, sizeof *m->bias_rel), m->radiance = calloc(n, sizeof *m->radiance);
-    m->lowfreq = calloc(n, sizeof *m->lowfreq);
-    m->spec_ring = calloc(n * VERDICT_SPEC_RINGS, sizeof *m->spec_ring);
-    m->peak_p = calloc(nv * c->n_points, sizeof *m->peak_p),
-    m->aniso = calloc(nv * c->n_points, sizeof *m->aniso);
+    size_t nv = (size_t)c->n_variants, per = nv * c->n_points, n = per * c->n_seeds;
     /* no cost design: the images' own times */
     int blocks = c->results.n_blocks > 1 ? c->results.n_blocks : c->n_seeds;
-    m->cost = calloc(nv * c->n_points * blocks + 1, sizeof *m->cost);
-    if (!m->variants || !m->samplers || !m->points || !m->pools || !m->spp || !m->cpu || !m->rel ||
-        !m->share || !m->nonfinite || !m->rel_of_mean || !m->bias_rel || !m->radiance || !m->lowfreq ||
-        !m->spec_ring || !m->peak_p || !m->aniso || !m->cost)
+    m->names = calloc(2 * nv + c->n_points, sizeof *m->names);
+    m->pools = calloc(nv, sizeof *m->pools);
+    m->nonfinite = calloc(n, sizeof *m->nonfinite);
+    m->d = calloc(6 * n + 4 * per + n * VERDICT_SPEC_RINGS + per * blocks, sizeof *m->d);
+    if (!m->names || !m->pools || !m->nonfinite || !m->d)
         return -1;
+    const char **variants = m->names, **samplers = variants + nv, **points = samplers + nv;
+    double *spp = m->d, *cpu = spp + n, *rel = cpu + n, *share = rel + n, *radiance = share + n;
+    double *lowfreq = radiance + n, *rel_of_mean = lowfreq + n, *bias_rel = rel_of_mean + per;
+    double *peak_p = bias_rel + per, *aniso = peak_p + per, *spec_ring = aniso + per;
+    double *cost = spec_ring + n * VERDICT_SPEC_RINGS;
     struct verdict_figures *f = &m->f;
     *f = (struct verdict_figures){.study = c->name,
                                   .scene = c->scenes[s].name,
                                   .n_variants = c->n_variants,
                                   .n_points = c->n_points,
                                   .n_seeds = c->n_seeds,
-                                  .variants = m->variants,
-                                  .samplers = m->samplers,
+                                  .variants = variants,
+                                  .samplers = samplers,
                                   .pools = m->pools,
-                                  .points = m->points,
-                                  .spp = m->spp,
-                                  .cpu_s = m->cpu,
-                                  .relmse = m->rel,
-                                  .sampler_share = m->share,
+                                  .points = points,
+                                  .spp = spp,
+                                  .cpu_s = cpu,
+                                  .relmse = rel,
+                                  .sampler_share = share,
                                   .nonfinite = m->nonfinite,
-                                  .rel_of_mean = m->rel_of_mean,
-                                  .bias_rel = m->bias_rel,
-                                  .radiance = m->radiance,
-                                  .lowfreq = m->lowfreq,
-                                  .spec_ring = m->spec_ring,
-                                  .spec_peak_p = m->peak_p,
-                                  .spec_aniso = m->aniso,
+                                  .rel_of_mean = rel_of_mean,
+                                  .bias_rel = bias_rel,
+                                  .radiance = radiance,
+                                  .lowfreq = lowfreq,
+                                  .spec_ring = spec_ring,
+                                  .spec_peak_p = peak_p,
+                                  .spec_aniso = aniso,
                                   .n_blocks = blocks,
-                                  .cost_s = m->cost,
+                                  .cost_s = cost,
                                   .cost_from_images = c->results.n_blocks < 2,
                                   .rank_by = c->rank_by,
                                   .ref = c->results.refs[s].fig};
@@ -79,38 +70,38 @@ static int gather(const struct compare *c, int s, const char *dir, const struct 
         f->ref.radiance =
             compare_stats_mean_radiance(ref, c->scenes[s].mask); /* an image reference: its noise unknown */
     for (int p = 0; p < c->n_points; p++)
-        m->points[p] = c->points[p];
+        points[p] = c->points[p];
     for (int v = 0; v < c->n_variants; v++) {
         const struct job *j = &c->items[compare_index(c, s, v, 0, 0)].job;
-        m->variants[v] = c->variants[v];
-        m->samplers[v] = sampler_kind_name(j->spec.pixel.kind);
+        variants[v] = c->variants[v];
+        samplers[v] = sampler_kind_name(j->spec.pixel.kind);
         m->pools[v] = j->spec.poisson_pool;
         for (int p = 0; p < c->n_points; p++) {
-            struct compare_seed_stats st = {.radiance = m->radiance + verdict_at(f, v, p, 0),
-                                            .spec_ring = m->spec_ring +
+            struct compare_seed_stats st = {.radiance = radiance + verdict_at(f, v, p, 0),
+                                            .spec_ring = spec_ring +
                                                          (size_t)verdict_at(f, v, p, 0) * VERDICT_SPEC_RINGS};
             struct err ignored;
             int vp = v * c->n_points + p;
-            m->rel_of_mean[vp] = m->bias_rel[vp] = m->peak_p[vp] = m->aniso[vp] = NAN;
+            rel_of_mean[vp] = bias_rel[vp] = peak_p[vp] = aniso[vp] = NAN;
             for (int k = 0; k < c->n_seeds; k++)
                 st.radiance[k] = NAN;
             for (int r = 0; r < c->n_seeds * VERDICT_SPEC_RINGS; r++)
                 st.spec_ring[r] = NAN;
             if (ref && compare_stats_seed_images(c, s, v, p, dir, ref, &st, &ignored) == 0)
-                m->rel_of_mean[vp] = st.rel_of_mean, m->bias_rel[vp] = st.bias_rel, m->peak_p[vp] = st.peak_p,
-                m->aniso[vp] = st.anisotropy;
+                rel_of_mean[vp] = st.rel_of_mean, bias_rel[vp] = st.bias_rel, peak_p[vp] = st.peak_p,
+                aniso[vp] = st.anisotropy;
             else
                 f->images_unread += ref != NULL;
             for (int b = 0; b < blocks; b++)
-                m->cost[verdict_cost_at(f, v, p, b)] =
-                    c->results.n_blocks > 1 ? c->results.cost_s[compare_cost_index(c, s, v, p, b)]
-                                            : c->results.rows[compare_index(c, s, v, p, b)].cpu_s;
+                cost[verdict_cost_at(f, v, p, b)] = c->results.n_blocks > 1
+                                                        ? c->results.cost_s[compare_cost_index(c, s, v, p, b)]
+                                                        : c->results.rows[compare_index(c, s, v, p, b)].cpu_s;
             for (int k = 0; k < c->n_seeds; k++) {
                 const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
                 int i = verdict_at(f, v, p, k);
-                m->spp[i] = r->spp_mean, m->cpu[i] = r->cpu_s, m->share[i] = r->sampler_share;
-                m->rel[i] = r->has_error ? r->error.relmse : NAN;
-                m->lowfreq[i] = r->has_error ? r->error_lowfreq : NAN;
+                spp[i] = r->spp_mean, cpu[i] = r->cpu_s, share[i] = r->sampler_share;
+                rel[i] = r->has_error ? r->error.relmse : NAN;
+                lowfreq[i] = r->has_error ? r->error_lowfreq : NAN;
                 m->nonfinite[i] = r->nonfinite;
             }
         }
@@ -129,11 +120,11 @@ static int add_warning(struct verdict_scene *v, const char *text)
     return 0;
 }
 
-/* A warning of n images (one, more: the words after "image") when there are any and room. */
-static void say_images(struct verdict_scene *vs, const char *text, int n, const char *one, const char *more)
+/* A warning of n images (text: a format of n and its plural's "s") when there are any and room. */
+static void say_images(struct verdict_scene *vs, const char *text, int n)
 {
     if (n && vs->n_warnings < VERDICT_SAY_MAX)
-        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, n == 1 ? one : more);
+        snprintf(vs->warnings[vs->n_warnings++], VERDICT_TEXT_MAX, text, n, sbuf_plural(n));
 }
 
 /* What the runner found, said: a folder's missing parts per scene; several CPU models listed, and a
@@ -149,10 +140,10 @@ static int say_found(const struct verdict_found *f, struct verdict_study *out)
         struct verdict_scene *vs = &out->scenes[s];
         say_images(vs,
                    "skipped: non-finite samples and what needs each variant's sampler (%d sidecar%s missing)",
-                   f->no_sidecar ? f->no_sidecar[s] : 0, "", "s");
+                   f->no_sidecar ? f->no_sidecar[s] : 0);
         say_images(vs, "left out: %d image%s whose relmse in summary.csv is not an error (not a number >= 0)",
-                   f->no_relmse ? f->no_relmse[s] : 0, "", "s");
-        say_images(vs, text, f->no_figures ? f->no_figures[s] : 0, "", "s");
+                   f->no_relmse ? f->no_relmse[s] : 0);
+        say_images(vs, text, f->no_figures ? f->no_figures[s] : 0);
     }
     if (!f || f->n_machines < 2)
         return 0;
@@ -188,10 +179,9 @@ int verdict_from_compare(const struct compare *c, const char *dir, const struct 
                                  : rr->ref                                           ? &rr->ref->f
                                  : imgio_read_f(rr->path, &read, NULL, &unread) == 0 ? &read
                                                                                      : NULL;
-        int has_ref = ref != NULL;
         int rc = gather(c, s, dir, ref, &m) < 0 ? err_set(e, NULL, 0, 0, "out of memory") : 0;
         if (rc == 0) {
-            m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !has_ref;
+            m.f.reference_unread = cs->ref_kind != COMPARE_REF_NONE && !ref;
             rc = verdict_scene_compute(&m.f, &out->scenes[s], e);
         }
         mem_free(&m);

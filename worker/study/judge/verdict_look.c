@@ -1,20 +1,11 @@
 /* verdict_look: error_lowfreq per variant and point, and the bluest variant at equal relMSE. */
 #include "verdict_look.h"
-#include "verdict_spectrum.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "verdict_rank.h"
-
-static double mean_spp(const struct verdict_figures *f, int v, int p)
-{
-    double s = 0;
-    for (int k = 0; k < f->n_seeds; k++)
-        s += f->spp[verdict_at(f, v, p, k)];
-    return s / f->n_seeds;
-}
 
 /* Per (variant, point): error_lowfreq's mean and SE, relMSE's geometric mean. */
 static void per_point(const struct verdict_figures *f, struct verdict_look *l)
@@ -41,13 +32,14 @@ static void common_point(const struct verdict_figures *f, struct verdict_look *l
     for (int v = 0; v < f->n_variants; v++) {
         double lo = INFINITY;
         for (int p = 0; p < f->n_points; p++)
-            lo = fmin(lo, mean_spp(f, v, p));
+            lo = fmin(lo, verdict_mean(f, f->spp, v, p));
         at = fmax(at, lo);
     }
     l->at = at > 0 && isfinite(at) ? at : NAN;
     for (int v = 0; v < f->n_variants && isfinite(l->at); v++)
         for (int p = 1; p < f->n_points; p++)
-            if (fabs(log(mean_spp(f, v, p) / at)) < fabs(log(mean_spp(f, v, l->point[v]) / at)))
+            if (fabs(log(verdict_mean(f, f->spp, v, p) / at)) <
+                fabs(log(verdict_mean(f, f->spp, v, l->point[v]) / at)))
                 l->point[v] = p;
 }
 
@@ -87,7 +79,7 @@ int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *
     common_point(f, l);
     if (!f->lowfreq || !isfinite(l->at))
         return 0;
-    l->by_relmse = (struct verdict_ranking){.at = l->at, .log_scale = 1, .n = nv, .e = l->by_relmse.e};
+    l->by_relmse = (struct verdict_ranking){.at = l->at, .n = nv, .e = l->by_relmse.e};
     for (int v = 0; v < nv; v++) {
         verdict_entry_start(&l->by_relmse.e[v], v);
         for (int k = 0; k < f->n_seeds; k++)
@@ -95,11 +87,11 @@ int verdict_look_compute(const struct verdict_figures *f, struct verdict_scene *
         verdict_entry_end(&l->by_relmse.e[v], 1);
     }
     verdict_rank(&l->by_relmse);
-    l->by_look = (struct verdict_ranking){.at = l->at, .log_scale = 0, .e = l->by_look.e};
+    l->by_look = (struct verdict_ranking){.at = l->at, .e = l->by_look.e};
     for (int i = 0; i < nv; i++) {
         const struct verdict_entry *r = &l->by_relmse.e[i];
         struct verdict_entry *e = &l->by_look.e[l->by_look.n];
-        if (r->rank != 1 || !(r->n > 0) || verdict_spectrum_structured(out, r->variant))
+        if (r->rank != 1 || !(r->n > 0) || verdict_failure_of(out, r->variant, VERDICT_PATTERN))
             continue; /* a pattern is not blue noise however little of it is at low frequencies */
         verdict_entry_start(e, r->variant);
         for (int k = 0; k < f->n_seeds; k++)

@@ -107,8 +107,9 @@ double verdict_t_975(double df)
     return (lo + hi) / 2;
 }
 
-double verdict_pair_p(const struct verdict_ranking *r, const struct verdict_entry *a,
-                      const struct verdict_entry *b)
+/* The p-value r separates a and b by: r->pair_p's when set, else Welch's on the entries. */
+static double pair_p(const struct verdict_ranking *r, const struct verdict_entry *a,
+                     const struct verdict_entry *b)
 {
     if (r->pair_p && a->variant < r->pair_n && b->variant < r->pair_n)
         return r->pair_p[a->variant * r->pair_n + b->variant];
@@ -132,7 +133,7 @@ static double holm_cut(const struct verdict_ranking *r)
     for (int i = 0; i < r->n; i++)
         for (int j = i + 1; j < r->n; j++)
             if (r->e[i].unreached == r->e[j].unreached)
-                p[m++] = verdict_pair_p(r, &r->e[i], &r->e[j]);
+                p[m++] = pair_p(r, &r->e[i], &r->e[j]);
     qsort(p, (size_t)m, sizeof *p, cmp_double);
     for (int k = 0; k < m && p[k] <= VERDICT_ALPHA / (m - k); k++)
         cut = p[k];
@@ -145,7 +146,7 @@ int verdict_beats(const struct verdict_ranking *r, const struct verdict_entry *a
 {
     if (a->unreached != b->unreached)
         return b->unreached;
-    return r->p_cut >= 0 && a->mean < b->mean && verdict_pair_p(r, a, b) <= r->p_cut;
+    return r->p_cut >= 0 && a->mean < b->mean && pair_p(r, a, b) <= r->p_cut;
 }
 
 /* Whether x goes before y: fewer beaten-by, then the lower mean (not measured last). */

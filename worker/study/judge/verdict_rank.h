@@ -33,10 +33,6 @@ double verdict_t_p(double t, double df);
 /* Student's t 97.5% quantile with df degrees of freedom: a 95% interval is mean +- it x se. */
 double verdict_t_975(double df);
 
-/* The p-value r separates a and b by: r->pair_p's when set, else Welch's on the entries. */
-double verdict_pair_p(const struct verdict_ranking *r, const struct verdict_entry *a,
-                      const struct verdict_entry *b);
-
 /* Whether a is ranked ahead of b in r: a reaches the common point and b does not, or both do (or
    neither) and Holm's procedure over r's pairs separates them with a's mean lower. */
 int verdict_beats(const struct verdict_ranking *r, const struct verdict_entry *a,

@@ -34,10 +34,13 @@ static const char *point_name(const struct verdict_figures *f, int p)
     return p >= 0 && p < f->n_points && f->points ? f->points[p] : "every point";
 }
 
-void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x)
+void verdict_say_failure(const struct verdict_figures *f, struct verdict_scene *out,
+                         enum verdict_failure_kind kind, int variant, int p, double value, double detail)
 {
-    const char *v = f->variants[x->variant], *at = point_name(f, x->point);
-    x->text[0] = 0;
+    struct verdict_failure *x = &out->failures[out->n_failures++];
+    *x = (struct verdict_failure){
+        .kind = kind, .variant = variant, .point = p, .value = value, .detail = detail};
+    const char *v = f->variants[variant], *at = point_name(f, p);
     switch (x->kind) {
     case VERDICT_STRUCTURED:
         append(x->text, "%s: %.0f%% of its error at %s repeats in every seed", v, 100 * x->value, at);
@@ -145,11 +148,9 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     for (int v = 0; v < f->n_variants && f->ref.relmse > 0; v++) {
         char near[VERDICT_TEXT_MAX] = "";
         for (int p = 0; p < f->n_points; p++) {
-            double sum = 0;
-            for (int k = 0; k < f->n_seeds; k++)
-                sum += f->relmse[verdict_at(f, v, p, k)];
-            if (sum / f->n_seeds < VERDICT_REF_NOISE * f->ref.relmse)
-                append(near, "%s%s (%.3g)", near[0] ? ", " : "", point_name(f, p), sum / f->n_seeds);
+            double mean = verdict_mean(f, f->relmse, v, p);
+            if (mean < VERDICT_REF_NOISE * f->ref.relmse)
+                append(near, "%s%s (%.3g)", near[0] ? ", " : "", point_name(f, p), mean);
         }
         if (near[0] && (w = next_line(out->warnings, &out->n_warnings)))
             append(
@@ -190,15 +191,6 @@ void verdict_say_warnings(const struct verdict_figures *f, struct verdict_scene 
     }
 }
 
-/* Variant v's rank in r, 0 when it is not ranked there. */
-static int rank_of_variant(const struct verdict_ranking *r, int v)
-{
-    for (int i = 0; i < r->n; i++)
-        if (r->e[i].variant == v)
-            return r->e[i].rank;
-    return 0;
-}
-
 /* "At equal CPU time (0.21 s per image), use jitter: ..." for one ranking. */
 static void say_ranking(const struct verdict_scene *out, const struct verdict_ranking *r, const char *at,
                         int scored, char *s)
@@ -228,7 +220,8 @@ static void say_ranking(const struct verdict_scene *out, const struct verdict_ra
                r->pair_p ? " and cost blocks" : "", rest);
     }
     for (int i = 0; i < out->n_failures; i++) /* a low error now, but not the reference's picture */
-        if (out->failures[i].kind == VERDICT_BIASED && rank_of_variant(r, out->failures[i].variant) == 1)
+        if (out->failures[i].kind == VERDICT_BIASED && verdict_entry_of(r, out->failures[i].variant) &&
+            verdict_entry_of(r, out->failures[i].variant)->rank == 1)
             append(s,
                    " But %s is biased (%+.2f%% in mean radiance): more samples will not bring it to the "
                    "reference.",
@@ -247,14 +240,6 @@ static void say_slopes(const struct verdict_scene *out, char *s)
         s,
         "Error falls fastest with %s (relMSE ~ spp^%.2f, 95%% CI %.2f to %.2f) and slowest with %s (%.2f).",
         top, b->value, b->lo, b->hi, out->variants[w->variant], w->value);
-}
-
-static const struct verdict_entry *entry_of(const struct verdict_ranking *r, int v)
-{
-    for (int i = 0; i < r->n; i++)
-        if (r->e[i].variant == v)
-            return &r->e[i];
-    return NULL;
 }
 
 /* CPU seconds per sample at v's densest point: the cost design's per image over its seeds' mean
@@ -285,7 +270,8 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
     char *s;
     for (int j = 0; j < f->n_variants; j++) {
         if (has(f, j, SAMPLER_BASELINE) && (s = next_line(out->sentences, &out->n_sentences))) {
-            const struct verdict_entry *a = entry_of(&out->by_samples, v), *b = entry_of(&out->by_samples, j);
+            const struct verdict_entry *a = verdict_entry_of(&out->by_samples, v),
+                                       *b = verdict_entry_of(&out->by_samples, j);
             append(s, "On %s, %s costs %.1fx %s's CPU time per sample and buys ", out->scene, f->variants[v],
                    per_sample(f, out, v) / per_sample(f, out, j), f->variants[j]);
             if (verdict_beats(&out->by_samples, a, b))
@@ -302,7 +288,8 @@ static void say_poisson(const struct verdict_figures *f, struct verdict_scene *o
         if (!has(f, u, SAMPLER_POOLED) || f->pools[u] == 0 ||
             !(s = next_line(out->sentences, &out->n_sentences)))
             continue;
-        const struct verdict_entry *a = entry_of(&out->by_cpu, u), *b = entry_of(&out->by_cpu, v);
+        const struct verdict_entry *a = verdict_entry_of(&out->by_cpu, u),
+                                   *b = verdict_entry_of(&out->by_cpu, v);
         int pool = verdict_beats(&out->by_cpu, a, b), fresh = verdict_beats(&out->by_cpu, b, a);
         if (pool && b->extrapolated)
             append(s,
@@ -325,16 +312,12 @@ void verdict_say_sentences(const struct verdict_figures *f, struct verdict_scene
 {
     char *s;
     const int any = scored(f);
-    if ((s = next_line(out->sentences, &out->n_sentences))) {
-        char at[96];
-        snprintf(at, sizeof at, "At equal CPU time (%.3g s per image)", out->by_cpu.at);
-        say_ranking(out, &out->by_cpu, at, any, s);
-    }
-    if ((s = next_line(out->sentences, &out->n_sentences))) {
-        char at[96];
-        snprintf(at, sizeof at, "At equal samples (%.0f per pixel)", out->by_samples.at);
-        say_ranking(out, &out->by_samples, at, any, s);
-    }
+    const struct verdict_ranking *rs[] = {&out->by_cpu, &out->by_samples};
+    char when[2][96];
+    snprintf(when[0], sizeof when[0], "At equal CPU time (%.3g s per image)", out->by_cpu.at);
+    snprintf(when[1], sizeof when[1], "At equal samples (%.0f per pixel)", out->by_samples.at);
+    for (int i = 0; i < 2 && (s = next_line(out->sentences, &out->n_sentences)); i++)
+        say_ranking(out, rs[i], when[i], any, s);
     if ((s = next_line(out->sentences, &out->n_sentences)))
         say_slopes(out, s);
     for (int i = 0; i < out->n_failures; i++) {

@@ -5,8 +5,9 @@
 
 #include "verdict_figures.h"
 
-/* x->text for a failure just found. */
-void verdict_say_failure(const struct verdict_figures *f, struct verdict_failure *x);
+/* A failure just found added to out (variant v, at point p, its value and detail) with its text. */
+void verdict_say_failure(const struct verdict_figures *f, struct verdict_scene *out,
+                         enum verdict_failure_kind kind, int v, int p, double value, double detail);
 
 /* out->warnings: one seed, a reference with too few samples, rankings whose neighbours differ by
    less than their spread, figures read beyond the measured points. */

@@ -55,18 +55,7 @@ int verdict_spectrum_compute(const struct verdict_figures *f, struct verdict_sce
         }
         if (at < 0)
             continue;
-        struct verdict_failure *x = &out->failures[out->n_failures++];
-        *x = (struct verdict_failure){
-            .kind = VERDICT_PATTERN, .variant = v, .point = at, .value = least, .detail = aniso};
-        verdict_say_failure(f, x);
+        verdict_say_failure(f, out, VERDICT_PATTERN, v, at, least, aniso);
     }
-    return 0;
-}
-
-int verdict_spectrum_structured(const struct verdict_scene *out, int v)
-{
-    for (int i = 0; i < out->n_failures; i++)
-        if (out->failures[i].kind == VERDICT_PATTERN && out->failures[i].variant == v)
-            return 1;
     return 0;
 }

@@ -10,7 +10,4 @@
    point where its peak is least likely by chance). 0, or -1 (out of memory). */
 int verdict_spectrum_compute(const struct verdict_figures *f, struct verdict_scene *out);
 
-/* Whether out flags variant v structured (its error is then never called the bluest). */
-int verdict_spectrum_structured(const struct verdict_scene *out, int v);
-
 #endif

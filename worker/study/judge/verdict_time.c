@@ -19,22 +19,6 @@ static double block_cost(const struct verdict_figures *f, int v, int p, int b)
     return f->cost_s ? f->cost_s[verdict_cost_at(f, v, p, b)] : f->cpu_s[verdict_at(f, v, p, b)];
 }
 
-/* The mean and the variance of that mean of n figures (NAN ones left out); the count used. */
-static int mean_var(const double *x, int n, double *mean, double *var_of_mean)
-{
-    double s = 0, ss = 0;
-    int m = 0;
-    for (int i = 0; i < n; i++)
-        if (isfinite(x[i]))
-            s += x[i], m++;
-    *mean = m ? s / m : NAN;
-    for (int i = 0; i < n; i++)
-        if (isfinite(x[i]))
-            ss += (x[i] - *mean) * (x[i] - *mean);
-    *var_of_mean = m > 1 ? ss / (m - 1) / m : NAN;
-    return m;
-}
-
 /* exp(mean) and exp(mean +- t975 x se) into v, lo, hi (lo = hi = v with one figure). */
 static void interval(double mean, double var_of_mean, double df, double *v, double *lo, double *hi)
 {
@@ -49,9 +33,7 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
     double *x = calloc((size_t)n + 1, sizeof *x);
     out->point_rel = calloc(per, sizeof(double)), out->point_rel_lo = calloc(per, sizeof(double));
     out->point_rel_hi = calloc(per, sizeof(double)), out->cost = calloc(per, sizeof(double));
-    out->cost_lo = calloc(per, sizeof(double)), out->cost_hi = calloc(per, sizeof(double));
-    if (!x || !out->point_rel || !out->point_rel_lo || !out->point_rel_hi || !out->cost || !out->cost_lo ||
-        !out->cost_hi) {
+    if (!x || !out->point_rel || !out->point_rel_lo || !out->point_rel_hi || !out->cost) {
         free(x);
         return -1;
     }
@@ -70,8 +52,8 @@ int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *o
                 double c = block_cost(f, v, p, b);
                 x[b] = c > 0 ? log(c) : NAN;
             }
-            m = mean_var(x, nb, &mean, &var);
-            interval(mean, var, m - 1, &out->cost[i], &out->cost_lo[i], &out->cost_hi[i]);
+            verdict_center(x, nb, VERDICT_RANK_MEAN, &mean, &var);
+            out->cost[i] = exp(mean);
         }
     free(x);
     return 0;
@@ -180,7 +162,6 @@ static void read_at(const struct verdict_figures *f, const struct verdict_scene 
 static double cost_var(const struct verdict_figures *f, int a, const double *ga, int b, const double *gb,
                        double *lb, double *df)
 {
-    int m = 0;
     for (int k = 0; k < blocks(f); k++) {
         double l = 0;
         for (int p = 0; p < f->n_points; p++) {
@@ -192,7 +173,7 @@ static double cost_var(const struct verdict_figures *f, int a, const double *ga,
         lb[k] = l;
     }
     double mean, var;
-    m = mean_var(lb, blocks(f), &mean, &var);
+    int m = verdict_center(lb, blocks(f), VERDICT_RANK_MEAN, &mean, &var);
     *df = m - 1;
     return m > 1 ? var : 0;
 }
@@ -236,7 +217,7 @@ int verdict_time_rank(const struct verdict_figures *f, const struct verdict_scen
         if (isfinite(most))
             at = fmin(at, most);
     }
-    r->at = exp(at), r->n = nv, r->log_scale = 1, r->pair_n = nv;
+    r->at = exp(at), r->n = nv, r->pair_n = nv;
     for (int v = 0; v < nv; v++) {
         rd[v] = (struct reading){.y = mem + (size_t)v * (ns + np), .g = mem + (size_t)v * (ns + np) + ns};
         if (isfinite(at))

@@ -11,7 +11,7 @@
    point (no line to read along: its relMSE x time is compared, plain Monte Carlo's slope -1). */
 #define VERDICT_TIME_ONE_POINT 1.25
 
-/* Fill out's per (variant, point) figures (point_rel*, cost*: allocated here) from f. 0 or -1 (out
+/* Fill out's per (variant, point) figures (point_rel*, cost: allocated here) from f. 0 or -1 (out
    of memory). */
 int verdict_time_points(const struct verdict_figures *f, struct verdict_scene *out);
 

@@ -1,6 +1,5 @@
 /* compare_expand: a compare job's reference and its combinations as ordinary jobs, with
    clear, stable image names. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,7 +10,6 @@
 #include "compare_spp.h"
 #include "base/fileio.h"
 #include "image/exr.h"
-#include "image/imgio.h"
 #include "job/job_limits.h"
 
 /* reference: settings rendered once per scene, an image path (one scene), or absent. */

@@ -2,6 +2,7 @@
    a key applied by name, and the short forms of keys in image names and labels. */
 #include "compare_keys.h"
 
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -73,7 +74,6 @@ void compare_keys_append(char *buf, size_t n, const char *key, const char *val)
     size_t len = strlen(buf);
     snprintf(buf + len, n - len, "%s%s%s", len ? "-" : "", short_key(key), val);
     for (char *p = buf + len; *p; p++)
-        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '.' ||
-              *p == '-' || *p == '_'))
+        if (!isalnum((unsigned char)*p) && !strchr(".-_", *p))
             *p = '_';
 }

@@ -6,13 +6,12 @@
 #include "compare_keys.h"
 #include "compare_mask.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/fileio.h"
-#include "job/job_limits.h"
 #include "job/outdir.h"
 #include "scenefile/scene_load.h"
 #include "scenefile/yget.h"
@@ -168,9 +167,7 @@ static int variant_label(struct compare_loading *L, yaml_node_t *var, int index,
         if (yget_string(d, lab, "label", &s, L->e) < 0)
             return -1;
         for (const char *p = s; *p; p++)
-            if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-                  *p == '-' || *p == '_') ||
-                p - s >= (long)n - 1)
+            if ((!isalnum((unsigned char)*p) && !strchr("-_", *p)) || p - s >= (long)n - 1)
                 return ydoc_fail(d, lab, L->e,
                                  "label: must be letters, digits, '-' or '_' (at most %d), got \"%.40s\"",
                                  (int)n - 1, s);

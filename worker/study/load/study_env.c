@@ -8,6 +8,7 @@
 
 #include "base/fileio.h"
 #include "base/hash.h"
+#include "html_text.h"
 
 /* The first line of /proc/cpuinfo starting with "model name", its value. */
 static void cpu_model(char *out, size_t n)
@@ -71,16 +72,12 @@ void study_env_json(struct json *j, const char *key, const struct study_env *env
 
 void study_env_html(struct sbuf *b, const struct study_env *env)
 {
-    sbuf_printf(b, "<h2>Reproducibility</h2>\n<p class=\"note\">Command <code>");
-    sbuf_escape(b, env->command[0] ? env->command : "(unknown)");
-    sbuf_printf(b, "</code>; worker ");
-    sbuf_escape(b, env->version);
-    sbuf_printf(b, " (program hash ");
-    sbuf_escape(b, env->program[0] ? env->program : "unknown");
-    sbuf_printf(b, "), built by ");
-    sbuf_escape(b, env->compiler[0] ? env->compiler : "an unknown compiler");
-    sbuf_printf(b, "; CPU ");
-    sbuf_escape(b, env->cpu[0] ? env->cpu : "unknown");
+    html_text(b, "<h2>Reproducibility</h2>\n<p class=\"note\">Command <code>",
+              env->command[0] ? env->command : "(unknown)", "</code>; worker ");
+    html_text(b, "", env->version, " (program hash ");
+    html_text(b, "", env->program[0] ? env->program : "unknown", "), built by ");
+    html_text(b, "", env->compiler[0] ? env->compiler : "an unknown compiler", "; CPU ");
+    html_text(b, "", env->cpu[0] ? env->cpu : "unknown", "");
     sbuf_printf(b,
                 ", %d cores, load average %.2f %.2f %.2f when the figures were written (CPU times move "
                 "with it).</p>\n",

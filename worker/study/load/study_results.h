@@ -22,13 +22,13 @@ struct study_result {
     int done, has_error;
     int skipped; /* its image and sidecar were current (same hash): not rendered again */
     double spp_mean, wall_s, cpu_s, sampler_share;
-    uint64_t spp_min, spp_max, nonfinite; /* nonfinite: samples dropped as NaN or infinite */
-    struct metrics error;                 /* in the scene's reference's domain (linear unless a PNG/PPM) */
-    struct metrics display_error;         /* on the PNG's 8-bit display values, for comparison */
-    double error_lowfreq;                 /* errspec_lowfreq against the reference (NaN: not measurable) */
-    double flip;                          /* mean FLIP (HDR on linear, LDR on 8-bit) against it */
-    struct sidecar_work work;             /* its render's work counts (the sidecar's "work") */
-    uint64_t hash;                        /* the resume hash it was rendered under (not a column) */
+    uint64_t nonfinite;           /* samples dropped as NaN or infinite */
+    struct metrics error;         /* in the scene's reference's domain (linear unless a PNG/PPM) */
+    struct metrics display_error; /* on the PNG's 8-bit display values, for comparison */
+    double error_lowfreq;         /* errspec_lowfreq against the reference (NaN: not measurable) */
+    double flip;                  /* mean FLIP (HDR on linear, LDR on 8-bit) against it */
+    struct sidecar_work work;     /* its render's work counts (the sidecar's "work") */
+    uint64_t hash;                /* the resume hash it was rendered under (not a column) */
 };
 
 /* The reference a scene's images were scored against, as run/ prepared or found it (the plan says

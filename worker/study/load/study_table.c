@@ -16,13 +16,12 @@
    summary.csv writes its settings from) but seed, threshold and light_threshold first (every file
    has them: checked as numbers, and a label always names the first), the others in the table's
    order, each read as "" from a file written before it had their columns. */
-#define N_SETTINGS STUDY_TABLE_SETTINGS_MAX
 static int point_settings(const struct render_spec_row **out)
 {
     int n, k = 2;
     const struct render_spec_row *r = render_spec_rows(&n);
     out[0] = render_spec_find("threshold"), out[1] = render_spec_find("light_threshold");
-    for (int i = 0; i < n && k < N_SETTINGS; i++)
+    for (int i = 0; i < n && k < STUDY_TABLE_SETTINGS_MAX; i++)
         if (&r[i] != out[0] && &r[i] != out[1] && strcmp(r[i].key, "seed"))
             out[k++] = &r[i];
     return k;
@@ -31,7 +30,7 @@ static int point_settings(const struct render_spec_row **out)
 struct study_table_row {
     int study; /* index into the table's studies */
     const char *scene, *variant, *image, *domain;
-    const char *setting[N_SETTINGS]; /* the settings columns' fields ("" when absent) */
+    const char *setting[STUDY_TABLE_SETTINGS_MAX]; /* the settings columns' fields ("" when absent) */
     double threshold, light_threshold;
     uint64_t seed;
     int figured; /* 0: spp, seconds or share no figure in range (res not done: left out, said) */
@@ -140,7 +139,7 @@ static int column(const struct verdict_csv *csv, const char *name)
 static int read_rows(struct study_table *t, const char *job, struct err *e)
 {
     const struct verdict_csv *csv = &t->csv;
-    int col[N_COLS], set[N_SETTINGS];
+    int col[N_COLS], set[STUDY_TABLE_SETTINGS_MAX];
     t->n_settings = point_settings(t->settings);
     for (int k = 0; k < N_COLS; k++)
         if ((col[k] = column(csv, col_names[k])) < 0 && k != C_STUDY && k != C_LOWFREQ)

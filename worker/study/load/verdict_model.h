@@ -34,8 +34,7 @@ struct verdict_entry {
 /* Best first. status: CLEAR when one variant alone has rank 1, TIE when several share it but some
    variant is beaten, INCONCLUSIVE when none beats another (or there is one seed: no spread). */
 struct verdict_ranking {
-    double at;     /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
-    int log_scale; /* values compared as logarithms (relMSE: a ratio); slopes as they are */
+    double at; /* the common samples per pixel or CPU seconds ranked at; NAN for slopes */
     enum verdict_status status;
     double p_cut;   /* the largest Welch p-value Holm's procedure rejects: pairs at or below it are
                        separated; -1 when none is */
@@ -98,8 +97,8 @@ struct verdict_scene {
        and its 95% confidence interval (Student's t on the mean log); NAN unknown. */
     double *point_rel, *point_rel_lo, *point_rel_hi;
     /* Per (variant, point): the CPU seconds one image costs, the cost design's geometric mean over
-       blocks, with its 95% confidence interval. */
-    double *cost, *cost_lo, *cost_hi;
+       blocks. */
+    double *cost;
     /* The error's spectrum per (variant, point, ring): each ring's power over the mean power (white
        noise 1), the seeds' geometric mean and its +- one standard deviation band; per (variant,
        point): the seeds' pooled spectrum's peak chance bound and anisotropy (errspec.h). NAN: not
@@ -135,6 +134,13 @@ struct verdict_study {
     char machines[VERDICT_TEXT_MAX]; /* the CPU models its images were rendered on, "; "-joined, when
                                         more than one (study_machines.h): equal CPU time mixes them */
 };
+
+/* Variant v's entry in r, or NULL when r does not rank it. */
+const struct verdict_entry *verdict_entry_of(const struct verdict_ranking *r, int v);
+
+/* Variant v's failure of that kind in s, or NULL (NULL too when s is). */
+const struct verdict_failure *verdict_failure_of(const struct verdict_scene *s, int v,
+                                                 enum verdict_failure_kind kind);
 
 /* Free what a verdict's arrays hold (the struct emptied; each accepts an empty one). */
 void verdict_look_free(struct verdict_look *l);

@@ -7,6 +7,7 @@
 
 #include "base/hash.h"
 #include "base/sbuf.h"
+#include "study/load/html_text.h"
 
 #define PANEL_W 480
 #define PANEL_H 340
@@ -98,18 +99,41 @@ static double py(const struct frame *f, double v)
     return f->top + (f->r.y1 - log10(v)) / (f->r.y1 - f->r.y0) * f->h;
 }
 
-/* "1e-5", "0.02", "100", "5e4": a tick label for m x 10^e. */
-static void tick_label(int m, int e, char *buf, size_t n)
+/* The tick label of m x 10^e ("1e-5", "0.02", "100", "5e4") at `at` along the x axis (below it) or
+   the y axis (left of it). */
+static void tick(struct sbuf *b, const struct frame *f, int y_axis, double at, int m, int e, const char *fill)
 {
+    char lab[32];
     if (e >= -2 && e <= 3)
-        snprintf(buf, n, "%g", m * pow(10, e));
+        snprintf(lab, sizeof lab, "%g", m * pow(10, e));
     else
-        snprintf(buf, n, "%de%d", m, e);
+        snprintf(lab, sizeof lab, "%de%d", m, e);
+    sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\"%s>%s</text>\n", y_axis ? f->left - 6 : at,
+                y_axis ? at + 4 : f->top + f->h + 16, y_axis ? "end" : "middle", fill, lab);
 }
 
 /* An axis spanning at most this many decades also labels 2 and 5 times each decade: with only
    its ends labelled, a value in between could not be read. */
 #define MINOR_LABEL_DECADES 2
+
+/* One axis's grid (across the frame) and tick labels: x along the bottom, or y up the left. */
+static void axis(struct sbuf *b, const struct frame *f, int y_axis)
+{
+    double lo = y_axis ? f->r.y0 : f->r.x0, hi = y_axis ? f->r.y1 : f->r.x1;
+    int decades = (int)(hi - lo);
+    for (int e = (int)lo; e <= (int)hi; e++) {
+        for (int m = 1; m <= 9 && e < (int)hi; m++) { /* minor grid at 2..9 x 10^e */
+            double at = y_axis ? py(f, m * pow(10, e)) : px(f, m * pow(10, e));
+            sbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n",
+                        y_axis ? f->left : at, y_axis ? at : f->top, y_axis ? f->left + f->w : at,
+                        y_axis ? at : f->top + f->h, m == 1 ? "#bbbbbb" : "#eeeeee");
+            if ((m == 2 || m == 5) && decades <= MINOR_LABEL_DECADES)
+                tick(b, f, y_axis, at, m, e, " fill=\"#666666\"");
+        }
+        if (decades <= 8 || e % 2 == 0)
+            tick(b, f, y_axis, y_axis ? py(f, pow(10, e)) : px(f, pow(10, e)), 1, e, "");
+    }
+}
 
 static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel *p)
 {
@@ -117,49 +141,14 @@ static void axes(struct sbuf *b, const struct frame *f, const struct chart_panel
         b,
         "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#ffffff\" stroke=\"#444444\"/>\n",
         f->left, f->top, f->w, f->h);
-    char lab[32];
-    int dx = (int)(f->r.x1 - f->r.x0), dy = (int)(f->r.y1 - f->r.y0);
-    for (int e = (int)f->r.x0; e <= (int)f->r.x1; e++) {
-        for (int m = 1; m <= 9 && e < (int)f->r.x1; m++) { /* minor grid at 2..9 x 10^e */
-            double x = px(f, m * pow(10, e));
-            sbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n", x,
-                        f->top, x, f->top + f->h, m == 1 ? "#bbbbbb" : "#eeeeee");
-            if ((m == 2 || m == 5) && dx <= MINOR_LABEL_DECADES) {
-                tick_label(m, e, lab, sizeof lab);
-                sbuf_printf(b,
-                            "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" fill=\"#666666\">%s</text>\n",
-                            x, f->top + f->h + 16, lab);
-            }
-        }
-        double x = px(f, pow(10, e));
-        tick_label(1, e, lab, sizeof lab);
-        if (dx <= 8 || e % 2 == 0)
-            sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", x,
-                        f->top + f->h + 16, lab);
-    }
-    for (int e = (int)f->r.y0; e <= (int)f->r.y1; e++) {
-        for (int m = 1; m <= 9 && e < (int)f->r.y1; m++) {
-            double y = py(f, m * pow(10, e));
-            sbuf_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n", f->left,
-                        y, f->left + f->w, y, m == 1 ? "#bbbbbb" : "#eeeeee");
-            if ((m == 2 || m == 5) && dy <= MINOR_LABEL_DECADES) {
-                tick_label(m, e, lab, sizeof lab);
-                sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#666666\">%s</text>\n",
-                            f->left - 6, y + 4, lab);
-            }
-        }
-        tick_label(1, e, lab, sizeof lab);
-        if (dy <= 8 || e % 2 == 0)
-            sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%s</text>\n", f->left - 6,
-                        py(f, pow(10, e)) + 4, lab);
-    }
+    axis(b, f, 0);
+    axis(b, f, 1);
     sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", f->left + f->w / 2,
                 f->top + f->h + 36);
     sbuf_escape(b, p->x_label);
     sbuf_printf(b, "</text>\n<text transform=\"translate(%.1f %.1f) rotate(-90)\" text-anchor=\"middle\">",
                 f->left - 54, f->top + f->h / 2);
-    sbuf_escape(b, p->y_label);
-    sbuf_printf(b, "</text>\n");
+    html_text(b, "", p->y_label, "</text>\n");
 }
 
 /* Dotted lines of each slope through the highest data point (the leftmost of equals), labelled at
@@ -261,8 +250,7 @@ static void legend(struct sbuf *b, double x, double y, int legend_w, const struc
             b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"3\"/>\n",
             x + 8, ly - 4, x + 28, ly - 4, series_color(p, s));
         sbuf_printf(b, "<text x=\"%.1f\" y=\"%.1f\">", x + LEGEND_TEXT_X, ly);
-        sbuf_escape(b, p->series[s].name);
-        sbuf_printf(b, "</text>\n");
+        html_text(b, "", p->series[s].name, "</text>\n");
     }
     double ly = y + 18 + 18 * p->n_series;
     if (p->n_slopes > 0) {
@@ -289,16 +277,14 @@ static void panel(struct sbuf *b, const struct chart_panel *p, double ox, double
                       PANEL_H - MARGIN_T - MARGIN_B,
                       {0, 0, 0, 0}};
     sbuf_printf(b, "<g>\n<text x=\"%.1f\" y=\"%.1f\" font-weight=\"bold\">", f.left, oy + 20);
-    sbuf_escape(b, p->title);
-    sbuf_printf(b, "</text>\n");
+    html_text(b, "", p->title, "</text>\n");
     if (!data_range(p, &f.r)) {
         sbuf_printf(b,
                     "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#fafafa\" "
                     "stroke=\"#444444\"/>\n"
                     "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">",
                     f.left, f.top, f.w, f.h, f.left + f.w / 2, f.top + f.h / 2);
-        sbuf_escape(b, p->empty_note ? p->empty_note : "no data");
-        sbuf_printf(b, "</text>\n</g>\n");
+        html_text(b, "", p->empty_note ? p->empty_note : "no data", "</text>\n</g>\n");
         return;
     }
     axes(b, &f, p);
@@ -320,8 +306,7 @@ char *chart_svg(const char *title, const struct chart_panel *panels, int n, int 
         "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%d\" height=\"%d\" fill=\"#ffffff\"/>\n"
         "<text x=\"12\" y=\"22\" font-size=\"15\" font-weight=\"bold\">",
         w, h, w, h, w, h);
-    sbuf_escape(&b, title);
-    sbuf_printf(&b, "</text>\n");
+    html_text(&b, "", title, "</text>\n");
     for (int i = 0; i < n; i++) {
         panel(&b, &panels[i], (i % cols) * PANEL_W, TITLE_H + (i / cols) * PANEL_H);
         if (i % cols == 0 && panels[i].n_series > 0)

@@ -9,6 +9,7 @@
 #include "base/sbuf.h"
 #include "report_chart.h"
 #include "report.h"
+#include "study/load/html_text.h"
 #include "study/load/verdict_csv.h"
 
 /* Largest study summary.csv read back: 4096 rows of a few hundred bytes each, with room. */
@@ -89,20 +90,6 @@ char *compare_suite_chart_svg(const struct compare_suite *s)
     return sbuf_take(&b);
 }
 
-/* "40 images = 2 scenes x 5 variants x 2 sweep points (sweep: threshold) x 2 seeds" */
-static void study_shape(struct sbuf *b, const struct compare *c)
-{
-    sbuf_printf(b, "%d image%s = %d scene%s x %d variant%s x %d sweep point%s", c->n_items,
-                sbuf_plural(c->n_items), c->n_scenes, sbuf_plural(c->n_scenes), c->n_variants,
-                sbuf_plural(c->n_variants), c->n_points, sbuf_plural(c->n_points));
-    if (c->sweep_keys[0]) {
-        sbuf_printf(b, " (sweep: ");
-        sbuf_escape(b, c->sweep_keys);
-        sbuf_printf(b, ")");
-    }
-    sbuf_printf(b, " x %d seed%s", c->n_seeds, sbuf_plural(c->n_seeds));
-}
-
 /* One study's section: its name, its shape, a link to its report, its chart. */
 static int study_section(struct sbuf *b, const struct compare *c, struct err *e)
 {
@@ -110,14 +97,10 @@ static int study_section(struct sbuf *b, const struct compare *c, struct err *e)
     char *svg = report_chart_svg(c);
     if (!svg)
         return err_set(e, NULL, 0, 0, "out of memory drawing %s's chart", c->name);
-    sbuf_printf(b, "<h2 id=\"study-");
-    sbuf_escape(b, c->name);
-    sbuf_printf(b, "\">");
-    sbuf_escape(b, c->name);
-    sbuf_printf(b, "</h2>\n<p class=\"note\">Study ");
-    sbuf_escape(b, c->path);
-    sbuf_printf(b, ": ");
-    study_shape(b, c);
+    html_text(b, "<h2 id=\"study-", c->name, "\">");
+    html_text(b, "", c->name, "</h2>\n<p class=\"note\">Study ");
+    html_text(b, "", c->path, ": ");
+    report_study_shape(b, c);
     snprintf(href, sizeof href, "%s/report.html", c->name);
     sbuf_printf(b, ". Its own page, with every image, crops, error maps and the table: ");
     report_link(b, href, href);
@@ -131,14 +114,8 @@ static int study_section(struct sbuf *b, const struct compare *c, struct err *e)
 char *compare_suite_report_html(const struct compare_suite *s, const struct verdict_study *v, struct err *e)
 {
     struct sbuf b = {0};
-    sbuf_printf(&b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
-    sbuf_escape(&b, s->name);
-    sbuf_printf(&b, ": samplers compared in %d studies</title><style>%s</style></head><body>\n<h1>",
-                s->n_studies, report_style);
-    sbuf_escape(&b, s->name);
-    sbuf_printf(&b,
-                ": which sampler gives the better picture for the time spent</h1>\n<p class=\"note\">Suite ");
-    sbuf_escape(&b, s->path);
+    report_head(&b, s->name, s->n_studies);
+    html_text(&b, "<p class=\"note\">Suite ", s->path, "");
     sbuf_printf(&b, ": %d images in %d studies, each an ordinary compare job with its own folder and page:",
                 s->n_items, s->n_studies);
     for (int i = 0; i < s->n_studies; i++) {
@@ -147,13 +124,10 @@ char *compare_suite_report_html(const struct compare_suite *s, const struct verd
         sbuf_printf(&b, "%s", i ? ", " : " ");
         report_link(&b, href, s->studies[i]->name);
     }
-    sbuf_printf(&b, ". Every study's figures are in ");
-    report_link(&b, "summary.csv", "summary.csv");
-    sbuf_printf(&b, " (its first column names the study), their verdict in ");
-    report_link(&b, "verdict.json", "verdict.json");
-    sbuf_printf(&b, " and their charts in ");
-    report_link(&b, "chart.svg", "chart.svg");
-    sbuf_printf(&b, ".</p>\n");
+    sbuf_printf(&b,
+                ". Every study's figures are in <a href=\"summary.csv\">summary.csv</a> (its first column "
+                "names the study), their verdict in <a href=\"verdict.json\">verdict.json</a> and their "
+                "charts in <a href=\"chart.svg\">chart.svg</a>.</p>\n");
     verdict_html(&b, v, s->n_studies);
     for (int i = 0; i < s->n_studies; i++)
         if (study_section(&b, s->studies[i], e) < 0) {

@@ -1,6 +1,7 @@
 /* report: the compare job's HTML page: chart, images side by side, crops, error maps, table. */
 #include "report.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,16 +10,15 @@
 #include "study/judge/compare_stats.h"
 #include "report_chart.h"
 #include "report_stability.h"
-#include "base/fileio.h"
-#include "image/imgio.h"
 #include "report_closeup.h"
 #include "image/errmap.h"
 #include "report_image.h"
 #include "report_view.h"
 #include "base/sbuf.h"
+#include "study/load/html_text.h"
 #include "verdict_out.h"
 
-const char report_style[] =
+static const char report_style[] =
     "body{font-family:sans-serif;margin:16px;color:#222}p,ul,h3{max-width:1180px}"
     "h1{font-size:22px}h2{font-size:19px;border-top:2px solid #ddd;padding-top:10px}h3{font-size:15px}"
     ".row{display:flex;flex-wrap:wrap;gap:8px;align-items:flex-start;margin-bottom:8px}"
@@ -46,24 +46,22 @@ struct grid {
 static int grid_figure(struct sbuf *b, const struct grid *g, int v, int p, int k, struct err *e)
 {
     const struct compare *c = g->c;
-    int s = g->s, zoom = g->zoom;
-    const char *dir = g->dir, *ab = g->ab;
+    int s = g->s;
     const struct compare_item *it = &c->items[compare_index(c, s, v, p, k)];
     const struct study_result *r = &c->results.rows[compare_index(c, s, v, p, k)];
     char path[4096], alt[256], slot[32];
     uint8_t *png;
     size_t len;
-    snprintf(path, sizeof path, "%s/%s", dir, it->job.output);
+    snprintf(path, sizeof path, "%s/%s", g->dir, it->job.output);
     if (report_view_read_png(path, &png, &len, NULL, e) < 0)
         return -1;
     snprintf(alt, sizeof alt, "%s %s", c->variants[v], it->job.output);
     snprintf(slot, sizeof slot, "g%dv%d", p, v);
-    struct report_view_img view = {zoom, NULL, ab, alt};
+    struct report_view_img view = {g->zoom, NULL, g->ab, alt};
     report_view_figure(b, k, slot);
     report_view_png(b, png, len, c->scenes[s].width, c->scenes[s].height, &view);
     free(png);
-    sbuf_printf(b, "<figcaption><b>");
-    sbuf_escape(b, c->variants[v]);
+    html_text(b, "<figcaption><b>", c->variants[v], "");
     sbuf_printf(b, "</b> t=%g: %.0f spp", it->job.spec.pixel.threshold, r->spp_mean);
     if (r->has_error)
         sbuf_printf(b, ", relMSE %.3g", r->error.relmse);
@@ -80,9 +78,7 @@ static int image_grid(struct sbuf *b, const struct compare *c, int s, const char
     snprintf(ab, sizeof ab, "ref%d", s);
     const struct grid g = {c, s, dir, zoom, has_ref ? ab : NULL};
     for (int p = 0; p < c->n_points; p++) {
-        sbuf_printf(b, "<div class=\"row\"><div class=\"pt\">");
-        sbuf_escape(b, c->points[p]);
-        sbuf_printf(b, ", ");
+        html_text(b, "<div class=\"row\"><div class=\"pt\">", c->points[p], ", ");
         for (int k = 0; k < c->n_seeds; k++)
             sbuf_printf(b, "<span class=\"sd\" data-seed=\"%d\"%s>seed %llu</span>", k, k ? " hidden" : "",
                         (unsigned long long)c->seeds[k]);
@@ -140,8 +136,7 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     if (has_ref && !rr->ref)
         return err_set(e, NULL, 0, 0, "%s: the reference of %s was not prepared", c->name, cs->name);
     int zoom = report_image_zoom(cs->width, REPORT_IMAGE_SHOW_PX);
-    sbuf_printf(b, "<section class=\"scene\"><h2>Scene ");
-    sbuf_escape(b, cs->name);
+    html_text(b, "<section class=\"scene\"><h2>Scene ", cs->name, "");
     sbuf_printf(b, " (%dx%d)</h2>\n", cs->width, cs->height);
     report_view_controls(b, c, zoom, has_ref);
     if (has_ref && reference_figure(b, cs, rr, s, zoom, e) < 0)
@@ -164,31 +159,43 @@ static int scene_section(struct sbuf *b, const struct compare *c, int s, const c
     sbuf_printf(b, "<h3>Stability</h3>\n<ul>\n");
     for (int v = 0; v < c->n_variants; v++) {
         char *line = report_stability(c, s, v);
-        sbuf_printf(b, "<li><b>");
-        sbuf_escape(b, c->variants[v]);
-        sbuf_printf(b, "</b>: ");
-        sbuf_escape(b, line ? line : "out of memory");
-        sbuf_printf(b, "</li>\n");
+        html_text(b, "<li><b>", c->variants[v], "</b>: ");
+        html_text(b, "", line ? line : "out of memory", "</li>\n");
         free(line);
     }
     sbuf_printf(b, "</ul>\n</section>\n");
     return 0;
 }
 
-/* A relative link from the page: href with every byte but letters, digits and "-._~/"
-   percent-encoded, so a scene file's name with a quote, '#' or '%' still resolves. */
 void report_link(struct sbuf *b, const char *href, const char *text)
 {
     sbuf_printf(b, "<a href=\"");
     for (const unsigned char *p = (const unsigned char *)href; *p; p++)
-        if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-            strchr("-._~/", *p))
+        if (isalnum(*p) || strchr("-._~/", *p))
             sbuf_printf(b, "%c", *p);
         else
             sbuf_printf(b, "%%%02X", *p);
-    sbuf_printf(b, "\">");
-    sbuf_escape(b, text);
-    sbuf_printf(b, "</a>");
+    html_text(b, "\">", text, "</a>");
+}
+
+void report_head(struct sbuf *b, const char *name, int n_studies)
+{
+    html_text(b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>", name,
+              ": samplers compared");
+    if (n_studies > 0)
+        sbuf_printf(b, " in %d studies", n_studies);
+    sbuf_printf(b, "</title><style>%s</style></head><body>\n<h1>", report_style);
+    html_text(b, "", name, ": which sampler gives the better picture for the time spent</h1>\n");
+}
+
+void report_study_shape(struct sbuf *b, const struct compare *c)
+{
+    sbuf_printf(b, "%d image%s = %d scene%s x %d variant%s x %d sweep point%s", c->n_items,
+                sbuf_plural(c->n_items), c->n_scenes, sbuf_plural(c->n_scenes), c->n_variants,
+                sbuf_plural(c->n_variants), c->n_points, sbuf_plural(c->n_points));
+    if (c->sweep_keys[0])
+        html_text(b, " (sweep: ", c->sweep_keys, ")");
+    sbuf_printf(b, " x %d seed%s", c->n_seeds, sbuf_plural(c->n_seeds));
 }
 
 static void table(struct sbuf *b, const struct compare *c)
@@ -210,10 +217,8 @@ static void table(struct sbuf *b, const struct compare *c)
     for (int i = 0; i < c->n_items; i++) {
         const struct compare_item *it = &c->items[i];
         const struct study_result *r = &c->results.rows[i];
-        sbuf_printf(b, "<tr><td class=\"l\">");
-        sbuf_escape(b, c->scenes[it->scene].name);
-        sbuf_printf(b, "</td><td class=\"l\">");
-        sbuf_escape(b, c->variants[it->variant]);
+        html_text(b, "<tr><td class=\"l\">", c->scenes[it->scene].name, "</td><td class=\"l\">");
+        html_text(b, "", c->variants[it->variant], "");
         sbuf_printf(
             b, "</td><td>%g</td><td>%g</td><td>%llu</td><td>%.0f</td><td>%.3f</td><td>%.3f</td><td>%.3f</td>",
             it->job.spec.pixel.threshold, it->job.spec.light.threshold, (unsigned long long)it->job.spec.seed,
@@ -246,46 +251,29 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
         err_set(e, NULL, 0, 0, "out of memory drawing the chart");
         return NULL;
     }
-    sbuf_printf(&b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
-    sbuf_escape(&b, c->name);
-    sbuf_printf(&b, ": samplers compared</title><style>%s</style></head><body>\n<h1>", report_style);
-    sbuf_escape(&b, c->name);
-    sbuf_printf(&b, ": which sampler gives the better picture for the time spent</h1>\n");
+    report_head(&b, c->name, 0);
     if (c->has_verdict)
         verdict_html(&b, &c->verdict, 1);
-    sbuf_printf(&b, "<h2>What was measured</h2>\n<p class=\"note\">Job ");
-    sbuf_escape(&b, c->path);
-    sbuf_printf(&b, ": %d image%s = %d scene%s x %d variant%s x %d sweep point%s", c->n_items,
-                c->n_items == 1 ? "" : "s", c->n_scenes, c->n_scenes == 1 ? "" : "s", c->n_variants,
-                c->n_variants == 1 ? "" : "s", c->n_points, c->n_points == 1 ? "" : "s");
-    if (c->sweep_keys[0]) {
-        sbuf_printf(&b, " (sweep: ");
-        sbuf_escape(&b, c->sweep_keys);
-        sbuf_printf(&b, ")");
-    }
+    html_text(&b, "<h2>What was measured</h2>\n<p class=\"note\">Job ", c->path, ": ");
+    report_study_shape(&b, c);
     sbuf_printf(
-        &b,
-        " x %d seed%s. Errors are in linear radiance: relMSE is the mean of (image - reference)^2 / "
-        "(reference^2 + 0.01) over the renders' unclipped float values (each PNG's float image is the "
-        ".exr beside it) against each scene's reference; lower is better. Measured on the 8-bit PNGs "
-        "instead, the clip at white would hide the lights, their reflections and fireflies, and the "
-        "gamma curve and 1/255 steps would weight dark pixels more and set a floor (summary.csv keeps "
-        "those figures as relmse_8bit). The reference's own noise sets a floor under every curve (the "
-        "verdict measures it from the "
-        "reference's two halves and takes it out: reference_relmse). Wall "
-        "time is one image's render on this machine, so it moves with the machine's load. Every image "
-        "and its JSON sidecar are beside this page (linked from the table at the end), with ",
-        c->n_seeds, c->n_seeds == 1 ? "" : "s");
-    report_link(&b, "summary.csv", "summary.csv");
-    sbuf_printf(&b, " (the table's figures) and ");
-    report_link(&b, "chart.svg", "chart.svg");
-    sbuf_printf(&b, ".</p>\n");
+        &b, ". Errors are in linear radiance: relMSE is the mean of (image - reference)^2 / "
+            "(reference^2 + 0.01) over the renders' unclipped float values (each PNG's float image is the "
+            ".exr beside it) against each scene's reference; lower is better. Measured on the 8-bit PNGs "
+            "instead, the clip at white would hide the lights, their reflections and fireflies, and the "
+            "gamma curve and 1/255 steps would weight dark pixels more and set a floor (summary.csv keeps "
+            "those figures as relmse_8bit). The reference's own noise sets a floor under every curve (the "
+            "verdict measures it from the "
+            "reference's two halves and takes it out: reference_relmse). Wall "
+            "time is one image's render on this machine, so it moves with the machine's load. Every image "
+            "and its JSON sidecar are beside this page (linked from the table at the end), with <a "
+            "href=\"summary.csv\">summary.csv</a> (the table's figures) and <a "
+            "href=\"chart.svg\">chart.svg</a>.</p>\n");
     for (int s = 0; s < c->n_scenes; s++)
         if (c->scenes[s].ref_kind != COMPARE_REF_NONE && c->scenes[s].ref_domain == IMG_DISPLAY8) {
-            sbuf_printf(&b, "<p class=\"note\"><b>Scene ");
-            sbuf_escape(&b, c->scenes[s].name);
-            sbuf_printf(&b, "'s reference is an 8-bit PNG/PPM: its errors are measured on 8-bit display "
-                            "values, not in linear radiance.</b></p>\n");
+            html_text(&b, "<p class=\"note\"><b>Scene ", c->scenes[s].name,
+                      "'s reference is an 8-bit PNG/PPM: its errors are measured on 8-bit display "
+                      "values, not in linear radiance.</b></p>\n");
         }
     const char *body = strstr(svg, "<svg"); /* inline: drop the XML declaration */
     sbuf_printf(&b, "<h2>Speed against accuracy</h2>\n%s\n", body ? body : svg);
@@ -298,7 +286,7 @@ char *report_html(const struct compare *c, const char *dir, struct err *e)
     sbuf_printf(&b, "<h2>Every image</h2>\n");
     table(&b, c);
     study_env_html(&b, &c->env);
-    sbuf_printf(&b, "<script>%s</script>\n</body></html>\n", report_view_script());
+    sbuf_printf(&b, "<script>%s</script>\n</body></html>\n", report_view_script);
     char *html = sbuf_take(&b);
     if (!html)
         err_set(e, NULL, 0, 0, "out of memory writing the report");

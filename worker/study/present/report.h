@@ -14,8 +14,12 @@
    Returns a malloc'd string (caller frees), or NULL with e filled. */
 char *report_html(const struct compare *c, const char *dir, struct err *e);
 
-/* The page's CSS, for the other pages of a study (a suite's report.html). */
-extern const char report_style[];
+/* A page's opening up to its <h1> (the page's CSS in its head) for a study, or a suite of
+   n_studies (> 0), named name. */
+void report_head(struct sbuf *b, const char *name, int n_studies);
+
+/* "40 images = 2 scenes x 5 variants x 2 sweep points (sweep: threshold) x 2 seeds" */
+void report_study_shape(struct sbuf *b, const struct compare *c);
 
 /* <a href="href">text</a>, href relative to the page with every byte but letters, digits and
    "-._~/" percent-encoded (a file name with a quote, '#' or '%' still resolves), text escaped. */

@@ -46,28 +46,22 @@ char *report_chart_svg(const struct compare *c)
             by_time[v] = (struct chart_series){c->variants[v], np, cpu + k0, rel + k0, l, h};
             by_spp[v] = (struct chart_series){c->variants[v], np, spp + k0, rel + k0, l, h};
         }
-        snprintf(titles[2 * s], sizeof titles[0], "%s: error against CPU time", c->scenes[s].name);
-        snprintf(titles[2 * s + 1], sizeof titles[0], "%s: error against samples", c->scenes[s].name);
         const char *note =
             c->scenes[s].ref_kind == COMPARE_REF_NONE ? "no reference given: no error to chart" : NULL;
-        pan[2 * s] = (struct chart_panel){titles[2 * s],
-                                          "CPU time per image (s, log)",
-                                          "relMSE (eps 0.01, log)",
-                                          note,
-                                          by_time,
-                                          ns,
-                                          slopes,
-                                          2,
-                                          "whisker: 95% CI"};
-        pan[2 * s + 1] = (struct chart_panel){titles[2 * s + 1],
-                                              "samples per pixel (mean, log)",
-                                              "relMSE (eps 0.01, log)",
-                                              note,
-                                              by_spp,
-                                              ns,
-                                              slopes,
-                                              2,
-                                              "whisker: 95% CI"};
+        for (int k = 0; k < 2; k++) { /* against CPU time, then against samples */
+            snprintf(titles[2 * s + k], sizeof titles[0], "%s: error against %s", c->scenes[s].name,
+                     k ? "samples" : "CPU time");
+            pan[2 * s + k] =
+                (struct chart_panel){titles[2 * s + k],
+                                     k ? "samples per pixel (mean, log)" : "CPU time per image (s, log)",
+                                     "relMSE (eps 0.01, log)",
+                                     note,
+                                     k ? by_spp : by_time,
+                                     ns,
+                                     slopes,
+                                     2,
+                                     "whisker: 95% CI"};
+        }
     }
     if (c->n_seeds > 1)
         snprintf(title, sizeof title,

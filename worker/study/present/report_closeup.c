@@ -10,6 +10,7 @@
 #include "image/imgio.h"
 #include "report_image.h"
 #include "report_view.h"
+#include "study/load/html_text.h"
 
 /* Sweep point p of scene s of c, its renders read from dir, and their images decoded:
    imgs[v * n_seeds + k]. */
@@ -53,8 +54,7 @@ static int point_load(struct point_imgs *pi, struct err *e)
 
 static void caption(struct sbuf *b, const struct compare *c, int v, int k)
 {
-    sbuf_printf(b, "<figcaption><b>");
-    sbuf_escape(b, c->variants[v]);
+    html_text(b, "<figcaption><b>", c->variants[v], "");
     sbuf_printf(b, "</b>, seed %llu</figcaption></figure>\n", (unsigned long long)c->seeds[k]);
 }
 
@@ -118,15 +118,13 @@ static int worst_window(const struct point_imgs *pi, const struct rgb8 *ref, int
 
 static int crops(struct sbuf *b, const struct point_imgs *pi, const struct rgb8 *ref, struct err *e)
 {
-    const struct compare *c = pi->c;
-    int p = pi->p;
     int w = ref->w, h = ref->h, x0, y0;
     int side = (w < h ? w : h) / 5;
     side = side < 8 ? (w < h ? w : h) : side > 64 ? 64 : side;
     if (worst_window(pi, ref, side, &x0, &y0, e) < 0)
         return -1;
     sbuf_printf(b, "<h3>%dx nearest-neighbour crops at ", report_image_zoom(side, REPORT_IMAGE_CROP_PX));
-    sbuf_escape(b, c->points[p]);
+    sbuf_escape(b, pi->c->points[pi->p]);
     sbuf_printf(
         b,
         ": pixels %d..%d x %d..%d, the window where the images (every seed's) differ most from the "
@@ -150,8 +148,7 @@ static int map_floats(const char *dir, const char *output, const struct rgb8 *im
 
 static void maps_heading(struct sbuf *b, const struct compare *c, int s, int p, int linear, int zoom)
 {
-    sbuf_printf(b, "<h3>Error maps at ");
-    sbuf_escape(b, c->points[p]);
+    html_text(b, "<h3>Error maps at ", c->points[p], "");
     sbuf_printf(
         b,
         ", at %dx: each pixel's relative error against the reference %s, its relMSE term (the mean over "
@@ -201,7 +198,6 @@ static int maps(struct sbuf *b, const struct point_imgs *pi, const struct rgbf *
 {
     const struct compare *c = pi->c;
     int s = pi->s, p = pi->p;
-    const char *dir = pi->dir;
     int zoom = report_image_zoom(reff->w, REPORT_IMAGE_SHOW_PX);
     maps_heading(b, c, s, p, linear, zoom);
     if (report_view_scale(b, e) < 0)
@@ -215,7 +211,7 @@ static int maps(struct sbuf *b, const struct point_imgs *pi, const struct rgbf *
         char slot[32];
         snprintf(slot, sizeof slot, "m%dv%d", p, v);
         report_view_figure(b, k, slot);
-        int rc = map_floats(dir, c->items[compare_index(c, s, v, p, k)].job.output, &pi->imgs[i], linear,
+        int rc = map_floats(pi->dir, c->items[compare_index(c, s, v, p, k)].job.output, &pi->imgs[i], linear,
                             &img, e) < 0 ||
                  errmap_make(reff, &img, &map, e) < 0 || outlined(b, &map, c->scenes[s].mask, &view, e) < 0 ||
                  flip_figure(b, reff, &img, c->scenes[s].mask, linear, &view, e) < 0;

@@ -7,23 +7,6 @@
 #include "base/sbuf.h"
 #include "study/judge/compare_stats.h"
 
-static const struct verdict_entry *slope_of(const struct verdict_scene *vs, int v)
-{
-    for (int i = 0; vs && i < vs->by_slope.n; i++)
-        if (vs->by_slope.e[i].variant == v)
-            return &vs->by_slope.e[i];
-    return NULL;
-}
-
-static const struct verdict_failure *failure_of(const struct verdict_scene *vs, int v,
-                                                enum verdict_failure_kind kind)
-{
-    for (int i = 0; vs && i < vs->n_failures; i++)
-        if (vs->failures[i].variant == v && vs->failures[i].kind == kind)
-            return &vs->failures[i];
-    return NULL;
-}
-
 /* The verdict's figure of (v, p): the geometric mean over seeds, the reference's noise taken out. */
 static double gm(const struct verdict_scene *vs, int v, int p)
 {
@@ -43,12 +26,12 @@ static void convergence(struct sbuf *b, const struct compare *c, const struct ve
             sbuf_printf(b, "%s%s: %.3g", i ? ", " : "", c->points[order[i]], gm(vs, v, order[i]));
         return;
     }
-    const struct verdict_entry *e = slope_of(vs, v);
+    const struct verdict_entry *e = verdict_entry_of(&vs->by_slope, v);
     if (e && isfinite(e->value) && isfinite(e->se))
         sbuf_printf(b, "; relMSE ~ spp^%.2f (per-seed fits, standard error %.2f)", e->value, e->se);
     else if (e && isfinite(e->value)) /* one seed: one fit, no spread */
         sbuf_printf(b, "; relMSE ~ spp^%.2f (one seed's fit)", e->value);
-    const struct verdict_failure *x = failure_of(vs, v, VERDICT_STALLS);
+    const struct verdict_failure *x = verdict_failure_of(vs, v, VERDICT_STALLS);
     if (x)
         sbuf_printf(b, "; error stops falling at %s (local slope %.2f)", c->points[x->point], x->value);
     else
@@ -72,9 +55,9 @@ static void repeated(struct sbuf *b, const struct compare *c, const struct verdi
         if (isfinite(bias) && share > 0)
             sbuf_printf(b, " (bias %.0f%%, pattern %.0f%%)", 100 * bias, 100 * (share - bias));
     }
-    if (failure_of(vs, v, VERDICT_STRUCTURED))
+    if (verdict_failure_of(vs, v, VERDICT_STRUCTURED))
         sbuf_printf(b, ": structured error (aliasing, a pattern, or a bias)");
-    const struct verdict_failure *x = failure_of(vs, v, VERDICT_BIASED);
+    const struct verdict_failure *x = verdict_failure_of(vs, v, VERDICT_BIASED);
     if (x)
         sbuf_printf(b, "; biased: mean radiance %+.2f%% off the reference at %s", x->value,
                     c->points[x->point]);
@@ -116,10 +99,6 @@ char *report_stability(const struct compare *c, int s, int v)
                     c->n_seeds, widest, c->points[at]);
     else
         sbuf_printf(&b, "one seed, so no spread measured");
-    if (!vs) {
-        sbuf_printf(&b, "; no verdict, so no slope or structure");
-        goto done;
-    }
     if (c->n_points > 1)
         convergence(&b, c, vs, v, order, a);
     repeated(&b, c, vs, v, order);

@@ -3,20 +3,20 @@
 #include "report_view.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 
 #include "base/fileio.h"
 #include "image/errmap.h"
 #include "image/png.h"
 #include "report_image.h"
+#include "study/load/html_text.h"
 
 #define REPORT_VIEW_MAX_PNG_BYTES (256u << 20)
 #define REPORT_VIEW_BAR_PX 360 /* as .cbar's width in REPORT_VIEW_CSS */
 
 /* Renders carry data-ab (the id of their reference); the swap keeps their own src in data-own.
    Figures of seed index k carry class sd and data-seed k; data-slot names a figure's place. */
-static const char script[] =
+const char report_view_script[] =
     "(function(){var ab=false,ov=null,cur=null;"
     "function own(i){return i.dataset.own||i.src;}"
     "function show(i,on){var r=document.getElementById(i.dataset.ab);if(!r)return;"
@@ -62,11 +62,6 @@ static const char script[] =
     "false);});});});"
     "})();";
 
-const char *report_view_script(void)
-{
-    return script;
-}
-
 int report_view_read_png(const char *path, uint8_t **bytes, size_t *len, struct rgb8 *img, struct err *e)
 {
     if (fileio_read_all(path, REPORT_VIEW_MAX_PNG_BYTES, bytes, len, e) < 0)
@@ -90,8 +85,7 @@ void report_view_png(struct sbuf *b, const uint8_t *png, size_t len, int w, int 
     sbuf_printf(b, " src=\"data:image/png;base64,");
     sbuf_base64(b, png, len);
     sbuf_printf(b, "\" width=\"%d\" height=\"%d\" alt=\"", w * v->zoom, h * v->zoom);
-    sbuf_escape(b, v->alt);
-    sbuf_printf(b, "\">");
+    html_text(b, "", v->alt, "\">");
 }
 
 int report_view_rgb(struct sbuf *b, const struct rgb8 *img, const struct report_view_img *v, struct err *e)

@@ -32,7 +32,7 @@
 /* The page's script (no network): click an image to enlarge it, arrows step, Esc closes; hold
    R or the A/B button to show the reference in every render's place; a seed button or key 1-9
    shows that seed's figures. */
-const char *report_view_script(void);
+extern const char report_view_script[];
 
 /* How one <img> shows. */
 struct report_view_img {

@@ -5,11 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "chart.h"
-#include "study/judge/verdict_look.h"
-#include "report_spectrum.h"
+#include "report_look.h"
 #include "verdict_out.h"
 #include "study/judge/verdict_rank.h"
+#include "study/load/html_text.h"
 
 #define TIE_RULE                                                                                             \
     "Each variant's figure is its seeds' mean of log relMSE at the common point (for slopes: the mean of "   \
@@ -28,12 +27,14 @@ static const char *status_name(enum verdict_status s)
     return s == VERDICT_CLEAR ? "clear" : s == VERDICT_TIE ? "tie" : "inconclusive";
 }
 
-static const char *kind_name(enum verdict_failure_kind k)
-{
-    static const char *const names[] = {"structured_error", "stops_falling", "non_finite", "sampler_share",
-                                        "biased",           "heavy_tailed",  "structured"};
-    return names[k];
-}
+/* A failure kind's name in verdict.json, and its detail's key there (NULL: none). */
+static const char *const kind_names[][2] = {{"structured_error", "bias_share"},
+                                            {"stops_falling", NULL},
+                                            {"non_finite", NULL},
+                                            {"sampler_share", NULL},
+                                            {"biased", "standard_errors"},
+                                            {"heavy_tailed", "worst_share"},
+                                            {"structured", "anisotropy"}};
 
 static void json_ranking(struct json *j, const char *key, const char *at_key, const char *value_key,
                          const struct verdict_scene *v, const struct verdict_ranking *r)
@@ -123,14 +124,10 @@ static void json_scene(struct json *j, const struct verdict_scene *v)
         const struct verdict_failure *x = &v->failures[i];
         json_begin_object(j, NULL);
         json_string(j, "variant", v->variants[x->variant]);
-        json_string(j, "kind", kind_name(x->kind));
+        json_string(j, "kind", kind_names[x->kind][0]);
         json_number(j, "value", x->value);
-        if (x->kind == VERDICT_STRUCTURED || x->kind == VERDICT_BIASED)
-            json_number(j, x->kind == VERDICT_BIASED ? "standard_errors" : "bias_share", x->detail);
-        if (x->kind == VERDICT_PATTERN)
-            json_number(j, "anisotropy", x->detail);
-        if (x->kind == VERDICT_HEAVY_TAILED)
-            json_number(j, "worst_share", x->detail);
+        if (kind_names[x->kind][1])
+            json_number(j, kind_names[x->kind][1], x->detail);
         json_string(j, "text", x->text);
         json_end_object(j);
     }
@@ -185,47 +182,37 @@ char *verdict_json_text(const char *job, const struct verdict_study *s, int n, c
 /* One cell: "2. 1.3e-3 [1.1e-3, 1.5e-3]", the rank bold when 1. */
 static void html_cell(struct sbuf *b, const struct verdict_ranking *r, int v, const char *fmt)
 {
-    for (int i = 0; i < r->n; i++) {
-        const struct verdict_entry *e = &r->e[i];
-        if (e->variant != v)
-            continue;
-        char val[32], lo[32], hi[32];
-        snprintf(val, sizeof val, fmt, e->value);
-        snprintf(lo, sizeof lo, fmt, e->lo);
-        snprintf(hi, sizeof hi, fmt, e->hi);
-        sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
-                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
-                    e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
-                    e->unreached      ? " not reached: its cheapest point"
-                    : e->untold       ? " cannot tell: too far beyond its points"
-                    : e->extrapolated ? " read beyond its cheapest point"
-                                      : "");
+    const struct verdict_entry *e = verdict_entry_of(r, v);
+    char val[32], lo[32], hi[32];
+    if (!e) {
+        sbuf_printf(b, "<td></td>");
         return;
     }
-    sbuf_printf(b, "<td></td>");
+    snprintf(val, sizeof val, fmt, e->value);
+    snprintf(lo, sizeof lo, fmt, e->lo);
+    snprintf(hi, sizeof hi, fmt, e->hi);
+    sbuf_printf(b, "<td>%s%d%s &nbsp;%s <span class=\"note\">[%s, %s]%s</span></td>",
+                e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "<b>" : "", e->rank,
+                e->rank == 1 && r->status != VERDICT_INCONCLUSIVE ? "</b>" : "", val, lo, hi,
+                e->unreached      ? " not reached: its cheapest point"
+                : e->untold       ? " cannot tell: too far beyond its points"
+                : e->extrapolated ? " read beyond its cheapest point"
+                                  : "");
 }
 
 static void html_scene(struct sbuf *b, const struct verdict_scene *v)
 {
-    sbuf_printf(b, "<h3>");
-    sbuf_escape(b, v->study);
-    sbuf_printf(b, " / ");
-    sbuf_escape(b, v->scene);
-    sbuf_printf(b, "</h3>\n<ul class=\"verdict\">\n");
-    for (int i = 0; i < v->n_sentences; i++) {
-        sbuf_printf(b, "<li>");
-        sbuf_escape(b, v->sentences[i]);
-        sbuf_printf(b, "</li>\n");
-    }
+    html_text(b, "<h3>", v->study, " / ");
+    html_text(b, "", v->scene, "</h3>\n<ul class=\"verdict\">\n");
+    for (int i = 0; i < v->n_sentences; i++)
+        html_text(b, "<li>", v->sentences[i], "</li>\n");
     sbuf_printf(b,
                 "</ul>\n<table><tr><th class=\"l\">variant</th><th>rank at equal samples (%.0f spp): relMSE "
                 "[95%% CI]</th><th>rank at equal CPU time (%.3g s): relMSE [95%% CI]</th><th>rank by "
                 "slope: relMSE ~ spp^s [95%% CI]</th></tr>\n",
                 v->by_samples.at, v->by_cpu.at);
     for (int k = 0; k < v->n_variants; k++) {
-        sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
-        sbuf_escape(b, v->variants[k]);
-        sbuf_printf(b, "</td>");
+        html_text(b, "<tr class=\"v\"><td class=\"l\">", v->variants[k], "</td>");
         html_cell(b, &v->by_samples, k, "%.3g");
         html_cell(b, &v->by_cpu, k, "%.3g");
         html_cell(b, &v->by_slope, k, "%.2f");
@@ -238,16 +225,11 @@ static void html_scene(struct sbuf *b, const struct verdict_scene *v)
         v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "geometric mean",
         v->rank_by == VERDICT_RANK_MEDIAN ? "median" : "mean", status_name(v->by_samples.status),
         status_name(v->by_cpu.status), status_name(v->by_slope.status));
-    for (int i = 0; i < v->n_failures; i++) {
-        sbuf_printf(b, "%s", i ? "; " : " <b>Failures</b>: ");
-        sbuf_escape(b, v->failures[i].text);
-    }
+    for (int i = 0; i < v->n_failures; i++)
+        html_text(b, i ? "; " : " <b>Failures</b>: ", v->failures[i].text, "");
     sbuf_printf(b, "%s</p>\n", v->n_failures ? "." : " No failure mode detected.");
-    for (int i = 0; i < v->n_warnings; i++) {
-        sbuf_printf(b, "<p class=\"warn\">Warning: ");
-        sbuf_escape(b, v->warnings[i]);
-        sbuf_printf(b, "</p>\n");
-    }
+    for (int i = 0; i < v->n_warnings; i++)
+        html_text(b, "<p class=\"warn\">Warning: ", v->warnings[i], "</p>\n");
 }
 
 /* One line per study and scene: the three winners and the failures' kinds, at a glance. */
@@ -261,22 +243,17 @@ static void html_overview(struct sbuf *b, const struct verdict_study *s, int n)
             const struct verdict_scene *v = &s[i].scenes[k];
             const struct verdict_ranking *rs[] = {&v->by_cpu, &v->by_samples, &v->by_slope};
             char w[512];
-            sbuf_printf(b, "<tr class=\"v\"><td class=\"l\">");
-            sbuf_escape(b, v->study);
-            sbuf_printf(b, " / ");
-            sbuf_escape(b, v->scene);
-            sbuf_printf(b, "</td>");
+            html_text(b, "<tr class=\"v\"><td class=\"l\">", v->study, " / ");
+            html_text(b, "", v->scene, "</td>");
             for (int r = 0; r < 3; r++) {
                 verdict_ranking_winner(v, rs[r], 1, w, sizeof w);
-                sbuf_printf(b, "<td class=\"l\">%s", r == 0 ? "<b>" : "");
-                sbuf_escape(b, w);
-                sbuf_printf(b, "%s</td>", r == 0 ? "</b>" : "");
+                html_text(b, r == 0 ? "<td class=\"l\"><b>" : "<td class=\"l\">", w,
+                          r == 0 ? "</b></td>" : "</td>");
             }
             sbuf_printf(b, "<td class=\"l\">");
             for (int f = 0; f < v->n_failures; f++) {
-                sbuf_printf(b, "%s", f ? "; " : "");
-                sbuf_escape(b, v->variants[v->failures[f].variant]);
-                sbuf_printf(b, ": %s", kind_name(v->failures[f].kind));
+                html_text(b, f ? "; " : "", v->variants[v->failures[f].variant], ": ");
+                sbuf_printf(b, "%s", kind_names[v->failures[f].kind][0]);
             }
             sbuf_printf(b, "%s</td></tr>\n", v->n_failures ? "" : "none");
         }
@@ -290,16 +267,14 @@ static void html_look(struct sbuf *b, const struct verdict_study *s)
     for (int k = 0; k < s->n_scenes; k++)
         for (int i = 0; i < s->scenes[k].n_variants * s->scenes[k].n_points; i++)
             any |= isfinite(s->scenes[k].look.mean[i]);
-    char *svg = any ? verdict_look_svg(s) : NULL;
-    const char *root = svg ? strstr(svg, "<svg") : NULL; /* inline: drop the XML declaration */
-    if (root)
-        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
-    free(svg);
-    svg = report_spectrum_svg(s);
-    root = svg ? strstr(svg, "<svg") : NULL;
-    if (root)
-        sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
-    free(svg);
+    char *svgs[2] = {any ? report_look_svg(s, REPORT_LOOK_LOWFREQ) : NULL,
+                     report_look_svg(s, REPORT_LOOK_SPECTRUM)};
+    for (int i = 0; i < 2; i++) {
+        const char *root = svgs[i] ? strstr(svgs[i], "<svg") : NULL; /* inline: drop the XML declaration */
+        if (root)
+            sbuf_printf(b, "<div class=\"look\">%s</div>\n", root);
+        free(svgs[i]);
+    }
 }
 
 void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
@@ -311,8 +286,8 @@ void verdict_html(struct sbuf *b, const struct verdict_study *s, int n)
             html_scene(b, &s[i].scenes[k]);
         html_look(b, &s[i]);
     }
-    sbuf_printf(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ");
-    sbuf_escape(b, TIE_RULE);
+    html_text(b, "<p class=\"note\"><b>How it is decided.</b> Errors are relMSE in linear radiance. ",
+              TIE_RULE, "");
     sbuf_printf(
         b,
         " Failure modes: more than %.0f%% of the error repeating in every seed (structured: averaging "
@@ -330,7 +305,7 @@ void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len
         at += (size_t)snprintf(buf + at, len - at, "%s%s:", i ? "; " : "", s[i].name);
         for (int k = 0; k < s[i].n_scenes && at < len; k++) {
             char w[256];
-            verdict_winner(&s[i].scenes[k], w, sizeof w);
+            verdict_ranking_winner(&s[i].scenes[k], &s[i].scenes[k].by_cpu, 1, w, sizeof w);
             at += (size_t)snprintf(buf + at, len - at, "%s %s %s", k ? "," : "", s[i].scenes[k].scene, w);
         }
     }
@@ -343,53 +318,4 @@ void verdict_print_warnings(const struct verdict_study *s, int n)
             for (int w = 0; w < s[i].scenes[k].n_warnings; w++)
                 err_print("%s: warning: %s: %s\n", s[i].name, s[i].scenes[k].scene,
                           s[i].scenes[k].warnings[w]);
-}
-
-char *verdict_look_svg(const struct verdict_study *s)
-{
-    int n_series = 0, n_vals = 0;
-    for (int i = 0; i < s->n_scenes; i++)
-        n_series += s->scenes[i].n_variants, n_vals += s->scenes[i].n_variants * s->scenes[i].n_points;
-    struct chart_series *ser = calloc((size_t)n_series + 1, sizeof *ser);
-    struct chart_panel *pan = calloc((size_t)s->n_scenes + 1, sizeof *pan);
-    double *mem = calloc((size_t)n_vals * 2 + 1, sizeof *mem);
-    char(*titles)[160] = calloc((size_t)s->n_scenes + 1, sizeof *titles), title[256], *svg = NULL;
-    if (!ser || !pan || !mem || !titles)
-        goto done;
-    struct chart_series *sr = ser;
-    double *lo = mem, *hi = mem + n_vals;
-    for (int i = 0; i < s->n_scenes; i++) {
-        const struct verdict_scene *v = &s->scenes[i];
-        for (int k = 0; k < v->n_variants; k++) {
-            int o = k * v->n_points;
-            for (int p = 0; p < v->n_points; p++)
-                lo[o + p] = v->look.mean[o + p] - v->look.se[o + p],
-                       hi[o + p] = v->look.mean[o + p] + v->look.se[o + p];
-            sr[k] = (struct chart_series){v->variants[k],
-                                          v->n_points,
-                                          v->look.rel + o,
-                                          v->look.mean + o,
-                                          v->n_seeds > 1 ? lo + o : NULL,
-                                          v->n_seeds > 1 ? hi + o : NULL};
-        }
-        snprintf(titles[i], sizeof titles[i], "%s: how the error looks", v->scene);
-        pan[i] = (struct chart_panel){titles[i],
-                                      "relMSE (log)",
-                                      "error_lowfreq (1: white noise; lower: bluer; log)",
-                                      "no error_lowfreq measured",
-                                      sr,
-                                      v->n_variants,
-                                      NULL,
-                                      0,
-                                      "whisker: +- one standard error"};
-        sr += v->n_variants, lo += v->n_variants * v->n_points, hi += v->n_variants * v->n_points;
-    }
-    snprintf(
-        title, sizeof title,
-        "%s: error_lowfreq against relMSE along the sweep (mean over seeds; whiskers: +- one standard error)",
-        s->name);
-    svg = chart_svg(title, pan, s->n_scenes, 2);
-done:
-    free(ser), free(pan), free(mem), free(titles);
-    return svg;
 }

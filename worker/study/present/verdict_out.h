@@ -1,5 +1,5 @@
-/* verdict_out: a verdict as verdict.json, as the HTML that opens a report (and its plot of how the
-   error looks), and as the summary and warnings on stderr. */
+/* verdict_out: a verdict as verdict.json, as the HTML that opens a report (with the plots of how
+   the error looks, report_look.h), and as the summary and warnings on stderr. */
 #ifndef VERDICT_OUT_H
 #define VERDICT_OUT_H
 
@@ -22,10 +22,6 @@ void verdict_html(struct sbuf *b, const struct verdict_study *s, int n);
 /* "seed-question: checker jitter, cornell inconclusive; soft-shadows: sobol" (equal CPU time),
    for the summary line on stderr. */
 void verdict_summary(const struct verdict_study *s, int n, char *buf, size_t len);
-
-/* The study's plot: per scene, each variant's error_lowfreq (mean over seeds, whiskers +- one
-   standard error) against its relMSE along the sweep, log-log. Malloc'd SVG, NULL on no memory. */
-char *verdict_look_svg(const struct verdict_study *s);
 
 /* Every warning of every scene, one line each ("soft-shadows: warning: checker: ..."), to stderr. */
 void verdict_print_warnings(const struct verdict_study *s, int n);

@@ -10,7 +10,6 @@
 
 #include "compare_cost.h"
 #include "compare_ref.h"
-#include "study/judge/compare_stats.h"
 #include "study/present/report_chart.h"
 #include "base/clock.h"
 #include "base/fileio.h"
@@ -88,8 +87,6 @@ static int item_from_sidecar(struct study_result *r, const char *sidecar_path, s
     if (sidecar_read(sidecar_path, &info, e) < 0)
         return -1;
     r->spp_mean = info.spp_mean;
-    r->spp_min = info.spp_min;
-    r->spp_max = info.spp_max;
     r->wall_s = info.wall_s;
     r->cpu_s = info.cpu_s;
     r->sampler_share = info.sampling_share;
@@ -125,36 +122,25 @@ static int score_look_img(struct study_result *r, const struct rgbf *img, const 
     return rc;
 }
 
-/* A combination that was current, or a scene with a mask: score its files (scored_file, read once
-   for its error, look and FLIP, and its PNG for the display figures), over the scene's mask. */
+/* Score a combination's files (scored_file, read once): how its error looks and its FLIP, measured
+   on the file as written; when whole (a combination that was current, or a scene with a mask), its
+   error too and its PNG's display figures, over the scene's mask. 0 or -1. */
 static int score_files(struct study_result *r, const struct run_result *rr, const struct study_ref *ref,
-                       const struct compare_scene *cs, struct err *e)
+                       const struct compare_scene *cs, int whole, struct err *e)
 {
     struct rgbf img = {0};
     struct rgb8 png = {0};
     const struct outdir_files *out = &rr->out;
-    int rc = imgio_read_f(scored_file(out, cs->ref_domain), &img, NULL, e) < 0 ||
-                     metrics_compare_masked(&ref->f, &img, 1, cs->mask, &r->error, e) < 0 ||
-                     score_look_img(r, &img, ref, cs, e) < 0 || imgio_read(out->image[0], &png, e) < 0 ||
-                     metrics_display_masked(&ref->display, &png, cs->mask, &r->display_error, e) < 0
-                 ? -1
-                 : 0;
+    int rc =
+        imgio_read_f(scored_file(out, cs->ref_domain), &img, NULL, e) < 0 ||
+                (whole && metrics_compare_masked(&ref->f, &img, 1, cs->mask, &r->error, e) < 0) ||
+                score_look_img(r, &img, ref, cs, e) < 0 ||
+                (whole && (imgio_read(out->image[0], &png, e) < 0 ||
+                           metrics_display_masked(&ref->display, &png, cs->mask, &r->display_error, e) < 0))
+            ? -1
+            : 0;
     image_f_free(&img);
     image_free(&png);
-    return rc;
-}
-
-/* How a fresh combination's error looks and its FLIP, from scored_file (the framebuffer was
-   scored in memory; these are measured on the file as written). 0 or -1. */
-static int score_look(struct study_result *r, const struct run_result *rr, const struct study_ref *ref,
-                      const struct compare_scene *cs, struct err *e)
-{
-    struct rgbf img = {0};
-    int rc = imgio_read_f(scored_file(&rr->out, cs->ref_domain), &img, NULL, e) < 0 ||
-                     score_look_img(r, &img, ref, cs, e) < 0
-                 ? -1
-                 : 0;
-    image_f_free(&img);
     return rc;
 }
 
@@ -190,29 +176,24 @@ static int render_item(const struct compare *c, struct study_results *res, int i
     } else {
         const struct render_stats *t = &rr.procs.total;
         r->spp_mean = t->pixels ? (double)t->samples / t->pixels : 0;
-        r->spp_min = t->pixels ? t->spp_min : 0;
-        r->spp_max = t->spp_max;
         r->nonfinite = t->nonfinite;
         r->wall_s = rr.procs.wall_s;
         r->cpu_s = rr.procs.cpu_s;
         r->sampler_share = procs_sampling_share(&rr.procs); /* the sidecar's sampling_share */
         r->work = sidecar_work_of(t);
     }
-    if (ref && (rr.skipped || cs->mask)) { /* the sidecar's figures are the whole image's */
-        if (score_files(r, &rr, ref, cs, e) < 0)
-            return 1;
-        r->has_error = 1;
-    } else if (ref) {
+    int whole = rr.skipped || cs->mask != NULL; /* the sidecar's figures are the whole image's */
+    if (ref && !whole) {                        /* the framebuffer's, scored in memory */
         if (!rr.has_error || !rr.has_display_error) {
             err_set(e, NULL, 0, 0, "%s: rendered without its error figures", it->job.output);
             return 1;
         }
         r->error = rr.error;
         r->display_error = rr.display_error;
-        r->has_error = 1;
-        if (score_look(r, &rr, ref, cs, e) < 0)
-            return 1;
     }
+    if (ref && score_files(r, &rr, ref, cs, whole, e) < 0)
+        return 1;
+    r->has_error |= ref != NULL;
     r->done = 1;
     return 0;
 }

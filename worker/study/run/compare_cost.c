@@ -191,8 +191,7 @@ char *compare_cost_csv(const struct compare *c)
         for (int v = 0; v < c->n_variants; v++)
             for (int p = 0; p < c->n_points; p++) {
                 point_name(c, s, v, p, name, sizeof name);
-                for (int k = 0; k < c->results.n_blocks;
-                     k++) /* names are letters, digits, - and _: no quoting */
+                for (int k = 0; k < c->results.n_blocks; k++) /* letters, digits, - and _: no quoting */
                     sbuf_printf(&b, "%s,%s,%s,%d,%.6g\n", c->scenes[s].name, c->variants[v], name, k,
                                 c->results.cost_s[compare_cost_index(c, s, v, p, k)]);
             }
@@ -244,22 +243,17 @@ int compare_cost_read(const struct compare *c, struct study_results *res, const 
         cost[(size_t)cell * COMPARE_COST_BLOCKS + (size_t)k] = x;
         blocks = (int)fmax(blocks, (double)k + 1);
     }
-    for (int i = 0; i < cells; i++)
-        for (int k = 0; k < blocks; k++)
-            if (!isfinite(cost[(size_t)i * COMPARE_COST_BLOCKS + k]))
-                goto done;
+    for (int i = 0; i < cells * blocks; i++) { /* in place, `blocks` a cell: never ahead of what it reads */
+        cost[i] = cost[(size_t)(i / blocks) * COMPARE_COST_BLOCKS + (size_t)(i % blocks)];
+        if (!isfinite(cost[i]))
+            goto done;
+    }
     if (blocks < 2)
         goto done;
     free(res->cost_s);
+    res->cost_s = cost; /* taken over */
     res->n_blocks = blocks;
-    res->cost_s = malloc(sizeof *res->cost_s * (size_t)cells * blocks);
-    if (!res->cost_s) {
-        res->n_blocks = 0;
-        goto done;
-    }
-    for (int i = 0; i < cells; i++)
-        for (int k = 0; k < blocks; k++)
-            res->cost_s[(size_t)i * blocks + k] = cost[(size_t)i * COMPARE_COST_BLOCKS + k];
+    cost = NULL;
     rc = 0;
 done:
     verdict_csv_free(&t);

@@ -97,9 +97,6 @@ static int half_rendered(const char *path, const char *record, uint64_t key, str
     return rc;
 }
 
-/* Half h (0 or 1) of the reference: its settings with half the samples (the thresholds, a spacing,
-   times sqrt 2) and its own seed, into OUT/.cache/ref-<scene>-<key>-<a|b>.exr, rendered unless the
-   cache holds it at the right size. *img is its pixels. */
 void compare_ref_half_job(const struct compare_scene *cs, int h, struct job *j)
 {
     *j = cs->ref_job;

@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/fileio.h"
 #include "base/sbuf.h"
@@ -43,10 +42,8 @@ static int write_top(const struct compare_suite *s, const char *dir, const struc
     struct verdict_study *v = suite_verdicts(s);
     int lock = -1, rc = -1;
     e->msg[0] = 0;
-    if (!v) {
-        err_set(e, NULL, 0, 0, "out of memory");
-        return -1;
-    }
+    if (!v)
+        return err_set(e, NULL, 0, 0, "out of memory");
     if (outdir_mkdirs(dir, NULL, e) == 0 && run_out_lock_outputs(dir, outs, o, &lock, e) == 0 &&
         fileio_write_text(dir, "verdict.json",
                           verdict_json_text(s->name, v, s->n_studies, &s->studies[0]->env), e) == 0 &&

@@ -9,22 +9,18 @@
 #include "base/sbuf.h"
 #include "compare.h"
 #include "compare_suite.h"
-#include "study/load/compare_load.h"
-#include "study/load/compare_suite_load.h"
+#include "study_fan.h"
 
 /* A compare job (c) or a suite (s), loaded from the parsed job file, run, and its line printed. */
 static int run_study(const struct jobfile *f, const struct run_opts *o,
                      int (*name_ok)(const char *name, void *arg), void *arg, struct jobfile_outcome *out)
 {
-    struct compare *c = NULL;
-    struct compare_suite *s = NULL;
+    struct study_fan fan; /* one of c and s */
     double t0 = clock_s(CLOCK_MONOTONIC);
     int rc = 2;
-    if (f->kind == JOBFILE_SUITE)
-        s = compare_suite_load_doc(&f->doc, f->path, &out->e);
-    else
-        c = compare_load_doc(&f->doc, f->path, &out->e);
-    const char *name = s ? s->name : c ? c->name : NULL;
+    const char *name = study_fan_load(f, &fan, &out->e) == 0 ? study_fan_name(&fan) : NULL;
+    struct compare *c = fan.c;
+    struct compare_suite *s = fan.s;
     if (name)
         snprintf(out->name, sizeof out->name, "%s", name);
     if (name && name_ok && !name_ok(name, arg))
@@ -48,8 +44,7 @@ static int run_study(const struct jobfile *f, const struct run_opts *o,
         sbuf_free(&shown);
     }
 done:
-    compare_suite_free(s);
-    compare_free(c);
+    study_fan_free(&fan);
     return rc;
 }
 

@@ -11,7 +11,6 @@
 #include "study/load/compare_load.h"
 #include "study/load/compare_suite_load.h"
 #include "job/outdir.h"
-#include "job/run.h"
 
 int study_fan_load(const struct jobfile *jf, struct study_fan *f, struct err *e)
 {
@@ -132,13 +131,8 @@ int study_fan_half_merged(struct study_fan *f, int k, int s, int h, const struct
 int study_fan_ref_lock(const struct study_fan *f, int k, int s, const struct run_opts *o, int shared,
                        struct err *e)
 {
-    char cache[2048], lock[2400];
-    if (f->s) {
-        char suite[2048];
-        outdir_dir(o->out_dir, f->s->name, suite, sizeof suite);
-        outdir_dir(suite, ".cache", cache, sizeof cache);
-    } else
-        outdir_dir(o->out_dir, ".cache", cache, sizeof cache);
+    char dir[2048], cache[2048], lock[2400];
+    outdir_dir(study_opts(f, o, dir, sizeof dir).out_dir, ".cache", cache, sizeof cache);
     if (outdir_mkdirs(cache, NULL, e) < 0)
         return -1;
     snprintf(lock, sizeof lock, "%s/.ref-%s.lock", cache, study_fan_study(f, k)->scenes[s].name);
@@ -167,15 +161,10 @@ int study_fan_share(const struct jobfile *jf, const struct run_opts *o)
     struct study_fan f;
     struct err e = {0};
     char line[4096];
-    int rc = 0, rendered = 0, current = 0, index = 0;
-    if (study_fan_load(jf, &f, &e) < 0) {
-        err_format(&e, line, sizeof line);
-        err_print("%s\n", line);
-        return 2;
-    }
+    int rc = study_fan_load(jf, &f, &e) < 0 ? 2 : 0, rendered = 0, current = 0, index = 0;
     struct run_opts whole = *o; /* each image renders whole: the share is of the study, not of rows */
     whole.part = whole.parts = 0;
-    for (int k = 0; k < study_fan_studies(&f) && rc == 0; k++) {
+    for (int k = 0; rc == 0 && k < study_fan_studies(&f); k++) { /* none when the load failed */
         struct compare *c = study_fan_study(&f, k);
         int ready[COMPARE_MAX_ITEMS] = {0}; /* per scene: its reference prepared */
         for (int i = 0; i < c->n_items && rc == 0; i++, index++) {

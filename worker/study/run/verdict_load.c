@@ -85,8 +85,7 @@ static int judge(const struct study_table *t, int si, const char *dir, struct ve
     for (int s = 0; s < c->n_scenes; s++)
         if (c->results.refs[s].path[0])
             compare_ref_measure(&c->scenes[s], &c->results.refs[s]);
-    (void)compare_cost_read(c, &c->results,
-                            dir); /* absent (an older folder): the images' own times, said so */
+    (void)compare_cost_read(c, &c->results, dir); /* absent: the images' own times, said so */
     struct verdict_found found = {.no_sidecar = missing, .no_relmse = unscored, .no_figures = unfigured};
     int rc = verdict_from_compare(c, dir, &found, out, e);
     free(missing); /* and unscored */
