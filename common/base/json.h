@@ -7,17 +7,8 @@
 
 #include "sbuf.h"
 
-/* The text is an sbuf, also read as buf, len and oom (the same members: a common initial
-   sequence, which a union may read through either). */
 struct json {
-    union {
-        struct sbuf text;
-        struct {
-            char *buf;
-            size_t len, cap;
-            int oom;
-        };
-    };
+    struct sbuf text; /* the JSON written so far */
     int depth;
     int first[32]; /* no member written yet at this depth */
 };

@@ -145,8 +145,8 @@ static void print_json(const struct study_fan *f, const struct spread_plan *p, c
     }
     json_end_array(&j);
     json_end_object(&j);
-    if (j.buf)
-        printf("%s\n", j.buf);
+    if (j.text.buf)
+        printf("%s\n", j.text.buf);
     json_free(&j);
 }
 

@@ -217,7 +217,7 @@ void queue_status_print_json(const char *dir, const struct status_view *v)
     }
     json_end_array(&js);
     json_end_object(&js);
-    if (!js.oom)
-        printf("%.*s\n", (int)js.len, js.buf);
+    if (!js.text.oom)
+        printf("%.*s\n", (int)js.text.len, js.text.buf);
     json_free(&js);
 }

@@ -183,11 +183,11 @@ char *sidecar_json(const struct sidecar *s)
         json_end_object(&js);
     }
     json_end_object(&js);
-    if (js.oom) {
+    if (js.text.oom) {
         json_free(&js);
         return NULL;
     }
-    return js.buf;
+    return js.text.buf;
 }
 
 /* The scalar text of key in mapping m: 1, or 0 and NULL when absent; -1 (e filled) when not a

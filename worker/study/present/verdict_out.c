@@ -172,11 +172,11 @@ char *verdict_json_text(const char *job, const struct verdict_study *s, int n, c
     }
     json_end_array(&j);
     json_end_object(&j);
-    if (j.oom) {
+    if (j.text.oom) {
         json_free(&j);
         return NULL;
     }
-    return j.buf; /* the writer's buffer, handed over */
+    return j.text.buf; /* the writer's buffer, handed over */
 }
 
 /* One cell: "2. 1.3e-3 [1.1e-3, 1.5e-3]", the rank bold when 1. */
