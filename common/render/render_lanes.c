@@ -60,6 +60,17 @@ path_start(struct render_ctx *ctx, struct path *pt, int x, int y, size_t s, cons
     pt->depth = 0;
 }
 
+/* An ended lane's next camera sample, *next, if any is left of the pixel's n: 1 when pt took it. */
+static inline __attribute__((always_inline)) int path_next(struct render_ctx *ctx, struct path *pt, int x,
+                                                           int y, size_t n, const struct rng *base, int dims,
+                                                           size_t *next)
+{
+    if (*next >= n)
+        return 0;
+    path_start(ctx, pt, x, y, (*next)++, base, dims);
+    return 1;
+}
+
 /* The nearest hits of the rays *r[i] of the lanes in mask, into ph: bit i of the result set when
    lane i's ray hits. Four at a time by packet_hit, or (one lane, or no vector back-end) each
    alone by the scalar traversal: the same hits, packet_hit returns the scalar tests' answers bit
@@ -127,9 +138,7 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(ended >> i & 1))
                 continue;
             add_estimate(pt[i].st.L, acc, &acc_nonfinite);
-            if (next < n) /* the lane takes the pixel's next camera sample */
-                path_start(ctx, &pt[i], x, y, next++, base, how.dims);
-            else
+            if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
                 lanes &= ~(1 << i);
         }
     }
