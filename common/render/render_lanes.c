@@ -119,8 +119,15 @@ static inline __attribute__((always_inline)) void lanes_run(struct render_ctx *c
             if (!(lanes >> i & 1))
                 continue;
             ++acc_rays;
-            if (!shade(ctx, &pt[i], got >> i & 1, &ph.h[i], how, &acc_shadow))
-                ended |= 1 << i; /* its estimate is taken below, after its shadow ray */
+            if (shade(ctx, &pt[i], got >> i & 1, &ph.h[i], how, &acc_shadow))
+                continue;
+            if (direct) { /* ended, once its shadow ray is traced below */
+                ended |= 1 << i;
+                continue;
+            }
+            add_estimate(pt[i].st.L, acc, &acc_nonfinite);
+            if (!path_next(ctx, &pt[i], x, y, n, base, how.dims, &next))
+                lanes &= ~(1 << i);
         }
         if (direct) { /* the shadow rays shade left, traced together; each adds to its path's L as it
                       would have at once (nothing else adds to L in between) */
