@@ -144,8 +144,8 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
             return 0;
         if (nee)
             p->mis_pdf = cosine_pdf;
-        /* without the mixture pdf is cosine_pdf: the weight is the albedo */
-        p->beta = v3_mul(p->beta, mix ? v3_scale(albedo, cosine_pdf / pdf) : albedo);
+        p->beta =
+            v3_mul(p->beta, mix ? v3_scale(albedo, cosine_pdf / pdf) : albedo); /* else pdf is cosine_pdf */
         p->r = (ray){h->p, dir, p->r.time};
         return 1;
     }
