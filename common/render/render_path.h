@@ -119,20 +119,40 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
     vec3 dir;
     if (m->type == MAT_LAMBERTIAN) {
         vec3 albedo = surface_albedo(sc, m, h);
+        if (nee) {
+            path_next_event(ctx, p, rng, h, albedo, 0, shadow_rays, at);
+            onb frame = onb_from_w(h->n);
+            if (at.dims) {
+                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
+                dir = cosine_direction_uv(&frame, u.x, u.y);
+            } else {
+                dir = cosine_direction(&frame, rng);
+            }
+            double cosine = v3_dot(dir, h->n);
+            if (!(cosine > 0))
+                return 0;
+            p->mis_pdf = cosine / PI;
+            p->beta = v3_mul(p->beta, albedo);
+            p->r = (ray){h->p, dir, p->r.time};
+            return 1;
+        }
         int light = -1;
         double light_pdf = 0;
-        if (nee)
-            path_next_event(ctx, p, rng, h, albedo, 0, shadow_rays, at);
-        /* the mixture's coin (under dims its choice's x; next-event estimation draws none) */
-        const struct pt2 c = at.dims && !nee ? path_decide(ctx, rng, at, DIM_CHOICE) : (struct pt2){0, 0};
-        if (mix && (at.dims ? c.x < 0.5 : rng_u32(rng) >> 31)) {
-            dir = at.dims ? light_direction_at(ctx, light_set_all(sc), h->p, c.y,
-                                               path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf)
-                          : light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf);
+        if (at.dims) {
+            struct pt2 c = path_decide(ctx, rng, at, DIM_CHOICE);
+            if (mix && c.x < 0.5) {
+                dir = light_direction_at(ctx, light_set_all(sc), h->p, c.y,
+                                         path_decide(ctx, rng, at, DIM_LIGHT), &light, &light_pdf);
+            } else {
+                onb frame = onb_from_w(h->n);
+                struct pt2 u = path_decide(ctx, rng, at, DIM_DIR);
+                dir = cosine_direction_uv(&frame, u.x, u.y);
+            }
+        } else if (mix && rng_u32(rng) >> 31) {
+            dir = light_direction(ctx, light_set_all(sc), NULL, h->p, rng, &light, &light_pdf);
         } else {
             onb frame = onb_from_w(h->n);
-            const struct pt2 u = at.dims ? path_decide(ctx, rng, at, DIM_DIR) : (struct pt2){0, 0};
-            dir = at.dims ? cosine_direction_uv(&frame, u.x, u.y) : cosine_direction(&frame, rng);
+            dir = cosine_direction(&frame, rng);
         }
         /* below the surface: the scattering pdf is 0 and so is the estimate */
         double cosine = v3_dot(dir, h->n);
@@ -142,10 +162,7 @@ static inline __attribute__((always_inline)) int path_scatter(struct render_ctx 
         double pdf = mix ? 0.5 * lights_pdf(sc, h->p, dir, light, light_pdf) + 0.5 * cosine_pdf : cosine_pdf;
         if (!(pdf > 0))
             return 0;
-        if (nee)
-            p->mis_pdf = cosine_pdf;
-        p->beta =
-            v3_mul(p->beta, mix ? v3_scale(albedo, cosine_pdf / pdf) : albedo); /* else pdf is cosine_pdf */
+        p->beta = v3_mul(p->beta, v3_scale(albedo, cosine_pdf / pdf));
         p->r = (ray){h->p, dir, p->r.time};
         return 1;
     }
