@@ -16,6 +16,11 @@ void json_free(struct json *j)
     sbuf_free(&j->text);
 }
 
+static void add(struct json *j, const char *s)
+{
+    sbuf_put(&j->text, s, strlen(s));
+}
+
 /* Characters JSON allows raw but YAML, whose parser reads sidecars back (libyaml), refuses (DEL,
    the C1 controls, U+FFFE and U+FFFF) or takes for line breaks, folded with the spaces around
    them (U+0085, U+2028, U+2029). */
@@ -30,40 +35,40 @@ static int yaml_unsafe(unsigned cp)
    must be UTF-8. */
 static void put_string(struct json *j, const char *s)
 {
-    sbuf_printf(&j->text, "\"");
+    add(j, "\"");
     for (const unsigned char *c = (const unsigned char *)s; *c;) {
         int n = sbuf_utf8_len((const char *)c);
         if (n == 0)
-            sbuf_printf(&j->text, "\\ufffd");
+            add(j, "\\ufffd");
         else if (*c == '"' || *c == '\\')
             sbuf_printf(&j->text, "\\%c", *c);
         else if (*c < 0x20 || yaml_unsafe(sbuf_code_point((const char *)c, n)))
             sbuf_printf(&j->text, "\\u%04x", sbuf_code_point((const char *)c, n));
         else
-            sbuf_printf(&j->text, "%.*s", n, (const char *)c);
+            sbuf_put(&j->text, (const char *)c, (size_t)n);
         c += n ? n : 1;
     }
-    sbuf_printf(&j->text, "\"");
+    add(j, "\"");
 }
 
 static void member(struct json *j, const char *key)
 {
     if (j->depth > 0) {
-        sbuf_printf(&j->text, j->first[j->depth] ? "\n" : ",\n");
+        add(j, j->first[j->depth] ? "\n" : ",\n");
         for (int i = 0; i < j->depth; i++)
-            sbuf_printf(&j->text, "  ");
+            add(j, "  ");
     }
     j->first[j->depth] = 0;
     if (key) {
         put_string(j, key);
-        sbuf_printf(&j->text, ": ");
+        add(j, ": ");
     }
 }
 
 static void open_(struct json *j, const char *key, const char *c)
 {
     member(j, key);
-    sbuf_printf(&j->text, "%s", c);
+    add(j, c);
     if (j->depth < 31)
         j->depth++;
     j->first[j->depth] = 1;
@@ -75,13 +80,13 @@ static void close_(struct json *j, const char *c)
     if (j->depth > 0)
         j->depth--;
     if (!empty) {
-        sbuf_printf(&j->text, "\n");
+        add(j, "\n");
         for (int i = 0; i < j->depth; i++)
-            sbuf_printf(&j->text, "  ");
+            add(j, "  ");
     }
-    sbuf_printf(&j->text, "%s", c);
+    add(j, c);
     if (j->depth == 0)
-        sbuf_printf(&j->text, "\n");
+        add(j, "\n");
 }
 
 void json_begin_object(struct json *j, const char *key)
@@ -113,13 +118,13 @@ void json_number(struct json *j, const char *key, double val)
     if (isfinite(val))
         sbuf_printf(&j->text, "%.10g", val);
     else
-        sbuf_printf(&j->text, "null");
+        add(j, "null");
 }
 
 void json_number_text(struct json *j, const char *key, const char *text)
 {
     member(j, key);
-    sbuf_printf(&j->text, "%s", text);
+    add(j, text);
 }
 
 void json_uint(struct json *j, const char *key, uint64_t val)
@@ -131,7 +136,7 @@ void json_uint(struct json *j, const char *key, uint64_t val)
 void json_bool(struct json *j, const char *key, int val)
 {
     member(j, key);
-    sbuf_printf(&j->text, "%s", val ? "true" : "false");
+    add(j, val ? "true" : "false");
 }
 
 int json_string_read_back(const char *s, char *out, size_t n)

@@ -40,6 +40,15 @@ void sbuf_printf(struct sbuf *b, const char *fmt, ...)
     b->len += (size_t)n;
 }
 
+void sbuf_put(struct sbuf *b, const char *s, size_t n)
+{
+    if (reserve(b, n) < 0)
+        return;
+    memcpy(b->buf + b->len, s, n);
+    b->len += n;
+    b->buf[b->len] = '\0';
+}
+
 int sbuf_utf8_len(const char *s)
 {
     const unsigned char *c = (const unsigned char *)s;

@@ -18,6 +18,9 @@ struct sbuf {
 /* Append printf-formatted text. */
 void sbuf_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* Append the n bytes at s as they are (no format to scan: the JSON writer's per-character path). */
+void sbuf_put(struct sbuf *b, const char *s, size_t n);
+
 /* Length of the well-formed UTF-8 sequence at s (RFC 3629: no overlong forms, surrogates or code
    points over U+10FFFF), or 0 when the byte at s begins none. */
 int sbuf_utf8_len(const char *s);
