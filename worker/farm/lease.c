@@ -139,7 +139,10 @@ static int read_side(const char *claim, const char *suffix, struct lease *l, dou
         return -1;
     text[n] = 0;
     int fields = 0;
-    for (char *save = NULL, *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+    for (char *line = text, *next; line && *line; line = next) { /* a blank line ends it, as written */
+        next = strchr(line, '\n');
+        if (next)
+            *next++ = 0;
         fields += sscanf(line, "host %255s", l->host) == 1;
         fields += sscanf(line, "pid %ld", &l->pid) == 1;
         fields += sscanf(line, "start %lld", &l->start) == 1;
